@@ -1,0 +1,219 @@
+//! Cameras: look-at view matrices and OpenGL-style projections.
+//!
+//! All matrices are `f64` ([`DMat4`]): the front end rounds to `f32` only
+//! where it imitates a GL pipeline on purpose (see `hider-scene`'s
+//! `TransformPrecision`). The conventions are OpenGL's: a right-handed world,
+//! the camera looking down -Z, clip space with `-w <= z <= w`.
+
+use glam::{DMat4, DVec3};
+
+/// The projection a camera uses.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// Perspective projection (`gluPerspective`).
+    Perspective {
+        /// Vertical field of view in degrees.
+        fovy_degrees: f64,
+        /// Distance to the near plane (> 0).
+        near: f64,
+        /// Distance to the far plane (> near).
+        far: f64,
+    },
+    /// Orthographic projection (`glOrtho` centred on the view axis).
+    Orthographic {
+        /// Half the height of the view volume in world units; the half width
+        /// is this times the aspect ratio.
+        half_height: f64,
+        /// Distance to the near plane (may be negative).
+        near: f64,
+        /// Distance to the far plane (> near).
+        far: f64,
+    },
+}
+
+/// A camera: where the eye is, where it looks and how it projects.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// Position of the eye in world space.
+    pub eye: DVec3,
+    /// Point the eye looks at.
+    pub target: DVec3,
+    /// Up direction (need not be orthogonal to the view direction).
+    pub up: DVec3,
+    /// The projection.
+    pub projection: Projection,
+}
+
+/// Why a camera cannot be used.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CameraError(pub String);
+
+impl std::fmt::Display for CameraError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for CameraError {}
+
+impl Camera {
+    /// The view matrix (world to camera space).
+    pub fn view_matrix(&self) -> DMat4 {
+        look_at(self.eye, self.target, self.up)
+    }
+
+    /// The projection matrix for an image of the given aspect ratio
+    /// (width / height).
+    pub fn projection_matrix(&self, aspect: f64) -> DMat4 {
+        match self.projection {
+            Projection::Perspective {
+                fovy_degrees,
+                near,
+                far,
+            } => perspective(fovy_degrees.to_radians(), aspect, near, far),
+            Projection::Orthographic {
+                half_height,
+                near,
+                far,
+            } => orthographic(half_height * aspect, half_height, near, far),
+        }
+    }
+
+    /// Checks that the camera describes a usable view: finite values, a view
+    /// direction, an up vector not parallel to it, and sane clip distances.
+    pub fn validate(&self) -> Result<(), CameraError> {
+        let finite = self.eye.is_finite() && self.target.is_finite() && self.up.is_finite();
+        if !finite {
+            return Err(CameraError(format!(
+                "camera has a non-finite value (eye {}, target {}, up {})",
+                self.eye, self.target, self.up
+            )));
+        }
+        let dir = self.target - self.eye;
+        if dir.length_squared() == 0.0 {
+            return Err(CameraError(format!(
+                "camera eye and target are the same point {}",
+                self.eye
+            )));
+        }
+        if dir.cross(self.up).length_squared() <= 1e-24 * dir.length_squared() {
+            return Err(CameraError(format!(
+                "camera up {} is parallel to the view direction {}",
+                self.up, dir
+            )));
+        }
+        match self.projection {
+            Projection::Perspective {
+                fovy_degrees,
+                near,
+                far,
+            } => {
+                if !(fovy_degrees > 0.0 && fovy_degrees < 180.0) {
+                    return Err(CameraError(format!(
+                        "fovy {fovy_degrees} is not between 0 and 180 degrees"
+                    )));
+                }
+                if !(near > 0.0 && near.is_finite()) {
+                    return Err(CameraError(format!("near {near} must be > 0")));
+                }
+                if !(far > near && far.is_finite()) {
+                    return Err(CameraError(format!(
+                        "far {far} must be finite and > near {near}"
+                    )));
+                }
+            }
+            Projection::Orthographic {
+                half_height,
+                near,
+                far,
+            } => {
+                if !(half_height > 0.0 && half_height.is_finite()) {
+                    return Err(CameraError(format!(
+                        "orthographic half height {half_height} must be > 0"
+                    )));
+                }
+                if !(far > near && far.is_finite() && near.is_finite()) {
+                    return Err(CameraError(format!(
+                        "far {far} must be finite and > near {near}"
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Right-handed look-at matrix (`gluLookAt`): the eye ends at the origin
+/// looking down -Z with `up` projected to +Y.
+pub fn look_at(eye: DVec3, target: DVec3, up: DVec3) -> DMat4 {
+    DMat4::look_at_rh(eye, target, up)
+}
+
+/// OpenGL perspective projection (`gluPerspective`), `fovy` in radians.
+///
+/// Maps camera-space depth `-near` to NDC z = -1 and `-far` to +1; clip w is
+/// `-z_camera`, the distance in front of the eye.
+pub fn perspective(fovy: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
+    // glam's perspective_rh_gl is exactly gluPerspective's matrix.
+    DMat4::perspective_rh_gl(fovy, aspect, near, far)
+}
+
+/// OpenGL orthographic projection symmetric about the view axis (`glOrtho`
+/// with left = -half_width, bottom = -half_height).
+pub fn orthographic(half_width: f64, half_height: f64, near: f64, far: f64) -> DMat4 {
+    DMat4::orthographic_rh_gl(-half_width, half_width, -half_height, half_height, near, far)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec4;
+
+    #[test]
+    fn perspective_maps_near_and_far_to_ndc_bounds() {
+        let p = perspective(60f64.to_radians(), 1.0, 0.5, 20.0);
+        let near = p * DVec4::new(0.0, 0.0, -0.5, 1.0);
+        let far = p * DVec4::new(0.0, 0.0, -20.0, 1.0);
+        assert!((near.z / near.w + 1.0).abs() < 1e-12);
+        assert!((far.z / far.w - 1.0).abs() < 1e-12);
+        assert!((near.w - 0.5).abs() < 1e-12, "clip w is the distance");
+    }
+
+    #[test]
+    fn look_at_puts_target_on_negative_z() {
+        let v = look_at(DVec3::new(1.0, 2.0, 10.0), DVec3::new(1.0, 2.0, 0.0), DVec3::Y);
+        let t = v.transform_point3(DVec3::new(1.0, 2.0, 0.0));
+        assert!((t - DVec3::new(0.0, 0.0, -10.0)).length() < 1e-12);
+    }
+
+    #[test]
+    fn validate_rejects_bad_cameras() {
+        let good = Camera {
+            eye: DVec3::new(0.0, 0.0, 5.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            projection: Projection::Perspective {
+                fovy_degrees: 60.0,
+                near: 0.1,
+                far: 100.0,
+            },
+        };
+        assert!(good.validate().is_ok());
+        let mut c = good;
+        c.up = DVec3::Z;
+        assert!(c.validate().unwrap_err().0.contains("parallel"));
+        let mut c = good;
+        c.target = c.eye;
+        assert!(c.validate().is_err());
+        let mut c = good;
+        c.projection = Projection::Perspective {
+            fovy_degrees: 60.0,
+            near: 0.0,
+            far: 1.0,
+        };
+        assert!(c.validate().unwrap_err().0.contains("near"));
+        let mut c = good;
+        c.eye.x = f64::NAN;
+        assert!(c.validate().unwrap_err().0.contains("non-finite"));
+    }
+}

@@ -1,0 +1,97 @@
+//! Fixed-point window coordinates: 8 sub-pixel bits, as GL rasterizers use.
+//!
+//! Snapping every vertex to the 1/256-pixel grid once, in the front end, is
+//! what lets every hider decide coverage with exact integer arithmetic: two
+//! triangles that share an edge share its snapped end points bit for bit.
+
+/// Number of sub-pixel bits of a fixed-point coordinate.
+pub const SUBPIXEL_BITS: u32 = 8;
+/// Fixed-point units per pixel (256).
+pub const SUBPIXEL_SCALE: i32 = 1 << SUBPIXEL_BITS;
+/// Half a pixel in fixed-point units: pixel `i`'s centre is `i * 256 + 128`.
+pub const HALF_PIXEL: i32 = SUBPIXEL_SCALE / 2;
+
+/// Largest image side the front end accepts, in pixels.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+/// How far outside the image (in pixels, on every side) geometry may reach
+/// before it is clipped. With [`MAX_IMAGE_SIDE`] this keeps every snapped
+/// coordinate within ±2^15 pixels = ±2^23 fixed-point units, so edge
+/// function products stay below 2^48 and never overflow an `i64`.
+pub const GUARD_BAND_PIXELS: u32 = 16384;
+
+/// A point in window coordinates, in 1/256 pixel units (x right, y down).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct FixedPt {
+    /// x in 1/256 pixels.
+    pub x: i32,
+    /// y in 1/256 pixels.
+    pub y: i32,
+}
+
+impl FixedPt {
+    /// A point from raw fixed-point units.
+    pub const fn new(x: i32, y: i32) -> Self {
+        Self { x, y }
+    }
+
+    /// Snaps a window-space position (in pixels) to the nearest 1/256 pixel,
+    /// ties away from zero (`f64::round`). Returns `None` for non-finite
+    /// input or a position outside the guard band.
+    pub fn snap(x: f64, y: f64) -> Option<Self> {
+        Some(Self {
+            x: snap_coordinate(x)?,
+            y: snap_coordinate(y)?,
+        })
+    }
+
+    /// The position in pixels.
+    pub fn to_pixels(self) -> (f64, f64) {
+        (
+            f64::from(self.x) / f64::from(SUBPIXEL_SCALE),
+            f64::from(self.y) / f64::from(SUBPIXEL_SCALE),
+        )
+    }
+}
+
+/// Snaps one window coordinate (pixels) to fixed point, or `None` when it is
+/// not finite or beyond ±2^15 pixels.
+pub fn snap_coordinate(v: f64) -> Option<i32> {
+    let limit = f64::from(1u32 << 15);
+    if !v.is_finite() || v.abs() > limit {
+        return None;
+    }
+    Some((v * f64::from(SUBPIXEL_SCALE)).round() as i32)
+}
+
+/// The fixed-point coordinate of the centre of pixel column or row `i`.
+pub const fn pixel_center(i: i32) -> i32 {
+    i * SUBPIXEL_SCALE + HALF_PIXEL
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn snapping_rounds_to_nearest_256th() {
+        assert_eq!(FixedPt::snap(1.0, 2.5), Some(FixedPt::new(256, 640)));
+        assert_eq!(snap_coordinate(0.001), Some(0));
+        assert_eq!(snap_coordinate(0.5 / 256.0 + 1e-9), Some(1));
+        assert_eq!(snap_coordinate(-1.0 / 256.0), Some(-1));
+    }
+
+    #[test]
+    fn snapping_refuses_non_finite_and_far_values() {
+        assert_eq!(snap_coordinate(f64::NAN), None);
+        assert_eq!(snap_coordinate(f64::INFINITY), None);
+        assert_eq!(snap_coordinate(40_000.0), None);
+        assert!(snap_coordinate(32_768.0).is_some());
+    }
+
+    #[test]
+    fn pixel_centres_are_half_integers() {
+        assert_eq!(pixel_center(0), 128);
+        assert_eq!(pixel_center(3), 3 * 256 + 128);
+        assert_eq!(FixedPt::new(pixel_center(2), 128).to_pixels(), (2.5, 0.5));
+    }
+}
