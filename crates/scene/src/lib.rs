@@ -1,1 +1,62 @@
-//! stub
+//! The scene model and the shared front end of the hider workspace.
+//!
+//! `hider-scene` holds what every hidden-surface algorithm shares:
+//! - the world-space [`Scene`] (meshes, materials, lights, camera), loaded
+//!   from OBJ + MTL ([`obj`]) or generated ([`procedural`]);
+//! - the front end [`prepare`], which turns a scene and a [`View`] into a
+//!   [`ScreenScene`] of snapped, set-up [`ScreenTri`]s — no hider re-projects;
+//! - the [`Frame`] buffers with PNG output and the GL reference id/depth
+//!   dumps, written atomically;
+//! - the [`Hider`] trait and its [`Stats`], and shading from ids ([`shade`]).
+//!
+//! Conventions (see `docs/conventions.md`): right-handed world, camera
+//! looking down -Z, GL clip space; window origin top-left with y down;
+//! pixel `(i, j)` sampled at `(i + 0.5, j + 0.5)`; vertices snapped to
+//! 1/256 pixel; coverage by exact integer edge functions under the top-left
+//! rule; window depth `z/w` in [0, 1].
+//!
+//! # Example
+//!
+//! Prepare a procedural cube with the fit camera and look at what the front
+//! end produced:
+//!
+//! ```
+//! use hider_scene::{prepare, procedural, PrepareOptions, View};
+//!
+//! let scene = procedural::cube();
+//! let view = View::for_scene(&scene, 64, 64)?;
+//! let screen = prepare(&scene, &view, &PrepareOptions::default())?;
+//! assert_eq!(screen.prims.len(), 12);
+//! assert_eq!(screen.stats.culled, 0);
+//! // Every screen triangle is positively oriented with a depth in [0, 1].
+//! for t in &screen.tris {
+//!     assert!(hider_scene::geom::orient2d(t.v[0], t.v[1], t.v[2]) > 0);
+//!     assert!(t.z.iter().all(|z| (0.0..=1.0).contains(z)));
+//! }
+//! # Ok::<(), hider_scene::Error>(())
+//! ```
+
+pub mod atomic;
+pub mod error;
+pub mod frame;
+pub mod hider;
+pub mod model;
+pub mod obj;
+pub mod prepare;
+pub mod procedural;
+pub mod shade;
+pub mod view;
+
+pub use error::{Error, Result};
+pub use frame::{Frame, NO_ID};
+pub use hider::{Hider, Stats, check_frame};
+pub use model::{Light, Material, Mesh, Scene};
+pub use obj::{load_obj, load_obj_with};
+pub use prepare::{
+    PrepareOptions, PrepareStats, PrimInfo, ScreenScene, ScreenTri, TransformPrecision, prepare,
+};
+pub use shade::{ShadeMode, shade_frame};
+pub use view::{View, fit_camera};
+
+/// The geometry crate this one builds on.
+pub use hider_geom as geom;

@@ -1,0 +1,77 @@
+//! The error type of the scene crate and of every hider.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong loading, preparing or rendering a scene.
+///
+/// Each variant names what was wrong and where (file, line, item, value), so
+/// the CLI can print it as one line.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A file could not be read or written.
+    #[error("{}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The operating system's error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A file's contents could not be parsed.
+    #[error("{}:{line}: {message}", path.display())]
+    Parse {
+        /// The file.
+        path: PathBuf,
+        /// 1-based line number (0 when the whole file is at fault).
+        line: usize,
+        /// What was wrong, quoting the offending text or value.
+        message: String,
+    },
+    /// A value in a scene built in memory is invalid (NaN coordinate,
+    /// index out of range, ...).
+    #[error("invalid scene: {0}")]
+    InvalidScene(String),
+    /// A camera or view that cannot be used.
+    #[error("invalid camera: {0}")]
+    Camera(String),
+    /// A requested size or count is over a documented limit; checked before
+    /// anything is allocated.
+    #[error("{what} {value} is over the limit of {limit}")]
+    Limit {
+        /// What was too large.
+        what: &'static str,
+        /// The requested value.
+        value: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// A requested value is out of its valid range.
+    #[error("{what} must be {expected}, got {value}")]
+    OutOfRange {
+        /// What the value is.
+        what: &'static str,
+        /// The accepted range, in words.
+        expected: &'static str,
+        /// The value given.
+        value: String,
+    },
+    /// An image could not be encoded or decoded.
+    #[error("{}: {message}", path.display())]
+    Image {
+        /// The file.
+        path: PathBuf,
+        /// The codec's message.
+        message: String,
+    },
+    /// A hider could not finish (a budget it documents ran out, ...).
+    #[error("{hider}: {message}")]
+    Render {
+        /// The hider's name.
+        hider: String,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+/// `Result` with this crate's [`Error`].
+pub type Result<T, E = Error> = std::result::Result<T, E>;

@@ -1,0 +1,246 @@
+//! Frame buffers and their files: PNG, and id / depth dumps in the GL
+//! reference format.
+
+use std::io::{Read, Write};
+use std::path::Path;
+
+use crate::atomic::write_atomic;
+use crate::error::{Error, Result};
+use crate::view::check_image_size;
+
+/// The primitive id of a pixel no surface covers.
+pub const NO_ID: u32 = u32::MAX;
+
+/// The buffers a hider writes: per pixel the visible primitive, its window
+/// depth and a colour; optionally the covered fraction of the pixel.
+///
+/// All buffers are row-major, top row first; pixel `(x, y)` is at index
+/// `y * width + x`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    width: u32,
+    height: u32,
+    /// Visible primitive id per pixel, [`NO_ID`] for background.
+    pub ids: Vec<u32>,
+    /// Window depth in [0, 1] per pixel, 1.0 for background.
+    pub depth: Vec<f32>,
+    /// Colour per pixel, RGBA8 (sRGB).
+    pub color: Vec<[u8; 4]>,
+    /// Fraction of each pixel covered by any surface, written by
+    /// anti-aliasing hiders; empty otherwise.
+    pub coverage: Vec<f32>,
+}
+
+/// The colour of background pixels.
+pub const BACKGROUND: [u8; 4] = [0, 0, 0, 255];
+
+impl Frame {
+    /// A cleared frame of `width x height` pixels; the size is checked
+    /// against the limits before anything is allocated.
+    pub fn new(width: u32, height: u32) -> Result<Self> {
+        check_image_size(width, height)?;
+        let n = width as usize * height as usize;
+        Ok(Self {
+            width,
+            height,
+            ids: vec![NO_ID; n],
+            depth: vec![1.0; n],
+            color: vec![BACKGROUND; n],
+            coverage: Vec::new(),
+        })
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Number of pixels.
+    pub fn len(&self) -> usize {
+        self.ids.len()
+    }
+
+    /// Whether the frame has no pixels (never true for a checked size).
+    pub fn is_empty(&self) -> bool {
+        self.ids.is_empty()
+    }
+
+    /// Buffer index of pixel `(x, y)`.
+    #[inline]
+    pub fn index(&self, x: u32, y: u32) -> usize {
+        y as usize * self.width as usize + x as usize
+    }
+
+    /// Resets every buffer to background (ids [`NO_ID`], depth 1, colour
+    /// [`BACKGROUND`], coverage emptied).
+    pub fn clear(&mut self) {
+        self.ids.fill(NO_ID);
+        self.depth.fill(1.0);
+        self.color.fill(BACKGROUND);
+        self.coverage.clear();
+    }
+
+    /// Makes the frame `width x height` and clears it, reusing memory.
+    pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
+        check_image_size(width, height)?;
+        let n = width as usize * height as usize;
+        self.width = width;
+        self.height = height;
+        self.ids.resize(n, NO_ID);
+        self.depth.resize(n, 1.0);
+        self.color.resize(n, BACKGROUND);
+        self.clear();
+        Ok(())
+    }
+
+    /// Number of pixels some primitive covers.
+    pub fn covered_count(&self) -> usize {
+        self.ids.iter().filter(|&&id| id != NO_ID).count()
+    }
+
+    /// Bytes held by the buffers.
+    pub fn bytes(&self) -> usize {
+        self.ids.len() * 4 + self.depth.len() * 4 + self.color.len() * 4 + self.coverage.len() * 4
+    }
+
+    /// Writes the colour buffer as an 8-bit RGBA PNG, atomically.
+    pub fn write_png(&self, path: &Path) -> Result<()> {
+        let bytes: Vec<u8> = self.color.iter().flatten().copied().collect();
+        write_atomic(path, |w| {
+            let encoder = image::codecs::png::PngEncoder::new(w);
+            image::ImageEncoder::write_image(
+                encoder,
+                &bytes,
+                self.width,
+                self.height,
+                image::ExtendedColorType::Rgba8,
+            )
+            .map_err(|e| Error::Image {
+                path: path.to_path_buf(),
+                message: e.to_string(),
+            })
+        })
+    }
+
+    /// Writes the ids as int32 little-endian, -1 for background, top row
+    /// first (the GL reference `.i32` format), atomically.
+    pub fn write_ids(&self, path: &Path) -> Result<()> {
+        let bytes: Vec<u8> = self
+            .ids
+            .iter()
+            .flat_map(|&id| id_to_i32(id).to_le_bytes())
+            .collect();
+        write_bytes(path, &bytes)
+    }
+
+    /// Writes the depth as float32 little-endian window depth, 1.0 for
+    /// background, top row first (the GL reference `.f32` format),
+    /// atomically.
+    pub fn write_depth(&self, path: &Path) -> Result<()> {
+        let bytes: Vec<u8> = self.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
+        write_bytes(path, &bytes)
+    }
+}
+
+/// An id as stored in dump files: -1 for [`NO_ID`].
+pub fn id_to_i32(id: u32) -> i32 {
+    if id == NO_ID { -1 } else { id as i32 }
+}
+
+fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
+    write_atomic(path, |w| {
+        w.write_all(bytes).map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })
+    })
+}
+
+fn read_exact_values(path: &Path, count: usize) -> Result<Vec<[u8; 4]>> {
+    let mut file = std::fs::File::open(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let len = file
+        .metadata()
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?
+        .len();
+    if len != count as u64 * 4 {
+        return Err(Error::Parse {
+            path: path.to_path_buf(),
+            line: 0,
+            message: format!("expected {} bytes ({count} values), found {len}", count * 4),
+        });
+    }
+    let mut bytes = Vec::with_capacity(count * 4);
+    file.read_to_end(&mut bytes).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok(bytes
+        .chunks_exact(4)
+        .map(|c| [c[0], c[1], c[2], c[3]])
+        .collect())
+}
+
+/// Reads an id dump of `width x height` values (-1 becomes [`NO_ID`]).
+pub fn read_ids(path: &Path, width: u32, height: u32) -> Result<Vec<u32>> {
+    check_image_size(width, height)?;
+    Ok(read_exact_values(path, width as usize * height as usize)?
+        .into_iter()
+        .map(|b| {
+            let v = i32::from_le_bytes(b);
+            if v < 0 { NO_ID } else { v as u32 }
+        })
+        .collect())
+}
+
+/// Reads a depth dump of `width x height` float32 values.
+pub fn read_depth(path: &Path, width: u32, height: u32) -> Result<Vec<f32>> {
+    check_image_size(width, height)?;
+    Ok(read_exact_values(path, width as usize * height as usize)?
+        .into_iter()
+        .map(f32::from_le_bytes)
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dumps_round_trip_with_minus_one_background() {
+        let dir = std::env::temp_dir().join(format!("hider-frame-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut f = Frame::new(3, 2).unwrap();
+        f.ids[1] = 7;
+        f.depth[1] = 0.25;
+        f.write_ids(&dir.join("a.i32")).unwrap();
+        f.write_depth(&dir.join("a.f32")).unwrap();
+        f.write_png(&dir.join("a.png")).unwrap();
+        let raw = std::fs::read(dir.join("a.i32")).unwrap();
+        assert_eq!(&raw[..8], &[255, 255, 255, 255, 7, 0, 0, 0]);
+        assert_eq!(read_ids(&dir.join("a.i32"), 3, 2).unwrap(), f.ids);
+        assert_eq!(read_depth(&dir.join("a.f32"), 3, 2).unwrap(), f.depth);
+        assert!(read_ids(&dir.join("a.i32"), 4, 2).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn absurd_sizes_are_refused_before_allocating() {
+        assert!(Frame::new(0, 1).is_err());
+        assert!(Frame::new(100_000, 100_000).is_err());
+        let mut f = Frame::new(2, 2).unwrap();
+        assert!(f.resize(16385, 1).is_err());
+        f.resize(4, 1).unwrap();
+        assert_eq!(f.len(), 4);
+    }
+}

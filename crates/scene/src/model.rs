@@ -1,0 +1,247 @@
+//! The scene model: meshes, materials, lights and an optional camera.
+
+use glam::{DVec3, Vec2, Vec3};
+use hider_geom::Camera;
+use std::path::PathBuf;
+
+use crate::error::{Error, Result};
+
+/// A surface material (the subset of MTL the hiders use).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Name from the MTL file, or a generated one.
+    pub name: String,
+    /// Diffuse colour `Kd`, linear RGB in [0, 1].
+    pub diffuse: [f32; 3],
+    /// Opacity in [0, 1]: MTL `d`, or `1 - Tr`. 1 is opaque.
+    pub opacity: f32,
+    /// Diffuse texture `map_Kd`, resolved against the MTL file's folder
+    /// (Windows separators turned into `/`).
+    pub diffuse_texture: Option<PathBuf>,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self {
+            name: "default".into(),
+            diffuse: [0.8, 0.8, 0.8],
+            opacity: 1.0,
+            diffuse_texture: None,
+        }
+    }
+}
+
+/// A light source, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// Light from a direction (the direction the light travels).
+    Directional {
+        /// Direction of travel, need not be normalised.
+        direction: DVec3,
+        /// Linear RGB intensity.
+        color: [f32; 3],
+    },
+    /// Light from a point, without fall-off.
+    Point {
+        /// Position in world space.
+        position: DVec3,
+        /// Linear RGB intensity.
+        color: [f32; 3],
+    },
+}
+
+/// A triangle mesh with one material.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Mesh {
+    /// Name (OBJ object or group, or generator name).
+    pub name: String,
+    /// Vertex positions, world space. `f64` so that huge coordinates with
+    /// small triangles survive until the camera transform.
+    pub positions: Vec<DVec3>,
+    /// Optional per-vertex normals (same length as `positions` when present).
+    pub normals: Vec<Vec3>,
+    /// Optional per-vertex texture coordinates (same length as `positions`
+    /// when present).
+    pub uvs: Vec<Vec2>,
+    /// Triangles as indices into `positions`.
+    pub indices: Vec<[u32; 3]>,
+    /// Index into [`Scene::materials`], or `None` for the default material.
+    pub material: Option<usize>,
+}
+
+/// A whole scene: what the front end turns into a [`crate::ScreenScene`].
+///
+/// Primitive ids are the positions of triangles in the concatenation of
+/// all meshes' `indices`, in order; for an OBJ file that is the order of
+/// its `f` lines after fan-splitting polygons.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Scene {
+    /// The meshes, in primitive-id order.
+    pub meshes: Vec<Mesh>,
+    /// The materials meshes refer to.
+    pub materials: Vec<Material>,
+    /// Lights; empty means "head light" shading.
+    pub lights: Vec<Light>,
+    /// A camera the scene suggests (procedural scenes set one); the fit
+    /// camera is used when absent.
+    pub camera: Option<Camera>,
+    /// Non-fatal problems found while loading (a missing MTL, dropped
+    /// degenerate faces, ...), for the user to see.
+    pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// Number of triangles (primitive ids are `0..triangle_count()`).
+    pub fn triangle_count(&self) -> usize {
+        self.meshes.iter().map(|m| m.indices.len()).sum()
+    }
+
+    /// Every triangle as `(primitive id, mesh index, triangle index in mesh)`,
+    /// in primitive-id order.
+    pub fn triangles(&self) -> impl Iterator<Item = (u32, usize, usize)> + '_ {
+        self.meshes
+            .iter()
+            .enumerate()
+            .flat_map(|(m, mesh)| (0..mesh.indices.len()).map(move |t| (m, t)))
+            .enumerate()
+            .map(|(id, (m, t))| (id as u32, m, t))
+    }
+
+    /// The world-space corners of triangle `t` of mesh `m`.
+    pub fn triangle_positions(&self, m: usize, t: usize) -> [DVec3; 3] {
+        let mesh = &self.meshes[m];
+        mesh.indices[t].map(|i| mesh.positions[i as usize])
+    }
+
+    /// The axis-aligned bounding box of all vertices used by triangles, or
+    /// `None` for a scene without triangles.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let mut lo = DVec3::splat(f64::INFINITY);
+        let mut hi = DVec3::splat(f64::NEG_INFINITY);
+        let mut any = false;
+        for mesh in &self.meshes {
+            for tri in &mesh.indices {
+                for &i in tri {
+                    let p = mesh.positions[i as usize];
+                    lo = lo.min(p);
+                    hi = hi.max(p);
+                    any = true;
+                }
+            }
+        }
+        any.then_some((lo, hi))
+    }
+
+    /// Checks that the scene is well formed: indices in range, finite
+    /// positions, normals and uvs of matching length, valid material
+    /// references and opacities. The loaders and generators produce valid
+    /// scenes; call this on scenes built by hand.
+    pub fn validate(&self) -> Result<()> {
+        for (m, mesh) in self.meshes.iter().enumerate() {
+            let n = mesh.positions.len();
+            if let Some((v, p)) = mesh
+                .positions
+                .iter()
+                .enumerate()
+                .find(|(_, p)| !p.is_finite())
+            {
+                return Err(Error::InvalidScene(format!(
+                    "mesh {m} ('{}') vertex {v} has a non-finite position {p}",
+                    mesh.name
+                )));
+            }
+            for (t, tri) in mesh.indices.iter().enumerate() {
+                if let Some(&i) = tri.iter().find(|&&i| i as usize >= n) {
+                    return Err(Error::InvalidScene(format!(
+                        "mesh {m} ('{}') triangle {t} uses vertex {i}, but the mesh has {n} vertices",
+                        mesh.name
+                    )));
+                }
+            }
+            for (what, len) in [("normals", mesh.normals.len()), ("uvs", mesh.uvs.len())] {
+                if len != 0 && len != n {
+                    return Err(Error::InvalidScene(format!(
+                        "mesh {m} ('{}') has {len} {what} for {n} vertices",
+                        mesh.name
+                    )));
+                }
+            }
+            if let Some(k) = mesh.material
+                && k >= self.materials.len()
+            {
+                return Err(Error::InvalidScene(format!(
+                    "mesh {m} ('{}') uses material {k}, but there are {}",
+                    mesh.name,
+                    self.materials.len()
+                )));
+            }
+        }
+        for mat in &self.materials {
+            if !(0.0..=1.0).contains(&mat.opacity) {
+                return Err(Error::InvalidScene(format!(
+                    "material '{}' has opacity {} outside [0, 1]",
+                    mat.name, mat.opacity
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Appends a mesh with its own material, returning the mesh index.
+    pub fn push_mesh(&mut self, mut mesh: Mesh, material: Option<Material>) -> usize {
+        if let Some(mat) = material {
+            self.materials.push(mat);
+            mesh.material = Some(self.materials.len() - 1);
+        }
+        self.meshes.push(mesh);
+        self.meshes.len() - 1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tri_scene() -> Scene {
+        let mut s = Scene::default();
+        s.push_mesh(
+            Mesh {
+                name: "t".into(),
+                positions: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+                indices: vec![[0, 1, 2], [0, 2, 1]],
+                ..Mesh::default()
+            },
+            None,
+        );
+        s
+    }
+
+    #[test]
+    fn ids_run_over_meshes_in_order() {
+        let mut s = tri_scene();
+        s.push_mesh(s.meshes[0].clone(), None);
+        let ids: Vec<_> = s.triangles().collect();
+        assert_eq!(ids.len(), 4);
+        assert_eq!(ids[3], (3, 1, 1));
+        assert_eq!(s.triangle_count(), 4);
+    }
+
+    #[test]
+    fn validate_names_the_bad_item() {
+        let mut s = tri_scene();
+        assert!(s.validate().is_ok());
+        s.meshes[0].indices[1][2] = 7;
+        let e = s.validate().unwrap_err().to_string();
+        assert!(e.contains("triangle 1") && e.contains("vertex 7"), "{e}");
+        let mut s = tri_scene();
+        s.meshes[0].positions[2].y = f64::NAN;
+        let e = s.validate().unwrap_err().to_string();
+        assert!(e.contains("vertex 2") && e.contains("NaN"), "{e}");
+    }
+
+    #[test]
+    fn bounds_of_empty_scene_is_none() {
+        assert!(Scene::default().bounds().is_none());
+        assert_eq!(tri_scene().bounds(), Some((DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0))));
+    }
+}

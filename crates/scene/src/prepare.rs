@@ -1,0 +1,508 @@
+//! The shared front end: world-space [`Scene`] to screen-space
+//! [`ScreenScene`].
+//!
+//! `prepare` transforms, clips (near, far, guard band), divides, maps to the
+//! viewport, snaps to 1/256 pixel and sets up each triangle once. Every hider
+//! consumes the result and none re-projects, which is what makes
+//! cross-validation between hiders exact rather than approximate.
+
+use glam::{DMat4, DVec3, DVec4, Vec2, Vec3, Vec4};
+use hider_geom::clip::{ClipOutcome, ClipVertex, ClipVolume, clip_triangle};
+use hider_geom::fixed::{FixedPt, GUARD_BAND_PIXELS, SUBPIXEL_SCALE};
+use hider_geom::{Camera, PlaneEq, Viewport, orient2d};
+
+use crate::error::Result;
+use crate::model::{Light, Material, Scene};
+use crate::view::{View, check_image_size};
+
+/// Arithmetic used for the model-view-projection transform.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum TransformPrecision {
+    /// Transform, divide and map in `f64` (the accurate default; keeps huge
+    /// coordinates with small triangles apart).
+    #[default]
+    F64,
+    /// Round the view-projection matrix and the vertices to `f32` and
+    /// transform, divide and map in `f32`, as a GL implementation does.
+    /// Reproduces the GL reference renders' snapped vertices.
+    F32,
+}
+
+/// Options of [`prepare`]. `Default` is the accurate choice.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrepareOptions {
+    /// Transform arithmetic.
+    pub precision: TransformPrecision,
+    /// Guard band beyond each image side, in pixels; triangles reaching
+    /// further are clipped. At most [`GUARD_BAND_PIXELS`].
+    pub guard_band_pixels: u32,
+    /// Drop triangles facing away from the camera (GL's `GL_CULL_FACE` with
+    /// counter-clockwise front faces). Off by default: the GL reference
+    /// renders cull nothing.
+    pub cull_back_faces: bool,
+}
+
+impl Default for PrepareOptions {
+    fn default() -> Self {
+        Self {
+            precision: TransformPrecision::F64,
+            guard_band_pixels: GUARD_BAND_PIXELS,
+            cull_back_faces: false,
+        }
+    }
+}
+
+impl PrepareOptions {
+    /// The options that reproduce a GL pipeline (f32 transform).
+    pub fn gl_compatible() -> Self {
+        Self::default().with_precision(TransformPrecision::F32)
+    }
+
+    /// Sets [`Self::precision`].
+    pub fn with_precision(mut self, precision: TransformPrecision) -> Self {
+        self.precision = precision;
+        self
+    }
+
+    /// Sets [`Self::cull_back_faces`].
+    pub fn with_cull_back_faces(mut self, cull: bool) -> Self {
+        self.cull_back_faces = cull;
+        self
+    }
+
+    /// Sets [`Self::guard_band_pixels`] (clamped to [`GUARD_BAND_PIXELS`]).
+    pub fn with_guard_band_pixels(mut self, pixels: u32) -> Self {
+        self.guard_band_pixels = pixels.min(GUARD_BAND_PIXELS);
+        self
+    }
+}
+
+/// A triangle ready for rasterisation: snapped, positively oriented, with
+/// its depth and 1/w planes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScreenTri {
+    /// Vertices in 1/256 pixel, ordered so that
+    /// `orient2d(v[0], v[1], v[2]) > 0` (edge functions positive inside).
+    pub v: [FixedPt; 3],
+    /// Window depth `z/w` in [0, 1] at each vertex.
+    pub z: [f64; 3],
+    /// Clip-space `w` at each vertex (camera-space distance along the view
+    /// axis for a perspective camera, 1 for an orthographic one).
+    pub w: [f64; 3],
+    /// Window depth as an affine function of window position.
+    pub depth: PlaneEq,
+    /// `1/w` as an affine function of window position, for
+    /// perspective-correct attributes.
+    pub inv_w: PlaneEq,
+    /// Primitive id: index of the source triangle in the scene.
+    pub prim: u32,
+    /// Whether the source triangle faces the camera (counter-clockwise on
+    /// screen, GL's default front face).
+    pub front_facing: bool,
+}
+
+impl ScreenTri {
+    /// The edge functions of this triangle (top-left rule applied).
+    #[inline]
+    pub fn edges(&self) -> [hider_geom::EdgeFunction; 3] {
+        hider_geom::edge::triangle_edges(&self.v)
+    }
+
+    /// The inclusive pixel rectangle `(x0, y0, x1, y1)` whose centres may be
+    /// covered, clamped to the viewport, or `None` if it is empty.
+    pub fn pixel_bounds(&self, viewport: Viewport) -> Option<(u32, u32, u32, u32)> {
+        let min_x = self.v.iter().map(|p| p.x).min()?;
+        let max_x = self.v.iter().map(|p| p.x).max()?;
+        let min_y = self.v.iter().map(|p| p.y).min()?;
+        let max_y = self.v.iter().map(|p| p.y).max()?;
+        // Centre of pixel i is i*256 + 128: the first centre >= min is
+        // ceil((min - 128) / 256), the last <= max is floor((max - 128) / 256).
+        let first = |m: i32| (m - 128 + SUBPIXEL_SCALE - 1).div_euclid(SUBPIXEL_SCALE);
+        let last = |m: i32| (m - 128).div_euclid(SUBPIXEL_SCALE);
+        let x0 = first(min_x).max(0);
+        let y0 = first(min_y).max(0);
+        let x1 = last(max_x).min(viewport.width as i32 - 1);
+        let y1 = last(max_y).min(viewport.height as i32 - 1);
+        (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32))
+    }
+}
+
+/// Per-primitive data kept for shading and for the exact oracle, indexed by
+/// primitive id.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PrimInfo {
+    /// Corners in camera space (`f64`, before any clipping).
+    pub camera: [DVec3; 3],
+    /// Index into [`ScreenScene::materials`].
+    pub material: u32,
+    /// Per-corner normals in camera space, when the mesh has normals.
+    pub normals: Option<[Vec3; 3]>,
+    /// Per-corner texture coordinates, when the mesh has them.
+    pub uvs: Option<[Vec2; 3]>,
+}
+
+/// What the front end did, for statistics and warnings.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PrepareStats {
+    /// Triangles in the scene.
+    pub input: u64,
+    /// Triangles dropped entirely (behind the eye, outside the view, beyond
+    /// near or far).
+    pub culled: u64,
+    /// Triangles cut by the near, far or guard-band planes.
+    pub clipped: u64,
+    /// Triangles (or clipped pieces) dropped because their snapped area is
+    /// zero: they cover no sample.
+    pub degenerate: u64,
+    /// Back-facing triangles dropped by [`PrepareOptions::cull_back_faces`].
+    pub back_faces: u64,
+    /// Screen triangles produced.
+    pub output: u64,
+}
+
+/// A scene in screen space: what every hider consumes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScreenScene {
+    /// The image size.
+    pub viewport: Viewport,
+    /// The camera used.
+    pub camera: Camera,
+    /// World to camera space.
+    pub view_matrix: DMat4,
+    /// Camera space to clip space.
+    pub projection_matrix: DMat4,
+    /// The triangles, in primitive-id order (pieces of one clipped triangle
+    /// are adjacent).
+    pub tris: Vec<ScreenTri>,
+    /// Per-primitive data, indexed by primitive id.
+    pub prims: Vec<PrimInfo>,
+    /// Materials; the scene's, plus the default material at the end.
+    pub materials: Vec<Material>,
+    /// Lights in camera space.
+    pub lights: Vec<Light>,
+    /// What the front end did.
+    pub stats: PrepareStats,
+}
+
+impl ScreenScene {
+    /// The material of a primitive.
+    pub fn material(&self, prim: u32) -> &Material {
+        &self.materials[self.prims[prim as usize].material as usize]
+    }
+
+    /// Whether the camera is a perspective one.
+    pub fn is_perspective(&self) -> bool {
+        matches!(
+            self.camera.projection,
+            hider_geom::Projection::Perspective { .. }
+        )
+    }
+
+    /// The camera-space ray through window position `(x, y)` (pixels):
+    /// `(origin, direction)`, direction not normalised. For a perspective
+    /// camera the origin is the eye; for an orthographic one it lies on the
+    /// near plane.
+    pub fn camera_ray(&self, x: f64, y: f64) -> (DVec3, DVec3) {
+        let vp = self.viewport;
+        let ndc_x = 2.0 * x / f64::from(vp.width) - 1.0;
+        let ndc_y = 1.0 - 2.0 * y / f64::from(vp.height);
+        let inv = self.projection_matrix.inverse();
+        let near = inv * DVec4::new(ndc_x, ndc_y, -1.0, 1.0);
+        let far = inv * DVec4::new(ndc_x, ndc_y, 1.0, 1.0);
+        let near = near.truncate() / near.w;
+        let far = far.truncate() / far.w;
+        if self.is_perspective() {
+            (DVec3::ZERO, near)
+        } else {
+            (near, far - near)
+        }
+    }
+}
+
+/// Runs the front end. See the module documentation.
+pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<ScreenScene> {
+    let vp = view.viewport;
+    check_image_size(vp.width, vp.height)?;
+    view.camera
+        .validate()
+        .map_err(|e| crate::error::Error::Camera(e.0))?;
+    scene.validate()?;
+    let view_matrix = view.camera.view_matrix();
+    let projection_matrix = view.camera.projection_matrix(vp.aspect());
+    let mvp = projection_matrix * view_matrix;
+    let mvp32 = mvp.as_mat4();
+    let volume = ClipVolume::for_viewport(
+        vp.width,
+        vp.height,
+        options.guard_band_pixels.min(GUARD_BAND_PIXELS),
+    );
+
+    let mut materials = scene.materials.clone();
+    let default_material = materials.len() as u32;
+    materials.push(Material::default());
+    let normal_matrix = view_matrix.inverse().transpose();
+
+    let mut prims = Vec::with_capacity(scene.triangle_count());
+    let mut tris = Vec::with_capacity(scene.triangle_count());
+    let mut stats = PrepareStats {
+        input: scene.triangle_count() as u64,
+        ..PrepareStats::default()
+    };
+    let mut polygon = Vec::with_capacity(9);
+    let mut scratch = Vec::with_capacity(9);
+    let mut window = Vec::with_capacity(9);
+
+    for (prim, m, t) in scene.triangles() {
+        let mesh = &scene.meshes[m];
+        let idx = mesh.indices[t];
+        let world = idx.map(|i| mesh.positions[i as usize]);
+        prims.push(PrimInfo {
+            camera: world.map(|p| view_matrix.transform_point3(p)),
+            material: mesh.material.map_or(default_material, |k| k as u32),
+            normals: (!mesh.normals.is_empty()).then(|| {
+                idx.map(|i| {
+                    normal_matrix
+                        .transform_vector3(mesh.normals[i as usize].as_dvec3())
+                        .as_vec3()
+                })
+            }),
+            uvs: (!mesh.uvs.is_empty()).then(|| idx.map(|i| mesh.uvs[i as usize])),
+        });
+
+        let clip: [DVec4; 3] = match options.precision {
+            TransformPrecision::F64 => world.map(|p| mvp * p.extend(1.0)),
+            TransformPrecision::F32 => {
+                world.map(|p| (mvp32 * Vec4::from((p.as_vec3(), 1.0))).as_dvec4())
+            }
+        };
+        let outcome = clip_triangle(clip, &volume, &mut polygon, &mut scratch);
+        match outcome {
+            ClipOutcome::Culled => {
+                stats.culled += 1;
+                continue;
+            }
+            ClipOutcome::Clipped => stats.clipped += 1,
+            ClipOutcome::Inside => {}
+        }
+        window.clear();
+        let mut ok = true;
+        for v in &polygon {
+            match to_window(v, vp, options.precision) {
+                Some(w) => window.push(w),
+                None => ok = false,
+            }
+        }
+        if !ok {
+            // Only reachable through numerical trouble at the guard band.
+            stats.culled += 1;
+            continue;
+        }
+        for k in 1..window.len() - 1 {
+            let corners = [window[0], window[k], window[k + 1]];
+            match setup(corners, prim) {
+                Some(tri) => {
+                    if options.cull_back_faces && !tri.front_facing {
+                        stats.back_faces += 1;
+                    } else {
+                        tris.push(tri);
+                    }
+                }
+                None => stats.degenerate += 1,
+            }
+        }
+    }
+    stats.output = tris.len() as u64;
+    let lights = scene
+        .lights
+        .iter()
+        .map(|l| match *l {
+            Light::Directional { direction, color } => Light::Directional {
+                direction: view_matrix.transform_vector3(direction),
+                color,
+            },
+            Light::Point { position, color } => Light::Point {
+                position: view_matrix.transform_point3(position),
+                color,
+            },
+        })
+        .collect();
+    Ok(ScreenScene {
+        viewport: vp,
+        camera: view.camera,
+        view_matrix,
+        projection_matrix,
+        tris,
+        prims,
+        materials,
+        lights,
+        stats,
+    })
+}
+
+/// A vertex in window space: snapped position, window depth, clip w.
+#[derive(Clone, Copy)]
+struct WindowVertex {
+    p: FixedPt,
+    z: f64,
+    w: f64,
+}
+
+fn to_window(v: &ClipVertex, vp: Viewport, precision: TransformPrecision) -> Option<WindowVertex> {
+    let (x, y, z) = match precision {
+        TransformPrecision::F64 => {
+            let ndc = v.pos.truncate() / v.pos.w;
+            let win = vp.ndc_to_window(ndc);
+            (win.x, win.y, win.z)
+        }
+        TransformPrecision::F32 => {
+            let c = v.pos.as_vec4();
+            let ndc = [c.x / c.w, c.y / c.w, c.z / c.w];
+            let win = vp.ndc_to_window_f32(ndc);
+            (f64::from(win[0]), f64::from(win[1]), f64::from(win[2]))
+        }
+    };
+    Some(WindowVertex {
+        p: FixedPt::snap(x, y)?,
+        z,
+        w: v.pos.w,
+    })
+}
+
+fn setup(mut c: [WindowVertex; 3], prim: u32) -> Option<ScreenTri> {
+    let area = orient2d(c[0].p, c[1].p, c[2].p);
+    if area == 0 {
+        return None;
+    }
+    // Positive orient2d is clockwise on the y-down screen, i.e. clockwise as
+    // seen by the viewer: a back face under GL's counter-clockwise rule.
+    let front_facing = area < 0;
+    if area < 0 {
+        c.swap(1, 2);
+    }
+    let v = c.map(|k| k.p);
+    let z = c.map(|k| k.z);
+    let w = c.map(|k| k.w);
+    let depth = PlaneEq::from_points(&v, z)?;
+    let inv_w = PlaneEq::from_points(&v, w.map(|w| 1.0 / w))?;
+    Some(ScreenTri {
+        v,
+        z,
+        w,
+        depth,
+        inv_w,
+        prim,
+        front_facing,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Mesh;
+    use hider_geom::Projection;
+
+    fn camera() -> Camera {
+        Camera {
+            eye: DVec3::new(0.0, 0.0, 5.0),
+            target: DVec3::ZERO,
+            up: DVec3::Y,
+            projection: Projection::Perspective {
+                fovy_degrees: 60.0,
+                near: 1.0,
+                far: 100.0,
+            },
+        }
+    }
+
+    fn one(positions: [DVec3; 3]) -> Scene {
+        let mut s = Scene::default();
+        s.push_mesh(
+            Mesh {
+                positions: positions.to_vec(),
+                indices: vec![[0, 1, 2]],
+                ..Mesh::default()
+            },
+            None,
+        );
+        s
+    }
+
+    fn run(s: &Scene) -> ScreenScene {
+        let view = View::new(camera(), 64, 64).unwrap();
+        prepare(s, &view, &PrepareOptions::default()).unwrap()
+    }
+
+    #[test]
+    fn counter_clockwise_triangle_is_front_facing_and_reoriented() {
+        let s = one([DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0)]);
+        let ss = run(&s);
+        assert_eq!(ss.tris.len(), 1);
+        let t = ss.tris[0];
+        assert!(t.front_facing);
+        assert!(orient2d(t.v[0], t.v[1], t.v[2]) > 0);
+        // At distance 5 all three corners have w = 5 and the same depth.
+        assert!(t.w.iter().all(|w| (w - 5.0).abs() < 1e-12));
+        assert!((t.depth.dx).abs() < 1e-15 && t.depth.dy.abs() < 1e-15);
+        let culled = prepare(
+            &one([DVec3::new(-1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0), DVec3::new(1.0, -1.0, 0.0)]),
+            &View::new(camera(), 64, 64).unwrap(),
+            &PrepareOptions::default().with_cull_back_faces(true),
+        )
+        .unwrap();
+        assert_eq!(culled.tris.len(), 0);
+        assert_eq!(culled.stats.back_faces, 1);
+    }
+
+    #[test]
+    fn triangle_crossing_near_plane_is_clipped_and_depth_stays_in_range() {
+        // From z = 0 (5 in front of the eye) to z = 10 (5 behind it).
+        let s = one([DVec3::new(-1.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.0, -0.5, 10.0)]);
+        let ss = run(&s);
+        assert_eq!(ss.stats.clipped, 1);
+        assert!(!ss.tris.is_empty());
+        for t in &ss.tris {
+            assert!(t.z.iter().all(|z| (-1e-9..=1.0 + 1e-9).contains(z)), "{:?}", t.z);
+            assert!(t.w.iter().all(|w| *w > 0.0));
+        }
+    }
+
+    #[test]
+    fn triangle_behind_the_eye_disappears() {
+        let s = one([DVec3::new(-1.0, 0.0, 6.0), DVec3::new(1.0, 0.0, 6.0), DVec3::new(0.0, 1.0, 7.0)]);
+        let ss = run(&s);
+        assert!(ss.tris.is_empty());
+        assert_eq!(ss.stats.culled, 1);
+        assert_eq!(ss.prims.len(), 1, "prim info is kept for every id");
+    }
+
+    #[test]
+    fn camera_ray_hits_the_pixel_it_came_from() {
+        let s = one([DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0)]);
+        let ss = run(&s);
+        let (o, d) = ss.camera_ray(40.5, 20.5);
+        let p = o + d * 3.0;
+        let clip = ss.projection_matrix * p.extend(1.0);
+        let win = ss.viewport.ndc_to_window(clip.truncate() / clip.w);
+        assert!((win.x - 40.5).abs() < 1e-9 && (win.y - 20.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn pixel_bounds_cover_exactly_the_candidate_centres() {
+        let s = one([DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0)]);
+        let ss = run(&s);
+        let t = ss.tris[0];
+        let (x0, y0, x1, y1) = t.pixel_bounds(ss.viewport).unwrap();
+        let edges = t.edges();
+        let mut inside = 0;
+        for j in 0..64 {
+            for i in 0..64 {
+                let (px, py) = (i64::from(i) * 256 + 128, i64::from(j) * 256 + 128);
+                if edges.iter().all(|e| e.contains(px, py)) {
+                    inside += 1;
+                    assert!((x0..=x1).contains(&i) && (y0..=y1).contains(&j));
+                }
+            }
+        }
+        assert!(inside > 0);
+    }
+}

@@ -1,0 +1,134 @@
+//! Shading from primitive ids: flat Lambert or false colours per id.
+//!
+//! Pixel-centre hiders only decide *which* primitive is visible; colour is
+//! a separate pass over the id buffer, so every hider's picture is shaded
+//! the same way and differences in the images are differences in
+//! visibility.
+
+use glam::DVec3;
+
+use crate::frame::{BACKGROUND, Frame, NO_ID};
+use crate::model::Light;
+use crate::prepare::ScreenScene;
+
+/// How to colour visible primitives.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ShadeMode {
+    /// Flat Lambert shading of the material colour: from the scene's
+    /// lights, or from a head light at the eye when it has none. Two-sided.
+    #[default]
+    Lambert,
+    /// A distinct false colour per primitive id.
+    Ids,
+}
+
+/// Fraction of the diffuse colour lit by ambient light, so faces turned
+/// away from every light still read as shapes.
+const AMBIENT: f64 = 0.12;
+
+/// The linear RGB colour of a primitive under `mode`, and its opacity.
+pub fn prim_color(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> ([f32; 3], f32) {
+    let material = scene.material(prim);
+    match mode {
+        ShadeMode::Ids => (id_color(prim), material.opacity),
+        ShadeMode::Lambert => {
+            let c = scene.prims[prim as usize].camera;
+            let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
+            let centroid = (c[0] + c[1] + c[2]) / 3.0;
+            let diffuse = if scene.lights.is_empty() {
+                let to_eye = if scene.is_perspective() {
+                    (-centroid).normalize_or_zero()
+                } else {
+                    DVec3::Z
+                };
+                DVec3::splat(n.dot(to_eye).abs())
+            } else {
+                scene.lights.iter().fold(DVec3::ZERO, |acc, light| {
+                    let (to_light, color) = match *light {
+                        Light::Directional { direction, color } => (-direction, color),
+                        Light::Point { position, color } => (position - centroid, color),
+                    };
+                    let k = n.dot(to_light.normalize_or_zero()).abs();
+                    acc + DVec3::new(color[0].into(), color[1].into(), color[2].into()) * k
+                })
+            };
+            let lit = DVec3::splat(AMBIENT) + diffuse * (1.0 - AMBIENT);
+            let kd = material.diffuse;
+            (
+                [
+                    (f64::from(kd[0]) * lit.x) as f32,
+                    (f64::from(kd[1]) * lit.y) as f32,
+                    (f64::from(kd[2]) * lit.z) as f32,
+                ],
+                material.opacity,
+            )
+        }
+    }
+}
+
+/// A well-spread false colour for an id (golden-ratio hue walk), linear RGB.
+pub fn id_color(id: u32) -> [f32; 3] {
+    let h = (f64::from(id) * 0.618_033_988_749_895).fract() * 6.0;
+    let s = 0.65;
+    let v = 0.55 + 0.4 * (f64::from(id.wrapping_mul(2_654_435_761) >> 28) / 15.0);
+    let i = h.floor();
+    let f = h - i;
+    let (p, q, t) = (v * (1.0 - s), v * (1.0 - s * f), v * (1.0 - s * (1.0 - f)));
+    let (r, g, b) = match i as u32 {
+        0 => (v, t, p),
+        1 => (q, v, p),
+        2 => (p, v, t),
+        3 => (p, q, v),
+        4 => (t, p, v),
+        _ => (v, p, q),
+    };
+    [r as f32, g as f32, b as f32]
+}
+
+/// Linear [0, 1] to an sRGB byte.
+pub fn to_srgb8(linear: f32) -> u8 {
+    let c = linear.clamp(0.0, 1.0);
+    let s = if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    };
+    (s * 255.0 + 0.5) as u8
+}
+
+/// Fills `frame.color` from `frame.ids`: each covered pixel gets its
+/// primitive's colour, background pixels [`BACKGROUND`]. Colours are
+/// computed once per visible primitive.
+pub fn shade_frame(scene: &ScreenScene, frame: &mut Frame, mode: ShadeMode) {
+    let mut cache: Vec<Option<[u8; 4]>> = vec![None; scene.prims.len()];
+    for (id, out) in frame.ids.iter().zip(frame.color.iter_mut()) {
+        if *id == NO_ID || *id as usize >= cache.len() {
+            *out = BACKGROUND;
+            continue;
+        }
+        *out = *cache[*id as usize].get_or_insert_with(|| {
+            let (rgb, _) = prim_color(scene, *id, mode);
+            [to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]), 255]
+        });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_end_points() {
+        assert_eq!(to_srgb8(0.0), 0);
+        assert_eq!(to_srgb8(1.0), 255);
+        assert_eq!(to_srgb8(2.0), 255);
+        assert!(to_srgb8(0.5) > 180);
+    }
+
+    #[test]
+    fn neighbouring_ids_get_different_colours() {
+        for id in 0..100 {
+            assert_ne!(id_color(id), id_color(id + 1));
+        }
+    }
+}
