@@ -1,0 +1,1 @@
+//! hider-abuffer: not written yet.

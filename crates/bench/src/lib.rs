@@ -1,0 +1,1 @@
+//! hider-bench: not written yet.

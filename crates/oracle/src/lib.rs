@@ -1,0 +1,1 @@
+//! hider-oracle: not written yet.

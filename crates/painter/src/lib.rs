@@ -1,0 +1,1 @@
+//! hider-painter: not written yet.

@@ -1,0 +1,1 @@
+//! hider-scanline: not written yet.

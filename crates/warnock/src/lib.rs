@@ -1,0 +1,1 @@
+//! hider-warnock: not written yet.
