@@ -161,7 +161,14 @@ pub fn perspective(fovy: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
 /// OpenGL orthographic projection symmetric about the view axis (`glOrtho`
 /// with left = -half_width, bottom = -half_height).
 pub fn orthographic(half_width: f64, half_height: f64, near: f64, far: f64) -> DMat4 {
-    DMat4::orthographic_rh_gl(-half_width, half_width, -half_height, half_height, near, far)
+    DMat4::orthographic_rh_gl(
+        -half_width,
+        half_width,
+        -half_height,
+        half_height,
+        near,
+        far,
+    )
 }
 
 #[cfg(test)]
@@ -181,7 +188,11 @@ mod tests {
 
     #[test]
     fn look_at_puts_target_on_negative_z() {
-        let v = look_at(DVec3::new(1.0, 2.0, 10.0), DVec3::new(1.0, 2.0, 0.0), DVec3::Y);
+        let v = look_at(
+            DVec3::new(1.0, 2.0, 10.0),
+            DVec3::new(1.0, 2.0, 0.0),
+            DVec3::Y,
+        );
         let t = v.transform_point3(DVec3::new(1.0, 2.0, 0.0));
         assert!((t - DVec3::new(0.0, 0.0, -10.0)).length() < 1e-12);
     }

@@ -96,9 +96,15 @@ mod tests {
         let (p0, p1) = (x0 / z0, x1 / z1);
         let t = (0.0 - p0) / (p1 - p0);
         let z = perspective_correct(z0, z1, t);
-        assert!((z - 4.0).abs() < 1e-12, "1/z interpolation gives 4, got {z}");
+        assert!(
+            (z - 4.0).abs() < 1e-12,
+            "1/z interpolation gives 4, got {z}"
+        );
         let wrong = screen_linear(z0, z1, t);
-        assert!((wrong - 4.5).abs() < 1e-12, "linear z gives 4.5, got {wrong}");
+        assert!(
+            (wrong - 4.5).abs() < 1e-12,
+            "linear z gives 4.5, got {wrong}"
+        );
         // The correct answer is the true intersection: the line x = 0 meets
         // the segment V0 V1 at z = 4 (x = -4 + 6s = 0 -> s = 2/3, z = 2 + 3s).
         assert!((2.0 + 3.0 * (2.0 / 3.0) - z).abs() < 1e-12);

@@ -242,6 +242,9 @@ mod tests {
     #[test]
     fn bounds_of_empty_scene_is_none() {
         assert!(Scene::default().bounds().is_none());
-        assert_eq!(tri_scene().bounds(), Some((DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0))));
+        assert_eq!(
+            tri_scene().bounds(),
+            Some((DVec3::ZERO, DVec3::new(1.0, 1.0, 0.0)))
+        );
     }
 }

@@ -90,7 +90,9 @@ pub fn load_obj_bytes(
     })?;
     let mut warnings = warnings.into_inner();
     let materials = materials.unwrap_or_else(|e| {
-        warnings.push(format!("materials unavailable ({e}); using the default material"));
+        warnings.push(format!(
+            "materials unavailable ({e}); using the default material"
+        ));
         Vec::new()
     });
     let mut scene = Scene {
@@ -290,10 +292,14 @@ fn validate_obj(text: &str, name: &Path) -> Result<u64> {
                             values[0]
                         )));
                     }
-                    for (slot, count, what) in [(0, nv, "vertex"), (1, nvt, "texture"), (2, nvn, "normal")] {
+                    for (slot, count, what) in
+                        [(0, nv, "vertex"), (1, nvt, "texture"), (2, nvn, "normal")]
+                    {
                         let Some(s) = parts.get(slot).filter(|s| !s.is_empty()) else {
                             if slot == 0 {
-                                return Err(err(format!("face vertex '{v}' has no position index")));
+                                return Err(err(format!(
+                                    "face vertex '{v}' has no position index"
+                                )));
                             }
                             continue;
                         };
@@ -350,8 +356,13 @@ mod tests {
             .replace("1//\t2// 3//", "1\t2 3")
             .into_bytes();
         bytes.extend_from_slice(b"f -3 -2 -1\r\n");
-        let s = load_obj_bytes(&bytes, Path::new("x.obj"), Path::new("."), &ObjOptions::default())
-            .unwrap();
+        let s = load_obj_bytes(
+            &bytes,
+            Path::new("x.obj"),
+            Path::new("."),
+            &ObjOptions::default(),
+        )
+        .unwrap();
         assert_eq!(s.triangle_count(), 2);
     }
 
@@ -359,13 +370,19 @@ mod tests {
     fn missing_mtl_is_a_warning() {
         let s = load("mtllib nothere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl x\nf 1 2 3\n").unwrap();
         assert_eq!(s.triangle_count(), 1);
-        assert!(s.warnings.iter().any(|w| w.contains("nothere.mtl")), "{:?}", s.warnings);
+        assert!(
+            s.warnings.iter().any(|w| w.contains("nothere.mtl")),
+            "{:?}",
+            s.warnings
+        );
         assert_eq!(s.meshes[0].material, None);
     }
 
     #[test]
     fn errors_name_file_and_line() {
-        let e = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n").unwrap_err().to_string();
+        let e = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.starts_with("test.obj:4:") && e.contains("index 4"), "{e}");
         let e = load("v 0 0 0\nv 1 nan 0\n").unwrap_err().to_string();
         assert!(e.starts_with("test.obj:2:") && e.contains("NaN"), "{e}");
@@ -373,9 +390,13 @@ mod tests {
         assert!(e.contains(":2:") && e.contains("'zero'"), "{e}");
         let e = load("v 0 0 0\nv 1 0 0\nf 1 2\n").unwrap_err().to_string();
         assert!(e.contains(":3:") && e.contains("2 vertices"), "{e}");
-        let e = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n").unwrap_err().to_string();
+        let e = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(":4:") && e.contains("index 0"), "{e}");
-        let e = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n").unwrap_err().to_string();
+        let e = load("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains(":4:") && e.contains("-4"), "{e}");
     }
 
@@ -389,7 +410,14 @@ mod tests {
             &opts,
         )
         .unwrap_err();
-        assert!(matches!(e, Error::Limit { value: 2, limit: 1, .. }));
+        assert!(matches!(
+            e,
+            Error::Limit {
+                value: 2,
+                limit: 1,
+                ..
+            }
+        ));
     }
 
     #[test]
@@ -418,7 +446,9 @@ mod tests {
 
     #[test]
     fn missing_file_names_the_path() {
-        let e = load_obj("/definitely/not/here.obj").unwrap_err().to_string();
+        let e = load_obj("/definitely/not/here.obj")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("/definitely/not/here.obj"), "{e}");
     }
 }

@@ -434,7 +434,11 @@ mod tests {
 
     #[test]
     fn counter_clockwise_triangle_is_front_facing_and_reoriented() {
-        let s = one([DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0)]);
+        let s = one([
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ]);
         let ss = run(&s);
         assert_eq!(ss.tris.len(), 1);
         let t = ss.tris[0];
@@ -444,7 +448,11 @@ mod tests {
         assert!(t.w.iter().all(|w| (w - 5.0).abs() < 1e-12));
         assert!((t.depth.dx).abs() < 1e-15 && t.depth.dy.abs() < 1e-15);
         let culled = prepare(
-            &one([DVec3::new(-1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0), DVec3::new(1.0, -1.0, 0.0)]),
+            &one([
+                DVec3::new(-1.0, -1.0, 0.0),
+                DVec3::new(0.0, 1.0, 0.0),
+                DVec3::new(1.0, -1.0, 0.0),
+            ]),
             &View::new(camera(), 64, 64).unwrap(),
             &PrepareOptions::default().with_cull_back_faces(true),
         )
@@ -456,19 +464,31 @@ mod tests {
     #[test]
     fn triangle_crossing_near_plane_is_clipped_and_depth_stays_in_range() {
         // From z = 0 (5 in front of the eye) to z = 10 (5 behind it).
-        let s = one([DVec3::new(-1.0, 0.0, 0.0), DVec3::new(1.0, 0.0, 0.0), DVec3::new(0.0, -0.5, 10.0)]);
+        let s = one([
+            DVec3::new(-1.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(0.0, -0.5, 10.0),
+        ]);
         let ss = run(&s);
         assert_eq!(ss.stats.clipped, 1);
         assert!(!ss.tris.is_empty());
         for t in &ss.tris {
-            assert!(t.z.iter().all(|z| (-1e-9..=1.0 + 1e-9).contains(z)), "{:?}", t.z);
+            assert!(
+                t.z.iter().all(|z| (-1e-9..=1.0 + 1e-9).contains(z)),
+                "{:?}",
+                t.z
+            );
             assert!(t.w.iter().all(|w| *w > 0.0));
         }
     }
 
     #[test]
     fn triangle_behind_the_eye_disappears() {
-        let s = one([DVec3::new(-1.0, 0.0, 6.0), DVec3::new(1.0, 0.0, 6.0), DVec3::new(0.0, 1.0, 7.0)]);
+        let s = one([
+            DVec3::new(-1.0, 0.0, 6.0),
+            DVec3::new(1.0, 0.0, 6.0),
+            DVec3::new(0.0, 1.0, 7.0),
+        ]);
         let ss = run(&s);
         assert!(ss.tris.is_empty());
         assert_eq!(ss.stats.culled, 1);
@@ -477,7 +497,11 @@ mod tests {
 
     #[test]
     fn camera_ray_hits_the_pixel_it_came_from() {
-        let s = one([DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0)]);
+        let s = one([
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ]);
         let ss = run(&s);
         let (o, d) = ss.camera_ray(40.5, 20.5);
         let p = o + d * 3.0;
@@ -488,7 +512,11 @@ mod tests {
 
     #[test]
     fn pixel_bounds_cover_exactly_the_candidate_centres() {
-        let s = one([DVec3::new(-1.0, -1.0, 0.0), DVec3::new(1.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0)]);
+        let s = one([
+            DVec3::new(-1.0, -1.0, 0.0),
+            DVec3::new(1.0, -1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ]);
         let ss = run(&s);
         let t = ss.tris[0];
         let (x0, y0, x1, y1) = t.pixel_bounds(ss.viewport).unwrap();

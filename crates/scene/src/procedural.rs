@@ -103,10 +103,18 @@ pub fn random_soup(count: u32, seed: u64) -> Scene {
     let mut rng = SplitMix64::new(seed);
     let mut positions = Vec::with_capacity(count as usize * 3);
     for _ in 0..count {
-        let c = DVec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+        let c = DVec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        );
         for _ in 0..3 {
             positions.push(
-                c + DVec3::new(rng.range(-0.1, 0.1), rng.range(-0.1, 0.1), rng.range(-0.1, 0.1)),
+                c + DVec3::new(
+                    rng.range(-0.1, 0.1),
+                    rng.range(-0.1, 0.1),
+                    rng.range(-0.1, 0.1),
+                ),
             );
         }
     }
@@ -146,7 +154,10 @@ pub fn cube() -> Scene {
         .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
         .collect();
     let mut s = Scene::default();
-    s.push_mesh(mesh("cube", positions, indices), Some(material("cube", [0.8, 0.5, 0.3])));
+    s.push_mesh(
+        mesh("cube", positions, indices),
+        Some(material("cube", [0.8, 0.5, 0.3])),
+    );
     s
 }
 
@@ -216,7 +227,11 @@ pub fn coplanar_pair() -> Scene {
     s.push_mesh(
         mesh(
             "first",
-            vec![DVec3::new(-1.0, -1.0, 0.0), DVec3::new(0.6, -1.0, 0.0), DVec3::new(-0.2, 0.8, 0.0)],
+            vec![
+                DVec3::new(-1.0, -1.0, 0.0),
+                DVec3::new(0.6, -1.0, 0.0),
+                DVec3::new(-0.2, 0.8, 0.0),
+            ],
             vec![[0, 1, 2]],
         ),
         Some(material("first", [0.9, 0.7, 0.2])),
@@ -224,7 +239,11 @@ pub fn coplanar_pair() -> Scene {
     s.push_mesh(
         mesh(
             "second",
-            vec![DVec3::new(-0.6, -0.8, 0.0), DVec3::new(1.0, -0.8, 0.0), DVec3::new(0.2, 1.0, 0.0)],
+            vec![
+                DVec3::new(-0.6, -0.8, 0.0),
+                DVec3::new(1.0, -0.8, 0.0),
+                DVec3::new(0.2, 1.0, 0.0),
+            ],
             vec![[0, 1, 2]],
         ),
         Some(material("second", [0.2, 0.7, 0.9])),
@@ -253,7 +272,12 @@ mod tests {
 
     #[test]
     fn small_scenes_are_valid() {
-        for s in [cube(), intersecting_pair(), cyclic_triple(), coplanar_pair()] {
+        for s in [
+            cube(),
+            intersecting_pair(),
+            cyclic_triple(),
+            coplanar_pair(),
+        ] {
             assert!(s.validate().is_ok());
         }
         assert_eq!(cube().triangle_count(), 12);

@@ -88,7 +88,11 @@ mod tests {
         let mut s = Scene::default();
         s.push_mesh(
             Mesh {
-                positions: vec![DVec3::new(-1.0, -2.0, -2.0), DVec3::new(1.0, 2.0, 2.0), DVec3::ZERO],
+                positions: vec![
+                    DVec3::new(-1.0, -2.0, -2.0),
+                    DVec3::new(1.0, 2.0, 2.0),
+                    DVec3::ZERO,
+                ],
                 indices: vec![[0, 1, 2]],
                 ..Mesh::default()
             },
@@ -98,14 +102,23 @@ mod tests {
         assert_eq!(c.eye, DVec3::new(0.0, 0.0, 7.5)); // R = 3
         assert_eq!(
             c.projection,
-            Projection::Perspective { fovy_degrees: 60.0, near: 0.30000000000000004, far: 30.0 }
+            Projection::Perspective {
+                fovy_degrees: 60.0,
+                near: 0.30000000000000004,
+                far: 30.0
+            }
         );
     }
 
     #[test]
     fn sizes_are_checked() {
         assert!(check_image_size(1, 16384).is_ok());
-        assert!(check_image_size(0, 10).unwrap_err().to_string().contains("width"));
+        assert!(
+            check_image_size(0, 10)
+                .unwrap_err()
+                .to_string()
+                .contains("width")
+        );
         let e = check_image_size(10, 16385).unwrap_err().to_string();
         assert!(e.contains("16385") && e.contains("16384"), "{e}");
     }

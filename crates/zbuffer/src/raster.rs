@@ -1,0 +1,197 @@
+//! The z-buffer hider: bounding-box traversal with incremental integer edge
+//! functions and a LESS depth test (Catmull 1974; the depth seed's
+//! pseudo-code).
+
+use hider_geom::PlaneEq;
+use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
+use hider_scene::{Error, Frame, Hider, Result, ScreenScene, ScreenTri, Stats, check_frame};
+
+use crate::depth::DepthBuffer;
+use crate::options::{DepthSource, ZBufferOptions};
+
+/// Work counters of one z-buffer frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ZBufferStats {
+    /// Triangles whose bounding box met the viewport and were traversed.
+    pub triangles_set_up: u64,
+    /// Pixel centres whose edge functions were evaluated (the bounding-box
+    /// area summed over triangles).
+    pub pixels_tested: u64,
+    /// Pixel centres inside a triangle, each one depth test.
+    pub depth_tests: u64,
+    /// Depth tests that passed (depth and id written).
+    pub depth_passes: u64,
+    /// Bytes of the depth buffer.
+    pub depth_bytes: u64,
+}
+
+impl From<ZBufferStats> for Stats {
+    fn from(s: ZBufferStats) -> Self {
+        Stats {
+            counters: vec![
+                ("triangles set up", s.triangles_set_up),
+                ("pixels tested", s.pixels_tested),
+                ("depth tests", s.depth_tests),
+                ("depth passes", s.depth_passes),
+            ],
+            peak_bytes: s.depth_bytes,
+        }
+    }
+}
+
+/// The depth-buffer hider. Keeps its depth buffer between frames.
+///
+/// Triangles are drawn in primitive-id order and the test is LESS, so of two
+/// surfaces at exactly the same stored depth the lower id stays: the tie rule
+/// the oracle uses too.
+#[derive(Clone, Debug, Default)]
+pub struct ZBuffer {
+    options: ZBufferOptions,
+    depth: DepthBuffer,
+    name: String,
+}
+
+impl ZBuffer {
+    /// A z-buffer with the given options.
+    pub fn new(options: ZBufferOptions) -> Self {
+        let name = if options == ZBufferOptions::default() {
+            "zbuffer".to_owned()
+        } else {
+            format!(
+                "zbuffer[{} {}]",
+                options.depth_format.name(),
+                options.depth_source.name()
+            )
+        };
+        Self {
+            options,
+            depth: DepthBuffer::default(),
+            name,
+        }
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &ZBufferOptions {
+        &self.options
+    }
+
+    /// Renders and returns the typed statistics.
+    pub fn render_frame(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<ZBufferStats> {
+        check_frame(&self.name, scene, frame)?;
+        frame.clear();
+        self.depth.clear(self.options.depth_format, frame.len());
+        let mut stats = ZBufferStats::default();
+        let linear = LinearDepth::for_scene(scene, self.options.depth_source)?;
+        for tri in &scene.tris {
+            self.draw(scene, tri, linear.as_ref(), frame, &mut stats);
+        }
+        stats.depth_bytes = self.depth.bytes() as u64;
+        Ok(stats)
+    }
+
+    fn draw(
+        &mut self,
+        scene: &ScreenScene,
+        tri: &ScreenTri,
+        linear: Option<&LinearDepth>,
+        frame: &mut Frame,
+        stats: &mut ZBufferStats,
+    ) {
+        let Some((x0, y0, x1, y1)) = tri.pixel_bounds(scene.viewport) else {
+            return;
+        };
+        stats.triangles_set_up += 1;
+        let edges = tri.edges();
+        // Which plane the test compares: window depth, or (demonstration
+        // only) camera depth interpolated linearly in screen space.
+        let (plane, to_window): (PlaneEq, Option<&LinearDepth>) = match linear {
+            None => (tri.depth, None),
+            Some(l) => match PlaneEq::from_points(&tri.v, tri.w) {
+                Some(p) => (p, Some(l)),
+                None => return,
+            },
+        };
+        let step = i64::from(SUBPIXEL_SCALE);
+        let px0 = i64::from(x0) * step + i64::from(HALF_PIXEL);
+        let width = frame.width() as usize;
+        for y in y0..=y1 {
+            let py = i64::from(y) * step + i64::from(HALF_PIXEL);
+            // Incremental edge functions: exact integer steps of a*256.
+            let mut e = edges.map(|e| e.eval(px0, py));
+            let fy = f64::from(y) + 0.5;
+            let row = y as usize * width;
+            for x in x0..=x1 {
+                stats.pixels_tested += 1;
+                if e[0] > 0 && e[1] > 0 && e[2] > 0 {
+                    stats.depth_tests += 1;
+                    let value = plane.eval(f64::from(x) + 0.5, fy);
+                    let key = match to_window {
+                        None => value,
+                        Some(l) => l.normalise(value),
+                    };
+                    let i = row + x as usize;
+                    if let Some(stored) = self.depth.test_and_set(i, key) {
+                        stats.depth_passes += 1;
+                        frame.ids[i] = tri.prim;
+                        frame.depth[i] = match to_window {
+                            None => stored as f32,
+                            Some(l) => l.to_window(l.denormalise(stored)) as f32,
+                        };
+                    }
+                }
+                for k in 0..3 {
+                    e[k] += edges[k].a * step;
+                }
+            }
+        }
+    }
+}
+
+/// Maps camera depth (clip w) to [0, 1] for the linear-depth demonstration,
+/// and back to window depth for the output.
+struct LinearDepth {
+    near: f64,
+    far: f64,
+}
+
+impl LinearDepth {
+    fn for_scene(scene: &ScreenScene, source: DepthSource) -> Result<Option<Self>> {
+        if source == DepthSource::WindowZ {
+            return Ok(None);
+        }
+        match scene.camera.projection {
+            hider_geom::Projection::Perspective { near, far, .. } => Ok(Some(Self { near, far })),
+            // Orthographic window depth is already linear in camera depth:
+            // the demonstration has nothing to show.
+            hider_geom::Projection::Orthographic { .. } => Err(Error::Render {
+                hider: "zbuffer".into(),
+                message: "depth source linear-view-z needs a perspective camera".into(),
+            }),
+        }
+    }
+
+    fn normalise(&self, w: f64) -> f64 {
+        (w - self.near) / (self.far - self.near)
+    }
+
+    fn denormalise(&self, t: f64) -> f64 {
+        self.near + t * (self.far - self.near)
+    }
+
+    /// GL window depth of a point at camera distance `w`.
+    fn to_window(&self, w: f64) -> f64 {
+        let (n, f) = (self.near, self.far);
+        let ndc = (f + n) / (f - n) - 2.0 * f * n / ((f - n) * w);
+        (ndc + 1.0) * 0.5
+    }
+}
+
+impl Hider for ZBuffer {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {
+        self.render_frame(scene, frame).map(Stats::from)
+    }
+}
