@@ -1,0 +1,161 @@
+//! Scoring a hider's ids against the oracle's [`Reference`].
+
+use hider_scene::NO_ID;
+
+use crate::raycast::Reference;
+
+/// How a hider's id buffer agrees with a [`Reference`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Agreement {
+    /// Pixels compared (the reference's pixel count).
+    pub pixels: u64,
+    /// Pixels covered in one buffer and background in the other (a missing
+    /// pixel in a too-short buffer counts as one). Never excused by a tie:
+    /// coverage is decided by the shared exact edge functions.
+    pub coverage_mismatches: u64,
+    /// Pixels covered in both whose ids differ although the reference's gap
+    /// is at least the tie tolerance: real errors.
+    pub wrong_ids: u64,
+    /// Pixels covered in both whose two nearest surfaces are within the tie
+    /// tolerance, whatever id the hider chose there. Counted so tests can
+    /// report them; any id is accepted at a tie.
+    pub ties: u64,
+    /// Ties where the hider's id differs from the reference's (a subset of
+    /// [`Self::ties`]).
+    pub tie_differences: u64,
+    /// The first pixel `(x, y)` (row-major order) with a coverage mismatch or
+    /// a wrong id.
+    pub first_wrong: Option<(u32, u32)>,
+}
+
+impl Agreement {
+    /// No coverage mismatch and no wrong id on a non-tie pixel.
+    pub fn is_exact(&self) -> bool {
+        self.coverage_mismatches == 0 && self.wrong_ids == 0
+    }
+}
+
+impl std::fmt::Display for Agreement {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} pixels: {} coverage mismatches, {} wrong ids, {} ties ({} differing)",
+            self.pixels, self.coverage_mismatches, self.wrong_ids, self.ties, self.tie_differences
+        )?;
+        if let Some((x, y)) = self.first_wrong {
+            write!(f, ", first wrong at ({x}, {y})")?;
+        }
+        Ok(())
+    }
+}
+
+impl Reference {
+    /// Compares a hider's id buffer (row-major, [`NO_ID`] background) with
+    /// this reference. A pixel is a tie when its gap is below
+    /// `tie_tolerance`; see [`crate::DEFAULT_TIE_TOLERANCE`].
+    pub fn compare(&self, ids: &[u32], tie_tolerance: f64) -> Agreement {
+        let mut a = Agreement {
+            pixels: self.ids.len() as u64,
+            ..Agreement::default()
+        };
+        let width = self.width.max(1) as usize;
+        for (k, (&want, &gap)) in self.ids.iter().zip(&self.gap).enumerate() {
+            let got = ids.get(k).copied();
+            let wrong = match got {
+                None => {
+                    a.coverage_mismatches += 1;
+                    true
+                }
+                Some(got) if (got == NO_ID) != (want == NO_ID) => {
+                    a.coverage_mismatches += 1;
+                    true
+                }
+                Some(got) if want == NO_ID => {
+                    debug_assert_eq!(got, NO_ID);
+                    false
+                }
+                Some(got) if gap < tie_tolerance => {
+                    a.ties += 1;
+                    if got != want {
+                        a.tie_differences += 1;
+                    }
+                    false
+                }
+                Some(got) if got != want => {
+                    a.wrong_ids += 1;
+                    true
+                }
+                Some(_) => false,
+            };
+            if wrong && a.first_wrong.is_none() {
+                a.first_wrong = Some(((k % width) as u32, (k / width) as u32));
+            }
+        }
+        a
+    }
+
+    /// Number of covered pixels.
+    pub fn covered_count(&self) -> usize {
+        self.ids.iter().filter(|&&id| id != NO_ID).count()
+    }
+
+    /// Number of covered pixels whose gap is below `tie_tolerance`.
+    pub fn tie_count(&self, tie_tolerance: f64) -> usize {
+        self.ids
+            .iter()
+            .zip(&self.gap)
+            .filter(|&(&id, &g)| id != NO_ID && g < tie_tolerance)
+            .count()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn reference() -> Reference {
+        Reference {
+            width: 2,
+            height: 2,
+            ids: vec![NO_ID, 1, 2, 3],
+            depth: vec![1.0, 0.5, 0.5, 0.5],
+            gap: vec![f64::INFINITY, f64::INFINITY, 1e-9, 0.1],
+        }
+    }
+
+    #[test]
+    fn identical_ids_agree_exactly() {
+        let r = reference();
+        let a = r.compare(&r.ids, 1e-5);
+        assert!(a.is_exact());
+        assert_eq!(a.pixels, 4);
+        assert_eq!(a.ties, 1);
+        assert_eq!(a.tie_differences, 0);
+        assert_eq!(a.first_wrong, None);
+    }
+
+    #[test]
+    fn ties_are_counted_not_failed_and_errors_are_located() {
+        let r = reference();
+        let a = r.compare(&[NO_ID, 1, 9, 3], 1e-5);
+        assert!(a.is_exact());
+        assert_eq!((a.ties, a.tie_differences), (1, 1));
+        let a = r.compare(&[NO_ID, 1, 2, 9], 1e-5);
+        assert!(!a.is_exact());
+        assert_eq!(a.wrong_ids, 1);
+        assert_eq!(a.first_wrong, Some((1, 1)));
+        // With a tolerance above the gap of pixel (1, 1) it is a tie.
+        assert!(r.compare(&[NO_ID, 1, 2, 9], 0.2).is_exact());
+    }
+
+    #[test]
+    fn coverage_mismatches_and_short_buffers_are_errors() {
+        let r = reference();
+        let a = r.compare(&[0, 1, 2, 3], 1e-5);
+        assert_eq!(a.coverage_mismatches, 1);
+        assert_eq!(a.first_wrong, Some((0, 0)));
+        let a = r.compare(&[NO_ID, NO_ID], 1e-5);
+        assert_eq!(a.coverage_mismatches, 3);
+        assert_eq!(a.first_wrong, Some((1, 0)));
+    }
+}
