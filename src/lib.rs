@@ -1,1 +1,40 @@
-//! hider
+//! hider: the classic hidden-surface algorithms side by side.
+//!
+//! This facade re-exports the workspace's crates and lists every hider in
+//! one [`registry`], which the `hider` command-line tool, the benchmark and
+//! the cross-validating property tests all read:
+//!
+//! | crate | what |
+//! |---|---|
+//! | [`geom`] | camera, clipping, fixed-point snapping, edge functions, planes |
+//! | [`scene`] | scene model, OBJ/MTL, the shared front end `prepare`, frames, the `Hider` trait |
+//! | [`zbuffer`] | depth buffer with five depth formats |
+//!
+//! # Example
+//!
+//! Render a procedural cube with every exact pixel-centre hider and check
+//! that they agree:
+//!
+//! ```
+//! use hider::scene::{prepare, procedural, Frame, PrepareOptions, View};
+//!
+//! let scene = procedural::cube();
+//! let view = View::for_scene(&scene, 48, 48)?;
+//! let screen = prepare(&scene, &view, &PrepareOptions::default())?;
+//! let mut first: Option<Frame> = None;
+//! for mut hider in hider::registry::pixel_centre_hiders() {
+//!     let mut frame = Frame::new(48, 48)?;
+//!     hider.render(&screen, &mut frame)?;
+//!     match &first {
+//!         None => first = Some(frame),
+//!         Some(f) => assert_eq!(f.ids, frame.ids, "{}", hider.name()),
+//!     }
+//! }
+//! # Ok::<(), hider::scene::Error>(())
+//! ```
+
+pub mod registry;
+
+pub use hider_geom as geom;
+pub use hider_scene as scene;
+pub use hider_zbuffer as zbuffer;

@@ -7,7 +7,7 @@ use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
 use hider_scene::{Error, Frame, Hider, Result, ScreenScene, ScreenTri, Stats, check_frame};
 
 use crate::depth::DepthBuffer;
-use crate::options::{DepthSource, ZBufferOptions};
+use crate::options::{DepthFormat, DepthSource, ZBufferOptions};
 
 /// Work counters of one z-buffer frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -44,7 +44,7 @@ impl From<ZBufferStats> for Stats {
 /// Triangles are drawn in primitive-id order and the test is LESS, so of two
 /// surfaces at exactly the same stored depth the lower id stays: the tie rule
 /// the oracle uses too.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct ZBuffer {
     options: ZBufferOptions,
     depth: DepthBuffer,
@@ -52,17 +52,22 @@ pub struct ZBuffer {
 }
 
 impl ZBuffer {
-    /// A z-buffer with the given options.
+    /// A z-buffer with the given options. Its [`Hider::name`] is `zbuffer`
+    /// followed by the non-default options (`zbuffer-fixed24`,
+    /// `zbuffer-linear-z`...).
     pub fn new(options: ZBufferOptions) -> Self {
-        let name = if options == ZBufferOptions::default() {
-            "zbuffer".to_owned()
-        } else {
-            format!(
-                "zbuffer[{} {}]",
-                options.depth_format.name(),
-                options.depth_source.name()
-            )
+        let format = match options.depth_format {
+            DepthFormat::F32 => "",
+            DepthFormat::F64 => "-f64",
+            DepthFormat::Fixed24 => "-fixed24",
+            DepthFormat::Fixed16 => "-fixed16",
+            DepthFormat::ReversedF32 => "-reversed",
         };
+        let source = match options.depth_source {
+            DepthSource::WindowZ => "",
+            DepthSource::LinearViewZ => "-linear-z",
+        };
+        let name = format!("zbuffer{format}{source}");
         Self {
             options,
             depth: DepthBuffer::default(),
@@ -183,6 +188,12 @@ impl LinearDepth {
         let (n, f) = (self.near, self.far);
         let ndc = (f + n) / (f - n) - 2.0 * f * n / ((f - n) * w);
         (ndc + 1.0) * 0.5
+    }
+}
+
+impl Default for ZBuffer {
+    fn default() -> Self {
+        Self::new(ZBufferOptions::default())
     }
 }
 

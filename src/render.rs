@@ -1,0 +1,302 @@
+//! `hider render`: one model, one hider, PNG and dumps out, optional timing.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use clap::{Args, ValueEnum};
+use glam::DVec3;
+use hider::geom::{Camera, Projection};
+use hider::scene::{
+    Frame, Hider, PrepareOptions, Scene, ShadeMode, TransformPrecision, View, fit_camera, load_obj,
+    prepare, procedural, shade_frame,
+};
+use hider::zbuffer::{DepthFormat, DepthSource, ZBuffer, ZBufferOptions};
+
+/// Arguments of `hider render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// OBJ file, or a generated scene: gen:cube, gen:sphere[:N],
+    /// gen:soup[:COUNT[:SEED]], gen:intersecting, gen:cyclic, gen:coplanar.
+    model: String,
+    /// Output PNG.
+    #[arg(short, long)]
+    output: PathBuf,
+    /// Square image size in pixels (1 to 16384).
+    #[arg(long, conflicts_with_all = ["width", "height"])]
+    size: Option<u32>,
+    /// Image width in pixels (with --height).
+    #[arg(long, requires = "height")]
+    width: Option<u32>,
+    /// Image height in pixels (with --width).
+    #[arg(long, requires = "width")]
+    height: Option<u32>,
+    /// Hidden-surface algorithm (see `hider list`).
+    #[arg(long, default_value = "zbuffer")]
+    algo: String,
+    /// Depth buffer format of the z-buffer.
+    #[arg(long, value_enum)]
+    depth_format: Option<DepthFormatArg>,
+    /// What the z-buffer compares.
+    #[arg(long, value_enum)]
+    depth_source: Option<DepthSourceArg>,
+    /// Transform arithmetic of the front end (f32 reproduces GL).
+    #[arg(long, value_enum, default_value = "f64")]
+    precision: PrecisionArg,
+    /// Write the visible primitive ids (int32 LE, -1 background).
+    #[arg(long)]
+    ids_out: Option<PathBuf>,
+    /// Write the window depth (float32 LE, 1.0 background).
+    #[arg(long)]
+    depth_out: Option<PathBuf>,
+    /// How to colour the image.
+    #[arg(long, value_enum, default_value = "lambert")]
+    shade: ShadeArg,
+    /// Eye position x,y,z (default: the fit camera).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    eye: Option<DVec3>,
+    /// Point looked at x,y,z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    target: Option<DVec3>,
+    /// Up direction x,y,z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    up: Option<DVec3>,
+    /// Vertical field of view in degrees.
+    #[arg(long)]
+    fovy: Option<f64>,
+    /// Near plane distance.
+    #[arg(long)]
+    near: Option<f64>,
+    /// Far plane distance.
+    #[arg(long)]
+    far: Option<f64>,
+    /// Worker threads for hiders that use them.
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+    /// Render K times after a warm-up and print the median and minimum
+    /// milliseconds of prepare + clear + rasterise.
+    #[arg(long, default_value_t = 0)]
+    repeat: u32,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum DepthFormatArg {
+    F32,
+    F64,
+    Fixed24,
+    Fixed16,
+    ReversedF32,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum DepthSourceArg {
+    WindowZ,
+    LinearViewZ,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum PrecisionArg {
+    F32,
+    F64,
+}
+
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum ShadeArg {
+    Lambert,
+    Ids,
+}
+
+fn parse_vec3(s: &str) -> Result<DVec3, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("expected x,y,z, got '{s}'"));
+    }
+    let mut v = [0.0; 3];
+    for (slot, p) in v.iter_mut().zip(&parts) {
+        *slot = p
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| format!("'{p}' is not a finite number"))?;
+    }
+    Ok(DVec3::from_array(v))
+}
+
+/// Loads an OBJ file or builds a generated scene.
+pub fn load_model(model: &str) -> Result<Scene> {
+    if let Some(spec) = model.strip_prefix("gen:") {
+        return generated(spec);
+    }
+    let scene = load_obj(model).with_context(|| format!("cannot load model {model}"))?;
+    for w in &scene.warnings {
+        eprintln!("hider: warning: {w}");
+    }
+    Ok(scene)
+}
+
+fn generated(spec: &str) -> Result<Scene> {
+    let mut parts = spec.split(':');
+    let name = parts.next().unwrap_or_default();
+    let mut num = |default: u64, what: &str| -> Result<u64> {
+        match parts.next() {
+            None => Ok(default),
+            Some(p) => p
+                .parse()
+                .with_context(|| format!("gen:{spec}: bad {what} '{p}'")),
+        }
+    };
+    Ok(match name {
+        "cube" => procedural::cube(),
+        "sphere" => {
+            let n = num(64, "segment count")?;
+            if !(3..=2000).contains(&n) {
+                bail!("gen:{spec}: segment count {n} must be 3 to 2000");
+            }
+            procedural::uv_sphere(n as u32)
+        }
+        "soup" => {
+            let count = num(10_000, "triangle count")?;
+            let seed = num(1, "seed")?;
+            if count > 10_000_000 {
+                bail!("gen:{spec}: triangle count {count} is over the limit of 10000000");
+            }
+            procedural::random_soup(count as u32, seed)
+        }
+        "intersecting" => procedural::intersecting_pair(),
+        "cyclic" => procedural::cyclic_triple(),
+        "coplanar" => procedural::coplanar_pair(),
+        _ => bail!(
+            "unknown generated scene '{name}' (cube, sphere, soup, intersecting, cyclic, coplanar)"
+        ),
+    })
+}
+
+fn camera(args: &RenderArgs, scene: &Scene) -> Camera {
+    let mut c = scene.camera.unwrap_or_else(|| fit_camera(scene));
+    c.eye = args.eye.unwrap_or(c.eye);
+    c.target = args.target.unwrap_or(c.target);
+    c.up = args.up.unwrap_or(c.up);
+    if let Projection::Perspective {
+        fovy_degrees,
+        near,
+        far,
+    } = &mut c.projection
+    {
+        *fovy_degrees = args.fovy.unwrap_or(*fovy_degrees);
+        *near = args.near.unwrap_or(*near);
+        *far = args.far.unwrap_or(*far);
+    }
+    c
+}
+
+fn make_hider(args: &RenderArgs) -> Result<Box<dyn Hider>> {
+    let zbuffer_flags = args.depth_format.is_some() || args.depth_source.is_some();
+    if args.algo == "zbuffer" {
+        let format = match args.depth_format.unwrap_or(DepthFormatArg::F32) {
+            DepthFormatArg::F32 => DepthFormat::F32,
+            DepthFormatArg::F64 => DepthFormat::F64,
+            DepthFormatArg::Fixed24 => DepthFormat::Fixed24,
+            DepthFormatArg::Fixed16 => DepthFormat::Fixed16,
+            DepthFormatArg::ReversedF32 => DepthFormat::ReversedF32,
+        };
+        let source = match args.depth_source.unwrap_or(DepthSourceArg::WindowZ) {
+            DepthSourceArg::WindowZ => DepthSource::WindowZ,
+            DepthSourceArg::LinearViewZ => DepthSource::LinearViewZ,
+        };
+        let options = ZBufferOptions::default()
+            .with_depth_format(format)
+            .with_depth_source(source);
+        return Ok(Box::new(ZBuffer::new(options)));
+    }
+    if zbuffer_flags {
+        bail!("--depth-format and --depth-source apply to --algo zbuffer only");
+    }
+    let entry = hider::registry::by_name(&args.algo).with_context(|| {
+        let names: Vec<&str> = hider::registry::all().iter().map(|e| e.name).collect();
+        format!(
+            "unknown --algo '{}' (one of: {})",
+            args.algo,
+            names.join(", ")
+        )
+    })?;
+    Ok((entry.make)())
+}
+
+/// Runs `hider render`.
+pub fn run(args: &RenderArgs) -> Result<()> {
+    let (width, height) = match (args.size, args.width, args.height) {
+        (Some(n), _, _) => (n, n),
+        (None, Some(w), Some(h)) => (w, h),
+        _ => (512, 512),
+    };
+    hider::scene::view::check_image_size(width, height).context("bad image size")?;
+    if args.threads == 0 {
+        bail!("--threads must be at least 1");
+    }
+    let mut hider = make_hider(args)?;
+    let scene = load_model(&args.model)?;
+    let view = View::new(camera(args, &scene), width, height)?;
+    let options = PrepareOptions::default().with_precision(match args.precision {
+        PrecisionArg::F32 => TransformPrecision::F32,
+        PrecisionArg::F64 => TransformPrecision::F64,
+    });
+    let mut frame = Frame::new(width, height)?;
+    let render_once = |hider: &mut Box<dyn Hider>, frame: &mut Frame| -> Result<_> {
+        let screen = prepare(&scene, &view, &options)?;
+        let stats = hider.render(&screen, frame)?;
+        Ok((screen, stats))
+    };
+    let (screen, stats) = render_once(&mut hider, &mut frame)?;
+    if args.repeat > 0 {
+        let mut times = Vec::with_capacity(args.repeat as usize);
+        for _ in 0..args.repeat {
+            let start = Instant::now();
+            render_once(&mut hider, &mut frame)?;
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+        times.sort_by(f64::total_cmp);
+        println!(
+            "{}: {} triangles, {}x{}, threads {}: median {:.3} ms, min {:.3} ms over {} runs (prepare + clear + rasterise)",
+            hider.name(),
+            scene.triangle_count(),
+            width,
+            height,
+            args.threads,
+            times[times.len() / 2],
+            times[0],
+            times.len()
+        );
+    }
+    if !hider.resolves_color() {
+        let mode = match args.shade {
+            ShadeArg::Lambert => ShadeMode::Lambert,
+            ShadeArg::Ids => ShadeMode::Ids,
+        };
+        shade_frame(&screen, &mut frame, mode);
+    }
+    write_outputs(args, &frame)?;
+    eprintln!(
+        "{}: {} triangles in, {} on screen, {} pixels covered; {}",
+        hider.name(),
+        scene.triangle_count(),
+        screen.tris.len(),
+        frame.covered_count(),
+        stats
+    );
+    Ok(())
+}
+
+fn write_outputs(args: &RenderArgs, frame: &Frame) -> Result<()> {
+    let out = |p: &Path| format!("cannot write {}", p.display());
+    frame
+        .write_png(&args.output)
+        .with_context(|| out(&args.output))?;
+    if let Some(p) = &args.ids_out {
+        frame.write_ids(p).with_context(|| out(p))?;
+    }
+    if let Some(p) = &args.depth_out {
+        frame.write_depth(p).with_context(|| out(p))?;
+    }
+    Ok(())
+}
