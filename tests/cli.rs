@@ -1,0 +1,127 @@
+//! The `hider` command line: bad input gives one line on stderr and exit
+//! status 2, never a panic and never a partial output file.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn hider(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hider"))
+        .args(args)
+        .output()
+        .expect("hider runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hider-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Asserts a failed run: status 2, exactly one line on stderr that contains
+/// every `needles`, no panic, and no output file left behind.
+fn assert_fails(out: &Output, needles: &[&str], png: &Path) {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "'{n}' missing from: {stderr}");
+    }
+    assert!(!png.exists(), "no output file after an error");
+    let dir = png.parent().unwrap();
+    let leftovers: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp") || n.ends_with(".png"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_string_lossy().into_owned()
+}
+
+#[test]
+fn bad_inputs_exit_2_with_one_line() {
+    let dir = temp_dir("bad");
+    let png = dir.join("out.png");
+    let png_s = png.to_string_lossy().into_owned();
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+    let missing = dir.join("missing.obj");
+    let out = hider(&["render", missing.to_str().unwrap(), "-o", &png_s]);
+    assert_fails(&out, &["missing.obj", "No such file"], &png);
+
+    let bad = write(&dir, "malformed.obj", &format!("{tri}f 1 2 three\n"));
+    let out = hider(&["render", &bad, "-o", &png_s]);
+    assert_fails(&out, &["malformed.obj:4", "'three'"], &png);
+
+    let range = write(&dir, "range.obj", &format!("{tri}f 1 2 9\n"));
+    let out = hider(&["render", &range, "-o", &png_s]);
+    assert_fails(&out, &["range.obj:4", "index 9 out of range"], &png);
+
+    let nan = write(&dir, "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+    let out = hider(&["render", &nan, "-o", &png_s]);
+    assert_fails(&out, &["nan.obj:2", "NaN"], &png);
+
+    let good = write(&dir, "good.obj", &format!("{tri}f 1 2 3\n"));
+    let out = hider(&["render", &good, "-o", &png_s, "--size", "0"]);
+    assert_fails(&out, &["width", "at least 1"], &png);
+    let out = hider(&["render", &good, "-o", &png_s, "--size", "16385"]);
+    assert_fails(&out, &["16385", "16384"], &png);
+    let out = hider(&["render", &good, "-o", &png_s, "--algo", "nonesuch"]);
+    assert_fails(&out, &["nonesuch", "zbuffer"], &png);
+    let out = hider(&["render", &good, "-o", &png_s, "--eye", "0,0,nan"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!png.exists());
+
+    let nowhere = dir.join("no/such/dir/out.png");
+    let out = hider(&["render", &good, "-o", nowhere.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/dir/out.png"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn render_writes_png_and_gl_format_dumps() {
+    let dir = temp_dir("good");
+    let png = dir.join("cube.png");
+    let ids = dir.join("cube.i32");
+    let depth = dir.join("cube.f32");
+    let out = hider(&[
+        "render",
+        "gen:cube",
+        "-o",
+        png.to_str().unwrap(),
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "--ids-out",
+        ids.to_str().unwrap(),
+        "--depth-out",
+        depth.to_str().unwrap(),
+        "--shade",
+        "ids",
+        "--repeat",
+        "2",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("median") && stdout.contains("min"), "{stdout}");
+    assert_eq!(std::fs::read(&ids).unwrap().len(), 40 * 30 * 4);
+    assert_eq!(std::fs::read(&depth).unwrap().len(), 40 * 30 * 4);
+    let id_values = hider::scene::frame::read_ids(&ids, 40, 30).unwrap();
+    let depth_values = hider::scene::frame::read_depth(&depth, 40, 30).unwrap();
+    // The cube fills the centre; the corners are background with depth 1.
+    assert!(id_values[15 * 40 + 20] < 12);
+    assert_eq!(id_values[0], hider::scene::NO_ID);
+    assert_eq!(depth_values[0], 1.0);
+    assert!(depth_values[15 * 40 + 20] < 1.0);
+    assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
