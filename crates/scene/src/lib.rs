@@ -42,6 +42,7 @@ pub mod frame;
 pub mod hider;
 pub mod model;
 pub mod obj;
+pub mod obj_write;
 pub mod prepare;
 pub mod procedural;
 pub mod shade;
@@ -52,6 +53,7 @@ pub use frame::{Frame, NO_ID};
 pub use hider::{Hider, Stats, check_frame};
 pub use model::{Light, Material, Mesh, Scene};
 pub use obj::{load_obj, load_obj_with};
+pub use obj_write::save_obj;
 pub use prepare::{
     PrepareOptions, PrepareStats, PrimInfo, ScreenScene, ScreenTri, TransformPrecision, prepare,
 };

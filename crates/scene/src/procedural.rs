@@ -194,26 +194,31 @@ pub fn intersecting_pair() -> Scene {
 
 /// Three long triangles overlapping in a cycle (each above the next, the
 /// last above the first): no depth order exists.
+///
+/// Strip `k` runs along the side `P_k -> P_{k+1}` of an equilateral
+/// triangle, wide and high (z = +0.3) at its base before `P_k`, narrowing
+/// and descending to z = -0.3 at its tip beyond `P_{k+1}`. Near `P_{k+1}` it
+/// passes under the base of strip `k + 1`; near `P_k` over the tip of strip
+/// `k - 1`.
 pub fn cyclic_triple() -> Scene {
     let mut s = Scene::default();
     let colours = [[0.85, 0.25, 0.2], [0.25, 0.75, 0.3], [0.25, 0.35, 0.85]];
+    let corner = |k: u32| {
+        let a = std::f64::consts::TAU * f64::from(k % 3) / 3.0 + std::f64::consts::FRAC_PI_2;
+        DVec3::new(0.8 * a.cos(), 0.8 * a.sin(), 0.0)
+    };
     for k in 0..3 {
-        let a = std::f64::consts::TAU * f64::from(k) / 3.0;
-        let (dir, side) = (
-            DVec3::new(a.cos(), a.sin(), 0.0),
-            DVec3::new(-a.sin(), a.cos(), 0.0),
-        );
-        // Each strip starts high (z = 0.3) near its base and descends to
-        // z = -0.3 at its tip, passing over the next strip and under the
-        // previous one where they cross.
-        let base = dir * -1.2 + side * 0.35;
-        let positions = vec![
-            base + side * 0.25 + DVec3::Z * 0.3,
-            base - side * 0.25 + DVec3::Z * 0.3,
-            base + dir * 2.2 + DVec3::Z * -0.3,
-        ];
+        let (p, q) = (corner(k), corner(k + 1));
+        let along = q - p;
+        let side = DVec3::new(-along.y, along.x, 0.0).normalize() * 0.25;
+        let base = p - along * 0.3 + DVec3::Z * 0.3;
+        let tip = q + along * 0.8 - DVec3::Z * 0.3;
         s.push_mesh(
-            mesh(&format!("strip_{k}"), positions, vec![[0, 1, 2]]),
+            mesh(
+                &format!("strip_{k}"),
+                vec![base + side, base - side, tip],
+                vec![[0, 1, 2]],
+            ),
             Some(material(&format!("strip_{k}"), colours[k as usize])),
         );
     }
