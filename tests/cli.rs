@@ -111,8 +111,15 @@ fn render_writes_png_and_gl_format_dumps() {
         "2",
     ]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert!(stdout.contains("median") && stdout.contains("min"), "{stdout}");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("median") && stdout.contains("min"),
+        "{stdout}"
+    );
     assert_eq!(std::fs::read(&ids).unwrap().len(), 40 * 30 * 4);
     assert_eq!(std::fs::read(&depth).unwrap().len(), 40 * 30 * 4);
     let id_values = hider::scene::frame::read_ids(&ids, 40, 30).unwrap();
