@@ -32,9 +32,12 @@
 //! ```
 
 pub mod agreement;
+pub mod coverage;
+pub mod polygon;
 pub mod raycast;
 
 pub use agreement::Agreement;
+pub use coverage::{CoverageReference, analytic_coverage};
 pub use raycast::{OracleOptions, OracleStats, RayCastOracle, Reference};
 
 /// Relative camera-distance gap under which the two nearest surfaces at a
