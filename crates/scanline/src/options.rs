@@ -1,0 +1,47 @@
+//! Options of the scanline hider.
+
+/// Options of [`crate::Scanline`]. `Default` is the accurate choice (every
+/// setting here is exact; they only trade time and memory).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ScanlineOptions {
+    /// How many times one span may be split at depth crossings before the
+    /// rest of it is resolved by the one-row depth buffer fallback.
+    ///
+    /// Splitting costs a pass over the span's active polygon list per split
+    /// plus a short search for the crossing pixel; a span that keeps
+    /// splitting lies in a knot of mutually piercing polygons, where
+    /// comparing depths pixel by pixel over the remaining run is cheaper.
+    /// Both paths decide every pixel with the same per-pixel depth
+    /// comparison, so the setting changes cost, not the picture. `0` sends
+    /// every span that would split to the fallback; `u32::MAX` never uses
+    /// it. Default 16.
+    pub max_splits_per_span: u32,
+    /// Budget for the working tables (polygon and edge tables, bucket
+    /// indices, active lists, the row buffer), in bytes. Checked before
+    /// anything is allocated; a scene that would need more is refused with
+    /// [`hider_scene::Error::Limit`]. Default 1 GiB.
+    pub max_table_bytes: u64,
+}
+
+impl Default for ScanlineOptions {
+    fn default() -> Self {
+        Self {
+            max_splits_per_span: 16,
+            max_table_bytes: 1 << 30,
+        }
+    }
+}
+
+impl ScanlineOptions {
+    /// Sets [`Self::max_splits_per_span`].
+    pub fn with_max_splits_per_span(mut self, splits: u32) -> Self {
+        self.max_splits_per_span = splits;
+        self
+    }
+
+    /// Sets [`Self::max_table_bytes`].
+    pub fn with_max_table_bytes(mut self, bytes: u64) -> Self {
+        self.max_table_bytes = bytes;
+        self
+    }
+}

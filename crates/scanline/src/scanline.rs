@@ -1,0 +1,210 @@
+//! The scan loop: rows top to bottom, edges and polygons activated from the
+//! bucketed tables, per-row crossings sorted into spans.
+
+use hider_scene::{Frame, Hider, Result, ScreenScene, Stats, check_frame};
+
+use crate::edge_table::{Edge, EdgeTable, NAME, Side, table_bytes};
+use crate::options::ScanlineOptions;
+use crate::span::{Active, RowOut, SpanResolver};
+use crate::stats::ScanlineStats;
+
+/// Crossing key bit marking a polygon entering (its first covered column);
+/// without it the key marks the column just after its last one.
+const ENTER: u64 = 1 << 31;
+/// Mask of the polygon slot in a crossing key.
+const SLOT: u64 = ENTER - 1;
+
+/// The scanline hidden-surface algorithm (Wylie et al. 1967, Watkins 1970).
+///
+/// Keeps its edge table, active lists and row buffer between frames:
+/// rendering several frames with one `Scanline` reuses their memory.
+#[derive(Clone, Debug, Default)]
+pub struct Scanline {
+    options: ScanlineOptions,
+    table: EdgeTable,
+    /// The active edge list.
+    ael: Vec<Edge>,
+    /// Slots of the polygons whose row range covers the current row.
+    active_polys: Vec<u32>,
+    /// The current row's crossings, packed `column << 32 | ENTER? | slot`.
+    crossings: Vec<u64>,
+    /// The active polygon list of the current span.
+    apl: Vec<Active>,
+    resolver: SpanResolver,
+}
+
+impl Scanline {
+    /// A scanline hider with the default (accurate) options.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A scanline hider with the given options.
+    pub fn with_options(options: ScanlineOptions) -> Self {
+        Self {
+            options,
+            ..Self::default()
+        }
+    }
+
+    /// The options in use.
+    pub fn options(&self) -> &ScanlineOptions {
+        &self.options
+    }
+
+    /// Renders `scene` into `frame` (ids and window depth; colour is left
+    /// to [`hider_scene::shade_frame`]) and returns the typed counters.
+    ///
+    /// Errors, before touching the frame's contents, when the frame size
+    /// differs from the scene's viewport, the tables would exceed
+    /// [`ScanlineOptions::max_table_bytes`], or a triangle is unusable
+    /// (not positively oriented, beyond the fixed-point range, non-finite
+    /// depth plane).
+    pub fn render_frame(
+        &mut self,
+        scene: &ScreenScene,
+        frame: &mut Frame,
+    ) -> Result<ScanlineStats> {
+        check_frame(NAME, scene, frame)?;
+        let (width, height) = (scene.viewport.width, scene.viewport.height);
+        let need = table_bytes(scene.tris.len(), width, height);
+        self.table
+            .build(&scene.tris, height, self.options.max_table_bytes, need)?;
+        self.resolver.prepare(width);
+        frame.clear();
+        self.ael.clear();
+        self.active_polys.clear();
+        self.apl.clear();
+
+        let mut stats = ScanlineStats {
+            polygons: self.table.polygon_count() as u64,
+            edges: self.table.edge_count() as u64,
+            rows: u64::from(height),
+            ..ScanlineStats::default()
+        };
+        let w = width as usize;
+        for (row, (ids, depth)) in (0..height).zip(
+            frame
+                .ids
+                .chunks_exact_mut(w)
+                .zip(frame.depth.chunks_exact_mut(w)),
+        ) {
+            let mut out = RowOut { row, ids, depth };
+            self.scan_row(scene, &mut out, &mut stats);
+        }
+        stats.pixels_written = frame.covered_count() as u64;
+        stats.peak_bytes = self.bytes();
+        Ok(stats)
+    }
+
+    /// One row: activate, walk the active edges, sort the crossings, resolve
+    /// the spans between them.
+    fn scan_row(&mut self, scene: &ScreenScene, out: &mut RowOut<'_>, stats: &mut ScanlineStats) {
+        let row = out.row;
+        let (new_polys, new_edges) = self.table.bucket(row);
+        self.active_polys.extend_from_slice(new_polys);
+        self.ael.extend_from_slice(new_edges);
+        if self.active_polys.is_empty() {
+            return;
+        }
+        let active = self.active_polys.len() as u64;
+        stats.active_polygons_max = stats.active_polygons_max.max(active);
+        stats.active_polygon_rows += active;
+
+        // Each polygon's run on this row: the tightest of its active left
+        // and right edges (every row of a polygon has at least one of each).
+        let polys = &mut self.table.polys;
+        for &s in &self.active_polys {
+            let p = &mut polys[s as usize];
+            p.l = i64::MIN;
+            p.r = i64::MAX;
+        }
+        self.ael.retain_mut(|e| {
+            let p = &mut polys[e.poly as usize];
+            match e.side {
+                Side::Left => p.l = p.l.max(e.bound()),
+                Side::Right => p.r = p.r.min(e.bound()),
+            }
+            if e.last_row == row {
+                false
+            } else {
+                e.advance();
+                true
+            }
+        });
+        let last_column = out.ids.len() as i64 - 1;
+        self.crossings.clear();
+        for &s in &self.active_polys {
+            let p = &polys[s as usize];
+            let (l, r) = (p.l.max(0), p.r.min(last_column));
+            if l <= r {
+                self.crossings.push((l as u64) << 32 | ENTER | u64::from(s));
+                self.crossings.push(((r + 1) as u64) << 32 | u64::from(s));
+            }
+        }
+        self.active_polys
+            .retain(|&s| polys[s as usize].last_row > row);
+        self.crossings.sort_unstable();
+        stats.crossings += self.crossings.len() as u64;
+
+        // Sweep: apply every crossing at a column, then resolve the span up
+        // to the next crossing column.
+        let keys = &self.crossings;
+        let mut k = 0;
+        while k < keys.len() {
+            let x = (keys[k] >> 32) as u32;
+            while k < keys.len() && (keys[k] >> 32) as u32 == x {
+                let slot = (keys[k] & SLOT) as u32;
+                if keys[k] & ENTER != 0 {
+                    let t = &scene.tris[polys[slot as usize].tri as usize];
+                    self.apl.push(Active {
+                        depth: 0.0,
+                        slot,
+                        prim: t.prim,
+                        plane: t.depth,
+                    });
+                } else if let Some(pos) = self.apl.iter().position(|a| a.slot == slot) {
+                    // `remove`, not `swap_remove`: keeps the depth order
+                    // for the next span's insertion sort.
+                    self.apl.remove(pos);
+                }
+                k += 1;
+            }
+            if k < keys.len() && !self.apl.is_empty() {
+                let next = (keys[k] >> 32) as u32;
+                self.resolver.resolve(
+                    &mut self.apl,
+                    x,
+                    next - 1,
+                    out,
+                    self.options.max_splits_per_span,
+                    stats,
+                );
+            }
+        }
+        // Every run's end was a crossing, so the list is empty again.
+        debug_assert!(self.apl.is_empty());
+        self.apl.clear();
+    }
+
+    /// Bytes held by the working tables and lists (capacity).
+    pub fn bytes(&self) -> u64 {
+        use std::mem::size_of;
+        self.table.bytes()
+            + (self.ael.capacity() * size_of::<Edge>()
+                + self.active_polys.capacity() * 4
+                + self.crossings.capacity() * 8
+                + self.apl.capacity() * size_of::<Active>()) as u64
+            + self.resolver.bytes()
+    }
+}
+
+impl Hider for Scanline {
+    fn name(&self) -> &str {
+        NAME
+    }
+
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {
+        self.render_frame(scene, frame).map(Stats::from)
+    }
+}
