@@ -9,6 +9,8 @@
 //! | [`geom`] | camera, clipping, fixed-point snapping, edge functions, planes |
 //! | [`scene`] | scene model, OBJ/MTL, the shared front end `prepare`, frames, the `Hider` trait |
 //! | [`zbuffer`] | depth buffer with five depth formats |
+//! | [`oracle`] | the slow exact references every test measures against |
+//! | [`bench`] | the comparative benchmark and the hider registry |
 //!
 //! # Example
 //!
@@ -33,8 +35,11 @@
 //! # Ok::<(), hider::scene::Error>(())
 //! ```
 
-pub mod registry;
-
+pub use hider_bench as bench;
 pub use hider_geom as geom;
+pub use hider_oracle as oracle;
 pub use hider_scene as scene;
 pub use hider_zbuffer as zbuffer;
+
+/// Every hider by name (re-exported from `hider-bench`).
+pub use hider_bench::registry;

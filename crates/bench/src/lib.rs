@@ -1,1 +1,4 @@
-//! hider-bench: not written yet.
+//! hider-bench: the comparative benchmark runner (being written), and the
+//! [`registry`] of every hider in the workspace.
+
+pub mod registry;

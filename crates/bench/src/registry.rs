@@ -2,6 +2,7 @@
 //! benchmark and the property tests read, so adding an algorithm is one
 //! entry here.
 
+use hider_oracle::RayCastOracle;
 use hider_scene::Hider;
 use hider_zbuffer::{DepthFormat, DepthSource, ZBuffer, ZBufferOptions};
 
@@ -81,6 +82,12 @@ pub fn all() -> Vec<Entry> {
             description: "depth buffer comparing camera z interpolated linearly (the seed's error)",
             kind: Kind::ApproximatePixelCentre,
             make: || zbuffer(DepthFormat::F32, DepthSource::LinearViewZ),
+        },
+        Entry {
+            name: "oracle",
+            description: "exact reference: per-pixel ray cast in f64 over every triangle (slow)",
+            kind: Kind::Reference,
+            make: || Box::new(RayCastOracle::default()),
         },
     ]
 }
