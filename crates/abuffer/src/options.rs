@@ -1,0 +1,162 @@
+//! Options of the A-buffer. `Default` is the accurate choice.
+
+use hider_scene::ShadeMode;
+
+use crate::pattern::SamplePattern;
+
+/// How fragments are ordered and composited at resolve time.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DepthMode {
+    /// Each fragment keeps the window depth of every covered sample
+    /// (`4 * samples` more bytes per fragment) and every sample is
+    /// composited in its own depth order: exact where surfaces intersect
+    /// inside a pixel. With 32 samples the result equals a 32-sample
+    /// supersampled z-buffer sample for sample. The default.
+    #[default]
+    PerSample,
+    /// Carpenter's fragments: only `zmin` and `zmax` per fragment; the list
+    /// is composited in `zmin` order, and where the next fragment overlaps
+    /// this one in depth the paper's approximation estimates the visible
+    /// fraction from the two depth ranges, as if two planes crossed the
+    /// pixel with opposite slopes:
+    /// `vis = (zmax' - zmin) / ((zmax - zmin) + (zmax' - zmin'))`.
+    MinMax,
+    /// Like [`DepthMode::MinMax`] but ignoring interpenetration: fragments
+    /// are composited strictly in `zmin` order. Kept to show what the
+    /// paper's approximation buys.
+    ZminOrder,
+}
+
+/// When two fragments of one pixel are merged into one (Carpenter's merge
+/// of adjacent fragments of the same surface).
+///
+/// A candidate pair always has disjoint masks (the centre counting as a
+/// sample), triangles that share a snapped vertex (they are neighbours in a
+/// mesh), the same facing and the same material.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum MergePolicy {
+    /// Never merge.
+    Off,
+    /// Merge only when the two colours and opacities agree (colour within
+    /// [`crate::MERGE_COLOR_TOLERANCE`]): the merged fragment then shades
+    /// every sample as the separate ones would, so merging is exact (in
+    /// [`DepthMode::PerSample`] the per-sample depths are kept). Typical
+    /// hit: the two triangles of a planar quad. The default.
+    #[default]
+    SameColor,
+    /// Carpenter's rule: merge neighbours of the same surface whatever their
+    /// shading, averaging colour by covered samples. Saves the most memory;
+    /// a merged fragment that is partly hidden shows the average colour of
+    /// its parts in the visible samples.
+    SameSurface,
+}
+
+/// What happens when a fragment would make a pixel's list longer than
+/// [`ABufferOptions::max_list_len`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum OverflowPolicy {
+    /// First drop the fragments provably hidden in every sample and at the
+    /// centre by nearer opaque fragments (exact); if the list is still
+    /// full, drop the fragment with the farthest `zmin` (the new one or an
+    /// old one) and count it in [`crate::ABufferStats::dropped`]. The
+    /// default: a pixel with hundreds of surfaces degrades instead of
+    /// failing the frame.
+    #[default]
+    DropFarthest,
+    /// Drop provably hidden fragments; if the list is still full, fail the
+    /// frame with a [`hider_scene::Error::Render`] naming the pixel.
+    Error,
+}
+
+/// Default bound on one pixel's fragment list.
+pub const DEFAULT_MAX_LIST_LEN: u32 = 128;
+/// Default bound on the A-buffer's working memory: 1 GiB.
+pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+
+/// Options of [`crate::ABuffer`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ABufferOptions {
+    /// Sample positions of the coverage masks (default: the 8 x 4 grid).
+    pub pattern: SamplePattern,
+    /// Depth handling at resolve time (default: exact per-sample depth).
+    pub depth: DepthMode,
+    /// Fragment merging (default: exact, same-colour merges only).
+    pub merge: MergePolicy,
+    /// Longest fragment list a pixel may hold.
+    pub max_list_len: u32,
+    /// What to do when a list would be longer.
+    pub overflow: OverflowPolicy,
+    /// Bound on working memory (pixel table plus fragment pool), in bytes.
+    /// The pixel table is checked before it is allocated; the pool stops
+    /// with [`hider_scene::Error::Limit`] when the next fragment would pass
+    /// the bound.
+    pub max_bytes: u64,
+    /// How primitives are coloured before compositing.
+    pub shade: ShadeMode,
+}
+
+impl Default for ABufferOptions {
+    fn default() -> Self {
+        Self {
+            pattern: SamplePattern::Grid32,
+            depth: DepthMode::PerSample,
+            merge: MergePolicy::SameColor,
+            max_list_len: DEFAULT_MAX_LIST_LEN,
+            overflow: OverflowPolicy::DropFarthest,
+            max_bytes: DEFAULT_MAX_BYTES,
+            shade: ShadeMode::Lambert,
+        }
+    }
+}
+
+impl ABufferOptions {
+    /// Carpenter's own configuration: 8 x 4 masks, `zmin`/`zmax` fragments
+    /// with the interpenetration approximation, same-surface merging.
+    pub fn carpenter() -> Self {
+        Self::default()
+            .with_depth(DepthMode::MinMax)
+            .with_merge(MergePolicy::SameSurface)
+    }
+
+    /// Sets [`Self::pattern`].
+    pub fn with_pattern(mut self, pattern: SamplePattern) -> Self {
+        self.pattern = pattern;
+        self
+    }
+
+    /// Sets [`Self::depth`].
+    pub fn with_depth(mut self, depth: DepthMode) -> Self {
+        self.depth = depth;
+        self
+    }
+
+    /// Sets [`Self::merge`].
+    pub fn with_merge(mut self, merge: MergePolicy) -> Self {
+        self.merge = merge;
+        self
+    }
+
+    /// Sets [`Self::max_list_len`] (at least 1).
+    pub fn with_max_list_len(mut self, len: u32) -> Self {
+        self.max_list_len = len.max(1);
+        self
+    }
+
+    /// Sets [`Self::overflow`].
+    pub fn with_overflow(mut self, overflow: OverflowPolicy) -> Self {
+        self.overflow = overflow;
+        self
+    }
+
+    /// Sets [`Self::max_bytes`].
+    pub fn with_max_bytes(mut self, bytes: u64) -> Self {
+        self.max_bytes = bytes;
+        self
+    }
+
+    /// Sets [`Self::shade`].
+    pub fn with_shade(mut self, shade: ShadeMode) -> Self {
+        self.shade = shade;
+        self
+    }
+}

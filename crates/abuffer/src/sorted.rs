@@ -1,0 +1,183 @@
+//! The sorted-transparency z-buffer: the usual work-around the A-buffer
+//! replaces, kept to show what it gets wrong.
+//!
+//! As GPUs do (and as the depth seed says: "transparent surfaces are
+//! usually sorted back to front ... which can give wrong results, for
+//! example when triangles intersect"): first every opaque triangle is
+//! z-buffered per sample, writing depth and colour; then the translucent
+//! triangles are sorted back to front by the mean window depth of their
+//! corners and blended over the colour buffer (`c = a*src + (1-a)*dst`)
+//! wherever they pass the depth test, without writing depth. One depth per
+//! *triangle* cannot order triangles that overlap in depth or pierce each
+//! other, so where translucent triangles interpenetrate (or a small one
+//! sits in front of part of a large one whose centroid is nearer) the
+//! blend order is wrong for some samples; the A-buffer orders every sample
+//! (or at least every fragment) instead.
+//!
+//! Same samples, masks and depths as [`crate::SupersampledZBuffer`]; ids
+//! and depth from the pixel-centre test of [`crate::centre`], over all
+//! triangles whatever their opacity, as the A-buffer reports them.
+
+use hider_scene::{Frame, Hider, Result, ScreenScene, ScreenTri, Stats, check_frame};
+
+use crate::centre::{CentreBuffer, in_front};
+use crate::coverage::{TriCoverage, pixel_range, sample_depth};
+use crate::palette::{prim_colors, to_pixel};
+use crate::pattern::CENTRE;
+use crate::ssaa::{SsaaOptions, SsaaStats};
+
+/// A supersampled z-buffer with opaque-first, sorted back-to-front
+/// transparency.
+#[derive(Clone, Debug, Default)]
+pub struct SortedTransparencyZBuffer {
+    options: SsaaOptions,
+    depth: Vec<f32>,
+    prims: Vec<u32>,
+    color: Vec<[f32; 3]>,
+    hit: Vec<bool>,
+    centre: CentreBuffer,
+    colors: Vec<[f32; 4]>,
+    order: Vec<(f64, u32)>,
+    last: SsaaStats,
+}
+
+impl SortedTransparencyZBuffer {
+    /// A sorted-transparency z-buffer with the given options.
+    pub fn new(options: SsaaOptions) -> Self {
+        Self {
+            options,
+            ..Self::default()
+        }
+    }
+
+    /// The counters of the last frame.
+    pub fn stats(&self) -> SsaaStats {
+        self.last
+    }
+
+    fn draw(
+        &mut self,
+        scene: &ScreenScene,
+        tri: &ScreenTri,
+        translucent: bool,
+        stats: &mut SsaaStats,
+    ) {
+        let (w, h) = (scene.viewport.width, scene.viewport.height);
+        let pattern = self.options.pattern;
+        let n = pattern.count();
+        let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, w, h) else {
+            return;
+        };
+        let [r, g, b, alpha] = self.colors[tri.prim as usize];
+        let setup = TriCoverage::new(tri, pattern);
+        let step = setup.step_x();
+        for j in y0..=y1 {
+            let mut base = setup.corner_values(x0, j);
+            for i in x0..=x1 {
+                let c = setup.at(base);
+                base = [0, 1, 2].map(|e| base[e] + step[e]);
+                if c.is_empty() {
+                    continue;
+                }
+                stats.pixel_hits += 1;
+                stats.full_coverage += u64::from(c.full);
+                let p = j as usize * w as usize + i as usize;
+                if c.centre {
+                    self.centre
+                        .test(p, sample_depth(tri, i, j, CENTRE), tri.prim);
+                }
+                for (k, &pos) in pattern.positions().iter().enumerate() {
+                    if c.mask >> k & 1 == 0 {
+                        continue;
+                    }
+                    stats.depth_tests += 1;
+                    let s = p * n + k;
+                    let z = sample_depth(tri, i, j, pos) as f32;
+                    if !in_front(z, tri.prim, self.depth[s], self.prims[s]) {
+                        continue;
+                    }
+                    stats.depth_writes += 1;
+                    self.hit[s] = true;
+                    if translucent {
+                        let dst = self.color[s];
+                        self.color[s] =
+                            [0, 1, 2].map(|c| alpha * [r, g, b][c] + (1.0 - alpha) * dst[c]);
+                    } else {
+                        self.depth[s] = z;
+                        self.prims[s] = tri.prim;
+                        self.color[s] = [r, g, b];
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl Hider for SortedTransparencyZBuffer {
+    fn name(&self) -> &str {
+        "ssaa-sorted"
+    }
+
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {
+        check_frame("ssaa-sorted", scene, frame)?;
+        let pixels = frame.len();
+        let n = self.options.pattern.count();
+        let mut stats = SsaaStats {
+            bytes: self.options.check_budget(
+                "sorted-transparency z-buffer memory (bytes)",
+                pixels,
+                21,
+            )?,
+            ..SsaaStats::default()
+        };
+        frame.clear();
+        self.depth.clear();
+        self.depth.resize(pixels * n, f32::INFINITY);
+        self.prims.clear();
+        self.prims.resize(pixels * n, hider_scene::NO_ID);
+        self.color.clear();
+        self.color.resize(pixels * n, [0.0; 3]);
+        self.hit.clear();
+        self.hit.resize(pixels * n, false);
+        self.centre.reset(pixels);
+        prim_colors(scene, self.options.shade, &mut self.colors);
+
+        self.order.clear();
+        for (t, tri) in scene.tris.iter().enumerate() {
+            if self.colors[tri.prim as usize][3] >= 1.0 {
+                self.draw(scene, tri, false, &mut stats);
+            } else {
+                let mean = (tri.z[0] + tri.z[1] + tri.z[2]) / 3.0;
+                self.order.push((mean, t as u32));
+            }
+        }
+        // Back to front: farthest mean depth first.
+        self.order
+            .sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        let order = std::mem::take(&mut self.order);
+        for &(_, t) in &order {
+            self.draw(scene, &scene.tris[t as usize], true, &mut stats);
+        }
+        self.order = order;
+
+        self.centre.write(frame);
+        frame.coverage.clear();
+        frame.coverage.resize(pixels, 0.0);
+        let inv_n = 1.0 / n as f32;
+        for p in 0..pixels {
+            let samples = &self.color[p * n..(p + 1) * n];
+            let sum = samples.iter().fold([0.0f32; 3], |acc, c| {
+                [acc[0] + c[0], acc[1] + c[1], acc[2] + c[2]]
+            });
+            frame.color[p] = to_pixel(sum.map(|c| c * inv_n));
+            let covered = self.hit[p * n..(p + 1) * n].iter().filter(|&&h| h).count();
+            frame.coverage[p] = covered as f32 * inv_n;
+        }
+        self.last = stats;
+        Ok(stats.into())
+    }
+
+    fn resolves_color(&self) -> bool {
+        true
+    }
+}
