@@ -1,0 +1,271 @@
+//! Warnock's four relations between a polygon and a region, decided exactly
+//! on the region's samples, and the depth test that lets a surrounding
+//! polygon hide the others.
+//!
+//! Warnock (1969) classifies each polygon against a window as
+//! *surrounding* (it covers the whole window), *intersecting* (it covers
+//! part of it), *contained* (it lies inside it) or *disjoint* (it misses
+//! it). Here a region is a set of sample points, so the relations are
+//! about samples: disjoint means the polygon covers none of the region's
+//! samples, surrounding means it covers all of them. Both are decided with
+//! the shared integer edge functions at the region's four extreme samples:
+//! an edge function is affine, so its smallest and largest values over the
+//! sample rectangle are at its corners, and the `i64` arithmetic is exact.
+//! The test is conservative only in one direction: a polygon that misses
+//! every sample but passes the rectangle test is kept as intersecting, and a
+//! smaller region settles it.
+
+use hider_geom::{EdgeFunction, PlaneEq};
+use hider_scene::ScreenTri;
+
+use crate::grid::SampleRect;
+
+/// What the classification needs of a triangle, set up once per frame.
+#[derive(Clone, Copy, Debug)]
+pub struct TriSetup {
+    /// Edge functions with the top-left rule folded in (`> 0` is inside).
+    pub edges: [EdgeFunction; 3],
+    /// Smallest vertex x, fixed point.
+    pub min_x: i64,
+    /// Largest vertex x, fixed point.
+    pub max_x: i64,
+    /// Smallest vertex y, fixed point.
+    pub min_y: i64,
+    /// Largest vertex y, fixed point.
+    pub max_y: i64,
+    /// Window depth plane.
+    pub depth: PlaneEq,
+    /// Primitive id written to the frame.
+    pub prim: u32,
+}
+
+impl TriSetup {
+    /// The set-up of a screen triangle.
+    pub fn new(t: &ScreenTri) -> Self {
+        let xs = t.v.map(|p| i64::from(p.x));
+        let ys = t.v.map(|p| i64::from(p.y));
+        Self {
+            edges: t.edges(),
+            min_x: xs[0].min(xs[1]).min(xs[2]),
+            max_x: xs[0].max(xs[1]).max(xs[2]),
+            min_y: ys[0].min(ys[1]).min(ys[2]),
+            max_y: ys[0].max(ys[1]).max(ys[2]),
+            depth: t.depth,
+            prim: t.prim,
+        }
+    }
+
+    /// Whether the fixed-point sample `(x, y)` is covered: the one coverage
+    /// decision every hider shares.
+    #[inline]
+    pub fn covers(&self, x: i64, y: i64) -> bool {
+        self.edges.iter().all(|e| e.contains(x, y))
+    }
+
+    /// Window depth at the fixed-point sample `(x, y)`, evaluated exactly as
+    /// the z-buffer evaluates it at a pixel centre.
+    #[inline]
+    pub fn depth_at(&self, x: i64, y: i64) -> f64 {
+        self.depth.eval(x as f64 / 256.0, y as f64 / 256.0)
+    }
+}
+
+/// Warnock's relation of a polygon to a region, about the region's samples.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Class {
+    /// Covers none of the region's samples: dropped from the region's list.
+    Disjoint,
+    /// Covers every sample of the region.
+    Surrounding,
+    /// Lies inside the region's area (may still miss some samples).
+    Contained,
+    /// Everything else: covers some samples, or cannot be ruled out yet.
+    Intersecting,
+}
+
+/// Classifies triangle `t` against the region whose samples span `r`.
+#[inline]
+pub fn classify(t: &TriSetup, r: &SampleRect) -> Class {
+    // Bounding boxes first: the cheap half of the 2-D separating-axis test.
+    if t.max_x < r.x0 || t.min_x > r.x1 || t.max_y < r.y0 || t.min_y > r.y1 {
+        return Class::Disjoint;
+    }
+    let mut all_inside = true;
+    for e in &t.edges {
+        let (ax0, ax1) = (e.a * r.x0, e.a * r.x1);
+        let (by0, by1) = (e.b * r.y0, e.b * r.y1);
+        // The largest value over the rectangle: if even that is outside,
+        // no sample of the region is inside this edge.
+        if e.c + ax0.max(ax1) + by0.max(by1) <= 0 {
+            return Class::Disjoint;
+        }
+        // The smallest value: if it is inside, every sample is.
+        if e.c + ax0.min(ax1) + by0.min(by1) <= 0 {
+            all_inside = false;
+        }
+    }
+    if all_inside {
+        Class::Surrounding
+    } else if t.min_x >= r.area_x0
+        && t.max_x < r.area_x1
+        && t.min_y >= r.area_y0
+        && t.max_y < r.area_y1
+    {
+        Class::Contained
+    } else {
+        Class::Intersecting
+    }
+}
+
+/// Relative size of the rounding guard in [`certainly_behind`]: several
+/// hundred times the error of evaluating a plane (a few ulps of the
+/// magnitude of its terms).
+const DEPTH_GUARD: f64 = 1e-13;
+
+/// A depth plane evaluated at a region's four corner samples, with the
+/// magnitude that bounds the rounding error of any evaluation inside.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CornerDepths {
+    /// Depth at the corners (top-left, top-right, bottom-left, bottom-right).
+    pub depth: [f64; 4],
+    /// The largest `|value| + |dx (x - x0)| + |dy (y - y0)|` over the
+    /// corners. That sum is convex, so it bounds the terms of the plane's
+    /// evaluation at every sample of the region.
+    pub magnitude: f64,
+}
+
+impl CornerDepths {
+    /// Evaluates `plane` at the corners of `r`.
+    pub fn new(plane: &PlaneEq, r: &SampleRect) -> Self {
+        let mut depth = [0.0; 4];
+        let mut magnitude: f64 = 0.0;
+        for (d, (x, y)) in depth.iter_mut().zip(r.corners_in_pixels()) {
+            *d = plane.eval(x, y);
+            let m = plane.value.abs()
+                + (plane.dx * (x - plane.x0)).abs()
+                + (plane.dy * (y - plane.y0)).abs();
+            magnitude = magnitude.max(m);
+        }
+        Self { depth, magnitude }
+    }
+
+    /// The sum of the corner depths: four times the depth at the centre of
+    /// the sample rectangle, the key for picking the front surrounder.
+    pub fn sum(&self) -> f64 {
+        self.depth.iter().sum()
+    }
+}
+
+/// Whether surface `p` is behind surface `s` at every sample of the region,
+/// so certainly that a per-sample depth test (`LESS`, evaluated in `f64`
+/// as the z-buffer does) would keep `s` at each one, whatever their order.
+///
+/// The depth difference of two planes is affine, so over the sample
+/// rectangle it is smallest at a corner: a positive gap at all four corners
+/// is a positive gap everywhere. Each corner gap must beat a guard that
+/// covers the rounding of both the corner evaluations and of any interior
+/// evaluation; when the planes cross inside the region, or come closer than
+/// the guard, the answer is `false` and the caller subdivides further.
+#[inline]
+pub fn certainly_behind(p: &CornerDepths, s: &CornerDepths) -> bool {
+    let guard = DEPTH_GUARD * (p.magnitude + s.magnitude);
+    p.depth
+        .iter()
+        .zip(&s.depth)
+        .all(|(&dp, &ds)| dp - ds > guard)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::grid::{Grid, Region};
+    use hider_geom::FixedPt;
+
+    fn tri(v: [(i32, i32); 3], z: [f64; 3]) -> TriSetup {
+        let v = v.map(|(x, y)| FixedPt::new(x * 256, y * 256));
+        assert!(hider_geom::orient2d(v[0], v[1], v[2]) > 0);
+        let depth = PlaneEq::from_points(&v, z).unwrap();
+        TriSetup::new(&ScreenTri {
+            v,
+            z,
+            w: [1.0; 3],
+            depth,
+            inv_w: PlaneEq::constant(1.0),
+            prim: 0,
+            front_facing: true,
+        })
+    }
+
+    fn rect(u0: u32, v0: u32, u1: u32, v1: u32) -> SampleRect {
+        Grid::pixel_centres().sample_rect(&Region::new(u0, v0, u1, v1))
+    }
+
+    /// Brute force: how many of the region's pixel centres `t` covers.
+    fn covered(t: &TriSetup, u0: u32, v0: u32, u1: u32, v1: u32) -> usize {
+        let g = Grid::pixel_centres();
+        let mut n = 0;
+        for v in v0..v1 {
+            for u in u0..u1 {
+                n += usize::from(t.covers(g.sample_x(u), g.sample_y(v)));
+            }
+        }
+        n
+    }
+
+    #[test]
+    fn the_four_relations() {
+        // A big right triangle, legs 40 pixels along the top and left.
+        let t = tri([(0, 0), (40, 0), (0, 40)], [0.5; 3]);
+        assert_eq!(classify(&t, &rect(2, 2, 10, 10)), Class::Surrounding);
+        assert_eq!(classify(&t, &rect(30, 30, 40, 40)), Class::Disjoint);
+        assert_eq!(classify(&t, &rect(15, 15, 30, 30)), Class::Intersecting);
+        assert_eq!(classify(&t, &rect(0, 0, 64, 64)), Class::Contained);
+        // The claims are true of the samples.
+        assert_eq!(covered(&t, 2, 2, 10, 10), 64);
+        assert_eq!(covered(&t, 30, 30, 40, 40), 0);
+        let n = covered(&t, 15, 15, 30, 30);
+        assert!(n > 0 && n < 225);
+    }
+
+    #[test]
+    fn a_single_sample_is_either_surrounded_or_disjoint() {
+        let t = tri([(0, 0), (10, 0), (0, 10)], [0.5; 3]);
+        for v in 0..12 {
+            for u in 0..12 {
+                let c = classify(&t, &rect(u, v, u + 1, v + 1));
+                let inside = covered(&t, u, v, u + 1, v + 1) == 1;
+                assert_eq!(
+                    c,
+                    if inside {
+                        Class::Surrounding
+                    } else {
+                        Class::Disjoint
+                    }
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn surrounder_in_front_and_planes_crossing() {
+        let r = rect(0, 0, 8, 8);
+        let near = CornerDepths::new(&PlaneEq::constant(0.2), &r);
+        let far = CornerDepths::new(&PlaneEq::constant(0.6), &r);
+        assert!(certainly_behind(&far, &near));
+        assert!(!certainly_behind(&near, &far));
+        // A slanted plane crossing 0.2 inside the region: neither hides the
+        // other everywhere.
+        let slant = PlaneEq {
+            x0: 4.0,
+            y0: 4.0,
+            value: 0.2,
+            dx: 0.05,
+            dy: 0.0,
+        };
+        let slant = CornerDepths::new(&slant, &r);
+        assert!(!certainly_behind(&slant, &near));
+        assert!(!certainly_behind(&near, &slant));
+        // Equal planes are a tie, never "certainly behind".
+        assert!(!certainly_behind(&near, &near));
+    }
+}

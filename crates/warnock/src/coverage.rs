@@ -1,0 +1,301 @@
+//! The anti-aliased mode: Warnock's subdivision carried on inside pixels
+//! down to an `n x n` grid of samples, for coverage instead of a single
+//! centre sample.
+//!
+//! Warnock's own papers subdivide below the pixel to anti-alias edges; here
+//! the pixel pass (regions of whole pixels, each holding `n x n` samples)
+//! decides everything it can for whole pixels at once: a surrounder in
+//! front covers all `n^2` samples of every pixel of its region, a single
+//! polygon covers the samples its edge functions accept. A one-pixel region
+//! still in doubt is handed to a second subdivision on that pixel's own
+//! sample grid ([`Grid::samples_of_pixel`]), which writes a small sample
+//! buffer that is then resolved into the pixel:
+//!
+//! - coverage: covered samples / `n^2` (scored against the oracle's
+//!   analytic per-pixel coverage);
+//! - colour: the box-filtered average of the samples' colours, background
+//!   black;
+//! - id: the primitive holding the most samples (ties to the earlier one),
+//!   depth: its nearest sample depth.
+
+use hider_scene::shade::{prim_color, to_srgb8};
+use hider_scene::{Frame, NO_ID, ScreenScene, ShadeMode};
+
+use crate::classify::TriSetup;
+use crate::debug::LeafRegion;
+use crate::grid::{Grid, Region};
+use crate::stats::{Rule, WarnockStats};
+use crate::subdivide::{Sink, Subdivider, nearest_at};
+
+/// Linear colours of primitives, computed on first use, kept between
+/// frames for their memory.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct ColorCache {
+    colors: Vec<Option<[f32; 3]>>,
+}
+
+impl ColorCache {
+    /// Forgets the colours and sizes the cache for `scene`.
+    pub fn reset(&mut self, scene: &ScreenScene) {
+        self.colors.clear();
+        self.colors.resize(scene.prims.len(), None);
+    }
+
+    fn get(&mut self, scene: &ScreenScene, shade: ShadeMode, prim: u32) -> [f32; 3] {
+        match self.colors.get_mut(prim as usize) {
+            Some(slot) => *slot.get_or_insert_with(|| prim_color(scene, prim, shade).0),
+            None => [0.0; 3],
+        }
+    }
+
+    pub fn bytes(&self) -> usize {
+        self.colors.capacity() * std::mem::size_of::<Option<[f32; 3]>>()
+    }
+}
+
+/// One pixel's samples: the primitive seen at each (or [`NO_ID`]) and its
+/// depth. Kept between pixels and frames.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct SampleBuffer {
+    side: u32,
+    prims: Vec<u32>,
+    depth: Vec<f64>,
+    /// Scratch for the resolve: (primitive, samples, nearest depth).
+    tally: Vec<(u32, u32, f64)>,
+}
+
+impl SampleBuffer {
+    fn reset(&mut self, side: u32) {
+        let n = (side * side) as usize;
+        self.side = side;
+        self.prims.clear();
+        self.prims.resize(n, NO_ID);
+        self.depth.clear();
+        self.depth.resize(n, 1.0);
+    }
+
+    #[inline]
+    fn set(&mut self, u: u32, v: u32, prim: u32, depth: f64, stats: &mut WarnockStats) {
+        let i = (v * self.side + u) as usize;
+        self.prims[i] = prim;
+        self.depth[i] = depth;
+        stats.samples_written += 1;
+    }
+
+    pub fn bytes(&self) -> usize {
+        self.prims.capacity() * 4 + self.depth.capacity() * 8 + self.tally.capacity() * 16
+    }
+}
+
+/// Writes one sub-pixel sample buffer: the sink of the inner subdivision.
+struct SampleSink<'a> {
+    buffer: &'a mut SampleBuffer,
+}
+
+impl Sink for SampleSink<'_> {
+    fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+        for v in r.v0..r.v1 {
+            for u in r.u0..r.u1 {
+                let d = t.depth_at(grid.sample_x(u), grid.sample_y(v));
+                self.buffer.set(u, v, t.prim, d, stats);
+            }
+        }
+        stats.depth_evaluations += r.cells();
+    }
+
+    fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+        for v in r.v0..r.v1 {
+            for u in r.u0..r.u1 {
+                let (x, y) = (grid.sample_x(u), grid.sample_y(v));
+                if t.covers(x, y) {
+                    stats.depth_evaluations += 1;
+                    self.buffer.set(u, v, t.prim, t.depth_at(x, y), stats);
+                }
+            }
+        }
+    }
+
+    fn resolve_cell(
+        &mut self,
+        grid: &Grid,
+        r: &Region,
+        candidates: &[u32],
+        setups: &[TriSetup],
+        _level: usize,
+        stats: &mut WarnockStats,
+    ) -> Rule {
+        let (x, y) = (grid.sample_x(r.u0), grid.sample_y(r.v0));
+        if let Some((t, d)) = nearest_at(candidates, setups, x, y, stats) {
+            self.buffer
+                .set(r.u0, r.v0, setups[t as usize].prim, d, stats);
+        }
+        Rule::Sample
+    }
+}
+
+/// Writes anti-aliased pixels: the sink of the pixel pass in the
+/// anti-aliased mode.
+pub(crate) struct CoverageSink<'a> {
+    pub side: u32,
+    pub scene: &'a ScreenScene,
+    pub shade: ShadeMode,
+    pub frame: &'a mut Frame,
+    pub colors: &'a mut ColorCache,
+    pub inner: &'a mut Subdivider,
+    pub samples: &'a mut SampleBuffer,
+    pub leaves: Option<&'a mut Vec<LeafRegion>>,
+}
+
+impl CoverageSink<'_> {
+    /// Writes pixel `(u, v)`: `covered` of its samples show something, the
+    /// most of them `prim`, nearest at `depth`; `rgb_sum` is the sum of the
+    /// covered samples' linear colours.
+    fn write_pixel(
+        &mut self,
+        u: u32,
+        v: u32,
+        prim: u32,
+        depth: f64,
+        covered: u32,
+        rgb_sum: [f32; 3],
+    ) {
+        let i = self.frame.index(u, v);
+        let total = (self.side * self.side) as f32;
+        self.frame.ids[i] = prim;
+        self.frame.depth[i] = depth as f32;
+        self.frame.coverage[i] = covered as f32 / total;
+        let c = rgb_sum.map(|c| to_srgb8(c / total));
+        self.frame.color[i] = [c[0], c[1], c[2], 255];
+    }
+
+    /// Resolves the sample buffer into pixel `(u, v)`.
+    fn resolve_samples(&mut self, u: u32, v: u32) {
+        let b = &mut *self.samples;
+        b.tally.clear();
+        for (&prim, &d) in b.prims.iter().zip(&b.depth) {
+            if prim == NO_ID {
+                continue;
+            }
+            match b.tally.iter_mut().find(|e| e.0 == prim) {
+                Some(e) => {
+                    e.1 += 1;
+                    e.2 = e.2.min(d);
+                }
+                None => b.tally.push((prim, 1, d)),
+            }
+        }
+        // Most samples wins; on equal counts the earlier primitive.
+        let Some(&(prim, _, depth)) = b.tally.iter().min_by_key(|e| (std::cmp::Reverse(e.1), e.0))
+        else {
+            return;
+        };
+        let tally = std::mem::take(&mut self.samples.tally);
+        let mut rgb = [0.0f32; 3];
+        let mut covered = 0;
+        for &(p, n, _) in &tally {
+            let c = self.colors.get(self.scene, self.shade, p);
+            for k in 0..3 {
+                rgb[k] += c[k] * n as f32;
+            }
+            covered += n;
+        }
+        self.samples.tally = tally;
+        self.write_pixel(u, v, prim, depth, covered, rgb);
+    }
+}
+
+impl Sink for CoverageSink<'_> {
+    fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+        let n = self.side * self.side;
+        let color = self
+            .colors
+            .get(self.scene, self.shade, t.prim)
+            .map(|c| c * n as f32);
+        for v in r.v0..r.v1 {
+            for u in r.u0..r.u1 {
+                // Depth is affine: its minimum over the pixel's samples is
+                // at one of the corner samples.
+                let one = Region::new(u, v, u + 1, v + 1);
+                let s = grid.sample_rect(&one);
+                let depth = [(s.x0, s.y0), (s.x1, s.y0), (s.x0, s.y1), (s.x1, s.y1)]
+                    .map(|(x, y)| t.depth_at(x, y))
+                    .into_iter()
+                    .fold(f64::INFINITY, f64::min);
+                self.write_pixel(u, v, t.prim, depth, n, color);
+            }
+        }
+        stats.depth_evaluations += 4 * r.cells();
+        stats.samples_written += u64::from(n) * r.cells();
+    }
+
+    fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+        let Some(b) = grid.cells_touching(r, (t.min_x, t.max_x), (t.min_y, t.max_y)) else {
+            return;
+        };
+        let color = self.colors.get(self.scene, self.shade, t.prim);
+        for v in b.v0..b.v1 {
+            for u in b.u0..b.u1 {
+                let g = Grid::samples_of_pixel(u, v, self.side);
+                let mut covered = 0;
+                let mut depth = f64::INFINITY;
+                for sv in 0..self.side {
+                    let y = g.sample_y(sv);
+                    for su in 0..self.side {
+                        let x = g.sample_x(su);
+                        if t.covers(x, y) {
+                            covered += 1;
+                            depth = depth.min(t.depth_at(x, y));
+                        }
+                    }
+                }
+                if covered > 0 {
+                    stats.depth_evaluations += u64::from(covered);
+                    stats.samples_written += u64::from(covered);
+                    self.write_pixel(
+                        u,
+                        v,
+                        t.prim,
+                        depth,
+                        covered,
+                        color.map(|c| c * covered as f32),
+                    );
+                }
+            }
+        }
+    }
+
+    fn resolve_cell(
+        &mut self,
+        _grid: &Grid,
+        r: &Region,
+        candidates: &[u32],
+        setups: &[TriSetup],
+        level: usize,
+        stats: &mut WarnockStats,
+    ) -> Rule {
+        let (u, v) = (r.u0, r.v0);
+        self.samples.reset(self.side);
+        let grid = Grid::samples_of_pixel(u, v, self.side);
+        let (roots, n) = Region::new(0, 0, self.side, self.side).quadrants();
+        let mut sink = SampleSink {
+            buffer: self.samples,
+        };
+        self.inner.run(
+            &grid,
+            &roots[..n],
+            candidates.iter().copied(),
+            level + 1,
+            setups,
+            &mut sink,
+            stats,
+        );
+        self.resolve_samples(u, v);
+        Rule::PixelSubdivided
+    }
+
+    fn leaf(&mut self, r: &Region, rule: Rule, level: usize) {
+        if let Some(leaves) = self.leaves.as_deref_mut() {
+            leaves.push(LeafRegion::new(r, rule, level));
+        }
+    }
+}

@@ -1,0 +1,84 @@
+//! The pixel-centre sink: decisions written straight into the frame's id
+//! and depth buffers, one sample per pixel at its centre.
+//!
+//! Every sample that ends up written was decided either by the z-buffer's
+//! own test at that sample (`nearest_at`), by the per-sample edge test of
+//! the only polygon left, or by a surrounder certified in front of all
+//! others at every sample of its region; in all three cases the id is the
+//! one a `LESS` z-buffer computing depth in `f64` keeps, and the depth is
+//! the same `PlaneEq::eval` at the same point.
+
+use hider_scene::Frame;
+
+use crate::classify::TriSetup;
+use crate::debug::LeafRegion;
+use crate::grid::{Grid, Region};
+use crate::stats::{Rule, WarnockStats};
+use crate::subdivide::{Sink, nearest_at};
+
+/// Writes pixel-centre decisions into a frame.
+pub(crate) struct PixelSink<'a> {
+    pub frame: &'a mut Frame,
+    pub leaves: Option<&'a mut Vec<LeafRegion>>,
+}
+
+impl PixelSink<'_> {
+    #[inline]
+    fn write(&mut self, u: u32, v: u32, prim: u32, depth: f64, stats: &mut WarnockStats) {
+        let i = self.frame.index(u, v);
+        self.frame.ids[i] = prim;
+        self.frame.depth[i] = depth as f32;
+        stats.samples_written += 1;
+    }
+}
+
+impl Sink for PixelSink<'_> {
+    fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+        for v in r.v0..r.v1 {
+            let y = grid.sample_y(v);
+            for u in r.u0..r.u1 {
+                let d = t.depth_at(grid.sample_x(u), y);
+                self.write(u, v, t.prim, d, stats);
+            }
+        }
+        stats.depth_evaluations += r.cells();
+    }
+
+    fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+        let Some(b) = grid.cells_touching(r, (t.min_x, t.max_x), (t.min_y, t.max_y)) else {
+            return;
+        };
+        for v in b.v0..b.v1 {
+            let y = grid.sample_y(v);
+            for u in b.u0..b.u1 {
+                let x = grid.sample_x(u);
+                if t.covers(x, y) {
+                    stats.depth_evaluations += 1;
+                    self.write(u, v, t.prim, t.depth_at(x, y), stats);
+                }
+            }
+        }
+    }
+
+    fn resolve_cell(
+        &mut self,
+        grid: &Grid,
+        r: &Region,
+        candidates: &[u32],
+        setups: &[TriSetup],
+        _level: usize,
+        stats: &mut WarnockStats,
+    ) -> Rule {
+        let (x, y) = (grid.sample_x(r.u0), grid.sample_y(r.v0));
+        if let Some((t, d)) = nearest_at(candidates, setups, x, y, stats) {
+            self.write(r.u0, r.v0, setups[t as usize].prim, d, stats);
+        }
+        Rule::Sample
+    }
+
+    fn leaf(&mut self, r: &Region, rule: Rule, level: usize) {
+        if let Some(leaves) = self.leaves.as_deref_mut() {
+            leaves.push(LeafRegion::new(r, rule, level));
+        }
+    }
+}

@@ -1,0 +1,209 @@
+//! What one Warnock frame did, and how a region was decided.
+
+use hider_scene::Stats;
+
+use crate::classify::Class;
+
+/// The rule that decided a leaf region of the subdivision.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Rule {
+    /// No polygon reaches any sample of the region: background.
+    Empty,
+    /// One polygon, intersecting or contained: drawn into the region by the
+    /// per-sample edge test.
+    SinglePolygon,
+    /// One polygon surrounds the region and no other reaches it.
+    SurrounderAlone,
+    /// A surrounding polygon is in front of every other polygon at every
+    /// sample of the region (certified at the four corners); the others were
+    /// culled.
+    SurrounderInFront,
+    /// Subdivided down to one sample: resolved there by the z-buffer's depth
+    /// test (`LESS`, ties to the earlier primitive).
+    Sample,
+    /// Anti-aliased mode: a one-pixel region handed to the sub-pixel
+    /// subdivision.
+    PixelSubdivided,
+}
+
+impl Rule {
+    /// Every rule, in the order [`WarnockStats`] reports them.
+    pub const ALL: [Rule; 6] = [
+        Rule::Empty,
+        Rule::SinglePolygon,
+        Rule::SurrounderAlone,
+        Rule::SurrounderInFront,
+        Rule::Sample,
+        Rule::PixelSubdivided,
+    ];
+
+    /// A short name for tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rule::Empty => "empty",
+            Rule::SinglePolygon => "single polygon",
+            Rule::SurrounderAlone => "surrounder alone",
+            Rule::SurrounderInFront => "surrounder in front",
+            Rule::Sample => "at sample",
+            Rule::PixelSubdivided => "pixel subdivided",
+        }
+    }
+}
+
+/// Deepest subdivision level the statistics name: a 16384-pixel window
+/// reaches pixels at level 14, and 16 x 16 samples add 4 more.
+pub const MAX_LEVEL: usize = 31;
+
+/// Work counters of one Warnock frame.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct WarnockStats {
+    /// Regions visited (classified), in the pixel pass and, in the
+    /// anti-aliased mode, inside pixels.
+    pub regions: u64,
+    /// Regions visited per subdivision level (index 0 is the whole window;
+    /// in the anti-aliased mode the levels inside a pixel continue the
+    /// pixel pass's numbering).
+    pub regions_per_level: Vec<u64>,
+    /// Polygon-against-region classifications performed.
+    pub polygons_classified: u64,
+    /// Classifications per relation: disjoint, surrounding, contained,
+    /// intersecting.
+    pub disjoint: u64,
+    /// See [`Self::disjoint`].
+    pub surrounding: u64,
+    /// See [`Self::disjoint`].
+    pub contained: u64,
+    /// See [`Self::disjoint`].
+    pub intersecting: u64,
+    /// Leaf regions per deciding rule, indexed like [`Rule::ALL`].
+    pub decided: [u64; 6],
+    /// Polygons dropped from a region's list because a surrounding polygon
+    /// is in front of them at every sample of it.
+    pub culled_behind_surrounder: u64,
+    /// Regions with a surrounding polygon that could not be certified in
+    /// front of all others (planes cross, or another polygon is nearer
+    /// somewhere): subdivided further.
+    pub surrounder_undecided: u64,
+    /// Depth-plane evaluations (corner tests and per-sample depths).
+    pub depth_evaluations: u64,
+    /// Samples written into the frame or a pixel's sample buffer.
+    pub samples_written: u64,
+    /// Largest number of candidate indices held at once in the arena.
+    pub peak_candidates: u64,
+    /// Bytes of working memory at the peak (set-up records, arena, stack,
+    /// sample buffer, region record).
+    pub peak_bytes: u64,
+}
+
+impl WarnockStats {
+    /// Leaf regions decided by `rule`.
+    pub fn decided_by(&self, rule: Rule) -> u64 {
+        self.decided[rule as usize]
+    }
+
+    /// The deepest level any region reached.
+    pub fn max_level(&self) -> usize {
+        self.regions_per_level.len().saturating_sub(1)
+    }
+
+    /// Counts a visit to a region at `level`.
+    #[inline]
+    pub(crate) fn visit(&mut self, level: usize) {
+        self.regions += 1;
+        if self.regions_per_level.len() <= level {
+            self.regions_per_level.resize(level + 1, 0);
+        }
+        self.regions_per_level[level] += 1;
+    }
+
+    /// Counts one classification.
+    #[inline]
+    pub(crate) fn classified(&mut self, class: Class) {
+        self.polygons_classified += 1;
+        match class {
+            Class::Disjoint => self.disjoint += 1,
+            Class::Surrounding => self.surrounding += 1,
+            Class::Contained => self.contained += 1,
+            Class::Intersecting => self.intersecting += 1,
+        }
+    }
+}
+
+/// Names of the per-level counters in [`Stats`] (`&'static` as the uniform
+/// shape requires).
+const LEVEL_NAMES: [&str; MAX_LEVEL + 1] = [
+    "regions at level 0",
+    "regions at level 1",
+    "regions at level 2",
+    "regions at level 3",
+    "regions at level 4",
+    "regions at level 5",
+    "regions at level 6",
+    "regions at level 7",
+    "regions at level 8",
+    "regions at level 9",
+    "regions at level 10",
+    "regions at level 11",
+    "regions at level 12",
+    "regions at level 13",
+    "regions at level 14",
+    "regions at level 15",
+    "regions at level 16",
+    "regions at level 17",
+    "regions at level 18",
+    "regions at level 19",
+    "regions at level 20",
+    "regions at level 21",
+    "regions at level 22",
+    "regions at level 23",
+    "regions at level 24",
+    "regions at level 25",
+    "regions at level 26",
+    "regions at level 27",
+    "regions at level 28",
+    "regions at level 29",
+    "regions at level 30",
+    "regions at level 31",
+];
+
+impl From<&WarnockStats> for Stats {
+    fn from(s: &WarnockStats) -> Self {
+        let mut out = Stats {
+            counters: vec![
+                ("regions", s.regions),
+                ("polygons classified", s.polygons_classified),
+                ("disjoint", s.disjoint),
+                ("surrounding", s.surrounding),
+                ("contained", s.contained),
+                ("intersecting", s.intersecting),
+            ],
+            peak_bytes: s.peak_bytes,
+        };
+        for rule in Rule::ALL {
+            let name = match rule {
+                Rule::Empty => "decided empty",
+                Rule::SinglePolygon => "decided single polygon",
+                Rule::SurrounderAlone => "decided surrounder alone",
+                Rule::SurrounderInFront => "decided surrounder in front",
+                Rule::Sample => "decided at sample",
+                Rule::PixelSubdivided => "pixels subdivided",
+            };
+            out.push(name, s.decided_by(rule));
+        }
+        out.push("culled behind surrounder", s.culled_behind_surrounder);
+        out.push("surrounder undecided", s.surrounder_undecided);
+        out.push("depth evaluations", s.depth_evaluations);
+        out.push("samples written", s.samples_written);
+        out.push("peak candidates", s.peak_candidates);
+        for (name, &n) in LEVEL_NAMES.iter().zip(&s.regions_per_level) {
+            out.push(name, n);
+        }
+        out
+    }
+}
+
+impl From<WarnockStats> for Stats {
+    fn from(s: WarnockStats) -> Self {
+        Stats::from(&s)
+    }
+}

@@ -1,0 +1,232 @@
+//! The subdivision loop: classify, cull, decide or split, with an explicit
+//! stack and one arena of candidate lists.
+//!
+//! Warnock's procedure is recursive: look at a window; if what it holds is
+//! simple enough, draw it, else split it into four and look at each. Here
+//! the recursion is a loop over an explicit stack, so a 16384-pixel window
+//! (14 levels to a pixel) or any sub-pixel depth cannot overflow the thread
+//! stack, and it costs no allocation per region:
+//!
+//! - The candidate lists live in one arena (`Vec<u32>` of triangle
+//!   indices), used as a stack of lists. A region reads its parent's list
+//!   and appends its survivors; its children all read that one survivor
+//!   list. The traversal is depth-first, so when a region is popped every
+//!   list above its own belongs to a finished sibling subtree and the arena
+//!   is truncated back to it. The arena never holds more than one list per
+//!   level on the current path.
+//! - Lists keep triangle order, so "the earlier triangle wins a depth tie"
+//!   stays true at every level.
+//!
+//! What a decided region means for the output is up to a `Sink`: the
+//! pixel-centre frame, a pixel with sub-pixel samples, or a pixel's sample
+//! buffer.
+
+use crate::classify::{Class, CornerDepths, TriSetup, certainly_behind, classify};
+use crate::grid::{Grid, Region};
+use crate::stats::{Rule, WarnockStats};
+
+/// Receives the decisions of the subdivision loop.
+pub(crate) trait Sink {
+    /// `t` covers every sample of `r` and is in front of every other
+    /// polygon there: draw it over the whole region.
+    fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats);
+
+    /// `t` is the only polygon reaching `r`: draw the samples it covers.
+    fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats);
+
+    /// `r` is one cell and several polygons remain: resolve it and say by
+    /// which rule.
+    fn resolve_cell(
+        &mut self,
+        grid: &Grid,
+        r: &Region,
+        candidates: &[u32],
+        setups: &[TriSetup],
+        level: usize,
+        stats: &mut WarnockStats,
+    ) -> Rule;
+
+    /// `r` was decided by `rule` at `level` (for the region record).
+    fn leaf(&mut self, _r: &Region, _rule: Rule, _level: usize) {}
+}
+
+/// A region waiting on the stack, with where its candidate list is.
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    region: Region,
+    start: usize,
+    len: usize,
+    level: usize,
+}
+
+/// The reusable state of the loop: the candidate arena and the region
+/// stack, kept between frames.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Subdivider {
+    arena: Vec<u32>,
+    stack: Vec<Entry>,
+    peak: usize,
+}
+
+impl Subdivider {
+    /// Largest number of candidate indices held at once since the last
+    /// [`Self::reset_peak`].
+    pub fn peak(&self) -> usize {
+        self.peak
+    }
+
+    /// Starts a new peak measurement.
+    pub fn reset_peak(&mut self) {
+        self.peak = 0;
+    }
+
+    /// Bytes held by the arena and the stack.
+    pub fn bytes(&self) -> usize {
+        self.arena.capacity() * std::mem::size_of::<u32>()
+            + self.stack.capacity() * std::mem::size_of::<Entry>()
+    }
+
+    /// Subdivides each of `roots` (regions of `grid` at `level`), starting
+    /// from the candidate list `initial` (indices into `setups`, in drawing
+    /// order), and hands every decision to `sink`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn run<S: Sink>(
+        &mut self,
+        grid: &Grid,
+        roots: &[Region],
+        initial: impl IntoIterator<Item = u32>,
+        level: usize,
+        setups: &[TriSetup],
+        sink: &mut S,
+        stats: &mut WarnockStats,
+    ) {
+        self.arena.clear();
+        self.stack.clear();
+        self.arena.extend(initial);
+        let len = self.arena.len();
+        for &region in roots.iter().rev() {
+            self.stack.push(Entry {
+                region,
+                start: 0,
+                len,
+                level,
+            });
+        }
+        while let Some(e) = self.stack.pop() {
+            self.arena.truncate(e.start + e.len);
+            stats.visit(e.level);
+            let rect = grid.sample_rect(&e.region);
+            let out = self.arena.len();
+
+            // Classify the parent's survivors; keep all but the disjoint
+            // ones, and remember the surrounder nearest at the centre: if
+            // any surrounder hides everything, that one does.
+            let mut front: Option<(u32, CornerDepths)> = None;
+            for k in e.start..e.start + e.len {
+                let t = self.arena[k];
+                let setup = &setups[t as usize];
+                let class = classify(setup, &rect);
+                stats.classified(class);
+                match class {
+                    Class::Disjoint => continue,
+                    Class::Surrounding => {
+                        let d = CornerDepths::new(&setup.depth, &rect);
+                        stats.depth_evaluations += 4;
+                        if front.is_none_or(|(_, f)| d.sum() < f.sum()) {
+                            front = Some((t, d));
+                        }
+                    }
+                    Class::Contained | Class::Intersecting => {}
+                }
+                self.arena.push(t);
+            }
+
+            // Cull what the surrounder hides at every sample of the region:
+            // hidden here, hidden in every subregion too.
+            let mut culled = 0;
+            if let Some((s, sd)) = front {
+                let mut kept = out;
+                for k in out..self.arena.len() {
+                    let t = self.arena[k];
+                    if t != s {
+                        let d = CornerDepths::new(&setups[t as usize].depth, &rect);
+                        stats.depth_evaluations += 4;
+                        if certainly_behind(&d, &sd) {
+                            culled += 1;
+                            continue;
+                        }
+                    }
+                    self.arena[kept] = t;
+                    kept += 1;
+                }
+                self.arena.truncate(kept);
+                stats.culled_behind_surrounder += culled;
+            }
+            self.peak = self.peak.max(self.arena.len());
+
+            let list = &self.arena[out..];
+            let rule = match (list.len(), front) {
+                (0, _) => Rule::Empty,
+                (1, Some((s, _))) => {
+                    sink.fill(grid, &e.region, &setups[s as usize], stats);
+                    if culled > 0 {
+                        Rule::SurrounderInFront
+                    } else {
+                        Rule::SurrounderAlone
+                    }
+                }
+                (1, None) => {
+                    sink.single(grid, &e.region, &setups[list[0] as usize], stats);
+                    Rule::SinglePolygon
+                }
+                _ => {
+                    if front.is_some() {
+                        stats.surrounder_undecided += 1;
+                    }
+                    let (children, n) = e.region.quadrants();
+                    if n == 0 {
+                        sink.resolve_cell(grid, &e.region, list, setups, e.level, stats)
+                    } else {
+                        let len = list.len();
+                        for &region in children[..n].iter().rev() {
+                            self.stack.push(Entry {
+                                region,
+                                start: out,
+                                len,
+                                level: e.level + 1,
+                            });
+                        }
+                        continue;
+                    }
+                }
+            };
+            stats.decided[rule as usize] += 1;
+            sink.leaf(&e.region, rule, e.level);
+        }
+    }
+}
+
+/// The candidate nearest at the fixed-point sample `(x, y)`: the z-buffer's
+/// test, `LESS` in `f64` over the candidates in drawing order, so an exact
+/// tie keeps the earlier triangle. Returns the triangle index and depth.
+#[inline]
+pub(crate) fn nearest_at(
+    candidates: &[u32],
+    setups: &[TriSetup],
+    x: i64,
+    y: i64,
+    stats: &mut WarnockStats,
+) -> Option<(u32, f64)> {
+    let mut best: Option<(u32, f64)> = None;
+    for &t in candidates {
+        let s = &setups[t as usize];
+        if s.covers(x, y) {
+            let d = s.depth_at(x, y);
+            stats.depth_evaluations += 1;
+            if best.is_none_or(|(_, b)| d < b) {
+                best = Some((t, d));
+            }
+        }
+    }
+    best
+}
