@@ -52,7 +52,9 @@ mod options;
 mod scanline;
 mod span;
 mod stats;
+mod trace;
 
 pub use options::ScanlineOptions;
 pub use scanline::Scanline;
 pub use stats::ScanlineStats;
+pub use trace::{Resolution, SpanRecord};

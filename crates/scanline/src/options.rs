@@ -21,6 +21,11 @@ pub struct ScanlineOptions {
     /// anything is allocated; a scene that would need more is refused with
     /// [`hider_scene::Error::Limit`]. Default 1 GiB.
     pub max_table_bytes: u64,
+    /// Record every run of pixels and how it was resolved
+    /// ([`crate::Scanline::spans`]), for pictures and debugging. Off by
+    /// default: the record grows with the number of runs (at most one per
+    /// covered pixel) and is outside [`Self::max_table_bytes`].
+    pub record_spans: bool,
 }
 
 impl Default for ScanlineOptions {
@@ -28,6 +33,7 @@ impl Default for ScanlineOptions {
         Self {
             max_splits_per_span: 16,
             max_table_bytes: 1 << 30,
+            record_spans: false,
         }
     }
 }
@@ -36,6 +42,12 @@ impl ScanlineOptions {
     /// Sets [`Self::max_splits_per_span`].
     pub fn with_max_splits_per_span(mut self, splits: u32) -> Self {
         self.max_splits_per_span = splits;
+        self
+    }
+
+    /// Sets [`Self::record_spans`].
+    pub fn with_record_spans(mut self, record: bool) -> Self {
+        self.record_spans = record;
         self
     }
 

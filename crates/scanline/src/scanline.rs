@@ -7,6 +7,7 @@ use crate::edge_table::{Edge, EdgeTable, NAME, Side, table_bytes};
 use crate::options::ScanlineOptions;
 use crate::span::{Active, RowOut, SpanResolver};
 use crate::stats::ScanlineStats;
+use crate::trace::SpanRecord;
 
 /// Crossing key bit marking a polygon entering (its first covered column);
 /// without it the key marks the column just after its last one.
@@ -31,6 +32,8 @@ pub struct Scanline {
     /// The active polygon list of the current span.
     apl: Vec<Active>,
     resolver: SpanResolver,
+    /// The runs of the last frame, when recording.
+    trace: Vec<SpanRecord>,
 }
 
 impl Scanline {
@@ -75,6 +78,8 @@ impl Scanline {
         self.ael.clear();
         self.active_polys.clear();
         self.apl.clear();
+        self.trace.clear();
+        let mut trace = std::mem::take(&mut self.trace);
 
         let mut stats = ScanlineStats {
             polygons: self.table.polygon_count() as u64,
@@ -89,9 +94,15 @@ impl Scanline {
                 .chunks_exact_mut(w)
                 .zip(frame.depth.chunks_exact_mut(w)),
         ) {
-            let mut out = RowOut { row, ids, depth };
+            let mut out = RowOut {
+                row,
+                ids,
+                depth,
+                trace: self.options.record_spans.then_some(&mut trace),
+            };
             self.scan_row(scene, &mut out, &mut stats);
         }
+        self.trace = trace;
         stats.pixels_written = frame.covered_count() as u64;
         stats.peak_bytes = self.bytes();
         Ok(stats)
@@ -187,6 +198,13 @@ impl Scanline {
         self.apl.clear();
     }
 
+    /// The runs of the last frame in row order, left to right, each with its
+    /// visible primitive and how it was decided; empty unless
+    /// [`ScanlineOptions::record_spans`] is on.
+    pub fn spans(&self) -> &[SpanRecord] {
+        &self.trace
+    }
+
     /// Bytes held by the working tables and lists (capacity).
     pub fn bytes(&self) -> u64 {
         use std::mem::size_of;
@@ -196,6 +214,7 @@ impl Scanline {
                 + self.crossings.capacity() * 8
                 + self.apl.capacity() * size_of::<Active>()) as u64
             + self.resolver.bytes()
+            + (self.trace.capacity() * size_of::<SpanRecord>()) as u64
     }
 }
 

@@ -26,6 +26,7 @@
 use hider_geom::PlaneEq;
 
 use crate::stats::ScanlineStats;
+use crate::trace::{Resolution, SpanRecord};
 
 /// A polygon in a span's active polygon list.
 #[derive(Clone, Copy, Debug)]
@@ -55,11 +56,27 @@ pub(crate) struct RowOut<'a> {
     pub ids: &'a mut [u32],
     /// The frame's depths on this row.
     pub depth: &'a mut [f32],
+    /// Where to record the runs, when recording.
+    pub trace: Option<&'a mut Vec<SpanRecord>>,
 }
 
 impl RowOut<'_> {
+    /// Records a run when tracing.
+    fn record(&mut self, x0: u32, x1: u32, prim: u32, how: Resolution) {
+        if let Some(t) = self.trace.as_deref_mut() {
+            t.push(SpanRecord {
+                row: self.row,
+                x0,
+                x1,
+                prim,
+                how,
+            });
+        }
+    }
+
     /// Writes polygon `a` over columns `x0..=x1`.
-    fn fill(&mut self, a: &Active, x0: u32, x1: u32) {
+    fn fill(&mut self, a: &Active, x0: u32, x1: u32, how: Resolution) {
+        self.record(x0, x1, a.prim, how);
         let row = self.row;
         let (ids, depth) = (
             &mut self.ids[x0 as usize..=x1 as usize],
@@ -175,7 +192,7 @@ impl SpanResolver {
         stats.spans += 1;
         stats.span_polygons_max = stats.span_polygons_max.max(apl.len() as u64);
         if let [only] = apl {
-            out.fill(only, x0, x1);
+            out.fill(only, x0, x1, Resolution::Whole);
             return;
         }
         let row = out.row;
@@ -208,14 +225,19 @@ impl SpanResolver {
                 }
             }
             if end == x1 {
-                out.fill(head, x0, x1);
+                let how = if splits == 0 {
+                    Resolution::Whole
+                } else {
+                    Resolution::Split
+                };
+                out.fill(head, x0, x1, how);
                 break;
             }
             if splits >= max_splits {
                 self.fallback(apl, x0, x1, out, stats);
                 break;
             }
-            out.fill(head, x0, end);
+            out.fill(head, x0, end, Resolution::Split);
             splits += 1;
             x0 = end + 1;
         }
@@ -248,9 +270,15 @@ impl SpanResolver {
                 }
             }
         }
-        for ((&d, &w), x) in depth.iter().zip(who.iter()).zip(x0 as usize..) {
-            out.ids[x] = apl[w as usize].prim;
-            out.depth[x] = d as f32;
+        let mut run_start = x0;
+        for ((&d, &w), x) in depth.iter().zip(who.iter()).zip(x0..) {
+            let prim = apl[w as usize].prim;
+            out.ids[x as usize] = prim;
+            out.depth[x as usize] = d as f32;
+            if x == x1 || apl[who[(x + 1 - x0) as usize] as usize].prim != prim {
+                out.record(run_start, x, prim, Resolution::Fallback);
+                run_start = x + 1;
+            }
         }
         stats.fallback_spans += 1;
         stats.fallback_pixels += n as u64;
@@ -282,6 +310,7 @@ mod tests {
             row: 0,
             ids: &mut ids,
             depth: &mut depth,
+            trace: None,
         };
         let mut r = SpanResolver::default();
         r.prepare(width);

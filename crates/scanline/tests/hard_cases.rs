@@ -62,6 +62,27 @@ fn coplanar_pair_covers_the_union_and_picks_one_of_the_two() {
 }
 
 #[test]
+fn knot_of_big_triangles_matches_with_and_without_fallback() {
+    let s = common::knot(16, 80, 11);
+    let (frame, stats) = render(&s, ScanlineOptions::default());
+    assert_eq!(assert_matches(&s, &frame, "knot"), 0);
+    assert!(
+        stats.split_spans > 10 && stats.splits >= stats.split_spans,
+        "{stats:?}"
+    );
+    assert!(stats.span_polygons_max >= 4);
+    for max_splits in [0, 1, 2] {
+        let options = ScanlineOptions::default().with_max_splits_per_span(max_splits);
+        let (other, st) = render(&s, options);
+        assert_eq!(other.ids, frame.ids);
+        assert_eq!(other.depth, frame.depth);
+        if max_splits == 0 {
+            assert_eq!(st.fallback_spans, stats.split_spans);
+        }
+    }
+}
+
+#[test]
 fn cube_from_a_corner_covers_each_pixel_once_without_splits() {
     let cam = camera_at(DVec3::new(3.0, 2.5, 4.0));
     let s = screen(&procedural::cube(), Some(cam), 64, 48);
@@ -147,4 +168,46 @@ proptest! {
         assert_matches(&s, &frame, "hard case");
         prop_assert!(stats.splits <= u64::from(max_splits).saturating_mul(stats.split_spans));
     }
+}
+
+#[test]
+fn recorded_runs_tile_the_covered_pixels_and_name_the_splits() {
+    use hider_scanline::Resolution;
+    let s = common::knot(12, 64, 4);
+    for max_splits in [u32::MAX, 0] {
+        let options = ScanlineOptions::default()
+            .with_record_spans(true)
+            .with_max_splits_per_span(max_splits);
+        let mut hider = Scanline::with_options(options);
+        let mut frame = Frame::new(64, 64).unwrap();
+        let stats = hider.render_frame(&s, &mut frame).unwrap();
+        let mut ids = vec![NO_ID; 64 * 64];
+        let mut last = None;
+        for r in hider.spans() {
+            assert!(r.x0 <= r.x1 && r.x1 < 64);
+            // Row order, left to right, no overlap.
+            if let Some((row, x1)) = last {
+                assert!(r.row > row || (r.row == row && r.x0 > x1), "{r:?}");
+            }
+            last = Some((r.row, r.x1));
+            for x in r.x0..=r.x1 {
+                ids[(r.row * 64 + x) as usize] = r.prim;
+            }
+        }
+        assert_eq!(ids, frame.ids);
+        let count = |how| hider.spans().iter().filter(|r| r.how == how).count() as u64;
+        if max_splits == 0 {
+            assert_eq!(count(Resolution::Split), 0);
+            assert!(count(Resolution::Fallback) >= stats.fallback_spans);
+            assert!(stats.fallback_spans > 0);
+        } else {
+            assert_eq!(count(Resolution::Fallback), 0);
+            assert_eq!(count(Resolution::Split), stats.splits + stats.split_spans);
+        }
+    }
+    // Off by default.
+    let mut hider = Scanline::new();
+    let mut frame = Frame::new(64, 64).unwrap();
+    hider.render_frame(&s, &mut frame).unwrap();
+    assert!(hider.spans().is_empty());
 }

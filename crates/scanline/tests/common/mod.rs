@@ -156,3 +156,31 @@ pub fn hand_made(w: u32, h: u32, tris: &[HandTri]) -> ScreenScene {
     }
     s
 }
+
+/// `n` large triangles with random corners over a `size x size` window
+/// and random corner depths: a knot of mutual interpenetration, so spans
+/// split often.
+pub fn knot(n: usize, size: u32, seed: u64) -> ScreenScene {
+    let mut rng = hider_scene::procedural::SplitMix64::new(seed);
+    let span = f64::from(size * 256);
+    let tris: Vec<HandTri> = (0..n)
+        .map(|_| {
+            let mut corner = || {
+                (
+                    rng.range(-0.2 * span, 1.2 * span) as i32,
+                    rng.range(-0.2 * span, 1.2 * span) as i32,
+                )
+            };
+            let v = [corner(), corner(), corner()];
+            (
+                v,
+                [
+                    rng.range(0.0, 1.0),
+                    rng.range(0.0, 1.0),
+                    rng.range(0.0, 1.0),
+                ],
+            )
+        })
+        .collect();
+    hand_made(size, size, &tris)
+}
