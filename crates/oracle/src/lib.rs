@@ -38,7 +38,7 @@ pub mod raycast;
 
 pub use agreement::Agreement;
 pub use coverage::{CoverageReference, analytic_coverage};
-pub use raycast::{OracleOptions, OracleStats, RayCastOracle, Reference};
+pub use raycast::{DepthPlane, OracleOptions, OracleStats, RayCastOracle, Reference};
 
 /// Relative camera-distance gap under which the two nearest surfaces at a
 /// pixel centre count as a tie.

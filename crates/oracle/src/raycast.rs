@@ -10,9 +10,9 @@
 //!   top-left rule on snapped fixed-point vertices), so every hider and the
 //!   oracle agree on *which* triangles are candidates at a pixel centre;
 //! - **depth** is not interpolated at all: the camera-space ray through the
-//!   pixel centre is intersected in `f64` with the plane of the *source*
-//!   triangle (`PrimInfo::camera`, before clipping and snapping). Nothing
-//!   about screen-space interpolation (linear or 1/w) can leak in.
+//!   pixel centre is intersected in `f64` with a camera-space plane (see
+//!   [`DepthPlane`] for which one). Nothing about screen-space interpolation
+//!   (linear or 1/w, `f32` or fixed-point buffers) can leak in.
 //!
 //! Beside the winner it records the relative gap to the second-nearest
 //! *distinct primitive* (pieces of one clipped primitive share an id), so a
@@ -25,9 +25,33 @@ use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ScreenTri, St
 
 use crate::DEFAULT_TIE_TOLERANCE;
 
+/// Which camera-space plane the oracle intersects the pixel rays with.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DepthPlane {
+    /// The plane through the screen triangle's *snapped* corners lifted back
+    /// to camera space (each corner on the ray through its snapped window
+    /// position, at its clip `w`). Projection maps planes to planes, so this
+    /// is exactly the surface every hider is asked to render; the oracle
+    /// differs from a hider only by arithmetic, and a tie tolerance of
+    /// [`crate::DEFAULT_TIE_TOLERANCE`] separates rounding from errors. The
+    /// referee for cross-validating hiders (the default).
+    #[default]
+    Snapped,
+    /// The plane of the *source* triangle (`PrimInfo::camera`, before
+    /// clipping and snapping). Measures what the front end's 1/256-pixel
+    /// snapping does to visibility: where two surfaces cross or nearly
+    /// touch, moving corners by up to 1/512 pixel can flip the order.
+    /// Near the near plane, where screen-space depth gradients are steep,
+    /// such flips appear at relative gaps above `1e-5`, so hiders are not
+    /// scored against this plane.
+    Source,
+}
+
 /// Options of the [`RayCastOracle`]. `Default` is the accurate choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OracleOptions {
+    /// The plane each triangle's depth is taken from.
+    pub depth_plane: DepthPlane,
     /// Relative gap under which the two nearest surfaces at a pixel count as
     /// a tie; at a tie the reference id is the lower primitive id (what a
     /// LESS z-buffer drawing in id order keeps).
@@ -42,6 +66,7 @@ pub struct OracleOptions {
 impl Default for OracleOptions {
     fn default() -> Self {
         Self {
+            depth_plane: DepthPlane::Snapped,
             tie_tolerance: DEFAULT_TIE_TOLERANCE,
             max_pixel_tests: 1 << 34,
         }
@@ -49,6 +74,12 @@ impl Default for OracleOptions {
 }
 
 impl OracleOptions {
+    /// Sets [`Self::depth_plane`].
+    pub fn with_depth_plane(mut self, plane: DepthPlane) -> Self {
+        self.depth_plane = plane;
+        self
+    }
+
     /// Sets [`Self::tie_tolerance`].
     pub fn with_tie_tolerance(mut self, tolerance: f64) -> Self {
         self.tie_tolerance = tolerance;
@@ -295,11 +326,14 @@ impl RayCastOracle {
                 continue;
             };
             let edges = tri.edges();
-            let plane = scene
-                .prims
-                .get(tri.prim as usize)
-                .map(|p| source_plane(p.camera));
             let corners = model.corner_depths(tri);
+            let plane = match self.options.depth_plane {
+                DepthPlane::Snapped => Some(snapped_plane(scene, tri, corners, model.perspective)),
+                DepthPlane::Source => scene
+                    .prims
+                    .get(tri.prim as usize)
+                    .map(|p| source_plane(p.camera)),
+            };
             let lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
             let hi = corners.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             for j in y0..=y1 {
@@ -370,6 +404,33 @@ impl RayCastOracle {
 /// normal.
 fn source_plane(c: [DVec3; 3]) -> (DVec3, DVec3) {
     (c[0], (c[1] - c[0]).cross(c[2] - c[0]))
+}
+
+/// The plane through a screen triangle's snapped corners lifted to camera
+/// space: each corner on the camera ray through its snapped window position,
+/// at its view depth (clip `w` for a perspective camera, which keeps full
+/// precision where window depth is all but 1; linear in window depth for an
+/// orthographic one).
+fn snapped_plane(
+    scene: &ScreenScene,
+    tri: &ScreenTri,
+    depths: [f64; 3],
+    perspective: bool,
+) -> (DVec3, DVec3) {
+    let lift = |k: usize| {
+        let (x, y) = tri.v[k].to_pixels();
+        let (origin, dir) = scene.camera_ray(x, y);
+        // Perspective: dir ends on the near plane (dir.z = -near), so the
+        // point at view depth d is dir * (d / near). Orthographic: dir spans
+        // near to far, window depth is the fraction along it.
+        let t = if perspective {
+            depths[k] / -dir.z
+        } else {
+            tri.z[k]
+        };
+        origin + dir * t
+    };
+    source_plane([lift(0), lift(1), lift(2)])
 }
 
 /// View depth where the ray `origin + t dir` meets the plane, or `None`

@@ -39,6 +39,7 @@
 pub mod atomic;
 pub mod error;
 pub mod frame;
+pub mod hard_cases;
 pub mod hider;
 pub mod model;
 pub mod obj;
