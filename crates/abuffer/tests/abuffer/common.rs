@@ -1,0 +1,152 @@
+//! Shared helpers of the integration tests.
+
+use glam::DVec3;
+use hider_abuffer::SamplePattern;
+use hider_scene::geom::fixed::SUBPIXEL_SCALE;
+use hider_scene::shade::{prim_color, to_srgb8};
+use hider_scene::{
+    Frame, Hider, Material, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare,
+};
+
+/// Prepares `scene` with its fit camera at `w x h`.
+pub fn screen(scene: &Scene, w: u32, h: u32) -> ScreenScene {
+    let view = View::for_scene(scene, w, h).unwrap();
+    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+}
+
+/// Renders with `hider` into a fresh frame.
+pub fn render(hider: &mut dyn Hider, s: &ScreenScene) -> Frame {
+    let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
+    hider.render(s, &mut f).unwrap();
+    f
+}
+
+/// Largest per-channel difference between two colour buffers.
+pub fn max_color_diff(a: &Frame, b: &Frame) -> u8 {
+    a.color
+        .iter()
+        .zip(&b.color)
+        .flat_map(|(x, y)| (0..3).map(move |c| x[c].abs_diff(y[c])))
+        .max()
+        .unwrap_or(0)
+}
+
+fn tri_mesh(name: &str, p: [DVec3; 3]) -> Mesh {
+    Mesh {
+        name: name.into(),
+        positions: p.to_vec(),
+        indices: vec![[0, 1, 2]],
+        ..Mesh::default()
+    }
+}
+
+fn glass(name: &str, diffuse: [f32; 3], opacity: f32) -> Material {
+    Material {
+        name: name.into(),
+        diffuse,
+        opacity,
+        ..Material::default()
+    }
+}
+
+/// Three overlapping translucent triangles at different depths, the first
+/// two piercing each other, in the given submission order.
+pub fn three_glass(order: [usize; 3]) -> Scene {
+    let tris = [
+        (
+            "red",
+            [
+                DVec3::new(-1.0, -0.8, -0.3),
+                DVec3::new(0.9, -0.6, 0.3),
+                DVec3::new(-0.2, 0.9, 0.0),
+            ],
+            [0.9, 0.15, 0.1],
+            0.5,
+        ),
+        (
+            "green",
+            [
+                DVec3::new(-0.9, 0.7, 0.35),
+                DVec3::new(-0.1, -1.0, -0.35),
+                DVec3::new(1.0, 0.5, 0.0),
+            ],
+            [0.1, 0.85, 0.2],
+            0.6,
+        ),
+        (
+            "blue",
+            [
+                DVec3::new(-0.5, -0.2, 0.5),
+                DVec3::new(0.6, -0.9, 0.5),
+                DVec3::new(0.4, 0.8, 0.5),
+            ],
+            [0.15, 0.3, 0.95],
+            0.4,
+        ),
+    ];
+    let mut s = Scene::default();
+    for k in order {
+        let (name, p, c, a) = tris[k];
+        s.push_mesh(tri_mesh(name, p), Some(glass(name, c, a)));
+    }
+    s
+}
+
+/// Makes every material of `scene` translucent with `opacity`.
+pub fn with_opacity(mut scene: Scene, opacity: f32) -> Scene {
+    for m in &mut scene.materials {
+        m.opacity = opacity;
+    }
+    scene
+}
+
+/// An independent reference for per-sample compositing: for every sample
+/// of `pattern`, every triangle covering it (shared edge test), sorted by
+/// its `f64` plane depth (lower id on ties), composited front to back over
+/// black; pixel = mean of samples, sRGB.
+pub fn brute_force_colors(s: &ScreenScene, pattern: SamplePattern) -> Vec<[u8; 3]> {
+    let (w, h) = (s.viewport.width, s.viewport.height);
+    let colors: Vec<([f32; 3], f32)> = (0..s.prims.len() as u32)
+        .map(|p| prim_color(s, p, ShadeMode::Lambert))
+        .collect();
+    let scale = f64::from(SUBPIXEL_SCALE);
+    let mut out = Vec::new();
+    for j in 0..h {
+        for i in 0..w {
+            let mut sum = [0.0f64; 3];
+            for &(sx, sy) in pattern.positions() {
+                let x = i64::from(i) * 256 + i64::from(sx);
+                let y = i64::from(j) * 256 + i64::from(sy);
+                let mut hits: Vec<(f64, u32)> = s
+                    .tris
+                    .iter()
+                    .filter(|t| t.edges().iter().all(|e| e.contains(x, y)))
+                    .map(|t| (t.depth.eval(x as f64 / scale, y as f64 / scale), t.prim))
+                    .collect();
+                hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                let mut transmit = 1.0f64;
+                for (_, prim) in hits {
+                    let (rgb, a) = colors[prim as usize];
+                    for c in 0..3 {
+                        sum[c] += transmit * f64::from(a) * f64::from(rgb[c]);
+                    }
+                    transmit *= 1.0 - f64::from(a);
+                }
+            }
+            let n = pattern.count() as f64;
+            out.push(sum.map(|c| to_srgb8((c / n) as f32)));
+        }
+    }
+    out
+}
+
+/// Largest channel difference between a frame and reference colours.
+pub fn max_diff_to(frame: &Frame, reference: &[[u8; 3]]) -> u8 {
+    frame
+        .color
+        .iter()
+        .zip(reference)
+        .flat_map(|(x, y)| (0..3).map(move |c| x[c].abs_diff(y[c])))
+        .max()
+        .unwrap_or(0)
+}

@@ -1,0 +1,10 @@
+//! Integration tests of hider-abuffer: exactness against the supersampled
+//! z-buffer and the oracle, coverage convergence, order-independent
+//! transparency, depth modes, merging and the memory bound.
+
+mod common;
+mod convergence;
+mod depth_modes;
+mod exactness;
+mod memory;
+mod transparency;
