@@ -90,24 +90,39 @@ pub fn clip_triangle(
     if tri.iter().any(|p| !p.is_finite()) {
         return ClipOutcome::Culled;
     }
-    // Trivial reject against the viewport: a triangle wholly beyond one side
-    // of the image covers no pixel centre.
-    let outside = |f: &dyn Fn(&DVec4) -> bool| tri.iter().all(f);
-    if outside(&|p| p.x > p.w)
-        || outside(&|p| p.x < -p.w)
-        || outside(&|p| p.y > p.w)
-        || outside(&|p| p.y < -p.w)
-    {
+    // Outcodes (Cohen–Sutherland style): bits 0-3 say which side of the
+    // *viewport* a vertex is beyond, bits 4-9 which clip plane it fails.
+    let planes = volume.planes();
+    let outcode = |p: &DVec4| -> u32 {
+        let mut code = u32::from(p.x > p.w)
+            | u32::from(p.x < -p.w) << 1
+            | u32::from(p.y > p.w) << 2
+            | u32::from(p.y < -p.w) << 3;
+        for (k, plane) in planes.iter().enumerate() {
+            code |= u32::from(plane.dot(*p) < 0.0) << (4 + k);
+        }
+        code
+    };
+    let codes = tri.map(|p| outcode(&p));
+    // All three beyond one side of the image (or one clip plane): no pixel
+    // centre can be covered.
+    if codes[0] & codes[1] & codes[2] != 0 {
         return ClipOutcome::Culled;
     }
-    let planes = volume.planes();
     let bary = [DVec3::X, DVec3::Y, DVec3::Z];
     out.extend((0..3).map(|i| ClipVertex {
         pos: tri[i],
         bary: bary[i],
     }));
+    let failing = (codes[0] | codes[1] | codes[2]) >> 4;
+    if failing == 0 {
+        return ClipOutcome::Inside;
+    }
     let mut clipped = false;
-    for plane in planes {
+    for (k, plane) in planes.into_iter().enumerate() {
+        if failing & (1 << k) == 0 {
+            continue;
+        }
         let all_in = out.iter().all(|v| plane.dot(v.pos) >= 0.0);
         if all_in {
             continue;

@@ -60,7 +60,25 @@ pub fn snap_coordinate(v: f64) -> Option<i32> {
     if !v.is_finite() || v.abs() > limit {
         return None;
     }
-    Some((v * f64::from(SUBPIXEL_SCALE)).round() as i32)
+    Some(round_half_away(v * f64::from(SUBPIXEL_SCALE)))
+}
+
+/// `x.round() as i32` (ties away from zero) for `|x| < 2^31`, without the
+/// libm call `f64::round` compiles to on baseline x86-64: the integer part
+/// `t` is exact, and so is `x - t` (both are multiples of the same power of
+/// two as x), so comparing the remainder with one half rounds exactly as
+/// `f64::round` does.
+#[inline]
+fn round_half_away(x: f64) -> i32 {
+    let t = x as i32;
+    let rest = x - f64::from(t);
+    if rest >= 0.5 {
+        t + 1
+    } else if rest <= -0.5 {
+        t - 1
+    } else {
+        t
+    }
 }
 
 /// The fixed-point coordinate of the centre of pixel column or row `i`.
@@ -78,6 +96,34 @@ mod tests {
         assert_eq!(snap_coordinate(0.001), Some(0));
         assert_eq!(snap_coordinate(0.5 / 256.0 + 1e-9), Some(1));
         assert_eq!(snap_coordinate(-1.0 / 256.0), Some(-1));
+    }
+
+    #[test]
+    fn fast_rounding_equals_f64_round() {
+        let probes = [
+            0.5,
+            -0.5,
+            1.5,
+            -1.5,
+            2.4999999999999996,
+            0.49999999999999994,
+            -7.5,
+            123456.5,
+            -0.0,
+        ];
+        for x in probes {
+            assert_eq!(round_half_away(x), x.round() as i32, "{x}");
+        }
+        let mut s = 0x1234_5678_u64;
+        for _ in 0..100_000 {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let x = ((s >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * 8_388_608.0;
+            assert_eq!(round_half_away(x), x.round() as i32, "{x}");
+            let tie = (x.floor()) + 0.5;
+            assert_eq!(round_half_away(tie), tie.round() as i32, "{tie}");
+        }
     }
 
     #[test]

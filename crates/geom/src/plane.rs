@@ -30,7 +30,7 @@ impl PlaneEq {
     /// The plane through three window-space points (fixed point) with the
     /// given values. Returns `None` when the points are collinear.
     pub fn from_points(v: &[FixedPt; 3], values: [f64; 3]) -> Option<Self> {
-        let p: Vec<(f64, f64)> = v.iter().map(|q| q.to_pixels()).collect();
+        let p = v.map(|q| q.to_pixels());
         let (x0, y0) = p[0];
         let (x1, y1) = (p[1].0 - x0, p[1].1 - y0);
         let (x2, y2) = (p[2].0 - x0, p[2].1 - y0);

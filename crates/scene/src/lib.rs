@@ -57,6 +57,7 @@ pub use obj::{load_obj, load_obj_with};
 pub use obj_write::save_obj;
 pub use prepare::{
     PrepareOptions, PrepareStats, PrimInfo, ScreenScene, ScreenTri, TransformPrecision, prepare,
+    prepare_into,
 };
 pub use shade::{ShadeMode, shade_frame};
 pub use view::{View, fit_camera};

@@ -10,6 +10,7 @@ use glam::{DMat4, DVec3, DVec4, Vec2, Vec3, Vec4};
 use hider_geom::clip::{ClipOutcome, ClipVertex, ClipVolume, clip_triangle};
 use hider_geom::fixed::{FixedPt, GUARD_BAND_PIXELS, SUBPIXEL_SCALE};
 use hider_geom::{Camera, PlaneEq, Viewport, orient2d};
+use rayon::prelude::*;
 
 use crate::error::Result;
 use crate::model::{Light, Material, Scene};
@@ -40,6 +41,11 @@ pub struct PrepareOptions {
     /// counter-clockwise front faces). Off by default: the GL reference
     /// renders cull nothing.
     pub cull_back_faces: bool,
+    /// Process large scenes (over 32k triangles) in chunks on the current
+    /// rayon thread pool. The result is identical; whether it is faster
+    /// depends on free cores, so it is off by default and the CLI turns it
+    /// on with `--threads` above 1.
+    pub parallel: bool,
 }
 
 impl Default for PrepareOptions {
@@ -48,6 +54,7 @@ impl Default for PrepareOptions {
             precision: TransformPrecision::F64,
             guard_band_pixels: GUARD_BAND_PIXELS,
             cull_back_faces: false,
+            parallel: false,
         }
     }
 }
@@ -67,6 +74,12 @@ impl PrepareOptions {
     /// Sets [`Self::cull_back_faces`].
     pub fn with_cull_back_faces(mut self, cull: bool) -> Self {
         self.cull_back_faces = cull;
+        self
+    }
+
+    /// Sets [`Self::parallel`].
+    pub fn with_parallel(mut self, parallel: bool) -> Self {
+        self.parallel = parallel;
         self
     }
 
@@ -160,6 +173,15 @@ pub struct PrepareStats {
     pub output: u64,
 }
 
+impl PrepareStats {
+    fn add(&mut self, other: &Self) {
+        self.culled += other.culled;
+        self.clipped += other.clipped;
+        self.degenerate += other.degenerate;
+        self.back_faces += other.back_faces;
+    }
+}
+
 /// A scene in screen space: what every hider consumes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ScreenScene {
@@ -221,6 +243,30 @@ impl ScreenScene {
 
 /// Runs the front end. See the module documentation.
 pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<ScreenScene> {
+    let mut out = ScreenScene {
+        viewport: view.viewport,
+        camera: view.camera,
+        view_matrix: DMat4::IDENTITY,
+        projection_matrix: DMat4::IDENTITY,
+        tris: Vec::new(),
+        prims: Vec::new(),
+        materials: Vec::new(),
+        lights: Vec::new(),
+        stats: PrepareStats::default(),
+    };
+    prepare_into(scene, view, options, &mut out)?;
+    Ok(out)
+}
+
+/// [`prepare`] into an existing [`ScreenScene`], reusing its memory: for
+/// repeated frames this avoids allocating (and the kernel zeroing) hundreds
+/// of megabytes for large scenes. Every field of `out` is overwritten.
+pub fn prepare_into(
+    scene: &Scene,
+    view: &View,
+    options: &PrepareOptions,
+    out: &mut ScreenScene,
+) -> Result<()> {
     let vp = view.viewport;
     check_image_size(vp.width, vp.height)?;
     view.camera
@@ -237,79 +283,71 @@ pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<S
         options.guard_band_pixels.min(GUARD_BAND_PIXELS),
     );
 
-    let mut materials = scene.materials.clone();
+    let mut materials = std::mem::take(&mut out.materials);
+    materials.clear();
+    materials.extend_from_slice(&scene.materials);
     let default_material = materials.len() as u32;
     materials.push(Material::default());
     let normal_matrix = view_matrix.inverse().transpose();
 
-    let mut prims = Vec::with_capacity(scene.triangle_count());
-    let mut tris = Vec::with_capacity(scene.triangle_count());
+    let mut prims = std::mem::take(&mut out.prims);
+    prims.clear();
+    prims.reserve(scene.triangle_count());
+    let mut tris = std::mem::take(&mut out.tris);
+    tris.clear();
+    tris.reserve(scene.triangle_count());
     let mut stats = PrepareStats {
         input: scene.triangle_count() as u64,
         ..PrepareStats::default()
     };
-    let mut polygon = Vec::with_capacity(9);
-    let mut scratch = Vec::with_capacity(9);
-    let mut window = Vec::with_capacity(9);
-
-    for (prim, m, t) in scene.triangles() {
-        let mesh = &scene.meshes[m];
-        let idx = mesh.indices[t];
-        let world = idx.map(|i| mesh.positions[i as usize]);
-        prims.push(PrimInfo {
-            camera: world.map(|p| view_matrix.transform_point3(p)),
-            material: mesh.material.map_or(default_material, |k| k as u32),
-            normals: (!mesh.normals.is_empty()).then(|| {
-                idx.map(|i| {
-                    normal_matrix
-                        .transform_vector3(mesh.normals[i as usize].as_dvec3())
-                        .as_vec3()
-                })
-            }),
-            uvs: (!mesh.uvs.is_empty()).then(|| idx.map(|i| mesh.uvs[i as usize])),
-        });
-
-        let clip: [DVec4; 3] = match options.precision {
-            TransformPrecision::F64 => world.map(|p| mvp * p.extend(1.0)),
-            TransformPrecision::F32 => {
-                world.map(|p| (mvp32 * Vec4::from((p.as_vec3(), 1.0))).as_dvec4())
-            }
-        };
-        let outcome = clip_triangle(clip, &volume, &mut polygon, &mut scratch);
-        match outcome {
-            ClipOutcome::Culled => {
-                stats.culled += 1;
-                continue;
-            }
-            ClipOutcome::Clipped => stats.clipped += 1,
-            ClipOutcome::Inside => {}
-        }
-        window.clear();
-        let mut ok = true;
-        for v in &polygon {
-            match to_window(v, vp, options.precision) {
-                Some(w) => window.push(w),
-                None => ok = false,
+    let front = FrontEnd {
+        view_matrix,
+        normal_matrix,
+        mvp,
+        mvp32,
+        volume,
+        viewport: vp,
+        options: *options,
+        default_material,
+    };
+    // Below this many triangles the fork-join overhead is not worth it.
+    const PARALLEL_CHUNK: usize = 16 * 1024;
+    if options.parallel
+        && rayon::current_num_threads() > 1
+        && scene.triangle_count() > 2 * PARALLEL_CHUNK
+    {
+        let mut segments = Vec::new();
+        let mut first_prim = 0u32;
+        for (m, mesh) in scene.meshes.iter().enumerate() {
+            for start in (0..mesh.indices.len()).step_by(PARALLEL_CHUNK) {
+                let end = (start + PARALLEL_CHUNK).min(mesh.indices.len());
+                segments.push((m, start..end, first_prim));
+                first_prim += (end - start) as u32;
             }
         }
-        if !ok {
-            // Only reachable through numerical trouble at the guard band.
-            stats.culled += 1;
-            continue;
-        }
-        for k in 1..window.len() - 1 {
-            let corners = [window[0], window[k], window[k + 1]];
-            match setup(corners, prim) {
-                Some(tri) => {
-                    if options.cull_back_faces && !tri.front_facing {
-                        stats.back_faces += 1;
-                    } else {
-                        tris.push(tri);
-                    }
+        let parts: Vec<Part> = segments
+            .into_par_iter()
+            .map(|(m, range, first)| {
+                let mut part = Part::default();
+                let mut scratch = ClipScratch::default();
+                for (k, t) in range.enumerate() {
+                    front.triangle(scene, (m, t, first + k as u32), &mut part, &mut scratch);
                 }
-                None => stats.degenerate += 1,
-            }
+                part
+            })
+            .collect();
+        for part in parts {
+            prims.extend_from_slice(&part.prims);
+            tris.extend_from_slice(&part.tris);
+            stats.add(&part.stats);
         }
+    } else {
+        let mut scratch = ClipScratch::default();
+        let mut part = Part { prims, tris, stats };
+        for (prim, m, t) in scene.triangles() {
+            front.triangle(scene, (m, t, prim), &mut part, &mut scratch);
+        }
+        (prims, tris, stats) = (part.prims, part.tris, part.stats);
     }
     stats.output = tris.len() as u64;
     let lights = scene
@@ -326,7 +364,7 @@ pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<S
             },
         })
         .collect();
-    Ok(ScreenScene {
+    *out = ScreenScene {
         viewport: vp,
         camera: view.camera,
         view_matrix,
@@ -336,7 +374,102 @@ pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<S
         materials,
         lights,
         stats,
-    })
+    };
+    Ok(())
+}
+
+/// The output of the front end for a run of triangles.
+#[derive(Default)]
+struct Part {
+    prims: Vec<PrimInfo>,
+    tris: Vec<ScreenTri>,
+    stats: PrepareStats,
+}
+
+/// Reusable buffers of the clipper.
+#[derive(Default)]
+struct ClipScratch {
+    polygon: Vec<ClipVertex>,
+    scratch: Vec<ClipVertex>,
+    window: Vec<WindowVertex>,
+}
+
+/// Everything the per-triangle work needs, computed once per frame.
+struct FrontEnd {
+    view_matrix: DMat4,
+    normal_matrix: DMat4,
+    mvp: DMat4,
+    mvp32: glam::Mat4,
+    volume: ClipVolume,
+    viewport: Viewport,
+    options: PrepareOptions,
+    default_material: u32,
+}
+
+impl FrontEnd {
+    /// Transforms, clips, projects, snaps and sets up triangle `t` of mesh
+    /// `m` (primitive `prim`), appending its info and screen pieces.
+    fn triangle(
+        &self,
+        scene: &Scene,
+        (m, t, prim): (usize, usize, u32),
+        out: &mut Part,
+        buf: &mut ClipScratch,
+    ) {
+        let Part { prims, tris, stats } = out;
+        let mesh = &scene.meshes[m];
+        let idx = mesh.indices[t];
+        let world = idx.map(|i| mesh.positions[i as usize]);
+        prims.push(PrimInfo {
+            camera: world.map(|p| self.view_matrix.transform_point3(p)),
+            material: mesh.material.map_or(self.default_material, |k| k as u32),
+            normals: (!mesh.normals.is_empty()).then(|| {
+                idx.map(|i| {
+                    self.normal_matrix
+                        .transform_vector3(mesh.normals[i as usize].as_dvec3())
+                        .as_vec3()
+                })
+            }),
+            uvs: (!mesh.uvs.is_empty()).then(|| idx.map(|i| mesh.uvs[i as usize])),
+        });
+        let precision = self.options.precision;
+        let clip: [DVec4; 3] = match precision {
+            TransformPrecision::F64 => world.map(|p| self.mvp * p.extend(1.0)),
+            TransformPrecision::F32 => {
+                world.map(|p| (self.mvp32 * Vec4::from((p.as_vec3(), 1.0))).as_dvec4())
+            }
+        };
+        match clip_triangle(clip, &self.volume, &mut buf.polygon, &mut buf.scratch) {
+            ClipOutcome::Culled => {
+                stats.culled += 1;
+                return;
+            }
+            ClipOutcome::Clipped => stats.clipped += 1,
+            ClipOutcome::Inside => {}
+        }
+        buf.window.clear();
+        for v in &buf.polygon {
+            match to_window(v, self.viewport, precision) {
+                Some(w) => buf.window.push(w),
+                None => {
+                    // Only reachable through numerical trouble at the guard
+                    // band.
+                    stats.culled += 1;
+                    return;
+                }
+            }
+        }
+        let window = &buf.window;
+        for k in 1..window.len() - 1 {
+            match setup([window[0], window[k], window[k + 1]], prim) {
+                Some(tri) if self.options.cull_back_faces && !tri.front_facing => {
+                    stats.back_faces += 1;
+                }
+                Some(tri) => tris.push(tri),
+                None => stats.degenerate += 1,
+            }
+        }
+    }
 }
 
 /// A vertex in window space: snapped position, window depth, clip w.
@@ -508,6 +641,38 @@ mod tests {
         let clip = ss.projection_matrix * p.extend(1.0);
         let win = ss.viewport.ndc_to_window(clip.truncate() / clip.w);
         assert!((win.x - 40.5).abs() < 1e-9 && (win.y - 20.5).abs() < 1e-9);
+    }
+
+    #[test]
+    fn parallel_front_end_equals_sequential() {
+        // Enough triangles (in two meshes) to take the parallel path.
+        let mut scene = crate::procedural::random_soup(40_000, 3);
+        let second = crate::procedural::uv_sphere(40);
+        scene.push_mesh(second.meshes[0].clone(), Some(second.materials[0].clone()));
+        let view = View::new(camera(), 96, 64).unwrap();
+        let options = PrepareOptions::default().with_parallel(true);
+        let run_with = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| prepare(&scene, &view, &options).unwrap())
+        };
+        let one = run_with(1);
+        let two = run_with(2);
+        assert!(one.tris.len() > 10_000);
+        assert_eq!(one, two);
+        // Reusing an output gives the same result too.
+        let mut reused = run_with(2);
+        prepare_into(
+            &crate::procedural::cube(),
+            &view,
+            &PrepareOptions::default(),
+            &mut reused,
+        )
+        .unwrap();
+        prepare_into(&scene, &view, &options, &mut reused).unwrap();
+        assert_eq!(one, reused);
     }
 
     #[test]
