@@ -15,24 +15,40 @@
 //! every sample but passes the rectangle test is kept as intersecting, and a
 //! smaller region settles it.
 
-use hider_geom::{EdgeFunction, PlaneEq};
+#[cfg(doc)]
+use hider_geom::EdgeFunction;
+use hider_geom::PlaneEq;
 use hider_scene::ScreenTri;
 
 use crate::grid::SampleRect;
 
-/// What the classification needs of a triangle, set up once per frame.
+/// What the subdivision needs of a triangle, set up once per frame.
+///
+/// Classification is the inner loop, and the candidates of a region are a
+/// sparse subset of the scene (a random soup scatters them over memory), so
+/// everything it reads (bounding box and edge functions) is packed into the
+/// first 64-byte cache line of the record; the depth plane and id, read
+/// only for surrounders and samples, sit in the second.
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
 pub struct TriSetup {
-    /// Edge functions with the top-left rule folded in (`> 0` is inside).
-    pub edges: [EdgeFunction; 3],
     /// Smallest vertex x, fixed point.
-    pub min_x: i64,
+    pub min_x: i32,
     /// Largest vertex x, fixed point.
-    pub max_x: i64,
+    pub max_x: i32,
     /// Smallest vertex y, fixed point.
-    pub min_y: i64,
+    pub min_y: i32,
     /// Largest vertex y, fixed point.
-    pub max_y: i64,
+    pub max_y: i32,
+    /// The `a` (x) coefficients of the three edge functions. They are
+    /// vertex coordinate differences, within +-2^24 for coordinates inside
+    /// the guard band.
+    pub edge_a: [i32; 3],
+    /// The `b` (y) coefficients of the three edge functions.
+    pub edge_b: [i32; 3],
+    /// The constant terms, with the top-left rule folded in (`> 0` is
+    /// inside).
+    pub edge_c: [i64; 3],
     /// Window depth plane.
     pub depth: PlaneEq,
     /// Primitive id written to the frame.
@@ -40,26 +56,59 @@ pub struct TriSetup {
 }
 
 impl TriSetup {
-    /// The set-up of a screen triangle.
-    pub fn new(t: &ScreenTri) -> Self {
-        let xs = t.v.map(|p| i64::from(p.x));
-        let ys = t.v.map(|p| i64::from(p.y));
-        Self {
-            edges: t.edges(),
+    /// The set-up of a screen triangle, from the shared edge functions
+    /// ([`ScreenTri::edges`]); `None` if a coefficient does not fit the
+    /// packed form (impossible for coordinates inside the guard band).
+    pub fn new(t: &ScreenTri) -> Option<Self> {
+        let edges = t.edges();
+        let xs = t.v.map(|p| p.x);
+        let ys = t.v.map(|p| p.y);
+        let mut edge_a = [0; 3];
+        let mut edge_b = [0; 3];
+        let mut edge_c = [0; 3];
+        for (k, e) in edges.iter().enumerate() {
+            edge_a[k] = i32::try_from(e.a).ok()?;
+            edge_b[k] = i32::try_from(e.b).ok()?;
+            edge_c[k] = e.c;
+        }
+        Some(Self {
             min_x: xs[0].min(xs[1]).min(xs[2]),
             max_x: xs[0].max(xs[1]).max(xs[2]),
             min_y: ys[0].min(ys[1]).min(ys[2]),
             max_y: ys[0].max(ys[1]).max(ys[2]),
+            edge_a,
+            edge_b,
+            edge_c,
             depth: t.depth,
             prim: t.prim,
-        }
+        })
     }
 
-    /// Whether the fixed-point sample `(x, y)` is covered: the one coverage
-    /// decision every hider shares.
+    /// Edge function `k` at the fixed-point sample `(x, y)`: the value of
+    /// [`EdgeFunction::eval`], from the packed coefficients.
+    #[inline]
+    pub fn edge(&self, k: usize, x: i64, y: i64) -> i64 {
+        i64::from(self.edge_a[k]) * x + i64::from(self.edge_b[k]) * y + self.edge_c[k]
+    }
+
+    /// Whether the fixed-point sample `(x, y)` is covered: the shared
+    /// edge functions under the top-left rule, the one coverage decision
+    /// every hider makes.
     #[inline]
     pub fn covers(&self, x: i64, y: i64) -> bool {
-        self.edges.iter().all(|e| e.contains(x, y))
+        (0..3).all(|k| self.edge(k, x, y) > 0)
+    }
+
+    /// The vertex bounds in x, fixed point.
+    #[inline]
+    pub fn x_bounds(&self) -> (i64, i64) {
+        (i64::from(self.min_x), i64::from(self.max_x))
+    }
+
+    /// The vertex bounds in y, fixed point.
+    #[inline]
+    pub fn y_bounds(&self) -> (i64, i64) {
+        (i64::from(self.min_y), i64::from(self.max_y))
     }
 
     /// Window depth at the fixed-point sample `(x, y)`, evaluated exactly as
@@ -86,31 +135,30 @@ pub enum Class {
 /// Classifies triangle `t` against the region whose samples span `r`.
 #[inline]
 pub fn classify(t: &TriSetup, r: &SampleRect) -> Class {
+    let (min_x, max_x) = t.x_bounds();
+    let (min_y, max_y) = t.y_bounds();
     // Bounding boxes first: the cheap half of the 2-D separating-axis test.
-    if t.max_x < r.x0 || t.min_x > r.x1 || t.max_y < r.y0 || t.min_y > r.y1 {
+    if max_x < r.x0 || min_x > r.x1 || max_y < r.y0 || min_y > r.y1 {
         return Class::Disjoint;
     }
     let mut all_inside = true;
-    for e in &t.edges {
-        let (ax0, ax1) = (e.a * r.x0, e.a * r.x1);
-        let (by0, by1) = (e.b * r.y0, e.b * r.y1);
+    for k in 0..3 {
+        let (a, b) = (i64::from(t.edge_a[k]), i64::from(t.edge_b[k]));
+        let (ax0, ax1) = (a * r.x0, a * r.x1);
+        let (by0, by1) = (b * r.y0, b * r.y1);
         // The largest value over the rectangle: if even that is outside,
         // no sample of the region is inside this edge.
-        if e.c + ax0.max(ax1) + by0.max(by1) <= 0 {
+        if t.edge_c[k] + ax0.max(ax1) + by0.max(by1) <= 0 {
             return Class::Disjoint;
         }
         // The smallest value: if it is inside, every sample is.
-        if e.c + ax0.min(ax1) + by0.min(by1) <= 0 {
+        if t.edge_c[k] + ax0.min(ax1) + by0.min(by1) <= 0 {
             all_inside = false;
         }
     }
     if all_inside {
         Class::Surrounding
-    } else if t.min_x >= r.area_x0
-        && t.max_x < r.area_x1
-        && t.min_y >= r.area_y0
-        && t.max_y < r.area_y1
-    {
+    } else if min_x >= r.area_x0 && max_x < r.area_x1 && min_y >= r.area_y0 && max_y < r.area_y1 {
         Class::Contained
     } else {
         Class::Intersecting
@@ -185,7 +233,7 @@ mod tests {
         let v = v.map(|(x, y)| FixedPt::new(x * 256, y * 256));
         assert!(hider_geom::orient2d(v[0], v[1], v[2]) > 0);
         let depth = PlaneEq::from_points(&v, z).unwrap();
-        TriSetup::new(&ScreenTri {
+        let t = ScreenTri {
             v,
             z,
             w: [1.0; 3],
@@ -193,7 +241,16 @@ mod tests {
             inv_w: PlaneEq::constant(1.0),
             prim: 0,
             front_facing: true,
-        })
+        };
+        let s = TriSetup::new(&t).unwrap();
+        // The packed edge functions are the shared ones.
+        for (k, e) in t.edges().iter().enumerate() {
+            for (x, y) in [(0, 0), (1000, -77), (-5000, 12345)] {
+                assert_eq!(s.edge(k, x, y), e.eval(x, y));
+            }
+        }
+        assert_eq!(std::mem::size_of::<TriSetup>(), 128);
+        s
     }
 
     fn rect(u0: u32, v0: u32, u1: u32, v1: u32) -> SampleRect {

@@ -25,7 +25,7 @@ use crate::classify::TriSetup;
 use crate::debug::LeafRegion;
 use crate::grid::{Grid, Region};
 use crate::stats::{Rule, WarnockStats};
-use crate::subdivide::{Sink, Subdivider, nearest_at};
+use crate::subdivide::{Sink, Subdivider};
 
 /// Linear colours of primitives, computed on first use, kept between
 /// frames for their memory.
@@ -115,21 +115,8 @@ impl Sink for SampleSink<'_> {
         }
     }
 
-    fn resolve_cell(
-        &mut self,
-        grid: &Grid,
-        r: &Region,
-        candidates: &[u32],
-        setups: &[TriSetup],
-        _level: usize,
-        stats: &mut WarnockStats,
-    ) -> Rule {
-        let (x, y) = (grid.sample_x(r.u0), grid.sample_y(r.v0));
-        if let Some((t, d)) = nearest_at(candidates, setups, x, y, stats) {
-            self.buffer
-                .set(r.u0, r.v0, setups[t as usize].prim, d, stats);
-        }
-        Rule::Sample
+    fn sample(&mut self, u: u32, v: u32, prim: u32, depth: f64, stats: &mut WarnockStats) {
+        self.buffer.set(u, v, prim, depth, stats);
     }
 }
 
@@ -229,7 +216,7 @@ impl Sink for CoverageSink<'_> {
     }
 
     fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
-        let Some(b) = grid.cells_touching(r, (t.min_x, t.max_x), (t.min_y, t.max_y)) else {
+        let Some(b) = grid.cells_touching(r, t.x_bounds(), t.y_bounds()) else {
             return;
         };
         let color = self.colors.get(self.scene, self.shade, t.prim);
@@ -262,6 +249,11 @@ impl Sink for CoverageSink<'_> {
                 }
             }
         }
+    }
+
+    fn sample(&mut self, _u: u32, _v: u32, _prim: u32, _depth: f64, _stats: &mut WarnockStats) {
+        // Cells of the pixel pass hold several samples: single-cell regions
+        // go to `resolve_cell`, never here.
     }
 
     fn resolve_cell(

@@ -62,6 +62,12 @@ impl Grid {
         }
     }
 
+    /// Whether each cell holds exactly one sample (pixel centres, or the
+    /// samples inside a pixel), so that a one-cell region is one sample.
+    pub fn one_sample_per_cell(&self) -> bool {
+        self.first == self.last
+    }
+
     /// The fixed-point x of the first sample of cell column `u`.
     #[inline]
     pub fn sample_x(&self, u: u32) -> i64 {

@@ -171,9 +171,15 @@ impl Warnock {
             limit: u64::from(u32::MAX),
         })?;
 
-        frame.clear();
         self.setups.clear();
-        self.setups.extend(scene.tris.iter().map(TriSetup::new));
+        for t in &scene.tris {
+            let setup = TriSetup::new(t).ok_or_else(|| Error::Render {
+                hider: self.name.clone(),
+                message: format!("primitive {} lies outside the guard band", t.prim),
+            })?;
+            self.setups.push(setup);
+        }
+        frame.clear();
         self.leaves.clear();
         self.outer.reset_peak();
         self.inner.reset_peak();

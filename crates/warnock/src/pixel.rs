@@ -14,7 +14,7 @@ use crate::classify::TriSetup;
 use crate::debug::LeafRegion;
 use crate::grid::{Grid, Region};
 use crate::stats::{Rule, WarnockStats};
-use crate::subdivide::{Sink, nearest_at};
+use crate::subdivide::Sink;
 
 /// Writes pixel-centre decisions into a frame.
 pub(crate) struct PixelSink<'a> {
@@ -45,7 +45,7 @@ impl Sink for PixelSink<'_> {
     }
 
     fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
-        let Some(b) = grid.cells_touching(r, (t.min_x, t.max_x), (t.min_y, t.max_y)) else {
+        let Some(b) = grid.cells_touching(r, t.x_bounds(), t.y_bounds()) else {
             return;
         };
         for v in b.v0..b.v1 {
@@ -60,20 +60,8 @@ impl Sink for PixelSink<'_> {
         }
     }
 
-    fn resolve_cell(
-        &mut self,
-        grid: &Grid,
-        r: &Region,
-        candidates: &[u32],
-        setups: &[TriSetup],
-        _level: usize,
-        stats: &mut WarnockStats,
-    ) -> Rule {
-        let (x, y) = (grid.sample_x(r.u0), grid.sample_y(r.v0));
-        if let Some((t, d)) = nearest_at(candidates, setups, x, y, stats) {
-            self.write(r.u0, r.v0, setups[t as usize].prim, d, stats);
-        }
-        Rule::Sample
+    fn sample(&mut self, u: u32, v: u32, prim: u32, depth: f64, stats: &mut WarnockStats) {
+        self.write(u, v, prim, depth, stats);
     }
 
     fn leaf(&mut self, r: &Region, rule: Rule, level: usize) {

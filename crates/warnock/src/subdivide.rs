@@ -34,17 +34,27 @@ pub(crate) trait Sink {
     /// `t` is the only polygon reaching `r`: draw the samples it covers.
     fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats);
 
-    /// `r` is one cell and several polygons remain: resolve it and say by
-    /// which rule.
+    /// The one sample of cell `(u, v)` shows primitive `prim` at `depth`.
+    fn sample(&mut self, u: u32, v: u32, prim: u32, depth: f64, stats: &mut WarnockStats);
+
+    /// `r` is one cell holding several samples and several polygons remain:
+    /// resolve it and say by which rule. Only grids with several samples per
+    /// cell reach this; the default resolves the cell at its first sample.
     fn resolve_cell(
         &mut self,
         grid: &Grid,
         r: &Region,
         candidates: &[u32],
         setups: &[TriSetup],
-        level: usize,
+        _level: usize,
         stats: &mut WarnockStats,
-    ) -> Rule;
+    ) -> Rule {
+        let (x, y) = (grid.sample_x(r.u0), grid.sample_y(r.v0));
+        if let Some((t, d)) = nearest_at(candidates, setups, x, y, stats) {
+            self.sample(r.u0, r.v0, setups[t as usize].prim, d, stats);
+        }
+        Rule::Sample
+    }
 
     /// `r` was decided by `rule` at `level` (for the region record).
     fn leaf(&mut self, _r: &Region, _rule: Rule, _level: usize) {}
@@ -112,9 +122,17 @@ impl Subdivider {
                 level,
             });
         }
+        let one_sample = grid.one_sample_per_cell();
         while let Some(e) = self.stack.pop() {
             self.arena.truncate(e.start + e.len);
             stats.visit(e.level);
+            if one_sample && e.region.is_single_cell() {
+                let list = &self.arena[e.start..];
+                let rule = resolve_sample(grid, &e.region, list, setups, sink, stats);
+                stats.decided[rule as usize] += 1;
+                sink.leaf(&e.region, rule, e.level);
+                continue;
+            }
             let rect = grid.sample_rect(&e.region);
             let out = self.arena.len();
 
@@ -202,6 +220,49 @@ impl Subdivider {
             };
             stats.decided[rule as usize] += 1;
             sink.leaf(&e.region, rule, e.level);
+        }
+    }
+}
+
+/// Decides a one-sample region: the z-buffer at that sample. Warnock's
+/// classification of a polygon against a single sample is exactly the
+/// coverage test (it surrounds the sample or is disjoint from it), and
+/// "in front of all others" there is exactly the depth test, so this is
+/// the same decision as the general loop, without its corner bookkeeping.
+fn resolve_sample<S: Sink>(
+    grid: &Grid,
+    r: &Region,
+    candidates: &[u32],
+    setups: &[TriSetup],
+    sink: &mut S,
+    stats: &mut WarnockStats,
+) -> Rule {
+    let (x, y) = (grid.sample_x(r.u0), grid.sample_y(r.v0));
+    let mut best: Option<(u32, f64)> = None;
+    let mut covering = 0;
+    for &t in candidates {
+        let s = &setups[t as usize];
+        if s.covers(x, y) {
+            stats.classified(Class::Surrounding);
+            covering += 1;
+            let d = s.depth_at(x, y);
+            if best.is_none_or(|(_, b)| d < b) {
+                best = Some((s.prim, d));
+            }
+        } else {
+            stats.classified(Class::Disjoint);
+        }
+    }
+    stats.depth_evaluations += covering;
+    match best {
+        None => Rule::Empty,
+        Some((prim, d)) => {
+            sink.sample(r.u0, r.v0, prim, d, stats);
+            if covering == 1 {
+                Rule::SurrounderAlone
+            } else {
+                Rule::Sample
+            }
         }
     }
 }
