@@ -23,18 +23,24 @@ use crate::model::{Material, Mesh, Scene};
 /// any mesh memory is allocated).
 pub const MAX_TRIANGLES: u64 = 50_000_000;
 
+/// Largest OBJ file read, in bytes (checked before reading it).
+pub const MAX_FILE_BYTES: u64 = 4 << 30;
+
 /// Options for [`load_obj_with`].
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ObjOptions {
     /// Most triangles accepted (after fan-splitting). Defaults to
     /// [`MAX_TRIANGLES`].
     pub max_triangles: u64,
+    /// Largest file accepted, in bytes. Defaults to [`MAX_FILE_BYTES`].
+    pub max_file_bytes: u64,
 }
 
 impl Default for ObjOptions {
     fn default() -> Self {
         Self {
             max_triangles: MAX_TRIANGLES,
+            max_file_bytes: MAX_FILE_BYTES,
         }
     }
 }
@@ -46,10 +52,26 @@ pub fn load_obj(path: impl AsRef<Path>) -> Result<Scene> {
 
 /// Loads an OBJ file with the given options.
 pub fn load_obj_with(path: &Path, options: &ObjOptions) -> Result<Scene> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
+    let io = |source| Error::Io {
         path: path.to_path_buf(),
         source,
-    })?;
+    };
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if meta.is_dir() {
+        return Err(Error::Parse {
+            path: path.to_path_buf(),
+            line: 0,
+            message: "is a folder, not an OBJ file".into(),
+        });
+    }
+    if meta.len() > options.max_file_bytes {
+        return Err(Error::Limit {
+            what: "OBJ file size in bytes",
+            value: meta.len(),
+            limit: options.max_file_bytes,
+        });
+    }
+    let bytes = std::fs::read(path).map_err(io)?;
     let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
     load_obj_bytes(&bytes, path, &base, options)
 }
@@ -141,6 +163,37 @@ pub fn load_obj_bytes(
             indices,
             material,
         });
+    }
+    if triangles == 0 {
+        return Err(Error::Parse {
+            path: name.to_path_buf(),
+            line: 0,
+            message: "contains no faces ('f' lines): nothing to render".into(),
+        });
+    }
+    for m in &scene.materials {
+        if let Some(t) = &m.diffuse_texture
+            && !t.is_file()
+        {
+            warnings.push(format!(
+                "material '{}': texture {} not found; the material's diffuse colour is used",
+                m.name,
+                t.display()
+            ));
+        }
+    }
+    let degenerate = scene
+        .triangles()
+        .filter(|&(_, m, t)| {
+            let [a, b, c] = scene.triangle_positions(m, t);
+            (b - a).cross(c - a) == DVec3::ZERO
+        })
+        .count();
+    if degenerate > 0 {
+        warnings.push(format!(
+            "{degenerate} degenerate triangles (repeated vertices or zero area): they cover \
+             nothing and keep their primitive ids"
+        ));
     }
     scene.warnings = warnings;
     if scene.triangle_count() as u64 != triangles {
@@ -402,7 +455,10 @@ mod tests {
 
     #[test]
     fn triangle_limit_is_checked_before_loading() {
-        let opts = ObjOptions { max_triangles: 1 };
+        let opts = ObjOptions {
+            max_triangles: 1,
+            ..ObjOptions::default()
+        };
         let e = load_obj_bytes(
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 3\n",
             Path::new("big.obj"),
@@ -439,8 +495,45 @@ mod tests {
         assert_eq!(glass.diffuse, [0.1, 0.2, 0.3]);
         assert_eq!(glass.opacity, 0.25);
         assert_eq!(glass.diffuse_texture, Some(dir.join("tex/a.jpg")));
+        assert!(
+            s.warnings
+                .iter()
+                .any(|w| w.contains("tex/a.jpg") && w.contains("glass")),
+            "{:?}",
+            s.warnings
+        );
         let tr = &s.materials[s.meshes[1].material.unwrap()];
         assert_eq!(tr.opacity, 0.25);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn degenerate_faces_and_missing_textures_are_warnings() {
+        let s = load("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 4\nf 1 2 4\n").unwrap();
+        assert_eq!(s.triangle_count(), 3, "degenerate triangles keep their ids");
+        assert!(
+            s.warnings.iter().any(|w| w.starts_with("2 degenerate")),
+            "{:?}",
+            s.warnings
+        );
+        let e = load("v 0 0 0\nv 1 0 0\n").unwrap_err().to_string();
+        assert!(e.contains("no faces"), "{e}");
+    }
+
+    #[test]
+    fn file_size_limit_is_checked_before_reading() {
+        let dir = std::env::temp_dir().join(format!("hider-objsize-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("big.obj");
+        std::fs::write(&p, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        let opts = ObjOptions {
+            max_file_bytes: 10,
+            ..ObjOptions::default()
+        };
+        let e = load_obj_with(&p, &opts).unwrap_err();
+        assert!(matches!(e, Error::Limit { limit: 10, .. }), "{e}");
+        let e = load_obj(&dir).unwrap_err().to_string();
+        assert!(e.contains("folder"), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 
