@@ -4,8 +4,10 @@
 
 mod common;
 
-use common::{brute_force, random_big_triangles, render, screen};
+use common::{brute_force, random_big_triangles, render, screen, triangles_in_front_of_camera};
+use glam::DVec3;
 use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
+use hider_scene::procedural::SplitMix64;
 use hider_scene::{Scene, procedural};
 use hider_warnock::WarnockOptions;
 use proptest::prelude::*;
@@ -55,8 +57,44 @@ fn soups_equal_the_oracle() {
     }
 }
 
+/// Layers of big triangles almost on top of each other: depth gaps from
+/// 1e-9 to 1e-4 world units, slightly tilted, so that surrounders are
+/// nearly tied with what they would cull. The rounding guard of the
+/// corner test must never let a wrong surrounder win.
+fn near_ties(count: u32, seed: u64, gap: f64) -> Scene {
+    let mut rng = SplitMix64::new(seed);
+    let tris: Vec<[DVec3; 3]> = (0..count)
+        .map(|k| {
+            let c = DVec3::new(rng.range(-1.5, 1.5), rng.range(-1.5, 1.5), 0.0);
+            [(-1.0, -1.0), (3.0, -1.0), (-1.0, 3.0)].map(|(x, y)| {
+                let p = c + DVec3::new(x, y, 0.0) * rng.range(1.0, 3.0);
+                let tilt = rng.range(-1.0, 1.0) * gap;
+                DVec3::new(p.x, p.y, f64::from(k % 3) * gap + tilt)
+            })
+        })
+        .collect();
+    triangles_in_front_of_camera(&tris)
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Bit-for-bit equality with the z-buffer must survive near ties.
+    #[test]
+    fn near_ties_equal_the_brute_force_z_buffer(
+        count in 2u32..8,
+        seed in any::<u64>(),
+        gap_exponent in 4i32..10,
+        width in 4u32..40,
+        height in 4u32..40,
+    ) {
+        let scene = near_ties(count, seed, 10f64.powi(-gap_exponent));
+        let screen = screen(&scene, width, height);
+        let (frame, _) = render(&screen, WarnockOptions::default());
+        let (ids, depth) = brute_force(&screen);
+        prop_assert_eq!(frame.ids, ids);
+        prop_assert_eq!(frame.depth, depth);
+    }
 
     /// Big random triangles pierce each other all over the image: the
     /// surrounder test must see planes crossing and subdivide.
