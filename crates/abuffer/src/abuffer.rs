@@ -33,6 +33,12 @@ pub const MERGE_COLOR_TOLERANCE: f32 = 1e-5;
 /// it without making insertion cost grow with the list.
 pub const MERGE_SEARCH: usize = 8;
 
+/// A new occluder prunes the fragments behind it only from lists longer
+/// than this. Measured on `random_soup(10_000)` at 1024 x 1024: pruning
+/// every list costs a fifth of the frame in cache misses; the resolve
+/// skips hidden fragments exactly, so short lists are left alone.
+pub const PRUNE_LIST_LEN: u32 = 4;
+
 /// Carpenter's A-buffer. See the crate documentation.
 #[derive(Clone, Debug, Default)]
 pub struct ABuffer {
@@ -168,11 +174,14 @@ impl ABuffer {
         stats: &mut ABufferStats,
     ) -> Result<()> {
         let full = self.options.pattern.full_mask();
-        if f.zmin > self.pool.occluder(p) {
+        if f.zmin > self.pool.pixel(p).occluder {
             stats.culled += 1;
             return Ok(());
         }
+        // A full mask has no disjoint partner: interior pixels skip the
+        // search (and its cache misses) entirely.
         if self.options.merge != MergePolicy::Off
+            && f.mask != full
             && let Some(idx) = self.try_merge(scene, p, &f, depths)
         {
             stats.merged += 1;
@@ -231,10 +240,17 @@ impl ABuffer {
     /// nearer than the pixel's occluder, makes it the occluder and prunes
     /// the fragments entirely behind it.
     fn note_occluder(&mut self, p: usize, f: &Fragment, full: u32, stats: &mut ABufferStats) {
-        if f.mask == full && f.covers_centre() && f.alpha >= 1.0 && f.zmax < self.pool.occluder(p) {
+        let e = *self.pool.pixel(p);
+        if f.mask == full && f.covers_centre() && f.alpha >= 1.0 && f.zmax < e.occluder {
             let z = f.zmax;
             self.pool.set_occluder(p, z);
-            stats.pruned += self.pool.remove_where(p, |g| g.zmin > z);
+            // Walk the list (a cache miss per fragment) only if something
+            // may be behind and the list is long enough to be worth it:
+            // short lists are cheaper to leave to the resolve, which skips
+            // hidden fragments exactly anyway.
+            if e.far > z && e.len > PRUNE_LIST_LEN {
+                stats.pruned += self.pool.remove_where(p, |g| g.zmin > z);
+            }
         }
     }
 
@@ -268,15 +284,18 @@ impl ABuffer {
                 return None;
             }
             let g = *self.pool.get(cur);
-            let other = &scene.tris[g.tri as usize];
+            // Fields of the fragment first; the scene lookups last.
             let mergeable = g.mask & f.mask == 0
                 && !(g.covers_centre() && f.covers_centre())
                 && g.alpha == f.alpha
-                && other.front_facing == tri.front_facing
-                && scene.prims[g.prim as usize].material == material
                 && (self.options.merge == MergePolicy::SameSurface
                     || (0..3).all(|c| (g.rgb[c] - f.rgb[c]).abs() <= MERGE_COLOR_TOLERANCE))
-                && tri.v.iter().any(|v| other.v.contains(v));
+                && {
+                    let other = &scene.tris[g.tri as usize];
+                    other.front_facing == tri.front_facing
+                        && scene.prims[g.prim as usize].material == material
+                        && tri.v.iter().any(|v| other.v.contains(v))
+                };
             if mergeable {
                 let (wg, wf) = (g.mask.count_ones() as f32, f.mask.count_ones() as f32);
                 let m = self.pool.get_mut(cur);

@@ -1,10 +1,13 @@
 //! Fragments and the pooled arena that holds the per-pixel lists.
 //!
 //! Carpenter's pixel holds either a depth or a pointer to a list of
-//! fragments. Here every pixel has a list head (an index into one pool,
-//! [`NIL`] when empty), a length, and the `zmax` of the nearest opaque
-//! fragment covering the whole pixel (the *occluder*, used to cull and
-//! prune fragments hidden behind it). Fragments live in one `Vec` reused
+//! fragments. Here every pixel has a [`PixelEntry`]: a list head (an index
+//! into one pool, [`NIL`] when empty), a length, the `zmax` of the nearest
+//! opaque fragment covering the whole pixel (the *occluder*, used to cull
+//! and prune fragments hidden behind it) and the farthest `zmin` in the
+//! list (so a new occluder walks the list only when it can prune). The
+//! four share one 16-byte entry: a triangle touching a pixel costs one
+//! cache line of the table, not four. Fragments live in one `Vec` reused
 //! from frame to frame, with a free list for the slots of pruned
 //! fragments, so no fragment costs an allocation. In per-sample depth mode
 //! a second `Vec` holds `samples` depths per fragment at the same index.
@@ -64,8 +67,32 @@ impl Fragment {
     }
 }
 
-/// Bytes of the per-pixel table: head, length, occluder depth.
-pub const PIXEL_BYTES: u64 = 12;
+/// One pixel's entry in the table.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PixelEntry {
+    /// First fragment of the list, or [`NIL`].
+    pub head: u32,
+    /// Fragments in the list.
+    pub len: u32,
+    /// `zmax` of the nearest opaque fragment covering every sample and the
+    /// centre (`INFINITY` when none).
+    pub occluder: f32,
+    /// An upper bound of the `zmin` of the fragments in the list
+    /// (`-INFINITY` when it never held one).
+    pub far: f32,
+}
+
+impl PixelEntry {
+    const EMPTY: PixelEntry = PixelEntry {
+        head: NIL,
+        len: 0,
+        occluder: f32::INFINITY,
+        far: f32::NEG_INFINITY,
+    };
+}
+
+/// Bytes of the per-pixel table per pixel.
+pub const PIXEL_BYTES: u64 = std::mem::size_of::<PixelEntry>() as u64;
 
 /// The per-pixel lists and the fragment pool.
 #[derive(Clone, Debug, Default)]
@@ -74,9 +101,7 @@ pub struct FragmentPool {
     depths: Vec<f32>,
     stride: usize,
     free: u32,
-    heads: Vec<u32>,
-    lens: Vec<u32>,
-    occluder: Vec<f32>,
+    pixels: Vec<PixelEntry>,
     cap: usize,
     max_bytes: u64,
     peak: usize,
@@ -102,13 +127,8 @@ impl FragmentPool {
         self.depths.clear();
         self.free = NIL;
         self.peak = 0;
-        for v in [&mut self.heads, &mut self.lens] {
-            v.clear();
-            v.resize(pixels, 0);
-        }
-        self.heads.fill(NIL);
-        self.occluder.clear();
-        self.occluder.resize(pixels, f32::INFINITY);
+        self.pixels.clear();
+        self.pixels.resize(pixels, PixelEntry::EMPTY);
         Ok(())
     }
 
@@ -187,33 +207,36 @@ impl FragmentPool {
     /// First fragment of pixel `p`'s list.
     #[inline]
     pub fn head(&self, p: usize) -> u32 {
-        self.heads[p]
+        self.pixels[p].head
     }
 
     /// Length of pixel `p`'s list.
     #[inline]
     pub fn len(&self, p: usize) -> u32 {
-        self.lens[p]
+        self.pixels[p].len
     }
 
-    /// The occluder depth of pixel `p` (`INFINITY` when none).
+    /// Pixel `p`'s table entry.
     #[inline]
-    pub fn occluder(&self, p: usize) -> f32 {
-        self.occluder[p]
+    pub fn pixel(&self, p: usize) -> &PixelEntry {
+        &self.pixels[p]
     }
 
     /// Sets the occluder depth of pixel `p`.
     #[inline]
     pub fn set_occluder(&mut self, p: usize, z: f32) {
-        self.occluder[p] = z;
+        self.pixels[p].occluder = z;
     }
 
     /// Puts fragment `idx` at the front of pixel `p`'s list.
     #[inline]
     pub fn push_front(&mut self, p: usize, idx: u32) {
-        self.frags[idx as usize].next = self.heads[p];
-        self.heads[p] = idx;
-        self.lens[p] += 1;
+        let f = &mut self.frags[idx as usize];
+        let e = &mut self.pixels[p];
+        f.next = e.head;
+        e.head = idx;
+        e.len += 1;
+        e.far = e.far.max(f.zmin);
     }
 
     /// Unlinks and frees every fragment of pixel `p` for which `remove`
@@ -221,17 +244,17 @@ impl FragmentPool {
     pub fn remove_where(&mut self, p: usize, mut remove: impl FnMut(&Fragment) -> bool) -> u64 {
         let mut removed = 0;
         let mut prev = NIL;
-        let mut cur = self.heads[p];
+        let mut cur = self.pixels[p].head;
         while cur != NIL {
             let next = self.frags[cur as usize].next;
             if remove(&self.frags[cur as usize]) {
                 if prev == NIL {
-                    self.heads[p] = next;
+                    self.pixels[p].head = next;
                 } else {
                     self.frags[prev as usize].next = next;
                 }
                 self.release(cur);
-                self.lens[p] -= 1;
+                self.pixels[p].len -= 1;
                 removed += 1;
             } else {
                 prev = cur;
@@ -243,7 +266,7 @@ impl FragmentPool {
 
     /// Bytes of the pixel table.
     pub fn table_bytes(&self) -> u64 {
-        self.heads.len() as u64 * PIXEL_BYTES
+        self.pixels.len() as u64 * PIXEL_BYTES
     }
 
     /// Most fragment slots in use at once this frame.
@@ -307,12 +330,12 @@ mod tests {
         assert!(matches!(
             pool.reset(1000, 0, 100),
             Err(Error::Limit {
-                value: 12_000,
+                value: 16_000,
                 limit: 100,
                 ..
             })
         ));
-        let room = 12 * 4 + 3 * FragmentPool::fragment_bytes(0);
+        let room = PIXEL_BYTES * 4 + 3 * FragmentPool::fragment_bytes(0);
         pool.reset(4, 0, room).unwrap();
         for _ in 0..3 {
             pool.alloc(frag(0.5), &[]).unwrap();

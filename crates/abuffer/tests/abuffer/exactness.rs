@@ -12,13 +12,15 @@ use proptest::prelude::*;
 use crate::common::{max_color_diff, render, screen};
 
 fn hard_cases() -> Vec<hider_scene::Scene> {
-    vec![
+    let mut scenes = vec![
         procedural::cube(),
         procedural::intersecting_pair(),
         procedural::cyclic_triple(),
         procedural::coplanar_pair(),
         procedural::uv_sphere(12),
-    ]
+    ];
+    scenes.extend(hider_scene::hard_cases::all(7).into_iter().map(|(_, s)| s));
+    scenes
 }
 
 proptest! {

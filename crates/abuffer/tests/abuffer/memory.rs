@@ -16,7 +16,7 @@ fn pixel_table_over_budget_is_refused_before_allocating() {
         matches!(
             e,
             Error::Limit {
-                value: 49_152,
+                value: 65_536,
                 limit: 1000,
                 ..
             }
@@ -28,7 +28,7 @@ fn pixel_table_over_budget_is_refused_before_allocating() {
 #[test]
 fn fragment_pool_over_budget_is_a_limit_error() {
     let s = screen(&procedural::random_soup(200, 1), 64, 64);
-    let budget = 64 * 64 * 12 + 100 * 184;
+    let budget = 64 * 64 * 16 + 100 * 184;
     let mut a = ABuffer::new(ABufferOptions::default().with_max_bytes(budget));
     let mut f = Frame::new(64, 64).unwrap();
     let e = a.render(&s, &mut f).unwrap_err();
