@@ -82,15 +82,23 @@ impl Edge {
         } else {
             (Side::Right, -256 * e.a, r - 1, per_row, 0)
         };
+        let (q, rem) = floor_div(n, d);
+        // Most edges of a finely tessellated mesh live on one row: skip the
+        // step's division for them (it is never used).
+        let (step_q, step_r) = if last_row > row {
+            floor_div(step, d)
+        } else {
+            (0, 0)
+        };
         Self {
             poly,
             side,
             last_row,
-            q: n.div_euclid(d) + offset,
-            rem: n.rem_euclid(d),
+            q: q + offset,
+            rem,
             d,
-            step_q: step.div_euclid(d),
-            step_r: step.rem_euclid(d),
+            step_q,
+            step_r,
         }
     }
 
@@ -110,6 +118,15 @@ impl Edge {
             self.q += 1;
         }
     }
+}
+
+/// `(floor(n / d), n - d * floor(n / d))` for `d > 0`, with one hardware
+/// division (the quotient and remainder of `/` and `%` come from the same
+/// instruction; `div_euclid` and `rem_euclid` would issue two).
+#[inline]
+fn floor_div(n: i64, d: i64) -> (i64, i64) {
+    let (q, r) = (n / d, n % d);
+    if r < 0 { (q - 1, r + d) } else { (q, r) }
 }
 
 /// A polygon of the polygon table.
@@ -396,6 +413,19 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn floor_division_rounds_down_with_a_non_negative_remainder() {
+        for n in -20..20 {
+            for d in 1..7 {
+                assert_eq!(floor_div(n, d), (n.div_euclid(d), n.rem_euclid(d)));
+            }
+        }
+        assert_eq!(
+            floor_div(i64::MIN + 1, 3),
+            ((i64::MIN + 1).div_euclid(3), (i64::MIN + 1).rem_euclid(3))
+        );
     }
 
     #[test]

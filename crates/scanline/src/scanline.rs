@@ -121,7 +121,15 @@ impl Scanline {
         let active = self.active_polys.len() as u64;
         stats.active_polygons_max = stats.active_polygons_max.max(active);
         stats.active_polygon_rows += active;
+        self.walk_edges(row, out.ids.len() as i64 - 1);
+        self.crossings.sort_unstable();
+        stats.crossings += self.crossings.len() as u64;
+        self.sweep(scene, out, stats);
+    }
 
+    /// Steps the active edge list to `row`, turning each active polygon's
+    /// edges into its run's two crossings, and retires what ends here.
+    fn walk_edges(&mut self, row: u32, last_column: i64) {
         // Each polygon's run on this row: the tightest of its active left
         // and right edges (every row of a polygon has at least one of each).
         let polys = &mut self.table.polys;
@@ -143,7 +151,6 @@ impl Scanline {
                 true
             }
         });
-        let last_column = out.ids.len() as i64 - 1;
         self.crossings.clear();
         for &s in &self.active_polys {
             let p = &polys[s as usize];
@@ -155,11 +162,13 @@ impl Scanline {
         }
         self.active_polys
             .retain(|&s| polys[s as usize].last_row > row);
-        self.crossings.sort_unstable();
-        stats.crossings += self.crossings.len() as u64;
+    }
 
-        // Sweep: apply every crossing at a column, then resolve the span up
-        // to the next crossing column.
+    /// Sweeps the sorted crossings left to right: applies every crossing at
+    /// a column to the active polygon list, then resolves the span up to
+    /// the next crossing column.
+    fn sweep(&mut self, scene: &ScreenScene, out: &mut RowOut<'_>, stats: &mut ScanlineStats) {
+        let polys = &self.table.polys;
         let keys = &self.crossings;
         let mut k = 0;
         while k < keys.len() {
