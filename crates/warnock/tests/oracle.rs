@@ -7,6 +7,7 @@ mod common;
 use common::{brute_force, random_big_triangles, render, screen, triangles_in_front_of_camera};
 use glam::DVec3;
 use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
+use hider_scene::geom::{Camera, Projection};
 use hider_scene::procedural::SplitMix64;
 use hider_scene::{Scene, procedural};
 use hider_warnock::WarnockOptions;
@@ -104,8 +105,20 @@ proptest! {
         seed in any::<u64>(),
         width in 1u32..48,
         height in 1u32..48,
+        orthographic in any::<bool>(),
     ) {
-        check(&random_big_triangles(count, seed), width, height);
+        let mut scene = random_big_triangles(count, seed);
+        if orthographic {
+            // Window depth is affine in camera depth here: a different
+            // family of depth planes for the corner certificate.
+            scene.camera = Some(Camera {
+                eye: DVec3::new(0.0, 0.0, 4.0),
+                target: DVec3::ZERO,
+                up: DVec3::Y,
+                projection: Projection::Orthographic { half_height: 1.4, near: 0.5, far: 10.0 },
+            });
+        }
+        check(&scene, width, height);
     }
 
     #[test]
