@@ -39,9 +39,11 @@
 mod depth;
 mod options;
 mod raster;
+mod tiled;
 
 pub use options::{DepthFormat, DepthSource, ZBufferOptions};
 pub use raster::{ZBuffer, ZBufferStats};
+pub use tiled::{TiledZBuffer, TiledZBufferOptions, TiledZBufferStats};
 
 #[cfg(test)]
 mod tests;

@@ -1,0 +1,208 @@
+//! Depth keys: each [`crate::DepthFormat`] as a compact value compared with LESS.
+//!
+//! The tiled rasteriser is generic over the key so that its inner loops are
+//! compiled once per format, with no per-pixel `match`. Every encoding is
+//! *exactly* the one [`crate::ZBuffer`]'s depth buffer applies to the same
+//! `f64` window depth, and every decoding gives exactly the `f32` it writes
+//! to the frame, so the two hiders agree bit for bit.
+//!
+//! Reversed Z stores `1 - d` and tests GREATER; here the key is the
+//! *negated* stored value, `-((1 - d) as f32)`: negation is exact, so
+//! `key_new < key_old` holds exactly when `stored_new > stored_old`, and the
+//! one LESS loop serves all five formats.
+//!
+//! Hierarchical depth relies on one property of every `encode`: it is
+//! monotone non-decreasing in the depth (rounding to f32, clamping,
+//! scaling and rounding to an integer all are, and the reversed key is
+//! the negation of a non-increasing function). So if a lower bound `z` of a
+//! triangle's depths over a block has `encode(z) >= max key of the block`,
+//! no pixel of the block can pass.
+
+const MAX24: u32 = (1 << 24) - 1;
+const MAX16: u32 = u16::MAX as u32;
+
+/// A depth format as a key type: encoding, decoding, and the far value.
+pub(crate) trait DepthKey: Copy + PartialOrd + Send + Sync + 'static {
+    /// The key of a cleared pixel (window depth 1, the far plane).
+    const FAR: Self;
+    /// The stored key of window depth `depth`, exactly as `ZBuffer` rounds.
+    fn encode(depth: f64) -> Self;
+    /// The window depth `ZBuffer` writes to the frame for a stored key.
+    fn decode(self) -> f32;
+    /// The larger of two keys (for block maxima).
+    #[inline]
+    fn max_key(self, other: Self) -> Self {
+        if other > self { other } else { self }
+    }
+}
+
+impl DepthKey for f32 {
+    const FAR: Self = 1.0;
+    #[inline]
+    fn encode(depth: f64) -> Self {
+        depth as f32
+    }
+    #[inline]
+    fn decode(self) -> f32 {
+        // ZBuffer writes `f64::from(d) as f32`, which is `d`.
+        self
+    }
+}
+
+impl DepthKey for f64 {
+    const FAR: Self = 1.0;
+    #[inline]
+    fn encode(depth: f64) -> Self {
+        depth
+    }
+    #[inline]
+    fn decode(self) -> f32 {
+        self as f32
+    }
+}
+
+/// 24-bit unsigned normalised depth in a `u32`.
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub(crate) struct Fixed24(u32);
+
+impl DepthKey for Fixed24 {
+    const FAR: Self = Fixed24(MAX24);
+    #[inline]
+    fn encode(depth: f64) -> Self {
+        Fixed24(quantize(depth, MAX24))
+    }
+    #[inline]
+    fn decode(self) -> f32 {
+        (f64::from(self.0) / f64::from(MAX24)) as f32
+    }
+}
+
+/// 16-bit unsigned normalised depth.
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub(crate) struct Fixed16(u16);
+
+impl DepthKey for Fixed16 {
+    const FAR: Self = Fixed16(u16::MAX);
+    #[inline]
+    fn encode(depth: f64) -> Self {
+        Fixed16(quantize(depth, MAX16) as u16)
+    }
+    #[inline]
+    fn decode(self) -> f32 {
+        (f64::from(self.0) / f64::from(MAX16)) as f32
+    }
+}
+
+/// Reversed f32 depth, stored negated so that LESS is the test (see the
+/// module documentation).
+#[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
+pub(crate) struct Reversed(f32);
+
+impl DepthKey for Reversed {
+    // ZBuffer clears reversed depth to 0; its negation is -0, which
+    // compares equal to 0, so nothing at the far plane passes, as there.
+    const FAR: Self = Reversed(-0.0);
+    #[inline]
+    fn encode(depth: f64) -> Self {
+        Reversed(-((1.0 - depth) as f32))
+    }
+    #[inline]
+    fn decode(self) -> f32 {
+        (1.0 - f64::from(-self.0)) as f32
+    }
+}
+
+/// GL's conversion of a [0, 1] depth to unsigned normalised fixed point,
+/// the same expression as the reference depth buffer's.
+#[inline]
+fn quantize(depth: f64, max: u32) -> u32 {
+    (depth.clamp(0.0, 1.0) * f64::from(max)).round() as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::depth::DepthBuffer;
+    use crate::options::DepthFormat;
+
+    /// Replays a sequence of depths through the reference buffer and the
+    /// key, checking pass/fail and the decoded frame depth agree.
+    fn agree<K: DepthKey>(format: DepthFormat, depths: &[f64]) {
+        let mut reference = DepthBuffer::default();
+        reference.clear(format, 1);
+        let mut key = K::FAR;
+        let mut frame_depth = 1.0f32;
+        assert_eq!(key.decode(), 1.0, "{:?}: far decodes to 1", format);
+        for &d in depths {
+            let new = K::encode(d);
+            let pass = new < key;
+            let stored = reference.test_and_set(0, d);
+            assert_eq!(pass, stored.is_some(), "{:?} at {d}", format);
+            if let Some(s) = stored {
+                key = new;
+                frame_depth = s as f32;
+            }
+            assert_eq!(
+                key.decode().to_bits(),
+                frame_depth.to_bits(),
+                "{:?}",
+                format
+            );
+        }
+    }
+
+    #[test]
+    fn keys_replay_the_reference_buffer_exactly() {
+        let depths = [
+            0.9,
+            0.95,
+            0.5,
+            0.5,
+            0.500_000_01,
+            0.499_999_99,
+            1e-9,
+            0.0,
+            -0.0,
+            0.3,
+            1.0,
+            1.5,
+            -0.5,
+            0.999_999_9,
+            0.2,
+            0.2 + 1e-17,
+            0.1,
+        ];
+        agree::<f32>(DepthFormat::F32, &depths);
+        agree::<f64>(DepthFormat::F64, &depths);
+        agree::<Fixed24>(DepthFormat::Fixed24, &depths);
+        agree::<Fixed16>(DepthFormat::Fixed16, &depths);
+        agree::<Reversed>(DepthFormat::ReversedF32, &depths);
+        let mut rev = depths;
+        rev.reverse();
+        agree::<f32>(DepthFormat::F32, &rev);
+        agree::<Reversed>(DepthFormat::ReversedF32, &rev);
+        agree::<Fixed24>(DepthFormat::Fixed24, &rev);
+    }
+
+    fn monotone<K: DepthKey>(format: DepthFormat) {
+        let mut x = -0.25f64;
+        let mut last = K::encode(x);
+        while x < 1.25 {
+            x += 0.000_37;
+            for d in [x, x + 1e-12, x + 1e-7] {
+                let k = K::encode(d);
+                assert!(k >= last, "{:?} not monotone at {d}", format);
+                last = k;
+            }
+        }
+    }
+
+    #[test]
+    fn every_encoding_is_monotone() {
+        monotone::<f32>(DepthFormat::F32);
+        monotone::<f64>(DepthFormat::F64);
+        monotone::<Fixed24>(DepthFormat::Fixed24);
+        monotone::<Fixed16>(DepthFormat::Fixed16);
+        monotone::<Reversed>(DepthFormat::ReversedF32);
+    }
+}

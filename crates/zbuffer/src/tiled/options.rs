@@ -1,0 +1,88 @@
+//! Options of the tiled z-buffer.
+
+use crate::options::DepthFormat;
+
+/// Options of [`crate::TiledZBuffer`]. `Default` is accurate (f32 window
+/// depth, exactly [`crate::ZBuffer`]'s output) and fast (all cores, 64-pixel
+/// tiles, hierarchical depth on).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct TiledZBufferOptions {
+    /// Storage format of the depth buffer; the output equals
+    /// [`crate::ZBuffer`]'s with the same format, pixel for pixel.
+    pub depth_format: DepthFormat,
+    /// Worker threads rendering tiles: `1` renders on the calling thread
+    /// with no pool, `0` uses every core the machine reports.
+    pub threads: usize,
+    /// Side of a square screen tile in pixels: a multiple of 8 (the block
+    /// size) from 8 to 256. 64 keeps a tile's depth and ids (32 KB in f32)
+    /// in a core's L1/L2 cache.
+    pub tile_size: u32,
+    /// Whether to reject triangles and 8x8 blocks whose nearest possible
+    /// depth is behind everything stored there (per-tile and per-block
+    /// maximum depth). Never changes the output, only the work.
+    pub hierarchical_z: bool,
+}
+
+impl Default for TiledZBufferOptions {
+    fn default() -> Self {
+        Self {
+            depth_format: DepthFormat::default(),
+            threads: 0,
+            tile_size: 64,
+            hierarchical_z: true,
+        }
+    }
+}
+
+impl TiledZBufferOptions {
+    /// Smallest accepted [`Self::tile_size`].
+    pub const MIN_TILE: u32 = 8;
+    /// Largest accepted [`Self::tile_size`].
+    pub const MAX_TILE: u32 = 256;
+    /// Largest accepted [`Self::threads`].
+    pub const MAX_THREADS: usize = 256;
+
+    /// Sets [`Self::depth_format`].
+    pub fn with_depth_format(mut self, format: DepthFormat) -> Self {
+        self.depth_format = format;
+        self
+    }
+
+    /// Sets [`Self::threads`].
+    pub fn with_threads(mut self, threads: usize) -> Self {
+        self.threads = threads;
+        self
+    }
+
+    /// Sets [`Self::tile_size`].
+    pub fn with_tile_size(mut self, tile_size: u32) -> Self {
+        self.tile_size = tile_size;
+        self
+    }
+
+    /// Sets [`Self::hierarchical_z`].
+    pub fn with_hierarchical_z(mut self, on: bool) -> Self {
+        self.hierarchical_z = on;
+        self
+    }
+
+    /// Checks the options, naming the first bad value.
+    pub fn validate(&self) -> hider_scene::Result<()> {
+        let t = self.tile_size;
+        if !(Self::MIN_TILE..=Self::MAX_TILE).contains(&t) || t % 8 != 0 {
+            return Err(hider_scene::Error::OutOfRange {
+                what: "tile size",
+                expected: "a multiple of 8 from 8 to 256",
+                value: t.to_string(),
+            });
+        }
+        if self.threads > Self::MAX_THREADS {
+            return Err(hider_scene::Error::Limit {
+                what: "threads",
+                value: self.threads as u64,
+                limit: Self::MAX_THREADS as u64,
+            });
+        }
+        Ok(())
+    }
+}

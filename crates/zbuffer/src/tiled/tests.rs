@@ -1,0 +1,245 @@
+//! The tiled z-buffer against the reference z-buffer: every pixel's id and
+//! depth bits, on random soups, spheres, the hard-case generators and odd
+//! image sizes, for every depth format, thread count and tile size.
+
+use glam::DVec3;
+use hider_geom::{Camera, Projection};
+use hider_scene::{
+    Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
+};
+use proptest::prelude::*;
+
+use crate::{
+    DepthFormat, TiledZBuffer, TiledZBufferOptions, ZBuffer, ZBufferOptions, ZBufferStats,
+};
+
+fn fit(scene: &Scene, w: u32, h: u32) -> ScreenScene {
+    let view = View::for_scene(scene, w, h).unwrap();
+    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+}
+
+/// A camera inside the soup's cube: triangles crossing the near plane,
+/// behind the eye, and huge on screen.
+fn inside(scene: &Scene, w: u32, h: u32, yaw: f64) -> ScreenScene {
+    let camera = Camera {
+        eye: DVec3::new(0.1, -0.05, 0.2),
+        target: DVec3::new(yaw.sin(), 0.3 * yaw.cos(), -yaw.cos()),
+        up: DVec3::Y,
+        projection: Projection::Perspective {
+            fovy_degrees: 70.0,
+            near: 0.01,
+            far: 10.0,
+        },
+    };
+    let view = View::new(camera, w, h).unwrap();
+    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+}
+
+fn reference(s: &ScreenScene, format: DepthFormat) -> (Frame, ZBufferStats) {
+    let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
+    let opts = ZBufferOptions::default().with_depth_format(format);
+    let stats = ZBuffer::new(opts).render_frame(s, &mut f).unwrap();
+    (f, stats)
+}
+
+/// A frame full of garbage, so a pixel the tiled hider forgets shows.
+fn dirty_frame(s: &ScreenScene) -> Frame {
+    let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
+    f.ids.fill(7);
+    f.depth.fill(0.25);
+    f.color.fill([1, 2, 3, 4]);
+    f.coverage = vec![0.5; f.len()];
+    f
+}
+
+/// Renders with the tiled hider and asserts equality with the reference,
+/// bit for bit; returns the stats.
+fn assert_same(s: &ScreenScene, options: TiledZBufferOptions) -> crate::TiledZBufferStats {
+    let (want, want_stats) = reference(s, options.depth_format);
+    let mut got = dirty_frame(s);
+    let stats = TiledZBuffer::new(options)
+        .render_frame(s, &mut got)
+        .unwrap();
+    for i in 0..want.len() {
+        let (x, y) = (i as u32 % s.viewport.width, i as u32 / s.viewport.width);
+        assert_eq!(got.ids[i], want.ids[i], "id at ({x}, {y}) with {options:?}");
+        assert_eq!(
+            got.depth[i].to_bits(),
+            want.depth[i].to_bits(),
+            "depth at ({x}, {y}) with {options:?}"
+        );
+    }
+    assert!(got == want, "colour or coverage differ with {options:?}");
+    // Hierarchical depth skips only pixels that fail: the passes are the
+    // reference's, one for one.
+    assert_eq!(stats.depth_passes, want_stats.depth_passes, "{options:?}");
+    assert!(stats.depth_tests <= want_stats.depth_tests);
+    stats
+}
+
+fn options() -> impl Strategy<Value = TiledZBufferOptions> {
+    (
+        prop::sample::select(DepthFormat::ALL.to_vec()),
+        prop::sample::select(vec![1usize, 2, 3]),
+        prop::sample::select(vec![8u32, 16, 24, 64]),
+        any::<bool>(),
+    )
+        .prop_map(|(f, t, s, h)| {
+            TiledZBufferOptions::default()
+                .with_depth_format(f)
+                .with_threads(t)
+                .with_tile_size(s)
+                .with_hierarchical_z(h)
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn random_soups_match_the_reference(
+        count in 1u32..400,
+        seed in any::<u64>(),
+        w in 1u32..200,
+        h in 1u32..200,
+        o in options(),
+    ) {
+        assert_same(&fit(&procedural::random_soup(count, seed), w, h), o);
+    }
+
+    #[test]
+    fn soups_seen_from_inside_match_the_reference(
+        count in 1u32..300,
+        seed in any::<u64>(),
+        w in 1u32..64,
+        h in 1u32..64,
+        yaw in 0.0f64..6.3,
+        o in options(),
+    ) {
+        assert_same(&inside(&procedural::random_soup(count, seed), w, h, yaw), o);
+    }
+
+    #[test]
+    fn spheres_match_the_reference(n in 3u32..40, size in 1u32..80, o in options()) {
+        assert_same(&fit(&procedural::uv_sphere(n), size, size + 3), o);
+    }
+}
+
+#[test]
+fn hard_cases_and_odd_sizes_match_for_every_format() {
+    let scenes = [
+        procedural::cube(),
+        procedural::intersecting_pair(),
+        procedural::cyclic_triple(),
+        procedural::coplanar_pair(),
+    ];
+    for scene in &scenes {
+        for (w, h) in [(1, 1), (17, 3), (3, 17), (65, 63), (100, 37)] {
+            let s = fit(scene, w, h);
+            for format in DepthFormat::ALL {
+                for (threads, tile) in [(1, 64), (2, 8), (3, 16)] {
+                    let o = TiledZBufferOptions::default()
+                        .with_depth_format(format)
+                        .with_threads(threads)
+                        .with_tile_size(tile);
+                    assert_same(&s, o);
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn hierarchical_depth_rejects_work_on_an_overdrawn_soup() {
+    // 3000 triangles of about 12 pixels across: a dozen layers per pixel.
+    let s = fit(&procedural::random_soup(3000, 5), 320, 320);
+    let on = assert_same(&s, TiledZBufferOptions::default().with_threads(1));
+    let off = assert_same(
+        &s,
+        TiledZBufferOptions::default()
+            .with_threads(1)
+            .with_hierarchical_z(false),
+    );
+    assert!(on.hiz_block_rejects > 0, "{on:?}");
+    assert!(on.depth_tests < off.depth_tests, "{on:?} vs {off:?}");
+    assert_eq!((off.hiz_block_rejects, off.hiz_triangle_rejects), (0, 0));
+    assert!(on.blocks_inside > 0 && on.blocks_outside > 0, "{on:?}");
+}
+
+#[test]
+fn tiles_nothing_meets_are_never_cleared() {
+    // A small cube in the middle of a large image.
+    let mut s = fit(&procedural::cube(), 256, 256);
+    // Keep only the triangles that lie in the top-left quadrant.
+    s.tris
+        .retain(|t| t.v.iter().all(|p| p.x < 128 * 256 && p.y < 128 * 256));
+    let stats = assert_same(&s, TiledZBufferOptions::default().with_threads(1));
+    assert_eq!(stats.tiles_drawn + stats.tiles_skipped, 16);
+    assert!(stats.tiles_skipped >= 12, "{stats:?}");
+}
+
+#[test]
+fn large_triangles_interleave_with_binned_ones_in_primitive_order() {
+    // A soup seen from inside has triangles covering most of the screen
+    // (the shared large list) drawn between small ones (the tile bins);
+    // 8-pixel tiles make "large" common.
+    let s = inside(&procedural::random_soup(3000, 9), 128, 96, 0.4);
+    let stats = assert_same(
+        &s,
+        TiledZBufferOptions::default()
+            .with_threads(2)
+            .with_tile_size(8),
+    );
+    assert!(
+        stats.large_triangles > 0 && stats.bin_entries > 0,
+        "{stats:?}"
+    );
+}
+
+#[test]
+fn buffers_are_reused_across_sizes_formats_and_scenes() {
+    let mut z = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(2));
+    for (scene, size) in [
+        (procedural::uv_sphere(12), 64),
+        (procedural::random_soup(200, 3), 40),
+        (procedural::uv_sphere(12), 64),
+    ] {
+        let s = fit(&scene, size, size);
+        let (want, _) = reference(&s, DepthFormat::F32);
+        let mut got = dirty_frame(&s);
+        z.render(&s, &mut got).unwrap();
+        assert!(got == want);
+        z.render(&s, &mut got).unwrap();
+        assert!(got == want);
+    }
+}
+
+#[test]
+fn bad_options_and_frames_are_typed_errors() {
+    let s = fit(&procedural::cube(), 16, 16);
+    let mut f = Frame::new(16, 16).unwrap();
+    for tile in [0, 4, 12, 264, 512] {
+        let e = TiledZBuffer::new(TiledZBufferOptions::default().with_tile_size(tile))
+            .render(&s, &mut f)
+            .unwrap_err();
+        assert!(e.to_string().contains("tile size"), "{e}");
+    }
+    let e = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(100_000))
+        .render(&s, &mut f)
+        .unwrap_err();
+    assert!(e.to_string().contains("threads"), "{e}");
+    let mut wrong = Frame::new(17, 16).unwrap();
+    let e = TiledZBuffer::default().render(&s, &mut wrong).unwrap_err();
+    assert!(e.to_string().contains("17x16"), "{e}");
+    // Nothing was drawn into the frames of failed renders.
+    assert!(f.ids.iter().all(|&id| id == NO_ID));
+}
+
+#[test]
+fn names_say_the_format() {
+    assert_eq!(TiledZBuffer::default().name(), "zbuffer-tiled");
+    let z =
+        TiledZBuffer::new(TiledZBufferOptions::default().with_depth_format(DepthFormat::Fixed24));
+    assert_eq!(z.name(), "zbuffer-tiled-fixed24");
+    assert!(TiledZBuffer::default().threads() >= 1);
+}

@@ -1,0 +1,480 @@
+//! One screen tile: its depth and ids in a compact buffer that stays in
+//! cache, 8x8 blocks with trivial accept/reject from the edge functions at
+//! their corners, hierarchical depth, and the resolve into the frame.
+//!
+//! Block traversal is Greene's hierarchical rasterisation reduced to one
+//! level (Greene, "Hierarchical Polygon Tiling with Coverage Masks",
+//! SIGGRAPH 1996; McCormack and McNamara, "Tiled Polygon Traversal Using
+//! Half-Plane Edge Functions", 2000): an edge function is affine, so its
+//! extreme values over a block are at the block's corners, and a block is
+//! outside the triangle when one edge is non-positive at all four, inside
+//! when all three are positive at all four.
+//!
+//! Hierarchical depth is Greene, Kass and Miller's z-pyramid ("Hierarchical
+//! Z-Buffer Visibility", SIGGRAPH 1993) with two levels: the maximum key of
+//! each block and of the whole tile. A triangle or block whose depth lower
+//! bound (see [`super::bounds`]) encodes to a key not below that maximum
+//! cannot pass LESS anywhere there. Maxima only fall as depths are
+//! written, so a stale maximum is still a valid bound: they are refreshed
+//! lazily, after enough passes to be worth it.
+
+use hider_geom::Viewport;
+use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
+use hider_scene::{NO_ID, ScreenTri};
+
+use super::bounds::DepthBounds;
+use super::key::{DepthKey, Fixed16, Fixed24, Reversed};
+use super::stats::TiledZBufferStats;
+
+/// Side of a block, pixels.
+const BLOCK: u32 = 8;
+/// Triangles whose box in the tile is at most this many pixels are drawn
+/// by a plain box scan: for them block set-up costs more than it saves.
+const SMALL_AREA: u32 = 64;
+/// Passes into a block after which its maximum is recomputed.
+const BLOCK_REFRESH: u32 = 16;
+
+/// A tile's buffers, reused for every tile of a band and every frame.
+#[derive(Clone, Debug)]
+pub(crate) struct TileBuf<K> {
+    /// Tile side (stride of `keys` and `ids`).
+    size: u32,
+    keys: Vec<K>,
+    ids: Vec<u32>,
+    /// Per block (row-major, `size / 8` per row): an upper bound of its
+    /// keys, and the passes since it was last recomputed.
+    block_max: Vec<K>,
+    block_passes: Vec<u32>,
+    /// Upper bound of every key of the tile, and passes since recomputed.
+    tile_max: K,
+    tile_passes: u32,
+    /// Per column of the current triangle, `value + dx * (x - x0)`.
+    col: Vec<f64>,
+    /// The current tile: origin and size in pixels (clipped to the image).
+    x0: u32,
+    y0: u32,
+    w: u32,
+    h: u32,
+    /// Whether a triangle met the tile (its buffers were cleared).
+    active: bool,
+    /// Counters of the band this buffer renders.
+    pub(crate) stats: TiledZBufferStats,
+}
+
+impl<K: DepthKey> TileBuf<K> {
+    pub(crate) fn new(size: u32) -> Self {
+        let n = (size * size) as usize;
+        let blocks = ((size / BLOCK) * (size / BLOCK)) as usize;
+        Self {
+            size,
+            keys: vec![K::FAR; n],
+            ids: vec![NO_ID; n],
+            block_max: vec![K::FAR; blocks],
+            block_passes: vec![0; blocks],
+            tile_max: K::FAR,
+            tile_passes: 0,
+            col: vec![0.0; size as usize],
+            x0: 0,
+            y0: 0,
+            w: 0,
+            h: 0,
+            active: false,
+            stats: TiledZBufferStats::default(),
+        }
+    }
+
+    pub(crate) fn size(&self) -> u32 {
+        self.size
+    }
+
+    pub(crate) fn bytes(&self) -> usize {
+        self.keys.capacity() * std::mem::size_of::<K>()
+            + self.ids.capacity() * 4
+            + self.block_max.capacity() * std::mem::size_of::<K>()
+            + self.block_passes.capacity() * 4
+            + self.col.capacity() * 8
+    }
+
+    /// Starts the tile at `(x0, y0)` of `w x h` pixels. Nothing is cleared
+    /// until a triangle meets it (the per-tile clear flag).
+    pub(crate) fn start(&mut self, x0: u32, y0: u32, w: u32, h: u32) {
+        (self.x0, self.y0, self.w, self.h) = (x0, y0, w, h);
+        self.active = false;
+    }
+
+    fn activate(&mut self) {
+        self.active = true;
+        self.stats.tiles_drawn += 1;
+        let s = self.size as usize;
+        for r in 0..self.h as usize {
+            self.keys[r * s..r * s + self.w as usize].fill(K::FAR);
+            self.ids[r * s..r * s + self.w as usize].fill(NO_ID);
+        }
+        self.block_max.fill(K::FAR);
+        self.block_passes.fill(0);
+        self.tile_max = K::FAR;
+        self.tile_passes = 0;
+    }
+
+    /// Draws one triangle into the tile.
+    pub(crate) fn draw(&mut self, tri: &ScreenTri, viewport: Viewport, hiz: bool) {
+        let Some((bx0, by0, bx1, by1)) = tri.pixel_bounds(viewport) else {
+            return;
+        };
+        let (x0, y0) = (bx0.max(self.x0), by0.max(self.y0));
+        let (x1, y1) = (bx1.min(self.x0 + self.w - 1), by1.min(self.y0 + self.h - 1));
+        if x0 > x1 || y0 > y1 {
+            return;
+        }
+        if !self.active {
+            self.activate();
+        }
+        self.stats.triangle_tiles += 1;
+        let small = (x1 - x0 + 1) * (y1 - y0 + 1) <= SMALL_AREA;
+        // Depth bounds cost a few plane evaluations: only worth it when
+        // something in the tile is already nearer than the far plane.
+        let bounds = if hiz && (!small || self.tile_max < K::FAR) {
+            DepthBounds::new(&tri.v, &tri.depth)
+        } else {
+            None
+        };
+        if let Some(b) = &bounds {
+            self.refresh_tile_max();
+            if K::encode(b.tri_low) >= self.tile_max {
+                self.stats.hiz_triangle_rejects += 1;
+                return;
+            }
+        }
+        // Column terms of the depth plane: PlaneEq::eval computes
+        // `value + dx * (x - x0) + dy * (y - y0)` left to right, so adding
+        // the row term to this column term gives the same f64, bit for bit.
+        let p = &tri.depth;
+        for (i, c) in self.col[..(x1 - x0 + 1) as usize].iter_mut().enumerate() {
+            *c = p.value + p.dx * ((f64::from(x0 + i as u32) + 0.5) - p.x0);
+        }
+        let edges = tri.edges();
+        let unit = i64::from(SUBPIXEL_SCALE);
+        let sx = edges.map(|e| e.a * unit);
+        let sy = edges.map(|e| e.b * unit);
+        let px = i64::from(x0) * unit + i64::from(HALF_PIXEL);
+        let py = i64::from(y0) * unit + i64::from(HALF_PIXEL);
+        let e00 = edges.map(|e| e.eval(px, py));
+        let setup = Setup {
+            x0,
+            y0,
+            e00,
+            sx,
+            sy,
+            prim: tri.prim,
+        };
+        if small {
+            let passes = self.rows::<true>(&setup, tri, x0, y0, x1, y1);
+            if passes > 0 {
+                self.note_passes_in_rect(x0, y0, x1, y1, passes);
+            }
+        } else {
+            self.blocks(&setup, tri, bounds.as_ref(), x1, y1);
+        }
+    }
+
+    /// Visits the 8x8 blocks of the triangle's box `setup.x0..=x1`,
+    /// `setup.y0..=y1`.
+    fn blocks(
+        &mut self,
+        s: &Setup,
+        tri: &ScreenTri,
+        bounds: Option<&DepthBounds>,
+        x1: u32,
+        y1: u32,
+    ) {
+        let per_row = (self.size / BLOCK) as usize;
+        let (bc0, bc1) = ((s.x0 - self.x0) / BLOCK, (x1 - self.x0) / BLOCK);
+        let (br0, br1) = ((s.y0 - self.y0) / BLOCK, (y1 - self.y0) / BLOCK);
+        for br in br0..=br1 {
+            let ya = (self.y0 + br * BLOCK).max(s.y0);
+            let yb = (self.y0 + br * BLOCK + BLOCK - 1).min(y1);
+            for bc in bc0..=bc1 {
+                let xa = (self.x0 + bc * BLOCK).max(s.x0);
+                let xb = (self.x0 + bc * BLOCK + BLOCK - 1).min(x1);
+                self.stats.blocks_visited += 1;
+                // Edge functions at the block's corner pixel centres.
+                let (dx, dy) = (i64::from(xa - s.x0), i64::from(ya - s.y0));
+                let (wx, wy) = (i64::from(xb - xa), i64::from(yb - ya));
+                let mut inside = true;
+                let mut outside = false;
+                for k in 0..3 {
+                    let c = s.e00[k] + s.sx[k] * dx + s.sy[k] * dy;
+                    let (ax, ay) = (s.sx[k] * wx, s.sy[k] * wy);
+                    let lo = c + ax.min(0) + ay.min(0);
+                    let hi = c + ax.max(0) + ay.max(0);
+                    outside |= hi <= 0;
+                    inside &= lo > 0;
+                }
+                if outside {
+                    self.stats.blocks_outside += 1;
+                    continue;
+                }
+                let block = br as usize * per_row + bc as usize;
+                if let Some(b) = bounds {
+                    if self.block_passes[block] >= BLOCK_REFRESH {
+                        self.refresh_block(block);
+                    }
+                    let max = self.block_max[block];
+                    if max < K::FAR && K::encode(b.rect_low(xa, ya, xb, yb)) >= max {
+                        self.stats.hiz_block_rejects += 1;
+                        continue;
+                    }
+                }
+                let passes = if inside {
+                    self.stats.blocks_inside += 1;
+                    self.rows::<false>(s, tri, xa, ya, xb, yb)
+                } else {
+                    self.rows::<true>(s, tri, xa, ya, xb, yb)
+                };
+                if passes > 0 {
+                    self.block_passes[block] += passes;
+                    self.tile_passes += passes;
+                }
+            }
+        }
+    }
+
+    /// Rasterises rows `ya..=yb`, columns `xa..=xb` (inside the triangle's
+    /// box); `EDGES` = false when the block is known to be inside.
+    /// Returns the passes.
+    fn rows<const EDGES: bool>(
+        &mut self,
+        s: &Setup,
+        tri: &ScreenTri,
+        xa: u32,
+        ya: u32,
+        xb: u32,
+        yb: u32,
+    ) -> u32 {
+        let p = &tri.depth;
+        let n = (xb - xa + 1) as usize;
+        let c0 = (xa - s.x0) as usize;
+        let col = &self.col[c0..c0 + n];
+        let stride = self.size as usize;
+        let dx = i64::from(xa - s.x0);
+        let dy = i64::from(ya - s.y0);
+        let mut e = [0, 1, 2].map(|k| s.e00[k] + s.sx[k] * dx + s.sy[k] * dy);
+        let (mut inside_total, mut pass_total) = (0u32, 0u32);
+        for y in ya..=yb {
+            let ty = p.dy * ((f64::from(y) + 0.5) - p.y0);
+            let at = (y - self.y0) as usize * stride + (xa - self.x0) as usize;
+            let (inside, passes) = raster_row::<K, EDGES>(
+                &mut self.keys[at..at + n],
+                &mut self.ids[at..at + n],
+                col,
+                ty,
+                e,
+                s.sx,
+                s.prim,
+            );
+            inside_total += inside;
+            pass_total += passes;
+            for (e, step) in e.iter_mut().zip(s.sy) {
+                *e += step;
+            }
+        }
+        let rows = u64::from(yb - ya + 1);
+        if EDGES {
+            self.stats.pixels_tested += rows * n as u64;
+            self.stats.depth_tests += u64::from(inside_total);
+        } else {
+            self.stats.depth_tests += rows * n as u64;
+        }
+        self.stats.depth_passes += u64::from(pass_total);
+        pass_total
+    }
+
+    /// Credits `passes` to every block of a rectangle (an over-count for
+    /// blocks it only partly covers: that only refreshes them sooner).
+    fn note_passes_in_rect(&mut self, x0: u32, y0: u32, x1: u32, y1: u32, passes: u32) {
+        let per_row = (self.size / BLOCK) as usize;
+        for br in (y0 - self.y0) / BLOCK..=(y1 - self.y0) / BLOCK {
+            for bc in (x0 - self.x0) / BLOCK..=(x1 - self.x0) / BLOCK {
+                self.block_passes[br as usize * per_row + bc as usize] += passes;
+            }
+        }
+        self.tile_passes += passes;
+    }
+
+    /// Recomputes a block's maximum key from its pixels.
+    fn refresh_block(&mut self, block: usize) {
+        let per_row = (self.size / BLOCK) as usize;
+        let (br, bc) = ((block / per_row) as u32, (block % per_row) as u32);
+        let (ya, xa) = (br * BLOCK, bc * BLOCK);
+        let (yb, xb) = ((ya + BLOCK).min(self.h), (xa + BLOCK).min(self.w));
+        let stride = self.size as usize;
+        let mut m = self.keys[ya as usize * stride + xa as usize];
+        for y in ya..yb {
+            let at = y as usize * stride;
+            for &k in &self.keys[at + xa as usize..at + xb as usize] {
+                m = m.max_key(k);
+            }
+        }
+        self.block_max[block] = m;
+        self.block_passes[block] = 0;
+    }
+
+    /// Recomputes the tile's maximum once enough has been drawn since the
+    /// last time (half the tile's pixels' worth of passes).
+    fn refresh_tile_max(&mut self) {
+        if self.tile_passes < self.w * self.h / 2 {
+            return;
+        }
+        let per_row = (self.size / BLOCK) as usize;
+        let mut m: Option<K> = None;
+        for br in 0..self.h.div_ceil(BLOCK) as usize {
+            for bc in 0..self.w.div_ceil(BLOCK) as usize {
+                let block = br * per_row + bc;
+                if self.block_passes[block] > 0 {
+                    self.refresh_block(block);
+                }
+                let b = self.block_max[block];
+                m = Some(m.map_or(b, |m| m.max_key(b)));
+            }
+        }
+        self.tile_max = m.unwrap_or(K::FAR);
+        self.tile_passes = 0;
+    }
+
+    /// Writes the tile into the band's rows of the frame (`band_y0` is the
+    /// band's first image row): ids, and the window depth the reference
+    /// z-buffer would have written; background where nothing was drawn.
+    pub(crate) fn resolve(
+        &mut self,
+        ids: &mut [u32],
+        depth: &mut [f32],
+        width: usize,
+        band_y0: u32,
+    ) {
+        let (w, s) = (self.w as usize, self.size as usize);
+        for r in 0..self.h as usize {
+            let at = (self.y0 - band_y0) as usize * width + r * width + self.x0 as usize;
+            let (ids_out, depth_out) = (&mut ids[at..at + w], &mut depth[at..at + w]);
+            if self.active {
+                ids_out.copy_from_slice(&self.ids[r * s..r * s + w]);
+                for (d, k) in depth_out.iter_mut().zip(&self.keys[r * s..r * s + w]) {
+                    *d = k.decode();
+                }
+            } else {
+                ids_out.fill(NO_ID);
+                depth_out.fill(1.0);
+            }
+        }
+        if !self.active {
+            self.stats.tiles_skipped += 1;
+        }
+    }
+}
+
+/// Per (triangle, tile) set-up: the edge functions at the box's first pixel
+/// centre and their exact integer steps per pixel.
+struct Setup {
+    x0: u32,
+    y0: u32,
+    e00: [i64; 3],
+    sx: [i64; 3],
+    sy: [i64; 3],
+    prim: u32,
+}
+
+/// One row of pixels: edge tests (when `EDGES`), depth, LESS, write.
+/// Branch-free so that the compiler can vectorise it: the edge values step
+/// by exact integer increments, the depth is the column term plus the row
+/// term (the reference's own f64 expression), and the writes are selects.
+/// Returns (pixels inside, passes).
+#[inline(always)]
+fn raster_row<K: DepthKey, const EDGES: bool>(
+    keys: &mut [K],
+    ids: &mut [u32],
+    col: &[f64],
+    ty: f64,
+    e: [i64; 3],
+    step: [i64; 3],
+    prim: u32,
+) -> (u32, u32) {
+    let n = keys.len();
+    let (ids, col) = (&mut ids[..n], &col[..n]);
+    let (mut e0, mut e1, mut e2) = (e[0], e[1], e[2]);
+    let (mut inside_n, mut passes) = (0u32, 0u32);
+    for i in 0..n {
+        let inside = !EDGES || ((e0 > 0) & (e1 > 0) & (e2 > 0));
+        e0 += step[0];
+        e1 += step[1];
+        e2 += step[2];
+        let key = K::encode(col[i] + ty);
+        let old = keys[i];
+        let pass = inside & (key < old);
+        keys[i] = if pass { key } else { old };
+        ids[i] = if pass { prim } else { ids[i] };
+        inside_n += u32::from(inside);
+        passes += u32::from(pass);
+    }
+    (inside_n, passes)
+}
+
+/// Writes background into a tile no triangle's bin reached.
+pub(crate) fn clear_tile(
+    ids: &mut [u32],
+    depth: &mut [f32],
+    width: usize,
+    rect: (u32, u32, u32, u32),
+) {
+    let (x0, y_in_band, w, h) = rect;
+    for r in 0..h as usize {
+        let at = (y_in_band as usize + r) * width + x0 as usize;
+        ids[at..at + w as usize].fill(NO_ID);
+        depth[at..at + w as usize].fill(1.0);
+    }
+}
+
+/// The tile buffers of every band, one vector per depth format so each
+/// holds its format's own key type.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Scratch {
+    pub(crate) f32: Vec<TileBuf<f32>>,
+    pub(crate) f64: Vec<TileBuf<f64>>,
+    pub(crate) fixed24: Vec<TileBuf<Fixed24>>,
+    pub(crate) fixed16: Vec<TileBuf<Fixed16>>,
+    pub(crate) reversed: Vec<TileBuf<Reversed>>,
+}
+
+/// A key type with its place in [`Scratch`].
+pub(crate) trait TileKey: DepthKey {
+    /// The tile buffers of this format.
+    fn bufs(s: &mut Scratch) -> &mut Vec<TileBuf<Self>>;
+}
+
+impl TileKey for f32 {
+    fn bufs(s: &mut Scratch) -> &mut Vec<TileBuf<Self>> {
+        &mut s.f32
+    }
+}
+
+impl TileKey for f64 {
+    fn bufs(s: &mut Scratch) -> &mut Vec<TileBuf<Self>> {
+        &mut s.f64
+    }
+}
+
+impl TileKey for Fixed24 {
+    fn bufs(s: &mut Scratch) -> &mut Vec<TileBuf<Self>> {
+        &mut s.fixed24
+    }
+}
+
+impl TileKey for Fixed16 {
+    fn bufs(s: &mut Scratch) -> &mut Vec<TileBuf<Self>> {
+        &mut s.fixed16
+    }
+}
+
+impl TileKey for Reversed {
+    fn bufs(s: &mut Scratch) -> &mut Vec<TileBuf<Self>> {
+        &mut s.reversed
+    }
+}
