@@ -40,9 +40,8 @@ fn coverage_error_shrinks_with_the_sample_count() {
     assert!(errors[4] < 0.25 * errors[0], "{errors:?}");
 }
 
-/// The 8 x 4 mask is exact for pixels it fully covers or misses, and never
-/// further than the size of a mask cell... in area terms, the error of a
-/// pixel cut by one straight edge is at most a few cells.
+/// On the cube's silhouette the 8 x 4 mask errs by at most a quarter of
+/// the pixel: one cell per crossed column for a near-horizontal edge.
 #[test]
 fn a_single_edge_is_resolved_to_a_few_cells() {
     let s = screen(&procedural::cube(), 48, 48);
