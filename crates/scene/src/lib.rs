@@ -8,6 +8,9 @@
 //! - the [`Frame`] buffers with PNG output and the GL reference id/depth
 //!   dumps, written atomically;
 //! - the [`Hider`] trait and its [`Stats`], and shading from ids ([`shade`]).
+//! - scene analysis ([`analyze()`]): which effects a scene calls for, with
+//!   evidence; and the effect stages that run only when called for
+//!   ([`stages`], [`texture`]).
 //!
 //! Conventions (see `docs/conventions.md`): right-handed world, camera
 //! looking down -Z, GL clip space; window origin top-left with y down;
@@ -36,6 +39,7 @@
 //! # Ok::<(), hider_scene::Error>(())
 //! ```
 
+pub mod analyze;
 pub mod atomic;
 pub mod error;
 pub mod frame;
@@ -47,6 +51,8 @@ pub mod obj_write;
 pub mod prepare;
 pub mod procedural;
 pub mod shade;
+pub mod stages;
+pub mod texture;
 pub mod view;
 
 pub use error::{Error, Result};
@@ -59,7 +65,10 @@ pub use prepare::{
     PrepareOptions, PrepareStats, PrimInfo, ScreenScene, ScreenTri, TransformPrecision, prepare,
     prepare_into,
 };
+pub use analyze::{Effects, Evidence, RenderOptions, analyze};
 pub use shade::{ShadeMode, shade_frame};
+pub use stages::{Shader, ShaderOptions, StageTrace, Stages};
+pub use texture::Texture;
 pub use view::{View, fit_camera};
 
 /// The geometry crate this one builds on.

@@ -32,38 +32,46 @@ pub fn prim_color(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> ([f32; 3],
     match mode {
         ShadeMode::Ids => (id_color(prim), material.opacity),
         ShadeMode::Lambert => {
-            let c = scene.prims[prim as usize].camera;
-            let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
-            let centroid = (c[0] + c[1] + c[2]) / 3.0;
-            let diffuse = if scene.lights.is_empty() {
-                let to_eye = if scene.is_perspective() {
-                    (-centroid).normalize_or_zero()
-                } else {
-                    DVec3::Z
-                };
-                DVec3::splat(n.dot(to_eye).abs())
-            } else {
-                scene.lights.iter().fold(DVec3::ZERO, |acc, light| {
-                    let (to_light, color) = match *light {
-                        Light::Directional { direction, color } => (-direction, color),
-                        Light::Point { position, color } => (position - centroid, color),
-                    };
-                    let k = n.dot(to_light.normalize_or_zero()).abs();
-                    acc + DVec3::new(color[0].into(), color[1].into(), color[2].into()) * k
-                })
-            };
-            let lit = DVec3::splat(AMBIENT) + diffuse * (1.0 - AMBIENT);
+            let lit = lambert_light(scene, prim);
             let kd = material.diffuse;
             (
                 [
-                    (f64::from(kd[0]) * lit.x) as f32,
-                    (f64::from(kd[1]) * lit.y) as f32,
-                    (f64::from(kd[2]) * lit.z) as f32,
+                    (f64::from(kd[0]) * lit[0]) as f32,
+                    (f64::from(kd[1]) * lit[1]) as f32,
+                    (f64::from(kd[2]) * lit[2]) as f32,
                 ],
                 material.opacity,
             )
         }
     }
+}
+
+/// The light a primitive receives under flat, two-sided Lambert shading,
+/// ambient included, per linear RGB channel: from the scene's lights, or
+/// from a head light at the eye when it has none. The diffuse colour (or
+/// texture) is multiplied by it.
+pub fn lambert_light(scene: &ScreenScene, prim: u32) -> [f64; 3] {
+    let c = scene.prims[prim as usize].camera;
+    let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
+    let centroid = (c[0] + c[1] + c[2]) / 3.0;
+    let diffuse = if scene.lights.is_empty() {
+        let to_eye = if scene.is_perspective() {
+            (-centroid).normalize_or_zero()
+        } else {
+            DVec3::Z
+        };
+        DVec3::splat(n.dot(to_eye).abs())
+    } else {
+        scene.lights.iter().fold(DVec3::ZERO, |acc, light| {
+            let (to_light, color) = match *light {
+                Light::Directional { direction, color } => (-direction, color),
+                Light::Point { position, color } => (position - centroid, color),
+            };
+            let k = n.dot(to_light.normalize_or_zero()).abs();
+            acc + DVec3::new(color[0].into(), color[1].into(), color[2].into()) * k
+        })
+    };
+    (DVec3::splat(AMBIENT) + diffuse * (1.0 - AMBIENT)).to_array()
 }
 
 /// A well-spread false colour for an id (golden-ratio hue walk), linear RGB.

@@ -1,0 +1,107 @@
+//! Can back faces be seen? Closed, outward-facing meshes wholly inside the
+//! depth range hide every back face behind a front face of their own.
+//!
+//! Back-face culling is the oldest visibility shortcut: a closed solid seen
+//! from outside shows only faces turned toward the eye, so the ones turned
+//! away can be dropped before rasterisation, about half of the triangles.
+//! It is exact only under three conditions, checked here per mesh:
+//! - *closed*: every edge (vertices welded by position, so the split
+//!   vertices of OBJ files with uvs or normals count as one) is used
+//!   exactly twice, once in each direction — which also makes the
+//!   orientation consistent;
+//! - *outward*: the signed volume is positive, so counter-clockwise (GL's
+//!   front) faces look out of the solid;
+//! - *not cut open*: every vertex lies strictly between the near and far
+//!   planes, so clipping opens no window into the inside (and, for a
+//!   perspective camera, the eye cannot be inside: it would lie in the
+//!   convex hull of vertices that are all in front of it).
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use hider_geom::Projection;
+
+use crate::model::Scene;
+use crate::view::View;
+
+/// Whether each mesh of the scene certainly hides its back faces from this
+/// view (see the module documentation), indexed like `scene.meshes`.
+pub fn hidden_back_faces(scene: &Scene, view: &View) -> Vec<bool> {
+    let view_matrix = view.camera.view_matrix();
+    let (near, far) = match view.camera.projection {
+        Projection::Perspective { near, far, .. } | Projection::Orthographic { near, far, .. } => {
+            (near, far)
+        }
+    };
+    scene
+        .meshes
+        .iter()
+        .map(|mesh| {
+            let in_range = mesh.indices.iter().flatten().all(|&i| {
+                let d = -view_matrix.transform_point3(mesh.positions[i as usize]).z;
+                d > near && d < far
+            });
+            in_range && closed_outward(&mesh.positions, &mesh.indices)
+        })
+        .collect()
+}
+
+/// Whether the triangles form a closed, consistently and outwardly
+/// oriented surface.
+pub fn closed_outward(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
+    if indices.is_empty() {
+        return false;
+    }
+    let mut weld: HashMap<[u64; 3], u32> = HashMap::new();
+    let ids: Vec<u32> = positions
+        .iter()
+        .map(|p| {
+            let key = [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits());
+            let next = weld.len() as u32;
+            *weld.entry(key).or_insert(next)
+        })
+        .collect();
+    let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(indices.len() * 3);
+    let mut volume = 0.0;
+    for t in indices {
+        let w = t.map(|i| ids[i as usize]);
+        if w[0] == w[1] || w[1] == w[2] || w[0] == w[2] {
+            continue; // no area, no edges
+        }
+        let p = t.map(|i| positions[i as usize]);
+        volume += p[0].dot(p[1].cross(p[2]));
+        for k in 0..3 {
+            *directed.entry((w[k], w[(k + 1) % 3])).or_insert(0) += 1;
+        }
+    }
+    !directed.is_empty()
+        && volume > 0.0
+        && directed
+            .iter()
+            .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::procedural;
+
+    #[test]
+    fn cube_is_closed_and_outward_a_flipped_or_open_one_is_not() {
+        let cube = procedural::cube();
+        let m = &cube.meshes[0];
+        assert!(closed_outward(&m.positions, &m.indices));
+        let flipped: Vec<[u32; 3]> = m.indices.iter().map(|t| [t[0], t[2], t[1]]).collect();
+        assert!(!closed_outward(&m.positions, &flipped));
+        assert!(!closed_outward(&m.positions, &m.indices[1..]));
+        // Splitting vertices (as OBJ files with uvs do) keeps it closed.
+        let mut positions = Vec::new();
+        let mut indices = Vec::new();
+        for t in &m.indices {
+            let base = positions.len() as u32;
+            positions.extend(t.map(|i| m.positions[i as usize]));
+            indices.push([base, base + 1, base + 2]);
+        }
+        assert!(closed_outward(&positions, &indices));
+    }
+}

@@ -1,0 +1,388 @@
+//! The screen-space "in front of" graph and its cycles: what decides
+//! whether a painter's order exists.
+//!
+//! Newell, Newell & Sancha (1972) paint polygons back to front; that works
+//! when the relation "A hides part of B" between polygons whose projections
+//! overlap has no cycle. This module builds that relation on the prepared
+//! [`ScreenScene`]: candidate pairs from a tile grid over the window, an
+//! exact test that their projections' interiors overlap (separating edges
+//! with the shared integer `orient2d` on the snapped vertices), and the
+//! depth order at a point inside the overlap (the triangles' affine
+//! window-depth planes, the same ones the hiders interpolate). Pairs that
+//! interpenetrate in space are left out here — they are reported by
+//! [`super::intersect`] — and so are pairs whose depths at that point are
+//! equal (coplanar ties). A cycle is a strongly connected component of
+//! more than one primitive (Tarjan's algorithm, iterative).
+//!
+//! The same edges also say whether a *naive* painter — one sort key per
+//! triangle, the farthest vertex, stable by primitive id, as
+//! `hider-painter`'s `painter-naive` does — already paints every hidden
+//! triangle before the one hiding it; when it does, that painter is exact
+//! without any of Newell's tests.
+
+use hider_geom::{FixedPt, orient2d};
+
+use crate::prepare::{ScreenScene, ScreenTri};
+
+/// Window depths closer than this at the test point are a tie, not an
+/// order.
+const DEPTH_TIE: f64 = 1e-12;
+
+/// What the graph search found.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OverlapGraph {
+    /// Pairs of screen triangles whose projections overlap (different
+    /// primitives, not interpenetrating).
+    pub overlapping_pairs: u64,
+    /// "In front of" edges: `(behind, in front)` primitive ids.
+    pub edges: u64,
+    /// Pairs whose depths tie at the test point (coplanar overlaps).
+    pub ties: u64,
+    /// Strongly connected components of more than one primitive.
+    pub cycles: u64,
+    /// Primitives on some cycle.
+    pub prims_on_cycles: u64,
+    /// One cycle per component, as the primitive ids along it, up to the
+    /// example limit.
+    pub examples: Vec<Vec<u32>>,
+    /// Edges the naive farthest-vertex sort paints in the wrong order.
+    pub naive_violations: u64,
+    /// One wrongly ordered pair `(behind, in front)`, if any.
+    pub naive_example: Option<(u32, u32)>,
+    /// Whether every candidate pair was examined (false when the budget
+    /// ran out).
+    pub complete: bool,
+}
+
+/// Builds the graph over `scene`'s triangles, skipping the primitive pairs
+/// for which `interpenetrate(a, b)` holds, examining at most `budget`
+/// candidate pairs.
+pub fn overlap_graph(
+    scene: &ScreenScene,
+    interpenetrate: impl Fn(u32, u32) -> bool,
+    budget: u64,
+    max_examples: usize,
+) -> OverlapGraph {
+    let mut out = OverlapGraph {
+        complete: true,
+        ..OverlapGraph::default()
+    };
+    let tris = &scene.tris;
+    let vp = scene.viewport;
+    let n = tris.len();
+    if n < 2 {
+        return out;
+    }
+    // Tiles of about one triangle each, 4 to 256 pixels wide.
+    let side =
+        ((f64::from(vp.width) * f64::from(vp.height) / n as f64).sqrt() as u32).clamp(4, 256);
+    let tiles_x = vp.width.div_ceil(side) as usize;
+    let tiles_y = vp.height.div_ceil(side) as usize;
+    let bounds: Vec<Option<[usize; 4]>> = tris
+        .iter()
+        .map(|t| {
+            let (x0, y0, x1, y1) = pixel_box(t, vp.width, vp.height)?;
+            Some([x0, y0, x1, y1].map(|v| (v / side) as usize))
+        })
+        .collect();
+    let mut start = vec![0usize; tiles_x * tiles_y + 1];
+    let for_tiles = |b: &[usize; 4], f: &mut dyn FnMut(usize)| {
+        for ty in b[1]..=b[3] {
+            for tx in b[0]..=b[2] {
+                f(ty * tiles_x + tx);
+            }
+        }
+    };
+    for b in bounds.iter().flatten() {
+        for_tiles(b, &mut |c| start[c + 1] += 1);
+    }
+    for c in 0..tiles_x * tiles_y {
+        start[c + 1] += start[c];
+    }
+    let mut fill = start.clone();
+    let mut items = vec![0u32; start[tiles_x * tiles_y]];
+    for (k, b) in bounds.iter().enumerate() {
+        if let Some(b) = b {
+            for_tiles(b, &mut |c| {
+                items[fill[c]] = k as u32;
+                fill[c] += 1;
+            });
+        }
+    }
+    let mut edges: Vec<(u32, u32)> = Vec::new();
+    let mut examined = 0u64;
+    'tiles: for c in 0..tiles_x * tiles_y {
+        let list = &items[start[c]..start[c + 1]];
+        for (i, &ka) in list.iter().enumerate() {
+            let (a, ba) = (&tris[ka as usize], bounds[ka as usize].unwrap_or_default());
+            for &kb in &list[i + 1..] {
+                let (b, bb) = (&tris[kb as usize], bounds[kb as usize].unwrap_or_default());
+                let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
+                if a.prim == b.prim
+                    || first[0] > ba[2].min(bb[2])
+                    || first[1] > ba[3].min(bb[3])
+                    || first[1] * tiles_x + first[0] != c
+                {
+                    continue;
+                }
+                if examined >= budget {
+                    out.complete = false;
+                    break 'tiles;
+                }
+                examined += 1;
+                if !interiors_overlap(&a.v, &b.v) || interpenetrate(a.prim, b.prim) {
+                    continue;
+                }
+                out.overlapping_pairs += 1;
+                let Some((x, y)) = overlap_point(&a.v, &b.v) else {
+                    continue;
+                };
+                let (da, db) = (a.depth.eval(x, y), b.depth.eval(x, y));
+                if (da - db).abs() <= DEPTH_TIE {
+                    out.ties += 1;
+                    continue;
+                }
+                // (behind, in front) as screen-triangle indices.
+                let (behind, front) = if da > db { (ka, kb) } else { (kb, ka) };
+                edges.push((behind, front));
+                let key = |k: u32| tris[k as usize].z.iter().copied().fold(f64::MIN, f64::max);
+                let (kb_, kf) = (key(behind), key(front));
+                let naive_ok = kb_ > kf || (kb_ == kf && behind < front);
+                if !naive_ok {
+                    out.naive_violations += 1;
+                    out.naive_example
+                        .get_or_insert((tris[behind as usize].prim, tris[front as usize].prim));
+                }
+            }
+        }
+    }
+    out.edges = edges.len() as u64;
+    let prim_edges: Vec<(u32, u32)> = edges
+        .iter()
+        .map(|&(b, f)| (tris[b as usize].prim, tris[f as usize].prim))
+        .collect();
+    let (cycles, on_cycles, examples) = find_cycles(&prim_edges, max_examples);
+    out.cycles = cycles;
+    out.prims_on_cycles = on_cycles;
+    out.examples = examples;
+    out
+}
+
+/// The inclusive pixel box of a triangle's extent (not only its sample
+/// centres), clamped to the window.
+fn pixel_box(t: &ScreenTri, w: u32, h: u32) -> Option<(u32, u32, u32, u32)> {
+    let lo_x = t.v.iter().map(|p| p.x).min()?.div_euclid(256);
+    let hi_x = t.v.iter().map(|p| p.x).max()?.div_euclid(256);
+    let lo_y = t.v.iter().map(|p| p.y).min()?.div_euclid(256);
+    let hi_y = t.v.iter().map(|p| p.y).max()?.div_euclid(256);
+    if hi_x < 0 || hi_y < 0 || lo_x >= w as i32 || lo_y >= h as i32 {
+        return None;
+    }
+    let c = |v: i32, m: u32| v.clamp(0, m as i32 - 1) as u32;
+    Some((c(lo_x, w), c(lo_y, h), c(hi_x, w), c(hi_y, h)))
+}
+
+/// Whether the interiors of two positively oriented snapped triangles
+/// overlap: exactly when no edge of either has the other wholly on its
+/// closed outer side (separating axis theorem for convex polygons).
+pub fn interiors_overlap(a: &[FixedPt; 3], b: &[FixedPt; 3]) -> bool {
+    let separates = |t: &[FixedPt; 3], other: &[FixedPt; 3]| {
+        (0..3).any(|i| {
+            let (u, v) = (t[i], t[(i + 1) % 3]);
+            other.iter().all(|&q| orient2d(u, v, q) <= 0)
+        })
+    };
+    !separates(a, b) && !separates(b, a)
+}
+
+/// A point strictly inside the overlap of two triangles (in pixels): the
+/// vertex average of `a` clipped by `b`'s three half-planes.
+fn overlap_point(a: &[FixedPt; 3], b: &[FixedPt; 3]) -> Option<(f64, f64)> {
+    let mut poly: Vec<(f64, f64)> = a.iter().map(|p| p.to_pixels()).collect();
+    let bp: Vec<(f64, f64)> = b.iter().map(|p| p.to_pixels()).collect();
+    for i in 0..3 {
+        let (u, v) = (bp[i], bp[(i + 1) % 3]);
+        // Positive inside, as orient2d of the y-down fixed-point frame.
+        let side = |p: (f64, f64)| (v.0 - u.0) * (p.1 - u.1) - (v.1 - u.1) * (p.0 - u.0);
+        let mut next = Vec::with_capacity(poly.len() + 1);
+        for k in 0..poly.len() {
+            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+            let (sp, sq) = (side(p), side(q));
+            if sp >= 0.0 {
+                next.push(p);
+            }
+            if (sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0) {
+                let t = sp / (sp - sq);
+                next.push((p.0 + (q.0 - p.0) * t, p.1 + (q.1 - p.1) * t));
+            }
+        }
+        poly = next;
+        if poly.len() < 3 {
+            return None;
+        }
+    }
+    let k = poly.len() as f64;
+    let (sx, sy) = poly.iter().fold((0.0, 0.0), |s, p| (s.0 + p.0, s.1 + p.1));
+    Some((sx / k, sy / k))
+}
+
+/// Strongly connected components of more than one node (Tarjan, with an
+/// explicit stack): their number, the nodes on them, and one cycle from
+/// each of the first `max_examples`.
+fn find_cycles(edges: &[(u32, u32)], max_examples: usize) -> (u64, u64, Vec<Vec<u32>>) {
+    let Some(max) = edges.iter().map(|&(a, b)| a.max(b)).max() else {
+        return (0, 0, Vec::new());
+    };
+    let n = max as usize + 1;
+    let mut start = vec![0usize; n + 1];
+    for &(a, _) in edges {
+        start[a as usize + 1] += 1;
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    let mut fill = start.clone();
+    let mut adj = vec![0u32; edges.len()];
+    for &(a, b) in edges {
+        adj[fill[a as usize]] = b;
+        fill[a as usize] += 1;
+    }
+    const UNSEEN: u32 = u32::MAX;
+    let mut index = vec![UNSEEN; n];
+    let mut low = vec![0u32; n];
+    let mut on_stack = vec![false; n];
+    let mut stack: Vec<u32> = Vec::new();
+    let mut comp = vec![UNSEEN; n];
+    let mut next_index = 0u32;
+    let (mut cycles, mut on_cycles, mut examples) = (0u64, 0u64, Vec::new());
+    for root in 0..n as u32 {
+        if index[root as usize] != UNSEEN || start[root as usize] == start[root as usize + 1] {
+            continue;
+        }
+        // (node, next edge position) frames.
+        let mut call: Vec<(u32, usize)> = vec![(root, start[root as usize])];
+        index[root as usize] = next_index;
+        low[root as usize] = next_index;
+        next_index += 1;
+        stack.push(root);
+        on_stack[root as usize] = true;
+        while let Some(&mut (v, ref mut pos)) = call.last_mut() {
+            let vu = v as usize;
+            if *pos < start[vu + 1] {
+                let w = adj[*pos];
+                *pos += 1;
+                let wu = w as usize;
+                if index[wu] == UNSEEN {
+                    index[wu] = next_index;
+                    low[wu] = next_index;
+                    next_index += 1;
+                    stack.push(w);
+                    on_stack[wu] = true;
+                    call.push((w, start[wu]));
+                } else if on_stack[wu] {
+                    low[vu] = low[vu].min(index[wu]);
+                }
+                continue;
+            }
+            call.pop();
+            if let Some(&(parent, _)) = call.last() {
+                low[parent as usize] = low[parent as usize].min(low[vu]);
+            }
+            if low[vu] == index[vu] {
+                let mut members = Vec::new();
+                while let Some(w) = stack.pop() {
+                    on_stack[w as usize] = false;
+                    comp[w as usize] = v;
+                    members.push(w);
+                    if w == v {
+                        break;
+                    }
+                }
+                if members.len() > 1 {
+                    cycles += 1;
+                    on_cycles += members.len() as u64;
+                    if examples.len() < max_examples {
+                        examples.push(cycle_through(v, &comp, &start, &adj));
+                    }
+                }
+            }
+        }
+    }
+    (cycles, on_cycles, examples)
+}
+
+/// A cycle through `v` inside its component (breadth-first search back to
+/// `v`).
+fn cycle_through(v: u32, comp: &[u32], start: &[usize], adj: &[u32]) -> Vec<u32> {
+    let c = comp[v as usize];
+    let mut parent: std::collections::HashMap<u32, u32> = std::collections::HashMap::new();
+    let mut queue = std::collections::VecDeque::from([v]);
+    while let Some(u) = queue.pop_front() {
+        for &w in &adj[start[u as usize]..start[u as usize + 1]] {
+            if comp[w as usize] != c {
+                continue;
+            }
+            if w == v {
+                let mut path = vec![u];
+                let mut x = u;
+                while x != v {
+                    x = parent[&x];
+                    path.push(x);
+                }
+                path.reverse();
+                return path;
+            }
+            if let std::collections::hash_map::Entry::Vacant(e) = parent.entry(w) {
+                e.insert(u);
+                queue.push_back(w);
+            }
+        }
+    }
+    vec![v]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cycles_are_found_with_their_members() {
+        // 0 -> 1 -> 2 -> 0 is a cycle; 3 -> 4 is not; 5 <-> 6 is.
+        let edges = [(0, 1), (1, 2), (2, 0), (3, 4), (2, 3), (5, 6), (6, 5)];
+        let (cycles, members, examples) = find_cycles(&edges, 10);
+        assert_eq!((cycles, members), (2, 5));
+        let mut lens: Vec<usize> = examples.iter().map(Vec::len).collect();
+        lens.sort_unstable();
+        assert_eq!(lens, vec![2, 3]);
+        for cycle in &examples {
+            for k in 0..cycle.len() {
+                let e = (cycle[k], cycle[(k + 1) % cycle.len()]);
+                assert!(edges.contains(&e), "{e:?} in {cycle:?}");
+            }
+        }
+        assert_eq!(find_cycles(&[(0, 1), (1, 2)], 10).0, 0);
+    }
+
+    #[test]
+    fn overlap_needs_shared_interior() {
+        let p = |x: i32, y: i32| FixedPt::new(x * 256, y * 256);
+        // Positive orientation: orient2d > 0.
+        let a = [p(0, 0), p(10, 0), p(0, 10)];
+        let a = if orient2d(a[0], a[1], a[2]) > 0 {
+            a
+        } else {
+            [a[0], a[2], a[1]]
+        };
+        let shift = |t: [FixedPt; 3], dx: i32| t.map(|q| FixedPt::new(q.x + dx * 256, q.y));
+        assert!(interiors_overlap(&a, &shift(a, 3)));
+        // Sharing only the edge x + y = 10 with its mirror image.
+        let b = [p(10, 0), p(0, 10), p(10, 10)];
+        let b = if orient2d(b[0], b[1], b[2]) > 0 {
+            b
+        } else {
+            [b[0], b[2], b[1]]
+        };
+        assert!(!interiors_overlap(&a, &b));
+        assert!(overlap_point(&a, &shift(a, 3)).is_some());
+    }
+}
