@@ -196,6 +196,34 @@ pub fn checkerboard(squares: u32, square: u32, a: [u8; 3], b: [u8; 3]) -> (u32, 
     (side, bytes)
 }
 
+/// Name of the bundled checkerboard texture (`assets/checker.png`).
+pub const CHECKER_PNG: &str = "checker.png";
+
+/// The bundled checkerboard: 8 x 8 squares of 32 texels, light and dark.
+pub fn checker_texture() -> (u32, Vec<u8>) {
+    checkerboard(8, 32, [230, 230, 230], [40, 40, 40])
+}
+
+/// The OBJ and MTL text of the bundled textured asset
+/// (`assets/checker_plane.obj`): one quad (two triangles) of 2 x 2 units,
+/// tilted 14 degrees out of the XZ plane (`y = -z / 4`) so that the fit
+/// camera sees it at a grazing angle, with uvs spanning the texture once
+/// and a material whose `map_Kd` is `texture` (white `Kd`, so the texture
+/// shows as it is).
+pub fn checker_plane_text(mtl_name: &str, texture: &str) -> (String, String) {
+    let obj = format!(
+        "# written by hider: a checkerboard plane for perspective-correct texturing\n\
+         mtllib {mtl_name}\n\
+         o checker_plane\n\
+         v -1 -0.25 1\nv 1 -0.25 1\nv 1 0.25 -1\nv -1 0.25 -1\n\
+         vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+         usemtl checker\n\
+         f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
+    );
+    let mtl = format!("newmtl checker\nKd 1 1 1\nd 1\nmap_Kd {texture}\n");
+    (obj, mtl)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
