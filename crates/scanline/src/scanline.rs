@@ -80,6 +80,8 @@ impl Scanline {
         self.apl.clear();
         self.trace.clear();
         let mut trace = std::mem::take(&mut self.trace);
+        // Lent to the rows (the row loop needs `&mut self` beside them).
+        let surfaces = std::mem::take(&mut self.table.surfaces);
 
         let mut stats = ScanlineStats {
             polygons: self.table.polygon_count() as u64,
@@ -98,11 +100,13 @@ impl Scanline {
                 row,
                 ids,
                 depth,
+                surfaces: &surfaces,
                 trace: self.options.record_spans.then_some(&mut trace),
             };
-            self.scan_row(scene, &mut out, &mut stats);
+            self.scan_row(&mut out, &mut stats);
         }
         self.trace = trace;
+        self.table.surfaces = surfaces;
         stats.pixels_written = frame.covered_count() as u64;
         stats.peak_bytes = self.bytes();
         Ok(stats)
@@ -110,7 +114,7 @@ impl Scanline {
 
     /// One row: activate, walk the active edges, sort the crossings, resolve
     /// the spans between them.
-    fn scan_row(&mut self, scene: &ScreenScene, out: &mut RowOut<'_>, stats: &mut ScanlineStats) {
+    fn scan_row(&mut self, out: &mut RowOut<'_>, stats: &mut ScanlineStats) {
         let row = out.row;
         let (new_polys, new_edges) = self.table.bucket(row);
         self.active_polys.extend_from_slice(new_polys);
@@ -124,7 +128,7 @@ impl Scanline {
         self.walk_edges(row, out.ids.len() as i64 - 1);
         self.crossings.sort_unstable();
         stats.crossings += self.crossings.len() as u64;
-        self.sweep(scene, out, stats);
+        self.sweep(out, stats);
     }
 
     /// Steps the active edge list to `row`, turning each active polygon's
@@ -167,8 +171,7 @@ impl Scanline {
     /// Sweeps the sorted crossings left to right: applies every crossing at
     /// a column to the active polygon list, then resolves the span up to
     /// the next crossing column.
-    fn sweep(&mut self, scene: &ScreenScene, out: &mut RowOut<'_>, stats: &mut ScanlineStats) {
-        let polys = &self.table.polys;
+    fn sweep(&mut self, out: &mut RowOut<'_>, stats: &mut ScanlineStats) {
         let keys = &self.crossings;
         let mut k = 0;
         while k < keys.len() {
@@ -176,13 +179,7 @@ impl Scanline {
             while k < keys.len() && (keys[k] >> 32) as u32 == x {
                 let slot = (keys[k] & SLOT) as u32;
                 if keys[k] & ENTER != 0 {
-                    let t = &scene.tris[polys[slot as usize].tri as usize];
-                    self.apl.push(Active {
-                        depth: 0.0,
-                        slot,
-                        prim: t.prim,
-                        plane: t.depth,
-                    });
+                    self.apl.push(Active { depth: 0.0, slot });
                 } else if let Some(pos) = self.apl.iter().position(|a| a.slot == slot) {
                     // `remove`, not `swap_remove`: keeps the depth order
                     // for the next span's insertion sort.

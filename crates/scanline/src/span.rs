@@ -28,17 +28,25 @@ use hider_geom::PlaneEq;
 use crate::stats::ScanlineStats;
 use crate::trace::{Resolution, SpanRecord};
 
+/// What the span step needs of a polygon: its depth plane and its id.
+/// Kept in a table by polygon slot, so that the active polygon list moves
+/// only small entries when it is reordered.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Surface {
+    /// Its window depth plane.
+    pub plane: PlaneEq,
+    /// The primitive id written for it.
+    pub prim: u32,
+}
+
 /// A polygon in a span's active polygon list.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Active {
     /// Its window depth at the span position being resolved.
     pub depth: f64,
-    /// Its polygon-table slot: triangle order, the tie-breaker.
+    /// Its polygon-table slot: triangle order, the tie-breaker, and the
+    /// index of its [`Surface`].
     pub slot: u32,
-    /// The primitive id written for it.
-    pub prim: u32,
-    /// Its window depth plane.
-    pub plane: PlaneEq,
 }
 
 /// Whether depth `dp` of slot `sp` wins over depth `dh` of slot `sh`: the
@@ -56,6 +64,8 @@ pub(crate) struct RowOut<'a> {
     pub ids: &'a mut [u32],
     /// The frame's depths on this row.
     pub depth: &'a mut [f32],
+    /// The surfaces, by polygon slot.
+    pub surfaces: &'a [Surface],
     /// Where to record the runs, when recording.
     pub trace: Option<&'a mut Vec<SpanRecord>>,
 }
@@ -76,15 +86,16 @@ impl RowOut<'_> {
 
     /// Writes polygon `a` over columns `x0..=x1`.
     fn fill(&mut self, a: &Active, x0: u32, x1: u32, how: Resolution) {
-        self.record(x0, x1, a.prim, how);
+        let surface = self.surfaces[a.slot as usize];
+        self.record(x0, x1, surface.prim, how);
         let row = self.row;
         let (ids, depth) = (
             &mut self.ids[x0 as usize..=x1 as usize],
             &mut self.depth[x0 as usize..=x1 as usize],
         );
         for ((id, d), i) in ids.iter_mut().zip(depth.iter_mut()).zip(x0..) {
-            *id = a.prim;
-            *d = a.plane.at_pixel(i, row) as f32;
+            *id = surface.prim;
+            *d = surface.plane.at_pixel(i, row) as f32;
         }
     }
 }
@@ -109,8 +120,8 @@ fn sort_by_depth(apl: &mut [Active]) {
 /// of `h` there). Guesses from the planes' crossing, then confirms or
 /// narrows by bisection on the per-pixel comparison itself.
 fn first_win(
-    h: &Active,
-    p: &Active,
+    h: (&PlaneEq, u32),
+    p: (&PlaneEq, u32),
     lo: u32,
     hi: u32,
     g: (f64, f64),
@@ -119,12 +130,7 @@ fn first_win(
 ) -> u32 {
     let mut wins = |i: u32| {
         *evals += 2;
-        beats(
-            p.plane.at_pixel(i, row),
-            p.slot,
-            h.plane.at_pixel(i, row),
-            h.slot,
-        )
+        beats(p.0.at_pixel(i, row), p.1, h.0.at_pixel(i, row), h.1)
     };
     // Invariant: p loses at a, wins at b.
     let (mut a, mut b) = (lo, hi);
@@ -196,11 +202,13 @@ impl SpanResolver {
             return;
         }
         let row = out.row;
+        let surfaces = out.surfaces;
+        let plane = |a: &Active| &surfaces[a.slot as usize].plane;
         let mut x0 = x0;
         let mut splits = 0;
         loop {
             for a in apl.iter_mut() {
-                a.depth = a.plane.at_pixel(x0, row);
+                a.depth = surfaces[a.slot as usize].plane.at_pixel(x0, row);
             }
             stats.depth_evaluations += apl.len() as u64;
             sort_by_depth(apl);
@@ -209,18 +217,20 @@ impl SpanResolver {
             };
             // Shrink `end` to the last column where `head` stays in front.
             let mut end = x1;
-            let mut head_end = head.plane.at_pixel(end, row);
+            let mut head_end = plane(head).at_pixel(end, row);
             stats.depth_evaluations += 1;
             for p in rest {
                 if end == x0 {
                     break;
                 }
-                let p_end = p.plane.at_pixel(end, row);
+                let p_end = plane(p).at_pixel(end, row);
                 stats.depth_evaluations += 1;
                 if beats(p_end, p.slot, head_end, head.slot) {
                     let g = (p.depth - head.depth, p_end - head_end);
-                    end = first_win(head, p, x0, end, g, row, &mut stats.depth_evaluations) - 1;
-                    head_end = head.plane.at_pixel(end, row);
+                    let h = (plane(head), head.slot);
+                    let q = (plane(p), p.slot);
+                    end = first_win(h, q, x0, end, g, row, &mut stats.depth_evaluations) - 1;
+                    head_end = plane(head).at_pixel(end, row);
                     stats.depth_evaluations += 1;
                 }
             }
@@ -261,9 +271,11 @@ impl SpanResolver {
         let (depth, who) = (&mut self.row_depth[..n], &mut self.row_who[..n]);
         depth.fill(f64::INFINITY);
         who.fill(u32::MAX);
+        let surfaces = out.surfaces;
         for (k, a) in apl.iter().enumerate() {
+            let plane = surfaces[a.slot as usize].plane;
             for ((d, w), i) in depth.iter_mut().zip(who.iter_mut()).zip(x0..) {
-                let z = a.plane.at_pixel(i, out.row);
+                let z = plane.at_pixel(i, out.row);
                 if *w == u32::MAX || beats(z, a.slot, *d, apl[*w as usize].slot) {
                     *d = z;
                     *w = k as u32;
@@ -272,10 +284,11 @@ impl SpanResolver {
         }
         let mut run_start = x0;
         for ((&d, &w), x) in depth.iter().zip(who.iter()).zip(x0..) {
-            let prim = apl[w as usize].prim;
+            let prim_of = |w: u32| surfaces[apl[w as usize].slot as usize].prim;
+            let prim = prim_of(w);
             out.ids[x as usize] = prim;
             out.depth[x as usize] = d as f32;
-            if x == x1 || apl[who[(x + 1 - x0) as usize] as usize].prim != prim {
+            if x == x1 || prim_of(who[(x + 1 - x0) as usize]) != prim {
                 out.record(run_start, x, prim, Resolution::Fallback);
                 run_start = x + 1;
             }
@@ -290,44 +303,60 @@ impl SpanResolver {
 mod tests {
     use super::*;
 
-    fn active(slot: u32, value: f64, dx: f64) -> Active {
-        Active {
-            depth: 0.0,
-            slot,
-            prim: slot,
-            plane: PlaneEq {
-                value,
-                dx,
-                ..PlaneEq::default()
-            },
-        }
+    /// Surfaces with depth `value + dx * x` on row 0; slot = prim = index.
+    fn surfaces(lines: &[(f64, f64)]) -> Vec<Surface> {
+        lines
+            .iter()
+            .zip(0..)
+            .map(|(&(value, dx), prim)| Surface {
+                plane: PlaneEq {
+                    value,
+                    dx,
+                    ..PlaneEq::default()
+                },
+                prim,
+            })
+            .collect()
     }
 
-    fn run(apl: &mut [Active], width: u32, max_splits: u32) -> (Vec<u32>, ScanlineStats) {
+    /// Resolves one span over the whole row with the polygons of `slots`.
+    fn run(
+        lines: &[(f64, f64)],
+        slots: &[u32],
+        width: u32,
+        max_splits: u32,
+    ) -> (Vec<u32>, ScanlineStats) {
+        let surfaces = surfaces(lines);
+        let mut apl: Vec<Active> = slots
+            .iter()
+            .map(|&slot| Active { depth: 0.0, slot })
+            .collect();
         let mut ids = vec![u32::MAX; width as usize];
         let mut depth = vec![1.0; width as usize];
         let mut out = RowOut {
             row: 0,
             ids: &mut ids,
             depth: &mut depth,
+            surfaces: &surfaces,
             trace: None,
         };
         let mut r = SpanResolver::default();
         r.prepare(width);
         let mut stats = ScanlineStats::default();
-        r.resolve(apl, 0, width - 1, &mut out, max_splits, &mut stats);
+        r.resolve(&mut apl, 0, width - 1, &mut out, max_splits, &mut stats);
         (ids, stats)
     }
 
     /// The per-pixel answer for the same planes.
-    fn brute(apl: &[Active], width: u32) -> Vec<u32> {
+    fn brute(lines: &[(f64, f64)], width: u32) -> Vec<u32> {
+        let surfaces = surfaces(lines);
         (0..width)
             .map(|i| {
-                let best = apl
+                let best = surfaces
                     .iter()
                     .min_by(|a, b| {
                         let (da, db) = (a.plane.at_pixel(i, 0), b.plane.at_pixel(i, 0));
-                        da.total_cmp(&db).then(a.slot.cmp(&b.slot))
+                        da.total_cmp(&db).then(a.prim.cmp(&b.prim))
                     })
                     .unwrap();
                 best.prim
@@ -337,14 +366,11 @@ mod tests {
 
     #[test]
     fn crossing_planes_split_exactly_where_the_comparison_flips() {
-        // Depth 0.5 - 0.01 (x - 0) vs 0.3 + 0.0 x: cross at x = 20, i.e.
-        // at column 19.5; the pixel centre x = i + 0.5 equal to 20 is a tie.
-        let mut apl = [active(0, 0.5, -0.01), active(1, 0.3, 0.0)];
-        let (ids, stats) = run(&mut apl, 64, 16);
-        assert_eq!(
-            ids,
-            brute(&[active(0, 0.5, -0.01), active(1, 0.3, 0.0)], 64)
-        );
+        // Depth 0.5 - 0.01 x vs 0.3: they cross at x = 20, the centre of
+        // column 19.5 (between columns 19 and 20).
+        let lines = [(0.5, -0.01), (0.3, 0.0)];
+        let (ids, stats) = run(&lines, &[0, 1], 64, 16);
+        assert_eq!(ids, brute(&lines, 64));
         assert_eq!(ids[0], 1);
         assert_eq!(ids[63], 0);
         assert_eq!((stats.spans, stats.split_spans, stats.splits), (1, 1, 1));
@@ -353,8 +379,8 @@ mod tests {
 
     #[test]
     fn exact_ties_go_to_the_earlier_triangle() {
-        let mut apl = [active(3, 0.4, 0.0), active(2, 0.4, 0.0)];
-        let (ids, stats) = run(&mut apl, 8, 16);
+        let lines = [(0.9, 0.0), (0.9, 0.0), (0.4, 0.0), (0.4, 0.0)];
+        let (ids, stats) = run(&lines, &[3, 2], 8, 16);
         assert!(ids.iter().all(|&id| id == 2));
         assert_eq!(stats.splits, 0);
     }
@@ -363,36 +389,28 @@ mod tests {
     fn many_crossings_fall_back_after_the_limit_and_agree() {
         // A fan of lines through different points: every one is in front
         // somewhere, so the span splits several times.
-        let make = || -> Vec<Active> {
-            (0..6)
-                .map(|k| active(k, 0.5 + 0.01 * f64::from(k * k), -0.001 * f64::from(k * 7)))
-                .collect()
-        };
-        let want = brute(&make(), 200);
-        let (ids, free) = run(&mut make(), 200, u32::MAX);
+        let lines: Vec<(f64, f64)> = (0..6)
+            .map(|k| (0.5 + 0.01 * f64::from(k * k), -0.001 * f64::from(k * 7)))
+            .collect();
+        let slots = [0, 1, 2, 3, 4, 5];
+        let want = brute(&lines, 200);
+        let (ids, free) = run(&lines, &slots, 200, u32::MAX);
         assert_eq!(ids, want);
         assert!(free.splits >= 2, "{free:?}");
         assert_eq!(free.fallback_spans, 0);
-        let (ids, capped) = run(&mut make(), 200, 1);
+        let (ids, capped) = run(&lines, &slots, 200, 1);
         assert_eq!(ids, want);
         assert_eq!((capped.splits, capped.fallback_spans), (1, 1));
         assert!(capped.fallback_pixels > 0);
-        let (ids, never) = run(&mut make(), 200, 0);
+        let (ids, never) = run(&lines, &slots, 200, 0);
         assert_eq!(ids, want);
         assert_eq!((never.splits, never.fallback_pixels), (0, 200));
     }
 
     #[test]
     fn depth_order_is_restored_by_insertion() {
-        let mut apl = [
-            active(0, 0.9, 0.0),
-            active(1, 0.1, 0.0),
-            active(2, 0.5, 0.0),
-            active(3, 0.5, 0.0),
-        ];
-        for a in apl.iter_mut() {
-            a.depth = a.plane.value;
-        }
+        let mut apl =
+            [(0.9, 0), (0.1, 1), (0.5, 2), (0.5, 3)].map(|(depth, slot)| Active { depth, slot });
         sort_by_depth(&mut apl);
         assert_eq!(apl.map(|a| a.slot), [1, 2, 3, 0]);
     }
