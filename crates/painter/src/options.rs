@@ -1,0 +1,98 @@
+//! Options of the two painters. `Default` is the accurate choice.
+
+/// Which depth a naive painter sorts by (farthest first).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SortKey {
+    /// The farthest vertex of each triangle (largest window depth): the
+    /// classic key, and the one Newell, Newell & Sancha start from.
+    #[default]
+    FarthestVertex,
+    /// The centroid's depth (mean of the three window depths), as many
+    /// plotting libraries do.
+    Centroid,
+}
+
+/// Options of [`crate::NaivePainter`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NaiveOptions {
+    /// The sort key.
+    pub sort_key: SortKey,
+}
+
+impl NaiveOptions {
+    /// Sets [`Self::sort_key`].
+    pub fn with_sort_key(mut self, sort_key: SortKey) -> Self {
+        self.sort_key = sort_key;
+        self
+    }
+}
+
+/// Default of [`PainterOptions::max_splits`].
+pub const DEFAULT_MAX_SPLITS: u64 = 4_000_000;
+
+/// Default of [`PainterOptions::depth_epsilon`].
+pub const DEFAULT_DEPTH_EPSILON: f64 = 1e-10;
+
+/// Options of [`crate::Painter`] (Newell, Newell & Sancha with splitting).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PainterOptions {
+    /// Most polygon splits allowed in one frame. Intersections and cyclic
+    /// overlaps each cost at least one split; when the budget runs out
+    /// `render` stops with a [`hider_scene::Error::Render`] naming it
+    /// rather than run (or allocate) without bound. Every split adds one
+    /// piece, so this also bounds the working memory.
+    pub max_splits: u64,
+    /// Window-depth slack of the plane-side tests: a polygon counts as
+    /// behind a plane when no vertex is more than this in front of it.
+    /// Orders it decides are exact up to this depth difference, far inside
+    /// any tie tolerance (window depth 1e-10 is a relative camera distance
+    /// of about 1e-9 with the fit camera); it absorbs the rounding of
+    /// evaluating the depth planes so that touching polygons (mesh
+    /// neighbours) are ordered without a split.
+    pub depth_epsilon: f64,
+    /// SVG output only: leave out pieces that own no pixel centre in the
+    /// raster. Smaller files, but sub-pixel slivers that would show in a
+    /// zoomed vector view are dropped, so off by default.
+    pub svg_drop_hidden: bool,
+    /// SVG output only: stroke each path with its own colour at this width
+    /// (pixels) to hide the hairline seams vector renderers draw between
+    /// abutting polygons. 0 (the exact geometry) by default.
+    pub svg_seam_stroke: f64,
+}
+
+impl Default for PainterOptions {
+    fn default() -> Self {
+        Self {
+            max_splits: DEFAULT_MAX_SPLITS,
+            depth_epsilon: DEFAULT_DEPTH_EPSILON,
+            svg_drop_hidden: false,
+            svg_seam_stroke: 0.0,
+        }
+    }
+}
+
+impl PainterOptions {
+    /// Sets [`Self::max_splits`].
+    pub fn with_max_splits(mut self, max_splits: u64) -> Self {
+        self.max_splits = max_splits;
+        self
+    }
+
+    /// Sets [`Self::depth_epsilon`].
+    pub fn with_depth_epsilon(mut self, depth_epsilon: f64) -> Self {
+        self.depth_epsilon = depth_epsilon;
+        self
+    }
+
+    /// Sets [`Self::svg_drop_hidden`].
+    pub fn with_svg_drop_hidden(mut self, drop: bool) -> Self {
+        self.svg_drop_hidden = drop;
+        self
+    }
+
+    /// Sets [`Self::svg_seam_stroke`].
+    pub fn with_svg_seam_stroke(mut self, width: f64) -> Self {
+        self.svg_seam_stroke = width;
+        self
+    }
+}

@@ -1,0 +1,297 @@
+//! The correct painter against the references, the naive one shown wrong.
+//!
+//! Two references: the workspace oracle (`hider-oracle`, camera-space ray
+//! casts on the unsnapped planes, ties within `DEFAULT_TIE_TOLERANCE`) and
+//! a brute-force z-buffer on the same window-depth planes the hiders use,
+//! whose tie band (1e-8 in window depth) is a thousand times narrower: the
+//! painter must be pixel-exact against both outside their ties.
+
+use glam::DVec3;
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
+use hider_painter::{NaiveOptions, NaivePainter, Painter, PainterOptions, SortKey};
+use hider_scene::{
+    Error, Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
+};
+use proptest::prelude::*;
+
+/// Window-depth gap under which the brute-force reference calls a tie.
+const WINDOW_TIE: f64 = 1e-8;
+
+fn screen(scene: &Scene, size: u32) -> ScreenScene {
+    let view = View::for_scene(scene, size, size).unwrap();
+    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+}
+
+/// Per pixel: nearest primitive by window depth (lower id on exact ties)
+/// and whether the runner-up primitive is within [`WINDOW_TIE`].
+fn brute_force(s: &ScreenScene) -> (Vec<u32>, Vec<bool>, Vec<f32>) {
+    let (w, h) = (s.viewport.width, s.viewport.height);
+    let n = (w * h) as usize;
+    let (mut ids, mut tie, mut depth) = (vec![NO_ID; n], vec![false; n], vec![1.0f32; n]);
+    for j in 0..h {
+        for i in 0..w {
+            let (x, y) = (i64::from(i) * 256 + 128, i64::from(j) * 256 + 128);
+            let mut best: Option<(f64, u32)> = None;
+            let mut second = f64::INFINITY;
+            for t in &s.tris {
+                if !t.edges().iter().all(|e| e.contains(x, y)) {
+                    continue;
+                }
+                let d = t.depth.at_pixel(i, j);
+                match best {
+                    Some((bd, bp)) if bp == t.prim => best = Some((bd.min(d), bp)),
+                    Some((bd, bp)) if (d, t.prim) < (bd, bp) => {
+                        second = second.min(bd);
+                        best = Some((d, t.prim));
+                    }
+                    Some(_) => second = second.min(d),
+                    None => best = Some((d, t.prim)),
+                }
+            }
+            let k = (j * w + i) as usize;
+            if let Some((d, p)) = best {
+                ids[k] = p;
+                depth[k] = d as f32;
+                tie[k] = second - d < WINDOW_TIE;
+            }
+        }
+    }
+    (ids, tie, depth)
+}
+
+/// (coverage mismatches, wrong ids off ties, ties) against the brute force,
+/// also checking the depth written on non-tie pixels.
+fn score(s: &ScreenScene, frame: &Frame) -> (usize, usize, usize) {
+    let (ids, tie, depth) = brute_force(s);
+    let (mut cov, mut wrong, mut ties) = (0, 0, 0);
+    for k in 0..ids.len() {
+        if (ids[k] == NO_ID) != (frame.ids[k] == NO_ID) {
+            cov += 1;
+        } else if ids[k] != NO_ID && tie[k] {
+            ties += 1;
+        } else if ids[k] != frame.ids[k] {
+            wrong += 1;
+        } else {
+            assert_eq!(frame.depth[k], depth[k], "depth at pixel {k}");
+        }
+    }
+    (cov, wrong, ties)
+}
+
+fn render(h: &mut dyn Hider, s: &ScreenScene) -> Frame {
+    let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
+    h.render(s, &mut f).unwrap();
+    f
+}
+
+fn assert_exact(s: &ScreenScene, what: &str) {
+    let frame = render(&mut Painter::default(), s);
+    let (cov, wrong, _) = score(s, &frame);
+    assert_eq!(
+        (cov, wrong),
+        (0, 0),
+        "{what}: painter vs window-depth brute force"
+    );
+    let agreement = RayCastOracle::new()
+        .evaluate(s)
+        .compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+    assert!(
+        agreement.is_exact(),
+        "{what}: painter vs oracle: {agreement}"
+    );
+}
+
+#[test]
+fn correct_painter_matches_the_references_on_the_hard_cases() {
+    for (name, scene) in [
+        ("intersecting_pair", procedural::intersecting_pair()),
+        ("cyclic_triple", procedural::cyclic_triple()),
+        ("coplanar_pair", procedural::coplanar_pair()),
+        ("cube", procedural::cube()),
+        ("uv_sphere", procedural::uv_sphere(10)),
+        ("soup", procedural::random_soup(60, 3)),
+    ] {
+        assert_exact(&screen(&scene, 64), name);
+    }
+}
+
+#[test]
+fn naive_painter_is_wrong_on_intersections_and_cycles() {
+    for key in [SortKey::FarthestVertex, SortKey::Centroid] {
+        for (name, scene) in [
+            ("intersecting_pair", procedural::intersecting_pair()),
+            ("cyclic_triple", procedural::cyclic_triple()),
+        ] {
+            let s = screen(&scene, 64);
+            let mut naive = NaivePainter::new(NaiveOptions::default().with_sort_key(key));
+            let frame = render(&mut naive, &s);
+            let (cov, wrong, _) = score(&s, &frame);
+            // Coverage is the shared exact one; visibility is not.
+            assert_eq!(cov, 0, "{name} {key:?}");
+            assert!(
+                wrong > 0,
+                "{name} {key:?}: the naive sort got every pixel right"
+            );
+            let agreement = RayCastOracle::new()
+                .evaluate(&s)
+                .compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+            assert_eq!(agreement.coverage_mismatches, 0);
+            assert!(agreement.wrong_ids > 0, "{name} {key:?}: {agreement}");
+        }
+    }
+}
+
+#[test]
+fn naive_painter_is_right_where_a_depth_order_exists() {
+    // Disjoint, non-intersecting layers: the sort alone is enough.
+    let s = screen(&layers(), 48);
+    let frame = render(&mut NaivePainter::default(), &s);
+    assert_eq!(score(&s, &frame).0 + score(&s, &frame).1, 0);
+}
+
+fn layers() -> Scene {
+    let mut scene = Scene::default();
+    for k in 0..4 {
+        let z = -0.3 * f64::from(k);
+        let dx = 0.2 * f64::from(k);
+        scene.push_mesh(
+            Mesh {
+                positions: vec![
+                    DVec3::new(-1.0 + dx, -1.0, z),
+                    DVec3::new(1.0 + dx, -0.8, z),
+                    DVec3::new(dx, 1.0, z),
+                ],
+                indices: vec![[0, 1, 2]],
+                ..Mesh::default()
+            },
+            None,
+        );
+    }
+    scene
+}
+
+#[test]
+fn splits_are_counted_and_pieces_keep_their_primitive() {
+    let s = screen(&procedural::intersecting_pair(), 64);
+    let mut p = Painter::default();
+    let stats = p.order(&s).unwrap();
+    assert!(stats.plane_splits >= 1);
+    assert_eq!(stats.pieces_out, stats.triangles + stats.splits());
+    assert_eq!(p.ordered_pieces().len() as u64, stats.pieces_out);
+    let prims: Vec<u32> = p.ordered_pieces().map(|q| q.prim).collect();
+    assert!(prims.contains(&0) && prims.contains(&1));
+    assert!(prims.iter().all(|&id| id < 2));
+    // Pieces of a split triangle are cut; at least one prim appears twice.
+    assert!(p.ordered_pieces().any(|q| !q.is_uncut()));
+    let generic: hider_scene::Stats = stats.into();
+    assert_eq!(generic.get("splits"), Some(stats.splits()));
+    assert!(generic.get("comparisons").unwrap() >= 1);
+}
+
+#[test]
+fn cycle_without_intersection_is_split_and_resolved() {
+    let s = screen(&procedural::cyclic_triple(), 64);
+    let mut p = Painter::default();
+    let stats = p.order(&s).unwrap();
+    assert!(stats.splits() >= 1, "{stats:?}");
+    assert!(stats.moves >= 1, "a cycle is found by moving: {stats:?}");
+}
+
+#[test]
+fn exhausted_split_budget_is_a_clear_error() {
+    let s = screen(&procedural::intersecting_pair(), 32);
+    let mut p = Painter::new(PainterOptions::default().with_max_splits(0));
+    let mut f = Frame::new(32, 32).unwrap();
+    let err = p.render(&s, &mut f).unwrap_err();
+    assert!(matches!(err, Error::Render { .. }));
+    let msg = err.to_string();
+    assert!(
+        msg.contains("split budget of 0") && msg.contains("max_splits"),
+        "{msg}"
+    );
+    // Scenes that need no split still render with no budget at all.
+    let ok = screen(&layers(), 32);
+    assert_eq!(p.render(&ok, &mut f).unwrap().get("splits"), Some(0));
+}
+
+#[test]
+fn wrong_frame_size_and_bad_triangles_are_errors() {
+    let s = screen(&procedural::cube(), 32);
+    let mut f = Frame::new(16, 32).unwrap();
+    assert!(Painter::default().render(&s, &mut f).is_err());
+    assert!(NaivePainter::default().render(&s, &mut f).is_err());
+    let mut bad = s.clone();
+    bad.tris[3].depth.dx = f64::NAN;
+    let mut f = Frame::new(32, 32).unwrap();
+    let msg = Painter::default()
+        .render(&bad, &mut f)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        msg.contains("triangle 3") && msg.contains("not finite"),
+        "{msg}"
+    );
+    let mut flipped = s.clone();
+    flipped.tris[0].v.swap(1, 2);
+    assert!(NaivePainter::default().render(&flipped, &mut f).is_err());
+}
+
+#[test]
+fn scratch_is_reused_across_frames_with_identical_results() {
+    let a = screen(&procedural::cyclic_triple(), 40);
+    let b = screen(&procedural::random_soup(40, 9), 40);
+    let mut p = Painter::default();
+    let first = render(&mut p, &a);
+    let _ = render(&mut p, &b);
+    assert_eq!(render(&mut p, &a), first);
+}
+
+/// Random triangles with corners anywhere in a cube: large, so that they
+/// intersect and overlap cyclically often.
+fn big_triangles() -> impl Strategy<Value = Scene> {
+    prop::collection::vec(prop::array::uniform9(-1.0f64..1.0), 2..14).prop_map(|tris| {
+        let mut positions = Vec::new();
+        for t in &tris {
+            for c in 0..3 {
+                positions.push(DVec3::new(t[3 * c], t[3 * c + 1], t[3 * c + 2]));
+            }
+        }
+        let indices = (0..tris.len() as u32)
+            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+            .collect();
+        let mut scene = Scene::default();
+        scene.push_mesh(
+            Mesh {
+                positions,
+                indices,
+                ..Mesh::default()
+            },
+            None,
+        );
+        scene
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn painter_equals_the_references_on_random_intersecting_scenes(scene in big_triangles()) {
+        let s = screen(&scene, 40);
+        let frame = render(&mut Painter::default(), &s);
+        let (cov, wrong, _) = score(&s, &frame);
+        prop_assert_eq!((cov, wrong), (0, 0));
+        let agreement = RayCastOracle::new().evaluate(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+        prop_assert!(agreement.is_exact(), "{}", agreement);
+    }
+
+    #[test]
+    fn painter_equals_the_references_on_random_soups(n in 2u32..120, seed in 0u64..1_000_000) {
+        let s = screen(&procedural::random_soup(n, seed), 48);
+        let frame = render(&mut Painter::default(), &s);
+        let (cov, wrong, _) = score(&s, &frame);
+        prop_assert_eq!((cov, wrong), (0, 0));
+        let agreement = RayCastOracle::new().evaluate(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+        prop_assert!(agreement.is_exact(), "{}", agreement);
+    }
+}
