@@ -51,9 +51,22 @@ impl std::fmt::Display for Agreement {
 
 impl Reference {
     /// Compares a hider's id buffer (row-major, [`NO_ID`] background) with
-    /// this reference. A pixel is a tie when its gap is below
-    /// `tie_tolerance`; see [`crate::DEFAULT_TIE_TOLERANCE`].
+    /// this reference. A pixel is a tie when its relative gap is below
+    /// `tie_tolerance` ([`crate::DEFAULT_TIE_TOLERANCE`]) or its window-depth
+    /// gap is below [`crate::WINDOW_TIE_TOLERANCE`] (what an `f32` depth
+    /// buffer, the format every [`hider_scene::Frame`] stores, cannot order).
     pub fn compare(&self, ids: &[u32], tie_tolerance: f64) -> Agreement {
+        self.compare_with(ids, tie_tolerance, crate::WINDOW_TIE_TOLERANCE)
+    }
+
+    /// Like [`Self::compare`], but ties only by the relative gap: the
+    /// stricter standard a hider with `f64` (or reversed) depth can meet even
+    /// where window depth has no `f32` resolution left.
+    pub fn compare_strict(&self, ids: &[u32], tie_tolerance: f64) -> Agreement {
+        self.compare_with(ids, tie_tolerance, 0.0)
+    }
+
+    fn compare_with(&self, ids: &[u32], tie_tolerance: f64, window_tolerance: f64) -> Agreement {
         let mut a = Agreement {
             pixels: self.ids.len() as u64,
             ..Agreement::default()
@@ -61,6 +74,11 @@ impl Reference {
         let width = self.width.max(1) as usize;
         for (k, (&want, &gap)) in self.ids.iter().zip(&self.gap).enumerate() {
             let got = ids.get(k).copied();
+            let tie = gap < tie_tolerance
+                || self
+                    .window_gap
+                    .get(k)
+                    .is_some_and(|&w| w < window_tolerance);
             let wrong = match got {
                 None => {
                     a.coverage_mismatches += 1;
@@ -74,7 +92,7 @@ impl Reference {
                     debug_assert_eq!(got, NO_ID);
                     false
                 }
-                Some(got) if gap < tie_tolerance => {
+                Some(got) if tie => {
                     a.ties += 1;
                     if got != want {
                         a.tie_differences += 1;
@@ -99,12 +117,18 @@ impl Reference {
         self.ids.iter().filter(|&&id| id != NO_ID).count()
     }
 
-    /// Number of covered pixels whose gap is below `tie_tolerance`.
+    /// Number of covered pixels that are ties in the sense of
+    /// [`Self::compare`].
     pub fn tie_count(&self, tie_tolerance: f64) -> usize {
-        self.ids
-            .iter()
-            .zip(&self.gap)
-            .filter(|&(&id, &g)| id != NO_ID && g < tie_tolerance)
+        (0..self.ids.len())
+            .filter(|&k| {
+                self.ids[k] != NO_ID
+                    && (self.gap[k] < tie_tolerance
+                        || self
+                            .window_gap
+                            .get(k)
+                            .is_some_and(|&w| w < crate::WINDOW_TIE_TOLERANCE))
+            })
             .count()
     }
 }
@@ -120,6 +144,7 @@ mod tests {
             ids: vec![NO_ID, 1, 2, 3],
             depth: vec![1.0, 0.5, 0.5, 0.5],
             gap: vec![f64::INFINITY, f64::INFINITY, 1e-9, 0.1],
+            window_gap: vec![f64::INFINITY, f64::INFINITY, 1e-9, 1e-2],
         }
     }
 
@@ -145,7 +170,15 @@ mod tests {
         assert_eq!(a.wrong_ids, 1);
         assert_eq!(a.first_wrong, Some((1, 1)));
         // With a tolerance above the gap of pixel (1, 1) it is a tie.
-        assert!(r.compare(&[NO_ID, 1, 2, 9], 0.2).is_exact());
+        assert!(r.compare_strict(&[NO_ID, 1, 2, 9], 0.2).is_exact());
+    }
+
+    #[test]
+    fn surfaces_an_f32_buffer_cannot_order_are_ties_unless_strict() {
+        let mut r = reference();
+        r.window_gap[3] = 1e-8; // below 2^-22: a tie for compare
+        assert!(r.compare(&[NO_ID, 1, 2, 9], 1e-5).is_exact());
+        assert_eq!(r.compare_strict(&[NO_ID, 1, 2, 9], 1e-5).wrong_ids, 1);
     }
 
     #[test]

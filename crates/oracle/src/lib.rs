@@ -68,3 +68,18 @@ pub use raycast::{DepthPlane, OracleOptions, OracleStats, RayCastOracle, Referen
 /// depth ranges) are expected to produce tie pixels; that is the point of
 /// counting them.
 pub const DEFAULT_TIE_TOLERANCE: f64 = 1e-5;
+
+/// Window-depth difference under which the two nearest surfaces at a pixel
+/// centre are a tie whatever their relative gap: `2^-22`, four `f32` steps
+/// just below 1.0.
+///
+/// Every [`hider_scene::Frame`] stores window depth as `f32`, and the
+/// exact hiders of the registry include `f32` depth buffers. Where
+/// window depth has no resolution left (a far/near ratio of 1e9, geometry
+/// thousands of near distances away) such a buffer cannot order two
+/// surfaces whatever algorithm it runs, so that is no error of the
+/// algorithm. For the fit camera (far/near = 100) this criterion is
+/// weaker than the relative one and changes nothing.
+/// [`Reference::compare_strict`] leaves it out, for hiders with `f64`
+/// depth.
+pub const WINDOW_TIE_TOLERANCE: f64 = 1.0 / (1u64 << 22) as f64;

@@ -23,7 +23,7 @@ use hider_geom::Projection;
 use hider_geom::fixed::pixel_center;
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ScreenTri, Stats, check_frame};
 
-use crate::DEFAULT_TIE_TOLERANCE;
+use crate::{DEFAULT_TIE_TOLERANCE, WINDOW_TIE_TOLERANCE};
 
 /// Which camera-space plane the oracle intersects the pixel rays with.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -146,6 +146,11 @@ pub struct Reference {
     /// than two primitives cover it). See [`crate::DEFAULT_TIE_TOLERANCE`]
     /// for the measure.
     pub gap: Vec<f64>,
+    /// Window-depth difference between the same two surfaces
+    /// (`f64::INFINITY` when fewer than two cover the centre); below
+    /// [`WINDOW_TIE_TOLERANCE`] an `f32` depth buffer cannot order them, so
+    /// the pixel is a tie too.
+    pub window_gap: Vec<f64>,
 }
 
 /// The nearest and second-nearest distinct primitives at one pixel.
@@ -372,22 +377,33 @@ impl RayCastOracle {
         let mut ids = vec![NO_ID; w * h];
         let mut depth = vec![1.0f32; w * h];
         let mut gap = vec![f64::INFINITY; w * h];
+        let mut window_gap = vec![f64::INFINITY; w * h];
         for (k, n) in self.nearest.iter().enumerate() {
             if n.first.1 == NO_ID {
                 continue;
             }
-            let g = if n.second.1 == NO_ID {
-                f64::INFINITY
+            let (g, wg) = if n.second.1 == NO_ID {
+                (f64::INFINITY, f64::INFINITY)
             } else {
-                (n.second.0 - n.first.0) / model.gap_scale(n.first.0)
+                (
+                    (n.second.0 - n.first.0) / model.gap_scale(n.first.0),
+                    model.window_of_view_depth(n.second.0) - model.window_of_view_depth(n.first.0),
+                )
             };
-            ids[k] = if g < self.options.tie_tolerance {
+            if g < self.options.tie_tolerance || wg < WINDOW_TIE_TOLERANCE {
                 self.stats.ties += 1;
+            }
+            // The id is the nearest surface's unless the relative gap is a
+            // tie; a window-depth tie keeps the nearest, so that the strict
+            // comparison (ties by relative gap only) can hold hiders with
+            // `f64` depth to it.
+            ids[k] = if g < self.options.tie_tolerance {
                 n.first.1.min(n.second.1)
             } else {
                 n.first.1
             };
             gap[k] = g;
+            window_gap[k] = wg;
             depth[k] = model.window_of_view_depth(n.first.0).clamp(0.0, 1.0) as f32;
         }
         Reference {
@@ -396,6 +412,7 @@ impl RayCastOracle {
             ids,
             depth,
             gap,
+            window_gap,
         }
     }
 }

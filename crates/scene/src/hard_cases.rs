@@ -18,7 +18,7 @@
 //! | [`huge_depth_range`] | `near = 1e-3`, `far = 1e6`: window-depth resolution |
 //! | [`huge_coordinates`] | `1e7` world coordinates with unit-size triangles |
 //! | [`cyclic_overlap`] | no depth order exists at all |
-//! | `procedural::random_soup` | heavy overdraw |
+//! | [`heavy_overdraw`], `procedural::random_soup` | many layers per pixel, random interpenetration |
 
 use glam::{DQuat, DVec3};
 use hider_geom::{Camera, Projection};
@@ -208,12 +208,15 @@ pub fn near_coplanar_far(layers: u32, distance: f64, relative_gap: f64, seed: u6
     let tilt = DQuat::from_axis_angle(DVec3::new(1.0, 0.3, 0.0).normalize(), 0.3);
     for k in 0..layers {
         let z = -distance * (1.0 + relative_gap * f64::from(layers - 1 - k));
-        let shift = DVec3::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), 0.0) * size;
+        // Shifted within the (tilted) layer plane, so the layers stay
+        // exactly `relative_gap * distance` apart along the view axis.
+        let shift = tilt * DVec3::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), 0.0) * size;
         let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
         let positions = corners
             .iter()
             .map(|&(x, y)| {
                 tilt * DVec3::new(x * size, y * size, 0.0) + shift + DVec3::new(0.0, 0.0, z)
+                // (the shift above keeps every layer parallel to the first)
             })
             .collect();
         push(
@@ -518,6 +521,40 @@ pub fn cyclic_overlap(n: u32) -> Scene {
     s
 }
 
+/// `count` large random triangles (corners up to 0.6 from centres uniform
+/// in `[-0.5, 0.5]^3`) piled on the same screen area: every pixel is covered
+/// by many layers (heavy overdraw), and many pairs interpenetrate.
+pub fn heavy_overdraw(count: u32, seed: u64) -> Scene {
+    let mut rng = SplitMix64::new(seed);
+    let mut positions = Vec::with_capacity(3 * count as usize);
+    for _ in 0..count {
+        let c = DVec3::new(
+            rng.range(-0.5, 0.5),
+            rng.range(-0.5, 0.5),
+            rng.range(-0.5, 0.5),
+        );
+        for _ in 0..3 {
+            positions.push(
+                c + DVec3::new(
+                    rng.range(-0.6, 0.6),
+                    rng.range(-0.6, 0.6),
+                    rng.range(-0.6, 0.6),
+                ),
+            );
+        }
+    }
+    let indices = (0..count).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+    let mut s = Scene::default();
+    push(
+        &mut s,
+        format!("overdraw_{count}"),
+        positions,
+        indices,
+        [0.7, 0.6, 0.5],
+    );
+    s
+}
+
 /// One modest instance of every hard case, by name, derived from `seed`:
 /// small enough that the exact oracle and every hider run on all of them in
 /// well under a second at 64 x 64.
@@ -544,6 +581,7 @@ pub fn all(seed: u64) -> Vec<(&'static str, Scene)> {
         ("cyclic_overlap", cyclic_overlap(5)),
         ("cyclic_triple", procedural::cyclic_triple()),
         ("random_soup", procedural::random_soup(200, s(12))),
+        ("heavy_overdraw", heavy_overdraw(100, s(13))),
     ]
 }
 
