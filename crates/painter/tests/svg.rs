@@ -1,0 +1,176 @@
+//! Vector output: the SVG of the ordered pieces, read back and checked for
+//! order and geometry, not only as text.
+
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle, Reference};
+use hider_painter::{NaivePainter, Painter, PainterOptions};
+use hider_scene::{
+    Error, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural,
+};
+
+fn screen(scene: &Scene, size: u32) -> ScreenScene {
+    let view = View::for_scene(scene, size, size).unwrap();
+    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+}
+
+/// `(prim, polygon)` of every `<path>`, in document (paint) order.
+fn parse_paths(svg: &str) -> Vec<(u32, Vec<(f64, f64)>)> {
+    svg.lines()
+        .filter(|l| l.starts_with("<path"))
+        .map(|l| {
+            let attr = |name: &str| {
+                let start = l.find(&format!(r#"{name}=""#)).unwrap() + name.len() + 2;
+                let end = start + l[start..].find('"').unwrap();
+                &l[start..end]
+            };
+            let prim = attr("data-prim").parse().unwrap();
+            let poly = attr("d")
+                .split_whitespace()
+                .filter(|t| *t != "Z")
+                .map(|t| {
+                    let (x, y) = t[1..].split_once(',').unwrap();
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect();
+            (prim, poly)
+        })
+        .collect()
+}
+
+/// Signed distances of `p` from the edges of a positively oriented convex
+/// polygon (positive inside); the smallest one.
+fn inside_margin(poly: &[(f64, f64)], p: (f64, f64)) -> f64 {
+    let n = poly.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+            (dx * (p.1 - a.1) - dy * (p.0 - a.0)) / dx.hypot(dy)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// What a vector renderer shows at each pixel centre: the last path that
+/// contains it. Returns (pixels checked, pixels disagreeing with the
+/// oracle off ties). Centres within 1e-6 pixel of a path outline are
+/// skipped: their colour is up to the renderer's anti-aliasing.
+fn score_svg(paths: &[(u32, Vec<(f64, f64)>)], reference: &Reference) -> (usize, usize) {
+    let (mut checked, mut wrong) = (0, 0);
+    for j in 0..reference.height {
+        'pixel: for i in 0..reference.width {
+            let k = (j * reference.width + i) as usize;
+            let p = (f64::from(i) + 0.5, f64::from(j) + 0.5);
+            let mut top = NO_ID;
+            for (prim, poly) in paths {
+                let m = inside_margin(poly, p);
+                if m.abs() < 1e-6 {
+                    continue 'pixel;
+                }
+                if m > 0.0 {
+                    top = *prim;
+                }
+            }
+            if reference.ids[k] == NO_ID || reference.gap[k] < DEFAULT_TIE_TOLERANCE {
+                continue;
+            }
+            checked += 1;
+            if top != reference.ids[k] {
+                wrong += 1;
+            }
+        }
+    }
+    (checked, wrong)
+}
+
+fn temp(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("hider-painter-svg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir.join(name)
+}
+
+#[test]
+fn intersecting_pair_svg_has_split_pieces_in_the_right_order() {
+    let s = screen(&procedural::intersecting_pair(), 64);
+    let path = temp("pair.svg");
+    let stats = Painter::default()
+        .render_svg(&s, &path, ShadeMode::Lambert)
+        .unwrap();
+    assert!(stats.get("splits").unwrap() >= 1);
+    let svg = std::fs::read_to_string(&path).unwrap();
+    assert!(svg.starts_with("<?xml") && svg.trim_end().ends_with("</svg>"));
+    let paths = parse_paths(&svg);
+    assert_eq!(paths.len() as u64, stats.get("pieces out").unwrap());
+    // The pieces interleave: some piece of one triangle is painted between
+    // two pieces of the other, which no whole-triangle order can do.
+    let prims: Vec<u32> = paths.iter().map(|(p, _)| *p).collect();
+    let interleaved = (0..prims.len()).any(|a| {
+        (a + 1..prims.len())
+            .any(|b| (b + 1..prims.len()).any(|c| prims[a] == prims[c] && prims[a] != prims[b]))
+    });
+    assert!(interleaved, "paint order {prims:?}");
+    // Geometry and order together: the last path over each pixel centre is
+    // the oracle's visible primitive.
+    let reference = RayCastOracle::new().evaluate(&s);
+    let (checked, wrong) = score_svg(&paths, &reference);
+    assert!(checked > 300, "only {checked} pixels checked");
+    assert_eq!(wrong, 0);
+    // A plain depth sort, as plotting libraries do, gets part of it wrong.
+    let naive_path = temp("pair-naive.svg");
+    NaivePainter::default()
+        .render_svg(&s, &naive_path, ShadeMode::Ids)
+        .unwrap();
+    let naive = parse_paths(&std::fs::read_to_string(&naive_path).unwrap());
+    assert_eq!(naive.len(), 2);
+    let (_, naive_wrong) = score_svg(&naive, &reference);
+    assert!(naive_wrong > 0);
+}
+
+#[test]
+fn cyclic_triple_svg_matches_the_oracle() {
+    let s = screen(&procedural::cyclic_triple(), 64);
+    let path = temp("cycle.svg");
+    Painter::default()
+        .render_svg(&s, &path, ShadeMode::Ids)
+        .unwrap();
+    let paths = parse_paths(&std::fs::read_to_string(&path).unwrap());
+    let (checked, wrong) = score_svg(&paths, &RayCastOracle::new().evaluate(&s));
+    assert!(checked > 100);
+    assert_eq!(wrong, 0);
+}
+
+#[test]
+fn dropping_hidden_pieces_keeps_the_picture() {
+    let s = screen(&procedural::uv_sphere(12), 48);
+    let reference = RayCastOracle::new().evaluate(&s);
+    let (all, some) = (temp("sphere-all.svg"), temp("sphere-visible.svg"));
+    Painter::default()
+        .render_svg(&s, &all, ShadeMode::Lambert)
+        .unwrap();
+    Painter::new(PainterOptions::default().with_svg_drop_hidden(true))
+        .render_svg(&s, &some, ShadeMode::Lambert)
+        .unwrap();
+    let all = parse_paths(&std::fs::read_to_string(&all).unwrap());
+    let some = parse_paths(&std::fs::read_to_string(&some).unwrap());
+    // The back of the sphere is hidden: roughly half the pieces go.
+    assert!(
+        some.len() < all.len() * 3 / 4,
+        "{} of {}",
+        some.len(),
+        all.len()
+    );
+    for paths in [&all, &some] {
+        let (checked, wrong) = score_svg(paths, &reference);
+        assert!(checked > 200, "only {checked} pixels checked");
+        assert_eq!(wrong, 0);
+    }
+}
+
+#[test]
+fn failed_write_is_an_error_and_leaves_no_file() {
+    let s = screen(&procedural::intersecting_pair(), 16);
+    let missing = temp("no-such-dir").join("out.svg");
+    let err = Painter::default()
+        .render_svg(&s, &missing, ShadeMode::Lambert)
+        .unwrap_err();
+    assert!(matches!(err, Error::Io { .. }), "{err}");
+    assert!(!missing.exists());
+}
