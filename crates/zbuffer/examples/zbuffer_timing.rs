@@ -12,7 +12,10 @@ use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, 
 use hider_zbuffer::ZBuffer;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let runs: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(7);
+    let runs: usize = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(7);
     let spider = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../../../shared/gl-reference/models/spider.obj");
     let mut scenes: Vec<(&str, Scene)> = Vec::new();
@@ -33,7 +36,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut times: Vec<f64> = (0..runs)
             .map(|_| {
                 let t = Instant::now();
-                z.render(&screen, &mut frame).map(|_| t.elapsed().as_secs_f64() * 1e3)
+                z.render(&screen, &mut frame)
+                    .map(|_| t.elapsed().as_secs_f64() * 1e3)
             })
             .collect::<Result<_, _>>()?;
         times.sort_by(f64::total_cmp);

@@ -77,7 +77,7 @@ impl ChunkBins {
         let pow2 = grid.tile.is_power_of_two();
         let tile_of = |p: u32| if pow2 { p >> shift } else { p / grid.tile };
         for (i, tri) in scene.tris[range.clone()].iter().enumerate() {
-            let Some((x0, y0, x1, y1)) = tri.pixel_bounds(scene.viewport) else {
+            let Some((x0, y0, x1, y1)) = super::tile::pixel_bounds(tri, scene.viewport) else {
                 continue;
             };
             self.binned += 1;

@@ -151,8 +151,8 @@ fn hard_cases_and_odd_sizes_match_for_every_format() {
 
 #[test]
 fn hierarchical_depth_rejects_work_on_an_overdrawn_soup() {
-    // 3000 triangles of about 12 pixels across: a dozen layers per pixel.
-    let s = fit(&procedural::random_soup(3000, 5), 320, 320);
+    // 3000 triangles of about 25 pixels across: a dozen layers per pixel.
+    let s = fit(&procedural::random_soup(3000, 5), 640, 640);
     let on = assert_same(&s, TiledZBufferOptions::default().with_threads(1));
     let off = assert_same(
         &s,
@@ -242,4 +242,22 @@ fn names_say_the_format() {
         TiledZBuffer::new(TiledZBufferOptions::default().with_depth_format(DepthFormat::Fixed24));
     assert_eq!(z.name(), "zbuffer-tiled-fixed24");
     assert!(TiledZBuffer::default().threads() >= 1);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// The shift-based box equals the scene crate's, also for vertices in
+    /// the guard band (negative and beyond the viewport).
+    #[test]
+    fn shift_pixel_bounds_equal_the_scene_crates(
+        pts in proptest::array::uniform3((-40_000i32..40_000, -40_000i32..40_000)),
+        w in 1u32..100,
+        h in 1u32..100,
+    ) {
+        let s = fit(&procedural::cube(), w, h);
+        let mut tri = s.tris[0];
+        tri.v = pts.map(|(x, y)| hider_geom::fixed::FixedPt::new(x, y));
+        prop_assert_eq!(super::tile::pixel_bounds(&tri, s.viewport), tri.pixel_bounds(s.viewport));
+    }
 }

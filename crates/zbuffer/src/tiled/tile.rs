@@ -30,7 +30,7 @@ use super::stats::TiledZBufferStats;
 const BLOCK: u32 = 8;
 /// Triangles whose box in the tile is at most this many pixels are drawn
 /// by a plain box scan: for them block set-up costs more than it saves.
-const SMALL_AREA: u32 = 64;
+const SMALL_AREA: u32 = 32;
 /// Passes into a block after which its maximum is recomputed.
 const BLOCK_REFRESH: u32 = 16;
 
@@ -95,6 +95,17 @@ impl<K: DepthKey> TileBuf<K> {
             + self.col.capacity() * 8
     }
 
+    /// Index of pixel `(x, y)` (image coordinates, inside the tile) in the
+    /// tile's block-linear storage: 8x8 blocks of 64 consecutive values,
+    /// blocks row by row, so a block is one 256-byte run (f32) and its
+    /// depth test works on contiguous memory.
+    #[inline]
+    fn at(&self, x: u32, y: u32) -> usize {
+        let (lx, ly) = (x - self.x0, y - self.y0);
+        let blocks = ((ly >> 3) * (self.size >> 3) + (lx >> 3)) as usize;
+        blocks * 64 + ((ly & 7) * 8 + (lx & 7)) as usize
+    }
+
     /// Starts the tile at `(x0, y0)` of `w x h` pixels. Nothing is cleared
     /// until a triangle meets it (the per-tile clear flag).
     pub(crate) fn start(&mut self, x0: u32, y0: u32, w: u32, h: u32) {
@@ -105,11 +116,8 @@ impl<K: DepthKey> TileBuf<K> {
     fn activate(&mut self) {
         self.active = true;
         self.stats.tiles_drawn += 1;
-        let s = self.size as usize;
-        for r in 0..self.h as usize {
-            self.keys[r * s..r * s + self.w as usize].fill(K::FAR);
-            self.ids[r * s..r * s + self.w as usize].fill(NO_ID);
-        }
+        self.keys.fill(K::FAR);
+        self.ids.fill(NO_ID);
         self.block_max.fill(K::FAR);
         self.block_passes.fill(0);
         self.tile_max = K::FAR;
@@ -118,7 +126,7 @@ impl<K: DepthKey> TileBuf<K> {
 
     /// Draws one triangle into the tile.
     pub(crate) fn draw(&mut self, tri: &ScreenTri, viewport: Viewport, hiz: bool) {
-        let Some((bx0, by0, bx1, by1)) = tri.pixel_bounds(viewport) else {
+        let Some((bx0, by0, bx1, by1)) = pixel_bounds(tri, viewport) else {
             return;
         };
         let (x0, y0) = (bx0.max(self.x0), by0.max(self.y0));
@@ -145,98 +153,233 @@ impl<K: DepthKey> TileBuf<K> {
                 return;
             }
         }
+        if small {
+            self.small(tri, x0, y0, x1, y1);
+            return;
+        }
+        // Large: walk the tile's aligned 8x8 blocks the box meets.
+        let ox = self.x0 + (x0 - self.x0) / BLOCK * BLOCK;
+        let oy = self.y0 + (y0 - self.y0) / BLOCK * BLOCK;
+        let span_end = (self.x0 + (x1 - self.x0) / BLOCK * BLOCK + BLOCK).min(self.x0 + self.w);
         // Column terms of the depth plane: PlaneEq::eval computes
         // `value + dx * (x - x0) + dy * (y - y0)` left to right, so adding
         // the row term to this column term gives the same f64, bit for bit.
         let p = &tri.depth;
-        for (i, c) in self.col[..(x1 - x0 + 1) as usize].iter_mut().enumerate() {
-            *c = p.value + p.dx * ((f64::from(x0 + i as u32) + 0.5) - p.x0);
+        for (i, c) in self.col[..(span_end - ox) as usize].iter_mut().enumerate() {
+            *c = p.value + p.dx * ((f64::from(ox + i as u32) + 0.5) - p.x0);
         }
         let edges = tri.edges();
         let unit = i64::from(SUBPIXEL_SCALE);
-        let sx = edges.map(|e| e.a * unit);
-        let sy = edges.map(|e| e.b * unit);
-        let px = i64::from(x0) * unit + i64::from(HALF_PIXEL);
-        let py = i64::from(y0) * unit + i64::from(HALF_PIXEL);
-        let e00 = edges.map(|e| e.eval(px, py));
+        let px = i64::from(ox) * unit + i64::from(HALF_PIXEL);
+        let py = i64::from(oy) * unit + i64::from(HALF_PIXEL);
         let setup = Setup {
-            x0,
-            y0,
-            e00,
-            sx,
-            sy,
+            ox,
+            oy,
+            e00: edges.map(|e| e.eval(px, py)),
+            sx: edges.map(|e| e.a * unit),
+            sy: edges.map(|e| e.b * unit),
             prim: tri.prim,
+            bbox: (x0, y0, x1, y1),
         };
-        if small {
-            let passes = self.rows::<true>(&setup, tri, x0, y0, x1, y1);
-            if passes > 0 {
-                self.note_passes_in_rect(x0, y0, x1, y1, passes);
+        self.blocks(&setup, tri, bounds.as_ref());
+    }
+
+    /// A triangle whose box in the tile is a few pixels: a plain scan of
+    /// the box, scalar (too short to vectorise), evaluating the depth only
+    /// where the edges pass.
+    fn small(&mut self, tri: &ScreenTri, x0: u32, y0: u32, x1: u32, y1: u32) {
+        let edges = tri.edges();
+        let unit = i64::from(SUBPIXEL_SCALE);
+        let px = i64::from(x0) * unit + i64::from(HALF_PIXEL);
+        let sx = edges.map(|e| e.a * unit);
+        let p = &tri.depth;
+        let (mut inside, mut passes) = (0u32, 0u32);
+        for y in y0..=y1 {
+            let py = i64::from(y) * unit + i64::from(HALF_PIXEL);
+            // Biased by one: inside iff all three are >= 0, i.e. the OR of
+            // the three has no sign bit (exact; |E| < 2^50).
+            let [mut e0, mut e1, mut e2] = edges.map(|e| e.eval(px, py) - 1);
+            let ty = p.dy * ((f64::from(y) + 0.5) - p.y0);
+            for x in x0..=x1 {
+                if (e0 | e1 | e2) >= 0 {
+                    inside += 1;
+                    let key = K::encode(p.value + p.dx * ((f64::from(x) + 0.5) - p.x0) + ty);
+                    let i = self.at(x, y);
+                    if key < self.keys[i] {
+                        self.keys[i] = key;
+                        self.ids[i] = tri.prim;
+                        passes += 1;
+                    }
+                }
+                e0 += sx[0];
+                e1 += sx[1];
+                e2 += sx[2];
             }
-        } else {
-            self.blocks(&setup, tri, bounds.as_ref(), x1, y1);
+        }
+        self.stats.pixels_tested += u64::from((x1 - x0 + 1) * (y1 - y0 + 1));
+        self.stats.depth_tests += u64::from(inside);
+        self.stats.depth_passes += u64::from(passes);
+        if passes > 0 {
+            self.note_passes_in_rect(x0, y0, x1, y1, passes);
         }
     }
 
-    /// Visits the 8x8 blocks of the triangle's box `setup.x0..=x1`,
-    /// `setup.y0..=y1`.
-    fn blocks(
+    /// Visits the aligned 8x8 blocks of the tile that the triangle's box
+    /// meets.
+    fn blocks(&mut self, s: &Setup, tri: &ScreenTri, bounds: Option<&DepthBounds>) {
+        let per_row = (self.size / BLOCK) as usize;
+        let (_, _, x1, y1) = s.bbox;
+        let (tile_x1, tile_y1) = (self.x0 + self.w - 1, self.y0 + self.h - 1);
+        let mut by = s.oy;
+        while by <= y1 {
+            let yb = (by + BLOCK - 1).min(tile_y1);
+            let mut bx = s.ox;
+            while bx <= x1 {
+                let xb = (bx + BLOCK - 1).min(tile_x1);
+                self.block(s, tri, bounds, (bx, by, xb, yb), per_row);
+                bx += BLOCK;
+            }
+            by += BLOCK;
+        }
+    }
+
+    /// One block `(bx, by)..=(xb, yb)` (aligned; clipped to the image).
+    fn block(
         &mut self,
         s: &Setup,
         tri: &ScreenTri,
         bounds: Option<&DepthBounds>,
-        x1: u32,
-        y1: u32,
+        (bx, by, xb, yb): (u32, u32, u32, u32),
+        per_row: usize,
     ) {
-        let per_row = (self.size / BLOCK) as usize;
-        let (bc0, bc1) = ((s.x0 - self.x0) / BLOCK, (x1 - self.x0) / BLOCK);
-        let (br0, br1) = ((s.y0 - self.y0) / BLOCK, (y1 - self.y0) / BLOCK);
-        for br in br0..=br1 {
-            let ya = (self.y0 + br * BLOCK).max(s.y0);
-            let yb = (self.y0 + br * BLOCK + BLOCK - 1).min(y1);
-            for bc in bc0..=bc1 {
-                let xa = (self.x0 + bc * BLOCK).max(s.x0);
-                let xb = (self.x0 + bc * BLOCK + BLOCK - 1).min(x1);
-                self.stats.blocks_visited += 1;
-                // Edge functions at the block's corner pixel centres.
-                let (dx, dy) = (i64::from(xa - s.x0), i64::from(ya - s.y0));
-                let (wx, wy) = (i64::from(xb - xa), i64::from(yb - ya));
-                let mut inside = true;
-                let mut outside = false;
-                for k in 0..3 {
-                    let c = s.e00[k] + s.sx[k] * dx + s.sy[k] * dy;
-                    let (ax, ay) = (s.sx[k] * wx, s.sy[k] * wy);
-                    let lo = c + ax.min(0) + ay.min(0);
-                    let hi = c + ax.max(0) + ay.max(0);
-                    outside |= hi <= 0;
-                    inside &= lo > 0;
+        self.stats.blocks_visited += 1;
+        // Edge functions at the block's corner pixel centres: an affine
+        // function's extremes over a rectangle are at its corners.
+        let (dx, dy) = (i64::from(bx - s.ox), i64::from(by - s.oy));
+        let (wx, wy) = (i64::from(xb - bx), i64::from(yb - by));
+        let mut inside = true;
+        let mut corner = [0i64; 3];
+        let mut fits = true;
+        for (k, corner) in corner.iter_mut().enumerate() {
+            let c = s.e00[k] + s.sx[k] * dx + s.sy[k] * dy;
+            let (ax, ay) = (s.sx[k] * wx, s.sy[k] * wy);
+            let lo = c + ax.min(0) + ay.min(0);
+            let hi = c + ax.max(0) + ay.max(0);
+            if hi <= 0 {
+                self.stats.blocks_outside += 1;
+                return;
+            }
+            inside &= lo > 0;
+            // A partial edge crosses the block, so its values lie in
+            // [lo, hi]: i32 lanes are exact when that span fits.
+            fits &= lo > 0 || hi - lo < i64::from(i32::MAX);
+            *corner = c;
+        }
+        let block = ((by - self.y0) / BLOCK) as usize * per_row + ((bx - self.x0) / BLOCK) as usize;
+        let (x0, y0, x1, y1) = s.bbox;
+        if let Some(b) = bounds {
+            if self.block_passes[block] >= BLOCK_REFRESH {
+                self.refresh_block(block);
+            }
+            let max = self.block_max[block];
+            if max < K::FAR
+                && K::encode(b.rect_low(bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1))) >= max
+            {
+                self.stats.hiz_block_rejects += 1;
+                return;
+            }
+        }
+        let full = xb - bx + 1 == BLOCK && yb - by + 1 == BLOCK;
+        let passes = if full && inside {
+            self.stats.blocks_inside += 1;
+            self.block8::<false>(s, tri, bx, by, [0; 3], [[0; 8]; 3], [0; 3])
+        } else if full && fits {
+            // Biased by one so "inside" is ">= 0" (see `small`); edges the
+            // whole block is inside of are replaced by the constant 0.
+            let mut e = [0i32; 3];
+            let mut lanes = [[0i32; 8]; 3];
+            let mut down = [0i32; 3];
+            for k in 0..3 {
+                let lo = corner[k] + (s.sx[k] * 7).min(0) + (s.sy[k] * 7).min(0);
+                if lo <= 0 {
+                    e[k] = (corner[k] - 1) as i32;
+                    lanes[k] = std::array::from_fn(|i| (s.sx[k] * i as i64) as i32);
+                    down[k] = s.sy[k] as i32;
                 }
-                if outside {
-                    self.stats.blocks_outside += 1;
-                    continue;
-                }
-                let block = br as usize * per_row + bc as usize;
-                if let Some(b) = bounds {
-                    if self.block_passes[block] >= BLOCK_REFRESH {
-                        self.refresh_block(block);
-                    }
-                    let max = self.block_max[block];
-                    if max < K::FAR && K::encode(b.rect_low(xa, ya, xb, yb)) >= max {
-                        self.stats.hiz_block_rejects += 1;
-                        continue;
-                    }
-                }
-                let passes = if inside {
-                    self.stats.blocks_inside += 1;
-                    self.rows::<false>(s, tri, xa, ya, xb, yb)
-                } else {
-                    self.rows::<true>(s, tri, xa, ya, xb, yb)
-                };
-                if passes > 0 {
-                    self.block_passes[block] += passes;
-                    self.tile_passes += passes;
+            }
+            self.block8::<true>(s, tri, bx, by, e, lanes, down)
+        } else {
+            // At the image's edge, or edges too long for i32 lanes.
+            self.rows::<true>(s, tri, bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1))
+        };
+        if passes > 0 {
+            self.block_passes[block] += passes;
+            self.tile_passes += passes;
+        }
+    }
+
+    /// A full 8x8 block as 64 contiguous lanes: the compiler vectorises
+    /// each of the three simple passes (depth keys, edge signs, LESS and
+    /// select). Edge lanes are i32: `e` at the block corner (biased by -1),
+    /// `lanes` the offsets along a row, `down` the step per row. Returns
+    /// the passes.
+    #[allow(clippy::too_many_arguments)]
+    fn block8<const EDGES: bool>(
+        &mut self,
+        s: &Setup,
+        tri: &ScreenTri,
+        bx: u32,
+        by: u32,
+        e: [i32; 3],
+        lanes: [[i32; 8]; 3],
+        down: [i32; 3],
+    ) -> u32 {
+        let p = &tri.depth;
+        let c0 = (bx - s.ox) as usize;
+        let Ok(col) = <[f64; 8]>::try_from(&self.col[c0..c0 + 8]) else {
+            return 0;
+        };
+        let ty: [f64; 8] =
+            std::array::from_fn(|r| p.dy * ((f64::from(by + r as u32) + 0.5) - p.y0));
+        let mut new = [K::FAR; 64];
+        for r in 0..8 {
+            for c in 0..8 {
+                new[r * 8 + c] = K::encode(col[c] + ty[r]);
+            }
+        }
+        // Sign bit set = outside some edge.
+        let mut out = [0i32; 64];
+        if EDGES {
+            for r in 0..8 {
+                let row = [0, 1, 2].map(|k| e[k] + r as i32 * down[k]);
+                for c in 0..8 {
+                    out[r * 8 + c] =
+                        (row[0] + lanes[0][c]) | (row[1] + lanes[1][c]) | (row[2] + lanes[2][c]);
                 }
             }
         }
+        let base = self.at(bx, by);
+        let (Ok(keys), Ok(ids)) = (
+            <&mut [K; 64]>::try_from(&mut self.keys[base..base + 64]),
+            <&mut [u32; 64]>::try_from(&mut self.ids[base..base + 64]),
+        ) else {
+            return 0;
+        };
+        let (mut inside, mut passes) = (0u32, 0u32);
+        for i in 0..64 {
+            let ok = out[i] >= 0;
+            let pass = ok & (new[i] < keys[i]);
+            keys[i] = if pass { new[i] } else { keys[i] };
+            ids[i] = if pass { s.prim } else { ids[i] };
+            inside += u32::from(ok);
+            passes += u32::from(pass);
+        }
+        if EDGES {
+            self.stats.pixels_tested += 64;
+        }
+        self.stats.depth_tests += u64::from(inside);
+        self.stats.depth_passes += u64::from(passes);
+        passes
     }
 
     /// Rasterises rows `ya..=yb`, columns `xa..=xb` (inside the triangle's
@@ -253,16 +396,15 @@ impl<K: DepthKey> TileBuf<K> {
     ) -> u32 {
         let p = &tri.depth;
         let n = (xb - xa + 1) as usize;
-        let c0 = (xa - s.x0) as usize;
+        let c0 = (xa - s.ox) as usize;
         let col = &self.col[c0..c0 + n];
-        let stride = self.size as usize;
-        let dx = i64::from(xa - s.x0);
-        let dy = i64::from(ya - s.y0);
+        let dx = i64::from(xa - s.ox);
+        let dy = i64::from(ya - s.oy);
         let mut e = [0, 1, 2].map(|k| s.e00[k] + s.sx[k] * dx + s.sy[k] * dy);
         let (mut inside_total, mut pass_total) = (0u32, 0u32);
         for y in ya..=yb {
             let ty = p.dy * ((f64::from(y) + 0.5) - p.y0);
-            let at = (y - self.y0) as usize * stride + (xa - self.x0) as usize;
+            let at = self.at(xa, y);
             let (inside, passes) = raster_row::<K, EDGES>(
                 &mut self.keys[at..at + n],
                 &mut self.ids[at..at + n],
@@ -307,11 +449,10 @@ impl<K: DepthKey> TileBuf<K> {
         let (br, bc) = ((block / per_row) as u32, (block % per_row) as u32);
         let (ya, xa) = (br * BLOCK, bc * BLOCK);
         let (yb, xb) = ((ya + BLOCK).min(self.h), (xa + BLOCK).min(self.w));
-        let stride = self.size as usize;
-        let mut m = self.keys[ya as usize * stride + xa as usize];
-        for y in ya..yb {
-            let at = y as usize * stride;
-            for &k in &self.keys[at + xa as usize..at + xb as usize] {
+        let base = block * 64;
+        let mut m = self.keys[base];
+        for r in 0..(yb - ya) as usize {
+            for &k in &self.keys[base + r * 8..base + r * 8 + (xb - xa) as usize] {
                 m = m.max_key(k);
             }
         }
@@ -351,14 +492,24 @@ impl<K: DepthKey> TileBuf<K> {
         width: usize,
         band_y0: u32,
     ) {
-        let (w, s) = (self.w as usize, self.size as usize);
+        let w = self.w as usize;
         for r in 0..self.h as usize {
             let at = (self.y0 - band_y0) as usize * width + r * width + self.x0 as usize;
             let (ids_out, depth_out) = (&mut ids[at..at + w], &mut depth[at..at + w]);
             if self.active {
-                ids_out.copy_from_slice(&self.ids[r * s..r * s + w]);
-                for (d, k) in depth_out.iter_mut().zip(&self.keys[r * s..r * s + w]) {
-                    *d = k.decode();
+                // Blocks are stored one after the other (64 pixels each):
+                // a tile row is a run of 8 pixels from each block of the row.
+                let y = self.y0 + r as u32;
+                for c in (0..w).step_by(BLOCK as usize) {
+                    let n = (w - c).min(BLOCK as usize);
+                    let from = self.at(self.x0 + c as u32, y);
+                    ids_out[c..c + n].copy_from_slice(&self.ids[from..from + n]);
+                    for (d, k) in depth_out[c..c + n]
+                        .iter_mut()
+                        .zip(&self.keys[from..from + n])
+                    {
+                        *d = k.decode();
+                    }
                 }
             } else {
                 ids_out.fill(NO_ID);
@@ -371,15 +522,33 @@ impl<K: DepthKey> TileBuf<K> {
     }
 }
 
-/// Per (triangle, tile) set-up: the edge functions at the box's first pixel
-/// centre and their exact integer steps per pixel.
+/// Per (triangle, tile) set-up of a large triangle: the edge functions at
+/// the pixel centre `(ox, oy)` (the first block's corner) and their exact
+/// integer steps per pixel; the depth column terms start at `ox` too.
 struct Setup {
-    x0: u32,
-    y0: u32,
+    ox: u32,
+    oy: u32,
     e00: [i64; 3],
     sx: [i64; 3],
     sy: [i64; 3],
     prim: u32,
+    /// The triangle's pixel box clipped to the tile.
+    bbox: (u32, u32, u32, u32),
+}
+
+/// [`ScreenTri::pixel_bounds`] with shifts instead of divisions (the same
+/// values: `div_euclid` by 256 is an arithmetic shift right by 8).
+#[inline]
+pub(crate) fn pixel_bounds(tri: &ScreenTri, vp: Viewport) -> Option<(u32, u32, u32, u32)> {
+    let [a, b, c] = tri.v;
+    let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    let (min_y, max_y) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
+    // First centre >= m: ceil((m - 128) / 256); last <= m: floor((m - 128) / 256).
+    let x0 = ((min_x + 127) >> 8).max(0);
+    let y0 = ((min_y + 127) >> 8).max(0);
+    let x1 = ((max_x - 128) >> 8).min(vp.width as i32 - 1);
+    let y1 = ((max_y - 128) >> 8).min(vp.height as i32 - 1);
+    (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32))
 }
 
 /// One row of pixels: edge tests (when `EDGES`), depth, LESS, write.

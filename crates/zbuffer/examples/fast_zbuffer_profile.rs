@@ -1,0 +1,50 @@
+//! Renders one scene of the benchmark a few times with one hider, for
+//! profilers (`valgrind --tool=callgrind`, `perf record`).
+//!
+//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_profile -- SCENE HIDER [SIZE] [RUNS] [THREADS]`
+//! with SCENE one of `spider`, `sphere200`, `sphere500`, `soup`, and HIDER
+//! `zbuffer` or `tiled`.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural};
+use hider_zbuffer::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let arg = |i: usize, default: &str| args.get(i).cloned().unwrap_or_else(|| default.to_owned());
+    let size: u32 = arg(2, "1024").parse()?;
+    let runs: usize = arg(3, "3").parse()?;
+    let threads: usize = arg(4, "1").parse()?;
+    let scene: Scene = match arg(0, "sphere500").as_str() {
+        "spider" => load_obj(
+            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+                .join("../../../shared/gl-reference/models/spider.obj"),
+        )?,
+        "sphere200" => procedural::uv_sphere(200),
+        "sphere500" => procedural::uv_sphere(500),
+        "soup" => procedural::random_soup(100_000, 1),
+        other => return Err(format!("unknown scene {other}").into()),
+    };
+    let mut hider: Box<dyn Hider> = match arg(1, "tiled").as_str() {
+        "zbuffer" => Box::new(ZBuffer::default()),
+        "tiled" => Box::new(TiledZBuffer::new(
+            TiledZBufferOptions::default().with_threads(threads),
+        )),
+        other => return Err(format!("unknown hider {other}").into()),
+    };
+    let view = View::for_scene(&scene, size, size)?;
+    let screen = prepare(&scene, &view, &PrepareOptions::default())?;
+    let mut frame = Frame::new(size, size)?;
+    for _ in 0..runs {
+        let t = Instant::now();
+        let stats = hider.render(&screen, &mut frame)?;
+        println!(
+            "{:.2} ms  {:?}",
+            t.elapsed().as_secs_f64() * 1e3,
+            stats.counters
+        );
+    }
+    Ok(())
+}
