@@ -9,6 +9,9 @@
 //! | [`geom`] | camera, clipping, fixed-point snapping, edge functions, planes |
 //! | [`scene`] | scene model, OBJ/MTL, the shared front end `prepare`, frames, the `Hider` trait |
 //! | [`zbuffer`] | depth buffer with five depth formats |
+//! | [`abuffer`] | Carpenter's A-buffer with 8x4 coverage masks, and supersampling baselines |
+//! | [`warnock`] | Warnock's area subdivision |
+//! | [`scanline`] | scanline with edge table, active edge list and spans |
 //! | [`oracle`] | the slow exact references every test measures against |
 //! | [`bench`] | the comparative benchmark and the hider registry |
 //!
@@ -35,11 +38,16 @@
 //! # Ok::<(), hider::scene::Error>(())
 //! ```
 
+pub use hider_abuffer as abuffer;
 pub use hider_bench as bench;
 pub use hider_geom as geom;
 pub use hider_oracle as oracle;
+pub use hider_scanline as scanline;
 pub use hider_scene as scene;
+pub use hider_warnock as warnock;
 pub use hider_zbuffer as zbuffer;
+
+pub mod plan;
 
 /// Every hider by name (re-exported from `hider-bench`).
 pub use hider_bench::registry;

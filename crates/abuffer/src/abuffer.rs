@@ -327,7 +327,11 @@ impl ABuffer {
 
 impl Hider for ABuffer {
     fn name(&self) -> &str {
-        "abuffer"
+        if self.options == ABufferOptions::carpenter() {
+            "abuffer-carpenter"
+        } else {
+            "abuffer"
+        }
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {

@@ -152,7 +152,15 @@ impl SupersampledZBuffer {
 
 impl Hider for SupersampledZBuffer {
     fn name(&self) -> &str {
-        "ssaa"
+        // The sample count is part of the name so tables tell the
+        // baselines apart.
+        match self.options.pattern {
+            SamplePattern::Centre => "ssaa-1",
+            SamplePattern::Grid4 => "ssaa-4",
+            SamplePattern::Grid8 => "ssaa-8",
+            SamplePattern::Grid16 => "ssaa-16",
+            SamplePattern::Grid32 => "ssaa-32",
+        }
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {

@@ -2,8 +2,14 @@
 //! benchmark and the property tests read, so adding an algorithm is one
 //! entry here.
 
+use hider_abuffer::{
+    ABuffer, ABufferOptions, SamplePattern, SortedTransparencyZBuffer, SsaaOptions,
+    SupersampledZBuffer,
+};
 use hider_oracle::RayCastOracle;
+use hider_scanline::Scanline;
 use hider_scene::Hider;
+use hider_warnock::{Warnock, WarnockOptions};
 use hider_zbuffer::{DepthFormat, DepthSource, ZBuffer, ZBufferOptions};
 
 /// What kind of answer a hider gives, which decides how it is checked.
@@ -41,6 +47,12 @@ fn zbuffer(format: DepthFormat, source: DepthSource) -> Box<dyn Hider> {
         ZBufferOptions::default()
             .with_depth_format(format)
             .with_depth_source(source),
+    ))
+}
+
+fn ssaa(pattern: SamplePattern) -> Box<dyn Hider> {
+    Box::new(SupersampledZBuffer::new(
+        SsaaOptions::default().with_pattern(pattern),
     ))
 }
 
@@ -82,6 +94,70 @@ pub fn all() -> Vec<Entry> {
             description: "depth buffer comparing camera z interpolated linearly (the seed's error)",
             kind: Kind::ApproximatePixelCentre,
             make: || zbuffer(DepthFormat::F32, DepthSource::LinearViewZ),
+        },
+        Entry {
+            name: "scanline",
+            description: "scanline (Watkins): edge table, active edge list, depth-ordered spans",
+            kind: Kind::ExactPixelCentre,
+            make: || Box::new(Scanline::new()),
+        },
+        Entry {
+            name: "warnock",
+            description: "Warnock area subdivision to pixel size",
+            kind: Kind::ExactPixelCentre,
+            make: || Box::new(Warnock::default()),
+        },
+        Entry {
+            name: "warnock-4x4",
+            description: "Warnock subdividing to 4x4 samples per pixel (anti-aliased)",
+            kind: Kind::MultiSample,
+            make: || {
+                Box::new(Warnock::new(
+                    WarnockOptions::default().with_samples_per_side(4),
+                ))
+            },
+        },
+        Entry {
+            name: "abuffer",
+            description: "A-buffer, 8x4 coverage masks, per-sample depth (exact), order-independent transparency",
+            kind: Kind::MultiSample,
+            make: || Box::new(ABuffer::new(ABufferOptions::default())),
+        },
+        Entry {
+            name: "abuffer-carpenter",
+            description: "A-buffer as in Carpenter 1984: zmin/zmax per fragment, same-surface merging",
+            kind: Kind::MultiSample,
+            make: || Box::new(ABuffer::new(ABufferOptions::carpenter())),
+        },
+        Entry {
+            name: "ssaa-4",
+            description: "supersampled z-buffer, 4 samples (subset of the A-buffer mask)",
+            kind: Kind::MultiSample,
+            make: || ssaa(SamplePattern::Grid4),
+        },
+        Entry {
+            name: "ssaa-8",
+            description: "supersampled z-buffer, 8 samples",
+            kind: Kind::MultiSample,
+            make: || ssaa(SamplePattern::Grid8),
+        },
+        Entry {
+            name: "ssaa-16",
+            description: "supersampled z-buffer, 16 samples",
+            kind: Kind::MultiSample,
+            make: || ssaa(SamplePattern::Grid16),
+        },
+        Entry {
+            name: "ssaa-32",
+            description: "supersampled z-buffer, 32 samples (the A-buffer's mask)",
+            kind: Kind::MultiSample,
+            make: || ssaa(SamplePattern::Grid32),
+        },
+        Entry {
+            name: "ssaa-sorted",
+            description: "32-sample z-buffer, opaque first then transparent sorted back to front (order-dependent)",
+            kind: Kind::MultiSample,
+            make: || Box::new(SortedTransparencyZBuffer::new(SsaaOptions::default())),
         },
         Entry {
             name: "oracle",
