@@ -10,6 +10,10 @@
 //! camera depth linearly in screen space — the seed's classic mistake — so
 //! the benchmark can show what it costs.
 //!
+//! [`TiledZBuffer`] gives the same frame, pixel for pixel, from a binned,
+//! tiled, parallel traversal with 8x8 block accept/reject and hierarchical
+//! depth (see its module and `docs/zbuffer.md`).
+//!
 //! # Example
 //!
 //! Load an OBJ, render it with the fit camera, write a PNG:
