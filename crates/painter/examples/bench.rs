@@ -3,7 +3,8 @@
 //! on the same window-depth planes).
 //!
 //! `cargo run --release -p hider-painter --example bench [sizes...]`
-//! (default sizes: 1000 10000 100000; image 512 x 512).
+//! (default sizes: 1000 10000 100000; image 512 x 512). A `soup` or
+//! `sphere` argument runs only that scene.
 
 use std::time::Instant;
 
@@ -11,10 +12,9 @@ use hider_painter::{NaivePainter, Painter, PainterStats};
 use hider_scene::{Frame, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural};
 
 fn main() -> Result<(), hider_scene::Error> {
-    let sizes: Vec<u32> = std::env::args()
-        .skip(1)
-        .filter_map(|a| a.parse().ok())
-        .collect();
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let only = args.iter().find(|a| a.parse::<u32>().is_err()).cloned();
+    let sizes: Vec<u32> = args.iter().filter_map(|a| a.parse().ok()).collect();
     let sizes = if sizes.is_empty() {
         vec![1000, 10_000, 100_000]
     } else {
@@ -31,6 +31,9 @@ fn main() -> Result<(), hider_scene::Error> {
             ("soup", procedural::random_soup(n, 1)),
             ("sphere", procedural::uv_sphere(k)),
         ] {
+            if only.as_deref().is_some_and(|o| o != name) {
+                continue;
+            }
             run(name, &scene)?;
         }
     }

@@ -33,7 +33,7 @@ use glam::DVec2;
 use hider_geom::PlaneEq;
 use hider_scene::{Error, Result, ScreenScene};
 
-use crate::newell::{Blocked, Decided, Outcome, may_precede};
+use crate::newell::{Blocked, Decided, Extent, Outcome, extents_decide, may_precede_by_planes};
 use crate::piece::{Piece, depth_difference, edge_line};
 use crate::stats::PainterStats;
 
@@ -50,7 +50,7 @@ enum Slot {
 /// does not chase the piece arena.
 #[derive(Clone, Copy, Debug)]
 struct Entry {
-    zmax: f64,
+    extent: Extent,
     id: u32,
 }
 
@@ -93,13 +93,17 @@ impl Orderer {
         stats.triangles = scene.tris.len() as u64;
         self.sorted
             .extend(self.pieces.iter().enumerate().map(|(k, p)| Entry {
-                zmax: p.zmax,
+                extent: Extent::of(p),
                 id: k as u32,
             }));
         // Ascending, so the farthest is popped from the end; equal depths
         // paint the lower primitive id first.
-        self.sorted
-            .sort_by(|a, b| a.zmax.total_cmp(&b.zmax).then(b.id.cmp(&a.id)));
+        self.sorted.sort_by(|a, b| {
+            a.extent
+                .zmax
+                .total_cmp(&b.extent.zmax)
+                .then(b.id.cmp(&a.id))
+        });
         loop {
             let candidate = match (self.front.last(), self.sorted.last()) {
                 (Some(&c), _) => Slot::Front(self.front.len() - 1).with(c),
@@ -155,9 +159,14 @@ impl Orderer {
         stats: &mut PainterStats,
     ) -> Option<(Slot, u32, Blocked)> {
         let pp = &self.pieces[p as usize];
-        let check = |q: u32, stats: &mut PainterStats| -> Option<Blocked> {
+        let pe = Extent::of(pp);
+        let check = |q: u32, qe: &Extent, stats: &mut PainterStats| -> Option<Blocked> {
             stats.comparisons += 1;
-            match may_precede(pp, &self.pieces[q as usize], eps) {
+            let outcome = match extents_decide(&pe, qe, eps) {
+                Some(d) => Outcome::Ok(d),
+                None => may_precede_by_planes(pp, &self.pieces[q as usize], eps),
+            };
+            match outcome {
                 Outcome::Ok(d) => {
                     *match d {
                         Decided::Depth => &mut stats.decided_depth,
@@ -180,7 +189,7 @@ impl Orderer {
             if Slot::Front(k) == cslot {
                 continue;
             }
-            if let Some(b) = check(q, stats) {
+            if let Some(b) = check(q, &Extent::of(&self.pieces[q as usize]), stats) {
                 return Some((Slot::Front(k), q, b));
             }
         }
@@ -190,12 +199,12 @@ impl Orderer {
                 continue;
             }
             let e = self.sorted[k];
-            if e.zmax <= limit {
+            if e.extent.zmax <= limit {
                 // Test 1 for this entry and everything nearer.
                 stats.decided_depth += 1;
                 break;
             }
-            if let Some(b) = check(e.id, stats) {
+            if let Some(b) = check(e.id, &e.extent, stats) {
                 return Some((Slot::Sorted(k), e.id, b));
             }
         }
@@ -214,9 +223,9 @@ impl Orderer {
     }
 
     fn insert_sorted(&mut self, id: u32) {
-        let zmax = self.pieces[id as usize].zmax;
-        let at = self.sorted.partition_point(|e| e.zmax < zmax);
-        self.sorted.insert(at, Entry { zmax, id });
+        let extent = Extent::of(&self.pieces[id as usize]);
+        let at = self.sorted.partition_point(|e| e.extent.zmax < extent.zmax);
+        self.sorted.insert(at, Entry { extent, id });
     }
 
     /// Resolves a pair with no order by splitting: by the other's plane
