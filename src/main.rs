@@ -1,6 +1,7 @@
 //! The `hider` command-line tool: render a model with any hider, and (as
 //! the other subcommands land) benchmark and analyse.
 
+mod analyze;
 mod render;
 
 use std::process::ExitCode;
@@ -22,6 +23,10 @@ enum Command {
     Render(Box<render::RenderArgs>),
     /// List the registered hiders.
     List,
+    /// Report which effects a model calls for (transparency, textures,
+    /// lighting, intersections, cyclic overlaps, back faces...) and what
+    /// `--algo auto` would pick.
+    Analyze(analyze::AnalyzeArgs),
 }
 
 fn main() -> ExitCode {
@@ -37,6 +42,7 @@ fn main() -> ExitCode {
     };
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
+        Command::Analyze(args) => analyze::run(&args),
         Command::List => {
             for e in hider::registry::all() {
                 println!("{:<20} {:?}: {}", e.name, e.kind, e.description);

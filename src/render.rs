@@ -11,7 +11,9 @@ use hider::scene::{
     Frame, Hider, PrepareOptions, Scene, ShadeMode, TransformPrecision, View, fit_camera, load_obj,
     prepare, prepare_into, procedural, shade_frame,
 };
-use hider::zbuffer::{DepthFormat, DepthSource, ZBuffer, ZBufferOptions};
+use hider::zbuffer::{
+    DepthFormat, DepthSource, TiledZBuffer, TiledZBufferOptions, ZBuffer, ZBufferOptions,
+};
 
 /// Arguments of `hider render`.
 #[derive(Args, Debug)]
@@ -70,7 +72,8 @@ pub struct RenderArgs {
     /// Far plane distance.
     #[arg(long)]
     far: Option<f64>,
-    /// Worker threads for hiders that use them.
+    /// Worker threads: the tiled z-buffer renders tiles in parallel, and
+    /// above 1 the front end prepares large scenes in parallel too.
     #[arg(long, default_value_t = 1)]
     threads: usize,
     /// Render K times after a warm-up and print the median and minimum
@@ -192,14 +195,14 @@ fn camera(args: &RenderArgs, scene: &Scene) -> Camera {
 
 fn make_hider(args: &RenderArgs) -> Result<Box<dyn Hider>> {
     let zbuffer_flags = args.depth_format.is_some() || args.depth_source.is_some();
+    let format = match args.depth_format.unwrap_or(DepthFormatArg::F32) {
+        DepthFormatArg::F32 => DepthFormat::F32,
+        DepthFormatArg::F64 => DepthFormat::F64,
+        DepthFormatArg::Fixed24 => DepthFormat::Fixed24,
+        DepthFormatArg::Fixed16 => DepthFormat::Fixed16,
+        DepthFormatArg::ReversedF32 => DepthFormat::ReversedF32,
+    };
     if args.algo == "zbuffer" {
-        let format = match args.depth_format.unwrap_or(DepthFormatArg::F32) {
-            DepthFormatArg::F32 => DepthFormat::F32,
-            DepthFormatArg::F64 => DepthFormat::F64,
-            DepthFormatArg::Fixed24 => DepthFormat::Fixed24,
-            DepthFormatArg::Fixed16 => DepthFormat::Fixed16,
-            DepthFormatArg::ReversedF32 => DepthFormat::ReversedF32,
-        };
         let source = match args.depth_source.unwrap_or(DepthSourceArg::WindowZ) {
             DepthSourceArg::WindowZ => DepthSource::WindowZ,
             DepthSourceArg::LinearViewZ => DepthSource::LinearViewZ,
@@ -209,8 +212,19 @@ fn make_hider(args: &RenderArgs) -> Result<Box<dyn Hider>> {
             .with_depth_source(source);
         return Ok(Box::new(ZBuffer::new(options)));
     }
+    if args.algo == "zbuffer-tiled" {
+        if args.depth_source.is_some() {
+            bail!(
+                "--depth-source applies to --algo zbuffer only (the tiled path compares window depth)"
+            );
+        }
+        let options = TiledZBufferOptions::default()
+            .with_depth_format(format)
+            .with_threads(args.threads);
+        return Ok(Box::new(TiledZBuffer::new(options)));
+    }
     if zbuffer_flags {
-        bail!("--depth-format and --depth-source apply to --algo zbuffer only");
+        bail!("--depth-format and --depth-source apply to --algo zbuffer and zbuffer-tiled only");
     }
     let entry = hider::registry::by_name(&args.algo).with_context(|| {
         let names: Vec<&str> = hider::registry::all().iter().map(|e| e.name).collect();
@@ -240,15 +254,35 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             .build_global()
             .context("cannot start the thread pool")?;
     }
-    let mut hider = make_hider(args)?;
+    // `--algo auto` needs the scene and view before it can choose.
+    let planned = args.algo == "auto";
+    if planned && (args.depth_format.is_some() || args.depth_source.is_some()) {
+        bail!("--depth-format and --depth-source apply to --algo zbuffer and zbuffer-tiled only");
+    }
+    let fixed = if planned {
+        None
+    } else {
+        Some(make_hider(args)?)
+    };
     let scene = load_model(&args.model)?;
     let view = View::new(camera(args, &scene), width, height)?;
+    let (plan, mut hider) = match fixed {
+        Some(h) => (None, h),
+        None => {
+            let shading = matches!(args.shade, ShadeArg::Lambert);
+            let (plan, h) = crate::analyze::auto_hider(&scene, &view, shading)?;
+            (Some(plan), h)
+        }
+    };
     let options = PrepareOptions::default()
         .with_precision(match args.precision {
             PrecisionArg::F32 => TransformPrecision::F32,
             PrecisionArg::F64 => TransformPrecision::F64,
         })
         .with_parallel(args.threads > 1);
+    let options = plan
+        .as_ref()
+        .map_or(options, |p| p.prepare_options(options));
     let mut frame = Frame::new(width, height)?;
     let mut screen = prepare(&scene, &view, &options)?;
     let stats = hider.render(&screen, &mut frame)?;
@@ -281,7 +315,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             ShadeArg::Lambert => ShadeMode::Lambert,
             ShadeArg::Ids => ShadeMode::Ids,
         };
-        shade_frame(&screen, &mut frame, mode);
+        match &plan {
+            // Auto: only the colour stages the scene calls for.
+            Some(p) if mode == ShadeMode::Lambert => {
+                hider::scene::Shader::default().shade(&screen, &mut frame, &p.stages);
+            }
+            _ => shade_frame(&screen, &mut frame, mode),
+        }
     }
     write_outputs(args, &frame)?;
     eprintln!(

@@ -14,7 +14,9 @@
 //! | back faces | a back-facing triangle on screen is not certainly hidden ([`backface`]) | triangles, meshes |
 //!
 //! It also reports coplanar overlaps (depth ties) and whether a naive
-//! farthest-vertex sort already orders every overlapping pair. The two
+//! farthest-vertex sort already orders every overlapping pair. When back
+//! faces are certainly hidden (so a renderer may cull them), the overlap
+//! graph is built on the front faces only: that is what will be painted. The two
 //! searches over pairs stop at [`RenderOptions::pair_budget`]; an
 //! unfinished search reports its effect as *present but not certain*, so a
 //! planner stays on the safe side.
@@ -33,7 +35,7 @@ use hider_geom::{Camera, Projection};
 
 use crate::error::Result;
 use crate::model::Scene;
-use crate::prepare::{PrepareOptions, ScreenScene, prepare};
+use crate::prepare::{PrepareOptions, ScreenScene, ScreenTri, prepare};
 use crate::texture;
 use crate::view::View;
 
@@ -203,8 +205,10 @@ pub struct Effects {
     /// work: there are back faces on screen, all certainly hidden, and no
     /// transparency shows them.
     pub cull_back_faces_exact: bool,
-    /// `far / near` of a perspective camera (window-depth precision falls
-    /// with it); 1 for orthographic.
+    /// Distance of the farthest corner in view over the near distance, for
+    /// a perspective camera (1 for orthographic): an f32 window-depth
+    /// buffer resolves relative view distances of about `2^-24` times
+    /// this at that corner.
     pub depth_ratio: f64,
     /// Time spent.
     pub times: AnalysisTimes,
@@ -226,7 +230,14 @@ pub fn analyze(scene: &Scene, options: &RenderOptions) -> Result<Effects> {
         on_screen: screen.tris.len() as u64,
         vector_output: options.vector_output,
         depth_ratio: match view.camera.projection {
-            Projection::Perspective { near, far, .. } => far / near,
+            Projection::Perspective { near, far, .. } => {
+                let deepest = in_view
+                    .iter()
+                    .flat_map(|&p| screen.prims[p as usize].camera)
+                    .map(|c| -c.z)
+                    .fold(near, f64::max);
+                deepest.min(far) / near
+            }
             Projection::Orthographic { .. } => 1.0,
         },
         ..Effects::default()
@@ -288,8 +299,26 @@ pub fn analyze(scene: &Scene, options: &RenderOptions) -> Result<Effects> {
     // Interpenetrating pairs have no order (they are reported above); a
     // pair the search did not reach is ordered like any other.
     let crossing: HashSet<(u32, u32)> = pairs.interpenetrating.iter().copied().collect();
+    // Back faces first: when culling them is exact, the order that matters
+    // is the one among the front faces.
+    fx.back_faces = back_faces(scene, &view, &screen, ex);
+    fx.cull_back_faces_exact =
+        !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
+    let front: Vec<ScreenTri>;
+    let graph_tris = if fx.cull_back_faces_exact {
+        front = screen
+            .tris
+            .iter()
+            .filter(|t| t.front_facing)
+            .copied()
+            .collect();
+        &front[..]
+    } else {
+        &screen.tris[..]
+    };
     let graph = overlap::overlap_graph(
-        &screen,
+        graph_tris,
+        screen.viewport,
         |a, b| crossing.contains(&(a.min(b), a.max(b))),
         options.pair_budget,
         ex,
@@ -329,9 +358,6 @@ pub fn analyze(scene: &Scene, options: &RenderOptions) -> Result<Effects> {
         ),
     };
 
-    fx.back_faces = back_faces(scene, &view, &screen, ex);
-    fx.cull_back_faces_exact =
-        !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
     fx.times.prepare_ms = prepare_ms;
     fx.times.total_ms = ms(started);
     Ok(fx)

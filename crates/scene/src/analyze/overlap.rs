@@ -4,7 +4,7 @@
 //! Newell, Newell & Sancha (1972) paint polygons back to front; that works
 //! when the relation "A hides part of B" between polygons whose projections
 //! overlap has no cycle. This module builds that relation on the prepared
-//! [`ScreenScene`]: candidate pairs from a tile grid over the window, an
+//! [`crate::ScreenScene`]: candidate pairs from a tile grid over the window, an
 //! exact test that their projections' interiors overlap (separating edges
 //! with the shared integer `orient2d` on the snapped vertices), and the
 //! depth order at a point inside the overlap (the triangles' affine
@@ -20,9 +20,9 @@
 //! triangle before the one hiding it; when it does, that painter is exact
 //! without any of Newell's tests.
 
-use hider_geom::{FixedPt, orient2d};
+use hider_geom::{FixedPt, Viewport, orient2d};
 
-use crate::prepare::{ScreenScene, ScreenTri};
+use crate::prepare::ScreenTri;
 
 /// Window depths closer than this at the test point are a tie, not an
 /// order.
@@ -54,11 +54,14 @@ pub struct OverlapGraph {
     pub complete: bool,
 }
 
-/// Builds the graph over `scene`'s triangles, skipping the primitive pairs
+/// Builds the graph over the screen triangles `tris` of a window `vp`
+/// (those of a [`crate::ScreenScene`], or the front faces only when back faces
+/// will be culled), skipping the primitive pairs
 /// for which `interpenetrate(a, b)` holds, examining at most `budget`
 /// candidate pairs.
 pub fn overlap_graph(
-    scene: &ScreenScene,
+    tris: &[ScreenTri],
+    vp: Viewport,
     interpenetrate: impl Fn(u32, u32) -> bool,
     budget: u64,
     max_examples: usize,
@@ -67,8 +70,6 @@ pub fn overlap_graph(
         complete: true,
         ..OverlapGraph::default()
     };
-    let tris = &scene.tris;
-    let vp = scene.viewport;
     let n = tris.len();
     if n < 2 {
         return out;

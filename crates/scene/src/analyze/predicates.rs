@@ -29,6 +29,11 @@ const O2D_ERRBOUND: f64 = (3.0 + 16.0 * EPSILON) * EPSILON;
 /// below the plane seen with `a, b, c` counter-clockwise (Shewchuk's
 /// convention). Exact for every finite input.
 pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
+    // A repeated point (mesh neighbours share vertices) makes the
+    // determinant exactly zero; say so without the exact path.
+    if d == a || d == b || d == c || a == b || b == c || a == c {
+        return 0;
+    }
     let (ad, bd, cd) = (a - d, b - d, c - d);
     let bc = bd.y * cd.z - bd.z * cd.y;
     let ca = cd.y * ad.z - cd.z * ad.y;

@@ -39,7 +39,7 @@ impl fmt::Display for Effects {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(
             f,
-            "{} triangles, {} on screen; far/near {:.3e}; analysed in {:.1} ms \
+            "{} triangles, {} on screen; deepest/near {:.3e}; analysed in {:.1} ms \
              (prepare {:.1}, intersections {:.1}, overlaps {:.1})",
             self.triangles,
             self.on_screen,

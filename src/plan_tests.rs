@@ -1,0 +1,167 @@
+//! Tests of the planner: its rules and fallbacks, and that its choice is
+//! exact (equal to the oracle on non-tie pixels) on every hard case.
+
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
+use hider_scene::{Frame, PrepareOptions, RenderOptions, analyze, hard_cases, prepare, procedural};
+
+use super::*;
+
+const ALL: &[&str] = &[
+    "zbuffer",
+    "zbuffer-f64",
+    "zbuffer-reversed",
+    "abuffer",
+    "ssaa-8",
+    "ssaa-sorted",
+    "painter-naive",
+    "painter",
+    "scanline",
+    "warnock",
+    "oracle",
+];
+
+fn fx(scene: &Scene, options: RenderOptions) -> Effects {
+    analyze(scene, &options.with_size(48, 48)).unwrap()
+}
+
+#[test]
+fn opaque_scene_without_aa_gets_the_one_sample_zbuffer() {
+    let p = plan_among(
+        &fx(&procedural::uv_sphere(16), RenderOptions::default()),
+        ALL,
+    );
+    assert_eq!(p.algo, "zbuffer");
+    assert!(p.cull_back_faces, "a closed sphere hides its back faces");
+    assert_eq!(
+        p.stages,
+        Stages::default(),
+        "no texture, no lights, no normals"
+    );
+    assert!(p.notes.is_empty());
+    assert!(
+        p.summary().starts_with("auto: zbuffer ("),
+        "{}",
+        p.summary()
+    );
+}
+
+#[test]
+fn transparency_and_antialiasing_pick_compositing_hiders_with_fallbacks() {
+    let mut glass = procedural::cube();
+    glass.materials[0].opacity = 0.5;
+    let effects = fx(&glass, RenderOptions::default());
+    let p = plan_among(&effects, ALL);
+    assert_eq!(p.algo, "abuffer");
+    assert!(!p.cull_back_faces, "back faces show through glass");
+    assert!(p.stages.transparency);
+    let p = plan_among(&effects, &["zbuffer", "ssaa-sorted"]);
+    assert_eq!(p.algo, "ssaa-sorted");
+    assert!(
+        p.notes[0].contains("abuffer is not registered"),
+        "{:?}",
+        p.notes
+    );
+    let p = plan_among(&effects, &["zbuffer"]);
+    assert_eq!(p.algo, "zbuffer");
+    assert!(
+        p.notes.iter().any(|n| n.contains("NOT composited")),
+        "{:?}",
+        p.notes
+    );
+
+    let aa = fx(
+        &procedural::cube(),
+        RenderOptions::default().with_antialiasing(true),
+    );
+    assert_eq!(plan_among(&aa, ALL).algo, "abuffer");
+    assert_eq!(plan_among(&aa, &["zbuffer", "ssaa-16"]).algo, "ssaa-16");
+}
+
+#[test]
+fn vector_output_splits_only_when_it_must() {
+    let vector = RenderOptions::default().with_vector_output(true);
+    let cyclic = fx(&procedural::cyclic_triple(), vector);
+    assert_eq!(plan_among(&cyclic, ALL).algo, "painter");
+    let crossing = fx(&procedural::intersecting_pair(), vector);
+    let p = plan_among(&crossing, ALL);
+    assert_eq!(p.algo, "painter");
+    assert!(p.reason.contains("1 intersecting pairs"), "{}", p.reason);
+    let sphere = fx(&procedural::uv_sphere(16), vector);
+    assert_eq!(plan_among(&sphere, ALL).algo, "painter-naive");
+    assert_eq!(plan_among(&sphere, &["zbuffer", "painter"]).algo, "painter");
+    // Without any painter the raster choice stands, and says so.
+    let p = plan_among(&cyclic, &["zbuffer"]);
+    assert_eq!(p.algo, "zbuffer");
+    assert!(p.notes.iter().any(|n| n.contains("no painter")));
+}
+
+#[test]
+fn far_geometry_moves_to_reversed_z() {
+    let deep = fx(
+        &hard_cases::huge_depth_range(40, 1e5, 3),
+        RenderOptions::default(),
+    );
+    assert!(
+        deep.depth_ratio > MAX_F32_DEPTH_RATIO,
+        "{}",
+        deep.depth_ratio
+    );
+    assert_eq!(plan_among(&deep, ALL).algo, "zbuffer-reversed");
+    assert_eq!(
+        plan_among(&deep, &["zbuffer", "zbuffer-f64"]).algo,
+        "zbuffer-f64"
+    );
+}
+
+/// Renders with the plan (its hider, its front-end options) and compares
+/// with the oracle on the unculled scene.
+fn check_exact(name: &str, scene: &Scene, options: RenderOptions) {
+    let options = options.with_size(48, 48);
+    let (effects, plan) = auto(scene, &options).unwrap();
+    let view = options.view(scene).unwrap();
+    let full = prepare(scene, &view, &PrepareOptions::default()).unwrap();
+    let reference = RayCastOracle::new().evaluate(&full);
+    let screen = prepare(
+        scene,
+        &view,
+        &plan.prepare_options(PrepareOptions::default()),
+    )
+    .unwrap();
+    let mut hider = plan.hider().expect("the plan names a registered hider");
+    let mut frame = Frame::new(48, 48).unwrap();
+    hider.render(&screen, &mut frame).unwrap();
+    let agreement = reference.compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+    assert!(
+        agreement.is_exact(),
+        "{name}: {}\n{agreement:?}\n{effects}",
+        plan.summary()
+    );
+}
+
+#[test]
+fn the_plan_is_exact_on_every_hard_case() {
+    for (name, scene) in hard_cases::all(11) {
+        check_exact(name, &scene, RenderOptions::default());
+        check_exact(
+            name,
+            &scene,
+            RenderOptions::default().with_vector_output(true),
+        );
+    }
+}
+
+#[test]
+fn the_plan_is_exact_with_transparency_and_antialiasing() {
+    for (name, scene) in hard_cases::all(12).into_iter().step_by(3) {
+        check_exact(
+            name,
+            &scene,
+            RenderOptions::default().with_antialiasing(true),
+        );
+        let mut glass = scene.clone();
+        for m in &mut glass.materials {
+            m.opacity = 0.6;
+        }
+        check_exact(name, &glass, RenderOptions::default());
+    }
+}
