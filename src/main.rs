@@ -21,6 +21,9 @@ enum Command {
     /// Render a model (an OBJ file, or a generated scene `gen:NAME`) to PNG
     /// and optional id/depth dumps.
     Render(Box<render::RenderArgs>),
+    /// Benchmark every registered hider: accuracy against the oracle beside
+    /// time; writes a table, results.csv/json, a report and plots.
+    Bench(Box<hider::bench::BenchArgs>),
     /// List the registered hiders.
     List,
     /// Report which effects a model calls for (transparency, textures,
@@ -43,6 +46,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Analyze(args) => analyze::run(&args),
+        Command::Bench(args) => hider::bench::run_command(&args),
         Command::List => {
             for e in hider::registry::all() {
                 println!("{:<20} {:?}: {}", e.name, e.kind, e.description);

@@ -1,0 +1,318 @@
+//! Running the matrix: per case, load and prepare once, evaluate the
+//! oracle once (and analytic coverage once, when a multi-sample hider is
+//! selected), then time and score every selected hider on it.
+
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use hider_oracle::{
+    CoverageReference, DEFAULT_TIE_TOLERANCE, RayCastOracle, Reference, analytic_coverage,
+};
+use hider_scene::{Frame, PrepareOptions, ScreenScene, ShadeMode, View, prepare, shade_frame};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::accuracy::{score_coverage, score_ids};
+use crate::analysis::{SceneAnalysis, analyse};
+use crate::contact::{ContactSheet, write_contact_sheet};
+use crate::matrix::{Case, MatrixOptions, Shard, Study, build_cases, select_hiders};
+use crate::record::{CsvSink, Results, Row, SCHEMA_VERSION};
+use crate::registry::{Entry, Kind};
+use crate::scenes::Group;
+use crate::timing::{Machine, Summary, TimingOptions, measure};
+
+/// Everything a run needs. `Default` is the default `hider bench` run
+/// (without output directories: set [`Self::out_dir`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunOptions {
+    /// What to run.
+    pub matrix: MatrixOptions,
+    /// How often.
+    pub timing: TimingOptions,
+    /// Which part of the matrix this process runs.
+    pub shard: Shard,
+    /// Where `results.csv` is written row by row.
+    pub out_dir: PathBuf,
+    /// Where contact sheets go (`bench-contact-SCENE.png`); `None` makes
+    /// none.
+    pub contact_dir: Option<PathBuf>,
+    /// Relative gap under which two surfaces tie (the oracle's default).
+    pub tie_tolerance: f64,
+    /// Most (triangle, pixel) tests the oracle may spend on one case; above
+    /// it the case is timed but not scored, and the row says so.
+    pub oracle_budget: u64,
+    /// Most (triangle, pixel) tests times depth complexity that analytic
+    /// coverage (quadratic in the surfaces per pixel) may spend on a case.
+    pub coverage_budget: u64,
+    /// Draw a progress bar on the terminal.
+    pub progress: bool,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        Self {
+            matrix: MatrixOptions::default(),
+            timing: TimingOptions::default(),
+            shard: Shard::default(),
+            out_dir: PathBuf::from("bench-out"),
+            contact_dir: None,
+            tie_tolerance: DEFAULT_TIE_TOLERANCE,
+            oracle_budget: 200_000_000,
+            coverage_budget: 20_000_000,
+            progress: false,
+        }
+    }
+}
+
+/// A prepared case with its references.
+struct Prepared {
+    screen: ScreenScene,
+    analysis: SceneAnalysis,
+    load: Summary,
+    prepare: Summary,
+    oracle: std::result::Result<Reference, String>,
+    coverage: std::result::Result<CoverageReference, String>,
+}
+
+fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Result<Prepared> {
+    let t = Instant::now();
+    let scene = case.source.load()?;
+    let load = Summary::of(&[t.elapsed()]);
+    let view = View::for_scene(&scene, case.width, case.height)?;
+    let prepare_options = PrepareOptions::default();
+    let mut screen = None;
+    let prepare_time = measure(&options.timing, &|| false, || {
+        screen = Some(prepare(&scene, &view, &prepare_options)?);
+        Ok::<(), hider_scene::Error>(())
+    })
+    .with_context(|| format!("preparing {}", case.label()))?;
+    let screen = screen.context("prepare never ran")?;
+    let analysis = analyse(&screen);
+    let oracle = if analysis.pixel_tests > options.oracle_budget {
+        Err(format!(
+            "skipped: oracle would cost {} pixel tests (budget {})",
+            analysis.pixel_tests, options.oracle_budget
+        ))
+    } else {
+        Ok(RayCastOracle::new().evaluate(&screen))
+    };
+    let coverage_cost = analysis.pixel_tests as f64 * analysis.depth_complexity().max(1.0);
+    let coverage = if !need_coverage {
+        Err("skipped: no multi-sample hider selected".to_owned())
+    } else if coverage_cost > options.coverage_budget as f64 {
+        Err(format!(
+            "skipped: analytic coverage would cost about {coverage_cost:.0} clip steps (budget {})",
+            options.coverage_budget
+        ))
+    } else {
+        Ok(analytic_coverage(&screen))
+    };
+    Ok(Prepared {
+        screen,
+        analysis,
+        load,
+        prepare: prepare_time,
+        oracle,
+        coverage,
+    })
+}
+
+fn base_row(index: usize, case: &Case, p: &Prepared, entry: &Entry, machine: &Machine) -> Row {
+    Row {
+        case: index as u32,
+        study: case.study.as_str().into(),
+        scene: case.scene.clone(),
+        group: case.group.as_str().into(),
+        width: case.width,
+        height: case.height,
+        triangles: p.analysis.triangles,
+        covered_pixels: p.analysis.covered_pixels,
+        depth_complexity: p.analysis.depth_complexity(),
+        hider: entry.name.into(),
+        kind: format!("{:?}", entry.kind),
+        load_ms: p.load.median_ms,
+        prepare_ms: p.prepare.median_ms,
+        threads: machine.threads,
+        cpu: machine.cpu.clone(),
+        ..Row::default()
+    }
+}
+
+/// Times and scores one hider on one prepared case; the frame keeps the
+/// last render for the contact sheet.
+fn run_job(
+    entry: &Entry,
+    p: &Prepared,
+    options: &RunOptions,
+    stop: &AtomicBool,
+    row: &mut Row,
+    frame: &mut Frame,
+) {
+    if entry.kind == Kind::Reference {
+        if let Err(reason) = &p.oracle {
+            row.status = reason.clone();
+            return;
+        }
+    }
+    let mut hider = (entry.make)();
+    let timed = catch_unwind(AssertUnwindSafe(|| {
+        let mut last = None;
+        let summary = measure(&options.timing, &|| stop.load(Ordering::Relaxed), || {
+            last = Some(hider.render(&p.screen, frame)?);
+            Ok::<(), hider_scene::Error>(())
+        });
+        summary.map(|s| (s, last))
+    }));
+    let (summary, stats) = match timed {
+        Ok(Ok((s, Some(stats)))) => (s, stats),
+        Ok(Ok((_, None))) => {
+            row.status = "skipped: interrupted".into();
+            return;
+        }
+        Ok(Err(e)) => {
+            row.status = format!("error: {e}");
+            return;
+        }
+        Err(panic) => {
+            let msg = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| (*s).to_owned()))
+                .unwrap_or_else(|| "unknown".into());
+            row.status = format!("error: panicked: {msg}");
+            return;
+        }
+    };
+    row.status = "ok".into();
+    row.render_ms = summary.median_ms;
+    row.render_min_ms = summary.min_ms;
+    row.render_max_ms = summary.max_ms;
+    row.warmup = options.timing.warmup;
+    row.runs = summary.runs;
+    row.peak_bytes = stats.peak_bytes;
+    row.counters = stats
+        .counters
+        .iter()
+        .map(|(n, v)| format!("{n}={v}"))
+        .collect::<Vec<_>>()
+        .join(";");
+    if !hider.resolves_color() {
+        shade_frame(&p.screen, frame, ShadeMode::Lambert);
+    }
+    match (&p.oracle, entry.kind) {
+        (Err(reason), _) => row.accuracy = reason.clone(),
+        (Ok(_), Kind::Reference) => row.accuracy = "reference".into(),
+        (Ok(reference), kind) => {
+            let s = score_ids(reference, frame, options.tie_tolerance);
+            row.accuracy = "scored".into();
+            row.coverage_mismatches = Some(s.coverage_mismatches);
+            row.wrong_ids = Some(s.wrong_ids);
+            row.wrong_fraction = Some(s.wrong_fraction);
+            row.ties = Some(s.ties);
+            row.tie_differences = Some(s.tie_differences);
+            row.depth_error_mean = Some(s.depth_error_mean);
+            row.depth_error_max = Some(s.depth_error_max);
+            if kind == Kind::MultiSample {
+                match &p.coverage {
+                    Ok(c) => match score_coverage(c, frame) {
+                        Some(e) => row.coverage_error = Some(e),
+                        None => {
+                            row.accuracy = "scored: ids only (the hider wrote no coverage)".into()
+                        }
+                    },
+                    Err(reason) => row.accuracy = format!("scored: ids only, coverage {reason}"),
+                }
+            }
+        }
+    }
+}
+
+/// What a run produced.
+#[derive(Debug)]
+pub struct RunOutput {
+    /// The rows and machine, in matrix order.
+    pub results: Results,
+    /// Contact sheets written.
+    pub contact_sheets: Vec<PathBuf>,
+}
+
+/// Runs the selected matrix (this process's shard of it), writing
+/// `results.csv` in `options.out_dir` row by row. Polls `stop` between
+/// runs: when set, finishes the run in progress and returns what is done
+/// with `complete = false`. Writing `results.json` and the report is the
+/// caller's ([`crate::record::write_results`], [`crate::report`]).
+pub fn run(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<RunOutput> {
+    let hiders = select_hiders(&options.matrix)?;
+    let cases = options.shard.select(&build_cases(&options.matrix)?);
+    std::fs::create_dir_all(&options.out_dir)
+        .with_context(|| format!("creating {}", options.out_dir.display()))?;
+    if let Some(dir) = &options.contact_dir {
+        std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    }
+    let mut sink = CsvSink::create(&options.out_dir.join("results.csv"))?;
+    let machine = Machine::detect();
+    let need_coverage = hiders.iter().any(|e| e.kind == Kind::MultiSample);
+    let bar = if options.progress {
+        ProgressBar::new((cases.len() * hiders.len()) as u64)
+    } else {
+        ProgressBar::with_draw_target(
+            Some((cases.len() * hiders.len()) as u64),
+            ProgressDrawTarget::hidden(),
+        )
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg} (eta {eta})")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    let mut rows = Vec::new();
+    let mut contact_sheets = Vec::new();
+    let mut complete = true;
+    'cases: for (index, case) in &cases {
+        bar.set_message(format!("{} preparing", case.label()));
+        let p = prepare_case(case, options, need_coverage)?;
+        let sheet_wanted = options.contact_dir.is_some()
+            && case.study == Study::Accuracy
+            && case.group == Group::HardCase
+            && p.oracle.is_ok();
+        let mut sheet = ContactSheet::default();
+        let mut frame = Frame::new(case.width, case.height)?;
+        for entry in &hiders {
+            if stop.load(Ordering::Relaxed) {
+                complete = false;
+                break 'cases;
+            }
+            bar.set_message(format!("{} {}", case.label(), entry.name));
+            let mut row = base_row(*index, case, &p, entry, &machine);
+            frame.clear();
+            run_job(entry, &p, options, stop, &mut row, &mut frame);
+            if sheet_wanted && row.is_ok() && entry.kind != Kind::Reference {
+                sheet.tiles.push((entry.name.to_owned(), frame.clone()));
+            }
+            sink.push(&row)?;
+            rows.push(row);
+            bar.inc(1);
+        }
+        if let (true, Some(dir), Ok(reference)) = (sheet_wanted, &options.contact_dir, &p.oracle) {
+            let path = dir.join(format!("bench-contact-{}.png", case.scene));
+            write_contact_sheet(&path, &p.screen, reference, &sheet, options.tie_tolerance)?;
+            contact_sheets.push(path);
+        }
+    }
+    bar.finish_and_clear();
+    let mut results = Results {
+        schema: SCHEMA_VERSION,
+        machines: vec![machine],
+        commands: vec![command.to_owned()],
+        complete,
+        rows,
+    };
+    let order: Vec<&str> = hiders.iter().map(|e| e.name).collect();
+    results.sort(|h| order.iter().position(|n| *n == h).unwrap_or(usize::MAX));
+    Ok(RunOutput {
+        results,
+        contact_sheets,
+    })
+}
