@@ -10,7 +10,9 @@ use hider_oracle::RayCastOracle;
 use hider_scanline::Scanline;
 use hider_scene::Hider;
 use hider_warnock::{Warnock, WarnockOptions};
-use hider_zbuffer::{DepthFormat, DepthSource, ZBuffer, ZBufferOptions};
+use hider_zbuffer::{
+    DepthFormat, DepthSource, TiledZBuffer, TiledZBufferOptions, ZBuffer, ZBufferOptions,
+};
 
 /// What kind of answer a hider gives, which decides how it is checked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -76,6 +78,12 @@ pub fn all() -> Vec<Entry> {
             description: "depth buffer, reversed-Z f32",
             kind: Kind::ExactPixelCentre,
             make: || zbuffer(DepthFormat::ReversedF32, DepthSource::WindowZ),
+        },
+        Entry {
+            name: "zbuffer-tiled",
+            description: "binned, tiled, hierarchical-z parallel z-buffer; bit-identical to zbuffer",
+            kind: Kind::ExactPixelCentre,
+            make: || Box::new(TiledZBuffer::new(TiledZBufferOptions::default())),
         },
         Entry {
             name: "zbuffer-fixed24",
