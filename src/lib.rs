@@ -10,6 +10,7 @@
 //! | [`scene`] | scene model, OBJ/MTL, the shared front end `prepare`, frames, the `Hider` trait |
 //! | [`zbuffer`] | depth buffer with five depth formats |
 //! | [`abuffer`] | Carpenter's A-buffer with 8x4 coverage masks, and supersampling baselines |
+//! | [`painter`] | painter's algorithm: naive sort, Newell-Newell-Sancha with splitting, SVG |
 //! | [`warnock`] | Warnock's area subdivision |
 //! | [`scanline`] | scanline with edge table, active edge list and spans |
 //! | [`oracle`] | the slow exact references every test measures against |
@@ -42,6 +43,7 @@ pub use hider_abuffer as abuffer;
 pub use hider_bench as bench;
 pub use hider_geom as geom;
 pub use hider_oracle as oracle;
+pub use hider_painter as painter;
 pub use hider_scanline as scanline;
 pub use hider_scene as scene;
 pub use hider_warnock as warnock;

@@ -7,6 +7,7 @@ use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
 use glam::DVec3;
 use hider::geom::{Camera, Projection};
+use hider::painter::{NaivePainter, Painter};
 use hider::scene::{
     Frame, Hider, PrepareOptions, Scene, ShadeMode, TransformPrecision, View, fit_camera, load_obj,
     prepare, prepare_into, procedural, shade_frame,
@@ -45,6 +46,10 @@ pub struct RenderArgs {
     /// Transform arithmetic of the front end (f32 reproduces GL).
     #[arg(long, value_enum, default_value = "f64")]
     precision: PrecisionArg,
+    /// Also write the painter's ordered, split polygon list as SVG (with
+    /// --algo painter or painter-naive).
+    #[arg(long)]
+    svg: Option<PathBuf>,
     /// Write the visible primitive ids (int32 LE, -1 background).
     #[arg(long)]
     ids_out: Option<PathBuf>,
@@ -254,6 +259,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             .build_global()
             .context("cannot start the thread pool")?;
     }
+    if args.svg.is_some() && !args.algo.starts_with("painter") {
+        bail!(
+            "--svg needs --algo painter or painter-naive (vector output comes from the depth order)"
+        );
+    }
     // `--algo auto` needs the scene and view before it can choose.
     let planned = args.algo == "auto";
     if planned && (args.depth_format.is_some() || args.depth_source.is_some()) {
@@ -324,6 +334,18 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         }
     }
     write_outputs(args, &frame)?;
+    if let Some(svg) = &args.svg {
+        let mode = match args.shade {
+            ShadeArg::Lambert => ShadeMode::Lambert,
+            ShadeArg::Ids => ShadeMode::Ids,
+        };
+        let written = if args.algo == "painter-naive" {
+            NaivePainter::default().render_svg(&screen, svg, mode)
+        } else {
+            Painter::default().render_svg(&screen, svg, mode)
+        };
+        written.with_context(|| format!("cannot write {}", svg.display()))?;
+    }
     eprintln!(
         "{}: {} triangles in, {} on screen, {} pixels covered; {}",
         hider.name(),

@@ -132,3 +132,43 @@ fn render_writes_png_and_gl_format_dumps() {
     assert!(std::fs::read(&png).unwrap().starts_with(b"\x89PNG"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn painter_writes_svg_and_other_hiders_refuse_it() {
+    let dir = temp_dir("svg");
+    let png = dir.join("pair.png");
+    let svg = dir.join("pair.svg");
+    let out = hider(&[
+        "render",
+        "gen:intersecting",
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "64",
+        "--algo",
+        "painter",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    // The pair pierces itself: splitting leaves three pieces, one path each.
+    assert_eq!(text.matches("<path").count(), 3, "{text}");
+    std::fs::remove_file(&png).unwrap();
+    std::fs::remove_file(&svg).unwrap();
+    let out = hider(&[
+        "render",
+        "gen:cube",
+        "-o",
+        png.to_str().unwrap(),
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert_fails(&out, &["--svg", "painter"], &png);
+    assert!(!svg.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -7,6 +7,7 @@ use hider_abuffer::{
     SupersampledZBuffer,
 };
 use hider_oracle::RayCastOracle;
+use hider_painter::{NaivePainter, Painter};
 use hider_scanline::Scanline;
 use hider_scene::Hider;
 use hider_warnock::{Warnock, WarnockOptions};
@@ -98,6 +99,12 @@ pub fn all() -> Vec<Entry> {
             make: || zbuffer(DepthFormat::Fixed16, DepthSource::WindowZ),
         },
         Entry {
+            name: "painter-naive",
+            description: "painter's algorithm, plain sort by farthest vertex (wrong on intersections and cycles)",
+            kind: Kind::ApproximatePixelCentre,
+            make: || Box::new(NaivePainter::default()),
+        },
+        Entry {
             name: "zbuffer-linear-z",
             description: "depth buffer comparing camera z interpolated linearly (the seed's error)",
             kind: Kind::ApproximatePixelCentre,
@@ -108,6 +115,12 @@ pub fn all() -> Vec<Entry> {
             description: "scanline (Watkins): edge table, active edge list, depth-ordered spans",
             kind: Kind::ExactPixelCentre,
             make: || Box::new(Scanline::new()),
+        },
+        Entry {
+            name: "painter",
+            description: "painter's algorithm, Newell-Newell-Sancha tests with splitting",
+            kind: Kind::ExactPixelCentre,
+            make: || Box::new(Painter::default()),
         },
         Entry {
             name: "warnock",
