@@ -14,7 +14,7 @@
 //! | [`warnock`] | Warnock's area subdivision |
 //! | [`scanline`] | scanline with edge table, active edge list and spans |
 //! | [`oracle`] | the slow exact references every test measures against |
-//! | [`bench`] | the comparative benchmark and the hider registry |
+//! | [`bench`](mod@bench) | the comparative benchmark and the hider registry |
 //!
 //! # Example
 //!

@@ -3,7 +3,7 @@
 //! `hider-scene` holds what every hidden-surface algorithm shares:
 //! - the world-space [`Scene`] (meshes, materials, lights, camera), loaded
 //!   from OBJ + MTL ([`obj`]) or generated ([`procedural`]);
-//! - the front end [`prepare`], which turns a scene and a [`View`] into a
+//! - the front end [`prepare()`], which turns a scene and a [`View`] into a
 //!   [`ScreenScene`] of snapped, set-up [`ScreenTri`]s — no hider re-projects;
 //! - the [`Frame`] buffers with PNG output and the GL reference id/depth
 //!   dumps, written atomically;
