@@ -55,6 +55,7 @@ pub mod stages;
 pub mod texture;
 pub mod view;
 
+pub use analyze::{Effects, Evidence, RenderOptions, analyze};
 pub use error::{Error, Result};
 pub use frame::{Frame, NO_ID};
 pub use hider::{Hider, Stats, check_frame};
@@ -65,7 +66,6 @@ pub use prepare::{
     PrepareOptions, PrepareStats, PrimInfo, ScreenScene, ScreenTri, TransformPrecision, prepare,
     prepare_into,
 };
-pub use analyze::{Effects, Evidence, RenderOptions, analyze};
 pub use shade::{ShadeMode, shade_frame};
 pub use stages::{Shader, ShaderOptions, StageTrace, Stages};
 pub use texture::Texture;
