@@ -73,7 +73,7 @@ pub struct RunArgs {
     /// Studies: accuracy, polygons, resolution, depth-complexity.
     #[arg(long, value_delimiter = ',', value_parser = parse_study)]
     pub studies: Vec<Study>,
-    /// Square image sizes of the accuracy study (default 64).
+    /// Square image sizes of the accuracy study (default 64,256).
     #[arg(long, value_delimiter = ',')]
     pub sizes: Vec<u32>,
     /// Extra OBJ files to benchmark (accuracy study); repeatable.

@@ -76,8 +76,9 @@ impl Case {
 }
 
 /// What to put in the matrix. `Default` is the default matrix of
-/// `hider bench`: every bundled asset and hard case at 64 x 64 for
-/// accuracy, plus the three scaling sweeps; a few minutes on 2 cores.
+/// `hider bench`: every bundled asset and hard case at 64 x 64 and
+/// 256 x 256 for accuracy, plus the three scaling sweeps at 256 x 256 (and
+/// 64 to 1024 for resolution); a few minutes on 2 cores.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MatrixOptions {
     /// Folder of the bundled OBJ scenes.
@@ -117,12 +118,12 @@ impl Default for MatrixOptions {
             scenes: Vec::new(),
             algos: Vec::new(),
             studies: Study::ALL.to_vec(),
-            sizes: vec![64],
-            polygon_steps: vec![8, 16, 32, 64, 128],
-            resolution_steps: vec![64, 128, 256, 512],
+            sizes: vec![64, 256],
+            polygon_steps: vec![8, 16, 32, 64, 128, 256],
+            resolution_steps: vec![64, 128, 256, 512, 1024],
             resolution_sphere: 32,
             depth_steps: vec![1, 2, 4, 8, 16, 32],
-            scaling_size: 128,
+            scaling_size: 256,
         }
     }
 }

@@ -23,9 +23,9 @@ pub const ERROR_FLOOR: f64 = 1e-6;
 
 const SIZE: (u32, u32) = (720, 480);
 
-/// Ten well-separated colours (Tableau 10); hider `k` of the registry
-/// order gets colour `k mod 10` in every plot.
-const PALETTE: [RGBColor; 10] = [
+/// Twenty well-separated colours (Tableau 20, dark shades first); hider
+/// `k` of the registry order gets colour `k mod 20` in every plot.
+const PALETTE: [RGBColor; 20] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
     RGBColor(44, 160, 44),
@@ -36,6 +36,16 @@ const PALETTE: [RGBColor; 10] = [
     RGBColor(127, 127, 127),
     RGBColor(188, 189, 34),
     RGBColor(23, 190, 207),
+    RGBColor(174, 199, 232),
+    RGBColor(255, 187, 120),
+    RGBColor(152, 223, 138),
+    RGBColor(255, 152, 150),
+    RGBColor(197, 176, 213),
+    RGBColor(196, 156, 148),
+    RGBColor(247, 182, 210),
+    RGBColor(199, 199, 199),
+    RGBColor(219, 219, 141),
+    RGBColor(158, 218, 229),
 ];
 
 /// The colour of the `k`-th hider.

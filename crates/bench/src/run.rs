@@ -101,6 +101,10 @@ fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Resul
     let coverage_cost = analysis.pixel_tests as f64 * analysis.depth_complexity().max(1.0);
     let coverage = if !need_coverage {
         Err("skipped: no multi-sample hider selected".to_owned())
+    } else if case.study != Study::Accuracy {
+        // Scaling rows measure time; their multi-sample accuracy is the
+        // accuracy study's business.
+        Err("not computed in scaling studies".to_owned())
     } else if coverage_cost > options.coverage_budget as f64 {
         Err(format!(
             "skipped: analytic coverage would cost about {coverage_cost:.0} clip steps (budget {})",
@@ -273,7 +277,10 @@ pub fn run(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<Run
     'cases: for (index, case) in &cases {
         bar.set_message(format!("{} preparing", case.label()));
         let p = prepare_case(case, options, need_coverage)?;
+        // One sheet per hard case, at the smallest accuracy size (tiles
+        // are scaled up; larger sizes would only make larger files).
         let sheet_wanted = options.contact_dir.is_some()
+            && Some(&case.width) == options.matrix.sizes.iter().min()
             && case.study == Study::Accuracy
             && case.group == Group::HardCase
             && p.oracle.is_ok();
