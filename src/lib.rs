@@ -41,6 +41,8 @@
 
 pub use hider_abuffer as abuffer;
 pub use hider_bench as bench;
+pub mod hostile;
+
 pub use hider_geom as geom;
 pub use hider_oracle as oracle;
 pub use hider_painter as painter;

@@ -2,10 +2,9 @@
 //! panic, hang or allocate without bound.
 #![no_main]
 
-mod common;
-
 use std::path::Path;
 
+use hider::hostile::check_all_hiders;
 use hider::scene::obj::{ObjOptions, load_obj_bytes};
 use hider::scene::{PrepareOptions, View, prepare};
 use libfuzzer_sys::fuzz_target;
@@ -24,7 +23,9 @@ fuzz_target!(|data: &[u8]| {
     let Ok(view) = View::for_scene(&scene, 24, 16) else {
         return;
     };
-    if let Ok(screen) = prepare(&scene, &view, &PrepareOptions::default()) {
-        common::render_all(&screen);
+    if let Ok(screen) = prepare(&scene, &view, &PrepareOptions::default())
+        && let Err(violation) = check_all_hiders(&screen)
+    {
+        panic!("{violation}");
     }
 });

@@ -63,7 +63,9 @@ pub mod stats;
 pub mod svg;
 
 pub use naive::NaivePainter;
-pub use options::{NaiveOptions, PainterOptions, SortKey};
+pub use options::{
+    DEFAULT_MAX_BYTES, NaiveOptions, PainterOptions, SPLITS_BASE, SPLITS_PER_TRIANGLE, SortKey,
+};
 pub use painter::Painter;
 pub use piece::{Cut, Piece};
 pub use stats::PainterStats;

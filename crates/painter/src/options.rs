@@ -30,6 +30,16 @@ impl NaiveOptions {
 /// Default of [`PainterOptions::max_splits`].
 pub const DEFAULT_MAX_SPLITS: u64 = 4_000_000;
 
+/// Splits allowed per input triangle, whatever [`PainterOptions::max_splits`]
+/// says.
+pub const SPLITS_PER_TRIANGLE: u64 = 64;
+
+/// Splits allowed on top of [`SPLITS_PER_TRIANGLE`] per triangle.
+pub const SPLITS_BASE: u64 = 4096;
+
+/// Default of [`PainterOptions::max_bytes`]: 1 GiB.
+pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+
 /// Default of [`PainterOptions::depth_epsilon`].
 pub const DEFAULT_DEPTH_EPSILON: f64 = 1e-10;
 
@@ -39,9 +49,16 @@ pub struct PainterOptions {
     /// Most polygon splits allowed in one frame. Intersections and cyclic
     /// overlaps each cost at least one split; when the budget runs out
     /// `render` stops with a [`hider_scene::Error::Render`] naming it
-    /// rather than run (or allocate) without bound. Every split adds one
-    /// piece, so this also bounds the working memory.
+    /// rather than run (or allocate) without bound. The budget actually
+    /// used is also capped at [`SPLITS_PER_TRIANGLE`] per input triangle
+    /// plus [`SPLITS_BASE`]: real scenes need one or two splits per
+    /// triangle (1.4 on a 10k random soup), so a frame past that cap is
+    /// degenerate input that would otherwise split until memory runs out
+    /// (found by fuzzing).
     pub max_splits: u64,
+    /// Most bytes the piece arena may hold; checked after every split, the
+    /// frame stops with [`hider_scene::Error::Limit`] beyond it.
+    pub max_bytes: u64,
     /// Window-depth slack of the plane-side tests: a polygon counts as
     /// behind a plane when no vertex is more than this in front of it.
     /// Orders it decides are exact up to this depth difference, far inside
@@ -64,6 +81,7 @@ impl Default for PainterOptions {
     fn default() -> Self {
         Self {
             max_splits: DEFAULT_MAX_SPLITS,
+            max_bytes: DEFAULT_MAX_BYTES,
             depth_epsilon: DEFAULT_DEPTH_EPSILON,
             svg_drop_hidden: false,
             svg_seam_stroke: 0.0,
@@ -72,6 +90,12 @@ impl Default for PainterOptions {
 }
 
 impl PainterOptions {
+    /// Sets [`Self::max_bytes`].
+    pub fn with_max_bytes(mut self, max_bytes: u64) -> Self {
+        self.max_bytes = max_bytes;
+        self
+    }
+
     /// Sets [`Self::max_splits`].
     pub fn with_max_splits(mut self, max_splits: u64) -> Self {
         self.max_splits = max_splits;

@@ -71,10 +71,14 @@ impl Orderer {
     pub fn run(
         &mut self,
         scene: &ScreenScene,
-        max_splits: u64,
+        (max_splits, max_bytes): (u64, u64),
         eps: f64,
         stats: &mut PainterStats,
     ) -> Result<()> {
+        let max_splits = max_splits.min(
+            crate::options::SPLITS_BASE
+                + crate::options::SPLITS_PER_TRIANGLE * scene.tris.len() as u64,
+        );
         self.pieces.clear();
         self.order.clear();
         self.sorted.clear();
@@ -91,6 +95,7 @@ impl Orderer {
             self.pieces.push(Piece::from_tri(tri, k as u32));
         }
         stats.triangles = scene.tris.len() as u64;
+        let mut arena_bytes: u64 = self.pieces.iter().map(|p| p.bytes() as u64).sum();
         self.sorted
             .extend(self.pieces.iter().enumerate().map(|(k, p)| Entry {
                 extent: Extent::of(p),
@@ -135,7 +140,19 @@ impl Orderer {
                                 ),
                             });
                         }
+                        let before = self.pieces.len();
                         self.split(cslot, p, qslot, q, &blocked, eps, stats)?;
+                        arena_bytes += self.pieces[before..]
+                            .iter()
+                            .map(|p| p.bytes() as u64)
+                            .sum::<u64>();
+                        if arena_bytes > max_bytes {
+                            return Err(Error::Limit {
+                                what: "painter piece memory in bytes",
+                                value: arena_bytes,
+                                limit: max_bytes,
+                            });
+                        }
                     }
                 }
             }

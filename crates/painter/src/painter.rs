@@ -55,7 +55,7 @@ impl Painter {
         let mut stats = PainterStats::default();
         self.orderer.run(
             scene,
-            self.options.max_splits,
+            (self.options.max_splits, self.options.max_bytes),
             self.options.depth_epsilon,
             &mut stats,
         )?;
