@@ -183,11 +183,14 @@ impl LinearDepth {
         self.near + t * (self.far - self.near)
     }
 
-    /// GL window depth of a point at camera distance `w`.
+    /// GL window depth of a point at camera distance `w`, clamped to
+    /// [0, 1]: clipped vertices sit on the near plane only up to rounding,
+    /// and with a near plane close to zero the formula amplifies that
+    /// rounding far outside the range (found by fuzzing).
     fn to_window(&self, w: f64) -> f64 {
         let (n, f) = (self.near, self.far);
         let ndc = (f + n) / (f - n) - 2.0 * f * n / ((f - n) * w);
-        (ndc + 1.0) * 0.5
+        ((ndc + 1.0) * 0.5).clamp(0.0, 1.0)
     }
 }
 
