@@ -87,9 +87,22 @@ pub fn front_end_case(data: &[u8]) -> Option<Case> {
 /// existing primitives or background, finite depths in [0, 1]. Returns the
 /// first violation.
 pub fn check_all_hiders(screen: &ScreenScene) -> Result<(), String> {
+    let violations = all_violations(screen);
+    match violations.into_iter().next() {
+        Some(v) => Err(v),
+        None => Ok(()),
+    }
+}
+
+/// Every hider's first violation, one line each (for diagnosis).
+pub fn all_violations(screen: &ScreenScene) -> Vec<String> {
+    let mut out = Vec::new();
     let vp = screen.viewport;
-    let mut frame = Frame::new(vp.width, vp.height).map_err(|e| e.to_string())?;
-    for entry in crate::registry::all() {
+    let mut frame = match Frame::new(vp.width, vp.height) {
+        Ok(f) => f,
+        Err(e) => return vec![e.to_string()],
+    };
+    'hiders: for entry in crate::registry::all() {
         if std::env::var_os("HIDER_HOSTILE_TRACE").is_some() {
             eprintln!("hostile: {}", entry.name);
         }
@@ -99,16 +112,15 @@ pub fn check_all_hiders(screen: &ScreenScene) -> Result<(), String> {
         }
         for (&id, &d) in frame.ids.iter().zip(&frame.depth) {
             if id != NO_ID && id as usize >= screen.prims.len() {
-                return Err(format!(
-                    "{}: id {id} of {} primitives",
-                    entry.name,
-                    screen.prims.len()
-                ));
+                let n = screen.prims.len();
+                out.push(format!("{}: id {id} of {n} primitives", entry.name));
+                continue 'hiders;
             }
             if !(0.0..=1.0).contains(&d) {
-                return Err(format!("{}: depth {d}", entry.name));
+                out.push(format!("{}: depth {d}", entry.name));
+                continue 'hiders;
             }
         }
     }
-    Ok(())
+    out
 }

@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use hider::hostile::{check_all_hiders, front_end_case};
+use hider::hostile::{all_violations, check_all_hiders, front_end_case};
 use hider::scene::prepare;
 use proptest::prelude::*;
 
@@ -25,8 +25,15 @@ fn fuzz_regressions_replay_cleanly() {
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
         let data = std::fs::read(&path).unwrap();
-        if let Err(e) = replay(&data) {
-            panic!("{}: {e}", path.display());
+        if replay(&data).is_err() {
+            let case = front_end_case(&data).unwrap();
+            let screen = prepare(&case.scene, &case.view, &case.options).unwrap();
+            panic!(
+                "{}: {:?}\n{:?}",
+                path.display(),
+                all_violations(&screen),
+                screen.tris
+            );
         }
         count += 1;
     }

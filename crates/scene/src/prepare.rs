@@ -496,7 +496,11 @@ fn to_window(v: &ClipVertex, vp: Viewport, precision: TransformPrecision) -> Opt
     };
     Some(WindowVertex {
         p: FixedPt::snap(x, y)?,
-        z,
+        // Clipping puts every vertex inside -w <= z <= w, so window depth is
+        // in [0, 1] exactly; rounding of the divide (in f32, or with w near
+        // the smallest normal numbers) can leave it far outside, which the
+        // fuzzer found (-9007 at w = 1e-20). Clamp to what is exact.
+        z: z.clamp(0.0, 1.0),
         w: v.pos.w,
     })
 }
