@@ -358,16 +358,9 @@ impl Hider for ABuffer {
                     continue;
                 };
                 let setup = TriCoverage::new(tri, pattern);
-                let step = setup.step_x();
                 let [r, g, b, alpha] = colors[tri.prim as usize];
                 for j in y0..=y1 {
-                    let mut base = setup.corner_values(x0, j);
-                    for i in x0..=x1 {
-                        let c = setup.at(base);
-                        base = [0, 1, 2].map(|e| base[e] + step[e]);
-                        if c.is_empty() {
-                            continue;
-                        }
+                    for (i, c) in setup.row(x0, x1, j) {
                         stats.fragments += 1;
                         stats.full_coverage += u64::from(c.full);
                         let centre_z = if c.centre {

@@ -101,6 +101,20 @@ impl TriCoverage {
         self.edges.map(|e| e.a * i64::from(SUBPIXEL_SCALE))
     }
 
+    /// The pixels `x0..=x1` of row `j` that this triangle touches, with
+    /// their coverage, left to right. The edge values are stepped
+    /// incrementally (one add per edge and pixel); empty pixels are skipped.
+    #[inline]
+    pub fn row(&self, x0: u32, x1: u32, j: u32) -> impl Iterator<Item = (u32, Coverage)> + '_ {
+        let step = self.step_x();
+        let mut base = self.corner_values(x0, j);
+        (x0..=x1).filter_map(move |i| {
+            let c = self.at(base);
+            base = [0, 1, 2].map(|e| base[e] + step[e]);
+            (!c.is_empty()).then_some((i, c))
+        })
+    }
+
     /// The coverage of the pixel whose corner values are `base`.
     #[inline]
     pub fn at(&self, base: [i64; 3]) -> Coverage {

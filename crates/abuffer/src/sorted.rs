@@ -70,15 +70,8 @@ impl SortedTransparencyZBuffer {
         };
         let [r, g, b, alpha] = self.colors[tri.prim as usize];
         let setup = TriCoverage::new(tri, pattern);
-        let step = setup.step_x();
         for j in y0..=y1 {
-            let mut base = setup.corner_values(x0, j);
-            for i in x0..=x1 {
-                let c = setup.at(base);
-                base = [0, 1, 2].map(|e| base[e] + step[e]);
-                if c.is_empty() {
-                    continue;
-                }
+            for (i, c) in setup.row(x0, x1, j) {
                 stats.pixel_hits += 1;
                 stats.full_coverage += u64::from(c.full);
                 let p = j as usize * w as usize + i as usize;
