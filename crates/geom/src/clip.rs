@@ -52,6 +52,24 @@ impl ClipVolume {
         }
     }
 
+    /// The outcode of a clip-space position (Cohen–Sutherland style):
+    /// bits 0-3 say which side of the *viewport* it is beyond
+    /// ([`OUTSIDE_VIEWPORT`]), bits 4-9 which clip plane it fails
+    /// ([`OUTSIDE_PLANES`]). [`clip_triangle`] decides from these alone
+    /// whether a triangle is culled, inside or to be cut, so a front end
+    /// that caches them per vertex decides exactly as it does.
+    #[inline]
+    pub fn outcode(&self, p: DVec4) -> u32 {
+        let mut code = u32::from(p.x > p.w)
+            | u32::from(p.x < -p.w) << 1
+            | u32::from(p.y > p.w) << 2
+            | u32::from(p.y < -p.w) << 3;
+        for (k, plane) in self.planes().iter().enumerate() {
+            code |= u32::from(plane.dot(p) < 0.0) << (4 + k);
+        }
+        code
+    }
+
     fn planes(&self) -> [DVec4; 6] {
         [
             DVec4::new(0.0, 0.0, 1.0, 1.0),  // near: z + w >= 0
@@ -63,6 +81,11 @@ impl ClipVolume {
         ]
     }
 }
+
+/// Outcode bits of a position beyond one side of the viewport.
+pub const OUTSIDE_VIEWPORT: u32 = 0b1111;
+/// Outcode bits of a position failing one of the six clip planes.
+pub const OUTSIDE_PLANES: u32 = 0b11_1111 << 4;
 
 /// What clipping did to a triangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -90,20 +113,8 @@ pub fn clip_triangle(
     if tri.iter().any(|p| !p.is_finite()) {
         return ClipOutcome::Culled;
     }
-    // Outcodes (Cohen–Sutherland style): bits 0-3 say which side of the
-    // *viewport* a vertex is beyond, bits 4-9 which clip plane it fails.
     let planes = volume.planes();
-    let outcode = |p: &DVec4| -> u32 {
-        let mut code = u32::from(p.x > p.w)
-            | u32::from(p.x < -p.w) << 1
-            | u32::from(p.y > p.w) << 2
-            | u32::from(p.y < -p.w) << 3;
-        for (k, plane) in planes.iter().enumerate() {
-            code |= u32::from(plane.dot(*p) < 0.0) << (4 + k);
-        }
-        code
-    };
-    let codes = tri.map(|p| outcode(&p));
+    let codes = tri.map(|p| volume.outcode(p));
     // All three beyond one side of the image (or one clip plane): no pixel
     // centre can be covered.
     if codes[0] & codes[1] & codes[2] != 0 {
@@ -114,13 +125,13 @@ pub fn clip_triangle(
         pos: tri[i],
         bary: bary[i],
     }));
-    let failing = (codes[0] | codes[1] | codes[2]) >> 4;
+    let failing = (codes[0] | codes[1] | codes[2]) & OUTSIDE_PLANES;
     if failing == 0 {
         return ClipOutcome::Inside;
     }
     let mut clipped = false;
     for (k, plane) in planes.into_iter().enumerate() {
-        if failing & (1 << k) == 0 {
+        if failing & (1 << (4 + k)) == 0 {
             continue;
         }
         let all_in = out.iter().all(|v| plane.dot(v.pos) >= 0.0);

@@ -2,12 +2,14 @@
 
 use glam::DVec3;
 
+use crate::fixed::{FixedPt, SUBPIXEL_SCALE};
+
 /// A window of `width x height` pixels with GL's default depth range [0, 1].
 ///
 /// Window coordinates have their origin at the top-left corner, x right and
 /// y *down* (NDC y is flipped), so buffers are row-major, top row first.
 /// Pixel `(i, j)` covers `[i, i+1) x [j, j+1)` and is sampled at its centre.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Viewport {
     /// Width in pixels.
     pub width: u32,
@@ -43,6 +45,26 @@ impl Viewport {
             (0.5 - ndc[1] * 0.5) * self.height as f32,
             ndc[2] * 0.5 + 0.5,
         ]
+    }
+
+    /// The inclusive rectangle `(x0, y0, x1, y1)` of pixels whose centres
+    /// the snapped triangle `v` may cover, clamped to the viewport, or
+    /// `None` when no centre of the viewport lies in its bounding box (then
+    /// it covers no sample of any pixel-centre hider).
+    #[inline]
+    pub fn pixel_bounds(&self, v: &[FixedPt; 3]) -> Option<(u32, u32, u32, u32)> {
+        const _: () = assert!(SUBPIXEL_SCALE == 256);
+        let [a, b, c] = *v;
+        let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+        let (min_y, max_y) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
+        // Centre of pixel i is i * 256 + 128: the first centre >= m is
+        // ceil((m - 128) / 256), the last <= m is floor((m - 128) / 256);
+        // an arithmetic shift is div_euclid by 256.
+        let x0 = ((min_x + 127) >> 8).max(0);
+        let y0 = ((min_y + 127) >> 8).max(0);
+        let x1 = ((max_x - 128) >> 8).min(self.width as i32 - 1);
+        let y1 = ((max_y - 128) >> 8).min(self.height as i32 - 1);
+        (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32))
     }
 
     /// Number of pixels.

@@ -41,6 +41,7 @@
 
 pub mod analyze;
 pub mod atomic;
+pub mod depth_scene;
 pub mod error;
 pub mod frame;
 pub mod hard_cases;
@@ -56,6 +57,7 @@ pub mod texture;
 pub mod view;
 
 pub use analyze::{Effects, Evidence, RenderOptions, analyze};
+pub use depth_scene::{DepthScene, DepthTri, prepare_depth_into};
 pub use error::{Error, Result};
 pub use frame::{Frame, NO_ID};
 pub use hider::{Hider, Stats, check_frame};

@@ -8,7 +8,7 @@
 
 use glam::{DMat4, DVec3, DVec4, Vec2, Vec3, Vec4};
 use hider_geom::clip::{ClipOutcome, ClipVertex, ClipVolume, clip_triangle};
-use hider_geom::fixed::{FixedPt, GUARD_BAND_PIXELS, SUBPIXEL_SCALE};
+use hider_geom::fixed::{FixedPt, GUARD_BAND_PIXELS};
 use hider_geom::{Camera, PlaneEq, Viewport, orient2d};
 use rayon::prelude::*;
 
@@ -124,19 +124,7 @@ impl ScreenTri {
     /// The inclusive pixel rectangle `(x0, y0, x1, y1)` whose centres may be
     /// covered, clamped to the viewport, or `None` if it is empty.
     pub fn pixel_bounds(&self, viewport: Viewport) -> Option<(u32, u32, u32, u32)> {
-        let min_x = self.v.iter().map(|p| p.x).min()?;
-        let max_x = self.v.iter().map(|p| p.x).max()?;
-        let min_y = self.v.iter().map(|p| p.y).min()?;
-        let max_y = self.v.iter().map(|p| p.y).max()?;
-        // Centre of pixel i is i*256 + 128: the first centre >= min is
-        // ceil((min - 128) / 256), the last <= max is floor((max - 128) / 256).
-        let first = |m: i32| (m - 128 + SUBPIXEL_SCALE - 1).div_euclid(SUBPIXEL_SCALE);
-        let last = |m: i32| (m - 128).div_euclid(SUBPIXEL_SCALE);
-        let x0 = first(min_x).max(0);
-        let y0 = first(min_y).max(0);
-        let x1 = last(max_x).min(viewport.width as i32 - 1);
-        let y1 = last(max_y).min(viewport.height as i32 - 1);
-        (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32))
+        viewport.pixel_bounds(&self.v)
     }
 }
 
@@ -171,10 +159,16 @@ pub struct PrepareStats {
     pub back_faces: u64,
     /// Screen triangles produced.
     pub output: u64,
+    /// Triangles dropped by the lean front end
+    /// ([`prepare_depth_into`](crate::prepare_depth_into)) because no
+    /// pixel centre lies in their box (they cover no sample); always 0
+    /// from [`prepare`], which keeps them.
+    pub empty: u64,
 }
 
 impl PrepareStats {
-    fn add(&mut self, other: &Self) {
+    pub(crate) fn add(&mut self, other: &Self) {
+        self.empty += other.empty;
         self.culled += other.culled;
         self.clipped += other.clipped;
         self.degenerate += other.degenerate;
@@ -268,27 +262,13 @@ pub fn prepare_into(
     out: &mut ScreenScene,
 ) -> Result<()> {
     let vp = view.viewport;
-    check_image_size(vp.width, vp.height)?;
-    view.camera
-        .validate()
-        .map_err(|e| crate::error::Error::Camera(e.0))?;
-    scene.validate()?;
-    let view_matrix = view.camera.view_matrix();
-    let projection_matrix = view.camera.projection_matrix(vp.aspect());
-    let mvp = projection_matrix * view_matrix;
-    let mvp32 = mvp.as_mat4();
-    let volume = ClipVolume::for_viewport(
-        vp.width,
-        vp.height,
-        options.guard_band_pixels.min(GUARD_BAND_PIXELS),
-    );
+    let front = FrontEnd::new(scene, view, options)?;
+    let (view_matrix, projection_matrix) = (front.view_matrix, front.projection_matrix);
 
     let mut materials = std::mem::take(&mut out.materials);
     materials.clear();
     materials.extend_from_slice(&scene.materials);
-    let default_material = materials.len() as u32;
     materials.push(Material::default());
-    let normal_matrix = view_matrix.inverse().transpose();
 
     let mut prims = std::mem::take(&mut out.prims);
     prims.clear();
@@ -299,16 +279,6 @@ pub fn prepare_into(
     let mut stats = PrepareStats {
         input: scene.triangle_count() as u64,
         ..PrepareStats::default()
-    };
-    let front = FrontEnd {
-        view_matrix,
-        normal_matrix,
-        mvp,
-        mvp32,
-        volume,
-        viewport: vp,
-        options: *options,
-        default_material,
     };
     // Below this many triangles the fork-join overhead is not worth it.
     const PARALLEL_CHUNK: usize = 16 * 1024;
@@ -380,36 +350,76 @@ pub fn prepare_into(
 
 /// The output of the front end for a run of triangles.
 #[derive(Default)]
-struct Part {
-    prims: Vec<PrimInfo>,
-    tris: Vec<ScreenTri>,
-    stats: PrepareStats,
+pub(crate) struct Part {
+    pub(crate) prims: Vec<PrimInfo>,
+    pub(crate) tris: Vec<ScreenTri>,
+    pub(crate) stats: PrepareStats,
 }
 
 /// Reusable buffers of the clipper.
 #[derive(Default)]
-struct ClipScratch {
+pub(crate) struct ClipScratch {
     polygon: Vec<ClipVertex>,
     scratch: Vec<ClipVertex>,
     window: Vec<WindowVertex>,
 }
 
 /// Everything the per-triangle work needs, computed once per frame.
-struct FrontEnd {
-    view_matrix: DMat4,
-    normal_matrix: DMat4,
-    mvp: DMat4,
-    mvp32: glam::Mat4,
-    volume: ClipVolume,
-    viewport: Viewport,
-    options: PrepareOptions,
-    default_material: u32,
+pub(crate) struct FrontEnd {
+    pub(crate) view_matrix: DMat4,
+    pub(crate) projection_matrix: DMat4,
+    pub(crate) normal_matrix: DMat4,
+    pub(crate) mvp: DMat4,
+    pub(crate) mvp32: glam::Mat4,
+    pub(crate) volume: ClipVolume,
+    pub(crate) viewport: Viewport,
+    pub(crate) options: PrepareOptions,
+    pub(crate) default_material: u32,
 }
 
 impl FrontEnd {
+    /// Checks the image size, the camera and the scene, and computes the
+    /// per-frame transforms.
+    pub(crate) fn new(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<Self> {
+        let vp = view.viewport;
+        check_image_size(vp.width, vp.height)?;
+        view.camera
+            .validate()
+            .map_err(|e| crate::error::Error::Camera(e.0))?;
+        scene.validate()?;
+        let view_matrix = view.camera.view_matrix();
+        let projection_matrix = view.camera.projection_matrix(vp.aspect());
+        let mvp = projection_matrix * view_matrix;
+        Ok(Self {
+            view_matrix,
+            projection_matrix,
+            normal_matrix: view_matrix.inverse().transpose(),
+            mvp,
+            mvp32: mvp.as_mat4(),
+            volume: ClipVolume::for_viewport(
+                vp.width,
+                vp.height,
+                options.guard_band_pixels.min(GUARD_BAND_PIXELS),
+            ),
+            viewport: vp,
+            options: *options,
+            default_material: scene.materials.len() as u32,
+        })
+    }
+
+    /// The clip-space position of a world-space point in the configured
+    /// precision.
+    #[inline]
+    pub(crate) fn clip(&self, p: DVec3) -> DVec4 {
+        match self.options.precision {
+            TransformPrecision::F64 => self.mvp * p.extend(1.0),
+            TransformPrecision::F32 => (self.mvp32 * Vec4::from((p.as_vec3(), 1.0))).as_dvec4(),
+        }
+    }
+
     /// Transforms, clips, projects, snaps and sets up triangle `t` of mesh
     /// `m` (primitive `prim`), appending its info and screen pieces.
-    fn triangle(
+    pub(crate) fn triangle(
         &self,
         scene: &Scene,
         (m, t, prim): (usize, usize, u32),
@@ -433,12 +443,7 @@ impl FrontEnd {
             uvs: (!mesh.uvs.is_empty()).then(|| idx.map(|i| mesh.uvs[i as usize])),
         });
         let precision = self.options.precision;
-        let clip: [DVec4; 3] = match precision {
-            TransformPrecision::F64 => world.map(|p| self.mvp * p.extend(1.0)),
-            TransformPrecision::F32 => {
-                world.map(|p| (self.mvp32 * Vec4::from((p.as_vec3(), 1.0))).as_dvec4())
-            }
-        };
+        let clip: [DVec4; 3] = world.map(|p| self.clip(p));
         match clip_triangle(clip, &self.volume, &mut buf.polygon, &mut buf.scratch) {
             ClipOutcome::Culled => {
                 stats.culled += 1;
@@ -474,13 +479,17 @@ impl FrontEnd {
 
 /// A vertex in window space: snapped position, window depth, clip w.
 #[derive(Clone, Copy)]
-struct WindowVertex {
-    p: FixedPt,
-    z: f64,
-    w: f64,
+pub(crate) struct WindowVertex {
+    pub(crate) p: FixedPt,
+    pub(crate) z: f64,
+    pub(crate) w: f64,
 }
 
-fn to_window(v: &ClipVertex, vp: Viewport, precision: TransformPrecision) -> Option<WindowVertex> {
+pub(crate) fn to_window(
+    v: &ClipVertex,
+    vp: Viewport,
+    precision: TransformPrecision,
+) -> Option<WindowVertex> {
     let (x, y, z) = match precision {
         TransformPrecision::F64 => {
             let ndc = v.pos.truncate() / v.pos.w;
@@ -505,7 +514,11 @@ fn to_window(v: &ClipVertex, vp: Viewport, precision: TransformPrecision) -> Opt
     })
 }
 
-fn setup(mut c: [WindowVertex; 3], prim: u32) -> Option<ScreenTri> {
+/// The part of set-up every hider needs: the vertices ordered positively,
+/// the facing and the depth plane. `None` when the snapped triangle has no
+/// area (it covers no sample).
+#[inline]
+pub(crate) fn setup_depth(mut c: [WindowVertex; 3]) -> Option<([WindowVertex; 3], bool, PlaneEq)> {
     let area = orient2d(c[0].p, c[1].p, c[2].p);
     if area == 0 {
         return None;
@@ -516,10 +529,15 @@ fn setup(mut c: [WindowVertex; 3], prim: u32) -> Option<ScreenTri> {
     if area < 0 {
         c.swap(1, 2);
     }
+    let depth = PlaneEq::from_points(&c.map(|k| k.p), c.map(|k| k.z))?;
+    Some((c, front_facing, depth))
+}
+
+fn setup(c: [WindowVertex; 3], prim: u32) -> Option<ScreenTri> {
+    let (c, front_facing, depth) = setup_depth(c)?;
     let v = c.map(|k| k.p);
     let z = c.map(|k| k.z);
     let w = c.map(|k| k.w);
-    let depth = PlaneEq::from_points(&v, z)?;
     let inv_w = PlaneEq::from_points(&v, w.map(|w| 1.0 / w))?;
     Some(ScreenTri {
         v,
