@@ -76,6 +76,31 @@ impl Viewport {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The shift-based box equals the definition (first centre at or
+        /// after the minimum, last at or before the maximum, by Euclidean
+        /// division), also in the guard band.
+        #[test]
+        fn pixel_bounds_are_the_centres_in_the_box(
+            pts in proptest::array::uniform3((-40_000i32..40_000, -40_000i32..40_000)),
+            w in 1u32..100,
+            h in 1u32..100,
+        ) {
+            let v = pts.map(|(x, y)| FixedPt::new(x, y));
+            let first = |m: i32| (m - 128 + 255).div_euclid(256);
+            let last = |m: i32| (m - 128).div_euclid(256);
+            let xs = v.map(|p| p.x);
+            let ys = v.map(|p| p.y);
+            let x0 = first(*xs.iter().min().unwrap()).max(0);
+            let y0 = first(*ys.iter().min().unwrap()).max(0);
+            let x1 = last(*xs.iter().max().unwrap()).min(w as i32 - 1);
+            let y1 = last(*ys.iter().max().unwrap()).min(h as i32 - 1);
+            let want = (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32));
+            prop_assert_eq!(Viewport::new(w, h).pixel_bounds(&v), want);
+        }
+    }
 
     #[test]
     fn corners_map_to_window_corners_with_y_down() {

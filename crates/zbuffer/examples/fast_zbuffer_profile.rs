@@ -3,12 +3,17 @@
 //!
 //! `cargo run --release -p hider-zbuffer --example fast_zbuffer_profile -- SCENE HIDER [SIZE] [RUNS] [THREADS]`
 //! with SCENE one of `spider`, `sphere200`, `sphere500`, `soup`, and HIDER
-//! `zbuffer` or `tiled`.
+//! `zbuffer`, `tiled` (both on the full front end's scene, render only) or
+//! `lean` (the tiled hider's own pipeline: lean front end, then a draw
+//! into its tiles; prints both times).
 
 use std::path::PathBuf;
 use std::time::Instant;
 
-use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural};
+use hider_scene::{
+    DepthScene, Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, prepare_depth_into,
+    procedural,
+};
 use hider_zbuffer::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -27,6 +32,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "soup" => procedural::random_soup(100_000, 1),
         other => return Err(format!("unknown scene {other}").into()),
     };
+    let view = View::for_scene(&scene, size, size)?;
+    if arg(1, "tiled") == "lean" {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()?;
+        let options = PrepareOptions::gl_compatible().with_parallel(threads > 1);
+        let mut tiled = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(threads));
+        let mut lean = DepthScene::new();
+        for _ in 0..runs {
+            let t = Instant::now();
+            pool.install(|| prepare_depth_into(&scene, &view, &options, &mut lean))?;
+            let prepared = t.elapsed().as_secs_f64() * 1e3;
+            let stats = tiled.draw_depth_scene(&lean)?;
+            let total = t.elapsed().as_secs_f64() * 1e3;
+            println!(
+                "{total:.2} ms = prepare {prepared:.2} + draw {:.2}  {:?} {:?}",
+                total - prepared,
+                lean.stats,
+                stats
+            );
+        }
+        return Ok(());
+    }
     let mut hider: Box<dyn Hider> = match arg(1, "tiled").as_str() {
         "zbuffer" => Box::new(ZBuffer::default()),
         "tiled" => Box::new(TiledZBuffer::new(
@@ -34,7 +62,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         )),
         other => return Err(format!("unknown hider {other}").into()),
     };
-    let view = View::for_scene(&scene, size, size)?;
     let screen = prepare(&scene, &view, &PrepareOptions::default())?;
     let mut frame = Frame::new(size, size)?;
     for _ in 0..runs {

@@ -64,6 +64,29 @@ impl DepthBounds {
         })
     }
 
+    /// [`Self::tri_low`] rounded down to `f32`, for the compact bin
+    /// entries; minus infinity when the plane gives no bound. Every depth
+    /// key encoding is monotone, so a smaller bound is still a bound.
+    pub(crate) fn low_f32(v: &[FixedPt; 3], plane: &PlaneEq) -> f32 {
+        let Some(b) = Self::new(v, plane) else {
+            return f32::NEG_INFINITY;
+        };
+        let f = b.tri_low as f32;
+        if f64::from(f) <= b.tri_low {
+            return f;
+        }
+        // One step down (f32::next_down, stable only since Rust 1.86): f is
+        // finite, since tri_low is and rounding overshot it.
+        let bits = f.to_bits();
+        if f > 0.0 {
+            f32::from_bits(bits - 1)
+        } else if f == 0.0 {
+            -f32::from_bits(1)
+        } else {
+            f32::from_bits(bits + 1)
+        }
+    }
+
     /// Lower bound of the computed depths at the pixel centres of columns
     /// `x0..=x1`, rows `y0..=y1` (a rectangle inside the triangle's box).
     #[inline]

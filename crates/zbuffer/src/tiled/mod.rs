@@ -13,6 +13,15 @@
 //!    once. A tile no triangle met is never cleared: background is written
 //!    straight into the frame (the per-tile clear flag).
 //!
+//! The tiles are the hider's own framebuffer, one buffer per tile kept
+//! between frames. [`TiledZBuffer::draw_depth_scene`] stops there, as a GL
+//! draw call followed by `glFinish` does (tiles no triangle reached are
+//! flagged background and never touched), and
+//! [`TiledZBuffer::read_into`] is the read-back (`glReadPixels`);
+//! [`Hider::render`] does both, resolving each band while it is in cache.
+//! Input is either a [`ScreenScene`] (what every hider consumes) or the
+//! lean [`DepthScene`] of [`hider_scene::prepare_depth_into`].
+//!
 //! Equality with the reference is by construction: the coverage test is
 //! the same exact integer edge functions; a pixel's depth is the same f64
 //! expression ([`hider_geom::PlaneEq::eval`], split into a column term
@@ -31,8 +40,11 @@ mod tile;
 #[cfg(test)]
 mod tests;
 
+use hider_geom::{FixedPt, PlaneEq, Viewport};
 use hider_scene::frame::BACKGROUND;
-use hider_scene::{Error, Frame, Hider, Result, ScreenScene, Stats, check_frame};
+use hider_scene::{
+    DepthScene, DepthTri, Error, Frame, Hider, Result, ScreenScene, ScreenTri, Stats, check_frame,
+};
 
 use crate::options::DepthFormat;
 use bins::{ChunkBins, Grid};
@@ -42,15 +54,50 @@ use tile::{Scratch, TileBuf, TileKey};
 pub use options::TiledZBufferOptions;
 pub use stats::TiledZBufferStats;
 
-/// One band's share of the frame and its tile buffer, as the band loop
-/// receives it: (band index, (((ids, depth), colour), buffer)).
-type BandWork<'a, K> = (
-    usize,
-    (
-        ((&'a mut [u32], &'a mut [f32]), &'a mut [[u8; 4]]),
-        &'a mut TileBuf<K>,
-    ),
-);
+/// What the tile kernel reads of a triangle; implemented by both
+/// [`ScreenTri`] and the lean [`DepthTri`].
+pub(crate) trait RasterTri: Sync {
+    /// Snapped vertices, positively ordered.
+    fn v(&self) -> &[FixedPt; 3];
+    /// The window-depth plane.
+    fn depth(&self) -> &PlaneEq;
+    /// The primitive id.
+    fn prim(&self) -> u32;
+}
+
+impl RasterTri for ScreenTri {
+    #[inline]
+    fn v(&self) -> &[FixedPt; 3] {
+        &self.v
+    }
+    #[inline]
+    fn depth(&self) -> &PlaneEq {
+        &self.depth
+    }
+    #[inline]
+    fn prim(&self) -> u32 {
+        self.prim
+    }
+}
+
+impl RasterTri for DepthTri {
+    #[inline]
+    fn v(&self) -> &[FixedPt; 3] {
+        &self.v
+    }
+    #[inline]
+    fn depth(&self) -> &PlaneEq {
+        &self.depth
+    }
+    #[inline]
+    fn prim(&self) -> u32 {
+        self.prim
+    }
+}
+
+/// One band of the frame as the resolve receives it: ((ids, depth),
+/// colour) rows of one row of tiles.
+type FrameBand<'a> = ((&'a mut [u32], &'a mut [f32]), &'a mut [[u8; 4]]);
 
 /// Triangles per binning chunk below which binning stays on one thread.
 const MIN_CHUNK: usize = 4096;
@@ -58,7 +105,8 @@ const MIN_CHUNK: usize = 4096;
 /// The fast depth-buffer hider: binned, tiled, hierarchical and parallel,
 /// with exactly [`crate::ZBuffer`]'s output (window depth source).
 ///
-/// Keeps its bins, tile buffers and thread pool between frames.
+/// Keeps its bins, tile buffers (its framebuffer) and thread pool between
+/// frames.
 #[derive(Debug)]
 pub struct TiledZBuffer {
     options: TiledZBufferOptions,
@@ -66,6 +114,8 @@ pub struct TiledZBuffer {
     pool: Option<rayon::ThreadPool>,
     chunks: Vec<ChunkBins>,
     scratch: Scratch,
+    /// The image held in the tiles: its viewport, grid and format.
+    drawn: Option<(Viewport, Grid, DepthFormat)>,
 }
 
 impl TiledZBuffer {
@@ -84,6 +134,7 @@ impl TiledZBuffer {
             pool: None,
             chunks: Vec::new(),
             scratch: Scratch::default(),
+            drawn: None,
         }
     }
 
@@ -101,14 +152,109 @@ impl TiledZBuffer {
         }
     }
 
-    /// Renders and returns the typed statistics.
+    /// Renders a screen scene into `frame` and returns the typed
+    /// statistics.
     pub fn render_frame(
         &mut self,
         scene: &ScreenScene,
         frame: &mut Frame,
     ) -> Result<TiledZBufferStats> {
         check_frame(&self.name, scene, frame)?;
+        self.run(&[&scene.tris[..]], scene.viewport, Some(frame))
+    }
+
+    /// Renders a lean [`DepthScene`] into `frame`: the same frame as
+    /// [`Self::render_frame`] on the [`ScreenScene`] of the same scene,
+    /// view and options.
+    pub fn render_depth_scene(
+        &mut self,
+        scene: &DepthScene,
+        frame: &mut Frame,
+    ) -> Result<TiledZBufferStats> {
+        self.check_size(scene.viewport, frame)?;
+        let parts: Vec<&[DepthTri]> = scene.parts.iter().map(Vec::as_slice).collect();
+        self.run(&parts, scene.viewport, Some(frame))
+    }
+
+    /// Draws a lean [`DepthScene`] into the hider's own tiled framebuffer
+    /// and stops, as a GL draw call and `glFinish` do: tiles no triangle
+    /// reached are only flagged background. [`Self::read_into`] copies the
+    /// image out; [`Self::pixel`] reads one pixel.
+    pub fn draw_depth_scene(&mut self, scene: &DepthScene) -> Result<TiledZBufferStats> {
+        let parts: Vec<&[DepthTri]> = scene.parts.iter().map(Vec::as_slice).collect();
+        self.run(&parts, scene.viewport, None)
+    }
+
+    /// Copies the image last drawn into `frame` (ids, window depth,
+    /// background colour), exactly as [`Self::render_frame`] writes it:
+    /// the read-back (`glReadPixels`) step.
+    ///
+    /// # Errors
+    ///
+    /// When nothing was drawn yet, or `frame` has another size.
+    pub fn read_into(&mut self, frame: &mut Frame) -> Result<()> {
+        let Some((vp, grid, format)) = self.drawn else {
+            return Err(self.error("nothing has been drawn to read back".to_owned()));
+        };
+        self.check_size(vp, frame)?;
+        match format {
+            DepthFormat::F32 => self.read_with::<f32>(vp, grid, frame),
+            DepthFormat::F64 => self.read_with::<f64>(vp, grid, frame),
+            DepthFormat::Fixed24 => self.read_with::<Fixed24>(vp, grid, frame),
+            DepthFormat::Fixed16 => self.read_with::<Fixed16>(vp, grid, frame),
+            DepthFormat::ReversedF32 => self.read_with::<Reversed>(vp, grid, frame),
+        }
+        Ok(())
+    }
+
+    /// The visible primitive id ([`hider_scene::NO_ID`] for background)
+    /// and window depth of pixel `(x, y)` of the image last drawn, or
+    /// `None` outside it or before anything was drawn.
+    pub fn pixel(&mut self, x: u32, y: u32) -> Option<(u32, f32)> {
+        let (vp, grid, format) = self.drawn?;
+        if x >= vp.width || y >= vp.height {
+            return None;
+        }
+        let t = (y / grid.tile * grid.cols + x / grid.tile) as usize;
+        Some(match format {
+            DepthFormat::F32 => get::<f32>(&mut self.scratch, t, x, y),
+            DepthFormat::F64 => get::<f64>(&mut self.scratch, t, x, y),
+            DepthFormat::Fixed24 => get::<Fixed24>(&mut self.scratch, t, x, y),
+            DepthFormat::Fixed16 => get::<Fixed16>(&mut self.scratch, t, x, y),
+            DepthFormat::ReversedF32 => get::<Reversed>(&mut self.scratch, t, x, y),
+        })
+    }
+
+    fn error(&self, message: String) -> Error {
+        Error::Render {
+            hider: self.name.clone(),
+            message,
+        }
+    }
+
+    fn check_size(&self, vp: Viewport, frame: &Frame) -> Result<()> {
+        if frame.width() != vp.width || frame.height() != vp.height {
+            return Err(self.error(format!(
+                "frame is {}x{} but the scene was prepared for {}x{}",
+                frame.width(),
+                frame.height(),
+                vp.width,
+                vp.height
+            )));
+        }
+        Ok(())
+    }
+
+    /// Validates the options, starts the pool if needed, then draws (and
+    /// resolves into `frame` when given).
+    fn run<T: RasterTri>(
+        &mut self,
+        parts: &[&[T]],
+        vp: Viewport,
+        frame: Option<&mut Frame>,
+    ) -> Result<TiledZBufferStats> {
         self.options.validate()?;
+        hider_scene::view::check_image_size(vp.width, vp.height)?;
         let threads = self.threads();
         if threads > 1
             && self
@@ -119,50 +265,56 @@ impl TiledZBuffer {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
-                .map_err(|e| Error::Render {
-                    hider: self.name.clone(),
-                    message: format!("cannot start {threads} threads: {e}"),
-                })?;
+                .map_err(|e| self.error(format!("cannot start {threads} threads: {e}")))?;
             self.pool = Some(pool);
         }
-        match self.options.depth_format {
-            DepthFormat::F32 => self.render_with::<f32>(scene, frame, threads),
-            DepthFormat::F64 => self.render_with::<f64>(scene, frame, threads),
-            DepthFormat::Fixed24 => self.render_with::<Fixed24>(scene, frame, threads),
-            DepthFormat::Fixed16 => self.render_with::<Fixed16>(scene, frame, threads),
-            DepthFormat::ReversedF32 => self.render_with::<Reversed>(scene, frame, threads),
-        }
+        self.drawn = None;
+        let stats = match self.options.depth_format {
+            DepthFormat::F32 => self.draw_with::<T, f32>(parts, vp, frame, threads),
+            DepthFormat::F64 => self.draw_with::<T, f64>(parts, vp, frame, threads),
+            DepthFormat::Fixed24 => self.draw_with::<T, Fixed24>(parts, vp, frame, threads),
+            DepthFormat::Fixed16 => self.draw_with::<T, Fixed16>(parts, vp, frame, threads),
+            DepthFormat::ReversedF32 => self.draw_with::<T, Reversed>(parts, vp, frame, threads),
+        };
+        let grid = Grid::new(vp.width, vp.height, self.options.tile_size);
+        self.drawn = Some((vp, grid, self.options.depth_format));
+        Ok(stats)
     }
 
-    fn render_with<K: TileKey>(
+    fn draw_with<T: RasterTri, K: TileKey>(
         &mut self,
-        scene: &ScreenScene,
-        frame: &mut Frame,
+        parts: &[&[T]],
+        vp: Viewport,
+        frame: Option<&mut Frame>,
         threads: usize,
-    ) -> Result<TiledZBufferStats> {
-        let vp = scene.viewport;
+    ) -> TiledZBufferStats {
         let grid = Grid::new(vp.width, vp.height, self.options.tile_size);
         let pool = self.pool.as_ref().filter(|_| threads > 1);
 
-        // 1. Binning, in contiguous chunks of triangles.
-        let n = scene.tris.len();
-        let chunks = if pool.is_some() {
-            threads.min(n / MIN_CHUNK).max(1)
+        // 1. Binning, one chunk per contiguous run of triangles; runs are
+        //    cut further so that every thread has one.
+        let total: usize = parts.iter().map(|p| p.len()).sum();
+        let wanted = if pool.is_some() {
+            threads.min(total / MIN_CHUNK).max(1)
         } else {
             1
         };
-        let per = n.div_ceil(chunks).max(1);
-        self.chunks.resize_with(chunks, ChunkBins::default);
-        self.chunks.truncate(chunks);
-        let bin = |(c, bins): (usize, &mut ChunkBins)| {
-            bins.fill(scene, (c * per).min(n)..((c + 1) * per).min(n), grid);
-        };
+        let per = total.div_ceil(wanted).max(MIN_CHUNK);
+        let tris: Vec<&[T]> = parts
+            .iter()
+            .flat_map(|p| p.chunks(per))
+            .filter(|c| !c.is_empty())
+            .collect();
+        self.chunks.resize_with(tris.len(), ChunkBins::default);
+        self.chunks.truncate(tris.len());
+        let hiz = self.options.hierarchical_z;
+        let bin = |(bins, chunk): (&mut ChunkBins, &&[T])| bins.fill(chunk, vp, grid, hiz);
         match pool {
-            Some(pool) if chunks > 1 => {
+            Some(pool) if tris.len() > 1 => {
                 use rayon::prelude::*;
-                pool.install(|| self.chunks.par_iter_mut().enumerate().for_each(bin));
+                pool.install(|| self.chunks.par_iter_mut().zip(&tris).for_each(bin));
             }
-            _ => self.chunks.iter_mut().enumerate().for_each(bin),
+            _ => self.chunks.iter_mut().zip(&tris).for_each(bin),
         }
 
         // 2. Tiles, band by band (a band is a row of tiles: a contiguous
@@ -171,54 +323,74 @@ impl TiledZBuffer {
         if bufs.first().is_some_and(|b| b.size() != grid.tile) {
             bufs.clear();
         }
-        bufs.resize_with(grid.rows as usize, || TileBuf::new(grid.tile));
-        bufs.truncate(grid.rows as usize);
-        let width = vp.width as usize;
-        let band_len = width * grid.tile as usize;
-        frame.coverage.clear();
+        bufs.resize_with(grid.tiles(), || TileBuf::new(grid.tile));
+        bufs.truncate(grid.tiles());
         let chunks = &self.chunks;
-        let hiz = self.options.hierarchical_z;
-        let band = |(b, (((ids, depth), color), buf)): BandWork<'_, K>| {
-            buf.stats = TiledZBufferStats::default();
+        let draw_band = |b: usize, band: &mut [TileBuf<K>]| {
             let y0 = b as u32 * grid.tile;
             let h = grid.tile.min(vp.height - y0);
-            for tx in 0..grid.cols {
-                let x0 = tx * grid.tile;
-                let w = grid.tile.min(vp.width - x0);
-                let t = b * grid.cols as usize + tx as usize;
-                if !bins::tile_has_work(chunks, t) {
-                    tile::clear_tile(ids, depth, width, (x0, 0, w, h));
-                    buf.stats.tiles_skipped += 1;
-                    continue;
+            for (tx, buf) in band.iter_mut().enumerate() {
+                let x0 = tx as u32 * grid.tile;
+                buf.start(x0, y0, grid.tile.min(vp.width - x0), h);
+                let t = b * grid.cols as usize + tx;
+                if bins::tile_has_work(chunks, t) {
+                    bins::for_each_in_tile(&tris, chunks, t, |tri, low| {
+                        buf.draw(tri, low, vp, hiz)
+                    });
                 }
-                buf.start(x0, y0, w, h);
-                bins::for_each_in_tile(chunks, t, |i| buf.draw(&scene.tris[i as usize], vp, hiz));
-                buf.resolve(ids, depth, width, y0);
+                if !buf.is_active() {
+                    buf.stats.tiles_skipped += 1;
+                }
             }
-            color.fill(BACKGROUND);
         };
-        match pool {
-            Some(pool) => {
-                use rayon::prelude::*;
-                pool.install(|| {
-                    frame
+        let cols = grid.cols as usize;
+        match frame {
+            Some(frame) => {
+                frame.coverage.clear();
+                let width = vp.width as usize;
+                let band_len = width * grid.tile as usize;
+                let work = |(b, (out, band)): (usize, (FrameBand<'_>, &mut [TileBuf<K>]))| {
+                    draw_band(b, band);
+                    resolve_band(band, out, width, b as u32 * grid.tile);
+                };
+                match pool {
+                    Some(pool) => {
+                        use rayon::prelude::*;
+                        pool.install(|| {
+                            frame
+                                .ids
+                                .par_chunks_mut(band_len)
+                                .zip(frame.depth.par_chunks_mut(band_len))
+                                .zip(frame.color.par_chunks_mut(band_len))
+                                .zip(bufs.par_chunks_mut(cols))
+                                .enumerate()
+                                .for_each(work)
+                        });
+                    }
+                    None => frame
                         .ids
-                        .par_chunks_mut(band_len)
-                        .zip(frame.depth.par_chunks_mut(band_len))
-                        .zip(frame.color.par_chunks_mut(band_len))
-                        .zip(bufs.par_iter_mut())
+                        .chunks_mut(band_len)
+                        .zip(frame.depth.chunks_mut(band_len))
+                        .zip(frame.color.chunks_mut(band_len))
+                        .zip(bufs.chunks_mut(cols))
                         .enumerate()
-                        .for_each(band)
-                });
+                        .for_each(work),
+                }
             }
-            None => frame
-                .ids
-                .chunks_mut(band_len)
-                .zip(frame.depth.chunks_mut(band_len))
-                .zip(frame.color.chunks_mut(band_len))
-                .zip(bufs.iter_mut())
-                .enumerate()
-                .for_each(band),
+            None => match pool {
+                Some(pool) => {
+                    use rayon::prelude::*;
+                    pool.install(|| {
+                        bufs.par_chunks_mut(cols)
+                            .enumerate()
+                            .for_each(|(b, band)| draw_band(b, band))
+                    });
+                }
+                None => bufs
+                    .chunks_mut(cols)
+                    .enumerate()
+                    .for_each(|(b, band)| draw_band(b, band)),
+            },
         }
 
         let mut stats = TiledZBufferStats::default();
@@ -236,8 +408,62 @@ impl TiledZBuffer {
             .sum::<usize>()
             + self.chunks.iter().map(ChunkBins::bytes).sum::<usize>())
             as u64;
-        Ok(stats)
+        stats
     }
+
+    fn read_with<K: TileKey>(&mut self, vp: Viewport, grid: Grid, frame: &mut Frame) {
+        let threads = self.threads();
+        let bufs = K::bufs(&mut self.scratch);
+        let cols = grid.cols as usize;
+        let width = vp.width as usize;
+        let band_len = width * grid.tile as usize;
+        frame.coverage.clear();
+        let work = |(b, (out, band)): (usize, (FrameBand<'_>, &[TileBuf<K>]))| {
+            resolve_band(band, out, width, b as u32 * grid.tile);
+        };
+        match self.pool.as_ref().filter(|_| threads > 1) {
+            Some(pool) => {
+                use rayon::prelude::*;
+                pool.install(|| {
+                    frame
+                        .ids
+                        .par_chunks_mut(band_len)
+                        .zip(frame.depth.par_chunks_mut(band_len))
+                        .zip(frame.color.par_chunks_mut(band_len))
+                        .zip(bufs.par_chunks(cols))
+                        .enumerate()
+                        .for_each(work)
+                });
+            }
+            None => frame
+                .ids
+                .chunks_mut(band_len)
+                .zip(frame.depth.chunks_mut(band_len))
+                .zip(frame.color.chunks_mut(band_len))
+                .zip(bufs.chunks(cols))
+                .enumerate()
+                .for_each(work),
+        }
+    }
+}
+
+/// Writes a band's tiles into the frame's rows of that band.
+fn resolve_band<K: TileKey>(
+    band: &[TileBuf<K>],
+    ((ids, depth), color): FrameBand<'_>,
+    width: usize,
+    band_y0: u32,
+) {
+    for buf in band {
+        buf.resolve(ids, depth, width, band_y0);
+    }
+    color.fill(BACKGROUND);
+}
+
+/// One pixel of tile `t` in format `K`, decoded.
+fn get<K: TileKey>(scratch: &mut Scratch, t: usize, x: u32, y: u32) -> (u32, f32) {
+    let (id, key) = K::bufs(scratch)[t].get(x, y);
+    (id, key.decode())
 }
 
 impl Default for TiledZBuffer {

@@ -5,7 +5,8 @@
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_scene::{
-    Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
+    DepthScene, Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare,
+    prepare_depth_into, procedural,
 };
 use proptest::prelude::*;
 
@@ -21,7 +22,12 @@ fn fit(scene: &Scene, w: u32, h: u32) -> ScreenScene {
 /// A camera inside the soup's cube: triangles crossing the near plane,
 /// behind the eye, and huge on screen.
 fn inside(scene: &Scene, w: u32, h: u32, yaw: f64) -> ScreenScene {
-    let camera = Camera {
+    let view = View::new(inside_camera(yaw), w, h).unwrap();
+    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+}
+
+fn inside_camera(yaw: f64) -> Camera {
+    Camera {
         eye: DVec3::new(0.1, -0.05, 0.2),
         target: DVec3::new(yaw.sin(), 0.3 * yaw.cos(), -yaw.cos()),
         up: DVec3::Y,
@@ -30,9 +36,7 @@ fn inside(scene: &Scene, w: u32, h: u32, yaw: f64) -> ScreenScene {
             near: 0.01,
             far: 10.0,
         },
-    };
-    let view = View::new(camera, w, h).unwrap();
-    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+    }
 }
 
 fn reference(s: &ScreenScene, format: DepthFormat) -> (Frame, ZBufferStats) {
@@ -244,20 +248,117 @@ fn names_say_the_format() {
     assert!(TiledZBuffer::default().threads() >= 1);
 }
 
-proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+/// The lean path: `prepare_depth_into` then `render_depth_scene`, and
+/// `draw_depth_scene` then `read_into` and `pixel`, against the reference
+/// z-buffer on the full front end's scene. The depth scene is prepared on
+/// one thread or in `parts` runs.
+fn assert_lean_same(scene: &Scene, view: &View, options: TiledZBufferOptions, parts: usize) {
+    let screen = prepare(scene, view, &PrepareOptions::default()).unwrap();
+    let (want, _) = reference(&screen, options.depth_format);
+    let mut lean = DepthScene::new();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(parts)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        prepare_depth_into(
+            scene,
+            view,
+            &PrepareOptions::default().with_parallel(parts > 1),
+            &mut lean,
+        )
+    })
+    .unwrap();
+    let mut z = TiledZBuffer::new(options);
+    let mut got = dirty_frame(&screen);
+    z.render_depth_scene(&lean, &mut got).unwrap();
+    assert!(got == want, "render_depth_scene with {options:?}");
 
-    /// The shift-based box equals the scene crate's, also for vertices in
-    /// the guard band (negative and beyond the viewport).
-    #[test]
-    fn shift_pixel_bounds_equal_the_scene_crates(
-        pts in proptest::array::uniform3((-40_000i32..40_000, -40_000i32..40_000)),
-        w in 1u32..100,
-        h in 1u32..100,
-    ) {
-        let s = fit(&procedural::cube(), w, h);
-        let mut tri = s.tris[0];
-        tri.v = pts.map(|(x, y)| hider_geom::fixed::FixedPt::new(x, y));
-        prop_assert_eq!(super::tile::pixel_bounds(&tri, s.viewport), tri.pixel_bounds(s.viewport));
+    let mut got = dirty_frame(&screen);
+    z.draw_depth_scene(&lean).unwrap();
+    z.read_into(&mut got).unwrap();
+    assert!(got == want, "draw + read_into with {options:?}");
+    let (w, h) = (view.viewport.width, view.viewport.height);
+    for (x, y) in [(0, 0), (w - 1, h - 1), (w / 2, h / 2), (w / 3, h - 1)] {
+        let i = (y * w + x) as usize;
+        assert_eq!(z.pixel(x, y), Some((want.ids[i], want.depth[i])));
     }
+    assert_eq!(z.pixel(w, 0), None);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn the_lean_path_matches_the_reference(
+        count in 1u32..300,
+        seed in any::<u64>(),
+        w in 1u32..120,
+        h in 1u32..120,
+        yaw in prop::option::of(0.0f64..6.3),
+        parts in 1usize..4,
+        o in options(),
+    ) {
+        let scene = procedural::random_soup(count, seed);
+        let view = match yaw {
+            // From inside the soup: clipping, culling, huge triangles.
+            Some(yaw) => View::new(inside_camera(yaw), w, h).unwrap(),
+            None => View::for_scene(&scene, w, h).unwrap(),
+        };
+        assert_lean_same(&scene, &view, o, parts);
+    }
+}
+
+#[test]
+fn the_lean_path_matches_on_large_parallel_scenes() {
+    // Above the lean front end's parallel threshold, so the depth scene
+    // arrives in several runs.
+    let scene = procedural::uv_sphere(130);
+    let view = View::for_scene(&scene, 200, 170).unwrap();
+    for format in DepthFormat::ALL {
+        let o = TiledZBufferOptions::default()
+            .with_depth_format(format)
+            .with_threads(2);
+        assert_lean_same(&scene, &view, o, 3);
+    }
+}
+
+#[test]
+fn stale_tiles_never_show_through() {
+    // A big sphere, then a small cube, then nothing: each read-back shows
+    // only the current frame although the tile buffers are kept.
+    let mut z = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(1));
+    let view = View::for_scene(&procedural::uv_sphere(20), 96, 96).unwrap();
+    for scene in [
+        procedural::uv_sphere(20),
+        procedural::cube(),
+        Scene::default(),
+    ] {
+        let mut lean = DepthScene::new();
+        prepare_depth_into(&scene, &view, &PrepareOptions::default(), &mut lean).unwrap();
+        let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+        let (want, _) = reference(&screen, DepthFormat::F32);
+        z.draw_depth_scene(&lean).unwrap();
+        let mut got = dirty_frame(&screen);
+        z.read_into(&mut got).unwrap();
+        assert!(got == want);
+    }
+}
+
+#[test]
+fn read_back_errors_are_typed() {
+    let mut z = TiledZBuffer::default();
+    let mut f = Frame::new(8, 8).unwrap();
+    let e = z.read_into(&mut f).unwrap_err();
+    assert!(e.to_string().contains("nothing has been drawn"), "{e}");
+    assert_eq!(z.pixel(0, 0), None);
+    let scene = procedural::cube();
+    let view = View::for_scene(&scene, 16, 16).unwrap();
+    let mut lean = DepthScene::new();
+    prepare_depth_into(&scene, &view, &PrepareOptions::default(), &mut lean).unwrap();
+    z.draw_depth_scene(&lean).unwrap();
+    let e = z.read_into(&mut f).unwrap_err();
+    assert!(e.to_string().contains("8x8"), "{e}");
+    let e = z.render_depth_scene(&lean, &mut f).unwrap_err();
+    assert!(e.to_string().contains("16x16"), "{e}");
 }

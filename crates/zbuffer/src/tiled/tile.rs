@@ -20,8 +20,9 @@
 
 use hider_geom::Viewport;
 use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
-use hider_scene::{NO_ID, ScreenTri};
+use hider_scene::NO_ID;
 
+use super::RasterTri;
 use super::bounds::DepthBounds;
 use super::key::{DepthKey, Fixed16, Fixed24, Reversed};
 use super::stats::TiledZBufferStats;
@@ -106,11 +107,33 @@ impl<K: DepthKey> TileBuf<K> {
         blocks * 64 + ((ly & 7) * 8 + (lx & 7)) as usize
     }
 
-    /// Starts the tile at `(x0, y0)` of `w x h` pixels. Nothing is cleared
-    /// until a triangle meets it (the per-tile clear flag).
+    /// Starts the tile at `(x0, y0)` of `w x h` pixels for a new frame.
+    /// Nothing is cleared until a triangle meets it: until then the tile
+    /// reads as background (the per-tile clear flag), so a tile no
+    /// triangle reaches costs no memory traffic at all.
     pub(crate) fn start(&mut self, x0: u32, y0: u32, w: u32, h: u32) {
         (self.x0, self.y0, self.w, self.h) = (x0, y0, w, h);
         self.active = false;
+        self.tile_max = K::FAR;
+        self.tile_passes = 0;
+        self.stats = TiledZBufferStats::default();
+    }
+
+    /// Whether a triangle met the tile this frame (otherwise it is all
+    /// background and its buffers hold stale values).
+    pub(crate) fn is_active(&self) -> bool {
+        self.active
+    }
+
+    /// The id and stored depth key at pixel `(x, y)` (image coordinates,
+    /// inside the tile).
+    pub(crate) fn get(&self, x: u32, y: u32) -> (u32, K) {
+        if self.active {
+            let i = self.at(x, y);
+            (self.ids[i], self.keys[i])
+        } else {
+            (NO_ID, K::FAR)
+        }
     }
 
     fn activate(&mut self) {
@@ -124,9 +147,20 @@ impl<K: DepthKey> TileBuf<K> {
         self.tile_passes = 0;
     }
 
-    /// Draws one triangle into the tile.
-    pub(crate) fn draw(&mut self, tri: &ScreenTri, viewport: Viewport, hiz: bool) {
-        let Some((bx0, by0, bx1, by1)) = pixel_bounds(tri, viewport) else {
+    /// Draws one triangle into the tile; `low` is a lower bound of its
+    /// computed depths (from its bin entry).
+    pub(crate) fn draw<T: RasterTri>(&mut self, tri: &T, low: f32, viewport: Viewport, hiz: bool) {
+        // Hierarchical depth, triangle level, before the triangle itself is
+        // read: nothing it could write is nearer than what the whole tile
+        // holds.
+        if hiz && self.active {
+            self.refresh_tile_max();
+            if K::encode(f64::from(low)) >= self.tile_max {
+                self.stats.hiz_triangle_rejects += 1;
+                return;
+            }
+        }
+        let Some((bx0, by0, bx1, by1)) = viewport.pixel_bounds(tri.v()) else {
             return;
         };
         let (x0, y0) = (bx0.max(self.x0), by0.max(self.y0));
@@ -139,20 +173,13 @@ impl<K: DepthKey> TileBuf<K> {
         }
         self.stats.triangle_tiles += 1;
         let small = (x1 - x0 + 1) * (y1 - y0 + 1) <= SMALL_AREA;
-        // Depth bounds cost a few plane evaluations: only worth it when
-        // something in the tile is already nearer than the far plane.
-        let bounds = if hiz && (!small || self.tile_max < K::FAR) {
-            DepthBounds::new(&tri.v, &tri.depth)
+        // Block bounds cost a few plane evaluations: only for triangles
+        // that have blocks.
+        let bounds = if hiz && !small {
+            DepthBounds::new(tri.v(), tri.depth())
         } else {
             None
         };
-        if let Some(b) = &bounds {
-            self.refresh_tile_max();
-            if K::encode(b.tri_low) >= self.tile_max {
-                self.stats.hiz_triangle_rejects += 1;
-                return;
-            }
-        }
         if small {
             self.small(tri, x0, y0, x1, y1);
             return;
@@ -164,11 +191,11 @@ impl<K: DepthKey> TileBuf<K> {
         // Column terms of the depth plane: PlaneEq::eval computes
         // `value + dx * (x - x0) + dy * (y - y0)` left to right, so adding
         // the row term to this column term gives the same f64, bit for bit.
-        let p = &tri.depth;
+        let p = tri.depth();
         for (i, c) in self.col[..(span_end - ox) as usize].iter_mut().enumerate() {
             *c = p.value + p.dx * ((f64::from(ox + i as u32) + 0.5) - p.x0);
         }
-        let edges = tri.edges();
+        let edges = hider_geom::edge::triangle_edges(tri.v());
         let unit = i64::from(SUBPIXEL_SCALE);
         let px = i64::from(ox) * unit + i64::from(HALF_PIXEL);
         let py = i64::from(oy) * unit + i64::from(HALF_PIXEL);
@@ -178,7 +205,7 @@ impl<K: DepthKey> TileBuf<K> {
             e00: edges.map(|e| e.eval(px, py)),
             sx: edges.map(|e| e.a * unit),
             sy: edges.map(|e| e.b * unit),
-            prim: tri.prim,
+            prim: tri.prim(),
             bbox: (x0, y0, x1, y1),
         };
         self.blocks(&setup, tri, bounds.as_ref());
@@ -187,12 +214,12 @@ impl<K: DepthKey> TileBuf<K> {
     /// A triangle whose box in the tile is a few pixels: a plain scan of
     /// the box, scalar (too short to vectorise), evaluating the depth only
     /// where the edges pass.
-    fn small(&mut self, tri: &ScreenTri, x0: u32, y0: u32, x1: u32, y1: u32) {
-        let edges = tri.edges();
+    fn small<T: RasterTri>(&mut self, tri: &T, x0: u32, y0: u32, x1: u32, y1: u32) {
+        let edges = hider_geom::edge::triangle_edges(tri.v());
         let unit = i64::from(SUBPIXEL_SCALE);
         let px = i64::from(x0) * unit + i64::from(HALF_PIXEL);
         let sx = edges.map(|e| e.a * unit);
-        let p = &tri.depth;
+        let p = tri.depth();
         let (mut inside, mut passes) = (0u32, 0u32);
         for y in y0..=y1 {
             let py = i64::from(y) * unit + i64::from(HALF_PIXEL);
@@ -207,7 +234,7 @@ impl<K: DepthKey> TileBuf<K> {
                     let i = self.at(x, y);
                     if key < self.keys[i] {
                         self.keys[i] = key;
-                        self.ids[i] = tri.prim;
+                        self.ids[i] = tri.prim();
                         passes += 1;
                     }
                 }
@@ -226,7 +253,7 @@ impl<K: DepthKey> TileBuf<K> {
 
     /// Visits the aligned 8x8 blocks of the tile that the triangle's box
     /// meets.
-    fn blocks(&mut self, s: &Setup, tri: &ScreenTri, bounds: Option<&DepthBounds>) {
+    fn blocks<T: RasterTri>(&mut self, s: &Setup, tri: &T, bounds: Option<&DepthBounds>) {
         let per_row = (self.size / BLOCK) as usize;
         let (_, _, x1, y1) = s.bbox;
         let (tile_x1, tile_y1) = (self.x0 + self.w - 1, self.y0 + self.h - 1);
@@ -244,10 +271,10 @@ impl<K: DepthKey> TileBuf<K> {
     }
 
     /// One block `(bx, by)..=(xb, yb)` (aligned; clipped to the image).
-    fn block(
+    fn block<T: RasterTri>(
         &mut self,
         s: &Setup,
-        tri: &ScreenTri,
+        tri: &T,
         bounds: Option<&DepthBounds>,
         (bx, by, xb, yb): (u32, u32, u32, u32),
         per_row: usize,
@@ -292,7 +319,7 @@ impl<K: DepthKey> TileBuf<K> {
         let full = xb - bx + 1 == BLOCK && yb - by + 1 == BLOCK;
         let passes = if full && inside {
             self.stats.blocks_inside += 1;
-            self.block8::<false>(s, tri, bx, by, [0; 3], [[0; 8]; 3], [0; 3])
+            self.block8::<T, false>(s, tri, bx, by, [0; 3], [[0; 8]; 3], [0; 3])
         } else if full && fits {
             // Biased by one so "inside" is ">= 0" (see `small`); edges the
             // whole block is inside of are replaced by the constant 0.
@@ -307,10 +334,10 @@ impl<K: DepthKey> TileBuf<K> {
                     down[k] = s.sy[k] as i32;
                 }
             }
-            self.block8::<true>(s, tri, bx, by, e, lanes, down)
+            self.block8::<T, true>(s, tri, bx, by, e, lanes, down)
         } else {
             // At the image's edge, or edges too long for i32 lanes.
-            self.rows::<true>(s, tri, bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1))
+            self.rows::<T, true>(s, tri, bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1))
         };
         if passes > 0 {
             self.block_passes[block] += passes;
@@ -324,17 +351,17 @@ impl<K: DepthKey> TileBuf<K> {
     /// `lanes` the offsets along a row, `down` the step per row. Returns
     /// the passes.
     #[allow(clippy::too_many_arguments)]
-    fn block8<const EDGES: bool>(
+    fn block8<T: RasterTri, const EDGES: bool>(
         &mut self,
         s: &Setup,
-        tri: &ScreenTri,
+        tri: &T,
         bx: u32,
         by: u32,
         e: [i32; 3],
         lanes: [[i32; 8]; 3],
         down: [i32; 3],
     ) -> u32 {
-        let p = &tri.depth;
+        let p = tri.depth();
         let c0 = (bx - s.ox) as usize;
         let Ok(col) = <[f64; 8]>::try_from(&self.col[c0..c0 + 8]) else {
             return 0;
@@ -385,16 +412,16 @@ impl<K: DepthKey> TileBuf<K> {
     /// Rasterises rows `ya..=yb`, columns `xa..=xb` (inside the triangle's
     /// box); `EDGES` = false when the block is known to be inside.
     /// Returns the passes.
-    fn rows<const EDGES: bool>(
+    fn rows<T: RasterTri, const EDGES: bool>(
         &mut self,
         s: &Setup,
-        tri: &ScreenTri,
+        tri: &T,
         xa: u32,
         ya: u32,
         xb: u32,
         yb: u32,
     ) -> u32 {
-        let p = &tri.depth;
+        let p = tri.depth();
         let n = (xb - xa + 1) as usize;
         let c0 = (xa - s.ox) as usize;
         let col = &self.col[c0..c0 + n];
@@ -485,13 +512,7 @@ impl<K: DepthKey> TileBuf<K> {
     /// Writes the tile into the band's rows of the frame (`band_y0` is the
     /// band's first image row): ids, and the window depth the reference
     /// z-buffer would have written; background where nothing was drawn.
-    pub(crate) fn resolve(
-        &mut self,
-        ids: &mut [u32],
-        depth: &mut [f32],
-        width: usize,
-        band_y0: u32,
-    ) {
+    pub(crate) fn resolve(&self, ids: &mut [u32], depth: &mut [f32], width: usize, band_y0: u32) {
         let w = self.w as usize;
         for r in 0..self.h as usize {
             let at = (self.y0 - band_y0) as usize * width + r * width + self.x0 as usize;
@@ -516,9 +537,6 @@ impl<K: DepthKey> TileBuf<K> {
                 depth_out.fill(1.0);
             }
         }
-        if !self.active {
-            self.stats.tiles_skipped += 1;
-        }
     }
 }
 
@@ -534,21 +552,6 @@ struct Setup {
     prim: u32,
     /// The triangle's pixel box clipped to the tile.
     bbox: (u32, u32, u32, u32),
-}
-
-/// [`ScreenTri::pixel_bounds`] with shifts instead of divisions (the same
-/// values: `div_euclid` by 256 is an arithmetic shift right by 8).
-#[inline]
-pub(crate) fn pixel_bounds(tri: &ScreenTri, vp: Viewport) -> Option<(u32, u32, u32, u32)> {
-    let [a, b, c] = tri.v;
-    let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
-    let (min_y, max_y) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
-    // First centre >= m: ceil((m - 128) / 256); last <= m: floor((m - 128) / 256).
-    let x0 = ((min_x + 127) >> 8).max(0);
-    let y0 = ((min_y + 127) >> 8).max(0);
-    let x1 = ((max_x - 128) >> 8).min(vp.width as i32 - 1);
-    let y1 = ((max_y - 128) >> 8).min(vp.height as i32 - 1);
-    (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32))
 }
 
 /// One row of pixels: edge tests (when `EDGES`), depth, LESS, write.
@@ -586,22 +589,7 @@ fn raster_row<K: DepthKey, const EDGES: bool>(
     (inside_n, passes)
 }
 
-/// Writes background into a tile no triangle's bin reached.
-pub(crate) fn clear_tile(
-    ids: &mut [u32],
-    depth: &mut [f32],
-    width: usize,
-    rect: (u32, u32, u32, u32),
-) {
-    let (x0, y_in_band, w, h) = rect;
-    for r in 0..h as usize {
-        let at = (y_in_band as usize + r) * width + x0 as usize;
-        ids[at..at + w as usize].fill(NO_ID);
-        depth[at..at + w as usize].fill(1.0);
-    }
-}
-
-/// The tile buffers of every band, one vector per depth format so each
+/// The tile buffers (one per tile), one vector per depth format so each
 /// holds its format's own key type.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Scratch {
