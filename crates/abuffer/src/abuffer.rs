@@ -12,14 +12,15 @@
 //! result does not depend on the order primitives are submitted in, which
 //! is what makes its transparency correct where a z-buffer's is not.
 
-use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ScreenTri, Stats, check_frame};
+use hider_geom::PlaneEq;
+use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, Stats, check_frame};
 
-use crate::coverage::{Coverage, TriCoverage, pixel_range, sample_depth};
-use crate::fragment::{Fragment, FragmentPool, NIL};
+use crate::coverage::{Coverage, DepthBounds, TriCoverage, pixel_range, plane_depth};
+use crate::fragment::{Fragment, FragmentPool, MERGED_BASE, NIL};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy};
 use crate::palette::prim_colors;
 use crate::pattern::{CENTRE, MAX_SAMPLES};
-use crate::resolve::{Resolver, hidden_in_every_sample};
+use crate::resolve::{Resolver, Shaded, hidden_in_every_sample};
 use crate::stats::ABufferStats;
 
 /// Two colour channels closer than this count as equal for
@@ -33,11 +34,62 @@ pub const MERGE_COLOR_TOLERANCE: f32 = 1e-5;
 /// it without making insertion cost grow with the list.
 pub const MERGE_SEARCH: usize = 8;
 
-/// A new occluder prunes the fragments behind it only from lists longer
-/// than this. Measured on `random_soup(10_000)` at 1024 x 1024: pruning
-/// every list costs a fifth of the frame in cache misses; the resolve
-/// skips hidden fragments exactly, so short lists are left alone.
-pub const PRUNE_LIST_LEN: u32 = 4;
+/// Side of the square screen tiles, in pixels. Triangles are binned to
+/// tiles; each tile is rendered and resolved before the next, so its
+/// pixel entries and fragments stay in cache from insertion to resolve.
+pub const TILE: u32 = 64;
+
+/// Side of the blocks of the hierarchical occlusion test, in pixels.
+const BLOCK: u32 = 8;
+/// Blocks per tile side.
+const BLOCKS: usize = (TILE / BLOCK) as usize;
+
+/// Per 8 x 8 block of the current tile: the farthest opaque bound of its
+/// pixels, kept lazily (a bound that drops marks the block stale).
+#[derive(Clone, Debug)]
+struct BlockFar {
+    far: [f32; BLOCKS * BLOCKS],
+    stale: u64,
+}
+
+impl Default for BlockFar {
+    fn default() -> Self {
+        Self {
+            far: [f32::INFINITY; BLOCKS * BLOCKS],
+            stale: 0,
+        }
+    }
+}
+
+/// The opaque fragments gathered towards a new opaque bound of one pixel:
+/// the samples (and centre) they cover and their farthest `zmax`.
+#[derive(Clone, Copy, Debug)]
+struct Gather {
+    mask: u32,
+    centre: bool,
+    far: f32,
+}
+
+impl Gather {
+    const EMPTY: Gather = Gather {
+        mask: 0,
+        centre: false,
+        far: f32::NEG_INFINITY,
+    };
+}
+
+/// Triangles binned by tile: `items[start[t]..start[t + 1]]` are the
+/// triangles (in submission order) whose pixel range meets tile `t`.
+#[derive(Clone, Debug, Default)]
+struct Bins {
+    start: Vec<u32>,
+    items: Vec<u32>,
+    ranges: Vec<(u32, u32, u32, u32)>,
+    /// Tiles whose pixel entries may hold lists of the last frame.
+    dirty: Vec<bool>,
+    /// Frame size the dirty flags refer to.
+    dims: (u32, u32),
+}
 
 /// Carpenter's A-buffer. See the crate documentation.
 #[derive(Clone, Debug, Default)]
@@ -45,10 +97,25 @@ pub struct ABuffer {
     options: ABufferOptions,
     pool: FragmentPool,
     colors: Vec<[f32; 4]>,
+    planes: Vec<PlaneEq>,
+    bins: Bins,
+    gather: Vec<Gather>,
+    blocks: BlockFar,
+    scratch: Vec<Shaded>,
     resolver: Resolver,
     width: u32,
     height: u32,
     last: ABufferStats,
+}
+
+/// What the insertion of one fragment needs besides the fragment.
+struct Ctx<'a> {
+    scene: &'a ScreenScene,
+    p: usize,
+    ij: (u32, u32),
+    /// Index of the pixel in the tile's gather table.
+    g: usize,
+    alpha: f32,
 }
 
 impl ABuffer {
@@ -77,20 +144,28 @@ impl ABuffer {
     /// A merged fragment reports its lowest primitive id, so compare with
     /// merging off ([`MergePolicy::Off`]).
     pub fn sample_ids(&self) -> Vec<u32> {
-        let n = self.options.pattern.count();
+        let pattern = self.options.pattern;
+        let n = pattern.count();
         let pixels = self.width as usize * self.height as usize;
         let per_sample = self.options.depth == DepthMode::PerSample;
         let mut out = vec![NO_ID; pixels * n];
         let mut best = vec![f32::INFINITY; n];
         for p in 0..pixels {
+            let ij = (
+                (p % self.width as usize) as u32,
+                (p / self.width as usize) as u32,
+            );
             best.fill(f32::INFINITY);
             let ids = &mut out[p * n..(p + 1) * n];
             let mut cur = self.pool.head(p);
             while cur != NIL {
                 let f = self.pool.get(cur);
-                let depths = self.pool.depths(cur);
                 for k in (0..n).filter(|&k| f.mask >> k & 1 == 1) {
-                    let z = if per_sample { depths[k] } else { f.zmin };
+                    let z = if per_sample {
+                        sample_depth_of(&self.pool, &self.planes, f, ij, pattern.positions(), k)
+                    } else {
+                        f.zmin
+                    };
                     if crate::centre::in_front(z, f.prim, best[k], ids[k]) {
                         best[k] = z;
                         ids[k] = f.prim;
@@ -114,79 +189,214 @@ impl ABuffer {
         Ok(())
     }
 
-    /// Depth range of a fragment and, in per-sample mode, its sample
-    /// depths (`INFINITY` for uncovered samples).
-    fn fragment_depths(
-        &self,
-        tri: &ScreenTri,
-        (i, j): (u32, u32),
-        c: Coverage,
-        centre_z: f64,
-        depths: &mut [f32; MAX_SAMPLES],
-    ) -> (f32, f32) {
+    /// The colour and opacity of shading index `shade`.
+    #[inline]
+    fn rgba(&self, shade: u32) -> [f32; 4] {
+        if shade >= MERGED_BASE {
+            self.pool.merged(shade).rgba
+        } else {
+            self.colors[shade as usize]
+        }
+    }
+
+    /// Bins the triangles by tile (counting sort, submission order kept).
+    fn bin(&mut self, scene: &ScreenScene, tiles_x: u32, tiles_y: u32) {
+        let (w, h) = (scene.viewport.width, scene.viewport.height);
         let pattern = self.options.pattern;
-        let (mut lo, mut hi) = if c.centre {
-            (centre_z, centre_z)
-        } else {
-            (f64::INFINITY, f64::NEG_INFINITY)
-        };
-        let mut see = |z: f64| {
-            lo = lo.min(z);
-            hi = hi.max(z);
-        };
-        if self.options.depth == DepthMode::PerSample {
-            for (k, &pos) in pattern.positions().iter().enumerate() {
-                depths[k] = if c.mask >> k & 1 == 1 {
-                    let z = sample_depth(tri, i, j, pos);
-                    see(z);
-                    z as f32
-                } else {
-                    f32::INFINITY
-                };
+        let bins = &mut self.bins;
+        let tiles = (tiles_x * tiles_y) as usize;
+        bins.start.clear();
+        bins.start.resize(tiles + 1, 0);
+        bins.ranges.clear();
+        const NONE: (u32, u32, u32, u32) = (1, 1, 0, 0);
+        for tri in &scene.tris {
+            let r = pixel_range(tri, pattern, w, h).unwrap_or(NONE);
+            bins.ranges.push(r);
+            let (x0, y0, x1, y1) = r;
+            if x0 > x1 {
+                continue;
             }
-        } else if c.full {
-            // The plane is affine: its extremes over the samples lie at the
-            // corners of their hull.
-            let (x0, y0, x1, y1) = pattern.hull();
-            for pos in [(x0, y0), (x1, y0), (x0, y1), (x1, y1)] {
-                see(sample_depth(tri, i, j, pos));
-            }
-        } else {
-            for (k, &pos) in pattern.positions().iter().enumerate() {
-                if c.mask >> k & 1 == 1 {
-                    see(sample_depth(tri, i, j, pos));
+            for ty in y0 / TILE..=y1 / TILE {
+                for tx in x0 / TILE..=x1 / TILE {
+                    bins.start[(ty * tiles_x + tx) as usize + 1] += 1;
                 }
             }
         }
-        // `as f32` rounds to nearest, which is monotonic: every stored
-        // sample depth and the centre depth stay inside [zmin, zmax], so the
-        // strict comparisons of culling and pruning stay exact.
-        (lo as f32, hi as f32)
+        for t in 0..tiles {
+            bins.start[t + 1] += bins.start[t];
+        }
+        bins.items.clear();
+        bins.items.resize(bins.start[tiles] as usize, 0);
+        let mut fill = bins.start.clone();
+        for (t, &(x0, y0, x1, y1)) in bins.ranges.iter().enumerate() {
+            if x0 > x1 {
+                continue;
+            }
+            for ty in y0 / TILE..=y1 / TILE {
+                for tx in x0 / TILE..=x1 / TILE {
+                    let slot = &mut fill[(ty * tiles_x + tx) as usize];
+                    bins.items[*slot as usize] = t as u32;
+                    *slot += 1;
+                }
+            }
+        }
     }
 
-    /// Adds fragment `f` to pixel `p`.
-    fn insert(
+    /// The farthest opaque bound of block `b` of the tile at `(tx0, ty0)`
+    /// (recomputed if a bound in it changed since).
+    #[inline]
+    fn block_far(&mut self, b: usize, (tx0, ty0): (u32, u32)) -> f32 {
+        if self.blocks.stale >> b & 1 == 1 {
+            self.blocks.stale &= !(1u64 << b);
+            let (w, h) = (self.width, self.height);
+            let x0 = tx0 + (b % BLOCKS) as u32 * BLOCK;
+            let y0 = ty0 + (b / BLOCKS) as u32 * BLOCK;
+            let (x1, y1) = ((x0 + BLOCK).min(w), (y0 + BLOCK).min(h));
+            let mut far = f32::NEG_INFINITY;
+            for j in y0..y1 {
+                let row = j as usize * w as usize;
+                for p in row + x0 as usize..row + x1 as usize {
+                    far = far.max(self.pool.pixel(p).occluder);
+                }
+            }
+            self.blocks.far[b] = far;
+        }
+        self.blocks.far[b]
+    }
+
+    /// Renders the fragments of triangle `t` inside the pixel rectangle
+    /// `(x0, y0, x1, y1)` of the tile at `(tx0, ty0)`.
+    ///
+    /// First the hierarchical test: for each 8 x 8 block of the tile that
+    /// the rectangle meets, the plane's nearest value over the block's part
+    /// of the rectangle (one evaluation, at the corner the plane's slopes
+    /// point away from: the plane is monotonic, see [`DepthBounds`]) is a
+    /// lower bound of the `zmin` of every fragment the triangle could make
+    /// there. If it is beyond the farthest opaque bound of the block's
+    /// pixels, each of those fragments would be culled anyway: the block is
+    /// skipped without computing a mask, and the triangle without even its
+    /// set-up when every block is.
+    fn raster(
         &mut self,
         scene: &ScreenScene,
-        p: usize,
+        t: u32,
+        (x0, y0, x1, y1): (u32, u32, u32, u32),
+        tile: (u32, u32),
+        stats: &mut ABufferStats,
+    ) -> Result<()> {
+        let tri = &scene.tris[t as usize];
+        let pattern = self.options.pattern;
+        let plane = tri.depth;
+        let (tx0, ty0) = tile;
+        let (hx0, hy0, hx1, hy1) = pattern.hull();
+        let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
+        let (bx0, bx1) = ((x0 - tx0) / BLOCK, (x1 - tx0) / BLOCK);
+        let (by0, by1) = ((y0 - ty0) / BLOCK, (y1 - ty0) / BLOCK);
+        let mut live = 0u64;
+        for by in by0..=by1 {
+            let (py0, py1) = ((ty0 + by * BLOCK).max(y0), (ty0 + by * BLOCK + BLOCK - 1).min(y1));
+            let (j, sy) = if up_y { (py0, hy0) } else { (py1, hy1) };
+            for bx in bx0..=bx1 {
+                let b = (by * BLOCKS as u32 + bx) as usize;
+                let (px0, px1) = ((tx0 + bx * BLOCK).max(x0), (tx0 + bx * BLOCK + BLOCK - 1).min(x1));
+                let (i, sx) = if up_x { (px0, hx0) } else { (px1, hx1) };
+                let near = plane_depth(&plane, i, j, (sx, sy)) as f32;
+                if near > self.block_far(b, tile) {
+                    stats.culled_blocks += 1;
+                } else {
+                    live |= 1 << b;
+                }
+            }
+        }
+        if live == 0 {
+            return Ok(());
+        }
+        let setup = TriCoverage::new(tri, pattern);
+        let bounds = DepthBounds::new(&plane, pattern, self.options.depth != DepthMode::PerSample);
+        let alpha = self.colors[tri.prim as usize][3];
+        let w = self.width as usize;
+        for j in y0..=y1 {
+            let row = j as usize * w;
+            let grow = (j - ty0) as usize * TILE as usize;
+            let by = (j - ty0) / BLOCK;
+            // Runs of live blocks along this block row.
+            let mut bx = bx0;
+            while bx <= bx1 {
+                let bit = |bx: u32| live >> (by * BLOCKS as u32 + bx) & 1 == 1;
+                if !bit(bx) {
+                    bx += 1;
+                    continue;
+                }
+                let start = bx;
+                while bx <= bx1 && bit(bx) {
+                    bx += 1;
+                }
+                let rx0 = (tx0 + start * BLOCK).max(x0);
+                let rx1 = (tx0 + bx * BLOCK - 1).min(x1);
+                for (i, c) in setup.row(rx0, rx1, j) {
+                    stats.fragments += 1;
+                    stats.full_coverage += u64::from(c.full);
+                    let p = row + i as usize;
+                    let centre_z = if c.centre {
+                        plane_depth(&plane, i, j, CENTRE)
+                    } else {
+                        f64::INFINITY
+                    };
+                    // `as f32` rounds to nearest, which is monotonic: every
+                    // sample depth and the centre depth stay inside
+                    // [zmin, zmax], so the strict comparisons of culling and
+                    // pruning are exact.
+                    let zmin = bounds.bound(&plane, (i, j), c, centre_z, false) as f32;
+                    if zmin > self.pool.pixel(p).occluder {
+                        stats.culled += 1;
+                        continue;
+                    }
+                    let zmax = bounds.bound(&plane, (i, j), c, centre_z, true) as f32;
+                    let f = Fragment {
+                        next: NIL,
+                        mask: c.mask,
+                        prim: tri.prim,
+                        tri: t,
+                        centre_prim: if c.centre { tri.prim } else { NO_ID },
+                        shade: tri.prim,
+                        zmin,
+                        zmax,
+                        centre_z,
+                    };
+                    let ctx = Ctx {
+                        scene,
+                        p,
+                        ij: (i, j),
+                        g: grow + (i - tx0) as usize,
+                        alpha,
+                    };
+                    self.insert(&ctx, f, c, stats)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds fragment `f` (which survived culling) to pixel `ctx.p`.
+    fn insert(
+        &mut self,
+        ctx: &Ctx<'_>,
         f: Fragment,
-        depths: &[f32],
+        c: Coverage,
         stats: &mut ABufferStats,
     ) -> Result<()> {
         let full = self.options.pattern.full_mask();
-        if f.zmin > self.pool.pixel(p).occluder {
-            stats.culled += 1;
-            return Ok(());
-        }
+        let p = ctx.p;
         // A full mask has no disjoint partner: interior pixels skip the
-        // search (and its cache misses) entirely.
+        // search entirely.
         if self.options.merge != MergePolicy::Off
+            && !c.full
             && f.mask != full
-            && let Some(idx) = self.try_merge(scene, p, &f, depths)
+            && let Some(idx) = self.try_merge(ctx, &f)?
         {
             stats.merged += 1;
             let merged = *self.pool.get(idx);
-            self.note_occluder(p, &merged, full, stats);
+            self.note_opaque(ctx, &f, &merged, stats);
             return Ok(());
         }
         if self.pool.len(p) >= self.options.max_list_len {
@@ -195,15 +405,12 @@ impl ABuffer {
         if self.pool.len(p) >= self.options.max_list_len {
             match self.options.overflow {
                 OverflowPolicy::Error => {
-                    let w = self.width as usize;
                     return Err(Error::Render {
                         hider: "abuffer".into(),
                         message: format!(
                             "pixel ({}, {}) needs more than {} fragments (max_list_len); \
                              raise it or use OverflowPolicy::DropFarthest",
-                            p % w,
-                            p / w,
-                            self.options.max_list_len
+                            ctx.ij.0, ctx.ij.1, self.options.max_list_len
                         ),
                     });
                 }
@@ -227,29 +434,56 @@ impl ABuffer {
                         once &= !hit;
                         hit
                     });
+                    // What was gathered may have included it.
+                    self.gather[ctx.g] = Gather::EMPTY;
                 }
             }
         }
-        let idx = self.pool.alloc(f, depths)?;
+        let idx = self.pool.alloc(f)?;
         self.pool.push_front(p, idx);
-        self.note_occluder(p, &f, full, stats);
+        self.note_opaque(ctx, &f, &f, stats);
         Ok(())
     }
 
-    /// If `f` is an opaque fragment covering every sample and the centre and
-    /// nearer than the pixel's occluder, makes it the occluder and prunes
-    /// the fragments entirely behind it.
-    fn note_occluder(&mut self, p: usize, f: &Fragment, full: u32, stats: &mut ABufferStats) {
-        let e = *self.pool.pixel(p);
-        if f.mask == full && f.covers_centre() && f.alpha >= 1.0 && f.zmax < e.occluder {
-            let z = f.zmax;
-            self.pool.set_occluder(p, z);
-            // Walk the list (a cache miss per fragment) only if something
-            // may be behind and the list is long enough to be worth it:
-            // short lists are cheaper to leave to the resolve, which skips
-            // hidden fragments exactly anyway.
-            if e.far > z && e.len > PRUNE_LIST_LEN {
-                stats.pruned += self.pool.remove_where(p, |g| g.zmin > z);
+    /// After opaque fragment `f` entered pixel `ctx.p` (as itself or merged
+    /// into `m`): lowers the pixel's opaque bound when `m` covers every
+    /// sample and the centre, or when the opaque fragments gathered since
+    /// the last bound now do, and prunes the fragments entirely behind the
+    /// new bound.
+    ///
+    /// The bound `B` means: every sample and the centre is covered by an
+    /// opaque fragment of the list whose depth there is at most `B`. A
+    /// fragment with `zmin > B` is then strictly behind an opaque surface
+    /// at each of its samples and its centre, so it changes no sample, no
+    /// coverage and no id: culling and pruning it is exact. Fragments
+    /// supporting `B` have `zmin <= zmax <= B`, so pruning never removes
+    /// them; a merge keeps every sample's depth.
+    fn note_opaque(&mut self, ctx: &Ctx<'_>, f: &Fragment, m: &Fragment, stats: &mut ABufferStats) {
+        if ctx.alpha < 1.0 {
+            return;
+        }
+        let full = self.options.pattern.full_mask();
+        let e = *self.pool.pixel(ctx.p);
+        let mut bound = e.occluder;
+        if m.mask == full && m.covers_centre() && m.zmax < bound {
+            bound = m.zmax;
+        }
+        if f.zmax < e.occluder {
+            let g = &mut self.gather[ctx.g];
+            g.mask |= f.mask;
+            g.centre |= f.covers_centre();
+            g.far = g.far.max(f.zmax);
+            if g.mask == full && g.centre {
+                bound = bound.min(g.far);
+            }
+        }
+        if bound < e.occluder {
+            self.pool.set_occluder(ctx.p, bound);
+            let (gi, gj) = (ctx.g % TILE as usize, ctx.g / TILE as usize);
+            self.blocks.stale |= 1 << (gj / BLOCK as usize * BLOCKS + gi / BLOCK as usize);
+            self.gather[ctx.g] = Gather::EMPTY;
+            if e.far > bound {
+                stats.pruned += self.pool.remove_where(ctx.p, |g| g.zmin > bound);
             }
         }
     }
@@ -257,39 +491,44 @@ impl ABuffer {
     /// Removes the fragments of pixel `p` hidden in every sample and at the
     /// centre by nearer opaque fragments; returns how many.
     fn prune_hidden(&mut self, p: usize, full: u32) -> u64 {
-        let mut list = Vec::new();
+        let mut list = std::mem::take(&mut self.scratch);
+        list.clear();
         let mut cur = self.pool.head(p);
         while cur != NIL {
-            list.push(*self.pool.get(cur));
-            cur = self.pool.get(cur).next;
+            let f = *self.pool.get(cur);
+            list.push(Shaded::new(f, self.rgba(f.shade), cur));
+            cur = f.next;
         }
-        self.pool
-            .remove_where(p, |g| hidden_in_every_sample(g, &list, full))
+        let mut k = 0;
+        let removed = self.pool.remove_where(p, |_| {
+            let hit = hidden_in_every_sample(&list[k], &list, full);
+            k += 1;
+            hit
+        });
+        self.scratch = list;
+        removed
     }
 
     /// Looks for a merge partner of `f` among the first fragments of pixel
-    /// `p`'s list and merges into it, returning its index.
-    fn try_merge(
-        &mut self,
-        scene: &ScreenScene,
-        p: usize,
-        f: &Fragment,
-        depths: &[f32],
-    ) -> Option<u32> {
+    /// `ctx.p`'s list and merges into it, returning its index.
+    fn try_merge(&mut self, ctx: &Ctx<'_>, f: &Fragment) -> Result<Option<u32>> {
+        let scene = ctx.scene;
         let tri = &scene.tris[f.tri as usize];
         let material = scene.prims[f.prim as usize].material;
-        let mut cur = self.pool.head(p);
+        let f_rgba = self.colors[f.shade as usize];
+        let mut cur = self.pool.head(ctx.p);
         for _ in 0..MERGE_SEARCH {
             if cur == NIL {
-                return None;
+                return Ok(None);
             }
             let g = *self.pool.get(cur);
+            let g_rgba = self.rgba(g.shade);
             // Fields of the fragment first; the scene lookups last.
             let mergeable = g.mask & f.mask == 0
                 && !(g.covers_centre() && f.covers_centre())
-                && g.alpha == f.alpha
+                && g_rgba[3] == f_rgba[3]
                 && (self.options.merge == MergePolicy::SameSurface
-                    || (0..3).all(|c| (g.rgb[c] - f.rgb[c]).abs() <= MERGE_COLOR_TOLERANCE))
+                    || (0..3).all(|c| (g_rgba[c] - f_rgba[c]).abs() <= MERGE_COLOR_TOLERANCE))
                 && {
                     let other = &scene.tris[g.tri as usize];
                     other.front_facing == tri.front_facing
@@ -297,31 +536,93 @@ impl ABuffer {
                         && tri.v.iter().any(|v| other.v.contains(v))
                 };
             if mergeable {
-                let (wg, wf) = (g.mask.count_ones() as f32, f.mask.count_ones() as f32);
-                let m = self.pool.get_mut(cur);
-                if wg + wf > 0.0 {
-                    m.rgb = [0, 1, 2].map(|c| (g.rgb[c] * wg + f.rgb[c] * wf) / (wg + wf));
-                }
-                m.mask |= f.mask;
-                m.zmin = g.zmin.min(f.zmin);
-                m.zmax = g.zmax.max(f.zmax);
-                m.prim = g.prim.min(f.prim);
-                m.tri = f.tri;
-                if f.covers_centre() {
-                    m.centre_z = f.centre_z;
-                    m.centre_prim = f.centre_prim;
-                }
-                let stored = self.pool.depths_mut(cur);
-                for (k, d) in stored.iter_mut().enumerate() {
-                    if f.mask >> k & 1 == 1 {
-                        *d = depths[k];
-                    }
-                }
-                return Some(cur);
+                self.merge_into(ctx, cur, g, g_rgba, f, f_rgba)?;
+                return Ok(Some(cur));
             }
             cur = g.next;
         }
-        None
+        Ok(None)
+    }
+
+    /// Merges `f` into fragment `g` at index `idx`.
+    fn merge_into(
+        &mut self,
+        ctx: &Ctx<'_>,
+        idx: u32,
+        g: Fragment,
+        g_rgba: [f32; 4],
+        f: &Fragment,
+        f_rgba: [f32; 4],
+    ) -> Result<()> {
+        let (wg, wf) = (g.mask.count_ones() as f32, f.mask.count_ones() as f32);
+        let mut rgba = g_rgba;
+        if wg + wf > 0.0 {
+            for c in 0..3 {
+                rgba[c] = (g_rgba[c] * wg + f_rgba[c] * wf) / (wg + wf);
+            }
+        }
+        let keep_depths = self.options.depth == DepthMode::PerSample;
+        let positions = self.options.pattern.positions();
+        let (i, j) = ctx.ij;
+        let shade = if g.is_merged() {
+            self.pool.merged_mut(g.shade).rgba = rgba;
+            g.shade
+        } else {
+            // The first merge into `g`: its shading and (per-sample mode)
+            // its sample depths move to a merged entry.
+            let mut depths = [f32::INFINITY; MAX_SAMPLES];
+            if keep_depths {
+                let plane = &self.planes[g.tri as usize];
+                for (k, &pos) in positions.iter().enumerate() {
+                    if g.mask >> k & 1 == 1 {
+                        depths[k] = plane_depth(plane, i, j, pos) as f32;
+                    }
+                }
+            }
+            self.pool.add_merged(rgba, &depths)?
+        };
+        if keep_depths {
+            let plane = self.planes[f.tri as usize];
+            let stored = self.pool.merged_depths_mut(shade);
+            for (k, &pos) in positions.iter().enumerate() {
+                if f.mask >> k & 1 == 1 {
+                    stored[k] = plane_depth(&plane, i, j, pos) as f32;
+                }
+            }
+        }
+        let m = self.pool.get_mut(idx);
+        m.shade = shade;
+        m.mask |= f.mask;
+        m.zmin = g.zmin.min(f.zmin);
+        m.zmax = g.zmax.max(f.zmax);
+        m.prim = g.prim.min(f.prim);
+        m.tri = f.tri;
+        if f.covers_centre() {
+            m.centre_z = f.centre_z;
+            m.centre_prim = f.centre_prim;
+        }
+        // The pixel's `far` stays an upper bound: the merged zmin is at
+        // most g's.
+        Ok(())
+    }
+}
+
+/// The depth of fragment `f` at sample `k` (per-sample mode): from its
+/// merged entry, or its triangle's plane, with the expression that the
+/// supersampled z-buffer uses.
+#[inline]
+pub(crate) fn sample_depth_of(
+    pool: &FragmentPool,
+    planes: &[PlaneEq],
+    f: &Fragment,
+    (i, j): (u32, u32),
+    positions: &[(i32, i32)],
+    k: usize,
+) -> f32 {
+    if f.is_merged() {
+        pool.merged_depths(f.shade)[k]
+    } else {
+        plane_depth(&planes[f.tri as usize], i, j, positions[k]) as f32
     }
 }
 
@@ -341,58 +642,64 @@ impl Hider for ABuffer {
         let (w, h) = (scene.viewport.width, scene.viewport.height);
         self.width = w;
         self.height = h;
-        let pattern = self.options.pattern;
-        let stride = match self.options.depth {
-            DepthMode::PerSample => pattern.count(),
-            _ => 0,
-        };
-        self.pool
-            .reset(w as usize * h as usize, stride, self.options.max_bytes)?;
-        let mut colors = std::mem::take(&mut self.colors);
-        prim_colors(scene, self.options.shade, &mut colors);
+        let per_sample = self.options.depth == DepthMode::PerSample;
+        let fresh = self
+            .pool
+            .reset(w as usize * h as usize, per_sample, self.options.max_bytes)?;
+        prim_colors(scene, self.options.shade, &mut self.colors);
+        self.planes.clear();
+        self.planes.extend(scene.tris.iter().map(|t| t.depth));
+        let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
+        self.bin(scene, tiles_x, tiles_y);
+        let tiles = (tiles_x * tiles_y) as usize;
+        if fresh || self.bins.dims != (w, h) {
+            // A fresh table is empty; otherwise assume every tile dirty.
+            self.bins.dirty.clear();
+            self.bins.dirty.resize(tiles, !fresh);
+            self.bins.dims = (w, h);
+        }
+        self.gather.resize((TILE * TILE) as usize, Gather::EMPTY);
+        frame.coverage.clear();
+        frame.coverage.resize(frame.len(), 0.0);
+        self.resolver.begin();
         let mut stats = ABufferStats::default();
-        let mut depths = [f32::INFINITY; MAX_SAMPLES];
-        let result = (|| {
-            for (t, tri) in scene.tris.iter().enumerate() {
-                let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, w, h) else {
+        for ty in 0..tiles_y {
+            for tx in 0..tiles_x {
+                let t = (ty * tiles_x + tx) as usize;
+                let (x0, y0) = (tx * TILE, ty * TILE);
+                let (x1, y1) = ((x0 + TILE).min(w) - 1, (y0 + TILE).min(h) - 1);
+                let (b0, b1) = (self.bins.start[t] as usize, self.bins.start[t + 1] as usize);
+                if b0 == b1 && !self.bins.dirty[t] {
                     continue;
-                };
-                let setup = TriCoverage::new(tri, pattern);
-                let [r, g, b, alpha] = colors[tri.prim as usize];
-                for j in y0..=y1 {
-                    for (i, c) in setup.row(x0, x1, j) {
-                        stats.fragments += 1;
-                        stats.full_coverage += u64::from(c.full);
-                        let centre_z = if c.centre {
-                            sample_depth(tri, i, j, CENTRE)
-                        } else {
-                            f64::INFINITY
-                        };
-                        let (zmin, zmax) =
-                            self.fragment_depths(tri, (i, j), c, centre_z, &mut depths);
-                        let f = Fragment {
-                            next: NIL,
-                            mask: c.mask,
-                            prim: tri.prim,
-                            tri: t as u32,
-                            centre_prim: if c.centre { tri.prim } else { NO_ID },
-                            zmin,
-                            zmax,
-                            centre_z,
-                            rgb: [r, g, b],
-                            alpha,
-                        };
-                        let p = j as usize * w as usize + i as usize;
-                        self.insert(scene, p, f, &depths, &mut stats)?;
-                    }
                 }
+                for j in y0..=y1 {
+                    self.pool
+                        .clear_pixels(j as usize * w as usize + x0 as usize, (x1 - x0 + 1) as usize);
+                }
+                self.bins.dirty[t] = b0 != b1;
+                if b0 == b1 {
+                    continue;
+                }
+                self.gather.fill(Gather::EMPTY);
+                self.blocks = BlockFar::default();
+                for b in b0..b1 {
+                    let tri = self.bins.items[b];
+                    let (rx0, ry0, rx1, ry1) = self.bins.ranges[tri as usize];
+                    let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
+                    self.raster(scene, tri, rect, (x0, y0), &mut stats)?;
+                }
+                self.resolver.resolve_tile(
+                    &self.pool,
+                    &self.planes,
+                    &self.colors,
+                    &self.options,
+                    (x0, y0, x1, y1),
+                    frame,
+                    &mut stats,
+                );
             }
-            Ok::<(), Error>(())
-        })();
-        self.colors = colors;
-        result?;
-        self.resolver
-            .resolve(&self.pool, &self.options, frame, &mut stats);
+        }
+        self.resolver.finish(&mut stats);
         stats.pool_fragments = self.pool.peak_fragments() as u64;
         stats.bytes = self.pool.peak_bytes();
         self.last = stats;

@@ -14,11 +14,11 @@
 //! per-sample tests: one add and one compare per edge and sample against
 //! offsets `a*sx + b*sy` precomputed per triangle.
 
-use hider_geom::EdgeFunction;
+use hider_geom::{EdgeFunction, PlaneEq};
 use hider_geom::fixed::SUBPIXEL_SCALE;
 use hider_scene::ScreenTri;
 
-use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
+use crate::pattern::{CENTRE, SamplePattern};
 
 /// What a triangle covers in one pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -38,48 +38,85 @@ impl Coverage {
     }
 }
 
+/// Edge coefficients `|a|`, `|b|` below this take the 32-bit mask path:
+/// every offset `a*sx + b*sy` inside a pixel then stays below `2^29`.
+const NARROW: i64 = 1 << 20;
+/// Clamp of the negated edge value on the 32-bit path: beyond it the edge
+/// is decided for every sample of the pixel, so clamping keeps the answer.
+const CLAMP: i64 = 1 << 30;
+
 /// Per-triangle set-up for mask generation.
+///
+/// Masks are computed on the 8 x 4 grid, row by row: sample `(c, r)` is
+/// inside edge `e` when `E_e(pixel corner) + a_e*x_c + b_e*y_r > 0`, i.e.
+/// when `-E_e - a_e*x_c - b_e*y_r < 0`. When the triangle's coefficients
+/// are small enough (every edge shorter than 4096 pixels) and the edge
+/// crosses the sample hull, all those values fit in `i32`, so a row of 8
+/// samples is 3 x 8 lane-parallel adds and `and`s whose sign bits are
+/// gathered with one multiply; otherwise the same test runs in `i64`.
+/// Either way each bit is exactly the shared `contains` test. Patterns
+/// smaller than 32 pick their cells out of the grid mask.
 #[derive(Clone, Debug)]
 pub struct TriCoverage {
     edges: [EdgeFunction; 3],
-    /// `a*sx + b*sy` for each edge and sample.
-    offsets: [[i64; MAX_SAMPLES]; 3],
+    /// `-(a * x_c)` for each edge and grid column (32-bit path).
+    ncol: [[i32; 8]; 3],
+    /// `-(b * y_r)` for each edge and grid row (32-bit path).
+    nrow: [[i32; 4]; 3],
+    narrow: bool,
     centre: [i64; 3],
     hull_min: [i64; 3],
     hull_max: [i64; 3],
-    count: usize,
+    pattern: SamplePattern,
     full: u32,
+}
+
+/// x of grid column `c` and y of grid row `r`, in 1/256 pixel.
+const fn grid_x(c: usize) -> i64 {
+    c as i64 * 32 + 16
+}
+const fn grid_y(r: usize) -> i64 {
+    r as i64 * 64 + 32
 }
 
 impl TriCoverage {
     /// Sets up `tri` for sampling with `pattern`.
     pub fn new(tri: &ScreenTri, pattern: SamplePattern) -> Self {
         let edges = tri.edges();
-        let positions = pattern.positions();
         let (hx0, hy0, hx1, hy1) = pattern.hull();
-        let corners = [(hx0, hy0), (hx1, hy0), (hx0, hy1), (hx1, hy1)];
-        let mut offsets = [[0i64; MAX_SAMPLES]; 3];
+        let narrow = edges.iter().all(|e| e.a.abs() < NARROW && e.b.abs() < NARROW);
+        let mut ncol = [[0i32; 8]; 3];
+        let mut nrow = [[0i32; 4]; 3];
         let mut centre = [0i64; 3];
-        let mut hull_min = [i64::MAX; 3];
-        let mut hull_max = [i64::MIN; 3];
+        let mut hull_min = [0i64; 3];
+        let mut hull_max = [0i64; 3];
         for (e, edge) in edges.iter().enumerate() {
-            let off = |(x, y): (i32, i32)| edge.a * i64::from(x) + edge.b * i64::from(y);
-            for (k, &p) in positions.iter().enumerate() {
-                offsets[e][k] = off(p);
+            if narrow {
+                for (c, v) in ncol[e].iter_mut().enumerate() {
+                    *v = -(edge.a * grid_x(c)) as i32;
+                }
+                for (r, v) in nrow[e].iter_mut().enumerate() {
+                    *v = -(edge.b * grid_y(r)) as i32;
+                }
             }
-            centre[e] = off(CENTRE);
-            for &c in &corners {
-                hull_min[e] = hull_min[e].min(off(c));
-                hull_max[e] = hull_max[e].max(off(c));
-            }
+            let off = |x: i32, y: i32| edge.a * i64::from(x) + edge.b * i64::from(y);
+            centre[e] = off(CENTRE.0, CENTRE.1);
+            // The offset is affine: its extremes over the hull are at the
+            // corners given by the signs of a and b.
+            let (xl, xh) = if edge.a >= 0 { (hx0, hx1) } else { (hx1, hx0) };
+            let (yl, yh) = if edge.b >= 0 { (hy0, hy1) } else { (hy1, hy0) };
+            hull_min[e] = off(xl, yl);
+            hull_max[e] = off(xh, yh);
         }
         Self {
             edges,
-            offsets,
+            ncol,
+            nrow,
+            narrow,
             centre,
             hull_min,
             hull_max,
-            count: positions.len(),
+            pattern,
             full: pattern.full_mask(),
         }
     }
@@ -128,19 +165,68 @@ impl TriCoverage {
         if (0..3).any(|e| base[e] + self.hull_max[e] <= 0) {
             return Coverage::default();
         }
-        let mut mask = 0u32;
-        for k in 0..self.count {
-            let inside = (base[0] + self.offsets[0][k] > 0)
-                & (base[1] + self.offsets[1][k] > 0)
-                & (base[2] + self.offsets[2][k] > 0);
-            mask |= u32::from(inside) << k;
-        }
         let centre = (0..3).all(|e| base[e] + self.centre[e] > 0);
+        let mask = match self.pattern {
+            SamplePattern::Centre => u32::from(centre),
+            SamplePattern::Grid32 => self.grid_mask(base),
+            pattern => {
+                let grid = self.grid_mask(base);
+                let mut mask = 0u32;
+                for (k, &(x, y)) in pattern.positions().iter().enumerate() {
+                    let cell = (y - 32) / 64 * 8 + (x - 16) / 32;
+                    mask |= (grid >> cell & 1) << k;
+                }
+                mask
+            }
+        };
         Coverage {
             mask,
             centre,
             full: false,
         }
+    }
+
+    /// The 8 x 4 grid mask (bit `r * 8 + c` = cell `(c, r)`) of the pixel
+    /// whose corner values are `base`.
+    #[inline]
+    fn grid_mask(&self, base: [i64; 3]) -> u32 {
+        if !self.narrow {
+            return self.grid_mask_wide(base);
+        }
+        // -E clamped: an edge that far from the pixel is decided for every
+        // sample, and the clamp keeps it decided the same way.
+        let nb = base.map(|b| (-b).clamp(-CLAMP, CLAMP) as i32);
+        let mut mask = 0u32;
+        for r in 0..4 {
+            let v = [0, 1, 2].map(|e| nb[e] + self.nrow[e][r]);
+            let mut bytes = [0u8; 8];
+            for (c, byte) in bytes.iter_mut().enumerate() {
+                // Negative in all three edges = inside all three.
+                let w = (v[0] + self.ncol[0][c]) & (v[1] + self.ncol[1][c]) & (v[2] + self.ncol[2][c]);
+                *byte = (w >> 31) as u8;
+            }
+            // Gather the top bit of each byte: byte c lands on bit 56 + c.
+            let x = u64::from_le_bytes(bytes) & 0x8080_8080_8080_8080;
+            let bits = x.wrapping_mul(0x0002_0408_1020_4081) >> 56;
+            mask |= (bits as u32) << (8 * r);
+        }
+        mask
+    }
+
+    /// [`Self::grid_mask`] in `i64`, for triangles too large for `i32`.
+    fn grid_mask_wide(&self, base: [i64; 3]) -> u32 {
+        let mut mask = 0u32;
+        for r in 0..4 {
+            for c in 0..8 {
+                let inside = self
+                    .edges
+                    .iter()
+                    .zip(base)
+                    .all(|(e, b)| b + e.a * grid_x(c) + e.b * grid_y(r) > 0);
+                mask |= u32::from(inside) << (r * 8 + c);
+            }
+        }
+        mask
     }
 }
 
@@ -172,16 +258,107 @@ pub fn pixel_range(
 
 /// The window depth of `tri` at sample `(sx, sy)` (1/256 pixel) of pixel
 /// `(i, j)`: the affine depth plane evaluated in `f64`. Every hider of this
-/// crate computes sample depths with this one function so that their depth
-/// comparisons agree bit for bit; at the centre it is exactly
+/// crate computes sample depths with this one function (or
+/// [`plane_depth`], the same expression) so that their depth comparisons
+/// agree bit for bit; at the centre it is exactly
 /// `tri.depth.at_pixel(i, j)`.
 #[inline]
-pub fn sample_depth(tri: &ScreenTri, i: u32, j: u32, (sx, sy): (i32, i32)) -> f64 {
+pub fn sample_depth(tri: &ScreenTri, i: u32, j: u32, pos: (i32, i32)) -> f64 {
+    plane_depth(&tri.depth, i, j, pos)
+}
+
+/// [`sample_depth`] for a depth plane alone.
+#[inline]
+pub fn plane_depth(plane: &PlaneEq, i: u32, j: u32, (sx, sy): (i32, i32)) -> f64 {
     let scale = f64::from(SUBPIXEL_SCALE);
-    tri.depth.eval(
+    plane.eval(
         f64::from(i) + f64::from(sx) / scale,
         f64::from(j) + f64::from(sy) / scale,
     )
+}
+
+/// Exact depth bounds of a fragment from a few plane evaluations.
+///
+/// [`plane_depth`] is monotonic in each coordinate: `x - x0`, the products
+/// by `dx` and `dy` and the two sums are each rounded by a monotonic
+/// rounding, so for a fixed row the computed depth never decreases along x
+/// when `dx >= 0` and never increases when `dx < 0` (likewise along y).
+/// Hence the nearest and farthest computed depths over any set of samples
+/// of one grid row are at the row's first and last sample, and over a full
+/// grid at two opposite corners: the bounds below are *equal* to the
+/// minimum and maximum of the per-sample values, found with at most 4 (not
+/// 32) evaluations each.
+#[derive(Clone, Copy, Debug)]
+pub struct DepthBounds {
+    pattern: SamplePattern,
+    /// Grid32 fast path applies (its rows are the grid's rows).
+    grid: bool,
+    /// Whether the computed depth never decreases along x / y.
+    up_x: bool,
+    up_y: bool,
+    /// Full masks take the hull corners (min/max mode) instead of samples.
+    hull_for_full: bool,
+}
+
+impl DepthBounds {
+    /// Bounds for triangles with depth plane `plane`. With `hull_for_full`
+    /// a full mask is bounded by the plane at the corners of the pattern's
+    /// hull (which for the 8 x 4 grid are samples).
+    #[inline]
+    pub fn new(plane: &PlaneEq, pattern: SamplePattern, hull_for_full: bool) -> Self {
+        Self {
+            pattern,
+            grid: pattern == SamplePattern::Grid32,
+            up_x: plane.dx >= 0.0,
+            up_y: plane.dy >= 0.0,
+            hull_for_full,
+        }
+    }
+
+    /// The nearest (`far == false`) or farthest computed depth over the
+    /// samples of `c.mask` and, if covered, the centre (`centre_z`).
+    #[inline]
+    pub fn bound(&self, plane: &PlaneEq, (i, j): (u32, u32), c: Coverage, centre_z: f64, far: bool) -> f64 {
+        let pick = |lo: f64, z: f64| if far { lo.max(z) } else { lo.min(z) };
+        let mut z = if c.centre {
+            centre_z
+        } else if far {
+            f64::NEG_INFINITY
+        } else {
+            f64::INFINITY
+        };
+        // Along x (y) the bound is at the low end when the depth grows in
+        // the direction we look for, i.e. when `up == far` is false.
+        let low_x = self.up_x != far;
+        let low_y = self.up_y != far;
+        if c.full && (self.grid || self.hull_for_full) {
+            let (x0, y0, x1, y1) = self.pattern.hull();
+            let x = if low_x { x0 } else { x1 };
+            let y = if low_y { y0 } else { y1 };
+            return pick(z, plane_depth(plane, i, j, (x, y)));
+        }
+        if self.grid {
+            for r in 0..4 {
+                let row = (c.mask >> (8 * r)) as u8;
+                if row == 0 {
+                    continue;
+                }
+                let col = if low_x {
+                    row.trailing_zeros()
+                } else {
+                    7 - row.leading_zeros()
+                };
+                z = pick(z, plane_depth(plane, i, j, (col as i32 * 32 + 16, r * 64 + 32)));
+            }
+            return z;
+        }
+        for (k, &pos) in self.pattern.positions().iter().enumerate() {
+            if c.mask >> k & 1 == 1 {
+                z = pick(z, plane_depth(plane, i, j, pos));
+            }
+        }
+        z
+    }
 }
 
 #[cfg(test)]
@@ -251,6 +428,35 @@ mod tests {
                     if !inside {
                         prop_assert!(mask == 0 && !centre, "pixel {} {} outside range {:?}", i, j, range);
                     }
+                }
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// Long edges (beyond the 32-bit path) and edges passing close to
+        /// the pixels give the same masks as the shared test too.
+        #[test]
+        fn masks_of_huge_triangles_equal_the_shared_coverage_test(
+            c in proptest::array::uniform6(-(1i32 << 23)..(1i32 << 23)),
+            shift in proptest::array::uniform2(-2048i32..2048),
+            pattern_index in 0usize..5,
+        ) {
+            // Move the first vertex near the 14 x 14 window so that edges
+            // cross it.
+            let v = [
+                FixedPt::new(c[0] % 4096 + shift[0], c[1] % 4096 + shift[1]),
+                FixedPt::new(c[2], c[3]),
+                FixedPt::new(c[4], c[5]),
+            ];
+            let Some(t) = tri(v) else { return Ok(()) };
+            let pattern = SamplePattern::ALL[pattern_index];
+            let setup = TriCoverage::new(&t, pattern);
+            for j in 0..14 {
+                for i in 0..14 {
+                    let got = setup.at(setup.corner_values(i, j));
+                    prop_assert_eq!((got.mask, got.centre), brute(&t, pattern, i, j), "pixel {} {}", i, j);
                 }
             }
         }

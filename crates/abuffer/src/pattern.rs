@@ -56,6 +56,29 @@ const fn positions_of<const N: usize>(cells: [(i32, i32); N]) -> [(i32, i32); N]
     out
 }
 
+/// The bounding box of `positions` and the centre.
+const fn hull_of(positions: &[(i32, i32)]) -> (i32, i32, i32, i32) {
+    let (mut x0, mut y0, mut x1, mut y1) = (CENTRE.0, CENTRE.1, CENTRE.0, CENTRE.1);
+    let mut k = 0;
+    while k < positions.len() {
+        let (x, y) = positions[k];
+        if x < x0 {
+            x0 = x;
+        }
+        if y < y0 {
+            y0 = y;
+        }
+        if x > x1 {
+            x1 = x;
+        }
+        if y > y1 {
+            y1 = y;
+        }
+        k += 1;
+    }
+    (x0, y0, x1, y1)
+}
+
 const CENTRE_ONLY: [(i32, i32); 1] = [CENTRE];
 const GRID4: [(i32, i32); 4] = positions_of([(2, 0), (7, 1), (0, 2), (5, 3)]);
 const GRID8: [(i32, i32); 8] = positions_of([
@@ -158,11 +181,17 @@ impl SamplePattern {
     /// the pixel centre, in 1/256 pixel inside the pixel. A triangle that
     /// contains its four corners contains every sample and the centre
     /// (half-planes are convex): the full-coverage fast path.
+    #[inline]
     pub fn hull(self) -> (i32, i32, i32, i32) {
-        self.positions().iter().fold(
-            (CENTRE.0, CENTRE.1, CENTRE.0, CENTRE.1),
-            |(x0, y0, x1, y1), &(x, y)| (x0.min(x), y0.min(y), x1.max(x), y1.max(y)),
-        )
+        // Computed at compile time: the depth bounds ask for it per pixel.
+        const HULLS: [(i32, i32, i32, i32); 5] = [
+            hull_of(&CENTRE_ONLY),
+            hull_of(&GRID4),
+            hull_of(&GRID8),
+            hull_of(&GRID16),
+            hull_of(&GRID32),
+        ];
+        HULLS[self as usize]
     }
 }
 

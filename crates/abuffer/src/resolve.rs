@@ -27,107 +27,184 @@
 //! weight its colour sum enters with. Masks split into disjoint parts, so
 //! a list of `L` fragments costs at most `L * samples` steps.
 
+use hider_geom::PlaneEq;
 use hider_scene::{Frame, NO_ID};
 
+use crate::abuffer::sample_depth_of;
 use crate::centre::in_front;
-use crate::fragment::{Fragment, FragmentPool, NIL};
+use crate::fragment::{Fragment, FragmentPool, MERGED_BASE, NIL};
 use crate::options::{ABufferOptions, DepthMode};
 use crate::palette::to_pixel;
 use crate::stats::ABufferStats;
 
+/// A fragment with its colour and opacity looked up, and its pool index.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shaded {
+    /// The fragment.
+    pub frag: Fragment,
+    /// Linear colour.
+    pub rgb: [f32; 3],
+    /// Opacity in [0, 1].
+    pub alpha: f32,
+    /// Index in the pool.
+    pub idx: u32,
+}
+
+impl Shaded {
+    /// `f` (pool index `idx`) with colour and opacity `rgba`.
+    #[inline]
+    pub fn new(f: Fragment, rgba: [f32; 4], idx: u32) -> Self {
+        Self {
+            frag: f,
+            rgb: [rgba[0], rgba[1], rgba[2]],
+            alpha: rgba[3],
+            idx,
+        }
+    }
+}
+
 /// Whether fragment `g` is hidden in every sample it covers, and at the
 /// centre if it covers that, by opaque fragments of `list` lying entirely
 /// in front of it. Exact: the depth ranges are strict bounds.
-pub fn hidden_in_every_sample(g: &Fragment, list: &[Fragment], full: u32) -> bool {
+pub fn hidden_in_every_sample(g: &Shaded, list: &[Shaded], full: u32) -> bool {
     let mut cover = 0u32;
-    let mut centre = !g.covers_centre();
+    let mut centre = !g.frag.covers_centre();
     for h in list {
-        if h.alpha >= 1.0 && h.zmax < g.zmin {
-            cover |= h.mask;
-            centre |= h.covers_centre();
+        if h.alpha >= 1.0 && h.frag.zmax < g.frag.zmin {
+            cover |= h.frag.mask;
+            centre |= h.frag.covers_centre();
         }
     }
-    centre && (g.mask & full) & !cover == 0
+    centre && (g.frag.mask & full) & !cover == 0
 }
 
 /// Scratch memory of the resolve, kept between frames.
 #[derive(Clone, Debug, Default)]
 pub struct Resolver {
-    list: Vec<u32>,
-    frags: Vec<Fragment>,
+    frags: Vec<Shaded>,
     samples: Vec<(f32, u32, u32)>,
     stack: Vec<(u32, u32, f32)>,
+    lists: u64,
+    total: u64,
+    /// The last colour sum converted and its pixel: neighbouring pixels
+    /// often resolve to the same sum, and the sRGB conversion costs a
+    /// `powf` per channel.
+    memo: ([f32; 3], [u8; 4]),
 }
 
 impl Resolver {
-    /// Resolves every pixel of `pool` into `frame`.
-    pub fn resolve(
+    /// Starts a frame.
+    pub fn begin(&mut self) {
+        self.lists = 0;
+        self.total = 0;
+        self.memo = ([0.0; 3], to_pixel([0.0; 3]));
+    }
+
+    /// Ends a frame: the mean list length.
+    pub fn finish(&mut self, stats: &mut ABufferStats) {
+        stats.mean_list_len = if self.lists == 0 {
+            0.0
+        } else {
+            self.total as f64 / self.lists as f64
+        };
+    }
+
+    /// Resolves the pixels of rectangle `(x0, y0, x1, y1)` of `pool` into
+    /// `frame` (whose coverage buffer is allocated).
+    #[allow(clippy::too_many_arguments)]
+    pub fn resolve_tile(
         &mut self,
         pool: &FragmentPool,
+        planes: &[PlaneEq],
+        colors: &[[f32; 4]],
         options: &ABufferOptions,
+        (x0, y0, x1, y1): (u32, u32, u32, u32),
         frame: &mut Frame,
         stats: &mut ABufferStats,
     ) {
-        let n = options.pattern.count();
+        let pattern = options.pattern;
+        let n = pattern.count();
+        let full = pattern.full_mask();
         let inv_n = 1.0 / n as f32;
-        frame.coverage.clear();
-        frame.coverage.resize(frame.len(), 0.0);
-        let (mut lists, mut total) = (0u64, 0u64);
-        for p in 0..frame.len() {
-            let mut cur = pool.head(p);
-            if cur == NIL {
-                continue;
-            }
-            self.list.clear();
-            while cur != NIL {
-                self.list.push(cur);
-                cur = pool.get(cur).next;
-            }
-            self.list
-                .sort_unstable_by(|&a, &b| pool.get(a).order(pool.get(b)));
-            self.frags.clear();
-            self.frags.extend(self.list.iter().map(|&k| *pool.get(k)));
-            lists += 1;
-            total += self.list.len() as u64;
-            stats.max_list_len = stats.max_list_len.max(self.list.len() as u64);
-
-            let (mut z, mut id) = (f64::INFINITY, NO_ID);
-            let mut union = 0u32;
-            for f in &self.frags {
-                if f.centre_prim != NO_ID && in_front(f.centre_z, f.centre_prim, z, id) {
-                    (z, id) = (f.centre_z, f.centre_prim);
+        let w = frame.width() as usize;
+        for j in y0..=y1 {
+            for i in x0..=x1 {
+                let p = j as usize * w + i as usize;
+                let mut cur = pool.head(p);
+                if cur == NIL {
+                    continue;
                 }
-                union |= f.mask;
-            }
-            if id != NO_ID {
-                frame.ids[p] = id;
-                frame.depth[p] = z as f32;
-            }
-            frame.coverage[p] = union.count_ones() as f32 * inv_n;
-
-            let sum = match options.depth {
-                DepthMode::PerSample if self.overlapping() => {
-                    stats.per_sample_pixels += 1;
-                    self.per_sample(pool, n)
+                self.frags.clear();
+                while cur != NIL {
+                    let f = pool.get(cur);
+                    let rgba = if f.shade >= MERGED_BASE {
+                        pool.merged(f.shade).rgba
+                    } else {
+                        colors[f.shade as usize]
+                    };
+                    self.frags.push(Shaded::new(*f, rgba, cur));
+                    cur = f.next;
                 }
-                DepthMode::PerSample => self.mask_path(options.pattern.full_mask()),
-                DepthMode::MinMax => self.blend(options.pattern.full_mask(), true),
-                DepthMode::ZminOrder => self.blend(options.pattern.full_mask(), false),
-            };
-            frame.color[p] = to_pixel(sum.map(|c| c * inv_n));
+                // Lists are short: insertion sort, stable on exact ties.
+                for a in 1..self.frags.len() {
+                    let mut b = a;
+                    while b > 0 && self.frags[b - 1].frag.order(&self.frags[b].frag).is_gt() {
+                        self.frags.swap(b - 1, b);
+                        b -= 1;
+                    }
+                }
+                let len = self.frags.len() as u64;
+                self.lists += 1;
+                self.total += len;
+                stats.max_list_len = stats.max_list_len.max(len);
+
+                let (mut z, mut id) = (f64::INFINITY, NO_ID);
+                let mut union = 0u32;
+                for s in &self.frags {
+                    let f = &s.frag;
+                    if f.centre_prim != NO_ID && in_front(f.centre_z, f.centre_prim, z, id) {
+                        (z, id) = (f.centre_z, f.centre_prim);
+                    }
+                    union |= f.mask;
+                }
+                if id != NO_ID {
+                    frame.ids[p] = id;
+                    frame.depth[p] = z as f32;
+                }
+                frame.coverage[p] = union.count_ones() as f32 * inv_n;
+
+                let sum = if len == 1 && self.frags[0].alpha >= 1.0 {
+                    // What every path computes for one opaque fragment.
+                    let s = &self.frags[0];
+                    let weight = (s.frag.mask & full).count_ones() as f32;
+                    s.rgb.map(|c| 0.0 + c * weight)
+                } else {
+                    match options.depth {
+                        DepthMode::PerSample if self.overlapping() => {
+                            stats.per_sample_pixels += 1;
+                            self.per_sample(pool, planes, (i, j), pattern.positions())
+                        }
+                        DepthMode::PerSample => self.mask_path(full),
+                        DepthMode::MinMax => self.blend(full, true),
+                        DepthMode::ZminOrder => self.blend(full, false),
+                    }
+                };
+                let sum = sum.map(|c| c * inv_n);
+                if sum != self.memo.0 {
+                    self.memo = (sum, to_pixel(sum));
+                }
+                frame.color[p] = self.memo.1;
+            }
         }
-        stats.mean_list_len = if lists == 0 {
-            0.0
-        } else {
-            total as f64 / lists as f64
-        };
     }
 
     /// Whether two fragments with intersecting masks overlap (or touch) in
     /// depth, so that the list order may not be every sample's order.
     fn overlapping(&self) -> bool {
         let f = &self.frags;
-        (1..f.len()).any(|j| (0..j).any(|i| f[i].zmax >= f[j].zmin && f[i].mask & f[j].mask != 0))
+        (1..f.len()).any(|j| {
+            (0..j).any(|i| f[i].frag.zmax >= f[j].frag.zmin && f[i].frag.mask & f[j].frag.mask != 0)
+        })
     }
 
     /// Front-to-back compositing of whole masks, exact when the list order
@@ -137,18 +214,19 @@ impl Resolver {
         let mut alive = full;
         let mut transmit = [1.0f32; 32];
         let mut any_translucent = false;
-        for f in &self.frags {
+        for s in &self.frags {
+            let f = &s.frag;
             let vis = f.mask & alive;
             if vis == 0 {
                 continue;
             }
-            if f.alpha >= 1.0 {
+            if s.alpha >= 1.0 {
                 let weight = if any_translucent {
                     bits(vis).map(|k| transmit[k]).sum()
                 } else {
                     vis.count_ones() as f32
                 };
-                add(&mut sum, f.rgb, weight);
+                add(&mut sum, s.rgb, weight);
                 alive &= !f.mask;
                 if alive == 0 {
                     break;
@@ -156,8 +234,8 @@ impl Resolver {
             } else {
                 any_translucent = true;
                 for k in bits(vis) {
-                    add(&mut sum, f.rgb, transmit[k] * f.alpha);
-                    transmit[k] *= 1.0 - f.alpha;
+                    add(&mut sum, s.rgb, transmit[k] * s.alpha);
+                    transmit[k] *= 1.0 - s.alpha;
                 }
             }
         }
@@ -165,22 +243,29 @@ impl Resolver {
     }
 
     /// Sample-by-sample compositing in each sample's own depth order.
-    fn per_sample(&mut self, pool: &FragmentPool, n: usize) -> [f32; 3] {
+    fn per_sample(
+        &mut self,
+        pool: &FragmentPool,
+        planes: &[PlaneEq],
+        ij: (u32, u32),
+        positions: &[(i32, i32)],
+    ) -> [f32; 3] {
         let mut sum = [0.0f32; 3];
-        for k in 0..n {
+        for k in 0..positions.len() {
             self.samples.clear();
-            for (i, (f, &idx)) in self.frags.iter().zip(&self.list).enumerate() {
-                if f.mask >> k & 1 == 1 {
-                    self.samples.push((pool.depths(idx)[k], f.prim, i as u32));
+            for (i, s) in self.frags.iter().enumerate() {
+                if s.frag.mask >> k & 1 == 1 {
+                    let z = sample_depth_of(pool, planes, &s.frag, ij, positions, k);
+                    self.samples.push((z, s.frag.prim, i as u32));
                 }
             }
             self.samples
                 .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             let mut transmit = 1.0f32;
             for &(_, _, i) in &self.samples {
-                let f = &self.frags[i as usize];
-                add(&mut sum, f.rgb, transmit * f.alpha);
-                transmit *= 1.0 - f.alpha;
+                let s = &self.frags[i as usize];
+                add(&mut sum, s.rgb, transmit * s.alpha);
+                transmit *= 1.0 - s.alpha;
                 if transmit <= 0.0 {
                     break;
                 }
@@ -197,10 +282,11 @@ impl Resolver {
         self.stack.push((0, full, 1.0));
         while let Some((start, mask, weight)) = self.stack.pop() {
             let rest = &self.frags[start as usize..];
-            let Some(pos) = rest.iter().position(|f| f.mask & mask != 0) else {
+            let Some(pos) = rest.iter().position(|s| s.frag.mask & mask != 0) else {
                 continue; // background: black
             };
-            let f = &rest[pos];
+            let s = &rest[pos];
+            let f = &s.frag;
             let next = start + pos as u32 + 1;
             let inside = mask & f.mask;
             let outside = mask & !f.mask;
@@ -211,6 +297,7 @@ impl Resolver {
             let vis = if crossing {
                 behind
                     .iter()
+                    .map(|g| &g.frag)
                     .find(|g| g.mask & inside != 0)
                     .filter(|g| g.zmin < f.zmax)
                     .map(|g| {
@@ -227,9 +314,9 @@ impl Resolver {
             // In the covered samples: vis * (a*c + (1-a)*B) + (1-vis) * B,
             // B being what lies behind (vis = 1 without a crossing).
             let vis = vis.unwrap_or(1.0);
-            let front = vis * f.alpha;
+            let front = vis * s.alpha;
             let behind_weight = 1.0 - front;
-            add(&mut sum, f.rgb, weight * front * inside.count_ones() as f32);
+            add(&mut sum, s.rgb, weight * front * inside.count_ones() as f32);
             if behind_weight > 0.0 {
                 self.stack.push((next, inside, weight * behind_weight));
             }
@@ -261,22 +348,22 @@ fn add(sum: &mut [f32; 3], rgb: [f32; 3], weight: f32) {
 mod tests {
     use super::*;
 
-    fn frag(mask: u32, zmin: f32, zmax: f32, rgb: [f32; 3], alpha: f32) -> Fragment {
-        Fragment {
+    fn frag(mask: u32, zmin: f32, zmax: f32, rgb: [f32; 3], alpha: f32) -> Shaded {
+        let f = Fragment {
             next: NIL,
             mask,
             prim: 0,
             tri: 0,
             centre_prim: NO_ID,
+            shade: 0,
             zmin,
             zmax,
             centre_z: f64::INFINITY,
-            rgb,
-            alpha,
-        }
+        };
+        Shaded::new(f, [rgb[0], rgb[1], rgb[2], alpha], 0)
     }
 
-    fn resolver(frags: Vec<Fragment>) -> Resolver {
+    fn resolver(frags: Vec<Shaded>) -> Resolver {
         Resolver {
             frags,
             ..Resolver::default()

@@ -14,6 +14,10 @@ pub struct ABufferStats {
     /// Fragments merged into a neighbour of the same surface instead of
     /// taking a list entry.
     pub merged: u64,
+    /// (triangle, 8 x 8 pixel block) pairs skipped by the hierarchical
+    /// occlusion test: the triangle's plane over the block is behind the
+    /// opaque bound of every pixel of it, so no fragment is generated there.
+    pub culled_blocks: u64,
     /// Fragments discarded on arrival because an opaque fragment covering
     /// the whole pixel lies entirely in front of them.
     pub culled: u64,
@@ -46,6 +50,7 @@ impl From<ABufferStats> for Stats {
                 ("full coverage", s.full_coverage),
                 ("merged", s.merged),
                 ("culled", s.culled),
+                ("culled blocks", s.culled_blocks),
                 ("pruned", s.pruned),
                 ("dropped", s.dropped),
                 ("max list", s.max_list_len),
