@@ -24,7 +24,7 @@
 
 use glam::DVec4;
 use hider_geom::clip::{ClipVertex, OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
-use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport};
+use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport, orient2d};
 use rayon::prelude::*;
 
 use crate::error::Result;
@@ -289,24 +289,34 @@ fn triangles(
                 stats.culled += 1;
                 continue;
             }
+            // Orientation, facing and the pixel box are integer work on
+            // the snapped corners; only triangles that survive them pay
+            // for the depth plane (two divisions). A zero area is exactly
+            // a zero plane determinant (both are exact), so every
+            // triangle is still dropped for `prepare`'s reason.
+            let area = orient2d(c[0].p, c[1].p, c[2].p);
+            if area == 0 {
+                stats.degenerate += 1;
+                continue;
+            }
+            if cull && area > 0 {
+                stats.back_faces += 1;
+                continue;
+            }
+            if vp.pixel_bounds(&c.map(|k| k.p)).is_none() {
+                stats.empty += 1;
+                continue;
+            }
             let window = c.map(|k| crate::prepare::WindowVertex {
                 p: k.p,
                 z: k.z,
                 w: 0.0,
             });
-            let Some((c, front_facing, depth)) = setup_depth(window) else {
+            let Some((c, _, depth)) = setup_depth(window) else {
                 stats.degenerate += 1;
                 continue;
             };
-            if cull && !front_facing {
-                stats.back_faces += 1;
-                continue;
-            }
             let v = c.map(|k| k.p);
-            if vp.pixel_bounds(&v).is_none() {
-                stats.empty += 1;
-                continue;
-            }
             out.push(DepthTri { v, depth, prim });
         }
         first_prim += n;

@@ -29,6 +29,11 @@ pub(crate) trait DepthKey: Copy + PartialOrd + Send + Sync + 'static {
     fn encode(depth: f64) -> Self;
     /// The window depth `ZBuffer` writes to the frame for a stored key.
     fn decode(self) -> f32;
+    /// `new` where `mask` is all ones, `old` where it is zero, by bit
+    /// operations: a select the compiler keeps branch-free and vectorises
+    /// on baseline x86-64 (SSE2 has no blend), where `if` became a
+    /// mispredicted branch per pixel.
+    fn select(mask: u32, new: Self, old: Self) -> Self;
     /// The larger of two keys (for block maxima).
     #[inline]
     fn max_key(self, other: Self) -> Self {
@@ -38,6 +43,10 @@ pub(crate) trait DepthKey: Copy + PartialOrd + Send + Sync + 'static {
 
 impl DepthKey for f32 {
     const FAR: Self = 1.0;
+    #[inline(always)]
+    fn select(mask: u32, new: Self, old: Self) -> Self {
+        f32::from_bits((new.to_bits() & mask) | (old.to_bits() & !mask))
+    }
     #[inline]
     fn encode(depth: f64) -> Self {
         depth as f32
@@ -51,6 +60,11 @@ impl DepthKey for f32 {
 
 impl DepthKey for f64 {
     const FAR: Self = 1.0;
+    #[inline(always)]
+    fn select(mask: u32, new: Self, old: Self) -> Self {
+        let mask = u64::from(mask) | (u64::from(mask) << 32);
+        f64::from_bits((new.to_bits() & mask) | (old.to_bits() & !mask))
+    }
     #[inline]
     fn encode(depth: f64) -> Self {
         depth
@@ -67,6 +81,10 @@ pub(crate) struct Fixed24(u32);
 
 impl DepthKey for Fixed24 {
     const FAR: Self = Fixed24(MAX24);
+    #[inline(always)]
+    fn select(mask: u32, new: Self, old: Self) -> Self {
+        Fixed24((new.0 & mask) | (old.0 & !mask))
+    }
     #[inline]
     fn encode(depth: f64) -> Self {
         Fixed24(quantize(depth, MAX24))
@@ -83,6 +101,11 @@ pub(crate) struct Fixed16(u16);
 
 impl DepthKey for Fixed16 {
     const FAR: Self = Fixed16(u16::MAX);
+    #[inline(always)]
+    fn select(mask: u32, new: Self, old: Self) -> Self {
+        let mask = mask as u16;
+        Fixed16((new.0 & mask) | (old.0 & !mask))
+    }
     #[inline]
     fn encode(depth: f64) -> Self {
         Fixed16(quantize(depth, MAX16) as u16)
@@ -102,6 +125,10 @@ impl DepthKey for Reversed {
     // ZBuffer clears reversed depth to 0; its negation is -0, which
     // compares equal to 0, so nothing at the far plane passes, as there.
     const FAR: Self = Reversed(-0.0);
+    #[inline(always)]
+    fn select(mask: u32, new: Self, old: Self) -> Self {
+        Reversed(f32::select(mask, new.0, old.0))
+    }
     #[inline]
     fn encode(depth: f64) -> Self {
         Reversed(-((1.0 - depth) as f32))

@@ -393,13 +393,14 @@ impl<K: DepthKey> TileBuf<K> {
             return 0;
         };
         let (mut inside, mut passes) = (0u32, 0u32);
+        let prim = s.prim;
         for i in 0..64 {
             let ok = out[i] >= 0;
-            let pass = ok & (new[i] < keys[i]);
-            keys[i] = if pass { new[i] } else { keys[i] };
-            ids[i] = if pass { s.prim } else { ids[i] };
+            let mask = 0u32.wrapping_sub(u32::from(ok & (new[i] < keys[i])));
+            keys[i] = K::select(mask, new[i], keys[i]);
+            ids[i] = (prim & mask) | (ids[i] & !mask);
             inside += u32::from(ok);
-            passes += u32::from(pass);
+            passes += mask & 1;
         }
         if EDGES {
             self.stats.pixels_tested += 64;
@@ -579,12 +580,11 @@ fn raster_row<K: DepthKey, const EDGES: bool>(
         e1 += step[1];
         e2 += step[2];
         let key = K::encode(col[i] + ty);
-        let old = keys[i];
-        let pass = inside & (key < old);
-        keys[i] = if pass { key } else { old };
-        ids[i] = if pass { prim } else { ids[i] };
+        let mask = 0u32.wrapping_sub(u32::from(inside & (key < keys[i])));
+        keys[i] = K::select(mask, key, keys[i]);
+        ids[i] = (prim & mask) | (ids[i] & !mask);
         inside_n += u32::from(inside);
-        passes += u32::from(pass);
+        passes += mask & 1;
     }
     (inside_n, passes)
 }
