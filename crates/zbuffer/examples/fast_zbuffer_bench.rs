@@ -7,7 +7,9 @@
 //! - `zbuffer`: the reference pipeline, [`prepare`] then [`ZBuffer`].
 //! - `tiled 1T` / `tiled 2T`: the fast pipeline, [`prepare_depth_into`]
 //!   then [`TiledZBuffer::draw_depth_scene`], on 1 thread (no pool) and on
-//!   a 2-thread pool (front end and tiles in parallel). The image stays in
+//!   a 2-thread pool (front end and tiles in parallel, in that one pool:
+//!   the hider uses the pool it is called from when it has the right
+//!   number of threads). The image stays in
 //!   the hider's tiles, as GL's stays in its framebuffer; the read-back is
 //!   not timed, but it is checked equal to the reference, pixel for pixel,
 //!   for every scene and size.
@@ -92,8 +94,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             one.draw_depth_scene(&lean1)?;
             one.read_into(&mut got)?;
             assert!(got == want, "{name} at {size}: 1 thread differs");
-            pool.install(|| prepare_depth_into(scene, &view, &parallel, &mut lean2))?;
-            two.draw_depth_scene(&lean2)?;
+            pool.install(|| {
+                prepare_depth_into(scene, &view, &parallel, &mut lean2)?;
+                two.draw_depth_scene(&lean2)
+            })?;
             two.read_into(&mut got)?;
             assert!(got == want, "{name} at {size}: 2 threads differ");
 
@@ -108,8 +112,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 one.draw_depth_scene(&lean1)?;
                 t1.push(ms(t));
                 let t = Instant::now();
-                pool.install(|| prepare_depth_into(scene, &view, &parallel, &mut lean2))?;
-                two.draw_depth_scene(&lean2)?;
+                pool.install(|| {
+                    prepare_depth_into(scene, &view, &parallel, &mut lean2)?;
+                    two.draw_depth_scene(&lean2)
+                })?;
                 t2.push(ms(t));
             }
             let ((mz, nz), (m1, n1), (m2, n2)) = (stats(tz), stats(t1), stats(t2));

@@ -257,6 +257,7 @@ impl TiledZBuffer {
         hider_scene::view::check_image_size(vp.width, vp.height)?;
         let threads = self.threads();
         if threads > 1
+            && !ambient_pool(threads)
             && self
                 .pool
                 .as_ref()
@@ -289,7 +290,7 @@ impl TiledZBuffer {
         threads: usize,
     ) -> TiledZBufferStats {
         let grid = Grid::new(vp.width, vp.height, self.options.tile_size);
-        let pool = self.pool.as_ref().filter(|_| threads > 1);
+        let pool = workers(self.pool.as_ref(), threads);
 
         // 1. Binning, one chunk per contiguous run of triangles; runs are
         //    cut further so that every thread has one.
@@ -312,7 +313,7 @@ impl TiledZBuffer {
         match pool {
             Some(pool) if tris.len() > 1 => {
                 use rayon::prelude::*;
-                pool.install(|| self.chunks.par_iter_mut().zip(&tris).for_each(bin));
+                install(pool, || self.chunks.par_iter_mut().zip(&tris).for_each(bin));
             }
             _ => self.chunks.iter_mut().zip(&tris).for_each(bin),
         }
@@ -356,7 +357,7 @@ impl TiledZBuffer {
                 match pool {
                     Some(pool) => {
                         use rayon::prelude::*;
-                        pool.install(|| {
+                        install(pool, || {
                             frame
                                 .ids
                                 .par_chunks_mut(band_len)
@@ -380,7 +381,7 @@ impl TiledZBuffer {
             None => match pool {
                 Some(pool) => {
                     use rayon::prelude::*;
-                    pool.install(|| {
+                    install(pool, || {
                         bufs.par_chunks_mut(cols)
                             .enumerate()
                             .for_each(|(b, band)| draw_band(b, band))
@@ -421,10 +422,10 @@ impl TiledZBuffer {
         let work = |(b, (out, band)): (usize, (FrameBand<'_>, &[TileBuf<K>]))| {
             resolve_band(band, out, width, b as u32 * grid.tile);
         };
-        match self.pool.as_ref().filter(|_| threads > 1) {
+        match workers(self.pool.as_ref(), threads) {
             Some(pool) => {
                 use rayon::prelude::*;
-                pool.install(|| {
+                install(pool, || {
                     frame
                         .ids
                         .par_chunks_mut(band_len)
@@ -444,6 +445,36 @@ impl TiledZBuffer {
                 .enumerate()
                 .for_each(work),
         }
+    }
+}
+
+/// Whether the caller's rayon pool (the one `par_iter` would use here:
+/// the pool the current thread works for, or the global one) has exactly
+/// `threads` workers. Then the hider uses it rather than a pool of its own:
+/// two pools on the same cores only take turns (the CLI builds a global
+/// pool for the parallel front end, and a caller may run the front end and
+/// the hider inside one `install`).
+fn ambient_pool(threads: usize) -> bool {
+    rayon::current_num_threads() == threads
+}
+
+/// The workers for `threads`: `None` to stay on the calling thread,
+/// `Some(None)` for the ambient pool, `Some(Some(pool))` for the hider's.
+fn workers(own: Option<&rayon::ThreadPool>, threads: usize) -> Option<Option<&rayon::ThreadPool>> {
+    if threads <= 1 {
+        None
+    } else if ambient_pool(threads) {
+        Some(None)
+    } else {
+        own.map(Some)
+    }
+}
+
+/// Runs `f` in `pool`, or right here in the ambient pool.
+fn install<R: Send>(pool: Option<&rayon::ThreadPool>, f: impl FnOnce() -> R + Send) -> R {
+    match pool {
+        Some(pool) => pool.install(f),
+        None => f(),
     }
 }
 
