@@ -160,9 +160,9 @@ pub struct PrepareStats {
     /// Screen triangles produced.
     pub output: u64,
     /// Triangles dropped by the lean front end
-    /// ([`prepare_depth_into`](crate::prepare_depth_into)) because no
-    /// pixel centre lies in their box (they cover no sample); always 0
-    /// from [`prepare`], which keeps them.
+    /// ([`prepare_depth_into`](crate::prepare_depth_into)) because they
+    /// certainly cover no pixel centre; always 0 from [`prepare`], which
+    /// keeps them.
     pub empty: u64,
 }
 
