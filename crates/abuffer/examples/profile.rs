@@ -3,7 +3,8 @@
 //!
 //! `cargo run --release -p hider-abuffer --example profile -- SCENE HIDER [RUNS] [SIZE]`
 //!
-//! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200));
+//! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)), `one`
+//! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `mm` (min/max),
 //! `carpenter`, or `cov` (mask generation alone). Prints the CPU and wall time of each render.
 
@@ -30,6 +31,7 @@ fn main() {
         "soup10k" => procedural::random_soup(10_000, 1),
         "soup100k" => procedural::random_soup(100_000, 1),
         "sphere" => procedural::uv_sphere(200),
+        "one" => procedural::random_soup(1, 1),
         other => panic!("unknown scene {other}"),
     };
     let mut hider: Box<dyn Hider> = match args.get(1).map_or("ps", String::as_str) {

@@ -44,18 +44,38 @@ const BLOCK: u32 = 8;
 /// Blocks per tile side.
 const BLOCKS: usize = (TILE / BLOCK) as usize;
 
-/// Per 8 x 8 block of the current tile: the farthest opaque bound of its
-/// pixels, kept lazily (a bound that drops marks the block stale).
+/// Per 8 x 8 block of the current tile: an upper bound of the opaque
+/// bounds of its pixels. While some pixel of the block has no bound yet
+/// (`open > 0`) it is infinite; after that it is their maximum, recomputed
+/// only when a test needs it and a bound dropped since (`stale`). Bounds
+/// only decrease, so a stale value is still an upper bound.
 #[derive(Clone, Debug)]
 struct BlockFar {
     far: [f32; BLOCKS * BLOCKS],
+    open: [u8; BLOCKS * BLOCKS],
     stale: u64,
+}
+
+impl BlockFar {
+    /// The blocks of a tile whose pixels `x0..=x1`, `y0..=y1` (tile-local)
+    /// exist: every one open.
+    fn reset(&mut self, x1: u32, y1: u32) {
+        self.far = [f32::INFINITY; BLOCKS * BLOCKS];
+        self.stale = 0;
+        for (b, open) in self.open.iter_mut().enumerate() {
+            let (bx, by) = ((b % BLOCKS) as u32 * BLOCK, (b / BLOCKS) as u32 * BLOCK);
+            let w = (x1 + 1).saturating_sub(bx).min(BLOCK);
+            let h = (y1 + 1).saturating_sub(by).min(BLOCK);
+            *open = (w * h) as u8;
+        }
+    }
 }
 
 impl Default for BlockFar {
     fn default() -> Self {
         Self {
             far: [f32::INFINITY; BLOCKS * BLOCKS],
+            open: [(BLOCK * BLOCK) as u8; BLOCKS * BLOCKS],
             stale: 0,
         }
     }
@@ -83,7 +103,9 @@ impl Gather {
 #[derive(Clone, Debug, Default)]
 struct Bins {
     start: Vec<u32>,
-    items: Vec<u32>,
+    /// Triangle index and its pixel range, so that a tile reads its bin
+    /// sequentially.
+    items: Vec<(u32, (u32, u32, u32, u32))>,
     ranges: Vec<(u32, u32, u32, u32)>,
     /// Tiles whose pixel entries may hold lists of the last frame.
     dirty: Vec<bool>,
@@ -226,7 +248,7 @@ impl ABuffer {
             bins.start[t + 1] += bins.start[t];
         }
         bins.items.clear();
-        bins.items.resize(bins.start[tiles] as usize, 0);
+        bins.items.resize(bins.start[tiles] as usize, (0, (0, 0, 0, 0)));
         let mut fill = bins.start.clone();
         for (t, &(x0, y0, x1, y1)) in bins.ranges.iter().enumerate() {
             if x0 > x1 {
@@ -235,33 +257,43 @@ impl ABuffer {
             for ty in y0 / TILE..=y1 / TILE {
                 for tx in x0 / TILE..=x1 / TILE {
                     let slot = &mut fill[(ty * tiles_x + tx) as usize];
-                    bins.items[*slot as usize] = t as u32;
+                    bins.items[*slot as usize] = (t as u32, (x0, y0, x1, y1));
                     *slot += 1;
                 }
             }
         }
     }
 
-    /// The farthest opaque bound of block `b` of the tile at `(tx0, ty0)`
-    /// (recomputed if a bound in it changed since).
+    /// Whether every fragment that a triangle could make in block `b` of
+    /// the tile at `(tx0, ty0)`, all with `zmin >= near`, would be culled:
+    /// `near` is beyond the opaque bound of every pixel of the block.
     #[inline]
-    fn block_far(&mut self, b: usize, (tx0, ty0): (u32, u32)) -> f32 {
-        if self.blocks.stale >> b & 1 == 1 {
-            self.blocks.stale &= !(1u64 << b);
-            let (w, h) = (self.width, self.height);
-            let x0 = tx0 + (b % BLOCKS) as u32 * BLOCK;
-            let y0 = ty0 + (b / BLOCKS) as u32 * BLOCK;
-            let (x1, y1) = ((x0 + BLOCK).min(w), (y0 + BLOCK).min(h));
-            let mut far = f32::NEG_INFINITY;
-            for j in y0..y1 {
-                let row = j as usize * w as usize;
-                for p in row + x0 as usize..row + x1 as usize {
-                    far = far.max(self.pool.pixel(p).occluder);
+    fn block_hidden(&mut self, b: usize, near: f32, (tx0, ty0): (u32, u32)) -> bool {
+        let blocks = &mut self.blocks;
+        if near > blocks.far[b] {
+            return true;
+        }
+        if blocks.stale >> b & 1 == 0 || blocks.open[b] > 0 {
+            return false;
+        }
+        // Tighten the stale bound to the current maximum and test again.
+        blocks.stale &= !(1u64 << b);
+        let (w, h) = (self.width, self.height);
+        let x0 = tx0 + (b % BLOCKS) as u32 * BLOCK;
+        let y0 = ty0 + (b / BLOCKS) as u32 * BLOCK;
+        let (x1, y1) = ((x0 + BLOCK).min(w), (y0 + BLOCK).min(h));
+        let mut far = f32::NEG_INFINITY;
+        for j in y0..y1 {
+            let row = j as usize * w as usize;
+            for p in row + x0 as usize..row + x1 as usize {
+                let z = self.pool.pixel(p).occluder;
+                if z > far {
+                    far = z;
                 }
             }
-            self.blocks.far[b] = far;
         }
-        self.blocks.far[b]
+        blocks.far[b] = far;
+        near > far
     }
 
     /// Renders the fragments of triangle `t` inside the pixel rectangle
@@ -284,9 +316,10 @@ impl ABuffer {
         tile: (u32, u32),
         stats: &mut ABufferStats,
     ) -> Result<()> {
-        let tri = &scene.tris[t as usize];
         let pattern = self.options.pattern;
-        let plane = tri.depth;
+        // The compact copy: the triangle itself is read only if a block
+        // survives.
+        let plane = self.planes[t as usize];
         let (tx0, ty0) = tile;
         let (hx0, hy0, hx1, hy1) = pattern.hull();
         let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
@@ -301,7 +334,7 @@ impl ABuffer {
                 let (px0, px1) = ((tx0 + bx * BLOCK).max(x0), (tx0 + bx * BLOCK + BLOCK - 1).min(x1));
                 let (i, sx) = if up_x { (px0, hx0) } else { (px1, hx1) };
                 let near = plane_depth(&plane, i, j, (sx, sy)) as f32;
-                if near > self.block_far(b, tile) {
+                if self.block_hidden(b, near, tile) {
                     stats.culled_blocks += 1;
                 } else {
                     live |= 1 << b;
@@ -311,6 +344,7 @@ impl ABuffer {
         if live == 0 {
             return Ok(());
         }
+        let tri = &scene.tris[t as usize];
         let setup = TriCoverage::new(tri, pattern);
         let bounds = DepthBounds::new(&plane, pattern, self.options.depth != DepthMode::PerSample);
         let alpha = self.colors[tri.prim as usize][3];
@@ -337,11 +371,12 @@ impl ABuffer {
                     stats.fragments += 1;
                     stats.full_coverage += u64::from(c.full);
                     let p = row + i as usize;
-                    let centre_z = if c.centre {
-                        plane_depth(&plane, i, j, CENTRE)
-                    } else {
-                        f64::INFINITY
-                    };
+                    // A full mask's bounds do not need the centre: it is
+                    // evaluated after the cull test.
+                    let mut centre_z = f64::INFINITY;
+                    if c.centre && !c.full {
+                        centre_z = plane_depth(&plane, i, j, CENTRE);
+                    }
                     // `as f32` rounds to nearest, which is monotonic: every
                     // sample depth and the centre depth stay inside
                     // [zmin, zmax], so the strict comparisons of culling and
@@ -350,6 +385,9 @@ impl ABuffer {
                     if zmin > self.pool.pixel(p).occluder {
                         stats.culled += 1;
                         continue;
+                    }
+                    if c.full {
+                        centre_z = plane_depth(&plane, i, j, CENTRE);
                     }
                     let zmax = bounds.bound(&plane, (i, j), c, centre_z, true) as f32;
                     let f = Fragment {
@@ -480,7 +518,11 @@ impl ABuffer {
         if bound < e.occluder {
             self.pool.set_occluder(ctx.p, bound);
             let (gi, gj) = (ctx.g % TILE as usize, ctx.g / TILE as usize);
-            self.blocks.stale |= 1 << (gj / BLOCK as usize * BLOCKS + gi / BLOCK as usize);
+            let b = gj / BLOCK as usize * BLOCKS + gi / BLOCK as usize;
+            self.blocks.stale |= 1 << b;
+            if e.occluder == f32::INFINITY {
+                self.blocks.open[b] -= 1;
+            }
             self.gather[ctx.g] = Gather::EMPTY;
             if e.far > bound {
                 stats.pruned += self.pool.remove_where(ctx.p, |g| g.zmin > bound);
@@ -513,8 +555,6 @@ impl ABuffer {
     /// `ctx.p`'s list and merges into it, returning its index.
     fn try_merge(&mut self, ctx: &Ctx<'_>, f: &Fragment) -> Result<Option<u32>> {
         let scene = ctx.scene;
-        let tri = &scene.tris[f.tri as usize];
-        let material = scene.prims[f.prim as usize].material;
         let f_rgba = self.colors[f.shade as usize];
         let mut cur = self.pool.head(ctx.p);
         for _ in 0..MERGE_SEARCH {
@@ -530,9 +570,11 @@ impl ABuffer {
                 && (self.options.merge == MergePolicy::SameSurface
                     || (0..3).all(|c| (g_rgba[c] - f_rgba[c]).abs() <= MERGE_COLOR_TOLERANCE))
                 && {
-                    let other = &scene.tris[g.tri as usize];
+                    // Scene lookups (cache misses) only for candidates.
+                    let (tri, other) = (&scene.tris[f.tri as usize], &scene.tris[g.tri as usize]);
                     other.front_facing == tri.front_facing
-                        && scene.prims[g.prim as usize].material == material
+                        && scene.prims[g.prim as usize].material
+                            == scene.prims[f.prim as usize].material
                         && tri.v.iter().any(|v| other.v.contains(v))
                 };
             if mergeable {
@@ -681,10 +723,9 @@ impl Hider for ABuffer {
                     continue;
                 }
                 self.gather.fill(Gather::EMPTY);
-                self.blocks = BlockFar::default();
+                self.blocks.reset(x1 - x0, y1 - y0);
                 for b in b0..b1 {
-                    let tri = self.bins.items[b];
-                    let (rx0, ry0, rx1, ry1) = self.bins.ranges[tri as usize];
+                    let (tri, (rx0, ry0, rx1, ry1)) = self.bins.items[b];
                     let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
                     self.raster(scene, tri, rect, (x0, y0), &mut stats)?;
                 }

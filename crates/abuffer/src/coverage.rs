@@ -45,6 +45,25 @@ const NARROW: i64 = 1 << 20;
 /// is decided for every sample of the pixel, so clamping keeps the answer.
 const CLAMP: i64 = 1 << 30;
 
+/// Rows longer than this many pixels are clipped to [`TriCoverage::span`]
+/// before their pixels are tested.
+const SPAN_MIN: u32 = 8;
+
+/// Truncation towards zero without a library call (baseline x86-64 has no
+/// rounding instruction): exact for `|x| < 2^62`, and values beyond only
+/// widen the span they bound after clamping.
+trait TruncFast {
+    fn trunc_fast(self) -> f64;
+}
+
+impl TruncFast for f64 {
+    #[inline]
+    fn trunc_fast(self) -> f64 {
+        // `as` saturates (and maps NaN to 0); the span is clamped after.
+        (self as i64) as f64
+    }
+}
+
 /// Per-triangle set-up for mask generation.
 ///
 /// Masks are computed on the 8 x 4 grid, row by row: sample `(c, r)` is
@@ -64,6 +83,8 @@ pub struct TriCoverage {
     /// `-(b * y_r)` for each edge and grid row (32-bit path).
     nrow: [[i32; 4]; 3],
     narrow: bool,
+    /// `1 / (256 a)` per edge (0 when `a == 0`), for [`Self::span`].
+    inv_step: [f64; 3],
     centre: [i64; 3],
     hull_min: [i64; 3],
     hull_max: [i64; 3],
@@ -108,11 +129,19 @@ impl TriCoverage {
             hull_min[e] = off(xl, yl);
             hull_max[e] = off(xh, yh);
         }
+        let inv_step = edges.map(|e| {
+            if e.a == 0 {
+                0.0
+            } else {
+                1.0 / (e.a * i64::from(SUBPIXEL_SCALE)) as f64
+            }
+        });
         Self {
             edges,
             ncol,
             nrow,
             narrow,
+            inv_step,
             centre,
             hull_min,
             hull_max,
@@ -138,11 +167,48 @@ impl TriCoverage {
         self.edges.map(|e| e.a * i64::from(SUBPIXEL_SCALE))
     }
 
+    /// A sub-range of the pixels `x0..=x1` of row `j` outside which the
+    /// triangle covers nothing (possibly empty: `start > end`).
+    ///
+    /// Pixel `i` is rejected when some edge is non-positive at all four
+    /// hull corners, i.e. `E(i) + hull_max <= 0`, and `E(i)` is affine in
+    /// `i`; each edge with `a != 0` thus bounds the range on one side at
+    /// `i = -(E(0) + hull_max) / (256 a)`. The bound is computed in `f64`
+    /// and widened by a pixel, so it is conservative: the exact test still
+    /// decides every pixel inside.
+    #[inline]
+    pub fn span(&self, x0: u32, x1: u32, j: u32) -> (u32, u32) {
+        let base = self.corner_values(0, j);
+        let (mut lo, mut hi) = (f64::from(x0), f64::from(x1));
+        for e in 0..3 {
+            let k = (base[e] + self.hull_max[e]) as f64;
+            let t = -k * self.inv_step[e];
+            // Truncation moves t by less than one: two pixels of margin.
+            match self.edges[e].a.signum() {
+                1 => lo = lo.max(t.trunc_fast() - 2.0),
+                -1 => hi = hi.min(t.trunc_fast() + 2.0),
+                _ if k <= 0.0 => return (1, 0),
+                _ => {}
+            }
+        }
+        if lo > hi {
+            return (1, 0);
+        }
+        (lo as u32, hi as u32)
+    }
+
     /// The pixels `x0..=x1` of row `j` that this triangle touches, with
-    /// their coverage, left to right. The edge values are stepped
-    /// incrementally (one add per edge and pixel); empty pixels are skipped.
+    /// their coverage, left to right. The row is first clipped to
+    /// [`Self::span`]; along it the edge values are stepped incrementally
+    /// (one add per edge and pixel); empty pixels are skipped.
     #[inline]
     pub fn row(&self, x0: u32, x1: u32, j: u32) -> impl Iterator<Item = (u32, Coverage)> + '_ {
+        // Short rows are cheaper to test pixel by pixel.
+        let (x0, x1) = if x1 - x0 >= SPAN_MIN {
+            self.span(x0, x1, j)
+        } else {
+            (x0, x1)
+        };
         let step = self.step_x();
         let mut base = self.corner_values(x0, j);
         (x0..=x1).filter_map(move |i| {
@@ -316,10 +382,27 @@ impl DepthBounds {
     }
 
     /// The nearest (`far == false`) or farthest computed depth over the
-    /// samples of `c.mask` and, if covered, the centre (`centre_z`).
-    #[inline]
+    /// samples of `c.mask` and, if covered, the centre (`centre_z`, which
+    /// a full mask does not need: the centre lies inside the hull).
+    #[inline(always)]
     pub fn bound(&self, plane: &PlaneEq, (i, j): (u32, u32), c: Coverage, centre_z: f64, far: bool) -> f64 {
-        let pick = |lo: f64, z: f64| if far { lo.max(z) } else { lo.min(z) };
+        if c.full && (self.grid || self.hull_for_full) {
+            // Along x (y) the bound is at the low end when the depth grows
+            // in the direction we look for, i.e. when `up == far` is false.
+            // The centre is inside the hull: it cannot pass the corner.
+            let (x0, y0, x1, y1) = self.pattern.hull();
+            let x = if self.up_x != far { x0 } else { x1 };
+            let y = if self.up_y != far { y0 } else { y1 };
+            return plane_depth(plane, i, j, (x, y));
+        }
+        self.bound_partial(plane, (i, j), c, centre_z, far)
+    }
+
+    /// [`Self::bound`] of a partial mask (or any mask of a pattern whose
+    /// hull corners are not samples).
+    #[inline(never)]
+    fn bound_partial(&self, plane: &PlaneEq, (i, j): (u32, u32), c: Coverage, centre_z: f64, far: bool) -> f64 {
+        let low_x = self.up_x != far;
         let mut z = if c.centre {
             centre_z
         } else if far {
@@ -327,39 +410,59 @@ impl DepthBounds {
         } else {
             f64::INFINITY
         };
-        // Along x (y) the bound is at the low end when the depth grows in
-        // the direction we look for, i.e. when `up == far` is false.
-        let low_x = self.up_x != far;
-        let low_y = self.up_y != far;
-        if c.full && (self.grid || self.hull_for_full) {
-            let (x0, y0, x1, y1) = self.pattern.hull();
-            let x = if low_x { x0 } else { x1 };
-            let y = if low_y { y0 } else { y1 };
-            return pick(z, plane_depth(plane, i, j, (x, y)));
-        }
+        // Plain comparisons: same value as `f64::min`/`max` for numbers.
+        let mut pick = |v: f64| {
+            if (far && v > z) || (!far && v < z) {
+                z = v;
+            }
+        };
         if self.grid {
-            for r in 0..4 {
-                let row = (c.mask >> (8 * r)) as u8;
-                if row == 0 {
-                    continue;
+            let (xi, yj) = (f64::from(i), f64::from(j));
+            let mut mask = c.mask;
+            for y in GRID_Y {
+                let row = mask as u8;
+                mask >>= 8;
+                if row != 0 {
+                    let col = if low_x {
+                        row.trailing_zeros()
+                    } else {
+                        7 - row.leading_zeros()
+                    };
+                    // Exactly `plane_depth`: the offsets are exact.
+                    pick(plane.eval(xi + GRID_X[col as usize], yj + y));
                 }
-                let col = if low_x {
-                    row.trailing_zeros()
-                } else {
-                    7 - row.leading_zeros()
-                };
-                z = pick(z, plane_depth(plane, i, j, (col as i32 * 32 + 16, r * 64 + 32)));
             }
             return z;
         }
         for (k, &pos) in self.pattern.positions().iter().enumerate() {
             if c.mask >> k & 1 == 1 {
-                z = pick(z, plane_depth(plane, i, j, pos));
+                pick(plane_depth(plane, i, j, pos));
             }
         }
         z
     }
 }
+
+/// `x_c / 256` of the grid columns and `y_r / 256` of the grid rows
+/// (exact in `f64`), as [`plane_depth`] adds them to the pixel corner.
+const GRID_X: [f64; 8] = {
+    let mut out = [0.0; 8];
+    let mut c = 0;
+    while c < 8 {
+        out[c] = (c as f64 * 32.0 + 16.0) / SUBPIXEL_SCALE as f64;
+        c += 1;
+    }
+    out
+};
+const GRID_Y: [f64; 4] = {
+    let mut out = [0.0; 4];
+    let mut r = 0;
+    while r < 4 {
+        out[r] = (r as f64 * 64.0 + 32.0) / SUBPIXEL_SCALE as f64;
+        r += 1;
+    }
+    out
+};
 
 #[cfg(test)]
 mod tests {
@@ -401,6 +504,17 @@ mod tests {
         (mask, covers(CENTRE))
     }
 
+    /// Whether `row` (span clipping included) yields exactly the pixels of
+    /// row `j` (0..14) that `at` finds non-empty.
+    fn row_is_complete(setup: &TriCoverage, j: u32) -> bool {
+        let from_row: Vec<(u32, Coverage)> = setup.row(0, 13, j).collect();
+        let direct: Vec<(u32, Coverage)> = (0..14)
+            .map(|i| (i, setup.at(setup.corner_values(i, j))))
+            .filter(|(_, c)| !c.is_empty())
+            .collect();
+        from_row == direct
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
         /// Masks (fast path, reject and per-sample path alike) equal the
@@ -423,6 +537,9 @@ mod tests {
                     prop_assert_eq!((got.mask, got.centre), (mask, centre), "pixel {} {}", i, j);
                     if got.full {
                         prop_assert_eq!(mask, pattern.full_mask());
+                    }
+                    if i == 0 {
+                        prop_assert!(row_is_complete(&setup, j), "row {}", j);
                     }
                     let inside = range.is_some_and(|(x0, y0, x1, y1)| (x0..=x1).contains(&i) && (y0..=y1).contains(&j));
                     if !inside {
@@ -458,6 +575,7 @@ mod tests {
                     let got = setup.at(setup.corner_values(i, j));
                     prop_assert_eq!((got.mask, got.centre), brute(&t, pattern, i, j), "pixel {} {}", i, j);
                 }
+                prop_assert!(row_is_complete(&setup, j), "row {}", j);
             }
         }
     }

@@ -134,6 +134,26 @@ impl Resolver {
                 if cur == NIL {
                     continue;
                 }
+                let first = pool.get(cur);
+                if first.next == NIL && !first.is_merged() && colors[first.shade as usize][3] >= 1.0 {
+                    // One opaque fragment: what every path computes for it.
+                    self.lists += 1;
+                    self.total += 1;
+                    stats.max_list_len = stats.max_list_len.max(1);
+                    if first.centre_prim != NO_ID {
+                        frame.ids[p] = first.centre_prim;
+                        frame.depth[p] = first.centre_z as f32;
+                    }
+                    frame.coverage[p] = first.mask.count_ones() as f32 * inv_n;
+                    let rgba = colors[first.shade as usize];
+                    let weight = (first.mask & full).count_ones() as f32;
+                    let sum = [0, 1, 2].map(|c| (0.0 + rgba[c] * weight) * inv_n);
+                    if sum != self.memo.0 {
+                        self.memo = (sum, to_pixel(sum));
+                    }
+                    frame.color[p] = self.memo.1;
+                    continue;
+                }
                 self.frags.clear();
                 while cur != NIL {
                     let f = pool.get(cur);
