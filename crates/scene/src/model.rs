@@ -139,23 +139,31 @@ impl Scene {
     pub fn validate(&self) -> Result<()> {
         for (m, mesh) in self.meshes.iter().enumerate() {
             let n = mesh.positions.len();
-            if let Some((v, p)) = mesh
-                .positions
-                .iter()
-                .enumerate()
-                .find(|(_, p)| !p.is_finite())
-            {
-                return Err(Error::InvalidScene(format!(
-                    "mesh {m} ('{}') vertex {v} has a non-finite position {p}",
-                    mesh.name
-                )));
-            }
-            for (t, tri) in mesh.indices.iter().enumerate() {
-                if let Some(&i) = tri.iter().find(|&&i| i as usize >= n) {
+            // Every frame's front end validates: a branch-free pass (which
+            // vectorises) first, the search for the culprit only on failure.
+            let finite = mesh.positions.iter().fold(true, |ok, p| {
+                ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
+            });
+            let max_index = mesh.indices.iter().flatten().fold(0, |m, &i| m.max(i));
+            if !finite || ((max_index as usize) >= n && !mesh.indices.is_empty()) {
+                if let Some((v, p)) = mesh
+                    .positions
+                    .iter()
+                    .enumerate()
+                    .find(|(_, p)| !p.is_finite())
+                {
                     return Err(Error::InvalidScene(format!(
-                        "mesh {m} ('{}') triangle {t} uses vertex {i}, but the mesh has {n} vertices",
+                        "mesh {m} ('{}') vertex {v} has a non-finite position {p}",
                         mesh.name
                     )));
+                }
+                for (t, tri) in mesh.indices.iter().enumerate() {
+                    if let Some(&i) = tri.iter().find(|&&i| i as usize >= n) {
+                        return Err(Error::InvalidScene(format!(
+                            "mesh {m} ('{}') triangle {t} uses vertex {i}, but the mesh has {n} vertices",
+                            mesh.name
+                        )));
+                    }
                 }
             }
             for (what, len) in [("normals", mesh.normals.len()), ("uvs", mesh.uvs.len())] {
