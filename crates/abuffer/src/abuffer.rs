@@ -128,6 +128,8 @@ pub struct ABuffer {
     width: u32,
     height: u32,
     last: ABufferStats,
+    /// Occlusion culling switched off (the reference path of the tests).
+    no_cull: bool,
 }
 
 /// What the insertion of one fragment needs besides the fragment.
@@ -147,6 +149,20 @@ impl ABuffer {
             options,
             ..Self::default()
         }
+    }
+
+    /// Switches occlusion culling on (the default) or off. Off, no pixel
+    /// gets an opaque bound, so nothing is culled on arrival, no block is
+    /// skipped and nothing is pruned behind a bound: every fragment reaches
+    /// its list (the overflow policy still applies). The image, coverage,
+    /// ids and sample ids are the same either way (culling only drops
+    /// fragments that lose every sample and the centre; colours may differ
+    /// in the last bit of rounding, within one 8-bit step); only the work
+    /// counters and the time differ. Kept as the reference the culling is
+    /// tested against, and to measure what it saves.
+    pub fn with_occlusion_culling(mut self, on: bool) -> Self {
+        self.no_cull = !on;
+        self
     }
 
     /// The options.
@@ -497,7 +513,7 @@ impl ABuffer {
     /// supporting `B` have `zmin <= zmax <= B`, so pruning never removes
     /// them; a merge keeps every sample's depth.
     fn note_opaque(&mut self, ctx: &Ctx<'_>, f: &Fragment, m: &Fragment, stats: &mut ABufferStats) {
-        if ctx.alpha < 1.0 {
+        if ctx.alpha < 1.0 || self.no_cull {
             return;
         }
         let full = self.options.pattern.full_mask();

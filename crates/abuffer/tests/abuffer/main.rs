@@ -4,6 +4,7 @@
 
 mod common;
 mod convergence;
+mod culling;
 mod depth_modes;
 mod exactness;
 mod memory;
