@@ -3,9 +3,12 @@
 //!
 //! `cargo run --release -p hider-abuffer --example measure [-- --quick]`
 //!
-//! Prints two markdown tables (used in `docs/abuffer.md`). Timings are
-//! the best CPU time of a few runs of `render` alone (the front end is shared and not
-//! timed). `--quick` skips the 100k-triangle scene.
+//! Prints two markdown tables (used in `docs/abuffer.md`). Timings are CPU
+//! time of `render` alone (the front end is shared and not timed): per
+//! scene, every hider is timed once per round for 5 rounds (interleaved,
+//! so load changes hit all alike), each time as a batch of renders of
+//! about 150 ms (the thread CPU clock ticks every few ms); the best round
+//! counts. `--quick` skips the 100k-triangle scene.
 
 use std::time::{Duration, Instant};
 
@@ -33,18 +36,54 @@ fn cpu_time(start: Instant) -> Duration {
         .map_or_else(|| start.elapsed(), Duration::from_nanos)
 }
 
-/// Best CPU time of `runs` renders, and the stats of the last.
-fn time(h: &mut dyn Hider, s: &ScreenScene, runs: u32) -> (Duration, hider_scene::Stats) {
-    let mut frame = Frame::new(s.viewport.width, s.viewport.height).expect("frame");
-    let mut best = Duration::MAX;
-    let mut stats = hider_scene::Stats::default();
+/// CPU time per render of `h` on `s`: `reps` renders back to back, total
+/// CPU time divided by `reps` (the thread's CPU clock advances in ticks of
+/// a few milliseconds, so short renders are timed in batches), and the
+/// stats of the last.
+fn time_batch(
+    h: &mut dyn Hider,
+    s: &ScreenScene,
+    frame: &mut Frame,
+    reps: u32,
+) -> (Duration, hider_scene::Stats) {
     let origin = Instant::now();
-    for _ in 0..runs {
-        let t = cpu_time(origin);
-        stats = h.render(s, &mut frame).expect("render");
-        best = best.min(cpu_time(origin).saturating_sub(t));
+    let t = cpu_time(origin);
+    let mut stats = hider_scene::Stats::default();
+    for _ in 0..reps {
+        stats = h.render(s, frame).expect("render");
     }
-    (best, stats)
+    (cpu_time(origin).saturating_sub(t) / reps, stats)
+}
+
+/// Times every hider of `hiders` on `s`, interleaved: `rounds` rounds,
+/// each timing every hider once (a batch of renders lasting about
+/// `BATCH`), so that a change in machine load hits all of them alike.
+/// Returns each hider's best time per render and last stats.
+fn time_interleaved(
+    hiders: &mut [(String, Box<dyn Hider>)],
+    s: &ScreenScene,
+    rounds: u32,
+) -> Vec<(Duration, hider_scene::Stats)> {
+    const BATCH: Duration = Duration::from_millis(150);
+    let mut frame = Frame::new(s.viewport.width, s.viewport.height).expect("frame");
+    // Warm-up render (first-touch page faults) and batch size.
+    let reps: Vec<u32> = hiders
+        .iter_mut()
+        .map(|(_, h)| {
+            let wall = Instant::now();
+            h.render(s, &mut frame).expect("render");
+            let once = wall.elapsed().max(Duration::from_micros(100));
+            (BATCH.as_secs_f64() / once.as_secs_f64()).ceil().clamp(1.0, 50.0) as u32
+        })
+        .collect();
+    let mut best = vec![(Duration::MAX, hider_scene::Stats::default()); hiders.len()];
+    for _ in 0..rounds {
+        for (k, (_, h)) in hiders.iter_mut().enumerate() {
+            let (t, stats) = time_batch(h.as_mut(), s, &mut frame, reps[k]);
+            best[k] = (best[k].0.min(t), stats);
+        }
+    }
+    best
 }
 
 fn hiders() -> Vec<(String, Box<dyn Hider>)> {
@@ -123,7 +162,10 @@ fn speed_table(quick: bool) {
             procedural::random_soup(100_000, 1),
         ));
     }
-    println!("## CPU time at 1024 x 1024 (render only, best of 3, ms)\n");
+    let rounds = 5;
+    println!(
+        "## CPU time at 1024 x 1024 (render only, ms per render: best of {rounds} interleaved rounds of batched renders)\n"
+    );
     let names: Vec<String> = hiders().into_iter().map(|(n, _)| n).collect();
     println!(
         "| scene | {} | ssaa 32 / abuffer (per-sample) | ssaa 32 / abuffer (minmax) |",
@@ -132,21 +174,18 @@ fn speed_table(quick: bool) {
     println!("|---|{}---|---|", "---|".repeat(names.len()));
     for (name, scene) in &scenes {
         let s = screen(scene, 1024, 1024);
+        let mut hs = hiders();
+        let times = time_interleaved(&mut hs, &s, rounds);
+        let ms: Vec<f64> = times.iter().map(|(t, _)| t.as_secs_f64() * 1e3).collect();
         let mut row = format!("| {name} |");
-        let mut ms = Vec::new();
-        let mut notes = Vec::new();
-        for (hname, mut h) in hiders() {
-            let (t, stats) = time(h.as_mut(), &s, 3);
-            let v = t.as_secs_f64() * 1e3;
-            ms.push(v);
-            row += &format!(" {v:.0} |");
-            notes.push(format!("{hname}: {stats}"));
+        for v in &ms {
+            row += &format!(" {v:.1} |");
         }
         let (ssaa32, ps, mm) = (ms[4], ms[5], ms[6]);
         row += &format!(" {:.2} | {:.2} |", ssaa32 / ps, ssaa32 / mm);
         println!("{row}");
-        for n in notes {
-            eprintln!("  {name} / {n}");
+        for ((hname, _), (_, stats)) in hs.iter().zip(&times) {
+            eprintln!("  {name} / {hname}: {stats}");
         }
     }
     println!();
@@ -158,22 +197,49 @@ fn main() {
     speed_table(quick);
     // Merging: how much Carpenter's same-surface merge saves on a mesh.
     let s = screen(&procedural::uv_sphere(200), 1024, 1024);
-    for merge in [
+    let mut hs: Vec<(String, Box<dyn Hider>)> = [
         MergePolicy::Off,
         MergePolicy::SameColor,
         MergePolicy::SameSurface,
-    ] {
-        let mut a = ABuffer::new(ABufferOptions::default().with_merge(merge));
-        let (t, _) = time(&mut a, &s, 1);
-        let st = a.stats();
+    ]
+    .into_iter()
+    .map(|merge| {
+        let h: Box<dyn Hider> = Box::new(ABuffer::new(ABufferOptions::default().with_merge(merge)));
+        (format!("{merge:?}"), h)
+    })
+    .collect();
+    let times = time_interleaved(&mut hs, &s, 3);
+    for ((merge, _), (t, st)) in hs.iter().zip(&times) {
+        let get = |k: &str| st.get(k).unwrap_or(0);
         println!(
-            "uv_sphere(200) merge {merge:?}: {:.0} ms, fragments {}, merged {}, mean list {:.3}, max list {}, peak MB {:.1}",
+            "uv_sphere(200) merge {merge}: {:.1} ms, fragments {}, merged {}, mean list {:.3}, max list {}, peak MB {:.1}",
             t.as_secs_f64() * 1e3,
-            st.fragments,
-            st.merged,
-            st.mean_list_len,
-            st.max_list_len,
-            st.bytes as f64 / 1e6
+            get("fragments"),
+            get("merged"),
+            get("mean list x1000") as f64 / 1000.0,
+            get("max list"),
+            st.peak_bytes as f64 / 1e6
         );
+    }
+    // What occlusion culling saves (same image).
+    for (name, scene) in [
+        ("random_soup 10k", procedural::random_soup(10_000, 1)),
+        ("uv_sphere(200)", procedural::uv_sphere(200)),
+    ] {
+        let s = screen(&scene, 1024, 1024);
+        let mut hs: Vec<(String, Box<dyn Hider>)> = vec![
+            ("culling on".into(), Box::new(ABuffer::new(ABufferOptions::default()))),
+            (
+                "culling off".into(),
+                Box::new(ABuffer::new(ABufferOptions::default()).with_occlusion_culling(false)),
+            ),
+        ];
+        let times = time_interleaved(&mut hs, &s, 3);
+        for ((label, _), (t, st)) in hs.iter().zip(&times) {
+            println!(
+                "{name} {label}: {:.1} ms, {st}",
+                t.as_secs_f64() * 1e3
+            );
+        }
     }
 }

@@ -15,7 +15,7 @@
 use hider_geom::PlaneEq;
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, Stats, check_frame};
 
-use crate::coverage::{Coverage, DepthBounds, TriCoverage, pixel_range, plane_depth};
+use crate::coverage::{Class, Coverage, DepthBounds, TriCoverage, pixel_range, plane_depth};
 use crate::fragment::{Fragment, FragmentPool, MERGED_BASE, NIL};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy};
 use crate::palette::prim_colors;
@@ -365,6 +365,9 @@ impl ABuffer {
         let bounds = DepthBounds::new(&plane, pattern, self.options.depth != DepthMode::PerSample);
         let alpha = self.colors[tri.prim as usize][3];
         let w = self.width as usize;
+        let full_mask = pattern.full_mask();
+        let hull_x = if up_x { hx0 } else { hx1 };
+        let hull_y = if up_y { hy0 } else { hy1 };
         for j in y0..=y1 {
             let row = j as usize * w;
             let grow = (j - ty0) as usize * TILE as usize;
@@ -383,10 +386,45 @@ impl ABuffer {
                 }
                 let rx0 = (tx0 + start * BLOCK).max(x0);
                 let rx1 = (tx0 + bx * BLOCK - 1).min(x1);
-                for (i, c) in setup.row(rx0, rx1, j) {
+                let (rx0, rx1) = setup.row_span(rx0, rx1, j);
+                let step = setup.step_x();
+                let mut base = setup.corner_values(rx0, j);
+                for i in rx0..=rx1 {
+                    let here = base;
+                    base = [0, 1, 2].map(|e| base[e] + step[e]);
+                    let class = setup.classify(here);
+                    if class == Class::Empty {
+                        continue;
+                    }
+                    let p = row + i as usize;
+                    let occluder = self.pool.pixel(p).occluder;
+                    let c = if class == Class::Full {
+                        Coverage {
+                            mask: full_mask,
+                            centre: true,
+                            full: true,
+                        }
+                    } else {
+                        // A partial pixel is first tested with the plane at
+                        // its hull corner, a lower bound of any zmin it
+                        // could have (monotonic plane, see `DepthBounds`):
+                        // hidden ones skip the per-sample mask.
+                        if occluder < f32::INFINITY {
+                            let near = plane_depth(&plane, i, j, (hull_x, hull_y)) as f32;
+                            if near > occluder {
+                                stats.fragments += 1;
+                                stats.culled += 1;
+                                continue;
+                            }
+                        }
+                        let c = setup.partial(here);
+                        if c.is_empty() {
+                            continue;
+                        }
+                        c
+                    };
                     stats.fragments += 1;
                     stats.full_coverage += u64::from(c.full);
-                    let p = row + i as usize;
                     // A full mask's bounds do not need the centre: it is
                     // evaluated after the cull test.
                     let mut centre_z = f64::INFINITY;
@@ -398,7 +436,7 @@ impl ABuffer {
                     // [zmin, zmax], so the strict comparisons of culling and
                     // pruning are exact.
                     let zmin = bounds.bound(&plane, (i, j), c, centre_z, false) as f32;
-                    if zmin > self.pool.pixel(p).occluder {
+                    if zmin > occluder {
                         stats.culled += 1;
                         continue;
                     }

@@ -64,6 +64,17 @@ impl TruncFast for f64 {
     }
 }
 
+/// How the sample hull of a pixel lies against a triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Class {
+    /// Every sample and the centre are covered.
+    Full,
+    /// Nothing is covered.
+    Empty,
+    /// Some edge crosses the hull: test the samples.
+    Partial,
+}
+
 /// Per-triangle set-up for mask generation.
 ///
 /// Masks are computed on the 8 x 4 grid, row by row: sample `(c, r)` is
@@ -197,6 +208,16 @@ impl TriCoverage {
         (lo as u32, hi as u32)
     }
 
+    /// [`Self::span`] for rows long enough for it to pay, else `x0..=x1`.
+    #[inline]
+    pub fn row_span(&self, x0: u32, x1: u32, j: u32) -> (u32, u32) {
+        if x1 >= x0 + SPAN_MIN {
+            self.span(x0, x1, j)
+        } else {
+            (x0, x1)
+        }
+    }
+
     /// The pixels `x0..=x1` of row `j` that this triangle touches, with
     /// their coverage, left to right. The row is first clipped to
     /// [`Self::span`]; along it the edge values are stepped incrementally
@@ -204,11 +225,7 @@ impl TriCoverage {
     #[inline]
     pub fn row(&self, x0: u32, x1: u32, j: u32) -> impl Iterator<Item = (u32, Coverage)> + '_ {
         // Short rows are cheaper to test pixel by pixel.
-        let (x0, x1) = if x1 - x0 >= SPAN_MIN {
-            self.span(x0, x1, j)
-        } else {
-            (x0, x1)
-        };
+        let (x0, x1) = self.row_span(x0, x1, j);
         let step = self.step_x();
         let mut base = self.corner_values(x0, j);
         (x0..=x1).filter_map(move |i| {
@@ -221,16 +238,35 @@ impl TriCoverage {
     /// The coverage of the pixel whose corner values are `base`.
     #[inline]
     pub fn at(&self, base: [i64; 3]) -> Coverage {
-        if (0..3).all(|e| base[e] + self.hull_min[e] > 0) {
-            return Coverage {
+        match self.classify(base) {
+            Class::Full => Coverage {
                 mask: self.full,
                 centre: true,
                 full: true,
-            };
+            },
+            Class::Empty => Coverage::default(),
+            Class::Partial => self.partial(base),
         }
-        if (0..3).any(|e| base[e] + self.hull_max[e] <= 0) {
-            return Coverage::default();
+    }
+
+    /// The first step of [`Self::at`]: whether the four corners of the
+    /// sample hull are inside all three edges (every sample and the centre
+    /// covered), all outside one edge (nothing covered), or neither.
+    #[inline]
+    pub fn classify(&self, base: [i64; 3]) -> Class {
+        if (0..3).all(|e| base[e] + self.hull_min[e] > 0) {
+            Class::Full
+        } else if (0..3).any(|e| base[e] + self.hull_max[e] <= 0) {
+            Class::Empty
+        } else {
+            Class::Partial
         }
+    }
+
+    /// The second step of [`Self::at`] for a [`Class::Partial`] pixel: its
+    /// mask and centre, tested sample by sample (possibly empty).
+    #[inline]
+    pub fn partial(&self, base: [i64; 3]) -> Coverage {
         let centre = (0..3).all(|e| base[e] + self.centre[e] > 0);
         let mask = match self.pattern {
             SamplePattern::Centre => u32::from(centre),
