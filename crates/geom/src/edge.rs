@@ -56,6 +56,7 @@ pub struct EdgeFunction {
 impl EdgeFunction {
     /// The edge function of `from -> to`, for a triangle whose orientation
     /// is positive, with the top-left bias applied.
+    #[inline]
     pub fn new(from: FixedPt, to: FixedPt) -> Self {
         let (fx, fy) = (i64::from(from.x), i64::from(from.y));
         let a = -(i64::from(to.y) - fy);
@@ -84,6 +85,7 @@ impl EdgeFunction {
 
 /// The three edge functions of a triangle with positive orientation
 /// (`orient2d(v[0], v[1], v[2]) > 0`).
+#[inline]
 pub fn triangle_edges(v: &[FixedPt; 3]) -> [EdgeFunction; 3] {
     [
         EdgeFunction::new(v[0], v[1]),

@@ -166,14 +166,24 @@ fn prefetch<T>(tri: &T) {
     let _ = tri;
 }
 
+/// What [`for_each_in_tile`] hands each triangle to. A trait with an
+/// `#[inline(always)]` method rather than a closure, so that the whole
+/// kernel inlines into each of its target-feature copies (a closure is
+/// compiled on its own, with baseline features).
+pub(crate) trait DrawTri<T> {
+    /// Draws `tri`, whose depths are at least `low`.
+    fn draw(&mut self, tri: &T, low: f32);
+}
+
 /// Calls `draw` with the triangles of tile `tile` in primitive order, each
 /// with its entry's depth bound: for each chunk (`tris[c]` binned into
 /// `chunks[c]`), its tile bin merged with its large list (both ascending).
-pub(crate) fn for_each_in_tile<T>(
+#[inline(always)]
+pub(crate) fn for_each_in_tile<T, D: DrawTri<T>>(
     tris: &[&[T]],
     chunks: &[ChunkBins],
     tile: usize,
-    mut draw: impl FnMut(&T, f32),
+    draw: &mut D,
 ) {
     for (chunk, tris) in chunks.iter().zip(tris) {
         let small = &chunk.tiles[tile];
@@ -183,7 +193,7 @@ pub(crate) fn for_each_in_tile<T>(
                 if let Some(ahead) = small.get(i + PREFETCH_AHEAD) {
                     prefetch(&tris[ahead.index as usize]);
                 }
-                draw(&tris[e.index as usize], e.low);
+                draw.draw(&tris[e.index as usize], e.low);
             }
             continue;
         }
@@ -198,13 +208,14 @@ pub(crate) fn for_each_in_tile<T>(
                 b += 1;
                 large[b - 1]
             };
-            draw(&tris[e.index as usize], e.low);
+            draw.draw(&tris[e.index as usize], e.low);
         }
     }
 }
 
 /// Whether any chunk has a triangle for tile `tile` (large triangles are
 /// counted for every tile; the tile's own bounding-box test sorts them out).
+#[inline]
 pub(crate) fn tile_has_work(chunks: &[ChunkBins], tile: usize) -> bool {
     chunks
         .iter()

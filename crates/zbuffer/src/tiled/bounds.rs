@@ -44,6 +44,7 @@ pub(crate) struct DepthBounds {
 impl DepthBounds {
     /// Bounds of the triangle `v` with depth plane `plane`; `None` if the
     /// plane is not finite (then nothing may be rejected).
+    #[inline(always)]
     pub(crate) fn new(v: &[FixedPt; 3], plane: &PlaneEq) -> Option<Self> {
         let p = v.map(|q| q.to_pixels());
         let (mut max_x, mut max_y) = (0.0f64, 0.0f64);
@@ -89,7 +90,7 @@ impl DepthBounds {
 
     /// Lower bound of the computed depths at the pixel centres of columns
     /// `x0..=x1`, rows `y0..=y1` (a rectangle inside the triangle's box).
-    #[inline]
+    #[inline(always)]
     pub(crate) fn rect_low(&self, x0: u32, y0: u32, x1: u32, y1: u32) -> f64 {
         let x = if self.plane.dx >= 0.0 { x0 } else { x1 };
         let y = if self.plane.dy >= 0.0 { y0 } else { y1 };

@@ -116,6 +116,9 @@ pub struct TiledZBuffer {
     scratch: Scratch,
     /// The image held in the tiles: its viewport, grid and format.
     drawn: Option<(Viewport, Grid, DepthFormat)>,
+    /// Whether the AVX2 kernel may be used (tests turn it off to compare
+    /// the two kernels).
+    wide_kernel: bool,
 }
 
 impl TiledZBuffer {
@@ -135,6 +138,7 @@ impl TiledZBuffer {
             chunks: Vec::new(),
             scratch: Scratch::default(),
             drawn: None,
+            wide_kernel: true,
         }
     }
 
@@ -327,22 +331,18 @@ impl TiledZBuffer {
         bufs.resize_with(grid.tiles(), || TileBuf::new(grid.tile));
         bufs.truncate(grid.tiles());
         let chunks = &self.chunks;
+        let wide = self.wide_kernel;
         let draw_band = |b: usize, band: &mut [TileBuf<K>]| {
-            let y0 = b as u32 * grid.tile;
-            let h = grid.tile.min(vp.height - y0);
-            for (tx, buf) in band.iter_mut().enumerate() {
-                let x0 = tx as u32 * grid.tile;
-                buf.start(x0, y0, grid.tile.min(vp.width - x0), h);
-                let t = b * grid.cols as usize + tx;
-                if bins::tile_has_work(chunks, t) {
-                    bins::for_each_in_tile(&tris, chunks, t, |tri, low| {
-                        buf.draw(tri, low, vp, hiz)
-                    });
-                }
-                if !buf.is_active() {
-                    buf.stats.tiles_skipped += 1;
-                }
-            }
+            let job = BandJob {
+                wide,
+                b,
+                grid,
+                vp,
+                tris: &tris,
+                chunks,
+                hiz,
+            };
+            job.dispatch(band);
         };
         let cols = grid.cols as usize;
         match frame {
@@ -445,6 +445,98 @@ impl TiledZBuffer {
                 .enumerate()
                 .for_each(work),
         }
+    }
+}
+
+/// Everything drawing one band of tiles needs.
+struct BandJob<'a, T> {
+    /// Whether the AVX2 kernel may be used.
+    wide: bool,
+    /// Band index (row of tiles).
+    b: usize,
+    grid: Grid,
+    vp: Viewport,
+    tris: &'a [&'a [T]],
+    chunks: &'a [ChunkBins],
+    hiz: bool,
+}
+
+impl<T: RasterTri> BandJob<'_, T> {
+    /// Draws the band with the widest vector instructions the CPU has.
+    ///
+    /// The kernel is compiled twice: for baseline x86-64 (SSE2) and, where
+    /// the CPU reports AVX2 and FMA at run time, for those (4 `f64` or 8
+    /// `i32` lanes instead of 2 or 4, and blends). Everything the band calls
+    /// is `#[inline(always)]`, so all of it is compiled with the features
+    /// of the copy it lands in. Same instructions' semantics, same results:
+    /// IEEE arithmetic is exact per operation and Rust never contracts
+    /// `a * b + c` into an FMA, so both copies give the same bits (the
+    /// property tests run whichever this machine picks; CI's machine has
+    /// AVX2, and `tests::both_kernels_agree` runs both).
+    fn dispatch<K: TileKey>(&self, band: &mut [TileBuf<K>]) {
+        #[cfg(target_arch = "x86_64")]
+        if self.wide
+            && std::arch::is_x86_feature_detected!("avx2")
+            && std::arch::is_x86_feature_detected!("fma")
+        {
+            self.draw_avx2(band);
+            return;
+        }
+        self.draw(band);
+    }
+
+    /// [`Self::draw`] compiled for AVX2 and FMA.
+    ///
+    /// The project's second `unsafe` block: calling a `target_feature`
+    /// function is unsafe only because the CPU might lack the feature, and
+    /// [`Self::dispatch`] checked that it has them.
+    #[cfg(target_arch = "x86_64")]
+    #[allow(unsafe_code)]
+    fn draw_avx2<K: TileKey>(&self, band: &mut [TileBuf<K>]) {
+        #[target_feature(enable = "avx2,fma")]
+        unsafe fn kernel<T: RasterTri, K: TileKey>(job: &BandJob<'_, T>, band: &mut [TileBuf<K>]) {
+            job.draw(band);
+        }
+        // SAFETY: `dispatch` calls this only after detecting AVX2 and FMA.
+        unsafe { kernel(self, band) }
+    }
+
+    /// Draws every tile of the band from its bins.
+    #[inline(always)]
+    fn draw<K: TileKey>(&self, band: &mut [TileBuf<K>]) {
+        let (grid, vp) = (self.grid, self.vp);
+        let y0 = self.b as u32 * grid.tile;
+        let h = grid.tile.min(vp.height - y0);
+        for (tx, buf) in band.iter_mut().enumerate() {
+            let x0 = tx as u32 * grid.tile;
+            buf.start(x0, y0, grid.tile.min(vp.width - x0), h);
+            let t = self.b * grid.cols as usize + tx;
+            if bins::tile_has_work(self.chunks, t) {
+                let mut draw = Drawer {
+                    buf: &mut *buf,
+                    vp,
+                    hiz: self.hiz,
+                };
+                bins::for_each_in_tile(self.tris, self.chunks, t, &mut draw);
+            }
+            if !buf.is_active() {
+                buf.stats.tiles_skipped += 1;
+            }
+        }
+    }
+}
+
+/// A tile buffer drawing binned triangles.
+struct Drawer<'a, K> {
+    buf: &'a mut TileBuf<K>,
+    vp: Viewport,
+    hiz: bool,
+}
+
+impl<T: RasterTri, K: TileKey> bins::DrawTri<T> for Drawer<'_, K> {
+    #[inline(always)]
+    fn draw(&mut self, tri: &T, low: f32) {
+        self.buf.draw(tri, low, self.vp, self.hiz);
     }
 }
 

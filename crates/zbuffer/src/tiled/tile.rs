@@ -100,7 +100,7 @@ impl<K: DepthKey> TileBuf<K> {
     /// tile's block-linear storage: 8x8 blocks of 64 consecutive values,
     /// blocks row by row, so a block is one 256-byte run (f32) and its
     /// depth test works on contiguous memory.
-    #[inline]
+    #[inline(always)]
     fn at(&self, x: u32, y: u32) -> usize {
         let (lx, ly) = (x - self.x0, y - self.y0);
         let blocks = ((ly >> 3) * (self.size >> 3) + (lx >> 3)) as usize;
@@ -136,6 +136,7 @@ impl<K: DepthKey> TileBuf<K> {
         }
     }
 
+    #[inline(always)]
     fn activate(&mut self) {
         self.active = true;
         self.stats.tiles_drawn += 1;
@@ -149,6 +150,7 @@ impl<K: DepthKey> TileBuf<K> {
 
     /// Draws one triangle into the tile; `low` is a lower bound of its
     /// computed depths (from its bin entry).
+    #[inline(always)]
     pub(crate) fn draw<T: RasterTri>(&mut self, tri: &T, low: f32, viewport: Viewport, hiz: bool) {
         // Hierarchical depth, triangle level, before the triangle itself is
         // read: nothing it could write is nearer than what the whole tile
@@ -214,6 +216,7 @@ impl<K: DepthKey> TileBuf<K> {
     /// A triangle whose box in the tile is a few pixels: a plain scan of
     /// the box, scalar (too short to vectorise), evaluating the depth only
     /// where the edges pass.
+    #[inline(always)]
     fn small<T: RasterTri>(&mut self, tri: &T, x0: u32, y0: u32, x1: u32, y1: u32) {
         let edges = hider_geom::edge::triangle_edges(tri.v());
         let unit = i64::from(SUBPIXEL_SCALE);
@@ -253,6 +256,7 @@ impl<K: DepthKey> TileBuf<K> {
 
     /// Visits the aligned 8x8 blocks of the tile that the triangle's box
     /// meets.
+    #[inline(always)]
     fn blocks<T: RasterTri>(&mut self, s: &Setup, tri: &T, bounds: Option<&DepthBounds>) {
         let per_row = (self.size / BLOCK) as usize;
         let (_, _, x1, y1) = s.bbox;
@@ -271,6 +275,7 @@ impl<K: DepthKey> TileBuf<K> {
     }
 
     /// One block `(bx, by)..=(xb, yb)` (aligned; clipped to the image).
+    #[inline(always)]
     fn block<T: RasterTri>(
         &mut self,
         s: &Setup,
@@ -351,6 +356,7 @@ impl<K: DepthKey> TileBuf<K> {
     /// `lanes` the offsets along a row, `down` the step per row. Returns
     /// the passes.
     #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
     fn block8<T: RasterTri, const EDGES: bool>(
         &mut self,
         s: &Setup,
@@ -413,6 +419,7 @@ impl<K: DepthKey> TileBuf<K> {
     /// Rasterises rows `ya..=yb`, columns `xa..=xb` (inside the triangle's
     /// box); `EDGES` = false when the block is known to be inside.
     /// Returns the passes.
+    #[inline(always)]
     fn rows<T: RasterTri, const EDGES: bool>(
         &mut self,
         s: &Setup,
@@ -461,6 +468,7 @@ impl<K: DepthKey> TileBuf<K> {
 
     /// Credits `passes` to every block of a rectangle (an over-count for
     /// blocks it only partly covers: that only refreshes them sooner).
+    #[inline(always)]
     fn note_passes_in_rect(&mut self, x0: u32, y0: u32, x1: u32, y1: u32, passes: u32) {
         let per_row = (self.size / BLOCK) as usize;
         for br in (y0 - self.y0) / BLOCK..=(y1 - self.y0) / BLOCK {
@@ -472,6 +480,7 @@ impl<K: DepthKey> TileBuf<K> {
     }
 
     /// Recomputes a block's maximum key from its pixels.
+    #[inline(always)]
     fn refresh_block(&mut self, block: usize) {
         let per_row = (self.size / BLOCK) as usize;
         let (br, bc) = ((block / per_row) as u32, (block % per_row) as u32);
@@ -490,6 +499,7 @@ impl<K: DepthKey> TileBuf<K> {
 
     /// Recomputes the tile's maximum once enough has been drawn since the
     /// last time (half the tile's pixels' worth of passes).
+    #[inline(always)]
     fn refresh_tile_max(&mut self) {
         if self.tile_passes < self.w * self.h / 2 {
             return;
