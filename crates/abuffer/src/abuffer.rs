@@ -123,6 +123,8 @@ pub struct ABuffer {
     bins: Bins,
     gather: Vec<Gather>,
     blocks: BlockFar,
+    /// The triangle set-up, reused.
+    setup: Option<Box<TriCoverage>>,
     scratch: Vec<Shaded>,
     resolver: Resolver,
     width: u32,
@@ -361,7 +363,36 @@ impl ABuffer {
             return Ok(());
         }
         let tri = &scene.tris[t as usize];
-        let setup = TriCoverage::new(tri, pattern);
+        // Set up in place (the set-up is half a kilobyte).
+        let mut setup = self
+            .setup
+            .take()
+            .unwrap_or_else(|| Box::new(TriCoverage::new(tri, pattern)));
+        setup.reset(tri, pattern);
+        let result = self.raster_live(scene, t, &setup, live, (x0, y0, x1, y1), tile, stats);
+        self.setup = Some(setup);
+        result
+    }
+
+    /// The fragments of triangle `t` in the live blocks of `live`.
+    #[allow(clippy::too_many_arguments)]
+    fn raster_live(
+        &mut self,
+        scene: &ScreenScene,
+        t: u32,
+        setup: &TriCoverage,
+        live: u64,
+        (x0, y0, x1, y1): (u32, u32, u32, u32),
+        tile: (u32, u32),
+        stats: &mut ABufferStats,
+    ) -> Result<()> {
+        let (tx0, ty0) = tile;
+        let tri = &scene.tris[t as usize];
+        let pattern = self.options.pattern;
+        let plane = self.planes[t as usize];
+        let (hx0, hy0, hx1, hy1) = pattern.hull();
+        let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
+        let (bx0, bx1) = ((x0 - tx0) / BLOCK, (x1 - tx0) / BLOCK);
         let bounds = DepthBounds::new(&plane, pattern, self.options.depth != DepthMode::PerSample);
         let alpha = self.colors[tri.prim as usize][3];
         let w = self.width as usize;

@@ -81,18 +81,18 @@ pub enum Class {
 /// inside edge `e` when `E_e(pixel corner) + a_e*x_c + b_e*y_r > 0`, i.e.
 /// when `-E_e - a_e*x_c - b_e*y_r < 0`. When the triangle's coefficients
 /// are small enough (every edge shorter than 4096 pixels) and the edge
-/// crosses the sample hull, all those values fit in `i32`, so a row of 8
-/// samples is 3 x 8 lane-parallel adds and `and`s whose sign bits are
-/// gathered with one multiply; otherwise the same test runs in `i64`.
+/// crosses the sample hull, all those values fit in `i32`, so the 32
+/// samples are 3 x 32 lane-parallel adds and `and`s (the offsets are
+/// precomputed per triangle) whose sign bits are gathered with one
+/// multiply per row; otherwise the same test runs in `i64`.
 /// Either way each bit is exactly the shared `contains` test. Patterns
 /// smaller than 32 pick their cells out of the grid mask.
 #[derive(Clone, Debug)]
 pub struct TriCoverage {
     edges: [EdgeFunction; 3],
-    /// `-(a * x_c)` for each edge and grid column (32-bit path).
-    ncol: [[i32; 8]; 3],
-    /// `-(b * y_r)` for each edge and grid row (32-bit path).
-    nrow: [[i32; 4]; 3],
+    /// `-(a * x_c + b * y_r)` for each edge and grid cell `r * 8 + c`
+    /// (32-bit path).
+    noff: [[i32; 32]; 3],
     narrow: bool,
     /// `1 / (256 a)` per edge (0 when `a == 0`), for [`Self::span`].
     inv_step: [f64; 3],
@@ -114,51 +114,55 @@ const fn grid_y(r: usize) -> i64 {
 impl TriCoverage {
     /// Sets up `tri` for sampling with `pattern`.
     pub fn new(tri: &ScreenTri, pattern: SamplePattern) -> Self {
+        let mut setup = Self {
+            edges: [EdgeFunction { a: 0, b: 0, c: 0 }; 3],
+            noff: [[0; 32]; 3],
+            narrow: false,
+            inv_step: [0.0; 3],
+            centre: [0; 3],
+            hull_min: [0; 3],
+            hull_max: [0; 3],
+            pattern,
+            full: 0,
+        };
+        setup.reset(tri, pattern);
+        setup
+    }
+
+    /// [`Self::new`] in place, reusing this set-up's memory.
+    #[inline]
+    pub fn reset(&mut self, tri: &ScreenTri, pattern: SamplePattern) {
         let edges = tri.edges();
         let (hx0, hy0, hx1, hy1) = pattern.hull();
         let narrow = edges.iter().all(|e| e.a.abs() < NARROW && e.b.abs() < NARROW);
-        let mut ncol = [[0i32; 8]; 3];
-        let mut nrow = [[0i32; 4]; 3];
-        let mut centre = [0i64; 3];
-        let mut hull_min = [0i64; 3];
-        let mut hull_max = [0i64; 3];
         for (e, edge) in edges.iter().enumerate() {
             if narrow {
-                for (c, v) in ncol[e].iter_mut().enumerate() {
-                    *v = -(edge.a * grid_x(c)) as i32;
-                }
-                for (r, v) in nrow[e].iter_mut().enumerate() {
-                    *v = -(edge.b * grid_y(r)) as i32;
+                let col: [i32; 8] = std::array::from_fn(|c| -(edge.a * grid_x(c)) as i32);
+                let row: [i32; 4] = std::array::from_fn(|r| -(edge.b * grid_y(r)) as i32);
+                for (cells, r) in self.noff[e].chunks_exact_mut(8).zip(row) {
+                    for (v, c) in cells.iter_mut().zip(col) {
+                        *v = c + r;
+                    }
                 }
             }
             let off = |x: i32, y: i32| edge.a * i64::from(x) + edge.b * i64::from(y);
-            centre[e] = off(CENTRE.0, CENTRE.1);
+            self.centre[e] = off(CENTRE.0, CENTRE.1);
             // The offset is affine: its extremes over the hull are at the
             // corners given by the signs of a and b.
             let (xl, xh) = if edge.a >= 0 { (hx0, hx1) } else { (hx1, hx0) };
             let (yl, yh) = if edge.b >= 0 { (hy0, hy1) } else { (hy1, hy0) };
-            hull_min[e] = off(xl, yl);
-            hull_max[e] = off(xh, yh);
-        }
-        let inv_step = edges.map(|e| {
-            if e.a == 0 {
+            self.hull_min[e] = off(xl, yl);
+            self.hull_max[e] = off(xh, yh);
+            self.inv_step[e] = if edge.a == 0 {
                 0.0
             } else {
-                1.0 / (e.a * i64::from(SUBPIXEL_SCALE)) as f64
-            }
-        });
-        Self {
-            edges,
-            ncol,
-            nrow,
-            narrow,
-            inv_step,
-            centre,
-            hull_min,
-            hull_max,
-            pattern,
-            full: pattern.full_mask(),
+                1.0 / (edge.a * i64::from(SUBPIXEL_SCALE)) as f64
+            };
         }
+        self.edges = edges;
+        self.narrow = narrow;
+        self.pattern = pattern;
+        self.full = pattern.full_mask();
     }
 
     /// The three biased edge values at the top-left corner of pixel
@@ -298,19 +302,18 @@ impl TriCoverage {
         // -E clamped: an edge that far from the pixel is decided for every
         // sample, and the clamp keeps it decided the same way.
         let nb = base.map(|b| (-b).clamp(-CLAMP, CLAMP) as i32);
+        let mut bytes = [0u8; 32];
+        for (k, byte) in bytes.iter_mut().enumerate() {
+            // Negative in all three edges = inside all three.
+            let w = (nb[0] + self.noff[0][k]) & (nb[1] + self.noff[1][k]) & (nb[2] + self.noff[2][k]);
+            *byte = (w >> 31) as u8;
+        }
+        // Gather the top bit of each byte: byte c of a row lands on bit
+        // 56 + c of the product.
         let mut mask = 0u32;
-        for r in 0..4 {
-            let v = [0, 1, 2].map(|e| nb[e] + self.nrow[e][r]);
-            let mut bytes = [0u8; 8];
-            for (c, byte) in bytes.iter_mut().enumerate() {
-                // Negative in all three edges = inside all three.
-                let w = (v[0] + self.ncol[0][c]) & (v[1] + self.ncol[1][c]) & (v[2] + self.ncol[2][c]);
-                *byte = (w >> 31) as u8;
-            }
-            // Gather the top bit of each byte: byte c lands on bit 56 + c.
-            let x = u64::from_le_bytes(bytes) & 0x8080_8080_8080_8080;
-            let bits = x.wrapping_mul(0x0002_0408_1020_4081) >> 56;
-            mask |= (bits as u32) << (8 * r);
+        for (r, row) in bytes.chunks_exact(8).enumerate() {
+            let x = u64::from_le_bytes(row.try_into().expect("8 bytes")) & 0x8080_8080_8080_8080;
+            mask |= ((x.wrapping_mul(0x0002_0408_1020_4081) >> 56) as u32) << (8 * r);
         }
         mask
     }

@@ -1,6 +1,9 @@
-//! Per-primitive colours and opacities, computed once per frame.
+//! Per-primitive colours and opacities, computed once per frame, and the
+//! final conversion to sRGB.
 
-use hider_scene::shade::prim_color;
+use std::sync::OnceLock;
+
+use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{ScreenScene, ShadeMode};
 
 /// Fills `out` with `[r, g, b, opacity]` (linear) for every primitive of
@@ -13,9 +16,86 @@ pub fn prim_colors(scene: &ScreenScene, mode: ShadeMode, out: &mut Vec<[f32; 4]>
     }));
 }
 
+/// For `v = 1..=255`, the smallest `f32` in `[0, 1]` (as bits) that
+/// `to_srgb8` maps to `v` or more; `None` if the conversion is found not
+/// to be monotonic around a threshold.
+///
+/// `to_srgb8` clamps, applies the sRGB curve (a `powf`) and rounds; it is
+/// non-decreasing (checked over every `f32` of `[0, 1]` with the platform's
+/// `powf` when this table was introduced), so the 255 thresholds found by
+/// bisection reproduce it exactly: the value of `x` is the number of
+/// thresholds at or below it. Each threshold is also checked against its
+/// neighbour below; should a platform's `powf` break monotonicity there,
+/// the table is dropped and [`to_pixel`] calls `to_srgb8`.
+fn thresholds() -> Option<&'static [u32; 255]> {
+    static TABLE: OnceLock<Option<[u32; 255]>> = OnceLock::new();
+    TABLE
+        .get_or_init(|| {
+            let one = 1.0f32.to_bits();
+            let level = |bits: u32| to_srgb8(f32::from_bits(bits));
+            let mut table = [0u32; 255];
+            for (k, t) in table.iter_mut().enumerate() {
+                let v = k as u8 + 1;
+                let (mut lo, mut hi) = (0u32, one);
+                while lo < hi {
+                    let mid = lo + (hi - lo) / 2;
+                    if level(mid) >= v {
+                        hi = mid;
+                    } else {
+                        lo = mid + 1;
+                    }
+                }
+                if level(lo) != v || (lo > 0 && level(lo - 1) != v - 1) {
+                    return None;
+                }
+                *t = lo;
+            }
+            Some(table)
+        })
+        .as_ref()
+}
+
+/// `to_srgb8(x)`, exactly, from the threshold table.
+#[inline]
+fn srgb8(table: &[u32; 255], x: f32) -> u8 {
+    if x > 0.0 && x < 1.0 {
+        table.partition_point(|&t| t <= x.to_bits()) as u8
+    } else {
+        to_srgb8(x)
+    }
+}
+
 /// Converts a linear colour (already composited over the black background)
-/// to an opaque sRGB pixel.
+/// to an opaque sRGB pixel: `to_srgb8` per channel.
 pub fn to_pixel(rgb: [f32; 3]) -> [u8; 4] {
-    use hider_scene::shade::to_srgb8;
-    [to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]), 255]
+    match thresholds() {
+        Some(t) => [srgb8(t, rgb[0]), srgb8(t, rgb[1]), srgb8(t, rgb[2]), 255],
+        None => [to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]), 255],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The table gives `to_srgb8`'s value around every threshold and on a
+    /// dense sweep of `[0, 1]` and beyond.
+    #[test]
+    fn the_table_is_to_srgb8() {
+        let t = thresholds().expect("monotonic conversion");
+        for &b in t.iter() {
+            for bits in b.saturating_sub(3)..=b + 3 {
+                let x = f32::from_bits(bits);
+                assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
+            }
+        }
+        for k in 0..=200_000u32 {
+            let x = k as f32 / 190_000.0 - 0.01;
+            assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
+        }
+        for x in [f32::NAN, -0.0, 0.0, 1.0, f32::INFINITY, -1.0, 2.0, f32::MIN_POSITIVE] {
+            assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
+        }
+        assert_eq!(to_pixel([0.0, 0.5, 1.0]), [0, to_srgb8(0.5), 255, 255]);
+    }
 }
