@@ -98,14 +98,22 @@ impl Gather {
     };
 }
 
+/// One triangle of a bin.
+#[derive(Clone, Copy, Debug, Default)]
+struct BinItem {
+    near: f32,
+    tri: u32,
+    range: (u32, u32, u32, u32),
+}
+
 /// Triangles binned by tile: `items[start[t]..start[t + 1]]` are the
 /// triangles (in submission order) whose pixel range meets tile `t`.
 #[derive(Clone, Debug, Default)]
 struct Bins {
     start: Vec<u32>,
-    /// Triangle index and its pixel range, so that a tile reads its bin
-    /// sequentially.
-    items: Vec<(u32, (u32, u32, u32, u32))>,
+    /// Nearest vertex depth, triangle index and pixel range, so that a
+    /// tile reads its bin sequentially (and sorts it front to back).
+    items: Vec<BinItem>,
     ranges: Vec<(u32, u32, u32, u32)>,
     /// Tiles whose pixel entries may hold lists of the last frame.
     dirty: Vec<bool>,
@@ -132,6 +140,8 @@ pub struct ABuffer {
     last: ABufferStats,
     /// Occlusion culling switched off (the reference path of the tests).
     no_cull: bool,
+    /// Triangles taken in submission order instead of front to back.
+    no_sort: bool,
 }
 
 /// What the insertion of one fragment needs besides the fragment.
@@ -164,6 +174,19 @@ impl ABuffer {
     /// tested against, and to measure what it saves.
     pub fn with_occlusion_culling(mut self, on: bool) -> Self {
         self.no_cull = !on;
+        self
+    }
+
+    /// Whether each tile takes its triangles front to back (the default:
+    /// sorted by nearest vertex depth) or in submission order. The exact
+    /// answer (samples, coverage, ids) is the same either way, since lists
+    /// are ordered by depth at resolve; front to back, the nearest surfaces
+    /// set the opaque bounds first, so far more of what lies behind is
+    /// culled (per pixel or per block) instead of inserted and pruned.
+    /// Merging decisions, which look at the latest fragments of a list,
+    /// and colour rounding may differ.
+    pub fn with_front_to_back(mut self, on: bool) -> Self {
+        self.no_sort = !on;
         self
     }
 
@@ -266,7 +289,7 @@ impl ABuffer {
             bins.start[t + 1] += bins.start[t];
         }
         bins.items.clear();
-        bins.items.resize(bins.start[tiles] as usize, (0, (0, 0, 0, 0)));
+        bins.items.resize(bins.start[tiles] as usize, BinItem::default());
         let mut fill = bins.start.clone();
         for (t, &(x0, y0, x1, y1)) in bins.ranges.iter().enumerate() {
             if x0 > x1 {
@@ -275,7 +298,11 @@ impl ABuffer {
             for ty in y0 / TILE..=y1 / TILE {
                 for tx in x0 / TILE..=x1 / TILE {
                     let slot = &mut fill[(ty * tiles_x + tx) as usize];
-                    bins.items[*slot as usize] = (t as u32, (x0, y0, x1, y1));
+                    bins.items[*slot as usize] = BinItem {
+                        near: scene.tris[t].z.iter().copied().fold(f64::INFINITY, f64::min) as f32,
+                        tri: t as u32,
+                        range: (x0, y0, x1, y1),
+                    };
                     *slot += 1;
                 }
             }
@@ -809,8 +836,21 @@ impl Hider for ABuffer {
                 }
                 self.gather.fill(Gather::EMPTY);
                 self.blocks.reset(x1 - x0, y1 - y0);
+                // Front to back: the nearest surfaces first set the opaque
+                // bounds that cull what lies behind them. The order changes
+                // no sample (the lists are sorted by depth at resolve),
+                // only how much work is culled.
+                if !self.no_sort {
+                    self.bins.items[b0..b1].sort_unstable_by(|a, b| {
+                        a.near.total_cmp(&b.near).then(a.tri.cmp(&b.tri))
+                    });
+                }
                 for b in b0..b1 {
-                    let (tri, (rx0, ry0, rx1, ry1)) = self.bins.items[b];
+                    let BinItem {
+                        tri,
+                        range: (rx0, ry0, rx1, ry1),
+                        ..
+                    } = self.bins.items[b];
                     let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
                     self.raster(scene, tri, rect, (x0, y0), &mut stats)?;
                 }

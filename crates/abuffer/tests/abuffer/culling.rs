@@ -182,7 +182,9 @@ fn every_culling_stage_fires_on_a_deep_scene() {
     for scene in [stack_and_soup(), procedural::random_soup(3000, 5)] {
         let s = screen(&scene, 200, 140);
         let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
-        let mut a = ABuffer::new(opts);
+        // Submission order: the soup arrives before the squares hiding it,
+        // so it is inserted and then pruned.
+        let mut a = ABuffer::new(opts).with_front_to_back(false);
         let mut r = ABuffer::new(opts).with_occlusion_culling(false);
         let fa = render(&mut a, &s);
         let fr = render(&mut r, &s);
@@ -195,12 +197,54 @@ fn every_culling_stage_fires_on_a_deep_scene() {
         assert!(max_color_diff(&fa, &fr) <= 1);
     }
     // The squares arrive after the soup they hide, but each square hides
-    // the next ones: whole blocks of them are skipped.
+    // the next ones: whole blocks of them are skipped. Front to back (the
+    // default) the soup is skipped too, and nothing needs pruning.
     let s = screen(&stack_and_soup(), 200, 140);
-    let mut a = ABuffer::new(ABufferOptions::default());
-    render(&mut a, &s);
-    let st = a.stats();
-    assert!(st.culled_blocks > 100, "{st:?}");
+    let mut a = ABuffer::new(ABufferOptions::default()).with_front_to_back(false);
+    let fa = render(&mut a, &s);
+    let submitted = a.stats();
+    assert!(submitted.culled_blocks > 100, "{submitted:?}");
+    let mut b = ABuffer::new(ABufferOptions::default());
+    let fb = render(&mut b, &s);
+    let sorted = b.stats();
+    assert!(sorted.culled_blocks > submitted.culled_blocks, "{sorted:?}");
+    assert!(sorted.fragments < submitted.fragments, "{sorted:?}");
+    assert_eq!(sorted.pruned, 0, "{sorted:?}");
+    assert_eq!(fa.ids, fb.ids);
+    assert_eq!(fa.coverage, fb.coverage);
+    assert!(max_color_diff(&fa, &fb) <= 1);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Front to back or in submission order: the same samples, coverage
+    /// and ids (merging off), colours within one step.
+    #[test]
+    fn processing_order_changes_no_sample(
+        big in 1u32..30,
+        small in 1u32..300,
+        glass in 0u32..30,
+        seed in any::<u64>(),
+        size in 0usize..SIZES.len(),
+    ) {
+        let (w, h) = SIZES[size];
+        let mut scene = big_triangles(big, small, seed);
+        let extra = mixed_soup(1, glass, seed);
+        for (mesh, material) in extra.meshes.into_iter().zip(extra.materials) {
+            scene.push_mesh(mesh, Some(material));
+        }
+        let s = screen(&scene, w, h);
+        let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
+        let mut sorted = ABuffer::new(opts);
+        let mut submitted = ABuffer::new(opts).with_front_to_back(false);
+        let fs = render(&mut sorted, &s);
+        let fu = render(&mut submitted, &s);
+        prop_assert_eq!(sorted.sample_ids(), submitted.sample_ids());
+        prop_assert_eq!(&fs.coverage, &fu.coverage);
+        prop_assert_eq!(&fs.ids, &fu.ids);
+        prop_assert!(max_color_diff(&fs, &fu) <= 1);
+    }
 }
 
 /// A hider reused across frame sizes (same pixel count in other shapes

@@ -94,22 +94,27 @@ fn stack(back_to_front: bool) -> Scene {
 #[test]
 fn opaque_layers_fit_short_lists_exactly() {
     for back_to_front in [true, false] {
-        let s = screen(&stack(back_to_front), 48, 48);
-        let full = render(&mut ABuffer::new(ABufferOptions::default()), &s);
-        let limited = ABufferOptions::default()
-            .with_max_list_len(3)
-            .with_overflow(OverflowPolicy::Error);
-        let mut a = ABuffer::new(limited);
-        let small = render(&mut a, &s);
-        let st = a.stats();
-        assert_eq!(st.dropped, 0);
-        assert!(max_color_diff(&full, &small) <= 1);
-        assert_eq!(full.ids, small.ids);
-        assert_eq!(full.coverage, small.coverage);
-        if back_to_front {
-            assert!(st.pruned > 0, "{st:?}");
-        } else {
-            assert!(st.culled > 0, "{st:?}");
+        // In submission order (layers arriving back to front are pruned,
+        // front to back culled), and in the default front-to-back order
+        // (culled whatever the submission order).
+        for sorted in [false, true] {
+            let s = screen(&stack(back_to_front), 48, 48);
+            let full = render(&mut ABuffer::new(ABufferOptions::default()), &s);
+            let limited = ABufferOptions::default()
+                .with_max_list_len(3)
+                .with_overflow(OverflowPolicy::Error);
+            let mut a = ABuffer::new(limited).with_front_to_back(sorted);
+            let small = render(&mut a, &s);
+            let st = a.stats();
+            assert_eq!(st.dropped, 0);
+            assert!(max_color_diff(&full, &small) <= 1);
+            assert_eq!(full.ids, small.ids);
+            assert_eq!(full.coverage, small.coverage);
+            if back_to_front && !sorted {
+                assert!(st.pruned > 0, "{st:?}");
+            } else {
+                assert!(st.culled > 0, "{st:?}");
+            }
         }
     }
 }
