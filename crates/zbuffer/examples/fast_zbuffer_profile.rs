@@ -16,6 +16,13 @@ use hider_scene::{
 };
 use hider_zbuffer::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
 
+/// CPU time of the calling thread in ms.
+fn thread_cpu_ms() -> Option<f64> {
+    cpu_time::ThreadTime::try_now()
+        .ok()
+        .map(|t| t.as_duration().as_secs_f64() * 1e3)
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let arg = |i: usize, default: &str| args.get(i).cloned().unwrap_or_else(|| default.to_owned());
@@ -40,12 +47,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let options = PrepareOptions::gl_compatible().with_parallel(threads > 1);
         let mut tiled = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(threads));
         let mut lean = DepthScene::new();
+        // On one thread, CPU time of this thread (so that other processes
+        // on the machine do not count); wall time otherwise.
+        let clock = |t: Instant| {
+            if threads == 1 {
+                thread_cpu_ms().unwrap_or_else(|| t.elapsed().as_secs_f64() * 1e3)
+            } else {
+                t.elapsed().as_secs_f64() * 1e3
+            }
+        };
         for _ in 0..runs {
             let t = Instant::now();
-            pool.install(|| prepare_depth_into(&scene, &view, &options, &mut lean))?;
-            let prepared = t.elapsed().as_secs_f64() * 1e3;
+            let start = clock(t);
+            if threads == 1 {
+                prepare_depth_into(&scene, &view, &options, &mut lean)?;
+            } else {
+                pool.install(|| prepare_depth_into(&scene, &view, &options, &mut lean))?;
+            }
+            let prepared = clock(t) - start;
             let stats = tiled.draw_depth_scene(&lean)?;
-            let total = t.elapsed().as_secs_f64() * 1e3;
+            let total = clock(t) - start;
             println!(
                 "{total:.2} ms = prepare {prepared:.2} + draw {:.2}  {:?} {:?}",
                 total - prepared,

@@ -332,10 +332,11 @@ impl TiledZBuffer {
         bufs.truncate(grid.tiles());
         let chunks = &self.chunks;
         let wide = self.wide_kernel;
+        let cols = grid.cols as usize;
         let draw_band = |b: usize, band: &mut [TileBuf<K>]| {
             let job = BandJob {
                 wide,
-                b,
+                first: b * cols,
                 grid,
                 vp,
                 tris: &tris,
@@ -344,7 +345,6 @@ impl TiledZBuffer {
             };
             job.dispatch(band);
         };
-        let cols = grid.cols as usize;
         match frame {
             Some(frame) => {
                 frame.coverage.clear();
@@ -378,13 +378,25 @@ impl TiledZBuffer {
                         .for_each(work),
                 }
             }
+            // Nothing to resolve: threads take single tiles, which balances
+            // a small object in the middle of the image far better than
+            // bands do.
             None => match pool {
                 Some(pool) => {
                     use rayon::prelude::*;
                     install(pool, || {
-                        bufs.par_chunks_mut(cols)
-                            .enumerate()
-                            .for_each(|(b, band)| draw_band(b, band))
+                        bufs.par_chunks_mut(1).enumerate().for_each(|(t, tile)| {
+                            let job = BandJob {
+                                wide,
+                                first: t,
+                                grid,
+                                vp,
+                                tris: &tris,
+                                chunks,
+                                hiz,
+                            };
+                            job.dispatch(tile);
+                        })
                     });
                 }
                 None => bufs
@@ -448,12 +460,12 @@ impl TiledZBuffer {
     }
 }
 
-/// Everything drawing one band of tiles needs.
+/// Everything drawing a run of tiles (a band, or one tile) needs.
 struct BandJob<'a, T> {
     /// Whether the AVX2 kernel may be used.
     wide: bool,
-    /// Band index (row of tiles).
-    b: usize,
+    /// Index of the first tile of the run (row-major).
+    first: usize,
     grid: Grid,
     vp: Viewport,
     tris: &'a [&'a [T]],
@@ -501,16 +513,24 @@ impl<T: RasterTri> BandJob<'_, T> {
         unsafe { kernel(self, band) }
     }
 
-    /// Draws every tile of the band from its bins.
+    /// Draws the run of tiles `band` (tiles `first..`, row-major) from
+    /// their bins.
     #[inline(always)]
     fn draw<K: TileKey>(&self, band: &mut [TileBuf<K>]) {
         let (grid, vp) = (self.grid, self.vp);
-        let y0 = self.b as u32 * grid.tile;
-        let h = grid.tile.min(vp.height - y0);
-        for (tx, buf) in band.iter_mut().enumerate() {
-            let x0 = tx as u32 * grid.tile;
-            buf.start(x0, y0, grid.tile.min(vp.width - x0), h);
-            let t = self.b * grid.cols as usize + tx;
+        for (i, buf) in band.iter_mut().enumerate() {
+            let t = self.first + i;
+            let (tx, ty) = (
+                (t % grid.cols as usize) as u32,
+                (t / grid.cols as usize) as u32,
+            );
+            let (x0, y0) = (tx * grid.tile, ty * grid.tile);
+            buf.start(
+                x0,
+                y0,
+                grid.tile.min(vp.width - x0),
+                grid.tile.min(vp.height - y0),
+            );
             if bins::tile_has_work(self.chunks, t) {
                 let mut draw = Drawer {
                     buf: &mut *buf,
