@@ -18,7 +18,7 @@ use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, Stats, check_
 use crate::coverage::{Class, Coverage, DepthBounds, TriCoverage, pixel_range, plane_depth};
 use crate::fragment::{Fragment, FragmentPool, MERGED_BASE, NIL};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy};
-use crate::palette::prim_colors;
+use crate::palette::prim_rgba;
 use crate::pattern::{CENTRE, MAX_SAMPLES};
 use crate::resolve::{Resolver, Shaded, hidden_in_every_sample};
 use crate::stats::ABufferStats;
@@ -43,6 +43,8 @@ pub const TILE: u32 = 64;
 const BLOCK: u32 = 8;
 /// Blocks per tile side.
 const BLOCKS: usize = (TILE / BLOCK) as usize;
+// A tile's blocks are the bits of a `u64`.
+const _: () = assert!(BLOCKS * BLOCKS <= 64 && TILE % BLOCK == 0);
 
 /// Per 8 x 8 block of the current tile: an upper bound of the opaque
 /// bounds of its pixels. While some pixel of the block has no bound yet
@@ -421,6 +423,11 @@ impl ABuffer {
         let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
         let (bx0, bx1) = ((x0 - tx0) / BLOCK, (x1 - tx0) / BLOCK);
         let bounds = DepthBounds::new(&plane, pattern, self.options.depth != DepthMode::PerSample);
+        // Shading is computed for the primitives that reach this point
+        // only (NaN: not yet), not for those culled whole.
+        if self.colors[tri.prim as usize][3].is_nan() {
+            self.colors[tri.prim as usize] = prim_rgba(scene, tri.prim, self.options.shade);
+        }
         let alpha = self.colors[tri.prim as usize][3];
         let w = self.width as usize;
         let full_mask = pattern.full_mask();
@@ -800,7 +807,8 @@ impl Hider for ABuffer {
         let fresh = self
             .pool
             .reset(w as usize * h as usize, per_sample, self.options.max_bytes)?;
-        prim_colors(scene, self.options.shade, &mut self.colors);
+        self.colors.clear();
+        self.colors.resize(scene.prims.len(), [f32::NAN; 4]);
         self.planes.clear();
         self.planes.extend(scene.tris.iter().map(|t| t.depth));
         let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));

@@ -140,9 +140,8 @@ impl TriCoverage {
                 let col: [i32; 8] = std::array::from_fn(|c| -(edge.a * grid_x(c)) as i32);
                 let row: [i32; 4] = std::array::from_fn(|r| -(edge.b * grid_y(r)) as i32);
                 for (cells, r) in self.noff[e].chunks_exact_mut(8).zip(row) {
-                    for (v, c) in cells.iter_mut().zip(col) {
-                        *v = c + r;
-                    }
+                    let sums: [i32; 8] = std::array::from_fn(|c| col[c].wrapping_add(r));
+                    cells.copy_from_slice(&sums);
                 }
             }
             let off = |x: i32, y: i32| edge.a * i64::from(x) + edge.b * i64::from(y);

@@ -10,15 +10,28 @@ use hider_scene::{ScreenScene, ShadeMode};
 /// `scene`, reusing its memory.
 pub fn prim_colors(scene: &ScreenScene, mode: ShadeMode, out: &mut Vec<[f32; 4]>) {
     out.clear();
-    out.extend((0..scene.prims.len() as u32).map(|prim| {
-        let (rgb, alpha) = prim_color(scene, prim, mode);
-        [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
-    }));
+    out.extend((0..scene.prims.len() as u32).map(|prim| prim_rgba(scene, prim, mode)));
 }
 
-/// For `v = 1..=255`, the smallest `f32` in `[0, 1]` (as bits) that
-/// `to_srgb8` maps to `v` or more; `None` if the conversion is found not
-/// to be monotonic around a threshold.
+/// `[r, g, b, opacity]` (linear, opacity clamped to [0, 1]) of `prim`.
+#[inline]
+pub fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
+    let (rgb, alpha) = prim_color(scene, prim, mode);
+    [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
+}
+
+/// The conversion table: `thresholds[v - 1]` is the smallest `f32` in
+/// `[0, 1]` (as bits) that `to_srgb8` maps to `v` or more, for `v =
+/// 1..=255`; `base[b >> 16]` is the value at the start of the bucket of
+/// bits `b` (a bucket of 2^16 consecutive floats spans at most a step or
+/// two, so a lookup is one load and a short scan).
+pub struct Table {
+    thresholds: [u32; 255],
+    base: Vec<u8>,
+}
+
+/// The table, or `None` if the conversion is found not to be monotonic
+/// around a threshold.
 ///
 /// `to_srgb8` clamps, applies the sRGB curve (a `powf`) and rounds; it is
 /// non-decreasing (checked over every `f32` of `[0, 1]` with the platform's
@@ -27,14 +40,14 @@ pub fn prim_colors(scene: &ScreenScene, mode: ShadeMode, out: &mut Vec<[f32; 4]>
 /// thresholds at or below it. Each threshold is also checked against its
 /// neighbour below; should a platform's `powf` break monotonicity there,
 /// the table is dropped and [`to_pixel`] calls `to_srgb8`.
-fn thresholds() -> Option<&'static [u32; 255]> {
-    static TABLE: OnceLock<Option<[u32; 255]>> = OnceLock::new();
+fn table() -> Option<&'static Table> {
+    static TABLE: OnceLock<Option<Table>> = OnceLock::new();
     TABLE
         .get_or_init(|| {
             let one = 1.0f32.to_bits();
             let level = |bits: u32| to_srgb8(f32::from_bits(bits));
-            let mut table = [0u32; 255];
-            for (k, t) in table.iter_mut().enumerate() {
+            let mut thresholds = [0u32; 255];
+            for (k, t) in thresholds.iter_mut().enumerate() {
                 let v = k as u8 + 1;
                 let (mut lo, mut hi) = (0u32, one);
                 while lo < hi {
@@ -50,16 +63,24 @@ fn thresholds() -> Option<&'static [u32; 255]> {
                 }
                 *t = lo;
             }
-            Some(table)
+            let base = (0..=one >> 16)
+                .map(|key| thresholds.partition_point(|&t| t <= key << 16) as u8)
+                .collect();
+            Some(Table { thresholds, base })
         })
         .as_ref()
 }
 
-/// `to_srgb8(x)`, exactly, from the threshold table.
+/// `to_srgb8(x)`, exactly, from the table.
 #[inline]
-fn srgb8(table: &[u32; 255], x: f32) -> u8 {
+fn srgb8(table: &Table, x: f32) -> u8 {
     if x > 0.0 && x < 1.0 {
-        table.partition_point(|&t| t <= x.to_bits()) as u8
+        let bits = x.to_bits();
+        let mut v = table.base[(bits >> 16) as usize];
+        while v < 255 && table.thresholds[v as usize] <= bits {
+            v += 1;
+        }
+        v
     } else {
         to_srgb8(x)
     }
@@ -68,9 +89,38 @@ fn srgb8(table: &[u32; 255], x: f32) -> u8 {
 /// Converts a linear colour (already composited over the black background)
 /// to an opaque sRGB pixel: `to_srgb8` per channel.
 pub fn to_pixel(rgb: [f32; 3]) -> [u8; 4] {
-    match thresholds() {
-        Some(t) => [srgb8(t, rgb[0]), srgb8(t, rgb[1]), srgb8(t, rgb[2]), 255],
-        None => [to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]), 255],
+    Srgb::new().pixel(rgb)
+}
+
+/// [`to_pixel`] with the table looked up once, for loops over pixels.
+#[derive(Clone, Copy)]
+pub struct Srgb(Option<&'static Table>);
+
+impl Srgb {
+    /// The converter (builds the table on first use).
+    pub fn new() -> Self {
+        Srgb(table())
+    }
+
+    /// [`to_pixel`].
+    #[inline]
+    pub fn pixel(self, rgb: [f32; 3]) -> [u8; 4] {
+        match self.0 {
+            Some(t) => [srgb8(t, rgb[0]), srgb8(t, rgb[1]), srgb8(t, rgb[2]), 255],
+            None => [to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]), 255],
+        }
+    }
+}
+
+impl Default for Srgb {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl std::fmt::Debug for Srgb {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_tuple("Srgb").field(&self.0.is_some()).finish()
     }
 }
 
@@ -82,8 +132,8 @@ mod tests {
     /// dense sweep of `[0, 1]` and beyond.
     #[test]
     fn the_table_is_to_srgb8() {
-        let t = thresholds().expect("monotonic conversion");
-        for &b in t.iter() {
+        let t = table().expect("monotonic conversion");
+        for &b in t.thresholds.iter() {
             for bits in b.saturating_sub(3)..=b + 3 {
                 let x = f32::from_bits(bits);
                 assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
@@ -92,6 +142,13 @@ mod tests {
         for k in 0..=200_000u32 {
             let x = k as f32 / 190_000.0 - 0.01;
             assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
+        }
+        // Every bucket start and end.
+        for key in 0..=1.0f32.to_bits() >> 16 {
+            for bits in [key << 16, (key << 16) | 0xffff] {
+                let x = f32::from_bits(bits);
+                assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
+            }
         }
         for x in [f32::NAN, -0.0, 0.0, 1.0, f32::INFINITY, -1.0, 2.0, f32::MIN_POSITIVE] {
             assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");

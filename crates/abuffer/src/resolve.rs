@@ -34,7 +34,7 @@ use crate::abuffer::sample_depth_of;
 use crate::centre::in_front;
 use crate::fragment::{Fragment, FragmentPool, MERGED_BASE, NIL};
 use crate::options::{ABufferOptions, DepthMode};
-use crate::palette::to_pixel;
+use crate::palette::{Srgb, to_pixel};
 use crate::stats::ABufferStats;
 
 /// A fragment with its colour and opacity looked up, and its pool index.
@@ -127,6 +127,7 @@ impl Resolver {
         let full = pattern.full_mask();
         let inv_n = 1.0 / n as f32;
         let w = frame.width() as usize;
+        let srgb = Srgb::new();
         for j in y0..=y1 {
             for i in x0..=x1 {
                 let p = j as usize * w + i as usize;
@@ -149,7 +150,7 @@ impl Resolver {
                     let weight = (first.mask & full).count_ones() as f32;
                     let sum = [0, 1, 2].map(|c| (0.0 + rgba[c] * weight) * inv_n);
                     if sum != self.memo.0 {
-                        self.memo = (sum, to_pixel(sum));
+                        self.memo = (sum, srgb.pixel(sum));
                     }
                     frame.color[p] = self.memo.1;
                     continue;
@@ -211,7 +212,7 @@ impl Resolver {
                 };
                 let sum = sum.map(|c| c * inv_n);
                 if sum != self.memo.0 {
-                    self.memo = (sum, to_pixel(sum));
+                    self.memo = (sum, srgb.pixel(sum));
                 }
                 frame.color[p] = self.memo.1;
             }
@@ -233,6 +234,7 @@ impl Resolver {
         let mut sum = [0.0f32; 3];
         let mut alive = full;
         let mut transmit = [1.0f32; 32];
+        // Until a translucent fragment shows, every `transmit` is 1.
         let mut any_translucent = false;
         for s in &self.frags {
             let f = &s.frag;
