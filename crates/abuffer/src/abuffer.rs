@@ -12,8 +12,10 @@
 //! result does not depend on the order primitives are submitted in, which
 //! is what makes its transparency correct where a z-buffer's is not.
 
-use hider_geom::PlaneEq;
-use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, Stats, check_frame};
+use hider_geom::{FixedPt, PlaneEq};
+use hider_scene::{
+    Error, Frame, Hider, NO_ID, Result, ScreenScene, ShadeMode, Stats, check_frame,
+};
 
 use crate::coverage::{Class, Coverage, DepthBounds, TriCoverage, pixel_range, plane_depth};
 use crate::fragment::{Fragment, FragmentPool, MERGED_BASE, NIL};
@@ -100,12 +102,27 @@ impl Gather {
     };
 }
 
-/// One triangle of a bin.
+/// One triangle of a bin, with what rasterising it needs: once a tile
+/// sorts its bin front to back, triangles are visited out of index order,
+/// and reading them from the scene would cost a cache miss each.
 #[derive(Clone, Copy, Debug, Default)]
 struct BinItem {
-    near: f32,
+    /// Sort key: nearest vertex depth (total order), then triangle index.
+    key: u64,
     tri: u32,
+    prim: u32,
+    /// Opacity of the primitive.
+    alpha: f32,
     range: (u32, u32, u32, u32),
+    plane: PlaneEq,
+    v: [FixedPt; 3],
+}
+
+/// An unsigned key ordered like `f32::total_cmp`.
+#[inline]
+fn order_key(x: f32) -> u32 {
+    let b = x.to_bits();
+    if b >> 31 == 1 { !b } else { b | 1 << 31 }
 }
 
 /// Triangles binned by tile: `items[start[t]..start[t + 1]]` are the
@@ -113,9 +130,10 @@ struct BinItem {
 #[derive(Clone, Debug, Default)]
 struct Bins {
     start: Vec<u32>,
-    /// Nearest vertex depth, triangle index and pixel range, so that a
-    /// tile reads its bin sequentially (and sorts it front to back).
+    /// The items, tile by tile.
     items: Vec<BinItem>,
+    /// Per tile: sort keys and positions in the tile's bin.
+    order: Vec<(u64, u32)>,
     ranges: Vec<(u32, u32, u32, u32)>,
     /// Tiles whose pixel entries may hold lists of the last frame.
     dirty: Vec<bool>,
@@ -254,13 +272,14 @@ impl ABuffer {
         Ok(())
     }
 
-    /// The colour and opacity of shading index `shade`.
+    /// The colour and opacity of shading index `shade` (a primitive's
+    /// computed on first use).
     #[inline]
-    fn rgba(&self, shade: u32) -> [f32; 4] {
+    fn rgba(&mut self, scene: &ScreenScene, shade: u32) -> [f32; 4] {
         if shade >= MERGED_BASE {
             self.pool.merged(shade).rgba
         } else {
-            self.colors[shade as usize]
+            shade_of(&mut self.colors, scene, self.options.shade, shade)
         }
     }
 
@@ -293,18 +312,24 @@ impl ABuffer {
         bins.items.clear();
         bins.items.resize(bins.start[tiles] as usize, BinItem::default());
         let mut fill = bins.start.clone();
-        for (t, &(x0, y0, x1, y1)) in bins.ranges.iter().enumerate() {
+        for (t, (&(x0, y0, x1, y1), tri)) in bins.ranges.iter().zip(&scene.tris).enumerate() {
             if x0 > x1 {
                 continue;
             }
+            let near = tri.z.iter().copied().fold(f64::INFINITY, f64::min) as f32;
+            let item = BinItem {
+                key: u64::from(order_key(near)) << 32 | t as u64,
+                tri: t as u32,
+                prim: tri.prim,
+                alpha: scene.material(tri.prim).opacity.clamp(0.0, 1.0),
+                range: (x0, y0, x1, y1),
+                plane: tri.depth,
+                v: tri.v,
+            };
             for ty in y0 / TILE..=y1 / TILE {
                 for tx in x0 / TILE..=x1 / TILE {
                     let slot = &mut fill[(ty * tiles_x + tx) as usize];
-                    bins.items[*slot as usize] = BinItem {
-                        near: scene.tris[t].z.iter().copied().fold(f64::INFINITY, f64::min) as f32,
-                        tri: t as u32,
-                        range: (x0, y0, x1, y1),
-                    };
+                    bins.items[*slot as usize] = item;
                     *slot += 1;
                 }
             }
@@ -358,15 +383,13 @@ impl ABuffer {
     fn raster(
         &mut self,
         scene: &ScreenScene,
-        t: u32,
+        item: &BinItem,
         (x0, y0, x1, y1): (u32, u32, u32, u32),
         tile: (u32, u32),
         stats: &mut ABufferStats,
     ) -> Result<()> {
         let pattern = self.options.pattern;
-        // The compact copy: the triangle itself is read only if a block
-        // survives.
-        let plane = self.planes[t as usize];
+        let plane = item.plane;
         let (tx0, ty0) = tile;
         let (hx0, hy0, hx1, hy1) = pattern.hull();
         let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
@@ -391,14 +414,13 @@ impl ABuffer {
         if live == 0 {
             return Ok(());
         }
-        let tri = &scene.tris[t as usize];
         // Set up in place (the set-up is half a kilobyte).
         let mut setup = self
             .setup
             .take()
-            .unwrap_or_else(|| Box::new(TriCoverage::new(tri, pattern)));
-        setup.reset(tri, pattern);
-        let result = self.raster_live(scene, t, &setup, live, (x0, y0, x1, y1), tile, stats);
+            .unwrap_or_else(|| Box::new(TriCoverage::new(&scene.tris[item.tri as usize], pattern)));
+        setup.reset_vertices(&item.v, pattern);
+        let result = self.raster_live(scene, item, &setup, live, (x0, y0, x1, y1), tile, stats);
         self.setup = Some(setup);
         result
     }
@@ -408,7 +430,7 @@ impl ABuffer {
     fn raster_live(
         &mut self,
         scene: &ScreenScene,
-        t: u32,
+        item: &BinItem,
         setup: &TriCoverage,
         live: u64,
         (x0, y0, x1, y1): (u32, u32, u32, u32),
@@ -416,19 +438,14 @@ impl ABuffer {
         stats: &mut ABufferStats,
     ) -> Result<()> {
         let (tx0, ty0) = tile;
-        let tri = &scene.tris[t as usize];
+        let (t, prim) = (item.tri, item.prim);
         let pattern = self.options.pattern;
-        let plane = self.planes[t as usize];
+        let plane = item.plane;
         let (hx0, hy0, hx1, hy1) = pattern.hull();
         let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
         let (bx0, bx1) = ((x0 - tx0) / BLOCK, (x1 - tx0) / BLOCK);
         let bounds = DepthBounds::new(&plane, pattern, self.options.depth != DepthMode::PerSample);
-        // Shading is computed for the primitives that reach this point
-        // only (NaN: not yet), not for those culled whole.
-        if self.colors[tri.prim as usize][3].is_nan() {
-            self.colors[tri.prim as usize] = prim_rgba(scene, tri.prim, self.options.shade);
-        }
-        let alpha = self.colors[tri.prim as usize][3];
+        let alpha = item.alpha;
         let w = self.width as usize;
         let full_mask = pattern.full_mask();
         let hull_x = if up_x { hx0 } else { hx1 };
@@ -512,10 +529,10 @@ impl ABuffer {
                     let f = Fragment {
                         next: NIL,
                         mask: c.mask,
-                        prim: tri.prim,
+                        prim,
                         tri: t,
-                        centre_prim: if c.centre { tri.prim } else { NO_ID },
-                        shade: tri.prim,
+                        centre_prim: if c.centre { prim } else { NO_ID },
+                        shade: prim,
                         zmin,
                         zmax,
                         centre_z,
@@ -557,7 +574,7 @@ impl ABuffer {
             return Ok(());
         }
         if self.pool.len(p) >= self.options.max_list_len {
-            stats.pruned += self.prune_hidden(p, full);
+            stats.pruned += self.prune_hidden(ctx.scene, p, full);
         }
         if self.pool.len(p) >= self.options.max_list_len {
             match self.options.overflow {
@@ -651,13 +668,13 @@ impl ABuffer {
 
     /// Removes the fragments of pixel `p` hidden in every sample and at the
     /// centre by nearer opaque fragments; returns how many.
-    fn prune_hidden(&mut self, p: usize, full: u32) -> u64 {
+    fn prune_hidden(&mut self, scene: &ScreenScene, p: usize, full: u32) -> u64 {
         let mut list = std::mem::take(&mut self.scratch);
         list.clear();
         let mut cur = self.pool.head(p);
         while cur != NIL {
             let f = *self.pool.get(cur);
-            list.push(Shaded::new(f, self.rgba(f.shade), cur));
+            list.push(Shaded::new(f, self.rgba(scene, f.shade), cur));
             cur = f.next;
         }
         let mut k = 0;
@@ -674,14 +691,14 @@ impl ABuffer {
     /// `ctx.p`'s list and merges into it, returning its index.
     fn try_merge(&mut self, ctx: &Ctx<'_>, f: &Fragment) -> Result<Option<u32>> {
         let scene = ctx.scene;
-        let f_rgba = self.colors[f.shade as usize];
+        let f_rgba = self.rgba(scene, f.shade);
         let mut cur = self.pool.head(ctx.p);
         for _ in 0..MERGE_SEARCH {
             if cur == NIL {
                 return Ok(None);
             }
             let g = *self.pool.get(cur);
-            let g_rgba = self.rgba(g.shade);
+            let g_rgba = self.rgba(scene, g.shade);
             // Fields of the fragment first; the scene lookups last.
             let mergeable = g.mask & f.mask == 0
                 && !(g.covers_centre() && f.covers_centre())
@@ -768,6 +785,23 @@ impl ABuffer {
     }
 }
 
+/// The colour and opacity of primitive `prim`, computed on first use:
+/// shading is paid for the primitives whose fragments survive culling only
+/// (NaN marks "not yet").
+#[inline]
+pub(crate) fn shade_of(
+    colors: &mut [[f32; 4]],
+    scene: &ScreenScene,
+    mode: ShadeMode,
+    prim: u32,
+) -> [f32; 4] {
+    let c = &mut colors[prim as usize];
+    if c[3].is_nan() {
+        *c = prim_rgba(scene, prim, mode);
+    }
+    *c
+}
+
 /// The depth of fragment `f` at sample `k` (per-sample mode): from its
 /// merged entry, or its triangle's plane, with the expression that the
 /// supersampled z-buffer uses.
@@ -848,24 +882,27 @@ impl Hider for ABuffer {
                 // bounds that cull what lies behind them. The order changes
                 // no sample (the lists are sorted by depth at resolve),
                 // only how much work is culled.
+                let mut order = std::mem::take(&mut self.bins.order);
+                order.clear();
+                order.extend((b0..b1).map(|b| (self.bins.items[b].key, b as u32)));
                 if !self.no_sort {
-                    self.bins.items[b0..b1].sort_unstable_by(|a, b| {
-                        a.near.total_cmp(&b.near).then(a.tri.cmp(&b.tri))
-                    });
+                    order.sort_unstable_by_key(|&(key, _)| key);
                 }
-                for b in b0..b1 {
-                    let BinItem {
-                        tri,
-                        range: (rx0, ry0, rx1, ry1),
-                        ..
-                    } = self.bins.items[b];
+                for &(_, b) in &order {
+                    let item = self.bins.items[b as usize];
+                    let (rx0, ry0, rx1, ry1) = item.range;
                     let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
-                    self.raster(scene, tri, rect, (x0, y0), &mut stats)?;
+                    if let Err(e) = self.raster(scene, &item, rect, (x0, y0), &mut stats) {
+                        self.bins.order = order;
+                        return Err(e);
+                    }
                 }
+                self.bins.order = order;
                 self.resolver.resolve_tile(
+                    scene,
                     &self.pool,
                     &self.planes,
-                    &self.colors,
+                    &mut self.colors,
                     &self.options,
                     (x0, y0, x1, y1),
                     frame,

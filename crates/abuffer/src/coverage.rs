@@ -14,7 +14,8 @@
 //! per-sample tests: one add and one compare per edge and sample against
 //! offsets `a*sx + b*sy` precomputed per triangle.
 
-use hider_geom::{EdgeFunction, PlaneEq};
+use hider_geom::edge::triangle_edges;
+use hider_geom::{EdgeFunction, FixedPt, PlaneEq};
 use hider_geom::fixed::SUBPIXEL_SCALE;
 use hider_scene::ScreenTri;
 
@@ -132,7 +133,13 @@ impl TriCoverage {
     /// [`Self::new`] in place, reusing this set-up's memory.
     #[inline]
     pub fn reset(&mut self, tri: &ScreenTri, pattern: SamplePattern) {
-        let edges = tri.edges();
+        self.reset_vertices(&tri.v, pattern);
+    }
+
+    /// [`Self::reset`] from the triangle's vertices alone.
+    #[inline]
+    pub fn reset_vertices(&mut self, v: &[FixedPt; 3], pattern: SamplePattern) {
+        let edges = triangle_edges(v);
         let (hx0, hy0, hx1, hy1) = pattern.hull();
         let narrow = edges.iter().all(|e| e.a.abs() < NARROW && e.b.abs() < NARROW);
         for (e, edge) in edges.iter().enumerate() {

@@ -28,9 +28,9 @@
 //! a list of `L` fragments costs at most `L * samples` steps.
 
 use hider_geom::PlaneEq;
-use hider_scene::{Frame, NO_ID};
+use hider_scene::{Frame, NO_ID, ScreenScene};
 
-use crate::abuffer::sample_depth_of;
+use crate::abuffer::{sample_depth_of, shade_of};
 use crate::centre::in_front;
 use crate::fragment::{Fragment, FragmentPool, MERGED_BASE, NIL};
 use crate::options::{ABufferOptions, DepthMode};
@@ -114,9 +114,10 @@ impl Resolver {
     #[allow(clippy::too_many_arguments)]
     pub fn resolve_tile(
         &mut self,
+        scene: &ScreenScene,
         pool: &FragmentPool,
         planes: &[PlaneEq],
-        colors: &[[f32; 4]],
+        colors: &mut [[f32; 4]],
         options: &ABufferOptions,
         (x0, y0, x1, y1): (u32, u32, u32, u32),
         frame: &mut Frame,
@@ -136,7 +137,12 @@ impl Resolver {
                     continue;
                 }
                 let first = pool.get(cur);
-                if first.next == NIL && !first.is_merged() && colors[first.shade as usize][3] >= 1.0 {
+                let first_rgba = if first.is_merged() {
+                    pool.merged(first.shade).rgba
+                } else {
+                    shade_of(colors, scene, options.shade, first.shade)
+                };
+                if first.next == NIL && first_rgba[3] >= 1.0 {
                     // One opaque fragment: what every path computes for it.
                     self.lists += 1;
                     self.total += 1;
@@ -146,7 +152,7 @@ impl Resolver {
                         frame.depth[p] = first.centre_z as f32;
                     }
                     frame.coverage[p] = first.mask.count_ones() as f32 * inv_n;
-                    let rgba = colors[first.shade as usize];
+                    let rgba = first_rgba;
                     let weight = (first.mask & full).count_ones() as f32;
                     let sum = [0, 1, 2].map(|c| (0.0 + rgba[c] * weight) * inv_n);
                     if sum != self.memo.0 {
@@ -161,7 +167,7 @@ impl Resolver {
                     let rgba = if f.shade >= MERGED_BASE {
                         pool.merged(f.shade).rgba
                     } else {
-                        colors[f.shade as usize]
+                        shade_of(colors, scene, options.shade, f.shade)
                     };
                     self.frags.push(Shaded::new(*f, rgba, cur));
                     cur = f.next;
