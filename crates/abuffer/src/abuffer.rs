@@ -517,15 +517,24 @@ impl ABuffer {
                     // sample depth and the centre depth stay inside
                     // [zmin, zmax], so the strict comparisons of culling and
                     // pruning are exact.
-                    let zmin = bounds.bound(&plane, (i, j), c, centre_z, false) as f32;
-                    if zmin > occluder {
-                        stats.culled += 1;
-                        continue;
-                    }
-                    if c.full {
+                    let (zmin, zmax) = if c.full {
+                        let zmin = bounds.bound(&plane, (i, j), c, centre_z, false) as f32;
+                        if zmin > occluder {
+                            stats.culled += 1;
+                            continue;
+                        }
                         centre_z = plane_depth(&plane, i, j, CENTRE);
-                    }
-                    let zmax = bounds.bound(&plane, (i, j), c, centre_z, true) as f32;
+                        (zmin, bounds.bound(&plane, (i, j), c, centre_z, true) as f32)
+                    } else {
+                        // Partial pixels that reach here are rarely culled:
+                        // both bounds in one pass over the rows.
+                        let (lo, hi) = bounds.range(&plane, (i, j), c, centre_z);
+                        if lo as f32 > occluder {
+                            stats.culled += 1;
+                            continue;
+                        }
+                        (lo as f32, hi as f32)
+                    };
                     let f = Fragment {
                         next: NIL,
                         mask: c.mask,

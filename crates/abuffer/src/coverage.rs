@@ -443,6 +443,48 @@ impl DepthBounds {
         self.bound_partial(plane, (i, j), c, centre_z, far)
     }
 
+    /// Both bounds, `(nearest, farthest)`, in one pass: the same values as
+    /// [`Self::bound`] with `far` false and true.
+    #[inline(never)]
+    pub fn range(&self, plane: &PlaneEq, (i, j): (u32, u32), c: Coverage, centre_z: f64) -> (f64, f64) {
+        if (c.full && (self.grid || self.hull_for_full)) || !self.grid {
+            return (
+                self.bound(plane, (i, j), c, centre_z, false),
+                self.bound(plane, (i, j), c, centre_z, true),
+            );
+        }
+        let (mut lo, mut hi) = if c.centre {
+            (centre_z, centre_z)
+        } else {
+            (f64::INFINITY, f64::NEG_INFINITY)
+        };
+        let (xi, yj) = (f64::from(i), f64::from(j));
+        let mut mask = c.mask;
+        for y in GRID_Y {
+            let row = mask as u8;
+            mask >>= 8;
+            if row != 0 {
+                let (first, last) = (row.trailing_zeros(), 7 - row.leading_zeros());
+                // Along the row the depth runs from `first` to `last`.
+                let (near, far) = if self.up_x { (first, last) } else { (last, first) };
+                let y = yj + y;
+                let zn = plane.eval(xi + GRID_X[near as usize], y);
+                let zf = if first == last {
+                    zn
+                } else {
+                    plane.eval(xi + GRID_X[far as usize], y)
+                };
+                if zn < lo {
+                    lo = zn;
+                }
+                if zf > hi {
+                    hi = zf;
+                }
+            }
+        }
+        (lo, hi)
+    }
+
     /// [`Self::bound`] of a partial mask (or any mask of a pattern whose
     /// hull corners are not samples).
     #[inline(never)]
@@ -621,6 +663,66 @@ mod tests {
                     prop_assert_eq!((got.mask, got.centre), brute(&t, pattern, i, j), "pixel {} {}", i, j);
                 }
                 prop_assert!(row_is_complete(&setup, j), "row {}", j);
+            }
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(256))]
+        /// The bounds from a few evaluations equal the minimum and maximum
+        /// of the per-sample depths (and the centre's) computed one by one,
+        /// for every pattern, mask and plane (the monotonicity argument of
+        /// `DepthBounds`), in both modes.
+        #[test]
+        fn depth_bounds_equal_the_extremes_of_the_sample_depths(
+            plane in (-2.0f64..2.0, -0.5f64..0.5, -0.5f64..0.5, -300.0f64..300.0, -300.0f64..300.0),
+            scale in prop_oneof![Just(1e-6f64), Just(1e-3), Just(1.0), Just(1e3)],
+            ij in (0u32..2000, 0u32..2000),
+            mask in any::<u32>(),
+            centre in any::<bool>(),
+            full in any::<bool>(),
+            pattern_index in 0usize..5,
+        ) {
+            let plane = PlaneEq {
+                x0: plane.3,
+                y0: plane.4,
+                value: plane.0,
+                dx: plane.1 * scale,
+                dy: plane.2 * scale,
+            };
+            let pattern = SamplePattern::ALL[pattern_index];
+            let c = if full {
+                Coverage { mask: pattern.full_mask(), centre: true, full: true }
+            } else {
+                Coverage { mask: mask & pattern.full_mask(), centre, full: false }
+            };
+            let (i, j) = ij;
+            let centre_z = plane_depth(&plane, i, j, CENTRE);
+            let cz = if c.centre { centre_z } else { f64::INFINITY };
+            for hull_for_full in [false, true] {
+                let b = DepthBounds::new(&plane, pattern, hull_for_full);
+                // Brute force over the covered samples (all of the hull's
+                // corners for a full mask in min/max mode) and the centre.
+                let mut points: Vec<(i32, i32)> = pattern
+                    .positions()
+                    .iter()
+                    .enumerate()
+                    .filter(|(k, _)| c.mask >> k & 1 == 1)
+                    .map(|(_, &p)| p)
+                    .collect();
+                if c.centre {
+                    points.push(CENTRE);
+                }
+                if c.full && hull_for_full {
+                    let (x0, y0, x1, y1) = pattern.hull();
+                    points.extend([(x0, y0), (x1, y0), (x0, y1), (x1, y1)]);
+                }
+                let zs: Vec<f64> = points.iter().map(|&p| plane_depth(&plane, i, j, p)).collect();
+                let lo = zs.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = zs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                prop_assert_eq!(b.bound(&plane, (i, j), c, cz, false), lo);
+                prop_assert_eq!(b.bound(&plane, (i, j), c, cz, true), hi);
+                prop_assert_eq!(b.range(&plane, (i, j), c, cz), (lo, hi));
             }
         }
     }
