@@ -198,15 +198,20 @@ fn camera(args: &RenderArgs, scene: &Scene) -> Camera {
     c
 }
 
-fn make_hider(args: &RenderArgs) -> Result<Box<dyn Hider>> {
-    let zbuffer_flags = args.depth_format.is_some() || args.depth_source.is_some();
-    let format = match args.depth_format.unwrap_or(DepthFormatArg::F32) {
+/// The z-buffers' depth format from `--depth-format` (f32 by default).
+fn depth_format(args: &RenderArgs) -> DepthFormat {
+    match args.depth_format.unwrap_or(DepthFormatArg::F32) {
         DepthFormatArg::F32 => DepthFormat::F32,
         DepthFormatArg::F64 => DepthFormat::F64,
         DepthFormatArg::Fixed24 => DepthFormat::Fixed24,
         DepthFormatArg::Fixed16 => DepthFormat::Fixed16,
         DepthFormatArg::ReversedF32 => DepthFormat::ReversedF32,
-    };
+    }
+}
+
+fn make_hider(args: &RenderArgs) -> Result<Box<dyn Hider>> {
+    let zbuffer_flags = args.depth_format.is_some() || args.depth_source.is_some();
+    let format = depth_format(args);
     if args.algo == "zbuffer" {
         let source = match args.depth_source.unwrap_or(DepthSourceArg::WindowZ) {
             DepthSourceArg::WindowZ => DepthSource::WindowZ,
@@ -266,16 +271,9 @@ fn time_tiled(
     options: &PrepareOptions,
     want: &Frame,
 ) -> Result<String> {
-    let format = match args.depth_format.unwrap_or(DepthFormatArg::F32) {
-        DepthFormatArg::F32 => DepthFormat::F32,
-        DepthFormatArg::F64 => DepthFormat::F64,
-        DepthFormatArg::Fixed24 => DepthFormat::Fixed24,
-        DepthFormatArg::Fixed16 => DepthFormat::Fixed16,
-        DepthFormatArg::ReversedF32 => DepthFormat::ReversedF32,
-    };
     let mut tiled = TiledZBuffer::new(
         TiledZBufferOptions::default()
-            .with_depth_format(format)
+            .with_depth_format(depth_format(args))
             .with_threads(args.threads),
     );
     let mut lean = DepthScene::new();

@@ -4,6 +4,7 @@
 use crate::error::Result;
 use crate::frame::Frame;
 use crate::prepare::ScreenScene;
+use hider_geom::Viewport;
 
 /// Work counters that explain a hider's cost (fragments, depth tests,
 /// splits, regions, spans, bytes...).
@@ -80,7 +81,13 @@ pub trait Hider {
 /// Checks that a frame matches the scene's viewport: the first thing every
 /// hider does.
 pub fn check_frame(hider: &str, scene: &ScreenScene, frame: &Frame) -> Result<()> {
-    let vp = scene.viewport;
+    check_frame_size(hider, scene.viewport, frame)
+}
+
+/// [`check_frame`] for a scene prepared for `viewport` (a
+/// [`crate::DepthScene`], or any other input of that size).
+pub fn check_frame_size(hider: &str, viewport: Viewport, frame: &Frame) -> Result<()> {
+    let vp = viewport;
     if frame.width() != vp.width || frame.height() != vp.height {
         return Err(crate::error::Error::Render {
             hider: hider.to_owned(),

@@ -60,7 +60,7 @@ pub use analyze::{Effects, Evidence, RenderOptions, analyze};
 pub use depth_scene::{DepthScene, DepthTri, prepare_depth_into};
 pub use error::{Error, Result};
 pub use frame::{Frame, NO_ID};
-pub use hider::{Hider, Stats, check_frame};
+pub use hider::{Hider, Stats, check_frame, check_frame_size};
 pub use model::{Light, Material, Mesh, Scene};
 pub use obj::{load_obj, load_obj_with};
 pub use obj_write::save_obj;

@@ -44,6 +44,7 @@ use hider_geom::{FixedPt, PlaneEq, Viewport};
 use hider_scene::frame::BACKGROUND;
 use hider_scene::{
     DepthScene, DepthTri, Error, Frame, Hider, Result, ScreenScene, ScreenTri, Stats, check_frame,
+    check_frame_size,
 };
 
 use crate::options::DepthFormat;
@@ -237,16 +238,7 @@ impl TiledZBuffer {
     }
 
     fn check_size(&self, vp: Viewport, frame: &Frame) -> Result<()> {
-        if frame.width() != vp.width || frame.height() != vp.height {
-            return Err(self.error(format!(
-                "frame is {}x{} but the scene was prepared for {}x{}",
-                frame.width(),
-                frame.height(),
-                vp.width,
-                vp.height
-            )));
-        }
-        Ok(())
+        check_frame_size(&self.name, vp, frame)
     }
 
     /// Validates the options, starts the pool if needed, then draws (and
@@ -347,36 +339,11 @@ impl TiledZBuffer {
         };
         match frame {
             Some(frame) => {
-                frame.coverage.clear();
                 let width = vp.width as usize;
-                let band_len = width * grid.tile as usize;
-                let work = |(b, (out, band)): (usize, (FrameBand<'_>, &mut [TileBuf<K>]))| {
+                for_each_band(frame, bufs, grid, pool, |b, out, band| {
                     draw_band(b, band);
                     resolve_band(band, out, width, b as u32 * grid.tile);
-                };
-                match pool {
-                    Some(pool) => {
-                        use rayon::prelude::*;
-                        install(pool, || {
-                            frame
-                                .ids
-                                .par_chunks_mut(band_len)
-                                .zip(frame.depth.par_chunks_mut(band_len))
-                                .zip(frame.color.par_chunks_mut(band_len))
-                                .zip(bufs.par_chunks_mut(cols))
-                                .enumerate()
-                                .for_each(work)
-                        });
-                    }
-                    None => frame
-                        .ids
-                        .chunks_mut(band_len)
-                        .zip(frame.depth.chunks_mut(band_len))
-                        .zip(frame.color.chunks_mut(band_len))
-                        .zip(bufs.chunks_mut(cols))
-                        .enumerate()
-                        .for_each(work),
-                }
+                });
             }
             // Nothing to resolve: threads take single tiles, which balances
             // a small object in the middle of the image far better than
@@ -425,38 +392,56 @@ impl TiledZBuffer {
     }
 
     fn read_with<K: TileKey>(&mut self, vp: Viewport, grid: Grid, frame: &mut Frame) {
-        let threads = self.threads();
-        let bufs = K::bufs(&mut self.scratch);
-        let cols = grid.cols as usize;
+        let pool = workers(self.pool.as_ref(), self.threads());
         let width = vp.width as usize;
-        let band_len = width * grid.tile as usize;
-        frame.coverage.clear();
-        let work = |(b, (out, band)): (usize, (FrameBand<'_>, &[TileBuf<K>]))| {
-            resolve_band(band, out, width, b as u32 * grid.tile);
-        };
-        match workers(self.pool.as_ref(), threads) {
-            Some(pool) => {
-                use rayon::prelude::*;
-                install(pool, || {
-                    frame
-                        .ids
-                        .par_chunks_mut(band_len)
-                        .zip(frame.depth.par_chunks_mut(band_len))
-                        .zip(frame.color.par_chunks_mut(band_len))
-                        .zip(bufs.par_chunks(cols))
-                        .enumerate()
-                        .for_each(work)
-                });
-            }
-            None => frame
-                .ids
-                .chunks_mut(band_len)
-                .zip(frame.depth.chunks_mut(band_len))
-                .zip(frame.color.chunks_mut(band_len))
-                .zip(bufs.chunks(cols))
-                .enumerate()
-                .for_each(work),
+        for_each_band(
+            frame,
+            K::bufs(&mut self.scratch),
+            grid,
+            pool,
+            |b, out, band| {
+                resolve_band(band, out, width, b as u32 * grid.tile);
+            },
+        );
+    }
+}
+
+/// Calls `work` with each band's index, its rows of the frame and its
+/// tiles, in parallel on `pool` (see [`workers`]) or in order; clears the
+/// frame's coverage (a z-buffer writes none).
+fn for_each_band<K: TileKey>(
+    frame: &mut Frame,
+    bufs: &mut [TileBuf<K>],
+    grid: Grid,
+    pool: Option<Option<&rayon::ThreadPool>>,
+    work: impl Fn(usize, FrameBand<'_>, &mut [TileBuf<K>]) + Sync,
+) {
+    frame.coverage.clear();
+    let band_len = frame.width() as usize * grid.tile as usize;
+    let cols = grid.cols as usize;
+    let work = |(b, (out, band)): (usize, (FrameBand<'_>, &mut [TileBuf<K>]))| work(b, out, band);
+    match pool {
+        Some(pool) => {
+            use rayon::prelude::*;
+            install(pool, || {
+                frame
+                    .ids
+                    .par_chunks_mut(band_len)
+                    .zip(frame.depth.par_chunks_mut(band_len))
+                    .zip(frame.color.par_chunks_mut(band_len))
+                    .zip(bufs.par_chunks_mut(cols))
+                    .enumerate()
+                    .for_each(work)
+            });
         }
+        None => frame
+            .ids
+            .chunks_mut(band_len)
+            .zip(frame.depth.chunks_mut(band_len))
+            .zip(frame.color.chunks_mut(band_len))
+            .zip(bufs.chunks_mut(cols))
+            .enumerate()
+            .for_each(work),
     }
 }
 
