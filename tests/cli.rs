@@ -134,6 +134,56 @@ fn render_writes_png_and_gl_format_dumps() {
 }
 
 #[test]
+fn tiled_repeat_times_its_own_pipeline_and_writes_the_same_ids() {
+    let dir = temp_dir("tiled");
+    let mut ids = Vec::new();
+    for (algo, threads) in [
+        ("zbuffer", "1"),
+        ("zbuffer-tiled", "1"),
+        ("zbuffer-tiled", "2"),
+    ] {
+        let file = dir.join(format!("{algo}-{threads}.i32"));
+        let out = hider(&[
+            "render",
+            "gen:sphere:24",
+            "-o",
+            dir.join("s.png").to_str().unwrap(),
+            "--size",
+            "70",
+            "--algo",
+            algo,
+            "--threads",
+            threads,
+            "--precision",
+            "f32",
+            "--ids-out",
+            file.to_str().unwrap(),
+            "--repeat",
+            "3",
+        ]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            stdout.contains("median") && stdout.contains("over 3 runs"),
+            "{stdout}"
+        );
+        if algo == "zbuffer-tiled" {
+            assert!(
+                stdout.contains("lean front end") && stdout.contains("read-back"),
+                "{stdout}"
+            );
+        }
+        ids.push(std::fs::read(&file).unwrap());
+    }
+    assert!(ids.windows(2).all(|w| w[0] == w[1]));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn painter_writes_svg_and_other_hiders_refuse_it() {
     let dir = temp_dir("svg");
     let png = dir.join("pair.png");
