@@ -73,7 +73,9 @@ fn time_interleaved(
             let wall = Instant::now();
             h.render(s, &mut frame).expect("render");
             let once = wall.elapsed().max(Duration::from_micros(100));
-            (BATCH.as_secs_f64() / once.as_secs_f64()).ceil().clamp(1.0, 50.0) as u32
+            (BATCH.as_secs_f64() / once.as_secs_f64())
+                .ceil()
+                .clamp(1.0, 50.0) as u32
         })
         .collect();
     let mut best = vec![(Duration::MAX, hider_scene::Stats::default()); hiders.len()];
@@ -228,7 +230,10 @@ fn main() {
     ] {
         let s = screen(&scene, 1024, 1024);
         let mut hs: Vec<(String, Box<dyn Hider>)> = vec![
-            ("culling on".into(), Box::new(ABuffer::new(ABufferOptions::default()))),
+            (
+                "culling on".into(),
+                Box::new(ABuffer::new(ABufferOptions::default())),
+            ),
             (
                 "culling off".into(),
                 Box::new(ABuffer::new(ABufferOptions::default()).with_occlusion_culling(false)),
@@ -236,10 +241,7 @@ fn main() {
         ];
         let times = time_interleaved(&mut hs, &s, 3);
         for ((label, _), (t, st)) in hs.iter().zip(&times) {
-            println!(
-                "{name} {label}: {:.1} ms, {st}",
-                t.as_secs_f64() * 1e3
-            );
+            println!("{name} {label}: {:.1} ms, {st}", t.as_secs_f64() * 1e3);
         }
     }
 }

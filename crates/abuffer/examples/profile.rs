@@ -70,7 +70,10 @@ fn main() {
                     }
                 }
             }
-            println!("cpu {:.1} ms  visits {visits} hits {hits} bits {bits}", (cpu_ns() - cpu) as f64 / 1e6);
+            println!(
+                "cpu {:.1} ms  visits {visits} hits {hits} bits {bits}",
+                (cpu_ns() - cpu) as f64 / 1e6
+            );
         }
         return;
     }

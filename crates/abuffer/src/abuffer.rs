@@ -13,9 +13,7 @@
 //! is what makes its transparency correct where a z-buffer's is not.
 
 use hider_geom::{FixedPt, PlaneEq};
-use hider_scene::{
-    Error, Frame, Hider, NO_ID, Result, ScreenScene, ShadeMode, Stats, check_frame,
-};
+use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ShadeMode, Stats, check_frame};
 
 use crate::coverage::{Class, Coverage, DepthBounds, TriCoverage, pixel_range, plane_depth};
 use crate::fragment::{Fragment, FragmentPool, MERGED_BASE, NIL};
@@ -310,7 +308,8 @@ impl ABuffer {
             bins.start[t + 1] += bins.start[t];
         }
         bins.items.clear();
-        bins.items.resize(bins.start[tiles] as usize, BinItem::default());
+        bins.items
+            .resize(bins.start[tiles] as usize, BinItem::default());
         let mut fill = bins.start.clone();
         for (t, (&(x0, y0, x1, y1), tri)) in bins.ranges.iter().zip(&scene.tris).enumerate() {
             if x0 > x1 {
@@ -397,11 +396,17 @@ impl ABuffer {
         let (by0, by1) = ((y0 - ty0) / BLOCK, (y1 - ty0) / BLOCK);
         let mut live = 0u64;
         for by in by0..=by1 {
-            let (py0, py1) = ((ty0 + by * BLOCK).max(y0), (ty0 + by * BLOCK + BLOCK - 1).min(y1));
+            let (py0, py1) = (
+                (ty0 + by * BLOCK).max(y0),
+                (ty0 + by * BLOCK + BLOCK - 1).min(y1),
+            );
             let (j, sy) = if up_y { (py0, hy0) } else { (py1, hy1) };
             for bx in bx0..=bx1 {
                 let b = (by * BLOCKS as u32 + bx) as usize;
-                let (px0, px1) = ((tx0 + bx * BLOCK).max(x0), (tx0 + bx * BLOCK + BLOCK - 1).min(x1));
+                let (px0, px1) = (
+                    (tx0 + bx * BLOCK).max(x0),
+                    (tx0 + bx * BLOCK + BLOCK - 1).min(x1),
+                );
                 let (i, sx) = if up_x { (px0, hx0) } else { (px1, hx1) };
                 let near = plane_depth(&plane, i, j, (sx, sy)) as f32;
                 if self.block_hidden(b, near, tile) {
@@ -878,8 +883,10 @@ impl Hider for ABuffer {
                     continue;
                 }
                 for j in y0..=y1 {
-                    self.pool
-                        .clear_pixels(j as usize * w as usize + x0 as usize, (x1 - x0 + 1) as usize);
+                    self.pool.clear_pixels(
+                        j as usize * w as usize + x0 as usize,
+                        (x1 - x0 + 1) as usize,
+                    );
                 }
                 self.bins.dirty[t] = b0 != b1;
                 if b0 == b1 {

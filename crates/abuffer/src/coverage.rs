@@ -15,8 +15,8 @@
 //! offsets `a*sx + b*sy` precomputed per triangle.
 
 use hider_geom::edge::triangle_edges;
-use hider_geom::{EdgeFunction, FixedPt, PlaneEq};
 use hider_geom::fixed::SUBPIXEL_SCALE;
+use hider_geom::{EdgeFunction, FixedPt, PlaneEq};
 use hider_scene::ScreenTri;
 
 use crate::pattern::{CENTRE, SamplePattern};
@@ -141,7 +141,9 @@ impl TriCoverage {
     pub fn reset_vertices(&mut self, v: &[FixedPt; 3], pattern: SamplePattern) {
         let edges = triangle_edges(v);
         let (hx0, hy0, hx1, hy1) = pattern.hull();
-        let narrow = edges.iter().all(|e| e.a.abs() < NARROW && e.b.abs() < NARROW);
+        let narrow = edges
+            .iter()
+            .all(|e| e.a.abs() < NARROW && e.b.abs() < NARROW);
         for (e, edge) in edges.iter().enumerate() {
             if narrow {
                 let col: [i32; 8] = std::array::from_fn(|c| -(edge.a * grid_x(c)) as i32);
@@ -195,17 +197,17 @@ impl TriCoverage {
     /// hull corners, i.e. `E(i) + hull_max <= 0`, and `E(i)` is affine in
     /// `i`; each edge with `a != 0` thus bounds the range on one side at
     /// `i = -(E(0) + hull_max) / (256 a)`. The bound is computed in `f64`
-    /// and widened by a pixel, so it is conservative: the exact test still
-    /// decides every pixel inside.
+    /// and widened by two pixels, so it is conservative: the exact test
+    /// still decides every pixel inside.
     #[inline]
     pub fn span(&self, x0: u32, x1: u32, j: u32) -> (u32, u32) {
         let base = self.corner_values(0, j);
         let (mut lo, mut hi) = (f64::from(x0), f64::from(x1));
-        for e in 0..3 {
+        for (e, edge) in self.edges.iter().enumerate() {
             let k = (base[e] + self.hull_max[e]) as f64;
             let t = -k * self.inv_step[e];
             // Truncation moves t by less than one: two pixels of margin.
-            match self.edges[e].a.signum() {
+            match edge.a.signum() {
                 1 => lo = lo.max(t.trunc_fast() - 2.0),
                 -1 => hi = hi.min(t.trunc_fast() + 2.0),
                 _ if k <= 0.0 => return (1, 0),
@@ -311,7 +313,8 @@ impl TriCoverage {
         let mut bytes = [0u8; 32];
         for (k, byte) in bytes.iter_mut().enumerate() {
             // Negative in all three edges = inside all three.
-            let w = (nb[0] + self.noff[0][k]) & (nb[1] + self.noff[1][k]) & (nb[2] + self.noff[2][k]);
+            let w =
+                (nb[0] + self.noff[0][k]) & (nb[1] + self.noff[1][k]) & (nb[2] + self.noff[2][k]);
             *byte = (w >> 31) as u8;
         }
         // Gather the top bit of each byte: byte c of a row lands on bit
@@ -430,7 +433,14 @@ impl DepthBounds {
     /// samples of `c.mask` and, if covered, the centre (`centre_z`, which
     /// a full mask does not need: the centre lies inside the hull).
     #[inline(always)]
-    pub fn bound(&self, plane: &PlaneEq, (i, j): (u32, u32), c: Coverage, centre_z: f64, far: bool) -> f64 {
+    pub fn bound(
+        &self,
+        plane: &PlaneEq,
+        (i, j): (u32, u32),
+        c: Coverage,
+        centre_z: f64,
+        far: bool,
+    ) -> f64 {
         if c.full && (self.grid || self.hull_for_full) {
             // Along x (y) the bound is at the low end when the depth grows
             // in the direction we look for, i.e. when `up == far` is false.
@@ -446,8 +456,14 @@ impl DepthBounds {
     /// Both bounds, `(nearest, farthest)`, in one pass: the same values as
     /// [`Self::bound`] with `far` false and true.
     #[inline(never)]
-    pub fn range(&self, plane: &PlaneEq, (i, j): (u32, u32), c: Coverage, centre_z: f64) -> (f64, f64) {
-        if (c.full && (self.grid || self.hull_for_full)) || !self.grid {
+    pub fn range(
+        &self,
+        plane: &PlaneEq,
+        (i, j): (u32, u32),
+        c: Coverage,
+        centre_z: f64,
+    ) -> (f64, f64) {
+        if c.full || !self.grid {
             return (
                 self.bound(plane, (i, j), c, centre_z, false),
                 self.bound(plane, (i, j), c, centre_z, true),
@@ -466,7 +482,11 @@ impl DepthBounds {
             if row != 0 {
                 let (first, last) = (row.trailing_zeros(), 7 - row.leading_zeros());
                 // Along the row the depth runs from `first` to `last`.
-                let (near, far) = if self.up_x { (first, last) } else { (last, first) };
+                let (near, far) = if self.up_x {
+                    (first, last)
+                } else {
+                    (last, first)
+                };
                 let y = yj + y;
                 let zn = plane.eval(xi + GRID_X[near as usize], y);
                 let zf = if first == last {
@@ -488,7 +508,14 @@ impl DepthBounds {
     /// [`Self::bound`] of a partial mask (or any mask of a pattern whose
     /// hull corners are not samples).
     #[inline(never)]
-    fn bound_partial(&self, plane: &PlaneEq, (i, j): (u32, u32), c: Coverage, centre_z: f64, far: bool) -> f64 {
+    fn bound_partial(
+        &self,
+        plane: &PlaneEq,
+        (i, j): (u32, u32),
+        c: Coverage,
+        centre_z: f64,
+        far: bool,
+    ) -> f64 {
         let low_x = self.up_x != far;
         let mut z = if c.centre {
             centre_z

@@ -239,7 +239,8 @@ impl FragmentPool {
     /// sample depths `depths`; returns its shading index.
     pub fn add_merged(&mut self, rgba: [f32; 4], depths: &[f32; MAX_SAMPLES]) -> Result<u32> {
         let n = self.merged.len();
-        if self.used_bytes(self.frags.len(), n + 1) > self.max_bytes || n as u32 >= NIL - MERGED_BASE
+        if self.used_bytes(self.frags.len(), n + 1) > self.max_bytes
+            || n as u32 >= NIL - MERGED_BASE
         {
             return Err(self.limit(self.frags.len(), n + 1));
         }
@@ -405,7 +406,10 @@ mod tests {
     #[test]
     fn freed_slots_are_reused_and_lists_stay_linked() {
         let mut pool = FragmentPool::default();
-        assert!(pool.reset(4, true, 1 << 20).unwrap(), "a new table is fresh");
+        assert!(
+            pool.reset(4, true, 1 << 20).unwrap(),
+            "a new table is fresh"
+        );
         for z in [0.1, 0.2, 0.3] {
             let idx = pool.alloc(frag(z)).unwrap();
             pool.push_front(1, idx);
@@ -466,9 +470,7 @@ mod tests {
         assert!(matches!(e, Error::Limit { .. }), "{e}");
         assert!(pool.peak_bytes() <= room);
         // Merged entries count against the same bound.
-        let e = pool
-            .add_merged([0.0; 4], &[0.0; MAX_SAMPLES])
-            .unwrap_err();
+        let e = pool.add_merged([0.0; 4], &[0.0; MAX_SAMPLES]).unwrap_err();
         assert!(matches!(e, Error::Limit { .. }), "{e}");
     }
 }

@@ -150,7 +150,16 @@ mod tests {
                 assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
             }
         }
-        for x in [f32::NAN, -0.0, 0.0, 1.0, f32::INFINITY, -1.0, 2.0, f32::MIN_POSITIVE] {
+        for x in [
+            f32::NAN,
+            -0.0,
+            0.0,
+            1.0,
+            f32::INFINITY,
+            -1.0,
+            2.0,
+            f32::MIN_POSITIVE,
+        ] {
             assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
         }
         assert_eq!(to_pixel([0.0, 0.5, 1.0]), [0, to_srgb8(0.5), 255, 255]);

@@ -50,7 +50,11 @@ fn big_triangles(n: u32, small: u32, seed: u64) -> Scene {
     for _ in 0..n {
         let (cx, cy, cz) = (next() * 0.5, next() * 0.5, next());
         for _ in 0..3 {
-            positions.push(glam::DVec3::new(cx + next(), cy + next(), cz + 0.3 * next()));
+            positions.push(glam::DVec3::new(
+                cx + next(),
+                cy + next(),
+                cz + 0.3 * next(),
+            ));
         }
     }
     s.push_mesh(
@@ -325,7 +329,12 @@ fn a_pixel_whose_centre_is_open_keeps_the_surface_behind() {
     let mut ssaa = SupersampledZBuffer::new(SsaaOptions::default());
     let fz = render(&mut ssaa, &s);
     assert_eq!(fz.ids[p], 6, "the centre sees the far triangle");
-    assert!(fz.ids.iter().enumerate().all(|(q, &id)| q == p || id != NO_ID && id < 6));
+    assert!(
+        fz.ids
+            .iter()
+            .enumerate()
+            .all(|(q, &id)| q == p || id != NO_ID && id < 6)
+    );
     for opts in [
         ABufferOptions::default(),
         ABufferOptions::default().with_merge(MergePolicy::Off),
