@@ -144,7 +144,7 @@ impl Scene {
             let finite = mesh.positions.iter().fold(true, |ok, p| {
                 ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
             });
-            let max_index = mesh.indices.iter().flatten().fold(0, |m, &i| m.max(i));
+            let max_index = mesh.indices.as_flattened().iter().fold(0, |m, &i| m.max(i));
             if !finite || ((max_index as usize) >= n && !mesh.indices.is_empty()) {
                 if let Some((v, p)) = mesh
                     .positions

@@ -485,6 +485,7 @@ pub(crate) struct WindowVertex {
     pub(crate) w: f64,
 }
 
+#[inline]
 pub(crate) fn to_window(
     v: &ClipVertex,
     vp: Viewport,
