@@ -5,12 +5,39 @@
 //! every primitive is scan-converted into *fragments*, one per pixel it
 //! touches, each carrying a coverage mask (8 x 4 bits), its depth range,
 //! colour and opacity. Nothing is decided while primitives arrive, except
-//! what is provably invisible: a fragment entirely behind an opaque
-//! fragment that covers the whole pixel is dropped (the paper's pixels hold
-//! a plain depth in that case). Once every primitive is in, each pixel's
-//! list is sorted and composited front to back ([`crate::resolve`]). The
-//! result does not depend on the order primitives are submitted in, which
-//! is what makes its transparency correct where a z-buffer's is not.
+//! what is provably invisible: a fragment entirely behind opaque fragments
+//! that cover every sample and the centre of its pixel is dropped (the
+//! paper's pixels hold a plain depth in that case). Once every primitive is
+//! in, each pixel's list is sorted and composited front to back
+//! ([`crate::resolve`]). The result does not depend on the order primitives
+//! are submitted in, which is what makes its transparency correct where a
+//! z-buffer's is not.
+//!
+//! How a frame runs:
+//! 1. **Bins.** Triangles are binned to 64 x 64 pixel tiles ([`TILE`]); a
+//!    bin item carries what rasterising needs (pixel range, depth plane,
+//!    vertices, opacity).
+//! 2. **Tiles, front to back.** Each tile sorts its triangles by nearest
+//!    vertex depth (the order changes no sample: lists are sorted by depth
+//!    at resolve) and renders them into its pixels' lists; then the tile is
+//!    resolved at once, while its lists are in cache.
+//! 3. **Culling, three levels, all exact.** Per pixel an *opaque bound*:
+//!    a depth such that every sample and the centre is covered by opaque
+//!    fragments of the list no farther than it (a full opaque fragment's
+//!    `zmax`, or the farthest `zmax` of partial opaque fragments gathered
+//!    until their masks cover everything). A fragment whose `zmin` is
+//!    beyond it is strictly behind at every sample and the centre: culled
+//!    on arrival, or pruned when the bound drops. Per 8 x 8 block, the
+//!    farthest bound of its pixels: a triangle whose plane is beyond it
+//!    over the block (one evaluation, the plane being monotonic) makes no
+//!    fragment there, and a triangle with no live block is not even set
+//!    up. Per partial pixel, the plane at the hull corner bounds `zmin`
+//!    from below before the mask is computed.
+//! 4. **Fragments** are 40 bytes: depth bounds from at most 4 plane
+//!    evaluations each, equal to the extremes over the samples
+//!    ([`DepthBounds`]); sample depths are recomputed at resolve where
+//!    needed; shading is computed on first use, for the primitives whose
+//!    fragments survive.
 
 use hider_geom::{FixedPt, PlaneEq};
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ShadeMode, Stats, check_frame};

@@ -13,11 +13,13 @@
 //! This crate holds:
 //! - [`ABuffer`], the hider (`"abuffer"`): masks from the shared exact edge
 //!   functions at 32 fixed-point sample positions ([`pattern`],
-//!   [`coverage`]) with a full-coverage fast path; fragments in a pooled
-//!   arena with a memory bound ([`fragment`]); merging of neighbouring
-//!   fragments of one surface, culling behind opaque full-pixel fragments,
-//!   an overflow policy ([`abuffer`]); resolve with exact per-sample depth
-//!   or the paper's `zmin`/`zmax` approximation ([`resolve`]);
+//!   [`coverage`]) with a full-coverage fast path; 40-byte fragments in a
+//!   pooled arena with a memory bound ([`fragment`]); 64 x 64 tiles taken
+//!   front to back and resolved in cache, exact occlusion culling per
+//!   pixel and per 8 x 8 block, merging of neighbouring fragments of one
+//!   surface, an overflow policy ([`abuffer`]); resolve with exact
+//!   per-sample depth or the paper's `zmin`/`zmax` approximation
+//!   ([`resolve`]);
 //! - the baselines it is measured against: [`SupersampledZBuffer`]
 //!   (`"ssaa"`, N = 1 to 32 samples at the same positions) and
 //!   [`SortedTransparencyZBuffer`] (`"ssaa-sorted"`, opaque first, then

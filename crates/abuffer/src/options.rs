@@ -7,11 +7,15 @@ use crate::pattern::SamplePattern;
 /// How fragments are ordered and composited at resolve time.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum DepthMode {
-    /// Each fragment keeps the window depth of every covered sample
-    /// (`4 * samples` more bytes per fragment) and every sample is
-    /// composited in its own depth order: exact where surfaces intersect
-    /// inside a pixel. With 32 samples the result equals a 32-sample
-    /// supersampled z-buffer sample for sample. The default.
+    /// Every sample is composited in its own depth order, by the window
+    /// depth of each covered sample: exact where surfaces intersect inside
+    /// a pixel. With 32 samples the result equals a 32-sample supersampled
+    /// z-buffer sample for sample. The sample depths are not stored: they
+    /// are the triangle's depth plane at the samples, recomputed (same
+    /// expression, same `f32` values) for the pixels where two fragments
+    /// overlap in mask and depth range; only a fragment that two triangles
+    /// were merged into keeps its 32 depths (`128` bytes more). The
+    /// default.
     #[default]
     PerSample,
     /// Carpenter's fragments: only `zmin` and `zmax` per fragment; the list

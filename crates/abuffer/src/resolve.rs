@@ -11,7 +11,10 @@
 //!     masks overlap in depth, the list order is every sample's order and
 //!     the *mask path* composites whole masks at once (an opaque fragment
 //!     costs one popcount); otherwise each sample sorts the fragments that
-//!     cover it by their own depth at that sample — exact at intersections;
+//!     cover it by their own depth at that sample (the triangle's plane at
+//!     the sample, recomputed here with the expression that made the
+//!     bounds, or a merged fragment's stored depths) — exact at
+//!     intersections;
 //!   - [`DepthMode::MinMax`]: Carpenter's `blender`: a fragment splits the
 //!     current mask into the samples it covers and those it does not; the
 //!     ones it covers see its colour over (opacity) what lies behind;
@@ -26,6 +29,12 @@
 //! linear in the colours, so each pending `(fragment, mask)` carries the
 //! weight its colour sum enters with. Masks split into disjoint parts, so
 //! a list of `L` fragments costs at most `L * samples` steps.
+//!
+//! A pixel is resolved right after its tile is rendered (its list is still
+//! in cache); a list of one opaque fragment takes a shortcut computing what
+//! every path computes for it; neighbouring pixels with the same colour sum
+//! reuse the last sRGB conversion, which is exact and table-driven
+//! ([`crate::palette`]).
 
 use hider_geom::PlaneEq;
 use hider_scene::{Frame, NO_ID, ScreenScene};

@@ -6,7 +6,11 @@ use hider_scene::Stats;
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ABufferStats {
     /// Fragments generated: one per (triangle, pixel) pair with at least one
-    /// covered sample or a covered centre.
+    /// covered sample or a covered centre, outside the blocks skipped by
+    /// the hierarchical test ([`Self::culled_blocks`]). A partial pixel
+    /// culled by the lower bound at its hull corner, before its mask is
+    /// computed, counts here (and in [`Self::culled`]) even if its mask
+    /// would have been empty.
     pub fragments: u64,
     /// Of those, fragments whose mask came from the full-coverage fast path
     /// (no per-sample edge tests).
@@ -18,11 +22,12 @@ pub struct ABufferStats {
     /// occlusion test: the triangle's plane over the block is behind the
     /// opaque bound of every pixel of it, so no fragment is generated there.
     pub culled_blocks: u64,
-    /// Fragments discarded on arrival because an opaque fragment covering
-    /// the whole pixel lies entirely in front of them.
+    /// Fragments discarded on arrival because they lie entirely behind the
+    /// pixel's opaque bound (every sample and the centre covered by opaque
+    /// fragments nearer than their `zmin`).
     pub culled: u64,
-    /// Fragments removed from a list when a nearer opaque fragment covering
-    /// the whole pixel arrived, or when an overflowing list was pruned of
+    /// Fragments removed from a list when the pixel's opaque bound dropped
+    /// in front of them, or when an overflowing list was pruned of
     /// fragments hidden in every sample (both exact).
     pub pruned: u64,
     /// Fragments dropped by [`crate::OverflowPolicy::DropFarthest`] from a
