@@ -105,7 +105,10 @@ impl ChunkBins {
                 continue;
             };
             self.binned += 1;
-            let low = if hiz {
+            // A bound costs about 80 instructions; a triangle of a few
+            // pixels costs little more to draw than to reject, so only
+            // larger ones get one (the others can never be rejected unread).
+            let low = if hiz && (x1 - x0 + 1) * (y1 - y0 + 1) > super::tile::SMALL_AREA {
                 DepthBounds::low_f32(tri.v(), tri.depth())
             } else {
                 f32::NEG_INFINITY

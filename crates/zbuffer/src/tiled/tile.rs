@@ -31,7 +31,7 @@ use super::stats::TiledZBufferStats;
 const BLOCK: u32 = 8;
 /// Triangles whose box in the tile is at most this many pixels are drawn
 /// by a plain box scan: for them block set-up costs more than it saves.
-const SMALL_AREA: u32 = 32;
+pub(crate) const SMALL_AREA: u32 = 32;
 /// Passes into a block after which its maximum is recomputed.
 const BLOCK_REFRESH: u32 = 16;
 
