@@ -136,8 +136,6 @@ struct BinItem {
     key: u64,
     tri: u32,
     prim: u32,
-    /// Opacity of the primitive.
-    alpha: f32,
     range: (u32, u32, u32, u32),
     plane: PlaneEq,
     v: [FixedPt; 3],
@@ -347,7 +345,6 @@ impl ABuffer {
                 key: u64::from(order_key(near)) << 32 | t as u64,
                 tri: t as u32,
                 prim: tri.prim,
-                alpha: scene.material(tri.prim).opacity.clamp(0.0, 1.0),
                 range: (x0, y0, x1, y1),
                 plane: tri.depth,
                 v: tri.v,
@@ -477,7 +474,9 @@ impl ABuffer {
         let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
         let (bx0, bx1) = ((x0 - tx0) / BLOCK, (x1 - tx0) / BLOCK);
         let bounds = DepthBounds::new(&plane, pattern, self.options.depth != DepthMode::PerSample);
-        let alpha = item.alpha;
+        // Shading (and opacity) is computed for the primitives that reach
+        // this point, not for those culled whole.
+        let alpha = shade_of(&mut self.colors, scene, self.options.shade, prim)[3];
         let w = self.width as usize;
         let full_mask = pattern.full_mask();
         let hull_x = if up_x { hx0 } else { hx1 };
@@ -931,16 +930,20 @@ impl Hider for ABuffer {
                 if !self.no_sort {
                     order.sort_unstable_by_key(|&(key, _)| key);
                 }
+                let items = std::mem::take(&mut self.bins.items);
+                let mut result = Ok(());
                 for &(_, b) in &order {
-                    let item = self.bins.items[b as usize];
+                    let item = &items[b as usize];
                     let (rx0, ry0, rx1, ry1) = item.range;
                     let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
-                    if let Err(e) = self.raster(scene, &item, rect, (x0, y0), &mut stats) {
-                        self.bins.order = order;
-                        return Err(e);
+                    result = self.raster(scene, item, rect, (x0, y0), &mut stats);
+                    if result.is_err() {
+                        break;
                     }
                 }
+                self.bins.items = items;
                 self.bins.order = order;
+                result?;
                 self.resolver.resolve_tile(
                     scene,
                     &self.pool,
