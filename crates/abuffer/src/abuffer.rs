@@ -16,7 +16,7 @@
 //! How a frame runs:
 //! 1. **Bins.** Triangles are binned to 64 x 64 pixel tiles ([`TILE`]); a
 //!    bin item carries what rasterising needs (pixel range, depth plane,
-//!    vertices, opacity).
+//!    vertices).
 //! 2. **Tiles, front to back.** Each tile sorts its triangles by nearest
 //!    vertex depth (the order changes no sample: lists are sorted by depth
 //!    at resolve) and renders them into its pixels' lists; then the tile is
@@ -36,8 +36,8 @@
 //! 4. **Fragments** are 40 bytes: depth bounds from at most 4 plane
 //!    evaluations each, equal to the extremes over the samples
 //!    ([`DepthBounds`]); sample depths are recomputed at resolve where
-//!    needed; shading is computed on first use, for the primitives whose
-//!    fragments survive.
+//!    needed; shading is computed for the primitives with a triangle that
+//!    survives the block test only.
 
 use hider_geom::{FixedPt, PlaneEq};
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ShadeMode, Stats, check_frame};
@@ -825,9 +825,9 @@ impl ABuffer {
     }
 }
 
-/// The colour and opacity of primitive `prim`, computed on first use:
-/// shading is paid for the primitives whose fragments survive culling only
-/// (NaN marks "not yet").
+/// The colour and opacity of primitive `prim`, computed on first use (when
+/// one of its triangles survives the block test): primitives culled whole
+/// are never shaded (NaN marks "not yet").
 #[inline]
 pub(crate) fn shade_of(
     colors: &mut [[f32; 4]],
