@@ -155,7 +155,7 @@ impl<K: DepthKey> TileBuf<K> {
         // Hierarchical depth, triangle level, before the triangle itself is
         // read: nothing it could write is nearer than what the whole tile
         // holds.
-        if hiz && self.active {
+        if hiz && self.active && low > f32::NEG_INFINITY {
             self.refresh_tile_max();
             if K::encode(f64::from(low)) >= self.tile_max {
                 self.stats.hiz_triangle_rejects += 1;
