@@ -99,6 +99,8 @@ pub struct Resolver {
     /// often resolve to the same sum, and the sRGB conversion costs a
     /// `powf` per channel.
     memo: ([f32; 3], [u8; 4]),
+    /// Shortcuts for lists of one or two opaque fragments off (tests).
+    pub(crate) no_shortcuts: bool,
 }
 
 impl Resolver {
@@ -151,7 +153,7 @@ impl Resolver {
                 } else {
                     shade_of(colors, scene, options.shade, first.shade)
                 };
-                if first.next == NIL && first_rgba[3] >= 1.0 {
+                if first.next == NIL && first_rgba[3] >= 1.0 && !self.no_shortcuts {
                     // One opaque fragment: what every path computes for it.
                     self.lists += 1;
                     self.total += 1;
@@ -169,6 +171,49 @@ impl Resolver {
                     }
                     frame.color[p] = self.memo.1;
                     continue;
+                }
+                if first.next != NIL && first_rgba[3] >= 1.0 && !self.no_shortcuts {
+                    let second = pool.get(first.next);
+                    if second.next == NIL && second.mask & first.mask == 0 {
+                        let second_rgba = if second.is_merged() {
+                            pool.merged(second.shade).rgba
+                        } else {
+                            shade_of(colors, scene, options.shade, second.shade)
+                        };
+                        if second_rgba[3] >= 1.0 {
+                            // Two opaque fragments with disjoint masks: each
+                            // shows all its samples, so every path (mask
+                            // path or blender, in either depth order) adds
+                            // `rgb * samples` of each to zero, and a sum of
+                            // two terms does not depend on their order.
+                            self.lists += 1;
+                            self.total += 2;
+                            stats.max_list_len = stats.max_list_len.max(2);
+                            let (mut z, mut id) = (f64::INFINITY, NO_ID);
+                            for f in [first, second] {
+                                if f.centre_prim != NO_ID
+                                    && in_front(f.centre_z, f.centre_prim, z, id)
+                                {
+                                    (z, id) = (f.centre_z, f.centre_prim);
+                                }
+                            }
+                            if id != NO_ID {
+                                frame.ids[p] = id;
+                                frame.depth[p] = z as f32;
+                            }
+                            frame.coverage[p] =
+                                (first.mask | second.mask).count_ones() as f32 * inv_n;
+                            let wa = (first.mask & full).count_ones() as f32;
+                            let wb = (second.mask & full).count_ones() as f32;
+                            let sum = [0, 1, 2]
+                                .map(|c| (0.0 + first_rgba[c] * wa + second_rgba[c] * wb) * inv_n);
+                            if sum != self.memo.0 {
+                                self.memo = (sum, srgb.pixel(sum));
+                            }
+                            frame.color[p] = self.memo.1;
+                            continue;
+                        }
+                    }
                 }
                 self.frags.clear();
                 while cur != NIL {
@@ -209,7 +254,7 @@ impl Resolver {
                 }
                 frame.coverage[p] = union.count_ones() as f32 * inv_n;
 
-                let sum = if len == 1 && self.frags[0].alpha >= 1.0 {
+                let sum = if len == 1 && self.frags[0].alpha >= 1.0 && !self.no_shortcuts {
                     // What every path computes for one opaque fragment.
                     let s = &self.frags[0];
                     let weight = (s.frag.mask & full).count_ones() as f32;
