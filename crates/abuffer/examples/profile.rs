@@ -5,7 +5,8 @@
 //!
 //! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)), `one`
 //! (a single triangle: the fixed cost of a frame);
-//! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `mm` (min/max),
+//! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
+//! (merging off), `mm` (min/max),
 //! `carpenter`, or `cov` (mask generation alone). Prints the CPU and wall time of each render.
 
 use std::time::Instant;
@@ -40,6 +41,9 @@ fn main() {
         )),
         "ssaa32" => Box::new(SupersampledZBuffer::new(SsaaOptions::default())),
         "ps" => Box::new(ABuffer::new(ABufferOptions::default())),
+        "ps-nomerge" => Box::new(ABuffer::new(
+            ABufferOptions::default().with_merge(hider_abuffer::MergePolicy::Off),
+        )),
         "mm" => Box::new(ABuffer::new(
             ABufferOptions::default().with_depth(DepthMode::MinMax),
         )),
