@@ -351,6 +351,8 @@ fn read_back_errors_are_typed() {
     let mut f = Frame::new(8, 8).unwrap();
     let e = z.read_into(&mut f).unwrap_err();
     assert!(e.to_string().contains("nothing has been drawn"), "{e}");
+    // A depth scene never prepared has no image size.
+    assert!(z.draw_depth_scene(&DepthScene::new()).is_err());
     assert_eq!(z.pixel(0, 0), None);
     let scene = procedural::cube();
     let view = View::for_scene(&scene, 16, 16).unwrap();
