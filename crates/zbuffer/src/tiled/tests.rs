@@ -390,3 +390,25 @@ proptest! {
         prop_assert_eq!(sa, sb);
     }
 }
+
+#[test]
+fn every_hard_case_matches_the_reference_bit_for_bit() {
+    for seed in 0..3 {
+        for (_, scene) in hider_scene::hard_cases::all(seed) {
+            for (w, h) in [(64, 64), (97, 61)] {
+                let view = View::for_scene(&scene, w, h).unwrap();
+                let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+                for format in DepthFormat::ALL {
+                    for threads in [1, 2] {
+                        let o = TiledZBufferOptions::default()
+                            .with_depth_format(format)
+                            .with_threads(threads)
+                            .with_tile_size(16);
+                        assert_same(&screen, o);
+                        assert_lean_same(&scene, &view, o, threads);
+                    }
+                }
+            }
+        }
+    }
+}
