@@ -1,8 +1,8 @@
 //! The lean front end for depth-only hiders: the same snapped corners and
-//! depth planes as [`prepare`](crate::prepare), without what shading and
+//! depth planes as [`prepare`](fn@crate::prepare), without what shading and
 //! the oracle need.
 //!
-//! [`prepare`](crate::prepare) writes, per triangle, a 160-byte
+//! [`prepare`](fn@crate::prepare) writes, per triangle, a 160-byte
 //! [`ScreenTri`] and a [`PrimInfo`](crate::PrimInfo) (camera-space corners,
 //! normals, texture coordinates): for half a million triangles that is
 //! 150 MB of writes, most of what a z-buffer frame costs. A z-buffer reads
@@ -15,7 +15,7 @@
 //! `prepare`'s own per-triangle path.
 //!
 //! Every number is the same function of the same inputs as in `prepare`
-//! (the outcode is [`ClipVolume::outcode`], the divide and snap are
+//! (the outcode is [`ClipVolume::outcode`](hider_geom::clip::ClipVolume::outcode), the divide and snap are
 //! `prepare`'s `to_window`, the set-up is its `setup_depth`), so the
 //! triangles are bit for bit the depth part of `prepare`'s, in the same
 //! order, except that triangles that certainly cover no pixel centre are
@@ -150,7 +150,7 @@ const PARALLEL_MIN: usize = 32 * 1024;
 ///
 /// # Errors
 ///
-/// As [`prepare`](crate::prepare): an absurd image size, an invalid camera
+/// As [`prepare`](fn@crate::prepare): an absurd image size, an invalid camera
 /// or an invalid scene.
 pub fn prepare_depth_into(
     scene: &Scene,
