@@ -2,7 +2,7 @@
 //! subdivision over the shaded image (coloured by the rule that decided
 //! them), and the 4 x 4 anti-aliased mode.
 //!
-//! `cargo run --release -p hider-warnock --example make_picture [-- OUT_DIR]`
+//! `cargo run --release -p hider-warnock --example warnock_picture [-- OUT_DIR]`
 //!
 //! Writes `warnock-regions.png` and `warnock-antialiased.png` to `OUT_DIR`
 //! (default: the workspace's `docs/images`).

@@ -1,6 +1,6 @@
 //! Writes the pictures of `docs/abuffer.md`.
 //!
-//! `cargo run --release -p hider-abuffer --example make_picture [-- OUT_DIR]`
+//! `cargo run --release -p hider-abuffer --example abuffer_picture [-- OUT_DIR]`
 //! (default `docs/images`):
 //! - `abuffer-transparency.png`: three translucent triangles, the first two
 //!   piercing each other, rendered by the A-buffer (left) and by the

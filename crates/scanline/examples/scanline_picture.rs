@@ -6,7 +6,7 @@
 //! fallback; alternate runs on a row are shaded lighter and darker so the
 //! spans show.
 //!
-//! `cargo run --release -p hider-scanline --example make_picture [OUT.png]`
+//! `cargo run --release -p hider-scanline --example scanline_picture [OUT.png]`
 
 use hider_scanline::{Resolution, Scanline, ScanlineOptions};
 use hider_scene::geom::glam::DVec3;

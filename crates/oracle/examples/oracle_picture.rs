@@ -7,7 +7,7 @@
 //! - timings of the oracle and of analytic coverage, and how often the
 //!   source-plane oracle disagrees with the snapped-plane one.
 //!
-//! `cargo run --release -p hider-oracle --example make_picture`
+//! `cargo run --release -p hider-oracle --example oracle_picture`
 
 use std::path::PathBuf;
 use std::time::Instant;
