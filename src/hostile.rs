@@ -6,8 +6,10 @@
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_scene::{
-    Frame, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, TransformPrecision, View,
+    DepthScene, DepthTri, Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene,
+    TransformPrecision, View, prepare_depth_into,
 };
+use hider_zbuffer::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
 
 /// A decoded front-end case: a scene, a view and front-end options.
 #[derive(Clone, Debug)]
@@ -133,4 +135,51 @@ pub fn all_violations(screen: &ScreenScene) -> Vec<String> {
         }
     }
     out
+}
+
+/// The lean front end and the fast z-buffer's own pipeline on a case whose
+/// full front end gave `screen`: the depth scene must hold exactly the
+/// triangles of `screen` that cover a pixel centre (plus, possibly, some
+/// whose box has more than two centres), bit for bit and in order, and the
+/// tiled z-buffer drawing it must give `ZBuffer`'s frame on `screen`.
+pub fn check_lean_pipeline(case: &Case, screen: &ScreenScene) -> Result<(), String> {
+    let mut lean = DepthScene::new();
+    prepare_depth_into(&case.scene, &case.view, &case.options, &mut lean)
+        .map_err(|e| format!("lean front end refused what prepare took: {e}"))?;
+    let vp = screen.viewport;
+    let covers_a_centre = |v: &[hider_geom::FixedPt; 3]| {
+        let Some((x0, y0, x1, y1)) = vp.pixel_bounds(v) else {
+            return false;
+        };
+        let many = (x1 - x0 + 1) * (y1 - y0 + 1) > 2;
+        many || (y0..=y1).any(|y| {
+            (x0..=x1).any(|x| {
+                hider_geom::triangle_covers(v, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128)
+            })
+        })
+    };
+    let want: Vec<DepthTri> = screen
+        .tris
+        .iter()
+        .filter(|t| covers_a_centre(&t.v))
+        .map(DepthTri::from)
+        .collect();
+    let got: Vec<DepthTri> = lean.tris().copied().collect();
+    if got != want {
+        return Err(format!("lean front end: {got:?}\nprepare: {want:?}"));
+    }
+    let mut want = Frame::new(vp.width, vp.height).map_err(|e| e.to_string())?;
+    let mut got = want.clone();
+    ZBuffer::default()
+        .render(screen, &mut want)
+        .map_err(|e| e.to_string())?;
+    let mut tiled = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(1));
+    tiled
+        .draw_depth_scene(&lean)
+        .and_then(|_| tiled.read_into(&mut got))
+        .map_err(|e| e.to_string())?;
+    if got.ids != want.ids || got.depth != want.depth {
+        return Err("tiled z-buffer on the lean scene differs from ZBuffer".to_owned());
+    }
+    Ok(())
 }

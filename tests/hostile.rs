@@ -4,7 +4,7 @@
 
 use std::path::PathBuf;
 
-use hider::hostile::{all_violations, check_all_hiders, front_end_case};
+use hider::hostile::{all_violations, check_all_hiders, check_lean_pipeline, front_end_case};
 use hider::scene::prepare;
 use proptest::prelude::*;
 
@@ -13,7 +13,7 @@ fn replay(data: &[u8]) -> Result<(), String> {
         return Ok(());
     };
     match prepare(&case.scene, &case.view, &case.options) {
-        Ok(screen) => check_all_hiders(&screen),
+        Ok(screen) => check_all_hiders(&screen).and_then(|()| check_lean_pipeline(&case, &screen)),
         Err(_) => Ok(()),
     }
 }
@@ -29,9 +29,10 @@ fn fuzz_regressions_replay_cleanly() {
             let case = front_end_case(&data).unwrap();
             let screen = prepare(&case.scene, &case.view, &case.options).unwrap();
             panic!(
-                "{}: {:?}\n{:?}",
+                "{}: {:?} {:?}\n{:?}",
                 path.display(),
                 all_violations(&screen),
+                check_lean_pipeline(&case, &screen),
                 screen.tris
             );
         }

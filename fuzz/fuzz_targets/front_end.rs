@@ -1,9 +1,10 @@
-//! Arbitrary f32 triangles and cameras -> prepare -> every hider. The
+//! Arbitrary f32 triangles and cameras -> prepare -> every hider, and the
+//! lean front end + fast z-buffer against prepare + ZBuffer. The
 //! decoder and the invariants live in `hider::hostile`, so inputs found
 //! here replay as the workspace test `tests/hostile.rs`.
 #![no_main]
 
-use hider::hostile::{check_all_hiders, front_end_case};
+use hider::hostile::{check_all_hiders, check_lean_pipeline, front_end_case};
 use hider::scene::prepare;
 use libfuzzer_sys::fuzz_target;
 
@@ -12,7 +13,8 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     if let Ok(screen) = prepare(&case.scene, &case.view, &case.options)
-        && let Err(violation) = check_all_hiders(&screen)
+        && let Err(violation) =
+            check_all_hiders(&screen).and_then(|()| check_lean_pipeline(&case, &screen))
     {
         panic!("{violation}");
     }
