@@ -4,7 +4,8 @@
 //!
 //! `cargo run --release -p hider-painter --example bench [sizes...]`
 //! (default sizes: 1000 10000 100000; image 512 x 512). A `soup` or
-//! `sphere` argument runs only that scene.
+//! `sphere` argument runs only that scene. `PAINTER_MAX_MIB` raises the
+//! painter's piece-memory budget (default 1 GiB).
 
 use std::time::Instant;
 
@@ -55,7 +56,15 @@ fn run(name: &str, scene: &Scene) -> Result<(), hider_scene::Error> {
         naive_ms = naive_ms.min(t.elapsed().as_secs_f64() * 1e3);
     }
     let naive_wrong = wrong(&frame, &reference);
-    let mut painter = Painter::default();
+    // PAINTER_MAX_MIB raises the piece-memory budget (default 1 GiB).
+    let mut options = hider_painter::PainterOptions::default();
+    if let Some(mib) = std::env::var("PAINTER_MAX_MIB")
+        .ok()
+        .and_then(|v| v.parse::<u64>().ok())
+    {
+        options = options.with_max_bytes(mib << 20);
+    }
+    let mut painter = Painter::new(options);
     let mut ms = f64::INFINITY;
     let mut st = PainterStats::default();
     for _ in 0..runs {
@@ -70,6 +79,14 @@ fn run(name: &str, scene: &Scene) -> Result<(), hider_scene::Error> {
         st.pieces_out,
         st.comparisons,
         wrong(&frame, &reference)
+    );
+    eprintln!(
+        "{name} {}: peak {} MiB, moves {}, plane splits {}, line splits {}",
+        s.tris.len(),
+        st.peak_bytes >> 20,
+        st.moves,
+        st.plane_splits,
+        st.line_splits
     );
     Ok(())
 }

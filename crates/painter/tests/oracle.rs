@@ -246,6 +246,20 @@ fn scratch_is_reused_across_frames_with_identical_results() {
     assert_eq!(render(&mut p, &a), first);
 }
 
+/// Soups large enough that most candidates overlap more than the first
+/// few sorted entries in depth, so the bin grid decides most pairs: still
+/// exact against both references, and the same frame on every run.
+#[test]
+fn binned_ordering_matches_the_references_on_larger_soups() {
+    for (n, seed, size) in [(800, 1, 48), (2000, 5, 64), (3000, 8, 40)] {
+        let s = screen(&procedural::random_soup(n, seed), size);
+        let what = format!("soup {n} seed {seed}");
+        assert_exact(&s, &what);
+        let first = render(&mut Painter::default(), &s);
+        assert_eq!(render(&mut Painter::default(), &s), first, "{what}");
+    }
+}
+
 /// Random triangles with corners anywhere in a cube: large, so that they
 /// intersect and overlap cyclically often.
 fn big_triangles() -> impl Strategy<Value = Scene> {
