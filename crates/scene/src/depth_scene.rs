@@ -334,23 +334,39 @@ fn triangles(
 /// every centre (285k of the 499k-triangle sphere's at 1024); dropping them
 /// here saves their depth plane, their record, their bin entries and
 /// their rasterisation.
-#[inline]
+#[inline(always)]
 fn covers_no_centre(v: &[FixedPt; 3], area: i64, vp: Viewport) -> bool {
     let Some((x0, y0, x1, y1)) = vp.pixel_bounds(v) else {
         return true;
     };
-    let (wide, tall) = (x1 > x0, y1 > y0);
-    if (wide && (tall || x1 - x0 > 1)) || (tall && y1 - y0 > 1) {
+    let (nx, ny) = (x1 - x0, y1 - y0);
+    if nx + ny > 1 {
         return false;
     }
-    let mut v = *v;
-    if area < 0 {
-        v.swap(1, 2);
+    let a = v[0];
+    let (b, c) = if area < 0 { (v[2], v[1]) } else { (v[1], v[2]) };
+    // Centres are below 2^23 in fixed point (images are at most 16384).
+    let (px, py) = (x0 as i32 * 256 + 128, y0 as i32 * 256 + 128);
+    if centre_inside(a, b, c, px, py) {
+        return false;
     }
-    let edges = hider_geom::edge::triangle_edges(&v);
-    let covered = |x: i64, y: i64| edges.iter().all(|e| e.contains(x, y));
-    let (x, y) = (i64::from(x0) * 256 + 128, i64::from(y0) * 256 + 128);
-    !(covered(x, y) || (wide && covered(x + 256, y)) || (tall && covered(x, y + 256)))
+    nx + ny == 0 || !centre_inside(a, b, c, px + 256 * nx as i32, py + 256 * ny as i32)
+}
+
+/// Whether centre `(px, py)` (fixed point) is inside the positively
+/// oriented triangle `a b c`: `hider_geom::edge`'s edge functions written
+/// out (`E(p) = orient2d(from, to, p)`; top-left edges own `E == 0`).
+#[inline(always)]
+fn centre_inside(a: FixedPt, b: FixedPt, c: FixedPt, px: i32, py: i32) -> bool {
+    let edge = |f: FixedPt, t: FixedPt| {
+        let (dx, dy) = (
+            i64::from(t.x) - i64::from(f.x),
+            i64::from(t.y) - i64::from(f.y),
+        );
+        let e = dx * (i64::from(py) - i64::from(f.y)) - dy * (i64::from(px) - i64::from(f.x));
+        e + i64::from((dy < 0) | ((dy == 0) & (dx > 0))) > 0
+    };
+    edge(a, b) & edge(b, c) & edge(c, a)
 }
 
 /// A triangle that must be clipped: `prepare`'s own path, keeping the
