@@ -60,14 +60,21 @@ impl ClipVolume {
     /// that caches them per vertex decides exactly as it does.
     #[inline]
     pub fn outcode(&self, p: DVec4) -> u32 {
-        let mut code = u32::from(p.x > p.w)
+        // The six plane tests `dot(plane, p) < 0` of `planes()`, written
+        // out: the dot product's zero terms are exact zeros (p is finite)
+        // and adding them leaves the other terms' sum unchanged, so each
+        // sum here is the same rounded value (see `outcode_is_the_dot_products`).
+        let (gx, gy) = (p.w * self.guard_x, p.w * self.guard_y);
+        u32::from(p.x > p.w)
             | u32::from(p.x < -p.w) << 1
             | u32::from(p.y > p.w) << 2
-            | u32::from(p.y < -p.w) << 3;
-        for (k, plane) in self.planes().iter().enumerate() {
-            code |= u32::from(plane.dot(p) < 0.0) << (4 + k);
-        }
-        code
+            | u32::from(p.y < -p.w) << 3
+            | u32::from(p.z + p.w < 0.0) << 4
+            | u32::from(-p.z + p.w < 0.0) << 5
+            | u32::from(p.x + gx < 0.0) << 6
+            | u32::from(-p.x + gx < 0.0) << 7
+            | u32::from(p.y + gy < 0.0) << 8
+            | u32::from(-p.y + gy < 0.0) << 9
     }
 
     fn planes(&self) -> [DVec4; 6] {
@@ -176,6 +183,30 @@ pub fn clip_triangle(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        /// The written-out outcode equals the six dot products bit for bit.
+        #[test]
+        fn outcode_is_the_dot_products(
+            p in proptest::array::uniform4(proptest::prop_oneof![
+                -1e30f64..1e30, -10.0f64..10.0, proptest::strategy::Just(0.0), proptest::strategy::Just(-0.0)
+            ]),
+            w in 1u32..20000,
+            h in 1u32..20000,
+            guard in 0u32..20000,
+        ) {
+            let p = DVec4::from_array(p);
+            let v = ClipVolume::for_viewport(w, h, guard);
+            let mut code = u32::from(p.x > p.w)
+                | u32::from(p.x < -p.w) << 1
+                | u32::from(p.y > p.w) << 2
+                | u32::from(p.y < -p.w) << 3;
+            for (k, plane) in v.planes().iter().enumerate() {
+                code |= u32::from(plane.dot(p) < 0.0) << (4 + k);
+            }
+            proptest::prop_assert_eq!(v.outcode(p), code);
+        }
+    }
 
     fn vol() -> ClipVolume {
         ClipVolume::for_viewport(100, 100, 100)
