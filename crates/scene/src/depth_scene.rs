@@ -395,7 +395,6 @@ fn clipped(
 #[cfg(test)]
 mod tests {
     use glam::DVec3;
-    use hider_geom::{Camera, Projection};
     use proptest::prelude::*;
 
     use super::*;
@@ -431,16 +430,7 @@ mod tests {
     fn view(size: u32, near: f64) -> View {
         View {
             viewport: Viewport::new(size, size),
-            camera: Camera {
-                eye: DVec3::new(0.0, 0.0, 3.0),
-                target: DVec3::ZERO,
-                up: DVec3::Y,
-                projection: Projection::Perspective {
-                    fovy_degrees: 60.0,
-                    near,
-                    far: 6.0,
-                },
-            },
+            camera: crate::hard_cases::look_at(DVec3::new(0.0, 0.0, 3.0), DVec3::ZERO, near, 6.0),
         }
     }
 

@@ -66,35 +66,26 @@ pub(crate) trait RasterTri: Sync {
     fn prim(&self) -> u32;
 }
 
-impl RasterTri for ScreenTri {
-    #[inline]
-    fn v(&self) -> &[FixedPt; 3] {
-        &self.v
-    }
-    #[inline]
-    fn depth(&self) -> &PlaneEq {
-        &self.depth
-    }
-    #[inline]
-    fn prim(&self) -> u32 {
-        self.prim
-    }
+/// Both triangle types keep the same three fields under the same names.
+macro_rules! raster_tri {
+    ($($t:ty),*) => {$(
+        impl RasterTri for $t {
+            #[inline]
+            fn v(&self) -> &[FixedPt; 3] {
+                &self.v
+            }
+            #[inline]
+            fn depth(&self) -> &PlaneEq {
+                &self.depth
+            }
+            #[inline]
+            fn prim(&self) -> u32 {
+                self.prim
+            }
+        }
+    )*};
 }
-
-impl RasterTri for DepthTri {
-    #[inline]
-    fn v(&self) -> &[FixedPt; 3] {
-        &self.v
-    }
-    #[inline]
-    fn depth(&self) -> &PlaneEq {
-        &self.depth
-    }
-    #[inline]
-    fn prim(&self) -> u32 {
-        self.prim
-    }
-}
+raster_tri!(ScreenTri, DepthTri);
 
 /// One band of the frame as the resolve receives it: ((ids, depth),
 /// colour) rows of one row of tiles.
