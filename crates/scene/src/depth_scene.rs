@@ -304,7 +304,7 @@ fn triangles(
                 stats.back_faces += 1;
                 continue;
             }
-            if covers_no_centre(&c.map(|k| k.p), area, vp) {
+            if vp.misses_every_centre(&c.map(|k| k.p), area) {
                 stats.empty += 1;
                 continue;
             }
@@ -327,48 +327,6 @@ fn triangles(
     stats
 }
 
-/// Whether the snapped triangle `v` (signed doubled area `area`, not zero)
-/// certainly covers no pixel centre of `vp`: its box holds none, or holds
-/// one or two and the exact edge functions cover neither. Far from the
-/// camera most triangles of a dense mesh are a pixel or less and miss
-/// every centre (285k of the 499k-triangle sphere's at 1024); dropping them
-/// here saves their depth plane, their record, their bin entries and
-/// their rasterisation.
-#[inline(always)]
-fn covers_no_centre(v: &[FixedPt; 3], area: i64, vp: Viewport) -> bool {
-    let Some((x0, y0, x1, y1)) = vp.pixel_bounds(v) else {
-        return true;
-    };
-    let (nx, ny) = (x1 - x0, y1 - y0);
-    if nx + ny > 1 {
-        return false;
-    }
-    let a = v[0];
-    let (b, c) = if area < 0 { (v[2], v[1]) } else { (v[1], v[2]) };
-    // Centres are below 2^23 in fixed point (images are at most 16384).
-    let (px, py) = (x0 as i32 * 256 + 128, y0 as i32 * 256 + 128);
-    if centre_inside(a, b, c, px, py) {
-        return false;
-    }
-    nx + ny == 0 || !centre_inside(a, b, c, px + 256 * nx as i32, py + 256 * ny as i32)
-}
-
-/// Whether centre `(px, py)` (fixed point) is inside the positively
-/// oriented triangle `a b c`: `hider_geom::edge`'s edge functions written
-/// out (`E(p) = orient2d(from, to, p)`; top-left edges own `E == 0`).
-#[inline(always)]
-fn centre_inside(a: FixedPt, b: FixedPt, c: FixedPt, px: i32, py: i32) -> bool {
-    let edge = |f: FixedPt, t: FixedPt| {
-        let (dx, dy) = (
-            i64::from(t.x) - i64::from(f.x),
-            i64::from(t.y) - i64::from(f.y),
-        );
-        let e = dx * (i64::from(py) - i64::from(f.y)) - dy * (i64::from(px) - i64::from(f.x));
-        e + i64::from((dy < 0) | ((dy == 0) & (dx > 0))) > 0
-    };
-    edge(a, b) & edge(b, c) & edge(c, a)
-}
-
 /// A triangle that must be clipped: `prepare`'s own path, keeping the
 /// depth part of each piece.
 fn clipped(
@@ -384,7 +342,7 @@ fn clipped(
     front.triangle(scene, which, part, scratch);
     for t in &part.tris {
         // Pieces are positively oriented already.
-        if !covers_no_centre(&t.v, 1, front.viewport) {
+        if !front.viewport.misses_every_centre(&t.v, 1) {
             out.push(DepthTri::from(t));
         } else {
             part.stats.empty += 1;

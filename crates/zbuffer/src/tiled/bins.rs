@@ -104,6 +104,11 @@ impl ChunkBins {
             let Some((x0, y0, x1, y1)) = viewport.pixel_bounds(tri.v()) else {
                 continue;
             };
+            // Triangles that cover no pixel centre write nothing; drop them
+            // before they cost a bin entry and a set-up per tile.
+            if T::MAY_MISS_CENTRES && viewport.misses_every_centre(tri.v(), 1) {
+                continue;
+            }
             self.binned += 1;
             // A bound costs about 80 instructions; a triangle of a few
             // pixels costs little more to draw than to reject, so only

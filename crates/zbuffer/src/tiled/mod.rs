@@ -58,6 +58,10 @@ pub use stats::TiledZBufferStats;
 /// What the tile kernel reads of a triangle; implemented by both
 /// [`ScreenTri`] and the lean [`DepthTri`].
 pub(crate) trait RasterTri: Sync {
+    /// Whether the list may hold triangles that cover no pixel centre
+    /// (binning drops them). The lean front end drops them itself; a
+    /// screen scene keeps them for the other hiders.
+    const MAY_MISS_CENTRES: bool;
     /// Snapped vertices, positively ordered.
     fn v(&self) -> &[FixedPt; 3];
     /// The window-depth plane.
@@ -68,8 +72,9 @@ pub(crate) trait RasterTri: Sync {
 
 /// Both triangle types keep the same three fields under the same names.
 macro_rules! raster_tri {
-    ($($t:ty),*) => {$(
+    ($($t:ty: $miss:expr),*) => {$(
         impl RasterTri for $t {
+            const MAY_MISS_CENTRES: bool = $miss;
             #[inline]
             fn v(&self) -> &[FixedPt; 3] {
                 &self.v
@@ -85,7 +90,7 @@ macro_rules! raster_tri {
         }
     )*};
 }
-raster_tri!(ScreenTri, DepthTri);
+raster_tri!(ScreenTri: true, DepthTri: false);
 
 /// One band of the frame as the resolve receives it: ((ids, depth),
 /// colour) rows of one row of tiles.
