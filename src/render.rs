@@ -247,12 +247,17 @@ fn make_hider(args: &RenderArgs) -> Result<Box<dyn Hider>> {
     Ok((entry.make)())
 }
 
+/// The median of `times` (sorted in place; not empty).
+fn median(times: &mut [f64]) -> f64 {
+    times.sort_by(f64::total_cmp);
+    times[times.len() / 2]
+}
+
 /// "median X ms, min Y ms over N runs" of `times` (sorted in place).
 fn median_min(times: &mut [f64]) -> String {
-    times.sort_by(f64::total_cmp);
+    let m = median(times);
     format!(
-        "median {:.3} ms, min {:.3} ms over {} runs",
-        times[times.len() / 2],
+        "median {m:.3} ms, min {:.3} ms over {} runs",
         times[0],
         times.len()
     )
@@ -294,11 +299,10 @@ fn time_tiled(
     if got.ids != want.ids || got.depth != want.depth {
         bail!("internal error: the timed tiled pipeline's image differs from the rendered one");
     }
-    reads.sort_by(f64::total_cmp);
     Ok(format!(
         "{} (prepare + clear + rasterise, lean front end, image left in the tiles; read-back into a frame {:.3} ms more)",
         median_min(&mut times),
-        reads[reads.len() / 2]
+        median(&mut reads)
     ))
 }
 

@@ -313,7 +313,7 @@ fn triangles(
                 z: k.z,
                 w: 0.0,
             });
-            let Some((c, _, depth)) = setup_depth(window) else {
+            let Some((c, _, depth)) = setup_depth(window, area) else {
                 stats.degenerate += 1;
                 continue;
             };

@@ -516,11 +516,14 @@ pub(crate) fn to_window(
 }
 
 /// The part of set-up every hider needs: the vertices ordered positively,
-/// the facing and the depth plane. `None` when the snapped triangle has no
-/// area (it covers no sample).
+/// the facing and the depth plane, given `area = orient2d(c)` (the caller
+/// has it: it decides degenerate triangles and facing before this). `None`
+/// when the snapped triangle has no area (it covers no sample).
 #[inline]
-pub(crate) fn setup_depth(mut c: [WindowVertex; 3]) -> Option<([WindowVertex; 3], bool, PlaneEq)> {
-    let area = orient2d(c[0].p, c[1].p, c[2].p);
+pub(crate) fn setup_depth(
+    mut c: [WindowVertex; 3],
+    area: i64,
+) -> Option<([WindowVertex; 3], bool, PlaneEq)> {
     if area == 0 {
         return None;
     }
@@ -535,7 +538,8 @@ pub(crate) fn setup_depth(mut c: [WindowVertex; 3]) -> Option<([WindowVertex; 3]
 }
 
 fn setup(c: [WindowVertex; 3], prim: u32) -> Option<ScreenTri> {
-    let (c, front_facing, depth) = setup_depth(c)?;
+    let area = orient2d(c[0].p, c[1].p, c[2].p);
+    let (c, front_facing, depth) = setup_depth(c, area)?;
     let v = c.map(|k| k.p);
     let z = c.map(|k| k.z);
     let w = c.map(|k| k.w);

@@ -144,8 +144,6 @@ impl<K: DepthKey> TileBuf<K> {
         self.ids.fill(NO_ID);
         self.block_max.fill(K::FAR);
         self.block_passes.fill(0);
-        self.tile_max = K::FAR;
-        self.tile_passes = 0;
     }
 
     /// Draws one triangle into the tile; `low` is a lower bound of its
