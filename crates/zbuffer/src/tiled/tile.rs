@@ -398,11 +398,22 @@ impl<K: DepthKey> TileBuf<K> {
         };
         let (mut inside, mut passes) = (0u32, 0u32);
         let prim = s.prim;
+        // Read the block, merge in registers, count, then write it back
+        // whole. Written as `keys[i] = select(mask, new, keys[i])`, LLVM 22
+        // folds the load-select-store into AVX masked stores
+        // (`vmaskmovps`), which AMD's Zen cores run in microcode: they took
+        // a third of the spider's draw time. The counter stores between the
+        // reads and the writes keep the fold from applying (it needs a
+        // store's memory chain to reach the load with no other store in
+        // between; llvm-project #145176, undone for Zen by #214187).
+        let (old_keys, old_ids) = (*keys, *ids);
+        let mut merged_keys = old_keys;
+        let mut merged_ids = old_ids;
         for i in 0..64 {
             let ok = out[i] >= 0;
-            let mask = 0u32.wrapping_sub(u32::from(ok & (new[i] < keys[i])));
-            keys[i] = K::select(mask, new[i], keys[i]);
-            ids[i] = (prim & mask) | (ids[i] & !mask);
+            let mask = 0u32.wrapping_sub(u32::from(ok & (new[i] < old_keys[i])));
+            merged_keys[i] = K::select(mask, new[i], old_keys[i]);
+            merged_ids[i] = (prim & mask) | (old_ids[i] & !mask);
             inside += u32::from(ok);
             passes += mask & 1;
         }
@@ -411,6 +422,9 @@ impl<K: DepthKey> TileBuf<K> {
         }
         self.stats.depth_tests += u64::from(inside);
         self.stats.depth_passes += u64::from(passes);
+        // After the counters: see above.
+        *keys = merged_keys;
+        *ids = merged_ids;
         passes
     }
 
