@@ -1,0 +1,470 @@
+//! `peers`: times hider's peers — the `euc` crate and Mesa's llvmpipe —
+//! on this machine, in one run, with the scenes, camera and span of hider's
+//! tiled z-buffer benchmark (issue 12), and checks that each peer covers the
+//! pixels hider covers (so the camera is provably the same).
+//!
+//! ```text
+//! cargo run --release --manifest-path peers/Cargo.toml -- \
+//!     --runs 11 --sizes 1024 --json peers.json
+//! ```
+//!
+//! Options: `--runs K` timed runs per scene and size after 2 warm-ups
+//! (default 11); `--sizes A,B,..` (default 1024); `--threads A,B,..`
+//! llvmpipe thread counts, `LP_NUM_THREADS` (default 1,2); `--rounds R`
+//! (default 2): the peers take turns R times — euc, then one llvmpipe child
+//! process per thread count — and each keeps its best median and its
+//! overall minimum; `--peers euc,llvmpipe` (default both); `--gl-target
+//! fbo|window` (default fbo, see `llvmpipe.rs`); `--json PATH` writes an
+//! array of `{scene, size, peer, threads, median_ms, min_ms}`.
+//!
+//! llvmpipe reads `LP_NUM_THREADS` once per process, so each thread count
+//! runs in a child: this binary re-executed with `--child llvmpipe
+//! --threads N` and that variable set, which prints its results as JSON on
+//! standard output.
+
+mod euc;
+mod llvmpipe;
+mod scenes;
+
+use std::collections::BTreeMap;
+use std::process::{Command, ExitCode, Stdio};
+
+use serde::{Deserialize, Serialize};
+
+use crate::llvmpipe::{Llvmpipe, Target};
+use crate::scenes::{NamedScene, Workload, hider_coverage, load_scenes};
+
+/// Warm-up frames before the timed runs of each scene and size.
+const WARMUPS: usize = 2;
+/// Exit status of a child that found no libOSMesa (it said so already).
+const NO_LIBRARY: i32 = 3;
+/// Largest coverage difference from hider accepted for llvmpipe (0.5 %):
+/// same snapping and top-left rule, so only the odd edge pixel may differ.
+const GL_TOLERANCE: f64 = 0.005;
+/// The same for euc (1 %): it has no fill rule (a pixel centre on an edge
+/// is inside both triangles) and its own float edge tests.
+const EUC_TOLERANCE: f64 = 0.01;
+
+/// The command line.
+struct Args {
+    runs: usize,
+    sizes: Vec<u32>,
+    threads: Vec<u32>,
+    rounds: usize,
+    euc: bool,
+    llvmpipe: bool,
+    target: Target,
+    json: Option<String>,
+    child: bool,
+}
+
+fn parse_list<T: std::str::FromStr>(flag: &str, value: &str) -> Result<Vec<T>, String> {
+    value
+        .split(',')
+        .map(|v| {
+            v.trim()
+                .parse()
+                .map_err(|_| format!("{flag}: `{v}` is not a number"))
+        })
+        .collect()
+}
+
+fn parse_args() -> Result<Args, String> {
+    let mut args = Args {
+        runs: 11,
+        sizes: vec![1024],
+        threads: vec![1, 2],
+        rounds: 2,
+        euc: true,
+        llvmpipe: true,
+        target: Target::Fbo,
+        json: None,
+        child: false,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(flag) = it.next() {
+        let mut value = || it.next().ok_or_else(|| format!("{flag} needs a value"));
+        match flag.as_str() {
+            "--runs" => args.runs = parse_list(&flag, &value()?)?[0],
+            "--sizes" => args.sizes = parse_list(&flag, &value()?)?,
+            "--threads" => args.threads = parse_list(&flag, &value()?)?,
+            "--rounds" => args.rounds = parse_list(&flag, &value()?)?[0],
+            "--json" => args.json = Some(value()?),
+            "--gl-target" => {
+                let v = value()?;
+                args.target = Target::parse(&v)
+                    .ok_or_else(|| format!("--gl-target: `{v}` is not fbo or window"))?;
+            }
+            "--peers" => {
+                let v = value()?;
+                args.euc = v.split(',').any(|p| p == "euc");
+                args.llvmpipe = v.split(',').any(|p| p == "llvmpipe");
+                if !args.euc && !args.llvmpipe {
+                    return Err(format!("--peers: `{v}` names neither euc nor llvmpipe"));
+                }
+            }
+            "--child" => {
+                let v = value()?;
+                if v != "llvmpipe" {
+                    return Err(format!("--child: unknown peer `{v}`"));
+                }
+                args.child = true;
+            }
+            "-h" | "--help" => {
+                return Err(
+                    "usage: peers [--runs K] [--sizes 512,1024,2048] [--threads 1,2] \
+                     [--rounds R] [--peers euc,llvmpipe] [--gl-target fbo|window] [--json PATH]"
+                        .into(),
+                );
+            }
+            _ => return Err(format!("unknown argument `{flag}` (try --help)")),
+        }
+    }
+    if args.runs == 0 || args.rounds == 0 || args.sizes.is_empty() || args.threads.is_empty() {
+        return Err("--runs, --rounds, --sizes and --threads must not be 0 or empty".into());
+    }
+    if let Some(&bad) = args.sizes.iter().find(|&&s| s == 0 || s > 16384) {
+        return Err(format!("--sizes: {bad} is not between 1 and 16384"));
+    }
+    Ok(args)
+}
+
+/// The timed runs of one peer on one scene and size, as a child reports
+/// them.
+#[derive(Serialize, Deserialize)]
+struct RawResult {
+    scene: String,
+    size: u32,
+    ms: Vec<f64>,
+    covered: u64,
+}
+
+/// What an llvmpipe child prints on standard output.
+#[derive(Serialize, Deserialize)]
+struct ChildReport {
+    renderer: String,
+    other_threads: Option<usize>,
+    results: Vec<RawResult>,
+}
+
+/// One row of `--json`.
+#[derive(Serialize)]
+struct JsonRow<'a> {
+    scene: &'a str,
+    size: u32,
+    peer: &'a str,
+    threads: u32,
+    median_ms: f64,
+    min_ms: f64,
+}
+
+/// Median (the upper one for an even count) and minimum.
+fn median_min(ms: &[f64]) -> (f64, f64) {
+    let mut v = ms.to_vec();
+    v.sort_by(f64::total_cmp);
+    (v[v.len() / 2], v[0])
+}
+
+/// All rounds of one peer and thread count on one scene and size.
+#[derive(Default)]
+struct Agg {
+    best_median: f64,
+    min: f64,
+    covered: u64,
+    rounds: usize,
+}
+
+impl Agg {
+    fn add(&mut self, ms: &[f64], covered: u64) {
+        let (median, min) = median_min(ms);
+        if self.rounds == 0 {
+            (self.best_median, self.min) = (median, min);
+        } else {
+            self.best_median = self.best_median.min(median);
+            self.min = self.min.min(min);
+        }
+        self.covered = covered;
+        self.rounds += 1;
+    }
+}
+
+/// Results keyed by (size, scene, peer, threads).
+type Results = BTreeMap<(u32, String, &'static str, u32), Agg>;
+
+/// The workloads of every scene at every size.
+fn workloads(scenes: &[NamedScene], sizes: &[u32]) -> Result<Vec<Workload>, String> {
+    sizes
+        .iter()
+        .flat_map(|&size| scenes.iter().map(move |s| Workload::new(s, size)))
+        .collect()
+}
+
+/// The child: llvmpipe on every workload, results as JSON on stdout.
+fn run_child(args: &Args) -> ExitCode {
+    let scenes = load_scenes(true);
+    let work = match workloads(&scenes, &args.sizes) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("llvmpipe: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let mut gl = match Llvmpipe::open() {
+        Ok(gl) => gl,
+        Err(e) => {
+            eprintln!("llvmpipe skipped: {e}");
+            return ExitCode::from(NO_LIBRARY as u8);
+        }
+    };
+    let mut results = Vec::new();
+    for w in &work {
+        match gl.time(w, args.target, WARMUPS, args.runs) {
+            Ok(run) => results.push(RawResult {
+                scene: w.name.to_owned(),
+                size: w.size,
+                ms: run.ms,
+                covered: run.covered,
+            }),
+            Err(e) => {
+                eprintln!("llvmpipe on {} at {}: {e}", w.name, w.size);
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    let report = ChildReport {
+        renderer: gl.describe(),
+        other_threads: llvmpipe::other_threads(),
+        results,
+    };
+    match serde_json::to_string(&report) {
+        Ok(s) => {
+            println!("{s}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("llvmpipe: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs one llvmpipe child with `threads` threads. `Ok(None)`: no
+/// libOSMesa (the child said so).
+fn llvmpipe_child(args: &Args, threads: u32) -> Result<Option<ChildReport>, String> {
+    let exe = std::env::current_exe().map_err(|e| format!("cannot find this program: {e}"))?;
+    let join = |v: &[u32]| v.iter().map(u32::to_string).collect::<Vec<_>>().join(",");
+    let out = Command::new(exe)
+        .args(["--child", "llvmpipe", "--runs", &args.runs.to_string()])
+        .args([
+            "--sizes",
+            &join(&args.sizes),
+            "--threads",
+            &threads.to_string(),
+        ])
+        .args(["--gl-target", args.target.name()])
+        .env("LP_NUM_THREADS", threads.to_string())
+        .stdin(Stdio::null())
+        .stderr(Stdio::inherit())
+        .output()
+        .map_err(|e| format!("cannot start the llvmpipe child: {e}"))?;
+    if out.status.code() == Some(NO_LIBRARY) {
+        return Ok(None);
+    }
+    if !out.status.success() {
+        return Err(format!(
+            "llvmpipe with {threads} threads failed ({})",
+            out.status
+        ));
+    }
+    serde_json::from_slice(&out.stdout)
+        .map(Some)
+        .map_err(|e| format!("llvmpipe with {threads} threads: unreadable report: {e}"))
+}
+
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .map(|s| s.split_whitespace().take(3).collect::<Vec<_>>().join(" "))
+        .unwrap_or_else(|_| "?".into())
+}
+
+fn main() -> ExitCode {
+    let args = match parse_args() {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::from(2);
+        }
+    };
+    if args.child {
+        return run_child(&args);
+    }
+
+    let scenes = load_scenes(false);
+    let work = match workloads(&scenes, &args.sizes) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    println!(
+        "peers: {} timed runs after {WARMUPS} warm-ups, best median of {} rounds; load average at start {}",
+        args.runs,
+        args.rounds,
+        load_average()
+    );
+
+    let mut results = Results::new();
+    let mut llvmpipe = args.llvmpipe;
+    for round in 0..args.rounds {
+        if args.euc {
+            for w in &work {
+                let run = euc::time(w, WARMUPS, args.runs);
+                results
+                    .entry((w.size, w.name.to_owned(), "euc", 1))
+                    .or_default()
+                    .add(&run.ms, run.covered);
+            }
+        }
+        for &threads in &args.threads {
+            if !llvmpipe {
+                break;
+            }
+            match llvmpipe_child(&args, threads) {
+                Ok(Some(report)) => {
+                    if round == 0 {
+                        println!(
+                            "llvmpipe, LP_NUM_THREADS={threads}: {}, {} other threads in the process, target {}",
+                            report.renderer,
+                            report.other_threads.map_or("?".into(), |n| n.to_string()),
+                            args.target.name()
+                        );
+                    }
+                    for r in report.results {
+                        results
+                            .entry((r.size, r.scene, "llvmpipe", threads))
+                            .or_default()
+                            .add(&r.ms, r.covered);
+                    }
+                }
+                Ok(None) => llvmpipe = false,
+                Err(e) => eprintln!("{e}"),
+            }
+        }
+    }
+    println!("load average at end {}\n", load_average());
+
+    // The table.
+    let mut header = "| scene | triangles | size |".to_owned();
+    let mut columns: Vec<(&'static str, u32)> = Vec::new();
+    if args.euc {
+        header += " euc 1T |";
+        columns.push(("euc", 1));
+    }
+    if llvmpipe {
+        for &t in &args.threads {
+            header += &format!(" llvmpipe {t}T |");
+            columns.push(("llvmpipe", t));
+        }
+    }
+    println!("median (min) ms at size x size, fit camera; clear + draw (+ glFinish)\n");
+    println!("{header}");
+    println!("|---|---|---|{}", "---|".repeat(columns.len()));
+    for w in &work {
+        let mut row = format!("| {} | {} | {} |", w.name, w.triangles(), w.size);
+        for &(peer, t) in &columns {
+            match results.get(&(w.size, w.name.to_owned(), peer, t)) {
+                Some(a) => row += &format!(" {:.2} ({:.2}) |", a.best_median, a.min),
+                None => row += " - |",
+            }
+        }
+        println!("{row}");
+    }
+
+    // The coverage checks against hider's reference z-buffer.
+    println!("\ncovered pixels (hider's ZBuffer, f32 front end, vs each peer's last frame):");
+    let mut failures = Vec::new();
+    for w in &work {
+        let Some(scene) = scenes.iter().find(|s| s.name == w.name) else {
+            continue;
+        };
+        let want = match hider_coverage(scene, w.size) {
+            Ok(n) => n,
+            Err(e) => {
+                failures.push(e);
+                continue;
+            }
+        };
+        let mut line = format!("  {} at {}: hider {want}", w.name, w.size);
+        for &(peer, t) in &columns {
+            let Some(a) = results.get(&(w.size, w.name.to_owned(), peer, t)) else {
+                continue;
+            };
+            let tolerance = if peer == "euc" {
+                EUC_TOLERANCE
+            } else {
+                GL_TOLERANCE
+            };
+            let diff = (a.covered as f64 - want as f64) / (want.max(1) as f64);
+            let verdict = if diff.abs() <= tolerance {
+                "ok"
+            } else {
+                failures.push(format!(
+                    "{peer} {t}T on {} at {} covers {} pixels, hider {want}: {:+.3} %, over the {} % allowed",
+                    w.name,
+                    w.size,
+                    a.covered,
+                    diff * 100.0,
+                    tolerance * 100.0
+                ));
+                "FAILED"
+            };
+            line += &format!(
+                "; {peer} {t}T {} ({:+.3} %, {verdict} within {} %)",
+                a.covered,
+                diff * 100.0,
+                tolerance * 100.0
+            );
+        }
+        println!("{line}");
+    }
+
+    if !failures.is_empty() {
+        for f in &failures {
+            eprintln!("COVERAGE CHECK FAILED: {f}");
+        }
+        eprintln!("the peers do not draw what hider draws: no JSON written");
+        return ExitCode::FAILURE;
+    }
+
+    if let Some(path) = &args.json {
+        // In the table's order; milliseconds rounded to the microsecond.
+        let us = |ms: f64| (ms * 1e3).round() / 1e3;
+        let rows: Vec<JsonRow<'_>> = work
+            .iter()
+            .flat_map(|w| columns.iter().map(move |&(peer, t)| (w, peer, t)))
+            .filter_map(|(w, peer, threads)| {
+                let a = results.get(&(w.size, w.name.to_owned(), peer, threads))?;
+                Some(JsonRow {
+                    scene: w.name,
+                    size: w.size,
+                    peer,
+                    threads,
+                    median_ms: us(a.best_median),
+                    min_ms: us(a.min),
+                })
+            })
+            .collect();
+        let written = serde_json::to_string_pretty(&rows)
+            .map_err(|e| e.to_string())
+            .and_then(|s| std::fs::write(path, s + "\n").map_err(|e| e.to_string()));
+        match written {
+            Ok(()) => println!("\nwrote {path}"),
+            Err(e) => {
+                eprintln!("cannot write {path}: {e}");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    ExitCode::SUCCESS
+}
