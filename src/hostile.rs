@@ -6,8 +6,8 @@
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_scene::{
-    DepthScene, DepthTri, Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene,
-    TransformPrecision, View, prepare_depth_into,
+    DepthFragment, DepthScene, DepthTri, Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene,
+    ScreenScene, TransformPrecision, View, lean_reference, prepare_depth_into,
 };
 use hider_zbuffer::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
 
@@ -138,35 +138,22 @@ pub fn all_violations(screen: &ScreenScene) -> Vec<String> {
 }
 
 /// The lean front end and the fast z-buffer's own pipeline on a case whose
-/// full front end gave `screen`: the depth scene must hold exactly the
-/// triangles of `screen` that cover a pixel centre (plus, possibly, some
-/// whose box has more than two centres), bit for bit and in order, and the
-/// tiled z-buffer drawing it must give `ZBuffer`'s frame on `screen`.
+/// full front end gave `screen`: the depth scene must hold exactly
+/// [`lean_reference`]'s triangles and fragments, bit for bit and in order,
+/// and the tiled z-buffer drawing it must give `ZBuffer`'s frame on
+/// `screen`.
 pub fn check_lean_pipeline(case: &Case, screen: &ScreenScene) -> Result<(), String> {
     let mut lean = DepthScene::new();
     prepare_depth_into(&case.scene, &case.view, &case.options, &mut lean)
         .map_err(|e| format!("lean front end refused what prepare took: {e}"))?;
     let vp = screen.viewport;
-    let covers_a_centre = |v: &[hider_geom::FixedPt; 3]| {
-        let Some((x0, y0, x1, y1)) = vp.pixel_bounds(v) else {
-            return false;
-        };
-        let many = (x1 - x0 + 1) * (y1 - y0 + 1) > 2;
-        many || (y0..=y1).any(|y| {
-            (x0..=x1).any(|x| {
-                hider_geom::triangle_covers(v, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128)
-            })
-        })
-    };
-    let want: Vec<DepthTri> = screen
-        .tris
-        .iter()
-        .filter(|t| covers_a_centre(&t.v))
-        .map(DepthTri::from)
-        .collect();
+    let (want, want_fragments) = lean_reference(screen);
     let got: Vec<DepthTri> = lean.tris().copied().collect();
-    if got != want {
-        return Err(format!("lean front end: {got:?}\nprepare: {want:?}"));
+    let got_fragments: Vec<DepthFragment> = lean.fragments().flatten().copied().collect();
+    if got != want || got_fragments != want_fragments {
+        return Err(format!(
+            "lean front end: {got:?} {got_fragments:?}\nprepare: {want:?} {want_fragments:?}"
+        ));
     }
     let mut want = Frame::new(vp.width, vp.height).map_err(|e| e.to_string())?;
     let mut got = want.clone();

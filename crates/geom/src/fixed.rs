@@ -56,11 +56,21 @@ impl FixedPt {
 /// Snaps one window coordinate (pixels) to fixed point, or `None` when it is
 /// not finite or beyond ±2^15 pixels.
 pub fn snap_coordinate(v: f64) -> Option<i32> {
+    let (ok, snapped) = snap_coordinate_lanewise(v);
+    ok.then_some(snapped)
+}
+
+/// [`snap_coordinate`] without branches, for loops the compiler should
+/// vectorise: whether `v` can be snapped, and the snapped value (equal to
+/// `snap_coordinate(v)` when it can; meaningless, but computed without
+/// panicking, when it cannot).
+#[inline(always)]
+pub fn snap_coordinate_lanewise(v: f64) -> (bool, i32) {
     let limit = f64::from(1u32 << 15);
-    if !v.is_finite() || v.abs() > limit {
-        return None;
-    }
-    Some(round_half_away(v * f64::from(SUBPIXEL_SCALE)))
+    // `abs` of NaN is NaN and fails the comparison; infinities fail it too.
+    let ok = v.abs() <= limit;
+    // Out of range, the product saturates in `round_half_away`'s cast.
+    (ok, round_half_away(v * f64::from(SUBPIXEL_SCALE)))
 }
 
 /// `x.round() as i32` (ties away from zero) for `|x| < 2^31`, without the
@@ -68,13 +78,17 @@ pub fn snap_coordinate(v: f64) -> Option<i32> {
 /// `t` is exact, and so is `x - t` (both are multiples of the same power of
 /// two as x), so comparing the remainder with one half rounds exactly as
 /// `f64::round` does.
-#[inline]
+#[inline(always)]
 fn round_half_away(x: f64) -> i32 {
     let t = x as i32;
     let rest = x - f64::from(t);
     // Branch-free: the remainder's sign and size are data, and on vertex
     // streams the branches mispredicted about half the time.
-    t + i32::from(rest >= 0.5) - i32::from(rest <= -0.5)
+    // Wrapping: beyond 2^31 the cast saturates and the remainder of an
+    // infinity is infinite; the result is unused there, but must not
+    // overflow.
+    t.wrapping_add(i32::from(rest >= 0.5))
+        .wrapping_sub(i32::from(rest <= -0.5))
 }
 
 /// The fixed-point coordinate of the centre of pixel column or row `i`.
@@ -119,6 +133,29 @@ mod tests {
             assert_eq!(round_half_away(x), x.round() as i32, "{x}");
             let tie = (x.floor()) + 0.5;
             assert_eq!(round_half_away(tie), tie.round() as i32, "{tie}");
+        }
+    }
+
+    #[test]
+    fn lanewise_snapping_agrees_and_never_panics() {
+        for v in [
+            0.0,
+            -0.0,
+            1.5 / 256.0,
+            -2.5 / 256.0,
+            32_768.0,
+            -32_768.0,
+            32_768.001,
+            1e300,
+            -1e300,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MAX,
+        ] {
+            let (ok, snapped) = snap_coordinate_lanewise(v);
+            assert_eq!(ok.then_some(snapped), snap_coordinate(v), "{v}");
+            assert_eq!(ok, v.is_finite() && v.abs() <= 32_768.0, "{v}");
         }
     }
 

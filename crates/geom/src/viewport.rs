@@ -77,26 +77,81 @@ impl Viewport {
     /// that drops them early saves all their later work.
     #[inline(always)]
     pub fn misses_every_centre(&self, v: &[FixedPt; 3], area: i64) -> bool {
+        matches!(self.covered_centres(v, area), Centres::Few { count: 0, .. })
+    }
+
+    /// Which pixel centres the snapped triangle `v` (signed doubled area
+    /// `area`, not zero; either orientation) covers, when its box holds at
+    /// most two: [`Centres::Few`], tested with the exact edge functions of
+    /// [`crate::edge`] (top-left rule). Larger boxes answer
+    /// [`Centres::Many`] without a test.
+    ///
+    /// On the 499k-triangle sphere at 1024 x 1024, 281k triangles cover
+    /// no centre and 161k of the other 218k cover one or two of a box of
+    /// at most two: a depth-only front end can hand those over as pixels.
+    ///
+    /// Branches rather than selects: whether a box is small is learnt by
+    /// the branch predictor from the mesh's neighbourhoods (a branch-free
+    /// version, measured on that sphere, made its front end 20 % slower).
+    #[inline(always)]
+    pub fn covered_centres(&self, v: &[FixedPt; 3], area: i64) -> Centres {
         let Some((x0, y0, x1, y1)) = self.pixel_bounds(v) else {
-            return true;
+            return Centres::Few {
+                pixels: [(0, 0); 2],
+                count: 0,
+            };
         };
         let (nx, ny) = (x1 - x0, y1 - y0);
         if nx + ny > 1 {
-            return false;
+            return Centres::Many;
         }
         let a = v[0];
         let (b, c) = if area < 0 { (v[2], v[1]) } else { (v[1], v[2]) };
         // Centres are below 2^23 in fixed point (images are at most 16384).
-        let (px, py) = (x0 as i32 * 256 + 128, y0 as i32 * 256 + 128);
-        if centre_inside(a, b, c, px, py) {
-            return false;
+        let covers =
+            |x: u32, y: u32| centre_inside(a, b, c, x as i32 * 256 + 128, y as i32 * 256 + 128);
+        let (mut pixels, mut count) = ([(0, 0); 2], 0u8);
+        if covers(x0, y0) {
+            pixels[0] = (x0, y0);
+            count = 1;
         }
-        nx + ny == 0 || !centre_inside(a, b, c, px + 256 * nx as i32, py + 256 * ny as i32)
+        if nx + ny == 1 && covers(x1, y1) {
+            pixels[usize::from(count)] = (x1, y1);
+            count += 1;
+        }
+        Centres::Few { pixels, count }
     }
 
     /// Number of pixels.
     pub fn pixel_count(&self) -> usize {
         self.width as usize * self.height as usize
+    }
+}
+
+/// The pixel centres a small triangle covers: what
+/// [`Viewport::covered_centres`] answers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Centres {
+    /// The triangle's box holds more than two pixel centres (not tested).
+    Many,
+    /// The box holds at most two centres; `pixels[..count]` are the ones
+    /// covered, as `(column, row)`, in row-major order.
+    Few {
+        /// The covered centres (the first `count` entries).
+        pixels: [(u32, u32); 2],
+        /// How many are covered: 0, 1 or 2.
+        count: u8,
+    },
+}
+
+impl Centres {
+    /// The covered centres of a [`Centres::Few`] answer (empty for
+    /// [`Centres::Many`]).
+    pub fn pixels(&self) -> &[(u32, u32)] {
+        match self {
+            Self::Many => &[],
+            Self::Few { pixels, count } => &pixels[..usize::from(*count)],
+        }
     }
 }
 
@@ -165,6 +220,36 @@ mod tests {
                 &positive, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128)));
             let few = (x1 - x0 + 1) * (y1 - y0 + 1) <= 2;
             prop_assert_eq!(vp.misses_every_centre(&v, area), few && !covers);
+        }
+
+        /// `covered_centres` lists exactly the covered centres of a box of
+        /// at most two, row-major, and answers `Many` for larger boxes.
+        #[test]
+        fn covered_centres_are_the_brute_force_ones(
+            pts in proptest::array::uniform3((-300i32..1300, -300i32..1300)),
+            w in 1u32..6,
+            h in 1u32..6,
+        ) {
+            let v = pts.map(|(x, y)| FixedPt::new(x, y));
+            let area = crate::orient2d(v[0], v[1], v[2]);
+            prop_assume!(area != 0);
+            let vp = Viewport::new(w, h);
+            let positive = if area > 0 { v } else { [v[0], v[2], v[1]] };
+            let got = vp.covered_centres(&v, area);
+            let Some((x0, y0, x1, y1)) = vp.pixel_bounds(&v) else {
+                prop_assert!(got.pixels().is_empty() && got != Centres::Many);
+                return Ok(());
+            };
+            if (x1 - x0 + 1) * (y1 - y0 + 1) > 2 {
+                prop_assert_eq!(got, Centres::Many);
+                return Ok(());
+            }
+            let want: Vec<(u32, u32)> = (y0..=y1)
+                .flat_map(|y| (x0..=x1).map(move |x| (x, y)))
+                .filter(|&(x, y)| crate::triangle_covers(
+                    &positive, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128))
+                .collect();
+            prop_assert_eq!(got.pixels(), &want[..]);
         }
     }
 

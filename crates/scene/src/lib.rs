@@ -57,7 +57,7 @@ pub mod texture;
 pub mod view;
 
 pub use analyze::{Effects, Evidence, RenderOptions, analyze};
-pub use depth_scene::{DepthScene, DepthTri, prepare_depth_into};
+pub use depth_scene::{DepthFragment, DepthScene, DepthTri, lean_reference, prepare_depth_into};
 pub use error::{Error, Result};
 pub use frame::{Frame, NO_ID};
 pub use hider::{Hider, Stats, check_frame, check_frame_size};

@@ -138,52 +138,83 @@ impl Scene {
     /// scenes; call this on scenes built by hand.
     pub fn validate(&self) -> Result<()> {
         for (m, mesh) in self.meshes.iter().enumerate() {
-            let n = mesh.positions.len();
-            // Every frame's front end validates: a branch-free pass (which
-            // vectorises) first, the search for the culprit only on failure.
-            let finite = mesh.positions.iter().fold(true, |ok, p| {
-                ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
-            });
-            let max_index = mesh.indices.as_flattened().iter().fold(0, |m, &i| m.max(i));
-            if !finite || ((max_index as usize) >= n && !mesh.indices.is_empty()) {
-                if let Some((v, p)) = mesh
-                    .positions
-                    .iter()
-                    .enumerate()
-                    .find(|(_, p)| !p.is_finite())
-                {
-                    return Err(Error::InvalidScene(format!(
-                        "mesh {m} ('{}') vertex {v} has a non-finite position {p}",
-                        mesh.name
-                    )));
-                }
-                for (t, tri) in mesh.indices.iter().enumerate() {
-                    if let Some(&i) = tri.iter().find(|&&i| i as usize >= n) {
-                        return Err(Error::InvalidScene(format!(
-                            "mesh {m} ('{}') triangle {t} uses vertex {i}, but the mesh has {n} vertices",
-                            mesh.name
-                        )));
-                    }
-                }
-            }
-            for (what, len) in [("normals", mesh.normals.len()), ("uvs", mesh.uvs.len())] {
-                if len != 0 && len != n {
-                    return Err(Error::InvalidScene(format!(
-                        "mesh {m} ('{}') has {len} {what} for {n} vertices",
-                        mesh.name
-                    )));
-                }
-            }
-            if let Some(k) = mesh.material
-                && k >= self.materials.len()
-            {
+            self.check_geometry(m, mesh)?;
+            self.check_structure(m, mesh)?;
+        }
+        self.check_materials()
+    }
+
+    /// The part of [`Self::validate`] that does not read every vertex and
+    /// index: attribute lengths, material references and opacities. The
+    /// lean front end runs this, and finds non-finite positions and
+    /// indices out of range in the passes it makes over them anyway (then
+    /// [`Self::validate`] names the culprit).
+    pub(crate) fn validate_structure(&self) -> Result<()> {
+        for (m, mesh) in self.meshes.iter().enumerate() {
+            self.check_structure(m, mesh)?;
+        }
+        self.check_materials()
+    }
+
+    /// Finite positions and indices in range.
+    fn check_geometry(&self, m: usize, mesh: &Mesh) -> Result<()> {
+        let n = mesh.positions.len();
+        // Every frame's front end validates: a branch-free pass (which
+        // vectorises) first, the search for the culprit only on failure.
+        let finite = mesh.positions.iter().fold(true, |ok, p| {
+            ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
+        });
+        let max_index = mesh.indices.as_flattened().iter().fold(0, |m, &i| m.max(i));
+        if finite && ((max_index as usize) < n || mesh.indices.is_empty()) {
+            return Ok(());
+        }
+        if let Some((v, p)) = mesh
+            .positions
+            .iter()
+            .enumerate()
+            .find(|(_, p)| !p.is_finite())
+        {
+            return Err(Error::InvalidScene(format!(
+                "mesh {m} ('{}') vertex {v} has a non-finite position {p}",
+                mesh.name
+            )));
+        }
+        for (t, tri) in mesh.indices.iter().enumerate() {
+            if let Some(&i) = tri.iter().find(|&&i| i as usize >= n) {
                 return Err(Error::InvalidScene(format!(
-                    "mesh {m} ('{}') uses material {k}, but there are {}",
-                    mesh.name,
-                    self.materials.len()
+                    "mesh {m} ('{}') triangle {t} uses vertex {i}, but the mesh has {n} vertices",
+                    mesh.name
                 )));
             }
         }
+        Ok(())
+    }
+
+    /// Attribute lengths and the material reference of one mesh.
+    fn check_structure(&self, m: usize, mesh: &Mesh) -> Result<()> {
+        let n = mesh.positions.len();
+        for (what, len) in [("normals", mesh.normals.len()), ("uvs", mesh.uvs.len())] {
+            if len != 0 && len != n {
+                return Err(Error::InvalidScene(format!(
+                    "mesh {m} ('{}') has {len} {what} for {n} vertices",
+                    mesh.name
+                )));
+            }
+        }
+        if let Some(k) = mesh.material
+            && k >= self.materials.len()
+        {
+            return Err(Error::InvalidScene(format!(
+                "mesh {m} ('{}') uses material {k}, but there are {}",
+                mesh.name,
+                self.materials.len()
+            )));
+        }
+        Ok(())
+    }
+
+    /// Opacities in [0, 1].
+    fn check_materials(&self) -> Result<()> {
         for mat in &self.materials {
             if !(0.0..=1.0).contains(&mat.opacity) {
                 return Err(Error::InvalidScene(format!(

@@ -164,11 +164,17 @@ pub struct PrepareStats {
     /// certainly cover no pixel centre; always 0 from [`prepare`], which
     /// keeps them.
     pub empty: u64,
+    /// Triangles the lean front end handed over as the pixels they cover
+    /// ([`DepthFragment`](crate::DepthFragment)s) rather than as
+    /// triangles, because their box holds at most two pixel centres; not
+    /// counted in [`Self::output`]. Always 0 from [`prepare`].
+    pub fragmented: u64,
 }
 
 impl PrepareStats {
     pub(crate) fn add(&mut self, other: &Self) {
         self.empty += other.empty;
+        self.fragmented += other.fragmented;
         self.culled += other.culled;
         self.clipped += other.clipped;
         self.degenerate += other.degenerate;
@@ -381,12 +387,28 @@ impl FrontEnd {
     /// Checks the image size, the camera and the scene, and computes the
     /// per-frame transforms.
     pub(crate) fn new(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<Self> {
+        Self::checked(scene, view, options, true)
+    }
+
+    /// As [`Self::new`], with `geometry` false leaving the check of every
+    /// position and index ([`Scene::validate`]'s costly part) to a caller
+    /// that reads them all anyway.
+    pub(crate) fn checked(
+        scene: &Scene,
+        view: &View,
+        options: &PrepareOptions,
+        geometry: bool,
+    ) -> Result<Self> {
         let vp = view.viewport;
         check_image_size(vp.width, vp.height)?;
         view.camera
             .validate()
             .map_err(|e| crate::error::Error::Camera(e.0))?;
-        scene.validate()?;
+        if geometry {
+            scene.validate()?;
+        } else {
+            scene.validate_structure()?;
+        }
         let view_matrix = view.camera.view_matrix();
         let projection_matrix = view.camera.projection_matrix(vp.aspect());
         let mvp = projection_matrix * view_matrix;

@@ -20,6 +20,7 @@
 //! triangle count whatever the image size.
 
 use hider_geom::Viewport;
+use hider_scene::DepthFragment;
 
 use super::RasterTri;
 use super::bounds::DepthBounds;
@@ -150,6 +151,50 @@ impl ChunkBins {
     }
 }
 
+/// The pixel fragments of one run of a depth scene, by tile.
+///
+/// Fragments are copied into their tile's list (16 bytes each) rather than
+/// indexed: a tile then reads its fragments in order, and each one is a
+/// single depth test.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FragmentBins {
+    /// Per tile (row-major), the run's fragments in it, in primitive order.
+    pub tiles: Vec<Vec<DepthFragment>>,
+}
+
+impl FragmentBins {
+    /// Bins `fragments` on `grid`, reusing the memory. Fragments outside
+    /// the viewport (only if a caller shrank a depth scene's viewport by
+    /// hand) are dropped.
+    pub(crate) fn fill(&mut self, fragments: &[DepthFragment], viewport: Viewport, grid: Grid) {
+        self.tiles.resize_with(grid.tiles(), Vec::new);
+        self.tiles.truncate(grid.tiles());
+        for bin in &mut self.tiles {
+            bin.clear();
+        }
+        let shift = grid.tile.trailing_zeros();
+        let pow2 = grid.tile.is_power_of_two();
+        let tile_of = |p: u32| if pow2 { p >> shift } else { p / grid.tile };
+        for f in fragments {
+            let (x, y) = (u32::from(f.x), u32::from(f.y));
+            if x >= viewport.width || y >= viewport.height {
+                continue;
+            }
+            let t = (tile_of(y) * grid.cols + tile_of(x)) as usize;
+            self.tiles[t].push(*f);
+        }
+    }
+
+    /// Bytes held by the bins.
+    pub(crate) fn bytes(&self) -> usize {
+        self.tiles
+            .iter()
+            .map(|b| b.capacity() * std::mem::size_of::<DepthFragment>())
+            .sum::<usize>()
+            + self.tiles.capacity() * std::mem::size_of::<Vec<DepthFragment>>()
+    }
+}
+
 /// How many entries ahead of the one being drawn a triangle is prefetched:
 /// a tile's triangles are scattered through the triangle list, and
 /// without it every one is a cache miss.
@@ -222,10 +267,12 @@ pub(crate) fn for_each_in_tile<T, D: DrawTri<T>>(
 }
 
 /// Whether any chunk has a triangle for tile `tile` (large triangles are
-/// counted for every tile; the tile's own bounding-box test sorts them out).
+/// counted for every tile; the tile's own bounding-box test sorts them
+/// out), or any run a fragment.
 #[inline]
-pub(crate) fn tile_has_work(chunks: &[ChunkBins], tile: usize) -> bool {
+pub(crate) fn tile_has_work(chunks: &[ChunkBins], fragments: &[FragmentBins], tile: usize) -> bool {
     chunks
         .iter()
         .any(|c| !c.tiles[tile].is_empty() || !c.large.is_empty())
+        || fragments.iter().any(|f| !f.tiles[tile].is_empty())
 }

@@ -43,12 +43,12 @@ mod tests;
 use hider_geom::{FixedPt, PlaneEq, Viewport};
 use hider_scene::frame::BACKGROUND;
 use hider_scene::{
-    DepthScene, DepthTri, Error, Frame, Hider, Result, ScreenScene, ScreenTri, Stats, check_frame,
-    check_frame_size,
+    DepthFragment, DepthScene, DepthTri, Error, Frame, Hider, Result, ScreenScene, ScreenTri,
+    Stats, check_frame, check_frame_size,
 };
 
 use crate::options::DepthFormat;
-use bins::{ChunkBins, Grid};
+use bins::{ChunkBins, FragmentBins, Grid};
 use key::{Fixed16, Fixed24, Reversed};
 use tile::{Scratch, TileBuf, TileKey};
 
@@ -110,6 +110,7 @@ pub struct TiledZBuffer {
     name: String,
     pool: Option<rayon::ThreadPool>,
     chunks: Vec<ChunkBins>,
+    fragment_bins: Vec<FragmentBins>,
     scratch: Scratch,
     /// The image held in the tiles: its viewport, grid and format.
     drawn: Option<(Viewport, Grid, DepthFormat)>,
@@ -133,6 +134,7 @@ impl TiledZBuffer {
             name,
             pool: None,
             chunks: Vec::new(),
+            fragment_bins: Vec::new(),
             scratch: Scratch::default(),
             drawn: None,
             wide_kernel: true,
@@ -161,7 +163,7 @@ impl TiledZBuffer {
         frame: &mut Frame,
     ) -> Result<TiledZBufferStats> {
         check_frame(&self.name, scene, frame)?;
-        self.run(&[&scene.tris[..]], scene.viewport, Some(frame))
+        self.run(&[&scene.tris[..]], &[], scene.viewport, Some(frame))
     }
 
     /// Renders a lean [`DepthScene`] into `frame`: the same frame as
@@ -173,8 +175,9 @@ impl TiledZBuffer {
         frame: &mut Frame,
     ) -> Result<TiledZBufferStats> {
         self.check_size(scene.viewport, frame)?;
-        let parts: Vec<&[DepthTri]> = scene.parts.iter().map(Vec::as_slice).collect();
-        self.run(&parts, scene.viewport, Some(frame))
+        let parts: Vec<&[DepthTri]> = scene.parts().collect();
+        let fragments: Vec<&[DepthFragment]> = scene.fragments().collect();
+        self.run(&parts, &fragments, scene.viewport, Some(frame))
     }
 
     /// Draws a lean [`DepthScene`] into the hider's own tiled framebuffer
@@ -182,8 +185,9 @@ impl TiledZBuffer {
     /// reached are only flagged background. [`Self::read_into`] copies the
     /// image out; [`Self::pixel`] reads one pixel.
     pub fn draw_depth_scene(&mut self, scene: &DepthScene) -> Result<TiledZBufferStats> {
-        let parts: Vec<&[DepthTri]> = scene.parts.iter().map(Vec::as_slice).collect();
-        self.run(&parts, scene.viewport, None)
+        let parts: Vec<&[DepthTri]> = scene.parts().collect();
+        let fragments: Vec<&[DepthFragment]> = scene.fragments().collect();
+        self.run(&parts, &fragments, scene.viewport, None)
     }
 
     /// Copies the image last drawn into `frame` (ids, window depth,
@@ -242,6 +246,7 @@ impl TiledZBuffer {
     fn run<T: RasterTri>(
         &mut self,
         parts: &[&[T]],
+        fragments: &[&[DepthFragment]],
         vp: Viewport,
         frame: Option<&mut Frame>,
     ) -> Result<TiledZBufferStats> {
@@ -263,11 +268,17 @@ impl TiledZBuffer {
         }
         self.drawn = None;
         let stats = match self.options.depth_format {
-            DepthFormat::F32 => self.draw_with::<T, f32>(parts, vp, frame, threads),
-            DepthFormat::F64 => self.draw_with::<T, f64>(parts, vp, frame, threads),
-            DepthFormat::Fixed24 => self.draw_with::<T, Fixed24>(parts, vp, frame, threads),
-            DepthFormat::Fixed16 => self.draw_with::<T, Fixed16>(parts, vp, frame, threads),
-            DepthFormat::ReversedF32 => self.draw_with::<T, Reversed>(parts, vp, frame, threads),
+            DepthFormat::F32 => self.draw_with::<T, f32>((parts, fragments), vp, frame, threads),
+            DepthFormat::F64 => self.draw_with::<T, f64>((parts, fragments), vp, frame, threads),
+            DepthFormat::Fixed24 => {
+                self.draw_with::<T, Fixed24>((parts, fragments), vp, frame, threads)
+            }
+            DepthFormat::Fixed16 => {
+                self.draw_with::<T, Fixed16>((parts, fragments), vp, frame, threads)
+            }
+            DepthFormat::ReversedF32 => {
+                self.draw_with::<T, Reversed>((parts, fragments), vp, frame, threads)
+            }
         };
         let grid = Grid::new(vp.width, vp.height, self.options.tile_size);
         self.drawn = Some((vp, grid, self.options.depth_format));
@@ -276,7 +287,7 @@ impl TiledZBuffer {
 
     fn draw_with<T: RasterTri, K: TileKey>(
         &mut self,
-        parts: &[&[T]],
+        (parts, fragments): (&[&[T]], &[&[DepthFragment]]),
         vp: Viewport,
         frame: Option<&mut Frame>,
         threads: usize,
@@ -302,12 +313,34 @@ impl TiledZBuffer {
         self.chunks.truncate(tris.len());
         let hiz = self.options.hierarchical_z;
         let bin = |(bins, chunk): (&mut ChunkBins, &&[T])| bins.fill(chunk, vp, grid, hiz);
+        self.fragment_bins
+            .resize_with(fragments.len(), FragmentBins::default);
+        self.fragment_bins.truncate(fragments.len());
+        let bin_fragments = |(bins, run): (&mut FragmentBins, &&[DepthFragment])| {
+            bins.fill(run, vp, grid);
+        };
         match pool {
-            Some(pool) if tris.len() > 1 => {
+            Some(pool) if tris.len() > 1 || fragments.len() > 1 => {
                 use rayon::prelude::*;
-                install(pool, || self.chunks.par_iter_mut().zip(&tris).for_each(bin));
+                install(pool, || {
+                    rayon::join(
+                        || self.chunks.par_iter_mut().zip(&tris).for_each(bin),
+                        || {
+                            self.fragment_bins
+                                .par_iter_mut()
+                                .zip(fragments)
+                                .for_each(bin_fragments);
+                        },
+                    )
+                });
             }
-            _ => self.chunks.iter_mut().zip(&tris).for_each(bin),
+            _ => {
+                self.chunks.iter_mut().zip(&tris).for_each(bin);
+                self.fragment_bins
+                    .iter_mut()
+                    .zip(fragments)
+                    .for_each(bin_fragments);
+            }
         }
 
         // 2. Tiles, band by band (a band is a row of tiles: a contiguous
@@ -319,6 +352,7 @@ impl TiledZBuffer {
         bufs.resize_with(grid.tiles(), || TileBuf::new(grid.tile));
         bufs.truncate(grid.tiles());
         let chunks = &self.chunks;
+        let fragment_bins = &self.fragment_bins;
         let wide = self.wide_kernel;
         let cols = grid.cols as usize;
         let draw_band = |b: usize, band: &mut [TileBuf<K>]| {
@@ -329,6 +363,7 @@ impl TiledZBuffer {
                 vp,
                 tris: &tris,
                 chunks,
+                fragments: fragment_bins,
                 hiz,
             };
             job.dispatch(band);
@@ -356,6 +391,7 @@ impl TiledZBuffer {
                                 vp,
                                 tris: &tris,
                                 chunks,
+                                fragments: fragment_bins,
                                 hiz,
                             };
                             job.dispatch(tile);
@@ -382,8 +418,12 @@ impl TiledZBuffer {
             .iter()
             .map(TileBuf::bytes)
             .sum::<usize>()
-            + self.chunks.iter().map(ChunkBins::bytes).sum::<usize>())
-            as u64;
+            + self.chunks.iter().map(ChunkBins::bytes).sum::<usize>()
+            + self
+                .fragment_bins
+                .iter()
+                .map(FragmentBins::bytes)
+                .sum::<usize>()) as u64;
         stats
     }
 
@@ -451,6 +491,8 @@ struct BandJob<'a, T> {
     vp: Viewport,
     tris: &'a [&'a [T]],
     chunks: &'a [ChunkBins],
+    /// Each run's fragments by tile, applied after the tile's triangles.
+    fragments: &'a [FragmentBins],
     hiz: bool,
 }
 
@@ -512,13 +554,18 @@ impl<T: RasterTri> BandJob<'_, T> {
                 grid.tile.min(vp.width - x0),
                 grid.tile.min(vp.height - y0),
             );
-            if bins::tile_has_work(self.chunks, t) {
+            if bins::tile_has_work(self.chunks, self.fragments, t) {
                 let mut draw = Drawer {
                     buf: &mut *buf,
                     vp,
                     hiz: self.hiz,
                 };
                 bins::for_each_in_tile(self.tris, self.chunks, t, &mut draw);
+                for run in self.fragments {
+                    for f in &run.tiles[t] {
+                        buf.fragment(f);
+                    }
+                }
             }
             if !buf.is_active() {
                 buf.stats.tiles_skipped += 1;

@@ -33,7 +33,10 @@ pub struct TiledZBufferStats {
     pub pixels_tested: u64,
     /// Pixel centres inside a triangle, each one depth test.
     pub depth_tests: u64,
-    /// Depth tests that passed.
+    /// Pixel fragments of triangles the lean front end found too small
+    /// to rasterise, each one depth test (not in [`Self::depth_tests`]).
+    pub fragments: u64,
+    /// Depth tests that passed (of triangles and fragments).
     pub depth_passes: u64,
     /// Bytes of the per-band tile buffers, bins and hierarchical depth.
     pub scratch_bytes: u64,
@@ -52,6 +55,7 @@ impl TiledZBufferStats {
         self.hiz_block_rejects += o.hiz_block_rejects;
         self.pixels_tested += o.pixels_tested;
         self.depth_tests += o.depth_tests;
+        self.fragments += o.fragments;
         self.depth_passes += o.depth_passes;
     }
 }
@@ -73,6 +77,7 @@ impl From<TiledZBufferStats> for Stats {
                 ("hi-z block rejects", s.hiz_block_rejects),
                 ("pixels tested", s.pixels_tested),
                 ("depth tests", s.depth_tests),
+                ("fragments", s.fragments),
                 ("depth passes", s.depth_passes),
             ],
             peak_bytes: s.scratch_bytes,

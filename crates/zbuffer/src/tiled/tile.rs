@@ -20,7 +20,7 @@
 
 use hider_geom::Viewport;
 use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
-use hider_scene::NO_ID;
+use hider_scene::{DepthFragment, NO_ID};
 
 use super::RasterTri;
 use super::bounds::DepthBounds;
@@ -209,6 +209,27 @@ impl<K: DepthKey> TileBuf<K> {
             bbox: (x0, y0, x1, y1),
         };
         self.blocks(&setup, tri, bounds.as_ref());
+    }
+
+    /// One pixel fragment of a triangle too small to rasterise, applied
+    /// after the tile's triangles. Out of primitive order, so the test is
+    /// LESS on `(key, prim)` (see [`DepthFragment`]): it wins over an
+    /// equal key written by a later primitive, never over the background.
+    #[inline(always)]
+    pub(crate) fn fragment(&mut self, f: &DepthFragment) {
+        if !self.active {
+            self.activate();
+        }
+        let i = self.at(u32::from(f.x), u32::from(f.y));
+        let key = K::encode(f.depth);
+        let (old, id) = (self.keys[i], self.ids[i]);
+        let wins = key < old || (key == old && f.prim < id && id != NO_ID);
+        if wins {
+            self.keys[i] = key;
+            self.ids[i] = f.prim;
+        }
+        self.stats.fragments += 1;
+        self.stats.depth_passes += u64::from(wins);
     }
 
     /// A triangle whose box in the tile is a few pixels: a plain scan of

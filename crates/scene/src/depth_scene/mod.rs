@@ -10,34 +10,43 @@
 //! [`prepare_depth_into`] produces just those ([`DepthTri`], 72 bytes), and
 //! works per *vertex* where `prepare` works per triangle corner: each
 //! vertex is transformed, classified by its outcode, divided and snapped
-//! once, and a triangle whose vertices need no clipping is set up from the
-//! cached results. A triangle that must be clipped goes through
-//! `prepare`'s own per-triangle path.
+//! once, eight at a time (`vertices`), and triangles are classified eight
+//! at a time from the cached results (`triangles`). A triangle that must
+//! be clipped goes through `prepare`'s own per-triangle path.
+//!
+//! Two kinds of triangles never reach the hider as triangles. Those that
+//! certainly cover no pixel centre (their box holds none, or one or two
+//! that the exact edge functions do not cover) are dropped: they cover no
+//! sample of any pixel-centre hider. Those whose box holds one or two
+//! centres and covers them become [`DepthFragment`]s, one per covered
+//! centre with the depth there: the front end has tested those centres
+//! anyway, and a hider writes a fragment for a fraction of what setting
+//! up and scanning a triangle costs.
 //!
 //! Every number is the same function of the same inputs as in `prepare`
 //! (the outcode is [`ClipVolume::outcode`](hider_geom::clip::ClipVolume::outcode), the divide and snap are
-//! `prepare`'s `to_window`, the set-up is its `setup_depth`), so the
-//! triangles are bit for bit the depth part of `prepare`'s, in the same
-//! order, except that triangles that certainly cover no pixel centre are
-//! dropped (their box holds none, or one or two that the exact edge
-//! functions do not cover): they cover no sample of any pixel-centre hider. `tests::lean_equals_prepare` checks it on
-//! random scenes in both precisions, with clipping and culling.
+//! `prepare`'s `to_window`, the set-up is its `setup_depth`), so the output
+//! is bit for bit what [`lean_reference`] works out from `prepare`'s
+//! triangles; `tests::lean_equals_prepare` checks it on random scenes in
+//! both precisions, with clipping and culling, and the `front_end` fuzz
+//! target on hostile ones.
 
-use glam::DVec4;
-use hider_geom::clip::{ClipVertex, OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
-use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport, orient2d};
+mod triangles;
+mod vertices;
+
+use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport};
 use rayon::prelude::*;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::model::Scene;
-use crate::prepare::{
-    ClipScratch, FrontEnd, Part, PrepareOptions, PrepareStats, ScreenTri, setup_depth, to_window,
-};
+use crate::prepare::{FrontEnd, PrepareOptions, PrepareStats, ScreenScene, ScreenTri};
 use crate::view::View;
+use triangles::{Outcome, Run};
+use vertices::CachedVertex;
 
 /// A triangle as a depth-only hider needs it: [`ScreenTri`] without the
 /// per-vertex depths, `w` and the `1/w` plane.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct DepthTri {
     /// Snapped vertices, ordered so that the edge functions are positive
     /// inside (as [`ScreenTri::v`]).
@@ -63,6 +72,30 @@ impl DepthTri {
     }
 }
 
+/// One pixel of a triangle too small to rasterise: the lean front end
+/// hands a triangle whose box holds at most two pixel centres over as the
+/// centres it covers (see [`Viewport::covered_centres`]), with the depth a
+/// hider would compute there.
+///
+/// A fragment stands for a write of its triangle in primitive order. A
+/// hider that applies fragments after the triangles gets the same answer
+/// if it compares `(depth, prim)` lexicographically: the LESS depth test
+/// in primitive order keeps the smallest depth and, among equal depths,
+/// the first primitive.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DepthFragment {
+    /// Window depth at the pixel centre: the triangle's
+    /// [`PlaneEq::at_pixel`], the expression every pixel-centre hider
+    /// evaluates.
+    pub depth: f64,
+    /// Pixel column.
+    pub x: u16,
+    /// Pixel row.
+    pub y: u16,
+    /// Primitive id of the triangle.
+    pub prim: u32,
+}
+
 impl From<&ScreenTri> for DepthTri {
     fn from(t: &ScreenTri) -> Self {
         Self {
@@ -79,14 +112,12 @@ impl From<&ScreenTri> for DepthTri {
 pub struct DepthScene {
     /// The image size.
     pub viewport: Viewport,
-    /// The triangles in primitive-id order, cut into contiguous runs (one
-    /// per worker that set them up); hiders may work on the runs in
-    /// parallel and must visit them in order.
-    pub parts: Vec<Vec<DepthTri>>,
     /// What the front end did. [`PrepareStats::output`] counts the
     /// triangles kept, [`PrepareStats::empty`] those dropped for covering
     /// no pixel centre.
     pub stats: PrepareStats,
+    /// The output in contiguous runs of primitive ids, one per worker.
+    runs: Vec<Run>,
     /// Per vertex of every mesh (meshes one after the other): the cached
     /// snapped position, window depth and classification.
     vertices: Vec<CachedVertex>,
@@ -98,44 +129,48 @@ impl DepthScene {
         Self::default()
     }
 
-    /// Number of triangles kept.
+    /// The triangles in primitive-id order, cut into contiguous runs (one
+    /// per worker that set them up); hiders may work on the runs in
+    /// parallel and must visit them in order. Triangles handed over as
+    /// [`Self::fragments`] are not among them.
+    pub fn parts(&self) -> impl ExactSizeIterator<Item = &[DepthTri]> + '_ {
+        self.runs.iter().map(|r| &r.tris[..])
+    }
+
+    /// The pixel fragments of the triangles too small to rasterise, one
+    /// list per run of [`Self::parts`], each in primitive order.
+    pub fn fragments(&self) -> impl ExactSizeIterator<Item = &[DepthFragment]> + '_ {
+        self.runs.iter().map(|r| &r.fragments[..])
+    }
+
+    /// Number of triangles kept as triangles.
     pub fn len(&self) -> usize {
-        self.parts.iter().map(Vec::len).sum()
+        self.runs.iter().map(|r| r.tris.len()).sum()
     }
 
-    /// Whether no triangle was kept.
+    /// Whether nothing was kept: no triangle and no fragment.
     pub fn is_empty(&self) -> bool {
-        self.parts.iter().all(Vec::is_empty)
+        self.runs
+            .iter()
+            .all(|r| r.tris.is_empty() && r.fragments.is_empty())
     }
 
-    /// Every triangle kept, in primitive-id order.
+    /// Every triangle kept as a triangle, in primitive-id order.
     pub fn tris(&self) -> impl Iterator<Item = &DepthTri> + '_ {
-        self.parts.iter().flatten()
+        self.parts().flatten()
     }
 
     /// Bytes of memory held.
     pub fn bytes(&self) -> usize {
-        self.parts
+        self.runs
             .iter()
-            .map(|p| p.capacity() * std::mem::size_of::<DepthTri>())
+            .map(|r| {
+                r.tris.capacity() * std::mem::size_of::<DepthTri>()
+                    + r.fragments.capacity() * std::mem::size_of::<DepthFragment>()
+            })
             .sum::<usize>()
             + self.vertices.capacity() * std::mem::size_of::<CachedVertex>()
     }
-}
-
-/// Outcode bit: the clip-space position is not finite.
-const NOT_FINITE: u32 = 1 << 30;
-/// Outcode bit: the vertex has no window position (it fails a clip plane,
-/// so only the clipping path uses it, or its divide left the snappable
-/// range).
-const NO_WINDOW: u32 = 1 << 31;
-
-/// One vertex after transform, classification, divide and snap.
-#[derive(Clone, Copy, Debug, Default)]
-struct CachedVertex {
-    p: FixedPt,
-    z: f64,
-    code: u32,
 }
 
 /// Vertices per parallel work item of the vertex pass.
@@ -145,8 +180,8 @@ const PARALLEL_MIN: usize = 32 * 1024;
 
 /// Runs the lean front end into `out`, reusing its memory. With
 /// [`PrepareOptions::parallel`] and a large scene the work is split over
-/// the current rayon pool and `out.parts` has one run per thread;
-/// otherwise one run.
+/// the current rayon pool and [`DepthScene::parts`] has one run per
+/// thread; otherwise one run.
 ///
 /// # Errors
 ///
@@ -158,7 +193,10 @@ pub fn prepare_depth_into(
     options: &PrepareOptions,
     out: &mut DepthScene,
 ) -> Result<()> {
-    let front = FrontEnd::new(scene, view, options)?;
+    // Positions and indices are checked by the two passes, which read
+    // them all anyway (a separate `Scene::validate` pass cost 4 % of the
+    // 499k sphere's frame).
+    let front = FrontEnd::checked(scene, view, options, false)?;
     let count = scene.triangle_count();
     let parallel = options.parallel && rayon::current_num_threads() > 1 && count >= PARALLEL_MIN;
 
@@ -166,20 +204,28 @@ pub fn prepare_depth_into(
     let total: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
     out.vertices.resize(total, CachedVertex::default());
     let mut rest = &mut out.vertices[..];
+    let mut finite = true;
     for mesh in &scene.meshes {
         let (mine, tail) = rest.split_at_mut(mesh.positions.len());
         rest = tail;
         let work = |(c, chunk): (usize, &mut [CachedVertex])| {
             let first = c * VERTEX_CHUNK;
-            for (v, p) in chunk.iter_mut().zip(&mesh.positions[first..]) {
-                *v = vertex(&front, front.clip(*p));
-            }
+            let positions = &mesh.positions[first..first + chunk.len()];
+            vertices::vertices(&front, positions, chunk)
         };
-        if parallel {
-            mine.par_chunks_mut(VERTEX_CHUNK).enumerate().for_each(work);
+        finite &= if parallel {
+            mine.par_chunks_mut(VERTEX_CHUNK)
+                .enumerate()
+                .map(work)
+                .reduce(|| true, |a, b| a & b)
         } else {
-            mine.chunks_mut(VERTEX_CHUNK).enumerate().for_each(work);
-        }
+            mine.chunks_mut(VERTEX_CHUNK)
+                .enumerate()
+                .fold(true, |ok, c| ok & work(c))
+        };
+    }
+    if !finite {
+        return Err(invalid(scene));
     }
 
     // 2. Triangles, in contiguous runs of primitive ids.
@@ -188,165 +234,81 @@ pub fn prepare_depth_into(
     } else {
         1
     };
-    out.parts.resize_with(parts, Vec::new);
-    out.parts.truncate(parts);
+    out.runs.resize_with(parts, Run::default);
+    out.runs.truncate(parts);
     let per = count.div_ceil(parts).max(1);
     let vertices = &out.vertices;
-    let run = |(k, tris): (usize, &mut Vec<DepthTri>)| {
+    let run = |(k, run): (usize, &mut Run)| {
         let range = (k * per).min(count)..((k + 1) * per).min(count);
-        triangles(scene, &front, vertices, range, tris)
+        triangles::triangles(scene, &front, vertices, range, run)
     };
-    let stats: Vec<PrepareStats> = if parallel {
-        out.parts.par_iter_mut().enumerate().map(run).collect()
+    let outcomes: Vec<Outcome> = if parallel {
+        out.runs.par_iter_mut().enumerate().map(run).collect()
     } else {
-        out.parts.iter_mut().enumerate().map(run).collect()
+        out.runs.iter_mut().enumerate().map(run).collect()
     };
+    if outcomes.iter().any(|o| o.bad_index) {
+        for r in &mut out.runs {
+            r.tris.clear();
+            r.fragments.clear();
+        }
+        return Err(invalid(scene));
+    }
     let mut total_stats = PrepareStats {
         input: count as u64,
         ..PrepareStats::default()
     };
-    for s in &stats {
-        total_stats.add(s);
+    for o in &outcomes {
+        total_stats.add(&o.stats);
     }
-    total_stats.output = out.parts.iter().map(|p| p.len() as u64).sum();
+    total_stats.output = out.len() as u64;
     out.stats = total_stats;
     out.viewport = front.viewport;
     Ok(())
 }
 
-/// Classifies, divides and snaps one vertex exactly as `prepare` does for
-/// each corner that uses it.
-#[inline]
-fn vertex(front: &FrontEnd, clip: DVec4) -> CachedVertex {
-    if !clip.is_finite() {
-        return CachedVertex {
-            code: NOT_FINITE,
-            ..CachedVertex::default()
+/// What [`prepare_depth_into`] must produce for the scene, view and
+/// options that [`prepare`](fn@crate::prepare) turned into `screen`,
+/// worked out by brute force over each triangle's pixel box: the
+/// triangles whose box holds more than two pixel centres, as
+/// [`DepthTri`]s, and one [`DepthFragment`] per covered centre of the
+/// others (those covering none are dropped), both in primitive order. The
+/// lean front end's tests and fuzz target compare it with this.
+pub fn lean_reference(screen: &ScreenScene) -> (Vec<DepthTri>, Vec<DepthFragment>) {
+    let (mut tris, mut fragments) = (Vec::new(), Vec::new());
+    for t in &screen.tris {
+        let Some((x0, y0, x1, y1)) = t.pixel_bounds(screen.viewport) else {
+            continue;
         };
+        if (x1 - x0 + 1) * (y1 - y0 + 1) > 2 {
+            tris.push(DepthTri::from(t));
+            continue;
+        }
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let (cx, cy) = (i64::from(x) * 256 + 128, i64::from(y) * 256 + 128);
+                if hider_geom::triangle_covers(&t.v, cx, cy) {
+                    fragments.push(DepthFragment {
+                        depth: t.depth.at_pixel(x, y),
+                        x: x as u16,
+                        y: y as u16,
+                        prim: t.prim,
+                    });
+                }
+            }
+        }
     }
-    let code = front.volume.outcode(clip);
-    if code & OUTSIDE_PLANES != 0 {
-        return CachedVertex {
-            code: code | NO_WINDOW,
-            ..CachedVertex::default()
-        };
-    }
-    let v = ClipVertex {
-        pos: clip,
-        bary: glam::DVec3::ZERO,
-    };
-    match to_window(&v, front.viewport, front.options.precision) {
-        Some(w) => CachedVertex {
-            p: w.p,
-            z: w.z,
-            code,
-        },
-        None => CachedVertex {
-            code: code | NO_WINDOW,
-            ..CachedVertex::default()
-        },
-    }
+    (tris, fragments)
 }
 
-/// Sets up the triangles with primitive ids in `range`, appending to `out`.
-fn triangles(
-    scene: &Scene,
-    front: &FrontEnd,
-    vertices: &[CachedVertex],
-    range: std::ops::Range<usize>,
-    out: &mut Vec<DepthTri>,
-) -> PrepareStats {
-    out.clear();
-    let mut stats = PrepareStats::default();
-    let mut fallback = Part::default();
-    let mut scratch = ClipScratch::default();
-    let vp = front.viewport;
-    let cull = front.options.cull_back_faces;
-    let (mut first_prim, mut first_vertex) = (0usize, 0usize);
-    for (m, mesh) in scene.meshes.iter().enumerate() {
-        let n = mesh.indices.len();
-        let lo = range.start.max(first_prim);
-        let hi = range.end.min(first_prim + n);
-        let cache = &vertices[first_vertex..first_vertex + mesh.positions.len()];
-        for t in lo.saturating_sub(first_prim)..hi.saturating_sub(first_prim) {
-            let prim = (first_prim + t) as u32;
-            let c = mesh.indices[t].map(|i| cache[i as usize]);
-            let (all, any) = (
-                c[0].code & c[1].code & c[2].code,
-                c[0].code | c[1].code | c[2].code,
-            );
-            // The order of these tests is clip_triangle's, then the
-            // window step's, so every triangle is dropped or kept for the
-            // same reason as in `prepare`.
-            if any & NOT_FINITE != 0 || all & (OUTSIDE_VIEWPORT | OUTSIDE_PLANES) != 0 {
-                stats.culled += 1;
-                continue;
-            }
-            if any & OUTSIDE_PLANES != 0 {
-                clipped(scene, front, (m, t, prim), &mut fallback, &mut scratch, out);
-                continue;
-            }
-            if any & NO_WINDOW != 0 {
-                stats.culled += 1;
-                continue;
-            }
-            // Orientation, facing and the pixel box are integer work on
-            // the snapped corners; only triangles that survive them pay
-            // for the depth plane (two divisions). A zero area is exactly
-            // a zero plane determinant (both are exact), so every
-            // triangle is still dropped for `prepare`'s reason.
-            let area = orient2d(c[0].p, c[1].p, c[2].p);
-            if area == 0 {
-                stats.degenerate += 1;
-                continue;
-            }
-            if cull && area > 0 {
-                stats.back_faces += 1;
-                continue;
-            }
-            if vp.misses_every_centre(&c.map(|k| k.p), area) {
-                stats.empty += 1;
-                continue;
-            }
-            let window = c.map(|k| crate::prepare::WindowVertex {
-                p: k.p,
-                z: k.z,
-                w: 0.0,
-            });
-            let Some((c, _, depth)) = setup_depth(window, area) else {
-                stats.degenerate += 1;
-                continue;
-            };
-            let v = c.map(|k| k.p);
-            out.push(DepthTri { v, depth, prim });
-        }
-        first_prim += n;
-        first_vertex += mesh.positions.len();
-    }
-    stats.add(&fallback.stats);
-    stats
-}
-
-/// A triangle that must be clipped: `prepare`'s own path, keeping the
-/// depth part of each piece.
-fn clipped(
-    scene: &Scene,
-    front: &FrontEnd,
-    which: (usize, usize, u32),
-    part: &mut Part,
-    scratch: &mut ClipScratch,
-    out: &mut Vec<DepthTri>,
-) {
-    part.prims.clear();
-    part.tris.clear();
-    front.triangle(scene, which, part, scratch);
-    for t in &part.tris {
-        // Pieces are positively oriented already.
-        if !front.viewport.misses_every_centre(&t.v, 1) {
-            out.push(DepthTri::from(t));
-        } else {
-            part.stats.empty += 1;
-        }
+/// The error of a scene whose positions or indices the passes found
+/// invalid, as [`Scene::validate`] words it (naming the mesh, vertex or
+/// triangle).
+#[cold]
+fn invalid(scene: &Scene) -> Error {
+    match scene.validate() {
+        Err(e) => e,
+        Ok(()) => Error::InvalidScene("a position or index is invalid".to_owned()),
     }
 }
 
@@ -394,36 +356,20 @@ mod tests {
 
     fn check(scene: &Scene, view: &View, options: &PrepareOptions) {
         let full = prepare(scene, view, options).unwrap();
-        // Every triangle that covers a pixel centre is kept; of the others
-        // (brute force over the box), only those with a box of more than
-        // two centres.
-        let keep = |t: &&ScreenTri| {
-            let Some((x0, y0, x1, y1)) = t.pixel_bounds(view.viewport) else {
-                return false;
-            };
-            let covers = (y0..=y1).any(|y| {
-                (x0..=x1).any(|x| {
-                    hider_geom::triangle_covers(
-                        &t.v,
-                        i64::from(x) * 256 + 128,
-                        i64::from(y) * 256 + 128,
-                    )
-                })
-            });
-            covers || (x1 - x0 + 1) * (y1 - y0 + 1) > 2
-        };
-        let want: Vec<DepthTri> = full.tris.iter().filter(keep).map(DepthTri::from).collect();
+        let (want, want_fragments) = lean_reference(&full);
         let mut lean = DepthScene::new();
         prepare_depth_into(scene, view, options, &mut lean).unwrap();
         let got: Vec<DepthTri> = lean.tris().copied().collect();
         assert_eq!(got, want);
+        let got_fragments: Vec<DepthFragment> = lean.fragments().flatten().copied().collect();
+        assert_eq!(got_fragments, want_fragments);
         let s = lean.stats;
         assert_eq!(s.input, full.stats.input);
         assert_eq!(s.culled, full.stats.culled);
         assert_eq!(s.clipped, full.stats.clipped);
         assert_eq!(s.degenerate, full.stats.degenerate);
         assert_eq!(s.back_faces, full.stats.back_faces);
-        assert_eq!(s.output + s.empty, full.stats.output);
+        assert_eq!(s.output + s.empty + s.fragmented, full.stats.output);
     }
 
     proptest! {
@@ -470,10 +416,19 @@ mod tests {
             )
         })
         .unwrap();
-        assert_eq!(parallel.parts.len(), 3);
-        assert_eq!(serial.parts.len(), 1);
+        assert_eq!(parallel.parts().len(), 3);
+        assert_eq!(serial.parts().len(), 1);
         assert!(parallel.tris().eq(serial.tris()));
+        assert!(
+            parallel
+                .fragments()
+                .flatten()
+                .eq(serial.fragments().flatten())
+        );
         assert_eq!(parallel.stats, serial.stats);
+        // The dense sphere has triangles of every kind.
+        let s = serial.stats;
+        assert!(s.output > 0 && s.empty > 0 && s.fragmented > 0, "{s:?}");
         check(&scene, &v, &PrepareOptions::default());
     }
 
@@ -493,7 +448,11 @@ mod tests {
         let small = crate::procedural::cube();
         prepare_depth_into(&small, &v, &PrepareOptions::default(), &mut lean).unwrap();
         let want = prepare(&small, &v, &PrepareOptions::default()).unwrap();
-        assert_eq!(lean.len(), want.tris.len() - lean.stats.empty as usize);
+        let s = lean.stats;
+        assert_eq!(
+            lean.len() as u64,
+            want.tris.len() as u64 - s.empty - s.fragmented
+        );
     }
 
     #[test]
