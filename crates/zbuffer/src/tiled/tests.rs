@@ -412,3 +412,90 @@ fn every_hard_case_matches_the_reference_bit_for_bit() {
         }
     }
 }
+
+/// Fragments are applied after a tile's triangles, out of primitive order:
+/// their test is LESS on `(key, prim)`, which must keep what LESS in
+/// primitive order keeps, including on ties and against the background.
+#[test]
+fn fragments_keep_primitive_order_on_ties() {
+    use super::tile::TileBuf;
+    use hider_scene::DepthFragment;
+    let mut buf = TileBuf::<f32>::new(8);
+    buf.start(0, 0, 8, 8);
+    let at = |depth: f64, prim: u32| DepthFragment {
+        depth,
+        x: 3,
+        y: 5,
+        prim,
+    };
+    // Window depth 1 fails LESS against the cleared far value.
+    buf.fragment(&at(1.0, 4));
+    assert_eq!(buf.get(3, 5), (NO_ID, 1.0));
+    buf.fragment(&at(0.5, 7));
+    assert_eq!(buf.get(3, 5), (7, 0.5));
+    // An equal depth from an earlier primitive was there first.
+    buf.fragment(&at(0.5, 3));
+    assert_eq!(buf.get(3, 5), (3, 0.5));
+    // From a later one, it fails LESS.
+    buf.fragment(&at(0.5, 9));
+    assert_eq!(buf.get(3, 5), (3, 0.5));
+    buf.fragment(&at(0.25, 10));
+    assert_eq!(buf.get(3, 5), (10, 0.25));
+    assert_eq!(buf.get(0, 0), (NO_ID, 1.0));
+}
+
+/// Confetti of sub-pixel triangles and a few large ones, all in one plane
+/// facing the camera, so every covered pixel is a depth tie between
+/// fragments and triangles: the lean path must keep the first primitive
+/// everywhere, as the reference does.
+#[test]
+fn fragments_and_triangles_tie_as_in_the_reference() {
+    use hider_scene::Mesh;
+    let mut positions = Vec::new();
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for k in 0..600 {
+        let (cx, cy) = (next() * 1.5, next() * 1.5);
+        // About 0.8 pixel across, and every 150th one a large triangle.
+        let r = if k % 150 == 75 { 2.0 } else { 0.08 };
+        for (dx, dy) in [(-r, -r), (r, -r), (0.0, r)] {
+            positions.push(DVec3::new(cx + dx, cy + dy, 0.0));
+        }
+    }
+    let indices = (0..positions.len() as u32 / 3)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    let mut scene = Scene::default();
+    scene.push_mesh(
+        Mesh {
+            positions,
+            indices,
+            ..Mesh::default()
+        },
+        None,
+    );
+    let camera =
+        hider_scene::hard_cases::look_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 1.0, 10.0);
+    let view = View::new(camera, 40, 36).unwrap();
+    let mut lean = DepthScene::new();
+    prepare_depth_into(&scene, &view, &PrepareOptions::default(), &mut lean).unwrap();
+    assert!(
+        lean.stats.fragmented > 100 && lean.len() >= 4,
+        "{:?}",
+        lean.stats
+    );
+    for format in DepthFormat::ALL {
+        for threads in [1, 2] {
+            let o = TiledZBufferOptions::default()
+                .with_depth_format(format)
+                .with_threads(threads)
+                .with_tile_size(16);
+            assert_lean_same(&scene, &view, o, 1);
+        }
+    }
+}
