@@ -14,14 +14,21 @@
 //!   not timed, but it is checked equal to the reference, pixel for pixel,
 //!   for every scene and size.
 //!
-//! Rounds are interleaved so that machine noise hits all three alike (in
-//! each round a pipeline runs twice and the second, steady-state run is
-//! timed); the table gives median (minimum) ms of `K` rounds, Mtri/s from
-//! the median, and at 1024 the ratios to llvmpipe's and euc's figures from
-//! the issue (above 1 = faster than them).
+//! Rounds are interleaved so that machine noise hits all three alike; in
+//! each round a pipeline renders [`FRAMES`] frames in a row and the last
+//! ones are timed (a frame loop's steady state: caches hold the pipeline's
+//! own data and the pool's threads are awake). The table gives median
+//! (minimum) ms over all timed frames, Mtri/s from the median, and at 1024
+//! the ratios to llvmpipe's and euc's figures from the issue (above 1 =
+//! faster than them).
 //!
-//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_bench [K] [SIZES...]`
-//! (default K = 9, sizes 512 1024 2048).
+//! With `--peers FILE`, the JSON the `peers` package wrote
+//! (`cargo run --release --manifest-path peers/Cargo.toml -- --json FILE`,
+//! run right before on the same machine) adds the ratios to the peers
+//! measured here and now, every size.
+//!
+//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_bench [K] [SIZES...] [--peers FILE]`
+//! (default K = 9 rounds, sizes 512 1024 2048).
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -49,8 +56,72 @@ fn stats(mut v: Vec<f64>) -> (f64, f64) {
     (v[v.len() / 2], v[0])
 }
 
+/// Frames each pipeline renders in a row per round; all but the first are
+/// timed.
+const FRAMES: usize = 3;
+
+/// A peer's figure measured on this machine: (scene, size, peer, threads)
+/// to median ms.
+type Peers = Vec<((String, u32, String, u32), f64)>;
+
+/// Reads the `peers` package's JSON.
+fn read_peers(path: &str) -> Result<Peers, Box<dyn std::error::Error>> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+    let rows: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("{path}: {e}"))?;
+    let rows = rows
+        .as_array()
+        .ok_or_else(|| format!("{path}: not an array of measurements"))?;
+    let mut out = Vec::new();
+    for (i, row) in rows.iter().enumerate() {
+        let field = |k: &str| {
+            row.get(k)
+                .cloned()
+                .ok_or_else(|| format!("{path}: entry {i} has no '{k}'"))
+        };
+        let text = |k: &str| -> Result<String, String> {
+            field(k)?
+                .as_str()
+                .map(str::to_owned)
+                .ok_or_else(|| format!("{path}: entry {i}: '{k}' is not text"))
+        };
+        let number = |k: &str| -> Result<f64, String> {
+            field(k)?
+                .as_f64()
+                .ok_or_else(|| format!("{path}: entry {i}: '{k}' is not a number"))
+        };
+        out.push((
+            (
+                text("scene")?,
+                number("size")? as u32,
+                text("peer")?,
+                number("threads")? as u32,
+            ),
+            number("median_ms")?,
+        ));
+    }
+    Ok(out)
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let peers = match args.iter().position(|a| a == "--peers") {
+        Some(i) => {
+            let path = args
+                .get(i + 1)
+                .cloned()
+                .ok_or("--peers needs the path of the peers' JSON")?;
+            args.drain(i..i + 2);
+            read_peers(&path)?
+        }
+        None => Vec::new(),
+    };
+    let peer = |scene: &str, size: u32, name: &str, threads: u32| {
+        peers
+            .iter()
+            .find(|((s, z, p, t), _)| s == scene && *z == size && p == name && *t == threads)
+            .map(|(_, ms)| *ms)
+    };
     let runs: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(9);
     let mut sizes: Vec<u32> = args.iter().skip(1).filter_map(|a| a.parse().ok()).collect();
     if sizes.is_empty() {
@@ -72,12 +143,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let parallel = serial.with_parallel(true);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
     println!(
-        "median (min) ms of {runs} interleaved runs of prepare + clear + rasterise (f32 front end)\n"
+        "median (min) ms of {} frames ({runs} interleaved rounds) of prepare + clear + rasterise (f32 front end)\n",
+        runs * (FRAMES - 1)
+    );
+    let same_run = if peers.is_empty() {
+        ""
+    } else {
+        " same machine: vs llvmpipe 1T / 2T | vs euc 1T |"
+    };
+    println!(
+        "| scene | triangles | size | zbuffer | tiled 1 thread | tiled 2 threads | Mtri/s 1T / 2T | speed-up 1T / 2T | vs llvmpipe 1T / 2T | vs euc 1T |{same_run}"
     );
     println!(
-        "| scene | triangles | size | zbuffer | tiled 1 thread | tiled 2 threads | Mtri/s 1T / 2T | speed-up 1T / 2T | vs llvmpipe 1T / 2T | vs euc 1T |"
+        "|---|---|---|---|---|---|---|---|---|---|{}",
+        if peers.is_empty() { "" } else { "---|---|" }
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|");
     for &size in &sizes {
         for (name, scene) in &scenes {
             let view = View::for_scene(scene, size, size)?;
@@ -109,29 +189,29 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 // after another pipeline has filled the caches with its
                 // own data (the rounds still interleave the three, so
                 // machine noise hits them alike).
-                for round in 0..2 {
+                for frame in 0..FRAMES {
                     let t = Instant::now();
                     hider_scene::prepare_into(scene, &view, &serial, &mut screen)?;
                     reference.render(&screen, &mut want)?;
-                    if round == 1 {
+                    if frame > 0 {
                         tz.push(ms(t));
                     }
                 }
-                for round in 0..2 {
+                for frame in 0..FRAMES {
                     let t = Instant::now();
                     prepare_depth_into(scene, &view, &serial, &mut lean1)?;
                     one.draw_depth_scene(&lean1)?;
-                    if round == 1 {
+                    if frame > 0 {
                         t1.push(ms(t));
                     }
                 }
-                for round in 0..2 {
+                for frame in 0..FRAMES {
                     let t = Instant::now();
                     pool.install(|| {
                         prepare_depth_into(scene, &view, &parallel, &mut lean2)?;
                         two.draw_depth_scene(&lean2)
                     })?;
-                    if round == 1 {
+                    if frame > 0 {
                         t2.push(ms(t));
                     }
                 }
@@ -144,8 +224,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .map_or("- | -".to_owned(), |f| {
                     format!("{:.2}x / {:.2}x | {:.2}x", f.1 / m1, f.2 / m2, f.3 / m1)
                 });
+            let ratio = |peer: Option<f64>, ours: f64| {
+                peer.map_or("-".to_owned(), |p| format!("{:.2}x", p / ours))
+            };
+            let here = if peers.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " {} / {} | {} |",
+                    ratio(peer(name, size, "llvmpipe", 1), m1),
+                    ratio(peer(name, size, "llvmpipe", 2), m2),
+                    ratio(peer(name, size, "euc", 1), m1),
+                )
+            };
             println!(
-                "| {name} | {} | {size} | {mz:.2} ({nz:.2}) | {m1:.2} ({n1:.2}) | {m2:.2} ({n2:.2}) | {:.0} / {:.0} | {:.1}x / {:.1}x | {vs} |",
+                "| {name} | {} | {size} | {mz:.2} ({nz:.2}) | {m1:.2} ({n1:.2}) | {m2:.2} ({n2:.2}) | {:.0} / {:.0} | {:.1}x / {:.1}x | {vs} |{here}",
                 scene.triangle_count(),
                 tris / m1 / 1e3,
                 tris / m2 / 1e3,

@@ -277,9 +277,9 @@ impl Pass<'_> {
             return;
         }
         let lanes = Lanes::classify(&x, &y, self.front);
-        self.stats.degenerate += u64::from(lanes.degenerate.count_ones());
-        self.stats.back_faces += u64::from(lanes.back_face.count_ones());
-        self.stats.empty += u64::from(lanes.empty.count_ones());
+        self.stats.degenerate += lanes.degenerate;
+        self.stats.back_faces += lanes.back_faces;
+        self.stats.empty += lanes.empty;
         // Only the kept lanes, by their bits: no branch per dropped lane.
         let mut keep = lanes.keep;
         while keep != 0 {
@@ -288,23 +288,23 @@ impl Pass<'_> {
             let prim = (mesh.first_prim + t + i) as u32;
             // `setup_depth`: the last two corners swapped to positive
             // order, then the plane (it exists: the area is not zero).
-            let (b, c) = if lanes.swap & (1 << i) != 0 {
-                (2, 1)
-            } else {
-                (1, 2)
-            };
-            let v = [0, b, c].map(|k| FixedPt::new(x[k][i], y[k][i]));
+            let (b, c) = if lanes.swap[i] { (2, 1) } else { (1, 2) };
+            let v = [
+                FixedPt::new(x[0][i], y[0][i]),
+                FixedPt::new(x[b][i], y[b][i]),
+                FixedPt::new(x[c][i], y[c][i]),
+            ];
             let depth = PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default();
             let tri = DepthTri { v, depth, prim };
-            if lanes.few & (1 << i) == 0 {
+            if !lanes.few[i] {
                 self.run.tris.push(tri);
                 continue;
             }
             self.stats.fragmented += 1;
-            if lanes.first & (1 << i) != 0 {
+            if lanes.first[i] {
                 push_fragment(self.run, &tri, lanes.box_min[i]);
             }
-            if lanes.second & (1 << i) != 0 {
+            if lanes.second[i] {
                 push_fragment(self.run, &tri, lanes.box_max[i]);
             }
         }
@@ -328,21 +328,23 @@ impl Pass<'_> {
     }
 }
 
-/// The integer classification of a batch: bit `i` of each mask is lane
-/// `i`'s answer.
+/// The integer classification of a batch, lane by lane.
 struct Lanes {
-    /// Dropped for a zero area, facing away, or covering no centre.
-    degenerate: u8,
-    back_face: u8,
-    empty: u8,
+    /// How many lanes are dropped for a zero area, for facing away, and
+    /// for covering no centre (in that order of precedence, as
+    /// [`Pass::one`] tests).
+    degenerate: u64,
+    back_faces: u64,
+    empty: u64,
+    /// Bit `i`: lane `i` is kept.
     keep: u8,
     /// Whether the last two corners must be swapped for positive order.
-    swap: u8,
+    swap: [bool; LANES],
     /// Whether the box holds at most two centres (then `first` and
     /// `second` say which of its first and last centre are covered).
-    few: u8,
-    first: u8,
-    second: u8,
+    few: [bool; LANES],
+    first: [bool; LANES],
+    second: [bool; LANES],
     box_min: [(u32, u32); LANES],
     box_max: [(u32, u32); LANES],
 }
@@ -409,25 +411,26 @@ impl Lanes {
             box_min[i] = (x0 as u32, y0 as u32);
             box_max[i] = (x1 as u32, y1 as u32);
         }
-        let bits = |b: [bool; LANES]| {
-            b.iter()
-                .enumerate()
-                .fold(0u8, |m, (i, &b)| m | (u8::from(b) << i))
-        };
         // The order of `Pass::one`'s tests: a zero area first, then the
         // facing, then the centres.
-        let degenerate = bits(zero);
-        let back_face = bits(back) & !degenerate;
-        let empty = bits(empty) & !degenerate & !back_face;
+        let (mut degenerate, mut back_faces, mut dropped_empty) = (0u64, 0u64, 0u64);
+        let mut keep = 0u8;
+        for i in 0..LANES {
+            let (z, b, e) = (zero[i], back[i] & !zero[i], empty[i] & !zero[i] & !back[i]);
+            degenerate += u64::from(z);
+            back_faces += u64::from(b);
+            dropped_empty += u64::from(e);
+            keep |= u8::from(!(z | b | e)) << i;
+        }
         Self {
             degenerate,
-            back_face,
-            empty,
-            keep: !(degenerate | back_face | empty),
-            swap: bits(swap),
-            few: bits(few),
-            first: bits(first),
-            second: bits(second),
+            back_faces,
+            empty: dropped_empty,
+            keep,
+            swap,
+            few,
+            first,
+            second,
             box_min,
             box_max,
         }
