@@ -521,9 +521,25 @@ impl<K: DepthKey> TileBuf<K> {
         let (yb, xb) = ((ya + BLOCK).min(self.h), (xa + BLOCK).min(self.w));
         let base = block * 64;
         let mut m = self.keys[base];
-        for r in 0..(yb - ya) as usize {
-            for &k in &self.keys[base + r * 8..base + r * 8 + (xb - xa) as usize] {
-                m = m.max_key(k);
+        if let (8, 8, Ok(keys)) = (
+            yb - ya,
+            xb - xa,
+            <&[K; 64]>::try_from(&self.keys[base..base + 64]),
+        ) {
+            // A whole block: a fixed-length, branch-free reduction the
+            // compiler vectorises (eight running maxima).
+            let mut lanes = [m; 8];
+            for row in keys.chunks_exact(8) {
+                for (l, &k) in lanes.iter_mut().zip(row) {
+                    *l = l.max_key(k);
+                }
+            }
+            m = lanes.iter().fold(m, |m, &l| m.max_key(l));
+        } else {
+            for r in 0..(yb - ya) as usize {
+                for &k in &self.keys[base + r * 8..base + r * 8 + (xb - xa) as usize] {
+                    m = m.max_key(k);
+                }
             }
         }
         self.block_max[block] = m;
