@@ -199,12 +199,24 @@ impl<K: DepthKey> TileBuf<K> {
         let unit = i64::from(SUBPIXEL_SCALE);
         let px = i64::from(ox) * unit + i64::from(HALF_PIXEL);
         let py = i64::from(oy) * unit + i64::from(HALF_PIXEL);
+        let (sx, sy) = (edges.map(|e| e.a * unit), edges.map(|e| e.b * unit));
+        // Over a whole block, an edge function ranges from its value at
+        // the first centre plus `reach_lo` to that plus `reach_hi` (its
+        // extremes are at the corners, seven steps away).
+        let reach_lo = [0, 1, 2].map(|k| (sx[k] * 7).min(0) + (sy[k] * 7).min(0));
+        let reach_hi = [0, 1, 2].map(|k| (sx[k] * 7).max(0) + (sy[k] * 7).max(0));
         let setup = Setup {
             ox,
             oy,
             e00: edges.map(|e| e.eval(px, py)),
-            sx: edges.map(|e| e.a * unit),
-            sy: edges.map(|e| e.b * unit),
+            sx,
+            sy,
+            reach_lo,
+            reach_hi,
+            // An edge crossing a block spans `reach_hi - reach_lo` there:
+            // i32 lanes are exact when that fits.
+            narrow: [0, 1, 2].map(|k| reach_hi[k] - reach_lo[k] < i64::from(i32::MAX)),
+            lanes: [0, 1, 2].map(|k| std::array::from_fn(|i| (sx[k] * i as i64) as i32)),
             prim: tri.prim(),
             bbox: (x0, y0, x1, y1),
         };
@@ -274,26 +286,55 @@ impl<K: DepthKey> TileBuf<K> {
     }
 
     /// Visits the aligned 8x8 blocks of the tile that the triangle's box
-    /// meets.
+    /// meets. The edge functions at each block's first centre are stepped
+    /// from block to block (exact integer additions), and a block is
+    /// rejected when one edge is at most 0 over the whole 8x8 block (its
+    /// maximum, `c + reach_hi`): exactly `block`'s outside test for a full
+    /// block, and a valid one for a block cut by the image's edge, which
+    /// `block` then tests pixel by pixel.
     #[inline(always)]
     fn blocks<T: RasterTri>(&mut self, s: &Setup, tri: &T, bounds: Option<&DepthBounds>) {
         let per_row = (self.size / BLOCK) as usize;
         let (_, _, x1, y1) = s.bbox;
         let (tile_x1, tile_y1) = (self.x0 + self.w - 1, self.y0 + self.h - 1);
+        let step = i64::from(BLOCK);
+        let (right, down) = (s.sx.map(|a| a * step), s.sy.map(|b| b * step));
+        let (mut visited, mut outside) = (0u64, 0u64);
+        let mut row = s.e00;
         let mut by = s.oy;
         while by <= y1 {
             let yb = (by + BLOCK - 1).min(tile_y1);
+            let mut c = row;
             let mut bx = s.ox;
             while bx <= x1 {
-                let xb = (bx + BLOCK - 1).min(tile_x1);
-                self.block(s, tri, bounds, (bx, by, xb, yb), per_row);
+                visited += 1;
+                let out = (c[0] + s.reach_hi[0] <= 0)
+                    | (c[1] + s.reach_hi[1] <= 0)
+                    | (c[2] + s.reach_hi[2] <= 0);
+                if out {
+                    outside += 1;
+                } else {
+                    let xb = (bx + BLOCK - 1).min(tile_x1);
+                    self.block(s, tri, bounds, (bx, by, xb, yb), c, per_row);
+                }
+                for (c, r) in c.iter_mut().zip(right) {
+                    *c += r;
+                }
                 bx += BLOCK;
+            }
+            for (r, d) in row.iter_mut().zip(down) {
+                *r += d;
             }
             by += BLOCK;
         }
+        self.stats.blocks_visited += visited;
+        self.stats.blocks_outside += outside;
     }
 
-    /// One block `(bx, by)..=(xb, yb)` (aligned; clipped to the image).
+    /// One block `(bx, by)..=(xb, yb)` (aligned; clipped to the image)
+    /// that no edge rejects whole; `corner` holds the edge functions at
+    /// its first centre.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn block<T: RasterTri>(
         &mut self,
@@ -301,31 +342,11 @@ impl<K: DepthKey> TileBuf<K> {
         tri: &T,
         bounds: Option<&DepthBounds>,
         (bx, by, xb, yb): (u32, u32, u32, u32),
+        corner: [i64; 3],
         per_row: usize,
     ) {
-        self.stats.blocks_visited += 1;
-        // Edge functions at the block's corner pixel centres: an affine
-        // function's extremes over a rectangle are at its corners.
-        let (dx, dy) = (i64::from(bx - s.ox), i64::from(by - s.oy));
-        let (wx, wy) = (i64::from(xb - bx), i64::from(yb - by));
-        let mut inside = true;
-        let mut corner = [0i64; 3];
-        let mut fits = true;
-        for (k, corner) in corner.iter_mut().enumerate() {
-            let c = s.e00[k] + s.sx[k] * dx + s.sy[k] * dy;
-            let (ax, ay) = (s.sx[k] * wx, s.sy[k] * wy);
-            let lo = c + ax.min(0) + ay.min(0);
-            let hi = c + ax.max(0) + ay.max(0);
-            if hi <= 0 {
-                self.stats.blocks_outside += 1;
-                return;
-            }
-            inside &= lo > 0;
-            // A partial edge crosses the block, so its values lie in
-            // [lo, hi]: i32 lanes are exact when that span fits.
-            fits &= lo > 0 || hi - lo < i64::from(i32::MAX);
-            *corner = c;
-        }
+        let lo = [0, 1, 2].map(|k| corner[k] + s.reach_lo[k]);
+        let inside = (lo[0] > 0) & (lo[1] > 0) & (lo[2] > 0);
         let block = ((by - self.y0) / BLOCK) as usize * per_row + ((bx - self.x0) / BLOCK) as usize;
         let (x0, y0, x1, y1) = s.bbox;
         if let Some(b) = bounds {
@@ -341,6 +362,7 @@ impl<K: DepthKey> TileBuf<K> {
             }
         }
         let full = xb - bx + 1 == BLOCK && yb - by + 1 == BLOCK;
+        let fits = (0..3).all(|k| lo[k] > 0 || s.narrow[k]);
         let passes = if full && inside {
             self.stats.blocks_inside += 1;
             self.block8::<T, false>(s, tri, bx, by, [0; 3], [[0; 8]; 3], [0; 3])
@@ -351,10 +373,9 @@ impl<K: DepthKey> TileBuf<K> {
             let mut lanes = [[0i32; 8]; 3];
             let mut down = [0i32; 3];
             for k in 0..3 {
-                let lo = corner[k] + (s.sx[k] * 7).min(0) + (s.sy[k] * 7).min(0);
-                if lo <= 0 {
+                if lo[k] <= 0 {
                     e[k] = (corner[k] - 1) as i32;
-                    lanes[k] = std::array::from_fn(|i| (s.sx[k] * i as i64) as i32);
+                    lanes[k] = s.lanes[k];
                     down[k] = s.sy[k] as i32;
                 }
             }
@@ -609,6 +630,14 @@ struct Setup {
     e00: [i64; 3],
     sx: [i64; 3],
     sy: [i64; 3],
+    /// Per edge, the least and greatest change of the edge function over
+    /// an 8x8 block from its first centre.
+    reach_lo: [i64; 3],
+    reach_hi: [i64; 3],
+    /// Per edge, whether its values over a block it crosses fit `i32`.
+    narrow: [bool; 3],
+    /// Per edge, its value's offsets along a row of eight pixels.
+    lanes: [[i32; 8]; 3],
     prim: u32,
     /// The triangle's pixel box clipped to the tile.
     bbox: (u32, u32, u32, u32),
