@@ -15,19 +15,23 @@
 //!   for every scene and size.
 //!
 //! Rounds are interleaved so that machine noise hits all three alike; in
-//! each round a pipeline renders [`FRAMES`] frames in a row and the last
-//! ones are timed (a frame loop's steady state: caches hold the pipeline's
-//! own data and the pool's threads are awake). The table gives median
-//! (minimum) ms over all timed frames, Mtri/s from the median, and at 1024
-//! the ratios to llvmpipe's and euc's figures from the issue (above 1 =
-//! faster than them).
+//! each round every scene is rendered by each pipeline [`FRAMES`] frames in
+//! a row and the last ones are timed (a frame loop's steady state: caches
+//! hold the pipeline's own data and the pool's threads are awake). The
+//! table gives median (minimum) ms over all timed frames, Mtri/s from the
+//! median, and at 1024 the ratios to llvmpipe's and euc's figures from the
+//! issue (above 1 = faster than them).
 //!
-//! With `--peers FILE`, the JSON the `peers` package wrote
-//! (`cargo run --release --manifest-path peers/Cargo.toml -- --json FILE`,
-//! run right before on the same machine) adds the ratios to the peers
-//! measured here and now, every size.
+//! The peers measured on this machine, in this run: with `--peers-bin
+//! PATH` (the `peers` package's binary: `cargo build --release
+//! --manifest-path peers/Cargo.toml`, then `peers/target/release/peers`)
+//! each round starts by running the peers once on every scene of the size
+//! (euc on 1 thread, llvmpipe on 1 and 2), so that they and hider share the
+//! same minutes of a noisy machine; the table then adds the ratios of
+//! their medians over the rounds to hider's. `--peers FILE` reads a JSON
+//! the peers wrote earlier instead.
 //!
-//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_bench [K] [SIZES...] [--peers FILE]`
+//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_bench [K] [SIZES...] [--peers-bin PATH | --peers FILE]`
 //! (default K = 9 rounds, sizes 512 1024 2048).
 
 use std::path::PathBuf;
@@ -60,19 +64,19 @@ fn stats(mut v: Vec<f64>) -> (f64, f64) {
 /// timed.
 const FRAMES: usize = 3;
 
-/// A peer's figure measured on this machine: (scene, size, peer, threads)
-/// to median ms.
+/// Peers' figures measured on this machine: (scene, size, peer, threads)
+/// to the median ms of each measurement.
 type Peers = Vec<((String, u32, String, u32), f64)>;
 
-/// Reads the `peers` package's JSON.
-fn read_peers(path: &str) -> Result<Peers, Box<dyn std::error::Error>> {
-    let text = std::fs::read_to_string(path).map_err(|e| format!("{path}: {e}"))?;
+/// Reads the `peers` package's JSON, appending to `out`.
+fn read_peers(path: &std::path::Path, out: &mut Peers) -> Result<(), String> {
+    let path = path.display();
+    let text = std::fs::read_to_string(path.to_string()).map_err(|e| format!("{path}: {e}"))?;
     let rows: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| format!("{path}: {e}"))?;
     let rows = rows
         .as_array()
         .ok_or_else(|| format!("{path}: not an array of measurements"))?;
-    let mut out = Vec::new();
     for (i, row) in rows.iter().enumerate() {
         let field = |k: &str| {
             row.get(k)
@@ -100,28 +104,65 @@ fn read_peers(path: &str) -> Result<Peers, Box<dyn std::error::Error>> {
             number("median_ms")?,
         ));
     }
-    Ok(out)
+    Ok(())
+}
+
+/// Runs the peers binary once on every scene at `size` and reads what it
+/// measured.
+fn run_peers(bin: &str, size: u32, out: &mut Peers) -> Result<(), String> {
+    let json = std::env::temp_dir().join(format!("hider-peers-{}.json", std::process::id()));
+    let status = std::process::Command::new(bin)
+        .args(["--runs", "5", "--rounds", "1", "--sizes", &size.to_string()])
+        .arg("--json")
+        .arg(&json)
+        .stdout(std::process::Stdio::null())
+        .status()
+        .map_err(|e| format!("{bin}: {e}"))?;
+    if !status.success() {
+        return Err(format!("{bin} failed ({status})"));
+    }
+    let read = read_peers(&json, out);
+    let _ = std::fs::remove_file(&json);
+    read
+}
+
+/// Takes the value of `--flag VALUE` out of `args`.
+fn take_flag(args: &mut Vec<String>, flag: &str) -> Result<Option<String>, String> {
+    let Some(i) = args.iter().position(|a| a == flag) else {
+        return Ok(None);
+    };
+    let value = args
+        .get(i + 1)
+        .cloned()
+        .ok_or_else(|| format!("{flag} needs a value"))?;
+    args.drain(i..i + 2);
+    Ok(Some(value))
+}
+
+/// One scene at one size, ready to time: its view, and each pipeline's
+/// reusable state.
+struct Workload<'a> {
+    name: &'a str,
+    scene: &'a Scene,
+    view: View,
+    screen: hider_scene::ScreenScene,
+    reference: ZBuffer,
+    want: Frame,
+    one: TiledZBuffer,
+    two: TiledZBuffer,
+    lean1: DepthScene,
+    lean2: DepthScene,
+    times: [Vec<f64>; 3],
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let peers = match args.iter().position(|a| a == "--peers") {
-        Some(i) => {
-            let path = args
-                .get(i + 1)
-                .cloned()
-                .ok_or("--peers needs the path of the peers' JSON")?;
-            args.drain(i..i + 2);
-            read_peers(&path)?
-        }
-        None => Vec::new(),
-    };
-    let peer = |scene: &str, size: u32, name: &str, threads: u32| {
-        peers
-            .iter()
-            .find(|((s, z, p, t), _)| s == scene && *z == size && p == name && *t == threads)
-            .map(|(_, ms)| *ms)
-    };
+    let mut peers = Peers::new();
+    if let Some(path) = take_flag(&mut args, "--peers")? {
+        read_peers(std::path::Path::new(&path), &mut peers)?;
+    }
+    let peers_bin = take_flag(&mut args, "--peers-bin")?;
+    let same_machine = !peers.is_empty() || peers_bin.is_some();
     let runs: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(9);
     let mut sizes: Vec<u32> = args.iter().skip(1).filter_map(|a| a.parse().ok()).collect();
     if sizes.is_empty() {
@@ -146,106 +187,151 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "median (min) ms of {} frames ({runs} interleaved rounds) of prepare + clear + rasterise (f32 front end)\n",
         runs * (FRAMES - 1)
     );
-    let same_run = if peers.is_empty() {
-        ""
-    } else {
-        " same machine: vs llvmpipe 1T / 2T | vs euc 1T |"
-    };
     println!(
-        "| scene | triangles | size | zbuffer | tiled 1 thread | tiled 2 threads | Mtri/s 1T / 2T | speed-up 1T / 2T | vs llvmpipe 1T / 2T | vs euc 1T |{same_run}"
+        "| scene | triangles | size | zbuffer | tiled 1 thread | tiled 2 threads | Mtri/s 1T / 2T | speed-up 1T / 2T | vs llvmpipe 1T / 2T | vs euc 1T |{}",
+        if same_machine {
+            " same machine: vs llvmpipe 1T / 2T | vs euc 1T |"
+        } else {
+            ""
+        }
     );
     println!(
         "|---|---|---|---|---|---|---|---|---|---|{}",
-        if peers.is_empty() { "" } else { "---|---|" }
+        if same_machine { "---|---|" } else { "" }
     );
     for &size in &sizes {
+        let mut work = Vec::new();
         for (name, scene) in &scenes {
             let view = View::for_scene(scene, size, size)?;
-            let mut screen = prepare(scene, &view, &serial)?;
+            let screen = prepare(scene, &view, &serial)?;
             let mut reference = ZBuffer::default();
             let mut want = Frame::new(size, size)?;
             reference.render(&screen, &mut want)?;
-            let mut one = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(1));
-            let mut two = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(2));
-            let (mut lean1, mut lean2) = (DepthScene::new(), DepthScene::new());
-            let mut got = Frame::new(size, size)?;
+            let mut w = Workload {
+                name,
+                scene,
+                view,
+                screen,
+                reference,
+                want,
+                one: TiledZBuffer::new(TiledZBufferOptions::default().with_threads(1)),
+                two: TiledZBuffer::new(TiledZBufferOptions::default().with_threads(2)),
+                lean1: DepthScene::new(),
+                lean2: DepthScene::new(),
+                times: [Vec::new(), Vec::new(), Vec::new()],
+            };
             // Warm-up, and the check that the fast pipeline's image is the
             // reference's.
-            prepare_depth_into(scene, &view, &serial, &mut lean1)?;
-            one.draw_depth_scene(&lean1)?;
-            one.read_into(&mut got)?;
-            assert!(got == want, "{name} at {size}: 1 thread differs");
+            let mut got = Frame::new(size, size)?;
+            prepare_depth_into(scene, &w.view, &serial, &mut w.lean1)?;
+            w.one.draw_depth_scene(&w.lean1)?;
+            w.one.read_into(&mut got)?;
+            assert!(got == w.want, "{name} at {size}: 1 thread differs");
             pool.install(|| {
-                prepare_depth_into(scene, &view, &parallel, &mut lean2)?;
-                two.draw_depth_scene(&lean2)
+                prepare_depth_into(scene, &w.view, &parallel, &mut w.lean2)?;
+                w.two.draw_depth_scene(&w.lean2)
             })?;
-            two.read_into(&mut got)?;
-            assert!(got == want, "{name} at {size}: 2 threads differ");
-
-            let (mut tz, mut t1, mut t2) = (Vec::new(), Vec::new(), Vec::new());
-            for _ in 0..runs {
-                // Each pipeline runs twice in a row and the second run is
-                // timed: a frame loop's steady state, not the first frame
-                // after another pipeline has filled the caches with its
-                // own data (the rounds still interleave the three, so
-                // machine noise hits them alike).
-                for frame in 0..FRAMES {
-                    let t = Instant::now();
-                    hider_scene::prepare_into(scene, &view, &serial, &mut screen)?;
-                    reference.render(&screen, &mut want)?;
-                    if frame > 0 {
-                        tz.push(ms(t));
-                    }
-                }
-                for frame in 0..FRAMES {
-                    let t = Instant::now();
-                    prepare_depth_into(scene, &view, &serial, &mut lean1)?;
-                    one.draw_depth_scene(&lean1)?;
-                    if frame > 0 {
-                        t1.push(ms(t));
-                    }
-                }
-                for frame in 0..FRAMES {
-                    let t = Instant::now();
-                    pool.install(|| {
-                        prepare_depth_into(scene, &view, &parallel, &mut lean2)?;
-                        two.draw_depth_scene(&lean2)
-                    })?;
-                    if frame > 0 {
-                        t2.push(ms(t));
-                    }
-                }
+            w.two.read_into(&mut got)?;
+            assert!(got == w.want, "{name} at {size}: 2 threads differ");
+            work.push(w);
+        }
+        let mut here = Peers::new();
+        for _ in 0..runs {
+            if let Some(bin) = &peers_bin {
+                run_peers(bin, size, &mut here)?;
             }
-            let ((mz, nz), (m1, n1), (m2, n2)) = (stats(tz), stats(t1), stats(t2));
-            let tris = scene.triangle_count() as f64;
-            let vs = FIGURES
-                .iter()
-                .find(|f| f.0 == *name && size == 1024)
-                .map_or("- | -".to_owned(), |f| {
-                    format!("{:.2}x / {:.2}x | {:.2}x", f.1 / m1, f.2 / m2, f.3 / m1)
-                });
-            let ratio = |peer: Option<f64>, ours: f64| {
-                peer.map_or("-".to_owned(), |p| format!("{:.2}x", p / ours))
-            };
-            let here = if peers.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    " {} / {} | {} |",
-                    ratio(peer(name, size, "llvmpipe", 1), m1),
-                    ratio(peer(name, size, "llvmpipe", 2), m2),
-                    ratio(peer(name, size, "euc", 1), m1),
-                )
-            };
-            println!(
-                "| {name} | {} | {size} | {mz:.2} ({nz:.2}) | {m1:.2} ({n1:.2}) | {m2:.2} ({n2:.2}) | {:.0} / {:.0} | {:.1}x / {:.1}x | {vs} |{here}",
-                scene.triangle_count(),
-                tris / m1 / 1e3,
-                tris / m2 / 1e3,
-                mz / m1,
-                mz / m2,
-            );
+            for w in &mut work {
+                time_round(w, &pool, &serial, &parallel)?;
+            }
+        }
+        if peers_bin.is_none() {
+            here.clone_from(&peers);
+        }
+        for w in &mut work {
+            report(w, size, &here, same_machine);
         }
     }
     Ok(())
+}
+
+/// One round of one workload: each pipeline renders [`FRAMES`] frames in
+/// a row, all but the first timed.
+fn time_round(
+    w: &mut Workload<'_>,
+    pool: &rayon::ThreadPool,
+    serial: &PrepareOptions,
+    parallel: &PrepareOptions,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let scene = w.scene;
+    for frame in 0..FRAMES {
+        let t = Instant::now();
+        hider_scene::prepare_into(scene, &w.view, serial, &mut w.screen)?;
+        w.reference.render(&w.screen, &mut w.want)?;
+        if frame > 0 {
+            w.times[0].push(ms(t));
+        }
+    }
+    for frame in 0..FRAMES {
+        let t = Instant::now();
+        prepare_depth_into(scene, &w.view, serial, &mut w.lean1)?;
+        w.one.draw_depth_scene(&w.lean1)?;
+        if frame > 0 {
+            w.times[1].push(ms(t));
+        }
+    }
+    for frame in 0..FRAMES {
+        let t = Instant::now();
+        pool.install(|| {
+            prepare_depth_into(scene, &w.view, parallel, &mut w.lean2)?;
+            w.two.draw_depth_scene(&w.lean2)
+        })?;
+        if frame > 0 {
+            w.times[2].push(ms(t));
+        }
+    }
+    Ok(())
+}
+
+/// Prints a workload's row.
+fn report(w: &mut Workload<'_>, size: u32, peers: &Peers, same_machine: bool) {
+    let [tz, t1, t2] = std::mem::take(&mut w.times);
+    let ((mz, nz), (m1, n1), (m2, n2)) = (stats(tz), stats(t1), stats(t2));
+    let name = w.name;
+    let tris = w.scene.triangle_count() as f64;
+    let vs = FIGURES
+        .iter()
+        .find(|f| f.0 == name && size == 1024)
+        .map_or("- | -".to_owned(), |f| {
+            format!("{:.2}x / {:.2}x | {:.2}x", f.1 / m1, f.2 / m2, f.3 / m1)
+        });
+    // The median over this run's measurements of a peer.
+    let peer = |peer: &str, threads: u32| {
+        let v: Vec<f64> = peers
+            .iter()
+            .filter(|((s, z, p, t), _)| s == name && *z == size && p == peer && *t == threads)
+            .map(|(_, ms)| *ms)
+            .collect();
+        (!v.is_empty()).then(|| stats(v).0)
+    };
+    let ratio = |peer: Option<f64>, ours: f64| {
+        peer.map_or("-".to_owned(), |p| format!("{:.2}x ({p:.2})", p / ours))
+    };
+    let here = if same_machine {
+        format!(
+            " {} / {} | {} |",
+            ratio(peer("llvmpipe", 1), m1),
+            ratio(peer("llvmpipe", 2), m2),
+            ratio(peer("euc", 1), m1),
+        )
+    } else {
+        String::new()
+    };
+    println!(
+        "| {name} | {} | {size} | {mz:.2} ({nz:.2}) | {m1:.2} ({n1:.2}) | {m2:.2} ({n2:.2}) | {:.0} / {:.0} | {:.1}x / {:.1}x | {vs} |{here}",
+        w.scene.triangle_count(),
+        tris / m1 / 1e3,
+        tris / m2 / 1e3,
+        mz / m1,
+        mz / m2,
+    );
 }
