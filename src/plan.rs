@@ -14,7 +14,7 @@
 //! | transparency | `abuffer`, `ssaa-sorted` | every surface in a pixel must be composited |
 //! | anti-aliasing | `abuffer`, `ssaa-8`, `ssaa-16`, `ssaa-32`, `ssaa-4` | coverage masks cost less than samples |
 //! | geometry far beyond the near plane | `zbuffer-reversed`, `zbuffer-f64`, `zbuffer` | f32 window depth runs out of bits near 1 |
-//! | none of these | `zbuffer`, `zbuffer-f64`, `scanline`, `warnock` | one depth test per covered pixel |
+//! | none of these | `zbuffer-tiled`, `zbuffer`, `zbuffer-f64`, `scanline`, `warnock` | one depth test per covered pixel; the tiled z-buffer gives `zbuffer`'s frame bit for bit, binned, with hierarchical depth and on every core |
 //!
 //! On top of the hider, back faces are culled in the front end when the
 //! analysis proved them hidden (closed, outward, uncut meshes and no
@@ -183,7 +183,10 @@ pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
             let n = pick(&["zbuffer-reversed", "zbuffer-f64", "zbuffer"], &mut notes);
             (n.unwrap_or("oracle"), why)
         } else {
-            let n = pick(&["zbuffer", "zbuffer-f64", "scanline", "warnock"], &mut notes);
+            let n = pick(
+                &["zbuffer-tiled", "zbuffer", "zbuffer-f64", "scanline", "warnock"],
+                &mut notes,
+            );
             (
                 n.unwrap_or("oracle"),
                 "opaque, no anti-aliasing: one depth test per covered pixel".to_owned(),

@@ -7,6 +7,7 @@ use hider_scene::{Frame, PrepareOptions, RenderOptions, analyze, hard_cases, pre
 use super::*;
 
 const ALL: &[&str] = &[
+    "zbuffer-tiled",
     "zbuffer",
     "zbuffer-f64",
     "zbuffer-reversed",
@@ -26,11 +27,17 @@ fn fx(scene: &Scene, options: RenderOptions) -> Effects {
 
 #[test]
 fn opaque_scene_without_aa_gets_the_one_sample_zbuffer() {
-    let p = plan_among(
-        &fx(&procedural::uv_sphere(16), RenderOptions::default()),
-        ALL,
-    );
+    let effects = fx(&procedural::uv_sphere(16), RenderOptions::default());
+    // Without the tiled z-buffer, the plain one, saying so.
+    let p = plan_among(&effects, &["zbuffer", "scanline"]);
     assert_eq!(p.algo, "zbuffer");
+    assert!(
+        p.notes[0].contains("zbuffer-tiled is not registered"),
+        "{:?}",
+        p.notes
+    );
+    let p = plan_among(&effects, ALL);
+    assert_eq!(p.algo, "zbuffer-tiled");
     assert!(p.cull_back_faces, "a closed sphere hides its back faces");
     assert_eq!(
         p.stages,
@@ -39,7 +46,7 @@ fn opaque_scene_without_aa_gets_the_one_sample_zbuffer() {
     );
     assert!(p.notes.is_empty());
     assert!(
-        p.summary().starts_with("auto: zbuffer ("),
+        p.summary().starts_with("auto: zbuffer-tiled ("),
         "{}",
         p.summary()
     );
