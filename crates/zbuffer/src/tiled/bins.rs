@@ -130,9 +130,9 @@ impl ChunkBins {
                 continue;
             }
             self.entries += u64::from(count);
-            for ty in ty0..=ty1 {
+            for ty in ty0..ty1 + 1 {
                 let row = (ty * grid.cols) as usize;
-                for tx in tx0..=tx1 {
+                for tx in tx0..tx1 + 1 {
                     self.tiles[row + tx as usize].push(entry);
                 }
             }

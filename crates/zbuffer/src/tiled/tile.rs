@@ -255,13 +255,15 @@ impl<K: DepthKey> TileBuf<K> {
         let sx = edges.map(|e| e.a * unit);
         let p = tri.depth();
         let (mut inside, mut passes) = (0u32, 0u32);
-        for y in y0..=y1 {
+        // Half-open ranges: `a..=b` loops carry an extra exhausted flag
+        // (a tenth of the sphere's small-triangle instructions).
+        for y in y0..y1 + 1 {
             let py = i64::from(y) * unit + i64::from(HALF_PIXEL);
             // Biased by one: inside iff all three are >= 0, i.e. the OR of
             // the three has no sign bit (exact; |E| < 2^50).
             let [mut e0, mut e1, mut e2] = edges.map(|e| e.eval(px, py) - 1);
             let ty = p.dy * ((f64::from(y) + 0.5) - p.y0);
-            for x in x0..=x1 {
+            for x in x0..x1 + 1 {
                 if (e0 | e1 | e2) >= 0 {
                     inside += 1;
                     let key = K::encode(p.value + p.dx * ((f64::from(x) + 0.5) - p.x0) + ty);
@@ -491,7 +493,7 @@ impl<K: DepthKey> TileBuf<K> {
         let dy = i64::from(ya - s.oy);
         let mut e = [0, 1, 2].map(|k| s.e00[k] + s.sx[k] * dx + s.sy[k] * dy);
         let (mut inside_total, mut pass_total) = (0u32, 0u32);
-        for y in ya..=yb {
+        for y in ya..yb + 1 {
             let ty = p.dy * ((f64::from(y) + 0.5) - p.y0);
             let at = self.at(xa, y);
             let (inside, passes) = raster_row::<K, EDGES>(
@@ -525,8 +527,8 @@ impl<K: DepthKey> TileBuf<K> {
     #[inline(always)]
     fn note_passes_in_rect(&mut self, x0: u32, y0: u32, x1: u32, y1: u32, passes: u32) {
         let per_row = (self.size / BLOCK) as usize;
-        for br in (y0 - self.y0) / BLOCK..=(y1 - self.y0) / BLOCK {
-            for bc in (x0 - self.x0) / BLOCK..=(x1 - self.x0) / BLOCK {
+        for br in (y0 - self.y0) / BLOCK..(y1 - self.y0) / BLOCK + 1 {
+            for bc in (x0 - self.x0) / BLOCK..(x1 - self.x0) / BLOCK + 1 {
                 self.block_passes[br as usize * per_row + bc as usize] += passes;
             }
         }
