@@ -52,7 +52,7 @@ pub use camera::{Camera, Projection};
 pub use edge::{EdgeFunction, orient2d, triangle_covers};
 pub use fixed::FixedPt;
 pub use plane::PlaneEq;
-pub use viewport::{Centres, Viewport};
+pub use viewport::{Centres, FEW_CENTRES, Viewport};
 
 /// The `glam` version this crate is built against, re-exported so users
 /// name the same types.

@@ -69,9 +69,9 @@ impl Viewport {
 
     /// Whether the snapped triangle `v` (signed doubled area `area`, not
     /// zero; either orientation) certainly covers no pixel centre: its box
-    /// holds none, or holds one or two and the exact edge functions of
-    /// [`crate::edge`] (top-left rule) cover neither. Boxes of three or
-    /// more centres answer `false` without a test. Far from the camera
+    /// holds none, or holds at most [`FEW_CENTRES`] and the exact edge
+    /// functions of [`crate::edge`] (top-left rule) cover none of them.
+    /// Larger boxes answer `false` without a test. Far from the camera
     /// most triangles of a dense mesh are a pixel or less and miss every
     /// centre (281k of a 499k-triangle sphere's at 1024 x 1024): a hider
     /// that drops them early saves all their later work.
@@ -82,42 +82,36 @@ impl Viewport {
 
     /// Which pixel centres the snapped triangle `v` (signed doubled area
     /// `area`, not zero; either orientation) covers, when its box holds at
-    /// most two: [`Centres::Few`], tested with the exact edge functions of
-    /// [`crate::edge`] (top-left rule). Larger boxes answer
-    /// [`Centres::Many`] without a test.
+    /// most [`FEW_CENTRES`]: [`Centres::Few`], tested with the exact edge
+    /// functions of [`crate::edge`] (top-left rule), in row-major order.
+    /// Larger boxes answer [`Centres::Many`] without a test.
     ///
     /// On the 499k-triangle sphere at 1024 x 1024, 281k triangles cover
-    /// no centre and 161k of the other 218k cover one or two of a box of
-    /// at most two: a depth-only front end can hand those over as pixels.
-    ///
-    /// Branches rather than selects: whether a box is small is learnt by
-    /// the branch predictor from the mesh's neighbourhoods (a branch-free
-    /// version, measured on that sphere, made its front end 20 % slower).
+    /// no centre and 201k of the other 218k have a box of at most four: a
+    /// depth-only front end can hand those over as pixels.
     #[inline(always)]
     pub fn covered_centres(&self, v: &[FixedPt; 3], area: i64) -> Centres {
         let Some((x0, y0, x1, y1)) = self.pixel_bounds(v) else {
             return Centres::Few {
-                pixels: [(0, 0); 2],
+                pixels: [(0, 0); FEW_CENTRES],
                 count: 0,
             };
         };
-        let (nx, ny) = (x1 - x0, y1 - y0);
-        if nx + ny > 1 {
+        if ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize > FEW_CENTRES {
             return Centres::Many;
         }
         let a = v[0];
         let (b, c) = if area < 0 { (v[2], v[1]) } else { (v[1], v[2]) };
-        // Centres are below 2^23 in fixed point (images are at most 16384).
-        let covers =
-            |x: u32, y: u32| centre_inside(a, b, c, x as i32 * 256 + 128, y as i32 * 256 + 128);
-        let (mut pixels, mut count) = ([(0, 0); 2], 0u8);
-        if covers(x0, y0) {
-            pixels[0] = (x0, y0);
-            count = 1;
-        }
-        if nx + ny == 1 && covers(x1, y1) {
-            pixels[usize::from(count)] = (x1, y1);
-            count += 1;
+        let (mut pixels, mut count) = ([(0, 0); FEW_CENTRES], 0u8);
+        for y in y0..y1 + 1 {
+            for x in x0..x1 + 1 {
+                // Centres are below 2^23 in fixed point (images are at
+                // most 16384).
+                if centre_inside(a, b, c, x as i32 * 256 + 128, y as i32 * 256 + 128) {
+                    pixels[usize::from(count)] = (x, y);
+                    count += 1;
+                }
+            }
         }
         Centres::Few { pixels, count }
     }
@@ -128,18 +122,23 @@ impl Viewport {
     }
 }
 
+/// The most pixel centres a box may hold for [`Viewport::covered_centres`]
+/// to test them one by one.
+pub const FEW_CENTRES: usize = 4;
+
 /// The pixel centres a small triangle covers: what
 /// [`Viewport::covered_centres`] answers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Centres {
-    /// The triangle's box holds more than two pixel centres (not tested).
+    /// The triangle's box holds more than [`FEW_CENTRES`] pixel centres
+    /// (not tested).
     Many,
-    /// The box holds at most two centres; `pixels[..count]` are the ones
-    /// covered, as `(column, row)`, in row-major order.
+    /// The box holds at most [`FEW_CENTRES`] centres; `pixels[..count]`
+    /// are the ones covered, as `(column, row)`, in row-major order.
     Few {
         /// The covered centres (the first `count` entries).
-        pixels: [(u32, u32); 2],
-        /// How many are covered: 0, 1 or 2.
+        pixels: [(u32, u32); FEW_CENTRES],
+        /// How many are covered.
         count: u8,
     },
 }
@@ -218,12 +217,13 @@ mod tests {
             };
             let covers = (y0..=y1).any(|y| (x0..=x1).any(|x| crate::triangle_covers(
                 &positive, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128)));
-            let few = (x1 - x0 + 1) * (y1 - y0 + 1) <= 2;
+            let few = ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize <= FEW_CENTRES;
             prop_assert_eq!(vp.misses_every_centre(&v, area), few && !covers);
         }
 
         /// `covered_centres` lists exactly the covered centres of a box of
-        /// at most two, row-major, and answers `Many` for larger boxes.
+        /// at most `FEW_CENTRES`, row-major, and answers `Many` for larger
+        /// boxes.
         #[test]
         fn covered_centres_are_the_brute_force_ones(
             pts in proptest::array::uniform3((-300i32..1300, -300i32..1300)),
@@ -240,7 +240,7 @@ mod tests {
                 prop_assert!(got.pixels().is_empty() && got != Centres::Many);
                 return Ok(());
             };
-            if (x1 - x0 + 1) * (y1 - y0 + 1) > 2 {
+            if ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize > FEW_CENTRES {
                 prop_assert_eq!(got, Centres::Many);
                 return Ok(());
             }

@@ -166,7 +166,7 @@ pub struct PrepareStats {
     pub empty: u64,
     /// Triangles the lean front end handed over as the pixels they cover
     /// ([`DepthFragment`](crate::DepthFragment)s) rather than as
-    /// triangles, because their box holds at most two pixel centres; not
+    /// triangles, because their box holds at most four pixel centres; not
     /// counted in [`Self::output`]. Always 0 from [`prepare`].
     pub fragmented: u64,
 }

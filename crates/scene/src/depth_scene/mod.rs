@@ -15,10 +15,10 @@
 //! be clipped goes through `prepare`'s own per-triangle path.
 //!
 //! Two kinds of triangles never reach the hider as triangles. Those that
-//! certainly cover no pixel centre (their box holds none, or one or two
+//! certainly cover no pixel centre (their box holds none, or up to four
 //! that the exact edge functions do not cover) are dropped: they cover no
-//! sample of any pixel-centre hider. Those whose box holds one or two
-//! centres and covers them become [`DepthFragment`]s, one per covered
+//! sample of any pixel-centre hider. Those whose box holds up to four
+//! centres and covers some become [`DepthFragment`]s, one per covered
 //! centre with the depth there: the front end has tested those centres
 //! anyway, and a hider writes a fragment for a fraction of what setting
 //! up and scanning a triangle costs.
@@ -73,7 +73,7 @@ impl DepthTri {
 }
 
 /// One pixel of a triangle too small to rasterise: the lean front end
-/// hands a triangle whose box holds at most two pixel centres over as the
+/// hands a triangle whose box holds at most four pixel centres over as the
 /// centres it covers (see [`Viewport::covered_centres`]), with the depth a
 /// hider would compute there.
 ///
@@ -270,7 +270,8 @@ pub fn prepare_depth_into(
 /// What [`prepare_depth_into`] must produce for the scene, view and
 /// options that [`prepare`](fn@crate::prepare) turned into `screen`,
 /// worked out by brute force over each triangle's pixel box: the
-/// triangles whose box holds more than two pixel centres, as
+/// triangles whose box holds more than [`hider_geom::FEW_CENTRES`] (four)
+/// pixel centres, as
 /// [`DepthTri`]s, and one [`DepthFragment`] per covered centre of the
 /// others (those covering none are dropped), both in primitive order. The
 /// lean front end's tests and fuzz target compare it with this.
@@ -280,7 +281,7 @@ pub fn lean_reference(screen: &ScreenScene) -> (Vec<DepthTri>, Vec<DepthFragment
         let Some((x0, y0, x1, y1)) = t.pixel_bounds(screen.viewport) else {
             continue;
         };
-        if (x1 - x0 + 1) * (y1 - y0 + 1) > 2 {
+        if ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize > hider_geom::FEW_CENTRES {
             tris.push(DepthTri::from(t));
             continue;
         }
