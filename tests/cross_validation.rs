@@ -300,16 +300,7 @@ fn wild_scene(seed: u64, count: u32) -> Scene {
         };
         positions.extend([a, b, c]);
     }
-    let indices = (0..count).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect();
-    let mut s = Scene::default();
-    s.push_mesh(
-        Mesh {
-            positions,
-            indices,
-            ..Mesh::default()
-        },
-        None,
-    );
+    let mut s = Scene::from_triangles(positions);
     s.camera = Some(look_at(
         DVec3::new(0.0, 0.0, 0.5),
         DVec3::new(0.0, 0.0, -1.0),

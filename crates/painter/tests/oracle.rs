@@ -270,19 +270,7 @@ fn big_triangles() -> impl Strategy<Value = Scene> {
                 positions.push(DVec3::new(t[3 * c], t[3 * c + 1], t[3 * c + 2]));
             }
         }
-        let indices = (0..tris.len() as u32)
-            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
-            .collect();
-        let mut scene = Scene::default();
-        scene.push_mesh(
-            Mesh {
-                positions,
-                indices,
-                ..Mesh::default()
-            },
-            None,
-        );
-        scene
+        Scene::from_triangles(positions)
     })
 }
 

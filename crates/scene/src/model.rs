@@ -226,6 +226,31 @@ impl Scene {
         Ok(())
     }
 
+    /// A scene of one plain mesh (no material, normals or texture
+    /// coordinates) with these positions and triangles.
+    pub fn from_mesh(positions: Vec<DVec3>, indices: Vec<[u32; 3]>) -> Self {
+        let mut scene = Self::default();
+        scene.push_mesh(
+            Mesh {
+                positions,
+                indices,
+                ..Mesh::default()
+            },
+            None,
+        );
+        scene
+    }
+
+    /// A triangle soup: one plain mesh whose triangle `k` is positions
+    /// `3k`, `3k + 1` and `3k + 2` (one or two positions left over at the
+    /// end belong to no triangle).
+    pub fn from_triangles(positions: Vec<DVec3>) -> Self {
+        let indices = (0..(positions.len() / 3) as u32)
+            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+            .collect();
+        Self::from_mesh(positions, indices)
+    }
+
     /// Appends a mesh with its own material, returning the mesh index.
     pub fn push_mesh(&mut self, mut mesh: Mesh, material: Option<Material>) -> usize {
         if let Some(mat) = material {

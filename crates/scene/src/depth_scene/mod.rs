@@ -319,7 +319,6 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::model::Mesh;
     use crate::prepare::{TransformPrecision, prepare};
 
     fn scene_of(points: &[(f64, f64, f64)], shared: bool) -> Scene {
@@ -336,16 +335,7 @@ mod tests {
         } else {
             (0..n / 3).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect()
         };
-        let mut s = Scene::default();
-        s.push_mesh(
-            Mesh {
-                positions,
-                indices,
-                ..Mesh::default()
-            },
-            None,
-        );
-        s
+        Scene::from_mesh(positions, indices)
     }
 
     fn view(size: u32, near: f64) -> View {

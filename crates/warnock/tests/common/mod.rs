@@ -66,17 +66,7 @@ pub fn random_big_triangles(count: u32, seed: u64) -> Scene {
             rng.range(-1.0, 1.0),
         ));
     }
-    let indices = (0..count).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
-    let mut s = Scene::default();
-    s.push_mesh(
-        Mesh {
-            positions,
-            indices,
-            ..Mesh::default()
-        },
-        None,
-    );
-    s
+    Scene::from_triangles(positions)
 }
 
 /// Triangles given directly, seen by a camera at (0, 0, 5) looking at the

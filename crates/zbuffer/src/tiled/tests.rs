@@ -450,7 +450,6 @@ fn fragments_keep_primitive_order_on_ties() {
 /// everywhere, as the reference does.
 #[test]
 fn fragments_and_triangles_tie_as_in_the_reference() {
-    use hider_scene::Mesh;
     let mut positions = Vec::new();
     let mut state = 0x9e37_79b9_7f4a_7c15_u64;
     let mut next = || {
@@ -467,18 +466,7 @@ fn fragments_and_triangles_tie_as_in_the_reference() {
             positions.push(DVec3::new(cx + dx, cy + dy, 0.0));
         }
     }
-    let indices = (0..positions.len() as u32 / 3)
-        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
-        .collect();
-    let mut scene = Scene::default();
-    scene.push_mesh(
-        Mesh {
-            positions,
-            indices,
-            ..Mesh::default()
-        },
-        None,
-    );
+    let scene = Scene::from_triangles(positions);
     let camera =
         hider_scene::hard_cases::look_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 1.0, 10.0);
     let view = View::new(camera, 40, 36).unwrap();
