@@ -198,32 +198,11 @@ mod tests {
             prop_assert_eq!(Viewport::new(w, h).pixel_bounds(&v), want);
         }
 
-        /// `misses_every_centre` against brute force with the shared
-        /// coverage test, for both orientations.
-        #[test]
-        fn misses_every_centre_is_exact_for_small_boxes(
-            pts in proptest::array::uniform3((-300i32..1300, -300i32..1300)),
-            w in 1u32..6,
-            h in 1u32..6,
-        ) {
-            let v = pts.map(|(x, y)| FixedPt::new(x, y));
-            let area = crate::orient2d(v[0], v[1], v[2]);
-            prop_assume!(area != 0);
-            let vp = Viewport::new(w, h);
-            let positive = if area > 0 { v } else { [v[0], v[2], v[1]] };
-            let Some((x0, y0, x1, y1)) = vp.pixel_bounds(&v) else {
-                prop_assert!(vp.misses_every_centre(&v, area));
-                return Ok(());
-            };
-            let covers = (y0..=y1).any(|y| (x0..=x1).any(|x| crate::triangle_covers(
-                &positive, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128)));
-            let few = ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize <= FEW_CENTRES;
-            prop_assert_eq!(vp.misses_every_centre(&v, area), few && !covers);
-        }
-
         /// `covered_centres` lists exactly the covered centres of a box of
         /// at most `FEW_CENTRES`, row-major, and answers `Many` for larger
-        /// boxes.
+        /// boxes; `misses_every_centre` is true exactly for a small box
+        /// covering none. Brute force with the shared coverage test, both
+        /// orientations.
         #[test]
         fn covered_centres_are_the_brute_force_ones(
             pts in proptest::array::uniform3((-300i32..1300, -300i32..1300)),
@@ -238,18 +217,21 @@ mod tests {
             let got = vp.covered_centres(&v, area);
             let Some((x0, y0, x1, y1)) = vp.pixel_bounds(&v) else {
                 prop_assert!(got.pixels().is_empty() && got != Centres::Many);
+                prop_assert!(vp.misses_every_centre(&v, area));
                 return Ok(());
             };
-            if ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize > FEW_CENTRES {
-                prop_assert_eq!(got, Centres::Many);
-                return Ok(());
-            }
             let want: Vec<(u32, u32)> = (y0..=y1)
                 .flat_map(|y| (x0..=x1).map(move |x| (x, y)))
                 .filter(|&(x, y)| crate::triangle_covers(
                     &positive, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128))
                 .collect();
-            prop_assert_eq!(got.pixels(), &want[..]);
+            let few = ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize <= FEW_CENTRES;
+            if few {
+                prop_assert_eq!(got.pixels(), &want[..]);
+            } else {
+                prop_assert_eq!(got, Centres::Many);
+            }
+            prop_assert_eq!(vp.misses_every_centre(&v, area), few && want.is_empty());
         }
     }
 

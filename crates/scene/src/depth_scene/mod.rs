@@ -240,7 +240,13 @@ pub fn prepare_depth_into(
     let vertices = &out.vertices;
     let run = |(k, run): (usize, &mut Run)| {
         let range = (k * per).min(count)..((k + 1) * per).min(count);
-        triangles::triangles(scene, &front, vertices, range, run)
+        let input = triangles::Input {
+            scene,
+            front: &front,
+            vertices,
+            range,
+        };
+        triangles::triangles(&input, run)
     };
     let outcomes: Vec<Outcome> = if parallel {
         out.runs.par_iter_mut().enumerate().map(run).collect()

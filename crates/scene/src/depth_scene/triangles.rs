@@ -54,19 +54,23 @@ pub(super) struct Outcome {
     pub(super) bad_index: bool,
 }
 
-/// Sets up the triangles with primitive ids in `range` into `run`.
-pub(super) fn triangles(
-    scene: &Scene,
-    front: &FrontEnd,
-    vertices: &[CachedVertex],
-    range: std::ops::Range<usize>,
-    run: &mut Run,
-) -> Outcome {
+/// What the pass reads: the scene, the frame's transforms, the vertex
+/// cache (every mesh's vertices one after the other) and the primitive
+/// ids to set up.
+pub(super) struct Input<'a> {
+    pub(super) scene: &'a Scene,
+    pub(super) front: &'a FrontEnd,
+    pub(super) vertices: &'a [CachedVertex],
+    pub(super) range: std::ops::Range<usize>,
+}
+
+/// Sets up the triangles of `input` into `run`.
+pub(super) fn triangles(input: &Input<'_>, run: &mut Run) -> Outcome {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
-        return triangles_avx2(scene, front, vertices, range, run);
+        return triangles_avx2(input, run);
     }
-    pass(scene, front, vertices, range, run)
+    pass(input, run)
 }
 
 /// [`pass`] compiled for AVX2.
@@ -78,35 +82,23 @@ pub(super) fn triangles(
 /// the same bits.
 #[cfg(target_arch = "x86_64")]
 #[allow(unsafe_code)]
-fn triangles_avx2(
-    scene: &Scene,
-    front: &FrontEnd,
-    vertices: &[CachedVertex],
-    range: std::ops::Range<usize>,
-    run: &mut Run,
-) -> Outcome {
+fn triangles_avx2(input: &Input<'_>, run: &mut Run) -> Outcome {
     #[target_feature(enable = "avx2")]
-    fn wide(
-        scene: &Scene,
-        front: &FrontEnd,
-        vertices: &[CachedVertex],
-        range: std::ops::Range<usize>,
-        run: &mut Run,
-    ) -> Outcome {
-        pass(scene, front, vertices, range, run)
+    fn wide(input: &Input<'_>, run: &mut Run) -> Outcome {
+        pass(input, run)
     }
     // SAFETY: `triangles` calls this only after detecting AVX2.
-    unsafe { wide(scene, front, vertices, range, run) }
+    unsafe { wide(input, run) }
 }
 
 #[inline(always)]
-fn pass(
-    scene: &Scene,
-    front: &FrontEnd,
-    vertices: &[CachedVertex],
-    range: std::ops::Range<usize>,
-    run: &mut Run,
-) -> Outcome {
+fn pass(input: &Input<'_>, run: &mut Run) -> Outcome {
+    let Input {
+        scene,
+        front,
+        vertices,
+        ref range,
+    } = *input;
     run.tris.clear();
     run.fragments.clear();
     let mut pass = Pass {
@@ -257,7 +249,9 @@ impl Pass<'_> {
         let mut x = [[0i32; LANES]; 3];
         let mut y = [[0i32; LANES]; 3];
         let mut z = [[0f64; LANES]; 3];
-        let (mut any, mut all) = (0u32, OUTSIDE_VIEWPORT);
+        // Any vertex's special code, and any triangle whose three vertices
+        // are beyond one side of the viewport (culled, not classified).
+        let (mut any, mut beyond) = (0u32, 0u32);
         for i in 0..LANES {
             let (c, bad) = mesh.corners(t + i);
             self.bad_index |= bad;
@@ -265,9 +259,9 @@ impl Pass<'_> {
                 (x[k][i], y[k][i], z[k][i]) = (c[k].p.x, c[k].p.y, c[k].z);
             }
             any |= c[0].code | c[1].code | c[2].code;
-            all &= c[0].code & c[1].code & c[2].code;
+            beyond |= c[0].code & c[1].code & c[2].code;
         }
-        if any & SPECIAL != 0 || all & OUTSIDE_VIEWPORT != 0 {
+        if any & SPECIAL != 0 || beyond & OUTSIDE_VIEWPORT != 0 {
             // Some triangle needs clipping or is culled: rare, or true of
             // a whole region of the mesh at once.
             for i in 0..LANES {

@@ -398,15 +398,9 @@ fn every_hard_case_matches_the_reference_bit_for_bit() {
             for (w, h) in [(64, 64), (97, 61)] {
                 let view = View::for_scene(&scene, w, h).unwrap();
                 let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
-                for format in DepthFormat::ALL {
-                    for threads in [1, 2] {
-                        let o = TiledZBufferOptions::default()
-                            .with_depth_format(format)
-                            .with_threads(threads)
-                            .with_tile_size(16);
-                        assert_same(&screen, o);
-                        assert_lean_same(&scene, &view, o, threads);
-                    }
+                for o in every_format_on_one_and_two_threads() {
+                    assert_same(&screen, o);
+                    assert_lean_same(&scene, &view, o, o.threads);
                 }
             }
         }
@@ -477,13 +471,20 @@ fn fragments_and_triangles_tie_as_in_the_reference() {
         "{:?}",
         lean.stats
     );
-    for format in DepthFormat::ALL {
-        for threads in [1, 2] {
-            let o = TiledZBufferOptions::default()
+    for o in every_format_on_one_and_two_threads() {
+        assert_lean_same(&scene, &view, o, 1);
+    }
+}
+
+/// Every depth format on 1 and on 2 threads, with 16-pixel tiles (so that
+/// small images have several).
+fn every_format_on_one_and_two_threads() -> impl Iterator<Item = TiledZBufferOptions> {
+    DepthFormat::ALL.into_iter().flat_map(|format| {
+        [1, 2].map(|threads| {
+            TiledZBufferOptions::default()
                 .with_depth_format(format)
                 .with_threads(threads)
-                .with_tile_size(16);
-            assert_lean_same(&scene, &view, o, 1);
-        }
-    }
+                .with_tile_size(16)
+        })
+    })
 }
