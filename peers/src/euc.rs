@@ -67,24 +67,21 @@ pub struct EucRun {
     pub covered: u64,
 }
 
-/// Draws `work` `warmups + runs` times into buffers of its size and times
+/// Draws `work` at least `warmups` times (see [`crate::timed_runs`]), then
+/// `runs` times, into buffers of its size, and times
 /// the last `runs` (clear both buffers + draw).
 pub fn time(work: &Workload, warmups: usize, runs: usize) -> EucRun {
     let side = work.size as usize;
     let mut color = Buffer2d::new([side, side], BACKGROUND);
     let mut depth = Buffer2d::new([side, side], 1.0f32);
     let pipeline = Flat { mvp: work.mvp };
-    let mut ms = Vec::with_capacity(runs);
-    for run in 0..warmups + runs {
+    let ms = crate::timed_runs(warmups, runs, || {
         let t = Instant::now();
         color.clear(BACKGROUND);
         depth.clear(1.0);
         pipeline.draw::<Raster<'_>, _>(&work.positions, &mut color, Some(&mut depth));
-        let elapsed = t.elapsed().as_secs_f64() * 1e3;
-        if run >= warmups {
-            ms.push(elapsed);
-        }
-    }
+        t.elapsed().as_secs_f64() * 1e3
+    });
     let covered = color.as_ref().iter().filter(|&&c| c != BACKGROUND).count() as u64;
     EucRun { ms, covered }
 }

@@ -343,7 +343,8 @@ impl Llvmpipe {
         }
     }
 
-    /// Draws `work` `warmups + runs` times and times the last `runs`
+    /// Draws `work` at least `warmups` times (see [`crate::timed_runs`]),
+    /// then `runs` times, timed
     /// (clear + draw + `glFinish`), then reads the image back and counts
     /// covered pixels.
     pub fn time(
@@ -421,8 +422,7 @@ impl Llvmpipe {
         }
         self.check("set-up")?;
 
-        let mut ms = Vec::with_capacity(runs);
-        for run in 0..warmups + runs {
+        let ms = crate::timed_runs(warmups, runs, || {
             let t = Instant::now();
             // SAFETY: the context is current; the bound VBO holds
             // `vertices` vertices.
@@ -431,11 +431,8 @@ impl Llvmpipe {
                 (gl.glDrawArrays)(GL_TRIANGLES, 0, vertices);
                 (gl.glFinish)();
             }
-            let elapsed = t.elapsed().as_secs_f64() * 1e3;
-            if run >= warmups {
-                ms.push(elapsed);
-            }
-        }
+            t.elapsed().as_secs_f64() * 1e3
+        });
         self.check("drawing")?;
 
         let mut pixels = vec![0u32; work.size as usize * work.size as usize];

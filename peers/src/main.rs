@@ -34,8 +34,26 @@ use serde::{Deserialize, Serialize};
 use crate::llvmpipe::{Llvmpipe, Target};
 use crate::scenes::{NamedScene, Workload, hider_coverage, load_scenes};
 
-/// Warm-up frames before the timed runs of each scene and size.
+/// Warm-up frames before the timed runs of each scene and size (at the
+/// least; see [`WARM_UP`]).
 const WARMUPS: usize = 2;
+/// The least time spent on warm-up frames: on these virtual machines a
+/// core that sat idle takes tens of milliseconds to run at full speed
+/// again, which would flatter hider against a multi-threaded peer.
+/// hider's benchmark warms up the same way.
+const WARM_UP: std::time::Duration = std::time::Duration::from_millis(40);
+
+/// Runs `frame` (which returns its own time in ms) for at least `warmups`
+/// frames and [`WARM_UP`], then `runs` more, and returns those times.
+pub(crate) fn timed_runs(warmups: usize, runs: usize, mut frame: impl FnMut() -> f64) -> Vec<f64> {
+    let start = std::time::Instant::now();
+    let mut count = 0;
+    while count < warmups || start.elapsed() < WARM_UP {
+        frame();
+        count += 1;
+    }
+    (0..runs).map(|_| frame()).collect()
+}
 /// Exit status of a child that found no libOSMesa (it said so already).
 const NO_LIBRARY: i32 = 3;
 /// Largest coverage difference from hider accepted for llvmpipe (0.5 %):
