@@ -382,27 +382,53 @@ impl Lanes {
             } else {
                 (bx, by, cx, cy)
             };
-            let edge = |fx: i32, fy: i32, tx: i32, ty: i32, px: i32, py: i32| {
+            // Each edge at the box's first centre (top-left bias
+            // included: inside iff > 0) and its exact steps to the next
+            // column and the next row.
+            let (px, py) = (x0 * 256 + 128, y0 * 256 + 128);
+            let edge = |fx: i32, fy: i32, tx: i32, ty: i32| {
                 let (dx, dy) = (tx - fx, ty - fy);
                 let bias = i64::from((dy < 0) | ((dy == 0) & (dx > 0)));
-                wide(dx, py - fy) - wide(dy, px - fx) + bias > 0
+                let at = wide(dx, py - fy) - wide(dy, px - fx) + bias;
+                (at, -i64::from(dy) << 8, i64::from(dx) << 8)
             };
-            let inside = |px: i32, py: i32| {
-                edge(ax, ay, bx, by, px, py)
-                    & edge(bx, by, cx, cy, px, py)
-                    & edge(cx, cy, ax, ay, px, py)
-            };
-            // The box's first `FEW_CENTRES` centres, row-major: centre `j`
-            // is row `j / cols`, column `j % cols`, written with compares
-            // so that the lanes stay vectorisable.
+            let edges = [
+                edge(ax, ay, bx, by),
+                edge(bx, by, cx, cy),
+                edge(cx, cy, ax, ay),
+            ];
+            // The box's first `FEW_CENTRES` centres, row-major, as steps
+            // from the first, sums of the steps picked by the box's
+            // width (no multiplication in the lanes): a box one wide
+            // goes down, two wide goes right then down, wider goes right.
+            let (one, two) = (cols == 1, cols == 2);
             let mut bits = 0u8;
-            for j in 0..FEW_CENTRES as i32 {
-                let row =
-                    i32::from(j >= cols) + i32::from(j >= 2 * cols) + i32::from(j >= 3 * cols);
-                let col = j - row * cols;
-                let hit =
-                    (j < cols * rows) & inside((x0 + col) * 256 + 128, (y0 + row) * 256 + 128);
-                bits |= u8::from(hit) << j;
+            let mut hit = [true; FEW_CENTRES];
+            for &(at, sx, sy) in &edges {
+                let offset = [
+                    0,
+                    if one { sy } else { sx },
+                    if one {
+                        sy + sy
+                    } else if two {
+                        sy
+                    } else {
+                        sx + sx
+                    },
+                    if one {
+                        sy + sy + sy
+                    } else if two {
+                        sx + sy
+                    } else {
+                        sx + sx + sx
+                    },
+                ];
+                for (h, o) in hit.iter_mut().zip(offset) {
+                    *h &= at + o > 0;
+                }
+            }
+            for (j, &h) in hit.iter().enumerate() {
+                bits |= u8::from(h & ((j as i32) < cols * rows)) << j;
             }
             zero[i] = area == 0;
             back[i] = cull & (area > 0);
