@@ -625,7 +625,11 @@ impl<K: DepthKey> TileBuf<K> {
                     for ((id, d), (&i, k)) in ids_out[c..c + n]
                         .iter_mut()
                         .zip(&mut depth_out[c..c + n])
-                        .zip(self.ids[from..from + n].iter().zip(&self.keys[from..from + n]))
+                        .zip(
+                            self.ids[from..from + n]
+                                .iter()
+                                .zip(&self.keys[from..from + n]),
+                        )
                     {
                         // See `activate`: a far key is background.
                         *id = if *k == K::FAR { NO_ID } else { i };
