@@ -429,12 +429,11 @@ impl<K: DepthKey> TileBuf<K> {
         let Ok(col) = <[f64; 8]>::try_from(&self.col[c0..c0 + 8]) else {
             return 0;
         };
-        let ty: [f64; 8] =
-            std::array::from_fn(|r| p.dy * ((f64::from(by + r as u32) + 0.5) - p.y0));
         let mut new = [K::FAR; 64];
-        for r in 0..8 {
-            for c in 0..8 {
-                new[r * 8 + c] = K::encode(col[c] + ty[r]);
+        for (r, row) in new.chunks_exact_mut(8).enumerate() {
+            let ty = p.dy * ((f64::from(by + r as u32) + 0.5) - p.y0);
+            for (key, &c) in row.iter_mut().zip(&col) {
+                *key = K::encode(c + ty);
             }
         }
         // Sign bit set = outside some edge.
