@@ -266,6 +266,14 @@ pub(crate) fn for_each_in_tile<T, D: DrawTri<T>>(
     }
 }
 
+/// A rough cost of tile `tile`, for ordering the tiles threads take: its
+/// bin entries, and its fragments at an eighth each.
+#[inline]
+pub(crate) fn tile_load(chunks: &[ChunkBins], fragments: &[FragmentBins], tile: usize) -> usize {
+    chunks.iter().map(|c| c.tiles[tile].len()).sum::<usize>()
+        + fragments.iter().map(|f| f.tiles[tile].len()).sum::<usize>() / 8
+}
+
 /// Whether any chunk has a triangle for tile `tile` (large triangles are
 /// counted for every tile; the tile's own bounding-box test sorts them
 /// out), or any run a fragment.

@@ -399,15 +399,20 @@ impl TiledZBuffer {
                     let mut busy = Vec::new();
                     for (t, tile) in bufs.iter_mut().enumerate() {
                         if bins::tile_has_work(chunks, fragment_bins, t) {
-                            busy.push((t, tile));
+                            busy.push((bins::tile_load(chunks, fragment_bins, t), t, tile));
                         } else {
                             job_at(t).dispatch(std::slice::from_mut(tile));
                         }
                     }
+                    // Heaviest first: the last tasks, which decide when the
+                    // threads finish, are then the small ones.
+                    busy.sort_unstable_by_key(|&(load, t, _)| (std::cmp::Reverse(load), t));
                     install(pool, || {
                         busy.par_iter_mut()
                             .with_max_len(1)
-                            .for_each(|(t, tile)| job_at(*t).dispatch(std::slice::from_mut(*tile)));
+                            .for_each(|(_, t, tile)| {
+                                job_at(*t).dispatch(std::slice::from_mut(*tile))
+                            });
                     });
                 }
                 None => bufs
