@@ -355,19 +355,18 @@ impl TiledZBuffer {
         let fragment_bins = &self.fragment_bins;
         let wide = self.wide_kernel;
         let cols = grid.cols as usize;
-        let draw_band = |b: usize, band: &mut [TileBuf<K>]| {
-            let job = BandJob {
-                wide,
-                first: b * cols,
-                grid,
-                vp,
-                tris: &tris,
-                chunks,
-                fragments: fragment_bins,
-                hiz,
-            };
-            job.dispatch(band);
+        // The job drawing the run of tiles that starts at tile `first`.
+        let job_at = |first: usize| BandJob {
+            wide,
+            first,
+            grid,
+            vp,
+            tris: &tris,
+            chunks,
+            fragments: fragment_bins,
+            hiz,
         };
+        let draw_band = |b: usize, band: &mut [TileBuf<K>]| job_at(b * cols).dispatch(band);
         match frame {
             Some(frame) => {
                 let width = vp.width as usize;
@@ -382,16 +381,6 @@ impl TiledZBuffer {
             None => match pool {
                 Some(pool) => {
                     use rayon::prelude::*;
-                    let job_at = |first: usize| BandJob {
-                        wide,
-                        first,
-                        grid,
-                        vp,
-                        tris: &tris,
-                        chunks,
-                        fragments: fragment_bins,
-                        hiz,
-                    };
                     // Tiles nothing reaches are only flagged background,
                     // here; the threads share the others, one task each
                     // (the spider at 1024 reaches 36 of 256 tiles: fewer
