@@ -14,7 +14,7 @@
 use glam::{DVec3, DVec4};
 use hider_geom::FixedPt;
 use hider_geom::clip::OUTSIDE_PLANES;
-use hider_geom::fixed::snap_coordinate_lanewise;
+use hider_geom::fixed::{snap_coordinate_lanewise, snap_coordinate_lanewise_f32};
 
 use crate::prepare::{FrontEnd, TransformPrecision};
 
@@ -100,7 +100,11 @@ fn lanes(front: &FrontEnd, p: &[DVec3; LANES], out: &mut [CachedVertex; LANES]) 
     // indexed loops: `array::from_fn` with closures was not inlined into
     // the AVX2 copy, and every call went through memory.
     let mut clip = [[0.0f64; LANES]; 4];
-    let mut window = [[0.0f64; LANES]; 3];
+    // Window depth, and the snapped window position with whether it is
+    // in the snappable range.
+    let mut depth = [0.0f64; LANES];
+    let (mut x, mut y) = ([0i32; LANES], [0i32; LANES]);
+    let mut snaps = [false; LANES];
     match front.options.precision {
         TransformPrecision::F32 => {
             let m = front.mvp32;
@@ -112,12 +116,14 @@ fn lanes(front: &FrontEnd, p: &[DVec3; LANES], out: &mut [CachedVertex; LANES]) 
                     c[i] = ((m.x_axis[k] * x + m.y_axis[k] * y) + m.z_axis[k] * z) + m.w_axis[k];
                 }
             }
-            // `to_window` in f32: divide, then `ndc_to_window_f32`.
+            // `to_window` in f32: divide, then `ndc_to_window_f32`, and
+            // the snap in f32 lanes (the same result as in f64).
             let (wf, hf) = (w as f32, h as f32);
             for i in 0..LANES {
-                window[0][i] = f64::from((c[0][i] / c[3][i] * 0.5 + 0.5) * wf);
-                window[1][i] = f64::from((0.5 - c[1][i] / c[3][i] * 0.5) * hf);
-                window[2][i] = f64::from(c[2][i] / c[3][i] * 0.5 + 0.5);
+                let (ok_x, sx) = snap_coordinate_lanewise_f32((c[0][i] / c[3][i] * 0.5 + 0.5) * wf);
+                let (ok_y, sy) = snap_coordinate_lanewise_f32((0.5 - c[1][i] / c[3][i] * 0.5) * hf);
+                (snaps[i], x[i], y[i]) = (ok_x & ok_y, sx, sy);
+                depth[i] = f64::from(c[2][i] / c[3][i] * 0.5 + 0.5);
                 for (clip, c) in clip.iter_mut().zip(&c) {
                     clip[i] = f64::from(c[i]);
                 }
@@ -135,9 +141,12 @@ fn lanes(front: &FrontEnd, p: &[DVec3; LANES], out: &mut [CachedVertex; LANES]) 
             // `to_window` in f64: divide, then `ndc_to_window`.
             let (wf, hf) = (f64::from(w), f64::from(h));
             for i in 0..LANES {
-                window[0][i] = (clip[0][i] / clip[3][i] + 1.0) * 0.5 * wf;
-                window[1][i] = (1.0 - clip[1][i] / clip[3][i]) * 0.5 * hf;
-                window[2][i] = (clip[2][i] / clip[3][i] + 1.0) * 0.5;
+                let (ok_x, sx) =
+                    snap_coordinate_lanewise((clip[0][i] / clip[3][i] + 1.0) * 0.5 * wf);
+                let (ok_y, sy) =
+                    snap_coordinate_lanewise((1.0 - clip[1][i] / clip[3][i]) * 0.5 * hf);
+                (snaps[i], x[i], y[i]) = (ok_x & ok_y, sx, sy);
+                depth[i] = (clip[2][i] / clip[3][i] + 1.0) * 0.5;
             }
         }
     }
@@ -145,22 +154,16 @@ fn lanes(front: &FrontEnd, p: &[DVec3; LANES], out: &mut [CachedVertex; LANES]) 
     // lanes so that it vectorises; the scatter into the cache is last.
     let mut code = [0u32; LANES];
     let mut inside = [false; LANES];
-    let (mut x, mut y, mut z) = ([0i32; LANES], [0i32; LANES], [0.0f64; LANES]);
+    let mut z = [0.0f64; LANES];
     for i in 0..LANES {
         let pos = DVec4::new(clip[0][i], clip[1][i], clip[2][i], clip[3][i]);
         let finite = pos.is_finite();
         let c = front.volume.outcode(pos);
         code[i] = if finite { c } else { NOT_FINITE };
-        inside[i] = finite & (c & OUTSIDE_PLANES == 0);
-    }
-    for i in 0..LANES {
-        let (ok_x, sx) = snap_coordinate_lanewise(window[0][i]);
-        let (ok_y, sy) = snap_coordinate_lanewise(window[1][i]);
-        inside[i] &= ok_x & ok_y;
-        (x[i], y[i]) = (sx, sy);
+        inside[i] = finite & (c & OUTSIDE_PLANES == 0) & snaps[i];
         // `to_window`'s clamp: rounding of the divide can leave window
         // depth outside [0, 1].
-        z[i] = window[2][i].clamp(0.0, 1.0);
+        z[i] = depth[i].clamp(0.0, 1.0);
     }
     for i in 0..LANES {
         let ok = inside[i];
