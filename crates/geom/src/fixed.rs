@@ -181,7 +181,7 @@ mod tests {
     #[test]
     fn f32_snapping_is_the_f64_snapping() {
         let mut s = 0x9e37_79b9_u64;
-        let mut check = |v: f32| {
+        let check = |v: f32| {
             let (ok, snapped) = snap_coordinate_lanewise_f32(v);
             let (ok64, snapped64) = snap_coordinate_lanewise(f64::from(v));
             assert_eq!(ok, ok64, "{v}");
