@@ -528,7 +528,7 @@ impl<T: RasterTri> BandJob<'_, T> {
 
     /// [`Self::draw`] compiled for AVX2 and FMA.
     ///
-    /// The project's second `unsafe` block: calling a `target_feature`
+    /// One of the project's four `unsafe` blocks: calling a `target_feature`
     /// function is unsafe only because the CPU might lack the feature, and
     /// [`Self::dispatch`] checked that it has them.
     #[cfg(target_arch = "x86_64")]
