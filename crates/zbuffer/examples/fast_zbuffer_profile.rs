@@ -61,7 +61,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let start = clock(t);
             // Front end and draw in the one pool (the hider uses the pool
             // it is called from): a second pool would take turns with it.
-            let frame = || {
+            let mut frame = || {
                 prepare_depth_into(&scene, &view, &options, &mut lean)?;
                 let prepared = clock(t) - start;
                 tiled.draw_depth_scene(&lean).map(|s| (prepared, s))
