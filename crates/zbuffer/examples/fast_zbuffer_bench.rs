@@ -66,6 +66,16 @@ const TIMED: usize = 3;
 /// How long each pipeline renders untimed frames before, per round.
 const WARM_UP: std::time::Duration = std::time::Duration::from_millis(40);
 
+/// One row of the `peers` package's JSON (`--json`).
+#[derive(serde::Deserialize)]
+struct PeerRow {
+    scene: String,
+    size: u32,
+    peer: String,
+    threads: u32,
+    median_ms: f64,
+}
+
 /// Peers' figures measured on this machine: (scene, size, peer, threads)
 /// to the median ms of each measurement.
 type Peers = Vec<((String, u32, String, u32), f64)>;
@@ -74,38 +84,11 @@ type Peers = Vec<((String, u32, String, u32), f64)>;
 fn read_peers(path: &std::path::Path, out: &mut Peers) -> Result<(), String> {
     let path = path.display();
     let text = std::fs::read_to_string(path.to_string()).map_err(|e| format!("{path}: {e}"))?;
-    let rows: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| format!("{path}: {e}"))?;
-    let rows = rows
-        .as_array()
-        .ok_or_else(|| format!("{path}: not an array of measurements"))?;
-    for (i, row) in rows.iter().enumerate() {
-        let field = |k: &str| {
-            row.get(k)
-                .cloned()
-                .ok_or_else(|| format!("{path}: entry {i} has no '{k}'"))
-        };
-        let text = |k: &str| -> Result<String, String> {
-            field(k)?
-                .as_str()
-                .map(str::to_owned)
-                .ok_or_else(|| format!("{path}: entry {i}: '{k}' is not text"))
-        };
-        let number = |k: &str| -> Result<f64, String> {
-            field(k)?
-                .as_f64()
-                .ok_or_else(|| format!("{path}: entry {i}: '{k}' is not a number"))
-        };
-        out.push((
-            (
-                text("scene")?,
-                number("size")? as u32,
-                text("peer")?,
-                number("threads")? as u32,
-            ),
-            number("median_ms")?,
-        ));
-    }
+    let rows: Vec<PeerRow> = serde_json::from_str(&text).map_err(|e| format!("{path}: {e}"))?;
+    out.extend(
+        rows.into_iter()
+            .map(|r| ((r.scene, r.size, r.peer, r.threads), r.median_ms)),
+    );
     Ok(())
 }
 
