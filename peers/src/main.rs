@@ -8,8 +8,8 @@
 //!     --runs 11 --sizes 1024 --json peers.json
 //! ```
 //!
-//! Options: `--runs K` timed runs per scene and size after 2 warm-ups
-//! (default 11); `--sizes A,B,..` (default 1024); `--threads A,B,..`
+//! Options: `--runs K` timed runs per scene and size after at least 2
+//! warm-up frames and 40 ms of them (default 11); `--sizes A,B,..` (default 1024); `--threads A,B,..`
 //! llvmpipe thread counts, `LP_NUM_THREADS` (default 1,2); `--rounds R`
 //! (default 2): the peers take turns R times — euc, then one llvmpipe child
 //! process per thread count — and each keeps its best median and its
@@ -326,8 +326,9 @@ fn main() -> ExitCode {
         }
     };
     println!(
-        "peers: {} timed runs after {WARMUPS} warm-ups, best median of {} rounds; load average at start {}",
+        "peers: {} timed runs after at least {WARMUPS} warm-ups and {} ms of them, best median of {} rounds; load average at start {}",
         args.runs,
+        WARM_UP.as_millis(),
         args.rounds,
         load_average()
     );
