@@ -44,6 +44,7 @@ pub mod camera;
 pub mod clip;
 pub mod edge;
 pub mod fixed;
+pub mod isa;
 pub mod plane;
 pub mod polygon;
 pub mod viewport;

@@ -31,6 +31,7 @@
 //! both precisions, with clipping and culling, and the `front_end` fuzz
 //! target on hostile ones.
 
+mod classify_avx2;
 mod triangles;
 mod vertices;
 

@@ -22,6 +22,9 @@
 use hider_geom::clip::{OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
 use hider_geom::{Centres, FEW_CENTRES, FixedPt, PlaneEq, orient2d};
 
+use hider_geom::isa::{Avx2, Isa, Portable};
+
+use super::classify_avx2;
 use super::vertices::{CachedVertex, NO_WINDOW, NOT_FINITE};
 use super::{DepthFragment, DepthTri};
 use crate::model::{Mesh, Scene};
@@ -46,7 +49,7 @@ const OUT_OF_RANGE: CachedVertex = CachedVertex {
 const SPECIAL: u32 = NOT_FINITE | OUTSIDE_PLANES | NO_WINDOW;
 
 /// Triangles per batch.
-const LANES: usize = 8;
+pub(super) const LANES: usize = 8;
 
 /// What the pass did: its counters, and whether an index was out of range.
 pub(super) struct Outcome {
@@ -67,32 +70,32 @@ pub(super) struct Input<'a> {
 /// Sets up the triangles of `input` into `run`.
 pub(super) fn triangles(input: &Input<'_>, run: &mut Run) -> Outcome {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        return triangles_avx2(input, run);
+    if let Some(avx2) = Avx2::detect() {
+        return triangles_avx2(input, run, avx2);
     }
-    pass(input, run)
+    pass(input, run, Portable)
 }
 
 /// [`pass`] compiled for AVX2.
 ///
 /// `unsafe` only because calling a `target_feature` function on a CPU
-/// without the feature would be undefined; [`triangles`] checked that it
+/// without the feature would be undefined; the [`Avx2`] value proves it
 /// has it. Integer arithmetic is exact and the few floating-point
 /// operations are IEEE operations Rust never fuses, so both copies give
 /// the same bits.
 #[cfg(target_arch = "x86_64")]
 #[allow(unsafe_code)]
-fn triangles_avx2(input: &Input<'_>, run: &mut Run) -> Outcome {
-    #[target_feature(enable = "avx2")]
-    fn wide(input: &Input<'_>, run: &mut Run) -> Outcome {
-        pass(input, run)
+fn triangles_avx2(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> Outcome {
+    #[target_feature(enable = "avx2,fma")]
+    fn wide(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> Outcome {
+        pass(input, run, avx2)
     }
-    // SAFETY: `triangles` calls this only after detecting AVX2.
-    unsafe { wide(input, run) }
+    // SAFETY: an `Avx2` value exists only where AVX2 and FMA were detected.
+    unsafe { wide(input, run, avx2) }
 }
 
 #[inline(always)]
-fn pass(input: &Input<'_>, run: &mut Run) -> Outcome {
+fn pass<I: Isa>(input: &Input<'_>, run: &mut Run, isa: I) -> Outcome {
     let Input {
         scene,
         front,
@@ -102,6 +105,7 @@ fn pass(input: &Input<'_>, run: &mut Run) -> Outcome {
     run.tris.clear();
     run.fragments.clear();
     let mut pass = Pass {
+        isa,
         scene,
         front,
         run,
@@ -164,7 +168,8 @@ impl MeshRef<'_> {
 }
 
 /// The state of the pass over one run.
-struct Pass<'a> {
+struct Pass<'a, I> {
+    isa: I,
     scene: &'a Scene,
     front: &'a FrontEnd,
     run: &'a mut Run,
@@ -175,7 +180,7 @@ struct Pass<'a> {
     scratch: ClipScratch,
 }
 
-impl Pass<'_> {
+impl<I: Isa> Pass<'_, I> {
     /// Triangle `t` of the mesh, by itself: the definition of the pass.
     #[inline(always)]
     fn one(&mut self, mesh: &MeshRef<'_>, t: usize) {
@@ -269,7 +274,14 @@ impl Pass<'_> {
             }
             return;
         }
-        let lanes = Lanes::classify(&x, &y, self.front);
+        let lanes = match self.isa.avx2() {
+            Some(avx2) => {
+                let vp = &self.front.viewport;
+                let cull = self.front.options.cull_back_faces;
+                classify_avx2::classify(avx2, &x, &y, (vp.width, vp.height), cull)
+            }
+            None => Lanes::classify(&x, &y, self.front),
+        };
         self.stats.degenerate += lanes.degenerate;
         self.stats.back_faces += lanes.back_faces;
         self.stats.empty += lanes.empty;
@@ -281,7 +293,11 @@ impl Pass<'_> {
             let prim = (mesh.first_prim + t + i) as u32;
             // `setup_depth`: the last two corners swapped to positive
             // order, then the plane (it exists: the area is not zero).
-            let (b, c) = if lanes.swap[i] { (2, 1) } else { (1, 2) };
+            let (b, c) = if lanes.swap >> i & 1 != 0 {
+                (2, 1)
+            } else {
+                (1, 2)
+            };
             let v = [
                 FixedPt::new(x[0][i], y[0][i]),
                 FixedPt::new(x[b][i], y[b][i]),
@@ -289,7 +305,7 @@ impl Pass<'_> {
             ];
             let depth = PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default();
             let tri = DepthTri { v, depth, prim };
-            if !lanes.few[i] {
+            if lanes.few >> i & 1 == 0 {
                 self.run.tris.push(tri);
                 continue;
             }
@@ -323,23 +339,40 @@ impl Pass<'_> {
 }
 
 /// The integer classification of a batch, lane by lane.
-struct Lanes {
+pub(super) struct Lanes {
     /// How many lanes are dropped for a zero area, for facing away, and
     /// for covering no centre (in that order of precedence, as
     /// [`Pass::one`] tests).
-    degenerate: u64,
-    back_faces: u64,
-    empty: u64,
+    pub(super) degenerate: u64,
+    pub(super) back_faces: u64,
+    pub(super) empty: u64,
     /// Bit `i`: lane `i` is kept.
-    keep: u8,
-    /// Whether the last two corners must be swapped for positive order.
-    swap: [bool; LANES],
-    /// Whether the box holds at most [`FEW_CENTRES`] centres; then bit `j`
-    /// of `covered` says whether its `j`-th centre (row-major) is covered.
-    few: [bool; LANES],
-    covered: [u8; LANES],
+    pub(super) keep: u8,
+    /// Bit `i`: lane `i`'s last two corners must be swapped for positive
+    /// order.
+    pub(super) swap: u8,
+    /// Bit `i`: lane `i`'s box holds at most [`FEW_CENTRES`] centres; then
+    /// bit `j` of `covered[i]` says whether its `j`-th centre (row-major)
+    /// is covered.
+    pub(super) few: u8,
+    pub(super) covered: [u8; LANES],
     /// The box's first pixel and its width.
-    corner: [(u32, u32, u32); LANES],
+    pub(super) corner: [(u32, u32, u32); LANES],
+}
+
+impl Lanes {
+    /// The counts and the kept lanes from the per-lane reasons to drop,
+    /// in the order of `Pass::one`'s tests: a zero area first, then the
+    /// facing, then the centres.
+    #[inline(always)]
+    pub(super) fn drop_reasons(&mut self, zero: u8, back: u8, empty: u8) {
+        let back = back & !zero;
+        let empty = empty & !zero & !back;
+        self.degenerate = u64::from(zero.count_ones());
+        self.back_faces = u64::from(back.count_ones());
+        self.empty = u64::from(empty.count_ones());
+        self.keep = !(zero | back | empty);
+    }
 }
 
 impl Lanes {
@@ -363,6 +396,7 @@ impl Lanes {
         let mut covered = [0u8; LANES];
         let mut empty = [false; LANES];
         let mut corner = [(0, 0, 0); LANES];
+        let bits = |b: &[bool; LANES]| b.iter().rev().fold(0u8, |m, &b| m << 1 | u8::from(b));
         for i in 0..LANES {
             let (ax, ay) = (x[0][i], y[0][i]);
             let (bx, by) = (x[1][i], y[1][i]);
@@ -438,27 +472,18 @@ impl Lanes {
             empty[i] = (cols <= 0) | (rows <= 0) | (few[i] & (bits == 0));
             corner[i] = (x0 as u32, y0 as u32, cols as u32);
         }
-        // The order of `Pass::one`'s tests: a zero area first, then the
-        // facing, then the centres.
-        let (mut degenerate, mut back_faces, mut dropped_empty) = (0u64, 0u64, 0u64);
-        let mut keep = 0u8;
-        for i in 0..LANES {
-            let (z, b, e) = (zero[i], back[i] & !zero[i], empty[i] & !zero[i] & !back[i]);
-            degenerate += u64::from(z);
-            back_faces += u64::from(b);
-            dropped_empty += u64::from(e);
-            keep |= u8::from(!(z | b | e)) << i;
-        }
-        Self {
-            degenerate,
-            back_faces,
-            empty: dropped_empty,
-            keep,
-            swap,
-            few,
+        let mut lanes = Self {
+            degenerate: 0,
+            back_faces: 0,
+            empty: 0,
+            keep: 0,
+            swap: bits(&swap),
+            few: bits(&few),
             covered,
             corner,
-        }
+        };
+        lanes.drop_reasons(bits(&zero), bits(&back), bits(&empty));
+        lanes
     }
 }
 

@@ -36,6 +36,7 @@ mod key;
 mod options;
 mod stats;
 mod tile;
+mod wide;
 
 #[cfg(test)]
 mod tests;
@@ -51,6 +52,7 @@ use crate::options::DepthFormat;
 use bins::{ChunkBins, FragmentBins, Grid};
 use key::{Fixed16, Fixed24, Reversed};
 use tile::{Scratch, TileBuf, TileKey};
+use wide::{Avx2, Isa, Portable};
 
 pub use options::TiledZBufferOptions;
 pub use stats::TiledZBufferStats;
@@ -516,14 +518,11 @@ impl<T: RasterTri> BandJob<'_, T> {
     /// AVX2, and `tests::both_kernels_agree` runs both).
     fn dispatch<K: TileKey>(&self, band: &mut [TileBuf<K>]) {
         #[cfg(target_arch = "x86_64")]
-        if self.wide
-            && std::arch::is_x86_feature_detected!("avx2")
-            && std::arch::is_x86_feature_detected!("fma")
-        {
-            self.draw_avx2(band);
+        if let Some(avx2) = Avx2::detect().filter(|_| self.wide) {
+            self.draw_avx2(band, avx2);
             return;
         }
-        self.draw(band);
+        self.draw(band, Portable);
     }
 
     /// [`Self::draw`] compiled for AVX2 and FMA.
@@ -533,19 +532,24 @@ impl<T: RasterTri> BandJob<'_, T> {
     /// [`Self::dispatch`] checked that it has them.
     #[cfg(target_arch = "x86_64")]
     #[allow(unsafe_code)]
-    fn draw_avx2<K: TileKey>(&self, band: &mut [TileBuf<K>]) {
+    fn draw_avx2<K: TileKey>(&self, band: &mut [TileBuf<K>], avx2: Avx2) {
         #[target_feature(enable = "avx2,fma")]
-        unsafe fn kernel<T: RasterTri, K: TileKey>(job: &BandJob<'_, T>, band: &mut [TileBuf<K>]) {
-            job.draw(band);
+        unsafe fn kernel<T: RasterTri, K: TileKey>(
+            job: &BandJob<'_, T>,
+            band: &mut [TileBuf<K>],
+            avx2: Avx2,
+        ) {
+            job.draw(band, avx2);
         }
-        // SAFETY: `dispatch` calls this only after detecting AVX2 and FMA.
-        unsafe { kernel(self, band) }
+        // SAFETY: an `Avx2` value exists only where AVX2 and FMA were
+        // detected.
+        unsafe { kernel(self, band, avx2) }
     }
 
     /// Draws the run of tiles `band` (tiles `first..`, row-major) from
     /// their bins.
     #[inline(always)]
-    fn draw<K: TileKey>(&self, band: &mut [TileBuf<K>]) {
+    fn draw<K: TileKey, I: Isa>(&self, band: &mut [TileBuf<K>], isa: I) {
         let (grid, vp) = (self.grid, self.vp);
         for (i, buf) in band.iter_mut().enumerate() {
             let t = self.first + i;
@@ -562,6 +566,7 @@ impl<T: RasterTri> BandJob<'_, T> {
             );
             if bins::tile_has_work(self.chunks, self.fragments, t) {
                 let mut draw = Drawer {
+                    isa,
                     buf: &mut *buf,
                     vp,
                     hiz: self.hiz,
@@ -581,16 +586,17 @@ impl<T: RasterTri> BandJob<'_, T> {
 }
 
 /// A tile buffer drawing binned triangles.
-struct Drawer<'a, K> {
+struct Drawer<'a, K, I> {
+    isa: I,
     buf: &'a mut TileBuf<K>,
     vp: Viewport,
     hiz: bool,
 }
 
-impl<T: RasterTri, K: TileKey> bins::DrawTri<T> for Drawer<'_, K> {
+impl<T: RasterTri, K: TileKey, I: Isa> bins::DrawTri<T> for Drawer<'_, K, I> {
     #[inline(always)]
     fn draw(&mut self, tri: &T, low: f32) {
-        self.buf.draw(tri, low, self.vp, self.hiz);
+        self.buf.draw(self.isa, tri, low, self.vp, self.hiz);
     }
 }
 

@@ -26,6 +26,7 @@ use super::RasterTri;
 use super::bounds::DepthBounds;
 use super::key::{DepthKey, Fixed16, Fixed24, Reversed};
 use super::stats::TiledZBufferStats;
+use super::wide::{Block8, Isa};
 
 /// Side of a block, pixels.
 const BLOCK: u32 = 8;
@@ -164,7 +165,14 @@ impl<K: DepthKey> TileBuf<K> {
     /// Draws one triangle into the tile; `low` is a lower bound of its
     /// computed depths (from its bin entry).
     #[inline(always)]
-    pub(crate) fn draw<T: RasterTri>(&mut self, tri: &T, low: f32, viewport: Viewport, hiz: bool) {
+    pub(crate) fn draw<T: RasterTri, I: Isa>(
+        &mut self,
+        isa: I,
+        tri: &T,
+        low: f32,
+        viewport: Viewport,
+        hiz: bool,
+    ) {
         // Hierarchical depth, triangle level, before the triangle itself is
         // read: nothing it could write is nearer than what the whole tile
         // holds.
@@ -235,7 +243,7 @@ impl<K: DepthKey> TileBuf<K> {
             prim: tri.prim(),
             bbox: (x0, y0, x1, y1),
         };
-        self.blocks(&setup, tri, bounds.as_ref());
+        self.blocks(isa, &setup, tri, bounds.as_ref());
     }
 
     /// One pixel fragment of a triangle too small to rasterise, applied
@@ -310,7 +318,13 @@ impl<K: DepthKey> TileBuf<K> {
     /// block, and a valid one for a block cut by the image's edge, which
     /// `block` then tests pixel by pixel.
     #[inline(always)]
-    fn blocks<T: RasterTri>(&mut self, s: &Setup, tri: &T, bounds: Option<&DepthBounds>) {
+    fn blocks<T: RasterTri, I: Isa>(
+        &mut self,
+        isa: I,
+        s: &Setup,
+        tri: &T,
+        bounds: Option<&DepthBounds>,
+    ) {
         let per_row = (self.size / BLOCK) as usize;
         let (_, _, x1, y1) = s.bbox;
         let (tile_x1, tile_y1) = (self.x0 + self.w - 1, self.y0 + self.h - 1);
@@ -332,7 +346,7 @@ impl<K: DepthKey> TileBuf<K> {
                     outside += 1;
                 } else {
                     let xb = (bx + BLOCK - 1).min(tile_x1);
-                    self.block(s, tri, bounds, (bx, by, xb, yb), c, per_row);
+                    self.block(isa, s, tri, bounds, (bx, by, xb, yb), c, per_row);
                 }
                 for (c, r) in c.iter_mut().zip(right) {
                     *c += r;
@@ -353,8 +367,9 @@ impl<K: DepthKey> TileBuf<K> {
     /// its first centre.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn block<T: RasterTri>(
+    fn block<T: RasterTri, I: Isa>(
         &mut self,
+        isa: I,
         s: &Setup,
         tri: &T,
         bounds: Option<&DepthBounds>,
@@ -382,7 +397,7 @@ impl<K: DepthKey> TileBuf<K> {
         let fits = (0..3).all(|k| lo[k] > 0 || s.narrow[k]);
         let passes = if full && inside {
             self.stats.blocks_inside += 1;
-            self.block8::<T, false>(s, tri, bx, by, [0; 3], [[0; 8]; 3], [0; 3])
+            self.block8::<T, I, false>(isa, s, tri, bx, by, [0; 3], [[0; 8]; 3], [0; 3])
         } else if full && fits {
             // Biased by one so "inside" is ">= 0" (see `small`); edges the
             // whole block is inside of are replaced by the constant 0.
@@ -396,7 +411,7 @@ impl<K: DepthKey> TileBuf<K> {
                     down[k] = s.sy[k] as i32;
                 }
             }
-            self.block8::<T, true>(s, tri, bx, by, e, lanes, down)
+            self.block8::<T, I, true>(isa, s, tri, bx, by, e, lanes, down)
         } else {
             // At the image's edge, or edges too long for i32 lanes.
             self.rows::<T, true>(s, tri, bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1))
@@ -414,8 +429,9 @@ impl<K: DepthKey> TileBuf<K> {
     /// the passes.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    fn block8<T: RasterTri, const EDGES: bool>(
+    fn block8<T: RasterTri, I: Isa, const EDGES: bool>(
         &mut self,
+        isa: I,
         s: &Setup,
         tri: &T,
         bx: u32,
@@ -429,6 +445,33 @@ impl<K: DepthKey> TileBuf<K> {
         let Ok(col) = <[f64; 8]>::try_from(&self.col[c0..c0 + 8]) else {
             return 0;
         };
+        let base = self.at(bx, by);
+        let (Ok(keys), Ok(ids)) = (
+            <&mut [K; 64]>::try_from(&mut self.keys[base..base + 64]),
+            <&mut [u32; 64]>::try_from(&mut self.ids[base..base + 64]),
+        ) else {
+            return 0;
+        };
+        if let Some(avx2) = isa.avx2() {
+            let b = Block8 {
+                col: &col,
+                dy: p.dy,
+                y0: p.y0,
+                by,
+                e,
+                lanes,
+                down,
+                prim: s.prim,
+            };
+            if let Some((inside, passes)) = K::wide_block8::<EDGES>(avx2, keys, ids, &b) {
+                if EDGES {
+                    self.stats.pixels_tested += 64;
+                }
+                self.stats.depth_tests += u64::from(inside);
+                self.stats.depth_passes += u64::from(passes);
+                return passes;
+            }
+        }
         let mut new = [K::FAR; 64];
         for (r, row) in new.chunks_exact_mut(8).enumerate() {
             let ty = p.dy * ((f64::from(by + r as u32) + 0.5) - p.y0);
@@ -447,13 +490,6 @@ impl<K: DepthKey> TileBuf<K> {
                 }
             }
         }
-        let base = self.at(bx, by);
-        let (Ok(keys), Ok(ids)) = (
-            <&mut [K; 64]>::try_from(&mut self.keys[base..base + 64]),
-            <&mut [u32; 64]>::try_from(&mut self.ids[base..base + 64]),
-        ) else {
-            return 0;
-        };
         let (mut inside, mut passes) = (0u32, 0u32);
         let prim = s.prim;
         // Read the block, merge in registers, count, then write it back

@@ -1,0 +1,61 @@
+//! The instruction set a hot loop is compiled for, as a type.
+//!
+//! The front end and the tile kernel are each compiled twice: for baseline
+//! x86-64 and, inside a `#[target_feature(enable = "avx2,fma")]` function,
+//! for AVX2. Code written with AVX2 intrinsics can only run in the second
+//! copy. Passing an [`Isa`] down the call chain makes that choice at
+//! compile time (each copy is monomorphised with its own type) and makes
+//! it sound: an [`Avx2`] value exists only where the CPU was found to have
+//! AVX2 and FMA, so code holding one may call the intrinsics.
+//!
+//! ```
+//! use hider_geom::isa::{Avx2, Isa, Portable};
+//!
+//! fn lanes<I: Isa>(isa: I) -> usize {
+//!     if isa.avx2().is_some() { 8 } else { 4 }
+//! }
+//! assert_eq!(lanes(Portable), 4);
+//! if let Some(avx2) = Avx2::detect() {
+//!     assert_eq!(lanes(avx2), 8);
+//! }
+//! ```
+
+/// An instruction set, chosen at compile time by the type.
+pub trait Isa: Copy + Send + Sync {
+    /// The proof of AVX2, for the copy compiled for it.
+    fn avx2(self) -> Option<Avx2>;
+}
+
+/// Baseline code, on any target: no intrinsics.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Portable;
+
+impl Isa for Portable {
+    #[inline(always)]
+    fn avx2(self) -> Option<Avx2> {
+        None
+    }
+}
+
+/// Proof that the CPU has AVX2 and FMA: only [`Avx2::detect`] makes one.
+#[derive(Clone, Copy, Debug)]
+pub struct Avx2(());
+
+impl Avx2 {
+    /// `Some` when the CPU reports AVX2 and FMA.
+    pub fn detect() -> Option<Self> {
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") && std::arch::is_x86_feature_detected!("fma")
+        {
+            return Some(Avx2(()));
+        }
+        None
+    }
+}
+
+impl Isa for Avx2 {
+    #[inline(always)]
+    fn avx2(self) -> Option<Avx2> {
+        Some(self)
+    }
+}

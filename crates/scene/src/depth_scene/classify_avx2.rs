@@ -1,0 +1,299 @@
+//! The triangle pass's classification of eight triangles
+//! ([`Lanes::classify`]) written with AVX2 intrinsics.
+//!
+//! The portable classification is written lane by lane and left to the
+//! compiler, which keeps much of it scalar: about 100 instructions a
+//! triangle on the 500-sphere, a third of the front end. Here the eight
+//! triangles are one register per coordinate, and every quantity the
+//! scalar code computes in `i64` (the area, the edge functions at the box's
+//! first centre and their steps) is computed exactly in two registers of
+//! four `i64` lanes, one for the even triangles and one for the odd ones:
+//! `vpmuldq` multiplies the low 32 bits of each 64-bit lane as signed
+//! integers, so the 8-lane `i32` differences multiply into exact 64-bit
+//! products without any unpacking.
+//!
+//! It is the same integer arithmetic as the scalar definition, so it gives
+//! the same bits; the lean front end's property tests (against
+//! [`super::lean_reference`]) run it on every machine with AVX2.
+
+use hider_geom::FEW_CENTRES;
+use hider_geom::isa::Avx2;
+
+use super::triangles::{LANES, Lanes};
+
+// The centre tests below are written out for the first four centres.
+const _: () = assert!(FEW_CENTRES == 4);
+
+/// Classifies the batch; see [`Lanes::classify`]. The [`Avx2`] argument is
+/// the proof the intrinsics need: the function is `#[inline(always)]` into
+/// the pass compiled for AVX2, and its intrinsics are called in `unsafe`
+/// blocks (one of the project's `unsafe` sites) because without that
+/// proof the CPU might lack them.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(super) fn classify(
+    _proof: Avx2,
+    x: &[[i32; LANES]; 3],
+    y: &[[i32; LANES]; 3],
+    (width, height): (u32, u32),
+    cull: bool,
+) -> Lanes {
+    avx2::classify(x, y, (width, height), cull)
+}
+
+/// Without x86-64 there is no [`Avx2`] value, so this is never called.
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+pub(super) fn classify(
+    proof: Avx2,
+    _: &[[i32; LANES]; 3],
+    _: &[[i32; LANES]; 3],
+    _: (u32, u32),
+    _: bool,
+) -> Lanes {
+    unreachable!("{proof:?} exists only on x86-64")
+}
+
+#[cfg(target_arch = "x86_64")]
+#[allow(unsafe_code)]
+mod avx2 {
+    use std::arch::x86_64::*;
+
+    use super::{FEW_CENTRES, LANES, Lanes};
+
+    /// An `i64` quantity of the eight lanes: lanes 0, 2, 4, 6 and lanes 1,
+    /// 3, 5, 7.
+    #[derive(Clone, Copy)]
+    struct Wide {
+        even: __m256i,
+        odd: __m256i,
+    }
+
+    // SAFETY (every `unsafe` block of this module): reached only through
+    // `super::classify`, whose `Avx2` argument proves the CPU has AVX2.
+
+    /// The exact products of eight pairs of `i32`.
+    #[inline(always)]
+    fn mul(a: __m256i, b: __m256i) -> Wide {
+        unsafe {
+            Wide {
+                even: _mm256_mul_epi32(a, b),
+                odd: _mm256_mul_epi32(_mm256_srli_epi64::<32>(a), _mm256_srli_epi64::<32>(b)),
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn add(a: Wide, b: Wide) -> Wide {
+        unsafe {
+            Wide {
+                even: _mm256_add_epi64(a.even, b.even),
+                odd: _mm256_add_epi64(a.odd, b.odd),
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn sub(a: Wide, b: Wide) -> Wide {
+        unsafe {
+            Wide {
+                even: _mm256_sub_epi64(a.even, b.even),
+                odd: _mm256_sub_epi64(a.odd, b.odd),
+            }
+        }
+    }
+
+    /// `a > b` per lane, as an 8-lane `i32` mask.
+    #[inline(always)]
+    fn greater(a: Wide, b: Wide) -> __m256i {
+        unsafe {
+            // A 64-bit mask has both halves set: the even lanes' masks
+            // fill the even 32-bit positions, the odd lanes' the odd ones.
+            _mm256_blend_epi32::<0b1010_1010>(
+                _mm256_cmpgt_epi64(a.even, b.even),
+                _mm256_cmpgt_epi64(a.odd, b.odd),
+            )
+        }
+    }
+
+    /// `a == b` per lane, as an 8-lane `i32` mask.
+    #[inline(always)]
+    fn equal(a: Wide, b: Wide) -> __m256i {
+        unsafe {
+            _mm256_blend_epi32::<0b1010_1010>(
+                _mm256_cmpeq_epi64(a.even, b.even),
+                _mm256_cmpeq_epi64(a.odd, b.odd),
+            )
+        }
+    }
+
+    /// An 8-lane `i32` mask as the even and odd 64-bit masks.
+    #[inline(always)]
+    fn widen_mask(m: __m256i) -> Wide {
+        unsafe {
+            Wide {
+                even: _mm256_shuffle_epi32::<0b10_10_00_00>(m),
+                odd: _mm256_shuffle_epi32::<0b11_11_01_01>(m),
+            }
+        }
+    }
+
+    /// `if m { a } else { b }` per lane, `m` from [`widen_mask`].
+    #[inline(always)]
+    fn select(m: Wide, a: Wide, b: Wide) -> Wide {
+        unsafe {
+            Wide {
+                even: _mm256_blendv_epi8(b.even, a.even, m.even),
+                odd: _mm256_blendv_epi8(b.odd, a.odd, m.odd),
+            }
+        }
+    }
+
+    /// The 8 lanes of an `i32` mask as bits.
+    #[inline(always)]
+    fn bits(m: __m256i) -> u8 {
+        unsafe { _mm256_movemask_ps(_mm256_castsi256_ps(m)) as u8 }
+    }
+
+    /// The first pixel column (or row) whose centre is not left of (above)
+    /// the least of three coordinates: `(min + 127) >> 8`.
+    #[inline(always)]
+    fn lo(a: __m256i, b: __m256i, c: __m256i) -> __m256i {
+        unsafe {
+            let m = _mm256_min_epi32(_mm256_min_epi32(a, b), c);
+            _mm256_srai_epi32::<8>(_mm256_add_epi32(m, _mm256_set1_epi32(127)))
+        }
+    }
+
+    /// The last pixel column (or row) whose centre is not right of (below)
+    /// the greatest of three coordinates: `(max - 128) >> 8`.
+    #[inline(always)]
+    fn hi(a: __m256i, b: __m256i, c: __m256i) -> __m256i {
+        unsafe {
+            let m = _mm256_max_epi32(_mm256_max_epi32(a, b), c);
+            _mm256_srai_epi32::<8>(_mm256_sub_epi32(m, _mm256_set1_epi32(128)))
+        }
+    }
+
+    /// The subpixel position of a pixel's centre.
+    #[inline(always)]
+    fn centre(v: __m256i) -> __m256i {
+        unsafe { _mm256_add_epi32(_mm256_slli_epi32::<8>(v), _mm256_set1_epi32(128)) }
+    }
+
+    #[inline(always)]
+    fn load(v: &[i32; LANES]) -> __m256i {
+        bytemuck::cast(*v)
+    }
+
+    #[inline(always)]
+    pub(super) fn classify(
+        x: &[[i32; LANES]; 3],
+        y: &[[i32; LANES]; 3],
+        (width, height): (u32, u32),
+        cull: bool,
+    ) -> Lanes {
+        unsafe {
+            let zero32 = _mm256_setzero_si256();
+            let zero = Wide {
+                even: zero32,
+                odd: zero32,
+            };
+            let (ax, ay) = (load(&x[0]), load(&y[0]));
+            let (bx, by) = (load(&x[1]), load(&y[1]));
+            let (cx, cy) = (load(&x[2]), load(&y[2]));
+            let area = sub(
+                mul(_mm256_sub_epi32(bx, ax), _mm256_sub_epi32(cy, ay)),
+                mul(_mm256_sub_epi32(by, ay), _mm256_sub_epi32(cx, ax)),
+            );
+            // The pixel box, as `pixel_bounds` computes it.
+            let x0 = _mm256_max_epi32(lo(ax, bx, cx), zero32);
+            let y0 = _mm256_max_epi32(lo(ay, by, cy), zero32);
+            let x1 = _mm256_min_epi32(hi(ax, bx, cx), _mm256_set1_epi32(width as i32 - 1));
+            let y1 = _mm256_min_epi32(hi(ay, by, cy), _mm256_set1_epi32(height as i32 - 1));
+            let one32 = _mm256_set1_epi32(1);
+            let cols = _mm256_add_epi32(_mm256_sub_epi32(x1, x0), one32);
+            let rows = _mm256_add_epi32(_mm256_sub_epi32(y1, y0), one32);
+            let count = _mm256_mullo_epi32(cols, rows);
+            // Positive order.
+            let neg = greater(zero, area);
+            let (bx, by, cx, cy) = (
+                _mm256_blendv_epi8(bx, cx, neg),
+                _mm256_blendv_epi8(by, cy, neg),
+                _mm256_blendv_epi8(cx, bx, neg),
+                _mm256_blendv_epi8(cy, by, neg),
+            );
+            let (px, py) = (centre(x0), centre(y0));
+            // The box's first centres, row-major, as sums of steps picked
+            // by the box's width (see the portable `classify`).
+            let one = widen_mask(_mm256_cmpeq_epi32(cols, one32));
+            let two = widen_mask(_mm256_cmpeq_epi32(cols, _mm256_set1_epi32(2)));
+            let mut hit = [_mm256_set1_epi32(-1); FEW_CENTRES];
+            for (fx, fy, tx, ty) in [(ax, ay, bx, by), (bx, by, cx, cy), (cx, cy, ax, ay)] {
+                let (dx, dy) = (_mm256_sub_epi32(tx, fx), _mm256_sub_epi32(ty, fy));
+                // The top-left rule's bias: 1 where dy < 0, or dy == 0 and
+                // dx > 0.
+                let bias = _mm256_and_si256(
+                    _mm256_or_si256(
+                        _mm256_cmpgt_epi32(zero32, dy),
+                        _mm256_and_si256(
+                            _mm256_cmpeq_epi32(dy, zero32),
+                            _mm256_cmpgt_epi32(dx, zero32),
+                        ),
+                    ),
+                    one32,
+                );
+                let bias = mul(bias, one32);
+                let at = add(
+                    sub(
+                        mul(dx, _mm256_sub_epi32(py, fy)),
+                        mul(dy, _mm256_sub_epi32(px, fx)),
+                    ),
+                    bias,
+                );
+                let sx = mul(dy, _mm256_set1_epi32(-256));
+                let sy = mul(dx, _mm256_set1_epi32(256));
+                let (sx2, sy2) = (add(sx, sx), add(sy, sy));
+                let offsets = [
+                    select(one, sy, sx),
+                    select(one, sy2, select(two, sy, sx2)),
+                    select(one, add(sy2, sy), select(two, add(sx, sy), add(sx2, sx))),
+                ];
+                hit[0] = _mm256_and_si256(hit[0], greater(at, zero));
+                for (h, o) in hit[1..].iter_mut().zip(offsets) {
+                    *h = _mm256_and_si256(*h, greater(add(at, o), zero));
+                }
+            }
+            let mut covered = zero32;
+            for (j, h) in hit.iter().enumerate() {
+                let within = _mm256_cmpgt_epi32(count, _mm256_set1_epi32(j as i32));
+                let bit = _mm256_and_si256(_mm256_and_si256(*h, within), _mm256_set1_epi32(1 << j));
+                covered = _mm256_or_si256(covered, bit);
+            }
+            let few = _mm256_cmpgt_epi32(_mm256_set1_epi32(FEW_CENTRES as i32 + 1), count);
+            let empty = _mm256_or_si256(
+                _mm256_or_si256(
+                    _mm256_cmpgt_epi32(one32, cols),
+                    _mm256_cmpgt_epi32(one32, rows),
+                ),
+                _mm256_and_si256(few, _mm256_cmpeq_epi32(covered, zero32)),
+            );
+            let covered: [i32; LANES] = bytemuck::cast(covered);
+            let (x0, y0, cols): ([i32; LANES], [i32; LANES], [i32; LANES]) =
+                (bytemuck::cast(x0), bytemuck::cast(y0), bytemuck::cast(cols));
+            let back = if cull { bits(greater(area, zero)) } else { 0 };
+            let mut lanes = Lanes {
+                degenerate: 0,
+                back_faces: 0,
+                empty: 0,
+                keep: 0,
+                swap: bits(neg),
+                few: bits(few),
+                covered: covered.map(|c| c as u8),
+                corner: std::array::from_fn(|i| (x0[i] as u32, y0[i] as u32, cols[i] as u32)),
+            };
+            lanes.drop_reasons(bits(equal(area, zero)), back, bits(empty));
+            lanes
+        }
+    }
+}

@@ -1,0 +1,223 @@
+//! A full 8x8 block in AVX2, one 8-lane register per row, for the depth
+//! formats whose key is 32 bits (f32, reversed f32, 24-bit fixed point).
+//!
+//! The portable block ([`super::tile`]'s `block8`) writes each step as a
+//! 64-lane pass and lets LLVM vectorise it. Inlined into the tile kernel,
+//! LLVM lays those passes out across the whole block and spends most of
+//! its instructions moving 64-lane arrays between registers and the stack
+//! (about 700 instructions a block on the spider). Here a row is one
+//! register from start to end: the depth of its eight pixels (two f64
+//! registers added and rounded, as the reference computes it), the three
+//! edge functions stepped by one addition each, the LESS test, the blends
+//! and two counters, about 25 instructions a row.
+//!
+//! Every lane operation is the scalar one's exact counterpart (IEEE f64
+//! addition and multiplication, f64 to f32 rounding to nearest even, the
+//! same comparisons), so the block writes the same bits as the portable
+//! one; `tests::both_kernels_agree` compares the two kernels.
+
+pub(super) use hider_geom::isa::{Avx2, Isa, Portable};
+
+use super::key::DepthKey;
+
+/// One full block's inputs.
+pub(super) struct Block8<'a> {
+    /// The depth plane's column terms at the block's eight columns.
+    pub(super) col: &'a [f64; 8],
+    /// The plane's `dy` and `y0`, and the block's first row: the row term
+    /// is `dy * ((row + 0.5) - y0)`, as [`hider_geom::PlaneEq::eval`] has it.
+    pub(super) dy: f64,
+    pub(super) y0: f64,
+    pub(super) by: u32,
+    /// Edge functions at the first centre, biased by -1 (inside iff the
+    /// OR of the three is non-negative), their offsets along a row and
+    /// their step per row; all zero for a block known to be inside.
+    pub(super) e: [i32; 3],
+    pub(super) lanes: [[i32; 8]; 3],
+    pub(super) down: [i32; 3],
+    pub(super) prim: u32,
+}
+
+/// How a 32-bit key is encoded from a depth and compared.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Encoding {
+    /// `depth as f32`, compared as f32.
+    F32,
+    /// `-((1 - depth) as f32)`, compared as f32.
+    Reversed,
+    /// `round(clamp(depth, 0, 1) * (2^24 - 1))`, compared as an integer.
+    Fixed24,
+}
+
+/// A depth key that is 32 bits wide: its encoding and its bits.
+pub(super) trait WideKey: DepthKey {
+    const ENCODING: Encoding;
+    fn to_lane(self) -> u32;
+    fn from_lane(bits: u32) -> Self;
+}
+
+/// Draws the block with AVX2; returns (pixels inside, passes).
+///
+/// `#[inline(always)]` and no `target_feature` of its own: it is inlined
+/// into the tile kernel compiled for AVX2 (a `target_feature` function
+/// here is a call per block, and the call spills the kernel's registers).
+/// The intrinsics are therefore called in `unsafe` blocks, one of the
+/// project's `unsafe` sites: they are unsafe only because the CPU might
+/// lack AVX2, and the [`Avx2`] argument proves it has it.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(super) fn block8<K: WideKey, const EDGES: bool>(
+    _proof: Avx2,
+    keys: &mut [K; 64],
+    ids: &mut [u32; 64],
+    b: &Block8<'_>,
+) -> (u32, u32) {
+    avx2::block8::<K, EDGES>(keys, ids, b)
+}
+
+/// Without x86-64 there is no [`Avx2`] value, so this is never called.
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+pub(super) fn block8<K: WideKey, const EDGES: bool>(
+    proof: Avx2,
+    _: &mut [K; 64],
+    _: &mut [u32; 64],
+    _: &Block8<'_>,
+) -> (u32, u32) {
+    unreachable!("{proof:?} exists only on x86-64")
+}
+
+#[cfg(target_arch = "x86_64")]
+#[allow(unsafe_code)]
+mod avx2 {
+    use std::arch::x86_64::*;
+
+    use super::{Block8, Encoding, WideKey};
+
+    /// The eight depths `col + ty` (exact f64 additions), encoded.
+    #[inline(always)]
+    fn encode<K: WideKey>(col: (__m256d, __m256d), ty: __m256d) -> __m256i {
+        // SAFETY: see `super::block8`: reached only with an `Avx2` proof.
+        unsafe {
+            let (lo, hi) = (_mm256_add_pd(col.0, ty), _mm256_add_pd(col.1, ty));
+            match K::ENCODING {
+                Encoding::F32 => {
+                    _mm256_castps_si256(_mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo)))
+                }
+                Encoding::Reversed => {
+                    let one = _mm256_set1_pd(1.0);
+                    let (lo, hi) = (_mm256_sub_pd(one, lo), _mm256_sub_pd(one, hi));
+                    let f = _mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo));
+                    // Negation flips the sign bit, NaN and zero included.
+                    _mm256_castps_si256(_mm256_xor_ps(f, _mm256_set1_ps(-0.0)))
+                }
+                Encoding::Fixed24 => _mm256_set_m128i(quantize24(hi), quantize24(lo)),
+            }
+        }
+    }
+
+    /// `(depth.clamp(0.0, 1.0) * MAX24).round() as u32` on four lanes.
+    #[inline(always)]
+    fn quantize24(d: __m256d) -> __m128i {
+        // SAFETY: see `super::block8`.
+        unsafe {
+            // MAXPD returns its second operand when either is NaN: a NaN
+            // depth becomes 0, as `NaN.clamp(..).round() as u32` does.
+            let c = _mm256_min_pd(_mm256_max_pd(d, _mm256_setzero_pd()), _mm256_set1_pd(1.0));
+            let x = _mm256_mul_pd(c, _mm256_set1_pd(f64::from((1u32 << 24) - 1)));
+            // `round` is half away from zero; for x >= 0 that is floor(x)
+            // plus one where the fraction (exact: Sterbenz) is at least 1/2.
+            let t = _mm256_round_pd::<{ _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC }>(x);
+            let up = _mm256_cmp_pd::<_CMP_GE_OQ>(_mm256_sub_pd(x, t), _mm256_set1_pd(0.5));
+            let r = _mm256_add_pd(t, _mm256_and_pd(up, _mm256_set1_pd(1.0)));
+            _mm256_cvttpd_epi32(r)
+        }
+    }
+
+    /// `new < old` per lane, as the key's LESS: all ones where true.
+    #[inline(always)]
+    fn less<K: WideKey>(new: __m256i, old: __m256i) -> __m256i {
+        // SAFETY: see `super::block8`.
+        unsafe {
+            match K::ENCODING {
+                Encoding::F32 | Encoding::Reversed => {
+                    _mm256_castps_si256(_mm256_cmp_ps::<_CMP_LT_OQ>(
+                        _mm256_castsi256_ps(new),
+                        _mm256_castsi256_ps(old),
+                    ))
+                }
+                // Keys below 2^24: the signed comparison is the unsigned one.
+                Encoding::Fixed24 => _mm256_cmpgt_epi32(old, new),
+            }
+        }
+    }
+
+    /// Sum of the eight i32 lanes.
+    #[inline(always)]
+    fn sum(v: __m256i) -> u32 {
+        let a: [i32; 8] = bytemuck::cast(v);
+        a.iter().sum::<i32>() as u32
+    }
+
+    #[inline(always)]
+    pub(super) fn block8<K: WideKey, const EDGES: bool>(
+        keys: &mut [K; 64],
+        ids: &mut [u32; 64],
+        b: &Block8<'_>,
+    ) -> (u32, u32) {
+        // SAFETY: see `super::block8`.
+        unsafe {
+            let col: [[f64; 4]; 2] = bytemuck::cast(*b.col);
+            let col = (bytemuck::cast(col[0]), bytemuck::cast(col[1]));
+            // No closures: a closure is a function of its own, without the
+            // kernel's target features, and its intrinsics would be calls.
+            let lanes: [__m256i; 3] = bytemuck::cast(b.lanes);
+            let mut e = lanes;
+            let mut down = [_mm256_setzero_si256(); 3];
+            for k in 0..3 {
+                e[k] = _mm256_add_epi32(_mm256_set1_epi32(b.e[k]), lanes[k]);
+                down[k] = _mm256_set1_epi32(b.down[k]);
+            }
+            let prim = _mm256_set1_epi32(b.prim as i32);
+            let (mut inside, mut passes) = (_mm256_setzero_si256(), _mm256_setzero_si256());
+            let mut merged = [[_mm256_setzero_si256(); 2]; 8];
+            for (r, merged) in merged.iter_mut().enumerate() {
+                let ty = b.dy * ((f64::from(b.by + r as u32) + 0.5) - b.y0);
+                let new = encode::<K>(col, _mm256_set1_pd(ty));
+                let at = r * 8;
+                let old_keys: [u32; 8] = std::array::from_fn(|c| keys[at + c].to_lane());
+                let old_keys: __m256i = bytemuck::cast(old_keys);
+                let old_ids: [u32; 8] = std::array::from_fn(|c| ids[at + c]);
+                let old_ids: __m256i = bytemuck::cast(old_ids);
+                let mut pass = less::<K>(new, old_keys);
+                if EDGES {
+                    // All ones where the OR of the biased edges is >= 0.
+                    let out = _mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]);
+                    let ok = _mm256_cmpgt_epi32(out, _mm256_set1_epi32(-1));
+                    pass = _mm256_and_si256(pass, ok);
+                    inside = _mm256_sub_epi32(inside, ok);
+                    for (e, d) in e.iter_mut().zip(down) {
+                        *e = _mm256_add_epi32(*e, d);
+                    }
+                }
+                passes = _mm256_sub_epi32(passes, pass);
+                *merged = [
+                    _mm256_blendv_epi8(old_keys, new, pass),
+                    _mm256_blendv_epi8(old_ids, prim, pass),
+                ];
+            }
+            // Stored only now, after every row was read: a store right
+            // after its row's load and blend is what LLVM folds into a
+            // masked store (see `block8` in `super::super::tile`).
+            for (r, [k, i]) in merged.iter().enumerate() {
+                let (k, i): ([u32; 8], [u32; 8]) = (bytemuck::cast(*k), bytemuck::cast(*i));
+                for c in 0..8 {
+                    keys[r * 8 + c] = K::from_lane(k[c]);
+                    ids[r * 8 + c] = i[c];
+                }
+            }
+            let inside = if EDGES { sum(inside) } else { 64 };
+            (inside, sum(passes))
+        }
+    }
+}
