@@ -297,3 +297,43 @@ mod avx2 {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use hider_geom::isa::Avx2;
+    use proptest::prelude::*;
+
+    use super::super::triangles::{LANES, Lanes};
+
+    /// A batch's corners: small triangles around random points (boxes of a
+    /// few centres, on or off the viewport) mixed with large ones, in
+    /// subpixel units.
+    fn batch() -> impl Strategy<Value = [[(i32, i32); 3]; LANES]> {
+        let corner = |r: i32| (-r..r, -r..r);
+        let small = (
+            (-600i32..5000, -600i32..5000),
+            proptest::array::uniform3(corner(600)),
+        )
+            .prop_map(|((x, y), d)| d.map(|(dx, dy)| (x + dx, y + dy)));
+        let large = proptest::array::uniform3((-(1 << 22)..1 << 22, -(1 << 22)..1 << 22));
+        proptest::array::uniform8(prop_oneof![4 => small, 1 => large])
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+        /// The AVX2 classification is the portable one, field for field.
+        #[test]
+        fn avx2_classifies_as_the_portable_code(
+            tris in batch(),
+            size in (1u32..40, 1u32..40),
+            cull: bool,
+        ) {
+            let Some(avx2) = Avx2::detect() else { return Ok(()) };
+            let x = std::array::from_fn(|k| std::array::from_fn(|i| tris[i][k].0));
+            let y = std::array::from_fn(|k| std::array::from_fn(|i| tris[i][k].1));
+            let portable = Lanes::classify(&x, &y, size, cull);
+            let wide = super::classify(avx2, &x, &y, size, cull);
+            prop_assert_eq!(wide, portable);
+        }
+    }
+}

@@ -280,7 +280,11 @@ impl<I: Isa> Pass<'_, I> {
                 let cull = self.front.options.cull_back_faces;
                 classify_avx2::classify(avx2, &x, &y, (vp.width, vp.height), cull)
             }
-            None => Lanes::classify(&x, &y, self.front),
+            None => {
+                let vp = &self.front.viewport;
+                let cull = self.front.options.cull_back_faces;
+                Lanes::classify(&x, &y, (vp.width, vp.height), cull)
+            }
         };
         self.stats.degenerate += lanes.degenerate;
         self.stats.back_faces += lanes.back_faces;
@@ -339,6 +343,7 @@ impl<I: Isa> Pass<'_, I> {
 }
 
 /// The integer classification of a batch, lane by lane.
+#[derive(Debug, PartialEq, Eq)]
 pub(super) struct Lanes {
     /// How many lanes are dropped for a zero area, for facing away, and
     /// for covering no centre (in that order of precedence, as
@@ -382,12 +387,13 @@ impl Lanes {
     /// magnitude), so their differences fit `i32` and every product fits
     /// `i64` exactly, as in the scalar functions.
     #[inline(always)]
-    fn classify(x: &[[i32; LANES]; 3], y: &[[i32; LANES]; 3], front: &FrontEnd) -> Self {
-        let (w, h) = (
-            front.viewport.width as i32 - 1,
-            front.viewport.height as i32 - 1,
-        );
-        let cull = front.options.cull_back_faces;
+    pub(super) fn classify(
+        x: &[[i32; LANES]; 3],
+        y: &[[i32; LANES]; 3],
+        (width, height): (u32, u32),
+        cull: bool,
+    ) -> Self {
+        let (w, h) = (width as i32 - 1, height as i32 - 1);
         let wide = |a: i32, b: i32| i64::from(a) * i64::from(b);
         let mut zero = [false; LANES];
         let mut back = [false; LANES];

@@ -221,3 +221,75 @@ mod avx2 {
         }
     }
 }
+
+#[cfg(all(test, target_arch = "x86_64"))]
+mod tests {
+    use super::super::key::{DepthKey, Fixed24, Reversed};
+    use super::{Avx2, WideKey};
+
+    /// Depths where an encoding could go wrong: NaN, signed zeros, out of
+    /// range, f32 rounding ties and 24-bit rounding ties (half-way between
+    /// two steps, where `round` goes away from zero and not to even).
+    fn awkward() -> Vec<f64> {
+        let max24 = f64::from((1u32 << 24) - 1);
+        let mut v = vec![f64::NAN, -0.0, 0.0, 1.0, -1e-300, 1.0 + 1e-16, 2.0, -3.0];
+        for k in [0u32, 1, 2, 3, 1000, 4_000_001, (1 << 24) - 2] {
+            v.push((f64::from(k) + 0.5) / max24);
+            v.push(f64::from(k) / max24);
+        }
+        for f in [0.1f32, 0.5, 0.7, 0.999_999_9] {
+            let d = f64::from(f);
+            let up = f64::from(f32::from_bits(f.to_bits() + 1));
+            v.extend([
+                d,
+                (d + up) / 2.0,
+                d + (up - d) * 0.499_999,
+                d + (up - d) * 0.500_001,
+            ]);
+        }
+        v.extend((0..200).map(|i| f64::from(i) * 0.005_123_456_789));
+        v
+    }
+
+    fn check<K: WideKey + std::fmt::Debug>() {
+        let Some(avx2) = Avx2::detect() else { return };
+        let depths = awkward();
+        for chunk in depths.chunks(8) {
+            // The block's depth is col + ty: the depth in col, and dy = 0
+            // so that ty is +0 (which turns a -0 depth into +0, in both).
+            let mut col = [0.5; 8];
+            col[..chunk.len()].copy_from_slice(chunk);
+            let mut keys = [K::FAR; 64];
+            let mut ids = [u32::MAX; 64];
+            let b = super::Block8 {
+                col: &col,
+                dy: 0.0,
+                y0: 0.0,
+                by: 0,
+                e: [0; 3],
+                lanes: [[0; 8]; 3],
+                down: [0; 3],
+                prim: 7,
+            };
+            super::block8::<K, false>(avx2, &mut keys, &mut ids, &b);
+            for (c, &d) in col.iter().enumerate() {
+                let want = K::encode(d + 0.0);
+                let (got, id) = (keys[c], ids[c]);
+                if want < K::FAR {
+                    assert_eq!(got.to_lane(), want.to_lane(), "{d:e}: {got:?} != {want:?}");
+                    assert_eq!(id, 7);
+                } else {
+                    assert_eq!(got.to_lane(), K::FAR.to_lane(), "{d:e}");
+                    assert_eq!(id, u32::MAX);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn wide_encodings_are_the_scalar_ones() {
+        check::<f32>();
+        check::<Reversed>();
+        check::<Fixed24>();
+    }
+}
