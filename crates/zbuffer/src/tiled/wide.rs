@@ -224,7 +224,7 @@ mod avx2 {
 
 #[cfg(all(test, target_arch = "x86_64"))]
 mod tests {
-    use super::super::key::{DepthKey, Fixed24, Reversed};
+    use super::super::key::{Fixed24, Reversed};
     use super::{Avx2, WideKey};
 
     /// Depths where an encoding could go wrong: NaN, signed zeros, out of
