@@ -37,15 +37,15 @@ pub(crate) trait DepthKey: Copy + PartialOrd + Send + Sync + 'static {
     /// mispredicted branch per pixel.
     fn select(mask: u32, new: Self, old: Self) -> Self;
     /// Draws a full 8x8 block with the AVX2 block ([`super::wide`]) when
-    /// the format has one and the CPU can: `Some((inside, passes))`, or
-    /// `None` to leave it to the portable block.
+    /// the format has one and the CPU can: `Some((inside, passes, the
+    /// block's greatest key))`, or `None` to leave it to the portable block.
     #[inline(always)]
     fn wide_block8<const EDGES: bool>(
         proof: Avx2,
         keys: &mut [Self; 64],
         ids: &mut [u32; 64],
         b: &Block8<'_>,
-    ) -> Option<(u32, u32)> {
+    ) -> Option<(u32, u32, Self)> {
         let _ = (proof, keys, ids, b);
         None
     }
@@ -63,7 +63,7 @@ impl DepthKey for f32 {
         keys: &mut [Self; 64],
         ids: &mut [u32; 64],
         b: &Block8<'_>,
-    ) -> Option<(u32, u32)> {
+    ) -> Option<(u32, u32, Self)> {
         Some(super::wide::block8::<Self, EDGES>(proof, keys, ids, b))
     }
     const FAR: Self = 1.0;
@@ -122,7 +122,7 @@ impl DepthKey for Fixed24 {
         keys: &mut [Self; 64],
         ids: &mut [u32; 64],
         b: &Block8<'_>,
-    ) -> Option<(u32, u32)> {
+    ) -> Option<(u32, u32, Self)> {
         Some(super::wide::block8::<Self, EDGES>(proof, keys, ids, b))
     }
     const FAR: Self = Fixed24(MAX24);
@@ -185,7 +185,7 @@ impl DepthKey for Reversed {
         keys: &mut [Self; 64],
         ids: &mut [u32; 64],
         b: &Block8<'_>,
-    ) -> Option<(u32, u32)> {
+    ) -> Option<(u32, u32, Self)> {
         Some(super::wide::block8::<Self, EDGES>(proof, keys, ids, b))
     }
     // ZBuffer clears reversed depth to 0; its negation is -0, which

@@ -395,7 +395,7 @@ impl<K: DepthKey> TileBuf<K> {
         }
         let full = xb - bx + 1 == BLOCK && yb - by + 1 == BLOCK;
         let fits = (0..3).all(|k| lo[k] > 0 || s.narrow[k]);
-        let passes = if full && inside {
+        let (passes, max) = if full && inside {
             self.stats.blocks_inside += 1;
             self.block8::<T, I, false>(isa, s, tri, bx, by, [0; 3], [[0; 8]; 3], [0; 3])
         } else if full && fits {
@@ -414,11 +414,18 @@ impl<K: DepthKey> TileBuf<K> {
             self.block8::<T, I, true>(isa, s, tri, bx, by, e, lanes, down)
         } else {
             // At the image's edge, or edges too long for i32 lanes.
-            self.rows::<T, true>(s, tri, bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1))
+            let xy = (bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1));
+            (self.rows::<T, true>(s, tri, xy.0, xy.1, xy.2, xy.3), None)
         };
-        if passes > 0 {
-            self.block_passes[block] += passes;
-            self.tile_passes += passes;
+        self.tile_passes += passes;
+        match max {
+            // A whole block was just merged in registers: its exact
+            // maximum came with it, so it never needs a refresh.
+            Some(max) => {
+                self.block_max[block] = max;
+                self.block_passes[block] = 0;
+            }
+            None => self.block_passes[block] += passes,
         }
     }
 
@@ -426,7 +433,7 @@ impl<K: DepthKey> TileBuf<K> {
     /// each of the three simple passes (depth keys, edge signs, LESS and
     /// select). Edge lanes are i32: `e` at the block corner (biased by -1),
     /// `lanes` the offsets along a row, `down` the step per row. Returns
-    /// the passes.
+    /// the passes and the block's greatest key after the merge.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn block8<T: RasterTri, I: Isa, const EDGES: bool>(
@@ -439,18 +446,18 @@ impl<K: DepthKey> TileBuf<K> {
         e: [i32; 3],
         lanes: [[i32; 8]; 3],
         down: [i32; 3],
-    ) -> u32 {
+    ) -> (u32, Option<K>) {
         let p = tri.depth();
         let c0 = (bx - s.ox) as usize;
         let Ok(col) = <[f64; 8]>::try_from(&self.col[c0..c0 + 8]) else {
-            return 0;
+            return (0, None);
         };
         let base = self.at(bx, by);
         let (Ok(keys), Ok(ids)) = (
             <&mut [K; 64]>::try_from(&mut self.keys[base..base + 64]),
             <&mut [u32; 64]>::try_from(&mut self.ids[base..base + 64]),
         ) else {
-            return 0;
+            return (0, None);
         };
         if let Some(avx2) = isa.avx2() {
             let b = Block8 {
@@ -463,13 +470,13 @@ impl<K: DepthKey> TileBuf<K> {
                 down,
                 prim: s.prim,
             };
-            if let Some((inside, passes)) = K::wide_block8::<EDGES>(avx2, keys, ids, &b) {
+            if let Some((inside, passes, max)) = K::wide_block8::<EDGES>(avx2, keys, ids, &b) {
                 if EDGES {
                     self.stats.pixels_tested += 64;
                 }
                 self.stats.depth_tests += u64::from(inside);
                 self.stats.depth_passes += u64::from(passes);
-                return passes;
+                return (passes, Some(max));
             }
         }
         let mut new = [K::FAR; 64];
@@ -519,7 +526,14 @@ impl<K: DepthKey> TileBuf<K> {
         // After the counters: see above.
         *keys = merged_keys;
         *ids = merged_ids;
-        passes
+        // Eight running maxima, then their maximum (vectorised).
+        let mut max: [K; 8] = std::array::from_fn(|c| merged_keys[c]);
+        for row in merged_keys[8..].chunks_exact(8) {
+            for (m, &k) in max.iter_mut().zip(row) {
+                *m = m.max_key(k);
+            }
+        }
+        (passes, Some(max.iter().fold(max[0], |m, &k| m.max_key(k))))
     }
 
     /// Rasterises rows `ya..=yb`, columns `xa..=xb` (inside the triangle's

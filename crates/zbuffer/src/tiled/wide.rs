@@ -56,7 +56,8 @@ pub(super) trait WideKey: DepthKey {
     fn from_lane(bits: u32) -> Self;
 }
 
-/// Draws the block with AVX2; returns (pixels inside, passes).
+/// Draws the block with AVX2; returns (pixels inside, passes, the block's
+/// greatest key after the merge).
 ///
 /// `#[inline(always)]` and no `target_feature` of its own: it is inlined
 /// into the tile kernel compiled for AVX2 (a `target_feature` function
@@ -71,7 +72,7 @@ pub(super) fn block8<K: WideKey, const EDGES: bool>(
     keys: &mut [K; 64],
     ids: &mut [u32; 64],
     b: &Block8<'_>,
-) -> (u32, u32) {
+) -> (u32, u32, K) {
     avx2::block8::<K, EDGES>(keys, ids, b)
 }
 
@@ -83,7 +84,7 @@ pub(super) fn block8<K: WideKey, const EDGES: bool>(
     _: &mut [K; 64],
     _: &mut [u32; 64],
     _: &Block8<'_>,
-) -> (u32, u32) {
+) -> (u32, u32, K) {
     unreachable!("{proof:?} exists only on x86-64")
 }
 
@@ -152,6 +153,22 @@ mod avx2 {
         }
     }
 
+    /// The greater key per lane (stored keys are never NaN: a NaN depth
+    /// fails LESS).
+    #[inline(always)]
+    fn max<K: WideKey>(a: __m256i, b: __m256i) -> __m256i {
+        // SAFETY: see `super::block8`.
+        unsafe {
+            match K::ENCODING {
+                Encoding::F32 | Encoding::Reversed => _mm256_castps_si256(_mm256_max_ps(
+                    _mm256_castsi256_ps(a),
+                    _mm256_castsi256_ps(b),
+                )),
+                Encoding::Fixed24 => _mm256_max_epi32(a, b),
+            }
+        }
+    }
+
     /// Sum of the eight i32 lanes.
     #[inline(always)]
     fn sum(v: __m256i) -> u32 {
@@ -164,7 +181,7 @@ mod avx2 {
         keys: &mut [K; 64],
         ids: &mut [u32; 64],
         b: &Block8<'_>,
-    ) -> (u32, u32) {
+    ) -> (u32, u32, K) {
         // SAFETY: see `super::block8`.
         unsafe {
             let col: [[f64; 4]; 2] = bytemuck::cast(*b.col);
@@ -181,6 +198,7 @@ mod avx2 {
             let prim = _mm256_set1_epi32(b.prim as i32);
             let (mut inside, mut passes) = (_mm256_setzero_si256(), _mm256_setzero_si256());
             let mut merged = [[_mm256_setzero_si256(); 2]; 8];
+            let mut greatest = bytemuck::cast([K::FAR.to_lane(); 8]);
             for (r, merged) in merged.iter_mut().enumerate() {
                 let ty = b.dy * ((f64::from(b.by + r as u32) + 0.5) - b.y0);
                 let new = encode::<K>(col, _mm256_set1_pd(ty));
@@ -205,6 +223,11 @@ mod avx2 {
                     _mm256_blendv_epi8(old_keys, new, pass),
                     _mm256_blendv_epi8(old_ids, prim, pass),
                 ];
+                greatest = if r == 0 {
+                    merged[0]
+                } else {
+                    max::<K>(greatest, merged[0])
+                };
             }
             // Stored only now, after every row was read: a store right
             // after its row's load and blend is what LLVM folds into a
@@ -217,7 +240,11 @@ mod avx2 {
                 }
             }
             let inside = if EDGES { sum(inside) } else { 64 };
-            (inside, sum(passes))
+            let greatest: [u32; 8] = bytemuck::cast(greatest);
+            let greatest = greatest.iter().fold(K::from_lane(greatest[0]), |m, &k| {
+                m.max_key(K::from_lane(k))
+            });
+            (inside, sum(passes), greatest)
         }
     }
 }
