@@ -202,8 +202,7 @@ const PREFETCH_AHEAD: usize = 6;
 
 /// Asks the CPU to start loading `tri` into cache.
 ///
-/// One of the project's four `unsafe` blocks (the others call the AVX2
-/// copies of the tile kernel and of the lean front end's two passes):
+/// One of the project's six `unsafe` sites (listed in `docs/zbuffer.md`):
 /// `_mm_prefetch` is marked unsafe only
 /// because it is a `target_feature` intrinsic; SSE is part of every
 /// x86-64 CPU, and a prefetch is a hint that never faults nor changes

@@ -537,9 +537,10 @@ impl<T: RasterTri> BandJob<'_, T> {
 
     /// [`Self::draw`] compiled for AVX2 and FMA.
     ///
-    /// One of the project's four `unsafe` blocks: calling a `target_feature`
-    /// function is unsafe only because the CPU might lack the feature, and
-    /// [`Self::dispatch`] checked that it has them.
+    /// One of the project's six `unsafe` sites (listed in
+    /// `docs/zbuffer.md`): calling a `target_feature` function is unsafe
+    /// only because the CPU might lack the feature, and the [`Avx2`] value
+    /// proves it has them.
     #[cfg(target_arch = "x86_64")]
     #[allow(unsafe_code)]
     fn draw_avx2<K: TileKey>(&self, band: &mut [TileBuf<K>], avx2: Avx2) {
