@@ -274,17 +274,11 @@ impl<I: Isa> Pass<'_, I> {
             }
             return;
         }
+        let size = (self.front.viewport.width, self.front.viewport.height);
+        let cull = self.front.options.cull_back_faces;
         let lanes = match self.isa.avx2() {
-            Some(avx2) => {
-                let vp = &self.front.viewport;
-                let cull = self.front.options.cull_back_faces;
-                classify_avx2::classify(avx2, &x, &y, (vp.width, vp.height), cull)
-            }
-            None => {
-                let vp = &self.front.viewport;
-                let cull = self.front.options.cull_back_faces;
-                Lanes::classify(&x, &y, (vp.width, vp.height), cull)
-            }
+            Some(avx2) => classify_avx2::classify(avx2, &x, &y, size, cull),
+            None => Lanes::classify(&x, &y, size, cull),
         };
         self.stats.degenerate += lanes.degenerate;
         self.stats.back_faces += lanes.back_faces;
