@@ -15,6 +15,7 @@ use glam::{DVec3, DVec4};
 use hider_geom::FixedPt;
 use hider_geom::clip::OUTSIDE_PLANES;
 use hider_geom::fixed::{snap_coordinate_lanewise, snap_coordinate_lanewise_f32};
+use hider_geom::isa::Avx2;
 
 use crate::prepare::{FrontEnd, TransformPrecision};
 
@@ -41,8 +42,8 @@ const LANES: usize = 8;
 /// one is an invalid scene; the caller reports it).
 pub(super) fn vertices(front: &FrontEnd, positions: &[DVec3], out: &mut [CachedVertex]) -> bool {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx2") {
-        return vertices_avx2(front, positions, out);
+    if let Some(avx2) = Avx2::detect() {
+        return vertices_avx2(front, positions, out, avx2);
     }
     batches(front, positions, out)
 }
@@ -50,17 +51,22 @@ pub(super) fn vertices(front: &FrontEnd, positions: &[DVec3], out: &mut [CachedV
 /// [`batches`] compiled for AVX2.
 ///
 /// `unsafe` only because calling a `target_feature` function on a CPU
-/// without the feature would be undefined; [`vertices`] checked that it
+/// without the feature would be undefined; the [`Avx2`] value proves it
 /// has it. The results are the same bits: IEEE operations are exact per
 /// operation and Rust never contracts `a * b + c` into a fused one.
 #[cfg(target_arch = "x86_64")]
 #[allow(unsafe_code)]
-fn vertices_avx2(front: &FrontEnd, positions: &[DVec3], out: &mut [CachedVertex]) -> bool {
+fn vertices_avx2(
+    front: &FrontEnd,
+    positions: &[DVec3],
+    out: &mut [CachedVertex],
+    _proof: Avx2,
+) -> bool {
     #[target_feature(enable = "avx2")]
     fn wide(front: &FrontEnd, positions: &[DVec3], out: &mut [CachedVertex]) -> bool {
         batches(front, positions, out)
     }
-    // SAFETY: `vertices` calls this only after detecting AVX2.
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
     unsafe { wide(front, positions, out) }
 }
 
