@@ -396,7 +396,7 @@ impl Lanes {
         let mut covered = [0u8; LANES];
         let mut empty = [false; LANES];
         let mut corner = [(0, 0, 0); LANES];
-        let bits = |b: &[bool; LANES]| b.iter().rev().fold(0u8, |m, &b| m << 1 | u8::from(b));
+        let mask = |b: &[bool; LANES]| b.iter().rev().fold(0u8, |m, &b| m << 1 | u8::from(b));
         for i in 0..LANES {
             let (ax, ay) = (x[0][i], y[0][i]);
             let (bx, by) = (x[1][i], y[1][i]);
@@ -477,12 +477,12 @@ impl Lanes {
             back_faces: 0,
             empty: 0,
             keep: 0,
-            swap: bits(&swap),
-            few: bits(&few),
+            swap: mask(&swap),
+            few: mask(&few),
             covered,
             corner,
         };
-        lanes.drop_reasons(bits(&zero), bits(&back), bits(&empty));
+        lanes.drop_reasons(mask(&zero), mask(&back), mask(&empty));
         lanes
     }
 }

@@ -198,7 +198,6 @@ mod avx2 {
             let prim = _mm256_set1_epi32(b.prim as i32);
             let (mut inside, mut passes) = (_mm256_setzero_si256(), _mm256_setzero_si256());
             let mut merged = [[_mm256_setzero_si256(); 2]; 8];
-            let mut greatest = bytemuck::cast([K::FAR.to_lane(); 8]);
             for (r, merged) in merged.iter_mut().enumerate() {
                 let ty = b.dy * ((f64::from(b.by + r as u32) + 0.5) - b.y0);
                 let new = encode::<K>(col, _mm256_set1_pd(ty));
@@ -223,11 +222,6 @@ mod avx2 {
                     _mm256_blendv_epi8(old_keys, new, pass),
                     _mm256_blendv_epi8(old_ids, prim, pass),
                 ];
-                greatest = if r == 0 {
-                    merged[0]
-                } else {
-                    max::<K>(greatest, merged[0])
-                };
             }
             // Stored only now, after every row was read: a store right
             // after its row's load and blend is what LLVM folds into a
@@ -240,6 +234,9 @@ mod avx2 {
                 }
             }
             let inside = if EDGES { sum(inside) } else { 64 };
+            let greatest = merged[1..]
+                .iter()
+                .fold(merged[0][0], |m, [k, _]| max::<K>(m, *k));
             let greatest: [u32; 8] = bytemuck::cast(greatest);
             let greatest = greatest.iter().fold(K::from_lane(greatest[0]), |m, &k| {
                 m.max_key(K::from_lane(k))
