@@ -1,19 +1,30 @@
-//! The `Hider` trait every hidden-surface algorithm implements, and the
-//! `Stats` it returns.
+//! The `Hider` trait every hidden-surface algorithm implements, its
+//! object-safe twin [`DynHider`] for registries, and the uniform
+//! [`StatsTable`] every hider's typed stats convert into.
+//!
+//! One shape for every hider: a hider is built from its options with
+//! [`Hider::new`], renders with [`Hider::render`], and returns its own typed
+//! stats (documented fields, read as fields, never looked up by string). The
+//! benchmark and the command line see every hider through [`DynHider`] and
+//! print the stats as a [`StatsTable`].
+
+use std::path::Path;
 
 use crate::error::Result;
 use crate::frame::Frame;
-use crate::prepare::ScreenScene;
+use crate::model::Scene;
+use crate::prepare::{PrepareOptions, ScreenScene, prepare_into};
+use crate::shade::ShadeMode;
+use crate::view::View;
 use hider_geom::Viewport;
 
-/// Work counters that explain a hider's cost (fragments, depth tests,
-/// splits, regions, spans, bytes...).
+/// Work counters in one uniform shape: what the benchmark tabulates and the
+/// command line prints, for any hider without knowing it.
 ///
-/// Each algorithm crate has a typed stats struct with documented fields and
-/// converts it into this uniform shape, so the benchmark can tabulate any
-/// hider without knowing it.
+/// Built from a hider's typed stats (see [`HiderStats`]); code that needs a
+/// particular counter reads the typed field instead.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Stats {
+pub struct StatsTable {
     /// Named counters, in the order the hider reports them.
     pub counters: Vec<(&'static str, u64)>,
     /// Peak bytes of working memory (buffers, fragment arenas, lists), not
@@ -21,22 +32,7 @@ pub struct Stats {
     pub peak_bytes: u64,
 }
 
-impl Stats {
-    /// The value of a counter, if the hider reports it.
-    pub fn get(&self, name: &str) -> Option<u64> {
-        self.counters
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|&(_, v)| v)
-    }
-
-    /// Appends a counter.
-    pub fn push(&mut self, name: &'static str, value: u64) {
-        self.counters.push((name, value));
-    }
-}
-
-impl std::fmt::Display for Stats {
+impl std::fmt::Display for StatsTable {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         for (k, (name, value)) in self.counters.iter().enumerate() {
             if k > 0 {
@@ -51,6 +47,106 @@ impl std::fmt::Display for Stats {
     }
 }
 
+/// A hider's typed stats: a struct whose documented fields count the work
+/// that explains its time, convertible into the uniform [`StatsTable`].
+///
+/// Implemented by the [`hider_stats!`](crate::hider_stats) macro, which
+/// keeps each counter's printed name beside its field.
+pub trait HiderStats: Clone + std::fmt::Debug {
+    /// The counters as the benchmark prints them.
+    fn table(&self) -> StatsTable;
+}
+
+/// A value the stats table can print as a counter.
+pub trait Counter {
+    /// The value as an unsigned count.
+    fn count(&self) -> u64;
+}
+
+impl Counter for u64 {
+    fn count(&self) -> u64 {
+        *self
+    }
+}
+
+impl Counter for u32 {
+    fn count(&self) -> u64 {
+        u64::from(*self)
+    }
+}
+
+impl Counter for usize {
+    fn count(&self) -> u64 {
+        *self as u64
+    }
+}
+
+/// Declares a hider's stats struct and its [`HiderStats`] table in one
+/// place: each field carries the name the table prints it under, `PEAK` for
+/// the peak working bytes, or `_` for a field the table leaves out.
+///
+/// ```
+/// hider_scene::hider_stats! {
+///     /// What the example hider did.
+///     #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+///     pub struct ExampleStats {
+///         /// Triangles drawn.
+///         pub triangles: u64 => "triangles",
+///         /// Bytes of the depth buffer.
+///         pub bytes: u64 => PEAK,
+///         /// Kept for the caller, not printed.
+///         pub internal: u32 => _,
+///     }
+/// }
+/// use hider_scene::HiderStats;
+/// let s = ExampleStats { triangles: 3, bytes: 64, internal: 1 };
+/// assert_eq!(s.table().counters, vec![("triangles", 3)]);
+/// assert_eq!(s.table().peak_bytes, 64);
+/// ```
+#[macro_export]
+macro_rules! hider_stats {
+    (
+        $(#[$meta:meta])*
+        $vis:vis struct $name:ident {
+            $(
+                $(#[$field_meta:meta])*
+                $field_vis:vis $field:ident : $field_ty:ty => $label:tt
+            ),* $(,)?
+        }
+    ) => {
+        $(#[$meta])*
+        $vis struct $name {
+            $(
+                $(#[$field_meta])*
+                $field_vis $field: $field_ty,
+            )*
+        }
+
+        impl $crate::HiderStats for $name {
+            fn table(&self) -> $crate::StatsTable {
+                let mut table = $crate::StatsTable::default();
+                $( $crate::__hider_stats_entry!(table, $label, self.$field); )*
+                table
+            }
+        }
+    };
+}
+
+/// One field of [`hider_stats!`] into the table.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __hider_stats_entry {
+    ($table:ident, PEAK, $value:expr) => {
+        $table.peak_bytes = $crate::Counter::count(&$value);
+    };
+    ($table:ident, _, $value:expr) => {};
+    ($table:ident, $label:literal, $value:expr) => {
+        $table
+            .counters
+            .push(($label, $crate::Counter::count(&$value)));
+    };
+}
+
 /// A hidden-surface algorithm.
 ///
 /// `render` draws a [`ScreenScene`] into a [`Frame`] of the same size: it
@@ -60,9 +156,24 @@ impl std::fmt::Display for Stats {
 /// [`Hider::resolves_color`]; for the others the caller shades from the ids
 /// with [`crate::shade::shade_frame`].
 ///
-/// `&mut self` lets a hider keep its scratch memory (depth buffers, edge
-/// tables, fragment arenas) from one frame to the next.
+/// Every knob that changes behaviour lives in [`Hider::Options`], whose
+/// `Default` is the accurate choice. `&mut self` lets a hider keep its
+/// scratch memory (depth buffers, edge tables, fragment arenas) from one
+/// frame to the next.
 pub trait Hider {
+    /// Every knob that changes the hider's behaviour.
+    type Options: Default + Clone;
+    /// The typed work counters of one frame.
+    type Stats: HiderStats;
+
+    /// A hider with these options; no memory is taken until the first frame.
+    fn new(options: Self::Options) -> Self
+    where
+        Self: Sized;
+
+    /// The options the hider was built with.
+    fn options(&self) -> &Self::Options;
+
     /// A short name for tables and messages (`"zbuffer"`, `"warnock"`...).
     fn name(&self) -> &str;
 
@@ -70,11 +181,94 @@ pub trait Hider {
     ///
     /// Errors when the frame's size differs from the scene's viewport or a
     /// budget the hider documents is exceeded.
-    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats>;
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Self::Stats>;
+
+    /// The whole pipeline from the world-space scene: the front end, then
+    /// [`Hider::render`]. The default prepares into `screen` with the shared
+    /// front end ([`prepare_into`], reusing its memory); a hider with a
+    /// front end of its own overrides it, and then `screen` is left as it
+    /// was. This is the span a frame loop (and `hider render --repeat`)
+    /// times.
+    fn render_scene(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+        options: &PrepareOptions,
+        screen: &mut ScreenScene,
+        frame: &mut Frame,
+    ) -> Result<Self::Stats> {
+        prepare_into(scene, view, options, screen)?;
+        self.render(screen, frame)
+    }
 
     /// Whether `render` writes the frame's colour itself.
     fn resolves_color(&self) -> bool {
         false
+    }
+
+    /// The vector output of the last frame, for hiders that compute visible
+    /// polygons (the painters); `None` for the others.
+    fn vector_output(&self) -> Option<&dyn VectorOutput> {
+        None
+    }
+}
+
+/// Vector output of a hider's last frame.
+pub trait VectorOutput {
+    /// Writes the polygons of the last frame rendered from `scene` as SVG,
+    /// coloured by `mode`, atomically.
+    fn write_svg(&self, scene: &ScreenScene, path: &Path, mode: ShadeMode) -> Result<()>;
+}
+
+/// The object-safe face of [`Hider`], for registries that hold hiders of
+/// different types: the same calls, with the stats as a [`StatsTable`].
+/// Every [`Hider`] is one through the blanket implementation.
+pub trait DynHider {
+    /// See [`Hider::name`].
+    fn name(&self) -> &str;
+    /// [`Hider::render`], the stats as a table.
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<StatsTable>;
+    /// [`Hider::render_scene`], the stats as a table.
+    fn render_scene(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+        options: &PrepareOptions,
+        screen: &mut ScreenScene,
+        frame: &mut Frame,
+    ) -> Result<StatsTable>;
+    /// See [`Hider::resolves_color`].
+    fn resolves_color(&self) -> bool;
+    /// See [`Hider::vector_output`].
+    fn vector_output(&self) -> Option<&dyn VectorOutput>;
+}
+
+impl<H: Hider> DynHider for H {
+    fn name(&self) -> &str {
+        Hider::name(self)
+    }
+
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<StatsTable> {
+        Hider::render(self, scene, frame).map(|s| s.table())
+    }
+
+    fn render_scene(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+        options: &PrepareOptions,
+        screen: &mut ScreenScene,
+        frame: &mut Frame,
+    ) -> Result<StatsTable> {
+        Hider::render_scene(self, scene, view, options, screen, frame).map(|s| s.table())
+    }
+
+    fn resolves_color(&self) -> bool {
+        Hider::resolves_color(self)
+    }
+
+    fn vector_output(&self) -> Option<&dyn VectorOutput> {
+        Hider::vector_output(self)
     }
 }
 
@@ -84,8 +278,8 @@ pub fn check_frame(hider: &str, scene: &ScreenScene, frame: &Frame) -> Result<()
     check_frame_size(hider, scene.viewport, frame)
 }
 
-/// [`check_frame`] for a scene prepared for `viewport` (a
-/// [`crate::DepthScene`], or any other input of that size).
+/// [`check_frame`] for a scene prepared for `viewport` (a depth-only scene
+/// of a hider's own front end, or any other input of that size).
 pub fn check_frame_size(hider: &str, viewport: Viewport, frame: &Frame) -> Result<()> {
     let vp = viewport;
     if frame.width() != vp.width || frame.height() != vp.height {

@@ -7,7 +7,8 @@
 //!   [`ScreenScene`] of snapped, set-up [`ScreenTri`]s — no hider re-projects;
 //! - the [`Frame`] buffers with PNG output and the GL reference id/depth
 //!   dumps, written atomically;
-//! - the [`Hider`] trait and its [`Stats`], and shading from ids ([`shade`]).
+//! - the [`Hider`] trait (options, typed stats, one `new`, one `render`),
+//!   its object-safe twin [`DynHider`], and shading from ids ([`shade`]).
 //! - scene analysis ([`analyze()`]): which effects a scene calls for, with
 //!   evidence; and the effect stages that run only when called for
 //!   ([`stages`], [`texture`]).
@@ -60,7 +61,9 @@ pub use analyze::{Effects, Evidence, RenderOptions, analyze};
 pub use depth_scene::{DepthFragment, DepthScene, DepthTri, lean_reference, prepare_depth_into};
 pub use error::{Error, Result};
 pub use frame::{Frame, NO_ID};
-pub use hider::{Hider, Stats, check_frame, check_frame_size};
+pub use hider::{
+    Counter, DynHider, Hider, HiderStats, StatsTable, VectorOutput, check_frame, check_frame_size,
+};
 pub use model::{Light, Material, Mesh, Scene};
 pub use obj::{load_obj, load_obj_with};
 pub use obj_write::save_obj;
