@@ -1,0 +1,1 @@
+//! The hider registry, scene analysis and the planner (being assembled).
