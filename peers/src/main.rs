@@ -1,6 +1,6 @@
 //! `peers`: times hider's peers — the `euc` crate and Mesa's llvmpipe —
 //! on this machine, in one run, with the scenes, camera and span of hider's
-//! tiled z-buffer benchmark (issue 12), and checks that each peer covers the
+//! tiled z-buffer benchmark (its targets against GL and euc), and checks that each peer covers the
 //! pixels hider covers (so the camera is provably the same).
 //!
 //! ```text

@@ -2,9 +2,9 @@
 //!
 //! After the perspective divide, window depth `z/w` is an affine function of
 //! the window position, and so is `1/w`; camera-space depth is *not* (it is
-//! the reciprocal of an affine function). This is the lesson of the depth
-//! seed (scratchapixel's depth-buffer chapter): interpolate `1/z`, never `z`.
-//! [`perspective_correct`] and [`screen_linear`] show both on the seed's
+//! the reciprocal of an affine function). This is the lesson of
+//! scratchapixel's depth-buffer lesson: interpolate `1/z`, never `z`.
+//! [`perspective_correct`] and [`screen_linear`] show both on the lesson's
 //! worked example.
 
 use crate::fixed::FixedPt;
@@ -78,7 +78,7 @@ pub fn perspective_correct(z0: f64, z1: f64, t: f64) -> f64 {
 }
 
 /// Camera-space depth interpolated linearly in screen space: *wrong* under
-/// perspective, kept to demonstrate the error the seed warns about.
+/// perspective, kept to demonstrate the error the lesson warns about.
 pub fn screen_linear(z0: f64, z1: f64, t: f64) -> f64 {
     z0 + (z1 - z0) * t
 }
@@ -89,7 +89,7 @@ mod tests {
 
     #[test]
     fn seed_worked_example_one_over_z() {
-        // Depth seed: V0 = (x -4, z 2), V1 = (x 2, z 5), canvas at distance
+        // The depth-buffer lesson's worked example: V0 = (x -4, z 2), V1 = (x 2, z 5), canvas at distance
         // 1. Projected x' = x / z: -2 and 0.4. Pixel at x' = 0 lies at
         // t = (0 - -2) / (0.4 - -2) along the projected segment.
         let (x0, z0, x1, z1) = (-4.0, 2.0, 2.0, 5.0);

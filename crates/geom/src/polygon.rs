@@ -1,4 +1,5 @@
-//! Point-in-polygon tests from the lecture seed (image-space algorithms):
+//! Point-in-polygon tests from the lecture on image-space hidden-surface
+//! algorithms (one of the documents the project started from):
 //! the crossing number with the half-open vertex rule, and the winding
 //! number by quadrant counting. Both work on integer coordinates, so they
 //! are exact; for simple polygons they agree, which the tests check.
@@ -37,7 +38,7 @@ pub fn crossing_number_inside(polygon: &[IPoint], p: IPoint) -> bool {
 /// vertex is given the quadrant (0..4) it lies in around `p`; stepping to
 /// the next vertex adds +1 or -1 quarter turns, and a jump across two
 /// quadrants is resolved by which side of `p` the edge passes. The total
-/// divided by four is the winding number. The seed leaves points exactly on
+/// divided by four is the winding number. The lecture leaves points exactly on
 /// the boundary open, and so does this function: test them separately.
 pub fn winding_number(polygon: &[IPoint], p: IPoint) -> i32 {
     let quadrant = |q: IPoint| -> i32 {
@@ -121,7 +122,7 @@ mod tests {
     proptest! {
         #[test]
         fn crossing_and_winding_agree_off_the_boundary(poly in star_shaped(), px in -1100i64..1100, py in -1100i64..1100) {
-            // Skip points exactly on an edge, where the seed's two methods
+            // Skip points exactly on an edge, where the lecture's two methods
             // make different (both documented) choices.
             let n = poly.len();
             let on_edge = (0..n).any(|i| {
