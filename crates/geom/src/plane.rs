@@ -89,8 +89,8 @@ mod tests {
 
     #[test]
     fn seed_worked_example_one_over_z() {
-        // The depth-buffer lesson's worked example: V0 = (x -4, z 2), V1 = (x 2, z 5), canvas at distance
-        // 1. Projected x' = x / z: -2 and 0.4. Pixel at x' = 0 lies at
+        // The depth-buffer lesson's worked example: V0 = (x -4, z 2),
+        // V1 = (x 2, z 5), canvas at distance 1. Projected x' = x / z: -2 and 0.4. Pixel at x' = 0 lies at
         // t = (0 - -2) / (0.4 - -2) along the projected segment.
         let (x0, z0, x1, z1) = (-4.0, 2.0, 2.0, 5.0);
         let (p0, p1) = (x0 / z0, x1 / z1);
