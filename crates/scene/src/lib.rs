@@ -42,7 +42,6 @@
 
 pub mod analyze;
 pub mod atomic;
-pub mod depth_scene;
 pub mod error;
 pub mod frame;
 pub mod hard_cases;
@@ -58,7 +57,6 @@ pub mod texture;
 pub mod view;
 
 pub use analyze::{Effects, Evidence, RenderOptions, analyze};
-pub use depth_scene::{DepthFragment, DepthScene, DepthTri, lean_reference, prepare_depth_into};
 pub use error::{Error, Result};
 pub use frame::{Frame, NO_ID};
 pub use hider::{

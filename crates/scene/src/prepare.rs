@@ -159,20 +159,21 @@ pub struct PrepareStats {
     pub back_faces: u64,
     /// Screen triangles produced.
     pub output: u64,
-    /// Triangles dropped by the lean front end
-    /// ([`prepare_depth_into`](crate::prepare_depth_into)) because they
-    /// certainly cover no pixel centre; always 0 from [`prepare`], which
-    /// keeps them.
+    /// Triangles dropped by a depth-only front end of a hider's own (the
+    /// tiled z-buffer's) because they certainly cover no pixel centre;
+    /// always 0 from [`prepare`], which keeps them.
     pub empty: u64,
-    /// Triangles the lean front end handed over as the pixels they cover
-    /// ([`DepthFragment`](crate::DepthFragment)s) rather than as
-    /// triangles, because their box holds at most four pixel centres; not
-    /// counted in [`Self::output`]. Always 0 from [`prepare`].
+    /// Triangles a depth-only front end of a hider's own handed over as
+    /// the pixels they cover rather than as triangles, because their box
+    /// holds at most four pixel centres; not counted in [`Self::output`].
+    /// Always 0 from [`prepare`].
     pub fragmented: u64,
 }
 
 impl PrepareStats {
-    pub(crate) fn add(&mut self, other: &Self) {
+    /// Adds the per-triangle counters of another run of triangles (all but
+    /// [`Self::input`] and [`Self::output`], which describe a whole frame).
+    pub fn add(&mut self, other: &Self) {
         self.empty += other.empty;
         self.fragmented += other.fragmented;
         self.culled += other.culled;
@@ -354,33 +355,51 @@ pub fn prepare_into(
     Ok(())
 }
 
-/// The output of the front end for a run of triangles.
-#[derive(Default)]
-pub(crate) struct Part {
-    pub(crate) prims: Vec<PrimInfo>,
-    pub(crate) tris: Vec<ScreenTri>,
-    pub(crate) stats: PrepareStats,
+/// The output of the front end for a run of triangles
+/// ([`FrontEnd::triangle`] appends to it).
+#[derive(Clone, Debug, Default)]
+pub struct Part {
+    /// Per-primitive data, one per triangle visited.
+    pub prims: Vec<PrimInfo>,
+    /// The screen triangles (clipped pieces adjacent).
+    pub tris: Vec<ScreenTri>,
+    /// What was dropped or clipped.
+    pub stats: PrepareStats,
 }
 
-/// Reusable buffers of the clipper.
-#[derive(Default)]
-pub(crate) struct ClipScratch {
+/// Reusable buffers of the clipper, for [`FrontEnd::triangle`].
+#[derive(Clone, Debug, Default)]
+pub struct ClipScratch {
     polygon: Vec<ClipVertex>,
     scratch: Vec<ClipVertex>,
     window: Vec<WindowVertex>,
 }
 
-/// Everything the per-triangle work needs, computed once per frame.
-pub(crate) struct FrontEnd {
-    pub(crate) view_matrix: DMat4,
-    pub(crate) projection_matrix: DMat4,
-    pub(crate) normal_matrix: DMat4,
-    pub(crate) mvp: DMat4,
-    pub(crate) mvp32: glam::Mat4,
-    pub(crate) volume: ClipVolume,
-    pub(crate) viewport: Viewport,
-    pub(crate) options: PrepareOptions,
-    pub(crate) default_material: u32,
+/// Everything the per-triangle work needs, computed once per frame: the
+/// building blocks of [`prepare`], public so that a hider with a front end
+/// of its own (the tiled z-buffer's depth-only one) computes every number
+/// exactly as `prepare` does.
+#[derive(Clone, Debug)]
+#[non_exhaustive]
+pub struct FrontEnd {
+    /// World to camera space.
+    pub view_matrix: DMat4,
+    /// Camera space to clip space.
+    pub projection_matrix: DMat4,
+    /// World to camera space for normals.
+    pub normal_matrix: DMat4,
+    /// World to clip space, `projection_matrix * view_matrix`.
+    pub mvp: DMat4,
+    /// [`Self::mvp`] rounded to `f32`, for [`TransformPrecision::F32`].
+    pub mvp32: glam::Mat4,
+    /// The clip volume: near, far and the guard band.
+    pub volume: ClipVolume,
+    /// The image size.
+    pub viewport: Viewport,
+    /// The options of the frame.
+    pub options: PrepareOptions,
+    /// Index of the default material (after the scene's).
+    pub default_material: u32,
 }
 
 impl FrontEnd {
@@ -390,10 +409,14 @@ impl FrontEnd {
         Self::checked(scene, view, options, true)
     }
 
-    /// As [`Self::new`], with `geometry` false leaving the check of every
-    /// position and index ([`Scene::validate`]'s costly part) to a caller
-    /// that reads them all anyway.
-    pub(crate) fn checked(
+    /// As `prepare` checks its input, with `geometry` false leaving the
+    /// check of every position and index ([`Scene::validate`]'s costly
+    /// part) to a caller that reads them all anyway.
+    ///
+    /// # Errors
+    ///
+    /// An absurd image size, an invalid camera or an invalid scene.
+    pub fn checked(
         scene: &Scene,
         view: &View,
         options: &PrepareOptions,
@@ -441,7 +464,7 @@ impl FrontEnd {
 
     /// Transforms, clips, projects, snaps and sets up triangle `t` of mesh
     /// `m` (primitive `prim`), appending its info and screen pieces.
-    pub(crate) fn triangle(
+    pub fn triangle(
         &self,
         scene: &Scene,
         (m, t, prim): (usize, usize, u32),
@@ -500,11 +523,14 @@ impl FrontEnd {
 }
 
 /// A vertex in window space: snapped position, window depth, clip w.
-#[derive(Clone, Copy)]
-pub(crate) struct WindowVertex {
-    pub(crate) p: FixedPt,
-    pub(crate) z: f64,
-    pub(crate) w: f64,
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct WindowVertex {
+    /// Snapped window position.
+    pub p: FixedPt,
+    /// Window depth in [0, 1].
+    pub z: f64,
+    /// Clip-space `w`.
+    pub w: f64,
 }
 
 #[inline]
@@ -542,7 +568,7 @@ pub(crate) fn to_window(
 /// has it: it decides degenerate triangles and facing before this). `None`
 /// when the snapped triangle has no area (it covers no sample).
 #[inline]
-pub(crate) fn setup_depth(
+pub fn setup_depth(
     mut c: [WindowVertex; 3],
     area: i64,
 ) -> Option<([WindowVertex; 3], bool, PlaneEq)> {
