@@ -9,9 +9,6 @@
 //!   dumps, written atomically;
 //! - the [`Hider`] trait (options, typed stats, one `new`, one `render`),
 //!   its object-safe twin [`DynHider`], and shading from ids ([`shade`]).
-//! - scene analysis ([`analyze()`]): which effects a scene calls for, with
-//!   evidence; and the effect stages that run only when called for
-//!   ([`stages`], [`texture`]).
 //!
 //! Conventions (see `docs/conventions.md`): right-handed world, camera
 //! looking down -Z, GL clip space; window origin top-left with y down;
@@ -40,7 +37,6 @@
 //! # Ok::<(), hider_scene::Error>(())
 //! ```
 
-pub mod analyze;
 pub mod atomic;
 pub mod error;
 pub mod frame;
@@ -52,11 +48,8 @@ pub mod obj_write;
 pub mod prepare;
 pub mod procedural;
 pub mod shade;
-pub mod stages;
-pub mod texture;
 pub mod view;
 
-pub use analyze::{Effects, Evidence, RenderOptions, analyze};
 pub use error::{Error, Result};
 pub use frame::{Frame, NO_ID};
 pub use hider::{
@@ -70,8 +63,6 @@ pub use prepare::{
     prepare_into,
 };
 pub use shade::{ShadeMode, shade_frame};
-pub use stages::{Shader, ShaderOptions, StageTrace, Stages};
-pub use texture::Texture;
 pub use view::{View, fit_camera};
 
 /// The geometry crate this one builds on.
