@@ -57,6 +57,101 @@ impl std::fmt::Display for CameraError {
 impl std::error::Error for CameraError {}
 
 impl Camera {
+    /// The vertical field of view of [`Camera::perspective`]: 60 degrees.
+    pub const DEFAULT_FOVY_DEGREES: f64 = 60.0;
+
+    /// A perspective camera looking from `eye` at `target` with +Y up and a
+    /// vertical field of view of [`Camera::DEFAULT_FOVY_DEGREES`], its clip
+    /// planes `near` and `far` in front of the eye.
+    ///
+    /// ```
+    /// use hider_geom::{Camera, Projection};
+    /// use glam::DVec3;
+    ///
+    /// let camera = Camera::perspective(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 0.5, 50.0);
+    /// assert_eq!(camera.up, DVec3::Y);
+    /// assert_eq!(
+    ///     camera.projection,
+    ///     Projection::Perspective { fovy_degrees: 60.0, near: 0.5, far: 50.0 }
+    /// );
+    /// assert!(camera.validate().is_ok());
+    /// ```
+    pub fn perspective(eye: DVec3, target: DVec3, near: f64, far: f64) -> Self {
+        Self {
+            eye,
+            target,
+            up: DVec3::Y,
+            projection: Projection::Perspective {
+                fovy_degrees: Self::DEFAULT_FOVY_DEGREES,
+                near,
+                far,
+            },
+        }
+    }
+
+    /// An orthographic camera looking from `eye` at `target` with +Y up,
+    /// its view volume `half_height` world units above and below the view
+    /// axis and from `near` to `far` along it.
+    ///
+    /// ```
+    /// use hider_geom::{Camera, Projection};
+    /// use glam::DVec3;
+    ///
+    /// let camera = Camera::orthographic(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 1.4, 0.5, 10.0);
+    /// assert_eq!(
+    ///     camera.projection,
+    ///     Projection::Orthographic { half_height: 1.4, near: 0.5, far: 10.0 }
+    /// );
+    /// ```
+    pub fn orthographic(eye: DVec3, target: DVec3, half_height: f64, near: f64, far: f64) -> Self {
+        Self {
+            eye,
+            target,
+            up: DVec3::Y,
+            projection: Projection::Orthographic {
+                half_height,
+                near,
+                far,
+            },
+        }
+    }
+
+    /// The same camera with `up` as its up direction.
+    ///
+    /// ```
+    /// use hider_geom::Camera;
+    /// use glam::DVec3;
+    ///
+    /// let camera = Camera::perspective(DVec3::Y * 5.0, DVec3::ZERO, 0.1, 10.0).with_up(DVec3::Z);
+    /// assert!(camera.validate().is_ok());
+    /// ```
+    pub fn with_up(mut self, up: DVec3) -> Self {
+        self.up = up;
+        self
+    }
+
+    /// The same camera with a perspective projection of `fovy_degrees`
+    /// vertical field of view; an orthographic camera is returned as it
+    /// was.
+    ///
+    /// ```
+    /// use hider_geom::{Camera, Projection};
+    /// use glam::DVec3;
+    ///
+    /// let camera = Camera::perspective(DVec3::Z * 3.0, DVec3::ZERO, 0.5, 20.0).with_fovy_degrees(90.0);
+    /// assert!(matches!(camera.projection, Projection::Perspective { fovy_degrees: 90.0, .. }));
+    /// ```
+    pub fn with_fovy_degrees(mut self, fovy_degrees: f64) -> Self {
+        if let Projection::Perspective {
+            fovy_degrees: ref mut f,
+            ..
+        } = self.projection
+        {
+            *f = fovy_degrees;
+        }
+        self
+    }
+
     /// The view matrix (world to camera space).
     pub fn view_matrix(&self) -> DMat4 {
         look_at(self.eye, self.target, self.up)
@@ -199,16 +294,7 @@ mod tests {
 
     #[test]
     fn validate_rejects_bad_cameras() {
-        let good = Camera {
-            eye: DVec3::new(0.0, 0.0, 5.0),
-            target: DVec3::ZERO,
-            up: DVec3::Y,
-            projection: Projection::Perspective {
-                fovy_degrees: 60.0,
-                near: 0.1,
-                far: 100.0,
-            },
-        };
+        let good = Camera::perspective(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 0.1, 100.0);
         assert!(good.validate().is_ok());
         let mut c = good;
         c.up = DVec3::Z;
