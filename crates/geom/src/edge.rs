@@ -33,9 +33,27 @@ pub fn orient2d(a: FixedPt, b: FixedPt, c: FixedPt) -> i64 {
 /// Whether the edge `a -> b` of a positively oriented triangle is a top or a
 /// left edge (owns the samples that lie exactly on it).
 pub fn is_top_left(a: FixedPt, b: FixedPt) -> bool {
-    let dx = b.x - a.x;
-    let dy = b.y - a.y;
-    dy < 0 || (dy == 0 && dx > 0)
+    top_left_bias(b.x - a.x, b.y - a.y) != 0
+}
+
+/// The fill rule as the bias of an edge function: 1 for a top or left edge
+/// of direction `(dx, dy)` (`to - from`, in a positively oriented
+/// triangle), 0 otherwise. An edge function plus its bias is positive
+/// exactly at the samples the edge owns. Branch-free, for loops that
+/// should vectorise.
+#[inline(always)]
+pub const fn top_left_bias(dx: i32, dy: i32) -> i32 {
+    ((dy < 0) | ((dy == 0) & (dx > 0))) as i32
+}
+
+/// [`top_left_bias`] of every lane.
+#[inline(always)]
+pub fn top_left_biases<const N: usize>(dx: [i32; N], dy: [i32; N]) -> [i32; N] {
+    let mut out = [0; N];
+    for ((o, &dx), &dy) in out.iter_mut().zip(&dx).zip(&dy) {
+        *o = top_left_bias(dx, dy);
+    }
+    out
 }
 
 /// An edge function `E(x, y) = a*x + b*y + c` with the fill rule folded into
@@ -138,6 +156,7 @@ mod tests {
         assert!(is_top_left(p(0, 4), p(0, 0)));
         // A bottom horizontal edge goes right-to-left in positive order.
         assert!(!is_top_left(p(4, 4), p(0, 4)));
+        assert_eq!(top_left_biases([1, -1, 0, 5], [0, 0, -3, 2]), [1, 0, 1, 0]);
     }
 
     #[test]

@@ -111,8 +111,55 @@ fn round_half_away(x: f64) -> i32 {
 }
 
 /// The fixed-point coordinate of the centre of pixel column or row `i`.
+#[inline(always)]
 pub const fn pixel_center(i: i32) -> i32 {
     i * SUBPIXEL_SCALE + HALF_PIXEL
+}
+
+/// [`pixel_center`] of every lane: a plain loop, which the compiler turns
+/// into a shift and an addition per vector of lanes.
+#[inline(always)]
+pub fn pixel_centers<const N: usize>(i: [i32; N]) -> [i32; N] {
+    let mut out = [0; N];
+    for (o, &i) in out.iter_mut().zip(&i) {
+        *o = pixel_center(i);
+    }
+    out
+}
+
+/// The first pixel column (or row) whose centre is at or after the
+/// fixed-point coordinate `m`: `ceil((m - 128) / 256)`, as an arithmetic
+/// shift (which is Euclidean division by 256).
+#[inline(always)]
+pub const fn first_center_from(m: i32) -> i32 {
+    (m + (HALF_PIXEL - 1)) >> SUBPIXEL_BITS
+}
+
+/// The last pixel column (or row) whose centre is at or before the
+/// fixed-point coordinate `m`: `floor((m - 128) / 256)`.
+#[inline(always)]
+pub const fn last_center_upto(m: i32) -> i32 {
+    (m - HALF_PIXEL) >> SUBPIXEL_BITS
+}
+
+/// [`first_center_from`] of every lane.
+#[inline(always)]
+pub fn first_centers_from<const N: usize>(m: [i32; N]) -> [i32; N] {
+    let mut out = [0; N];
+    for (o, &m) in out.iter_mut().zip(&m) {
+        *o = first_center_from(m);
+    }
+    out
+}
+
+/// [`last_center_upto`] of every lane.
+#[inline(always)]
+pub fn last_centers_upto<const N: usize>(m: [i32; N]) -> [i32; N] {
+    let mut out = [0; N];
+    for (o, &m) in out.iter_mut().zip(&m) {
+        *o = last_center_upto(m);
+    }
+    out
 }
 
 #[cfg(test)]
@@ -233,5 +280,20 @@ mod tests {
         assert_eq!(pixel_center(0), 128);
         assert_eq!(pixel_center(3), 3 * 256 + 128);
         assert_eq!(FixedPt::new(pixel_center(2), 128).to_pixels(), (2.5, 0.5));
+        assert_eq!(pixel_centers([0, 3, -1]), [128, 3 * 256 + 128, -128]);
+    }
+
+    #[test]
+    fn first_and_last_centres_of_a_span() {
+        for m in -2000i32..2000 {
+            let first = (m - 128 + 255).div_euclid(256);
+            let last = (m - 128).div_euclid(256);
+            assert_eq!(first_center_from(m), first, "{m}");
+            assert_eq!(last_center_upto(m), last, "{m}");
+            assert!(pixel_center(first) >= m && pixel_center(first - 1) < m);
+            assert!(pixel_center(last) <= m && pixel_center(last + 1) > m);
+        }
+        assert_eq!(first_centers_from([128, 129]), [0, 1]);
+        assert_eq!(last_centers_upto([383, 384]), [0, 1]);
     }
 }
