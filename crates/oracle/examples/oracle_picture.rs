@@ -17,7 +17,7 @@ use hider_oracle::{
 };
 use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{
-    Frame, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, View, hard_cases, prepare,
+    Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, View, hard_cases, prepare,
     procedural,
 };
 
@@ -45,7 +45,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut sheet = Frame::new(tile * cols, tile * rows)?;
     for (n, (name, scene)) in cases.iter().enumerate() {
         let s = screen(scene, tile)?;
-        let r = RayCastOracle::new().evaluate(&s);
+        let r = RayCastOracle::default().evaluate(&s);
         let (ox, oy) = ((n as u32 % cols) * tile, (n as u32 / cols) * tile);
         for y in 0..tile {
             for x in 0..tile {
@@ -71,7 +71,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // Exact box filter vs pixel centres, magnified.
     let (size, zoom) = (40u32, 6u32);
     let s = screen(&hard_cases::interpenetrating_boxes(3, 4), size)?;
-    let r = RayCastOracle::new().evaluate(&s);
+    let r = RayCastOracle::default().evaluate(&s);
     let cov = analytic_coverage(&s);
     let mut pic = Frame::new(2 * size * zoom + zoom, size * zoom)?;
     for y in 0..size {
@@ -108,13 +108,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             hard_cases::heavy_overdraw(count, 1)
         };
         let s = screen(&scene, size)?;
-        let mut oracle = RayCastOracle::new();
         let t = Instant::now();
-        let r = oracle.evaluate(&s);
+        let r = RayCastOracle::default().evaluate(&s);
         println!(
             "oracle: {count} triangles (heavy overdraw / uv sphere) at {size}x{size}: {:.1} ms, {} pixel tests, {} ties",
             t.elapsed().as_secs_f64() * 1e3,
-            oracle.stats().pixel_tests,
+            RayCastOracle::pixel_tests(&s),
             r.tie_count(DEFAULT_TIE_TOLERANCE)
         );
     }
@@ -136,11 +135,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     // What snapping does: source-plane oracle vs snapped-plane oracle.
     for (name, scene) in hard_cases::all(1) {
         let s = screen(&scene, 64)?;
-        let snapped = RayCastOracle::new().evaluate(&s);
-        let source = RayCastOracle::with_options(
-            OracleOptions::default().with_depth_plane(DepthPlane::Source),
-        )
-        .evaluate(&s);
+        let snapped = RayCastOracle::default().evaluate(&s);
+        let source =
+            RayCastOracle::new(OracleOptions::default().with_depth_plane(DepthPlane::Source))
+                .evaluate(&s);
         let mut differ = 0;
         let mut worst: f64 = 0.0;
         for k in 0..snapped.ids.len() {

@@ -2,7 +2,8 @@
 
 use hider_scene::NO_ID;
 
-use crate::raycast::Reference;
+use crate::reference::Reference;
+use crate::tolerance::WINDOW_TIE_TOLERANCE;
 
 /// How a hider's id buffer agrees with a [`Reference`].
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -56,7 +57,7 @@ impl Reference {
     /// gap is below [`crate::WINDOW_TIE_TOLERANCE`] (what an `f32` depth
     /// buffer, the format every [`hider_scene::Frame`] stores, cannot order).
     pub fn compare(&self, ids: &[u32], tie_tolerance: f64) -> Agreement {
-        self.compare_with(ids, tie_tolerance, crate::WINDOW_TIE_TOLERANCE)
+        self.compare_with(ids, tie_tolerance, WINDOW_TIE_TOLERANCE)
     }
 
     /// Like [`Self::compare`], but ties only by the relative gap: the
@@ -127,7 +128,7 @@ impl Reference {
                         || self
                             .window_gap
                             .get(k)
-                            .is_some_and(|&w| w < crate::WINDOW_TIE_TOLERANCE))
+                            .is_some_and(|&w| w < WINDOW_TIE_TOLERANCE))
             })
             .count()
     }

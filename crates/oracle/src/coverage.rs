@@ -2,8 +2,8 @@
 //! each pixel square.
 //!
 //! This is the ground truth the anti-aliasing hiders (MSAA, the A-buffer of
-//! Carpenter 1984, whose 8x4 masks the depth seed describes) converge to
-//! as their sample counts grow.
+//! Carpenter 1984, whose 8x4 masks scratchapixel's depth-buffer lesson
+//! describes) converge to as their sample counts grow.
 //!
 //! Per pixel, every screen triangle whose bounding box meets the square is
 //! clipped to it (convex polygon, `f64`, from the snapped fixed-point

@@ -2,7 +2,8 @@
 //!
 //! `hider-oracle` is the referee of the hider workspace:
 //! - [`RayCastOracle`] answers, for every pixel centre, which primitive is
-//!   visible. It is the lecture seed's "one depth variable" z-buffer: loop
+//!   visible. It is the "one depth variable" z-buffer of the lecture on
+//!   image-space hidden-surface algorithms: loop
 //!   over every triangle per pixel, decide coverage with the shared exact
 //!   edge functions, compute depth in `f64` by intersecting the camera ray
 //!   with the source triangle's plane, keep the nearest. It also reports how
@@ -17,13 +18,13 @@
 //! # Example
 //!
 //! ```
-//! use hider_oracle::{RayCastOracle, DEFAULT_TIE_TOLERANCE};
-//! use hider_scene::{prepare, procedural, PrepareOptions, View};
+//! use hider_oracle::{OracleOptions, RayCastOracle, DEFAULT_TIE_TOLERANCE};
+//! use hider_scene::{prepare, procedural, Hider, PrepareOptions, View};
 //!
 //! let scene = procedural::intersecting_pair();
 //! let view = View::for_scene(&scene, 32, 32)?;
 //! let screen = prepare(&scene, &view, &PrepareOptions::default())?;
-//! let reference = RayCastOracle::new().evaluate(&screen);
+//! let reference = RayCastOracle::new(OracleOptions::default()).evaluate(&screen);
 //! // Both triangles are visible somewhere: they pierce each other.
 //! assert!(reference.ids.contains(&0) && reference.ids.contains(&1));
 //! // The reference agrees with itself, of course.
@@ -33,53 +34,17 @@
 
 pub mod agreement;
 pub mod coverage;
+mod depth;
+mod nearest;
+pub mod options;
 pub mod polygon;
 pub mod raycast;
+pub mod reference;
+pub mod tolerance;
 
 pub use agreement::Agreement;
 pub use coverage::{CoverageReference, analytic_coverage};
-pub use raycast::{DepthPlane, OracleOptions, OracleStats, RayCastOracle, Reference};
-
-/// Relative camera-distance gap under which the two nearest surfaces at a
-/// pixel centre count as a tie.
-///
-/// The gap is `(d2 - d1) / d1` with `d1`, `d2` the view depths (distance in
-/// front of the eye along the view axis) of the nearest and second-nearest
-/// distinct primitives, or `(d2 - d1) / (far - near)` for an orthographic
-/// camera.
-///
-/// Why `1e-5`: two things separate a correct hider from this oracle even
-/// when both are right about their own inputs.
-/// - *Snapping*: hiders interpolate the window-depth plane of the snapped
-///   triangle (corners moved by up to 1/512 pixel); the oracle uses the
-///   plane of the unsnapped source triangle. Near a crossing of two
-///   surfaces, or between two nearly parallel ones, the two depth orders can
-///   differ where the surfaces are closer than the depth change that 1/512
-///   pixel of snapping causes.
-/// - *Depth-buffer resolution*: an `f32` window-depth buffer resolves
-///   about `2^-24` in window depth near 1; with the fit camera
-///   (`far/near = 100`, scene at about 25 x near) that is a relative view
-///   depth of about `1.5e-6`.
-///
-/// `1e-5` sits above both for the scenes the tests use (the suite reports
-/// the largest gap at which any hider disagrees, see `docs/oracle.md`),
-/// while real ordering errors (a wrong sort, linear-z interpolation) show
-/// gaps of `1e-3` and more. Scenes built to defeat depth precision (huge
-/// depth ranges) are expected to produce tie pixels; that is the point of
-/// counting them.
-pub const DEFAULT_TIE_TOLERANCE: f64 = 1e-5;
-
-/// Window-depth difference under which the two nearest surfaces at a pixel
-/// centre are a tie whatever their relative gap: `2^-22`, four `f32` steps
-/// just below 1.0.
-///
-/// Every [`hider_scene::Frame`] stores window depth as `f32`, and the
-/// exact hiders of the registry include `f32` depth buffers. Where
-/// window depth has no resolution left (a far/near ratio of 1e9, geometry
-/// thousands of near distances away) such a buffer cannot order two
-/// surfaces whatever algorithm it runs, so that is no error of the
-/// algorithm. For the fit camera (far/near = 100) this criterion is
-/// weaker than the relative one and changes nothing.
-/// [`Reference::compare_strict`] leaves it out, for hiders with `f64`
-/// depth.
-pub const WINDOW_TIE_TOLERANCE: f64 = 1.0 / (1u64 << 22) as f64;
+pub use options::{DepthPlane, OracleOptions};
+pub use raycast::{OracleStats, RayCastOracle};
+pub use reference::Reference;
+pub use tolerance::{DEFAULT_TIE_TOLERANCE, WINDOW_TIE_TOLERANCE};

@@ -40,7 +40,7 @@ fn screen(scene: &Scene, size: u32) -> ScreenScene {
 
 /// Largest reference gap at which the brute force disagrees (0 if none).
 fn check_against_brute_force(s: &ScreenScene) -> f64 {
-    let r = RayCastOracle::new().evaluate(s);
+    let r = RayCastOracle::default().evaluate(s);
     let (ids, _) = brute_force(s);
     let a = r.compare(&ids, DEFAULT_TIE_TOLERANCE);
     assert_eq!(a.coverage_mismatches, 0, "{a}");

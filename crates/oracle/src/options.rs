@@ -1,0 +1,84 @@
+//! The oracle's options: which plane depth is taken from, the tie
+//! tolerance, and the work budget.
+
+use crate::tolerance::DEFAULT_TIE_TOLERANCE;
+
+/// Which camera-space plane the oracle intersects the pixel rays with.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum DepthPlane {
+    /// The plane through the screen triangle's *snapped* corners lifted back
+    /// to camera space (each corner on the ray through its snapped window
+    /// position, at its clip `w`). Projection maps planes to planes, so this
+    /// is exactly the surface every hider is asked to render; the oracle
+    /// differs from a hider only by arithmetic, and a tie tolerance of
+    /// [`crate::DEFAULT_TIE_TOLERANCE`] separates rounding from errors. The
+    /// referee for cross-validating hiders (the default).
+    #[default]
+    Snapped,
+    /// The plane of the *source* triangle (`PrimInfo::camera`, before
+    /// clipping and snapping). Measures what the front end's 1/256-pixel
+    /// snapping does to visibility: where two surfaces cross or nearly
+    /// touch, moving corners by up to 1/512 pixel can flip the order.
+    /// Near the near plane, where screen-space depth gradients are steep,
+    /// such flips appear at relative gaps above `1e-5`, so hiders are not
+    /// scored against this plane.
+    Source,
+}
+
+/// Options of the [`RayCastOracle`](crate::RayCastOracle). `Default` is the
+/// accurate choice.
+///
+/// ```
+/// use hider_oracle::{DepthPlane, OracleOptions};
+///
+/// let options = OracleOptions::default()
+///     .with_depth_plane(DepthPlane::Source)
+///     .with_max_pixel_tests(1 << 20);
+/// assert_eq!(options.depth_plane, DepthPlane::Source);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct OracleOptions {
+    /// The plane each triangle's depth is taken from.
+    pub depth_plane: DepthPlane,
+    /// Relative gap under which the two nearest surfaces at a pixel count as
+    /// a tie; at a tie the reference id is the lower primitive id (what a
+    /// LESS z-buffer drawing in id order keeps).
+    pub tie_tolerance: f64,
+    /// Most (triangle, pixel) candidate tests one frame may cost, checked
+    /// before any work in
+    /// [`RayCastOracle::try_evaluate`](crate::RayCastOracle::try_evaluate)
+    /// and `render`: the oracle is slow on purpose and should refuse rather
+    /// than run for hours.
+    pub max_pixel_tests: u64,
+}
+
+impl Default for OracleOptions {
+    fn default() -> Self {
+        Self {
+            depth_plane: DepthPlane::Snapped,
+            tie_tolerance: DEFAULT_TIE_TOLERANCE,
+            max_pixel_tests: 1 << 34,
+        }
+    }
+}
+
+impl OracleOptions {
+    /// Sets [`Self::depth_plane`].
+    pub fn with_depth_plane(mut self, plane: DepthPlane) -> Self {
+        self.depth_plane = plane;
+        self
+    }
+
+    /// Sets [`Self::tie_tolerance`].
+    pub fn with_tie_tolerance(mut self, tolerance: f64) -> Self {
+        self.tie_tolerance = tolerance;
+        self
+    }
+
+    /// Sets [`Self::max_pixel_tests`].
+    pub fn with_max_pixel_tests(mut self, tests: u64) -> Self {
+        self.max_pixel_tests = tests;
+        self
+    }
+}
