@@ -1,12 +1,14 @@
-//! Painter's algorithm hiders for the hider workspace.
+//! Painter's algorithm hiders: paint polygons back to front, and get the
+//! visible surfaces as an ordered polygon list (SVG) as well as a raster.
 //!
 //! Object-space hidden-surface removal by painting polygons back to front,
 //! in two forms:
 //!
 //! - [`NaivePainter`] (`"painter-naive"`): sort the triangles by one depth
 //!   each (farthest vertex, or centroid) and paint. Wrong where triangles
-//!   intersect or overlap cyclically, as the seeds describe; kept to show
-//!   that.
+//!   intersect or overlap cyclically, as the software-renderer tutorial
+//!   (chapter 8) and scratchapixel's depth-buffer lesson describe; kept to
+//!   show that.
 //! - [`Painter`] (`"painter"`): Newell, Newell & Sancha (1972). After the
 //!   sort, each candidate is checked against the polygons it overlaps in
 //!   depth with the six tests of [`newell`] (depth, x and y extents, the
@@ -19,27 +21,28 @@
 //! centre iff its source triangle does under the exact top-left edge
 //! functions and its cuts keep it ([`Cut`]), so split pieces never crack or
 //! double-cover, and on every pixel that is not a depth tie [`Painter`]
-//! gives the z-buffer's (and the oracle's) primitive. Both also write the
-//! ordered polygon list as SVG ([`Painter::render_svg`]).
+//! gives the z-buffer's (and the oracle's) primitive. Both keep the ordered
+//! pieces of their last frame and write them as SVG through
+//! [`Hider::vector_output`](hider_scene::Hider::vector_output).
 //!
 //! # Example
 //!
 //! Two triangles that pierce each other: the naive sort gets part of the
 //! picture wrong, the Newell–Newell–Sancha painter splits and gets it
-//! right.
+//! right, and writes the split pieces as SVG.
 //!
 //! ```
-//! use hider_painter::{NaivePainter, Painter};
-//! use hider_scene::{prepare, procedural, Frame, Hider, PrepareOptions, View};
+//! use hider_painter::{NaivePainter, Painter, PainterOptions};
+//! use hider_scene::{prepare, procedural, Frame, Hider, PrepareOptions, ShadeMode, View};
 //!
 //! let scene = procedural::intersecting_pair();
 //! let view = View::for_scene(&scene, 48, 48)?;
 //! let screen = prepare(&scene, &view, &PrepareOptions::default())?;
 //!
-//! let mut painter = Painter::default();
+//! let mut painter = Painter::new(PainterOptions::default());
 //! let mut frame = Frame::new(48, 48)?;
-//! let stats = painter.render_with_stats(&screen, &mut frame)?;
-//! assert!(stats.splits() >= 1, "an intersection needs a split");
+//! let stats = painter.render(&screen, &mut frame)?;
+//! assert!(stats.splits >= 1, "an intersection needs a split");
 //! assert_eq!(painter.name(), "painter");
 //!
 //! // The naive painter covers the same pixels but shows the wrong
@@ -48,9 +51,20 @@
 //! NaivePainter::default().render(&screen, &mut naive_frame)?;
 //! assert_eq!(naive_frame.covered_count(), frame.covered_count());
 //! assert_ne!(naive_frame.ids, frame.ids);
-//! # Ok::<(), hider_scene::Error>(())
+//!
+//! // The pieces of the frame just rendered, as SVG.
+//! let path = std::env::temp_dir().join("hider-painter-doc-example.svg");
+//! painter
+//!     .vector_output()
+//!     .expect("painters have vector output")
+//!     .write_svg(&screen, &path, ShadeMode::Lambert)?;
+//! assert!(std::fs::read_to_string(&path)?.contains("<path"));
+//! # std::fs::remove_file(&path).ok();
+//! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod bins;
+mod blocker;
 pub mod naive;
 pub mod newell;
 pub mod options;
@@ -58,15 +72,16 @@ mod order;
 pub mod painter;
 pub mod piece;
 mod raster;
+mod resolve;
 pub mod split;
 pub mod stats;
-pub mod svg;
+mod svg;
 
 pub use naive::NaivePainter;
 pub use options::{
-    DEFAULT_MAX_BYTES, NaiveOptions, PainterOptions, SPLITS_BASE, SPLITS_PER_TRIANGLE, SortKey,
+    DEFAULT_MAX_BYTES, NaivePainterOptions, PainterOptions, SPLITS_BASE, SPLITS_PER_TRIANGLE,
+    SortKey,
 };
 pub use painter::Painter;
 pub use piece::{Cut, Piece};
 pub use stats::PainterStats;
-pub use svg::{svg_document, write_svg};

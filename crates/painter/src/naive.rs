@@ -1,8 +1,8 @@
 //! [`NaivePainter`]: sort far to near and paint, nothing more.
 //!
-//! This is the painter's algorithm of the renderer-tutorial seed (chapter
-//! 8): draw the farther triangle first and the nearer one over it. The
-//! seed shows where it breaks: two triangles that intersect each other
+//! This is the painter's algorithm of the software-renderer tutorial,
+//! chapter 8: draw the farther triangle first and the nearer one over it.
+//! The tutorial shows where it breaks: two triangles that intersect each other
 //! have no single "farther" one, so whichever is drawn second wrongly
 //! covers part of the first; three triangles overlapping in a cycle break
 //! it the same way. It is kept to show that failure, which the tests
@@ -10,46 +10,36 @@
 
 use std::path::Path;
 
-use hider_scene::{Frame, Hider, Result, ScreenScene, ShadeMode, Stats, check_frame};
+use hider_scene::{Frame, Hider, Result, ScreenScene, ShadeMode, VectorOutput, check_frame};
 
-use crate::options::{NaiveOptions, SortKey};
+use crate::options::{NaivePainterOptions, SortKey};
 use crate::piece::Piece;
 use crate::raster::{paint, validate};
 use crate::stats::PainterStats;
-use crate::svg::write_svg;
+use crate::svg::{LastFrame, write_svg};
 
 /// The naive painter's algorithm: one depth per triangle
-/// ([`NaiveOptions::sort_key`]), a stable sort farthest first (equal keys
-/// paint the lower primitive id first), and overwrite. Coverage is the
-/// shared exact one; only the visibility can be wrong.
+/// ([`NaivePainterOptions::sort_key`]), a stable sort farthest first (equal
+/// keys paint the lower primitive id first), and overwrite. Coverage is the
+/// shared exact one; only the visibility can be wrong. Its vector output
+/// ([`Hider::vector_output`]) is the triangles of the last frame in paint
+/// order, with the same errors.
 #[derive(Clone, Debug, Default)]
 pub struct NaivePainter {
-    options: NaiveOptions,
+    options: NaivePainterOptions,
     pieces: Vec<Piece>,
     keys: Vec<(f64, u32)>,
     order: Vec<u32>,
+    /// The scene of the last successful render.
+    last: Option<LastFrame>,
 }
 
 impl NaivePainter {
     /// The name under which it reports (`"painter-naive"`).
     pub const NAME: &'static str = "painter-naive";
 
-    /// A naive painter with the given options.
-    pub fn new(options: NaiveOptions) -> Self {
-        Self {
-            options,
-            ..Self::default()
-        }
-    }
-
-    /// The options.
-    pub fn options(&self) -> &NaiveOptions {
-        &self.options
-    }
-
-    /// Sorts the scene's triangles, farthest first, into
-    /// [`NaivePainter::ordered_pieces`].
-    pub fn order(&mut self, scene: &ScreenScene) -> Result<PainterStats> {
+    /// Sorts the scene's triangles, farthest first, into `self.order`.
+    fn sort(&mut self, scene: &ScreenScene) -> Result<PainterStats> {
         validate(Self::NAME, scene)?;
         self.pieces.clear();
         self.keys.clear();
@@ -77,46 +67,66 @@ impl NaivePainter {
         })
     }
 
-    /// The triangles of the last [`NaivePainter::order`] (or render) in
-    /// paint order, farthest first.
+    /// The triangles of the last successful render in paint order,
+    /// farthest first. Empty before the first render and after a failed
+    /// one.
     pub fn ordered_pieces(&self) -> impl ExactSizeIterator<Item = &Piece> + '_ {
-        self.order.iter().map(|&k| &self.pieces[k as usize])
-    }
-
-    /// Renders into `frame` and returns the typed counters.
-    pub fn render_with_stats(
-        &mut self,
-        scene: &ScreenScene,
-        frame: &mut Frame,
-    ) -> Result<PainterStats> {
-        check_frame(Self::NAME, scene, frame)?;
-        let mut stats = self.order(scene)?;
-        frame.clear();
-        stats.pixels_painted = paint(scene, &self.pieces, &self.order, frame, None);
-        Ok(stats)
-    }
-
-    /// Sorts the scene and writes the triangles in paint order to `path`
-    /// as SVG, atomically: the vector output of a plain depth sort, with
-    /// its errors.
-    pub fn render_svg(
-        &mut self,
-        scene: &ScreenScene,
-        path: &Path,
-        mode: ShadeMode,
-    ) -> Result<Stats> {
-        let stats = self.order(scene)?;
-        write_svg(scene, self.ordered_pieces(), path, mode, 0.0)?;
-        Ok(stats.into())
+        let n = if self.last.is_some() {
+            self.order.len()
+        } else {
+            0
+        };
+        self.order[..n].iter().map(|&k| &self.pieces[k as usize])
     }
 }
 
 impl Hider for NaivePainter {
+    type Options = NaivePainterOptions;
+    type Stats = PainterStats;
+
+    fn new(options: NaivePainterOptions) -> Self {
+        Self {
+            options,
+            ..Self::default()
+        }
+    }
+
+    fn options(&self) -> &NaivePainterOptions {
+        &self.options
+    }
+
     fn name(&self) -> &str {
         Self::NAME
     }
 
-    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {
-        self.render_with_stats(scene, frame).map(Stats::from)
+    /// Sorts the scene's triangles and paints them into `frame`.
+    ///
+    /// Errors when the frame's size differs from the scene's or a triangle
+    /// is not set up (non-finite depth plane, wrong orientation).
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<PainterStats> {
+        check_frame(Self::NAME, scene, frame)?;
+        self.last = None;
+        let mut stats = self.sort(scene)?;
+        frame.clear();
+        stats.pixels_painted = paint(scene, &self.pieces, &self.order, frame, None);
+        self.last = Some(LastFrame::of(scene));
+        Ok(stats)
+    }
+
+    fn vector_output(&self) -> Option<&dyn VectorOutput> {
+        Some(self)
+    }
+}
+
+impl VectorOutput for NaivePainter {
+    /// Writes the triangles of the last render of `scene` in paint order to
+    /// `path` as SVG, atomically: the vector output of a plain depth sort,
+    /// with its errors.
+    ///
+    /// Errors before any render, after a failed one, or when `scene` is
+    /// not the one last rendered (another size or triangle count).
+    fn write_svg(&self, scene: &ScreenScene, path: &Path, mode: ShadeMode) -> Result<()> {
+        LastFrame::check(self.last.as_ref(), Self::NAME, scene)?;
+        write_svg(scene, self.ordered_pieces(), path, mode, 0.0)
     }
 }

@@ -3,140 +3,139 @@
 
 use std::path::Path;
 
-use hider_scene::{Frame, Hider, Result, ScreenScene, ShadeMode, Stats, check_frame};
+use hider_scene::{Frame, Hider, Result, ScreenScene, ShadeMode, VectorOutput, check_frame};
 
 use crate::options::PainterOptions;
 use crate::order::Orderer;
 use crate::piece::Piece;
 use crate::raster::{NO_OWNER, paint, validate};
 use crate::stats::PainterStats;
-use crate::svg::write_svg;
+use crate::svg::{LastFrame, write_svg};
 
 /// The painter's algorithm done right: Newell, Newell & Sancha's ordering
 /// tests, moving polygons that must go first, and splitting polygons by
 /// each other's planes where no order exists (intersections, cyclic
 /// overlaps). Its raster output equals the z-buffer's on every pixel that
-/// is not a depth tie; its vector output ([`Painter::render_svg`]) is the
-/// ordered, split polygon list.
+/// is not a depth tie; its vector output ([`Hider::vector_output`]) is the
+/// ordered, split polygon list of the last frame.
 ///
 /// The piece arena and lists are kept between frames.
 #[derive(Clone, Debug, Default)]
 pub struct Painter {
     options: PainterOptions,
     orderer: Orderer,
+    /// Per pixel, the rank of the piece painted last (only with
+    /// [`PainterOptions::svg_drop_hidden`]).
     owner: Vec<u32>,
-    stats: PainterStats,
+    /// Per ranked piece, whether it owns a pixel (only with
+    /// [`PainterOptions::svg_drop_hidden`]).
+    visible: Vec<bool>,
+    /// The scene of the last successful render.
+    last: Option<LastFrame>,
 }
 
 impl Painter {
     /// The name under which it reports (`"painter"`).
     pub const NAME: &'static str = "painter";
 
-    /// A painter with the given options.
-    pub fn new(options: PainterOptions) -> Self {
+    /// The pieces of the last successful render in paint order: farthest
+    /// first, each painted over the ones before. Empty before the first
+    /// render and after a failed one.
+    pub fn ordered_pieces(&self) -> impl ExactSizeIterator<Item = &Piece> + '_ {
+        let n = if self.last.is_some() {
+            self.orderer.order.len()
+        } else {
+            0
+        };
+        self.orderer.order[..n]
+            .iter()
+            .map(|&id| &self.orderer.pieces[id as usize])
+    }
+
+    /// Marks the ranked pieces that own at least one pixel in `owner`.
+    fn mark_visible(&mut self) {
+        self.visible.clear();
+        self.visible.resize(self.orderer.order.len(), false);
+        for &rank in &self.owner {
+            if rank != NO_OWNER {
+                self.visible[rank as usize] = true;
+            }
+        }
+    }
+}
+
+impl Hider for Painter {
+    type Options = PainterOptions;
+    type Stats = PainterStats;
+
+    fn new(options: PainterOptions) -> Self {
         Self {
             options,
             ..Self::default()
         }
     }
 
-    /// The options.
-    pub fn options(&self) -> &PainterOptions {
+    fn options(&self) -> &PainterOptions {
         &self.options
     }
 
-    /// Orders the scene's triangles back to front, splitting where needed,
-    /// without painting. The result is [`Painter::ordered_pieces`].
-    ///
-    /// Errors when a triangle is not set up (non-finite depth plane, wrong
-    /// orientation) or the split budget runs out.
-    pub fn order(&mut self, scene: &ScreenScene) -> Result<PainterStats> {
-        validate(Self::NAME, scene)?;
-        let mut stats = PainterStats::default();
-        self.orderer.run(
-            scene,
-            (self.options.max_splits, self.options.max_bytes),
-            self.options.depth_epsilon,
-            &mut stats,
-        )?;
-        self.stats = stats;
-        Ok(stats)
-    }
-
-    /// The pieces of the last [`Painter::order`] (or render), in paint
-    /// order: farthest first, each to be painted over the ones before.
-    pub fn ordered_pieces(&self) -> impl ExactSizeIterator<Item = &Piece> + '_ {
-        self.orderer
-            .order
-            .iter()
-            .map(|&id| &self.orderer.pieces[id as usize])
-    }
-
-    /// Renders into `frame` and returns the typed counters.
-    pub fn render_with_stats(
-        &mut self,
-        scene: &ScreenScene,
-        frame: &mut Frame,
-    ) -> Result<PainterStats> {
-        check_frame(Self::NAME, scene, frame)?;
-        self.order(scene)?;
-        frame.clear();
-        self.stats.pixels_painted = paint(
-            scene,
-            &self.orderer.pieces,
-            &self.orderer.order,
-            frame,
-            None,
-        );
-        Ok(self.stats)
-    }
-
-    /// Orders the scene and writes the ordered, split polygon list to
-    /// `path` as SVG (one path per piece, farthest first, coloured with
-    /// `mode`), atomically. With [`PainterOptions::svg_drop_hidden`] the
-    /// scene is also rasterised and pieces owning no pixel are left out.
-    pub fn render_svg(
-        &mut self,
-        scene: &ScreenScene,
-        path: &Path,
-        mode: ShadeMode,
-    ) -> Result<Stats> {
-        self.order(scene)?;
-        let stroke = self.options.svg_seam_stroke;
-        if self.options.svg_drop_hidden {
-            let vp = scene.viewport;
-            let mut frame = Frame::new(vp.width, vp.height)?;
-            self.stats.pixels_painted = paint(
-                scene,
-                &self.orderer.pieces,
-                &self.orderer.order,
-                &mut frame,
-                Some(&mut self.owner),
-            );
-            let mut visible = vec![false; self.orderer.order.len()];
-            for &rank in &self.owner {
-                if rank != NO_OWNER {
-                    visible[rank as usize] = true;
-                }
-            }
-            let pieces = self
-                .ordered_pieces()
-                .zip(&visible)
-                .filter_map(|(p, &v)| v.then_some(p));
-            write_svg(scene, pieces, path, mode, stroke)?;
-        } else {
-            write_svg(scene, self.ordered_pieces(), path, mode, stroke)?;
-        }
-        Ok(self.stats.into())
-    }
-}
-
-impl Hider for Painter {
     fn name(&self) -> &str {
         Self::NAME
     }
 
-    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {
-        self.render_with_stats(scene, frame).map(Stats::from)
+    /// Orders the scene's triangles back to front, splitting where needed,
+    /// and paints the pieces into `frame`.
+    ///
+    /// Errors when the frame's size differs from the scene's, a triangle is
+    /// not set up (non-finite depth plane, wrong orientation), or the split
+    /// or memory budget runs out.
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<PainterStats> {
+        check_frame(Self::NAME, scene, frame)?;
+        self.last = None;
+        validate(Self::NAME, scene)?;
+        let mut stats = PainterStats::default();
+        self.orderer.run(scene, &self.options, &mut stats)?;
+        frame.clear();
+        let drop_hidden = self.options.svg_drop_hidden;
+        stats.pixels_painted = paint(
+            scene,
+            &self.orderer.pieces,
+            &self.orderer.order,
+            frame,
+            drop_hidden.then_some(&mut self.owner),
+        );
+        if drop_hidden {
+            self.mark_visible();
+        }
+        self.last = Some(LastFrame::of(scene));
+        Ok(stats)
+    }
+
+    fn vector_output(&self) -> Option<&dyn VectorOutput> {
+        Some(self)
+    }
+}
+
+impl VectorOutput for Painter {
+    /// Writes the ordered, split pieces of the last render of `scene` to
+    /// `path` as SVG (one path per piece, farthest first, coloured with
+    /// `mode`), atomically. With [`PainterOptions::svg_drop_hidden`] pieces
+    /// owning no pixel are left out; [`PainterOptions::svg_seam_stroke`]
+    /// strokes each path.
+    ///
+    /// Errors before any render, after a failed one, or when `scene` is
+    /// not the one last rendered (another size or triangle count).
+    fn write_svg(&self, scene: &ScreenScene, path: &Path, mode: ShadeMode) -> Result<()> {
+        LastFrame::check(self.last.as_ref(), Self::NAME, scene)?;
+        let stroke = self.options.svg_seam_stroke;
+        if self.options.svg_drop_hidden {
+            let pieces = self
+                .ordered_pieces()
+                .zip(&self.visible)
+                .filter_map(|(p, &v)| v.then_some(p));
+            write_svg(scene, pieces, path, mode, stroke)
+        } else {
+            write_svg(scene, self.ordered_pieces(), path, mode, stroke)
+        }
     }
 }

@@ -7,6 +7,7 @@
 //! source triangle's window-depth plane at the centre, as the z-buffer
 //! writes it, so the two frames can be compared value for value.
 
+use hider_geom::fixed::pixel_center;
 use hider_scene::{Error, Frame, Result, ScreenScene};
 
 use crate::newell::CUT_MARGIN;
@@ -54,9 +55,9 @@ pub(crate) fn paint(
         let ys = (py0 as u32).max(y0)..=(py1.min(f64::from(y1)) as u32).min(y1);
         let edges = tri.edges();
         for j in ys {
-            let y = i64::from(j) * 256 + 128;
+            let y = i64::from(pixel_center(j as i32));
             for i in xs.clone() {
-                let x = i64::from(i) * 256 + 128;
+                let x = i64::from(pixel_center(i as i32));
                 if !edges.iter().all(|e| e.contains(x, y)) {
                     continue;
                 }

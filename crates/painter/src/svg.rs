@@ -8,6 +8,10 @@
 //! reader can tell which surface each path belongs to. Translucent
 //! materials get `fill-opacity`, which back-to-front order composites
 //! correctly.
+//!
+//! Both painters keep the ordered pieces of their last render and write
+//! them through [`hider_scene::VectorOutput`]; [`LastFrame`] remembers
+//! which scene that was.
 
 use std::fmt::Write as _;
 use std::io::Write as _;
@@ -19,10 +23,48 @@ use hider_scene::{Error, Result, ScreenScene, ShadeMode};
 
 use crate::piece::Piece;
 
+/// What the vector output checks the scene it is given against: the size
+/// and counts of the scene last rendered, so that the pieces kept (indices
+/// into its triangles and primitives) are never read against another.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct LastFrame {
+    width: u32,
+    height: u32,
+    tris: usize,
+    prims: usize,
+}
+
+impl LastFrame {
+    /// The shape of `scene`.
+    pub fn of(scene: &ScreenScene) -> Self {
+        Self {
+            width: scene.viewport.width,
+            height: scene.viewport.height,
+            tris: scene.tris.len(),
+            prims: scene.prims.len(),
+        }
+    }
+
+    /// Errors unless a render succeeded (`last`) and `scene` has its shape.
+    pub fn check(last: Option<&Self>, hider: &str, scene: &ScreenScene) -> Result<()> {
+        let message = match last {
+            None => "no vector output: render a frame successfully before writing SVG",
+            Some(last) if *last != Self::of(scene) => {
+                "the scene given for the SVG is not the one last rendered"
+            }
+            Some(_) => return Ok(()),
+        };
+        Err(Error::Render {
+            hider: hider.to_owned(),
+            message: message.to_owned(),
+        })
+    }
+}
+
 /// The SVG document for `pieces` (in paint order, farthest first) over
 /// the scene's viewport. Pieces entirely outside the image are left out.
 /// `seam_stroke` > 0 strokes each path with its fill colour at that width.
-pub fn svg_document<'a>(
+pub(crate) fn svg_document<'a>(
     scene: &ScreenScene,
     pieces: impl IntoIterator<Item = &'a Piece>,
     mode: ShadeMode,
@@ -87,7 +129,7 @@ pub fn svg_document<'a>(
 
 /// Writes [`svg_document`] to `path` atomically (a temporary file renamed
 /// into place), so a failed run never leaves a partial SVG.
-pub fn write_svg<'a>(
+pub(crate) fn write_svg<'a>(
     scene: &ScreenScene,
     pieces: impl IntoIterator<Item = &'a Piece>,
     path: &Path,

@@ -1,0 +1,139 @@
+//! The sort key of the unpainted list and a screen-space bin grid over it.
+//!
+//! The ordering stage keeps its unpainted pieces sorted by farthest depth
+//! ([`Key`]). A candidate is compared only with the pieces whose depth
+//! extent overlaps its own, and past the first few of those only with the
+//! ones whose bounding box can meet its own: the [`Grid`] lists, per
+//! screen bin and in key order, the pieces whose box meets that bin.
+
+use crate::newell::Extent;
+
+/// Position of a piece in the sorted list: its farthest depth (as an
+/// order-preserving bit pattern), then a tie-break. Initial pieces of equal
+/// depth put the higher triangle index first (so the lower one is painted
+/// first); every later insertion gets a tie-break below all earlier ones,
+/// which places it before the entries of equal depth, as an insertion at
+/// the partition point of a sorted vector would.
+pub(crate) type Key = (u64, i64);
+
+/// The bit pattern of `z` as an unsigned integer in the order of
+/// [`f64::total_cmp`].
+pub(crate) fn depth_bits(z: f64) -> u64 {
+    let b = z.to_bits();
+    if b >> 63 == 1 { !b } else { b | (1 << 63) }
+}
+
+/// Largest number of bins along a side of the grid.
+const MAX_BINS: usize = 256;
+
+/// A screen-space bin grid over the sorted pieces: each bin lists, sorted
+/// by [`Key`], the sorted pieces whose bounding box meets it.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Grid {
+    /// Bins per row.
+    pub cols: usize,
+    /// Bins per column.
+    rows: usize,
+    /// Bins per pixel.
+    scale: f64,
+    /// The bins, row-major.
+    pub bins: Vec<Vec<BinEntry>>,
+}
+
+/// A piece in a bin, with what the query needs kept inline so that bins
+/// are scanned without touching the arena or the extent table.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BinEntry {
+    /// The piece's key in the sorted list.
+    pub key: Key,
+    /// The piece's extents.
+    pub extent: Extent,
+    /// The piece's index in the arena.
+    pub id: u32,
+    /// The first bin (column, row) of the piece, to report it once.
+    pub first: (u16, u16),
+}
+
+impl Grid {
+    /// Empties the grid and sizes it for `width` x `height` pixels with
+    /// bins about `side` pixels wide.
+    pub fn reset(&mut self, width: u32, height: u32, side: f64) {
+        let side = if side.is_finite() { side.max(1.0) } else { 1.0 };
+        let extent = f64::from(width.max(height).max(1));
+        let n = ((extent / side).ceil() as usize).clamp(1, MAX_BINS);
+        self.scale = n as f64 / extent;
+        self.cols = ((f64::from(width) * self.scale).ceil() as usize).clamp(1, n);
+        self.rows = ((f64::from(height) * self.scale).ceil() as usize).clamp(1, n);
+        for b in &mut self.bins {
+            b.clear();
+        }
+        self.bins.resize_with(self.cols * self.rows, Vec::new);
+    }
+
+    /// The bins a box meets: columns and rows, inclusive. Clamping keeps
+    /// it a superset: boxes whose bin ranges are disjoint are disjoint.
+    pub fn span(&self, e: &Extent) -> (usize, usize, usize, usize) {
+        let at =
+            |v: f64, n: usize| ((v * self.scale).floor() as i64).clamp(0, n as i64 - 1) as usize;
+        (
+            at(e.min.x, self.cols),
+            at(e.max.x, self.cols),
+            at(e.min.y, self.rows),
+            at(e.max.y, self.rows),
+        )
+    }
+
+    /// Lists piece `id` under `key` in every bin its box `e` meets.
+    pub fn insert(&mut self, key: Key, id: u32, e: &Extent) {
+        let (x0, x1, y0, y1) = self.span(e);
+        let entry = BinEntry {
+            key,
+            extent: *e,
+            id,
+            first: (x0 as u16, y0 as u16),
+        };
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let bin = &mut self.bins[y * self.cols + x];
+                let at = bin.partition_point(|b| b.key < key);
+                bin.insert(at, entry);
+            }
+        }
+    }
+
+    /// Removes the piece listed under `key` with box `e`.
+    pub fn remove(&mut self, key: Key, e: &Extent) {
+        let (x0, x1, y0, y1) = self.span(e);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let bin = &mut self.bins[y * self.cols + x];
+                if let Ok(at) = bin.binary_search_by(|b| b.key.cmp(&key)) {
+                    bin.remove(at);
+                }
+            }
+        }
+    }
+
+    /// Bytes held (capacity).
+    pub fn bytes(&self) -> usize {
+        self.bins.capacity() * std::mem::size_of::<Vec<BinEntry>>()
+            + self
+                .bins
+                .iter()
+                .map(|b| b.capacity() * std::mem::size_of::<BinEntry>())
+                .sum::<usize>()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn depth_bits_follow_the_total_order() {
+        let zs = [-1.5, -0.0, 0.0, 1e-300, 0.25, 0.5, 1.0, f64::INFINITY];
+        for w in zs.windows(2) {
+            assert!(depth_bits(w[0]) < depth_bits(w[1]), "{w:?}");
+        }
+    }
+}

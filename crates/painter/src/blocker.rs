@@ -1,0 +1,191 @@
+//! Finding the blocker: the first polygon Q that the candidate P may not
+//! be painted before.
+//!
+//! The moved pieces are out of depth order and are all compared. The sorted
+//! pieces are scanned from the farthest only while their depth extents
+//! overlap P's (test 1 settles the rest of the list at once). The first
+//! [`LINEAR_SCAN`] of that run are compared one by one; for the rest, the
+//! bin grid yields only the entries whose bounding boxes can meet P's, in
+//! the same order, so the blocker found is the same as with a full scan.
+
+use crate::bins::Key;
+use crate::newell::{Blocked, Decided, Extent, Outcome, extents_decide, may_precede_by_planes};
+use crate::order::{At, Orderer, Slot};
+use crate::piece::Piece;
+use crate::stats::PainterStats;
+
+/// How many entries of the depth-overlapping run are compared one by one
+/// before the bin grid is used for the rest. Closed meshes rarely get
+/// past it; soups do, and there the grid skips every entry whose screen
+/// box cannot meet the candidate's.
+pub(crate) const LINEAR_SCAN: usize = 8;
+
+/// What the one-by-one part of the sorted scan found.
+enum Linear {
+    /// A blocker.
+    Found(At, Blocked),
+    /// Test 1 settles the rest of the list: no blocker.
+    Settled,
+    /// The prefix passed; the rest of the run starts at this key and
+    /// nearer.
+    Rest(Key),
+}
+
+impl Orderer {
+    /// The first polygon that P (at `cslot`) may not be painted before, if
+    /// any: the moved pieces from the top of the stack, then the sorted
+    /// pieces from the farthest, as long as their depth extents overlap
+    /// P's.
+    pub(crate) fn find_blocker(
+        &mut self,
+        cslot: Slot,
+        p: u32,
+        eps: f64,
+        stats: &mut PainterStats,
+    ) -> Option<(Slot, u32, Blocked)> {
+        let pp = &self.pieces[p as usize];
+        let pe = self.extents[p as usize];
+        // Moved pieces are out of depth order: compare with all of them.
+        for (k, &q) in self.front.iter().enumerate().rev() {
+            if Slot::Front(k) == cslot {
+                continue;
+            }
+            let (qq, qe) = (&self.pieces[q as usize], &self.extents[q as usize]);
+            if let Some(b) = test_pair((pp, &pe), (qq, qe), eps, stats) {
+                return Some((Slot::Front(k), q, b));
+            }
+        }
+        match self.scan_linear(cslot, p, eps, stats) {
+            Linear::Found((slot, q), b) => Some((slot, q, b)),
+            Linear::Settled => None,
+            Linear::Rest(upper) => self.scan_bins(cslot, p, upper, eps, stats),
+        }
+    }
+
+    /// The first entries of the sorted list one by one, farthest first.
+    fn scan_linear(&self, cslot: Slot, p: u32, eps: f64, stats: &mut PainterStats) -> Linear {
+        let pp = &self.pieces[p as usize];
+        let pe = self.extents[p as usize];
+        let limit = pe.zmin + eps;
+        let mut scanned = 0;
+        for (&key, &q) in self.sorted.iter().rev() {
+            if Slot::Sorted(key) == cslot {
+                continue;
+            }
+            let qe = &self.extents[q as usize];
+            if qe.zmax <= limit {
+                // Test 1 for this entry and everything nearer.
+                stats.decided_depth += 1;
+                return Linear::Settled;
+            }
+            if scanned == self.linear_scan.unwrap_or(LINEAR_SCAN) {
+                return Linear::Rest(key);
+            }
+            scanned += 1;
+            if let Some(b) = test_pair((pp, &pe), (&self.pieces[q as usize], qe), eps, stats) {
+                return Linear::Found((Slot::Sorted(key), q), b);
+            }
+        }
+        // The whole list passed one by one: no blocker, nothing counted.
+        Linear::Settled
+    }
+
+    /// The rest of the depth-overlapping run (keys up to `upper`), through
+    /// the bins P's box meets: an entry in no such bin has a box disjoint
+    /// from P's, which tests 2-3 settle. Visited in the same order
+    /// (farthest first), so the blocker found is the one the full scan
+    /// would find.
+    fn scan_bins(
+        &mut self,
+        cslot: Slot,
+        p: u32,
+        upper: Key,
+        eps: f64,
+        stats: &mut PainterStats,
+    ) -> Option<(Slot, u32, Blocked)> {
+        let pe = self.extents[p as usize];
+        let limit = pe.zmin + eps;
+        let mut near = std::mem::take(&mut self.near);
+        near.clear();
+        let (x0, x1, y0, y1) = self.grid.span(&pe);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let bin = &self.grid.bins[y * self.grid.cols + x];
+                let end = bin.partition_point(|b| b.key <= upper);
+                for b in bin[..end].iter().rev() {
+                    let qe = &b.extent;
+                    if qe.zmax <= limit {
+                        break;
+                    }
+                    // Each entry once: from the first bin both boxes meet.
+                    if x != x0.max(usize::from(b.first.0)) || y != y0.max(usize::from(b.first.1)) {
+                        continue;
+                    }
+                    // Tests 1-3 never block, so only the rest need the
+                    // ordered pass below.
+                    match extents_decide(&pe, qe, eps) {
+                        Some(d) => {
+                            stats.comparisons += 1;
+                            match d {
+                                Decided::Depth => stats.decided_depth += 1,
+                                Decided::X => stats.decided_x += 1,
+                                _ => stats.decided_y += 1,
+                            }
+                        }
+                        None => near.push((b.key, b.id)),
+                    }
+                }
+            }
+        }
+        near.sort_unstable_by_key(|e| std::cmp::Reverse(e.0));
+        let pp = &self.pieces[p as usize];
+        let mut found = None;
+        for &(key, q) in &near {
+            if Slot::Sorted(key) == cslot {
+                continue;
+            }
+            let (qq, qe) = (&self.pieces[q as usize], &self.extents[q as usize]);
+            if let Some(b) = test_pair((pp, &pe), (qq, qe), eps, stats) {
+                found = Some((Slot::Sorted(key), q, b));
+                break;
+            }
+        }
+        if found.is_none() {
+            stats.decided_depth += 1;
+        }
+        self.near = near;
+        found
+    }
+}
+
+/// Tests 1 to 6 on the pair (P, Q), counting the comparison and the test
+/// that settled it; the blocked outcome when none did.
+fn test_pair(
+    (pp, pe): (&Piece, &Extent),
+    (qq, qe): (&Piece, &Extent),
+    eps: f64,
+    stats: &mut PainterStats,
+) -> Option<Blocked> {
+    stats.comparisons += 1;
+    let outcome = match extents_decide(pe, qe, eps) {
+        Some(d) => Outcome::Ok(d),
+        None => may_precede_by_planes(pp, qq, eps),
+    };
+    match outcome {
+        Outcome::Ok(d) => {
+            *match d {
+                Decided::Depth => &mut stats.decided_depth,
+                Decided::X => &mut stats.decided_x,
+                Decided::Y => &mut stats.decided_y,
+                Decided::PBehind => &mut stats.decided_p_behind,
+                Decided::QInFront => &mut stats.decided_q_in_front,
+                Decided::Projection => &mut stats.decided_projection,
+            } += 1;
+            None
+        }
+        Outcome::Blocked(b) => {
+            stats.blocked += 1;
+            Some(b)
+        }
+    }
+}
