@@ -1,5 +1,6 @@
-//! `hider bench`: the command line of the benchmark (the facade binary
-//! dispatches its `bench` subcommand here).
+//! `hider bench`: the command line of the benchmark, run by the
+//! `hider-bench` binary and by the `hider` command's `bench` subcommand
+//! (both take the same arguments).
 //!
 //! - `hider bench [OPTIONS]` runs the matrix and writes `results.csv`,
 //!   `results.json`, `report.md` and the plots into `--out` (default
@@ -15,10 +16,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
+use hider_plan::registry;
 
 use crate::matrix::{MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{Results, SCHEMA_VERSION, read_results, write_results};
-use crate::registry;
 use crate::report::{terminal_table, write_report};
 use crate::run::{RunOptions, run};
 use crate::timing::TimingOptions;
@@ -228,9 +229,14 @@ fn install_ctrlc() {
     });
 }
 
-/// The command line as typed, for the report (`hider bench ...`).
+/// The command line as typed, for the report, spelled `hider bench ...`
+/// whether the facade's `bench` subcommand or the `hider-bench` binary
+/// (which takes the same arguments) ran it.
 fn command_line() -> String {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    if args.first().map(String::as_str) != Some("bench") {
+        args.insert(0, "bench".to_owned());
+    }
     format!("hider {}", args.join(" "))
 }
 

@@ -186,8 +186,8 @@ pub fn write_contact_sheet(
 mod tests {
     use super::*;
     use hider_oracle::RayCastOracle;
-    use hider_scene::{Hider, PrepareOptions, View, prepare};
-    use hider_zbuffer::{DepthSource, ZBuffer, ZBufferOptions};
+    use hider_plan::registry;
+    use hider_scene::{PrepareOptions, View, prepare};
 
     #[test]
     fn wrong_pixels_are_painted_and_tiles_laid_out() {
@@ -196,8 +196,8 @@ mod tests {
         let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
         let reference = RayCastOracle::new().evaluate(&screen);
         let mut sheet = ContactSheet::default();
-        for source in [DepthSource::WindowZ, DepthSource::LinearViewZ] {
-            let mut z = ZBuffer::new(ZBufferOptions::default().with_depth_source(source));
+        for name in ["zbuffer", "zbuffer-linear-z"] {
+            let mut z = registry::by_name(name).unwrap().make();
             let mut f = Frame::new(32, 32).unwrap();
             z.render(&screen, &mut f).unwrap();
             shade_frame(&screen, &mut f, ShadeMode::Lambert);

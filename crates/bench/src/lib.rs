@@ -1,31 +1,34 @@
 //! hider-bench: the comparative benchmark of the hider workspace — what
-//! accuracy costs in time — and the [`registry`] of every hider.
+//! accuracy costs in time.
 //!
 //! The benchmark runs a *matrix* ([`matrix`]) of scenes (the bundled
-//! assets, the hard-case generators, any OBJ the user names, and generated
-//! scaling families, [`scenes`]) at several resolutions through every hider
-//! the registry lists (each entry is one algorithm with one set of
-//! options). Per scene and resolution it prepares the scene once, evaluates
-//! the exact oracle once ([`run`]), and for every hider:
+//! assets, the hard-case scenes of `hider-testkit`, any OBJ the user
+//! names, and generated scaling families, [`scenes`]) at several
+//! resolutions through every hider the registry of `hider-plan` lists
+//! (each entry is one algorithm with one set of options). Per scene and
+//! resolution it prepares the scene once, evaluates the exact oracle once
+//! ([`run`]), and for every hider:
 //! - times the render ([`timing`]: warm-up, repeated runs, median and
 //!   min-max, separate from load and prepare time, with the machine
 //!   recorded);
 //! - scores it ([`accuracy`]): wrong ids on non-tie pixels, ties, depth
 //!   error against the ray-cast oracle; coverage error against analytic
-//!   coverage for multi-sample hiders; peak memory from its `Stats`.
+//!   coverage for multi-sample hiders; peak memory from its stats table.
 //!
 //! Rows go to `results.csv` as they finish and to `results.json`
 //! ([`record`]); [`report`] turns them into a terminal table, a Markdown
 //! report and plots ([`plots`]: time vs error with the Pareto front, time
 //! vs triangles, resolution and depth complexity, with fitted growth
 //! exponents, [`scaling`]); [`contact`] draws each hard case's renders with
-//! their wrong pixels. [`cli`] is the `hider bench` command.
+//! their wrong pixels. [`cli`] is the command line, run by the
+//! `hider-bench` binary and by `hider bench`.
 //!
 //! # Example
 //!
 //! A tiny matrix: the hard case of triangles crossing the near plane, at
 //! 32 x 32, through two z-buffers; the exact one agrees with the oracle,
-//! the one interpolating camera depth linearly (the seed's error) does not.
+//! the one interpolating camera depth linearly (the error scratchapixel's
+//! depth-buffer lesson warns of) does not.
 //!
 //! ```
 //! use std::sync::atomic::AtomicBool;
@@ -61,7 +64,6 @@ pub mod contact;
 pub mod matrix;
 pub mod plots;
 pub mod record;
-pub mod registry;
 pub mod report;
 pub mod run;
 pub mod scaling;

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 
-use crate::registry::{self, Entry};
+use hider_plan::registry::{self, Entry};
 use crate::scenes::{self, Group, Source};
 
 /// The study a case belongs to.
@@ -230,85 +230,33 @@ pub fn select_hiders(options: &MatrixOptions) -> Result<Vec<Entry>> {
 /// size) so that shards of the same matrix agree on indices.
 pub fn build_cases(options: &MatrixOptions) -> Result<Vec<Case>> {
     let mut all = Vec::new();
-    let mut push = |study, scene: String, group, source: Source, w, h| {
-        all.push(Case {
-            study,
-            scene,
-            group,
-            source,
-            width: w,
-            height: h,
-        });
-    };
     for &study in &options.studies {
+        let s = options.scaling_size;
         match study {
             Study::Accuracy => {
-                let mut scenes: Vec<(String, Group, Source)> = Vec::new();
-                // Files keep their extension in the name (`cube.obj`), so
-                // they never clash with a generator of the same name.
-                for (name, path) in scenes::bundled_assets(&options.assets_dir) {
-                    scenes.push((format!("{name}.obj"), Group::Asset, Source::Obj(path)));
-                }
-                for name in scenes::hard_case_names() {
-                    scenes.push((name.into(), Group::HardCase, Source::HardCase(name.into())));
-                }
-                for path in &options.objs {
-                    let name = path.file_name().map_or_else(
-                        || path.display().to_string(),
-                        |s| s.to_string_lossy().into(),
-                    );
-                    scenes.push((name, Group::Obj, Source::Obj(path.clone())));
-                }
-                for (name, scene) in &options.extra_scenes {
-                    scenes.push((
-                        name.clone(),
-                        Group::Obj,
-                        Source::Scene(Box::new(scene.clone())),
-                    ));
-                }
-                for (name, group, source) in scenes {
+                for (name, group, source) in accuracy_scenes(options) {
                     for &s in &options.sizes {
-                        push(study, name.clone(), group, source.clone(), s, s);
+                        all.push(square(study, name.clone(), group, source.clone(), s));
                     }
                 }
             }
             Study::Polygons => {
                 for &n in &options.polygon_steps {
-                    let s = options.scaling_size;
-                    push(
-                        study,
-                        format!("sphere_{n}"),
-                        Group::Scaling,
-                        Source::Sphere(n),
-                        s,
-                        s,
-                    );
+                    let scene = format!("sphere_{n}");
+                    all.push(square(study, scene, Group::Scaling, Source::Sphere(n), s));
                 }
             }
             Study::Resolution => {
                 let n = options.resolution_sphere;
                 for &s in &options.resolution_steps {
-                    push(
-                        study,
-                        format!("sphere_{n}"),
-                        Group::Scaling,
-                        Source::Sphere(n),
-                        s,
-                        s,
-                    );
+                    let scene = format!("sphere_{n}");
+                    all.push(square(study, scene, Group::Scaling, Source::Sphere(n), s));
                 }
             }
             Study::DepthComplexity => {
                 for &k in &options.depth_steps {
-                    let s = options.scaling_size;
-                    push(
-                        study,
-                        format!("layers_{k}"),
-                        Group::Scaling,
-                        Source::Layers(k),
-                        s,
-                        s,
-                    );
+                    let scene = format!("layers_{k}");
+                    all.push(square(study, scene, Group::Scaling, Source::Layers(k), s));
                 }
             }
         }
@@ -332,6 +280,48 @@ pub fn build_cases(options: &MatrixOptions) -> Result<Vec<Case>> {
         hider_scene::view::check_image_size(c.width, c.height)?;
     }
     Ok(cases)
+}
+
+/// A case of `size` x `size` pixels.
+fn square(study: Study, scene: String, group: Group, source: Source, size: u32) -> Case {
+    Case {
+        study,
+        scene,
+        group,
+        source,
+        width: size,
+        height: size,
+    }
+}
+
+/// The scenes of the accuracy study, as `(name, group, source)`: bundled
+/// assets, hard cases, the user's OBJ files, then the scenes built in
+/// memory.
+fn accuracy_scenes(options: &MatrixOptions) -> Vec<(String, Group, Source)> {
+    let mut scenes: Vec<(String, Group, Source)> = Vec::new();
+    // Files keep their extension in the name (`cube.obj`), so they never
+    // clash with a generator of the same name.
+    for (name, path) in scenes::bundled_assets(&options.assets_dir) {
+        scenes.push((format!("{name}.obj"), Group::Asset, Source::Obj(path)));
+    }
+    for name in scenes::hard_case_names() {
+        scenes.push((name.into(), Group::HardCase, Source::HardCase(name.into())));
+    }
+    for path in &options.objs {
+        let name = path.file_name().map_or_else(
+            || path.display().to_string(),
+            |s| s.to_string_lossy().into(),
+        );
+        scenes.push((name, Group::Obj, Source::Obj(path.clone())));
+    }
+    for (name, scene) in &options.extra_scenes {
+        scenes.push((
+            name.clone(),
+            Group::Obj,
+            Source::Scene(Box::new(scene.clone())),
+        ));
+    }
+    scenes
 }
 
 /// One part of a sweep split across machines: shard `index` (1-based) of

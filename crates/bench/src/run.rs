@@ -11,7 +11,10 @@ use anyhow::{Context, Result};
 use hider_oracle::{
     CoverageReference, DEFAULT_TIE_TOLERANCE, RayCastOracle, Reference, analytic_coverage,
 };
-use hider_scene::{Frame, PrepareOptions, ScreenScene, ShadeMode, View, prepare, shade_frame};
+use hider_plan::registry::{Entry, Kind};
+use hider_scene::{
+    DynHider, Frame, PrepareOptions, ScreenScene, ShadeMode, StatsTable, View, prepare, shade_frame,
+};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::accuracy::{score_coverage, score_ids};
@@ -19,7 +22,6 @@ use crate::analysis::{SceneAnalysis, analyse};
 use crate::contact::{ContactSheet, write_contact_sheet};
 use crate::matrix::{Case, MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{CsvSink, Results, Row, SCHEMA_VERSION};
-use crate::registry::{Entry, Kind};
 use crate::scenes::Group;
 use crate::timing::{Machine, Summary, TimingOptions, measure};
 
@@ -160,32 +162,11 @@ fn run_job(
             return;
         }
     }
-    let mut hider = (entry.make)();
-    let timed = catch_unwind(AssertUnwindSafe(|| {
-        let mut last = None;
-        let summary = measure(&options.timing, &|| stop.load(Ordering::Relaxed), || {
-            last = Some(hider.render(&p.screen, frame)?);
-            Ok::<(), hider_scene::Error>(())
-        });
-        summary.map(|s| (s, last))
-    }));
-    let (summary, stats) = match timed {
-        Ok(Ok((s, Some(stats)))) => (s, stats),
-        Ok(Ok((_, None))) => {
-            row.status = "skipped: interrupted".into();
-            return;
-        }
-        Ok(Err(e)) => {
-            row.status = format!("error: {e}");
-            return;
-        }
-        Err(panic) => {
-            let msg = panic
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| panic.downcast_ref::<&str>().map(|s| (*s).to_owned()))
-                .unwrap_or_else(|| "unknown".into());
-            row.status = format!("error: panicked: {msg}");
+    let mut hider = entry.make();
+    let (summary, stats) = match time_render(hider.as_mut(), p, options, stop, frame) {
+        Ok(done) => done,
+        Err(status) => {
+            row.status = status;
             return;
         }
     };
@@ -205,7 +186,46 @@ fn run_job(
     if !hider.resolves_color() {
         shade_frame(&p.screen, frame, ShadeMode::Lambert);
     }
-    match (&p.oracle, entry.kind) {
+    score(entry.kind, p, options, row, frame);
+}
+
+/// Renders with warm-up and repeats, catching errors and panics: the
+/// timing and the stats of the last render, or the row's status saying
+/// why there are none.
+fn time_render(
+    hider: &mut dyn DynHider,
+    p: &Prepared,
+    options: &RunOptions,
+    stop: &AtomicBool,
+    frame: &mut Frame,
+) -> std::result::Result<(Summary, StatsTable), String> {
+    let timed = catch_unwind(AssertUnwindSafe(|| {
+        let mut last = None;
+        let summary = measure(&options.timing, &|| stop.load(Ordering::Relaxed), || {
+            last = Some(hider.render(&p.screen, frame)?);
+            Ok::<(), hider_scene::Error>(())
+        });
+        summary.map(|s| (s, last))
+    }));
+    match timed {
+        Ok(Ok((s, Some(stats)))) => Ok((s, stats)),
+        Ok(Ok((_, None))) => Err("skipped: interrupted".into()),
+        Ok(Err(e)) => Err(format!("error: {e}")),
+        Err(panic) => {
+            let msg = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| (*s).to_owned()))
+                .unwrap_or_else(|| "unknown".into());
+            Err(format!("error: panicked: {msg}"))
+        }
+    }
+}
+
+/// Scores the frame against the case's references: ids and depth against
+/// the oracle, and coverage for multi-sample hiders.
+fn score(kind: Kind, p: &Prepared, options: &RunOptions, row: &mut Row, frame: &Frame) {
+    match (&p.oracle, kind) {
         (Err(reason), _) => row.accuracy = reason.clone(),
         (Ok(_), Kind::Reference) => row.accuracy = "reference".into(),
         (Ok(reference), kind) => {
@@ -233,6 +253,21 @@ fn run_job(
     }
 }
 
+/// A progress bar of `len` jobs, drawn on the terminal when `visible`.
+fn progress_bar(len: u64, visible: bool) -> ProgressBar {
+    let bar = if visible {
+        ProgressBar::new(len)
+    } else {
+        ProgressBar::with_draw_target(Some(len), ProgressDrawTarget::hidden())
+    };
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg} (eta {eta})")
+            .expect("a valid template")
+            .progress_chars("=> "),
+    );
+    bar
+}
+
 /// What a run produced.
 #[derive(Debug)]
 pub struct RunOutput {
@@ -258,19 +293,7 @@ pub fn run(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<Run
     let mut sink = CsvSink::create(&options.out_dir.join("results.csv"))?;
     let machine = Machine::detect();
     let need_coverage = hiders.iter().any(|e| e.kind == Kind::MultiSample);
-    let bar = if options.progress {
-        ProgressBar::new((cases.len() * hiders.len()) as u64)
-    } else {
-        ProgressBar::with_draw_target(
-            Some((cases.len() * hiders.len()) as u64),
-            ProgressDrawTarget::hidden(),
-        )
-    };
-    bar.set_style(
-        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg} (eta {eta})")
-            .expect("a valid template")
-            .progress_chars("=> "),
-    );
+    let bar = progress_bar((cases.len() * hiders.len()) as u64, options.progress);
     let mut rows = Vec::new();
     let mut contact_sheets = Vec::new();
     let mut complete = true;

@@ -150,8 +150,9 @@ pub fn layers(k: u32) -> Scene {
 /// interpolated camera depth at any resolution: one recedes steeply (its
 /// linearly interpolated depth lags behind the true `1/w`-correct one in
 /// its interior), the other faces the camera (no interpolation error), and
-/// they cross in the middle of the first. The smallest scene on which the
-/// seed's linear-depth error shows.
+/// they cross in the middle of the first. The smallest scene on which
+/// interpolating camera depth linearly (the error scratchapixel's
+/// depth-buffer lesson warns of) shows.
 pub fn linear_depth_probe() -> Scene {
     let mut scene = Scene::default();
     scene.push_mesh(

@@ -9,11 +9,11 @@ use std::sync::atomic::AtomicBool;
 use hider_bench::cli::merge;
 use hider_bench::matrix::{MatrixOptions, Shard, Study};
 use hider_bench::record::{COLUMNS, parse_csv, read_results, write_results};
-use hider_bench::registry;
 use hider_bench::report::write_report;
 use hider_bench::run::{RunOptions, run};
 use hider_bench::scenes::linear_depth_probe;
 use hider_bench::timing::TimingOptions;
+use hider_plan::registry;
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("hider-bench-e2e-{name}-{}", std::process::id()));

@@ -1,0 +1,50 @@
+//! The `hider-bench` binary: the benchmark's command line, taking exactly
+//! the arguments of `hider bench` (see [`hider_bench::cli`]).
+//!
+//! ```sh
+//! cargo run --release -p hider-bench                 # default matrix -> bench-out/
+//! cargo run --release -p hider-bench -- --docs docs  # report -> docs/report.md
+//! cargo run --release -p hider-bench -- --quick      # smoke test (seconds)
+//! ```
+
+use std::process::ExitCode;
+
+use clap::Parser;
+use hider_bench::BenchArgs;
+
+/// Benchmark every registered hider: accuracy against the oracle beside
+/// time; writes a table, results.csv/json, a report and plots.
+#[derive(Parser, Debug)]
+#[command(name = "hider-bench", version, about)]
+struct Cli {
+    #[command(flatten)]
+    args: BenchArgs,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            // Usage errors: clap's message, exit status 2; help and version
+            // print normally with status 0.
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match hider_bench::run_command(&cli.args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // One line: the context chain joined; causes that already end
+            // their parent's message are not repeated.
+            let mut chain: Vec<String> = Vec::new();
+            for cause in e.chain().map(|c| c.to_string()) {
+                if !chain.last().is_some_and(|prev| prev.ends_with(&cause)) {
+                    chain.push(cause);
+                }
+            }
+            eprintln!("hider-bench: error: {}", chain.join(": "));
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,55 @@
+//! The outputs people read: the terminal table, the plots and the Markdown
+//! report (`docs/report.md`), all generated from [`Results`] alone, so a
+//! merged set of shards gives the same report as one run.
+//!
+//! One file per part: [`terminal_table`] and [`exponent_table`] for the
+//! terminal, [`write_plots`] for the figures, and [`markdown`], which
+//! assembles the report from its sections (header, summary per hider,
+//! tables per scene, scaling, contact sheets and problems).
+
+mod figures;
+mod format;
+mod markdown;
+mod options;
+mod rows;
+mod scaling_tables;
+mod scene_tables;
+mod summary;
+mod terminal;
+
+use std::path::Path;
+
+use anyhow::Result;
+
+use crate::record::{Results, write_text_atomic};
+
+pub use figures::write_plots;
+pub use markdown::markdown;
+pub use options::ReportOptions;
+pub use rows::hider_order;
+pub use terminal::{exponent_table, terminal_table};
+
+/// Writes the plots into `image_dir` and the report to `report_path`.
+pub fn write_report(
+    results: &Results,
+    report_path: &Path,
+    image_dir: &Path,
+    command: &str,
+) -> Result<()> {
+    write_plots(results, image_dir)?;
+    let report_dir = report_path.parent().unwrap_or(Path::new(""));
+    let prefix = match image_dir.strip_prefix(report_dir) {
+        Ok(rel) if rel.as_os_str().is_empty() => String::new(),
+        Ok(rel) => format!("{}/", rel.display()),
+        Err(_) => format!("{}/", image_dir.display()),
+    };
+    let md = markdown(
+        results,
+        &ReportOptions {
+            image_prefix: prefix,
+            image_dir: image_dir.to_path_buf(),
+            command: command.to_owned(),
+        },
+    );
+    write_text_atomic(report_path, &md)
+}

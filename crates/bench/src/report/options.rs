@@ -1,0 +1,27 @@
+//! What the Markdown report needs besides the results: where its images
+//! are and how to link them, and the command that made it.
+
+use std::path::PathBuf;
+
+/// Options of [`markdown`](super::markdown()).
+#[derive(Clone, Debug, Default)]
+pub struct ReportOptions {
+    /// How the report's images are linked from the report (`images/`).
+    pub image_prefix: String,
+    /// Folder holding the images, to link only those that exist.
+    pub image_dir: PathBuf,
+    /// The command that regenerates the report, quoted at the top.
+    pub command: String,
+}
+
+impl ReportOptions {
+    /// The link to image `STEM.EXT`, or `None` when the image folder does
+    /// not hold it (a plot that was not drawn is not linked).
+    pub fn image_link(&self, stem: &str, ext: &str) -> Option<String> {
+        let file = format!("{stem}.{ext}");
+        self.image_dir
+            .join(&file)
+            .is_file()
+            .then(|| format!("{}{file}", self.image_prefix))
+    }
+}
