@@ -21,7 +21,7 @@
 //! | [`heavy_overdraw`], `procedural::random_soup` | many layers per pixel, random interpenetration |
 
 use glam::{DQuat, DVec3};
-use hider_geom::{Camera, Projection};
+use hider_geom::Camera;
 
 use crate::model::{Material, Mesh, Scene};
 use crate::procedural::{self, SplitMix64};
@@ -59,16 +59,7 @@ fn colour(k: u32) -> [f32; 3] {
 /// A perspective camera (60 degree field of view) looking from `eye` at
 /// `target` with +Y up.
 pub fn look_at(eye: DVec3, target: DVec3, near: f64, far: f64) -> Camera {
-    Camera {
-        eye,
-        target,
-        up: DVec3::Y,
-        projection: Projection::Perspective {
-            fovy_degrees: 60.0,
-            near,
-            far,
-        },
-    }
+    Camera::perspective(eye, target, near, far)
 }
 
 fn random_unit(rng: &mut SplitMix64) -> DVec3 {
@@ -603,6 +594,7 @@ pub fn closed_meshes(seed: u64) -> Vec<(&'static str, Scene, bool)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use hider_geom::Projection;
     use std::collections::HashMap;
 
     #[test]

@@ -608,6 +608,7 @@ mod tests {
     use super::*;
     use crate::model::Mesh;
     use hider_geom::Projection;
+    use hider_geom::fixed::pixel_center;
 
     fn camera() -> Camera {
         Camera {
@@ -764,7 +765,10 @@ mod tests {
         let mut inside = 0;
         for j in 0..64 {
             for i in 0..64 {
-                let (px, py) = (i64::from(i) * 256 + 128, i64::from(j) * 256 + 128);
+                let (px, py) = (
+                    i64::from(pixel_center(i as i32)),
+                    i64::from(pixel_center(j as i32)),
+                );
                 if edges.iter().all(|e| e.contains(px, py)) {
                     inside += 1;
                     assert!((x0..=x1).contains(&i) && (y0..=y1).contains(&j));
