@@ -48,6 +48,7 @@ pub mod obj_write;
 pub mod prepare;
 pub mod procedural;
 pub mod shade;
+pub mod timing;
 pub mod view;
 
 pub use error::{Error, Result};
