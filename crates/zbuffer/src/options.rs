@@ -68,8 +68,8 @@ pub enum DepthSource {
     #[default]
     WindowZ,
     /// Camera-space depth interpolated *linearly in screen space*: wrong
-    /// under perspective (the depth seed's worked example gives 4.5 where
-    /// the truth is 4). Kept only as a labelled demonstration so the
+    /// under perspective (the worked example of scratchapixel's depth-buffer
+    /// lesson gives 4.5 where the truth is 4). Kept only as a labelled demonstration so the
     /// benchmark can show what the error costs; intersecting or nearly
     /// touching surfaces come out in the wrong order.
     LinearViewZ,
@@ -94,7 +94,15 @@ impl DepthSource {
 
 /// Options of [`crate::ZBuffer`]. `Default` is the accurate choice for a
 /// real-time buffer: f32 window depth.
+///
+/// ```
+/// use hider_zbuffer::{DepthFormat, ZBufferOptions};
+///
+/// let options = ZBufferOptions::default().with_depth_format(DepthFormat::Fixed24);
+/// assert_eq!(options.depth_format, DepthFormat::Fixed24);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub struct ZBufferOptions {
     /// Storage format of the depth buffer.
     pub depth_format: DepthFormat,

@@ -1,41 +1,29 @@
 //! The z-buffer hider: bounding-box traversal with incremental integer edge
-//! functions and a LESS depth test (Catmull 1974; the depth seed's
-//! pseudo-code).
+//! functions and a LESS depth test (Catmull 1974; the pseudo-code of
+//! scratchapixel's depth-buffer lesson).
 
 use hider_geom::PlaneEq;
-use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
-use hider_scene::{Error, Frame, Hider, Result, ScreenScene, ScreenTri, Stats, check_frame};
+use hider_geom::fixed::{SUBPIXEL_SCALE, pixel_center};
+use hider_scene::{Error, Frame, Hider, Result, ScreenScene, ScreenTri, check_frame};
 
 use crate::depth::DepthBuffer;
 use crate::options::{DepthFormat, DepthSource, ZBufferOptions};
 
-/// Work counters of one z-buffer frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct ZBufferStats {
-    /// Triangles whose bounding box met the viewport and were traversed.
-    pub triangles_set_up: u64,
-    /// Pixel centres whose edge functions were evaluated (the bounding-box
-    /// area summed over triangles).
-    pub pixels_tested: u64,
-    /// Pixel centres inside a triangle, each one depth test.
-    pub depth_tests: u64,
-    /// Depth tests that passed (depth and id written).
-    pub depth_passes: u64,
-    /// Bytes of the depth buffer.
-    pub depth_bytes: u64,
-}
-
-impl From<ZBufferStats> for Stats {
-    fn from(s: ZBufferStats) -> Self {
-        Stats {
-            counters: vec![
-                ("triangles set up", s.triangles_set_up),
-                ("pixels tested", s.pixels_tested),
-                ("depth tests", s.depth_tests),
-                ("depth passes", s.depth_passes),
-            ],
-            peak_bytes: s.depth_bytes,
-        }
+hider_scene::hider_stats! {
+    /// Work counters of one z-buffer frame.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub struct ZBufferStats {
+        /// Triangles whose bounding box met the viewport and were traversed.
+        pub triangles_set_up: u64 => "triangles set up",
+        /// Pixel centres whose edge functions were evaluated (the
+        /// bounding-box area summed over triangles).
+        pub pixels_tested: u64 => "pixels tested",
+        /// Pixel centres inside a triangle, each one depth test.
+        pub depth_tests: u64 => "depth tests",
+        /// Depth tests that passed (depth and id written).
+        pub depth_passes: u64 => "depth passes",
+        /// Bytes of the depth buffer.
+        pub depth_bytes: u64 => PEAK,
     }
 }
 
@@ -52,10 +40,9 @@ pub struct ZBuffer {
 }
 
 impl ZBuffer {
-    /// A z-buffer with the given options. Its [`Hider::name`] is `zbuffer`
-    /// followed by the non-default options (`zbuffer-fixed24`,
-    /// `zbuffer-linear-z`...).
-    pub fn new(options: ZBufferOptions) -> Self {
+    /// The name of a z-buffer with `options`: `zbuffer` followed by the
+    /// non-default options (`zbuffer-fixed24`, `zbuffer-linear-z`...).
+    fn name_of(options: &ZBufferOptions) -> String {
         let format = match options.depth_format {
             DepthFormat::F32 => "",
             DepthFormat::F64 => "-f64",
@@ -67,31 +54,7 @@ impl ZBuffer {
             DepthSource::WindowZ => "",
             DepthSource::LinearViewZ => "-linear-z",
         };
-        let name = format!("zbuffer{format}{source}");
-        Self {
-            options,
-            depth: DepthBuffer::default(),
-            name,
-        }
-    }
-
-    /// The options in use.
-    pub fn options(&self) -> &ZBufferOptions {
-        &self.options
-    }
-
-    /// Renders and returns the typed statistics.
-    pub fn render_frame(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<ZBufferStats> {
-        check_frame(&self.name, scene, frame)?;
-        frame.clear();
-        self.depth.clear(self.options.depth_format, frame.len());
-        let mut stats = ZBufferStats::default();
-        let linear = LinearDepth::for_scene(scene, self.options.depth_source)?;
-        for tri in &scene.tris {
-            self.draw(scene, tri, linear.as_ref(), frame, &mut stats);
-        }
-        stats.depth_bytes = self.depth.bytes() as u64;
-        Ok(stats)
+        format!("zbuffer{format}{source}")
     }
 
     fn draw(
@@ -117,10 +80,10 @@ impl ZBuffer {
             },
         };
         let step = i64::from(SUBPIXEL_SCALE);
-        let px0 = i64::from(x0) * step + i64::from(HALF_PIXEL);
+        let px0 = i64::from(pixel_center(x0 as i32));
         let width = frame.width() as usize;
         for y in y0..=y1 {
-            let py = i64::from(y) * step + i64::from(HALF_PIXEL);
+            let py = i64::from(pixel_center(y as i32));
             // Incremental edge functions: exact integer steps of a*256.
             let mut e = edges.map(|e| e.eval(px0, py));
             let fy = f64::from(y) + 0.5;
@@ -201,11 +164,38 @@ impl Default for ZBuffer {
 }
 
 impl Hider for ZBuffer {
+    type Options = ZBufferOptions;
+    type Stats = ZBufferStats;
+
+    /// A z-buffer with the given options. Its [`Hider::name`] is `zbuffer`
+    /// followed by the non-default options (`zbuffer-fixed24`,
+    /// `zbuffer-linear-z`...).
+    fn new(options: ZBufferOptions) -> Self {
+        Self {
+            name: Self::name_of(&options),
+            options,
+            depth: DepthBuffer::default(),
+        }
+    }
+
+    fn options(&self) -> &ZBufferOptions {
+        &self.options
+    }
+
     fn name(&self) -> &str {
         &self.name
     }
 
-    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {
-        self.render_frame(scene, frame).map(Stats::from)
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<ZBufferStats> {
+        check_frame(&self.name, scene, frame)?;
+        frame.clear();
+        self.depth.clear(self.options.depth_format, frame.len());
+        let mut stats = ZBufferStats::default();
+        let linear = LinearDepth::for_scene(scene, self.options.depth_source)?;
+        for tri in &scene.tris {
+            self.draw(scene, tri, linear.as_ref(), frame, &mut stats);
+        }
+        stats.depth_bytes = self.depth.bytes() as u64;
+        Ok(stats)
     }
 }

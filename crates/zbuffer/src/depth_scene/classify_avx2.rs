@@ -14,12 +14,12 @@
 //!
 //! It is the same integer arithmetic as the scalar definition, so it gives
 //! the same bits; the lean front end's property tests (against
-//! [`super::lean_reference`]) run it on every machine with AVX2.
+//! the brute-force definition) run it on every machine with AVX2.
 
 use hider_geom::FEW_CENTRES;
 use hider_geom::isa::Avx2;
 
-use super::triangles::{LANES, Lanes};
+use super::classify::{LANES, Lanes};
 
 // The centre tests below are written out for the first four centres.
 const _: () = assert!(FEW_CENTRES == 4);
@@ -58,6 +58,9 @@ pub(super) fn classify(
 #[allow(unsafe_code)]
 mod avx2 {
     use std::arch::x86_64::*;
+
+    use hider_geom::edge::top_left_biases;
+    use hider_geom::fixed::{SUBPIXEL_SCALE, first_centers_from, last_centers_upto, pixel_centers};
 
     use super::{FEW_CENTRES, LANES, Lanes};
 
@@ -155,30 +158,28 @@ mod avx2 {
         unsafe { _mm256_movemask_ps(_mm256_castsi256_ps(m)) as u8 }
     }
 
+    /// The eight `i32` lanes of a register as an array, for hider-geom's
+    /// lane-wise helpers: a bit cast (a register move), and the helpers'
+    /// loops compile to the matching vector instructions.
+    #[inline(always)]
+    fn array(v: __m256i) -> [i32; LANES] {
+        bytemuck::cast(v)
+    }
+
     /// The first pixel column (or row) whose centre is not left of (above)
-    /// the least of three coordinates: `(min + 127) >> 8`.
+    /// the least of three coordinates ([`first_centers_from`]).
     #[inline(always)]
     fn lo(a: __m256i, b: __m256i, c: __m256i) -> __m256i {
-        unsafe {
-            let m = _mm256_min_epi32(_mm256_min_epi32(a, b), c);
-            _mm256_srai_epi32::<8>(_mm256_add_epi32(m, _mm256_set1_epi32(127)))
-        }
+        let m = unsafe { _mm256_min_epi32(_mm256_min_epi32(a, b), c) };
+        bytemuck::cast(first_centers_from(array(m)))
     }
 
     /// The last pixel column (or row) whose centre is not right of (below)
-    /// the greatest of three coordinates: `(max - 128) >> 8`.
+    /// the greatest of three coordinates ([`last_centers_upto`]).
     #[inline(always)]
     fn hi(a: __m256i, b: __m256i, c: __m256i) -> __m256i {
-        unsafe {
-            let m = _mm256_max_epi32(_mm256_max_epi32(a, b), c);
-            _mm256_srai_epi32::<8>(_mm256_sub_epi32(m, _mm256_set1_epi32(128)))
-        }
-    }
-
-    /// The subpixel position of a pixel's centre.
-    #[inline(always)]
-    fn centre(v: __m256i) -> __m256i {
-        unsafe { _mm256_add_epi32(_mm256_slli_epi32::<8>(v), _mm256_set1_epi32(128)) }
+        let m = unsafe { _mm256_max_epi32(_mm256_max_epi32(a, b), c) };
+        bytemuck::cast(last_centers_upto(array(m)))
     }
 
     #[inline(always)]
@@ -186,64 +187,63 @@ mod avx2 {
         bytemuck::cast(*v)
     }
 
+    /// The corners of the eight triangles, one register per coordinate.
+    #[derive(Clone, Copy)]
+    struct Corners {
+        ax: __m256i,
+        ay: __m256i,
+        bx: __m256i,
+        by: __m256i,
+        cx: __m256i,
+        cy: __m256i,
+    }
+
+    /// The pixel boxes, as `pixel_bounds` computes them: first column and
+    /// row, columns and rows (zero or negative when empty).
     #[inline(always)]
-    pub(super) fn classify(
-        x: &[[i32; LANES]; 3],
-        y: &[[i32; LANES]; 3],
-        (width, height): (u32, u32),
-        cull: bool,
-    ) -> Lanes {
+    fn pixel_box(c: &Corners, (width, height): (u32, u32)) -> [__m256i; 4] {
+        unsafe {
+            let zero32 = _mm256_setzero_si256();
+            let x0 = _mm256_max_epi32(lo(c.ax, c.bx, c.cx), zero32);
+            let y0 = _mm256_max_epi32(lo(c.ay, c.by, c.cy), zero32);
+            let x1 = _mm256_min_epi32(hi(c.ax, c.bx, c.cx), _mm256_set1_epi32(width as i32 - 1));
+            let y1 = _mm256_min_epi32(hi(c.ay, c.by, c.cy), _mm256_set1_epi32(height as i32 - 1));
+            let one32 = _mm256_set1_epi32(1);
+            let cols = _mm256_add_epi32(_mm256_sub_epi32(x1, x0), one32);
+            let rows = _mm256_add_epi32(_mm256_sub_epi32(y1, y0), one32);
+            [x0, y0, cols, rows]
+        }
+    }
+
+    /// Per lane, bit `j` set where the box's `j`-th centre (row-major, of
+    /// the first [`FEW_CENTRES`]) exists and is inside all three edges of
+    /// the positively ordered corners `c`; `x0`, `y0` the box's first
+    /// pixel, `cols` its width, `count` its number of centres.
+    #[inline(always)]
+    fn covered(c: &Corners, [x0, y0, cols, count]: [__m256i; 4]) -> __m256i {
         unsafe {
             let zero32 = _mm256_setzero_si256();
             let zero = Wide {
                 even: zero32,
                 odd: zero32,
             };
-            let (ax, ay) = (load(&x[0]), load(&y[0]));
-            let (bx, by) = (load(&x[1]), load(&y[1]));
-            let (cx, cy) = (load(&x[2]), load(&y[2]));
-            let area = sub(
-                mul(_mm256_sub_epi32(bx, ax), _mm256_sub_epi32(cy, ay)),
-                mul(_mm256_sub_epi32(by, ay), _mm256_sub_epi32(cx, ax)),
-            );
-            // The pixel box, as `pixel_bounds` computes it.
-            let x0 = _mm256_max_epi32(lo(ax, bx, cx), zero32);
-            let y0 = _mm256_max_epi32(lo(ay, by, cy), zero32);
-            let x1 = _mm256_min_epi32(hi(ax, bx, cx), _mm256_set1_epi32(width as i32 - 1));
-            let y1 = _mm256_min_epi32(hi(ay, by, cy), _mm256_set1_epi32(height as i32 - 1));
             let one32 = _mm256_set1_epi32(1);
-            let cols = _mm256_add_epi32(_mm256_sub_epi32(x1, x0), one32);
-            let rows = _mm256_add_epi32(_mm256_sub_epi32(y1, y0), one32);
-            let count = _mm256_mullo_epi32(cols, rows);
-            // Positive order.
-            let neg = greater(zero, area);
-            let (bx, by, cx, cy) = (
-                _mm256_blendv_epi8(bx, cx, neg),
-                _mm256_blendv_epi8(by, cy, neg),
-                _mm256_blendv_epi8(cx, bx, neg),
-                _mm256_blendv_epi8(cy, by, neg),
-            );
-            let (px, py) = (centre(x0), centre(y0));
+            let px: __m256i = bytemuck::cast(pixel_centers(array(x0)));
+            let py: __m256i = bytemuck::cast(pixel_centers(array(y0)));
             // The box's first centres, row-major, as sums of steps picked
-            // by the box's width (see the portable `classify`).
+            // by the box's width (see the portable `centre_hits`).
             let one = widen_mask(_mm256_cmpeq_epi32(cols, one32));
             let two = widen_mask(_mm256_cmpeq_epi32(cols, _mm256_set1_epi32(2)));
             let mut hit = [_mm256_set1_epi32(-1); FEW_CENTRES];
-            for (fx, fy, tx, ty) in [(ax, ay, bx, by), (bx, by, cx, cy), (cx, cy, ax, ay)] {
+            let edges = [
+                (c.ax, c.ay, c.bx, c.by),
+                (c.bx, c.by, c.cx, c.cy),
+                (c.cx, c.cy, c.ax, c.ay),
+            ];
+            for (fx, fy, tx, ty) in edges {
                 let (dx, dy) = (_mm256_sub_epi32(tx, fx), _mm256_sub_epi32(ty, fy));
-                // The top-left rule's bias: 1 where dy < 0, or dy == 0 and
-                // dx > 0.
-                let bias = _mm256_and_si256(
-                    _mm256_or_si256(
-                        _mm256_cmpgt_epi32(zero32, dy),
-                        _mm256_and_si256(
-                            _mm256_cmpeq_epi32(dy, zero32),
-                            _mm256_cmpgt_epi32(dx, zero32),
-                        ),
-                    ),
-                    one32,
-                );
-                let bias = mul(bias, one32);
+                // The fill rule's bias, widened to 64 bits.
+                let bias = mul(bytemuck::cast(top_left_biases(array(dx), array(dy))), one32);
                 let at = add(
                     sub(
                         mul(dx, _mm256_sub_epi32(py, fy)),
@@ -251,8 +251,8 @@ mod avx2 {
                     ),
                     bias,
                 );
-                let sx = mul(dy, _mm256_set1_epi32(-256));
-                let sy = mul(dx, _mm256_set1_epi32(256));
+                let sx = mul(dy, _mm256_set1_epi32(-SUBPIXEL_SCALE));
+                let sy = mul(dx, _mm256_set1_epi32(SUBPIXEL_SCALE));
                 let (sx2, sy2) = (add(sx, sx), add(sy, sy));
                 let offsets = [
                     select(one, sy, sx),
@@ -270,6 +270,47 @@ mod avx2 {
                 let bit = _mm256_and_si256(_mm256_and_si256(*h, within), _mm256_set1_epi32(1 << j));
                 covered = _mm256_or_si256(covered, bit);
             }
+            covered
+        }
+    }
+
+    #[inline(always)]
+    pub(super) fn classify(
+        x: &[[i32; LANES]; 3],
+        y: &[[i32; LANES]; 3],
+        size: (u32, u32),
+        cull: bool,
+    ) -> Lanes {
+        unsafe {
+            let zero32 = _mm256_setzero_si256();
+            let zero = Wide {
+                even: zero32,
+                odd: zero32,
+            };
+            let mut c = Corners {
+                ax: load(&x[0]),
+                ay: load(&y[0]),
+                bx: load(&x[1]),
+                by: load(&y[1]),
+                cx: load(&x[2]),
+                cy: load(&y[2]),
+            };
+            let area = sub(
+                mul(_mm256_sub_epi32(c.bx, c.ax), _mm256_sub_epi32(c.cy, c.ay)),
+                mul(_mm256_sub_epi32(c.by, c.ay), _mm256_sub_epi32(c.cx, c.ax)),
+            );
+            let [x0, y0, cols, rows] = pixel_box(&c, size);
+            let count = _mm256_mullo_epi32(cols, rows);
+            // Positive order.
+            let neg = greater(zero, area);
+            (c.bx, c.by, c.cx, c.cy) = (
+                _mm256_blendv_epi8(c.bx, c.cx, neg),
+                _mm256_blendv_epi8(c.by, c.cy, neg),
+                _mm256_blendv_epi8(c.cx, c.bx, neg),
+                _mm256_blendv_epi8(c.cy, c.by, neg),
+            );
+            let covered = covered(&c, [x0, y0, cols, count]);
+            let one32 = _mm256_set1_epi32(1);
             let few = _mm256_cmpgt_epi32(_mm256_set1_epi32(FEW_CENTRES as i32 + 1), count);
             let empty = _mm256_or_si256(
                 _mm256_or_si256(
@@ -303,7 +344,7 @@ mod tests {
     use hider_geom::isa::Avx2;
     use proptest::prelude::*;
 
-    use super::super::triangles::{LANES, Lanes};
+    use super::super::classify::{LANES, Lanes};
 
     /// A batch's corners: small triangles around random points (boxes of a
     /// few centres, on or off the viewport) mixed with large ones, in

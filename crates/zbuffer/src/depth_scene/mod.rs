@@ -1,18 +1,19 @@
 //! The lean front end for depth-only hiders: the same snapped corners and
-//! depth planes as [`prepare`](fn@crate::prepare), without what shading and
-//! the oracle need.
+//! depth planes as [`prepare`](fn@hider_scene::prepare), without what
+//! shading and the oracle need.
 //!
-//! [`prepare`](fn@crate::prepare) writes, per triangle, a 160-byte
-//! [`ScreenTri`] and a [`PrimInfo`](crate::PrimInfo) (camera-space corners,
-//! normals, texture coordinates): for half a million triangles that is
-//! 150 MB of writes, most of what a z-buffer frame costs. A z-buffer reads
-//! only the snapped corners, the depth plane and the primitive id.
-//! [`prepare_depth_into`] produces just those ([`DepthTri`], 72 bytes), and
-//! works per *vertex* where `prepare` works per triangle corner: each
-//! vertex is transformed, classified by its outcode, divided and snapped
-//! once, eight at a time (`vertices`), and triangles are classified eight
-//! at a time from the cached results (`triangles`). A triangle that must
-//! be clipped goes through `prepare`'s own per-triangle path.
+//! [`prepare`](fn@hider_scene::prepare) writes, per triangle, a 160-byte
+//! [`ScreenTri`] and a [`PrimInfo`](hider_scene::PrimInfo) (camera-space
+//! corners, normals, texture coordinates): for half a million triangles
+//! that is 150 MB of writes, most of what a z-buffer frame costs. A
+//! z-buffer reads only the snapped corners, the depth plane and the
+//! primitive id. [`prepare_depth_into`] produces just those ([`DepthTri`],
+//! 72 bytes), and works per *vertex* where `prepare` works per triangle
+//! corner: each vertex is transformed, classified by its outcode, divided
+//! and snapped once, eight at a time (`vertices`), and triangles are
+//! classified eight at a time from the cached results (`classify`,
+//! `triangles`). A triangle that must be clipped goes through `prepare`'s
+//! own per-triangle path ([`FrontEnd::triangle`]).
 //!
 //! Two kinds of triangles never reach the hider as triangles. Those that
 //! certainly cover no pixel centre (their box holds none, or up to four
@@ -24,88 +25,31 @@
 //! up and scanning a triangle costs.
 //!
 //! Every number is the same function of the same inputs as in `prepare`
-//! (the outcode is [`ClipVolume::outcode`](hider_geom::clip::ClipVolume::outcode), the divide and snap are
-//! `prepare`'s `to_window`, the set-up is its `setup_depth`), so the output
-//! is bit for bit what [`lean_reference`] works out from `prepare`'s
-//! triangles; `tests::lean_equals_prepare` checks it on random scenes in
-//! both precisions, with clipping and culling, and the `front_end` fuzz
-//! target on hostile ones.
+//! (the outcode is [`ClipVolume::outcode`](hider_geom::clip::ClipVolume::outcode),
+//! the divide and snap are `prepare`'s, the set-up is
+//! [`setup_depth`](hider_scene::prepare::setup_depth)), so the output is
+//! bit for bit what a brute-force pass over `prepare`'s triangles gives:
+//! the triangles whose pixel box holds more than four centres, and one
+//! fragment per covered centre of the others. The crate's
+//! `lean_front_end` tests check that on random scenes in both precisions,
+//! with clipping and culling, and the `front_end` fuzz target on hostile
+//! ones.
 
+mod classify;
 mod classify_avx2;
+mod depth_tri;
 mod triangles;
 mod vertices;
 
-use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport};
+pub use depth_tri::{DepthFragment, DepthTri};
+
+use hider_geom::Viewport;
+use hider_scene::prepare::FrontEnd;
+use hider_scene::{Error, PrepareOptions, PrepareStats, Result, Scene, View};
 use rayon::prelude::*;
 
-use crate::error::{Error, Result};
-use crate::model::Scene;
-use crate::prepare::{FrontEnd, PrepareOptions, PrepareStats, ScreenScene, ScreenTri};
-use crate::view::View;
 use triangles::{Outcome, Run};
 use vertices::CachedVertex;
-
-/// A triangle as a depth-only hider needs it: [`ScreenTri`] without the
-/// per-vertex depths, `w` and the `1/w` plane.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct DepthTri {
-    /// Snapped vertices, ordered so that the edge functions are positive
-    /// inside (as [`ScreenTri::v`]).
-    pub v: [FixedPt; 3],
-    /// Window depth as an affine function of window position.
-    pub depth: PlaneEq,
-    /// Primitive id: index of the source triangle in the scene.
-    pub prim: u32,
-}
-
-impl DepthTri {
-    /// The edge functions of this triangle (top-left rule applied).
-    #[inline]
-    pub fn edges(&self) -> [EdgeFunction; 3] {
-        hider_geom::edge::triangle_edges(&self.v)
-    }
-
-    /// The inclusive pixel rectangle whose centres may be covered (see
-    /// [`Viewport::pixel_bounds`]).
-    #[inline]
-    pub fn pixel_bounds(&self, viewport: Viewport) -> Option<(u32, u32, u32, u32)> {
-        viewport.pixel_bounds(&self.v)
-    }
-}
-
-/// One pixel of a triangle too small to rasterise: the lean front end
-/// hands a triangle whose box holds at most four pixel centres over as the
-/// centres it covers (see [`Viewport::covered_centres`]), with the depth a
-/// hider would compute there.
-///
-/// A fragment stands for a write of its triangle in primitive order. A
-/// hider that applies fragments after the triangles gets the same answer
-/// if it compares `(depth, prim)` lexicographically: the LESS depth test
-/// in primitive order keeps the smallest depth and, among equal depths,
-/// the first primitive.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct DepthFragment {
-    /// Window depth at the pixel centre: the triangle's
-    /// [`PlaneEq::at_pixel`], the expression every pixel-centre hider
-    /// evaluates.
-    pub depth: f64,
-    /// Pixel column.
-    pub x: u16,
-    /// Pixel row.
-    pub y: u16,
-    /// Primitive id of the triangle.
-    pub prim: u32,
-}
-
-impl From<&ScreenTri> for DepthTri {
-    fn from(t: &ScreenTri) -> Self {
-        Self {
-            v: t.v,
-            depth: t.depth,
-            prim: t.prim,
-        }
-    }
-}
 
 /// A scene as depth-only hiders consume it: what [`prepare_depth_into`]
 /// makes. Keeps its memory between frames.
@@ -186,7 +130,7 @@ const PARALLEL_MIN: usize = 32 * 1024;
 ///
 /// # Errors
 ///
-/// As [`prepare`](fn@crate::prepare): an absurd image size, an invalid camera
+/// As [`prepare`](fn@hider_scene::prepare): an absurd image size, an invalid camera
 /// or an invalid scene.
 pub fn prepare_depth_into(
     scene: &Scene,
@@ -274,41 +218,6 @@ pub fn prepare_depth_into(
     Ok(())
 }
 
-/// What [`prepare_depth_into`] must produce for the scene, view and
-/// options that [`prepare`](fn@crate::prepare) turned into `screen`,
-/// worked out by brute force over each triangle's pixel box: the
-/// triangles whose box holds more than [`hider_geom::FEW_CENTRES`] (four)
-/// pixel centres, as
-/// [`DepthTri`]s, and one [`DepthFragment`] per covered centre of the
-/// others (those covering none are dropped), both in primitive order. The
-/// lean front end's tests and fuzz target compare it with this.
-pub fn lean_reference(screen: &ScreenScene) -> (Vec<DepthTri>, Vec<DepthFragment>) {
-    let (mut tris, mut fragments) = (Vec::new(), Vec::new());
-    for t in &screen.tris {
-        let Some((x0, y0, x1, y1)) = t.pixel_bounds(screen.viewport) else {
-            continue;
-        };
-        if ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize > hider_geom::FEW_CENTRES {
-            tris.push(DepthTri::from(t));
-            continue;
-        }
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                let (cx, cy) = (i64::from(x) * 256 + 128, i64::from(y) * 256 + 128);
-                if hider_geom::triangle_covers(&t.v, cx, cy) {
-                    fragments.push(DepthFragment {
-                        depth: t.depth.at_pixel(x, y),
-                        x: x as u16,
-                        y: y as u16,
-                        prim: t.prim,
-                    });
-                }
-            }
-        }
-    }
-    (tris, fragments)
-}
-
 /// The error of a scene whose positions or indices the passes found
 /// invalid, as [`Scene::validate`] words it (naming the mesh, vertex or
 /// triangle).
@@ -317,183 +226,5 @@ fn invalid(scene: &Scene) -> Error {
     match scene.validate() {
         Err(e) => e,
         Ok(()) => Error::InvalidScene("a position or index is invalid".to_owned()),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use glam::DVec3;
-    use proptest::prelude::*;
-
-    use super::*;
-    use crate::prepare::{TransformPrecision, prepare};
-
-    fn scene_of(points: &[(f64, f64, f64)], shared: bool) -> Scene {
-        let positions: Vec<DVec3> = points
-            .iter()
-            .map(|&(x, y, z)| DVec3::new(x, y, z))
-            .collect();
-        let n = positions.len() as u32;
-        let indices = if shared {
-            // A strip: neighbouring triangles share vertices, as meshes do.
-            (0..n.saturating_sub(2))
-                .map(|i| [i, i + 1, i + 2])
-                .collect()
-        } else {
-            (0..n / 3).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect()
-        };
-        Scene::from_mesh(positions, indices)
-    }
-
-    fn view(size: u32, near: f64) -> View {
-        View {
-            viewport: Viewport::new(size, size),
-            camera: crate::hard_cases::look_at(DVec3::new(0.0, 0.0, 3.0), DVec3::ZERO, near, 6.0),
-        }
-    }
-
-    fn check(scene: &Scene, view: &View, options: &PrepareOptions) {
-        let full = prepare(scene, view, options).unwrap();
-        let (want, want_fragments) = lean_reference(&full);
-        let mut lean = DepthScene::new();
-        prepare_depth_into(scene, view, options, &mut lean).unwrap();
-        let got: Vec<DepthTri> = lean.tris().copied().collect();
-        assert_eq!(got, want);
-        let got_fragments: Vec<DepthFragment> = lean.fragments().flatten().copied().collect();
-        assert_eq!(got_fragments, want_fragments);
-        let s = lean.stats;
-        assert_eq!(s.input, full.stats.input);
-        assert_eq!(s.culled, full.stats.culled);
-        assert_eq!(s.clipped, full.stats.clipped);
-        assert_eq!(s.degenerate, full.stats.degenerate);
-        assert_eq!(s.back_faces, full.stats.back_faces);
-        assert_eq!(s.output + s.empty + s.fragmented, full.stats.output);
-    }
-
-    proptest! {
-        /// Random triangles around and through the view volume (behind the
-        /// eye, across the near plane, beyond the far plane, far outside the
-        /// image), both precisions, with and without back-face culling.
-        #[test]
-        fn lean_equals_prepare(
-            points in prop::collection::vec(
-                (-4.0f64..4.0, -4.0f64..4.0, -6.0f64..5.0), 3..60),
-            shared in any::<bool>(),
-            f32_precision in any::<bool>(),
-            cull in any::<bool>(),
-            size in 1u32..96,
-            near in prop::sample::select(vec![0.05, 0.5, 2.0]),
-        ) {
-            let scene = scene_of(&points, shared);
-            let precision = if f32_precision { TransformPrecision::F32 } else { TransformPrecision::F64 };
-            let options = PrepareOptions::default()
-                .with_precision(precision)
-                .with_cull_back_faces(cull);
-            check(&scene, &view(size, near), &options);
-        }
-    }
-
-    #[test]
-    fn parallel_runs_concatenate_to_the_serial_result() {
-        let scene = crate::procedural::uv_sphere(140);
-        assert!(scene.triangle_count() >= PARALLEL_MIN);
-        let v = View::for_scene(&scene, 300, 300).unwrap();
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(3)
-            .build()
-            .unwrap();
-        let mut serial = DepthScene::new();
-        prepare_depth_into(&scene, &v, &PrepareOptions::default(), &mut serial).unwrap();
-        let mut parallel = DepthScene::new();
-        pool.install(|| {
-            prepare_depth_into(
-                &scene,
-                &v,
-                &PrepareOptions::default().with_parallel(true),
-                &mut parallel,
-            )
-        })
-        .unwrap();
-        assert_eq!(parallel.parts().len(), 3);
-        assert_eq!(serial.parts().len(), 1);
-        assert!(parallel.tris().eq(serial.tris()));
-        assert!(
-            parallel
-                .fragments()
-                .flatten()
-                .eq(serial.fragments().flatten())
-        );
-        assert_eq!(parallel.stats, serial.stats);
-        // The dense sphere has triangles of every kind.
-        let s = serial.stats;
-        assert!(s.output > 0 && s.empty > 0 && s.fragmented > 0, "{s:?}");
-        check(&scene, &v, &PrepareOptions::default());
-    }
-
-    #[test]
-    fn several_meshes_and_reuse() {
-        let mut scene = crate::procedural::uv_sphere(12);
-        let cube = crate::procedural::cube();
-        for mut m in cube.meshes {
-            m.material = None;
-            scene.push_mesh(m, None);
-        }
-        let v = View::for_scene(&scene, 64, 64).unwrap();
-        check(&scene, &v, &PrepareOptions::default());
-        // Reusing the buffers for a smaller scene leaves nothing stale.
-        let mut lean = DepthScene::new();
-        prepare_depth_into(&scene, &v, &PrepareOptions::default(), &mut lean).unwrap();
-        let small = crate::procedural::cube();
-        prepare_depth_into(&small, &v, &PrepareOptions::default(), &mut lean).unwrap();
-        let want = prepare(&small, &v, &PrepareOptions::default()).unwrap();
-        let s = lean.stats;
-        assert_eq!(
-            lean.len() as u64,
-            want.tris.len() as u64 - s.empty - s.fragmented
-        );
-    }
-
-    #[test]
-    fn clipped_culled_and_empty_triangles_are_counted() {
-        let scene = scene_of(
-            &[
-                // Across the near plane (eye at z = 3, near 0.5): clipped.
-                (-1.0, -1.0, 0.0),
-                (1.0, -1.0, 0.0),
-                (0.0, 1.0, 5.0),
-                // Behind the eye: culled.
-                (-1.0, 0.0, 4.0),
-                (1.0, 0.0, 4.0),
-                (0.0, 1.0, 4.0),
-                // Tiny, between pixel centres: empty.
-                (0.01, 0.01, 0.0),
-                (0.06, 0.01, 0.0),
-                (0.01, 0.06, 0.0),
-            ],
-            false,
-        );
-        let v = view(8, 0.5);
-        let mut lean = DepthScene::new();
-        prepare_depth_into(&scene, &v, &PrepareOptions::default(), &mut lean).unwrap();
-        assert_eq!(lean.stats.clipped, 1);
-        assert_eq!(lean.stats.culled, 1);
-        assert_eq!(lean.stats.empty, 1);
-        assert!(!lean.is_empty());
-        check(&scene, &v, &PrepareOptions::default());
-    }
-
-    #[test]
-    fn bad_input_is_an_error() {
-        let mut scene = scene_of(
-            &[(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (f64::NAN, 1.0, 0.0)],
-            false,
-        );
-        let v = view(16, 0.5);
-        let mut lean = DepthScene::new();
-        assert!(prepare_depth_into(&scene, &v, &PrepareOptions::default(), &mut lean).is_err());
-        scene.meshes[0].positions[2] = DVec3::Y;
-        let mut bad = v;
-        bad.viewport = Viewport::new(0, 16);
-        assert!(prepare_depth_into(&scene, &bad, &PrepareOptions::default(), &mut lean).is_err());
     }
 }

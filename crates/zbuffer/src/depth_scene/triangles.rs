@@ -20,15 +20,15 @@
 //! sphere at 1024 x 1024 that is 201k of the 218k triangles kept.
 
 use hider_geom::clip::{OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
-use hider_geom::{Centres, FEW_CENTRES, FixedPt, PlaneEq, orient2d};
-
 use hider_geom::isa::{Avx2, Isa, Portable};
+use hider_geom::{Centres, FixedPt, PlaneEq, orient2d};
+use hider_scene::prepare::{ClipScratch, FrontEnd, Part, WindowVertex, setup_depth};
+use hider_scene::{Mesh, PrepareStats, Scene};
 
+use super::classify::{LANES, Lanes};
 use super::classify_avx2;
+use super::depth_tri::{DepthFragment, DepthTri};
 use super::vertices::{CachedVertex, NO_WINDOW, NOT_FINITE};
-use super::{DepthFragment, DepthTri};
-use crate::model::{Mesh, Scene};
-use crate::prepare::{ClipScratch, FrontEnd, Part, PrepareStats, WindowVertex, setup_depth};
 
 /// One contiguous run of primitive ids of the output.
 #[derive(Clone, Debug, Default)]
@@ -47,9 +47,6 @@ const OUT_OF_RANGE: CachedVertex = CachedVertex {
 
 /// Codes that send a triangle off the common path.
 const SPECIAL: u32 = NOT_FINITE | OUTSIDE_PLANES | NO_WINDOW;
-
-/// Triangles per batch.
-pub(super) const LANES: usize = 8;
 
 /// What the pass did: its counters, and whether an index was out of range.
 pub(super) struct Outcome {
@@ -336,159 +333,8 @@ impl<I: Isa> Pass<'_, I> {
     }
 }
 
-/// The integer classification of a batch, lane by lane.
-#[derive(Debug, PartialEq, Eq)]
-pub(super) struct Lanes {
-    /// How many lanes are dropped for a zero area, for facing away, and
-    /// for covering no centre (in that order of precedence, as
-    /// [`Pass::one`] tests).
-    pub(super) degenerate: u64,
-    pub(super) back_faces: u64,
-    pub(super) empty: u64,
-    /// Bit `i`: lane `i` is kept.
-    pub(super) keep: u8,
-    /// Bit `i`: lane `i`'s last two corners must be swapped for positive
-    /// order.
-    pub(super) swap: u8,
-    /// Bit `i`: lane `i`'s box holds at most [`FEW_CENTRES`] centres; then
-    /// bit `j` of `covered[i]` says whether its `j`-th centre (row-major)
-    /// is covered.
-    pub(super) few: u8,
-    pub(super) covered: [u8; LANES],
-    /// The box's first pixel and its width.
-    pub(super) corner: [(u32, u32, u32); LANES],
-}
-
-impl Lanes {
-    /// The counts and the kept lanes from the per-lane reasons to drop,
-    /// in the order of `Pass::one`'s tests: a zero area first, then the
-    /// facing, then the centres.
-    #[inline(always)]
-    pub(super) fn drop_reasons(&mut self, zero: u8, back: u8, empty: u8) {
-        let back = back & !zero;
-        let empty = empty & !zero & !back;
-        self.degenerate = u64::from(zero.count_ones());
-        self.back_faces = u64::from(back.count_ones());
-        self.empty = u64::from(empty.count_ones());
-        self.keep = !(zero | back | empty);
-    }
-}
-
-impl Lanes {
-    /// `orient2d`, `Viewport::pixel_bounds` and
-    /// `Viewport::covered_centres`, written lane-wise and without
-    /// branches. Corners are snapped window positions (below 2^23 in
-    /// magnitude), so their differences fit `i32` and every product fits
-    /// `i64` exactly, as in the scalar functions.
-    #[inline(always)]
-    pub(super) fn classify(
-        x: &[[i32; LANES]; 3],
-        y: &[[i32; LANES]; 3],
-        (width, height): (u32, u32),
-        cull: bool,
-    ) -> Self {
-        let (w, h) = (width as i32 - 1, height as i32 - 1);
-        let wide = |a: i32, b: i32| i64::from(a) * i64::from(b);
-        let mut zero = [false; LANES];
-        let mut back = [false; LANES];
-        let mut swap = [false; LANES];
-        let mut few = [false; LANES];
-        let mut covered = [0u8; LANES];
-        let mut empty = [false; LANES];
-        let mut corner = [(0, 0, 0); LANES];
-        let mask = |b: &[bool; LANES]| b.iter().rev().fold(0u8, |m, &b| m << 1 | u8::from(b));
-        for i in 0..LANES {
-            let (ax, ay) = (x[0][i], y[0][i]);
-            let (bx, by) = (x[1][i], y[1][i]);
-            let (cx, cy) = (x[2][i], y[2][i]);
-            let area = wide(bx - ax, cy - ay) - wide(by - ay, cx - ax);
-            // The pixel box, as `pixel_bounds` computes it.
-            let x0 = ((ax.min(bx).min(cx) + 127) >> 8).max(0);
-            let y0 = ((ay.min(by).min(cy) + 127) >> 8).max(0);
-            let x1 = ((ax.max(bx).max(cx) - 128) >> 8).min(w);
-            let y1 = ((ay.max(by).max(cy) - 128) >> 8).min(h);
-            let (cols, rows) = (x1 - x0 + 1, y1 - y0 + 1);
-            // Positive order, then the three edges with the top-left
-            // rule's bias.
-            let neg = area < 0;
-            let (bx, by, cx, cy) = if neg {
-                (cx, cy, bx, by)
-            } else {
-                (bx, by, cx, cy)
-            };
-            // Each edge at the box's first centre (top-left bias
-            // included: inside iff > 0) and its exact steps to the next
-            // column and the next row.
-            let (px, py) = (x0 * 256 + 128, y0 * 256 + 128);
-            let edge = |fx: i32, fy: i32, tx: i32, ty: i32| {
-                let (dx, dy) = (tx - fx, ty - fy);
-                let bias = i64::from((dy < 0) | ((dy == 0) & (dx > 0)));
-                let at = wide(dx, py - fy) - wide(dy, px - fx) + bias;
-                (at, -i64::from(dy) << 8, i64::from(dx) << 8)
-            };
-            let edges = [
-                edge(ax, ay, bx, by),
-                edge(bx, by, cx, cy),
-                edge(cx, cy, ax, ay),
-            ];
-            // The box's first `FEW_CENTRES` centres, row-major, as steps
-            // from the first, sums of the steps picked by the box's
-            // width (no multiplication in the lanes): a box one wide
-            // goes down, two wide goes right then down, wider goes right.
-            let (one, two) = (cols == 1, cols == 2);
-            let mut bits = 0u8;
-            let mut hit = [true; FEW_CENTRES];
-            for &(at, sx, sy) in &edges {
-                let offset = [
-                    0,
-                    if one { sy } else { sx },
-                    if one {
-                        sy + sy
-                    } else if two {
-                        sy
-                    } else {
-                        sx + sx
-                    },
-                    if one {
-                        sy + sy + sy
-                    } else if two {
-                        sx + sy
-                    } else {
-                        sx + sx + sx
-                    },
-                ];
-                for (h, o) in hit.iter_mut().zip(offset) {
-                    *h &= at + o > 0;
-                }
-            }
-            for (j, &h) in hit.iter().enumerate() {
-                bits |= u8::from(h & ((j as i32) < cols * rows)) << j;
-            }
-            zero[i] = area == 0;
-            back[i] = cull & (area > 0);
-            swap[i] = neg;
-            few[i] = cols * rows <= FEW_CENTRES as i32;
-            covered[i] = bits;
-            empty[i] = (cols <= 0) | (rows <= 0) | (few[i] & (bits == 0));
-            corner[i] = (x0 as u32, y0 as u32, cols as u32);
-        }
-        let mut lanes = Self {
-            degenerate: 0,
-            back_faces: 0,
-            empty: 0,
-            keep: 0,
-            swap: mask(&swap),
-            few: mask(&few),
-            covered,
-            corner,
-        };
-        lanes.drop_reasons(mask(&zero), mask(&back), mask(&empty));
-        lanes
-    }
-}
-
 /// Appends a kept triangle to the run: as a triangle, or as the pixels it
-/// covers when its box holds at most [`FEW_CENTRES`] centres.
+/// covers when its box holds at most [`FEW_CENTRES`](hider_geom::FEW_CENTRES) centres.
 #[inline(always)]
 fn emit(run: &mut Run, stats: &mut PrepareStats, tri: DepthTri, centres: Centres) {
     if centres == Centres::Many {

@@ -17,7 +17,8 @@ use hider_geom::clip::OUTSIDE_PLANES;
 use hider_geom::fixed::{snap_coordinate_lanewise, snap_coordinate_lanewise_f32};
 use hider_geom::isa::Avx2;
 
-use crate::prepare::{FrontEnd, TransformPrecision};
+use hider_scene::TransformPrecision;
+use hider_scene::prepare::FrontEnd;
 
 /// Outcode bit: the clip-space position is not finite.
 pub(super) const NOT_FINITE: u32 = 1 << 30;

@@ -9,7 +9,7 @@
 //! equal depths.
 //!
 //! The triangle list arrives as contiguous chunks (the runs of a
-//! [`hider_scene::DepthScene`], or a screen scene's list cut into one
+//! [`DepthScene`](crate::DepthScene), or a screen scene's list cut into one
 //! chunk per thread), each binned by one thread into its own bins; a tile
 //! walks the chunks' bins in chunk order, which is again primitive order.
 //!
@@ -20,10 +20,96 @@
 //! triangle count whatever the image size.
 
 use hider_geom::Viewport;
-use hider_scene::DepthFragment;
 
-use super::RasterTri;
 use super::bounds::DepthBounds;
+use super::pool::{Workers, install};
+use super::raster_tri::RasterTri;
+use crate::depth_scene::DepthFragment;
+
+/// Triangles per binning chunk below which binning stays on one thread.
+const MIN_CHUNK: usize = 4096;
+
+/// The triangles to draw, in primitive order: contiguous runs of
+/// triangles, and per run the pixel fragments of the lean front end.
+pub(crate) type Input<'a, T> = (&'a [&'a [T]], &'a [&'a [DepthFragment]]);
+
+/// The bins of a frame: one set per chunk of triangles, and one per run
+/// of fragments.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Bins {
+    /// Per chunk of triangles, in primitive order.
+    pub chunks: Vec<ChunkBins>,
+    /// Per run of fragments, in primitive order.
+    pub fragments: Vec<FragmentBins>,
+}
+
+impl Bins {
+    /// Bins the input, one chunk per contiguous run of triangles; runs are
+    /// cut further so that every thread has one. Bins hold depth bounds
+    /// when `hiz`. Returns the chunks, in primitive order.
+    pub(crate) fn fill<'a, T: RasterTri>(
+        &mut self,
+        (parts, fragments): Input<'a, T>,
+        (vp, grid, hiz): (Viewport, Grid, bool),
+        (pool, threads): (Workers<'_>, usize),
+    ) -> Vec<&'a [T]> {
+        let total: usize = parts.iter().map(|p| p.len()).sum();
+        let wanted = if pool.is_some() {
+            threads.min(total / MIN_CHUNK).max(1)
+        } else {
+            1
+        };
+        let per = total.div_ceil(wanted).max(MIN_CHUNK);
+        let tris: Vec<&[T]> = parts
+            .iter()
+            .flat_map(|p| p.chunks(per))
+            .filter(|c| !c.is_empty())
+            .collect();
+        self.chunks.resize_with(tris.len(), ChunkBins::default);
+        self.chunks.truncate(tris.len());
+        let bin = |(bins, chunk): (&mut ChunkBins, &&[T])| bins.fill(chunk, vp, grid, hiz);
+        self.fragments
+            .resize_with(fragments.len(), FragmentBins::default);
+        self.fragments.truncate(fragments.len());
+        let bin_fragments = |(bins, run): (&mut FragmentBins, &&[DepthFragment])| {
+            bins.fill(run, vp, grid);
+        };
+        match pool {
+            Some(pool) if tris.len() > 1 || fragments.len() > 1 => {
+                use rayon::prelude::*;
+                install(pool, || {
+                    rayon::join(
+                        || self.chunks.par_iter_mut().zip(&tris).for_each(bin),
+                        || {
+                            self.fragments
+                                .par_iter_mut()
+                                .zip(fragments)
+                                .for_each(bin_fragments);
+                        },
+                    )
+                });
+            }
+            _ => {
+                self.chunks.iter_mut().zip(&tris).for_each(bin);
+                self.fragments
+                    .iter_mut()
+                    .zip(fragments)
+                    .for_each(bin_fragments);
+            }
+        }
+        tris
+    }
+
+    /// Bytes held by the bins.
+    pub(crate) fn bytes(&self) -> usize {
+        self.chunks.iter().map(ChunkBins::bytes).sum::<usize>()
+            + self
+                .fragments
+                .iter()
+                .map(FragmentBins::bytes)
+                .sum::<usize>()
+    }
+}
 
 /// A bin entry: the triangle's index in its chunk and a lower bound of
 /// its computed depths, rounded down to `f32` (see

@@ -18,8 +18,6 @@
 //! triangle's depths over a block has `encode(z) >= max key of the block`,
 //! no pixel of the block can pass.
 
-use super::wide::{Avx2, Block8, Encoding, WideKey};
-
 const MAX24: u32 = (1 << 24) - 1;
 const MAX16: u32 = u16::MAX as u32;
 
@@ -36,19 +34,6 @@ pub(crate) trait DepthKey: Copy + PartialOrd + Send + Sync + 'static {
     /// on baseline x86-64 (SSE2 has no blend), where `if` became a
     /// mispredicted branch per pixel.
     fn select(mask: u32, new: Self, old: Self) -> Self;
-    /// Draws a full 8x8 block with the AVX2 block ([`super::wide`]) when
-    /// the format has one and the CPU can: `Some((inside, passes, the
-    /// block's greatest key))`, or `None` to leave it to the portable block.
-    #[inline(always)]
-    fn wide_block8<const EDGES: bool>(
-        proof: Avx2,
-        keys: &mut [Self; 64],
-        ids: &mut [u32; 64],
-        b: &Block8<'_>,
-    ) -> Option<(u32, u32, Self)> {
-        let _ = (proof, keys, ids, b);
-        None
-    }
     /// The larger of two keys (for block maxima).
     #[inline]
     fn max_key(self, other: Self) -> Self {
@@ -57,15 +42,6 @@ pub(crate) trait DepthKey: Copy + PartialOrd + Send + Sync + 'static {
 }
 
 impl DepthKey for f32 {
-    #[inline(always)]
-    fn wide_block8<const EDGES: bool>(
-        proof: Avx2,
-        keys: &mut [Self; 64],
-        ids: &mut [u32; 64],
-        b: &Block8<'_>,
-    ) -> Option<(u32, u32, Self)> {
-        Some(super::wide::block8::<Self, EDGES>(proof, keys, ids, b))
-    }
     const FAR: Self = 1.0;
     #[inline(always)]
     fn select(mask: u32, new: Self, old: Self) -> Self {
@@ -79,18 +55,6 @@ impl DepthKey for f32 {
     fn decode(self) -> f32 {
         // ZBuffer writes `f64::from(d) as f32`, which is `d`.
         self
-    }
-}
-
-impl WideKey for f32 {
-    const ENCODING: Encoding = Encoding::F32;
-    #[inline(always)]
-    fn to_lane(self) -> u32 {
-        self.to_bits()
-    }
-    #[inline(always)]
-    fn from_lane(bits: u32) -> Self {
-        f32::from_bits(bits)
     }
 }
 
@@ -113,18 +77,9 @@ impl DepthKey for f64 {
 
 /// 24-bit unsigned normalised depth in a `u32`.
 #[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
-pub(crate) struct Fixed24(u32);
+pub(crate) struct Fixed24(pub(super) u32);
 
 impl DepthKey for Fixed24 {
-    #[inline(always)]
-    fn wide_block8<const EDGES: bool>(
-        proof: Avx2,
-        keys: &mut [Self; 64],
-        ids: &mut [u32; 64],
-        b: &Block8<'_>,
-    ) -> Option<(u32, u32, Self)> {
-        Some(super::wide::block8::<Self, EDGES>(proof, keys, ids, b))
-    }
     const FAR: Self = Fixed24(MAX24);
     #[inline(always)]
     fn select(mask: u32, new: Self, old: Self) -> Self {
@@ -137,18 +92,6 @@ impl DepthKey for Fixed24 {
     #[inline]
     fn decode(self) -> f32 {
         (f64::from(self.0) / f64::from(MAX24)) as f32
-    }
-}
-
-impl WideKey for Fixed24 {
-    const ENCODING: Encoding = Encoding::Fixed24;
-    #[inline(always)]
-    fn to_lane(self) -> u32 {
-        self.0
-    }
-    #[inline(always)]
-    fn from_lane(bits: u32) -> Self {
-        Fixed24(bits)
     }
 }
 
@@ -176,18 +119,9 @@ impl DepthKey for Fixed16 {
 /// Reversed f32 depth, stored negated so that LESS is the test (see the
 /// module documentation).
 #[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
-pub(crate) struct Reversed(f32);
+pub(crate) struct Reversed(pub(super) f32);
 
 impl DepthKey for Reversed {
-    #[inline(always)]
-    fn wide_block8<const EDGES: bool>(
-        proof: Avx2,
-        keys: &mut [Self; 64],
-        ids: &mut [u32; 64],
-        b: &Block8<'_>,
-    ) -> Option<(u32, u32, Self)> {
-        Some(super::wide::block8::<Self, EDGES>(proof, keys, ids, b))
-    }
     // ZBuffer clears reversed depth to 0; its negation is -0, which
     // compares equal to 0, so nothing at the far plane passes, as there.
     const FAR: Self = Reversed(-0.0);
@@ -202,18 +136,6 @@ impl DepthKey for Reversed {
     #[inline]
     fn decode(self) -> f32 {
         (1.0 - f64::from(-self.0)) as f32
-    }
-}
-
-impl WideKey for Reversed {
-    const ENCODING: Encoding = Encoding::Reversed;
-    #[inline(always)]
-    fn to_lane(self) -> u32 {
-        self.0.to_bits()
-    }
-    #[inline(always)]
-    fn from_lane(bits: u32) -> Self {
-        Reversed(f32::from_bits(bits))
     }
 }
 

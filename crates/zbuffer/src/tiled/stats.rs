@@ -1,45 +1,45 @@
 //! Work counters of the tiled z-buffer.
 
-use hider_scene::Stats;
-
-/// Work counters of one tiled z-buffer frame: what explains its time.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct TiledZBufferStats {
-    /// Triangles whose bounding box met the viewport and were binned.
-    pub triangles_binned: u64,
-    /// Bin entries written: (triangle, tile) pairs of small triangles.
-    pub bin_entries: u64,
-    /// Triangles too large to bin tile by tile (they cover many tiles);
-    /// every tile their bounding box meets visits them from one shared list.
-    pub large_triangles: u64,
-    /// Tiles with at least one triangle drawn into them.
-    pub tiles_drawn: u64,
-    /// Tiles no triangle touched: cleared straight into the frame, their
-    /// depth never initialised.
-    pub tiles_skipped: u64,
-    /// (triangle, tile) pairs rasterised or rejected.
-    pub triangle_tiles: u64,
-    /// (triangle, tile) pairs rejected whole by the tile's maximum depth.
-    pub hiz_triangle_rejects: u64,
-    /// 8x8 blocks visited by large triangles.
-    pub blocks_visited: u64,
-    /// Blocks outside an edge of the triangle, found from their corners.
-    pub blocks_outside: u64,
-    /// Blocks inside all three edges: no per-pixel edge test.
-    pub blocks_inside: u64,
-    /// Blocks rejected by their maximum depth.
-    pub hiz_block_rejects: u64,
-    /// Pixel centres whose edge functions were evaluated one by one.
-    pub pixels_tested: u64,
-    /// Pixel centres inside a triangle, each one depth test.
-    pub depth_tests: u64,
-    /// Pixel fragments of triangles the lean front end found too small
-    /// to rasterise, each one depth test (not in [`Self::depth_tests`]).
-    pub fragments: u64,
-    /// Depth tests that passed (of triangles and fragments).
-    pub depth_passes: u64,
-    /// Bytes of the per-band tile buffers, bins and hierarchical depth.
-    pub scratch_bytes: u64,
+hider_scene::hider_stats! {
+    /// Work counters of one tiled z-buffer frame: what explains its time.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub struct TiledZBufferStats {
+        /// Triangles whose bounding box met the viewport and were binned.
+        pub triangles_binned: u64 => "triangles binned",
+        /// Bin entries written: (triangle, tile) pairs of small triangles.
+        pub bin_entries: u64 => "bin entries",
+        /// Triangles too large to bin tile by tile (they cover many tiles);
+        /// every tile their bounding box meets visits them from one shared list.
+        pub large_triangles: u64 => "large triangles",
+        /// Tiles with at least one triangle drawn into them.
+        pub tiles_drawn: u64 => "tiles drawn",
+        /// Tiles no triangle touched: cleared straight into the frame, their
+        /// depth never initialised.
+        pub tiles_skipped: u64 => "tiles skipped",
+        /// (triangle, tile) pairs rasterised or rejected.
+        pub triangle_tiles: u64 => "triangle-tiles",
+        /// (triangle, tile) pairs rejected whole by the tile's maximum depth.
+        pub hiz_triangle_rejects: u64 => "hi-z triangle rejects",
+        /// 8x8 blocks visited by large triangles.
+        pub blocks_visited: u64 => "blocks visited",
+        /// Blocks outside an edge of the triangle, found from their corners.
+        pub blocks_outside: u64 => "blocks outside",
+        /// Blocks inside all three edges: no per-pixel edge test.
+        pub blocks_inside: u64 => "blocks inside",
+        /// Blocks rejected by their maximum depth.
+        pub hiz_block_rejects: u64 => "hi-z block rejects",
+        /// Pixel centres whose edge functions were evaluated one by one.
+        pub pixels_tested: u64 => "pixels tested",
+        /// Pixel centres inside a triangle, each one depth test.
+        pub depth_tests: u64 => "depth tests",
+        /// Pixel fragments of triangles the lean front end found too small
+        /// to rasterise, each one depth test (not in [`Self::depth_tests`]).
+        pub fragments: u64 => "fragments",
+        /// Depth tests that passed (of triangles and fragments).
+        pub depth_passes: u64 => "depth passes",
+        /// Bytes of the per-band tile buffers, bins and hierarchical depth.
+        pub scratch_bytes: u64 => PEAK,
+    }
 }
 
 impl TiledZBufferStats {
@@ -57,30 +57,5 @@ impl TiledZBufferStats {
         self.depth_tests += o.depth_tests;
         self.fragments += o.fragments;
         self.depth_passes += o.depth_passes;
-    }
-}
-
-impl From<TiledZBufferStats> for Stats {
-    fn from(s: TiledZBufferStats) -> Self {
-        Stats {
-            counters: vec![
-                ("triangles binned", s.triangles_binned),
-                ("bin entries", s.bin_entries),
-                ("large triangles", s.large_triangles),
-                ("tiles drawn", s.tiles_drawn),
-                ("tiles skipped", s.tiles_skipped),
-                ("triangle-tiles", s.triangle_tiles),
-                ("hi-z triangle rejects", s.hiz_triangle_rejects),
-                ("blocks visited", s.blocks_visited),
-                ("blocks outside", s.blocks_outside),
-                ("blocks inside", s.blocks_inside),
-                ("hi-z block rejects", s.hiz_block_rejects),
-                ("pixels tested", s.pixels_tested),
-                ("depth tests", s.depth_tests),
-                ("fragments", s.fragments),
-                ("depth passes", s.depth_passes),
-            ],
-            peak_bytes: s.scratch_bytes,
-        }
     }
 }

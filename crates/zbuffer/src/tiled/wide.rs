@@ -18,7 +18,7 @@
 
 pub(super) use hider_geom::isa::{Avx2, Isa, Portable};
 
-use super::key::DepthKey;
+use super::key::{DepthKey, Fixed16, Fixed24, Reversed};
 
 /// One full block's inputs.
 pub(super) struct Block8<'a> {
@@ -54,6 +54,65 @@ pub(super) trait WideKey: DepthKey {
     const ENCODING: Encoding;
     fn to_lane(self) -> u32;
     fn from_lane(bits: u32) -> Self;
+}
+
+/// A depth key as the tile kernel asks it for the AVX2 block: the 32-bit
+/// keys have one, the others leave every block to the portable code.
+pub(super) trait WideBlock: DepthKey {
+    /// Draws a full 8x8 block with the AVX2 block when the format has one
+    /// and the CPU can: `Some((inside, passes, the block's greatest
+    /// key))`, or `None` to leave it to the portable block.
+    #[inline(always)]
+    fn wide_block8<const EDGES: bool>(
+        proof: Avx2,
+        keys: &mut [Self; 64],
+        ids: &mut [u32; 64],
+        b: &Block8<'_>,
+    ) -> Option<(u32, u32, Self)> {
+        let _ = (proof, keys, ids, b);
+        None
+    }
+}
+
+impl WideBlock for f64 {}
+
+impl WideBlock for Fixed16 {}
+
+/// The 32-bit keys: their lanes, and [`block8`] as their wide block.
+macro_rules! wide_key {
+    ($($t:ty: $encoding:ident, |$k:ident| $to:expr, |$bits:ident| $from:expr;)*) => {$(
+        impl WideKey for $t {
+            const ENCODING: Encoding = Encoding::$encoding;
+            #[inline(always)]
+            fn to_lane(self) -> u32 {
+                let $k = self;
+                $to
+            }
+            #[inline(always)]
+            fn from_lane(bits: u32) -> Self {
+                let $bits = bits;
+                $from
+            }
+        }
+
+        impl WideBlock for $t {
+            #[inline(always)]
+            fn wide_block8<const EDGES: bool>(
+                proof: Avx2,
+                keys: &mut [Self; 64],
+                ids: &mut [u32; 64],
+                b: &Block8<'_>,
+            ) -> Option<(u32, u32, Self)> {
+                Some(block8::<Self, EDGES>(proof, keys, ids, b))
+            }
+        }
+    )*};
+}
+
+wide_key! {
+    f32: F32, |k| k.to_bits(), |bits| f32::from_bits(bits);
+    Fixed24: Fixed24, |k| k.0, |bits| Fixed24(bits);
+    Reversed: Reversed, |k| k.0.to_bits(), |bits| Reversed(f32::from_bits(bits));
 }
 
 /// Draws the block with AVX2; returns (pixels inside, passes, the block's

@@ -1,0 +1,252 @@
+//! Drawing the tiles of a frame: a job per band of tiles (a row of tiles,
+//! a contiguous run of frame rows, so bands can be handed to threads
+//! safely) or per single tile, each with the widest vector instructions
+//! the CPU has, and the resolve of a band into the frame.
+
+use hider_geom::Viewport;
+use hider_scene::Frame;
+use hider_scene::frame::BACKGROUND;
+
+use super::bins::{self, ChunkBins, FragmentBins, Grid};
+use super::pool::{Workers, install};
+use super::raster_tri::RasterTri;
+use super::scratch::TileKey;
+use super::tile::TileBuf;
+use super::wide::{Avx2, Isa, Portable};
+
+/// One band of the frame as the resolve receives it: ((ids, depth),
+/// colour) rows of one row of tiles.
+type FrameBand<'a> = ((&'a mut [u32], &'a mut [f32]), &'a mut [[u8; 4]]);
+
+/// Everything drawing a run of tiles (a band, or one tile) needs.
+pub(super) struct Jobs<'a, T> {
+    /// Whether the AVX2 kernel may be used.
+    pub(super) wide: bool,
+    pub(super) grid: Grid,
+    pub(super) vp: Viewport,
+    pub(super) tris: &'a [&'a [T]],
+    pub(super) chunks: &'a [ChunkBins],
+    /// Each run's fragments by tile, applied after the tile's triangles.
+    pub(super) fragments: &'a [FragmentBins],
+    pub(super) hiz: bool,
+}
+
+impl<T: RasterTri> Jobs<'_, T> {
+    /// Draws every tile and resolves each band into `frame` while it is in
+    /// cache, band by band on `pool`'s threads.
+    pub(super) fn draw_and_resolve<K: TileKey>(
+        &self,
+        frame: &mut Frame,
+        bufs: &mut [TileBuf<K>],
+        pool: Workers<'_>,
+    ) {
+        let (width, cols, tile) = (
+            self.vp.width as usize,
+            self.grid.cols as usize,
+            self.grid.tile,
+        );
+        for_each_band(frame, bufs, self.grid, pool, |b, out, band| {
+            self.dispatch(b * cols, band);
+            resolve_band(band, out, width, b as u32 * tile);
+        });
+    }
+
+    /// Draws every tile and stops (nothing to resolve): on a pool, threads
+    /// take single tiles, which balances a small object in the middle of
+    /// the image far better than bands do.
+    pub(super) fn draw_tiles<K: TileKey>(&self, bufs: &mut [TileBuf<K>], pool: Workers<'_>) {
+        let Some(pool) = pool else {
+            let cols = self.grid.cols as usize;
+            for (b, band) in bufs.chunks_mut(cols).enumerate() {
+                self.dispatch(b * cols, band);
+            }
+            return;
+        };
+        use rayon::prelude::*;
+        // Tiles nothing reaches are only flagged background, here; the
+        // threads share the others, one task each (the spider at 1024
+        // reaches 36 of 256 tiles: fewer tasks to split and steal).
+        let mut busy = Vec::new();
+        for (t, tile) in bufs.iter_mut().enumerate() {
+            if bins::tile_has_work(self.chunks, self.fragments, t) {
+                busy.push((bins::tile_load(self.chunks, self.fragments, t), t, tile));
+            } else {
+                self.dispatch(t, std::slice::from_mut(tile));
+            }
+        }
+        // Heaviest first: the last tasks, which decide when the threads
+        // finish, are then the small ones.
+        busy.sort_unstable_by_key(|&(load, t, _)| (std::cmp::Reverse(load), t));
+        install(pool, || {
+            busy.par_iter_mut()
+                .with_max_len(1)
+                .for_each(|(_, t, tile)| self.dispatch(*t, std::slice::from_mut(*tile)));
+        });
+    }
+
+    /// Draws the run of tiles `band`, which starts at tile `first`
+    /// (row-major), with the widest vector instructions the CPU has.
+    ///
+    /// The kernel is compiled twice: for baseline x86-64 (SSE2) and, where
+    /// the CPU reports AVX2 and FMA at run time, for those (4 `f64` or 8
+    /// `i32` lanes instead of 2 or 4, and blends). Everything the band calls
+    /// is `#[inline(always)]`, so all of it is compiled with the features
+    /// of the copy it lands in. Same instructions' semantics, same results:
+    /// IEEE arithmetic is exact per operation and Rust never contracts
+    /// `a * b + c` into an FMA, so both copies give the same bits (the
+    /// property tests run whichever this machine picks; CI's machine has
+    /// AVX2, and `tests::both_kernels_agree` runs both).
+    fn dispatch<K: TileKey>(&self, first: usize, band: &mut [TileBuf<K>]) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = Avx2::detect().filter(|_| self.wide) {
+            self.draw_avx2(first, band, avx2);
+            return;
+        }
+        self.draw(first, band, Portable);
+    }
+
+    /// [`Self::draw`] compiled for AVX2 and FMA.
+    ///
+    /// One of the project's six `unsafe` sites (listed in
+    /// `docs/zbuffer.md`): calling a `target_feature` function is unsafe
+    /// only because the CPU might lack the feature, and the [`Avx2`] value
+    /// proves it has them.
+    #[cfg(target_arch = "x86_64")]
+    #[allow(
+        unsafe_code,
+        reason = "a target-feature call, proven sound by the Avx2 token"
+    )]
+    fn draw_avx2<K: TileKey>(&self, first: usize, band: &mut [TileBuf<K>], avx2: Avx2) {
+        #[target_feature(enable = "avx2,fma")]
+        unsafe fn kernel<T: RasterTri, K: TileKey>(
+            jobs: &Jobs<'_, T>,
+            first: usize,
+            band: &mut [TileBuf<K>],
+            avx2: Avx2,
+        ) {
+            jobs.draw(first, band, avx2);
+        }
+        // SAFETY: an `Avx2` value exists only where AVX2 and FMA were
+        // detected.
+        unsafe { kernel(self, first, band, avx2) }
+    }
+
+    /// Draws the run of tiles `band` (tiles `first..`, row-major) from
+    /// their bins.
+    #[inline(always)]
+    fn draw<K: TileKey, I: Isa>(&self, first: usize, band: &mut [TileBuf<K>], isa: I) {
+        let (grid, vp) = (self.grid, self.vp);
+        for (i, buf) in band.iter_mut().enumerate() {
+            let t = first + i;
+            let (tx, ty) = (
+                (t % grid.cols as usize) as u32,
+                (t / grid.cols as usize) as u32,
+            );
+            let (x0, y0) = (tx * grid.tile, ty * grid.tile);
+            buf.start(
+                x0,
+                y0,
+                grid.tile.min(vp.width - x0),
+                grid.tile.min(vp.height - y0),
+            );
+            if bins::tile_has_work(self.chunks, self.fragments, t) {
+                let mut draw = Drawer {
+                    isa,
+                    buf: &mut *buf,
+                    vp,
+                    hiz: self.hiz,
+                };
+                bins::for_each_in_tile(self.tris, self.chunks, t, &mut draw);
+                for run in self.fragments {
+                    for f in &run.tiles[t] {
+                        buf.fragment(f);
+                    }
+                }
+            }
+            if !buf.is_active() {
+                buf.stats.tiles_skipped += 1;
+            }
+        }
+    }
+}
+
+/// A tile buffer drawing binned triangles.
+struct Drawer<'a, K, I> {
+    isa: I,
+    buf: &'a mut TileBuf<K>,
+    vp: Viewport,
+    hiz: bool,
+}
+
+impl<T: RasterTri, K: TileKey, I: Isa> bins::DrawTri<T> for Drawer<'_, K, I> {
+    #[inline(always)]
+    fn draw(&mut self, tri: &T, low: f32) {
+        self.buf.draw(self.isa, tri, low, self.vp, self.hiz);
+    }
+}
+
+/// Copies the tiles `bufs` into `frame`, band by band on `pool`'s threads:
+/// the read-back.
+pub(super) fn resolve<K: TileKey>(
+    frame: &mut Frame,
+    bufs: &mut [TileBuf<K>],
+    grid: Grid,
+    pool: Workers<'_>,
+) {
+    let width = frame.width() as usize;
+    for_each_band(frame, bufs, grid, pool, |b, out, band| {
+        resolve_band(band, out, width, b as u32 * grid.tile);
+    });
+}
+
+/// Calls `work` with each band's index, its rows of the frame and its
+/// tiles, in parallel on `pool` or in order; clears the frame's coverage
+/// (a z-buffer writes none).
+fn for_each_band<K: TileKey>(
+    frame: &mut Frame,
+    bufs: &mut [TileBuf<K>],
+    grid: Grid,
+    pool: Workers<'_>,
+    work: impl Fn(usize, FrameBand<'_>, &mut [TileBuf<K>]) + Sync,
+) {
+    frame.coverage.clear();
+    let band_len = frame.width() as usize * grid.tile as usize;
+    let cols = grid.cols as usize;
+    let work = |(b, (out, band)): (usize, (FrameBand<'_>, &mut [TileBuf<K>]))| work(b, out, band);
+    match pool {
+        Some(pool) => {
+            use rayon::prelude::*;
+            install(pool, || {
+                frame
+                    .ids
+                    .par_chunks_mut(band_len)
+                    .zip(frame.depth.par_chunks_mut(band_len))
+                    .zip(frame.color.par_chunks_mut(band_len))
+                    .zip(bufs.par_chunks_mut(cols))
+                    .enumerate()
+                    .for_each(work)
+            });
+        }
+        None => frame
+            .ids
+            .chunks_mut(band_len)
+            .zip(frame.depth.chunks_mut(band_len))
+            .zip(frame.color.chunks_mut(band_len))
+            .zip(bufs.chunks_mut(cols))
+            .enumerate()
+            .for_each(work),
+    }
+}
+
+/// Writes a band's tiles into the frame's rows of that band.
+fn resolve_band<K: TileKey>(
+    band: &[TileBuf<K>],
+    ((ids, depth), color): FrameBand<'_>,
+    width: usize,
+    band_y0: u32,
+) {
+    for buf in band {
+        buf.resolve(ids, depth, width, band_y0);
+    }
+    color.fill(BACKGROUND);
+}

@@ -1,0 +1,78 @@
+//! The tile's hierarchical depth: the maximum key of each 8x8 block and of
+//! the whole tile, refreshed lazily (a stale maximum is still an upper
+//! bound, since keys only fall as depths are written).
+
+use super::super::key::DepthKey;
+use super::{BLOCK, TileBuf};
+
+impl<K: DepthKey> TileBuf<K> {
+    /// Credits `passes` to every block of a rectangle (an over-count for
+    /// blocks it only partly covers: that only refreshes them sooner).
+    #[inline(always)]
+    pub(super) fn note_passes_in_rect(&mut self, x0: u32, y0: u32, x1: u32, y1: u32, passes: u32) {
+        let per_row = (self.size / BLOCK) as usize;
+        for br in (y0 - self.y0) / BLOCK..(y1 - self.y0) / BLOCK + 1 {
+            for bc in (x0 - self.x0) / BLOCK..(x1 - self.x0) / BLOCK + 1 {
+                self.block_passes[br as usize * per_row + bc as usize] += passes;
+            }
+        }
+        self.tile_passes += passes;
+    }
+
+    /// Recomputes a block's maximum key from its pixels.
+    #[inline(always)]
+    pub(super) fn refresh_block(&mut self, block: usize) {
+        let per_row = (self.size / BLOCK) as usize;
+        let (br, bc) = ((block / per_row) as u32, (block % per_row) as u32);
+        let (ya, xa) = (br * BLOCK, bc * BLOCK);
+        let (yb, xb) = ((ya + BLOCK).min(self.h), (xa + BLOCK).min(self.w));
+        let base = block * 64;
+        let mut m = self.keys[base];
+        if let (8, 8, Ok(keys)) = (
+            yb - ya,
+            xb - xa,
+            <&[K; 64]>::try_from(&self.keys[base..base + 64]),
+        ) {
+            // A whole block: a fixed-length, branch-free reduction the
+            // compiler vectorises (eight running maxima).
+            let mut lanes = [m; 8];
+            for row in keys.chunks_exact(8) {
+                for (l, &k) in lanes.iter_mut().zip(row) {
+                    *l = l.max_key(k);
+                }
+            }
+            m = lanes.iter().fold(m, |m, &l| m.max_key(l));
+        } else {
+            for r in 0..(yb - ya) as usize {
+                for &k in &self.keys[base + r * 8..base + r * 8 + (xb - xa) as usize] {
+                    m = m.max_key(k);
+                }
+            }
+        }
+        self.block_max[block] = m;
+        self.block_passes[block] = 0;
+    }
+
+    /// Recomputes the tile's maximum once enough has been drawn since the
+    /// last time (half the tile's pixels' worth of passes).
+    #[inline(always)]
+    pub(super) fn refresh_tile_max(&mut self) {
+        if self.tile_passes < self.w * self.h / 2 {
+            return;
+        }
+        let per_row = (self.size / BLOCK) as usize;
+        let mut m: Option<K> = None;
+        for br in 0..self.h.div_ceil(BLOCK) as usize {
+            for bc in 0..self.w.div_ceil(BLOCK) as usize {
+                let block = br * per_row + bc;
+                if self.block_passes[block] > 0 {
+                    self.refresh_block(block);
+                }
+                let b = self.block_max[block];
+                m = Some(m.map_or(b, |m| m.max_key(b)));
+            }
+        }
+        self.tile_max = m.unwrap_or(K::FAR);
+        self.tile_passes = 0;
+    }
+}
