@@ -1,1 +1,42 @@
-//! Test set-up shared by the hider workspace (being assembled).
+//! Test set-up shared by the hider workspace, so that every crate's tests
+//! and examples build scenes, cameras and references the same way.
+//!
+//! - [`hard_cases`]: deterministic scenes built to break hidden-surface
+//!   algorithms (intersections, ties, precision, degenerate triangles...);
+//! - [`screen()`] / [`screen_with`]: a world-space scene prepared with the
+//!   default front end, and [`render()`] into a fresh frame;
+//! - [`cameras`]: the 60-degree look-at camera and random cameras;
+//! - [`reference`](mod@reference): the pixel-centre references from `hider-oracle` (the
+//!   brute-force window-depth z-buffer and the ray cast);
+//! - [`score`]: counting wrong pixels and ties against a reference, and
+//!   tallies for property tests;
+//! - [`timer`]: warm-up, repeated runs, median and minimum, for examples.
+//!
+//! A dev-dependency only (`publish = false`); test code panics on errors
+//! rather than returning them.
+//!
+//! # Example
+//!
+//! Render a hard case with the oracle and score it against the brute-force
+//! pixel-centre z-buffer:
+//!
+//! ```
+//! use hider_oracle::RayCastOracle;
+//! use hider_testkit::{hard_cases, reference, render, score, screen};
+//!
+//! let scene = hard_cases::interpenetrating_boxes(3, 1);
+//! let s = screen(&scene, 32, 32);
+//! let (frame, stats) = render(&mut RayCastOracle::default(), &s);
+//! let result = score::score(&reference::pixel_centre(&s), &frame, 1e-8);
+//! assert_eq!(result.coverage_mismatches, 0, "{result}");
+//! assert!(stats.hits > 0);
+//! ```
+
+pub mod cameras;
+pub mod hard_cases;
+pub mod reference;
+pub mod score;
+pub mod screen;
+pub mod timer;
+
+pub use screen::{frame_for, render, screen, screen_with};

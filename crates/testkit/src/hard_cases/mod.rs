@@ -1,0 +1,85 @@
+//! Hard cases: scenes built to break hidden-surface algorithms.
+//!
+//! Each generator is parameterised and deterministic (same arguments, same
+//! scene, bit for bit) and returns a [`Scene`], with its own camera when the
+//! fit camera would not show the difficulty. [`all`] lists one modest
+//! instance of each by name, for the cross-validation suite and the
+//! benchmark; [`closed_meshes`] lists the closed, consistently oriented
+//! meshes the watertightness checks use.
+//!
+//! | case | what breaks |
+//! |---|---|
+//! | [`intersecting_pairs`], [`interpenetrating_boxes`] | any per-triangle depth order (painter's without splitting) |
+//! | [`coplanar_overlaps`] | z-fighting: every overlap is a depth tie |
+//! | [`near_coplanar_far`] | depth-buffer precision far from the camera |
+//! | [`slivers`], [`near_degenerate_fan`] | area near zero, ill-conditioned planes |
+//! | [`fan`], [`bipyramid`], [`torus`] (and `procedural::{cube, uv_sphere}`) | cracks and double hits on shared edges and vertices |
+//! | [`near_plane_crossing`] | near-plane clipping, geometry behind the eye |
+//! | [`huge_depth_range`] | `near = 1e-3`, `far = 1e6`: window-depth resolution |
+//! | [`huge_coordinates`] | `1e7` world coordinates with unit-size triangles |
+//! | [`cyclic_overlap`] | no depth order exists at all |
+//! | [`heavy_overdraw`], `procedural::random_soup` | many layers per pixel, random interpenetration |
+
+mod degenerate;
+mod ordering;
+mod precision;
+mod shared_edges;
+mod support;
+#[cfg(test)]
+mod tests;
+
+use hider_scene::Scene;
+use hider_scene::procedural;
+
+pub use crate::cameras::look_at;
+pub use degenerate::{near_degenerate_fan, slivers};
+pub use ordering::{cyclic_overlap, heavy_overdraw, interpenetrating_boxes, intersecting_pairs};
+pub use precision::{
+    coplanar_overlaps, huge_coordinates, huge_depth_range, near_coplanar_far, near_plane_crossing,
+};
+pub use shared_edges::{bipyramid, fan, torus};
+
+/// One modest instance of every hard case, by name, derived from `seed`:
+/// small enough that the exact oracle and every hider run on all of them in
+/// well under a second at 64 x 64.
+pub fn all(seed: u64) -> Vec<(&'static str, Scene)> {
+    let s = |k: u64| seed.wrapping_mul(0x9e37_79b9_7f4a_7c15).wrapping_add(k);
+    vec![
+        ("intersecting_pairs", intersecting_pairs(6, s(1))),
+        ("interpenetrating_boxes", interpenetrating_boxes(4, s(2))),
+        ("coplanar_overlaps", coplanar_overlaps(6, s(3))),
+        (
+            "near_coplanar_far",
+            near_coplanar_far(4, 1000.0, 1e-3, s(4)),
+        ),
+        ("slivers", slivers(40, s(5))),
+        ("near_degenerate_fan", near_degenerate_fan(48, s(6))),
+        ("fan", fan(24, s(7))),
+        ("bipyramid", bipyramid(16, s(8))),
+        ("cube", procedural::cube()),
+        ("uv_sphere", procedural::uv_sphere(12)),
+        ("torus", torus(16, 8, 1.0, 0.35)),
+        ("near_plane_crossing", near_plane_crossing(30, s(9))),
+        ("huge_depth_range", huge_depth_range(24, 30.0, s(10))),
+        ("huge_coordinates", huge_coordinates(30, s(11), 1e7)),
+        ("cyclic_overlap", cyclic_overlap(5)),
+        ("cyclic_triple", procedural::cyclic_triple()),
+        ("random_soup", procedural::random_soup(200, s(12))),
+        ("heavy_overdraw", heavy_overdraw(100, s(13))),
+    ]
+}
+
+/// The closed, consistently outward-wound meshes among the hard cases
+/// (every edge shared by exactly two triangles with opposite directions),
+/// by name: what watertightness checks need. Convex ones are marked `true`
+/// (each pixel inside the silhouette meets exactly one front and one back
+/// face).
+pub fn closed_meshes(seed: u64) -> Vec<(&'static str, Scene, bool)> {
+    vec![
+        ("cube", procedural::cube(), true),
+        ("uv_sphere", procedural::uv_sphere(16), true),
+        ("bipyramid", bipyramid(20, seed), false),
+        ("torus", torus(20, 10, 1.0, 0.4), false),
+        ("box", interpenetrating_boxes(1, seed), true),
+    ]
+}
