@@ -9,8 +9,11 @@
 
 use std::time::Instant;
 
-use hider_painter::{NaivePainter, Painter, PainterStats};
-use hider_scene::{Frame, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural};
+use hider_geom::fixed::pixel_center;
+use hider_painter::{NaivePainter, Painter, PainterOptions, PainterStats};
+use hider_scene::{
+    Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
+};
 
 fn main() -> Result<(), hider_scene::Error> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -52,12 +55,12 @@ fn run(name: &str, scene: &Scene) -> Result<(), hider_scene::Error> {
     let mut naive_ms = f64::INFINITY;
     for _ in 0..runs {
         let t = Instant::now();
-        naive.render_with_stats(&s, &mut frame)?;
+        naive.render(&s, &mut frame)?;
         naive_ms = naive_ms.min(t.elapsed().as_secs_f64() * 1e3);
     }
     let naive_wrong = wrong(&frame, &reference);
     // PAINTER_MAX_MIB raises the piece-memory budget (default 1 GiB).
-    let mut options = hider_painter::PainterOptions::default();
+    let mut options = PainterOptions::default();
     if let Some(mib) = std::env::var("PAINTER_MAX_MIB")
         .ok()
         .and_then(|v| v.parse::<u64>().ok())
@@ -69,13 +72,13 @@ fn run(name: &str, scene: &Scene) -> Result<(), hider_scene::Error> {
     let mut st = PainterStats::default();
     for _ in 0..runs {
         let t = Instant::now();
-        st = painter.render_with_stats(&s, &mut frame)?;
+        st = painter.render(&s, &mut frame)?;
         ms = ms.min(t.elapsed().as_secs_f64() * 1e3);
     }
     println!(
         "| {name} | {} | {naive_ms:.1} | {naive_wrong} | {ms:.1} | {} | {} | {} | {} |",
         s.tris.len(),
-        st.splits(),
+        st.splits,
         st.pieces_out,
         st.comparisons,
         wrong(&frame, &reference)
@@ -103,7 +106,10 @@ fn zbuffer(s: &ScreenScene) -> Vec<(u32, f64, f64)> {
         let edges = t.edges();
         for j in y0..=y1 {
             for i in x0..=x1 {
-                let (x, y) = (i64::from(i) * 256 + 128, i64::from(j) * 256 + 128);
+                let (x, y) = (
+                    i64::from(pixel_center(i as i32)),
+                    i64::from(pixel_center(j as i32)),
+                );
                 if !edges.iter().all(|e| e.contains(x, y)) {
                     continue;
                 }

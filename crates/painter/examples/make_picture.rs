@@ -10,7 +10,7 @@ use std::path::PathBuf;
 
 use hider_painter::{NaivePainter, Painter};
 use hider_scene::{
-    Frame, Hider, PrepareOptions, ShadeMode, View, prepare, procedural, shade_frame,
+    DynHider, Frame, PrepareOptions, ShadeMode, View, prepare, procedural, shade_frame,
 };
 
 fn main() -> Result<(), hider_scene::Error> {
@@ -25,7 +25,7 @@ fn main() -> Result<(), hider_scene::Error> {
     for (col, scene) in scenes.iter().enumerate() {
         let view = View::for_scene(scene, TILE, TILE)?;
         let s = prepare(scene, &view, &PrepareOptions::default())?;
-        let hiders: [Box<dyn Hider>; 2] = [
+        let hiders: [Box<dyn DynHider>; 2] = [
             Box::new(NaivePainter::default()),
             Box::new(Painter::default()),
         ];
@@ -40,11 +40,13 @@ fn main() -> Result<(), hider_scene::Error> {
                     sheet.color[to] = f.color[f.index(i, j)];
                 }
             }
-        }
-        if col == 1 {
-            let svg = dir.join("painter-cycle.svg");
-            Painter::default().render_svg(&s, &svg, ShadeMode::Lambert)?;
-            println!("wrote {}", svg.display());
+            // The split cyclic triple, from the frame just painted.
+            if col == 1 && row == 1 {
+                let svg = dir.join("painter-cycle.svg");
+                let vector = h.vector_output().expect("the painter writes SVG");
+                vector.write_svg(&s, &svg, ShadeMode::Lambert)?;
+                println!("wrote {}", svg.display());
+            }
         }
     }
     let png = dir.join("painter-naive-vs-nns.png");

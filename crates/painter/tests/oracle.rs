@@ -1,14 +1,15 @@
 //! The correct painter against the references, the naive one shown wrong.
 //!
 //! Two references: the workspace oracle (`hider-oracle`, camera-space ray
-//! casts on the unsnapped planes, ties within `DEFAULT_TIE_TOLERANCE`) and
+//! casts, ties within `DEFAULT_TIE_TOLERANCE`) and
 //! a brute-force z-buffer on the same window-depth planes the hiders use,
 //! whose tie band (1e-8 in window depth) is a thousand times narrower: the
 //! painter must be pixel-exact against both outside their ties.
 
 use glam::DVec3;
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
-use hider_painter::{NaiveOptions, NaivePainter, Painter, PainterOptions, SortKey};
+use hider_geom::fixed::pixel_center;
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, OracleOptions, RayCastOracle, Reference};
+use hider_painter::{NaivePainter, NaivePainterOptions, Painter, PainterOptions, SortKey};
 use hider_scene::{
     Error, Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
 };
@@ -30,7 +31,10 @@ fn brute_force(s: &ScreenScene) -> (Vec<u32>, Vec<bool>, Vec<f32>) {
     let (mut ids, mut tie, mut depth) = (vec![NO_ID; n], vec![false; n], vec![1.0f32; n]);
     for j in 0..h {
         for i in 0..w {
-            let (x, y) = (i64::from(i) * 256 + 128, i64::from(j) * 256 + 128);
+            let (x, y) = (
+                i64::from(pixel_center(i as i32)),
+                i64::from(pixel_center(j as i32)),
+            );
             let mut best: Option<(f64, u32)> = None;
             let mut second = f64::INFINITY;
             for t in &s.tris {
@@ -78,10 +82,14 @@ fn score(s: &ScreenScene, frame: &Frame) -> (usize, usize, usize) {
     (cov, wrong, ties)
 }
 
-fn render(h: &mut dyn Hider, s: &ScreenScene) -> Frame {
+fn render<H: Hider>(h: &mut H, s: &ScreenScene) -> Frame {
     let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
     h.render(s, &mut f).unwrap();
     f
+}
+
+fn oracle(s: &ScreenScene) -> Reference {
+    RayCastOracle::new(OracleOptions::default()).evaluate(s)
 }
 
 fn assert_exact(s: &ScreenScene, what: &str) {
@@ -92,9 +100,7 @@ fn assert_exact(s: &ScreenScene, what: &str) {
         (0, 0),
         "{what}: painter vs window-depth brute force"
     );
-    let agreement = RayCastOracle::new()
-        .evaluate(s)
-        .compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+    let agreement = oracle(s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
     assert!(
         agreement.is_exact(),
         "{what}: painter vs oracle: {agreement}"
@@ -123,7 +129,7 @@ fn naive_painter_is_wrong_on_intersections_and_cycles() {
             ("cyclic_triple", procedural::cyclic_triple()),
         ] {
             let s = screen(&scene, 64);
-            let mut naive = NaivePainter::new(NaiveOptions::default().with_sort_key(key));
+            let mut naive = NaivePainter::new(NaivePainterOptions::default().with_sort_key(key));
             let frame = render(&mut naive, &s);
             let (cov, wrong, _) = score(&s, &frame);
             // Coverage is the shared exact one; visibility is not.
@@ -132,9 +138,7 @@ fn naive_painter_is_wrong_on_intersections_and_cycles() {
                 wrong > 0,
                 "{name} {key:?}: the naive sort got every pixel right"
             );
-            let agreement = RayCastOracle::new()
-                .evaluate(&s)
-                .compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+            let agreement = oracle(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
             assert_eq!(agreement.coverage_mismatches, 0);
             assert!(agreement.wrong_ids > 0, "{name} {key:?}: {agreement}");
         }
@@ -174,26 +178,26 @@ fn layers() -> Scene {
 fn splits_are_counted_and_pieces_keep_their_primitive() {
     let s = screen(&procedural::intersecting_pair(), 64);
     let mut p = Painter::default();
-    let stats = p.order(&s).unwrap();
+    let mut f = Frame::new(64, 64).unwrap();
+    let stats = p.render(&s, &mut f).unwrap();
     assert!(stats.plane_splits >= 1);
-    assert_eq!(stats.pieces_out, stats.triangles + stats.splits());
+    assert_eq!(stats.pieces_out, stats.triangles + stats.splits);
     assert_eq!(p.ordered_pieces().len() as u64, stats.pieces_out);
     let prims: Vec<u32> = p.ordered_pieces().map(|q| q.prim).collect();
     assert!(prims.contains(&0) && prims.contains(&1));
     assert!(prims.iter().all(|&id| id < 2));
     // Pieces of a split triangle are cut; at least one prim appears twice.
     assert!(p.ordered_pieces().any(|q| !q.is_uncut()));
-    let generic: hider_scene::Stats = stats.into();
-    assert_eq!(generic.get("splits"), Some(stats.splits()));
-    assert!(generic.get("comparisons").unwrap() >= 1);
+    assert_eq!(stats.splits, stats.plane_splits + stats.line_splits);
+    assert!(stats.comparisons >= 1);
 }
 
 #[test]
 fn cycle_without_intersection_is_split_and_resolved() {
     let s = screen(&procedural::cyclic_triple(), 64);
-    let mut p = Painter::default();
-    let stats = p.order(&s).unwrap();
-    assert!(stats.splits() >= 1, "{stats:?}");
+    let mut f = Frame::new(64, 64).unwrap();
+    let stats = Painter::default().render(&s, &mut f).unwrap();
+    assert!(stats.splits >= 1, "{stats:?}");
     assert!(stats.moves >= 1, "a cycle is found by moving: {stats:?}");
 }
 
@@ -211,7 +215,7 @@ fn exhausted_split_budget_is_a_clear_error() {
     );
     // Scenes that need no split still render with no budget at all.
     let ok = screen(&layers(), 32);
-    assert_eq!(p.render(&ok, &mut f).unwrap().get("splits"), Some(0));
+    assert_eq!(p.render(&ok, &mut f).unwrap().splits, 0);
 }
 
 #[test]
@@ -283,7 +287,7 @@ proptest! {
         let frame = render(&mut Painter::default(), &s);
         let (cov, wrong, _) = score(&s, &frame);
         prop_assert_eq!((cov, wrong), (0, 0));
-        let agreement = RayCastOracle::new().evaluate(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+        let agreement = oracle(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
         prop_assert!(agreement.is_exact(), "{}", agreement);
     }
 
@@ -293,7 +297,7 @@ proptest! {
         let frame = render(&mut Painter::default(), &s);
         let (cov, wrong, _) = score(&s, &frame);
         prop_assert_eq!((cov, wrong), (0, 0));
-        let agreement = RayCastOracle::new().evaluate(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
+        let agreement = oracle(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
         prop_assert!(agreement.is_exact(), "{}", agreement);
     }
 }

@@ -1,15 +1,39 @@
 //! Vector output: the SVG of the ordered pieces, read back and checked for
 //! order and geometry, not only as text.
 
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle, Reference};
+use std::path::Path;
+
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, OracleOptions, RayCastOracle, Reference};
 use hider_painter::{NaivePainter, Painter, PainterOptions};
 use hider_scene::{
-    Error, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural,
+    Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, ShadeMode, View,
+    prepare, procedural,
 };
 
 fn screen(scene: &Scene, size: u32) -> ScreenScene {
     let view = View::for_scene(scene, size, size).unwrap();
     prepare(scene, &view, &PrepareOptions::default()).unwrap()
+}
+
+/// Renders `s` with `hider`, then writes the vector output of that frame
+/// to `path`: the one way to get a painter's SVG.
+fn render_svg<H: Hider>(
+    hider: &mut H,
+    s: &ScreenScene,
+    path: &Path,
+    mode: ShadeMode,
+) -> Result<H::Stats> {
+    let mut frame = Frame::new(s.viewport.width, s.viewport.height)?;
+    let stats = hider.render(s, &mut frame)?;
+    hider
+        .vector_output()
+        .expect("painters have vector output")
+        .write_svg(s, path, mode)?;
+    Ok(stats)
+}
+
+fn oracle(s: &ScreenScene) -> Reference {
+    RayCastOracle::new(OracleOptions::default()).evaluate(s)
 }
 
 /// `(prim, polygon)` of every `<path>`, in document (paint) order.
@@ -91,14 +115,12 @@ fn temp(name: &str) -> std::path::PathBuf {
 fn intersecting_pair_svg_has_split_pieces_in_the_right_order() {
     let s = screen(&procedural::intersecting_pair(), 64);
     let path = temp("pair.svg");
-    let stats = Painter::default()
-        .render_svg(&s, &path, ShadeMode::Lambert)
-        .unwrap();
-    assert!(stats.get("splits").unwrap() >= 1);
+    let stats = render_svg(&mut Painter::default(), &s, &path, ShadeMode::Lambert).unwrap();
+    assert!(stats.splits >= 1);
     let svg = std::fs::read_to_string(&path).unwrap();
     assert!(svg.starts_with("<?xml") && svg.trim_end().ends_with("</svg>"));
     let paths = parse_paths(&svg);
-    assert_eq!(paths.len() as u64, stats.get("pieces out").unwrap());
+    assert_eq!(paths.len() as u64, stats.pieces_out);
     // The pieces interleave: some piece of one triangle is painted between
     // two pieces of the other, which no whole-triangle order can do.
     let prims: Vec<u32> = paths.iter().map(|(p, _)| *p).collect();
@@ -109,15 +131,19 @@ fn intersecting_pair_svg_has_split_pieces_in_the_right_order() {
     assert!(interleaved, "paint order {prims:?}");
     // Geometry and order together: the last path over each pixel centre is
     // the oracle's visible primitive.
-    let reference = RayCastOracle::new().evaluate(&s);
+    let reference = oracle(&s);
     let (checked, wrong) = score_svg(&paths, &reference);
     assert!(checked > 300, "only {checked} pixels checked");
     assert_eq!(wrong, 0);
     // A plain depth sort, as plotting libraries do, gets part of it wrong.
     let naive_path = temp("pair-naive.svg");
-    NaivePainter::default()
-        .render_svg(&s, &naive_path, ShadeMode::Ids)
-        .unwrap();
+    render_svg(
+        &mut NaivePainter::default(),
+        &s,
+        &naive_path,
+        ShadeMode::Ids,
+    )
+    .unwrap();
     let naive = parse_paths(&std::fs::read_to_string(&naive_path).unwrap());
     assert_eq!(naive.len(), 2);
     let (_, naive_wrong) = score_svg(&naive, &reference);
@@ -128,11 +154,9 @@ fn intersecting_pair_svg_has_split_pieces_in_the_right_order() {
 fn cyclic_triple_svg_matches_the_oracle() {
     let s = screen(&procedural::cyclic_triple(), 64);
     let path = temp("cycle.svg");
-    Painter::default()
-        .render_svg(&s, &path, ShadeMode::Ids)
-        .unwrap();
+    render_svg(&mut Painter::default(), &s, &path, ShadeMode::Ids).unwrap();
     let paths = parse_paths(&std::fs::read_to_string(&path).unwrap());
-    let (checked, wrong) = score_svg(&paths, &RayCastOracle::new().evaluate(&s));
+    let (checked, wrong) = score_svg(&paths, &oracle(&s));
     assert!(checked > 100);
     assert_eq!(wrong, 0);
 }
@@ -140,14 +164,11 @@ fn cyclic_triple_svg_matches_the_oracle() {
 #[test]
 fn dropping_hidden_pieces_keeps_the_picture() {
     let s = screen(&procedural::uv_sphere(12), 48);
-    let reference = RayCastOracle::new().evaluate(&s);
+    let reference = oracle(&s);
     let (all, some) = (temp("sphere-all.svg"), temp("sphere-visible.svg"));
-    Painter::default()
-        .render_svg(&s, &all, ShadeMode::Lambert)
-        .unwrap();
-    Painter::new(PainterOptions::default().with_svg_drop_hidden(true))
-        .render_svg(&s, &some, ShadeMode::Lambert)
-        .unwrap();
+    render_svg(&mut Painter::default(), &s, &all, ShadeMode::Lambert).unwrap();
+    let mut dropping = Painter::new(PainterOptions::default().with_svg_drop_hidden(true));
+    render_svg(&mut dropping, &s, &some, ShadeMode::Lambert).unwrap();
     let all = parse_paths(&std::fs::read_to_string(&all).unwrap());
     let some = parse_paths(&std::fs::read_to_string(&some).unwrap());
     // The back of the sphere is hidden: roughly half the pieces go.
@@ -168,9 +189,50 @@ fn dropping_hidden_pieces_keeps_the_picture() {
 fn failed_write_is_an_error_and_leaves_no_file() {
     let s = screen(&procedural::intersecting_pair(), 16);
     let missing = temp("no-such-dir").join("out.svg");
-    let err = Painter::default()
-        .render_svg(&s, &missing, ShadeMode::Lambert)
-        .unwrap_err();
+    let err = render_svg(&mut Painter::default(), &s, &missing, ShadeMode::Lambert).unwrap_err();
     assert!(matches!(err, Error::Io { .. }), "{err}");
     assert!(!missing.exists());
+}
+
+#[test]
+fn svg_before_a_render_or_after_a_failed_one_is_an_error() {
+    let s = screen(&procedural::intersecting_pair(), 16);
+    let path = temp("never.svg");
+    for hider in [
+        &Painter::default() as &dyn hider_scene::DynHider,
+        &NaivePainter::default(),
+    ] {
+        let err = hider
+            .vector_output()
+            .unwrap()
+            .write_svg(&s, &path, ShadeMode::Lambert)
+            .unwrap_err();
+        assert!(matches!(err, Error::Render { .. }), "{err}");
+        assert!(!path.exists());
+    }
+    // A render that runs out of splits leaves nothing to write.
+    let mut painter = Painter::new(PainterOptions::default().with_max_splits(0));
+    let mut frame = Frame::new(16, 16).unwrap();
+    assert!(painter.render(&s, &mut frame).is_err());
+    assert_eq!(painter.ordered_pieces().len(), 0);
+    let err = painter
+        .vector_output()
+        .unwrap()
+        .write_svg(&s, &path, ShadeMode::Lambert)
+        .unwrap_err();
+    assert!(matches!(err, Error::Render { .. }), "{err}");
+    // Nor is another scene than the one rendered accepted.
+    let mut painter = Painter::default();
+    painter.render(&s, &mut frame).unwrap();
+    let other = screen(&procedural::cube(), 16);
+    let err = painter
+        .vector_output()
+        .unwrap()
+        .write_svg(&other, &path, ShadeMode::Lambert)
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("not the one last rendered"),
+        "{err}"
+    );
+    assert!(!path.exists());
 }
