@@ -17,12 +17,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use anyhow::{Context, Result, bail};
 use clap::{Args, Subcommand};
 use hider_plan::registry;
+use hider_scene::timing::Timer;
 
 use crate::matrix::{MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{Results, SCHEMA_VERSION, read_results, write_results};
 use crate::report::{terminal_table, write_report};
 use crate::run::{RunOptions, run};
-use crate::timing::TimingOptions;
 
 /// Arguments of `hider bench`.
 #[derive(Args, Debug, Clone, PartialEq)]
@@ -96,13 +96,13 @@ pub struct RunArgs {
     #[arg(long)]
     pub scaling_size: Option<u32>,
     /// Unmeasured warm-up renders per job.
-    #[arg(long, default_value_t = TimingOptions::default().warmup)]
+    #[arg(long, default_value_t = RunOptions::default().timing.warmup)]
     pub warmup: u32,
     /// Measured renders per job (at least 1).
-    #[arg(long, default_value_t = TimingOptions::default().repeats)]
+    #[arg(long, default_value_t = RunOptions::default().timing.runs)]
     pub repeats: u32,
     /// Stop repeating a job after this many seconds of measured renders.
-    #[arg(long, default_value_t = TimingOptions::default().max_seconds_per_job)]
+    #[arg(long, default_value_t = RunOptions::default().timing.max_seconds)]
     pub max_seconds: f64,
     /// Run only shard i of n (1 <= i <= n), splitting by case; combine
     /// the shards' folders with `hider bench merge`.
@@ -157,11 +157,9 @@ impl RunArgs {
     /// The run these arguments describe, writing into `out`.
     pub fn options(&self) -> RunOptions {
         let mut m = MatrixOptions::default();
-        let mut timing = TimingOptions {
-            warmup: self.warmup,
-            repeats: self.repeats.max(1),
-            max_seconds_per_job: self.max_seconds,
-        };
+        let mut timing = Timer::new(self.repeats.max(1))
+            .with_warmup(self.warmup)
+            .with_max_seconds(self.max_seconds);
         if self.quick {
             m.sizes = vec![32];
             m.polygon_steps = vec![8, 16, 32];
@@ -169,7 +167,7 @@ impl RunArgs {
             m.resolution_sphere = 16;
             m.depth_steps = vec![1, 2, 4];
             m.scaling_size = 64;
-            timing.repeats = timing.repeats.min(2);
+            timing = timing.with_runs(timing.runs.min(2));
         }
         let set = |v: &Vec<u32>, dst: &mut Vec<u32>| {
             if !v.is_empty() {

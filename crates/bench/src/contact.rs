@@ -194,7 +194,7 @@ mod tests {
         let scene = crate::scenes::linear_depth_probe();
         let view = View::for_scene(&scene, 32, 32).unwrap();
         let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
-        let reference = RayCastOracle::new().evaluate(&screen);
+        let reference = RayCastOracle::default().evaluate(&screen);
         let mut sheet = ContactSheet::default();
         for name in ["zbuffer", "zbuffer-linear-z"] {
             let mut z = registry::by_name(name).unwrap().make();

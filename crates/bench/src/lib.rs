@@ -8,9 +8,9 @@
 //! (each entry is one algorithm with one set of options). Per scene and
 //! resolution it prepares the scene once, evaluates the exact oracle once
 //! ([`run`]), and for every hider:
-//! - times the render ([`timing`]: warm-up, repeated runs, median and
-//!   min-max, separate from load and prepare time, with the machine
-//!   recorded);
+//! - times the render (with the shared [`Timer`](hider_scene::timing::Timer):
+//!   warm-up, repeated runs, median and min-max, separate from load and
+//!   prepare time, with the [`machine`] recorded);
 //! - scores it ([`accuracy`]): wrong ids on non-tie pixels, ties, depth
 //!   error against the ray-cast oracle; coverage error against analytic
 //!   coverage for multi-sample hiders; peak memory from its stats table.
@@ -34,7 +34,7 @@
 //! use std::sync::atomic::AtomicBool;
 //! use hider_bench::matrix::{MatrixOptions, Study};
 //! use hider_bench::run::{run, RunOptions};
-//! use hider_bench::timing::TimingOptions;
+//! use hider_scene::timing::Timer;
 //!
 //! let out_dir = std::env::temp_dir().join(format!("hider-bench-doc-{}", std::process::id()));
 //! let options = RunOptions {
@@ -43,7 +43,7 @@
 //!         .with_scenes(vec!["near_plane_crossing".into()])
 //!         .with_sizes(vec![32])
 //!         .with_algos(vec!["zbuffer".into(), "zbuffer-linear-z".into()]),
-//!     timing: TimingOptions { warmup: 0, repeats: 1, max_seconds_per_job: 1.0 },
+//!     timing: Timer::new(1).with_warmup(0).with_max_seconds(1.0),
 //!     out_dir: out_dir.clone(),
 //!     ..RunOptions::default()
 //! };
@@ -61,6 +61,7 @@ pub mod accuracy;
 pub mod analysis;
 pub mod cli;
 pub mod contact;
+pub mod machine;
 pub mod matrix;
 pub mod plots;
 pub mod record;
@@ -68,6 +69,5 @@ pub mod report;
 pub mod run;
 pub mod scaling;
 pub mod scenes;
-pub mod timing;
 
 pub use cli::{BenchArgs, run_command};

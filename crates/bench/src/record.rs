@@ -12,7 +12,7 @@ use anyhow::{Context, Result, bail};
 use serde::{Deserialize, Serialize};
 use serde_json::{Map, Value};
 
-use crate::timing::Machine;
+use crate::machine::Machine;
 
 /// Version of the result schema, stored in `results.json`.
 pub const SCHEMA_VERSION: u32 = 1;

@@ -5,13 +5,13 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Instant;
 
 use anyhow::{Context, Result};
 use hider_oracle::{
     CoverageReference, DEFAULT_TIE_TOLERANCE, RayCastOracle, Reference, analytic_coverage,
 };
 use hider_plan::registry::{Entry, Kind};
+use hider_scene::timing::{Summary, Timer};
 use hider_scene::{
     DynHider, Frame, PrepareOptions, ScreenScene, ShadeMode, StatsTable, View, prepare, shade_frame,
 };
@@ -23,7 +23,12 @@ use crate::contact::{ContactSheet, write_contact_sheet};
 use crate::matrix::{Case, MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{CsvSink, Results, Row, SCHEMA_VERSION};
 use crate::scenes::Group;
-use crate::timing::{Machine, Summary, TimingOptions, measure};
+use crate::machine::Machine;
+
+/// The default time budget of one job's measured renders, in seconds: at
+/// least one render is always measured, and slow hiders on large scaling
+/// cases stop repeating after this long instead of dominating the sweep.
+pub const MAX_SECONDS_PER_JOB: f64 = 2.0;
 
 /// Everything a run needs. `Default` is the default `hider bench` run
 /// (without output directories: set [`Self::out_dir`]).
@@ -31,8 +36,9 @@ use crate::timing::{Machine, Summary, TimingOptions, measure};
 pub struct RunOptions {
     /// What to run.
     pub matrix: MatrixOptions,
-    /// How often.
-    pub timing: TimingOptions,
+    /// How often each job runs: warm-up renders, measured renders, and the
+    /// seconds of measured renders after which a job stops repeating.
+    pub timing: Timer,
     /// Which part of the matrix this process runs.
     pub shard: Shard,
     /// Where `results.csv` is written row by row.
@@ -56,7 +62,7 @@ impl Default for RunOptions {
     fn default() -> Self {
         Self {
             matrix: MatrixOptions::default(),
-            timing: TimingOptions::default(),
+            timing: Timer::default().with_max_seconds(MAX_SECONDS_PER_JOB),
             shard: Shard::default(),
             out_dir: PathBuf::from("bench-out"),
             contact_dir: None,
@@ -79,13 +85,18 @@ struct Prepared {
 }
 
 fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Result<Prepared> {
-    let t = Instant::now();
-    let scene = case.source.load()?;
-    let load = Summary::of(&[t.elapsed()]);
+    let mut scene = None;
+    let load = Timer::new(1)
+        .with_warmup(0)
+        .try_time(&|| false, || {
+            scene = Some(case.source.load()?);
+            Ok::<(), anyhow::Error>(())
+        })?;
+    let scene = scene.context("load never ran")?;
     let view = View::for_scene(&scene, case.width, case.height)?;
     let prepare_options = PrepareOptions::default();
     let mut screen = None;
-    let prepare_time = measure(&options.timing, &|| false, || {
+    let prepare_time = options.timing.try_time(&|| false, || {
         screen = Some(prepare(&scene, &view, &prepare_options)?);
         Ok::<(), hider_scene::Error>(())
     })
@@ -98,7 +109,7 @@ fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Resul
             analysis.pixel_tests, options.oracle_budget
         ))
     } else {
-        Ok(RayCastOracle::new().evaluate(&screen))
+        Ok(RayCastOracle::default().evaluate(&screen))
     };
     let coverage_cost = analysis.pixel_tests as f64 * analysis.depth_complexity().max(1.0);
     let coverage = if !need_coverage {
@@ -201,10 +212,12 @@ fn time_render(
 ) -> std::result::Result<(Summary, StatsTable), String> {
     let timed = catch_unwind(AssertUnwindSafe(|| {
         let mut last = None;
-        let summary = measure(&options.timing, &|| stop.load(Ordering::Relaxed), || {
-            last = Some(hider.render(&p.screen, frame)?);
-            Ok::<(), hider_scene::Error>(())
-        });
+        let summary = options
+            .timing
+            .try_time(&|| stop.load(Ordering::Relaxed), || {
+                last = Some(hider.render(&p.screen, frame)?);
+                Ok::<(), hider_scene::Error>(())
+            });
         summary.map(|s| (s, last))
     }));
     match timed {

@@ -1,5 +1,5 @@
 //! Where the benchmark's scenes come from: the bundled assets, the hard-case
-//! generators of [`hider_scene::hard_cases`], any OBJ the user names, and
+//! generators of [`hider_testkit::hard_cases`], any OBJ the user names, and
 //! the generated families of the scaling study.
 //!
 //! The scaling families follow the three axes of Sutherland, Sproull &
@@ -10,8 +10,10 @@
 
 use std::path::{Path, PathBuf};
 
+use hider_geom::Camera;
 use hider_geom::glam::DVec3;
-use hider_scene::{Material, Mesh, Scene, hard_cases, load_obj, procedural};
+use hider_scene::{Material, Mesh, Scene, load_obj, procedural};
+use hider_testkit::hard_cases;
 
 /// Seed of the hard-case instances: fixed so that every run, shard and
 /// machine benchmarks the same scenes.
@@ -137,7 +139,7 @@ pub fn layers(k: u32) -> Scene {
     // A camera close enough that the layers fill the frame: from z = 0.5
     // at 60 degrees the farthest layer (1.5 away) shows a half-height of
     // 1.5 tan 30 = 0.87, so a half side of 2 covers aspect ratios up to 2.
-    scene.camera = Some(hard_cases::look_at(
+    scene.camera = Some(Camera::perspective(
         DVec3::new(0.0, 0.0, 0.5),
         DVec3::new(0.0, 0.0, -1.0),
         0.05,

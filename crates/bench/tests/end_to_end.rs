@@ -12,8 +12,8 @@ use hider_bench::record::{COLUMNS, parse_csv, read_results, write_results};
 use hider_bench::report::write_report;
 use hider_bench::run::{RunOptions, run};
 use hider_bench::scenes::linear_depth_probe;
-use hider_bench::timing::TimingOptions;
 use hider_plan::registry;
+use hider_scene::timing::Timer;
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("hider-bench-e2e-{name}-{}", std::process::id()));
@@ -22,12 +22,8 @@ fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
-fn quick_timing() -> TimingOptions {
-    TimingOptions {
-        warmup: 1,
-        repeats: 2,
-        max_seconds_per_job: 0.5,
-    }
+fn quick_timing() -> Timer {
+    Timer::new(2).with_warmup(1).with_max_seconds(0.5)
 }
 
 /// The two-triangle probe only, every registered hider, 24 x 24.
@@ -145,11 +141,7 @@ fn shards_merge_into_the_full_run() {
         .with_scenes(vec!["cube".into(), "fan".into(), "scaling".into()])
         .with_sizes(vec![16])
         .with_algos(vec!["zbuffer".into(), "zbuffer-f64".into()]),
-        timing: TimingOptions {
-            warmup: 0,
-            repeats: 1,
-            max_seconds_per_job: 0.1,
-        },
+        timing: Timer::new(1).with_warmup(0).with_max_seconds(0.1),
         shard,
         out_dir: out,
         ..RunOptions::default()

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-/// Options of [`markdown`](super::markdown()).
+/// Options of the Markdown report: where its images are, and its command.
 #[derive(Clone, Debug, Default)]
 pub struct ReportOptions {
     /// How the report's images are linked from the report (`images/`).
