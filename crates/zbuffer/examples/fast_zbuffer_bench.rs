@@ -1,4 +1,4 @@
-//! The benchmark of issue 12: the scenes of the llvmpipe comparison
+//! The benchmark of the fast z-buffer targets: the scenes of the llvmpipe comparison
 //! (spider, UV sphere 200 and 500, random soup of 100,000 triangles) with
 //! the fit camera at 512, 1024 and 2048, timed over the span a GL draw call
 //! plus `glFinish` covers: everything after loading (transform, clip,
@@ -21,7 +21,7 @@
 //! cores are awake). The
 //! table gives median (minimum) ms over all timed frames, Mtri/s from the
 //! median, and at 1024 the ratios to llvmpipe's and euc's figures from the
-//! issue (above 1 = faster than them).
+//! targets (above 1 = faster than them).
 //!
 //! The peers measured on this machine, in this run: with `--peers-bin
 //! PATH` (the `peers` package's binary: `cargo build --release
@@ -38,13 +38,11 @@
 use std::path::PathBuf;
 use std::time::Instant;
 
-use hider_scene::{
-    DepthScene, Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, prepare_depth_into,
-    procedural,
-};
-use hider_zbuffer::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
+use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural};
+use hider_zbuffer::{DepthScene, TiledZBuffer, TiledZBufferOptions, ZBuffer, prepare_depth_into};
 
-/// Issue 12's figures at 1024: (scene, llvmpipe 1 thread, 2 threads, euc).
+/// The fast z-buffer targets' figures at 1024: (scene, llvmpipe 1 thread,
+/// 2 threads, euc).
 const FIGURES: [(&str, f64, f64, f64); 4] = [
     ("spider", 2.6, 1.8, 5.7),
     ("sphere 200", 20.0, 22.0, 13.6),

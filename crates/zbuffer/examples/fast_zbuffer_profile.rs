@@ -11,10 +11,9 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use hider_scene::{
-    DepthScene, Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, prepare_depth_into,
-    procedural,
+    DynHider, Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural,
 };
-use hider_zbuffer::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
+use hider_zbuffer::{DepthScene, TiledZBuffer, TiledZBufferOptions, ZBuffer, prepare_depth_into};
 
 /// CPU time of the calling thread in ms.
 fn thread_cpu_ms() -> Option<f64> {
@@ -82,7 +81,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         return Ok(());
     }
-    let mut hider: Box<dyn Hider> = match arg(1, "tiled").as_str() {
+    let mut hider: Box<dyn DynHider> = match arg(1, "tiled").as_str() {
         "zbuffer" => Box::new(ZBuffer::default()),
         "tiled" => Box::new(TiledZBuffer::new(
             TiledZBufferOptions::default().with_threads(threads),

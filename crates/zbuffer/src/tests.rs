@@ -4,7 +4,7 @@
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_scene::{
-    Frame, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
+    Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
 };
 
 use crate::{DepthFormat, DepthSource, ZBuffer, ZBufferOptions};
@@ -29,7 +29,7 @@ fn screen(scene: &Scene, camera: Camera, size: u32) -> ScreenScene {
 
 fn render(s: &ScreenScene, options: ZBufferOptions) -> (Frame, crate::ZBufferStats) {
     let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
-    let stats = ZBuffer::new(options).render_frame(s, &mut f).unwrap();
+    let stats = ZBuffer::new(options).render(s, &mut f).unwrap();
     (f, stats)
 }
 
@@ -190,7 +190,8 @@ fn sixteen_bit_depth_fights_where_f32_does_not() {
 
 #[test]
 fn linear_view_depth_gets_intersections_wrong() {
-    // The seed's lesson: linear camera depth in screen space misplaces the
+    // The depth-buffer lesson's point: linear camera depth in screen space
+    // misplaces the
     // intersection line of two triangles seen in perspective.
     let s = screen(&procedural::intersecting_pair(), camera(), 128);
     let (good, _) = render(
@@ -220,7 +221,7 @@ fn frame_of_the_wrong_size_is_an_error() {
     let s = screen(&procedural::cube(), camera(), 16);
     let mut f = Frame::new(17, 16).unwrap();
     let e = ZBuffer::default()
-        .render_frame(&s, &mut f)
+        .render(&s, &mut f)
         .unwrap_err()
         .to_string();
     assert!(e.contains("17x16") && e.contains("16x16"), "{e}");
@@ -232,7 +233,7 @@ fn buffers_are_reused_and_results_repeat() {
     let mut z = ZBuffer::default();
     let mut a = Frame::new(64, 64).unwrap();
     let mut b = Frame::new(64, 64).unwrap();
-    z.render_frame(&s, &mut a).unwrap();
-    z.render_frame(&s, &mut b).unwrap();
+    z.render(&s, &mut a).unwrap();
+    z.render(&s, &mut b).unwrap();
     assert_eq!(a, b);
 }

@@ -26,7 +26,7 @@
 use std::path::PathBuf;
 
 use hider_scene::frame::{read_depth, read_ids};
-use hider_scene::{Frame, NO_ID, PrepareOptions, View, load_obj, prepare};
+use hider_scene::{Frame, Hider, NO_ID, PrepareOptions, View, load_obj, prepare};
 use hider_zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
 
 const SIZE: u32 = 512;
@@ -55,9 +55,7 @@ fn compare(model: &str, name: &str) -> Option<Agreement> {
     // GL's buffer is 24-bit fixed point: the same format decides ties the
     // same way.
     let options = ZBufferOptions::default().with_depth_format(DepthFormat::Fixed24);
-    ZBuffer::new(options)
-        .render_frame(&screen, &mut frame)
-        .unwrap();
+    ZBuffer::new(options).render(&screen, &mut frame).unwrap();
     let gl_ids = read_ids(&dir.join(format!("{name}_512.i32")), SIZE, SIZE).unwrap();
     let gl_depth = read_depth(&dir.join(format!("{name}_512.f32")), SIZE, SIZE).unwrap();
     let mut a = Agreement {

@@ -81,7 +81,10 @@ pub(super) fn triangles(input: &Input<'_>, run: &mut Run) -> Outcome {
 /// operations are IEEE operations Rust never fuses, so both copies give
 /// the same bits.
 #[cfg(target_arch = "x86_64")]
-#[allow(unsafe_code)]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call, proven sound by the Avx2 token"
+)]
 fn triangles_avx2(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> Outcome {
     #[target_feature(enable = "avx2,fma")]
     fn wide(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> Outcome {

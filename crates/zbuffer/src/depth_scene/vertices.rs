@@ -56,7 +56,10 @@ pub(super) fn vertices(front: &FrontEnd, positions: &[DVec3], out: &mut [CachedV
 /// has it. The results are the same bits: IEEE operations are exact per
 /// operation and Rust never contracts `a * b + c` into a fused one.
 #[cfg(target_arch = "x86_64")]
-#[allow(unsafe_code)]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call, proven sound by the Avx2 token"
+)]
 fn vertices_avx2(
     front: &FrontEnd,
     positions: &[DVec3],

@@ -294,7 +294,7 @@ const PREFETCH_AHEAD: usize = 6;
 /// x86-64 CPU, and a prefetch is a hint that never faults nor changes
 /// memory, whatever the address.
 #[inline(always)]
-#[allow(unsafe_code)]
+#[allow(unsafe_code, reason = "a prefetch hint, which never faults nor writes")]
 fn prefetch<T>(tri: &T) {
     #[cfg(target_arch = "x86_64")]
     {

@@ -5,13 +5,13 @@
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_scene::{
-    DepthScene, Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare,
-    prepare_depth_into, procedural,
+    Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
 };
 use proptest::prelude::*;
 
 use crate::{
-    DepthFormat, TiledZBuffer, TiledZBufferOptions, ZBuffer, ZBufferOptions, ZBufferStats,
+    DepthFormat, DepthScene, TiledZBuffer, TiledZBufferOptions, ZBuffer, ZBufferOptions,
+    ZBufferStats, prepare_depth_into,
 };
 
 fn fit(scene: &Scene, w: u32, h: u32) -> ScreenScene {
@@ -42,7 +42,7 @@ fn inside_camera(yaw: f64) -> Camera {
 fn reference(s: &ScreenScene, format: DepthFormat) -> (Frame, ZBufferStats) {
     let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
     let opts = ZBufferOptions::default().with_depth_format(format);
-    let stats = ZBuffer::new(opts).render_frame(s, &mut f).unwrap();
+    let stats = ZBuffer::new(opts).render(s, &mut f).unwrap();
     (f, stats)
 }
 
@@ -61,9 +61,7 @@ fn dirty_frame(s: &ScreenScene) -> Frame {
 fn assert_same(s: &ScreenScene, options: TiledZBufferOptions) -> crate::TiledZBufferStats {
     let (want, want_stats) = reference(s, options.depth_format);
     let mut got = dirty_frame(s);
-    let stats = TiledZBuffer::new(options)
-        .render_frame(s, &mut got)
-        .unwrap();
+    let stats = TiledZBuffer::new(options).render(s, &mut got).unwrap();
     for i in 0..want.len() {
         let (x, y) = (i as u32 % s.viewport.width, i as u32 / s.viewport.width);
         assert_eq!(got.ids[i], want.ids[i], "id at ({x}, {y}) with {options:?}");
@@ -248,31 +246,28 @@ fn names_say_the_format() {
     assert!(TiledZBuffer::default().threads() >= 1);
 }
 
-/// The lean path: `prepare_depth_into` then `render_depth_scene`, and
-/// `draw_depth_scene` then `read_into` and `pixel`, against the reference
-/// z-buffer on the full front end's scene. The depth scene is prepared on
-/// one thread or in `parts` runs.
+/// The lean path: `render_scene` (the lean front end, then the draw with
+/// the read-back), and `prepare_depth_into` then `draw_depth_scene`,
+/// `read_into` and `pixel`, against the reference z-buffer on the full
+/// front end's scene. The depth scene is prepared on one thread or in
+/// `parts` runs.
 fn assert_lean_same(scene: &Scene, view: &View, options: TiledZBufferOptions, parts: usize) {
-    let screen = prepare(scene, view, &PrepareOptions::default()).unwrap();
+    let mut screen = prepare(scene, view, &PrepareOptions::default()).unwrap();
     let (want, _) = reference(&screen, options.depth_format);
-    let mut lean = DepthScene::new();
+    let prepare_options = PrepareOptions::default().with_parallel(parts > 1);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(parts)
         .build()
         .unwrap();
-    pool.install(|| {
-        prepare_depth_into(
-            scene,
-            view,
-            &PrepareOptions::default().with_parallel(parts > 1),
-            &mut lean,
-        )
-    })
-    .unwrap();
     let mut z = TiledZBuffer::new(options);
     let mut got = dirty_frame(&screen);
-    z.render_depth_scene(&lean, &mut got).unwrap();
-    assert!(got == want, "render_depth_scene with {options:?}");
+    pool.install(|| z.render_scene(scene, view, &prepare_options, &mut screen, &mut got))
+        .unwrap();
+    assert!(got == want, "render_scene with {options:?}");
+
+    let mut lean = DepthScene::new();
+    pool.install(|| prepare_depth_into(scene, view, &prepare_options, &mut lean))
+        .unwrap();
 
     let mut got = dirty_frame(&screen);
     z.draw_depth_scene(&lean).unwrap();
@@ -361,7 +356,16 @@ fn read_back_errors_are_typed() {
     z.draw_depth_scene(&lean).unwrap();
     let e = z.read_into(&mut f).unwrap_err();
     assert!(e.to_string().contains("8x8"), "{e}");
-    let e = z.render_depth_scene(&lean, &mut f).unwrap_err();
+    let mut screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+    let e = z
+        .render_scene(
+            &scene,
+            &view,
+            &PrepareOptions::default(),
+            &mut screen,
+            &mut f,
+        )
+        .unwrap_err();
     assert!(e.to_string().contains("16x16"), "{e}");
 }
 
@@ -384,8 +388,8 @@ proptest! {
         let mut narrow = TiledZBuffer::new(o);
         narrow.wide_kernel = false;
         let (mut a, mut b) = (dirty_frame(&s), dirty_frame(&s));
-        let sa = wide.render_frame(&s, &mut a).unwrap();
-        let sb = narrow.render_frame(&s, &mut b).unwrap();
+        let sa = wide.render(&s, &mut a).unwrap();
+        let sb = narrow.render(&s, &mut b).unwrap();
         prop_assert!(a == b);
         prop_assert_eq!(sa, sb);
     }
@@ -413,7 +417,7 @@ fn every_hard_case_matches_the_reference_bit_for_bit() {
 #[test]
 fn fragments_keep_primitive_order_on_ties() {
     use super::tile::TileBuf;
-    use hider_scene::DepthFragment;
+    use crate::DepthFragment;
     let mut buf = TileBuf::<f32>::new(8);
     buf.start(0, 0, 8, 8);
     let at = |depth: f64, prim: u32| DepthFragment {

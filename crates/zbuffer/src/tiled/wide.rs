@@ -148,7 +148,10 @@ pub(super) fn block8<K: WideKey, const EDGES: bool>(
 }
 
 #[cfg(target_arch = "x86_64")]
-#[allow(unsafe_code)]
+#[allow(
+    unsafe_code,
+    reason = "AVX2 intrinsics, reached only with the Avx2 token that proves the CPU has them"
+)]
 mod avx2 {
     use std::arch::x86_64::*;
 

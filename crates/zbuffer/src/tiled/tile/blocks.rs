@@ -266,7 +266,8 @@ impl<K: WideBlock> TileBuf<K> {
         // a third of the spider's draw time. The counter stores between the
         // reads and the writes keep the fold from applying (it needs a
         // store's memory chain to reach the load with no other store in
-        // between; llvm-project #145176, undone for Zen by #214187).
+        // between; LLVM issue 145176, undone for Zen by LLVM pull request
+        // 214187).
         let (old_keys, old_ids) = (*keys, *ids);
         let mut merged_keys = old_keys;
         let mut merged_ids = old_ids;
