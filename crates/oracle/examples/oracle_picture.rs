@@ -9,22 +9,17 @@
 //!
 //! `cargo run --release -p hider-oracle --example oracle_picture`
 
-use std::path::PathBuf;
-use std::time::Instant;
+use std::path::{Path, PathBuf};
 
 use hider_oracle::{
     DEFAULT_TIE_TOLERANCE, DepthPlane, OracleOptions, RayCastOracle, analytic_coverage,
 };
 use hider_scene::shade::{prim_color, to_srgb8};
-use hider_scene::{
-    Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, View, hard_cases, prepare,
-    procedural,
-};
+use hider_scene::{Frame, Hider, NO_ID, ScreenScene, ShadeMode, procedural};
+use hider_testkit::timer::Timer;
+use hider_testkit::{hard_cases, screen};
 
-fn screen(scene: &Scene, size: u32) -> Result<ScreenScene, hider_scene::Error> {
-    let view = View::for_scene(scene, size, size)?;
-    prepare(scene, &view, &PrepareOptions::default())
-}
+type Result<T> = std::result::Result<T, Box<dyn std::error::Error>>;
 
 fn colour(s: &ScreenScene, id: u32) -> [f32; 3] {
     prim_color(s, id, ShadeMode::Lambert).0
@@ -34,17 +29,14 @@ fn srgb(c: [f32; 3]) -> [u8; 4] {
     [to_srgb8(c[0]), to_srgb8(c[1]), to_srgb8(c[2]), 255]
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let images = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/images");
-    std::fs::create_dir_all(&images)?;
-
-    // Contact sheet of the hard cases.
+/// Contact sheet of the hard cases, tie pixels in magenta.
+fn hard_case_sheet(images: &Path) -> Result<()> {
     let (tile, cols) = (84u32, 6u32);
     let cases = hard_cases::all(1);
     let rows = (cases.len() as u32).div_ceil(cols);
     let mut sheet = Frame::new(tile * cols, tile * rows)?;
     for (n, (name, scene)) in cases.iter().enumerate() {
-        let s = screen(scene, tile)?;
+        let s = screen(scene, tile, tile);
         let r = RayCastOracle::default().evaluate(&s);
         let (ox, oy) = ((n as u32 % cols) * tile, (n as u32 / cols) * tile);
         for y in 0..tile {
@@ -67,10 +59,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
     }
     sheet.write_png(&images.join("oracle-hard-cases.png"))?;
+    Ok(())
+}
 
-    // Exact box filter vs pixel centres, magnified.
+/// Exact box filter beside pixel centres, magnified.
+fn coverage_picture(images: &Path) -> Result<()> {
     let (size, zoom) = (40u32, 6u32);
-    let s = screen(&hard_cases::interpenetrating_boxes(3, 4), size)?;
+    let s = screen(&hard_cases::interpenetrating_boxes(3, 4), size, size);
     let r = RayCastOracle::default().evaluate(&s);
     let cov = analytic_coverage(&s);
     let mut pic = Frame::new(2 * size * zoom + zoom, size * zoom)?;
@@ -99,22 +94,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     pic.write_png(&images.join("oracle-coverage.png"))?;
+    Ok(())
+}
 
-    // Timings.
+/// How long the oracle and analytic coverage take (one run each, as the
+/// docs report: they are slow on purpose).
+fn timings() {
+    let once = Timer::new(1).with_warmup(0);
     for (count, size) in [(10_000u32, 128u32), (79_600, 128)] {
         let scene = if count == 79_600 {
             procedural::uv_sphere(200)
         } else {
             hard_cases::heavy_overdraw(count, 1)
         };
-        let s = screen(&scene, size)?;
-        let t = Instant::now();
-        let r = RayCastOracle::default().evaluate(&s);
+        let s = screen(&scene, size, size);
+        let mut ties = 0;
+        let t = once.time(|| {
+            ties = RayCastOracle::default()
+                .evaluate(&s)
+                .tie_count(DEFAULT_TIE_TOLERANCE)
+        });
         println!(
-            "oracle: {count} triangles (heavy overdraw / uv sphere) at {size}x{size}: {:.1} ms, {} pixel tests, {} ties",
-            t.elapsed().as_secs_f64() * 1e3,
+            "oracle: {count} triangles (heavy overdraw / uv sphere) at {size}x{size}: {:.1} ms, {} pixel tests, {ties} ties",
+            t.median_ms,
             RayCastOracle::pixel_tests(&s),
-            r.tie_count(DEFAULT_TIE_TOLERANCE)
         );
     }
     for (name, scene, size) in [
@@ -122,23 +125,24 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ("random_soup(1000)", procedural::random_soup(1000, 1), 64),
         ("uv_sphere(24)", procedural::uv_sphere(24), 64),
     ] {
-        let s = screen(&scene, size)?;
-        let t = Instant::now();
-        let c = analytic_coverage(&s);
+        let s = screen(&scene, size, size);
+        let mut fragments = 0;
+        let t = once.time(|| fragments = analytic_coverage(&s).fragments.len());
         println!(
-            "analytic coverage: {name} at {size}x{size}: {:.1} ms, {} fragments",
-            t.elapsed().as_secs_f64() * 1e3,
-            c.fragments.len()
+            "analytic coverage: {name} at {size}x{size}: {:.1} ms, {fragments} fragments",
+            t.median_ms
         );
     }
+}
 
-    // What snapping does: source-plane oracle vs snapped-plane oracle.
+/// What snapping does: the source-plane oracle against the snapped-plane
+/// one, off ties.
+fn snapping_effect() {
+    let source = OracleOptions::default().with_depth_plane(DepthPlane::Source);
     for (name, scene) in hard_cases::all(1) {
-        let s = screen(&scene, 64)?;
+        let s = screen(&scene, 64, 64);
         let snapped = RayCastOracle::default().evaluate(&s);
-        let source =
-            RayCastOracle::new(OracleOptions::default().with_depth_plane(DepthPlane::Source))
-                .evaluate(&s);
+        let source = RayCastOracle::new(source).evaluate(&s);
         let mut differ = 0;
         let mut worst: f64 = 0.0;
         for k in 0..snapped.ids.len() {
@@ -153,5 +157,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             );
         }
     }
+}
+
+fn main() -> Result<()> {
+    let images = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/images");
+    std::fs::create_dir_all(&images)?;
+    hard_case_sheet(&images)?;
+    coverage_picture(&images)?;
+    timings();
+    snapping_effect();
     Ok(())
 }

@@ -3,14 +3,11 @@
 use std::collections::BTreeMap;
 
 use hider_oracle::analytic_coverage;
+use hider_scene::geom::Camera;
 use hider_scene::geom::glam::DVec3;
-use hider_scene::{Mesh, PrepareOptions, Scene, ScreenScene, View, prepare, procedural};
+use hider_scene::{Mesh, Scene, ScreenScene, procedural};
+use hider_testkit::screen;
 use proptest::prelude::*;
-
-fn screen(scene: &Scene, size: u32) -> ScreenScene {
-    let view = View::for_scene(scene, size, size).unwrap();
-    prepare(scene, &view, &PrepareOptions::default()).unwrap()
-}
 
 /// Per pixel, the fraction of a 64 x 64 grid of samples each primitive
 /// wins (LESS on the window-depth planes, ties to the lower id, exact
@@ -121,7 +118,7 @@ fn a_screen_filling_quad_covers_every_pixel_fully() {
     let mut scene = Scene::default();
     scene.push_mesh(quad(0.0, 0.0, 10.0), None);
     scene.camera = procedural_camera();
-    let s = screen(&scene, 8);
+    let s = screen(&scene, 8, 8);
     let c = analytic_coverage(&s);
     for (k, &cov) in c.covered.iter().enumerate() {
         assert!((cov - 1.0).abs() < 1e-12, "pixel {k}: {cov}");
@@ -133,17 +130,15 @@ fn a_screen_filling_quad_covers_every_pixel_fully() {
     assert!(c.fragments.iter().any(|f| f.1 == 0) && c.fragments.iter().any(|f| f.1 == 1));
 }
 
-fn procedural_camera() -> Option<hider_scene::geom::Camera> {
-    Some(hider_scene::geom::Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: hider_scene::geom::Projection::Perspective {
-            fovy_degrees: 60.0,
-            near: 1.0,
-            far: 20.0,
-        },
-    })
+/// The camera of the hand-made quads: 5 units up the +Z axis looking at
+/// the origin.
+fn procedural_camera() -> Option<Camera> {
+    Some(Camera::perspective(
+        DVec3::new(0.0, 0.0, 5.0),
+        DVec3::ZERO,
+        1.0,
+        20.0,
+    ))
 }
 
 #[test]
@@ -154,7 +149,7 @@ fn crossing_planes_split_each_pixel_along_their_intersection() {
     scene.push_mesh(quad(-1.0, 1.0, 10.0), None); // prims 0, 1: nearer on the right
     scene.push_mesh(quad(1.0, -1.0, 10.0), None); // prims 2, 3: nearer on the left
     scene.camera = procedural_camera();
-    let s = screen(&scene, 8);
+    let s = screen(&scene, 8, 8);
     let c = analytic_coverage(&s);
     let mut left = 0.0;
     let mut right = 0.0;
@@ -170,7 +165,7 @@ fn crossing_planes_split_each_pixel_along_their_intersection() {
 
 #[test]
 fn coplanar_overlap_goes_to_the_lower_id() {
-    let s = screen(&procedural::coplanar_pair(), 16);
+    let s = screen(&procedural::coplanar_pair(), 16, 16);
     let c = analytic_coverage(&s);
     let first: f64 = c.fragments.iter().filter(|f| f.1 == 0).map(|f| f.2).sum();
     // Triangle 0 is never hidden: its visible area is its whole area.
@@ -191,7 +186,7 @@ fn hard_scenes_match_supersampling() {
         procedural::cube(),
         procedural::uv_sphere(6),
     ] {
-        let err = check_against_supersampling(&screen(&scene, 12));
+        let err = check_against_supersampling(&screen(&scene, 12, 12));
         // Boundary pixels are a fraction of the image and each is off by
         // at most a few 1/64 steps.
         assert!(err < 0.005, "mean coverage error {err}");
@@ -202,7 +197,7 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(16))]
     #[test]
     fn random_soups_match_supersampling(seed in any::<u64>(), count in 1u32..12) {
-        let err = check_against_supersampling(&screen(&procedural::random_soup(count, seed), 8));
+        let err = check_against_supersampling(&screen(&procedural::random_soup(count, seed), 8, 8));
         prop_assert!(err < 0.01, "mean coverage error {err}");
     }
 }
