@@ -15,7 +15,9 @@ use glam::DVec3;
 use hider_abuffer::{
     ABuffer, ABufferOptions, SamplePattern, SortedTransparencyZBuffer, SsaaOptions,
 };
-use hider_scene::{Frame, Hider, Material, Mesh, PrepareOptions, Scene, View, prepare, procedural};
+use hider_scene::{
+    DynHider, Frame, Hider, Material, Mesh, PrepareOptions, Scene, View, prepare, procedural,
+};
 
 fn glass_scene() -> Scene {
     let tris = [
@@ -67,7 +69,7 @@ fn glass_scene() -> Scene {
     s
 }
 
-fn render(h: &mut dyn Hider, scene: &Scene, w: u32, hgt: u32) -> hider_scene::Result<Frame> {
+fn render(h: &mut dyn DynHider, scene: &Scene, w: u32, hgt: u32) -> hider_scene::Result<Frame> {
     let view = View::for_scene(scene, w, hgt)?;
     let s = prepare(scene, &view, &PrepareOptions::default())?;
     let mut f = Frame::new(w, hgt)?;

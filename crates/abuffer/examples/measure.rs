@@ -18,7 +18,8 @@ use hider_abuffer::{
 };
 use hider_oracle::analytic_coverage;
 use hider_scene::{
-    Frame, Hider, PrepareOptions, Scene, ScreenScene, View, hard_cases, prepare, procedural,
+    DynHider, Frame, Hider, PrepareOptions, Scene, ScreenScene, StatsTable, View, hard_cases,
+    prepare, procedural,
 };
 
 fn screen(scene: &Scene, w: u32, h: u32) -> ScreenScene {
@@ -41,14 +42,14 @@ fn cpu_time(start: Instant) -> Duration {
 /// a few milliseconds, so short renders are timed in batches), and the
 /// stats of the last.
 fn time_batch(
-    h: &mut dyn Hider,
+    h: &mut dyn DynHider,
     s: &ScreenScene,
     frame: &mut Frame,
     reps: u32,
-) -> (Duration, hider_scene::Stats) {
+) -> (Duration, StatsTable) {
     let origin = Instant::now();
     let t = cpu_time(origin);
-    let mut stats = hider_scene::Stats::default();
+    let mut stats = StatsTable::default();
     for _ in 0..reps {
         stats = h.render(s, frame).expect("render");
     }
@@ -60,10 +61,10 @@ fn time_batch(
 /// `BATCH`), so that a change in machine load hits all of them alike.
 /// Returns each hider's best time per render and last stats.
 fn time_interleaved(
-    hiders: &mut [(String, Box<dyn Hider>)],
+    hiders: &mut [(String, Box<dyn DynHider>)],
     s: &ScreenScene,
     rounds: u32,
-) -> Vec<(Duration, hider_scene::Stats)> {
+) -> Vec<(Duration, StatsTable)> {
     const BATCH: Duration = Duration::from_millis(150);
     let mut frame = Frame::new(s.viewport.width, s.viewport.height).expect("frame");
     // Warm-up render (first-touch page faults) and batch size.
@@ -78,7 +79,7 @@ fn time_interleaved(
                 .clamp(1.0, 50.0) as u32
         })
         .collect();
-    let mut best = vec![(Duration::MAX, hider_scene::Stats::default()); hiders.len()];
+    let mut best = vec![(Duration::MAX, StatsTable::default()); hiders.len()];
     for _ in 0..rounds {
         for (k, (_, h)) in hiders.iter_mut().enumerate() {
             let (t, stats) = time_batch(h.as_mut(), s, &mut frame, reps[k]);
@@ -88,8 +89,8 @@ fn time_interleaved(
     best
 }
 
-fn hiders() -> Vec<(String, Box<dyn Hider>)> {
-    let mut out: Vec<(String, Box<dyn Hider>)> = Vec::new();
+fn hiders() -> Vec<(String, Box<dyn DynHider>)> {
+    let mut out: Vec<(String, Box<dyn DynHider>)> = Vec::new();
     for pattern in SamplePattern::ALL {
         out.push((
             format!("ssaa {}", pattern.count()),
@@ -199,28 +200,38 @@ fn main() {
     speed_table(quick);
     // Merging: how much Carpenter's same-surface merge saves on a mesh.
     let s = screen(&procedural::uv_sphere(200), 1024, 1024);
-    let mut hs: Vec<(String, Box<dyn Hider>)> = [
+    let mut hs: Vec<(String, Box<dyn DynHider>)> = [
         MergePolicy::Off,
         MergePolicy::SameColor,
         MergePolicy::SameSurface,
     ]
     .into_iter()
     .map(|merge| {
-        let h: Box<dyn Hider> = Box::new(ABuffer::new(ABufferOptions::default().with_merge(merge)));
+        let h: Box<dyn DynHider> =
+            Box::new(ABuffer::new(ABufferOptions::default().with_merge(merge)));
         (format!("{merge:?}"), h)
     })
     .collect();
     let times = time_interleaved(&mut hs, &s, 3);
-    for ((merge, _), (t, st)) in hs.iter().zip(&times) {
-        let get = |k: &str| st.get(k).unwrap_or(0);
+    let mut frame = Frame::new(1024, 1024).expect("frame");
+    for ((merge, _), (t, _)) in hs.iter().zip(&times) {
+        // The typed counters of one more render (every render counts the
+        // same work).
+        let merge = match merge.as_str() {
+            "Off" => MergePolicy::Off,
+            "SameColor" => MergePolicy::SameColor,
+            _ => MergePolicy::SameSurface,
+        };
+        let mut abuffer = ABuffer::new(ABufferOptions::default().with_merge(merge));
+        let st = Hider::render(&mut abuffer, &s, &mut frame).expect("render");
         println!(
-            "uv_sphere(200) merge {merge}: {:.1} ms, fragments {}, merged {}, mean list {:.3}, max list {}, peak MB {:.1}",
+            "uv_sphere(200) merge {merge:?}: {:.1} ms, fragments {}, merged {}, mean list {:.3}, max list {}, peak MB {:.1}",
             t.as_secs_f64() * 1e3,
-            get("fragments"),
-            get("merged"),
-            get("mean list x1000") as f64 / 1000.0,
-            get("max list"),
-            st.peak_bytes as f64 / 1e6
+            st.fragments,
+            st.merged,
+            st.mean_list_len,
+            st.max_list_len,
+            st.bytes as f64 / 1e6
         );
     }
     // What occlusion culling saves (same image).
@@ -229,14 +240,16 @@ fn main() {
         ("uv_sphere(200)", procedural::uv_sphere(200)),
     ] {
         let s = screen(&scene, 1024, 1024);
-        let mut hs: Vec<(String, Box<dyn Hider>)> = vec![
+        let mut hs: Vec<(String, Box<dyn DynHider>)> = vec![
             (
                 "culling on".into(),
                 Box::new(ABuffer::new(ABufferOptions::default())),
             ),
             (
                 "culling off".into(),
-                Box::new(ABuffer::new(ABufferOptions::default()).with_occlusion_culling(false)),
+                Box::new(ABuffer::new(
+                    ABufferOptions::default().with_occlusion_culling(false),
+                )),
             ),
         ];
         let times = time_interleaved(&mut hs, &s, 3);

@@ -15,7 +15,7 @@ use hider_abuffer::coverage::{TriCoverage, pixel_range};
 use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, SamplePattern, SsaaOptions, SupersampledZBuffer,
 };
-use hider_scene::{Frame, Hider, PrepareOptions, View, prepare, procedural};
+use hider_scene::{DynHider, Frame, Hider, PrepareOptions, View, prepare, procedural};
 
 /// CPU time of this thread (ns), from `/proc/thread-self/schedstat`.
 fn cpu_ns() -> u64 {
@@ -35,7 +35,7 @@ fn main() {
         "one" => procedural::random_soup(1, 1),
         other => panic!("unknown scene {other}"),
     };
-    let mut hider: Box<dyn Hider> = match args.get(1).map_or("ps", String::as_str) {
+    let mut hider: Box<dyn DynHider> = match args.get(1).map_or("ps", String::as_str) {
         "ssaa1" => Box::new(SupersampledZBuffer::new(
             SsaaOptions::default().with_pattern(SamplePattern::Centre),
         )),

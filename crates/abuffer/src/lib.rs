@@ -2,28 +2,34 @@
 //! surfaces from per-pixel lists of coverage-mask fragments.
 //!
 //! Loren Carpenter's "The A-buffer, an antialiased hidden surface method"
-//! (SIGGRAPH 1984; the depth-buffer seed describes it in its history
-//! section) keeps, per pixel, a list of *fragments*: the part of one
-//! surface inside the pixel, as an 8 x 4 bit coverage mask with a depth
-//! range, a colour and an opacity. When every primitive is in, each list is
-//! sorted and composited front to back. Anti-aliasing costs one mask per
-//! (triangle, pixel) instead of one depth test per sample, and
-//! transparency is correct whatever order primitives arrive in.
+//! (SIGGRAPH 1984; scratchapixel's depth-buffer lesson describes it in its
+//! section on the z-buffer's limitations and history) keeps, per pixel, a
+//! list of *fragments*: the part of one surface inside the pixel, as an
+//! 8 x 4 bit coverage mask with a depth range, a colour and an opacity.
+//! When every primitive is in, each list is sorted and composited front to
+//! back. Anti-aliasing costs one mask per (triangle, pixel) instead of one
+//! depth test per sample, and transparency is correct whatever order
+//! primitives arrive in.
 //!
-//! This crate holds:
-//! - [`ABuffer`], the hider (`"abuffer"`): masks from the shared exact edge
-//!   functions at 32 fixed-point sample positions ([`pattern`],
-//!   [`coverage`]) with a full-coverage fast path; 40-byte fragments in a
-//!   pooled arena with a memory bound ([`fragment`]); 64 x 64 tiles taken
-//!   front to back and resolved in cache, exact occlusion culling per
-//!   pixel and per 8 x 8 block, merging of neighbouring fragments of one
-//!   surface, an overflow policy ([`abuffer`]); resolve with exact
-//!   per-sample depth or the paper's `zmin`/`zmax` approximation
-//!   ([`resolve`]);
-//! - the baselines it is measured against: [`SupersampledZBuffer`]
-//!   (`"ssaa"`, N = 1 to 32 samples at the same positions) and
-//!   [`SortedTransparencyZBuffer`] (`"ssaa-sorted"`, opaque first, then
-//!   translucent triangles sorted back to front).
+//! This crate holds three hiders, each built from its options with
+//! [`Hider::new`](hider_scene::Hider::new) and run with
+//! [`Hider::render`](hider_scene::Hider::render), which returns its typed
+//! stats:
+//! - [`ABuffer`] (`"abuffer"`, options [`ABufferOptions`], stats
+//!   [`ABufferStats`]): masks from the shared exact edge functions at 32
+//!   fixed-point sample positions ([`pattern`], [`coverage`]) with a
+//!   full-coverage fast path; exact depth bounds from a few plane
+//!   evaluations ([`depth`]); 40-byte fragments in a pooled arena with a
+//!   memory bound ([`fragment`], [`pool`]); 64 x 64 tiles taken front to
+//!   back and resolved in cache, exact occlusion culling per pixel and per
+//!   8 x 8 block, merging of neighbouring fragments of one surface, an
+//!   overflow policy; resolve with exact per-sample depth or the paper's
+//!   `zmin`/`zmax` approximation;
+//! - the baselines it is measured against, both with [`SsaaOptions`] and
+//!   [`SsaaStats`]: [`SupersampledZBuffer`] (`"ssaa-N"`, N = 1 to 32
+//!   samples at the same positions) and [`SortedTransparencyZBuffer`]
+//!   (`"ssaa-sorted"`, opaque first, then translucent triangles sorted back
+//!   to front).
 //!
 //! All three write `Frame::color` (composited in linear light, then sRGB),
 //! `Frame::coverage` (covered fraction of the samples), and, in
@@ -49,7 +55,7 @@
 //! let mut abuffer = ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off));
 //! let mut frame = Frame::new(32, 32)?;
 //! let stats = abuffer.render(&screen, &mut frame)?;
-//! assert!(stats.get("fragments").unwrap() > 0);
+//! assert!(stats.fragments > 0);
 //!
 //! let mut ssaa = SupersampledZBuffer::new(SsaaOptions::default());
 //! let mut reference = Frame::new(32, 32)?;
@@ -60,23 +66,33 @@
 //! # Ok::<(), hider_scene::Error>(())
 //! ```
 
-pub mod abuffer;
+mod abuffer;
+mod bins;
 pub mod centre;
+mod composite;
 pub mod coverage;
+mod culling;
+pub mod depth;
 pub mod fragment;
+mod lists;
 pub mod options;
 pub mod palette;
 pub mod pattern;
-pub mod resolve;
-pub mod sorted;
-pub mod ssaa;
+pub mod pool;
+mod raster;
+mod resolve;
+mod sorted;
+mod ssaa;
 pub mod stats;
 
-pub use abuffer::{ABuffer, MERGE_COLOR_TOLERANCE, MERGE_SEARCH};
+pub use abuffer::ABuffer;
+pub use bins::TILE;
+pub use lists::{MERGE_COLOR_TOLERANCE, MERGE_SEARCH};
 pub use options::{
-    ABufferOptions, DEFAULT_MAX_BYTES, DEFAULT_MAX_LIST_LEN, DepthMode, MergePolicy, OverflowPolicy,
+    ABufferOptions, DEFAULT_MAX_BYTES, DEFAULT_MAX_LIST_LEN, DepthMode, MergePolicy,
+    OverflowPolicy, SsaaOptions,
 };
 pub use pattern::SamplePattern;
 pub use sorted::SortedTransparencyZBuffer;
-pub use ssaa::{SsaaOptions, SsaaStats, SupersampledZBuffer};
-pub use stats::ABufferStats;
+pub use ssaa::SupersampledZBuffer;
+pub use stats::{ABufferStats, SsaaStats};

@@ -1,6 +1,6 @@
-//! Options of the A-buffer. `Default` is the accurate choice.
+//! Options of the hiders of this crate. `Default` is the accurate choice.
 
-use hider_scene::ShadeMode;
+use hider_scene::{Error, Result, ShadeMode};
 
 use crate::pattern::SamplePattern;
 
@@ -77,8 +77,22 @@ pub const DEFAULT_MAX_LIST_LEN: u32 = 128;
 /// Default bound on the A-buffer's working memory: 1 GiB.
 pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
 
-/// Options of [`crate::ABuffer`].
+/// Options of [`crate::ABuffer`]: every knob that changes what it does or
+/// how much work it takes. `Default` is the accurate choice; set fields
+/// with the `with_*` methods:
+///
+/// ```
+/// use hider_abuffer::{ABufferOptions, DepthMode, MergePolicy};
+///
+/// let options = ABufferOptions::default()
+///     .with_depth(DepthMode::MinMax)
+///     .with_merge(MergePolicy::Off)
+///     .with_max_bytes(64 << 20);
+/// assert_eq!(options.depth, DepthMode::MinMax);
+/// assert!(options.occlusion_culling);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct ABufferOptions {
     /// Sample positions of the coverage masks (default: the 8 x 4 grid).
     pub pattern: SamplePattern,
@@ -97,6 +111,26 @@ pub struct ABufferOptions {
     pub max_bytes: u64,
     /// How primitives are coloured before compositing.
     pub shade: ShadeMode,
+    /// Exact occlusion culling (default on): per pixel, per 8 x 8 block,
+    /// and pruning of lists behind a pixel's opaque bound. Off, no pixel
+    /// gets an opaque bound, so nothing is culled on arrival, no block is
+    /// skipped and nothing is pruned behind a bound: every fragment reaches
+    /// its list (the overflow policy still applies). The image, coverage,
+    /// ids and sample ids are the same either way (culling only drops
+    /// fragments that lose every sample and the centre; colours may differ
+    /// in the last bit of rounding, within one 8-bit step); only the work
+    /// counters and the time differ. Off is the reference the culling is
+    /// tested against, and measures what it saves.
+    pub occlusion_culling: bool,
+    /// Whether each tile takes its triangles front to back (the default:
+    /// sorted by nearest vertex depth) or in submission order. The exact
+    /// answer (samples, coverage, ids) is the same either way, since lists
+    /// are ordered by depth at resolve; front to back, the nearest surfaces
+    /// set the opaque bounds first, so far more of what lies behind is
+    /// culled (per pixel or per block) instead of inserted and pruned.
+    /// Merging decisions, which look at the latest fragments of a list,
+    /// and colour rounding may differ.
+    pub front_to_back: bool,
 }
 
 impl Default for ABufferOptions {
@@ -109,6 +143,8 @@ impl Default for ABufferOptions {
             overflow: OverflowPolicy::DropFarthest,
             max_bytes: DEFAULT_MAX_BYTES,
             shade: ShadeMode::Lambert,
+            occlusion_culling: true,
+            front_to_back: true,
         }
     }
 }
@@ -162,5 +198,87 @@ impl ABufferOptions {
     pub fn with_shade(mut self, shade: ShadeMode) -> Self {
         self.shade = shade;
         self
+    }
+
+    /// Sets [`Self::occlusion_culling`].
+    pub fn with_occlusion_culling(mut self, on: bool) -> Self {
+        self.occlusion_culling = on;
+        self
+    }
+
+    /// Sets [`Self::front_to_back`].
+    pub fn with_front_to_back(mut self, on: bool) -> Self {
+        self.front_to_back = on;
+        self
+    }
+}
+
+/// Options of the supersampling baselines ([`crate::SupersampledZBuffer`]
+/// and [`crate::SortedTransparencyZBuffer`]). `Default` is the accurate
+/// choice (all 32 samples):
+///
+/// ```
+/// use hider_abuffer::{SamplePattern, SsaaOptions};
+///
+/// let options = SsaaOptions::default().with_pattern(SamplePattern::Grid4);
+/// assert_eq!(options.pattern.count(), 4);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SsaaOptions {
+    /// Sample positions (default: all 32 cells of the 8 x 4 grid).
+    pub pattern: SamplePattern,
+    /// How primitives are coloured.
+    pub shade: ShadeMode,
+    /// Bound on the sample buffers, in bytes, checked before allocating.
+    pub max_bytes: u64,
+}
+
+impl Default for SsaaOptions {
+    fn default() -> Self {
+        Self {
+            pattern: SamplePattern::Grid32,
+            shade: ShadeMode::Lambert,
+            max_bytes: DEFAULT_MAX_BYTES,
+        }
+    }
+}
+
+impl SsaaOptions {
+    /// Sets [`Self::pattern`].
+    pub fn with_pattern(mut self, pattern: SamplePattern) -> Self {
+        self.pattern = pattern;
+        self
+    }
+
+    /// Sets [`Self::shade`].
+    pub fn with_shade(mut self, shade: ShadeMode) -> Self {
+        self.shade = shade;
+        self
+    }
+
+    /// Sets [`Self::max_bytes`].
+    pub fn with_max_bytes(mut self, bytes: u64) -> Self {
+        self.max_bytes = bytes;
+        self
+    }
+
+    /// Checks that `pixels` pixels of `per_sample` bytes per sample (plus
+    /// the centre buffer) fit in [`Self::max_bytes`]; returns the bytes.
+    pub(crate) fn check_budget(
+        &self,
+        hider: &'static str,
+        pixels: usize,
+        per_sample: u64,
+    ) -> Result<u64> {
+        let bytes = pixels as u64 * (self.pattern.count() as u64 * per_sample + 12);
+        if bytes > self.max_bytes {
+            return Err(Error::Limit {
+                what: hider,
+                value: bytes,
+                limit: self.max_bytes,
+            });
+        }
+        Ok(bytes)
     }
 }

@@ -1,5 +1,5 @@
-//! Per-primitive colours and opacities, computed once per frame, and the
-//! final conversion to sRGB.
+//! Per-primitive colours and opacities, computed once per frame (or on
+//! first use), and the final conversion to sRGB.
 
 use std::sync::OnceLock;
 
@@ -18,6 +18,24 @@ pub fn prim_colors(scene: &ScreenScene, mode: ShadeMode, out: &mut Vec<[f32; 4]>
 pub fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
     let (rgb, alpha) = prim_color(scene, prim, mode);
     [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
+}
+
+/// The colour and opacity of primitive `prim` from `colors`, computed on
+/// first use: the A-buffer fills `colors` with NaN at the start of a frame
+/// and shades a primitive only when one of its triangles survives the
+/// block test, so primitives culled whole are never shaded.
+#[inline]
+pub fn shade_of(
+    colors: &mut [[f32; 4]],
+    scene: &ScreenScene,
+    mode: ShadeMode,
+    prim: u32,
+) -> [f32; 4] {
+    let c = &mut colors[prim as usize];
+    if c[3].is_nan() {
+        *c = prim_rgba(scene, prim, mode);
+    }
+    *c
 }
 
 /// The conversion table: `thresholds[v - 1]` is the smallest `f32` in

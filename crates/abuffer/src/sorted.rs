@@ -1,9 +1,9 @@
 //! The sorted-transparency z-buffer: the usual work-around the A-buffer
 //! replaces, kept to show what it gets wrong.
 //!
-//! As GPUs do (and as the depth seed says: "transparent surfaces are
-//! usually sorted back to front ... which can give wrong results, for
-//! example when triangles intersect"): first every opaque triangle is
+//! As GPUs do (and as scratchapixel's depth-buffer lesson says:
+//! "transparent surfaces are usually sorted back to front ... which can
+//! give wrong results, for example when triangles intersect"): first every opaque triangle is
 //! z-buffered per sample, writing depth and colour; then the translucent
 //! triangles are sorted back to front by the mean window depth of their
 //! corners and blended over the colour buffer (`c = a*src + (1-a)*dst`)
@@ -18,13 +18,15 @@
 //! and depth from the pixel-centre test of [`crate::centre`], over all
 //! triangles whatever their opacity, as the A-buffer reports them.
 
-use hider_scene::{Frame, Hider, Result, ScreenScene, ScreenTri, Stats, check_frame};
+use hider_scene::{Frame, Hider, Result, ScreenScene, ScreenTri, check_frame};
 
 use crate::centre::{CentreBuffer, in_front};
-use crate::coverage::{TriCoverage, pixel_range, sample_depth};
+use crate::coverage::{TriCoverage, pixel_range};
+use crate::depth::sample_depth;
+use crate::options::SsaaOptions;
 use crate::palette::{prim_colors, to_pixel};
 use crate::pattern::CENTRE;
-use crate::ssaa::{SsaaOptions, SsaaStats};
+use crate::stats::SsaaStats;
 
 /// A supersampled z-buffer with opaque-first, sorted back-to-front
 /// transparency.
@@ -38,23 +40,11 @@ pub struct SortedTransparencyZBuffer {
     centre: CentreBuffer,
     colors: Vec<[f32; 4]>,
     order: Vec<(f64, u32)>,
-    last: SsaaStats,
 }
 
 impl SortedTransparencyZBuffer {
-    /// A sorted-transparency z-buffer with the given options.
-    pub fn new(options: SsaaOptions) -> Self {
-        Self {
-            options,
-            ..Self::default()
-        }
-    }
-
-    /// The counters of the last frame.
-    pub fn stats(&self) -> SsaaStats {
-        self.last
-    }
-
+    /// Draws `tri` into the sample buffers: written when opaque, blended
+    /// over what is there (depth tested, not written) when `translucent`.
     fn draw(
         &mut self,
         scene: &ScreenScene,
@@ -104,14 +94,48 @@ impl SortedTransparencyZBuffer {
             }
         }
     }
+
+    /// Writes ids and depth from the centre buffer, and colour and coverage
+    /// as the mean over each pixel's samples.
+    fn resolve(&self, frame: &mut Frame) {
+        let pixels = frame.len();
+        let n = self.options.pattern.count();
+        self.centre.write(frame);
+        frame.coverage.clear();
+        frame.coverage.resize(pixels, 0.0);
+        let inv_n = 1.0 / n as f32;
+        for p in 0..pixels {
+            let samples = &self.color[p * n..(p + 1) * n];
+            let sum = samples.iter().fold([0.0f32; 3], |acc, c| {
+                [acc[0] + c[0], acc[1] + c[1], acc[2] + c[2]]
+            });
+            frame.color[p] = to_pixel(sum.map(|c| c * inv_n));
+            let covered = self.hit[p * n..(p + 1) * n].iter().filter(|&&h| h).count();
+            frame.coverage[p] = covered as f32 * inv_n;
+        }
+    }
 }
 
 impl Hider for SortedTransparencyZBuffer {
+    type Options = SsaaOptions;
+    type Stats = SsaaStats;
+
+    fn new(options: SsaaOptions) -> Self {
+        Self {
+            options,
+            ..Self::default()
+        }
+    }
+
+    fn options(&self) -> &SsaaOptions {
+        &self.options
+    }
+
     fn name(&self) -> &str {
         "ssaa-sorted"
     }
 
-    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<SsaaStats> {
         check_frame("ssaa-sorted", scene, frame)?;
         let pixels = frame.len();
         let n = self.options.pattern.count();
@@ -152,22 +176,8 @@ impl Hider for SortedTransparencyZBuffer {
             self.draw(scene, &scene.tris[t as usize], true, &mut stats);
         }
         self.order = order;
-
-        self.centre.write(frame);
-        frame.coverage.clear();
-        frame.coverage.resize(pixels, 0.0);
-        let inv_n = 1.0 / n as f32;
-        for p in 0..pixels {
-            let samples = &self.color[p * n..(p + 1) * n];
-            let sum = samples.iter().fold([0.0f32; 3], |acc, c| {
-                [acc[0] + c[0], acc[1] + c[1], acc[2] + c[2]]
-            });
-            frame.color[p] = to_pixel(sum.map(|c| c * inv_n));
-            let covered = self.hit[p * n..(p + 1) * n].iter().filter(|&&h| h).count();
-            frame.coverage[p] = covered as f32 * inv_n;
-        }
-        self.last = stats;
-        Ok(stats.into())
+        self.resolve(frame);
+        Ok(stats)
     }
 
     fn resolves_color(&self) -> bool {

@@ -15,10 +15,15 @@ pub fn screen(scene: &Scene, w: u32, h: u32) -> ScreenScene {
 }
 
 /// Renders with `hider` into a fresh frame.
-pub fn render(hider: &mut dyn Hider, s: &ScreenScene) -> Frame {
+pub fn render<H: Hider>(hider: &mut H, s: &ScreenScene) -> Frame {
+    render_stats(hider, s).0
+}
+
+/// Renders with `hider` into a fresh frame; the frame and the stats.
+pub fn render_stats<H: Hider>(hider: &mut H, s: &ScreenScene) -> (Frame, H::Stats) {
     let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
-    hider.render(s, &mut f).unwrap();
-    f
+    let stats = hider.render(s, &mut f).unwrap();
+    (f, stats)
 }
 
 /// Largest per-channel difference between two colour buffers.

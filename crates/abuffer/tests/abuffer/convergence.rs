@@ -2,7 +2,7 @@
 
 use hider_abuffer::{ABuffer, ABufferOptions, SamplePattern, SsaaOptions, SupersampledZBuffer};
 use hider_oracle::analytic_coverage;
-use hider_scene::procedural;
+use hider_scene::{Hider, procedural};
 
 use crate::common::{render, screen};
 

@@ -4,10 +4,10 @@
 //! on frames of several tiles (partial tiles included).
 
 use hider_abuffer::{ABuffer, ABufferOptions, MergePolicy, SsaaOptions, SupersampledZBuffer};
-use hider_scene::{Material, Scene, procedural};
+use hider_scene::{Hider, Material, Scene, procedural};
 use proptest::prelude::*;
 
-use crate::common::{max_color_diff, render, screen};
+use crate::common::{max_color_diff, render, render_stats, screen};
 
 /// Frame sizes around the 64-pixel tiles: several tiles, partial tiles,
 /// one-pixel rows and columns.
@@ -85,7 +85,7 @@ proptest! {
         let s = screen(&big_triangles(big, small, seed), w, h);
         let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
         let mut culled = ABuffer::new(opts);
-        let mut reference = ABuffer::new(opts).with_occlusion_culling(false);
+        let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
         let fc = render(&mut culled, &s);
         let fr = render(&mut reference, &s);
         let ids = culled.sample_ids();
@@ -113,10 +113,9 @@ proptest! {
         let s = screen(&mixed_soup(opaque, glass, seed), w, h);
         let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
         let mut culled = ABuffer::new(opts);
-        let mut reference = ABuffer::new(opts).with_occlusion_culling(false);
+        let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
         let fc = render(&mut culled, &s);
-        let fr = render(&mut reference, &s);
-        let st = reference.stats();
+        let (fr, st) = render_stats(&mut reference, &s);
         prop_assert_eq!((st.culled, st.culled_blocks, st.pruned), (0, 0, 0));
         let ids = culled.sample_ids();
         prop_assert_eq!(&ids, &reference.sample_ids());
@@ -143,7 +142,7 @@ proptest! {
         let s = screen(&mixed_soup(opaque, glass, seed), w, h);
         let fc = render(&mut ABuffer::new(ABufferOptions::default()), &s);
         let fr = render(
-            &mut ABuffer::new(ABufferOptions::default()).with_occlusion_culling(false),
+            &mut ABuffer::new(ABufferOptions::default().with_occlusion_culling(false)),
             &s,
         );
         prop_assert_eq!(&fc.coverage, &fr.coverage);
@@ -188,13 +187,12 @@ fn every_culling_stage_fires_on_a_deep_scene() {
         let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
         // Submission order: the soup arrives before the squares hiding it,
         // so it is inserted and then pruned.
-        let mut a = ABuffer::new(opts).with_front_to_back(false);
-        let mut r = ABuffer::new(opts).with_occlusion_culling(false);
-        let fa = render(&mut a, &s);
-        let fr = render(&mut r, &s);
-        let st = a.stats();
+        let mut a = ABuffer::new(opts.with_front_to_back(false));
+        let mut r = ABuffer::new(opts.with_occlusion_culling(false));
+        let (fa, st) = render_stats(&mut a, &s);
+        let (fr, st_r) = render_stats(&mut r, &s);
         assert!(st.culled > 0 && st.pruned > 0, "{st:?}");
-        assert!(st.mean_list_len < r.stats().mean_list_len);
+        assert!(st.mean_list_len < st_r.mean_list_len);
         assert_eq!(a.sample_ids(), r.sample_ids());
         assert_eq!(fa.coverage, fr.coverage);
         assert_eq!(fa.ids, fr.ids);
@@ -204,13 +202,11 @@ fn every_culling_stage_fires_on_a_deep_scene() {
     // the next ones: whole blocks of them are skipped. Front to back (the
     // default) the soup is skipped too, and nothing needs pruning.
     let s = screen(&stack_and_soup(), 200, 140);
-    let mut a = ABuffer::new(ABufferOptions::default()).with_front_to_back(false);
-    let fa = render(&mut a, &s);
-    let submitted = a.stats();
+    let mut a = ABuffer::new(ABufferOptions::default().with_front_to_back(false));
+    let (fa, submitted) = render_stats(&mut a, &s);
     assert!(submitted.culled_blocks > 100, "{submitted:?}");
     let mut b = ABuffer::new(ABufferOptions::default());
-    let fb = render(&mut b, &s);
-    let sorted = b.stats();
+    let (fb, sorted) = render_stats(&mut b, &s);
     assert!(sorted.culled_blocks > submitted.culled_blocks, "{sorted:?}");
     assert!(sorted.fragments < submitted.fragments, "{sorted:?}");
     assert_eq!(sorted.pruned, 0, "{sorted:?}");
@@ -241,7 +237,7 @@ proptest! {
         let s = screen(&scene, w, h);
         let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
         let mut sorted = ABuffer::new(opts);
-        let mut submitted = ABuffer::new(opts).with_front_to_back(false);
+        let mut submitted = ABuffer::new(opts.with_front_to_back(false));
         let fs = render(&mut sorted, &s);
         let fu = render(&mut submitted, &s);
         prop_assert_eq!(sorted.sample_ids(), submitted.sample_ids());

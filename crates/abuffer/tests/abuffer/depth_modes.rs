@@ -2,9 +2,9 @@
 //! intersection.
 
 use hider_abuffer::{ABuffer, ABufferOptions, DepthMode, SsaaOptions, SupersampledZBuffer};
-use hider_scene::{Frame, procedural};
+use hider_scene::{Frame, Hider, procedural};
 
-use crate::common::{render, screen};
+use crate::common::{render, render_stats, screen};
 
 /// Sum over pixels of the largest channel difference, and the number of
 /// pixels that differ by more than one step.
@@ -34,7 +34,8 @@ fn per_sample_depth_is_exact_where_the_approximation_is_not() {
         let s = screen(&scene, 61, 61);
         let exact = render(&mut SupersampledZBuffer::new(SsaaOptions::default()), &s);
         let mut per_sample = ABuffer::new(ABufferOptions::default());
-        let (e_ps, bad_ps) = error(&render(&mut per_sample, &s), &exact);
+        let (frame_ps, stats_ps) = render_stats(&mut per_sample, &s);
+        let (e_ps, bad_ps) = error(&frame_ps, &exact);
         assert_eq!(
             bad_ps, 0,
             "per-sample depth must equal the 32-sample z-buffer"
@@ -43,7 +44,7 @@ fn per_sample_depth_is_exact_where_the_approximation_is_not() {
             continue;
         }
         assert!(
-            per_sample.stats().per_sample_pixels > 0,
+            stats_ps.per_sample_pixels > 0,
             "the intersection needs the per-sample path"
         );
 

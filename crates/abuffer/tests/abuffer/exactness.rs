@@ -5,8 +5,8 @@ use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, MergePolicy, SamplePattern, SsaaOptions,
     SupersampledZBuffer,
 };
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
-use hider_scene::procedural;
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, OracleOptions, RayCastOracle};
+use hider_scene::{Hider, procedural};
 use proptest::prelude::*;
 
 use crate::common::{max_color_diff, render, screen};
@@ -95,7 +95,7 @@ fn centre_ids_equal_the_oracle() {
     scenes.push(procedural::random_soup(80, 3));
     for scene in scenes {
         let s = screen(&scene, 40, 40);
-        let reference = RayCastOracle::new().evaluate(&s);
+        let reference = RayCastOracle::new(OracleOptions::default()).evaluate(&s);
         for (k, pattern) in SamplePattern::ALL.into_iter().enumerate() {
             let depth = modes[k % 3];
             let opts = ABufferOptions::default()
@@ -126,6 +126,6 @@ fn centre_pattern_is_the_pixel_centre_zbuffer() {
     for (c, id) in f.coverage.iter().zip(&f.ids) {
         assert_eq!(*c, if *id == hider_scene::NO_ID { 0.0 } else { 1.0 });
     }
-    let reference = RayCastOracle::new().evaluate(&s);
+    let reference = RayCastOracle::new(OracleOptions::default()).evaluate(&s);
     assert!(reference.compare(&f.ids, DEFAULT_TIE_TOLERANCE).is_exact());
 }

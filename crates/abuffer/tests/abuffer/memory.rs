@@ -2,9 +2,9 @@
 
 use glam::DVec3;
 use hider_abuffer::{ABuffer, ABufferOptions, MergePolicy, OverflowPolicy};
-use hider_scene::{Error, Frame, Hider, Mesh, Scene, procedural};
+use hider_scene::{Error, Frame, Hider, HiderStats, Mesh, Scene, procedural};
 
-use crate::common::{max_color_diff, render, screen};
+use crate::common::{max_color_diff, render, render_stats, screen};
 
 #[test]
 fn pixel_table_over_budget_is_refused_before_allocating() {
@@ -39,8 +39,8 @@ fn fragment_pool_over_budget_is_a_limit_error() {
     // Within budget the same hider renders, and stays within it.
     let full = ABufferOptions::default();
     let mut a = ABuffer::new(full);
-    a.render(&s, &mut f).unwrap();
-    assert!(a.stats().bytes > budget && a.stats().bytes <= full.max_bytes);
+    let st = a.render(&s, &mut f).unwrap();
+    assert!(st.bytes > budget && st.bytes <= full.max_bytes);
 }
 
 #[test]
@@ -50,8 +50,7 @@ fn list_overflow_errors_or_drops_the_farthest() {
     let s = screen(&scene, 32, 32);
     let unbounded = ABuffer::new(ABufferOptions::default());
     let mut probe = unbounded.clone();
-    render(&mut probe, &s);
-    let longest = probe.stats().max_list_len as u32;
+    let longest = render_stats(&mut probe, &s).1.max_list_len as u32;
     assert!(longest > 4, "{longest}");
 
     let limited = ABufferOptions::default().with_max_list_len(4);
@@ -61,8 +60,7 @@ fn list_overflow_errors_or_drops_the_farthest() {
     assert!(e.contains("max_list_len") && e.contains("pixel ("), "{e}");
 
     let mut a = ABuffer::new(limited);
-    render(&mut a, &s);
-    let st = a.stats();
+    let st = render_stats(&mut a, &s).1;
     assert!(st.dropped > 0 && st.max_list_len == 4, "{st:?}");
 }
 
@@ -103,9 +101,8 @@ fn opaque_layers_fit_short_lists_exactly() {
             let limited = ABufferOptions::default()
                 .with_max_list_len(3)
                 .with_overflow(OverflowPolicy::Error);
-            let mut a = ABuffer::new(limited).with_front_to_back(sorted);
-            let small = render(&mut a, &s);
-            let st = a.stats();
+            let mut a = ABuffer::new(limited.with_front_to_back(sorted));
+            let (small, st) = render_stats(&mut a, &s);
             assert_eq!(st.dropped, 0);
             assert!(max_color_diff(&full, &small) <= 1);
             assert_eq!(full.ids, small.ids);
@@ -124,16 +121,17 @@ fn merging_saves_fragments_on_planar_quads() {
     let s = screen(&procedural::cube(), 64, 64);
     let mut on = ABuffer::new(ABufferOptions::default());
     let mut off = ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off));
-    let a = render(&mut on, &s);
-    let b = render(&mut off, &s);
-    assert!(on.stats().merged > 0, "{:?}", on.stats());
-    assert!(on.stats().mean_list_len < off.stats().mean_list_len);
+    let (a, on_stats) = render_stats(&mut on, &s);
+    let (b, off_stats) = render_stats(&mut off, &s);
+    assert!(on_stats.merged > 0, "{on_stats:?}");
+    assert!(on_stats.mean_list_len < off_stats.mean_list_len);
     assert!(max_color_diff(&a, &b) <= 1);
     assert_eq!(a.coverage, b.coverage);
     // Carpenter's policy merges across shading differences too.
     let mut surface = ABuffer::new(ABufferOptions::carpenter());
-    render(&mut surface, &screen(&procedural::uv_sphere(24), 64, 64));
-    assert!(surface.stats().merged > 0);
+    let (_, surface_stats) =
+        render_stats(&mut surface, &screen(&procedural::uv_sphere(24), 64, 64));
+    assert!(surface_stats.merged > 0);
 }
 
 #[test]
@@ -156,12 +154,13 @@ fn scratch_memory_is_reused_across_frames_and_sizes() {
 fn stats_add_up() {
     let s = screen(&procedural::uv_sphere(12), 40, 40);
     let mut a = ABuffer::new(ABufferOptions::default());
-    let stats = a.render(&s, &mut Frame::new(40, 40).unwrap()).unwrap();
-    let st = a.stats();
-    assert_eq!(stats.get("fragments"), Some(st.fragments));
+    let st = a.render(&s, &mut Frame::new(40, 40).unwrap()).unwrap();
+    let table = st.table();
+    let fragments = table.counters.iter().find(|(name, _)| *name == "fragments");
+    assert_eq!(fragments.map(|c| c.1), Some(st.fragments));
     assert!(st.full_coverage > 0 && st.full_coverage < st.fragments);
     // Every fragment was merged, culled, or took a slot (some later pruned).
     assert!(st.merged + st.culled + st.pool_fragments <= st.fragments);
     assert!(st.mean_list_len >= 1.0 && st.max_list_len as f64 >= st.mean_list_len);
-    assert_eq!(stats.peak_bytes, st.bytes);
+    assert_eq!(table.peak_bytes, st.bytes);
 }

@@ -4,7 +4,7 @@ use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, MergePolicy, SamplePattern, SortedTransparencyZBuffer,
     SsaaOptions,
 };
-use hider_scene::procedural;
+use hider_scene::{Hider, procedural};
 use proptest::prelude::*;
 
 use crate::common::{
