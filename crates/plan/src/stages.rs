@@ -7,10 +7,13 @@
 //! - **texture**: perspective-correct `map_Kd` sampling. For each pixel the
 //!   camera-space ray through its centre is intersected with the source
 //!   triangle, and the uvs are interpolated with the barycentrics of that
-//!   point: exact perspective (seeds 000 and 003: attributes are affine in
-//!   camera space, not on the screen). [`Mapping::Affine`] interpolates
-//!   on the screen instead, labelled as the seed's error to show it.
-//! - **lighting**: flat two-sided Lambert ([`crate::shade::lambert_light`]).
+//!   point: exact perspective (scratchapixel's depth-buffer lesson and the
+//!   perspective-correct interpolation blog post: attributes are affine in
+//!   camera space, not on the screen). [`Mapping::Affine`] interpolates on
+//!   the screen instead, labelled as the error those texts warn about, to
+//!   show it.
+//! - **lighting**: flat two-sided Lambert
+//!   ([`hider_scene::shade::lambert_light`]).
 //!   Without it a primitive shows its material's diffuse colour.
 //!
 //! The two other effects are not colour passes but choices of hider, made
@@ -25,10 +28,11 @@ use std::path::PathBuf;
 
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
+use hider_scene::frame::BACKGROUND;
+use hider_scene::shade::{lambert_light, to_srgb8};
+use hider_scene::{Frame, NO_ID, ScreenScene};
+
 use crate::analyze::Effects;
-use crate::frame::{BACKGROUND, Frame, NO_ID};
-use crate::prepare::ScreenScene;
-use crate::shade::{lambert_light, to_srgb8};
 use crate::texture::{Filter, Texture};
 
 /// Which effect stages run.
@@ -91,6 +95,7 @@ pub enum Mapping {
 
 /// Options of [`Shader`]. `Default` is the accurate choice.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct ShaderOptions {
     /// Texture filter.
     pub filter: Filter,
@@ -352,7 +357,7 @@ impl RayGen {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{PrepareOptions, View, prepare, procedural};
+    use hider_scene::{PrepareOptions, View, prepare, procedural};
 
     #[test]
     fn flat_pass_runs_no_stage_and_matches_the_material_colour() {

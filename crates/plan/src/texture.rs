@@ -3,15 +3,15 @@
 //!
 //! Texels are kept in linear light so that bilinear filtering averages
 //! light, not sRGB codes. Texture coordinates follow OBJ: `(0, 0)` is the
-//! *bottom*-left of the image, `v` grows upward (tinyrenderer's lesson in
-//! seed 002 reads `vt` the same way).
+//! *bottom*-left of the image, `v` grows upward (tinyrenderer's z-buffer
+//! lesson, lesson 3, reads `vt` the same way).
 //!
 //! The size is read from the file header and checked against
 //! [`MAX_TEXTURE_SIDE`] before any pixel is decoded.
 
 use std::path::Path;
 
-use crate::error::{Error, Result};
+use hider_scene::{Error, Result};
 
 /// Largest texture side accepted, in texels (checked before decoding).
 pub const MAX_TEXTURE_SIDE: u32 = 8192;

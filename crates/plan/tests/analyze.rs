@@ -1,8 +1,9 @@
 //! Each effect the analysis detects, on a scene with it and one without.
 
 use glam::DVec3;
-use hider_scene::geom::{Camera, Projection};
-use hider_scene::{Light, Mesh, RenderOptions, Scene, analyze, hard_cases, procedural};
+use hider_plan::{RenderOptions, analyze};
+use hider_scene::geom::Camera;
+use hider_scene::{Light, Mesh, Scene, hard_cases, procedural};
 
 fn small() -> RenderOptions {
     RenderOptions::default().with_size(64, 64)
@@ -118,16 +119,7 @@ fn back_faces_hidden_by_a_closed_mesh_visible_when_open_or_inside() {
     assert!(fx.back_faces.present || fx.back_faces.count == 0);
     assert!(!fx.cull_back_faces_exact);
     // The eye inside the cube sees only back faces.
-    let inside = Camera {
-        eye: DVec3::ZERO,
-        target: DVec3::new(0.0, 0.0, -1.0),
-        up: DVec3::Y,
-        projection: Projection::Perspective {
-            fovy_degrees: 60.0,
-            near: 0.1,
-            far: 10.0,
-        },
-    };
+    let inside = Camera::perspective(DVec3::ZERO, DVec3::new(0.0, 0.0, -1.0), 0.1, 10.0);
     let fx = analyze(&cube, &small().with_camera(Some(inside))).unwrap();
     assert!(fx.back_faces.present, "{}", fx.back_faces.detail);
     // A single triangle seen from behind.

@@ -1,18 +1,17 @@
 //! The bundled textured asset (`assets/checker_plane.*`, `assets/checker.png`)
-//! stays what `hider_scene::texture` generates (`HIDER_BLESS=1` rewrites
+//! stays what `hider_plan::texture` generates (`HIDER_BLESS=1` rewrites
 //! it), renders with correct perspective, and without its texture skips
 //! the texture stage.
 
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use hider_scene::geom::{Camera, Projection};
-use hider_scene::stages::Mapping;
-use hider_scene::texture::{self, Filter};
-use hider_scene::{
-    Frame, NO_ID, PrepareOptions, RenderOptions, ScreenScene, Shader, ShaderOptions, Stages, View,
-    analyze, load_obj, prepare,
-};
+use hider_oracle::{OracleOptions, RayCastOracle};
+use hider_plan::stages::Mapping;
+use hider_plan::texture::{self, Filter};
+use hider_plan::{RenderOptions, Shader, ShaderOptions, Stages, analyze};
+use hider_scene::geom::Camera;
+use hider_scene::{Frame, Hider, NO_ID, PrepareOptions, ScreenScene, View, load_obj, prepare};
 
 fn assets() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
@@ -63,37 +62,16 @@ fn checker_asset_matches_its_generator() {
 /// A camera low over the near edge, looking along the plane: the far edge
 /// is about three times as far as the near one.
 fn grazing_camera() -> Camera {
-    Camera {
-        eye: DVec3::new(0.0, 0.5, 2.0),
-        target: DVec3::new(0.0, 0.0, 0.0),
-        up: DVec3::Y,
-        projection: Projection::Perspective {
-            fovy_degrees: 60.0,
-            near: 0.1,
-            far: 10.0,
-        },
-    }
+    Camera::perspective(DVec3::new(0.0, 0.5, 2.0), DVec3::ZERO, 0.1, 10.0)
 }
 
-/// Nearest visible primitive at every pixel centre, by brute force (the
-/// scene crate has no hider of its own).
+/// The visible primitive at every pixel centre, from the exact oracle.
 fn ids(screen: &ScreenScene) -> Frame {
     let vp = screen.viewport;
     let mut frame = Frame::new(vp.width, vp.height).unwrap();
-    for j in 0..vp.height {
-        for i in 0..vp.width {
-            let (x, y) = (i64::from(i) * 256 + 128, i64::from(j) * 256 + 128);
-            let best = screen
-                .tris
-                .iter()
-                .filter(|t| t.edges().iter().all(|e| e.contains(x, y)))
-                .min_by(|a, b| a.depth.at_pixel(i, j).total_cmp(&b.depth.at_pixel(i, j)));
-            if let Some(t) = best {
-                let k = frame.index(i, j);
-                frame.ids[k] = t.prim;
-            }
-        }
-    }
+    RayCastOracle::new(OracleOptions::default())
+        .render(screen, &mut frame)
+        .unwrap();
     frame
 }
 

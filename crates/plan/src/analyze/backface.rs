@@ -21,8 +21,7 @@ use std::collections::HashMap;
 use glam::DVec3;
 use hider_geom::Projection;
 
-use crate::model::Scene;
-use crate::view::View;
+use hider_scene::{Scene, View};
 
 /// Whether each mesh of the scene certainly hides its back faces from this
 /// view (see the module documentation), indexed like `scene.meshes`.
@@ -84,7 +83,7 @@ pub fn closed_outward(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::procedural;
+    use hider_scene::procedural;
 
     #[test]
     fn cube_is_closed_and_outward_a_flipped_or_open_one_is_not() {

@@ -8,10 +8,11 @@
 //! tests are the robust [`orient3d`] of Guigue & Devillers, 2003). That is
 //! the case hidden-surface removal cares about: along `L` the two surfaces
 //! swap depth order, so no per-triangle order exists (the painter's
-//! failure in seed 001). Triangles that only touch — mesh neighbours
-//! sharing an edge or a vertex, a fin standing on a face — keep one side of
-//! each other's plane and are not counted; thanks to the exact predicate a
-//! shared vertex is exactly on the plane, never "a little across".
+//! failure the software-renderer tutorial, chapter 8, shows). Triangles
+//! that only touch — mesh neighbours sharing an edge or a vertex, a fin
+//! standing on a face — keep one side of each other's plane and are not
+//! counted; thanks to the exact predicate a shared vertex is exactly on
+//! the plane, never "a little across".
 //!
 //! Only the interval overlap along `L` is computed in floating point; it
 //! must exceed [`OVERLAP_TOLERANCE`] times the intervals' extent, which

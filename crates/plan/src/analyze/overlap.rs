@@ -4,9 +4,10 @@
 //! Newell, Newell & Sancha (1972) paint polygons back to front; that works
 //! when the relation "A hides part of B" between polygons whose projections
 //! overlap has no cycle. This module builds that relation on the prepared
-//! [`crate::ScreenScene`]: candidate pairs from a tile grid over the window, an
-//! exact test that their projections' interiors overlap (separating edges
-//! with the shared integer `orient2d` on the snapped vertices), and the
+//! [`hider_scene::ScreenScene`]: candidate pairs from a tile grid over the
+//! window, an exact test that their projections' interiors overlap
+//! (separating edges with the shared integer `orient2d` on the snapped
+//! vertices), and the
 //! depth order at a point inside the overlap (the triangles' affine
 //! window-depth planes, the same ones the hiders interpolate). Pairs that
 //! interpenetrate in space are left out here — they are reported by
@@ -22,7 +23,7 @@
 
 use hider_geom::{FixedPt, Viewport, orient2d};
 
-use crate::prepare::ScreenTri;
+use hider_scene::ScreenTri;
 
 /// Window depths closer than this at the test point are a tie, not an
 /// order.
@@ -55,10 +56,10 @@ pub struct OverlapGraph {
 }
 
 /// Builds the graph over the screen triangles `tris` of a window `vp`
-/// (those of a [`crate::ScreenScene`], or the front faces only when back faces
-/// will be culled), skipping the primitive pairs
-/// for which `interpenetrate(a, b)` holds, examining at most `budget`
-/// candidate pairs.
+/// (those of a [`hider_scene::ScreenScene`], or the front faces only when
+/// back faces will be culled), skipping the primitive pairs for which
+/// `interpenetrate(a, b)` holds, examining at most `budget` candidate
+/// pairs.
 pub fn overlap_graph(
     tris: &[ScreenTri],
     vp: Viewport,
@@ -70,49 +71,19 @@ pub fn overlap_graph(
         complete: true,
         ..OverlapGraph::default()
     };
-    let n = tris.len();
-    if n < 2 {
+    if tris.len() < 2 {
         return out;
     }
-    // Tiles of about one triangle each, 4 to 256 pixels wide.
-    let side =
-        ((f64::from(vp.width) * f64::from(vp.height) / n as f64).sqrt() as u32).clamp(4, 256);
-    let tiles_x = vp.width.div_ceil(side) as usize;
-    let tiles_y = vp.height.div_ceil(side) as usize;
-    let bounds: Vec<Option<[usize; 4]>> = tris
-        .iter()
-        .map(|t| {
-            let (x0, y0, x1, y1) = pixel_box(t, vp.width, vp.height)?;
-            Some([x0, y0, x1, y1].map(|v| (v / side) as usize))
-        })
-        .collect();
-    let mut start = vec![0usize; tiles_x * tiles_y + 1];
-    let for_tiles = |b: &[usize; 4], f: &mut dyn FnMut(usize)| {
-        for ty in b[1]..=b[3] {
-            for tx in b[0]..=b[2] {
-                f(ty * tiles_x + tx);
-            }
-        }
-    };
-    for b in bounds.iter().flatten() {
-        for_tiles(b, &mut |c| start[c + 1] += 1);
-    }
-    for c in 0..tiles_x * tiles_y {
-        start[c + 1] += start[c];
-    }
-    let mut fill = start.clone();
-    let mut items = vec![0u32; start[tiles_x * tiles_y]];
-    for (k, b) in bounds.iter().enumerate() {
-        if let Some(b) = b {
-            for_tiles(b, &mut |c| {
-                items[fill[c]] = k as u32;
-                fill[c] += 1;
-            });
-        }
-    }
+    let TileBins {
+        tiles,
+        tiles_x,
+        bounds,
+        start,
+        items,
+    } = TileBins::new(tris, vp);
     let mut edges: Vec<(u32, u32)> = Vec::new();
     let mut examined = 0u64;
-    'tiles: for c in 0..tiles_x * tiles_y {
+    'tiles: for c in 0..tiles {
         let list = &items[start[c]..start[c + 1]];
         for (i, &ka) in list.iter().enumerate() {
             let (a, ba) = (&tris[ka as usize], bounds[ka as usize].unwrap_or_default());
@@ -167,6 +138,72 @@ pub fn overlap_graph(
     out.prims_on_cycles = on_cycles;
     out.examples = examples;
     out
+}
+
+/// The screen triangles binned into square tiles of about one triangle
+/// each: the candidate pairs for overlap are those sharing a tile.
+struct TileBins {
+    /// Number of tiles.
+    tiles: usize,
+    /// Tiles per row.
+    tiles_x: usize,
+    /// Per triangle, its tile box `[x0, y0, x1, y1]` (inclusive), `None`
+    /// when it covers no pixel of the window.
+    bounds: Vec<Option<[usize; 4]>>,
+    /// Where each tile's list starts in `items` (one more than `tiles`).
+    start: Vec<usize>,
+    /// The triangle indices of every tile, tile after tile.
+    items: Vec<u32>,
+}
+
+impl TileBins {
+    fn new(tris: &[ScreenTri], vp: Viewport) -> Self {
+        let n = tris.len();
+        // Tiles of about one triangle each, 4 to 256 pixels wide.
+        let side =
+            ((f64::from(vp.width) * f64::from(vp.height) / n as f64).sqrt() as u32).clamp(4, 256);
+        let tiles_x = vp.width.div_ceil(side) as usize;
+        let tiles_y = vp.height.div_ceil(side) as usize;
+        let tiles = tiles_x * tiles_y;
+        let bounds: Vec<Option<[usize; 4]>> = tris
+            .iter()
+            .map(|t| {
+                let (x0, y0, x1, y1) = pixel_box(t, vp.width, vp.height)?;
+                Some([x0, y0, x1, y1].map(|v| (v / side) as usize))
+            })
+            .collect();
+        let mut start = vec![0usize; tiles + 1];
+        let for_tiles = |b: &[usize; 4], f: &mut dyn FnMut(usize)| {
+            for ty in b[1]..=b[3] {
+                for tx in b[0]..=b[2] {
+                    f(ty * tiles_x + tx);
+                }
+            }
+        };
+        for b in bounds.iter().flatten() {
+            for_tiles(b, &mut |c| start[c + 1] += 1);
+        }
+        for c in 0..tiles {
+            start[c + 1] += start[c];
+        }
+        let mut fill = start.clone();
+        let mut items = vec![0u32; start[tiles]];
+        for (k, b) in bounds.iter().enumerate() {
+            if let Some(b) = b {
+                for_tiles(b, &mut |c| {
+                    items[fill[c]] = k as u32;
+                    fill[c] += 1;
+                });
+            }
+        }
+        Self {
+            tiles,
+            tiles_x,
+            bounds,
+            start,
+            items,
+        }
+    }
 }
 
 /// The inclusive pixel box of a triangle's extent (not only its sample

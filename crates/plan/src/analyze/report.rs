@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use super::{Effects, Evidence};
+use super::effects::{Effects, Evidence};
 
 impl Evidence {
     /// `yes` / `no`, with `?` when the search did not finish.

@@ -1,10 +1,11 @@
 //! Tests of the planner: its rules and fallbacks, and that its choice is
 //! exact (equal to the oracle on non-tie pixels) on every hard case.
 
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
-use hider_scene::{Frame, PrepareOptions, RenderOptions, analyze, hard_cases, prepare, procedural};
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, OracleOptions, RayCastOracle};
+use hider_scene::{Frame, Hider, PrepareOptions, hard_cases, prepare, procedural};
 
 use super::*;
+use crate::analyze::analyze;
 
 const ALL: &[&str] = &[
     "zbuffer-tiled",
@@ -120,21 +121,32 @@ fn far_geometry_moves_to_reversed_z() {
     );
 }
 
-/// Renders with the plan (its hider, its front-end options) and compares
-/// with the oracle on the unculled scene.
+/// Renders with the plan (its hider, the scene it prepared) and compares
+/// with the oracle on the unculled scene; the prepared scene is the one
+/// the plan's front-end options give.
 fn check_exact(name: &str, scene: &Scene, options: RenderOptions) {
     let options = options.with_size(48, 48);
-    let (effects, plan) = auto(scene, &options).unwrap();
-    let view = options.view(scene).unwrap();
+    let Planned {
+        effects,
+        plan,
+        view,
+        screen,
+    } = auto(scene, &options).unwrap();
     let full = prepare(scene, &view, &PrepareOptions::default()).unwrap();
-    let reference = RayCastOracle::new().evaluate(&full);
-    let screen = prepare(
+    let reference = RayCastOracle::new(OracleOptions::default()).evaluate(&full);
+    let again = prepare(
         scene,
         &view,
         &plan.prepare_options(PrepareOptions::default()),
     )
     .unwrap();
-    let mut hider = plan.hider().expect("the plan names a registered hider");
+    assert_eq!(
+        screen, again,
+        "{name}: the planned scene is the prepared one"
+    );
+    let mut hider = plan
+        .build(&HiderConfig::default())
+        .expect("the plan names a registered hider");
     let mut frame = Frame::new(48, 48).unwrap();
     hider.render(&screen, &mut frame).unwrap();
     let agreement = reference.compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
@@ -171,4 +183,27 @@ fn the_plan_is_exact_with_transparency_and_antialiasing() {
         }
         check_exact(name, &glass, RenderOptions::default());
     }
+}
+
+#[test]
+fn auto_refuses_depth_knobs_and_takes_threads_and_vector_output() {
+    use hider_zbuffer::{DepthFormat, DepthSource};
+    for config in [
+        HiderConfig::default().with_depth_format(DepthFormat::F64),
+        HiderConfig::default().with_depth_source(DepthSource::LinearViewZ),
+    ] {
+        assert_eq!(
+            check_config(&config).unwrap_err().to_string(),
+            "--depth-format and --depth-source apply to --algo zbuffer and zbuffer-tiled only"
+        );
+    }
+    let config = HiderConfig::default()
+        .with_threads(2)
+        .with_vector_output(true);
+    assert!(check_config(&config).is_ok());
+    // Vector output asked: the plan is a painter, which takes the knob.
+    let vector = RenderOptions::default().with_vector_output(true);
+    let planned = auto(&procedural::cyclic_triple(), &vector.with_size(32, 32)).unwrap();
+    assert_eq!(planned.plan.algo, "painter");
+    assert!(planned.plan.build(&config).is_ok());
 }

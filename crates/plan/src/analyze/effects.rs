@@ -1,0 +1,92 @@
+//! What the analysis finds: each effect with its evidence, and the time it
+//! took.
+
+/// One effect: whether it is needed and why.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Evidence {
+    /// Whether the effect is present (must be simulated).
+    pub present: bool,
+    /// False when the search ran out of budget: `present` is then the safe
+    /// assumption, not a finding.
+    pub certain: bool,
+    /// How many instances were found (triangles, pairs, cycles...; see
+    /// [`Evidence::detail`]).
+    pub count: u64,
+    /// Examples as groups of primitive ids: one id, a pair, or a cycle.
+    pub examples: Vec<Vec<u32>>,
+    /// One sentence saying what was found.
+    pub detail: String,
+}
+
+impl Evidence {
+    /// A certain finding.
+    pub(crate) fn found(
+        present: bool,
+        count: u64,
+        examples: Vec<Vec<u32>>,
+        detail: String,
+    ) -> Self {
+        Self {
+            present,
+            certain: true,
+            count,
+            examples,
+            detail,
+        }
+    }
+}
+
+/// Wall-clock time of the analysis steps, milliseconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AnalysisTimes {
+    /// Front end (prepare).
+    pub prepare_ms: f64,
+    /// Triangle–triangle intersection search.
+    pub intersections_ms: f64,
+    /// Screen overlap graph and cycles.
+    pub overlaps_ms: f64,
+    /// Everything.
+    pub total_ms: f64,
+}
+
+/// The effects a scene calls for under given [`RenderOptions`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Effects {
+    /// Triangles in the scene.
+    pub triangles: u64,
+    /// Screen triangles after the front end.
+    pub on_screen: u64,
+    /// Translucent materials in view: needs compositing (A-buffer).
+    pub transparency: Evidence,
+    /// Textured triangles in view: needs the texture stage.
+    pub textures: Evidence,
+    /// Lights or normals with shading asked: needs the Lambert stage.
+    pub lighting: Evidence,
+    /// Anti-aliasing asked: needs multi-sample coverage.
+    pub antialiasing: Evidence,
+    /// Whether vector output is asked.
+    pub vector_output: bool,
+    /// Interpenetrating triangle pairs in view.
+    pub intersections: Evidence,
+    /// Coplanar overlapping pairs in view (depth ties, any hider's answer
+    /// is a tie-break).
+    pub coplanar_overlaps: Evidence,
+    /// Cycles of the "in front of" relation in view.
+    pub cyclic_overlap: Evidence,
+    /// Back-facing triangles on screen that may be visible.
+    pub back_faces: Evidence,
+    /// Overlapping pairs a naive farthest-vertex sort paints in the wrong
+    /// order.
+    pub naive_order_violations: Evidence,
+    /// Whether dropping back faces in the front end is exact and saves
+    /// work: there are back faces on screen, all certainly hidden, and no
+    /// transparency shows them.
+    pub cull_back_faces_exact: bool,
+    /// Distance of the farthest corner in view over the near distance, for
+    /// a perspective camera (1 for orthographic): an f32 window-depth
+    /// buffer resolves relative view distances of about `2^-24` times
+    /// this at that corner.
+    pub depth_ratio: f64,
+    /// Time spent.
+    pub times: AnalysisTimes,
+}

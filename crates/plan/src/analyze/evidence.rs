@@ -1,0 +1,155 @@
+//! The effects read off the prepared scene one primitive at a time:
+//! transparency, textures, lighting, anti-aliasing and back faces.
+
+use std::collections::HashSet;
+
+use hider_scene::{Scene, ScreenScene, View};
+
+use super::backface;
+use super::effects::Evidence;
+use crate::texture;
+
+/// Primitive ids with at least one screen triangle.
+pub(crate) fn prims_in_view(screen: &ScreenScene) -> HashSet<u32> {
+    screen.tris.iter().map(|t| t.prim).collect()
+}
+
+fn sorted(ids: &HashSet<u32>) -> Vec<u32> {
+    let mut v: Vec<u32> = ids.iter().copied().collect();
+    v.sort_unstable();
+    v
+}
+
+pub(crate) fn transparency(screen: &ScreenScene, in_view: &HashSet<u32>, ex: usize) -> Evidence {
+    let ids: Vec<u32> = sorted(in_view)
+        .into_iter()
+        .filter(|&p| screen.material(p).opacity < 1.0)
+        .collect();
+    let mut names: Vec<&str> = ids
+        .iter()
+        .map(|&p| screen.material(p).name.as_str())
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    Evidence::found(
+        !ids.is_empty(),
+        ids.len() as u64,
+        ids.iter().take(ex).map(|&p| vec![p]).collect(),
+        if ids.is_empty() {
+            "every material in view is opaque".into()
+        } else {
+            format!(
+                "{} translucent triangles in view (materials {})",
+                ids.len(),
+                names.join(", ")
+            )
+        },
+    )
+}
+
+pub(crate) fn textures(screen: &ScreenScene, in_view: &HashSet<u32>, ex: usize) -> Evidence {
+    let mut probe: Vec<Option<std::result::Result<(u32, u32), String>>> =
+        vec![None; screen.materials.len()];
+    let mut ids = Vec::new();
+    let mut failures: Vec<String> = Vec::new();
+    for p in sorted(in_view) {
+        let prim = &screen.prims[p as usize];
+        let k = prim.material as usize;
+        let Some(path) = &screen.materials[k].diffuse_texture else {
+            continue;
+        };
+        let r = probe[k].get_or_insert_with(|| {
+            texture::probe(path).map_err(|e| {
+                let msg = e.to_string();
+                failures.push(msg.clone());
+                msg
+            })
+        });
+        if r.is_ok() && prim.uvs.is_some() {
+            ids.push(p);
+        }
+    }
+    let mut detail = if ids.is_empty() {
+        "no triangle in view has both uvs and a loadable map_Kd".to_owned()
+    } else {
+        format!(
+            "{} triangles in view with uvs and a loadable map_Kd",
+            ids.len()
+        )
+    };
+    if !failures.is_empty() {
+        detail.push_str(&format!(
+            "; textures that do not load: {}",
+            failures.join("; ")
+        ));
+    }
+    Evidence::found(
+        !ids.is_empty(),
+        ids.len() as u64,
+        ids.iter().take(ex).map(|&p| vec![p]).collect(),
+        detail,
+    )
+}
+
+pub(crate) fn lighting(scene: &Scene, shading: bool) -> Evidence {
+    let lights = scene.lights.len() as u64;
+    let with_normals = scene
+        .meshes
+        .iter()
+        .filter(|m| !m.normals.is_empty())
+        .count() as u64;
+    let present = shading && (lights > 0 || with_normals > 0);
+    let detail = if !shading {
+        "shading not asked for".to_owned()
+    } else {
+        format!("{lights} lights, {with_normals} meshes with normals")
+    };
+    Evidence::found(present, lights + with_normals, Vec::new(), detail)
+}
+
+pub(crate) fn back_faces(scene: &Scene, view: &View, screen: &ScreenScene, ex: usize) -> Evidence {
+    let hidden = backface::hidden_back_faces(scene, view);
+    // Mesh index of each primitive id.
+    let mut mesh_of = Vec::with_capacity(scene.triangle_count());
+    for (m, mesh) in scene.meshes.iter().enumerate() {
+        mesh_of.extend(std::iter::repeat_n(m, mesh.indices.len()));
+    }
+    let back: Vec<u32> = screen
+        .tris
+        .iter()
+        .filter(|t| !t.front_facing)
+        .map(|t| t.prim)
+        .collect();
+    let exposed: Vec<u32> = back
+        .iter()
+        .copied()
+        .filter(|&p| !hidden[mesh_of[p as usize]])
+        .collect();
+    let closed = hidden.iter().filter(|h| **h).count();
+    Evidence::found(
+        !exposed.is_empty(),
+        back.len() as u64,
+        exposed.iter().take(ex).map(|&p| vec![p]).collect(),
+        format!(
+            "{} back-facing triangles on screen, {} of them possibly visible; {} of {} meshes \
+             closed, outward and uncut (their back faces are hidden)",
+            back.len(),
+            exposed.len(),
+            closed,
+            scene.meshes.len()
+        ),
+    )
+}
+
+pub(crate) fn antialiasing(asked: bool) -> Evidence {
+    Evidence::found(
+        asked,
+        u64::from(asked),
+        Vec::new(),
+        if asked {
+            "asked for: multi-sample coverage".into()
+        } else {
+            "not asked for: one sample per pixel".into()
+        },
+    )
+}

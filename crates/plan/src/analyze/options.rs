@@ -1,0 +1,104 @@
+//! What the caller wants rendered: the inputs of the analysis besides the
+//! scene.
+
+use hider_geom::Camera;
+use hider_scene::{PrepareOptions, Scene, View};
+
+use crate::error::Result;
+
+/// Default of [`RenderOptions::pair_budget`].
+pub const DEFAULT_PAIR_BUDGET: u64 = 50_000_000;
+
+/// What the caller wants rendered: the inputs of the analysis besides the
+/// scene. `Default` is a 512 x 512 shaded raster image without
+/// anti-aliasing from the scene's own (or the fit) camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct RenderOptions {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// The camera; `None` for the scene's camera or else the fit camera.
+    pub camera: Option<Camera>,
+    /// Whether a shaded picture is asked for (false: ids / false colours
+    /// only, so lighting is never needed).
+    pub shading: bool,
+    /// Whether anti-aliased edges are asked for.
+    pub antialiasing: bool,
+    /// Whether vector output (an ordered polygon list, SVG) is asked for.
+    pub vector_output: bool,
+    /// The front end's options.
+    pub prepare: PrepareOptions,
+    /// Most candidate pairs each pair search examines.
+    pub pair_budget: u64,
+    /// Most examples kept per effect.
+    pub max_examples: usize,
+}
+
+impl Default for RenderOptions {
+    fn default() -> Self {
+        Self {
+            width: 512,
+            height: 512,
+            camera: None,
+            shading: true,
+            antialiasing: false,
+            vector_output: false,
+            prepare: PrepareOptions::default(),
+            pair_budget: DEFAULT_PAIR_BUDGET,
+            max_examples: 5,
+        }
+    }
+}
+
+impl RenderOptions {
+    /// Sets the image size.
+    pub fn with_size(mut self, width: u32, height: u32) -> Self {
+        (self.width, self.height) = (width, height);
+        self
+    }
+    /// Sets [`Self::camera`].
+    pub fn with_camera(mut self, camera: Option<Camera>) -> Self {
+        self.camera = camera;
+        self
+    }
+    /// Sets [`Self::shading`].
+    pub fn with_shading(mut self, shading: bool) -> Self {
+        self.shading = shading;
+        self
+    }
+    /// Sets [`Self::antialiasing`].
+    pub fn with_antialiasing(mut self, antialiasing: bool) -> Self {
+        self.antialiasing = antialiasing;
+        self
+    }
+    /// Sets [`Self::vector_output`].
+    pub fn with_vector_output(mut self, vector_output: bool) -> Self {
+        self.vector_output = vector_output;
+        self
+    }
+    /// Sets [`Self::prepare`].
+    pub fn with_prepare(mut self, prepare: PrepareOptions) -> Self {
+        self.prepare = prepare;
+        self
+    }
+    /// Sets [`Self::pair_budget`].
+    pub fn with_pair_budget(mut self, budget: u64) -> Self {
+        self.pair_budget = budget;
+        self
+    }
+    /// Sets [`Self::max_examples`].
+    pub fn with_max_examples(mut self, max_examples: usize) -> Self {
+        self.max_examples = max_examples;
+        self
+    }
+
+    /// The view these options describe for `scene` (size checked).
+    pub fn view(&self, scene: &Scene) -> Result<View> {
+        Ok(match self.camera {
+            Some(c) => View::new(c, self.width, self.height)?,
+            None => View::for_scene(scene, self.width, self.height)?,
+        })
+    }
+}

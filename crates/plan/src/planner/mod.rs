@@ -1,0 +1,181 @@
+//! The planner behind `--algo auto`: the cheapest registered hider (and
+//! front-end options) that is exact for the effects a scene calls for.
+//!
+//! [`analyze`](crate::analyze()) finds the effects; [`plan`] turns them
+//! into a choice by walking, for the first rule that applies, a list of
+//! registry entries from cheapest to dearest and taking the first one
+//! registered, so a hider that is not registered falls back to the next
+//! exact one:
+//!
+//! | effects | choice (first registered) | why |
+//! |---|---|---|
+//! | vector output, intersections or cycles | `painter` | only splitting resolves them |
+//! | vector output, naive order already right | `painter-naive`, `painter` | one sort, no tests, no splits |
+//! | vector output otherwise | `painter` | Newell's tests reorder; no split is needed |
+//! | transparency | `abuffer`, `ssaa-sorted` | every surface in a pixel must be composited |
+//! | anti-aliasing | `abuffer`, `ssaa-8`, `ssaa-16`, `ssaa-32`, `ssaa-4` | coverage masks cost less than samples |
+//! | geometry far beyond the near plane | `zbuffer-reversed`, `zbuffer-f64`, `zbuffer` | f32 window depth runs out of bits near 1 |
+//! | none of these | `zbuffer-tiled`, `zbuffer`, `zbuffer-f64`, `scanline`, `warnock` | one depth test per covered pixel; the tiled z-buffer gives `zbuffer`'s frame bit for bit, binned, with hierarchical depth and on as many threads as asked |
+//!
+//! On top of the hider, back faces are culled in the front end when the
+//! analysis proved them hidden (closed, outward, uncut meshes and no
+//! transparency), and only the colour stages the scene needs run
+//! ([`Stages::for_effects`]).
+//!
+//! [`auto`] does both and hands back the scene the analysis prepared, with
+//! the plan's culling applied, so the render does not prepare it again.
+
+mod rules;
+
+#[cfg(test)]
+mod tests;
+
+use hider_scene::{DynHider, PrepareOptions, Scene, ScreenScene, View};
+
+pub use rules::MAX_F32_DEPTH_RATIO;
+
+use crate::analyze::{Effects, RenderOptions, analyze_prepared};
+use crate::config::HiderConfig;
+use crate::error::Result;
+use crate::registry::{self, Knobs};
+use crate::stages::Stages;
+
+/// What the planner chose.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// Registry name of the hider (`hider render --algo NAME`).
+    pub algo: &'static str,
+    /// Whether the front end should drop back faces (exact here).
+    pub cull_back_faces: bool,
+    /// The effect stages that run.
+    pub stages: Stages,
+    /// Why, in one sentence.
+    pub reason: String,
+    /// Fallbacks taken and effects that no registered hider simulates.
+    pub notes: Vec<String>,
+}
+
+impl Plan {
+    /// The chosen hider, built with `config` (see
+    /// [`Entry::build`](crate::registry::Entry::build)).
+    pub fn build(&self, config: &HiderConfig) -> Result<Box<dyn DynHider>> {
+        registry::find(self.algo)?.build(config)
+    }
+
+    /// `base` with the plan's front-end choices applied.
+    pub fn prepare_options(&self, base: PrepareOptions) -> PrepareOptions {
+        base.with_cull_back_faces(base.cull_back_faces || self.cull_back_faces)
+    }
+
+    /// One line: the choice and why.
+    pub fn summary(&self) -> String {
+        let mut s = format!("auto: {} ({})", self.algo, self.reason);
+        if self.cull_back_faces {
+            s.push_str("; back faces culled (all hidden)");
+        }
+        let stages = self.stages.names();
+        s.push_str(&format!(
+            "; stages: {}",
+            if stages.is_empty() {
+                "none (flat colour)".to_owned()
+            } else {
+                stages.join(", ")
+            }
+        ));
+        for n in &self.notes {
+            s.push_str("; ");
+            s.push_str(n);
+        }
+        s
+    }
+}
+
+/// An analysed and planned scene, ready to render.
+#[derive(Clone, Debug)]
+pub struct Planned {
+    /// The effects the analysis found.
+    pub effects: Effects,
+    /// The choice.
+    pub plan: Plan,
+    /// The view analysed.
+    pub view: View,
+    /// The scene through the front end with the plan's options
+    /// ([`Plan::prepare_options`] of the analysis's `prepare`): what
+    /// `prepare` would give, without preparing a second time.
+    pub screen: ScreenScene,
+}
+
+/// Analyses `scene` and plans for it with the registered hiders.
+///
+/// ```
+/// use hider_plan::{HiderConfig, RenderOptions, auto};
+/// use hider_scene::{Frame, procedural};
+///
+/// let planned = auto(&procedural::cube(), &RenderOptions::default().with_size(32, 32))?;
+/// assert_eq!(planned.plan.algo, "zbuffer-tiled");
+/// let mut hider = planned.plan.build(&HiderConfig::default())?;
+/// let mut frame = Frame::new(32, 32)?;
+/// hider.render(&planned.screen, &mut frame)?;
+/// assert!(frame.covered_count() > 0);
+/// # Ok::<(), hider_plan::PlanError>(())
+/// ```
+pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
+    let analysis = analyze_prepared(scene, options)?;
+    let plan = plan(&analysis.effects);
+    let mut screen = analysis.screen;
+    if plan.prepare_options(options.prepare).cull_back_faces {
+        cull_back_faces(&mut screen);
+    }
+    Ok(Planned {
+        effects: analysis.effects,
+        plan,
+        view: analysis.view,
+        screen,
+    })
+}
+
+/// Drops the back-facing triangles of a scene prepared without culling,
+/// counting them as the front end does: the result equals preparing with
+/// [`PrepareOptions::cull_back_faces`] on.
+fn cull_back_faces(screen: &mut ScreenScene) {
+    let before = screen.tris.len();
+    screen.tris.retain(|t| t.front_facing);
+    screen.stats.back_faces += (before - screen.tris.len()) as u64;
+    screen.stats.output = screen.tris.len() as u64;
+}
+
+/// Checks the knobs of `config` that `--algo auto` can honour: threads and
+/// vector output; a depth format or source belongs to a named z-buffer.
+pub fn check_config(config: &HiderConfig) -> Result<()> {
+    let auto = Knobs {
+        threads: true,
+        vector_output: true,
+        ..Knobs::NONE
+    };
+    match registry::refusal("auto", auto, config) {
+        Some(error) => Err(error),
+        None => Ok(()),
+    }
+}
+
+/// Plans with every hider in the registry.
+pub fn plan(effects: &Effects) -> Plan {
+    plan_among(effects, &registry::names())
+}
+
+/// Plans with only the hiders named in `available` (registry names).
+pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
+    let mut picker = rules::Picker::new(available);
+    let (algo, reason) = picker
+        .vector(effects)
+        .or_else(|| picker.transparency(effects))
+        .or_else(|| picker.antialiasing(effects))
+        .unwrap_or_else(|| picker.raster(effects));
+    Plan {
+        algo,
+        cull_back_faces: effects.cull_back_faces_exact,
+        stages: Stages::for_effects(effects),
+        reason,
+        notes: picker.notes,
+    }
+}

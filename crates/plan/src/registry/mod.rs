@@ -1,0 +1,61 @@
+//! Every hider of the workspace by name: one list that the command line,
+//! the benchmark and the property tests read, so adding an algorithm is
+//! one entry here.
+//!
+//! Each [`Entry`] builds its hider from the algorithm crate's typed options
+//! ([`Entry::make`]); [`Entry::build`] also applies the cross-cutting knobs
+//! of a [`HiderConfig`](crate::HiderConfig) the entry takes (depth format,
+//! depth source, threads, vector output) and refuses the others with a
+//! message naming the knob, so a caller never matches on hider names.
+//!
+//! ```
+//! use hider_plan::registry::{self, Kind};
+//!
+//! let entry = registry::by_name("warnock").unwrap();
+//! assert_eq!(entry.kind, Kind::ExactPixelCentre);
+//! assert_eq!(entry.make().name(), "warnock");
+//! assert!(registry::find("nonesuch").unwrap_err().to_string().contains("zbuffer"));
+//! ```
+
+mod build;
+mod entry;
+mod table;
+
+#[cfg(test)]
+mod tests;
+
+use hider_scene::DynHider;
+
+pub(crate) use build::refusal;
+pub use entry::{Entry, Kind, Knobs};
+pub use table::all;
+
+use crate::error::{PlanError, Result};
+
+/// The entry with this name.
+pub fn by_name(name: &str) -> Option<Entry> {
+    all().into_iter().find(|e| e.name == name)
+}
+
+/// The entry with this name, or an error listing every registered name.
+pub fn find(name: &str) -> Result<Entry> {
+    by_name(name).ok_or_else(|| PlanError::UnknownHider {
+        name: name.to_owned(),
+        known: names().join(", "),
+    })
+}
+
+/// Every registered name, in registry order.
+pub fn names() -> Vec<&'static str> {
+    all().iter().map(|e| e.name).collect()
+}
+
+/// Fresh instances of every hider that must equal the oracle on non-tie
+/// pixels ([`Kind::ExactPixelCentre`]).
+pub fn pixel_centre_hiders() -> Vec<Box<dyn DynHider>> {
+    all()
+        .into_iter()
+        .filter(|e| e.kind == Kind::ExactPixelCentre)
+        .map(|e| e.make())
+        .collect()
+}

@@ -1,0 +1,252 @@
+//! The list of every registered hider, each built from its crate's typed
+//! options.
+
+use hider_abuffer::{
+    ABuffer, ABufferOptions, SamplePattern, SortedTransparencyZBuffer, SsaaOptions,
+    SupersampledZBuffer,
+};
+use hider_oracle::{OracleOptions, RayCastOracle};
+use hider_painter::{NaivePainter, NaivePainterOptions, Painter, PainterOptions};
+use hider_scanline::{Scanline, ScanlineOptions};
+use hider_scene::{DynHider, Hider};
+use hider_warnock::{Warnock, WarnockOptions};
+use hider_zbuffer::{
+    DepthFormat, DepthSource, TiledZBuffer, TiledZBufferOptions, ZBuffer, ZBufferOptions,
+};
+
+use super::entry::{Entry, Kind, Knobs};
+use crate::config::HiderConfig;
+
+/// A z-buffer with this format and source.
+fn zbuffer(format: DepthFormat, source: DepthSource) -> Box<dyn DynHider> {
+    Box::new(ZBuffer::new(
+        ZBufferOptions::default()
+            .with_depth_format(format)
+            .with_depth_source(source),
+    ))
+}
+
+/// The `zbuffer` entry: window depth in f32 unless the config says
+/// otherwise.
+fn configured_zbuffer(config: &HiderConfig) -> Box<dyn DynHider> {
+    zbuffer(
+        config.depth_format.unwrap_or(DepthFormat::F32),
+        config.depth_source.unwrap_or(DepthSource::WindowZ),
+    )
+}
+
+/// The `zbuffer-tiled` entry: its defaults (f32, every core) unless the
+/// config says otherwise.
+fn configured_tiled(config: &HiderConfig) -> Box<dyn DynHider> {
+    let mut options = TiledZBufferOptions::default();
+    if let Some(format) = config.depth_format {
+        options = options.with_depth_format(format);
+    }
+    if let Some(threads) = config.threads {
+        options = options.with_threads(threads);
+    }
+    Box::new(TiledZBuffer::new(options))
+}
+
+/// A supersampled z-buffer with this sample pattern.
+fn ssaa(pattern: SamplePattern) -> Box<dyn DynHider> {
+    Box::new(SupersampledZBuffer::new(
+        SsaaOptions::default().with_pattern(pattern),
+    ))
+}
+
+/// Knobs of the `zbuffer` entry.
+const ZBUFFER_KNOBS: Knobs = Knobs {
+    depth_format: true,
+    depth_source: true,
+    ..Knobs::NONE
+};
+
+/// Knobs of the `zbuffer-tiled` entry.
+const TILED_KNOBS: Knobs = Knobs {
+    depth_format: true,
+    threads: true,
+    ..Knobs::NONE
+};
+
+/// Knobs of the painters.
+const PAINTER_KNOBS: Knobs = Knobs {
+    vector_output: true,
+    ..Knobs::NONE
+};
+
+/// An entry without knobs.
+const fn plain(
+    name: &'static str,
+    description: &'static str,
+    kind: Kind,
+    with_config: fn(&HiderConfig) -> Box<dyn DynHider>,
+) -> Entry {
+    Entry {
+        name,
+        description,
+        kind,
+        knobs: Knobs::NONE,
+        with_config,
+    }
+}
+
+/// The hiders that decide at pixel centres, exact or approximate.
+fn pixel_centre() -> [Entry; 11] {
+    use DepthFormat::{F32, F64, Fixed16, Fixed24, ReversedF32};
+    use DepthSource::{LinearViewZ, WindowZ};
+    use Kind::{ApproximatePixelCentre as Approximate, ExactPixelCentre as Exact};
+    [
+        Entry {
+            knobs: ZBUFFER_KNOBS,
+            ..plain(
+                "zbuffer",
+                "depth buffer, f32 window depth",
+                Exact,
+                configured_zbuffer,
+            )
+        },
+        plain(
+            "zbuffer-f64",
+            "depth buffer, f64 window depth",
+            Exact,
+            |_| zbuffer(F64, WindowZ),
+        ),
+        plain(
+            "zbuffer-reversed",
+            "depth buffer, reversed-Z f32",
+            Exact,
+            |_| zbuffer(ReversedF32, WindowZ),
+        ),
+        Entry {
+            knobs: TILED_KNOBS,
+            ..plain(
+                "zbuffer-tiled",
+                "binned, tiled, hierarchical-z parallel z-buffer; bit-identical to zbuffer",
+                Exact,
+                configured_tiled,
+            )
+        },
+        plain(
+            "zbuffer-fixed24",
+            "depth buffer, 24-bit fixed point (GL-like)",
+            Approximate,
+            |_| zbuffer(Fixed24, WindowZ),
+        ),
+        plain(
+            "zbuffer-fixed16",
+            "depth buffer, 16-bit fixed point",
+            Approximate,
+            |_| zbuffer(Fixed16, WindowZ),
+        ),
+        Entry {
+            knobs: PAINTER_KNOBS,
+            ..plain(
+                "painter-naive",
+                "painter's algorithm, plain sort by farthest vertex (wrong on intersections and cycles)",
+                Approximate,
+                |_| Box::new(NaivePainter::new(NaivePainterOptions::default())),
+            )
+        },
+        plain(
+            "zbuffer-linear-z",
+            "depth buffer comparing camera z interpolated linearly on the screen (wrong under perspective)",
+            Approximate,
+            |_| zbuffer(F32, LinearViewZ),
+        ),
+        plain(
+            "scanline",
+            "scanline (Watkins): edge table, active edge list, depth-ordered spans",
+            Exact,
+            |_| Box::new(Scanline::new(ScanlineOptions::default())),
+        ),
+        Entry {
+            knobs: PAINTER_KNOBS,
+            ..plain(
+                "painter",
+                "painter's algorithm, Newell-Newell-Sancha tests with splitting",
+                Exact,
+                |_| Box::new(Painter::new(PainterOptions::default())),
+            )
+        },
+        plain(
+            "warnock",
+            "Warnock area subdivision to pixel size",
+            Exact,
+            |_| Box::new(Warnock::new(WarnockOptions::default())),
+        ),
+    ]
+}
+
+/// The hiders that resolve several samples per pixel.
+fn multisample() -> [Entry; 8] {
+    use Kind::MultiSample;
+    [
+        plain(
+            "warnock-4x4",
+            "Warnock subdividing to 4x4 samples per pixel (anti-aliased)",
+            MultiSample,
+            |_| {
+                Box::new(Warnock::new(
+                    WarnockOptions::default().with_samples_per_side(4),
+                ))
+            },
+        ),
+        plain(
+            "abuffer",
+            "A-buffer, 8x4 coverage masks, per-sample depth (exact), order-independent transparency",
+            MultiSample,
+            |_| Box::new(ABuffer::new(ABufferOptions::default())),
+        ),
+        plain(
+            "abuffer-carpenter",
+            "A-buffer as in Carpenter 1984: zmin/zmax per fragment, same-surface merging",
+            MultiSample,
+            |_| Box::new(ABuffer::new(ABufferOptions::carpenter())),
+        ),
+        plain(
+            "ssaa-4",
+            "supersampled z-buffer, 4 samples (subset of the A-buffer mask)",
+            MultiSample,
+            |_| ssaa(SamplePattern::Grid4),
+        ),
+        plain(
+            "ssaa-8",
+            "supersampled z-buffer, 8 samples",
+            MultiSample,
+            |_| ssaa(SamplePattern::Grid8),
+        ),
+        plain(
+            "ssaa-16",
+            "supersampled z-buffer, 16 samples",
+            MultiSample,
+            |_| ssaa(SamplePattern::Grid16),
+        ),
+        plain(
+            "ssaa-32",
+            "supersampled z-buffer, 32 samples (the A-buffer's mask)",
+            MultiSample,
+            |_| ssaa(SamplePattern::Grid32),
+        ),
+        plain(
+            "ssaa-sorted",
+            "32-sample z-buffer, opaque first then transparent sorted back to front (order-dependent)",
+            MultiSample,
+            |_| Box::new(SortedTransparencyZBuffer::new(SsaaOptions::default())),
+        ),
+    ]
+}
+
+/// Every registered hider, in the order tables list them: those deciding
+/// at pixel centres, the multi-sample ones, then the exact reference.
+pub fn all() -> Vec<Entry> {
+    let mut entries = pixel_centre().to_vec();
+    entries.extend(multisample());
+    entries.push(plain(
+        "oracle",
+        "exact reference: per-pixel ray cast in f64 over every triangle (slow)",
+        Kind::Reference,
+        |_| Box::new(RayCastOracle::new(OracleOptions::default())),
+    ));
+    entries
+}
