@@ -17,7 +17,7 @@
 //! that two triangles were *merged* into needs more: its shading is then a
 //! [`Merged`] entry of the pool (averaged colour and, in per-sample depth
 //! mode, the 32 sample depths, each from the triangle that covered it).
-//! The pool that holds them all is [`crate::pool`].
+//! The arena that holds them all is the fragment pool.
 
 /// The "no fragment" index.
 pub const NIL: u32 = u32::MAX;

@@ -1,10 +1,10 @@
 //! Sub-pixel sample positions: Carpenter's 8 x 4 mask grid and its
 //! subsets.
 //!
-//! The A-buffer paper (Carpenter 1984; the depth seed, section "Z 缓冲区的
-//! 限制和一些历史", describes the same 8 columns x 4 rows mask) gives every
-//! fragment a 32-bit coverage mask, one bit per cell of an 8 x 4 grid over
-//! the pixel. Here each cell is sampled at its centre, on the 1/256-pixel
+//! The A-buffer paper (Carpenter 1984; scratchapixel's depth-buffer lesson,
+//! in its section on the z-buffer's limitations and history, describes the
+//! same 8 columns x 4 rows mask) gives every fragment a 32-bit coverage
+//! mask, one bit per cell of an 8 x 4 grid over the pixel. Here each cell is sampled at its centre, on the 1/256-pixel
 //! fixed-point grid of the front end, so a mask bit is decided by the same
 //! exact integer edge functions and top-left rule as every other hider:
 //!

@@ -20,7 +20,7 @@ const ORDERS: [[usize; 3]; 6] = [
     [2, 1, 0],
 ];
 
-/// The check: three overlapping translucent triangles submitted in
+/// Order independence: three overlapping translucent triangles submitted in
 /// all 6 orders give the same image within 1/255, in every depth mode.
 #[test]
 fn three_translucent_triangles_in_all_six_orders() {
