@@ -10,7 +10,12 @@
 //!   brute-force window-depth z-buffer and the ray cast);
 //! - [`score`]: counting wrong pixels and ties against a reference, and
 //!   tallies for property tests;
-//! - [`timer`]: warm-up, repeated runs, median and minimum, for examples.
+//! - [`timer`]: warm-up, repeated runs, median and minimum, for examples;
+//! - `lean_reference` (feature `lean`): the brute-force definition of the
+//!   z-buffer's lean depth-only front end;
+//! - `hostile` (feature `hostile`): arbitrary bytes decoded as scenes and
+//!   the invariants every registered hider keeps on them, shared with the
+//!   fuzz targets.
 //!
 //! A dev-dependency only (`publish = false`); test code panics on errors
 //! rather than returning them.
@@ -34,9 +39,15 @@
 
 pub mod cameras;
 pub mod hard_cases;
+#[cfg(feature = "hostile")]
+pub mod hostile;
+#[cfg(feature = "lean")]
+pub mod lean_reference;
 pub mod reference;
 pub mod score;
 pub mod screen;
 pub mod timer;
 
+#[cfg(feature = "lean")]
+pub use lean_reference::lean_reference;
 pub use screen::{frame_for, render, screen, screen_with};

@@ -1,15 +1,36 @@
 //! Hostile inputs: turn arbitrary bytes into scenes and cameras, and check
 //! the invariants every hider must keep on them. Shared by the `cargo fuzz`
-//! targets in `fuzz/` and the hostile-input property tests, so a crash the
-//! fuzzer finds replays as an ordinary test.
+//! targets in `fuzz/` and the workspace's hostile-input property tests, so
+//! a crash the fuzzer finds replays as an ordinary test.
+//!
+//! Built with the `hostile` feature (it renders with every hider of
+//! `hider-plan`'s registry).
+//!
+//! ```
+//! use hider_testkit::hostile::{check_all_hiders, front_end_case};
+//!
+//! // 13 camera floats (eye, target, up, fovy, near, far), then corners.
+//! let floats = [0.0f32, 0.0, 5.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 60.0, 60.0, 0.5, 50.0,
+//!     -1.0, -1.0, 0.0, 1.0, -1.0, 0.0, 0.0, 1.0, 0.0];
+//! let mut bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+//! bytes[0] = 7; // the first bytes double as width, height and precision
+//! let case = front_end_case(&bytes).expect("a valid camera");
+//! let screen = hider_scene::prepare(&case.scene, &case.view, &case.options)?;
+//! assert_eq!(check_all_hiders(&screen), Ok(()));
+//! # Ok::<(), hider_scene::Error>(())
+//! ```
 
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_scene::{
-    DepthFragment, DepthScene, DepthTri, Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene,
-    ScreenScene, TransformPrecision, View, lean_reference, prepare_depth_into,
+    Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, TransformPrecision, View,
 };
-use hider_zbuffer::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
+use hider_zbuffer::{
+    DepthFragment, DepthScene, DepthTri, TiledZBuffer, TiledZBufferOptions, ZBuffer,
+    prepare_depth_into,
+};
+
+use crate::lean_reference::lean_reference;
 
 /// A decoded front-end case: a scene, a view and front-end options.
 #[derive(Clone, Debug)]
@@ -114,11 +135,11 @@ pub fn all_violations(screen: &ScreenScene) -> Vec<String> {
         Ok(f) => f,
         Err(e) => return vec![e.to_string()],
     };
-    'hiders: for entry in crate::registry::all() {
+    'hiders: for entry in hider_plan::registry::all() {
         if std::env::var_os("HIDER_HOSTILE_TRACE").is_some() {
             eprintln!("hostile: {}", entry.name);
         }
-        let mut hider = (entry.make)();
+        let mut hider = entry.make();
         if hider.render(screen, &mut frame).is_err() {
             continue;
         }
