@@ -1,7 +1,7 @@
-//! Cross-validation of every hider against the exact oracle (issue 4).
+//! Cross-validation of every hider against the exact oracle.
 //!
-//! On every hard case of `hider_scene::hard_cases` and on random soups seen
-//! from random cameras:
+//! On every hard case of `hider_testkit::hard_cases` and on random soups
+//! seen from random cameras:
 //! 1. every exact pixel-centre hider of the registry returns the oracle's
 //!    primitive id on every pixel that is not a tie; tie pixels are counted
 //!    and printed, never skipped silently;
@@ -12,8 +12,8 @@
 //! 5. no NaN or infinity reaches a buffer and no generated input panics any
 //!    registered hider;
 //! 6. the linear-z demonstration of the z-buffer disagrees with the oracle
-//!    on the depth seed's worked example, and the perspective-correct one
-//!    does not.
+//!    on the worked example of scratchapixel's depth-buffer lesson, and the
+//!    perspective-correct one does not.
 //!
 //! `PROPTEST_CASES=N` sets the case count of the random properties; shrunk
 //! failures are kept under `proptest-regressions/`. Run with `--nocapture`
@@ -21,16 +21,19 @@
 
 mod common;
 
-use common::{Tally, config, scene, scene_kinds, screen};
+use common::{config, scene, scene_kinds};
+use hider::geom::Camera;
 use hider::geom::glam::DVec3;
-use hider::oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
-use hider::registry::{self, Kind};
-use hider::scene::hard_cases::look_at;
-use hider::scene::{Frame, Hider, Mesh, NO_ID, Scene, ScreenScene};
+use hider::oracle::DEFAULT_TIE_TOLERANCE;
+use hider::scene::{DynHider, Frame, Mesh, NO_ID, Scene, ScreenScene};
+use hider_plan::registry::{self, Kind};
+use hider_testkit::cameras::look_at;
+use hider_testkit::score::Tally;
+use hider_testkit::{hard_cases, reference, screen};
 use proptest::prelude::*;
 use proptest::test_runner::TestRunner;
 
-fn render(hider: &mut dyn Hider, s: &ScreenScene) -> Frame {
+fn render(hider: &mut dyn DynHider, s: &ScreenScene) -> Frame {
     let mut frame = Frame::new(s.viewport.width, s.viewport.height).unwrap();
     hider
         .render(s, &mut frame)
@@ -52,11 +55,11 @@ fn pixel_centre_entries() -> Vec<registry::Entry> {
 
 /// Properties 1 and 2 on one scene; adds to the tally.
 fn agree_with_oracle(name: &str, s: &ScreenScene, tally: &Tally) -> Result<(), TestCaseError> {
-    let reference = RayCastOracle::new().evaluate(s);
+    let reference = reference::ray_cast(s);
     Tally::add(&tally.pixels, reference.ids.len() as u64);
     Tally::add(&tally.covered, reference.covered_count() as u64);
     for entry in pixel_centre_entries() {
-        let mut hider = (entry.make)();
+        let mut hider = entry.make();
         let mut frame = Frame::new(s.viewport.width, s.viewport.height).unwrap();
         if let Err(e) = hider.render(s, &mut frame) {
             // Demonstration modes may refuse scenes they do not apply to
@@ -94,7 +97,7 @@ fn every_hard_case_agrees_with_the_oracle() {
     let tally = Tally::default();
     for kind in 0..scene_kinds() {
         let (name, sc) = scene(kind, 1);
-        let s = screen(&sc, 64);
+        let s = screen(&sc, 64, 64);
         agree_with_oracle(&name, &s, &tally).unwrap();
         Tally::add(&tally.cases, 1);
     }
@@ -113,7 +116,7 @@ fn random_scenes_agree_with_the_oracle() {
         .run(&strategy, |(kind, seed, size)| {
             let (name, sc) = scene(kind, seed);
             Tally::add(&tally.cases, 1);
-            agree_with_oracle(&name, &screen(&sc, size), &tally)
+            agree_with_oracle(&name, &screen(&sc, size, size), &tally)
         })
         .unwrap();
     tally.report("oracle agreement");
@@ -157,8 +160,8 @@ fn renders_are_deterministic_and_order_independent() {
         .run(&strategy, |(kind, seed, size)| {
             Tally::add(&tally.cases, 1);
             let (name, sc) = scene(kind, seed);
-            let s = screen(&sc, size);
-            let reference = RayCastOracle::new().evaluate(&s);
+            let s = screen(&sc, size, size);
+            let reference = reference::ray_cast(&s);
             // The same view for the permuted scene, whatever its bounds.
             let mut p_scene = sc.clone();
             p_scene.camera = Some(
@@ -172,16 +175,16 @@ fn renders_are_deterministic_and_order_independent() {
             for k in (1..perm.len()).rev() {
                 perm.swap(k, (rng.next_u64() % (k as u64 + 1)) as usize);
             }
-            let ps = screen(&permuted(&p_scene, &perm), size);
+            let ps = screen(&permuted(&p_scene, &perm), size, size);
             for entry in registry::all() {
-                let mut hider = (entry.make)();
+                let mut hider = entry.make();
                 let mut probe = Frame::new(size, size).unwrap();
                 if entry.kind != Kind::ExactPixelCentre && hider.render(&s, &mut probe).is_err() {
                     continue;
                 }
                 let first = render(hider.as_mut(), &s);
                 let again = render(hider.as_mut(), &s);
-                let fresh = render((entry.make)().as_mut(), &s);
+                let fresh = render(entry.make().as_mut(), &s);
                 for other in [&again, &fresh] {
                     prop_assert_eq!(&first.ids, &other.ids, "{} on {}", entry.name, name);
                     prop_assert!(
@@ -230,7 +233,7 @@ fn renders_are_deterministic_and_order_independent() {
 /// panicking, and nothing non-finite reaches a buffer.
 fn finite_buffers(name: &str, s: &ScreenScene, tally: &Tally) -> Result<(), TestCaseError> {
     for entry in registry::all() {
-        let mut hider = (entry.make)();
+        let mut hider = entry.make();
         let mut frame = Frame::new(s.viewport.width, s.viewport.height).unwrap();
         // A typed error (a documented budget) is acceptable; a panic is not.
         if hider.render(s, &mut frame).is_err() {
@@ -326,19 +329,19 @@ fn no_generated_input_panics_or_leaks_non_finite_values() {
             } else {
                 scene(kind, seed)
             };
-            finite_buffers(&name, &screen(&sc, size), &tally)
+            finite_buffers(&name, &screen(&sc, size, size), &tally)
         })
         .unwrap();
     tally.report("finite buffers");
 }
 
-/// The depth seed's worked example in 3D: a wall whose edge runs from
+/// The worked example of scratchapixel's depth-buffer lesson in 3D: a wall whose edge runs from
 /// `(x, z) = (-4, -2)` to `(2, -5)`, seen from the origin with a 90 degree
 /// field of view, so the canvas at distance 1 is the image. At `x' = 0` the
 /// wall is at depth 4 (1/z interpolation), not 4.5 (linear z). A blocker at
 /// depth 4.25 in front of that column is behind the wall for a correct
 /// hider and in front of it for linear z.
-fn seed_example() -> Scene {
+fn lesson_example() -> Scene {
     let mut s = Scene::default();
     let wall = vec![
         DVec3::new(-4.0, -2.0, -2.0),
@@ -368,20 +371,15 @@ fn seed_example() -> Scene {
         },
         None,
     );
-    let mut camera = look_at(DVec3::ZERO, DVec3::NEG_Z, 0.5, 20.0);
-    camera.projection = hider::geom::Projection::Perspective {
-        fovy_degrees: 90.0,
-        near: 0.5,
-        far: 20.0,
-    };
-    s.camera = Some(camera);
+    s.camera =
+        Some(Camera::perspective(DVec3::ZERO, DVec3::NEG_Z, 0.5, 20.0).with_fovy_degrees(90.0));
     s
 }
 
 #[test]
-fn linear_z_is_wrong_on_the_seed_example_and_perspective_correct_is_not() {
-    let s = screen(&seed_example(), 64);
-    let reference = RayCastOracle::new().evaluate(&s);
+fn linear_z_is_wrong_on_the_lesson_example_and_perspective_correct_is_not() {
+    let s = screen(&lesson_example(), 64, 64);
+    let reference = reference::ray_cast(&s);
     // The oracle itself: at the centre column (x' = 0) the wall (ids 0, 1)
     // is in front of the blocker (ids 2, 3), at depth 4.
     let centre = 32 * 64 + 32;
@@ -390,13 +388,13 @@ fn linear_z_is_wrong_on_the_seed_example_and_perspective_correct_is_not() {
         "oracle id {}",
         reference.ids[centre]
     );
-    let mut linear = (registry::by_name("zbuffer-linear-z")
+    let mut linear = registry::by_name("zbuffer-linear-z")
         .expect("registered")
-        .make)();
-    let mut correct = (registry::by_name("zbuffer").expect("registered").make)();
+        .make();
+    let mut correct = registry::by_name("zbuffer").expect("registered").make();
     let wrong = reference.compare(&render(linear.as_mut(), &s).ids, DEFAULT_TIE_TOLERANCE);
     let right = reference.compare(&render(correct.as_mut(), &s).ids, DEFAULT_TIE_TOLERANCE);
-    eprintln!("seed example: linear z {wrong}; perspective-correct {right}");
+    eprintln!("lesson example: linear z {wrong}; perspective-correct {right}");
     assert!(
         wrong.wrong_ids > 20,
         "linear z should lose the blocker column: {wrong}"
@@ -415,19 +413,19 @@ fn precision_limits_are_measured() {
     let cases = [
         (
             "huge_depth_range(1e5)",
-            hider::scene::hard_cases::huge_depth_range(40, 1e5, 3),
+            hard_cases::huge_depth_range(40, 1e5, 3),
         ),
         (
             "near_coplanar_far(gap 2e-5)",
-            hider::scene::hard_cases::near_coplanar_far(4, 1000.0, 2e-5, 3),
+            hard_cases::near_coplanar_far(4, 1000.0, 2e-5, 3),
         ),
     ];
     for (name, sc) in cases {
-        let s = screen(&sc, 64);
-        let reference = RayCastOracle::new().evaluate(&s);
+        let s = screen(&sc, 64, 64);
+        let reference = reference::ray_cast(&s);
         for entry in pixel_centre_entries() {
             let mut frame = Frame::new(64, 64).unwrap();
-            if entry.name.contains("linear") || (entry.make)().render(&s, &mut frame).is_err() {
+            if entry.name.contains("linear") || entry.make().render(&s, &mut frame).is_err() {
                 continue;
             }
             let a = reference.compare(&frame.ids, DEFAULT_TIE_TOLERANCE);

@@ -4,8 +4,10 @@
 
 use std::path::PathBuf;
 
-use hider::hostile::{all_violations, check_all_hiders, check_lean_pipeline, front_end_case};
 use hider::scene::prepare;
+use hider_testkit::hostile::{
+    all_violations, check_all_hiders, check_lean_pipeline, front_end_case,
+};
 use proptest::prelude::*;
 
 fn replay(data: &[u8]) -> Result<(), String> {

@@ -1,5 +1,5 @@
-//! Watertightness (issue 4, property 3): closed meshes under arbitrary
-//! cameras, counted with the shared edge functions.
+//! Watertightness: closed meshes under arbitrary cameras, counted with the
+//! shared edge functions.
 //!
 //! Along any ray a closed, consistently wound mesh is entered as often as
 //! it is left, so at every pixel centre the front-facing hits equal the
@@ -11,11 +11,13 @@
 
 mod common;
 
-use common::{Tally, config, random_camera, screen};
+use common::config;
 use hider::geom::fixed::pixel_center;
-use hider::scene::hard_cases;
 use hider::scene::procedural::SplitMix64;
 use hider::scene::{Scene, ScreenScene};
+use hider_testkit::cameras::random_camera;
+use hider_testkit::score::Tally;
+use hider_testkit::{hard_cases, screen};
 use proptest::prelude::*;
 use proptest::test_runner::TestRunner;
 
@@ -56,7 +58,7 @@ fn check(
     size: u32,
     tally: &Tally,
 ) -> Result<(), TestCaseError> {
-    let s = screen(scene, size);
+    let s = screen(scene, size, size);
     prop_assert_eq!(s.stats.clipped, 0, "{}: the mesh must not be clipped", name);
     let (front, back) = hits(&s);
     let mut inside = 0;
@@ -122,7 +124,7 @@ fn an_open_fan_has_winding_zero_or_one_everywhere() {
             |(segments, seed, size)| {
                 let mut scene = hard_cases::fan(segments, seed);
                 scene.camera = Some(random_camera(&scene, &mut SplitMix64::new(seed)));
-                let s = screen(&scene, size);
+                let s = screen(&scene, size, size);
                 let (front, back) = hits(&s);
                 let windings: Vec<i64> = front
                     .iter()

@@ -4,9 +4,9 @@
 
 use std::path::Path;
 
-use hider::hostile::check_all_hiders;
-use hider::scene::obj::{ObjOptions, load_obj_bytes};
-use hider::scene::{PrepareOptions, View, prepare};
+use hider_scene::obj::{ObjOptions, load_obj_bytes};
+use hider_scene::{PrepareOptions, View, prepare};
+use hider_testkit::hostile::check_all_hiders;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
@@ -16,8 +16,12 @@ fuzz_target!(|data: &[u8]| {
         max_triangles: 2_000,
         ..ObjOptions::default()
     };
-    let Ok(scene) = load_obj_bytes(data, Path::new("fuzz.obj"), Path::new("/nonexistent"), &options)
-    else {
+    let Ok(scene) = load_obj_bytes(
+        data,
+        Path::new("fuzz.obj"),
+        Path::new("/nonexistent"),
+        &options,
+    ) else {
         return;
     };
     let Ok(view) = View::for_scene(&scene, 24, 16) else {

@@ -1,15 +1,13 @@
-//! Shared helpers of the cross-validation suite: scene choice, random
-//! cameras, proptest configuration and the tallies the suite prints.
+//! Shared helpers of the cross-validation suite: scene choice and proptest
+//! configuration. Screens, cameras, references and tallies come from
+//! `hider-testkit`.
 
-#![allow(dead_code)] // each test binary uses a different subset
+#![allow(dead_code, reason = "each test binary uses a different subset")]
 
-use std::sync::atomic::{AtomicU64, Ordering};
-
-use hider::geom::glam::DVec3;
-use hider::geom::{Camera, Projection};
-use hider::scene::hard_cases;
+use hider::scene::Scene;
 use hider::scene::procedural::{self, SplitMix64};
-use hider::scene::{PrepareOptions, Scene, ScreenScene, View, prepare};
+use hider_testkit::cameras::random_camera;
+use hider_testkit::hard_cases;
 use proptest::test_runner::{Config, FileFailurePersistence};
 
 /// Cases per property: `PROPTEST_CASES` if set, else `default`.
@@ -50,89 +48,4 @@ pub fn scene(kind: usize, seed: u64) -> (String, Scene) {
     let mut scene = procedural::random_soup(count, seed);
     scene.camera = Some(random_camera(&scene, &mut rng));
     (format!("random_soup({count}, {seed})"), scene)
-}
-
-/// A camera looking at the scene's bounding-box centre from a random
-/// direction at 2.5 to 6 radii, with a random up vector and a target
-/// jittered by a few per cent (sub-pixel to pixel-sized shifts); one time
-/// in four orthographic. The whole scene stays between near and far.
-pub fn random_camera(scene: &Scene, rng: &mut SplitMix64) -> Camera {
-    let (lo, hi) = scene.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
-    let centre = (lo + hi) * 0.5;
-    let r = ((hi - lo).length() * 0.5).max(1e-3);
-    let dir = unit(rng);
-    let mut up = unit(rng);
-    if dir.cross(up).length() < 0.1 {
-        up = dir.any_orthonormal_vector();
-    }
-    let dist = r * rng.range(2.5, 6.0);
-    let target = centre + unit(rng) * (r * rng.range(0.0, 0.05));
-    let projection = if rng.next_u64() % 4 == 0 {
-        Projection::Orthographic {
-            half_height: r * rng.range(0.8, 1.5),
-            near: 0.1 * r,
-            far: dist + 2.0 * r,
-        }
-    } else {
-        Projection::Perspective {
-            fovy_degrees: rng.range(30.0, 75.0),
-            near: r * rng.range(0.05, 0.5),
-            far: dist + r * rng.range(2.0, 50.0),
-        }
-    };
-    Camera {
-        eye: target + dir * dist,
-        target,
-        up,
-        projection,
-    }
-}
-
-fn unit(rng: &mut SplitMix64) -> DVec3 {
-    loop {
-        let v = DVec3::new(
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-            rng.range(-1.0, 1.0),
-        );
-        if (1e-4..=1.0).contains(&v.length_squared()) {
-            return v.normalize();
-        }
-    }
-}
-
-/// Prepares `scene` at `size x size` with the default (accurate) options.
-pub fn screen(scene: &Scene, size: u32) -> ScreenScene {
-    let view = View::for_scene(scene, size, size).expect("generated scenes have valid cameras");
-    prepare(scene, &view, &PrepareOptions::default()).expect("generated scenes prepare")
-}
-
-/// Counters accumulated over a property's cases and printed at its end.
-#[derive(Default)]
-pub struct Tally {
-    pub cases: AtomicU64,
-    pub frames: AtomicU64,
-    pub pixels: AtomicU64,
-    pub covered: AtomicU64,
-    pub ties: AtomicU64,
-    pub tie_differences: AtomicU64,
-}
-
-impl Tally {
-    pub fn add(counter: &AtomicU64, v: u64) {
-        counter.fetch_add(v, Ordering::Relaxed);
-    }
-
-    pub fn report(&self, property: &str) {
-        let g = |c: &AtomicU64| c.load(Ordering::Relaxed);
-        eprintln!(
-            "{property}: {} cases, {} frames, {} pixels ({} covered), {} tie pixels ({} where a hider chose another id), 0 failures",
-            g(&self.cases),
-            g(&self.frames),
-            g(&self.pixels),
-            g(&self.covered),
-            g(&self.ties),
-            g(&self.tie_differences)
-        );
-    }
 }
