@@ -7,9 +7,8 @@
 //! Small cases take the best of three runs; the 100k-triangle ones run
 //! once. With `--aa` the 4 x 4 sub-pixel mode is timed as well.
 
-use std::time::Instant;
-
-use hider_scene::{Frame, PrepareOptions, Scene, View, prepare, procedural};
+use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, prepare, procedural};
+use hider_testkit::timer::Timer;
 use hider_warnock::{Rule, Warnock, WarnockOptions};
 
 fn main() -> Result<(), hider_scene::Error> {
@@ -46,14 +45,12 @@ fn main() -> Result<(), hider_scene::Error> {
                 } else {
                     3
                 };
-                let mut best = f64::INFINITY;
                 let mut stats = None;
-                for _ in 0..runs {
-                    let start = Instant::now();
-                    let s = warnock.render_frame(&screen, &mut frame)?;
-                    best = best.min(start.elapsed().as_secs_f64() * 1e3);
-                    stats = Some(s);
-                }
+                let timing = Timer::new(runs).with_warmup(0).try_time(&|| false, || {
+                    stats = Some(warnock.render(&screen, &mut frame)?);
+                    Ok::<(), hider_scene::Error>(())
+                })?;
+                let best = timing.min_ms;
                 let Some(s) = stats else { continue };
                 let pixels = f64::from(size) * f64::from(size);
                 println!(

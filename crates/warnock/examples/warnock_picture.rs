@@ -10,7 +10,7 @@
 use std::path::PathBuf;
 
 use hider_scene::{
-    Frame, PrepareOptions, Scene, ShadeMode, View, prepare, procedural, shade_frame,
+    Frame, Hider, PrepareOptions, Scene, ShadeMode, View, prepare, procedural, shade_frame,
 };
 use hider_warnock::{Rule, Warnock, WarnockOptions, draw_region_outlines};
 
@@ -49,7 +49,7 @@ fn main() -> Result<(), hider_scene::Error> {
 
     let mut frame = Frame::new(size, size)?;
     let mut warnock = Warnock::new(WarnockOptions::default().with_record_regions(true));
-    let stats = warnock.render_frame(&screen, &mut frame)?;
+    let stats = warnock.render(&screen, &mut frame)?;
     shade_frame(&screen, &mut frame, ShadeMode::Lambert);
     draw_region_outlines(&mut frame, warnock.leaf_regions());
     let path = out.join("warnock-regions.png");
@@ -66,7 +66,7 @@ fn main() -> Result<(), hider_scene::Error> {
     println!("  regions per level: {:?}", stats.regions_per_level);
 
     let mut aa = Warnock::new(WarnockOptions::default().with_samples_per_side(4));
-    let stats = aa.render_frame(&screen, &mut frame)?;
+    let stats = aa.render(&screen, &mut frame)?;
     let path = out.join("warnock-antialiased.png");
     frame.write_png(&path)?;
     println!(

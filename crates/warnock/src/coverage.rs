@@ -25,7 +25,7 @@ use crate::classify::TriSetup;
 use crate::debug::LeafRegion;
 use crate::grid::{Grid, Region};
 use crate::stats::{Rule, WarnockStats};
-use crate::subdivide::{Sink, Subdivider};
+use crate::subdivide::{Roots, Sink, Subdivider};
 
 /// Linear colours of primitives, computed on first use, kept between
 /// frames for their memory.
@@ -272,15 +272,13 @@ impl Sink for CoverageSink<'_> {
         let mut sink = SampleSink {
             buffer: self.samples,
         };
-        self.inner.run(
-            &grid,
-            &roots[..n],
-            candidates.iter().copied(),
-            level + 1,
-            setups,
-            &mut sink,
-            stats,
-        );
+        let roots = Roots {
+            grid: &grid,
+            regions: &roots[..n],
+            level: level + 1,
+        };
+        self.inner
+            .run(roots, candidates.iter().copied(), setups, &mut sink, stats);
         self.resolve_samples(u, v);
         Rule::PixelSubdivided
     }

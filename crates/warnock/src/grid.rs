@@ -9,6 +9,14 @@
 //! samples are reached at the corners, which is what makes a four-corner
 //! test exact for the whole region.
 
+use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE, pixel_center};
+
+/// A pixel's side in fixed-point units.
+const PIXEL: i64 = SUBPIXEL_SCALE as i64;
+
+/// Half a pixel in fixed-point units.
+const HALF: i64 = HALF_PIXEL as i64;
+
 /// Cells of the subdivision in 1/256-pixel (fixed-point) units.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Grid {
@@ -25,37 +33,39 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// Cells are pixels, each sampled at its centre (`i * 256 + 128`).
+    /// Cells are pixels, each sampled at its centre
+    /// ([`hider_geom::fixed::pixel_center`]).
     pub fn pixel_centres() -> Self {
+        let centre = i64::from(pixel_center(0));
         Self {
             origin_x: 0,
             origin_y: 0,
-            cell: 256,
-            first: 128,
-            last: 128,
+            cell: PIXEL,
+            first: centre,
+            last: centre,
         }
     }
 
     /// Cells are pixels, each holding `n x n` samples at offsets
-    /// `(2k + 1) * 128 / n`: the first at `128 / n`, the last at
-    /// `256 - 128 / n`.
+    /// `(2k + 1) * 128 / n` (fixed point, 256 to the pixel): the first at
+    /// `128 / n`, the last at `256 - 128 / n`.
     pub fn pixels_with_samples(n: u32) -> Self {
-        let half = 128 / i64::from(n);
+        let half = HALF / i64::from(n);
         Self {
             origin_x: 0,
             origin_y: 0,
-            cell: 256,
+            cell: PIXEL,
             first: half,
-            last: 256 - half,
+            last: PIXEL - half,
         }
     }
 
     /// Cells are the `n x n` samples of pixel `(i, j)`, each one sample.
     pub fn samples_of_pixel(i: u32, j: u32, n: u32) -> Self {
-        let step = 256 / i64::from(n);
+        let step = PIXEL / i64::from(n);
         Self {
-            origin_x: i64::from(i) * 256,
-            origin_y: i64::from(j) * 256,
+            origin_x: i64::from(i) * PIXEL,
+            origin_y: i64::from(j) * PIXEL,
             cell: step,
             first: step / 2,
             last: step / 2,
@@ -216,7 +226,7 @@ impl SampleRect {
     /// bottom-left, bottom-right. Fixed point divided by 256 is exact in
     /// `f64`.
     pub fn corners_in_pixels(&self) -> [(f64, f64); 4] {
-        let p = |v: i64| v as f64 / 256.0;
+        let p = |v: i64| v as f64 / PIXEL as f64;
         [
             (p(self.x0), p(self.y0)),
             (p(self.x1), p(self.y0)),
@@ -237,7 +247,12 @@ mod tests {
         let r = g.sample_rect(&Region::new(2, 3, 5, 4));
         assert_eq!(
             (r.x0, r.x1, r.y0, r.y1),
-            (2 * 256 + 128, 4 * 256 + 128, 3 * 256 + 128, 3 * 256 + 128)
+            (
+                i64::from(pixel_center(2)),
+                i64::from(pixel_center(4)),
+                i64::from(pixel_center(3)),
+                i64::from(pixel_center(3))
+            )
         );
         assert_eq!((r.area_x0, r.area_x1), (512, 1280));
     }

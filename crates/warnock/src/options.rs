@@ -8,7 +8,18 @@ pub const MAX_SAMPLES_PER_SIDE: u32 = 16;
 /// Options of [`crate::Warnock`]. `Default` is the accurate choice: stop at
 /// pixel size and resolve each pixel at its centre, exactly as the z-buffer
 /// does, so the result equals the oracle on every non-tie pixel.
+///
+/// ```
+/// use hider_warnock::WarnockOptions;
+///
+/// let options = WarnockOptions::default()
+///     .with_samples_per_side(4)
+///     .with_max_bytes(64 << 20);
+/// assert!(options.is_antialiased());
+/// assert_eq!(options.max_bytes, 64 << 20);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct WarnockOptions {
     /// Samples per pixel side. `1` (the default) subdivides down to pixels
     /// and samples each at its centre. A larger power of two (2, 4, 8 or
@@ -28,8 +39,8 @@ pub struct WarnockOptions {
     /// Budget for the working memory (triangle set-up records plus the
     /// worst-case candidate arena), in bytes; checked before anything is
     /// allocated, a larger frame is refused with
-    /// [`hider_scene::Error::Limit`].
-    pub max_working_bytes: u64,
+    /// [`hider_scene::Error::Limit`]. Default 1 GiB.
+    pub max_bytes: u64,
 }
 
 impl Default for WarnockOptions {
@@ -38,7 +49,7 @@ impl Default for WarnockOptions {
             samples_per_side: 1,
             shade: ShadeMode::Lambert,
             record_regions: false,
-            max_working_bytes: 1 << 30,
+            max_bytes: 1 << 30,
         }
     }
 }
@@ -62,9 +73,9 @@ impl WarnockOptions {
         self
     }
 
-    /// Sets [`Self::max_working_bytes`].
-    pub fn with_max_working_bytes(mut self, bytes: u64) -> Self {
-        self.max_working_bytes = bytes;
+    /// Sets [`Self::max_bytes`].
+    pub fn with_max_bytes(mut self, bytes: u64) -> Self {
+        self.max_bytes = bytes;
         self
     }
 

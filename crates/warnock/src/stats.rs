@@ -1,6 +1,6 @@
 //! What one Warnock frame did, and how a region was decided.
 
-use hider_scene::Stats;
+use hider_scene::{HiderStats, StatsTable};
 
 use crate::classify::Class;
 
@@ -55,6 +55,11 @@ impl Rule {
 pub const MAX_LEVEL: usize = 31;
 
 /// Work counters of one Warnock frame.
+///
+/// Printed (through [`HiderStats::table`]) as: regions, the four
+/// classifications, the leaf regions per rule, the culls, depth
+/// evaluations, samples, peak candidates, and then one counter per
+/// subdivision level reached ("regions at level 0", ...).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct WarnockStats {
     /// Regions visited (classified), in the pixel pass and, in the
@@ -129,8 +134,8 @@ impl WarnockStats {
     }
 }
 
-/// Names of the per-level counters in [`Stats`] (`&'static` as the uniform
-/// shape requires).
+/// Names of the per-level counters in the table (`&'static` as
+/// [`StatsTable`] requires).
 const LEVEL_NAMES: [&str; MAX_LEVEL + 1] = [
     "regions at level 0",
     "regions at level 1",
@@ -166,44 +171,98 @@ const LEVEL_NAMES: [&str; MAX_LEVEL + 1] = [
     "regions at level 31",
 ];
 
-impl From<&WarnockStats> for Stats {
-    fn from(s: &WarnockStats) -> Self {
-        let mut out = Stats {
-            counters: vec![
-                ("regions", s.regions),
-                ("polygons classified", s.polygons_classified),
-                ("disjoint", s.disjoint),
-                ("surrounding", s.surrounding),
-                ("contained", s.contained),
-                ("intersecting", s.intersecting),
-            ],
-            peak_bytes: s.peak_bytes,
-        };
-        for rule in Rule::ALL {
-            let name = match rule {
-                Rule::Empty => "decided empty",
-                Rule::SinglePolygon => "decided single polygon",
-                Rule::SurrounderAlone => "decided surrounder alone",
-                Rule::SurrounderInFront => "decided surrounder in front",
-                Rule::Sample => "decided at sample",
-                Rule::PixelSubdivided => "pixels subdivided",
-            };
-            out.push(name, s.decided_by(rule));
-        }
-        out.push("culled behind surrounder", s.culled_behind_surrounder);
-        out.push("surrounder undecided", s.surrounder_undecided);
-        out.push("depth evaluations", s.depth_evaluations);
-        out.push("samples written", s.samples_written);
-        out.push("peak candidates", s.peak_candidates);
-        for (name, &n) in LEVEL_NAMES.iter().zip(&s.regions_per_level) {
-            out.push(name, n);
-        }
-        out
+/// The table's name of the leaf-region counter of each rule.
+fn decided_name(rule: Rule) -> &'static str {
+    match rule {
+        Rule::Empty => "decided empty",
+        Rule::SinglePolygon => "decided single polygon",
+        Rule::SurrounderAlone => "decided surrounder alone",
+        Rule::SurrounderInFront => "decided surrounder in front",
+        Rule::Sample => "decided at sample",
+        Rule::PixelSubdivided => "pixels subdivided",
     }
 }
 
-impl From<WarnockStats> for Stats {
-    fn from(s: WarnockStats) -> Self {
-        Stats::from(&s)
+/// Written out rather than declared with `hider_scene::hider_stats!`: the
+/// table holds one counter per subdivision level the frame reached, a
+/// number known only after the frame, and one per rule of an array field.
+impl HiderStats for WarnockStats {
+    fn table(&self) -> StatsTable {
+        let mut counters = vec![
+            ("regions", self.regions),
+            ("polygons classified", self.polygons_classified),
+            ("disjoint", self.disjoint),
+            ("surrounding", self.surrounding),
+            ("contained", self.contained),
+            ("intersecting", self.intersecting),
+        ];
+        for rule in Rule::ALL {
+            counters.push((decided_name(rule), self.decided_by(rule)));
+        }
+        counters.extend([
+            ("culled behind surrounder", self.culled_behind_surrounder),
+            ("surrounder undecided", self.surrounder_undecided),
+            ("depth evaluations", self.depth_evaluations),
+            ("samples written", self.samples_written),
+            ("peak candidates", self.peak_candidates),
+        ]);
+        counters.extend(
+            LEVEL_NAMES
+                .iter()
+                .copied()
+                .zip(self.regions_per_level.iter().copied()),
+        );
+        StatsTable {
+            counters,
+            peak_bytes: self.peak_bytes,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The benchmark prints the counters under these names, in this order,
+    /// with as many levels as the frame reached.
+    #[test]
+    fn the_table_keeps_the_printed_names_and_order() {
+        let stats = WarnockStats {
+            regions: 5,
+            regions_per_level: vec![1, 4],
+            decided: [1, 2, 3, 4, 5, 6],
+            peak_bytes: 99,
+            ..WarnockStats::default()
+        };
+        let table = stats.table();
+        let names: Vec<&str> = table.counters.iter().map(|&(name, _)| name).collect();
+        assert_eq!(
+            names,
+            [
+                "regions",
+                "polygons classified",
+                "disjoint",
+                "surrounding",
+                "contained",
+                "intersecting",
+                "decided empty",
+                "decided single polygon",
+                "decided surrounder alone",
+                "decided surrounder in front",
+                "decided at sample",
+                "pixels subdivided",
+                "culled behind surrounder",
+                "surrounder undecided",
+                "depth evaluations",
+                "samples written",
+                "peak candidates",
+                "regions at level 0",
+                "regions at level 1",
+            ]
+        );
+        assert_eq!(table.counters[0], ("regions", 5));
+        assert_eq!(table.counters[11], ("pixels subdivided", 6));
+        assert_eq!(table.counters[18], ("regions at level 1", 4));
+        assert_eq!(table.peak_bytes, 99);
     }
 }

@@ -22,7 +22,7 @@
 //! buffer.
 
 use crate::classify::{Class, CornerDepths, TriSetup, certainly_behind, classify};
-use crate::grid::{Grid, Region};
+use crate::grid::{Grid, Region, SampleRect};
 use crate::stats::{Rule, WarnockStats};
 
 /// Receives the decisions of the subdivision loop.
@@ -69,6 +69,28 @@ struct Entry {
     level: usize,
 }
 
+/// What classification and culling left of a region's list.
+#[derive(Clone, Copy, Debug)]
+struct Survivors {
+    /// Where the surviving list starts in the arena (it runs to the end).
+    out: usize,
+    /// The surrounder nearest at the centre, with its corner depths.
+    front: Option<(u32, CornerDepths)>,
+    /// How many the surrounder culled.
+    culled: u64,
+}
+
+/// Where a subdivision starts: regions of a grid at a level.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Roots<'a> {
+    /// The grid the regions are in.
+    pub grid: &'a Grid,
+    /// The regions, subdivided in order.
+    pub regions: &'a [Region],
+    /// Their subdivision level (0 is the whole window).
+    pub level: usize,
+}
+
 /// The reusable state of the loop: the candidate arena and the region
 /// stack, kept between frames.
 #[derive(Clone, Debug, Default)]
@@ -96,16 +118,13 @@ impl Subdivider {
             + self.stack.capacity() * std::mem::size_of::<Entry>()
     }
 
-    /// Subdivides each of `roots` (regions of `grid` at `level`), starting
-    /// from the candidate list `initial` (indices into `setups`, in drawing
-    /// order), and hands every decision to `sink`.
-    #[allow(clippy::too_many_arguments)]
+    /// Subdivides each of the `roots`, starting from the candidate list
+    /// `initial` (indices into `setups`, in drawing order), and hands every
+    /// decision to `sink`.
     pub fn run<S: Sink>(
         &mut self,
-        grid: &Grid,
-        roots: &[Region],
+        roots: Roots<'_>,
         initial: impl IntoIterator<Item = u32>,
-        level: usize,
         setups: &[TriSetup],
         sink: &mut S,
         stats: &mut WarnockStats,
@@ -114,14 +133,15 @@ impl Subdivider {
         self.stack.clear();
         self.arena.extend(initial);
         let len = self.arena.len();
-        for &region in roots.iter().rev() {
+        for &region in roots.regions.iter().rev() {
             self.stack.push(Entry {
                 region,
                 start: 0,
                 len,
-                level,
+                level: roots.level,
             });
         }
+        let grid = roots.grid;
         let one_sample = grid.one_sample_per_cell();
         while let Some(e) = self.stack.pop() {
             self.arena.truncate(e.start + e.len);
@@ -135,92 +155,134 @@ impl Subdivider {
             }
             let rect = grid.sample_rect(&e.region);
             let out = self.arena.len();
-
-            // Classify the parent's survivors; keep all but the disjoint
-            // ones, and remember the surrounder nearest at the centre: if
-            // any surrounder hides everything, that one does.
-            let mut front: Option<(u32, CornerDepths)> = None;
-            for k in e.start..e.start + e.len {
-                let t = self.arena[k];
-                let setup = &setups[t as usize];
-                let class = classify(setup, &rect);
-                stats.classified(class);
-                match class {
-                    Class::Disjoint => continue,
-                    Class::Surrounding => {
-                        let d = CornerDepths::new(&setup.depth, &rect);
-                        stats.depth_evaluations += 4;
-                        if front.is_none_or(|(_, f)| d.sum() < f.sum()) {
-                            front = Some((t, d));
-                        }
-                    }
-                    Class::Contained | Class::Intersecting => {}
-                }
-                self.arena.push(t);
-            }
-
-            // Cull what the surrounder hides at every sample of the region:
-            // hidden here, hidden in every subregion too.
-            let mut culled = 0;
-            if let Some((s, sd)) = front {
-                let mut kept = out;
-                for k in out..self.arena.len() {
-                    let t = self.arena[k];
-                    if t != s {
-                        let d = CornerDepths::new(&setups[t as usize].depth, &rect);
-                        stats.depth_evaluations += 4;
-                        if certainly_behind(&d, &sd) {
-                            culled += 1;
-                            continue;
-                        }
-                    }
-                    self.arena[kept] = t;
-                    kept += 1;
-                }
-                self.arena.truncate(kept);
-                stats.culled_behind_surrounder += culled;
-            }
-            self.peak = self.peak.max(self.arena.len());
-
-            let list = &self.arena[out..];
-            let rule = match (list.len(), front) {
-                (0, _) => Rule::Empty,
-                (1, Some((s, _))) => {
-                    sink.fill(grid, &e.region, &setups[s as usize], stats);
-                    if culled > 0 {
-                        Rule::SurrounderInFront
-                    } else {
-                        Rule::SurrounderAlone
-                    }
-                }
-                (1, None) => {
-                    sink.single(grid, &e.region, &setups[list[0] as usize], stats);
-                    Rule::SinglePolygon
-                }
-                _ => {
-                    if front.is_some() {
-                        stats.surrounder_undecided += 1;
-                    }
-                    let (children, n) = e.region.quadrants();
-                    if n == 0 {
-                        sink.resolve_cell(grid, &e.region, list, setups, e.level, stats)
-                    } else {
-                        let len = list.len();
-                        for &region in children[..n].iter().rev() {
-                            self.stack.push(Entry {
-                                region,
-                                start: out,
-                                len,
-                                level: e.level + 1,
-                            });
-                        }
-                        continue;
-                    }
-                }
+            let front = self.classify(&e, &rect, setups, stats);
+            let culled = match front {
+                Some((s, sd)) => self.cull_behind(out, s, &sd, &rect, setups, stats),
+                None => 0,
             };
-            stats.decided[rule as usize] += 1;
-            sink.leaf(&e.region, rule, e.level);
+            self.peak = self.peak.max(self.arena.len());
+            let survivors = Survivors { out, front, culled };
+            if let Some(rule) = self.decide(grid, &e, survivors, setups, sink, stats) {
+                stats.decided[rule as usize] += 1;
+                sink.leaf(&e.region, rule, e.level);
+            }
         }
+    }
+
+    /// Classifies the parent's survivors (the list of `e`) against the
+    /// region's samples `rect`, appending all but the disjoint ones to the
+    /// arena; returns the surrounder nearest at the centre, if any: if any
+    /// surrounder hides everything, that one does.
+    fn classify(
+        &mut self,
+        e: &Entry,
+        rect: &SampleRect,
+        setups: &[TriSetup],
+        stats: &mut WarnockStats,
+    ) -> Option<(u32, CornerDepths)> {
+        let mut front: Option<(u32, CornerDepths)> = None;
+        for k in e.start..e.start + e.len {
+            let t = self.arena[k];
+            let setup = &setups[t as usize];
+            let class = classify(setup, rect);
+            stats.classified(class);
+            match class {
+                Class::Disjoint => continue,
+                Class::Surrounding => {
+                    let d = CornerDepths::new(&setup.depth, rect);
+                    stats.depth_evaluations += 4;
+                    if front.is_none_or(|(_, f)| d.sum() < f.sum()) {
+                        front = Some((t, d));
+                    }
+                }
+                Class::Contained | Class::Intersecting => {}
+            }
+            self.arena.push(t);
+        }
+        front
+    }
+
+    /// Culls from the list starting at `out` what the surrounder `s` (with
+    /// corner depths `sd`) hides at every sample of the region: hidden
+    /// here, hidden in every subregion too. Returns how many went.
+    fn cull_behind(
+        &mut self,
+        out: usize,
+        s: u32,
+        sd: &CornerDepths,
+        rect: &SampleRect,
+        setups: &[TriSetup],
+        stats: &mut WarnockStats,
+    ) -> u64 {
+        let mut culled = 0;
+        let mut kept = out;
+        for k in out..self.arena.len() {
+            let t = self.arena[k];
+            if t != s {
+                let d = CornerDepths::new(&setups[t as usize].depth, rect);
+                stats.depth_evaluations += 4;
+                if certainly_behind(&d, sd) {
+                    culled += 1;
+                    continue;
+                }
+            }
+            self.arena[kept] = t;
+            kept += 1;
+        }
+        self.arena.truncate(kept);
+        stats.culled_behind_surrounder += culled;
+        culled
+    }
+
+    /// Decides region `e` from what classification and culling left: the
+    /// rule that decided it, or `None` when it was split into children
+    /// pushed on the stack.
+    fn decide<S: Sink>(
+        &mut self,
+        grid: &Grid,
+        e: &Entry,
+        Survivors { out, front, culled }: Survivors,
+        setups: &[TriSetup],
+        sink: &mut S,
+        stats: &mut WarnockStats,
+    ) -> Option<Rule> {
+        let list = &self.arena[out..];
+        let rule = match (list.len(), front) {
+            (0, _) => Rule::Empty,
+            (1, Some((s, _))) => {
+                sink.fill(grid, &e.region, &setups[s as usize], stats);
+                if culled > 0 {
+                    Rule::SurrounderInFront
+                } else {
+                    Rule::SurrounderAlone
+                }
+            }
+            (1, None) => {
+                sink.single(grid, &e.region, &setups[list[0] as usize], stats);
+                Rule::SinglePolygon
+            }
+            _ => {
+                if front.is_some() {
+                    stats.surrounder_undecided += 1;
+                }
+                let (children, n) = e.region.quadrants();
+                if n == 0 {
+                    sink.resolve_cell(grid, &e.region, list, setups, e.level, stats)
+                } else {
+                    let len = list.len();
+                    for &region in children[..n].iter().rev() {
+                        self.stack.push(Entry {
+                            region,
+                            start: out,
+                            len,
+                            level: e.level + 1,
+                        });
+                    }
+                    return None;
+                }
+            }
+        };
+        Some(rule)
     }
 }
 

@@ -2,9 +2,10 @@
 
 mod common;
 
-use common::{backdrop, random_big_triangles, render, screen, triangles_in_front_of_camera};
+use common::{backdrop, random_big_triangles, render, triangles_in_front_of_camera};
 use hider_oracle::analytic_coverage;
 use hider_scene::{NO_ID, Scene, procedural};
+use hider_testkit::screen;
 use hider_warnock::{Rule, WarnockOptions};
 use proptest::prelude::*;
 

@@ -3,11 +3,10 @@
 
 mod common;
 
-use common::{
-    backdrop, brute_force, random_big_triangles, render, screen, triangles_in_front_of_camera,
-};
+use common::{backdrop, random_big_triangles, render, triangles_in_front_of_camera};
 use glam::DVec3;
-use hider_scene::{Error, Frame, Hider, NO_ID, Scene, procedural};
+use hider_scene::{Error, Frame, Hider, HiderStats, NO_ID, Scene, procedural};
+use hider_testkit::{reference, screen};
 use hider_warnock::{Rule, Warnock, WarnockOptions, WarnockStats};
 
 /// Two backdrops tilted against each other, crossing on the line `x = at`.
@@ -41,7 +40,7 @@ fn a_surrounder_alone_fills_the_window_in_one_region() {
     assert_eq!(stats.regions, 1);
     assert_eq!(stats.decided_by(Rule::SurrounderAlone), 1);
     assert!(frame.ids.iter().all(|&id| id == 0));
-    assert_eq!(frame.depth, brute_force(&screen).1);
+    assert_eq!(frame.depth, reference::pixel_centre(&screen).depth_f32());
 }
 
 #[test]
@@ -68,7 +67,7 @@ fn crossing_planes_are_subdivided_down_to_the_crossing_line() {
     let scene = triangles_in_front_of_camera(&crossing_backdrops(0.433));
     let screen = screen(&scene, 64, 64);
     let (frame, stats) = render(&screen, WarnockOptions::default());
-    assert_eq!(frame.ids, brute_force(&screen).0);
+    assert_eq!(frame.ids, reference::pixel_centre(&screen).ids);
     assert!(stats.surrounder_undecided > 0);
     assert_eq!(
         stats.max_level(),
@@ -105,7 +104,7 @@ fn recorded_leaf_regions_tile_the_window_and_match_the_rule_counts() {
         let screen = screen(&scene, w, h);
         let mut warnock = Warnock::new(WarnockOptions::default().with_record_regions(true));
         let mut frame = Frame::new(w, h).unwrap();
-        let stats = warnock.render_frame(&screen, &mut frame).unwrap();
+        let stats = warnock.render(&screen, &mut frame).unwrap();
         let leaves = warnock.leaf_regions();
         let mut hits = vec![0u8; (w * h) as usize];
         for leaf in leaves {
@@ -136,7 +135,7 @@ fn a_16384_pixel_tall_window_does_not_overflow_and_stays_exact() {
     let scene = triangles_in_front_of_camera(&crossing_backdrops(0.0003));
     let screen = screen(&scene, 4, 16384);
     let (frame, stats) = render(&screen, WarnockOptions::default());
-    assert_eq!(frame.ids, brute_force(&screen).0);
+    assert_eq!(frame.ids, reference::pixel_centre(&screen).ids);
     assert!(frame.ids.contains(&0) && frame.ids.contains(&1));
     assert_eq!(stats.max_level(), 14);
 }
@@ -148,8 +147,8 @@ fn scratch_memory_is_reused_across_frames_and_scenes() {
     let mut warnock = Warnock::default();
     let mut frame = Frame::new(64, 64).unwrap();
     for s in [&big, &small, &big] {
-        warnock.render_frame(s, &mut frame).unwrap();
-        assert_eq!(frame.ids, brute_force(s).0);
+        warnock.render(s, &mut frame).unwrap();
+        assert_eq!(frame.ids, reference::pixel_centre(s).ids);
     }
 }
 
@@ -158,18 +157,18 @@ fn bad_input_is_a_typed_error_and_leaves_the_frame_alone() {
     let screen = screen(&procedural::cube(), 32, 32);
     let mut wrong = Frame::new(31, 32).unwrap();
     assert!(matches!(
-        Warnock::default().render_frame(&screen, &mut wrong),
+        Warnock::default().render(&screen, &mut wrong),
         Err(Error::Render { .. })
     ));
     let mut frame = Frame::new(32, 32).unwrap();
     frame.ids[5] = 7;
     for n in [0, 3, 32] {
         let options = WarnockOptions::default().with_samples_per_side(n);
-        let err = Warnock::new(options).render_frame(&screen, &mut frame);
+        let err = Warnock::new(options).render(&screen, &mut frame);
         assert!(matches!(err, Err(Error::OutOfRange { .. })), "{n}: {err:?}");
     }
-    let tight = WarnockOptions::default().with_max_working_bytes(100);
-    let err = Warnock::new(tight).render_frame(&screen, &mut frame);
+    let tight = WarnockOptions::default().with_max_bytes(100);
+    let err = Warnock::new(tight).render(&screen, &mut frame);
     assert!(matches!(err, Err(Error::Limit { .. })), "{err:?}");
     assert_eq!(frame.ids[5], 7, "an error is reported before drawing");
 }
@@ -182,9 +181,18 @@ fn the_hider_trait_reports_name_colour_and_counters() {
     assert_eq!(plain.name(), "warnock");
     assert!(!plain.resolves_color());
     let stats = plain.render(&screen, &mut frame).unwrap();
-    assert!(stats.get("regions").unwrap() > 1);
-    assert_eq!(stats.get("regions at level 0"), Some(1));
-    assert!(stats.get("decided surrounder in front").is_some());
+    assert!(stats.regions > 1);
+    assert_eq!(stats.regions_per_level[0], 1);
+    // The uniform table the benchmark prints carries the same counters.
+    let table = stats.table();
+    assert!(table.counters.contains(&("regions", stats.regions)));
+    assert!(table.counters.contains(&("regions at level 0", 1)));
+    let in_front = stats.decided_by(Rule::SurrounderInFront);
+    assert!(
+        table
+            .counters
+            .contains(&("decided surrounder in front", in_front))
+    );
     let aa = Warnock::new(WarnockOptions::default().with_samples_per_side(4));
     assert_eq!(aa.name(), "warnock-4x4");
     assert!(aa.resolves_color());

@@ -1,15 +1,16 @@
 //! Cross-validation: Warnock to pixel size against the brute-force z-buffer
-//! (bit for bit) and against the ray-cast oracle (every non-tie pixel, with
-//! identical coverage).
+//! on the window-depth planes (bit for bit) and against the ray-cast oracle
+//! (every non-tie pixel, with identical coverage).
 
 mod common;
 
-use common::{brute_force, random_big_triangles, render, screen, triangles_in_front_of_camera};
+use common::{random_big_triangles, render, triangles_in_front_of_camera};
 use glam::DVec3;
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
-use hider_scene::geom::{Camera, Projection};
+use hider_oracle::DEFAULT_TIE_TOLERANCE;
+use hider_scene::geom::Camera;
 use hider_scene::procedural::SplitMix64;
 use hider_scene::{Scene, procedural};
+use hider_testkit::{reference, screen};
 use hider_warnock::WarnockOptions;
 use proptest::prelude::*;
 
@@ -17,14 +18,18 @@ use proptest::prelude::*;
 fn check(scene: &Scene, width: u32, height: u32) -> u64 {
     let screen = screen(scene, width, height);
     let (frame, stats) = render(&screen, WarnockOptions::default());
-    let (ids, depth) = brute_force(&screen);
+    let brute = reference::pixel_centre(&screen);
     // Same decisions as a LESS z-buffer in f64: ids and depths bit for bit.
-    assert_eq!(frame.ids, ids, "ids differ from the brute-force z-buffer");
     assert_eq!(
-        frame.depth, depth,
+        frame.ids, brute.ids,
+        "ids differ from the brute-force z-buffer"
+    );
+    assert_eq!(
+        frame.depth,
+        brute.depth_f32(),
         "depths differ from the brute-force z-buffer"
     );
-    let reference = RayCastOracle::new().evaluate(&screen);
+    let reference = reference::ray_cast(&screen);
     let agreement = reference.compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
     assert!(agreement.is_exact(), "{agreement} ({stats:?})");
     assert_eq!(agreement.coverage_mismatches, 0);
@@ -92,9 +97,9 @@ proptest! {
         let scene = near_ties(count, seed, 10f64.powi(-gap_exponent));
         let screen = screen(&scene, width, height);
         let (frame, _) = render(&screen, WarnockOptions::default());
-        let (ids, depth) = brute_force(&screen);
-        prop_assert_eq!(frame.ids, ids);
-        prop_assert_eq!(frame.depth, depth);
+        let brute = reference::pixel_centre(&screen);
+        prop_assert_eq!(frame.depth, brute.depth_f32());
+        prop_assert_eq!(frame.ids, brute.ids);
     }
 
     /// Big random triangles pierce each other all over the image: the
@@ -111,12 +116,7 @@ proptest! {
         if orthographic {
             // Window depth is affine in camera depth here: a different
             // family of depth planes for the corner certificate.
-            scene.camera = Some(Camera {
-                eye: DVec3::new(0.0, 0.0, 4.0),
-                target: DVec3::ZERO,
-                up: DVec3::Y,
-                projection: Projection::Orthographic { half_height: 1.4, near: 0.5, far: 10.0 },
-            });
+            scene.camera = Some(Camera::orthographic(DVec3::new(0.0, 0.0, 4.0), DVec3::ZERO, 1.4, 0.5, 10.0));
         }
         check(&scene, width, height);
     }
