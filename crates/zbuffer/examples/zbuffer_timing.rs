@@ -1,18 +1,19 @@
 //! Times the z-buffer on the scenes of the llvmpipe comparison (the fast z-buffer targets'
 //! table): spider, UV sphere 200 and 500, random soup of 100,000 triangles,
 //! at 1024 x 1024 with the fit camera. Render only (clear + rasterise,
-//! prepare excluded), median and minimum of `K` runs after a warm-up.
+//! prepare excluded), median and minimum of `K` runs after a warm-up
+//! (the shared timer).
 //!
 //! `cargo run --release -p hider-zbuffer --example zbuffer_timing [K]`
 
 use std::path::PathBuf;
-use std::time::Instant;
 
 use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural};
+use hider_testkit::timer::Timer;
 use hider_zbuffer::ZBuffer;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let runs: usize = std::env::args()
+    let runs: u32 = std::env::args()
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(7);
@@ -32,20 +33,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let screen = prepare(scene, &view, &PrepareOptions::default())?;
         let mut frame = Frame::new(1024, 1024)?;
         let mut z = ZBuffer::default();
-        z.render(&screen, &mut frame)?;
-        let mut times: Vec<f64> = (0..runs)
-            .map(|_| {
-                let t = Instant::now();
-                z.render(&screen, &mut frame)
-                    .map(|_| t.elapsed().as_secs_f64() * 1e3)
-            })
-            .collect::<Result<_, _>>()?;
-        times.sort_by(f64::total_cmp);
+        let times =
+            Timer::new(runs).try_time(&|| false, || z.render(&screen, &mut frame).map(drop))?;
         println!(
             "| {name} | {} | {:.1} | {:.1} |",
             scene.triangle_count(),
-            times[times.len() / 2],
-            times[0]
+            times.median_ms,
+            times.min_ms
         );
     }
     Ok(())

@@ -2,29 +2,19 @@
 //! the linear-depth demonstration.
 
 use glam::DVec3;
-use hider_geom::{Camera, Projection};
-use hider_scene::{
-    Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
-};
+use hider_geom::Camera;
+use hider_scene::{Frame, Hider, Mesh, NO_ID, Scene, ScreenScene, procedural};
+use hider_testkit::cameras::look_at;
+use hider_testkit::screen_with;
 
 use crate::{DepthFormat, DepthSource, ZBuffer, ZBufferOptions};
 
 fn camera() -> Camera {
-    Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Perspective {
-            fovy_degrees: 60.0,
-            near: 0.5,
-            far: 50.0,
-        },
-    }
+    look_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 0.5, 50.0)
 }
 
 fn screen(scene: &Scene, camera: Camera, size: u32) -> ScreenScene {
-    let view = View::new(camera, size, size).unwrap();
-    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+    screen_with(scene, camera, size, size)
 }
 
 fn render(s: &ScreenScene, options: ZBufferOptions) -> (Frame, crate::ZBufferStats) {

@@ -15,15 +15,13 @@ use crate::{
 };
 
 fn fit(scene: &Scene, w: u32, h: u32) -> ScreenScene {
-    let view = View::for_scene(scene, w, h).unwrap();
-    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+    hider_testkit::screen(scene, w, h)
 }
 
 /// A camera inside the soup's cube: triangles crossing the near plane,
 /// behind the eye, and huge on screen.
 fn inside(scene: &Scene, w: u32, h: u32, yaw: f64) -> ScreenScene {
-    let view = View::new(inside_camera(yaw), w, h).unwrap();
-    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+    hider_testkit::screen_with(scene, inside_camera(yaw), w, h)
 }
 
 fn inside_camera(yaw: f64) -> Camera {
@@ -398,7 +396,7 @@ proptest! {
 #[test]
 fn every_hard_case_matches_the_reference_bit_for_bit() {
     for seed in 0..3 {
-        for (_, scene) in hider_scene::hard_cases::all(seed) {
+        for (_, scene) in hider_testkit::hard_cases::all(seed) {
             for (w, h) in [(64, 64), (97, 61)] {
                 let view = View::for_scene(&scene, w, h).unwrap();
                 let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
@@ -465,8 +463,7 @@ fn fragments_and_triangles_tie_as_in_the_reference() {
         }
     }
     let scene = Scene::from_triangles(positions);
-    let camera =
-        hider_scene::hard_cases::look_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 1.0, 10.0);
+    let camera = hider_testkit::cameras::look_at(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 1.0, 10.0);
     let view = View::new(camera, 40, 36).unwrap();
     let mut lean = DepthScene::new();
     prepare_depth_into(&scene, &view, &PrepareOptions::default(), &mut lean).unwrap();
