@@ -7,12 +7,9 @@
 use glam::DVec3;
 use hider_geom::{Camera, Viewport};
 use hider_scene::{PrepareOptions, Scene, TransformPrecision, View, prepare, procedural};
+use hider_testkit::lean_reference;
 use hider_zbuffer::{DepthFragment, DepthScene, DepthTri, prepare_depth_into};
 use proptest::prelude::*;
-
-#[path = "../../testkit/src/lean_reference.rs"]
-mod lean_reference;
-use lean_reference::lean_reference;
 
 fn scene_of(points: &[(f64, f64, f64)], shared: bool) -> Scene {
     let positions: Vec<DVec3> = points

@@ -5,7 +5,16 @@ use crate::options::DepthFormat;
 /// Options of [`crate::TiledZBuffer`]. `Default` is accurate (f32 window
 /// depth, exactly [`crate::ZBuffer`]'s output) and fast (all cores, 64-pixel
 /// tiles, hierarchical depth on).
+///
+/// ```
+/// use hider_zbuffer::TiledZBufferOptions;
+///
+/// let options = TiledZBufferOptions::default().with_threads(2).with_tile_size(32);
+/// assert!(options.validate().is_ok());
+/// assert!(options.with_tile_size(12).validate().is_err());
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
 pub struct TiledZBufferOptions {
     /// Storage format of the depth buffer; the output equals
     /// [`crate::ZBuffer`]'s with the same format, pixel for pixel.
@@ -67,6 +76,11 @@ impl TiledZBufferOptions {
     }
 
     /// Checks the options, naming the first bad value.
+    ///
+    /// # Errors
+    ///
+    /// A tile size that is not a multiple of 8 from 8 to 256, or more than
+    /// [`Self::MAX_THREADS`] threads.
     pub fn validate(&self) -> hider_scene::Result<()> {
         let t = self.tile_size;
         if !(Self::MIN_TILE..=Self::MAX_TILE).contains(&t) || t % 8 != 0 {
