@@ -10,8 +10,8 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 
-use hider_plan::registry::{self, Entry};
 use crate::scenes::{self, Group, Source};
+use hider_plan::registry::{self, Entry};
 
 /// The study a case belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

@@ -20,10 +20,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use crate::accuracy::{score_coverage, score_ids};
 use crate::analysis::{SceneAnalysis, analyse};
 use crate::contact::{ContactSheet, write_contact_sheet};
+use crate::machine::Machine;
 use crate::matrix::{Case, MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{CsvSink, Results, Row, SCHEMA_VERSION};
 use crate::scenes::Group;
-use crate::machine::Machine;
 
 /// The default time budget of one job's measured renders, in seconds: at
 /// least one render is always measured, and slow hiders on large scaling
@@ -86,21 +86,21 @@ struct Prepared {
 
 fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Result<Prepared> {
     let mut scene = None;
-    let load = Timer::new(1)
-        .with_warmup(0)
-        .try_time(&|| false, || {
-            scene = Some(case.source.load()?);
-            Ok::<(), anyhow::Error>(())
-        })?;
+    let load = Timer::new(1).with_warmup(0).try_time(&|| false, || {
+        scene = Some(case.source.load()?);
+        Ok::<(), anyhow::Error>(())
+    })?;
     let scene = scene.context("load never ran")?;
     let view = View::for_scene(&scene, case.width, case.height)?;
     let prepare_options = PrepareOptions::default();
     let mut screen = None;
-    let prepare_time = options.timing.try_time(&|| false, || {
-        screen = Some(prepare(&scene, &view, &prepare_options)?);
-        Ok::<(), hider_scene::Error>(())
-    })
-    .with_context(|| format!("preparing {}", case.label()))?;
+    let prepare_time = options
+        .timing
+        .try_time(&|| false, || {
+            screen = Some(prepare(&scene, &view, &prepare_options)?);
+            Ok::<(), hider_scene::Error>(())
+        })
+        .with_context(|| format!("preparing {}", case.label()))?;
     let screen = screen.context("prepare never ran")?;
     let analysis = analyse(&screen);
     let oracle = if analysis.pixel_tests > options.oracle_budget {

@@ -8,7 +8,9 @@ use anyhow::Result;
 
 use super::rows::{accuracy_cases, accuracy_rows, geometric_mean, hider_order};
 use crate::matrix::Study;
-use crate::plots::{ERROR_FLOOR, Plot, Series, pareto_front, pareto_plot, scaling_plot, write_plot};
+use crate::plots::{
+    ERROR_FLOOR, Plot, Series, pareto_front, pareto_plot, scaling_plot, write_plot,
+};
 use crate::record::{Results, Row};
 
 /// Writes every plot into `dir` (`bench-*.svg` and `.png`) and returns

@@ -68,7 +68,9 @@ fn study_table(s: &mut String, rows: &[Row], hiders: &[String], st: Study) {
         let _ = write!(s, "| {label} | {} |", fmt_axis(*x));
         for h in hiders {
             let r = rows.iter().find(|r| {
-                r.study == st.as_str() && format!("{}@{}", r.scene, r.width) == *label && &r.hider == h
+                r.study == st.as_str()
+                    && format!("{}@{}", r.scene, r.width) == *label
+                    && &r.hider == h
             });
             let _ = write!(s, " {} |", time_text(r));
         }
