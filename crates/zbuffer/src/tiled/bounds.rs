@@ -102,6 +102,7 @@ impl DepthBounds {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use hider_geom::fixed::pixel_center;
     use proptest::prelude::*;
 
     proptest! {
@@ -131,7 +132,7 @@ mod tests {
                     // triangle bound; the rectangle bound alone must hold.
                     let d = plane.at_pixel(x, y);
                     let inside = hider_geom::edge::triangle_covers(
-                        &v, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128);
+                        &v, pixel_center(x as i32).into(), pixel_center(y as i32).into());
                     if inside {
                         prop_assert!(d >= low, "{d} < {low} at {x},{y}");
                     }
