@@ -1,11 +1,10 @@
 //! `hider analyze`: which effects a model calls for, with the evidence, and
-//! what `--algo auto` would pick; plus the auto choice for `hider render`.
+//! what `--algo auto` would pick.
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use clap::Args;
-use hider::plan::{self, Plan};
-use hider::scene::analyze::DEFAULT_PAIR_BUDGET;
-use hider::scene::{Hider, RenderOptions, Scene, View};
+use hider::plan::RenderOptions;
+use hider::plan::analyze::DEFAULT_PAIR_BUDGET;
 
 /// Arguments of `hider analyze`.
 #[derive(Args, Debug)]
@@ -32,32 +31,16 @@ pub struct AnalyzeArgs {
 /// Runs `hider analyze`: prints the effects report and the plan.
 pub fn run(args: &AnalyzeArgs) -> Result<()> {
     hider::scene::view::check_image_size(args.size, args.size).context("bad image size")?;
-    let scene = crate::render::load_model(&args.model)?;
+    let scene = crate::model::load(&args.model)?;
     let options = RenderOptions::default()
         .with_size(args.size, args.size)
         .with_antialiasing(args.aa)
         .with_vector_output(args.vector)
         .with_shading(!args.no_shading)
         .with_pair_budget(args.pair_budget);
-    let (effects, plan) =
-        plan::auto(&scene, &options).with_context(|| format!("cannot analyse {}", args.model))?;
-    println!("{}: {effects}", args.model);
-    println!("{}", plan.summary());
+    let planned = hider::plan::auto(&scene, &options)
+        .with_context(|| format!("cannot analyse {}", args.model))?;
+    println!("{}: {}", args.model, planned.effects);
+    println!("{}", planned.plan.summary());
     Ok(())
-}
-
-/// The `--algo auto` choice for `hider render`: analyses the scene for the
-/// view, prints one line with the choice and why, and returns the plan with
-/// a fresh hider.
-pub fn auto_hider(scene: &Scene, view: &View, shading: bool) -> Result<(Plan, Box<dyn Hider>)> {
-    let options = RenderOptions::default()
-        .with_size(view.viewport.width, view.viewport.height)
-        .with_camera(Some(view.camera))
-        .with_shading(shading);
-    let (_, plan) = plan::auto(scene, &options).context("scene analysis for --algo auto")?;
-    let Some(hider) = plan.hider() else {
-        bail!("--algo auto chose '{}', which is not registered", plan.algo);
-    };
-    eprintln!("{}", plan.summary());
-    Ok((plan, hider))
 }

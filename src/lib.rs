@@ -1,20 +1,24 @@
 //! hider: the classic hidden-surface algorithms side by side.
 //!
-//! This facade re-exports the workspace's crates and lists every hider in
-//! one [`registry`], which the `hider` command-line tool, the benchmark and
-//! the cross-validating property tests all read:
+//! This facade re-exports the workspace's crates and the [`registry`] of
+//! every hider, which the `hider` command-line tool, the benchmark and the
+//! cross-validating property tests all read:
 //!
 //! | crate | what |
 //! |---|---|
 //! | [`geom`] | camera, clipping, fixed-point snapping, edge functions, planes |
 //! | [`scene`] | scene model, OBJ/MTL, the shared front end `prepare`, frames, the `Hider` trait |
-//! | [`zbuffer`] | depth buffer with five depth formats |
+//! | [`zbuffer`] | depth buffer with five depth formats, and its tiled parallel form |
 //! | [`abuffer`] | Carpenter's A-buffer with 8x4 coverage masks, and supersampling baselines |
 //! | [`painter`] | painter's algorithm: naive sort, Newell-Newell-Sancha with splitting, SVG |
 //! | [`warnock`] | Warnock's area subdivision |
 //! | [`scanline`] | scanline with edge table, active edge list and spans |
 //! | [`oracle`] | the slow exact references every test measures against |
-//! | [`bench`](mod@bench) | the comparative benchmark and the hider registry |
+//! | [`plan`] | the registry of hiders, scene analysis, effect stages, the planner behind `--algo auto`, model loading |
+//!
+//! The comparative benchmark is a program of its own, `hider-bench` (the
+//! `hider-bench` crate), so neither this library nor `hider render` links
+//! its plotting and reporting.
 //!
 //! # Example
 //!
@@ -40,18 +44,14 @@
 //! ```
 
 pub use hider_abuffer as abuffer;
-pub use hider_bench as bench;
-pub mod hostile;
-
 pub use hider_geom as geom;
 pub use hider_oracle as oracle;
 pub use hider_painter as painter;
+pub use hider_plan as plan;
 pub use hider_scanline as scanline;
 pub use hider_scene as scene;
 pub use hider_warnock as warnock;
 pub use hider_zbuffer as zbuffer;
 
-pub mod plan;
-
-/// Every hider by name (re-exported from `hider-bench`).
-pub use hider_bench::registry;
+/// Every hider by name (re-exported from `hider-plan`).
+pub use hider_plan::registry;

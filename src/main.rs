@@ -1,9 +1,13 @@
-//! The `hider` command-line tool: render a model with any hider, and (as
-//! the other subcommands land) benchmark and analyse.
+//! The `hider` command-line tool: render a model with any hider, analyse
+//! what a model calls for, list the hiders, and start the benchmark.
 
 mod analyze;
+mod bench;
+mod model;
 mod render;
+mod render_args;
 
+use std::ffi::OsString;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
@@ -22,8 +26,15 @@ enum Command {
     /// and optional id/depth dumps.
     Render(Box<render::RenderArgs>),
     /// Benchmark every registered hider: accuracy against the oracle beside
-    /// time; writes a table, results.csv/json, a report and plots.
-    Bench(Box<hider::bench::BenchArgs>),
+    /// time; writes a table, results.csv/json, a report and plots. Runs the
+    /// `hider-bench` program beside this one with the same arguments
+    /// (`hider bench --help` shows them).
+    #[command(disable_help_flag = true)]
+    Bench {
+        /// Arguments of `hider-bench`.
+        #[arg(trailing_var_arg = true, allow_hyphen_values = true)]
+        args: Vec<OsString>,
+    },
     /// List the registered hiders.
     List,
     /// Report which effects a model calls for (transparency, textures,
@@ -46,7 +57,7 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Analyze(args) => analyze::run(&args),
-        Command::Bench(args) => hider::bench::run_command(&args),
+        Command::Bench { args } => return bench::run(&args),
         Command::List => {
             for e in hider::registry::all() {
                 println!("{:<20} {:?}: {}", e.name, e.kind, e.description);
@@ -57,8 +68,8 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            // One line: the context chain joined, as the issue asks. Errors
-            // that already print their source are not repeated.
+            // One line: the context chain joined. Errors that already print
+            // their source are not repeated.
             let mut chain: Vec<String> = Vec::new();
             for cause in e.chain().map(|c| c.to_string()) {
                 if !chain.last().is_some_and(|prev| prev.ends_with(&cause)) {

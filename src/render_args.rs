@@ -1,0 +1,224 @@
+//! The arguments of `hider render` and what they mean to the library: the
+//! image size, the camera, the front end's options, the knobs for the
+//! hider and the shading.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result, bail};
+use clap::{Args, ValueEnum};
+use glam::DVec3;
+use hider::geom::{Camera, Projection};
+use hider::plan::HiderConfig;
+use hider::scene::{PrepareOptions, Scene, ShadeMode, TransformPrecision, fit_camera};
+use hider::zbuffer::{DepthFormat, DepthSource};
+
+/// Arguments of `hider render`.
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    /// OBJ file, or a generated scene: gen:cube, gen:sphere[:N],
+    /// gen:soup[:COUNT[:SEED]], gen:intersecting, gen:cyclic, gen:coplanar.
+    pub model: String,
+    /// Output PNG.
+    #[arg(short, long)]
+    pub output: PathBuf,
+    /// Square image size in pixels (1 to 16384).
+    #[arg(long, conflicts_with_all = ["width", "height"])]
+    size: Option<u32>,
+    /// Image width in pixels (with --height).
+    #[arg(long, requires = "height")]
+    width: Option<u32>,
+    /// Image height in pixels (with --width).
+    #[arg(long, requires = "width")]
+    height: Option<u32>,
+    /// Hidden-surface algorithm (see `hider list`), or `auto` for the
+    /// cheapest one exact for what the scene calls for.
+    #[arg(long, default_value = "zbuffer")]
+    pub algo: String,
+    /// Depth buffer format of the z-buffer.
+    #[arg(long, value_enum)]
+    depth_format: Option<DepthFormatArg>,
+    /// What the z-buffer compares.
+    #[arg(long, value_enum)]
+    depth_source: Option<DepthSourceArg>,
+    /// Transform arithmetic of the front end (f32 reproduces GL).
+    #[arg(long, value_enum, default_value = "f64")]
+    precision: PrecisionArg,
+    /// Also write the hider's vector output as SVG (the painters' ordered,
+    /// split polygon list: --algo painter or painter-naive).
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
+    /// Write the visible primitive ids (int32 LE, -1 background).
+    #[arg(long)]
+    pub ids_out: Option<PathBuf>,
+    /// Write the window depth (float32 LE, 1.0 background).
+    #[arg(long)]
+    pub depth_out: Option<PathBuf>,
+    /// How to colour the image.
+    #[arg(long, value_enum, default_value = "lambert")]
+    shade: ShadeArg,
+    /// Eye position x,y,z (default: the fit camera).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    eye: Option<DVec3>,
+    /// Point looked at x,y,z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    target: Option<DVec3>,
+    /// Up direction x,y,z.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    up: Option<DVec3>,
+    /// Vertical field of view in degrees.
+    #[arg(long)]
+    fovy: Option<f64>,
+    /// Near plane distance.
+    #[arg(long)]
+    near: Option<f64>,
+    /// Far plane distance.
+    #[arg(long)]
+    far: Option<f64>,
+    /// Worker threads: the tiled z-buffer renders tiles in parallel, and
+    /// above 1 the front end prepares large scenes in parallel too.
+    #[arg(long, default_value_t = 1)]
+    pub threads: usize,
+    /// Render K times after a warm-up and print the median and minimum
+    /// milliseconds of prepare + clear + rasterise.
+    #[arg(long, default_value_t = 0)]
+    pub repeat: u32,
+}
+
+/// `--depth-format`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum DepthFormatArg {
+    F32,
+    F64,
+    Fixed24,
+    Fixed16,
+    ReversedF32,
+}
+
+/// `--depth-source`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum DepthSourceArg {
+    WindowZ,
+    LinearViewZ,
+}
+
+/// `--precision`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum PrecisionArg {
+    F32,
+    F64,
+}
+
+/// `--shade`.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum ShadeArg {
+    Lambert,
+    Ids,
+}
+
+/// Parses `x,y,z` of finite numbers.
+fn parse_vec3(s: &str) -> Result<DVec3, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!("expected x,y,z, got '{s}'"));
+    }
+    let mut v = [0.0; 3];
+    for (slot, p) in v.iter_mut().zip(&parts) {
+        *slot = p
+            .trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| format!("'{p}' is not a finite number"))?;
+    }
+    Ok(DVec3::from_array(v))
+}
+
+impl RenderArgs {
+    /// The image size, `--size` or `--width` and `--height` (512 x 512 by
+    /// default), checked.
+    pub fn image_size(&self) -> Result<(u32, u32)> {
+        let (width, height) = match (self.size, self.width, self.height) {
+            (Some(n), _, _) => (n, n),
+            (None, Some(w), Some(h)) => (w, h),
+            _ => (512, 512),
+        };
+        hider::scene::view::check_image_size(width, height).context("bad image size")?;
+        Ok((width, height))
+    }
+
+    /// Checks `--threads`.
+    pub fn check_threads(&self) -> Result<()> {
+        if self.threads == 0 || self.threads > 1024 {
+            bail!("--threads must be 1 to 1024, got {}", self.threads);
+        }
+        Ok(())
+    }
+
+    /// Whether `--algo auto` asks the planner to choose.
+    pub fn planned(&self) -> bool {
+        self.algo == "auto"
+    }
+
+    /// The knobs for the hider: depth format and source, threads, vector
+    /// output.
+    pub fn hider_config(&self) -> HiderConfig {
+        let mut config = HiderConfig::default()
+            .with_threads(self.threads)
+            .with_vector_output(self.svg.is_some());
+        if let Some(format) = self.depth_format {
+            config = config.with_depth_format(match format {
+                DepthFormatArg::F32 => DepthFormat::F32,
+                DepthFormatArg::F64 => DepthFormat::F64,
+                DepthFormatArg::Fixed24 => DepthFormat::Fixed24,
+                DepthFormatArg::Fixed16 => DepthFormat::Fixed16,
+                DepthFormatArg::ReversedF32 => DepthFormat::ReversedF32,
+            });
+        }
+        if let Some(source) = self.depth_source {
+            config = config.with_depth_source(match source {
+                DepthSourceArg::WindowZ => DepthSource::WindowZ,
+                DepthSourceArg::LinearViewZ => DepthSource::LinearViewZ,
+            });
+        }
+        config
+    }
+
+    /// The front end's options: `--precision`, and parallel above one
+    /// thread.
+    pub fn prepare_options(&self) -> PrepareOptions {
+        PrepareOptions::default()
+            .with_precision(match self.precision {
+                PrecisionArg::F32 => TransformPrecision::F32,
+                PrecisionArg::F64 => TransformPrecision::F64,
+            })
+            .with_parallel(self.threads > 1)
+    }
+
+    /// How to colour the image (`--shade`).
+    pub fn shade_mode(&self) -> ShadeMode {
+        match self.shade {
+            ShadeArg::Lambert => ShadeMode::Lambert,
+            ShadeArg::Ids => ShadeMode::Ids,
+        }
+    }
+
+    /// The camera: the scene's (or the fit camera) with the flags given
+    /// applied.
+    pub fn camera(&self, scene: &Scene) -> Camera {
+        let mut c = scene.camera.unwrap_or_else(|| fit_camera(scene));
+        c.eye = self.eye.unwrap_or(c.eye);
+        c.target = self.target.unwrap_or(c.target);
+        c.up = self.up.unwrap_or(c.up);
+        if let Projection::Perspective {
+            fovy_degrees,
+            near,
+            far,
+        } = &mut c.projection
+        {
+            *fovy_degrees = self.fovy.unwrap_or(*fovy_degrees);
+            *near = self.near.unwrap_or(*near);
+            *far = self.far.unwrap_or(*far);
+        }
+        c
+    }
+}
