@@ -15,9 +15,8 @@ use glam::DVec3;
 use hider_abuffer::{
     ABuffer, ABufferOptions, SamplePattern, SortedTransparencyZBuffer, SsaaOptions,
 };
-use hider_scene::{
-    DynHider, Frame, Hider, Material, Mesh, PrepareOptions, Scene, View, prepare, procedural,
-};
+use hider_scene::{Frame, Hider, Material, Mesh, Scene, procedural};
+use hider_testkit::{render, screen};
 
 fn glass_scene() -> Scene {
     let tris = [
@@ -69,12 +68,9 @@ fn glass_scene() -> Scene {
     s
 }
 
-fn render(h: &mut dyn DynHider, scene: &Scene, w: u32, hgt: u32) -> hider_scene::Result<Frame> {
-    let view = View::for_scene(scene, w, hgt)?;
-    let s = prepare(scene, &view, &PrepareOptions::default())?;
-    let mut f = Frame::new(w, hgt)?;
-    h.render(&s, &mut f)?;
-    Ok(f)
+/// `scene` rendered by `hider` at `width x height`.
+fn picture<H: Hider>(hider: &mut H, scene: &Scene, width: u32, height: u32) -> Frame {
+    render(hider, &screen(scene, width, height)).0
 }
 
 /// Copies `src` (or its `crop` region, enlarged `zoom` times) into `dst`
@@ -103,18 +99,18 @@ fn main() -> hider_scene::Result<()> {
 
     // Transparency: A-buffer vs sorted z-buffer, 256 x 256 each.
     let glass = glass_scene();
-    let a = render(
+    let a = picture(
         &mut ABuffer::new(ABufferOptions::default()),
         &glass,
         256,
         256,
-    )?;
-    let z = render(
+    );
+    let z = picture(
         &mut SortedTransparencyZBuffer::new(SsaaOptions::default()),
         &glass,
         256,
         256,
-    )?;
+    );
     let mut sheet = Frame::new(516, 256)?;
     sheet.color.fill([255, 255, 255, 255]);
     blit(&mut sheet, &a, (0, 0, 256, 256), 1, (0, 0));
@@ -124,18 +120,18 @@ fn main() -> hider_scene::Result<()> {
     // Anti-aliased edge close-up: 32 x 32 crop of a 127 x 127 render (odd, so the
     // intersection line crosses pixels instead of following a pixel border), 8x.
     let pair = procedural::intersecting_pair();
-    let one = render(
+    let one = picture(
         &mut ABuffer::new(ABufferOptions::default().with_pattern(SamplePattern::Centre)),
         &pair,
         127,
         127,
-    )?;
-    let aa = render(
+    );
+    let aa = picture(
         &mut ABuffer::new(ABufferOptions::default()),
         &pair,
         127,
         127,
-    )?;
+    );
     let crop = (52, 36, 32, 32);
     let mut sheet = Frame::new(516, 256)?;
     sheet.color.fill([255, 255, 255, 255]);

@@ -3,87 +3,43 @@
 //!
 //! `cargo run --release -p hider-abuffer --example measure [-- --quick]`
 //!
-//! Prints two markdown tables (used in `docs/abuffer.md`). Timings are CPU
-//! time of `render` alone (the front end is shared and not timed): per
-//! scene, every hider is timed once per round for 5 rounds (interleaved,
-//! so load changes hit all alike), each time as a batch of renders of
-//! about 150 ms (the thread CPU clock ticks every few ms); the best round
-//! counts. `--quick` skips the 100k-triangle scene.
-
-use std::time::{Duration, Instant};
+//! Prints two markdown tables (used in `docs/abuffer.md`). Timings are
+//! wall-clock time of `render` alone (the front end is shared and not
+//! timed), from the workspace's shared timer: per scene, every hider is
+//! timed for a few renders once per round, for 5 rounds (interleaved, so
+//! load changes hit all alike); the fastest render counts. `--quick` skips
+//! the 100k-triangle scene.
 
 use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, MergePolicy, SamplePattern, SsaaOptions,
     SupersampledZBuffer,
 };
 use hider_oracle::analytic_coverage;
-use hider_scene::{
-    DynHider, Frame, Hider, PrepareOptions, Scene, ScreenScene, StatsTable, View, hard_cases,
-    prepare, procedural,
-};
+use hider_scene::{DynHider, Frame, Hider, Scene, ScreenScene, StatsTable, procedural};
+use hider_testkit::timer::Timer;
+use hider_testkit::{hard_cases, screen};
 
-fn screen(scene: &Scene, w: u32, h: u32) -> ScreenScene {
-    let view = View::for_scene(scene, w, h).expect("view");
-    prepare(scene, &view, &PrepareOptions::default()).expect("prepare")
-}
+/// Measured renders per hider and round.
+const RUNS: u32 = 3;
 
-/// CPU time of this thread so far: from `/proc/thread-self/schedstat` (ns
-/// on a CPU) on Linux, so that other processes sharing the machine do not
-/// inflate the numbers; wall time elsewhere.
-fn cpu_time(start: Instant) -> Duration {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<u64>().ok())
-        .map_or_else(|| start.elapsed(), Duration::from_nanos)
-}
-
-/// CPU time per render of `h` on `s`: `reps` renders back to back, total
-/// CPU time divided by `reps` (the thread's CPU clock advances in ticks of
-/// a few milliseconds, so short renders are timed in batches), and the
-/// stats of the last.
-fn time_batch(
-    h: &mut dyn DynHider,
-    s: &ScreenScene,
-    frame: &mut Frame,
-    reps: u32,
-) -> (Duration, StatsTable) {
-    let origin = Instant::now();
-    let t = cpu_time(origin);
-    let mut stats = StatsTable::default();
-    for _ in 0..reps {
-        stats = h.render(s, frame).expect("render");
-    }
-    (cpu_time(origin).saturating_sub(t) / reps, stats)
-}
-
-/// Times every hider of `hiders` on `s`, interleaved: `rounds` rounds,
-/// each timing every hider once (a batch of renders lasting about
-/// `BATCH`), so that a change in machine load hits all of them alike.
-/// Returns each hider's best time per render and last stats.
+/// Times every hider of `hiders` on `s` with the shared timer,
+/// interleaved: `rounds` rounds, each timing every hider for [`RUNS`]
+/// renders (after one warm-up render in the first round), so that a change
+/// in machine load hits all of them alike. Returns each hider's fastest
+/// render (ms) and the stats of its last.
 fn time_interleaved(
     hiders: &mut [(String, Box<dyn DynHider>)],
     s: &ScreenScene,
     rounds: u32,
-) -> Vec<(Duration, StatsTable)> {
-    const BATCH: Duration = Duration::from_millis(150);
+) -> Vec<(f64, StatsTable)> {
     let mut frame = Frame::new(s.viewport.width, s.viewport.height).expect("frame");
-    // Warm-up render (first-touch page faults) and batch size.
-    let reps: Vec<u32> = hiders
-        .iter_mut()
-        .map(|(_, h)| {
-            let wall = Instant::now();
-            h.render(s, &mut frame).expect("render");
-            let once = wall.elapsed().max(Duration::from_micros(100));
-            (BATCH.as_secs_f64() / once.as_secs_f64())
-                .ceil()
-                .clamp(1.0, 50.0) as u32
-        })
-        .collect();
-    let mut best = vec![(Duration::MAX, StatsTable::default()); hiders.len()];
-    for _ in 0..rounds {
+    let mut best = vec![(f64::INFINITY, StatsTable::default()); hiders.len()];
+    for round in 0..rounds {
         for (k, (_, h)) in hiders.iter_mut().enumerate() {
-            let (t, stats) = time_batch(h.as_mut(), s, &mut frame, reps[k]);
-            best[k] = (best[k].0.min(t), stats);
+            let mut stats = StatsTable::default();
+            let timer = Timer::new(RUNS).with_warmup(u32::from(round == 0));
+            let summary = timer.time(|| stats = h.render(s, &mut frame).expect("render"));
+            best[k] = (best[k].0.min(summary.min_ms), stats);
         }
     }
     best
@@ -179,7 +135,7 @@ fn speed_table(quick: bool) {
         let s = screen(scene, 1024, 1024);
         let mut hs = hiders();
         let times = time_interleaved(&mut hs, &s, rounds);
-        let ms: Vec<f64> = times.iter().map(|(t, _)| t.as_secs_f64() * 1e3).collect();
+        let ms: Vec<f64> = times.iter().map(|(t, _)| *t).collect();
         let mut row = format!("| {name} |");
         for v in &ms {
             row += &format!(" {v:.1} |");
@@ -225,8 +181,7 @@ fn main() {
         let mut abuffer = ABuffer::new(ABufferOptions::default().with_merge(merge));
         let st = Hider::render(&mut abuffer, &s, &mut frame).expect("render");
         println!(
-            "uv_sphere(200) merge {merge:?}: {:.1} ms, fragments {}, merged {}, mean list {:.3}, max list {}, peak MB {:.1}",
-            t.as_secs_f64() * 1e3,
+            "uv_sphere(200) merge {merge:?}: {t:.1} ms, fragments {}, merged {}, mean list {:.3}, max list {}, peak MB {:.1}",
             st.fragments,
             st.merged,
             st.mean_list_len,
@@ -254,7 +209,7 @@ fn main() {
         ];
         let times = time_interleaved(&mut hs, &s, 3);
         for ((label, _), (t, st)) in hs.iter().zip(&times) {
-            println!("{name} {label}: {:.1} ms, {st}", t.as_secs_f64() * 1e3);
+            println!("{name} {label}: {t:.1} ms, {st}");
         }
     }
 }

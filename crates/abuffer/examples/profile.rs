@@ -7,23 +7,17 @@
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
-//! `carpenter`, or `cov` (mask generation alone). Prints the CPU and wall time of each render.
-
-use std::time::Instant;
+//! `carpenter`, or `cov` (mask generation alone). Prints the median and
+//! fastest of the renders (the workspace's shared timer, no warm-up: a
+//! profile sees the first frame too) and the work counters.
 
 use hider_abuffer::coverage::{TriCoverage, pixel_range};
 use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, SamplePattern, SsaaOptions, SupersampledZBuffer,
 };
-use hider_scene::{DynHider, Frame, Hider, PrepareOptions, View, prepare, procedural};
-
-/// CPU time of this thread (ns), from `/proc/thread-self/schedstat`.
-fn cpu_ns() -> u64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse().ok())
-        .unwrap_or(0)
-}
+use hider_scene::{DynHider, Frame, Hider, StatsTable, procedural};
+use hider_testkit::screen;
+use hider_testkit::timer::Timer;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -53,13 +47,13 @@ fn main() {
     };
     let runs: u32 = args.get(2).map_or(3, |r| r.parse().expect("runs"));
     let size: u32 = args.get(3).map_or(1024, |r| r.parse().expect("size"));
-    let view = View::for_scene(&scene, size, size).expect("view");
-    let s = prepare(&scene, &view, &PrepareOptions::default()).expect("prepare");
+    let s = screen(&scene, size, size);
+    let timer = Timer::new(runs).with_warmup(0);
     if args.get(1).map(String::as_str) == Some("cov") {
         // Mask generation alone: the shared front of every hider here.
-        for _ in 0..runs {
-            let cpu = cpu_ns();
-            let (mut hits, mut bits, mut visits) = (0u64, 0u64, 0u64);
+        let (mut hits, mut bits, mut visits) = (0u64, 0u64, 0u64);
+        let summary = timer.time(|| {
+            (hits, bits, visits) = (0, 0, 0);
             for tri in &s.tris {
                 let pattern = SamplePattern::Grid32;
                 let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, size, size) else {
@@ -74,21 +68,12 @@ fn main() {
                     }
                 }
             }
-            println!(
-                "cpu {:.1} ms  visits {visits} hits {hits} bits {bits}",
-                (cpu_ns() - cpu) as f64 / 1e6
-            );
-        }
+        });
+        println!("{summary}  visits {visits} hits {hits} bits {bits}");
         return;
     }
     let mut frame = Frame::new(size, size).expect("frame");
-    for _ in 0..runs {
-        let (wall, cpu) = (Instant::now(), cpu_ns());
-        let stats = hider.render(&s, &mut frame).expect("render");
-        println!(
-            "cpu {:.1} ms  wall {:.1} ms  {stats}",
-            (cpu_ns() - cpu) as f64 / 1e6,
-            wall.elapsed().as_secs_f64() * 1e3
-        );
-    }
+    let mut stats = StatsTable::default();
+    let summary = timer.time(|| stats = hider.render(&s, &mut frame).expect("render"));
+    println!("{summary}  {stats}");
 }

@@ -1,30 +1,12 @@
-//! Shared helpers of the integration tests.
+//! Shared helpers of the integration tests: the translucent scenes, colour
+//! differences, and the per-sample compositing reference. Scenes are
+//! prepared and rendered with `hider_testkit`.
 
 use glam::DVec3;
 use hider_abuffer::SamplePattern;
 use hider_scene::geom::fixed::SUBPIXEL_SCALE;
 use hider_scene::shade::{prim_color, to_srgb8};
-use hider_scene::{
-    Frame, Hider, Material, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare,
-};
-
-/// Prepares `scene` with its fit camera at `w x h`.
-pub fn screen(scene: &Scene, w: u32, h: u32) -> ScreenScene {
-    let view = View::for_scene(scene, w, h).unwrap();
-    prepare(scene, &view, &PrepareOptions::default()).unwrap()
-}
-
-/// Renders with `hider` into a fresh frame.
-pub fn render<H: Hider>(hider: &mut H, s: &ScreenScene) -> Frame {
-    render_stats(hider, s).0
-}
-
-/// Renders with `hider` into a fresh frame; the frame and the stats.
-pub fn render_stats<H: Hider>(hider: &mut H, s: &ScreenScene) -> (Frame, H::Stats) {
-    let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
-    let stats = hider.render(s, &mut f).unwrap();
-    (f, stats)
-}
+use hider_scene::{Frame, Material, Mesh, Scene, ScreenScene, ShadeMode};
 
 /// Largest per-channel difference between two colour buffers.
 pub fn max_color_diff(a: &Frame, b: &Frame) -> u8 {
@@ -109,6 +91,11 @@ pub fn with_opacity(mut scene: Scene, opacity: f32) -> Scene {
 /// of `pattern`, every triangle covering it (shared edge test), sorted by
 /// its `f64` plane depth (lower id on ties), composited front to back over
 /// black; pixel = mean of samples, sRGB.
+///
+/// Kept here rather than delegated to `hider-oracle`: the oracle answers
+/// which surface is visible at a pixel centre and how much of a pixel is
+/// covered, not the colour of translucent layers composited at the
+/// A-buffer's sub-pixel samples, which is what this checks.
 pub fn brute_force_colors(s: &ScreenScene, pattern: SamplePattern) -> Vec<[u8; 3]> {
     let (w, h) = (s.viewport.width, s.viewport.height);
     let colors: Vec<([f32; 3], f32)> = (0..s.prims.len() as u32)

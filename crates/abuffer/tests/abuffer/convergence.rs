@@ -3,8 +3,7 @@
 use hider_abuffer::{ABuffer, ABufferOptions, SamplePattern, SsaaOptions, SupersampledZBuffer};
 use hider_oracle::analytic_coverage;
 use hider_scene::{Hider, procedural};
-
-use crate::common::{render, screen};
+use hider_testkit::{render, screen};
 
 #[test]
 fn coverage_error_shrinks_with_the_sample_count() {
@@ -22,11 +21,13 @@ fn coverage_error_shrinks_with_the_sample_count() {
             let fa = render(
                 &mut ABuffer::new(ABufferOptions::default().with_pattern(pattern)),
                 &s,
-            );
+            )
+            .0;
             let fz = render(
                 &mut SupersampledZBuffer::new(SsaaOptions::default().with_pattern(pattern)),
                 &s,
-            );
+            )
+            .0;
             // Same samples, same coverage.
             assert_eq!(fa.coverage, fz.coverage, "{pattern:?}");
             errors[k] += exact.mean_coverage_error(&fa.coverage);
@@ -46,7 +47,7 @@ fn coverage_error_shrinks_with_the_sample_count() {
 fn a_single_edge_is_resolved_to_a_few_cells() {
     let s = screen(&procedural::cube(), 48, 48);
     let exact = analytic_coverage(&s);
-    let f = render(&mut ABuffer::new(ABufferOptions::default()), &s);
+    let f = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
     let worst = exact
         .covered
         .iter()

@@ -5,9 +5,10 @@
 
 use hider_abuffer::{ABuffer, ABufferOptions, MergePolicy, SsaaOptions, SupersampledZBuffer};
 use hider_scene::{Hider, Material, Scene, procedural};
+use hider_testkit::{render, screen};
 use proptest::prelude::*;
 
-use crate::common::{max_color_diff, render, render_stats, screen};
+use crate::common::max_color_diff;
 
 /// Frame sizes around the 64-pixel tiles: several tiles, partial tiles,
 /// one-pixel rows and columns.
@@ -37,15 +38,8 @@ fn mixed_soup(opaque: u32, glass: u32, seed: u64) -> Scene {
 /// ones: deep enough for whole blocks to be hidden.
 fn big_triangles(n: u32, small: u32, seed: u64) -> Scene {
     let mut s = procedural::random_soup(small.max(1), seed);
-    let mut state = seed;
-    let mut next = move || {
-        // SplitMix64.
-        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        (z ^ (z >> 31)) as f64 / u64::MAX as f64 * 2.0 - 1.0
-    };
+    let mut rng = procedural::SplitMix64::new(seed);
+    let mut next = move || rng.next_u64() as f64 / u64::MAX as f64 * 2.0 - 1.0;
     let mut positions = Vec::new();
     for _ in 0..n {
         let (cx, cy, cz) = (next() * 0.5, next() * 0.5, next());
@@ -86,8 +80,8 @@ proptest! {
         let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
         let mut culled = ABuffer::new(opts);
         let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
-        let fc = render(&mut culled, &s);
-        let fr = render(&mut reference, &s);
+        let fc = render(&mut culled, &s).0;
+        let fr = render(&mut reference, &s).0;
         let ids = culled.sample_ids();
         prop_assert_eq!(&ids, &reference.sample_ids());
         prop_assert_eq!(&fc.coverage, &fr.coverage);
@@ -114,8 +108,8 @@ proptest! {
         let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
         let mut culled = ABuffer::new(opts);
         let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
-        let fc = render(&mut culled, &s);
-        let (fr, st) = render_stats(&mut reference, &s);
+        let fc = render(&mut culled, &s).0;
+        let (fr, st) = render(&mut reference, &s);
         prop_assert_eq!((st.culled, st.culled_blocks, st.pruned), (0, 0, 0));
         let ids = culled.sample_ids();
         prop_assert_eq!(&ids, &reference.sample_ids());
@@ -124,7 +118,7 @@ proptest! {
         prop_assert_eq!(&fc.depth, &fr.depth);
         prop_assert!(max_color_diff(&fc, &fr) <= 1);
         let mut ssaa = SupersampledZBuffer::new(SsaaOptions::default());
-        let fz = render(&mut ssaa, &s);
+        let fz = render(&mut ssaa, &s).0;
         prop_assert_eq!(&ids, ssaa.sample_ids());
         prop_assert_eq!(&fc.coverage, &fz.coverage);
         prop_assert_eq!(&fc.ids, &fz.ids);
@@ -140,11 +134,11 @@ proptest! {
     ) {
         let (w, h) = SIZES[size];
         let s = screen(&mixed_soup(opaque, glass, seed), w, h);
-        let fc = render(&mut ABuffer::new(ABufferOptions::default()), &s);
+        let fc = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
         let fr = render(
             &mut ABuffer::new(ABufferOptions::default().with_occlusion_culling(false)),
             &s,
-        );
+        ).0;
         prop_assert_eq!(&fc.coverage, &fr.coverage);
         prop_assert_eq!(&fc.ids, &fr.ids);
         prop_assert!(max_color_diff(&fc, &fr) <= 1);
@@ -189,8 +183,8 @@ fn every_culling_stage_fires_on_a_deep_scene() {
         // so it is inserted and then pruned.
         let mut a = ABuffer::new(opts.with_front_to_back(false));
         let mut r = ABuffer::new(opts.with_occlusion_culling(false));
-        let (fa, st) = render_stats(&mut a, &s);
-        let (fr, st_r) = render_stats(&mut r, &s);
+        let (fa, st) = render(&mut a, &s);
+        let (fr, st_r) = render(&mut r, &s);
         assert!(st.culled > 0 && st.pruned > 0, "{st:?}");
         assert!(st.mean_list_len < st_r.mean_list_len);
         assert_eq!(a.sample_ids(), r.sample_ids());
@@ -203,10 +197,10 @@ fn every_culling_stage_fires_on_a_deep_scene() {
     // default) the soup is skipped too, and nothing needs pruning.
     let s = screen(&stack_and_soup(), 200, 140);
     let mut a = ABuffer::new(ABufferOptions::default().with_front_to_back(false));
-    let (fa, submitted) = render_stats(&mut a, &s);
+    let (fa, submitted) = render(&mut a, &s);
     assert!(submitted.culled_blocks > 100, "{submitted:?}");
     let mut b = ABuffer::new(ABufferOptions::default());
-    let (fb, sorted) = render_stats(&mut b, &s);
+    let (fb, sorted) = render(&mut b, &s);
     assert!(sorted.culled_blocks > submitted.culled_blocks, "{sorted:?}");
     assert!(sorted.fragments < submitted.fragments, "{sorted:?}");
     assert_eq!(sorted.pruned, 0, "{sorted:?}");
@@ -238,8 +232,8 @@ proptest! {
         let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
         let mut sorted = ABuffer::new(opts);
         let mut submitted = ABuffer::new(opts.with_front_to_back(false));
-        let fs = render(&mut sorted, &s);
-        let fu = render(&mut submitted, &s);
+        let fs = render(&mut sorted, &s).0;
+        let fu = render(&mut submitted, &s).0;
         prop_assert_eq!(sorted.sample_ids(), submitted.sample_ids());
         prop_assert_eq!(&fs.coverage, &fu.coverage);
         prop_assert_eq!(&fs.ids, &fu.ids);
@@ -263,17 +257,17 @@ fn reuse_across_frame_sizes_equals_fresh_renders() {
         (150, 90),
     ] {
         let s = screen(&scene, w, h);
-        let again = render(&mut reused, &s);
+        let again = render(&mut reused, &s).0;
         let mut fresh = ABuffer::new(ABufferOptions::default());
-        let first = render(&mut fresh, &s);
+        let first = render(&mut fresh, &s).0;
         assert_eq!(again, first, "{w} x {h}");
         assert_eq!(reused.sample_ids(), fresh.sample_ids(), "{w} x {h}");
     }
     // A frame of one triangle after a full one: the emptied tiles are
     // cleared.
     let one = screen(&procedural::random_soup(1, 3), 150, 90);
-    let after = render(&mut reused, &one);
-    let fresh = render(&mut ABuffer::new(ABufferOptions::default()), &one);
+    let after = render(&mut reused, &one).0;
+    let fresh = render(&mut ABuffer::new(ABufferOptions::default()), &one).0;
     assert_eq!(after, fresh);
 }
 
@@ -323,7 +317,7 @@ fn a_pixel_whose_centre_is_open_keeps_the_surface_behind() {
     s.tris.push(tri([a, b, c], 0.8, 6));
     let p = 2 * 8 + 2;
     let mut ssaa = SupersampledZBuffer::new(SsaaOptions::default());
-    let fz = render(&mut ssaa, &s);
+    let fz = render(&mut ssaa, &s).0;
     assert_eq!(fz.ids[p], 6, "the centre sees the far triangle");
     assert!(
         fz.ids
@@ -337,7 +331,7 @@ fn a_pixel_whose_centre_is_open_keeps_the_surface_behind() {
         ABufferOptions::carpenter(),
     ] {
         let mut a = ABuffer::new(opts);
-        let fa = render(&mut a, &s);
+        let fa = render(&mut a, &s).0;
         assert_eq!(fa.ids, fz.ids, "{opts:?}");
         assert_eq!(fa.coverage, fz.coverage, "{opts:?}");
         if opts.merge == MergePolicy::Off {

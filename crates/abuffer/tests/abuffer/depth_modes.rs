@@ -3,8 +3,7 @@
 
 use hider_abuffer::{ABuffer, ABufferOptions, DepthMode, SsaaOptions, SupersampledZBuffer};
 use hider_scene::{Frame, Hider, procedural};
-
-use crate::common::{render, render_stats, screen};
+use hider_testkit::{render, screen};
 
 /// Sum over pixels of the largest channel difference, and the number of
 /// pixels that differ by more than one step.
@@ -32,9 +31,9 @@ fn per_sample_depth_is_exact_where_the_approximation_is_not() {
         // An odd size: at 64 x 64 the symmetric pair crosses exactly on a
         // pixel boundary and no pixel holds the intersection.
         let s = screen(&scene, 61, 61);
-        let exact = render(&mut SupersampledZBuffer::new(SsaaOptions::default()), &s);
+        let exact = render(&mut SupersampledZBuffer::new(SsaaOptions::default()), &s).0;
         let mut per_sample = ABuffer::new(ABufferOptions::default());
-        let (frame_ps, stats_ps) = render_stats(&mut per_sample, &s);
+        let (frame_ps, stats_ps) = render(&mut per_sample, &s);
         let (e_ps, bad_ps) = error(&frame_ps, &exact);
         assert_eq!(
             bad_ps, 0,
@@ -51,11 +50,13 @@ fn per_sample_depth_is_exact_where_the_approximation_is_not() {
         let minmax = render(
             &mut ABuffer::new(ABufferOptions::default().with_depth(DepthMode::MinMax)),
             &s,
-        );
+        )
+        .0;
         let zmin = render(
             &mut ABuffer::new(ABufferOptions::default().with_depth(DepthMode::ZminOrder)),
             &s,
-        );
+        )
+        .0;
         let (e_mm, bad_mm) = error(&minmax, &exact);
         let (e_z, bad_z) = error(&zmin, &exact);
         // The paper's approximation costs accuracy at the intersection ...

@@ -5,13 +5,15 @@ use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, MergePolicy, SamplePattern, SsaaOptions,
     SupersampledZBuffer,
 };
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, OracleOptions, RayCastOracle};
+use hider_oracle::DEFAULT_TIE_TOLERANCE;
 use hider_scene::{Hider, procedural};
+use hider_testkit::{hard_cases, reference, render, screen};
 use proptest::prelude::*;
 
-use crate::common::{max_color_diff, render, screen};
+use crate::common::max_color_diff;
 
-fn hard_cases() -> Vec<hider_scene::Scene> {
+/// A few procedural scenes and every hard case.
+fn hard_scenes() -> Vec<hider_scene::Scene> {
     let mut scenes = vec![
         procedural::cube(),
         procedural::intersecting_pair(),
@@ -19,7 +21,7 @@ fn hard_cases() -> Vec<hider_scene::Scene> {
         procedural::coplanar_pair(),
         procedural::uv_sphere(12),
     ];
-    scenes.extend(hider_scene::hard_cases::all(7).into_iter().map(|(_, s)| s));
+    scenes.extend(hard_cases::all(7).into_iter().map(|(_, s)| s));
     scenes
 }
 
@@ -42,8 +44,8 @@ proptest! {
             ABufferOptions::default().with_pattern(pattern).with_merge(MergePolicy::Off),
         );
         let mut z = SupersampledZBuffer::new(SsaaOptions::default().with_pattern(pattern));
-        let fa = render(&mut a, &s);
-        let fz = render(&mut z, &s);
+        let fa = render(&mut a, &s).0;
+        let fz = render(&mut z, &s).0;
         prop_assert_eq!(a.sample_ids(), z.sample_ids().to_vec());
         prop_assert_eq!(&fa.coverage, &fz.coverage);
         prop_assert_eq!(&fa.ids, &fz.ids);
@@ -55,8 +57,8 @@ proptest! {
     #[test]
     fn same_color_merging_changes_nothing(count in 1u32..60, seed in any::<u64>()) {
         let s = screen(&procedural::random_soup(count, seed), 32, 32);
-        let fa = render(&mut ABuffer::new(ABufferOptions::default()), &s);
-        let fo = render(&mut ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off)), &s);
+        let fa = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
+        let fo = render(&mut ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off)), &s).0;
         prop_assert_eq!(&fa.coverage, &fo.coverage);
         prop_assert_eq!(&fa.ids, &fo.ids);
         prop_assert!(max_color_diff(&fa, &fo) <= 1);
@@ -65,17 +67,17 @@ proptest! {
 
 #[test]
 fn thirty_two_samples_equal_the_32_sample_zbuffer_on_hard_cases() {
-    for scene in hard_cases() {
+    for scene in hard_scenes() {
         let s = screen(&scene, 48, 40);
         let mut a = ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off));
         let mut z = SupersampledZBuffer::new(SsaaOptions::default());
-        let fa = render(&mut a, &s);
-        let fz = render(&mut z, &s);
+        let fa = render(&mut a, &s).0;
+        let fz = render(&mut z, &s).0;
         assert_eq!(a.sample_ids(), z.sample_ids());
         assert_eq!(fa.coverage, fz.coverage);
         assert!(max_color_diff(&fa, &fz) <= 1);
         // With merging on, the image is the same too.
-        let fm = render(&mut ABuffer::new(ABufferOptions::default()), &s);
+        let fm = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
         assert!(max_color_diff(&fm, &fz) <= 1);
         assert_eq!(fm.coverage, fz.coverage);
     }
@@ -91,17 +93,17 @@ fn centre_ids_equal_the_oracle() {
         DepthMode::MinMax,
         DepthMode::ZminOrder,
     ];
-    let mut scenes = hard_cases();
+    let mut scenes = hard_scenes();
     scenes.push(procedural::random_soup(80, 3));
     for scene in scenes {
         let s = screen(&scene, 40, 40);
-        let reference = RayCastOracle::new(OracleOptions::default()).evaluate(&s);
+        let reference = reference::ray_cast(&s);
         for (k, pattern) in SamplePattern::ALL.into_iter().enumerate() {
             let depth = modes[k % 3];
             let opts = ABufferOptions::default()
                 .with_pattern(pattern)
                 .with_depth(depth);
-            let f = render(&mut ABuffer::new(opts), &s);
+            let f = render(&mut ABuffer::new(opts), &s).0;
             let agreement = reference.compare(&f.ids, DEFAULT_TIE_TOLERANCE);
             assert!(agreement.is_exact(), "{pattern:?} {depth:?}: {agreement:?}");
             let centre_cover = f.ids.iter().filter(|&&id| id != hider_scene::NO_ID).count();
@@ -121,11 +123,11 @@ fn centre_pattern_is_the_pixel_centre_zbuffer() {
             .with_pattern(SamplePattern::Centre)
             .with_merge(MergePolicy::Off),
     );
-    let f = render(&mut a, &s);
+    let f = render(&mut a, &s).0;
     assert_eq!(a.sample_ids(), f.ids);
     for (c, id) in f.coverage.iter().zip(&f.ids) {
         assert_eq!(*c, if *id == hider_scene::NO_ID { 0.0 } else { 1.0 });
     }
-    let reference = RayCastOracle::new(OracleOptions::default()).evaluate(&s);
+    let reference = reference::ray_cast(&s);
     assert!(reference.compare(&f.ids, DEFAULT_TIE_TOLERANCE).is_exact());
 }

@@ -3,8 +3,9 @@
 use glam::DVec3;
 use hider_abuffer::{ABuffer, ABufferOptions, MergePolicy, OverflowPolicy};
 use hider_scene::{Error, Frame, Hider, HiderStats, Mesh, Scene, procedural};
+use hider_testkit::{render, screen};
 
-use crate::common::{max_color_diff, render, render_stats, screen};
+use crate::common::max_color_diff;
 
 #[test]
 fn pixel_table_over_budget_is_refused_before_allocating() {
@@ -50,7 +51,7 @@ fn list_overflow_errors_or_drops_the_farthest() {
     let s = screen(&scene, 32, 32);
     let unbounded = ABuffer::new(ABufferOptions::default());
     let mut probe = unbounded.clone();
-    let longest = render_stats(&mut probe, &s).1.max_list_len as u32;
+    let longest = render(&mut probe, &s).1.max_list_len as u32;
     assert!(longest > 4, "{longest}");
 
     let limited = ABufferOptions::default().with_max_list_len(4);
@@ -60,7 +61,7 @@ fn list_overflow_errors_or_drops_the_farthest() {
     assert!(e.contains("max_list_len") && e.contains("pixel ("), "{e}");
 
     let mut a = ABuffer::new(limited);
-    let st = render_stats(&mut a, &s).1;
+    let st = render(&mut a, &s).1;
     assert!(st.dropped > 0 && st.max_list_len == 4, "{st:?}");
 }
 
@@ -97,12 +98,12 @@ fn opaque_layers_fit_short_lists_exactly() {
         // (culled whatever the submission order).
         for sorted in [false, true] {
             let s = screen(&stack(back_to_front), 48, 48);
-            let full = render(&mut ABuffer::new(ABufferOptions::default()), &s);
+            let full = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
             let limited = ABufferOptions::default()
                 .with_max_list_len(3)
                 .with_overflow(OverflowPolicy::Error);
             let mut a = ABuffer::new(limited.with_front_to_back(sorted));
-            let (small, st) = render_stats(&mut a, &s);
+            let (small, st) = render(&mut a, &s);
             assert_eq!(st.dropped, 0);
             assert!(max_color_diff(&full, &small) <= 1);
             assert_eq!(full.ids, small.ids);
@@ -121,16 +122,15 @@ fn merging_saves_fragments_on_planar_quads() {
     let s = screen(&procedural::cube(), 64, 64);
     let mut on = ABuffer::new(ABufferOptions::default());
     let mut off = ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off));
-    let (a, on_stats) = render_stats(&mut on, &s);
-    let (b, off_stats) = render_stats(&mut off, &s);
+    let (a, on_stats) = render(&mut on, &s);
+    let (b, off_stats) = render(&mut off, &s);
     assert!(on_stats.merged > 0, "{on_stats:?}");
     assert!(on_stats.mean_list_len < off_stats.mean_list_len);
     assert!(max_color_diff(&a, &b) <= 1);
     assert_eq!(a.coverage, b.coverage);
     // Carpenter's policy merges across shading differences too.
     let mut surface = ABuffer::new(ABufferOptions::carpenter());
-    let (_, surface_stats) =
-        render_stats(&mut surface, &screen(&procedural::uv_sphere(24), 64, 64));
+    let (_, surface_stats) = render(&mut surface, &screen(&procedural::uv_sphere(24), 64, 64));
     assert!(surface_stats.merged > 0);
 }
 
@@ -139,9 +139,9 @@ fn scratch_memory_is_reused_across_frames_and_sizes() {
     let big = screen(&procedural::uv_sphere(12), 48, 48);
     let small = screen(&procedural::cube(), 16, 24);
     let mut a = ABuffer::new(ABufferOptions::default());
-    let first = render(&mut a, &small);
+    let first = render(&mut a, &small).0;
     render(&mut a, &big);
-    let again = render(&mut a, &small);
+    let again = render(&mut a, &small).0;
     assert_eq!(first, again);
     let mut wrong = Frame::new(10, 10).unwrap();
     assert!(matches!(

@@ -5,11 +5,10 @@ use hider_abuffer::{
     SsaaOptions,
 };
 use hider_scene::{Hider, procedural};
+use hider_testkit::{render, screen};
 use proptest::prelude::*;
 
-use crate::common::{
-    brute_force_colors, max_color_diff, max_diff_to, render, screen, three_glass, with_opacity,
-};
+use crate::common::{brute_force_colors, max_color_diff, max_diff_to, three_glass, with_opacity};
 
 const ORDERS: [[usize; 3]; 6] = [
     [0, 1, 2],
@@ -33,13 +32,15 @@ fn three_translucent_triangles_in_all_six_orders() {
         let first = render(
             &mut ABuffer::new(opts),
             &screen(&three_glass(ORDERS[0]), 64, 64),
-        );
+        )
+        .0;
         assert!(first.coverage.iter().any(|&c| c > 0.0 && c < 1.0));
         for order in &ORDERS[1..] {
             let f = render(
                 &mut ABuffer::new(opts),
                 &screen(&three_glass(*order), 64, 64),
-            );
+            )
+            .0;
             assert!(max_color_diff(&first, &f) <= 1, "{depth:?} order {order:?}");
             assert_eq!(first.coverage, f.coverage);
         }
@@ -59,7 +60,8 @@ fn per_sample_transparency_matches_brute_force() {
         let f = render(
             &mut ABuffer::new(ABufferOptions::default().with_pattern(pattern)),
             &s,
-        );
+        )
+        .0;
         assert!(
             max_diff_to(&f, &brute_force_colors(&s, pattern)) <= 1,
             "{pattern:?}"
@@ -76,8 +78,9 @@ fn sorted_transparency_fails_where_triangles_intersect() {
     let sorted = render(
         &mut SortedTransparencyZBuffer::new(SsaaOptions::default()),
         &s,
-    );
-    let a = render(&mut ABuffer::new(ABufferOptions::default()), &s);
+    )
+    .0;
+    let a = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
     assert!(max_diff_to(&a, &reference) <= 1);
     assert!(
         max_diff_to(&sorted, &reference) > 20,
@@ -92,7 +95,8 @@ fn sorted_transparency_fails_where_triangles_intersect() {
     let sorted = render(
         &mut SortedTransparencyZBuffer::new(SsaaOptions::default()),
         &s,
-    );
+    )
+    .0;
     assert!(max_diff_to(&sorted, &brute_force_colors(&s, SamplePattern::Grid32)) <= 1);
 }
 
@@ -117,8 +121,8 @@ proptest! {
         }
         let merge = [MergePolicy::Off, MergePolicy::SameColor, MergePolicy::SameSurface][merge_index];
         let opts = ABufferOptions::default().with_merge(merge);
-        let a = render(&mut ABuffer::new(opts), &s);
-        let b = render(&mut ABuffer::new(opts), &shuffled);
+        let a = render(&mut ABuffer::new(opts), &s).0;
+        let b = render(&mut ABuffer::new(opts), &shuffled).0;
         prop_assert!(max_color_diff(&a, &b) <= 1);
         prop_assert_eq!(&a.coverage, &b.coverage);
         prop_assert_eq!(&a.ids, &b.ids);
