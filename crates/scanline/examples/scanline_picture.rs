@@ -13,7 +13,8 @@ use hider_scene::geom::glam::DVec3;
 use hider_scene::geom::{Camera, Projection};
 use hider_scene::shade::{id_color, to_srgb8};
 use hider_scene::{
-    Frame, Mesh, PrepareOptions, Scene, ShadeMode, View, prepare, procedural, shade_frame,
+    Frame, Hider, HiderStats, Mesh, PrepareOptions, Scene, ShadeMode, View, prepare, procedural,
+    shade_frame,
 };
 
 fn scene() -> Scene {
@@ -72,8 +73,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let view = View::new(camera, size, size)?;
     let screen = prepare(&scene, &view, &PrepareOptions::default())?;
     let mut frame = Frame::new(size, size)?;
-    let mut hider = Scanline::with_options(ScanlineOptions::default().with_record_spans(true));
-    let stats = hider.render_frame(&screen, &mut frame)?;
+    let mut hider = Scanline::new(ScanlineOptions::default().with_record_spans(true));
+    let stats = hider.render(&screen, &mut frame)?;
     shade_frame(&screen, &mut frame, ShadeMode::Lambert);
 
     let mut sheet = Frame::new(2 * size, size)?;
@@ -97,6 +98,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     sheet.write_png(std::path::Path::new(&out))?;
     println!("wrote {out}");
-    println!("{}", hider_scene::Stats::from(stats));
+    println!("{}", stats.table());
     Ok(())
 }

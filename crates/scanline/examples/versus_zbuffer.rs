@@ -4,23 +4,20 @@
 //! `cargo run --release -p hider-scanline --example versus_zbuffer [SIZE] [FILTER]`
 //! (FILTER keeps the scenes whose name contains it).
 //!
-//! Prints, per scene and hider, the best time of a frame over repeated
-//! batches of runs (about 0.5 s per hider and scene; the minimum, because
-//! on a shared machine every disturbance only adds time) and the counters that explain it. Time is
-//! the process's on-CPU time from `/proc/self/schedstat` where Linux
-//! provides it (so time spent waiting for a busy CPU is not counted),
-//! wall-clock time otherwise.
+//! Prints, per scene and hider, the fastest frame of repeated runs (after
+//! a warm-up, about 0.5 s per hider and scene; the minimum, because on a
+//! shared machine every disturbance only adds time) with the shared timer
+//! of `hider-testkit`, and the counters that explain it.
 //! Both hiders write the same ids (checked here); the table is for the
 //! closing note of `docs/scanline.md`.
 
-use std::time::{Duration, Instant};
-
 use hider_scanline::{Scanline, ScanlineStats};
+use hider_scene::geom::Camera;
 use hider_scene::geom::glam::DVec3;
-use hider_scene::geom::{Camera, Projection};
 use hider_scene::{
     Frame, Hider, Mesh, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
 };
+use hider_testkit::timer::Timer;
 use hider_zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
 
 /// `layers` screen-filling quads one behind the other; `tilt` (radians)
@@ -51,66 +48,24 @@ fn layers(layers: u32, tilt: f64) -> Scene {
 }
 
 fn front_camera() -> Camera {
-    Camera {
-        eye: DVec3::new(0.0, 0.0, 3.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Perspective {
-            fovy_degrees: 60.0,
-            near: 0.5,
-            far: 20.0,
-        },
-    }
+    hider_testkit::cameras::look_at(DVec3::new(0.0, 0.0, 3.0), DVec3::ZERO, 0.5, 20.0)
 }
 
-/// Seconds this process has spent on a CPU, if Linux says.
-fn cpu_seconds() -> Option<f64> {
-    let text = std::fs::read_to_string("/proc/self/schedstat").ok()?;
-    let ns: u64 = text.split_whitespace().next()?.parse().ok()?;
-    Some(ns as f64 * 1e-9)
-}
-
-/// Seconds per frame: the fastest of several batches of frames, each
-/// batch long enough (>= 80 ms) that the scheduler's tick-granular CPU
-/// accounting is accurate to a few per cent.
-fn time(hider: &mut dyn Hider, s: &ScreenScene, frame: &mut Frame, budget: Duration) -> f64 {
-    hider.render(s, frame).expect("render");
-    // Calibrate the batch size on wall time.
-    let mut n = 1u32;
-    loop {
-        let t = Instant::now();
-        for _ in 0..n {
+/// Milliseconds per frame: the fastest of up to 1000 runs within
+/// `budget` seconds, after one warm-up run.
+fn time<H: Hider>(hider: &mut H, s: &ScreenScene, frame: &mut Frame, budget: f64) -> f64 {
+    Timer::new(1000)
+        .with_max_seconds(budget)
+        .time(|| {
             hider.render(s, frame).expect("render");
-        }
-        if t.elapsed() >= Duration::from_millis(80) || n >= 1 << 16 {
-            break;
-        }
-        n *= 2;
-    }
-    let mut best = f64::INFINITY;
-    let start = Instant::now();
-    for batch in 0.. {
-        if batch >= 3 && start.elapsed() >= budget {
-            break;
-        }
-        let (t, c) = (Instant::now(), cpu_seconds());
-        for _ in 0..n {
-            hider.render(s, frame).expect("render");
-        }
-        let wall = t.elapsed().as_secs_f64();
-        let spent = match (c, cpu_seconds()) {
-            (Some(a), Some(b)) => b - a,
-            _ => wall,
-        };
-        best = best.min(spent / f64::from(n));
-    }
-    best
+        })
+        .min_ms
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let size: u32 = std::env::args().nth(1).map_or(Ok(512), |a| a.parse())?;
     let filter = std::env::args().nth(2).unwrap_or_default();
-    let budget = Duration::from_millis(500);
+    let budget = 0.5;
     let scenes: Vec<(&str, Scene, Option<Camera>)> = vec![
         (
             "2 layers (4 big tris)",
@@ -155,12 +110,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let s = prepare(&scene, &view, &PrepareOptions::default())?;
         let mut frame = Frame::new(size, size)?;
-        let mut scan = Scanline::new();
-        let st: ScanlineStats = scan.render_frame(&s, &mut frame)?;
+        let mut scan = Scanline::default();
+        let st: ScanlineStats = scan.render(&s, &mut frame)?;
         let ids = frame.ids.clone();
         let t_scan = time(&mut scan, &s, &mut frame, budget);
         let mut z32 = ZBuffer::new(ZBufferOptions::default());
-        let zst = z32.render_frame(&s, &mut frame)?;
+        let zst = z32.render(&s, &mut frame)?;
         let t_z32 = time(&mut z32, &s, &mut frame, budget);
         let mut z64 = ZBuffer::new(ZBufferOptions::default().with_depth_format(DepthFormat::F64));
         z64.render(&s, &mut frame)?;
@@ -175,9 +130,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             },
             s.tris.len(),
             st.pixels_written,
-            t_scan * 1e3,
-            t_z32 * 1e3,
-            t_z64 * 1e3,
+            t_scan,
+            t_z32,
+            t_z64,
             t_scan / t_z32,
             st.spans,
             st.pixels_written as f64 / st.spans.max(1) as f64,

@@ -21,7 +21,7 @@
 //! per row. The bound is bit for bit the one the per-pixel edge test gives,
 //! so the scanline covers exactly the z-buffer's pixels.
 
-use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE};
+use hider_geom::fixed::{HALF_PIXEL, SUBPIXEL_SCALE, pixel_center};
 use hider_geom::{EdgeFunction, orient2d};
 use hider_scene::{Error, Result, ScreenTri};
 
@@ -74,13 +74,14 @@ pub(crate) struct Edge {
 impl Edge {
     /// The walker of `e` (which must not be horizontal) positioned on `row`.
     fn start(e: &EdgeFunction, poly: u32, row: u32, last_row: u32) -> Self {
-        let y = i64::from(row) * i64::from(SUBPIXEL_SCALE) + i64::from(HALF_PIXEL);
-        let r = i64::from(HALF_PIXEL) * e.a + e.b * y + e.c;
-        let per_row = i64::from(SUBPIXEL_SCALE) * e.b;
+        let y = i64::from(pixel_center(row as i32));
+        let r = i64::from(pixel_center(0)) * e.a + e.b * y + e.c;
+        let scale = i64::from(SUBPIXEL_SCALE);
+        let per_row = scale * e.b;
         let (side, d, n, step, offset) = if e.a > 0 {
-            (Side::Left, 256 * e.a, -r, -per_row, 1)
+            (Side::Left, scale * e.a, -r, -per_row, 1)
         } else {
-            (Side::Right, -256 * e.a, r - 1, per_row, 0)
+            (Side::Right, -scale * e.a, r - 1, per_row, 0)
         };
         let (q, rem) = floor_div(n, d);
         // Most edges of a finely tessellated mesh live on one row: skip the
@@ -180,7 +181,9 @@ fn polygon_rows(t: &ScreenTri, height: u32) -> Option<(u32, u32)> {
     // it belong to the triangle below, so its row is not this polygon's.
     // (A horizontal top edge owns its centres and needs nothing.)
     let on_bottom = t.v.iter().filter(|p| p.y == max_y).count() == 2;
-    if on_bottom && (i64::from(max_y) - i64::from(HALF_PIXEL)).rem_euclid(256) == 0 {
+    if on_bottom
+        && (i64::from(max_y) - i64::from(HALF_PIXEL)).rem_euclid(i64::from(SUBPIXEL_SCALE)) == 0
+    {
         last -= 1;
     }
     let last = last.min(i64::from(height) - 1);
@@ -392,7 +395,6 @@ impl EdgeTable {
 mod tests {
     use super::*;
     use hider_geom::FixedPt;
-    use hider_geom::fixed::pixel_center;
 
     /// The walker's bounds against the per-pixel edge test, row by row.
     fn check_edge(from: FixedPt, to: FixedPt, rows: std::ops::Range<i32>) {
@@ -403,7 +405,7 @@ mod tests {
         let mut e = Edge::start(&f, 0, rows.start as u32, rows.end as u32);
         for j in rows {
             let y = i64::from(pixel_center(j));
-            let inside = |i: i64| f.contains(i * 256 + 128, y);
+            let inside = |i: i64| f.contains(i64::from(pixel_center(i as i32)), y);
             let b = e.bound();
             match e.side {
                 Side::Left => assert!(inside(b) && !inside(b - 1), "left {from:?}->{to:?} row {j}"),

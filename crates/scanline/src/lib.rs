@@ -1,8 +1,12 @@
 //! The scanline hidden-surface algorithm (Wylie, Romney, Evans and Erdahl
-//! 1967; Watkins 1970) for the hider workspace.
+//! 1967; Watkins 1970): a [`Scanline`] hider that draws a prepared scene
+//! one image row at a time, deciding visibility once per span of pixels
+//! instead of once per pixel, with exactly the z-buffer's coverage and
+//! answer.
 //!
-//! The lecture seed (`004`) faults the z-buffer for ignoring coherence: it
-//! decides every covered pixel of every polygon on its own. The scanline
+//! The lecture on image-space hidden-surface algorithms faults the
+//! z-buffer for ignoring coherence: it decides every covered pixel of every
+//! polygon on its own. The scanline
 //! algorithm walks the image one row at a time and exploits two kinds of
 //! coherence instead:
 //! - *scan-line coherence*: an edge crosses row `j + 1` a constant step
@@ -36,14 +40,14 @@
 //! let view = View::for_scene(&scene, 64, 64)?;
 //! let screen = prepare(&scene, &view, &PrepareOptions::default())?;
 //! let mut frame = Frame::new(64, 64)?;
-//! let mut hider = Scanline::with_options(ScanlineOptions::default());
-//! let stats = hider.render_frame(&screen, &mut frame)?;
+//! let mut hider = Scanline::new(ScanlineOptions::default());
+//! let stats = hider.render(&screen, &mut frame)?;
 //! assert!(stats.split_spans > 0);
 //! // Both triangles are visible somewhere.
 //! assert!(frame.ids.contains(&0) && frame.ids.contains(&1));
-//! // The same through the shared trait, reusing the tables.
-//! let counters = hider.render(&screen, &mut frame)?;
-//! assert_eq!(counters.get("split spans"), Some(stats.split_spans));
+//! // A second frame reuses the tables and does the same work.
+//! let again = hider.render(&screen, &mut frame)?;
+//! assert_eq!((again.spans, again.splits), (stats.spans, stats.splits));
 //! # Ok::<(), hider_scene::Error>(())
 //! ```
 

@@ -2,7 +2,18 @@
 
 /// Options of [`crate::Scanline`]. `Default` is the accurate choice (every
 /// setting here is exact; they only trade time and memory).
+///
+/// ```
+/// use hider_scanline::ScanlineOptions;
+///
+/// let options = ScanlineOptions::default()
+///     .with_max_splits_per_span(4)
+///     .with_max_bytes(256 << 20);
+/// assert_eq!(options.max_splits_per_span, 4);
+/// assert_eq!(options.max_bytes, 256 << 20);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct ScanlineOptions {
     /// How many times one span may be split at depth crossings before the
     /// rest of it is resolved by the one-row depth buffer fallback.
@@ -20,11 +31,11 @@ pub struct ScanlineOptions {
     /// indices, active lists, the row buffer), in bytes. Checked before
     /// anything is allocated; a scene that would need more is refused with
     /// [`hider_scene::Error::Limit`]. Default 1 GiB.
-    pub max_table_bytes: u64,
+    pub max_bytes: u64,
     /// Record every run of pixels and how it was resolved
     /// ([`crate::Scanline::spans`]), for pictures and debugging. Off by
     /// default: the record grows with the number of runs (at most one per
-    /// covered pixel) and is outside [`Self::max_table_bytes`].
+    /// covered pixel) and is outside [`Self::max_bytes`].
     pub record_spans: bool,
 }
 
@@ -32,7 +43,7 @@ impl Default for ScanlineOptions {
     fn default() -> Self {
         Self {
             max_splits_per_span: 16,
-            max_table_bytes: 1 << 30,
+            max_bytes: 1 << 30,
             record_spans: false,
         }
     }
@@ -51,9 +62,9 @@ impl ScanlineOptions {
         self
     }
 
-    /// Sets [`Self::max_table_bytes`].
-    pub fn with_max_table_bytes(mut self, bytes: u64) -> Self {
-        self.max_table_bytes = bytes;
+    /// Sets [`Self::max_bytes`].
+    pub fn with_max_bytes(mut self, bytes: u64) -> Self {
+        self.max_bytes = bytes;
         self
     }
 }

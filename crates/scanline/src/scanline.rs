@@ -1,7 +1,7 @@
 //! The scan loop: rows top to bottom, edges and polygons activated from the
 //! bucketed tables, per-row crossings sorted into spans.
 
-use hider_scene::{Frame, Hider, Result, ScreenScene, Stats, check_frame};
+use hider_scene::{Frame, Hider, Result, ScreenScene, check_frame};
 
 use crate::edge_table::{Edge, EdgeTable, NAME, Side, table_bytes};
 use crate::options::ScanlineOptions;
@@ -17,8 +17,9 @@ const SLOT: u64 = ENTER - 1;
 
 /// The scanline hidden-surface algorithm (Wylie et al. 1967, Watkins 1970).
 ///
-/// Keeps its edge table, active lists and row buffer between frames:
-/// rendering several frames with one `Scanline` reuses their memory.
+/// Built with [`Hider::new`] (or `Default`, the accurate options). Keeps its
+/// edge table, active lists and row buffer between frames: rendering
+/// several frames with one `Scanline` reuses their memory.
 #[derive(Clone, Debug, Default)]
 pub struct Scanline {
     options: ScanlineOptions,
@@ -37,58 +38,12 @@ pub struct Scanline {
 }
 
 impl Scanline {
-    /// A scanline hider with the default (accurate) options.
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// A scanline hider with the given options.
-    pub fn with_options(options: ScanlineOptions) -> Self {
-        Self {
-            options,
-            ..Self::default()
-        }
-    }
-
-    /// The options in use.
-    pub fn options(&self) -> &ScanlineOptions {
-        &self.options
-    }
-
-    /// Renders `scene` into `frame` (ids and window depth; colour is left
-    /// to [`hider_scene::shade_frame`]) and returns the typed counters.
-    ///
-    /// Errors, before touching the frame's contents, when the frame size
-    /// differs from the scene's viewport, the tables would exceed
-    /// [`ScanlineOptions::max_table_bytes`], or a triangle is unusable
-    /// (not positively oriented, beyond the fixed-point range, non-finite
-    /// depth plane).
-    pub fn render_frame(
-        &mut self,
-        scene: &ScreenScene,
-        frame: &mut Frame,
-    ) -> Result<ScanlineStats> {
-        check_frame(NAME, scene, frame)?;
-        let (width, height) = (scene.viewport.width, scene.viewport.height);
-        let need = table_bytes(scene.tris.len(), width, height);
-        self.table
-            .build(&scene.tris, height, self.options.max_table_bytes, need)?;
-        self.resolver.prepare(width);
-        frame.clear();
-        self.ael.clear();
-        self.active_polys.clear();
-        self.apl.clear();
-        self.trace.clear();
+    /// Renders the rows of `frame` (already cleared) from the built tables.
+    fn scan(&mut self, frame: &mut Frame, stats: &mut ScanlineStats) {
+        let (width, height) = (frame.width(), frame.height());
         let mut trace = std::mem::take(&mut self.trace);
         // Lent to the rows (the row loop needs `&mut self` beside them).
         let surfaces = std::mem::take(&mut self.table.surfaces);
-
-        let mut stats = ScanlineStats {
-            polygons: self.table.polygon_count() as u64,
-            edges: self.table.edge_count() as u64,
-            rows: u64::from(height),
-            ..ScanlineStats::default()
-        };
         let w = width as usize;
         for (row, (ids, depth)) in (0..height).zip(
             frame
@@ -103,13 +58,10 @@ impl Scanline {
                 surfaces: &surfaces,
                 trace: self.options.record_spans.then_some(&mut trace),
             };
-            self.scan_row(&mut out, &mut stats);
+            self.scan_row(&mut out, stats);
         }
         self.trace = trace;
         self.table.surfaces = surfaces;
-        stats.pixels_written = frame.covered_count() as u64;
-        stats.peak_bytes = self.bytes();
-        Ok(stats)
     }
 
     /// One row: activate, walk the active edges, sort the crossings, resolve
@@ -225,11 +177,54 @@ impl Scanline {
 }
 
 impl Hider for Scanline {
+    type Options = ScanlineOptions;
+    type Stats = ScanlineStats;
+
+    fn new(options: ScanlineOptions) -> Self {
+        Self {
+            options,
+            ..Self::default()
+        }
+    }
+
+    fn options(&self) -> &ScanlineOptions {
+        &self.options
+    }
+
     fn name(&self) -> &str {
         NAME
     }
 
-    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<Stats> {
-        self.render_frame(scene, frame).map(Stats::from)
+    /// Renders `scene` into `frame` (ids and window depth; colour is left
+    /// to [`hider_scene::shade_frame`]).
+    ///
+    /// Errors, before touching the frame's contents, when the frame size
+    /// differs from the scene's viewport, the tables would exceed
+    /// [`ScanlineOptions::max_bytes`], or a triangle is unusable (not
+    /// positively oriented, beyond the fixed-point range, non-finite depth
+    /// plane).
+    fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<ScanlineStats> {
+        check_frame(NAME, scene, frame)?;
+        let (width, height) = (scene.viewport.width, scene.viewport.height);
+        let need = table_bytes(scene.tris.len(), width, height);
+        self.table
+            .build(&scene.tris, height, self.options.max_bytes, need)?;
+        self.resolver.prepare(width);
+        frame.clear();
+        self.ael.clear();
+        self.active_polys.clear();
+        self.apl.clear();
+        self.trace.clear();
+        let mut stats = ScanlineStats {
+            polygons: self.table.polygon_count() as u64,
+            edges: self.table.edge_count() as u64,
+            rows: u64::from(height),
+            ..ScanlineStats::default()
+        };
+        self.scan(frame, &mut stats);
+        stats.pixels_written = frame.covered_count() as u64;
+        stats.peak_bytes = self.bytes();
+        stats.finish();
+        Ok(stats)
     }
 }

@@ -5,11 +5,12 @@
 
 mod common;
 
-use common::{camera_at, render, screen};
+use common::{camera_at, render, screen_from};
 use hider_oracle::{DEFAULT_TIE_TOLERANCE, RayCastOracle};
 use hider_scanline::{Scanline, ScanlineOptions};
 use hider_scene::geom::glam::DVec3;
 use hider_scene::{Frame, Hider, ScreenScene, procedural};
+use hider_testkit::{reference, screen, screen_with};
 use hider_zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
 use proptest::prelude::*;
 
@@ -25,7 +26,7 @@ use proptest::prelude::*;
 /// such pixels must stay rare.
 fn check_oracle(s: &ScreenScene, options: ScanlineOptions) -> u64 {
     let (frame, _) = render(s, options);
-    let reference = RayCastOracle::new().evaluate(s);
+    let reference = reference::ray_cast(s);
     let a = reference.compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
     assert_eq!(a.pixels, u64::from(s.viewport.width * s.viewport.height));
     assert_eq!(a.coverage_mismatches, 0, "{a:?}");
@@ -61,7 +62,7 @@ fn hard_cases_equal_the_oracle() {
         ("soup", procedural::random_soup(300, 1), None),
     ];
     for (name, scene, cam) in cases {
-        let s = screen(&scene, cam, 96, 80);
+        let s = screen_from(&scene, cam, 96, 80);
         let ties = check_oracle(&s, ScanlineOptions::default());
         if name == "coplanar pair" {
             assert!(ties > 0, "{name}: the overlap is a tie");
@@ -80,7 +81,7 @@ fn hand_made_knot_equals_the_oracle() {
 
 #[test]
 fn ids_equal_the_f64_zbuffer_on_a_dense_soup() {
-    let s = screen(&procedural::random_soup(20000, 5), None, 128, 128);
+    let s = screen(&procedural::random_soup(20000, 5), 128, 128);
     let (ours, stats) = render(&s, ScanlineOptions::default());
     let mut z = ZBuffer::new(ZBufferOptions::default().with_depth_format(DepthFormat::F64));
     let mut theirs = Frame::new(128, 128).unwrap();
@@ -109,7 +110,7 @@ proptest! {
         h in 8u32..64,
         fallback in any::<bool>(),
     ) {
-        let s = screen(&procedural::random_soup(count, seed), None, w, h);
+        let s = screen(&procedural::random_soup(count, seed), w, h);
         let options = ScanlineOptions::default()
             .with_max_splits_per_span(if fallback { 0 } else { u32::MAX });
         check_oracle(&s, options);
@@ -131,23 +132,25 @@ proptest! {
             _ => procedural::uv_sphere(12),
         };
         let eye = DVec3::new(theta.cos() * phi.cos(), phi.sin(), theta.sin() * phi.cos()) * dist;
-        let s = screen(&scene, Some(camera_at(eye)), w, 48);
+        let s = screen_with(&scene, camera_at(eye), w, 48);
         check_oracle(&s, ScanlineOptions::default());
     }
 }
 
 #[test]
 fn registry_style_use_through_the_trait() {
-    let s = screen(&procedural::uv_sphere(16), None, 48, 48);
-    let mut hiders: Vec<Box<dyn Hider>> =
-        vec![Box::new(Scanline::new()), Box::new(RayCastOracle::new())];
+    let s = screen(&procedural::uv_sphere(16), 48, 48);
+    let mut hiders: Vec<Box<dyn hider_scene::DynHider>> = vec![
+        Box::new(Scanline::default()),
+        Box::new(RayCastOracle::default()),
+    ];
     let mut frames = Vec::new();
     for h in &mut hiders {
         let mut f = Frame::new(48, 48).unwrap();
         h.render(&s, &mut f).unwrap();
         frames.push(f);
     }
-    let reference = RayCastOracle::new().evaluate(&s);
+    let reference = reference::ray_cast(&s);
     assert!(
         reference
             .compare(&frames[0].ids, DEFAULT_TIE_TOLERANCE)

@@ -5,10 +5,11 @@
 
 mod common;
 
-use common::{assert_matches, camera_at, render, screen};
+use common::{assert_matches, camera_at, render};
 use hider_scanline::ScanlineOptions;
 use hider_scene::geom::glam::DVec3;
 use hider_scene::procedural;
+use hider_testkit::{screen, screen_with};
 use proptest::prelude::*;
 
 proptest! {
@@ -21,7 +22,7 @@ proptest! {
         w in 8u32..64,
         h in 8u32..64,
     ) {
-        let s = screen(&procedural::random_soup(count, seed), None, w, h);
+        let s = screen(&procedural::random_soup(count, seed), w, h);
         let (frame, stats) = render(&s, ScanlineOptions::default());
         assert_matches(&s, &frame, "default");
         prop_assert_eq!(stats.pixels_written, frame.covered_count() as u64);
@@ -42,7 +43,7 @@ proptest! {
         // The eye may sit inside the soup: triangles are near-clipped and
         // many reach far beyond the image.
         let cam = camera_at(DVec3::new(ex, ey, ez));
-        let s = screen(&procedural::random_soup(40, seed), Some(cam), w, 40);
+        let s = screen_with(&procedural::random_soup(40, seed), cam, w, 40);
         let (frame, _) = render(&s, ScanlineOptions::default());
         assert_matches(&s, &frame, "inside");
     }
