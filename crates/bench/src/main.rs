@@ -15,7 +15,7 @@ use hider_bench::BenchArgs;
 /// Benchmark every registered hider: accuracy against the oracle beside
 /// time; writes a table, results.csv/json, a report and plots.
 #[derive(Parser, Debug)]
-#[command(name = "hider-bench", version, about)]
+#[command(name = "hider-bench", version)]
 struct Cli {
     #[command(flatten)]
     args: BenchArgs,
