@@ -88,7 +88,7 @@ pub struct Row {
     /// Multi-sample hiders: mean absolute difference between
     /// `Frame::coverage` and the analytic coverage, over all pixels.
     pub coverage_error: Option<f64>,
-    /// Peak working memory the hider reported (`Stats::peak_bytes`).
+    /// Peak working memory the hider reported (`StatsTable::peak_bytes`).
     pub peak_bytes: u64,
     /// The hider's work counters, `name=value` joined by `;`.
     pub counters: String,
