@@ -1,6 +1,6 @@
-//! The benchmark of the fast z-buffer targets: the scenes of the llvmpipe comparison
-//! (spider, UV sphere 200 and 500, random soup of 100,000 triangles) with
-//! the fit camera at 512, 1024 and 2048, timed over the span a GL draw call
+//! The benchmark of the fast z-buffer targets: the scenes of the llvmpipe
+//! comparison (spider, UV sphere 200 and 500, random soup of 100,000
+//! triangles) with the fit camera at 512, 1024 and 2048, timed over the span a GL draw call
 //! plus `glFinish` covers: everything after loading (transform, clip,
 //! set-up; clear; rasterise), with the GL-compatible f32 front end.
 //!

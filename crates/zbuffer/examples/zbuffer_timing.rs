@@ -1,6 +1,6 @@
-//! Times the z-buffer on the scenes of the llvmpipe comparison (the fast z-buffer targets'
-//! table): spider, UV sphere 200 and 500, random soup of 100,000 triangles,
-//! at 1024 x 1024 with the fit camera. Render only (clear + rasterise,
+//! Times the z-buffer on the scenes of the llvmpipe comparison (the fast
+//! z-buffer targets' table): spider, UV sphere 200 and 500, random soup of
+//! 100,000 triangles, at 1024 x 1024 with the fit camera. Render only (clear + rasterise,
 //! prepare excluded), median and minimum of `K` runs after a warm-up
 //! (the shared timer).
 //!

@@ -4,8 +4,9 @@
 //! 1. **Binning** ([`bins`]): one pass appends each triangle's index to
 //!    the bins of the screen tiles its bounding box meets (in parallel over
 //!    contiguous chunks of triangles, keeping primitive order per tile).
-//! 2. **Tiles** ([`tile`], [`band`]): bands of tiles are drawn in parallel (rayon),
-//!    each tile into a compact buffer of keys and ids that stays in cache,
+//! 2. **Tiles** ([`tile`], [`band`]): bands of tiles are drawn in
+//!    parallel (rayon), each tile into a compact buffer of keys and ids
+//!    that stays in cache,
 //!    by 8x8 blocks with trivial accept/reject from the edge functions at
 //!    their corners and hierarchical depth rejection of triangles and
 //!    blocks ([`bounds`]); inner rows are branch-free so they vectorise.
