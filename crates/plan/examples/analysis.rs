@@ -21,19 +21,15 @@ use hider_plan::stages::Mapping;
 use hider_plan::texture::Filter;
 use hider_plan::{RenderOptions, Shader, ShaderOptions, Stages, analyze_prepared};
 use hider_scene::geom::Camera;
-use hider_scene::timing::Timer;
 use hider_scene::{Frame, Hider, ScreenScene, load_obj, procedural};
+use hider_testkit::timer::Timer;
 use hider_zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
 
 /// The visible primitive at every pixel centre (the f64 z-buffer, exact on
 /// these scenes), colours left for the shader.
 fn ids(screen: &ScreenScene) -> Frame {
-    let vp = screen.viewport;
-    let mut frame = Frame::new(vp.width, vp.height).unwrap();
-    ZBuffer::new(ZBufferOptions::default().with_depth_format(DepthFormat::F64))
-        .render(screen, &mut frame)
-        .unwrap();
-    frame
+    let options = ZBufferOptions::default().with_depth_format(DepthFormat::F64);
+    hider_testkit::render(&mut ZBuffer::new(options), screen).0
 }
 
 /// The fastest of 20 runs of `f`, in milliseconds.

@@ -3,7 +3,8 @@
 use glam::DVec3;
 use hider_plan::{RenderOptions, analyze};
 use hider_scene::geom::Camera;
-use hider_scene::{Light, Mesh, Scene, hard_cases, procedural};
+use hider_scene::{Light, Mesh, Scene, procedural};
+use hider_testkit::hard_cases;
 
 fn small() -> RenderOptions {
     RenderOptions::default().with_size(64, 64)

@@ -6,12 +6,12 @@
 use std::path::{Path, PathBuf};
 
 use glam::DVec3;
-use hider_oracle::{OracleOptions, RayCastOracle};
+use hider_oracle::RayCastOracle;
 use hider_plan::stages::Mapping;
 use hider_plan::texture::{self, Filter};
 use hider_plan::{RenderOptions, Shader, ShaderOptions, Stages, analyze};
 use hider_scene::geom::Camera;
-use hider_scene::{Frame, Hider, NO_ID, PrepareOptions, ScreenScene, View, load_obj, prepare};
+use hider_scene::{Frame, NO_ID, PrepareOptions, ScreenScene, View, load_obj, prepare};
 
 fn assets() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../assets")
@@ -67,12 +67,7 @@ fn grazing_camera() -> Camera {
 
 /// The visible primitive at every pixel centre, from the exact oracle.
 fn ids(screen: &ScreenScene) -> Frame {
-    let vp = screen.viewport;
-    let mut frame = Frame::new(vp.width, vp.height).unwrap();
-    RayCastOracle::new(OracleOptions::default())
-        .render(screen, &mut frame)
-        .unwrap();
-    frame
+    hider_testkit::render(&mut RayCastOracle::default(), screen).0
 }
 
 /// Per row, the x positions (pixel boundaries) where the checker switches

@@ -1,8 +1,9 @@
 //! Tests of the planner: its rules and fallbacks, and that its choice is
 //! exact (equal to the oracle on non-tie pixels) on every hard case.
 
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, OracleOptions, RayCastOracle};
-use hider_scene::{Frame, Hider, PrepareOptions, hard_cases, prepare, procedural};
+use hider_oracle::DEFAULT_TIE_TOLERANCE;
+use hider_scene::{Frame, PrepareOptions, prepare, procedural};
+use hider_testkit::{hard_cases, reference};
 
 use super::*;
 use crate::analyze::analyze;
@@ -133,7 +134,7 @@ fn check_exact(name: &str, scene: &Scene, options: RenderOptions) {
         screen,
     } = auto(scene, &options).unwrap();
     let full = prepare(scene, &view, &PrepareOptions::default()).unwrap();
-    let reference = RayCastOracle::new(OracleOptions::default()).evaluate(&full);
+    let reference = reference::ray_cast(&full);
     let again = prepare(
         scene,
         &view,
