@@ -7,13 +7,11 @@
 //! `sphere` argument runs only that scene. `PAINTER_MAX_MIB` raises the
 //! painter's piece-memory budget (default 1 GiB).
 
-use std::time::Instant;
-
-use hider_geom::fixed::pixel_center;
 use hider_painter::{NaivePainter, Painter, PainterOptions, PainterStats};
-use hider_scene::{
-    Frame, Hider, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
-};
+use hider_scene::{Frame, Hider, PrepareOptions, Scene, ScreenScene, View, prepare, procedural};
+use hider_testkit::reference::{self, Reference};
+use hider_testkit::score::score;
+use hider_testkit::timer::Timer;
 
 fn main() -> Result<(), hider_scene::Error> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -47,17 +45,12 @@ fn main() -> Result<(), hider_scene::Error> {
 fn run(name: &str, scene: &Scene) -> Result<(), hider_scene::Error> {
     let view = View::for_scene(scene, 512, 512)?;
     let s = prepare(scene, &view, &PrepareOptions::default())?;
-    let reference = zbuffer(&s);
+    let reference = reference::pixel_centre(&s);
     let mut frame = Frame::new(512, 512)?;
     // Best of three below 50k triangles (warm caches), one run above.
     let runs = if s.tris.len() < 50_000 { 3 } else { 1 };
     let mut naive = NaivePainter::default();
-    let mut naive_ms = f64::INFINITY;
-    for _ in 0..runs {
-        let t = Instant::now();
-        naive.render(&s, &mut frame)?;
-        naive_ms = naive_ms.min(t.elapsed().as_secs_f64() * 1e3);
-    }
+    let (naive_ms, _) = time(&mut naive, &s, &mut frame, runs)?;
     let naive_wrong = wrong(&frame, &reference);
     // PAINTER_MAX_MIB raises the piece-memory budget (default 1 GiB).
     let mut options = PainterOptions::default();
@@ -68,13 +61,7 @@ fn run(name: &str, scene: &Scene) -> Result<(), hider_scene::Error> {
         options = options.with_max_bytes(mib << 20);
     }
     let mut painter = Painter::new(options);
-    let mut ms = f64::INFINITY;
-    let mut st = PainterStats::default();
-    for _ in 0..runs {
-        let t = Instant::now();
-        st = painter.render(&s, &mut frame)?;
-        ms = ms.min(t.elapsed().as_secs_f64() * 1e3);
-    }
+    let (ms, st) = time(&mut painter, &s, &mut frame, runs)?;
     println!(
         "| {name} | {} | {naive_ms:.1} | {naive_wrong} | {ms:.1} | {} | {} | {} | {} |",
         s.tris.len(),
@@ -94,45 +81,25 @@ fn run(name: &str, scene: &Scene) -> Result<(), hider_scene::Error> {
     Ok(())
 }
 
-/// Ids of a z-buffer on the same window-depth planes, and a tie flag for
-/// pixels whose two nearest primitives are within 1e-8 in window depth.
-fn zbuffer(s: &ScreenScene) -> Vec<(u32, f64, f64)> {
-    let vp = s.viewport;
-    let mut buf = vec![(NO_ID, f64::INFINITY, f64::INFINITY); (vp.width * vp.height) as usize];
-    for t in &s.tris {
-        let Some((x0, y0, x1, y1)) = t.pixel_bounds(vp) else {
-            continue;
-        };
-        let edges = t.edges();
-        for j in y0..=y1 {
-            for i in x0..=x1 {
-                let (x, y) = (
-                    i64::from(pixel_center(i as i32)),
-                    i64::from(pixel_center(j as i32)),
-                );
-                if !edges.iter().all(|e| e.contains(x, y)) {
-                    continue;
-                }
-                let d = t.depth.at_pixel(i, j);
-                let c = &mut buf[(j * vp.width + i) as usize];
-                if c.0 == t.prim {
-                    c.1 = c.1.min(d);
-                } else if d < c.1 {
-                    *c = (t.prim, d, c.1);
-                } else {
-                    c.2 = c.2.min(d);
-                }
-            }
-        }
-    }
-    buf
+/// The fastest of `runs` frames (no warm-up) in milliseconds, and the
+/// stats of the last.
+fn time<H: Hider<Stats = PainterStats>>(
+    hider: &mut H,
+    s: &ScreenScene,
+    frame: &mut Frame,
+    runs: u32,
+) -> Result<(f64, PainterStats), hider_scene::Error> {
+    let mut stats = PainterStats::default();
+    let timing = Timer::new(runs).with_warmup(0).try_time(&|| false, || {
+        stats = hider.render(s, frame)?;
+        Ok(())
+    })?;
+    Ok((timing.min_ms, stats))
 }
 
-fn wrong(frame: &Frame, reference: &[(u32, f64, f64)]) -> usize {
-    frame
-        .ids
-        .iter()
-        .zip(reference)
-        .filter(|&(&id, &(want, d1, d2))| id != want && d2 - d1 >= 1e-8)
-        .count()
+/// Pixels whose id is not the window-depth z-buffer's, where its two
+/// nearest primitives are at least 1e-8 apart in window depth.
+fn wrong(frame: &Frame, reference: &Reference) -> u64 {
+    let result = score(reference, frame, 1e-8);
+    result.coverage_mismatches + result.wrong_ids
 }

@@ -1,85 +1,35 @@
 //! The correct painter against the references, the naive one shown wrong.
 //!
-//! Two references: the workspace oracle (`hider-oracle`, camera-space ray
-//! casts, ties within `DEFAULT_TIE_TOLERANCE`) and
-//! a brute-force z-buffer on the same window-depth planes the hiders use,
-//! whose tie band (1e-8 in window depth) is a thousand times narrower: the
-//! painter must be pixel-exact against both outside their ties.
+//! Two references, both from `hider-testkit`: the oracle's ray cast
+//! (camera-space planes, ties within `DEFAULT_TIE_TOLERANCE`) and the
+//! brute-force z-buffer on the same window-depth planes the hiders use,
+//! whose tie band here (1e-8 in window depth) is a thousand times narrower
+//! and which also gives the depth a z-buffer writes: the painter must be
+//! pixel-exact against both outside their ties, depths included.
 
 use glam::DVec3;
-use hider_geom::fixed::pixel_center;
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, OracleOptions, RayCastOracle, Reference};
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, Reference};
 use hider_painter::{NaivePainter, NaivePainterOptions, Painter, PainterOptions, SortKey};
-use hider_scene::{
-    Error, Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
-};
+use hider_scene::{Error, Frame, Hider, Mesh, Scene, ScreenScene, procedural};
+use hider_testkit::reference;
+use hider_testkit::score::Score;
 use proptest::prelude::*;
 
 /// Window-depth gap under which the brute-force reference calls a tie.
 const WINDOW_TIE: f64 = 1e-8;
 
+/// Square images throughout.
 fn screen(scene: &Scene, size: u32) -> ScreenScene {
-    let view = View::for_scene(scene, size, size).unwrap();
-    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+    hider_testkit::screen(scene, size, size)
 }
 
-/// Per pixel: nearest primitive by window depth (lower id on exact ties)
-/// and whether the runner-up primitive is within [`WINDOW_TIE`].
-fn brute_force(s: &ScreenScene) -> (Vec<u32>, Vec<bool>, Vec<f32>) {
-    let (w, h) = (s.viewport.width, s.viewport.height);
-    let n = (w * h) as usize;
-    let (mut ids, mut tie, mut depth) = (vec![NO_ID; n], vec![false; n], vec![1.0f32; n]);
-    for j in 0..h {
-        for i in 0..w {
-            let (x, y) = (
-                i64::from(pixel_center(i as i32)),
-                i64::from(pixel_center(j as i32)),
-            );
-            let mut best: Option<(f64, u32)> = None;
-            let mut second = f64::INFINITY;
-            for t in &s.tris {
-                if !t.edges().iter().all(|e| e.contains(x, y)) {
-                    continue;
-                }
-                let d = t.depth.at_pixel(i, j);
-                match best {
-                    Some((bd, bp)) if bp == t.prim => best = Some((bd.min(d), bp)),
-                    Some((bd, bp)) if (d, t.prim) < (bd, bp) => {
-                        second = second.min(bd);
-                        best = Some((d, t.prim));
-                    }
-                    Some(_) => second = second.min(d),
-                    None => best = Some((d, t.prim)),
-                }
-            }
-            let k = (j * w + i) as usize;
-            if let Some((d, p)) = best {
-                ids[k] = p;
-                depth[k] = d as f32;
-                tie[k] = second - d < WINDOW_TIE;
-            }
-        }
-    }
-    (ids, tie, depth)
-}
-
-/// (coverage mismatches, wrong ids off ties, ties) against the brute force,
-/// also checking the depth written on non-tie pixels.
-fn score(s: &ScreenScene, frame: &Frame) -> (usize, usize, usize) {
-    let (ids, tie, depth) = brute_force(s);
-    let (mut cov, mut wrong, mut ties) = (0, 0, 0);
-    for k in 0..ids.len() {
-        if (ids[k] == NO_ID) != (frame.ids[k] == NO_ID) {
-            cov += 1;
-        } else if ids[k] != NO_ID && tie[k] {
-            ties += 1;
-        } else if ids[k] != frame.ids[k] {
-            wrong += 1;
-        } else {
-            assert_eq!(frame.depth[k], depth[k], "depth at pixel {k}");
-        }
-    }
-    (cov, wrong, ties)
+/// The frame against the brute-force window-depth z-buffer: coverage
+/// mismatches and wrong ids off ties are counted; the depth written on
+/// every pixel off ties with the right id must be the reference's.
+fn score(s: &ScreenScene, frame: &Frame) -> Score {
+    let result = hider_testkit::score::score(&reference::pixel_centre(s), frame, WINDOW_TIE);
+    assert_eq!(result.depth_mismatches, 0, "depths: {result}");
+    result
 }
 
 fn render<H: Hider>(h: &mut H, s: &ScreenScene) -> Frame {
@@ -89,14 +39,14 @@ fn render<H: Hider>(h: &mut H, s: &ScreenScene) -> Frame {
 }
 
 fn oracle(s: &ScreenScene) -> Reference {
-    RayCastOracle::new(OracleOptions::default()).evaluate(s)
+    reference::ray_cast(s)
 }
 
 fn assert_exact(s: &ScreenScene, what: &str) {
     let frame = render(&mut Painter::default(), s);
-    let (cov, wrong, _) = score(s, &frame);
+    let result = score(s, &frame);
     assert_eq!(
-        (cov, wrong),
+        (result.coverage_mismatches, result.wrong_ids),
         (0, 0),
         "{what}: painter vs window-depth brute force"
     );
@@ -131,11 +81,11 @@ fn naive_painter_is_wrong_on_intersections_and_cycles() {
             let s = screen(&scene, 64);
             let mut naive = NaivePainter::new(NaivePainterOptions::default().with_sort_key(key));
             let frame = render(&mut naive, &s);
-            let (cov, wrong, _) = score(&s, &frame);
+            let result = score(&s, &frame);
             // Coverage is the shared exact one; visibility is not.
-            assert_eq!(cov, 0, "{name} {key:?}");
+            assert_eq!(result.coverage_mismatches, 0, "{name} {key:?}");
             assert!(
-                wrong > 0,
+                result.wrong_ids > 0,
                 "{name} {key:?}: the naive sort got every pixel right"
             );
             let agreement = oracle(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
@@ -150,7 +100,7 @@ fn naive_painter_is_right_where_a_depth_order_exists() {
     // Disjoint, non-intersecting layers: the sort alone is enough.
     let s = screen(&layers(), 48);
     let frame = render(&mut NaivePainter::default(), &s);
-    assert_eq!(score(&s, &frame).0 + score(&s, &frame).1, 0);
+    assert!(score(&s, &frame).ids_exact());
 }
 
 fn layers() -> Scene {
@@ -285,8 +235,8 @@ proptest! {
     fn painter_equals_the_references_on_random_intersecting_scenes(scene in big_triangles()) {
         let s = screen(&scene, 40);
         let frame = render(&mut Painter::default(), &s);
-        let (cov, wrong, _) = score(&s, &frame);
-        prop_assert_eq!((cov, wrong), (0, 0));
+        let result = score(&s, &frame);
+        prop_assert_eq!((result.coverage_mismatches, result.wrong_ids), (0, 0));
         let agreement = oracle(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
         prop_assert!(agreement.is_exact(), "{}", agreement);
     }
@@ -295,8 +245,8 @@ proptest! {
     fn painter_equals_the_references_on_random_soups(n in 2u32..120, seed in 0u64..1_000_000) {
         let s = screen(&procedural::random_soup(n, seed), 48);
         let frame = render(&mut Painter::default(), &s);
-        let (cov, wrong, _) = score(&s, &frame);
-        prop_assert_eq!((cov, wrong), (0, 0));
+        let result = score(&s, &frame);
+        prop_assert_eq!((result.coverage_mismatches, result.wrong_ids), (0, 0));
         let agreement = oracle(&s).compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
         prop_assert!(agreement.is_exact(), "{}", agreement);
     }

@@ -3,16 +3,14 @@
 
 use std::path::Path;
 
-use hider_oracle::{DEFAULT_TIE_TOLERANCE, OracleOptions, RayCastOracle, Reference};
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, Reference};
 use hider_painter::{NaivePainter, Painter, PainterOptions};
-use hider_scene::{
-    Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, ShadeMode, View,
-    prepare, procedural,
-};
+use hider_scene::{Error, Frame, Hider, NO_ID, Result, Scene, ScreenScene, ShadeMode, procedural};
+use hider_testkit::reference;
 
+/// Square images throughout.
 fn screen(scene: &Scene, size: u32) -> ScreenScene {
-    let view = View::for_scene(scene, size, size).unwrap();
-    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+    hider_testkit::screen(scene, size, size)
 }
 
 /// Renders `s` with `hider`, then writes the vector output of that frame
@@ -33,7 +31,7 @@ fn render_svg<H: Hider>(
 }
 
 fn oracle(s: &ScreenScene) -> Reference {
-    RayCastOracle::new(OracleOptions::default()).evaluate(s)
+    reference::ray_cast(s)
 }
 
 /// `(prim, polygon)` of every `<path>`, in document (paint) order.
