@@ -40,7 +40,6 @@
 pub mod atomic;
 pub mod error;
 pub mod frame;
-pub mod hard_cases;
 pub mod hider;
 pub mod model;
 pub mod obj;
