@@ -67,13 +67,13 @@ pub fn analyse(scene: &ScreenScene) -> SceneAnalysis {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use hider_scene::{PrepareOptions, View, prepare, procedural};
+    use hider_scene::procedural;
+    use hider_testkit::screen;
 
     #[test]
     fn a_convex_closed_mesh_has_depth_complexity_two() {
         let scene = procedural::cube();
-        let view = View::for_scene(&scene, 48, 48).unwrap();
-        let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+        let screen = screen(&scene, 48, 48);
         let a = analyse(&screen);
         assert_eq!(a.triangles, 12);
         assert!(a.covered_pixels > 100);

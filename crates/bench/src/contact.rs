@@ -187,13 +187,12 @@ mod tests {
     use super::*;
     use hider_oracle::RayCastOracle;
     use hider_plan::registry;
-    use hider_scene::{PrepareOptions, View, prepare};
+    use hider_testkit::screen;
 
     #[test]
     fn wrong_pixels_are_painted_and_tiles_laid_out() {
         let scene = crate::scenes::linear_depth_probe();
-        let view = View::for_scene(&scene, 32, 32).unwrap();
-        let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+        let screen = screen(&scene, 32, 32);
         let reference = RayCastOracle::default().evaluate(&screen);
         let mut sheet = ContactSheet::default();
         for name in ["zbuffer", "zbuffer-linear-z"] {

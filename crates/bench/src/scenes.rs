@@ -201,7 +201,7 @@ pub fn hard_case_names() -> Vec<&'static str> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use hider_scene::{PrepareOptions, View, prepare};
+    use hider_testkit::screen;
 
     #[test]
     fn layers_cover_every_pixel_k_times() {
@@ -211,8 +211,7 @@ mod tests {
                 scene.triangle_count() as u32,
                 k * 2 * LAYER_GRID * LAYER_GRID
             );
-            let view = View::for_scene(&scene, 24, 16).unwrap();
-            let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+            let screen = screen(&scene, 24, 16);
             let a = crate::analysis::analyse(&screen);
             assert_eq!(a.covered_pixels, 24 * 16);
             assert_eq!(a.fragments, u64::from(k) * 24 * 16);
