@@ -84,6 +84,9 @@ struct Prepared {
     coverage: std::result::Result<CoverageReference, String>,
 }
 
+/// Loads and prepares a case (both timed), measures its size, and
+/// evaluates the references the selected hiders are scored against, within
+/// their budgets (a reference over budget is a reason, not a value).
 fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Result<Prepared> {
     let mut scene = None;
     let load = Timer::new(1).with_warmup(0).try_time(&|| false, || {
@@ -136,6 +139,8 @@ fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Resul
     })
 }
 
+/// The row of one job with everything known before it runs: the case, the
+/// scene's size, the hider, the load and prepare times and the machine.
 fn base_row(index: usize, case: &Case, p: &Prepared, entry: &Entry, machine: &Machine) -> Row {
     Row {
         case: index as u32,
