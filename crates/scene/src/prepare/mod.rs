@@ -1,0 +1,138 @@
+//! The shared front end: world-space [`Scene`] to screen-space
+//! [`ScreenScene`].
+//!
+//! `prepare` transforms, clips (near, far, guard band), divides, maps to the
+//! viewport, snaps to 1/256 pixel and sets up each triangle once. Every hider
+//! consumes the result and none re-projects, which is what makes
+//! cross-validation between hiders exact rather than approximate.
+
+use glam::DMat4;
+use rayon::prelude::*;
+
+use crate::error::Result;
+use crate::model::{Light, Material, Scene};
+use crate::view::View;
+
+mod front_end;
+mod options;
+mod screen;
+#[cfg(test)]
+mod tests;
+
+pub use front_end::{ClipScratch, FrontEnd, Part, WindowVertex, setup_depth};
+pub use screen::{PrepareStats, PrimInfo, ScreenScene, ScreenTri};
+
+pub use options::{PrepareOptions, TransformPrecision};
+
+/// Runs the front end. See the module documentation.
+pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<ScreenScene> {
+    let mut out = ScreenScene {
+        viewport: view.viewport,
+        camera: view.camera,
+        view_matrix: DMat4::IDENTITY,
+        projection_matrix: DMat4::IDENTITY,
+        tris: Vec::new(),
+        prims: Vec::new(),
+        materials: Vec::new(),
+        lights: Vec::new(),
+        stats: PrepareStats::default(),
+    };
+    prepare_into(scene, view, options, &mut out)?;
+    Ok(out)
+}
+
+/// [`prepare`] into an existing [`ScreenScene`], reusing its memory: for
+/// repeated frames this avoids allocating (and the kernel zeroing) hundreds
+/// of megabytes for large scenes. Every field of `out` is overwritten.
+pub fn prepare_into(
+    scene: &Scene,
+    view: &View,
+    options: &PrepareOptions,
+    out: &mut ScreenScene,
+) -> Result<()> {
+    let vp = view.viewport;
+    let front = FrontEnd::new(scene, view, options)?;
+    let (view_matrix, projection_matrix) = (front.view_matrix, front.projection_matrix);
+
+    let mut materials = std::mem::take(&mut out.materials);
+    materials.clear();
+    materials.extend_from_slice(&scene.materials);
+    materials.push(Material::default());
+
+    let mut prims = std::mem::take(&mut out.prims);
+    prims.clear();
+    prims.reserve(scene.triangle_count());
+    let mut tris = std::mem::take(&mut out.tris);
+    tris.clear();
+    tris.reserve(scene.triangle_count());
+    let mut stats = PrepareStats {
+        input: scene.triangle_count() as u64,
+        ..PrepareStats::default()
+    };
+    // Below this many triangles the fork-join overhead is not worth it.
+    const PARALLEL_CHUNK: usize = 16 * 1024;
+    if options.parallel
+        && rayon::current_num_threads() > 1
+        && scene.triangle_count() > 2 * PARALLEL_CHUNK
+    {
+        let mut segments = Vec::new();
+        let mut first_prim = 0u32;
+        for (m, mesh) in scene.meshes.iter().enumerate() {
+            for start in (0..mesh.indices.len()).step_by(PARALLEL_CHUNK) {
+                let end = (start + PARALLEL_CHUNK).min(mesh.indices.len());
+                segments.push((m, start..end, first_prim));
+                first_prim += (end - start) as u32;
+            }
+        }
+        let parts: Vec<Part> = segments
+            .into_par_iter()
+            .map(|(m, range, first)| {
+                let mut part = Part::default();
+                let mut scratch = ClipScratch::default();
+                for (k, t) in range.enumerate() {
+                    front.triangle(scene, (m, t, first + k as u32), &mut part, &mut scratch);
+                }
+                part
+            })
+            .collect();
+        for part in parts {
+            prims.extend_from_slice(&part.prims);
+            tris.extend_from_slice(&part.tris);
+            stats.add(&part.stats);
+        }
+    } else {
+        let mut scratch = ClipScratch::default();
+        let mut part = Part { prims, tris, stats };
+        for (prim, m, t) in scene.triangles() {
+            front.triangle(scene, (m, t, prim), &mut part, &mut scratch);
+        }
+        (prims, tris, stats) = (part.prims, part.tris, part.stats);
+    }
+    stats.output = tris.len() as u64;
+    let lights = scene
+        .lights
+        .iter()
+        .map(|l| match *l {
+            Light::Directional { direction, color } => Light::Directional {
+                direction: view_matrix.transform_vector3(direction),
+                color,
+            },
+            Light::Point { position, color } => Light::Point {
+                position: view_matrix.transform_point3(position),
+                color,
+            },
+        })
+        .collect();
+    *out = ScreenScene {
+        viewport: vp,
+        camera: view.camera,
+        view_matrix,
+        projection_matrix,
+        tris,
+        prims,
+        materials,
+        lights,
+        stats,
+    };
+    Ok(())
+}
