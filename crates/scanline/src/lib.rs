@@ -57,6 +57,7 @@ mod scanline;
 mod span;
 mod stats;
 mod trace;
+mod walker;
 
 pub use options::ScanlineOptions;
 pub use scanline::Scanline;

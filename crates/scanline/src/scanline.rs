@@ -3,11 +3,12 @@
 
 use hider_scene::{Frame, Hider, Result, ScreenScene, check_frame};
 
-use crate::edge_table::{Edge, EdgeTable, NAME, Side, table_bytes};
+use crate::edge_table::{EdgeTable, NAME, table_bytes};
 use crate::options::ScanlineOptions;
 use crate::span::{Active, RowOut, SpanResolver};
 use crate::stats::ScanlineStats;
 use crate::trace::SpanRecord;
+use crate::walker::{Edge, Side};
 
 /// Crossing key bit marking a polygon entering (its first covered column);
 /// without it the key marks the column just after its last one.

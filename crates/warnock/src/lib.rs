@@ -10,7 +10,7 @@
 //! algorithms lists it with the z-buffer and the scanline algorithm.
 //!
 //! This crate runs that loop ([`subdivide`], iterative with an explicit
-//! stack) over the shared [`ScreenScene`]:
+//! stack) over the shared [`ScreenScene`](hider_scene::ScreenScene):
 //! - each polygon is classified against a region as surrounding,
 //!   intersecting, contained or disjoint ([`classify`]) with the shared
 //!   exact integer edge functions, evaluated at the region's extreme
