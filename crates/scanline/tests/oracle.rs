@@ -19,11 +19,11 @@ use proptest::prelude::*;
 /// Coverage must be identical and ids equal on non-tie pixels. One
 /// exception is allowed and kept visible: a pixel the f64 z-buffer gets
 /// "wrong" too. Both hiders compare the window-depth planes of the
-/// *snapped* triangles, the oracle the *source* planes; near a silhouette
-/// edge shared by a front and a back face the two orders can differ by more
-/// than the tie tolerance (seen: relative gap 4.8e-5 on a 21-pixel-wide
-/// cube). That is the shared front end's snapping, not a scanline error;
-/// such pixels must stay rare.
+/// *snapped* triangles in window space; when the oracle ray-cast the
+/// *source* planes, near a silhouette edge shared by a front and a back
+/// face the two orders differed by more than the tie tolerance (seen:
+/// relative gap 4.8e-5 on a 21-pixel-wide cube). That is the shared front
+/// end's snapping, not a scanline error; such pixels must stay rare.
 fn check_oracle(s: &ScreenScene, options: ScanlineOptions) -> u64 {
     let (frame, _) = render(s, options);
     let reference = reference::ray_cast(s);

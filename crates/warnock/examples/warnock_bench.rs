@@ -1,11 +1,11 @@
-//! Times Warnock on the GL reference's stress scenes (random soups and UV
+//! Times Warnock on the workspace's stress scenes (random soups and UV
 //! spheres of about 1k, 10k and 100k triangles) at 512 and 2048 pixels, and
 //! prints how the region counts grow with scene complexity and resolution.
 //!
 //! `cargo run --release -p hider-warnock --example warnock_bench [-- --aa]`
 //!
-//! Small cases take the best of three runs; the 100k-triangle ones run
-//! once. With `--aa` the 4 x 4 sub-pixel mode is timed as well.
+//! Small cases take the best of three runs (the shared timer of
+//! `hider-testkit`, no warm-up); the 100k-triangle ones at 2048 run once. With `--aa` the 4 x 4 sub-pixel mode is timed as well.
 
 use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, prepare, procedural};
 use hider_testkit::timer::Timer;
