@@ -2,11 +2,13 @@
 //!
 //! `cargo run --release -p hider-scene --example prepare_timing`
 
-use std::time::Instant;
-
+use hider_scene::timing::Timer;
 use hider_scene::{PrepareOptions, View, prepare, prepare_into, procedural};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
+    // One warm-up (the first prepare below), then 7 measured runs reusing
+    // the screen scene's memory, as a frame loop would.
+    let timer = Timer::new(7).with_warmup(0).with_max_seconds(f64::INFINITY);
     for (name, scene) in [
         ("sphere 200", procedural::uv_sphere(200)),
         ("sphere 500", procedural::uv_sphere(500)),
@@ -15,19 +17,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let view = View::for_scene(&scene, 1024, 1024)?;
         let options = PrepareOptions::default();
         let mut screen = prepare(&scene, &view, &options)?;
-        let mut times: Vec<f64> = (0..7)
-            .map(|_| {
-                let t = Instant::now();
-                prepare_into(&scene, &view, &options, &mut screen)
-                    .map(|_| t.elapsed().as_secs_f64() * 1e3)
-            })
-            .collect::<Result<_, _>>()?;
-        times.sort_by(f64::total_cmp);
+        let summary = timer.try_time(&|| false, || {
+            prepare_into(&scene, &view, &options, &mut screen)
+        })?;
         println!(
-            "{name}: {} triangles, prepare median {:.1} ms, min {:.1} ms",
-            scene.triangle_count(),
-            times[3],
-            times[0]
+            "{name}: {} triangles, prepare {summary}",
+            scene.triangle_count()
         );
     }
     Ok(())

@@ -3,7 +3,7 @@
 
 use glam::DVec3;
 use hider_geom::fixed::MAX_IMAGE_SIDE;
-use hider_geom::{Camera, Projection, Viewport};
+use hider_geom::{Camera, Viewport};
 
 use crate::error::{Error, Result};
 use crate::model::Scene;
@@ -57,7 +57,7 @@ pub fn check_image_size(width: u32, height: u32) -> Result<()> {
     Ok(())
 }
 
-/// The camera of the GL reference renders (`shared/gl-reference/README.md`):
+/// The camera of the Mesa llvmpipe reference renders the project compares with:
 /// centre `c` = centre of the bounding box of all triangle vertices, `R` =
 /// half its diagonal (1 if 0); the eye at `c + (0, 0, 2.5 R)` looking down
 /// -Z with +Y up; fovy 60 degrees, near `0.1 R`, far `10 R`.
@@ -66,22 +66,19 @@ pub fn fit_camera(scene: &Scene) -> Camera {
     let centre = (lo + hi) * 0.5;
     let r = (hi - lo).length() * 0.5;
     let r = if r > 0.0 && r.is_finite() { r } else { 1.0 };
-    Camera {
-        eye: centre + DVec3::new(0.0, 0.0, 2.5 * r),
-        target: centre,
-        up: DVec3::Y,
-        projection: Projection::Perspective {
-            fovy_degrees: 60.0,
-            near: 0.1 * r,
-            far: 10.0 * r,
-        },
-    }
+    Camera::perspective(
+        centre + DVec3::new(0.0, 0.0, 2.5 * r),
+        centre,
+        0.1 * r,
+        10.0 * r,
+    )
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::Mesh;
+    use hider_geom::Projection;
 
     #[test]
     fn fit_camera_matches_the_gl_reference_convention() {

@@ -2,19 +2,10 @@ use super::*;
 use crate::model::Mesh;
 use glam::DVec3;
 use hider_geom::fixed::pixel_center;
-use hider_geom::{Camera, Projection, orient2d};
+use hider_geom::{Camera, orient2d};
 
 fn camera() -> Camera {
-    Camera {
-        eye: DVec3::new(0.0, 0.0, 5.0),
-        target: DVec3::ZERO,
-        up: DVec3::Y,
-        projection: Projection::Perspective {
-            fovy_degrees: 60.0,
-            near: 1.0,
-            far: 100.0,
-        },
-    }
+    Camera::perspective(DVec3::new(0.0, 0.0, 5.0), DVec3::ZERO, 1.0, 100.0)
 }
 
 fn one(positions: [DVec3; 3]) -> Scene {
