@@ -26,9 +26,10 @@ enum Command {
     /// and optional id/depth dumps.
     Render(Box<render::RenderArgs>),
     /// Benchmark every registered hider: accuracy against the oracle beside
-    /// time; writes a table, results.csv/json, a report and plots. Runs the
-    /// `hider-bench` program beside this one with the same arguments
-    /// (`hider bench --help` shows them).
+    /// time; writes a table, results.csv/json, a report and plots.
+    ///
+    /// Runs the `hider-bench` program beside this one with the same
+    /// arguments (`hider bench --help` shows them).
     #[command(disable_help_flag = true)]
     Bench {
         /// Arguments of `hider-bench`.

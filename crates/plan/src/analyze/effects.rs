@@ -49,7 +49,8 @@ pub struct AnalysisTimes {
     pub total_ms: f64,
 }
 
-/// The effects a scene calls for under given [`RenderOptions`].
+/// The effects a scene calls for under given
+/// [`RenderOptions`](super::RenderOptions).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Effects {
     /// Triangles in the scene.

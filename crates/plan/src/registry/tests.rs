@@ -3,7 +3,7 @@
 use hider_zbuffer::{DepthFormat, DepthSource};
 
 use super::*;
-use crate::HiderConfig;
+use crate::config::HiderConfig;
 
 #[test]
 fn names_are_unique_and_instances_carry_them() {
