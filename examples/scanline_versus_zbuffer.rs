@@ -14,13 +14,13 @@
 //! closing note of `docs/scanline.md`.
 
 use hider::scanline::{Scanline, ScanlineStats};
+use hider::zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
 use hider_scene::geom::Camera;
 use hider_scene::geom::glam::DVec3;
 use hider_scene::{
     Frame, Hider, Mesh, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
 };
 use hider_testkit::timer::Timer;
-use hider::zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
 
 /// `layers` screen-filling quads one behind the other; `tilt` (radians)
 /// turns every other one about the vertical axis so that neighbours
