@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 
-use crate::fixed::{FixedPt, SUBPIXEL_SCALE};
+use crate::fixed::{FixedPt, first_center_from, last_center_upto, pixel_center};
 
 /// A window of `width x height` pixels with GL's default depth range [0, 1].
 ///
@@ -53,17 +53,13 @@ impl Viewport {
     /// it covers no sample of any pixel-centre hider).
     #[inline]
     pub fn pixel_bounds(&self, v: &[FixedPt; 3]) -> Option<(u32, u32, u32, u32)> {
-        const _: () = assert!(SUBPIXEL_SCALE == 256);
         let [a, b, c] = *v;
         let (min_x, max_x) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
         let (min_y, max_y) = (a.y.min(b.y).min(c.y), a.y.max(b.y).max(c.y));
-        // Centre of pixel i is i * 256 + 128: the first centre >= m is
-        // ceil((m - 128) / 256), the last <= m is floor((m - 128) / 256);
-        // an arithmetic shift is div_euclid by 256.
-        let x0 = ((min_x + 127) >> 8).max(0);
-        let y0 = ((min_y + 127) >> 8).max(0);
-        let x1 = ((max_x - 128) >> 8).min(self.width as i32 - 1);
-        let y1 = ((max_y - 128) >> 8).min(self.height as i32 - 1);
+        let x0 = first_center_from(min_x).max(0);
+        let y0 = first_center_from(min_y).max(0);
+        let x1 = last_center_upto(max_x).min(self.width as i32 - 1);
+        let y1 = last_center_upto(max_y).min(self.height as i32 - 1);
         (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32))
     }
 
@@ -107,7 +103,7 @@ impl Viewport {
             for x in x0..x1 + 1 {
                 // Centres are below 2^23 in fixed point (images are at
                 // most 16384).
-                if centre_inside(a, b, c, x as i32 * 256 + 128, y as i32 * 256 + 128) {
+                if centre_inside(a, b, c, pixel_center(x as i32), pixel_center(y as i32)) {
                     pixels[usize::from(count)] = (x, y);
                     count += 1;
                 }
@@ -223,7 +219,7 @@ mod tests {
             let want: Vec<(u32, u32)> = (y0..=y1)
                 .flat_map(|y| (x0..=x1).map(move |x| (x, y)))
                 .filter(|&(x, y)| crate::triangle_covers(
-                    &positive, i64::from(x) * 256 + 128, i64::from(y) * 256 + 128))
+                    &positive, i64::from(pixel_center(x as i32)), i64::from(pixel_center(y as i32))))
                 .collect();
             let few = ((x1 - x0 + 1) * (y1 - y0 + 1)) as usize <= FEW_CENTRES;
             if few {
