@@ -125,44 +125,8 @@ pub fn load_obj_bytes(
         ..Scene::default()
     };
     for model in models {
-        let m = model.mesh;
-        let positions: Vec<DVec3> = m
-            .positions
-            .chunks_exact(3)
-            .map(|p| DVec3::new(p[0], p[1], p[2]))
-            .collect();
-        let normals: Vec<Vec3> = m
-            .normals
-            .chunks_exact(3)
-            .map(|n| Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32))
-            .collect();
-        let uvs: Vec<Vec2> = m
-            .texcoords
-            .chunks_exact(2)
-            .map(|t| Vec2::new(t[0] as f32, t[1] as f32))
-            .collect();
-        let indices = m
-            .indices
-            .chunks_exact(3)
-            .map(|t| [t[0], t[1], t[2]])
-            .collect();
-        let material = m.material_id.filter(|&k| k < scene.materials.len());
-        scene.meshes.push(Mesh {
-            name: model.name,
-            normals: if normals.len() == positions.len() {
-                normals
-            } else {
-                Vec::new()
-            },
-            uvs: if uvs.len() == positions.len() {
-                uvs
-            } else {
-                Vec::new()
-            },
-            positions,
-            indices,
-            material,
-        });
+        let mesh = mesh_from_tobj(model, scene.materials.len());
+        scene.meshes.push(mesh);
     }
     if triangles == 0 {
         return Err(Error::Parse {
@@ -171,6 +135,70 @@ pub fn load_obj_bytes(
             message: "contains no faces ('f' lines): nothing to render".into(),
         });
     }
+    content_warnings(&scene, &mut warnings);
+    scene.warnings = warnings;
+    if scene.triangle_count() as u64 != triangles {
+        // The validation pass and tobj disagree: a bug, but never a panic.
+        return Err(Error::Parse {
+            path: name.to_path_buf(),
+            line: 0,
+            message: format!(
+                "expected {triangles} triangles after fan-splitting, the parser produced {}",
+                scene.triangle_count()
+            ),
+        });
+    }
+    scene.validate()?;
+    Ok(scene)
+}
+
+/// One tobj model as a mesh; per-vertex normals and texture coordinates
+/// are kept only when every vertex has one, a material index only when it
+/// names one of the `material_count` materials.
+fn mesh_from_tobj(model: tobj::Model, material_count: usize) -> Mesh {
+    let m = model.mesh;
+    let positions: Vec<DVec3> = m
+        .positions
+        .chunks_exact(3)
+        .map(|p| DVec3::new(p[0], p[1], p[2]))
+        .collect();
+    let normals: Vec<Vec3> = m
+        .normals
+        .chunks_exact(3)
+        .map(|n| Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32))
+        .collect();
+    let uvs: Vec<Vec2> = m
+        .texcoords
+        .chunks_exact(2)
+        .map(|t| Vec2::new(t[0] as f32, t[1] as f32))
+        .collect();
+    let indices = m
+        .indices
+        .chunks_exact(3)
+        .map(|t| [t[0], t[1], t[2]])
+        .collect();
+    let material = m.material_id.filter(|&k| k < material_count);
+    Mesh {
+        name: model.name,
+        normals: if normals.len() == positions.len() {
+            normals
+        } else {
+            Vec::new()
+        },
+        uvs: if uvs.len() == positions.len() {
+            uvs
+        } else {
+            Vec::new()
+        },
+        positions,
+        indices,
+        material,
+    }
+}
+
+/// Warnings about what the file holds rather than how it is written:
+/// missing textures and degenerate triangles.
+fn content_warnings(scene: &Scene, warnings: &mut Vec<String>) {
     for m in &scene.materials {
         if let Some(t) = &m.diffuse_texture
             && !t.is_file()
@@ -192,23 +220,62 @@ pub fn load_obj_bytes(
     if degenerate > 0 {
         warnings.push(format!(
             "{degenerate} degenerate triangles (repeated vertices or zero area): they cover \
-             nothing and keep their primitive ids"
+         nothing and keep their primitive ids"
         ));
     }
-    scene.warnings = warnings;
-    if scene.triangle_count() as u64 != triangles {
-        // The validation pass and tobj disagree: a bug, but never a panic.
-        return Err(Error::Parse {
-            path: name.to_path_buf(),
-            line: 0,
-            message: format!(
-                "expected {triangles} triangles after fan-splitting, the parser produced {}",
-                scene.triangle_count()
-            ),
-        });
+}
+
+/// Checks one face line's vertices: at least three, one `v/vt/vn` layout
+/// for all of them, and every index (negative ones counting back) naming
+/// one of the `counts` = (positions, texture coordinates, normals) defined
+/// so far, as the OBJ format requires.
+fn check_face(values: &[&str], counts: [i64; 3], err: &dyn Fn(String) -> Error) -> Result<()> {
+    if values.len() < 3 {
+        return Err(err(format!(
+            "face has {} vertices, needs at least 3",
+            values.len()
+        )));
     }
-    scene.validate()?;
-    Ok(scene)
+    let mut layout = None;
+    for v in values {
+        let parts: Vec<&str> = v.split('/').collect();
+        if parts.len() > 3 {
+            return Err(err(format!("bad face vertex '{v}'")));
+        }
+        let this_layout = (
+            parts.len(),
+            parts.get(1).is_some_and(|s| !s.is_empty()),
+            parts.get(2).is_some_and(|s| !s.is_empty()),
+        );
+        if *layout.get_or_insert(this_layout) != this_layout {
+            return Err(err(format!(
+                "face mixes vertex formats ('{}' and '{v}')",
+                values[0]
+            )));
+        }
+        for (slot, count, what) in [
+            (0, counts[0], "vertex"),
+            (1, counts[1], "texture"),
+            (2, counts[2], "normal"),
+        ] {
+            let Some(s) = parts.get(slot).filter(|s| !s.is_empty()) else {
+                if slot == 0 {
+                    return Err(err(format!("face vertex '{v}' has no position index")));
+                }
+                continue;
+            };
+            let i: i64 = s
+                .parse()
+                .map_err(|_| err(format!("bad {what} index '{s}' in '{v}'")))?;
+            let resolved = if i < 0 { count + i + 1 } else { i };
+            if i == 0 || resolved < 1 || resolved > count {
+                return Err(err(format!(
+                    "{what} index {i} out of range (1..={count} defined so far)"
+                )));
+            }
+        }
+    }
+    Ok(())
 }
 
 fn load_mtl(base: &Path, mtl: &Path, warnings: &RefCell<Vec<String>>) -> tobj::MTLLoadResult {
@@ -322,51 +389,7 @@ fn validate_obj(text: &str, name: &Path) -> Result<u64> {
                 nvn += 1;
             }
             "f" => {
-                if values.len() < 3 {
-                    return Err(err(format!(
-                        "face has {} vertices, needs at least 3",
-                        values.len()
-                    )));
-                }
-                let mut layout = None;
-                for v in &values {
-                    let parts: Vec<&str> = v.split('/').collect();
-                    if parts.len() > 3 {
-                        return Err(err(format!("bad face vertex '{v}'")));
-                    }
-                    let this_layout = (
-                        parts.len(),
-                        parts.get(1).is_some_and(|s| !s.is_empty()),
-                        parts.get(2).is_some_and(|s| !s.is_empty()),
-                    );
-                    if *layout.get_or_insert(this_layout) != this_layout {
-                        return Err(err(format!(
-                            "face mixes vertex formats ('{}' and '{v}')",
-                            values[0]
-                        )));
-                    }
-                    for (slot, count, what) in
-                        [(0, nv, "vertex"), (1, nvt, "texture"), (2, nvn, "normal")]
-                    {
-                        let Some(s) = parts.get(slot).filter(|s| !s.is_empty()) else {
-                            if slot == 0 {
-                                return Err(err(format!(
-                                    "face vertex '{v}' has no position index"
-                                )));
-                            }
-                            continue;
-                        };
-                        let i: i64 = s
-                            .parse()
-                            .map_err(|_| err(format!("bad {what} index '{s}' in '{v}'")))?;
-                        let resolved = if i < 0 { count + i + 1 } else { i };
-                        if i == 0 || resolved < 1 || resolved > count {
-                            return Err(err(format!(
-                                "{what} index {i} out of range (1..={count} defined so far)"
-                            )));
-                        }
-                    }
-                }
+                check_face(&values, [nv, nvt, nvn], &err)?;
                 triangles += values.len() as u64 - 2;
             }
             _ => {}
