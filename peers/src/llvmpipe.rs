@@ -119,7 +119,7 @@ impl Target {
 macro_rules! gl_api {
     ($($name:ident: fn($($arg:ty),*) $(-> $ret:ty)?;)*) => {
         /// The GL entry points this peer calls.
-        #[allow(non_snake_case)]
+        #[allow(non_snake_case, reason = "the fields keep the GL entry points' own names")]
         struct Gl {
             $($name: unsafe extern "C" fn($($arg),*) $(-> $ret)?,)*
         }
@@ -131,8 +131,7 @@ macro_rules! gl_api {
             /// # Safety
             /// `get` must be libOSMesa's `OSMesaGetProcAddress`, and each
             /// signature above must be the one the GL specification gives.
-            // (The transmute is the identity for the `fn()` entry points.)
-            #[allow(clippy::useless_transmute)]
+            #[allow(clippy::useless_transmute, reason = "the transmute is the identity for the fn() entry points")]
             unsafe fn load(get: GetProcAddress) -> Result<Self, String> {
                 Ok(Self {
                     $($name: {

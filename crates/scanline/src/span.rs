@@ -8,8 +8,9 @@
 //! interpenetrate), in which case the span is split at the crossing and the
 //! rest is resolved the same way.
 //!
-//! Window depth is affine in the window position (seed 000: `z/w`, not `z`,
-//! is what interpolates linearly on screen), so along a row the depth
+//! Window depth is affine in the window position (scratchapixel's
+//! depth-buffer lesson: `z/w`, not `z`, is what interpolates linearly on
+//! screen), so along a row the depth
 //! difference of two polygons is affine too and changes sign at most once:
 //! "does `p` come in front of the head anywhere in the span" is the same
 //! question as "is `p` in front at the span's right end". Every comparison
