@@ -34,7 +34,7 @@ pub struct ClipScratch {
 }
 
 /// Everything the per-triangle work needs, computed once per frame: the
-/// building blocks of [`prepare`], public so that a hider with a front end
+/// building blocks of [`prepare`](crate::prepare()), public so that a hider with a front end
 /// of its own (the tiled z-buffer's depth-only one) computes every number
 /// exactly as `prepare` does.
 #[derive(Clone, Debug)]

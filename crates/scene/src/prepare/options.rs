@@ -15,7 +15,7 @@ pub enum TransformPrecision {
     F32,
 }
 
-/// Options of [`prepare`]. `Default` is the accurate choice.
+/// Options of [`prepare`](crate::prepare()). `Default` is the accurate choice.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PrepareOptions {
     /// Transform arithmetic.

@@ -72,18 +72,18 @@ pub struct PrepareStats {
     /// Triangles (or clipped pieces) dropped because their snapped area is
     /// zero: they cover no sample.
     pub degenerate: u64,
-    /// Back-facing triangles dropped by [`PrepareOptions::cull_back_faces`].
+    /// Back-facing triangles dropped by [`PrepareOptions::cull_back_faces`](crate::PrepareOptions::cull_back_faces).
     pub back_faces: u64,
     /// Screen triangles produced.
     pub output: u64,
     /// Triangles dropped by a depth-only front end of a hider's own (the
     /// tiled z-buffer's) because they certainly cover no pixel centre;
-    /// always 0 from [`prepare`], which keeps them.
+    /// always 0 from [`prepare`](crate::prepare()), which keeps them.
     pub empty: u64,
     /// Triangles a depth-only front end of a hider's own handed over as
     /// the pixels they cover rather than as triangles, because their box
     /// holds at most four pixel centres; not counted in [`Self::output`].
-    /// Always 0 from [`prepare`].
+    /// Always 0 from [`prepare`](crate::prepare()).
     pub fragmented: u64,
 }
 
