@@ -12,7 +12,6 @@
 mod common;
 
 use common::config;
-use hider::geom::fixed::pixel_center;
 use hider::scene::procedural::SplitMix64;
 use hider::scene::{Scene, ScreenScene};
 use hider_testkit::cameras::random_camera;
@@ -27,26 +26,16 @@ fn hits(s: &ScreenScene) -> (Vec<u32>, Vec<u32>) {
     let mut front = vec![0; w * h];
     let mut back = vec![0; w * h];
     for t in &s.tris {
-        let Some((x0, y0, x1, y1)) = t.pixel_bounds(s.viewport) else {
-            continue;
+        let hits = if t.front_facing {
+            &mut front
+        } else {
+            &mut back
         };
-        let e = t.edges();
-        for j in y0..=y1 {
-            for i in x0..=x1 {
-                let (px, py) = (
-                    i64::from(pixel_center(i as i32)),
-                    i64::from(pixel_center(j as i32)),
-                );
-                if e.iter().all(|e| e.contains(px, py)) {
-                    let k = j as usize * w + i as usize;
-                    if t.front_facing {
-                        front[k] += 1;
-                    } else {
-                        back[k] += 1;
-                    }
-                }
+        t.for_each_centre(s.viewport, |i, j, covered| {
+            if covered {
+                hits[j as usize * w + i as usize] += 1;
             }
-        }
+        });
     }
     (front, back)
 }

@@ -2,7 +2,6 @@
 //! pixels it covers and how many surfaces lie over each (depth complexity),
 //! the quantities Sutherland, Sproull & Schumacker (1974) express costs in.
 
-use hider_geom::fixed::pixel_center;
 use hider_scene::ScreenScene;
 
 /// The size of the visibility problem a [`ScreenScene`] poses.
@@ -44,21 +43,13 @@ pub fn analyse(scene: &ScreenScene) -> SceneAnalysis {
         ..SceneAnalysis::default()
     };
     for tri in &scene.tris {
-        let Some((x0, y0, x1, y1)) = tri.pixel_bounds(vp) else {
-            continue;
-        };
-        let edges = tri.edges();
-        for j in y0..=y1 {
-            let py = i64::from(pixel_center(j as i32));
-            for i in x0..=x1 {
-                let px = i64::from(pixel_center(i as i32));
-                a.pixel_tests += 1;
-                if edges.iter().all(|e| e.contains(px, py)) {
-                    count[j as usize * width + i as usize] += 1;
-                    a.fragments += 1;
-                }
+        tri.for_each_centre(vp, |i, j, covered| {
+            a.pixel_tests += 1;
+            if covered {
+                count[j as usize * width + i as usize] += 1;
+                a.fragments += 1;
             }
-        }
+        });
     }
     a.covered_pixels = count.iter().filter(|&&c| c > 0).count() as u64;
     a

@@ -19,7 +19,6 @@
 //! test can tell a genuine tie from an error; see [`crate::DEFAULT_TIE_TOLERANCE`].
 
 use glam::DVec3;
-use hider_geom::fixed::pixel_center;
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ScreenTri, check_frame};
 
 use crate::depth::{DepthModel, ray_plane_depth, snapped_plane, source_plane};
@@ -157,10 +156,6 @@ impl RayCastOracle {
     ) {
         let vp = scene.viewport;
         let w = vp.width as usize;
-        let Some((x0, y0, x1, y1)) = tri.pixel_bounds(vp) else {
-            return;
-        };
-        let edges = tri.edges();
         let corners = model.corner_depths(tri);
         let plane = match self.options.depth_plane {
             DepthPlane::Snapped => Some(snapped_plane(scene, tri, corners, model.perspective)),
@@ -171,36 +166,33 @@ impl RayCastOracle {
         };
         let lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = corners.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        for j in y0..=y1 {
-            let py = i64::from(pixel_center(j as i32));
-            for i in x0..=x1 {
-                stats.pixel_tests += 1;
-                let px = i64::from(pixel_center(i as i32));
-                if !edges.iter().all(|e| e.contains(px, py)) {
-                    continue;
-                }
-                stats.hits += 1;
-                let k = j as usize * w + i as usize;
-                let (origin, dir) = self.rays[k];
-                let d = match plane.and_then(|p| ray_plane_depth(p, origin, dir)) {
-                    Some(d) => d,
-                    None => {
-                        stats.fallbacks += 1;
-                        let zw = tri.depth.eval(f64::from(i) + 0.5, f64::from(j) + 0.5);
-                        model.view_depth_of_window(zw)
-                    }
-                };
-                // Depth along a triangle never leaves its corners' range; a
-                // centre inside the snapped triangle but just outside the
-                // true one (or a grazing plane) would extrapolate, so clamp.
-                let d = if d.is_nan() { lo } else { d };
-                let clamped = d.clamp(lo, hi);
-                if clamped != d {
-                    stats.clamped += 1;
-                }
-                self.nearest[k].offer(clamped, tri.prim);
+        let (rays, nearest) = (&self.rays, &mut self.nearest);
+        tri.for_each_centre(vp, |i, j, covered| {
+            stats.pixel_tests += 1;
+            if !covered {
+                return;
             }
-        }
+            stats.hits += 1;
+            let k = j as usize * w + i as usize;
+            let (origin, dir) = rays[k];
+            let d = match plane.and_then(|p| ray_plane_depth(p, origin, dir)) {
+                Some(d) => d,
+                None => {
+                    stats.fallbacks += 1;
+                    let zw = tri.depth.eval(f64::from(i) + 0.5, f64::from(j) + 0.5);
+                    model.view_depth_of_window(zw)
+                }
+            };
+            // Depth along a triangle never leaves its corners' range; a
+            // centre inside the snapped triangle but just outside the
+            // true one (or a grazing plane) would extrapolate, so clamp.
+            let d = if d.is_nan() { lo } else { d };
+            let clamped = d.clamp(lo, hi);
+            if clamped != d {
+                stats.clamped += 1;
+            }
+            nearest[k].offer(clamped, tri.prim);
+        });
     }
 
     /// Turns the nearest surfaces per pixel into the reference: ids with

@@ -7,7 +7,6 @@
 //! hider with `f64` depth must match its ids and depths bit for bit away
 //! from ties. The window-depth gap to the runner-up tells ties apart.
 
-use hider_geom::fixed::pixel_center;
 use hider_scene::{NO_ID, ScreenScene};
 
 use crate::nearest::{EMPTY, Nearest};
@@ -71,19 +70,11 @@ pub fn window_depth_reference(scene: &ScreenScene) -> WindowDepthReference {
     let w = vp.width as usize;
     let mut nearest: Vec<Nearest> = vec![EMPTY; vp.pixel_count()];
     for tri in &scene.tris {
-        let Some((x0, y0, x1, y1)) = tri.pixel_bounds(vp) else {
-            continue;
-        };
-        let edges = tri.edges();
-        for j in y0..=y1 {
-            let py = i64::from(pixel_center(j as i32));
-            for i in x0..=x1 {
-                let px = i64::from(pixel_center(i as i32));
-                if edges.iter().all(|e| e.contains(px, py)) {
-                    nearest[j as usize * w + i as usize].offer(tri.depth.at_pixel(i, j), tri.prim);
-                }
+        tri.for_each_centre(vp, |i, j, covered| {
+            if covered {
+                nearest[j as usize * w + i as usize].offer(tri.depth.at_pixel(i, j), tri.prim);
             }
-        }
+        });
     }
     let ids = nearest.iter().map(|n| n.first.1).collect();
     let depth = nearest

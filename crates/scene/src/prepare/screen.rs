@@ -2,7 +2,7 @@
 //! the screen-space scene every hider consumes.
 
 use glam::{DMat4, DVec3, DVec4, Vec2, Vec3};
-use hider_geom::fixed::FixedPt;
+use hider_geom::fixed::{FixedPt, pixel_center};
 use hider_geom::{Camera, PlaneEq, Viewport};
 
 use crate::model::{Light, Material};
@@ -42,6 +42,24 @@ impl ScreenTri {
     /// covered, clamped to the viewport, or `None` if it is empty.
     pub fn pixel_bounds(&self, viewport: Viewport) -> Option<(u32, u32, u32, u32)> {
         viewport.pixel_bounds(&self.v)
+    }
+
+    /// Visits every pixel centre of [`Self::pixel_bounds`], row by row, with
+    /// whether the exact edge functions (top-left rule) cover it: the
+    /// brute-force coverage walk the references, the scene statistics and
+    /// the watertightness checks share (the hiders' own loops are faster).
+    pub fn for_each_centre(&self, viewport: Viewport, mut visit: impl FnMut(u32, u32, bool)) {
+        let Some((x0, y0, x1, y1)) = self.pixel_bounds(viewport) else {
+            return;
+        };
+        let edges = self.edges();
+        for j in y0..=y1 {
+            let py = i64::from(pixel_center(j as i32));
+            for i in x0..=x1 {
+                let px = i64::from(pixel_center(i as i32));
+                visit(i, j, edges.iter().all(|e| e.contains(px, py)));
+            }
+        }
     }
 }
 
