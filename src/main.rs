@@ -69,15 +69,7 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            // One line: the context chain joined. Errors that already print
-            // their source are not repeated.
-            let mut chain: Vec<String> = Vec::new();
-            for cause in e.chain().map(|c| c.to_string()) {
-                if !chain.last().is_some_and(|prev| prev.ends_with(&cause)) {
-                    chain.push(cause);
-                }
-            }
-            eprintln!("hider: error: {}", chain.join(": "));
+            eprintln!("hider: error: {}", hider_plan::error_line(e.as_ref()));
             ExitCode::from(2)
         }
     }

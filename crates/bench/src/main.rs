@@ -35,15 +35,7 @@ fn main() -> ExitCode {
     match hider_bench::run_command(&cli.args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            // One line: the context chain joined; causes that already end
-            // their parent's message are not repeated.
-            let mut chain: Vec<String> = Vec::new();
-            for cause in e.chain().map(|c| c.to_string()) {
-                if !chain.last().is_some_and(|prev| prev.ends_with(&cause)) {
-                    chain.push(cause);
-                }
-            }
-            eprintln!("hider-bench: error: {}", chain.join(": "));
+            eprintln!("hider-bench: error: {}", hider_plan::error_line(e.as_ref()));
             ExitCode::from(2)
         }
     }

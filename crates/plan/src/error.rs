@@ -62,3 +62,41 @@ pub enum PlanError {
 
 /// `Result` with [`PlanError`].
 pub type Result<T, E = PlanError> = std::result::Result<T, E>;
+
+/// An error and its chain of causes as the one line the `hider` and
+/// `hider-bench` tools print: the messages joined by `": "`, leaving out a
+/// cause whose message its parent already ends with (errors that print
+/// their source themselves).
+///
+/// ```
+/// use std::error::Error;
+/// use std::fmt;
+///
+/// #[derive(Debug)]
+/// struct Write(std::io::Error);
+/// impl fmt::Display for Write {
+///     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+///         f.write_str("cannot write out.png")
+///     }
+/// }
+/// impl Error for Write {
+///     fn source(&self) -> Option<&(dyn Error + 'static)> {
+///         Some(&self.0)
+///     }
+/// }
+///
+/// let e = Write(std::io::Error::other("disk full"));
+/// assert_eq!(hider_plan::error_line(&e), "cannot write out.png: disk full");
+/// ```
+pub fn error_line(error: &(dyn std::error::Error + 'static)) -> String {
+    let mut chain: Vec<String> = Vec::new();
+    let mut cause = Some(error);
+    while let Some(e) = cause {
+        let message = e.to_string();
+        if !chain.last().is_some_and(|prev| prev.ends_with(&message)) {
+            chain.push(message);
+        }
+        cause = e.source();
+    }
+    chain.join(": ")
+}

@@ -50,7 +50,7 @@ pub mod texture;
 
 pub use analyze::{Analysis, Effects, Evidence, RenderOptions, analyze, analyze_prepared};
 pub use config::HiderConfig;
-pub use error::{PlanError, Result};
+pub use error::{PlanError, Result, error_line};
 pub use load::{MAX_SOUP_TRIANGLES, MAX_SPHERE_SEGMENTS, generated, load_model};
 pub use planner::{Plan, Planned, auto, plan};
 pub use stages::{Shader, ShaderOptions, StageTrace, Stages};
