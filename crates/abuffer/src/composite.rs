@@ -176,23 +176,12 @@ fn add(sum: &mut [f32; 3], rgb: [f32; 3], weight: f32) {
 
 #[cfg(test)]
 mod tests {
-    use hider_scene::NO_ID;
 
     use super::*;
-    use crate::fragment::{Fragment, NIL};
+    use crate::fragment::Fragment;
 
     fn frag(mask: u32, zmin: f32, zmax: f32, rgb: [f32; 3], alpha: f32) -> Shaded {
-        let f = Fragment {
-            next: NIL,
-            mask,
-            prim: 0,
-            tri: 0,
-            centre_prim: NO_ID,
-            shade: 0,
-            zmin,
-            zmax,
-            centre_z: f64::INFINITY,
-        };
+        let f = Fragment::with_mask(mask, zmin, zmax);
         Shaded::new(f, [rgb[0], rgb[1], rgb[2], alpha], 0)
     }
 

@@ -215,23 +215,11 @@ pub(crate) fn hidden_in_every_sample(g: &Shaded, list: &[Shaded], full: u32) -> 
 
 #[cfg(test)]
 mod tests {
-    use hider_scene::NO_ID;
 
     use super::*;
-    use crate::fragment::NIL;
 
     fn frag(mask: u32, zmin: f32, zmax: f32, alpha: f32) -> Shaded {
-        let f = Fragment {
-            next: NIL,
-            mask,
-            prim: 0,
-            tri: 0,
-            centre_prim: NO_ID,
-            shade: 0,
-            zmin,
-            zmax,
-            centre_z: f64::INFINITY,
-        };
+        let f = Fragment::with_mask(mask, zmin, zmax);
         Shaded::new(f, [0.0, 0.0, 0.0, alpha], 0)
     }
 

@@ -55,6 +55,25 @@ pub struct Fragment {
     pub centre_z: f64,
 }
 
+#[cfg(test)]
+impl Fragment {
+    /// An unmerged fragment of primitive 0 with these samples and depth
+    /// range, not covering the centre: what the unit tests build lists of.
+    pub(crate) fn with_mask(mask: u32, zmin: f32, zmax: f32) -> Self {
+        Self {
+            next: NIL,
+            mask,
+            prim: 0,
+            tri: 0,
+            centre_prim: hider_scene::NO_ID,
+            shade: 0,
+            zmin,
+            zmax,
+            centre_z: f64::INFINITY,
+        }
+    }
+}
+
 impl Fragment {
     /// Whether the fragment covers the pixel centre.
     #[inline]
