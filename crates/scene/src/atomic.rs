@@ -1,26 +1,84 @@
-//! Atomic file output: write to a temporary file beside the target, then
-//! rename, so an interrupted or failed run never leaves a partial file
-//! under the final name.
+//! File output that never leaves a partial file under the final name and
+//! never replaces what is not a file.
+//!
+//! A regular file (or a path that does not exist yet) is written
+//! atomically: to a temporary file beside the target, then renamed, so an
+//! interrupted or failed run leaves the old content. Anything else the path
+//! names (a character device such as `/dev/null` or `/dev/full`, a FIFO, a
+//! socket) is written through, as a shell redirection would: renaming over
+//! it would replace the device or pipe with a regular file. A symbolic link
+//! is followed: its target is written (atomically when the target is a
+//! regular file) and the link itself stays a link. Every write error,
+//! including one that only shows when the data is flushed, is returned.
 
-use std::fs::File;
+use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 
-/// Writes a file atomically: `write` fills a buffered temporary file in the
-/// same folder as `path` (so the rename cannot cross file systems), which is
-/// renamed to `path` only after `write` succeeded and the data was flushed.
-/// On any error the temporary file is removed and `path` is left as it was.
+/// How [`write_atomic`] writes to a path.
+#[derive(Clone, Debug, PartialEq, Eq)]
+enum Target {
+    /// A temporary file beside this path, renamed over it.
+    Rename(PathBuf),
+    /// Open this path and write into it (devices, FIFOs, dangling links).
+    Through(PathBuf),
+}
+
+/// Decides how to write `path`: by rename when it is absent or a regular
+/// file (after following symbolic links), through it otherwise.
+fn target(path: &Path) -> Target {
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return Target::Rename(path.to_path_buf());
+    };
+    if meta.file_type().is_symlink() {
+        // Resolve the whole chain; a dangling link is written through, which
+        // creates its target where the link points.
+        return match std::fs::canonicalize(path) {
+            Ok(resolved) => target(&resolved),
+            Err(_) => Target::Through(path.to_path_buf()),
+        };
+    }
+    if meta.is_file() {
+        Target::Rename(path.to_path_buf())
+    } else {
+        Target::Through(path.to_path_buf())
+    }
+}
+
+/// Writes a file without ever leaving a partial one under its name (see
+/// the module docs for what is written through instead).
+///
+/// `write` fills a buffered writer; for a regular file it is a temporary
+/// file in the same folder as `path` (so the rename cannot cross file
+/// systems), renamed to `path` only after `write` succeeded and the data
+/// was flushed and synced. On any error the temporary file is removed and
+/// `path` is left as it was. Errors name `path` as the caller gave it.
 pub fn write_atomic<F>(path: &Path, write: F) -> Result<()>
 where
     F: FnOnce(&mut BufWriter<File>) -> Result<()>,
 {
-    let tmp = temp_path(path);
     let io_err = |source| Error::Io {
         path: path.to_path_buf(),
         source,
     };
+    let target = match target(path) {
+        Target::Through(p) => {
+            let file = OpenOptions::new()
+                .write(true)
+                .create(true)
+                .truncate(true)
+                .open(&p)
+                .map_err(io_err)?;
+            let mut writer = BufWriter::new(file);
+            // No sync: devices and pipes do not support it, and nothing is
+            // renamed afterwards that would rely on it.
+            return write(&mut writer).and_then(|()| writer.flush().map_err(io_err));
+        }
+        Target::Rename(p) => p,
+    };
+    let tmp = temp_path(&target);
     let file = File::create(&tmp).map_err(io_err)?;
     let mut writer = BufWriter::new(file);
     let result = write(&mut writer).and_then(|()| {
@@ -28,7 +86,7 @@ where
         writer.get_ref().sync_all().map_err(io_err)
     });
     drop(writer);
-    match result.and_then(|()| std::fs::rename(&tmp, path).map_err(io_err)) {
+    match result.and_then(|()| std::fs::rename(&tmp, &target).map_err(io_err)) {
         Ok(()) => Ok(()),
         Err(e) => {
             let _ = std::fs::remove_file(&tmp);
@@ -46,36 +104,4 @@ fn temp_path(path: &Path) -> PathBuf {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn failed_write_leaves_no_file_and_keeps_old_content() {
-        let dir = std::env::temp_dir().join(format!("hider-atomic-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("out.bin");
-        write_atomic(&path, |w| {
-            w.write_all(b"first").map_err(|source| Error::Io {
-                path: path.clone(),
-                source,
-            })
-        })
-        .unwrap();
-        let err = write_atomic(&path, |w| {
-            w.write_all(b"partial").unwrap();
-            Err(Error::InvalidScene("stop half way".into()))
-        });
-        assert!(err.is_err());
-        assert_eq!(std::fs::read(&path).unwrap(), b"first");
-        let leftovers: Vec<_> = std::fs::read_dir(&dir)
-            .unwrap()
-            .filter_map(|e| e.ok())
-            .filter(|e| e.file_name().to_string_lossy().ends_with(".tmp"))
-            .collect();
-        assert!(leftovers.is_empty());
-        let fresh = dir.join("never.bin");
-        let _ = write_atomic(&fresh, |_| Err(Error::InvalidScene("no".into())));
-        assert!(!fresh.exists());
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-}
+mod tests;
