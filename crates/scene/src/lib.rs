@@ -8,7 +8,9 @@
 //! - the [`Frame`] buffers with PNG output and the GL reference id/depth
 //!   dumps, written atomically;
 //! - the [`Hider`] trait (options, typed stats, one `new`, one `render`),
-//!   its object-safe twin [`DynHider`], and shading from ids ([`shade`]).
+//!   its object-safe twin [`DynHider`], shading from ids ([`shade`]) and
+//!   the textured surface colour that colour-resolving hiders composite
+//!   ([`surface`], [`texture`]).
 //!
 //! Conventions (see `docs/conventions.md`): right-handed world, camera
 //! looking down -Z, GL clip space; window origin top-left with y down;
@@ -47,6 +49,8 @@ pub mod obj_write;
 pub mod prepare;
 pub mod procedural;
 pub mod shade;
+pub mod surface;
+pub mod texture;
 pub mod timing;
 pub mod view;
 
@@ -63,6 +67,8 @@ pub use prepare::{
     prepare_into,
 };
 pub use shade::{ShadeMode, shade_frame};
+pub use surface::{Mapping, SurfaceTextures, TextureLoad, TextureOptions};
+pub use texture::{Filter, Texture};
 pub use view::{View, fit_camera};
 
 /// The geometry crate this one builds on.

@@ -11,6 +11,7 @@ use rayon::prelude::*;
 
 use crate::error::Result;
 use crate::model::{Light, Material, Scene};
+use crate::surface::SurfaceTextures;
 use crate::view::View;
 
 mod front_end;
@@ -36,6 +37,7 @@ pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<S
         materials: Vec::new(),
         lights: Vec::new(),
         stats: PrepareStats::default(),
+        textures: SurfaceTextures::default(),
     };
     prepare_into(scene, view, options, &mut out)?;
     Ok(out)
@@ -43,7 +45,9 @@ pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<S
 
 /// [`prepare`] into an existing [`ScreenScene`], reusing its memory: for
 /// repeated frames this avoids allocating (and the kernel zeroing) hundreds
-/// of megabytes for large scenes. Every field of `out` is overwritten.
+/// of megabytes for large scenes. Every field of `out` is overwritten but
+/// its decoded textures, which are re-bound to the new frame
+/// ([`SurfaceTextures::rebind`]).
 pub fn prepare_into(
     scene: &Scene,
     view: &View,
@@ -123,6 +127,7 @@ pub fn prepare_into(
             },
         })
         .collect();
+    let mut textures = std::mem::take(&mut out.textures);
     *out = ScreenScene {
         viewport: vp,
         camera: view.camera,
@@ -133,6 +138,9 @@ pub fn prepare_into(
         materials,
         lights,
         stats,
+        textures: SurfaceTextures::default(),
     };
+    textures.rebind(out);
+    out.textures = textures;
     Ok(())
 }

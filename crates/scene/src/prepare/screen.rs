@@ -6,6 +6,7 @@ use hider_geom::fixed::{FixedPt, pixel_center};
 use hider_geom::{Camera, PlaneEq, Viewport};
 
 use crate::model::{Light, Material};
+use crate::surface::SurfaceTextures;
 
 /// A triangle ready for rasterisation: snapped, positively oriented, with
 /// its depth and 1/w planes.
@@ -140,6 +141,10 @@ pub struct ScreenScene {
     pub lights: Vec<Light>,
     /// What the front end did.
     pub stats: PrepareStats,
+    /// Decoded diffuse textures for the hiders that resolve colour
+    /// themselves: inactive until [`ScreenScene::load_textures`]; kept and
+    /// re-bound by [`crate::prepare_into`] between frames.
+    pub textures: SurfaceTextures,
 }
 
 impl ScreenScene {

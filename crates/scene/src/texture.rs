@@ -1,0 +1,273 @@
+//! Diffuse textures (`map_Kd`): loading with the `image` crate and
+//! sampling, nearest or bilinear, with repeat wrapping.
+//!
+//! Texels are kept in linear light so that bilinear filtering averages
+//! light, not sRGB codes. Texture coordinates follow OBJ: `(0, 0)` is the
+//! *bottom*-left of the image, `v` grows upward (tinyrenderer's z-buffer
+//! lesson, lesson 3, reads `vt` the same way).
+//!
+//! The size is read from the file header and checked against
+//! [`MAX_TEXTURE_SIDE`] before any pixel is decoded.
+
+use std::path::Path;
+
+use crate::{Error, Result};
+
+/// Largest texture side accepted, in texels (checked before decoding).
+pub const MAX_TEXTURE_SIDE: u32 = 8192;
+
+/// How a texture is sampled between texel centres.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Filter {
+    /// The texel containing the point.
+    Nearest,
+    /// The weighted mean of the four nearest texels (the accurate default).
+    #[default]
+    Bilinear,
+}
+
+/// An RGB texture in linear light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    width: u32,
+    height: u32,
+    texels: Vec<[f32; 3]>,
+}
+
+/// Reads an image file's size from its header, checking the limit; this is
+/// what "the texture loads" means to the analysis, without decoding it.
+pub fn probe(path: &Path) -> Result<(u32, u32)> {
+    let image_error = |e: image::ImageError| Error::Image {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let reader = image::ImageReader::open(path)
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?
+        .with_guessed_format()
+        .map_err(|source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+    let (w, h) = reader.into_dimensions().map_err(image_error)?;
+    for (what, v) in [("texture width", w), ("texture height", h)] {
+        if v > MAX_TEXTURE_SIDE {
+            return Err(Error::Limit {
+                what,
+                value: v.into(),
+                limit: MAX_TEXTURE_SIDE.into(),
+            });
+        }
+    }
+    if w == 0 || h == 0 {
+        return Err(Error::Image {
+            path: path.to_path_buf(),
+            message: "image has no pixels".into(),
+        });
+    }
+    Ok((w, h))
+}
+
+/// sRGB byte to linear light.
+pub fn srgb_to_linear(c: u8) -> f32 {
+    let s = f32::from(c) / 255.0;
+    if s <= 0.040_45 {
+        s / 12.92
+    } else {
+        ((s + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+impl Texture {
+    /// Loads an image file (PNG or JPEG), size checked first.
+    pub fn load(path: &Path) -> Result<Self> {
+        probe(path)?;
+        let img = image::open(path).map_err(|e| Error::Image {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })?;
+        let rgb = img.to_rgb8();
+        Self::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw())
+    }
+
+    /// A texture from sRGB bytes, 3 per texel, top row first.
+    pub fn from_srgb8(width: u32, height: u32, bytes: &[u8]) -> Result<Self> {
+        for (what, v) in [("texture width", width), ("texture height", height)] {
+            if v == 0 || v > MAX_TEXTURE_SIDE {
+                return Err(Error::OutOfRange {
+                    what,
+                    expected: "1 to 8192 texels",
+                    value: v.to_string(),
+                });
+            }
+        }
+        let n = width as usize * height as usize;
+        if bytes.len() != 3 * n {
+            return Err(Error::OutOfRange {
+                what: "texture data",
+                expected: "3 bytes per texel",
+                value: format!("{} bytes for {width}x{height}", bytes.len()),
+            });
+        }
+        let texels = bytes
+            .chunks_exact(3)
+            .map(|c| {
+                [
+                    srgb_to_linear(c[0]),
+                    srgb_to_linear(c[1]),
+                    srgb_to_linear(c[2]),
+                ]
+            })
+            .collect();
+        Ok(Self {
+            width,
+            height,
+            texels,
+        })
+    }
+
+    /// Width in texels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in texels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// Bytes held.
+    pub fn bytes(&self) -> usize {
+        self.texels.len() * std::mem::size_of::<[f32; 3]>()
+    }
+
+    fn texel(&self, x: i64, y: i64) -> [f32; 3] {
+        let x = x.rem_euclid(i64::from(self.width)) as usize;
+        let y = y.rem_euclid(i64::from(self.height)) as usize;
+        self.texels[y * self.width as usize + x]
+    }
+
+    /// The linear colour at texture coordinates `(u, v)` (OBJ convention,
+    /// repeat wrapping). Non-finite coordinates give the first texel.
+    pub fn sample(&self, u: f64, v: f64, filter: Filter) -> [f32; 3] {
+        if !(u.is_finite() && v.is_finite()) {
+            return self.texels[0];
+        }
+        // Texel space: x right, y down from the top row; centres at +0.5.
+        let x = u.rem_euclid(1.0) * f64::from(self.width);
+        let y = (1.0 - v.rem_euclid(1.0)) * f64::from(self.height);
+        match filter {
+            Filter::Nearest => self.texel(x.floor() as i64, y.floor() as i64),
+            Filter::Bilinear => {
+                let (fx, fy) = (x - 0.5, y - 0.5);
+                let (x0, y0) = (fx.floor(), fy.floor());
+                let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
+                let (x0, y0) = (x0 as i64, y0 as i64);
+                let [a, b, c, d] = [
+                    self.texel(x0, y0),
+                    self.texel(x0 + 1, y0),
+                    self.texel(x0, y0 + 1),
+                    self.texel(x0 + 1, y0 + 1),
+                ];
+                std::array::from_fn(|k| {
+                    let top = a[k] + (b[k] - a[k]) * tx;
+                    let bottom = c[k] + (d[k] - c[k]) * tx;
+                    top + (bottom - top) * ty
+                })
+            }
+        }
+    }
+}
+
+/// A checkerboard image: `squares x squares` squares of `square` texels,
+/// alternating `a` and `b` (sRGB bytes, 3 per texel, top row first), `a`
+/// in the top-left corner.
+pub fn checkerboard(squares: u32, square: u32, a: [u8; 3], b: [u8; 3]) -> (u32, Vec<u8>) {
+    let side = squares * square;
+    let mut bytes = Vec::with_capacity(side as usize * side as usize * 3);
+    for y in 0..side {
+        for x in 0..side {
+            let odd = (x / square + y / square) % 2 == 1;
+            bytes.extend_from_slice(if odd { &b } else { &a });
+        }
+    }
+    (side, bytes)
+}
+
+/// Name of the bundled checkerboard texture (`assets/checker.png`).
+pub const CHECKER_PNG: &str = "checker.png";
+
+/// The bundled checkerboard: 8 x 8 squares of 32 texels, light and dark.
+pub fn checker_texture() -> (u32, Vec<u8>) {
+    checkerboard(8, 32, [230, 230, 230], [40, 40, 40])
+}
+
+/// The OBJ and MTL text of the bundled textured asset
+/// (`assets/checker_plane.obj`): one quad (two triangles) of 2 x 2 units,
+/// tilted 14 degrees out of the XZ plane (`y = -z / 4`) so that the fit
+/// camera sees it at a grazing angle, with uvs spanning the texture once
+/// and a material whose `map_Kd` is `texture` (white `Kd`, so the texture
+/// shows as it is).
+pub fn checker_plane_text(mtl_name: &str, texture: &str) -> (String, String) {
+    let obj = format!(
+        "# written by hider: a checkerboard plane for perspective-correct texturing\n\
+         mtllib {mtl_name}\n\
+         o checker_plane\n\
+         v -1 -0.25 1\nv 1 -0.25 1\nv 1 0.25 -1\nv -1 0.25 -1\n\
+         vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+         usemtl checker\n\
+         f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"
+    );
+    let mtl = format!("newmtl checker\nKd 1 1 1\nd 1\nmap_Kd {texture}\n");
+    (obj, mtl)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_and_bilinear_sampling_with_obj_orientation() {
+        // 2 x 2: top row black, white; bottom row white, black.
+        let t =
+            Texture::from_srgb8(2, 2, &[0, 0, 0, 255, 255, 255, 255, 255, 255, 0, 0, 0]).unwrap();
+        // v = 0.75 is the top row in OBJ convention.
+        assert_eq!(t.sample(0.25, 0.75, Filter::Nearest), [0.0; 3]);
+        assert_eq!(t.sample(0.75, 0.75, Filter::Nearest), [1.0; 3]);
+        assert_eq!(t.sample(0.25, 0.25, Filter::Nearest), [1.0; 3]);
+        // Repeat wrapping.
+        assert_eq!(t.sample(1.25, -0.25, Filter::Nearest), [0.0; 3]);
+        // At texel centres bilinear equals nearest; halfway it averages.
+        assert_eq!(t.sample(0.25, 0.75, Filter::Bilinear), [0.0; 3]);
+        let mid = t.sample(0.5, 0.75, Filter::Bilinear);
+        assert!((mid[0] - 0.5).abs() < 1e-6, "{mid:?}");
+        assert_eq!(t.sample(f64::NAN, 0.0, Filter::Bilinear), [0.0; 3]);
+    }
+
+    #[test]
+    fn bad_sizes_and_files_are_errors() {
+        assert!(Texture::from_srgb8(0, 1, &[]).is_err());
+        assert!(Texture::from_srgb8(2, 2, &[0; 11]).is_err());
+        let e = probe(Path::new("/no/such/texture.png"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("/no/such/texture.png"), "{e}");
+        let dir = std::env::temp_dir().join(format!("hider-tex-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let bad = dir.join("bad.png");
+        std::fs::write(&bad, b"not a png at all").unwrap();
+        assert!(Texture::load(&bad).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn checkerboard_alternates() {
+        let (side, bytes) = checkerboard(2, 3, [1, 1, 1], [2, 2, 2]);
+        assert_eq!(side, 6);
+        assert_eq!(bytes[0], 1);
+        assert_eq!(bytes[3 * 3], 2); // x = 3, second square
+        assert_eq!(bytes[3 * (3 * 6 + 3)], 1); // x = 3, y = 3
+    }
+}
