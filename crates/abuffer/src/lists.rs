@@ -18,7 +18,7 @@ use crate::culling::{Culling, hidden_in_every_sample};
 use crate::depth::plane_depth;
 use crate::fragment::{Fragment, MERGED_BASE, NIL, Shaded};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy};
-use crate::palette::shade_of;
+use crate::palette::{at_pixel, shade_of};
 use crate::pattern::MAX_SAMPLES;
 use crate::pool::FragmentPool;
 use crate::stats::ABufferStats;
@@ -103,11 +103,12 @@ impl Lists {
     /// The colour and opacity of shading index `shade` (a primitive's
     /// computed on first use).
     #[inline]
-    pub(crate) fn rgba(&mut self, scene: &ScreenScene, shade: u32) -> [f32; 4] {
+    pub(crate) fn rgba(&mut self, scene: &ScreenScene, shade: u32, ij: (u32, u32)) -> [f32; 4] {
         if shade >= MERGED_BASE {
             self.pool.merged(shade).rgba
         } else {
-            shade_of(&mut self.colors, scene, self.options.shade, shade)
+            let flat = shade_of(&mut self.colors, scene, self.options.shade, shade);
+            at_pixel(scene, shade, flat, ij)
         }
     }
 
@@ -209,10 +210,12 @@ impl Lists {
     fn prune_hidden(&mut self, scene: &ScreenScene, p: usize, full: u32) -> u64 {
         let mut list = std::mem::take(&mut self.scratch);
         list.clear();
+        let w = scene.viewport.width as usize;
+        let ij = ((p % w) as u32, (p / w) as u32);
         let mut cur = self.pool.head(p);
         while cur != NIL {
             let f = *self.pool.get(cur);
-            list.push(Shaded::new(f, self.rgba(scene, f.shade), cur));
+            list.push(Shaded::new(f, self.rgba(scene, f.shade, ij), cur));
             cur = f.next;
         }
         let mut k = 0;
@@ -229,14 +232,14 @@ impl Lists {
     /// `ctx.p`'s list and merges into it, returning its index.
     fn try_merge(&mut self, ctx: &Ctx<'_>, f: &Fragment) -> Result<Option<u32>> {
         let scene = ctx.scene;
-        let f_rgba = self.rgba(scene, f.shade);
+        let f_rgba = self.rgba(scene, f.shade, ctx.ij);
         let mut cur = self.pool.head(ctx.p);
         for _ in 0..MERGE_SEARCH {
             if cur == NIL {
                 return Ok(None);
             }
             let g = *self.pool.get(cur);
-            let g_rgba = self.rgba(scene, g.shade);
+            let g_rgba = self.rgba(scene, g.shade, ctx.ij);
             // Fields of the fragment first; the scene lookups last.
             let mergeable = g.mask & f.mask == 0
                 && !(g.covers_centre() && f.covers_centre())

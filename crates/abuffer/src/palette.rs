@@ -38,6 +38,46 @@ pub fn shade_of(
     *c
 }
 
+/// `rgba` (a primitive's flat colour) times the primitive's texture at
+/// window point `(x, y)` when the scene's textures are loaded
+/// ([`ScreenScene::load_textures`]); `rgba` otherwise.
+#[inline]
+pub fn at_point(scene: &ScreenScene, prim: u32, rgba: [f32; 4], x: f64, y: f64) -> [f32; 4] {
+    if !scene.textures.is_active() {
+        return rgba;
+    }
+    let [r, g, b] = scene.surface_rgb(prim, [rgba[0], rgba[1], rgba[2]], x, y);
+    [r, g, b, rgba[3]]
+}
+
+/// [`at_point`] at the centre of pixel `(i, j)`: the A-buffer shades a
+/// fragment once, at the pixel centre, whatever its coverage, as
+/// multisample rasterisers shade (supersampling shades every sample, see
+/// [`at_sample`]).
+#[inline]
+pub fn at_pixel(scene: &ScreenScene, prim: u32, rgba: [f32; 4], (i, j): (u32, u32)) -> [f32; 4] {
+    at_point(scene, prim, rgba, f64::from(i) + 0.5, f64::from(j) + 0.5)
+}
+
+/// [`at_point`] at the sample of pixel `(i, j)` at `pos` (1/256 pixel
+/// inside the pixel, as [`crate::SamplePattern::positions`] gives them).
+#[inline]
+pub fn at_sample(
+    scene: &ScreenScene,
+    prim: u32,
+    rgba: [f32; 4],
+    (i, j): (u32, u32),
+    pos: (i32, i32),
+) -> [f32; 4] {
+    at_point(
+        scene,
+        prim,
+        rgba,
+        f64::from(i) + f64::from(pos.0) / 256.0,
+        f64::from(j) + f64::from(pos.1) / 256.0,
+    )
+}
+
 /// The conversion table: `thresholds[v - 1]` is the smallest `f32` in
 /// `[0, 1]` (as bits) that `to_srgb8` maps to `v` or more, for `v =
 /// 1..=255`; `base[b >> 16]` is the value at the start of the bucket of

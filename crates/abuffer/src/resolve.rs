@@ -33,7 +33,7 @@ use crate::centre::in_front;
 use crate::composite::{blend, mask_path, overlapping, per_sample};
 use crate::fragment::{Fragment, NIL, Shaded};
 use crate::options::{ABufferOptions, DepthMode};
-use crate::palette::{Srgb, shade_of, to_pixel};
+use crate::palette::{Srgb, at_pixel, shade_of, to_pixel};
 use crate::pool::FragmentPool;
 use crate::stats::ABufferStats;
 
@@ -52,13 +52,15 @@ pub(crate) struct Input<'a> {
 }
 
 impl Input<'_> {
-    /// The colour and opacity of fragment `f`.
+    /// The colour and opacity of fragment `f` in pixel `ij` (textured at
+    /// the pixel centre).
     #[inline]
-    fn rgba(&mut self, f: &Fragment) -> [f32; 4] {
+    fn rgba(&mut self, f: &Fragment, ij: (u32, u32)) -> [f32; 4] {
         if f.is_merged() {
             self.pool.merged(f.shade).rgba
         } else {
-            shade_of(self.colors, self.scene, self.options.shade, f.shade)
+            let flat = shade_of(self.colors, self.scene, self.options.shade, f.shade);
+            at_pixel(self.scene, f.shade, flat, ij)
         }
     }
 }
@@ -129,7 +131,7 @@ impl Resolver {
                 if head == NIL {
                     continue;
                 }
-                if !self.no_shortcuts && self.shortcut(input, &k, p, frame, stats) {
+                if !self.no_shortcuts && self.shortcut(input, &k, (p, (i, j)), frame, stats) {
                     continue;
                 }
                 self.general(input, &k, (p, (i, j)), frame, stats);
@@ -154,14 +156,14 @@ impl Resolver {
         &mut self,
         input: &mut Input<'_>,
         k: &Samples,
-        p: usize,
+        (p, ij): (usize, (u32, u32)),
         frame: &mut Frame,
         stats: &mut ABufferStats,
     ) -> bool {
         let pool = input.pool;
         let first = pool.get(pool.head(p));
         let opaque = |rgba: [f32; 4]| rgba[3] >= 1.0;
-        let first_rgba = input.rgba(first);
+        let first_rgba = input.rgba(first, ij);
         if !opaque(first_rgba) {
             return false;
         }
@@ -183,7 +185,7 @@ impl Resolver {
         if second.next != NIL || second.mask & first.mask != 0 {
             return false;
         }
-        let second_rgba = input.rgba(second);
+        let second_rgba = input.rgba(second, ij);
         if !opaque(second_rgba) {
             return false;
         }
@@ -225,7 +227,7 @@ impl Resolver {
         let mut cur = input.pool.head(p);
         while cur != NIL {
             let f = input.pool.get(cur);
-            let rgba = input.rgba(f);
+            let rgba = input.rgba(f, ij);
             self.frags.push(Shaded::new(*f, rgba, cur));
             cur = f.next;
         }

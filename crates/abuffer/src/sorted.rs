@@ -24,7 +24,7 @@ use crate::centre::{CentreBuffer, in_front};
 use crate::coverage::{TriCoverage, pixel_range};
 use crate::depth::sample_depth;
 use crate::options::SsaaOptions;
-use crate::palette::{prim_colors, to_pixel};
+use crate::palette::{at_sample, prim_colors, to_pixel};
 use crate::pattern::CENTRE;
 use crate::stats::SsaaStats;
 
@@ -58,7 +58,8 @@ impl SortedTransparencyZBuffer {
         let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, w, h) else {
             return;
         };
-        let [r, g, b, alpha] = self.colors[tri.prim as usize];
+        let flat = self.colors[tri.prim as usize];
+        let alpha = flat[3];
         let setup = TriCoverage::new(tri, pattern);
         for j in y0..=y1 {
             for (i, c) in setup.row(x0, x1, j) {
@@ -81,6 +82,7 @@ impl SortedTransparencyZBuffer {
                     }
                     stats.depth_writes += 1;
                     self.hit[s] = true;
+                    let [r, g, b, _] = at_sample(scene, tri.prim, flat, (i, j), pos);
                     if translucent {
                         let dst = self.color[s];
                         self.color[s] =

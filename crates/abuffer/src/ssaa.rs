@@ -21,7 +21,7 @@ use crate::centre::{CentreBuffer, in_front};
 use crate::coverage::{TriCoverage, pixel_range};
 use crate::depth::sample_depth;
 use crate::options::SsaaOptions;
-use crate::palette::{prim_colors, to_pixel};
+use crate::palette::{at_sample, prim_colors, to_pixel};
 use crate::pattern::{CENTRE, SamplePattern};
 use crate::stats::SsaaStats;
 
@@ -44,9 +44,11 @@ impl SupersampledZBuffer {
 
     /// Writes ids and depth from the centre buffer, and colour and coverage
     /// as the mean over each pixel's samples.
-    fn resolve(&self, frame: &mut Frame) {
+    fn resolve(&self, scene: &ScreenScene, frame: &mut Frame) {
         let pixels = frame.len();
         let n = self.options.pattern.count();
+        let positions = self.options.pattern.positions();
+        let w = frame.width() as usize;
         self.centre.write(frame);
         frame.coverage.clear();
         frame.coverage.resize(pixels, 0.0);
@@ -54,10 +56,11 @@ impl SupersampledZBuffer {
         for p in 0..pixels {
             let mut sum = [0.0f32; 3];
             let mut covered = 0u32;
-            for &id in &self.ids[p * n..(p + 1) * n] {
+            let ij = ((p % w) as u32, (p / w) as u32);
+            for (&id, &pos) in self.ids[p * n..(p + 1) * n].iter().zip(positions) {
                 if id != NO_ID {
                     covered += 1;
-                    let c = self.colors[id as usize];
+                    let c = at_sample(scene, id, self.colors[id as usize], ij, pos);
                     for (s, v) in sum.iter_mut().zip(c) {
                         *s += v;
                     }
@@ -148,7 +151,7 @@ impl Hider for SupersampledZBuffer {
             }
         }
 
-        self.resolve(frame);
+        self.resolve(scene, frame);
         Ok(stats)
     }
 
