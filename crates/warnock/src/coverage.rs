@@ -48,6 +48,15 @@ impl ColorCache {
         }
     }
 
+    /// The colour of `prim` in pixel `(u, v)`: its flat colour, textured
+    /// at the pixel centre when the scene's textures are loaded (a
+    /// primitive is shaded once per pixel, as multisample rasterisers and
+    /// the A-buffer shade).
+    fn at(&mut self, scene: &ScreenScene, shade: ShadeMode, prim: u32, u: u32, v: u32) -> [f32; 3] {
+        let flat = self.get(scene, shade, prim);
+        scene.surface_rgb(prim, flat, f64::from(u) + 0.5, f64::from(v) + 0.5)
+    }
+
     pub fn bytes(&self) -> usize {
         self.colors.capacity() * std::mem::size_of::<Option<[f32; 3]>>()
     }
@@ -180,7 +189,7 @@ impl CoverageSink<'_> {
         let mut rgb = [0.0f32; 3];
         let mut covered = 0;
         for &(p, n, _) in &tally {
-            let c = self.colors.get(self.scene, self.shade, p);
+            let c = self.colors.at(self.scene, self.shade, p, u, v);
             for k in 0..3 {
                 rgb[k] += c[k] * n as f32;
             }
@@ -194,12 +203,12 @@ impl CoverageSink<'_> {
 impl Sink for CoverageSink<'_> {
     fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
         let n = self.side * self.side;
-        let color = self
-            .colors
-            .get(self.scene, self.shade, t.prim)
-            .map(|c| c * n as f32);
         for v in r.v0..r.v1 {
             for u in r.u0..r.u1 {
+                let color = self
+                    .colors
+                    .at(self.scene, self.shade, t.prim, u, v)
+                    .map(|c| c * n as f32);
                 // Depth is affine: its minimum over the pixel's samples is
                 // at one of the corner samples.
                 let one = Region::new(u, v, u + 1, v + 1);
@@ -219,9 +228,9 @@ impl Sink for CoverageSink<'_> {
         let Some(b) = grid.cells_touching(r, t.x_bounds(), t.y_bounds()) else {
             return;
         };
-        let color = self.colors.get(self.scene, self.shade, t.prim);
         for v in b.v0..b.v1 {
             for u in b.u0..b.u1 {
+                let color = self.colors.at(self.scene, self.shade, t.prim, u, v);
                 let g = Grid::samples_of_pixel(u, v, self.side);
                 let mut covered = 0;
                 let mut depth = f64::INFINITY;
