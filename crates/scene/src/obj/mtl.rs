@@ -1,0 +1,146 @@
+//! MTL files: loaded through `tobj`, with a broken material treated like a
+//! missing one. tobj stops at the first bad statement of an MTL file
+//! without saying where; here the statement is found (the shortest prefix
+//! of the file that fails), reported with its file and line, and only the
+//! material it belongs to is dropped, so its faces get the default
+//! material while the rest of the file loads.
+
+use std::borrow::Cow;
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use super::text::decode;
+use crate::model::Material;
+
+/// Most broken materials reported and dropped in one MTL file before the
+/// whole file is given up.
+const MAX_BROKEN_MATERIALS: usize = 64;
+
+/// The MTL loader handed to `tobj`: never an error, a warning instead (the
+/// default material is used for what could not be loaded).
+pub(super) fn load_mtl(
+    base: &Path,
+    mtl: &Path,
+    warnings: &RefCell<Vec<String>>,
+) -> tobj::MTLLoadResult {
+    let path = base.join(normalize_separators(&mtl.to_string_lossy()));
+    let warn = |message: String| warnings.borrow_mut().push(message);
+    let none = || Ok((Vec::new(), HashMap::new()));
+    let bytes = match std::fs::read(&path) {
+        Ok(bytes) => bytes,
+        Err(e) => {
+            warn(format!(
+                "{}: cannot read MTL ({e}); using the default material",
+                path.display()
+            ));
+            return none();
+        }
+    };
+    let text = match decode(&bytes, &path) {
+        Ok(text) => text,
+        Err(e) => {
+            warn(format!("{e}; using the default material"));
+            return none();
+        }
+    };
+    let mut lines: Vec<&str> = text.split('\n').collect();
+    for _ in 0..MAX_BROKEN_MATERIALS {
+        let error = match parse(&lines) {
+            Ok(loaded) => return Ok(loaded),
+            Err(e) => e,
+        };
+        let bad = first_failing_line(&lines);
+        let (start, end, name) = material_block(&lines, bad);
+        warn(format!(
+            "{}:{}: {error} in '{}': material {name} gets the default material",
+            path.display(),
+            bad + 1,
+            lines[bad].trim()
+        ));
+        lines[start..end].fill("");
+    }
+    warn(format!(
+        "{}: more than {MAX_BROKEN_MATERIALS} broken materials; using the default material",
+        path.display()
+    ));
+    none()
+}
+
+/// tobj's parse of the given lines.
+fn parse(lines: &[&str]) -> tobj::MTLLoadResult {
+    let text = lines.join("\n");
+    tobj::load_mtl_buf(&mut std::io::Cursor::new(text.as_bytes()))
+}
+
+/// Index of the line tobj fails on: the end of the shortest failing
+/// prefix (parsing is sequential, so every longer prefix fails too).
+fn first_failing_line(lines: &[&str]) -> usize {
+    let (mut ok, mut failing) = (0, lines.len());
+    while failing - ok > 1 {
+        let mid = ok + (failing - ok) / 2;
+        if parse(&lines[..mid]).is_ok() {
+            ok = mid;
+        } else {
+            failing = mid;
+        }
+    }
+    failing - 1
+}
+
+/// The lines `start..end` of the material that line `bad` belongs to (from
+/// its `newmtl` to the next one), and its name as the warning shows it.
+fn material_block(lines: &[&str], bad: usize) -> (usize, usize, Cow<'static, str>) {
+    let is_newmtl = |l: &&str| l.split_whitespace().next() == Some("newmtl");
+    let start = (0..=bad).rev().find(|&i| is_newmtl(&lines[i]));
+    let end = lines[bad + 1..]
+        .iter()
+        .position(is_newmtl)
+        .map_or(lines.len(), |k| bad + 1 + k);
+    let name = match start {
+        None => Cow::Borrowed("(before the first newmtl)"),
+        Some(i) => match lines[i].trim()["newmtl".len()..].trim() {
+            "" => Cow::Borrowed("(unnamed)"),
+            n => Cow::Owned(format!("'{n}'")),
+        },
+    };
+    (start.unwrap_or(0), end, name)
+}
+
+/// A material file name or texture path as written on Windows (`.\a.jpg`)
+/// made portable.
+pub(super) fn normalize_separators(p: &str) -> String {
+    let p = p.trim().replace('\\', "/");
+    p.strip_prefix("./").map(str::to_owned).unwrap_or(p)
+}
+
+/// A tobj material as the scene's, `Tr` (transparency) read when `d`
+/// (dissolve) is absent, texture paths relative to `base`.
+pub(super) fn convert_material(m: &tobj::Material, base: &Path) -> Material {
+    let diffuse = m
+        .diffuse
+        .map(|d| d.map(|c| (c as f32).clamp(0.0, 1.0)))
+        .unwrap_or(Material::default().diffuse);
+    let from_tr = m
+        .unknown_param
+        .get("Tr")
+        .and_then(|t| t.trim().parse::<f32>().ok())
+        .map(|tr| 1.0 - tr);
+    let opacity = m
+        .dissolve
+        .map(|d| d as f32)
+        .or(from_tr)
+        .filter(|o| o.is_finite())
+        .unwrap_or(1.0)
+        .clamp(0.0, 1.0);
+    Material {
+        name: m.name.clone(),
+        diffuse,
+        opacity,
+        diffuse_texture: m
+            .diffuse_texture
+            .as_deref()
+            .filter(|t| !t.trim().is_empty())
+            .map(|t| base.join(PathBuf::from(normalize_separators(t)))),
+    }
+}
