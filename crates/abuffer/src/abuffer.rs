@@ -26,7 +26,7 @@
 
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
 
-use crate::bins::{Bins, TILE};
+use crate::bins::{Bins, LEADER, SOLE, TILE};
 use crate::centre::in_front;
 use crate::fragment::NIL;
 use crate::options::{ABufferOptions, DepthMode};
@@ -41,6 +41,9 @@ pub struct ABuffer {
     raster: Rasterizer,
     bins: Bins,
     resolver: Resolver,
+    /// Per item of the current tile that leads coincident ones: the
+    /// lowest id of an opaque one taken so far, `NO_ID` if none.
+    shadow: Vec<u32>,
     width: u32,
     height: u32,
 }
@@ -129,7 +132,28 @@ impl ABuffer {
         // that cull what lies behind them. The order changes no sample
         // (the lists are sorted by depth at resolve), only how much work
         // is culled.
-        for item in self.bins.tile_items(t, self.options.front_to_back) {
+        let n = self.bins.order_tile(t, self.options.front_to_back);
+        self.shadow.clear();
+        self.shadow.resize(n, NO_ID);
+        for k in 0..n {
+            let item = self.bins.item(k);
+            let twin = self.bins.twin(k);
+            if twin != SOLE {
+                // Coincident triangles (a face whose vertex list repeats
+                // itself): an opaque one taken earlier, with a lower id,
+                // ties with this one at every sample and centre and wins
+                // every tie, so this one can change nothing. Without this
+                // the copies fill the lists (equal depths are never
+                // strictly behind) and overflow them.
+                let leader = if twin == LEADER { k } else { twin as usize };
+                if self.shadow[leader] <= item.prim {
+                    stats.coincident += 1;
+                    continue;
+                }
+                if self.raster.lists.prim_alpha(scene, item.prim) >= 1.0 {
+                    self.shadow[leader] = item.prim;
+                }
+            }
             let (rx0, ry0, rx1, ry1) = item.range;
             let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
             self.raster.triangle(scene, item, rect, (x0, y0), stats)?;

@@ -34,6 +34,29 @@ pub(crate) struct BinItem {
     pub(crate) v: [FixedPt; 3],
 }
 
+/// [`Bins::twin`]: no earlier item of the tile has the same geometry.
+pub(crate) const SOLE: u32 = u32::MAX;
+/// [`Bins::twin`]: the first item of the tile with its geometry, and later
+/// ones share it.
+pub(crate) const LEADER: u32 = u32::MAX - 1;
+
+/// Runs of equal nearest depth up to this length are searched for
+/// coincident items pair by pair; longer ones are sorted by geometry.
+const PAIRWISE_RUN: usize = 16;
+
+/// What makes two triangles coincident: the same snapped vertices in the
+/// same order and the same depth plane, bit for bit. Such triangles cover
+/// the same samples and centres (same edges, same fill rule) at the same
+/// depths (same expression).
+type Geometry = ([FixedPt; 3], [u64; 5]);
+
+impl BinItem {
+    fn geometry(&self) -> Geometry {
+        let p = &self.plane;
+        (self.v, [p.x0, p.y0, p.value, p.dx, p.dy].map(f64::to_bits))
+    }
+}
+
 /// An unsigned key ordered like `f32::total_cmp`.
 #[inline]
 fn order_key(x: f32) -> u32 {
@@ -51,6 +74,11 @@ pub(crate) struct Bins {
     /// The current tile's items in processing order: sort keys and
     /// positions in `items`.
     order: Vec<(u64, u32)>,
+    /// Per position of `order`: [`SOLE`], [`LEADER`] (the first of
+    /// several coincident items), or the position of its leader.
+    twin: Vec<u32>,
+    /// Geometry keys of a long run of equal nearest depth, with positions.
+    run: Vec<(Geometry, u32)>,
     ranges: Vec<(u32, u32, u32, u32)>,
     /// Tiles whose pixel entries may hold lists of the last frame.
     dirty: Vec<bool>,
@@ -144,13 +172,11 @@ impl Bins {
         self.dirty[t] = dirty;
     }
 
-    /// The items of tile `t` in processing order: front to back (nearest
-    /// vertex depth, then triangle index) or in submission order.
-    pub(crate) fn tile_items(
-        &mut self,
-        t: usize,
-        front_to_back: bool,
-    ) -> impl Iterator<Item = &BinItem> {
+    /// Puts the items of tile `t` in processing order, front to back
+    /// (nearest vertex depth, then triangle index) or in submission order,
+    /// and finds the coincident ones ([`Self::twin`]); returns how many
+    /// items the tile has.
+    pub(crate) fn order_tile(&mut self, t: usize, front_to_back: bool) -> usize {
         let (b0, b1) = (self.start[t] as usize, self.start[t + 1] as usize);
         self.order.clear();
         self.order
@@ -158,6 +184,73 @@ impl Bins {
         if front_to_back {
             self.order.sort_unstable_by_key(|&(key, _)| key);
         }
-        self.order.iter().map(|&(_, b)| &self.items[b as usize])
+        self.find_twins();
+        self.order.len()
+    }
+
+    /// Item `k` of the current tile in processing order.
+    #[inline]
+    pub(crate) fn item(&self, k: usize) -> &BinItem {
+        &self.items[self.order[k].1 as usize]
+    }
+
+    /// Item `k`'s place among coincident items: [`SOLE`], [`LEADER`], or
+    /// the position of the earlier item it coincides with.
+    #[inline]
+    pub(crate) fn twin(&self, k: usize) -> u32 {
+        self.twin[k]
+    }
+
+    /// Marks coincident items of the current tile. Coincident triangles
+    /// have the same nearest vertex depth, so they sit in one run of equal
+    /// depth keys (front to back: in triangle order within the run); only
+    /// runs are searched, pair by pair when short, by sorting their
+    /// geometry when long, so the cost stays `O(n log n)` per tile.
+    fn find_twins(&mut self) {
+        let n = self.order.len();
+        self.twin.clear();
+        self.twin.resize(n, SOLE);
+        let mut a = 0;
+        while a < n {
+            let depth = self.order[a].0 >> 32;
+            let mut b = a + 1;
+            while b < n && self.order[b].0 >> 32 == depth {
+                b += 1;
+            }
+            if b - a <= PAIRWISE_RUN {
+                for k in a + 1..b {
+                    let g = self.item(k).geometry();
+                    if let Some(l) =
+                        (a..k).find(|&l| self.twin[l] >= LEADER && self.item(l).geometry() == g)
+                    {
+                        self.twin[k] = l as u32;
+                        self.twin[l] = LEADER;
+                    }
+                }
+            } else {
+                let mut run = std::mem::take(&mut self.run);
+                run.clear();
+                run.extend((a..b).map(|k| (self.item(k).geometry(), k as u32)));
+                run.sort_unstable();
+                for w in 1..run.len() {
+                    let ((g, k), (h, l)) = (run[w], run[w - 1]);
+                    if g == h {
+                        let l = self.leader(l);
+                        self.twin[k as usize] = l;
+                        self.twin[l as usize] = LEADER;
+                    }
+                }
+                self.run = run;
+            }
+            a = b;
+        }
+    }
+
+    /// The leader of the group of position `k`, during [`Self::find_twins`].
+    fn leader(&self, k: u32) -> u32 {
+        match self.twin[k as usize] {
+            SOLE | LEADER => k,
+            l => l,
+        }
     }
 }

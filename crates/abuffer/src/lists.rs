@@ -14,7 +14,7 @@ use hider_geom::PlaneEq;
 use hider_scene::{Error, Result, ScreenScene};
 
 use crate::coverage::Coverage;
-use crate::culling::{Culling, hidden_in_every_sample};
+use crate::culling::{Culling, HiddenScratch, hidden_fragments, key_at_or_beyond};
 use crate::depth::plane_depth;
 use crate::fragment::{Fragment, MERGED_BASE, NIL, Shaded};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy};
@@ -63,6 +63,10 @@ pub(crate) struct Lists {
     pub(crate) culling: Culling,
     /// A list with its colours, while pruning.
     scratch: Vec<Shaded>,
+    /// Which fragments of `scratch` are hidden, while pruning.
+    hidden: Vec<bool>,
+    /// Scratch of the pruning sweep.
+    hidden_scratch: HiddenScratch,
     /// The options of the frame.
     options: ABufferOptions,
 }
@@ -100,8 +104,9 @@ impl Lists {
         shade_of(&mut self.colors, scene, self.options.shade, prim)[3]
     }
 
-    /// The colour and opacity of shading index `shade` (a primitive's
-    /// computed on first use).
+    /// The colour and opacity of shading index `shade` in pixel `ij` (a
+    /// primitive's flat colour computed on first use, textured at the pixel
+    /// centre).
     #[inline]
     pub(crate) fn rgba(&mut self, scene: &ScreenScene, shade: u32, ij: (u32, u32)) -> [f32; 4] {
         if shade >= MERGED_BASE {
@@ -130,6 +135,9 @@ impl Lists {
             && let Some(idx) = self.try_merge(ctx, &f)?
         {
             stats.merged += 1;
+            if ctx.alpha >= 1.0 {
+                self.culling.opaque_entered(ctx.g);
+            }
             let merged = *self.pool.get(idx);
             self.note_opaque(ctx, &f, &merged, stats);
             return Ok(());
@@ -139,6 +147,10 @@ impl Lists {
         }
         let idx = self.pool.alloc(f)?;
         self.pool.push_front(ctx.p, idx);
+        self.culling.entered(ctx.g, (f.zmin, f.prim));
+        if ctx.alpha >= 1.0 {
+            self.culling.opaque_entered(ctx.g);
+        }
         self.note_opaque(ctx, &f, &f, stats);
         Ok(())
     }
@@ -149,7 +161,7 @@ impl Lists {
     fn make_room(&mut self, ctx: &Ctx<'_>, f: &Fragment, stats: &mut ABufferStats) -> Result<bool> {
         let p = ctx.p;
         let max = self.options.max_list_len;
-        if self.pool.len(p) >= max {
+        if self.pool.len(p) >= max && self.culling.take_prune(ctx.g) {
             let full = self.options.pattern.full_mask();
             stats.pruned += self.prune_hidden(ctx.scene, p, full);
         }
@@ -167,6 +179,17 @@ impl Lists {
             }),
             OverflowPolicy::DropFarthest => {
                 stats.dropped += 1;
+                let key = (f.zmin, f.prim);
+                if self
+                    .culling
+                    .far_bound(ctx.g)
+                    .is_some_and(|bound| key_at_or_beyond(key, bound))
+                {
+                    // No fragment of the list comes after `f`: it is the
+                    // farthest, dropped without a walk (hundreds of
+                    // coincident translucent layers arrive this way).
+                    return Ok(false);
+                }
                 let mut far = *f;
                 let mut cur = self.pool.head(p);
                 while cur != NIL {
@@ -176,6 +199,7 @@ impl Lists {
                     }
                     cur = g.next;
                 }
+                self.culling.set_far_bound(ctx.g, (far.zmin, far.prim));
                 if far == *f {
                     return Ok(false);
                 }
@@ -218,13 +242,15 @@ impl Lists {
             list.push(Shaded::new(f, self.rgba(scene, f.shade, ij), cur));
             cur = f.next;
         }
+        let mut hidden = std::mem::take(&mut self.hidden);
+        hidden_fragments(&list, full, &mut self.hidden_scratch, &mut hidden);
         let mut k = 0;
         let removed = self.pool.remove_where(p, |_| {
-            let hit = hidden_in_every_sample(&list[k], &list, full);
             k += 1;
-            hit
+            hidden[k - 1]
         });
         self.scratch = list;
+        self.hidden = hidden;
         removed
     }
 

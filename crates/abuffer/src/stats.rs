@@ -35,6 +35,12 @@ hider_scene::hider_stats! {
         /// Fragments dropped by [`crate::OverflowPolicy::DropFarthest`] from
         /// a list still full after pruning: the only lossy step.
         pub dropped: u64 => "dropped",
+        /// (triangle, tile) pairs skipped because an opaque triangle with
+        /// the same snapped vertices, in the same order, and a lower
+        /// primitive id was taken before it in the tile: it would tie in
+        /// depth at every sample and lose every tie (a face whose vertex
+        /// list repeats itself is fan-split into such copies).
+        pub coincident: u64 => "coincident",
         /// Longest list of any pixel at resolve time.
         pub max_list_len: u64 => "max list",
         /// Mean list length over the pixels with at least one fragment.
@@ -50,6 +56,24 @@ hider_scene::hider_stats! {
         pub pool_fragments: u64 => "pool fragments",
         /// Working memory at its peak: pixel table plus fragment pool, bytes.
         pub bytes: u64 => PEAK,
+    }
+}
+
+impl ABufferStats {
+    /// What a user should be told about this frame, one line each: today
+    /// only fragments lost to [`crate::OverflowPolicy::DropFarthest`]
+    /// (empty when nothing was lost).
+    pub fn warnings(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if self.dropped > 0 {
+            out.push(format!(
+                "abuffer dropped {} fragments from pixel lists full at max_list_len \
+                 (longest list {}): surfaces may be missing there; raise max_list_len, \
+                 or use OverflowPolicy::Error to fail instead",
+                self.dropped, self.max_list_len
+            ));
+        }
+        out
     }
 }
 
