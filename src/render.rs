@@ -7,7 +7,8 @@
 use std::path::Path;
 
 use anyhow::{Context, Result, bail};
-use hider::plan::{Plan, RenderOptions, Shader, planner, registry};
+use hider::plan::stages::prepare_surface;
+use hider::plan::{Plan, RenderOptions, Shader, Stages, planner, registry};
 use hider::scene::timing::{Summary, Timer};
 use hider::scene::{
     DynHider, Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, shade_frame,
@@ -68,18 +69,29 @@ fn time_frames(
     Ok(summary)
 }
 
+/// The colour stages the scene calls for: the plan's under `--algo auto`,
+/// else those found cheaply from the scene (textures, lighting).
+fn colour_stages(args: &RenderArgs, chosen: &Chosen, scene: &Scene) -> Stages {
+    match &chosen.plan {
+        Some(p) => p.stages,
+        None => Stages::for_scene(scene, args.shade_mode() == ShadeMode::Lambert),
+    }
+}
+
 /// Colours the frame unless the hider did: from the ids, with only the
-/// stages the plan calls for under `--algo auto` and Lambert shading.
-fn shade(args: &RenderArgs, chosen: &Chosen, frame: &mut Frame) {
+/// stages the scene calls for under Lambert shading.
+fn shade(args: &RenderArgs, chosen: &Chosen, stages: &Stages, frame: &mut Frame) {
     if chosen.hider.resolves_color() {
         return;
     }
-    let mode = args.shade_mode();
-    match &chosen.plan {
-        Some(p) if mode == ShadeMode::Lambert => {
-            Shader::default().shade(&chosen.screen, frame, &p.stages);
+    match args.shade_mode() {
+        ShadeMode::Lambert => {
+            let trace = Shader::default().shade(&chosen.screen, frame, stages);
+            for failure in trace.texture_failures {
+                eprintln!("warning: {failure}; the material's colour is used");
+            }
         }
-        _ => shade_frame(&chosen.screen, frame, mode),
+        mode => shade_frame(&chosen.screen, frame, mode),
     }
 }
 
@@ -116,6 +128,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if let Some(plan) = &chosen.plan {
         options = plan.prepare_options(options);
     }
+    let stages = colour_stages(args, &chosen, &scene);
+    if chosen.hider.resolves_color() {
+        // Hiders that composite colour themselves sample the textures.
+        for failure in prepare_surface(&mut chosen.screen, &stages) {
+            eprintln!("warning: {failure}; the material's colour is used");
+        }
+    }
     let mut frame = Frame::new(width, height)?;
     let stats = chosen.hider.render(&chosen.screen, &mut frame)?;
     if args.repeat > 0 {
@@ -137,7 +156,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             args.threads,
         );
     }
-    shade(args, &chosen, &mut frame);
+    shade(args, &chosen, &stages, &mut frame);
     write_outputs(args, &chosen, &frame)?;
     eprintln!(
         "{}: {} triangles in, {} on screen, {} pixels covered; {}",

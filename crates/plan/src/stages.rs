@@ -23,17 +23,14 @@
 //! needs none of the four pays for none: the pass is then one cached flat
 //! colour per primitive.
 
-use std::collections::HashMap;
-use std::path::PathBuf;
-
-use glam::{DMat4, DVec2, DVec3, DVec4};
-
 use hider_scene::frame::BACKGROUND;
 use hider_scene::shade::{lambert_light, to_srgb8};
-use hider_scene::{Frame, NO_ID, ScreenScene};
+use hider_scene::{Frame, NO_ID, Scene, ScreenScene, SurfaceTextures, TextureOptions};
+
+pub use hider_scene::surface::Mapping;
 
 use crate::analyze::Effects;
-use crate::texture::{Filter, Texture};
+use crate::texture::Filter;
 
 /// Which effect stages run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -67,6 +64,21 @@ impl Stages {
         }
     }
 
+    /// The colour stages `scene` calls for, found without the full
+    /// analysis (for a hider named on the command line): texture when a
+    /// material has a `map_Kd` and a mesh has texture coordinates,
+    /// lighting whenever `shading` is asked (lights, or the head light).
+    pub fn for_scene(scene: &Scene, shading: bool) -> Self {
+        let textured = scene.meshes.iter().any(|m| !m.uvs.is_empty())
+            && scene.materials.iter().any(|m| m.diffuse_texture.is_some());
+        Self {
+            texture: shading && textured,
+            lighting: shading,
+            transparency: scene.materials.iter().any(|m| m.opacity < 1.0),
+            multisample: false,
+        }
+    }
+
     /// The names of the stages that are on.
     pub fn names(&self) -> Vec<&'static str> {
         [
@@ -81,18 +93,6 @@ impl Stages {
     }
 }
 
-/// How texture coordinates are interpolated across a triangle.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Mapping {
-    /// Barycentrics of the camera-space point seen through the pixel
-    /// centre: correct under perspective (the default).
-    #[default]
-    PerspectiveCorrect,
-    /// Barycentrics on the screen: *wrong* under perspective (straight
-    /// texture lines bend at triangle edges); kept as a demonstration.
-    Affine,
-}
-
 /// Options of [`Shader`]. `Default` is the accurate choice.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
@@ -104,6 +104,13 @@ pub struct ShaderOptions {
 }
 
 impl ShaderOptions {
+    /// The texture sampling these options ask for.
+    pub fn texture_options(&self) -> TextureOptions {
+        TextureOptions::default()
+            .with_filter(self.filter)
+            .with_mapping(self.mapping)
+    }
+
     /// Sets [`Self::filter`].
     pub fn with_filter(mut self, filter: Filter) -> Self {
         self.filter = filter;
@@ -135,23 +142,13 @@ pub struct StageTrace {
     pub texture_failures: Vec<String>,
 }
 
-/// Per-primitive shading data, built lazily.
-#[derive(Clone, Copy, Debug)]
-struct PrimShade {
-    /// Linear colour: diffuse, times the light when lighting runs.
-    color: [f32; 3],
-    /// Index into the shader's textures when the primitive is textured.
-    texture: Option<usize>,
-}
-
-/// The shading pass. Keeps decoded textures and its per-primitive cache
-/// between frames.
+/// The shading pass. Keeps decoded textures and its per-primitive colour
+/// cache between frames.
 #[derive(Clone, Debug, Default)]
 pub struct Shader {
     options: ShaderOptions,
-    textures: Vec<Texture>,
-    by_path: HashMap<PathBuf, Option<usize>>,
-    prims: Vec<Option<PrimShade>>,
+    textures: SurfaceTextures,
+    prims: Vec<Option<[f32; 3]>>,
 }
 
 impl Shader {
@@ -159,7 +156,8 @@ impl Shader {
     pub fn new(options: ShaderOptions) -> Self {
         Self {
             options,
-            ..Self::default()
+            textures: SurfaceTextures::new(options.texture_options()),
+            prims: Vec::new(),
         }
     }
 
@@ -175,13 +173,17 @@ impl Shader {
         let mut trace = StageTrace::default();
         if stages.texture {
             trace.ran.push("texture");
+            let load = self.textures.load(scene);
+            trace.textures_loaded = load.loaded;
+            trace.texture_failures = load.failures;
+        } else {
+            self.textures.deactivate();
         }
         if stages.lighting {
             trace.ran.push("lighting");
         }
         self.prims.clear();
         self.prims.resize(scene.prims.len(), None);
-        let rays = RayGen::new(scene);
         let (w, h) = (frame.width(), frame.height());
         for y in 0..h {
             for x in 0..w {
@@ -192,165 +194,48 @@ impl Shader {
                     continue;
                 }
                 trace.pixels += 1;
-                let ps = match self.prims[id as usize] {
-                    Some(ps) => ps,
+                let flat = match self.prims[id as usize] {
+                    Some(c) => c,
                     None => {
-                        let ps = self.prim_shade(scene, id, stages, &mut trace);
-                        self.prims[id as usize] = Some(ps);
-                        ps
+                        let c = prim_shade(scene, id, stages, &mut trace);
+                        self.prims[id as usize] = Some(c);
+                        c
                     }
                 };
-                let mut c = ps.color;
-                if let Some(k) = ps.texture {
-                    let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
-                    if let Some(uv) = self.uv_at(scene, &rays, id, cx, cy) {
-                        let t = self.textures[k].sample(uv.x, uv.y, self.options.filter);
-                        c = [c[0] * t[0], c[1] * t[1], c[2] * t[2]];
-                        trace.texture_samples += 1;
-                    }
+                let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let mut c = flat;
+                if self.textures.texture(scene, id).is_some() {
+                    c = self.textures.rgb_at(scene, id, flat, cx, cy);
+                    trace.texture_samples += 1;
                 }
                 frame.color[i] = [to_srgb8(c[0]), to_srgb8(c[1]), to_srgb8(c[2]), 255];
             }
         }
         trace
     }
-
-    fn prim_shade(
-        &mut self,
-        scene: &ScreenScene,
-        prim: u32,
-        stages: &Stages,
-        trace: &mut StageTrace,
-    ) -> PrimShade {
-        let material = scene.material(prim);
-        let mut color = material.diffuse;
-        if stages.lighting {
-            let lit = lambert_light(scene, prim);
-            color = std::array::from_fn(|k| (f64::from(color[k]) * lit[k]) as f32);
-            trace.lit_prims += 1;
-        }
-        let mut texture = None;
-        if stages.texture
-            && scene.prims[prim as usize].uvs.is_some()
-            && let Some(path) = &material.diffuse_texture
-        {
-            texture = match self.by_path.get(path) {
-                Some(k) => *k,
-                None => {
-                    let k = match Texture::load(path) {
-                        Ok(t) => {
-                            self.textures.push(t);
-                            trace.textures_loaded += 1;
-                            Some(self.textures.len() - 1)
-                        }
-                        Err(e) => {
-                            trace.texture_failures.push(e.to_string());
-                            None
-                        }
-                    };
-                    self.by_path.insert(path.clone(), k);
-                    k
-                }
-            };
-        }
-        PrimShade { color, texture }
-    }
-
-    /// The texture coordinates of primitive `prim` seen at window point
-    /// `(x, y)`.
-    fn uv_at(
-        &self,
-        scene: &ScreenScene,
-        rays: &RayGen,
-        prim: u32,
-        x: f64,
-        y: f64,
-    ) -> Option<DVec2> {
-        let info = &scene.prims[prim as usize];
-        let uv = info.uvs?.map(|t| t.as_dvec2());
-        let c = info.camera;
-        let b = match self.options.mapping {
-            Mapping::PerspectiveCorrect => {
-                let (o, d) = rays.ray(x, y);
-                let n = (c[1] - c[0]).cross(c[2] - c[0]);
-                let denom = n.dot(d);
-                if denom == 0.0 {
-                    return None;
-                }
-                let p = o + d * (n.dot(c[0] - o) / denom);
-                barycentric3(c, n, p)
-            }
-            Mapping::Affine => {
-                let w = c.map(|q| rays.to_window(q));
-                barycentric2(w, DVec2::new(x, y))?
-            }
-        };
-        Some(uv[0] * b[0] + uv[1] * b[1] + uv[2] * b[2])
-    }
 }
 
-/// Barycentrics of `p` (on the plane of `c` with normal `n`).
-fn barycentric3(c: [DVec3; 3], n: DVec3, p: DVec3) -> [f64; 3] {
-    let nn = n.length_squared();
-    let b0 = n.dot((c[2] - c[1]).cross(p - c[1])) / nn;
-    let b1 = n.dot((c[0] - c[2]).cross(p - c[2])) / nn;
-    [b0, b1, 1.0 - b0 - b1]
+/// The flat colour of `prim`: its diffuse colour, lit when lighting runs.
+fn prim_shade(scene: &ScreenScene, prim: u32, stages: &Stages, trace: &mut StageTrace) -> [f32; 3] {
+    let color = scene.material(prim).diffuse;
+    if !stages.lighting {
+        return color;
+    }
+    let lit = lambert_light(scene, prim);
+    trace.lit_prims += 1;
+    std::array::from_fn(|k| (f64::from(color[k]) * lit[k]) as f32)
 }
 
-/// Barycentrics of `p` in the 2D triangle `w`.
-fn barycentric2(w: [DVec2; 3], p: DVec2) -> Option<[f64; 3]> {
-    let area = (w[1] - w[0]).perp_dot(w[2] - w[0]);
-    if area == 0.0 {
-        return None;
-    }
-    let b0 = (w[2] - w[1]).perp_dot(p - w[1]) / area;
-    let b1 = (w[0] - w[2]).perp_dot(p - w[2]) / area;
-    Some([b0, b1, 1.0 - b0 - b1])
-}
-
-/// Camera-space rays through window points, with the projection inverted
-/// once per frame.
-struct RayGen {
-    inverse: DMat4,
-    projection: DMat4,
-    width: f64,
-    height: f64,
-    perspective: bool,
-}
-
-impl RayGen {
-    fn new(scene: &ScreenScene) -> Self {
-        Self {
-            inverse: scene.projection_matrix.inverse(),
-            projection: scene.projection_matrix,
-            width: f64::from(scene.viewport.width),
-            height: f64::from(scene.viewport.height),
-            perspective: scene.is_perspective(),
-        }
-    }
-
-    /// `(origin, direction)` as [`ScreenScene::camera_ray`] gives them.
-    fn ray(&self, x: f64, y: f64) -> (DVec3, DVec3) {
-        let ndc_x = 2.0 * x / self.width - 1.0;
-        let ndc_y = 1.0 - 2.0 * y / self.height;
-        let near = self.inverse * DVec4::new(ndc_x, ndc_y, -1.0, 1.0);
-        let near = near.truncate() / near.w;
-        if self.perspective {
-            (DVec3::ZERO, near)
-        } else {
-            let far = self.inverse * DVec4::new(ndc_x, ndc_y, 1.0, 1.0);
-            (near, far.truncate() / far.w - near)
-        }
-    }
-
-    /// A camera-space point's window position (pixels, y down).
-    fn to_window(&self, p: DVec3) -> DVec2 {
-        let clip = self.projection * p.extend(1.0);
-        let ndc = clip.truncate() / clip.w;
-        DVec2::new(
-            (ndc.x + 1.0) * 0.5 * self.width,
-            (1.0 - ndc.y) * 0.5 * self.height,
-        )
+/// Turns on in `screen` the stages a colour-resolving hider applies itself
+/// (today: texture; lighting comes with its Lambert shade mode), so that
+/// the A-buffer, supersampling and anti-aliased Warnock colour what the
+/// scene calls for. Returns the textures that failed to load.
+pub fn prepare_surface(screen: &mut ScreenScene, stages: &Stages) -> Vec<String> {
+    if stages.texture {
+        screen.load_textures(TextureOptions::default()).failures
+    } else {
+        screen.textures.deactivate();
+        Vec::new()
     }
 }
 

@@ -26,9 +26,17 @@ fn transparency_with_and_without() {
 }
 
 #[test]
-fn lighting_needs_lights_or_normals_and_shading() {
+fn lighting_follows_shading_with_the_head_light_when_there_are_no_lights() {
     let bare = procedural::cube();
-    assert!(!analyze(&bare, &small()).unwrap().lighting.present);
+    let fx = analyze(&bare, &small()).unwrap();
+    assert!(fx.lighting.present && fx.lighting.count == 0);
+    assert!(fx.lighting.detail.contains("head light"), "{}", fx.lighting.detail);
+    assert!(
+        !analyze(&bare, &small().with_shading(false))
+            .unwrap()
+            .lighting
+            .present
+    );
     let mut lit = procedural::cube();
     lit.lights.push(Light::Directional {
         direction: DVec3::new(-1.0, -1.0, -1.0),

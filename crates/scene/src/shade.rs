@@ -15,7 +15,8 @@ use crate::prepare::ScreenScene;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ShadeMode {
     /// Flat Lambert shading of the material colour: from the scene's
-    /// lights, or from a head light at the eye when it has none. Two-sided.
+    /// lights, or from a directional head light along the view axis when
+    /// it has none. Two-sided.
     #[default]
     Lambert,
     /// A distinct false colour per primitive id.
@@ -48,19 +49,19 @@ pub fn prim_color(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> ([f32; 3],
 
 /// The light a primitive receives under flat, two-sided Lambert shading,
 /// ambient included, per linear RGB channel: from the scene's lights, or
-/// from a head light at the eye when it has none. The diffuse colour (or
-/// texture) is multiplied by it.
+/// from a directional head light along the view axis when it has none.
+/// The diffuse colour (or texture) is multiplied by it.
 pub fn lambert_light(scene: &ScreenScene, prim: u32) -> [f64; 3] {
     let c = scene.prims[prim as usize].camera;
     let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
     let centroid = (c[0] + c[1] + c[2]) / 3.0;
     let diffuse = if scene.lights.is_empty() {
-        let to_eye = if scene.is_perspective() {
-            (-centroid).normalize_or_zero()
-        } else {
-            DVec3::Z
-        };
-        DVec3::splat(n.dot(to_eye).abs())
+        // A directional head light along the view axis, not a point light
+        // at the eye: with a point light each triangle of a flat face sees
+        // the light at its own angle (from its own centroid), which draws a
+        // seam across every flat quad; a direction gives every coplanar
+        // triangle the same shade, as flat shading should.
+        DVec3::splat(n.z.abs())
     } else {
         scene.lights.iter().fold(DVec3::ZERO, |acc, light| {
             let (to_light, color) = match *light {
@@ -131,6 +132,37 @@ mod tests {
         assert_eq!(to_srgb8(1.0), 255);
         assert_eq!(to_srgb8(2.0), 255);
         assert!(to_srgb8(0.5) > 180);
+    }
+
+    /// The two triangles of a flat quad seen off-axis through a perspective
+    /// camera get one shade: the head light is a direction, not a point at
+    /// the eye (which lit each triangle from its own centroid and drew a
+    /// seam along the diagonal).
+    #[test]
+    fn a_flat_quad_gets_one_shade_under_the_head_light() {
+        use crate::{Mesh, PrepareOptions, Scene, View, prepare};
+        let mesh = Mesh {
+            name: "quad".into(),
+            positions: vec![
+                DVec3::new(-1.0, -0.3, 0.5),
+                DVec3::new(1.0, -0.3, 0.5),
+                DVec3::new(1.0, 0.4, -1.5),
+                DVec3::new(-1.0, 0.4, -1.5),
+            ],
+            normals: Vec::new(),
+            uvs: Vec::new(),
+            indices: vec![[0, 1, 2], [0, 2, 3]],
+            material: None,
+        };
+        let scene = Scene {
+            meshes: vec![mesh],
+            ..Scene::default()
+        };
+        let view = View::for_scene(&scene, 64, 64).unwrap();
+        let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+        let (a, b) = (lambert_light(&screen, 0), lambert_light(&screen, 1));
+        assert_eq!(a, b);
+        assert!(a[0] > AMBIENT && a[0] < 1.0, "{a:?}");
     }
 
     #[test]

@@ -192,7 +192,7 @@ impl SurfaceTextures {
                 barycentric3(c, n, p)
             }
             Mapping::Affine => {
-                let w = c.map(|q| rays.to_window(q));
+                let w = c.map(|q| rays.window_of(q));
                 barycentric2(w, DVec2::new(x, y))?
             }
         };
@@ -313,7 +313,7 @@ impl RayGen {
     }
 
     /// A camera-space point's window position (pixels, y down).
-    fn to_window(&self, p: DVec3) -> DVec2 {
+    fn window_of(&self, p: DVec3) -> DVec2 {
         let clip = self.projection * p.extend(1.0);
         let ndc = clip.truncate() / clip.w;
         DVec2::new(

@@ -98,9 +98,14 @@ pub(crate) fn lighting(scene: &Scene, shading: bool) -> Evidence {
         .iter()
         .filter(|m| !m.normals.is_empty())
         .count() as u64;
-    let present = shading && (lights > 0 || with_normals > 0);
+    // Lambert shading is lighting: a scene without lights is lit by the
+    // directional head light, so its faces read as shapes instead of one
+    // flat silhouette per material.
+    let present = shading;
     let detail = if !shading {
         "shading not asked for".to_owned()
+    } else if lights == 0 {
+        format!("head light (no lights in the scene), {with_normals} meshes with normals")
     } else {
         format!("{lights} lights, {with_normals} meshes with normals")
     };

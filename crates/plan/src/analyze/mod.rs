@@ -7,7 +7,7 @@
 //! |---|---|---|
 //! | transparency | a triangle on screen uses a material with opacity < 1 | triangles, materials |
 //! | textures | a triangle on screen has uvs and a `map_Kd` whose image loads | triangles, textures that fail |
-//! | lighting | shading is asked and the scene has lights or normals | lights, meshes with normals |
+//! | lighting | shading is asked (the scene's lights, or the head light) | lights, meshes with normals |
 //! | anti-aliasing | asked | — |
 //! | intersections | two triangles in view pierce each other ([`intersect`]) | pairs, count |
 //! | cyclic overlap | the "in front of" graph in view has a cycle ([`overlap`]) | cycles |

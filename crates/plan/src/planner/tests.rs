@@ -43,8 +43,11 @@ fn opaque_scene_without_aa_gets_the_one_sample_zbuffer() {
     assert!(p.cull_back_faces, "a closed sphere hides its back faces");
     assert_eq!(
         p.stages,
-        Stages::default(),
-        "no texture, no lights, no normals"
+        Stages {
+            lighting: true,
+            ..Stages::default()
+        },
+        "no texture, no transparency: only the head light's shading"
     );
     assert!(p.notes.is_empty());
     assert!(
