@@ -1,1 +1,53 @@
-//! placeholder
+//! Exact visible regions and hidden-line drawings as vector output.
+//!
+//! A painter's SVG is a stack of overlapping pieces: everything hidden is
+//! still in the file, painted over, and viewers show hairline seams where
+//! anti-aliased neighbours meet. This crate writes what is actually seen:
+//! - [`visible_regions`]: for every primitive the exact part of the image
+//!   where it is the nearest surface, as integer polygons on the front
+//!   end's 1/256-pixel grid (refined), regions of one flat face merged
+//!   into one path ([`regions_svg`]);
+//! - [`hidden_lines`]: the visible parts of silhouettes, open boundaries,
+//!   creases, material boundaries and surface intersections as polylines
+//!   joined end to end ([`lines_svg`]), optionally with the hidden parts
+//!   dashed.
+//!
+//! Both work in object space on the [`hider_scene::ScreenScene`] every
+//! hider consumes, so they agree with the pixel-centre hiders at every
+//! pixel centre that is not a depth tie (the tests check it against the
+//! z-buffer on every hard case). The method and its cost are described in
+//! `docs/vector.md`.
+//!
+//! ```
+//! use hider_scene::{prepare, procedural, PrepareOptions, ShadeMode, View};
+//! use hider_vector::{hidden_lines, regions_svg, visible_regions, VectorOptions};
+//!
+//! let scene = procedural::cube();
+//! let screen = prepare(&scene, &View::for_scene(&scene, 64, 64)?, &PrepareOptions::default())?;
+//! let options = VectorOptions::default();
+//! let map = visible_regions(&screen, &options, ShadeMode::Lambert)?;
+//! let svg = regions_svg(&screen, &map, &options);
+//! assert_eq!(svg.matches("<path").count(), map.groups.len());
+//! let lines = hidden_lines(&screen, &map, &options)?;
+//! assert!(!lines.visible.is_empty());
+//! # Ok::<(), hider_scene::Error>(())
+//! ```
+
+mod chain;
+mod grid;
+mod lines;
+mod options;
+mod pairs;
+mod regions;
+mod svg;
+
+pub use grid::Grid;
+pub use lines::{LineDrawing, LineKind, LineStats, Polyline, hidden_lines};
+pub use options::VectorOptions;
+pub use regions::{FaceGroup, PrimRegion, RegionMap, RegionStats, visible_regions};
+pub use svg::{lines_svg, regions_svg, write_lines_svg, write_regions_svg};
+
+/// The error every failure of this crate is reported as.
+pub(crate) fn render_error(message: String) -> hider_scene::Error {
+    hider_scene::Error::Render { hider: "vector".to_owned(), message }
+}

@@ -1,0 +1,194 @@
+//! The integer grid the region polygons live on: the front end's 1/256
+//! pixel refined by a power of two, clipped to the image, and a uniform
+//! bin index that finds the triangles overlapping a box.
+
+use hider_geom::fixed::SUBPIXEL_BITS;
+use hider_scene::{Result, ScreenScene, ScreenTri};
+use i_overlay::i_float::int::point::IntPoint;
+
+/// Largest coordinate the polygon library handles exactly: its own
+/// float adapter scales inputs into `2^29`.
+const LIMIT_BITS: u32 = 29;
+
+/// The refined grid of one scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Grid {
+    /// Bits added to the front end's 1/256 pixel.
+    pub shift: u32,
+    /// Image width in grid units.
+    pub width: i64,
+    /// Image height in grid units.
+    pub height: i64,
+}
+
+impl Grid {
+    /// The grid for `scene` with up to `refine_bits` extra bits: as many as
+    /// fit in the library's exact range. Errors when even the plain grid
+    /// does not fit (an image side over 2^21 pixels).
+    pub fn for_scene(scene: &ScreenScene, refine_bits: u32) -> Result<Self> {
+        let side = u64::from(scene.viewport.width.max(scene.viewport.height).max(1));
+        let side_bits = 64 - (side - 1).leading_zeros();
+        let room = LIMIT_BITS.checked_sub(side_bits + SUBPIXEL_BITS).ok_or_else(|| {
+            crate::render_error(format!(
+                "image side {side} pixels is too large for the exact polygon grid"
+            ))
+        })?;
+        let shift = refine_bits.min(room);
+        Ok(Self {
+            shift,
+            width: i64::from(scene.viewport.width) << (SUBPIXEL_BITS + shift),
+            height: i64::from(scene.viewport.height) << (SUBPIXEL_BITS + shift),
+        })
+    }
+
+    /// Grid units per pixel.
+    pub fn units_per_pixel(&self) -> f64 {
+        f64::from(1u32 << (SUBPIXEL_BITS + self.shift))
+    }
+
+    /// The centre of pixel `(i, j)` in grid units.
+    pub fn pixel_centre(&self, i: u32, j: u32) -> (i64, i64) {
+        let unit = 1i64 << (SUBPIXEL_BITS + self.shift);
+        (i64::from(i) * unit + unit / 2, i64::from(j) * unit + unit / 2)
+    }
+
+    /// A triangle's vertices in grid units (not clipped).
+    pub fn tri_points(&self, tri: &ScreenTri) -> [(i64, i64); 3] {
+        tri.v.map(|p| (i64::from(p.x) << self.shift, i64::from(p.y) << self.shift))
+    }
+
+    /// A grid point as pixels.
+    pub fn to_pixels(&self, p: IntPoint) -> (f64, f64) {
+        let u = self.units_per_pixel();
+        (f64::from(p.x) / u, f64::from(p.y) / u)
+    }
+
+    /// Pixel coordinates as (unrounded) grid units.
+    pub fn from_pixels(&self, x: f64, y: f64) -> (f64, f64) {
+        let u = self.units_per_pixel();
+        (x * u, y * u)
+    }
+
+    /// A triangle clipped to the image rectangle, as an integer polygon
+    /// (cut points rounded to the grid); empty when nothing is left.
+    /// Every cut of one edge against one side is computed from the edge's
+    /// end points in a fixed order, so neighbours sharing the edge get the
+    /// same point.
+    pub fn clip_to_image(&self, pts: &[(i64, i64); 3]) -> Vec<IntPoint> {
+        let inside = pts
+            .iter()
+            .all(|&(x, y)| (0..=self.width).contains(&x) && (0..=self.height).contains(&y));
+        if inside {
+            return pts.iter().map(|&(x, y)| IntPoint::new(x as i32, y as i32)).collect();
+        }
+        let mut poly: Vec<(i64, i64)> = pts.to_vec();
+        // (axis, bound, keep below) for the four sides of the image.
+        for (axis, bound, below) in [(0, 0, false), (0, self.width, true), (1, 0, false), (1, self.height, true)] {
+            poly = clip_axis(&poly, axis, bound, below);
+            if poly.is_empty() {
+                return Vec::new();
+            }
+        }
+        poly.dedup();
+        while poly.len() > 1 && poly.first() == poly.last() {
+            poly.pop();
+        }
+        if poly.len() < 3 {
+            return Vec::new();
+        }
+        poly.iter().map(|&(x, y)| IntPoint::new(x as i32, y as i32)).collect()
+    }
+}
+
+/// Sutherland-Hodgman against one axis-aligned line, cut points rounded
+/// to the nearest grid point.
+fn clip_axis(poly: &[(i64, i64)], axis: usize, bound: i64, below: bool) -> Vec<(i64, i64)> {
+    let coord = |p: (i64, i64)| if axis == 0 { p.0 } else { p.1 };
+    let keep = |p: (i64, i64)| if below { coord(p) <= bound } else { coord(p) >= bound };
+    let mut out = Vec::with_capacity(poly.len() + 2);
+    for k in 0..poly.len() {
+        let a = poly[k];
+        let b = poly[(k + 1) % poly.len()];
+        if keep(a) {
+            out.push(a);
+        }
+        if keep(a) != keep(b) {
+            // Cut in a fixed end-point order so both users of an edge agree.
+            let (p, q) = if a < b { (a, b) } else { (b, a) };
+            let (pc, qc) = (coord(p), coord(q));
+            let (po, qo) = if axis == 0 { (p.1, q.1) } else { (p.0, q.0) };
+            let num = i128::from(qo - po) * i128::from(bound - pc);
+            let den = i128::from(qc - pc);
+            let other = po + div_round(num, den) as i64;
+            out.push(if axis == 0 { (bound, other) } else { (other, bound) });
+        }
+    }
+    out
+}
+
+/// `num / den` rounded to the nearest integer (halves away from zero).
+fn div_round(num: i128, den: i128) -> i128 {
+    let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
+    if num >= 0 { (2 * num + den) / (2 * den) } else { -((-2 * num + den) / (2 * den)) }
+}
+
+/// A uniform grid of bins over the image, each listing the triangles whose
+/// clipped box meets it: the candidates for overlap with a given box.
+pub struct Bins {
+    size: i64,
+    cols: i64,
+    rows: i64,
+    cells: Vec<Vec<u32>>,
+}
+
+impl Bins {
+    /// Bins of about `target` items each over `grid`, holding `boxes`
+    /// (inclusive `(min, max)` in grid units).
+    pub fn new(grid: &Grid, boxes: &[Option<(IntPoint, IntPoint)>]) -> Self {
+        let count = boxes.iter().flatten().count().max(1) as f64;
+        // About one triangle per bin on average keeps candidate lists short
+        // without flooding memory with the large triangles' many bins.
+        let area = (grid.width as f64) * (grid.height as f64);
+        let size = ((area / count).sqrt() as i64).max(grid.units_per_pixel() as i64);
+        let cols = grid.width / size + 1;
+        let rows = grid.height / size + 1;
+        let mut cells = vec![Vec::new(); (cols * rows) as usize];
+        for (k, b) in boxes.iter().enumerate() {
+            if let Some((lo, hi)) = b {
+                let (c0, r0, c1, r1) = Self::range(size, cols, rows, *lo, *hi);
+                for r in r0..=r1 {
+                    for c in c0..=c1 {
+                        cells[(r * cols + c) as usize].push(k as u32);
+                    }
+                }
+            }
+        }
+        Self { size, cols, rows, cells }
+    }
+
+    fn range(size: i64, cols: i64, rows: i64, lo: IntPoint, hi: IntPoint) -> (i64, i64, i64, i64) {
+        let cell = |v: i32, n: i64| (i64::from(v) / size).clamp(0, n - 1);
+        (cell(lo.x, cols), cell(lo.y, rows), cell(hi.x, cols), cell(hi.y, rows))
+    }
+
+    /// Calls `visit` with every item whose bins meet the box (an item may
+    /// come more than once).
+    pub fn query(&self, lo: IntPoint, hi: IntPoint, mut visit: impl FnMut(u32)) {
+        let (c0, r0, c1, r1) = Self::range(self.size, self.cols, self.rows, lo, hi);
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                for &k in &self.cells[(r * self.cols + c) as usize] {
+                    visit(k);
+                }
+            }
+        }
+    }
+}
+
+/// The inclusive bounding box of a polygon.
+pub fn bounds(poly: &[IntPoint]) -> Option<(IntPoint, IntPoint)> {
+    let first = *poly.first()?;
+    Some(poly.iter().fold((first, first), |(lo, hi), p| {
+        (IntPoint::new(lo.x.min(p.x), lo.y.min(p.y)), IntPoint::new(hi.x.max(p.x), hi.y.max(p.y)))
+    }))
+}

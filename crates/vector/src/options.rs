@@ -1,0 +1,111 @@
+//! The knobs of the vector output, as one plain struct whose `Default` is
+//! the accurate choice.
+
+/// Options of [`crate::visible_regions`], [`crate::hidden_lines`] and the
+/// SVG writers.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct VectorOptions {
+    /// Extra bits of sub-pixel resolution for the region polygons beyond
+    /// the front end's 1/256 pixel: cut points (where a depth-intersection
+    /// line or an occluding edge crosses another edge) are rounded to
+    /// `1/(256 * 2^refine_bits)` pixel. Capped so that coordinates stay
+    /// within the polygon library's exact range (2^29 grid units across
+    /// the image). Default 6 (1/16384 pixel).
+    pub refine_bits: u32,
+    /// Merge the regions of one face group (coplanar, same material and
+    /// same fill colour) into one path, so no seam can show between them.
+    /// Default true.
+    pub merge_groups: bool,
+    /// Paint the background rectangle under the regions. Default true.
+    pub background: bool,
+    /// Dihedral angle in degrees above which a shared edge is drawn as a
+    /// crease. Default 30.
+    pub crease_degrees: f64,
+    /// Stroke width of lines, in pixels. Default 1.
+    pub stroke_width: f64,
+    /// Also draw the hidden parts of the lines, dashed, as in engineering
+    /// drawings. Default false.
+    pub dashed_hidden: bool,
+    /// Window-depth difference below which two surfaces count as touching
+    /// rather than one hiding the other (shared edges and vertices, the
+    /// edges of a line's own faces). Default 1e-9.
+    pub depth_tolerance: f64,
+}
+
+impl Default for VectorOptions {
+    fn default() -> Self {
+        Self {
+            refine_bits: 6,
+            merge_groups: true,
+            background: true,
+            crease_degrees: 30.0,
+            stroke_width: 1.0,
+            dashed_hidden: false,
+            depth_tolerance: 1e-9,
+        }
+    }
+}
+
+impl VectorOptions {
+    /// Sets [`Self::refine_bits`].
+    pub fn with_refine_bits(mut self, bits: u32) -> Self {
+        self.refine_bits = bits;
+        self
+    }
+
+    /// Sets [`Self::merge_groups`].
+    pub fn with_merge_groups(mut self, merge: bool) -> Self {
+        self.merge_groups = merge;
+        self
+    }
+
+    /// Sets [`Self::background`].
+    pub fn with_background(mut self, background: bool) -> Self {
+        self.background = background;
+        self
+    }
+
+    /// Sets [`Self::crease_degrees`].
+    pub fn with_crease_degrees(mut self, degrees: f64) -> Self {
+        self.crease_degrees = degrees;
+        self
+    }
+
+    /// Sets [`Self::stroke_width`].
+    pub fn with_stroke_width(mut self, width: f64) -> Self {
+        self.stroke_width = width;
+        self
+    }
+
+    /// Sets [`Self::dashed_hidden`].
+    pub fn with_dashed_hidden(mut self, dashed: bool) -> Self {
+        self.dashed_hidden = dashed;
+        self
+    }
+
+    /// Sets [`Self::depth_tolerance`].
+    pub fn with_depth_tolerance(mut self, tolerance: f64) -> Self {
+        self.depth_tolerance = tolerance;
+        self
+    }
+
+    /// Errors naming the first option that is out of range.
+    pub(crate) fn validate(&self) -> hider_scene::Result<()> {
+        let bad = if !(self.crease_degrees.is_finite() && (0.0..=180.0).contains(&self.crease_degrees)) {
+            Some(format!("crease_degrees {} is not in [0, 180]", self.crease_degrees))
+        } else if !(self.stroke_width.is_finite() && self.stroke_width > 0.0) {
+            Some(format!("stroke_width {} is not a positive number", self.stroke_width))
+        } else if !(self.depth_tolerance.is_finite() && self.depth_tolerance >= 0.0) {
+            Some(format!("depth_tolerance {} is not a non-negative number", self.depth_tolerance))
+        } else if self.refine_bits > 16 {
+            Some(format!("refine_bits {} is above 16", self.refine_bits))
+        } else {
+            None
+        };
+        match bad {
+            Some(message) => Err(crate::render_error(message)),
+            None => Ok(()),
+        }
+    }
+}

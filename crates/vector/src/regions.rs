@@ -1,0 +1,228 @@
+//! Visible regions: for every primitive, the exact part of the image where
+//! it is the nearest surface, as integer polygons on the refined grid.
+//!
+//! The method is object-space differencing: a triangle `T` is visible
+//! wherever no other triangle is nearer, and for each overlapping
+//! triangle `U` the part of `U` nearer than `T` is all of `U`, nothing, or
+//! `U` cut by a straight line (the two depth planes' crossing, see
+//! [`crate::pairs`]). So `visible(T) = T - union(nearer parts of U)`, one
+//! boolean difference per triangle done by the polygon library on integer
+//! coordinates. No depth order is needed, so interpenetration and cycles
+//! need no splitting. Triangles nothing overlaps in front (most of a
+//! closed mesh's front faces) skip the boolean entirely.
+
+use std::collections::HashMap;
+
+use hider_scene::shade::{prim_color, to_srgb8};
+use hider_scene::{Result, ScreenScene, ShadeMode};
+use i_overlay::core::fill_rule::FillRule;
+use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay_rule::OverlayRule;
+use i_overlay::i_float::int::point::IntPoint;
+use i_overlay::i_shape::int::shape::IntShapes;
+
+use crate::VectorOptions;
+use crate::grid::{Bins, Grid, bounds};
+use crate::pairs::{Relation, interiors_overlap, relation};
+
+hider_scene::hider_stats! {
+    /// What [`visible_regions`] did.
+    #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+    pub struct RegionStats {
+        /// Screen triangles with some area inside the image.
+        pub triangles: u64 => "triangles",
+        /// Candidate pairs whose interiors overlap.
+        pub overlapping_pairs: u64 => "overlapping pairs",
+        /// Pairs whose depth planes cross inside their common area.
+        pub cut_pairs: u64 => "cut pairs",
+        /// Boolean differences run (triangles with something in front).
+        pub differences: u64 => "differences",
+        /// Primitives with a visible region.
+        pub visible_prims: u64 => "visible prims",
+        /// Face groups (paths of the regions SVG).
+        pub groups: u64 => "groups",
+        /// Polygon vertices over all group paths.
+        pub path_points: u64 => "path points",
+    }
+}
+
+/// The visible region of one primitive.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PrimRegion {
+    /// The primitive id.
+    pub prim: u32,
+    /// Index of its face group in [`RegionMap::groups`].
+    pub group: u32,
+    /// Disjoint polygons with holes (outer contour first), grid units.
+    pub shapes: IntShapes,
+}
+
+/// One face group: coplanar primitives of one material and one fill
+/// colour, merged into one path.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FaceGroup {
+    /// The primitives in the group, ascending.
+    pub prims: Vec<u32>,
+    /// The fill colour, `#rrggbb` in sRGB.
+    pub fill: String,
+    /// Opacity of the material.
+    pub opacity: f32,
+    /// The union of the members' regions (or their concatenation when
+    /// merging is off), grid units.
+    pub shapes: IntShapes,
+}
+
+/// The visible-region map of one frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RegionMap {
+    /// The grid the polygons are on.
+    pub grid: Grid,
+    /// The visible primitives' regions, by ascending primitive id.
+    pub prims: Vec<PrimRegion>,
+    /// The face groups.
+    pub groups: Vec<FaceGroup>,
+    /// Work counters.
+    pub stats: RegionStats,
+    /// Pairs of triangle indices whose depth planes cross inside their
+    /// common area (the lower index first): the intersection lines.
+    pub cut_pairs: Vec<(u32, u32)>,
+}
+
+/// Computes the visible region of every primitive of `scene`, grouped and
+/// coloured by `mode`. See the module documentation for the method.
+///
+/// ```
+/// use hider_scene::{prepare, procedural, PrepareOptions, ShadeMode, View};
+/// use hider_vector::{visible_regions, VectorOptions};
+///
+/// let scene = procedural::cube();
+/// let screen = prepare(&scene, &View::for_scene(&scene, 64, 64)?, &PrepareOptions::default())?;
+/// let map = visible_regions(&screen, &VectorOptions::default(), ShadeMode::Lambert)?;
+/// // At most three faces of a cube are seen, two triangles each.
+/// assert!(map.prims.len() <= 6);
+/// assert!(map.groups.len() <= 3);
+/// # Ok::<(), hider_scene::Error>(())
+/// ```
+pub fn visible_regions(scene: &ScreenScene, options: &VectorOptions, mode: ShadeMode) -> Result<RegionMap> {
+    options.validate()?;
+    let grid = Grid::for_scene(scene, options.refine_bits)?;
+    let polys: Vec<Vec<IntPoint>> =
+        scene.tris.iter().map(|t| grid.clip_to_image(&grid.tri_points(t))).collect();
+    let boxes: Vec<_> = polys.iter().map(|p| bounds(p)).collect();
+    let bins = Bins::new(&grid, &boxes);
+    let mut stats = RegionStats {
+        triangles: boxes.iter().flatten().count() as u64,
+        ..RegionStats::default()
+    };
+    let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
+    let mut cut_pairs = Vec::new();
+    let mut seen = vec![u32::MAX; scene.tris.len()];
+    let mut occluders: Vec<Vec<IntPoint>> = Vec::new();
+    for (ti, t) in scene.tris.iter().enumerate() {
+        let Some((lo, hi)) = boxes[ti] else { continue };
+        occluders.clear();
+        bins.query(lo, hi, |ui| {
+            let u_idx = ui as usize;
+            if seen[u_idx] == ti as u32 || u_idx == ti {
+                return;
+            }
+            seen[u_idx] = ti as u32;
+            let u = &scene.tris[u_idx];
+            let Some((ulo, uhi)) = boxes[u_idx] else { return };
+            let apart = uhi.x <= lo.x || ulo.x >= hi.x || uhi.y <= lo.y || ulo.y >= hi.y;
+            if u.prim == t.prim || apart || !interiors_overlap(t, u) {
+                return;
+            }
+            stats.overlapping_pairs += 1;
+            let rel = relation(&grid, (ti, t), (u_idx, u), &polys[u_idx], options.depth_tolerance);
+            match rel {
+                Relation::Behind => {}
+                Relation::Front => occluders.push(polys[u_idx].clone()),
+                Relation::Cut(part) => {
+                    occluders.push(part);
+                    if ti < u_idx {
+                        cut_pairs.push((ti as u32, ui));
+                    }
+                }
+            }
+        });
+        let shapes = if occluders.is_empty() {
+            vec![vec![polys[ti].clone()]]
+        } else {
+            stats.differences += 1;
+            let mut overlay = Overlay::new(polys[ti].len() + occluders.iter().map(Vec::len).sum::<usize>());
+            overlay.add_contour(&polys[ti], ShapeType::Subject);
+            for o in &occluders {
+                overlay.add_contour(o, ShapeType::Clip);
+            }
+            overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
+        };
+        if !shapes.is_empty() {
+            per_prim.entry(t.prim).or_default().extend(shapes);
+        }
+    }
+    stats.cut_pairs = cut_pairs.len() as u64;
+    let mut prims: Vec<PrimRegion> = per_prim
+        .into_iter()
+        .map(|(prim, shapes)| PrimRegion { prim, group: 0, shapes })
+        .collect();
+    prims.sort_by_key(|r| r.prim);
+    let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
+    stats.visible_prims = prims.len() as u64;
+    stats.groups = groups.len() as u64;
+    stats.path_points = groups
+        .iter()
+        .flat_map(|g| g.shapes.iter().flatten())
+        .map(|c| c.len() as u64)
+        .sum();
+    Ok(RegionMap { grid, prims, groups, stats, cut_pairs })
+}
+
+/// The key that puts coplanar primitives of one colour together: the fill
+/// colour and opacity as written, and the camera-space plane quantised.
+fn group_key(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> (String, u32, [i64; 4]) {
+    let (rgb, a) = prim_color(scene, prim, mode);
+    let fill = format!("#{:02x}{:02x}{:02x}", to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]));
+    let c = scene.prims[prim as usize].camera;
+    let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
+    let scale = c.iter().map(|p| p.abs().max_element()).fold(1e-300, f64::max);
+    // About six significant digits: triangles of one flat face agree far
+    // closer than that, distinct faces differ far more.
+    let q = |v: f64| (v * 1e6).round() as i64;
+    let key = [q(n.x), q(n.y), q(n.z), q(n.dot(c[0]) / scale)];
+    (fill, a.to_bits(), key)
+}
+
+/// Assigns every region a face group and builds the groups' paths.
+fn group_regions(scene: &ScreenScene, prims: &mut [PrimRegion], mode: ShadeMode, merge: bool) -> Vec<FaceGroup> {
+    let mut index: HashMap<(String, u32, [i64; 4]), u32> = HashMap::new();
+    let mut groups: Vec<FaceGroup> = Vec::new();
+    for (k, region) in prims.iter_mut().enumerate() {
+        let key = if merge {
+            group_key(scene, region.prim, mode)
+        } else {
+            (String::new(), k as u32, [0; 4])
+        };
+        let next = groups.len() as u32;
+        let g = *index.entry(key).or_insert(next);
+        if g == next {
+            let (rgb, a) = prim_color(scene, region.prim, mode);
+            let fill = format!("#{:02x}{:02x}{:02x}", to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]));
+            groups.push(FaceGroup { prims: Vec::new(), fill, opacity: a, shapes: Vec::new() });
+        }
+        region.group = g;
+        groups[g as usize].prims.push(region.prim);
+        groups[g as usize].shapes.extend(region.shapes.iter().cloned());
+    }
+    for group in &mut groups {
+        if group.prims.len() > 1 || group.shapes.len() > 1 {
+            let points = group.shapes.iter().flatten().map(Vec::len).sum();
+            let mut overlay = Overlay::new(points);
+            for shape in &group.shapes {
+                overlay.add_contours(shape, ShapeType::Subject);
+            }
+            group.shapes = overlay.overlay(OverlayRule::Subject, FillRule::NonZero);
+        }
+    }
+    groups
+}

@@ -1,0 +1,162 @@
+//! The visible regions against the z-buffer: evaluated at every pixel
+//! centre with the exact crossing-number test, they give the z-buffer's id
+//! on every pixel that is not a depth tie, on every hard case and on
+//! random scenes; they never overlap, and together they cover exactly what
+//! the triangles cover.
+
+use hider_geom::polygon::{IPoint, crossing_number_inside};
+use hider_oracle::{DEFAULT_TIE_TOLERANCE, window_depth_reference};
+use hider_scene::{Hider, NO_ID, ScreenScene, ShadeMode, procedural};
+use hider_testkit::{hard_cases, render, screen};
+use hider_vector::{RegionMap, VectorOptions, visible_regions};
+use hider_zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
+use i_overlay::core::fill_rule::FillRule;
+use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay_rule::OverlayRule;
+use i_overlay::i_shape::int::shape::IntShapes;
+
+/// Per pixel: the primitive whose region holds the centre (`NO_ID` for
+/// none), and how many pixel centres fell in more than one region.
+fn region_ids(s: &ScreenScene, map: &RegionMap) -> (Vec<u32>, usize) {
+    let (w, h) = (s.viewport.width, s.viewport.height);
+    let mut ids = vec![NO_ID; (w * h) as usize];
+    let mut doubles = 0;
+    for region in &map.prims {
+        for shape in &region.shapes {
+            let contours: Vec<Vec<IPoint>> = shape
+                .iter()
+                .map(|c| c.iter().map(|p| (i64::from(p.x), i64::from(p.y))).collect())
+                .collect();
+            let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
+            for &(x, y) in contours.iter().flatten() {
+                (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
+            }
+            let unit = map.grid.units_per_pixel() as i64;
+            let to_px = |v: i64, n: u32| (v / unit).clamp(0, i64::from(n) - 1) as u32;
+            for j in to_px(y0, h)..=to_px(y1, h) {
+                for i in to_px(x0, w)..=to_px(x1, w) {
+                    let c = map.grid.pixel_centre(i, j);
+                    let inside = contours
+                        .iter()
+                        .fold(false, |acc, contour| acc ^ crossing_number_inside(contour, c));
+                    if inside {
+                        let k = (j * w + i) as usize;
+                        if ids[k] != NO_ID {
+                            doubles += 1;
+                        }
+                        ids[k] = region.prim;
+                    }
+                }
+            }
+        }
+    }
+    (ids, doubles)
+}
+
+fn area2(shapes: &IntShapes) -> i64 {
+    shapes
+        .iter()
+        .flatten()
+        .map(|c| {
+            (0..c.len())
+                .map(|k| {
+                    let (a, b) = (c[k], c[(k + 1) % c.len()]);
+                    i64::from(a.x) * i64::from(b.y) - i64::from(b.x) * i64::from(a.y)
+                })
+                .sum::<i64>()
+        })
+        .sum::<i64>()
+        .abs()
+}
+
+/// Twice the total area of pairwise overlaps between different
+/// primitives' regions, and twice the area where the union of the regions
+/// and the union of the triangles differ, in grid units squared.
+fn overlap_and_cover(s: &ScreenScene, map: &RegionMap) -> (i64, i64) {
+    let mut overlap = 0;
+    for (a, ra) in map.prims.iter().enumerate() {
+        for rb in &map.prims[a + 1..] {
+            let mut o = Overlay::new(16);
+            for shape in &ra.shapes {
+                o.add_contours(shape, ShapeType::Subject);
+            }
+            for shape in &rb.shapes {
+                o.add_contours(shape, ShapeType::Clip);
+            }
+            overlap += area2(&o.overlay(OverlayRule::Intersect, FillRule::NonZero));
+        }
+    }
+    let mut o = Overlay::new(16);
+    for region in &map.prims {
+        for shape in &region.shapes {
+            o.add_contours(shape, ShapeType::Subject);
+        }
+    }
+    for t in &s.tris {
+        let poly = map.grid.clip_to_image(&map.grid.tri_points(t));
+        if poly.len() >= 3 {
+            o.add_contour(&poly, ShapeType::Clip);
+        }
+    }
+    let differ = area2(&o.overlay(OverlayRule::Xor, FillRule::NonZero));
+    (overlap, differ)
+}
+
+/// Checks one scene; returns (pixels compared, ties skipped).
+fn check(name: &str, s: &ScreenScene) -> (usize, usize) {
+    let map = visible_regions(s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
+    let mut zbuffer = ZBuffer::new(ZBufferOptions::default().with_depth_format(DepthFormat::F64));
+    let (frame, _) = render(&mut zbuffer, s);
+    let reference = window_depth_reference(s);
+    let (ids, doubles) = region_ids(s, &map);
+    assert_eq!(doubles, 0, "{name}: pixel centres inside two regions");
+    let (mut compared, mut ties) = (0, 0);
+    for (k, (&mine, &z)) in ids.iter().zip(&frame.ids).enumerate() {
+        assert_eq!(mine == NO_ID, z == NO_ID, "{name}: coverage differs at pixel {k}");
+        if reference.is_tie(k, DEFAULT_TIE_TOLERANCE) {
+            ties += 1;
+            continue;
+        }
+        compared += 1;
+        assert_eq!(mine, z, "{name}: pixel {k} ({}, {})", k % 64, k / 64);
+    }
+    (compared, ties)
+}
+
+#[test]
+fn regions_give_the_zbuffer_id_on_every_hard_case() {
+    for seed in [1, 2] {
+        for (name, scene) in hard_cases::all(seed) {
+            let s = screen(&scene, 64, 64);
+            let (compared, ties) = check(name, &s);
+            eprintln!("{name}: {compared} pixels agree, {ties} ties skipped");
+        }
+    }
+}
+
+#[test]
+fn regions_give_the_zbuffer_id_on_random_scenes() {
+    for seed in 0..12 {
+        let scene = procedural::random_soup(60, seed);
+        check(&format!("random_soup seed {seed}"), &screen(&scene, 64, 64));
+    }
+}
+
+#[test]
+fn regions_never_overlap_and_cover_what_the_triangles_cover() {
+    let mut cases = hard_cases::all(3);
+    cases.push(("random_soup", procedural::random_soup(40, 7)));
+    for (name, scene) in cases {
+        let s = screen(&scene, 64, 64);
+        let map = visible_regions(&s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
+        let (overlap, differ) = overlap_and_cover(&s, &map);
+        let unit2 = map.grid.units_per_pixel().powi(2);
+        eprintln!(
+            "{name}: overlap {} px^2, cover difference {} px^2",
+            overlap as f64 / 2.0 / unit2,
+            differ as f64 / 2.0 / unit2
+        );
+        assert_eq!(overlap, 0, "{name}: regions overlap");
+        assert_eq!(differ, 0, "{name}: the regions' union is not the covered set");
+    }
+}
