@@ -34,16 +34,6 @@ impl FixedPt {
         Self { x, y }
     }
 
-    /// Snaps a window-space position (in pixels) to the nearest 1/256 pixel,
-    /// ties away from zero (`f64::round`). Returns `None` for non-finite
-    /// input or a position outside the guard band.
-    pub fn snap(x: f64, y: f64) -> Option<Self> {
-        Some(Self {
-            x: snap_coordinate(x)?,
-            y: snap_coordinate(y)?,
-        })
-    }
-
     /// The position in pixels.
     pub fn to_pixels(self) -> (f64, f64) {
         (
@@ -53,61 +43,57 @@ impl FixedPt {
     }
 }
 
-/// Snaps one window coordinate (pixels) to fixed point, or `None` when it is
-/// not finite or beyond ±2^15 pixels.
-pub fn snap_coordinate(v: f64) -> Option<i32> {
-    let (ok, snapped) = snap_coordinate_lanewise(v);
-    ok.then_some(snapped)
-}
+/// The largest distance from the origin, in fixed-point units, of a snapped
+/// coordinate: 2^15 pixels (see [`GUARD_BAND_PIXELS`]).
+pub const FIXED_LIMIT: i32 = 1 << 23;
 
-/// [`snap_coordinate`] without branches, for loops the compiler should
-/// vectorise: whether `v` can be snapped, and the snapped value (equal to
-/// `snap_coordinate(v)` when it can; meaningless, but computed without
-/// panicking, when it cannot).
+/// `x` rounded to the nearest integer, ties to even, for `|x| < 2^31`:
+/// what SSE's `cvtps2dq` does under the default rounding mode, the
+/// conversion llvmpipe snaps vertices with (Mesa's `lp_setup_tri.c`,
+/// `calc_fixed_position`). Equal to `x.round_ties_even() as i32`, without
+/// the library call that compiles to on baseline x86-64 and with no
+/// branch, so that loops over lanes vectorise: the integer part `t` is
+/// exact, and so is the remainder `x - t` (both are multiples of `x`'s
+/// unit in the last place, and `t` is within a factor of two of `x` or
+/// zero: Sterbenz), so comparing it with one half decides exactly.
+/// Beyond `2^31` the result is meaningless but computed without panicking.
 #[inline(always)]
-pub fn snap_coordinate_lanewise(v: f64) -> (bool, i32) {
-    let limit = f64::from(1u32 << 15);
-    // `abs` of NaN is NaN and fails the comparison; infinities fail it too.
-    let ok = v.abs() <= limit;
-    // Out of range, the product saturates in `round_half_away`'s cast.
-    (ok, round_half_away(v * f64::from(SUBPIXEL_SCALE)))
-}
-
-/// [`snap_coordinate_lanewise`] of `f64::from(v)`, computed in `f32` (eight
-/// lanes to an AVX2 instruction instead of four), with the same result:
-/// `v * 256` is exact in both types for `|v| <= 2^15` (a power-of-two
-/// scaling), its integer part is the same, and the remainder `x - t` is
-/// exact in `f32` too (`t` is `x` truncated, within a factor of two of `x`
-/// or zero: Sterbenz), so the comparisons with one half agree.
-#[inline(always)]
-pub fn snap_coordinate_lanewise_f32(v: f32) -> (bool, i32) {
-    let ok = v.abs() <= 32_768.0;
-    let x = v * 256.0;
+pub fn round_ties_even_f32(x: f32) -> i32 {
     let t = x as i32;
     let rest = x - t as f32;
-    (
-        ok,
-        t.wrapping_add(i32::from(rest >= 0.5))
-            .wrapping_sub(i32::from(rest <= -0.5)),
-    )
+    let odd = t & 1 != 0;
+    t.wrapping_add(i32::from((rest > 0.5) | ((rest == 0.5) & odd)))
+        .wrapping_sub(i32::from((rest < -0.5) | ((rest == -0.5) & odd)))
 }
 
-/// `x.round() as i32` (ties away from zero) for `|x| < 2^31`, without the
-/// libm call `f64::round` compiles to on baseline x86-64: the integer part
-/// `t` is exact, and so is `x - t` (both are multiples of the same power of
-/// two as x), so comparing the remainder with one half rounds exactly as
-/// `f64::round` does.
+/// [`round_ties_even_f32`] in `f64`.
 #[inline(always)]
-fn round_half_away(x: f64) -> i32 {
+pub fn round_ties_even_f64(x: f64) -> i32 {
     let t = x as i32;
     let rest = x - f64::from(t);
-    // Branch-free: the remainder's sign and size are data, and on vertex
-    // streams the branches mispredicted about half the time.
-    // Wrapping: beyond 2^31 the cast saturates and the remainder of an
-    // infinity is infinite; the result is unused there, but must not
-    // overflow.
-    t.wrapping_add(i32::from(rest >= 0.5))
-        .wrapping_sub(i32::from(rest <= -0.5))
+    let odd = t & 1 != 0;
+    t.wrapping_add(i32::from((rest > 0.5) | ((rest == 0.5) & odd)))
+        .wrapping_sub(i32::from((rest < -0.5) | ((rest == -0.5) & odd)))
+}
+
+/// GL's fixed-point coordinate of a window coordinate `win` (pixels, in
+/// GL's own frame): `round((win - 0.5) * 256)`, ties to even, so that pixel
+/// centres sit at multiples of 256 (llvmpipe subtracts its half-pixel
+/// offset before scaling). Also whether `win` is within 2^15 pixels of the
+/// first pixel centre (finite and snappable); the value is meaningless, but
+/// computed without panicking, when it is not.
+#[inline(always)]
+pub fn gl_fixed_f32(win: f32) -> (bool, i32) {
+    let v = win - 0.5;
+    // `abs` of NaN is NaN and fails the comparison; infinities fail it too.
+    (v.abs() <= 32_768.0, round_ties_even_f32(v * 256.0))
+}
+
+/// [`gl_fixed_f32`] in `f64`: the same steps, rounded in `f64`.
+#[inline(always)]
+pub fn gl_fixed_f64(win: f64) -> (bool, i32) {
+    let v = win - 0.5;
+    (v.abs() <= 32_768.0, round_ties_even_f64(v * 256.0))
 }
 
 /// The fixed-point coordinate of the centre of pixel column or row `i`.
@@ -167,112 +153,77 @@ mod tests {
     use super::*;
 
     #[test]
-    fn snapping_rounds_to_nearest_256th() {
-        assert_eq!(FixedPt::snap(1.0, 2.5), Some(FixedPt::new(256, 640)));
-        assert_eq!(snap_coordinate(0.001), Some(0));
-        assert_eq!(snap_coordinate(0.5 / 256.0 + 1e-9), Some(1));
-        assert_eq!(snap_coordinate(-1.0 / 256.0), Some(-1));
-    }
-
-    #[test]
-    fn fast_rounding_equals_f64_round() {
+    fn rounding_is_ties_to_even() {
         let probes = [
             0.5,
             -0.5,
             1.5,
             -1.5,
-            2.4999999999999996,
-            0.49999999999999994,
+            2.5,
+            -2.5,
+            0.49999997,
+            2.4999998,
             -7.5,
-            123456.5,
+            123_456.5,
             -0.0,
+            0.0,
+            8_388_607.5,
+            -8_388_607.5,
         ];
         for x in probes {
-            assert_eq!(round_half_away(x), x.round() as i32, "{x}");
+            assert_eq!(round_ties_even_f32(x), x.round_ties_even() as i32, "{x}");
+            let x = f64::from(x);
+            assert_eq!(round_ties_even_f64(x), x.round_ties_even() as i32, "{x}");
         }
+        assert_eq!(round_ties_even_f64(0.49999999999999994), 0);
         let mut s = 0x1234_5678_u64;
         for _ in 0..100_000 {
             s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            let x = ((s >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * 8_388_608.0;
-            assert_eq!(round_half_away(x), x.round() as i32, "{x}");
-            let tie = (x.floor()) + 0.5;
-            assert_eq!(round_half_away(tie), tie.round() as i32, "{tie}");
-        }
-    }
-
-    #[test]
-    fn lanewise_snapping_agrees_and_never_panics() {
-        for v in [
-            0.0,
-            -0.0,
-            1.5 / 256.0,
-            -2.5 / 256.0,
-            32_768.0,
-            -32_768.0,
-            32_768.001,
-            1e300,
-            -1e300,
-            f64::NAN,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::MAX,
-        ] {
-            let (ok, snapped) = snap_coordinate_lanewise(v);
-            assert_eq!(ok.then_some(snapped), snap_coordinate(v), "{v}");
-            assert_eq!(ok, v.is_finite() && v.abs() <= 32_768.0, "{v}");
-        }
-    }
-
-    #[test]
-    fn f32_snapping_is_the_f64_snapping() {
-        let mut s = 0x9e37_79b9_u64;
-        let check = |v: f32| {
-            let (ok, snapped) = snap_coordinate_lanewise_f32(v);
-            let (ok64, snapped64) = snap_coordinate_lanewise(f64::from(v));
-            assert_eq!(ok, ok64, "{v}");
-            if ok {
-                assert_eq!(snapped, snapped64, "{v}");
-            }
-        };
-        for v in [
-            0.0,
-            -0.0,
-            0.5 / 256.0,
-            -0.5 / 256.0,
-            1.5 / 256.0,
-            32_768.0,
-            -32_768.0,
-            32_767.998,
-            f32::MIN_POSITIVE,
-            1e-40,
-            f32::NAN,
-            f32::INFINITY,
-            f32::MAX,
-        ] {
-            check(v);
-        }
-        for _ in 0..200_000 {
-            s = s
                 .wrapping_mul(6_364_136_223_846_793_005)
                 .wrapping_add(1_442_695_040_888_963_407);
-            let bits = (s >> 32) as u32;
-            // Every bit pattern's neighbourhood: raw bits (all exponents),
-            // and values near the snapping grid's half steps.
-            check(f32::from_bits(bits));
-            let grid = ((s >> 8) % 16_777_216) as f32 - 8_388_608.0;
-            check((grid + 0.5) / 256.0);
-            check(grid / 256.0 / 3.0);
+            let x = ((s >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 2.0 * 8_388_608.0;
+            assert_eq!(round_ties_even_f64(x), x.round_ties_even() as i32, "{x}");
+            let tie = x.floor() + 0.5;
+            assert_eq!(
+                round_ties_even_f64(tie),
+                tie.round_ties_even() as i32,
+                "{tie}"
+            );
+            let y = f32::from_bits((s >> 32) as u32);
+            if y.abs() < 2.0e9 {
+                assert_eq!(round_ties_even_f32(y), y.round_ties_even() as i32, "{y}");
+            }
+            let tie = (x as f32 / 4.0).floor() + 0.5;
+            assert_eq!(
+                round_ties_even_f32(tie),
+                tie.round_ties_even() as i32,
+                "{tie}"
+            );
         }
     }
 
     #[test]
-    fn snapping_refuses_non_finite_and_far_values() {
-        assert_eq!(snap_coordinate(f64::NAN), None);
-        assert_eq!(snap_coordinate(f64::INFINITY), None);
-        assert_eq!(snap_coordinate(40_000.0), None);
-        assert!(snap_coordinate(32_768.0).is_some());
+    fn gl_fixed_puts_pixel_centres_on_multiples_of_256() {
+        assert_eq!(gl_fixed_f32(0.5), (true, 0));
+        assert_eq!(gl_fixed_f32(3.5), (true, 3 * 256));
+        assert_eq!(gl_fixed_f64(3.5), (true, 3 * 256));
+        // Half a step above a centre rounds to the even neighbour: down at
+        // 0, up at 1.
+        assert_eq!(gl_fixed_f32(0.5 + 0.5 / 256.0), (true, 0));
+        assert_eq!(gl_fixed_f32(0.5 + 1.5 / 256.0), (true, 2));
+        assert_eq!(gl_fixed_f64(0.5 - 0.5 / 256.0), (true, 0));
+        assert_eq!(gl_fixed_f64(0.5 - 1.5 / 256.0), (true, -2));
+        for bad in [
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            40_000.0,
+            -40_000.0,
+        ] {
+            assert!(!gl_fixed_f32(bad).0, "{bad}");
+            assert!(!gl_fixed_f64(f64::from(bad)).0, "{bad}");
+        }
+        assert!(gl_fixed_f32(32_768.5).0 && !gl_fixed_f32(32_768.6).0);
     }
 
     #[test]

@@ -2,7 +2,8 @@
 //!
 //! `hider-geom` is the pure-math floor of the hider workspace: cameras
 //! ([`camera`]), homogeneous clipping with a guard band ([`clip`]), the
-//! viewport transform ([`viewport`]), snapping to 1/256 pixel ([`fixed`]),
+//! viewport transform and snapping to 1/256 pixel the way a GL rasterizer
+//! does ([`viewport`], [`fixed`]),
 //! exact `i64` edge functions with the top-left fill rule ([`edge`]), affine
 //! depth and 1/w planes ([`plane`]) and the lecture's point-in-polygon tests
 //! ([`polygon`]), plus the instruction-set token the hot loops of the other
@@ -20,10 +21,7 @@
 //!
 //! let vp = Viewport::new(16, 16);
 //! let ndc = [DVec3::new(-1.0, 1.0, 0.0), DVec3::new(1.0, 1.0, 0.0), DVec3::new(-1.0, -1.0, 0.0)];
-//! let mut v = ndc.map(|p| {
-//!     let w = vp.ndc_to_window(p);
-//!     FixedPt::snap(w.x, w.y).unwrap()
-//! });
+//! let mut v = ndc.map(|p| vp.snap_ndc(p.x, p.y).unwrap());
 //! if edge::orient2d(v[0], v[1], v[2]) < 0 {
 //!     v.swap(1, 2); // the edge functions expect positive orientation
 //! }

@@ -2,7 +2,10 @@
 
 use glam::DVec3;
 
-use crate::fixed::{FixedPt, first_center_from, last_center_upto, pixel_center};
+use crate::fixed::{
+    FIXED_LIMIT, FixedPt, HALF_PIXEL, SUBPIXEL_SCALE, first_center_from, gl_fixed_f32,
+    gl_fixed_f64, last_center_upto, pixel_center,
+};
 
 /// A window of `width x height` pixels with GL's default depth range [0, 1].
 ///
@@ -28,8 +31,10 @@ impl Viewport {
         f64::from(self.width) / f64::from(self.height.max(1))
     }
 
-    /// Maps NDC `(x, y, z)` in [-1, 1]^3 to window `(x, y)` in pixels and
-    /// window depth in [0, 1].
+    /// Maps NDC `(x, y, z)` in [-1, 1]^3 to window `(x, y)` in pixels (y
+    /// down) and window depth in [0, 1]: the continuous mapping, for rays
+    /// and measurements. Vertices are snapped with [`Self::snap_ndc`]
+    /// instead, which rounds in GL's frame.
     pub fn ndc_to_window(&self, ndc: DVec3) -> DVec3 {
         DVec3::new(
             (ndc.x + 1.0) * 0.5 * f64::from(self.width),
@@ -38,13 +43,84 @@ impl Viewport {
         )
     }
 
-    /// The same mapping in `f32`, as a GL implementation computes it.
-    pub fn ndc_to_window_f32(&self, ndc: [f32; 3]) -> [f32; 3] {
-        [
-            (ndc[0] * 0.5 + 0.5) * self.width as f32,
-            (0.5 - ndc[1] * 0.5) * self.height as f32,
-            ndc[2] * 0.5 + 0.5,
-        ]
+    /// Snaps NDC `(x, y)` to hider's fixed-point window coordinates the way
+    /// a GL rasterizer does, in `f64` (the steps of [`Self::snap_ndc_f32`],
+    /// rounded in `f64` instead of `f32`). `None` when the position is not
+    /// finite or beyond 2^15 pixels.
+    pub fn snap_ndc(&self, ndc_x: f64, ndc_y: f64) -> Option<FixedPt> {
+        let (ok, p) = self.snap_ndc_lanewise(ndc_x, ndc_y);
+        ok.then_some(p)
+    }
+
+    /// Snaps NDC `(x, y)` as Mesa's llvmpipe does, in `f32`:
+    ///
+    /// 1. GL's viewport transform in GL's own frame (y up, row 0 at the
+    ///    bottom): `win = ndc * (N/2) + N/2`, a multiply and an add;
+    /// 2. the half-pixel offset and 8 sub-pixel bits:
+    ///    `round((win - 0.5) * 256)`, ties to even
+    ///    ([`gl_fixed_f32`](crate::fixed::gl_fixed_f32));
+    /// 3. the flip to hider's y-down frame, in integers
+    ///    ([`Self::from_gl_fixed`]).
+    ///
+    /// Rounding after the flip instead would round values on a snapping
+    /// boundary the other way and move whole rows along horizontal edges.
+    /// `None` when the position is not finite or beyond 2^15 pixels.
+    ///
+    /// ```
+    /// use hider_geom::{FixedPt, Viewport};
+    ///
+    /// let vp = Viewport::new(4, 4);
+    /// // NDC (-1, 1) is the top-left corner: half a pixel before the first
+    /// // centre in x and y.
+    /// assert_eq!(vp.snap_ndc_f32(-1.0, 1.0), Some(FixedPt::new(0, 0)));
+    /// assert_eq!(vp.snap_ndc_f32(0.0, 0.0), Some(FixedPt::new(512, 512)));
+    /// ```
+    pub fn snap_ndc_f32(&self, ndc_x: f32, ndc_y: f32) -> Option<FixedPt> {
+        let (ok, p) = self.snap_ndc_lanewise_f32(ndc_x, ndc_y);
+        ok.then_some(p)
+    }
+
+    /// [`Self::snap_ndc`] without branches, for loops the compiler should
+    /// vectorise: whether the position can be snapped, and the snapped
+    /// point (meaningless, but computed without panicking, when it cannot).
+    #[inline(always)]
+    pub fn snap_ndc_lanewise(&self, ndc_x: f64, ndc_y: f64) -> (bool, FixedPt) {
+        let (sx, sy) = (f64::from(self.width) * 0.5, f64::from(self.height) * 0.5);
+        let (ok_x, fx) = gl_fixed_f64(ndc_x * sx + sx);
+        let (ok_y, fy) = gl_fixed_f64(ndc_y * sy + sy);
+        self.flipped(ok_x & ok_y, fx, fy)
+    }
+
+    /// [`Self::snap_ndc_f32`] without branches (see
+    /// [`Self::snap_ndc_lanewise`]).
+    #[inline(always)]
+    pub fn snap_ndc_lanewise_f32(&self, ndc_x: f32, ndc_y: f32) -> (bool, FixedPt) {
+        // Exact: image sides are at most 2^14.
+        let (sx, sy) = (self.width as f32 * 0.5, self.height as f32 * 0.5);
+        let (ok_x, fx) = gl_fixed_f32(ndc_x * sx + sx);
+        let (ok_y, fy) = gl_fixed_f32(ndc_y * sy + sy);
+        self.flipped(ok_x & ok_y, fx, fy)
+    }
+
+    /// [`Self::from_gl_fixed`], and whether the result is snappable: `ok`
+    /// and both coordinates within [`FIXED_LIMIT`].
+    #[inline(always)]
+    fn flipped(&self, ok: bool, fx: i32, fy: i32) -> (bool, FixedPt) {
+        let p = self.from_gl_fixed(fx, fy);
+        let inside = |v: i32| (-FIXED_LIMIT..=FIXED_LIMIT).contains(&v);
+        (ok & inside(p.x) & inside(p.y), p)
+    }
+
+    /// Hider's y-down fixed-point point of a point in GL's fixed-point
+    /// frame (y up, pixel centres at multiples of 256): GL row `r` is image
+    /// row `height - 1 - r`, so `y = height * 256 - 128 - fy` and
+    /// `x = fx + 128`. Exact (integers), so coverage decided with the
+    /// top-left rule in the y-down frame is coverage decided with GL's rule
+    /// in its own frame. Wrapping, so that out-of-range lanes never panic.
+    #[inline(always)]
+    pub fn from_gl_fixed(&self, fx: i32, fy: i32) -> FixedPt {
+        let top = (self.height as i32).wrapping_mul(SUBPIXEL_SCALE) - HALF_PIXEL;
+        FixedPt::new(fx.wrapping_add(HALF_PIXEL), top.wrapping_sub(fy))
     }
 
     /// The inclusive rectangle `(x0, y0, x1, y1)` of pixels whose centres
@@ -242,6 +318,32 @@ mod tests {
             v.ndc_to_window(DVec3::new(1.0, -1.0, 1.0)),
             DVec3::new(640.0, 480.0, 1.0)
         );
-        assert_eq!(v.ndc_to_window_f32([1.0, -1.0, 1.0]), [640.0, 480.0, 1.0]);
+    }
+
+    #[test]
+    fn snapping_rounds_in_gls_frame_and_flips_in_integers() {
+        let v = Viewport::new(640, 480);
+        assert_eq!(v.snap_ndc(-1.0, 1.0), Some(FixedPt::new(0, 0)));
+        assert_eq!(
+            v.snap_ndc(1.0, -1.0),
+            Some(FixedPt::new(640 * 256, 480 * 256))
+        );
+        assert_eq!(
+            v.snap_ndc_f32(1.0, -1.0),
+            Some(FixedPt::new(640 * 256, 480 * 256))
+        );
+        // A window y of GL row 1's centre plus 1.5 steps (1.5 + 1.5/256) is
+        // a tie, 257.5 steps above GL's first centre: ties to even give 258,
+        // image y = 512 * 256 - 128 - 258. Rounding the same position in
+        // the y-down frame (130 685.5 steps) ties away would give 130 686.
+        let square = Viewport::new(512, 512);
+        let ndc_y = (1.5 + 1.5 / 256.0) / 256.0 - 1.0;
+        assert_eq!(ndc_y * 256.0 + 256.0, 1.5 + 1.5 / 256.0, "exact");
+        let want = 512 * 256 - 128 - 258;
+        assert_eq!(square.snap_ndc_f32(0.0, ndc_y as f32).unwrap().y, want);
+        assert_eq!(square.snap_ndc(0.0, ndc_y).unwrap().y, want);
+        assert_eq!(v.snap_ndc(f64::NAN, 0.0), None);
+        assert_eq!(v.snap_ndc_f32(0.0, f32::INFINITY), None);
+        assert_eq!(v.snap_ndc(-300.0, 0.0), None);
     }
 }

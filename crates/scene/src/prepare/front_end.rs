@@ -48,8 +48,21 @@ pub struct FrontEnd {
     pub normal_matrix: DMat4,
     /// World to clip space, `projection_matrix * view_matrix`.
     pub mvp: DMat4,
-    /// [`Self::mvp`] rounded to `f32`, for [`TransformPrecision::F32`].
+    /// [`Self::mvp`] rounded to `f32`, for [`TransformPrecision::F32`]: what
+    /// a GL program hands to GL, applied to positions rounded to `f32`.
     pub mvp32: glam::Mat4,
+    /// The camera's eye in world space: [`TransformPrecision::F64`]
+    /// subtracts it from a position before anything else.
+    pub eye: DVec3,
+    /// Eye-relative world to clip space: `projection_matrix` times the
+    /// view matrix's rotation (no translation), for
+    /// [`TransformPrecision::F64`]. Subtracting the eye first keeps a scene
+    /// far from the origin as exact as one at it: `p - eye` is exact for
+    /// nearby points (Sterbenz's lemma), where the view matrix's
+    /// translation would cancel two huge products.
+    pub eye_to_clip: DMat4,
+    /// Eye-relative world to camera space: the view matrix's rotation.
+    pub eye_to_camera: DMat4,
     /// The clip volume: near, far and the guard band.
     pub volume: ClipVolume,
     /// The image size.
@@ -93,12 +106,17 @@ impl FrontEnd {
         let view_matrix = view.camera.view_matrix();
         let projection_matrix = view.camera.projection_matrix(vp.aspect());
         let mvp = projection_matrix * view_matrix;
+        let mut eye_to_camera = view_matrix;
+        eye_to_camera.w_axis = glam::DVec4::W;
         Ok(Self {
             view_matrix,
             projection_matrix,
-            normal_matrix: view_matrix.inverse().transpose(),
+            normal_matrix: eye_to_camera.inverse().transpose(),
             mvp,
             mvp32: mvp.as_mat4(),
+            eye: view.camera.eye,
+            eye_to_clip: projection_matrix * eye_to_camera,
+            eye_to_camera,
             volume: ClipVolume::for_viewport(
                 vp.width,
                 vp.height,
@@ -115,9 +133,16 @@ impl FrontEnd {
     #[inline]
     pub(crate) fn clip(&self, p: DVec3) -> DVec4 {
         match self.options.precision {
-            TransformPrecision::F64 => self.mvp * p.extend(1.0),
+            TransformPrecision::F64 => self.eye_to_clip * (p - self.eye).extend(1.0),
             TransformPrecision::F32 => (self.mvp32 * Vec4::from((p.as_vec3(), 1.0))).as_dvec4(),
         }
+    }
+
+    /// The camera-space position of a world-space point, relative to the
+    /// eye first (see [`Self::eye_to_clip`]).
+    #[inline]
+    pub fn to_camera(&self, p: DVec3) -> DVec3 {
+        self.eye_to_camera.transform_vector3(p - self.eye)
     }
 
     /// Transforms, clips, projects, snaps and sets up triangle `t` of mesh
@@ -134,7 +159,7 @@ impl FrontEnd {
         let idx = mesh.indices[t];
         let world = idx.map(|i| mesh.positions[i as usize]);
         prims.push(PrimInfo {
-            camera: world.map(|p| self.view_matrix.transform_point3(p)),
+            camera: world.map(|p| self.to_camera(p)),
             material: mesh.material.map_or(self.default_material, |k| k as u32),
             normals: (!mesh.normals.is_empty()).then(|| {
                 idx.map(|i| {
@@ -191,27 +216,36 @@ pub struct WindowVertex {
     pub w: f64,
 }
 
+/// The divide, the viewport transform and the snap of a clipped vertex,
+/// as Mesa's llvmpipe computes them (its `draw_llvm.c`, `generate_viewport`,
+/// and `lp_setup_tri.c`, `calc_fixed_position`): the reciprocal of `w`
+/// first, `ndc = clip * (1/w)`, then [`Viewport::snap_ndc_f32`] (GL's own
+/// frame, ties to even, the flip in integers) and window depth
+/// `ndc_z * 0.5 + 0.5`; in `f32` for [`TransformPrecision::F32`], the same
+/// steps in `f64` for [`TransformPrecision::F64`]. The lean front end of the
+/// tiled z-buffer repeats these steps lane by lane and must stay bit for bit
+/// equal.
 #[inline]
 pub(crate) fn to_window(
     v: &ClipVertex,
     vp: Viewport,
     precision: TransformPrecision,
 ) -> Option<WindowVertex> {
-    let (x, y, z) = match precision {
+    let (p, z) = match precision {
         TransformPrecision::F64 => {
-            let ndc = v.pos.truncate() / v.pos.w;
-            let win = vp.ndc_to_window(ndc);
-            (win.x, win.y, win.z)
+            let r = 1.0 / v.pos.w;
+            let p = vp.snap_ndc(v.pos.x * r, v.pos.y * r)?;
+            (p, v.pos.z * r * 0.5 + 0.5)
         }
         TransformPrecision::F32 => {
             let c = v.pos.as_vec4();
-            let ndc = [c.x / c.w, c.y / c.w, c.z / c.w];
-            let win = vp.ndc_to_window_f32(ndc);
-            (f64::from(win[0]), f64::from(win[1]), f64::from(win[2]))
+            let r = 1.0 / c.w;
+            let p = vp.snap_ndc_f32(c.x * r, c.y * r)?;
+            (p, f64::from(c.z * r * 0.5 + 0.5))
         }
     };
     Some(WindowVertex {
-        p: FixedPt::snap(x, y)?,
+        p,
         // Clipping puts every vertex inside -w <= z <= w, so window depth is
         // in [0, 1] exactly; rounding of the divide (in f32, or with w near
         // the smallest normal numbers) can leave it far outside, which the

@@ -118,11 +118,11 @@ pub fn prepare_into(
         .iter()
         .map(|l| match *l {
             Light::Directional { direction, color } => Light::Directional {
-                direction: view_matrix.transform_vector3(direction),
+                direction: front.eye_to_camera.transform_vector3(direction),
                 color,
             },
             Light::Point { position, color } => Light::Point {
-                position: view_matrix.transform_point3(position),
+                position: front.to_camera(position),
                 color,
             },
         })

@@ -3,9 +3,10 @@
 //!
 //! Each lane computes exactly what `prepare` computes for a corner that
 //! uses the vertex, in the same order of operations (the transform is
-//! glam's `Mat4 * Vec4` written out, `((x·X + y·Y) + z·Z) + W`; the divide
-//! and viewport map are `to_window`'s; the snap is
-//! [`snap_coordinate`](hider_geom::fixed::snap_coordinate)'s), with
+//! glam's `Mat4 * Vec4` written out, `((x·X + y·Y) + z·Z) + W`, in `f64`
+//! on the position minus the eye; the reciprocal of `w`, the divide and
+//! the depth map are `to_window`'s; the viewport map and snap are
+//! [`Viewport::snap_ndc_lanewise`](hider_geom::Viewport::snap_ndc_lanewise)'s), with
 //! selects instead of early returns so that the compiler can keep the
 //! eight lanes in vector registers. On a CPU with AVX2 the pass runs in a
 //! copy compiled for it (eight `f32` or four `f64` lanes per instruction
@@ -14,7 +15,6 @@
 use glam::{DVec3, DVec4};
 use hider_geom::FixedPt;
 use hider_geom::clip::OUTSIDE_PLANES;
-use hider_geom::fixed::{snap_coordinate_lanewise, snap_coordinate_lanewise_f32};
 use hider_geom::isa::Avx2;
 
 use hider_scene::TransformPrecision;
@@ -105,7 +105,7 @@ fn lanes(front: &FrontEnd, p: &[DVec3; LANES], out: &mut [CachedVertex; LANES]) 
     let finite_world = p.iter().fold(true, |ok, p| {
         ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
     });
-    let (w, h) = (front.viewport.width, front.viewport.height);
+    let vp = front.viewport;
     // Clip-space x, y, z, w and window x, y, z of each lane. Plain
     // indexed loops: `array::from_fn` with closures was not inlined into
     // the AVX2 copy, and every call went through memory.
@@ -126,37 +126,34 @@ fn lanes(front: &FrontEnd, p: &[DVec3; LANES], out: &mut [CachedVertex; LANES]) 
                     c[i] = ((m.x_axis[k] * x + m.y_axis[k] * y) + m.z_axis[k] * z) + m.w_axis[k];
                 }
             }
-            // `to_window` in f32: divide, then `ndc_to_window_f32`, and
-            // the snap in f32 lanes (the same result as in f64).
-            let (wf, hf) = (w as f32, h as f32);
+            // `to_window` in f32: the reciprocal, the divide, then
+            // `snap_ndc_f32` (GL's frame, ties to even, the flip).
             for i in 0..LANES {
-                let (ok_x, sx) = snap_coordinate_lanewise_f32((c[0][i] / c[3][i] * 0.5 + 0.5) * wf);
-                let (ok_y, sy) = snap_coordinate_lanewise_f32((0.5 - c[1][i] / c[3][i] * 0.5) * hf);
-                (snaps[i], x[i], y[i]) = (ok_x & ok_y, sx, sy);
-                depth[i] = f64::from(c[2][i] / c[3][i] * 0.5 + 0.5);
+                let r = 1.0 / c[3][i];
+                let (ok, q) = vp.snap_ndc_lanewise_f32(c[0][i] * r, c[1][i] * r);
+                (snaps[i], x[i], y[i]) = (ok, q.x, q.y);
+                depth[i] = f64::from(c[2][i] * r * 0.5 + 0.5);
                 for (clip, c) in clip.iter_mut().zip(&c) {
                     clip[i] = f64::from(c[i]);
                 }
             }
         }
         TransformPrecision::F64 => {
-            let m = front.mvp;
+            let (m, eye) = (front.eye_to_clip, front.eye);
             for i in 0..LANES {
-                let (x, y, z) = (p[i].x, p[i].y, p[i].z);
+                // Relative to the eye first, as `prepare`.
+                let (x, y, z) = (p[i].x - eye.x, p[i].y - eye.y, p[i].z - eye.z);
                 // glam's `DMat4 * DVec4` (w = 1).
                 for (k, clip) in clip.iter_mut().enumerate() {
                     clip[i] = ((m.x_axis[k] * x + m.y_axis[k] * y) + m.z_axis[k] * z) + m.w_axis[k];
                 }
             }
-            // `to_window` in f64: divide, then `ndc_to_window`.
-            let (wf, hf) = (f64::from(w), f64::from(h));
+            // `to_window` in f64: the reciprocal, the divide, `snap_ndc`.
             for i in 0..LANES {
-                let (ok_x, sx) =
-                    snap_coordinate_lanewise((clip[0][i] / clip[3][i] + 1.0) * 0.5 * wf);
-                let (ok_y, sy) =
-                    snap_coordinate_lanewise((1.0 - clip[1][i] / clip[3][i]) * 0.5 * hf);
-                (snaps[i], x[i], y[i]) = (ok_x & ok_y, sx, sy);
-                depth[i] = (clip[2][i] / clip[3][i] + 1.0) * 0.5;
+                let r = 1.0 / clip[3][i];
+                let (ok, q) = vp.snap_ndc_lanewise(clip[0][i] * r, clip[1][i] * r);
+                (snaps[i], x[i], y[i]) = (ok, q.x, q.y);
+                depth[i] = clip[2][i] * r * 0.5 + 0.5;
             }
         }
     }
