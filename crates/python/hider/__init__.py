@@ -1,0 +1,155 @@
+"""Hidden-surface removal for numpy and matplotlib.
+
+``hider`` renders triangle meshes given as numpy arrays into a face-id
+buffer and a depth buffer on the CPU, with any of the classic
+hidden-surface algorithms of the hider workspace (z-buffer, A-buffer,
+painter's algorithm, Warnock, scanline, an exact ray-cast oracle): no
+OpenGL context, no display, bit for bit the ``hider`` command line's
+``--ids-out`` and ``--depth-out`` dumps.
+
+``hider.mpl`` fixes occlusion in matplotlib's 3D axes: it orders and
+splits every polygon of an ``Axes3D`` jointly, so intersecting surfaces
+and lines behind surfaces are drawn as they are seen.
+
+Example::
+
+    import numpy as np
+    import hider
+
+    vertices = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
+    faces = np.array([[0, 1, 2]])
+    ids, depth = hider.render(vertices, faces, width=64, height=64)
+    assert ids[32, 32] == 0 and ids[0, 0] == -1
+"""
+
+import numpy as np
+
+from . import _hider
+
+__all__ = ["render", "visible_faces", "algorithms", "DEFAULT_ALGO"]
+
+#: The hider ``render`` uses unless told: the binned, tiled z-buffer, the
+#: fastest exact one.
+DEFAULT_ALGO = "zbuffer-tiled"
+
+
+def algorithms():
+    """The names of every registered hider, for ``algo=``."""
+    return list(_hider.algorithms())
+
+
+def _as_vertices(vertices, name="vertices"):
+    """Any real (N, 3) array-like as C-contiguous float64."""
+    a = np.asarray(vertices)
+    if a.dtype.kind not in "biuf":
+        raise ValueError(f"{name} must be a real numeric array, got dtype {a.dtype}")
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"{name} must have shape (N, 3), got {a.shape}")
+    return np.ascontiguousarray(a, dtype=np.float64)
+
+
+def _as_faces(faces, name="faces"):
+    """Any integer (M, 3) array-like as C-contiguous int64 (unsigned values
+    beyond int64 become -1, which the range check refuses)."""
+    a = np.asarray(faces)
+    if a.dtype.kind not in "iu":
+        raise ValueError(f"{name} must be an integer array, got dtype {a.dtype}")
+    if a.ndim != 2 or a.shape[1] != 3:
+        raise ValueError(f"{name} must have shape (M, 3), got {a.shape}")
+    if a.dtype.kind == "u" and a.size and a.max() > np.iinfo(np.int64).max:
+        a = np.where(a > np.iinfo(np.int64).max, -1, a.astype(np.int64, copy=False))
+    return np.ascontiguousarray(a, dtype=np.int64)
+
+
+def _as_point(value, name):
+    """An optional 3-vector as a tuple of floats."""
+    if value is None:
+        return None
+    a = np.asarray(value, dtype=np.float64)
+    if a.shape != (3,):
+        raise ValueError(f"{name} must be 3 numbers x, y, z, got shape {a.shape}")
+    return tuple(float(x) for x in a)
+
+
+def _as_size(value, name):
+    """A positive image side; the Rust side checks the upper limit."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name} must be an integer, got {value!r}")
+    if value < 1:
+        raise ValueError(f"image {name} must be at least 1 pixel, got {value}")
+    if value > 2**32 - 1:
+        raise ValueError(f"image {name} {value} is over the limit of 16384")
+    return int(value)
+
+
+def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
+           fovy=60.0, near=None, far=None, algo=DEFAULT_ALGO, threads=1):
+    """Render a triangle mesh into a face-id buffer and a depth buffer.
+
+    Parameters
+    ----------
+    vertices : (N, 3) array-like of any real dtype, C or Fortran order
+        World-space positions (right-handed, the camera looks down -Z).
+    faces : (M, 3) array-like of any integer dtype
+        Vertex indices of each triangle; triangle ``k`` has id ``k``.
+    width, height : int
+        Image size in pixels (1 to 16384 each).
+    eye, target, up : 3 numbers, optional
+        The camera. Unset values come from the *fit camera* of the ``hider``
+        command line: centred on the bounding box, at 2.5 times its half
+        diagonal along +Z, looking down -Z with +Y up.
+    fovy : float
+        Vertical field of view in degrees.
+    near, far : float, optional
+        Clip distances (default 0.1 and 10 times the half diagonal).
+    algo : str
+        Any name of ``algorithms()``; all of them agree on every pixel that
+        is not a depth tie.
+    threads : int
+        Worker threads for the hiders that render in parallel (1 to 1024).
+
+    Returns
+    -------
+    ids : (height, width) int32
+        The visible triangle at each pixel centre, ``-1`` for background.
+        Row 0 is the top of the image.
+    depth : (height, width) float32
+        Window depth ``z/w`` in [0, 1] of the visible triangle, ``1.0`` for
+        background.
+
+    Raises
+    ------
+    ValueError
+        Bad arrays (wrong shape or dtype, a NaN or infinite coordinate, an
+        index out of range), a bad camera or size, an unknown ``algo``;
+        the message is the ``hider`` command line's.
+    MemoryError
+        The hider's memory budget ran out.
+
+    The GIL is released while rendering.
+    """
+    v = _as_vertices(vertices)
+    f = _as_faces(faces)
+    return _hider.render(
+        v, f, _as_size(width, "width"), _as_size(height, "height"),
+        _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
+        None if fovy is None else float(fovy),
+        None if near is None else float(near),
+        None if far is None else float(far),
+        str(algo), int(threads),
+    )
+
+
+def visible_faces(vertices, faces, **kwargs):
+    """Which faces are seen: a boolean mask of shape ``(M,)``.
+
+    Face ``k`` is visible when it is the nearest surface at one pixel centre
+    or more of the image ``render(vertices, faces, **kwargs)`` makes; the
+    keyword arguments are ``render``'s.
+    """
+    f = _as_faces(faces)
+    ids, _ = render(vertices, f, **kwargs)
+    mask = np.zeros(len(f), dtype=bool)
+    seen = ids[ids >= 0]
+    mask[seen] = True
+    return mask

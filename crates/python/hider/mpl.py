@@ -1,0 +1,392 @@
+"""Correct occlusion for matplotlib's 3D axes.
+
+mplot3d sorts whole polygons by one depth each (their mean, or min or max
+``zsort``) and whole collections by another, then paints them in that
+order. Where two surfaces intersect, or a long polygon overlaps a short
+one, no order of whole polygons is right, and one surface is drawn
+entirely over the other.
+
+``resolve(ax)`` replaces that sort for every ``Poly3DCollection`` of an
+``Axes3D`` (``plot_surface``, ``plot_trisurf``, ``bar3d``, ``voxels``,
+``add_collection3d``): at each draw it projects all their polygons with the
+axes' own projection (``ax.get_proj()``), keeps matplotlib's colours,
+and orders and splits them jointly with the painter's algorithm of
+Newell, Newell & Sancha (splitting a polygon by another's plane where no
+order exists). The pieces are painted in that order, so ``savefig`` to
+PNG, PDF or SVG shows each surface exactly where it is the nearest, and
+rotating the view re-resolves. Lines (``plot``, ``plot_wireframe``) and the
+coloured edges of polygons are cut where they pass behind a surface,
+against a depth buffer of the same projection.
+"""
+
+import numpy as np
+from matplotlib import collections as mcoll
+from matplotlib import colors as mcolors
+from matplotlib.transforms import IdentityTransform
+from mpl_toolkits.mplot3d import art3d, proj3d
+
+from . import _hider
+
+__all__ = ["resolve", "unresolve", "Resolved", "project", "zbuffer"]
+
+# Window depth of the orthographic screen camera for depth t in [0, 1]:
+# the eye is one unit before t = 0, the near plane at 0.5 and the far at
+# 2.5 (the constants of the extension's screen-space scenes).
+_NEAR, _EYE_TO_FRONT, _FAR = 0.5, 1.0, 2.5
+
+# A line sample is hidden when a surface is nearer than it by more than
+# this much window depth (of a scene spanning 0.5): edges lie on their own
+# polygons, whose f32 depth differs from the line's in the last bits.
+_LINE_DEPTH_TOLERANCE = 2e-4
+
+# Samples per pixel of line length for the visibility test.
+_LINE_SAMPLES_PER_PIXEL = 2.0
+
+
+def _project(ax, xyz):
+    """Points (..., 3) in data coordinates to (..., 3) projected points:
+    x, y in the 2D axes' data coordinates and matplotlib's view depth."""
+    if hasattr(proj3d, "_scale_proj_transform_vectors"):
+        return proj3d._scale_proj_transform_vectors(xyz, ax)
+    return proj3d._proj_transform_vectors(xyz, ax.M)
+
+
+def _rgba(colors, count):
+    """Colours as an (count, 4) array, one per item (matplotlib stores one
+    colour for all items as a single row)."""
+    c = mcolors.to_rgba_array(colors) if len(colors) else np.zeros((0, 4))
+    if len(c) == count:
+        return c
+    if len(c) == 0:
+        return np.zeros((count, 4))
+    return np.repeat(c[:1], count, axis=0)
+
+
+def _polygon_source(col):
+    """The polygons of a Poly3DCollection, projected by its last
+    do_3d_projection, with their colours in the user's order."""
+    col.do_3d_projection()
+    faces = np.asarray(col._faces, dtype=float)
+    n, v = faces.shape[:2] if faces.ndim == 3 else (0, 0)
+    invalid = np.broadcast_to(np.asarray(col._invalid_vertices, dtype=bool), (n, v)) \
+        if n else np.zeros((0, 0), bool)
+    face = _rgba(col._facecolor3d, n)
+    edge = col._edgecolor3d
+    edge = face.copy() if len(edge) == 0 else _rgba(edge, n)
+    lw = np.asarray(col.get_linewidth(), dtype=float)
+    lw = np.broadcast_to(lw if lw.size in (1, n) else lw[:1], (n,)) if n else np.zeros(0)
+    return faces, invalid, face, edge, lw
+
+
+class _Gathered:
+    """Every polygon of the sources fanned into triangles in window pixels
+    (y down) with depth t in [0, 1], plus each triangle's polygon."""
+
+    def __init__(self, ax, sources, width, height):
+        pts, tris, tri_poly = [], [], []
+        face_rgba, edge_rgba, widths, outlines = [], [], [], []
+        base, poly_base = 0, 0
+        for col in sources:
+            faces, invalid, face, edge, lw = _polygon_source(col)
+            n = len(faces)
+            if n == 0:
+                continue
+            proj = _project(ax, faces)
+            disp = ax.transData.transform(proj[..., :2].reshape(-1, 2)).reshape(n, -1, 2)
+            p = np.concatenate([disp, proj[..., 2:3]], axis=-1)
+            bad = invalid | ~np.isfinite(p).all(axis=-1)
+            v = faces.shape[1]
+            idx = np.arange(n * v).reshape(n, v) + base
+            for k in range(1, v - 1):
+                ok = ~(bad[:, 0] | bad[:, k] | bad[:, k + 1])
+                t = np.stack([idx[:, 0], idx[:, k], idx[:, k + 1]], axis=1)[ok]
+                tris.append(t)
+                tri_poly.append(np.nonzero(ok)[0] + poly_base)
+            pts.append(p.reshape(-1, 3))
+            face_rgba.append(face)
+            edge_rgba.append(edge)
+            widths.append(lw)
+            outlines.append((p, bad))
+            base += n * v
+            poly_base += n
+        self.width, self.height = width, height
+        self.points = np.concatenate(pts) if pts else np.zeros((0, 3))
+        self.faces = np.concatenate(tris).astype(np.int64) if tris else np.zeros((0, 3), np.int64)
+        self.tri_poly = np.concatenate(tri_poly) if tri_poly else np.zeros(0, np.int64)
+        self.face_rgba = np.concatenate(face_rgba) if face_rgba else np.zeros((0, 4))
+        self.edge_rgba = np.concatenate(edge_rgba) if edge_rgba else np.zeros((0, 4))
+        self.linewidths = np.concatenate(widths) if widths else np.zeros(0)
+        self.outlines = outlines
+        # Depth over the points in use, mapped onto [0, 1].
+        used = np.unique(self.faces) if len(self.faces) else np.zeros(0, np.int64)
+        z = self.points[used, 2] if len(used) else np.zeros(1)
+        self.zlo, zhi = float(z.min()), float(z.max())
+        self.zspan = zhi - self.zlo if zhi > self.zlo else 1.0
+        self.points[:, 1] = height - self.points[:, 1]
+        self.points[:, 2] = (self.points[:, 2] - self.zlo) / self.zspan
+        # Unused padding vertices (masked) must still be finite.
+        self.points[~np.isfinite(self.points)] = 0.0
+
+    def window_depth(self, z):
+        """matplotlib view depths as the screen camera's window depths."""
+        t = (np.asarray(z, dtype=float) - self.zlo) / self.zspan
+        return (t + _EYE_TO_FRONT - _NEAR) / (_FAR - _NEAR)
+
+
+def project(ax, width=None, height=None):
+    """The screen-space triangles of every Poly3DCollection of ``ax``, as
+    ``resolve`` sees them: ``(points, faces, polygon, (width, height))``.
+
+    ``points`` are window pixels (x right, y down from the top of the
+    figure) with a depth in [0, 1] growing away from the viewer; ``faces``
+    index them; ``polygon[k]`` numbers the source polygon of triangle
+    ``k`` across the collections in ``ax.collections`` order. The axes must
+    have been drawn once (``fig.canvas.draw()``) so that its projection is
+    current.
+    """
+    width, height = _size(ax, width, height)
+    g = _Gathered(ax, _sources(ax), width, height)
+    return g.points, g.faces, g.tri_poly, (width, height)
+
+
+def zbuffer(ax, algo="zbuffer"):
+    """Renders ``project(ax)`` at the figure's pixel size with the
+    registered hider ``algo``: ``(ids, depth)`` as from ``hider.render``,
+    ids numbering the triangles of ``project``."""
+    points, faces, _, (w, h) = project(ax)
+    return _hider.screen_render(points, faces, w, h, algo)
+
+
+def _size(ax, width=None, height=None):
+    """The figure's size in display pixels, rounded up."""
+    fig = ax.figure
+    w = width if width is not None else int(np.ceil(fig.bbox.width))
+    h = height if height is not None else int(np.ceil(fig.bbox.height))
+    return max(w, 1), max(h, 1)
+
+
+def _sources(ax):
+    """The polygon collections of ``ax`` that a resolver draws: every
+    Poly3DCollection that is visible or that a resolver hid."""
+    return [c for c in ax.collections
+            if isinstance(c, art3d.Poly3DCollection) and not isinstance(c, Resolved)
+            and (c.get_visible() or getattr(c, "_hider_hidden", False))]
+
+
+def _line_sources(ax):
+    """The 3D lines of ``ax`` (``plot_wireframe``'s Line3DCollections and
+    ``plot``'s markerless Line3Ds) that a resolver clips."""
+    out = []
+    for c in ax.collections:
+        if isinstance(c, art3d.Line3DCollection) and (
+                c.get_visible() or getattr(c, "_hider_hidden", False)):
+            out.append(c)
+    for line in ax.lines:
+        plain = line.get_marker() in (None, "", "None", " ", "none")
+        if isinstance(line, art3d.Line3D) and plain and (
+                line.get_visible() or getattr(line, "_hider_hidden", False)):
+            out.append(line)
+    return out
+
+
+def _segments(ax, lines):
+    """The 3D segments of the line sources, projected: an (S, 2, 3) array
+    of display x, y and view depth, with colours and widths per segment."""
+    segs, rgba, widths = [], [], []
+    for src in lines:
+        if isinstance(src, art3d.Line3DCollection):
+            parts = [np.asarray(s, dtype=float) for s in src._segments3d]
+            colors = src.get_color()
+            lws = np.atleast_1d(src.get_linewidth())
+        else:
+            parts = [np.column_stack([np.asarray(a, dtype=float).ravel()
+                                      for a in src.get_data_3d()])]
+            colors = [src.get_color()]
+            lws = np.atleast_1d(src.get_linewidth())
+        colors = _rgba(colors, len(parts))
+        lws = np.resize(lws, len(parts))
+        for k, part in enumerate(parts):
+            if len(part) < 2:
+                continue
+            p = _project(ax, part)
+            d = ax.transData.transform(p[:, :2])
+            q = np.column_stack([d, p[:, 2]])
+            s = np.stack([q[:-1], q[1:]], axis=1)
+            s = s[np.isfinite(s).all(axis=(1, 2))]
+            segs.append(s)
+            rgba.append(np.repeat(colors[k:k + 1], len(s), axis=0))
+            widths.append(np.full(len(s), lws[k]))
+    if not segs:
+        return np.zeros((0, 2, 3)), np.zeros((0, 4)), np.zeros(0)
+    return np.concatenate(segs), np.concatenate(rgba), np.concatenate(widths)
+
+
+def _visible_parts(segs, window_depth, depth, height):
+    """Cuts display-space segments (S, 2, 3) to the parts in front of the
+    depth buffer: (display segments, index of their source segment)."""
+    if len(segs) == 0:
+        return np.zeros((0, 2, 2)), np.zeros(0, np.int64)
+    h, w = depth.shape
+    # The farthest depth around each pixel: a line on a silhouette, or on
+    # its own polygon's edge, is not hidden by the neighbour it borders.
+    pad = np.pad(depth, 1, mode="edge")
+    far = np.max([pad[dy:dy + h, dx:dx + w] for dy in range(3) for dx in range(3)], axis=0)
+    a, b = segs[:, 0, :], segs[:, 1, :]
+    length = np.hypot(b[:, 0] - a[:, 0], b[:, 1] - a[:, 1])
+    counts = np.maximum(2, np.ceil(length * _LINE_SAMPLES_PER_PIXEL).astype(np.int64) + 1)
+    seg_of = np.repeat(np.arange(len(segs)), counts)
+    starts = np.cumsum(counts) - counts
+    u = (np.arange(counts.sum()) - starts[seg_of]) / (counts[seg_of] - 1)
+    pts = a[seg_of] + (b[seg_of] - a[seg_of]) * u[:, None]
+    x = np.clip(np.floor(pts[:, 0]).astype(np.int64), 0, w - 1)
+    y = np.clip(np.floor(height - pts[:, 1]).astype(np.int64), 0, h - 1)
+    inside = (pts[:, 0] >= 0) & (pts[:, 0] < w) & (height - pts[:, 1] >= 0) & (height - pts[:, 1] < h)
+    visible = ~inside | (window_depth(pts[:, 2]) <= far[y, x] + _LINE_DEPTH_TOLERANCE)
+    # Runs of visible samples within one segment become sub-segments.
+    same = np.r_[False, seg_of[1:] == seg_of[:-1]]
+    run_start = visible & ~(same & np.r_[False, visible[:-1]])
+    run_id = np.cumsum(run_start) - 1
+    keep = np.nonzero(visible)[0]
+    if len(keep) == 0:
+        return np.zeros((0, 2, 2)), np.zeros(0, np.int64)
+    rid = run_id[keep]
+    first = np.r_[True, rid[1:] != rid[:-1]]
+    last = np.r_[rid[1:] != rid[:-1], True]
+    p0, p1 = keep[first], keep[last]
+    nonzero = p1 > p0
+    p0, p1 = p0[nonzero], p1[nonzero]
+    out = np.stack([pts[p0, :2], pts[p1, :2]], axis=1)
+    return out, seg_of[p0]
+
+
+def _outline_segments(g):
+    """The outlines of the polygons whose edges have their own colour
+    (not their face's), as projected segments with colour and width."""
+    segs, rgba, widths = [], [], []
+    poly = 0
+    for p, bad in g.outlines:
+        n, v = p.shape[:2]
+        edge = g.edge_rgba[poly:poly + n]
+        face = g.face_rgba[poly:poly + n]
+        lw = g.linewidths[poly:poly + n]
+        own = (np.abs(edge - face).max(axis=1) > 1e-6) & (edge[:, 3] > 0) & (lw > 0)
+        for i in np.nonzero(own)[0]:
+            q = p[i][~bad[i]]
+            if len(q) < 2:
+                continue
+            s = np.stack([q, np.roll(q, -1, axis=0)], axis=1)
+            segs.append(s)
+            rgba.append(np.repeat(edge[i:i + 1], len(s), axis=0))
+            widths.append(np.full(len(s), lw[i]))
+        poly += n
+    if not segs:
+        return np.zeros((0, 2, 3)), np.zeros((0, 4)), np.zeros(0)
+    return np.concatenate(segs), np.concatenate(rgba), np.concatenate(widths)
+
+
+class Resolved(mcoll.PolyCollection):
+    """The artist ``resolve`` adds: at each draw it gathers the hidden
+    source collections, orders and splits their polygons with hider's
+    painter and paints the pieces, then draws the source lines cut where
+    surfaces hide them."""
+
+    def __init__(self, ax, sources, lines):
+        super().__init__([], transform=IdentityTransform())
+        self._ax = ax
+        self.sources = list(sources)
+        self.line_sources = list(lines)
+        self._lines = mcoll.LineCollection([], transform=IdentityTransform())
+        self.pieces = 0
+        antialiased = [c.get_antialiased() for c in self.sources]
+        self.set_antialiased(np.all(np.concatenate([np.atleast_1d(a) for a in antialiased]))
+                             if antialiased else True)
+
+    def do_3d_projection(self):
+        """Orders and splits the polygons for the current projection; the
+        return value places this artist among unresolved ones as
+        matplotlib's own collections do (by their nearest point)."""
+        ax = self._ax
+        width, height = _size(ax)
+        g = _Gathered(ax, self.sources, width, height)
+        prims, offsets, xy = _hider.screen_pieces(g.points, g.faces, width, height)
+        self.pieces = len(prims)
+        xy = xy.copy()
+        xy[:, 1] = height - xy[:, 1]
+        self.set_verts(np.split(xy, offsets[1:-1]) if len(prims) else [], closed=True)
+        poly = g.tri_poly[prims]
+        face = g.face_rgba[poly]
+        edge = g.edge_rgba[poly]
+        lw = g.linewidths[poly]
+        # Pieces are stroked like their polygon when its edges take the
+        # face's colour (matplotlib's default, which hides the seams); an
+        # edge of its own colour would outline every piece, so those
+        # pieces are stroked in their face colour and the true edges are
+        # drawn as lines.
+        own = np.abs(edge - face).max(axis=1) > 1e-6 if len(poly) else np.zeros(0, bool)
+        edge[own] = face[own]
+        self.set_facecolor(face)
+        self.set_edgecolor(edge)
+        self.set_linewidth(lw if len(lw) else 0.0)
+        self._resolve_lines(g, len(prims) > 0)
+        return float(np.min(g.points[:, 2])) if len(g.points) else np.nan
+
+    def _resolve_lines(self, g, any_faces):
+        """Cuts the source lines and the outlines of edge-coloured polygons
+        against a depth buffer of the same screen-space triangles."""
+        ax = self._ax
+        ls, lc, lw = _segments(ax, self.line_sources)
+        os_, oc, ow = _outline_segments(g)
+        segs = np.concatenate([ls, os_]) if len(os_) else ls
+        rgba = np.concatenate([lc, oc]) if len(os_) else lc
+        widths = np.concatenate([lw, ow]) if len(os_) else lw
+        if len(segs) == 0:
+            self._lines.set_segments([])
+            return
+        if any_faces:
+            _, depth = _hider.screen_render(g.points, g.faces, g.width, g.height, "zbuffer")
+            parts, src = _visible_parts(segs, g.window_depth, depth, g.height)
+        else:
+            parts, src = segs[:, :, :2], np.arange(len(segs))
+        self._lines.set_segments(list(parts))
+        self._lines.set_color(rgba[src] if len(src) else "none")
+        self._lines.set_linewidth(widths[src] if len(src) else 0.0)
+
+    def draw(self, renderer):
+        """Paints the pieces in order, then the visible parts of lines."""
+        super().draw(renderer)
+        self._lines.set_figure(self.figure)
+        self._lines.draw(renderer)
+
+
+def resolve(ax):
+    """Draw the polygons and lines of a 3D axes with correct occlusion.
+
+    Hides every ``Poly3DCollection`` (and every markerless 3D line) of
+    ``ax`` and adds one ``Resolved`` artist that draws them instead: at
+    each draw (``savefig``, ``plt.show``, an interactive rotation) their
+    polygons are projected with ``ax.get_proj()``, ordered and split
+    jointly by hider's painter and painted in that order, in matplotlib's
+    colours, and the lines are cut where surfaces hide them. Call it after
+    plotting; calling it again takes in what was plotted since. Returns the
+    ``Resolved`` artist. ``unresolve(ax)`` undoes it.
+    """
+    old = [c for c in ax.collections if isinstance(c, Resolved)]
+    for r in old:
+        r.remove()
+    sources = _sources(ax)
+    lines = _line_sources(ax)
+    for artist in sources + lines:
+        artist._hider_hidden = True
+        artist.set_visible(False)
+    resolved = Resolved(ax, sources, lines)
+    ax.add_collection(resolved, autolim=False)
+    return resolved
+
+
+def unresolve(ax):
+    """Removes what ``resolve`` added and shows the original artists."""
+    for r in [c for c in ax.collections if isinstance(c, Resolved)]:
+        for artist in r.sources + r.line_sources:
+            artist._hider_hidden = False
+            artist.set_visible(True)
+        r.remove()

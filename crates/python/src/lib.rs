@@ -1,0 +1,33 @@
+//! The `hider._hider` Python extension: the workspace's hidden-surface
+//! algorithms for numpy arrays, and the screen-space entry points behind
+//! `hider.mpl` (correct occlusion for matplotlib's 3D axes).
+//!
+//! The Python package `hider` wraps this module: it turns any numpy
+//! vertex and face arrays into the contiguous `float64` and `int64` arrays
+//! the functions here take, and gives them their keyword signatures and
+//! docstrings. Hiders are built through `hider-plan`'s registry, scenes
+//! are prepared by `hider-scene`'s front end and the camera is chosen as
+//! the `hider` command line chooses it, so that an array rendered here is
+//! bit for bit the command line's `--ids-out` and `--depth-out` dumps.
+//!
+//! Every error comes back as one Python exception carrying the command
+//! line's one-line message: `MemoryError` when a hider's memory budget
+//! runs out, `ValueError` for everything else the caller can fix.
+
+mod errors;
+mod mesh;
+mod render;
+mod screen;
+
+use pyo3::prelude::*;
+
+/// The extension module: `render`, `algorithms`, and the screen-space
+/// functions of `hider.mpl`.
+#[pymodule]
+fn _hider(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(render::render, m)?)?;
+    m.add_function(wrap_pyfunction!(render::algorithms, m)?)?;
+    m.add_function(wrap_pyfunction!(screen::screen_render, m)?)?;
+    m.add_function(wrap_pyfunction!(screen::screen_pieces, m)?)?;
+    Ok(())
+}

@@ -1,0 +1,122 @@
+//! Screen-space scenes for `hider.mpl`: points already projected by
+//! matplotlib, rendered and painted without a second projection.
+//!
+//! matplotlib's `Axes3D` projects with its own matrix (`ax.get_proj()`),
+//! perspective divide included. A projective map keeps planes planar, so
+//! the projected triangles can be ordered and split as they are: each
+//! point `(x, y, t)` (window pixels with y down, and a depth `t` in
+//! `[0, 1]` that grows away from the viewer) is placed at world
+//! `(x, height - y, -t)` in front of an orthographic camera whose view
+//! volume is exactly the window, so the front end maps it back to window
+//! `(x, y)` with a window depth linear in `t`.
+
+use glam::DVec3;
+use hider_geom::Camera;
+use hider_painter::{Painter, PainterOptions};
+use hider_scene::{Hider, PrepareOptions, Scene, ScreenScene, View, prepare};
+use numpy::ndarray::{Array1, Array2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+
+use crate::errors::{plan_error, scene_error};
+use crate::mesh::scene_from_arrays;
+use crate::render::{Buffers, buffers, render_scene};
+
+/// Distance from the eye to depth `t = 0`; `t = 1` is one unit farther.
+const EYE_TO_FRONT: f64 = 1.0;
+/// The near plane, half a unit before `t = 0`.
+const NEAR: f64 = 0.5;
+/// The far plane, half a unit past `t = 1`.
+const FAR: f64 = 2.5;
+
+/// The scene of screen-space `points` and `faces` and the orthographic
+/// view that maps it back onto the `width x height` window.
+fn screen_view(
+    points: &PyReadonlyArray2<'_, f64>,
+    faces: &PyReadonlyArray2<'_, i64>,
+    width: u32,
+    height: u32,
+) -> PyResult<(Scene, View)> {
+    let mut scene = scene_from_arrays(points, faces)?;
+    let h = f64::from(height);
+    for mesh in &mut scene.meshes {
+        for p in &mut mesh.positions {
+            *p = DVec3::new(p.x, h - p.y, -p.z);
+        }
+    }
+    let centre = DVec3::new(f64::from(width) * 0.5, h * 0.5, 0.0);
+    let camera = Camera::orthographic(centre + DVec3::Z * EYE_TO_FRONT, centre, h * 0.5, NEAR, FAR);
+    let view = View::new(camera, width, height).map_err(scene_error)?;
+    Ok((scene, view))
+}
+
+/// Renders screen-space points and faces (see the module docs) with the
+/// registered hider `algo`: the ids and window depths, `(height, width)`.
+#[pyfunction]
+#[pyo3(signature = (points, faces, width, height, algo))]
+pub fn screen_render<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray2<'py, f64>,
+    faces: PyReadonlyArray2<'py, i64>,
+    width: u32,
+    height: u32,
+    algo: &str,
+) -> PyResult<Buffers<'py>> {
+    let (scene, view) = screen_view(&points, &faces, width, height)?;
+    let frame = py.detach(|| render_scene(&scene, &view, algo, 1))?;
+    buffers(py, frame)
+}
+
+/// The painter's pieces in paint order (farthest first).
+type Pieces<'py> = (
+    Bound<'py, PyArray1<i64>>,
+    Bound<'py, PyArray1<i64>>,
+    Bound<'py, PyArray2<f64>>,
+);
+
+/// Orders and splits screen-space faces with Newell, Newell & Sancha's
+/// painter and returns its pieces in paint order, farthest first:
+/// `(faces, offsets, xy)`, where piece `k` is a convex polygon of face
+/// `faces[k]` with the window-pixel corners `xy[offsets[k]:offsets[k+1]]`.
+/// Drawn in that order, each over the ones before, they show every face
+/// exactly where it is the nearest.
+#[pyfunction]
+#[pyo3(signature = (points, faces, width, height))]
+pub fn screen_pieces<'py>(
+    py: Python<'py>,
+    points: PyReadonlyArray2<'py, f64>,
+    faces: PyReadonlyArray2<'py, i64>,
+    width: u32,
+    height: u32,
+) -> PyResult<Pieces<'py>> {
+    let (scene, view) = screen_view(&points, &faces, width, height)?;
+    let run = || -> hider_plan::Result<(Vec<i64>, Vec<i64>, Vec<f64>)> {
+        let screen: ScreenScene = prepare(&scene, &view, &PrepareOptions::default())?;
+        let mut painter = Painter::new(PainterOptions::default());
+        let mut frame = hider_scene::Frame::new(width, height)?;
+        painter.render(&screen, &mut frame)?;
+        let pieces = painter.ordered_pieces();
+        let mut prims = Vec::with_capacity(pieces.len());
+        let mut offsets = Vec::with_capacity(pieces.len() + 1);
+        let mut xy = Vec::new();
+        offsets.push(0);
+        for piece in pieces {
+            prims.push(i64::from(piece.prim));
+            for v in &piece.polygon {
+                xy.extend([v.x, v.y]);
+            }
+            offsets.push((xy.len() / 2) as i64);
+        }
+        Ok((prims, offsets, xy))
+    };
+    let (prims, offsets, xy) = py.detach(run).map_err(plan_error)?;
+    let corners = xy.len() / 2;
+    let xy = Array2::from_shape_vec((corners, 2), xy)
+        .map_err(|e| PyValueError::new_err(e.to_string()))?;
+    Ok((
+        Array1::from(prims).into_pyarray(py),
+        Array1::from(offsets).into_pyarray(py),
+        xy.into_pyarray(py),
+    ))
+}
