@@ -8,6 +8,8 @@
 //! bin grid yields only the entries whose bounding boxes can meet P's, in
 //! the same order, so the blocker found is the same as with a full scan.
 
+use hider_scene::ScreenScene;
+
 use crate::bins::Key;
 use crate::newell::{Blocked, Decided, Extent, Outcome, extents_decide, may_precede_by_planes};
 use crate::order::{At, Orderer, Slot};
@@ -40,7 +42,7 @@ impl Orderer {
         &mut self,
         cslot: Slot,
         p: u32,
-        eps: f64,
+        scene: &ScreenScene,
         stats: &mut PainterStats,
     ) -> Option<(Slot, u32, Blocked)> {
         let pp = &self.pieces[p as usize];
@@ -51,22 +53,28 @@ impl Orderer {
                 continue;
             }
             let (qq, qe) = (&self.pieces[q as usize], &self.extents[q as usize]);
-            if let Some(b) = test_pair((pp, &pe), (qq, qe), eps, stats) {
+            if let Some(b) = test_pair((pp, &pe), (qq, qe), scene, stats) {
                 return Some((Slot::Front(k), q, b));
             }
         }
-        match self.scan_linear(cslot, p, eps, stats) {
+        match self.scan_linear(cslot, p, scene, stats) {
             Linear::Found((slot, q), b) => Some((slot, q, b)),
             Linear::Settled => None,
-            Linear::Rest(upper) => self.scan_bins(cslot, p, upper, eps, stats),
+            Linear::Rest(upper) => self.scan_bins(cslot, p, upper, scene, stats),
         }
     }
 
     /// The first entries of the sorted list one by one, farthest first.
-    fn scan_linear(&self, cslot: Slot, p: u32, eps: f64, stats: &mut PainterStats) -> Linear {
+    fn scan_linear(
+        &self,
+        cslot: Slot,
+        p: u32,
+        scene: &ScreenScene,
+        stats: &mut PainterStats,
+    ) -> Linear {
         let pp = &self.pieces[p as usize];
         let pe = self.extents[p as usize];
-        let limit = pe.zmin + eps;
+        let limit = pe.zmin;
         let mut scanned = 0;
         for (&key, &q) in self.sorted.iter().rev() {
             if Slot::Sorted(key) == cslot {
@@ -82,7 +90,7 @@ impl Orderer {
                 return Linear::Rest(key);
             }
             scanned += 1;
-            if let Some(b) = test_pair((pp, &pe), (&self.pieces[q as usize], qe), eps, stats) {
+            if let Some(b) = test_pair((pp, &pe), (&self.pieces[q as usize], qe), scene, stats) {
                 return Linear::Found((Slot::Sorted(key), q), b);
             }
         }
@@ -100,11 +108,11 @@ impl Orderer {
         cslot: Slot,
         p: u32,
         upper: Key,
-        eps: f64,
+        scene: &ScreenScene,
         stats: &mut PainterStats,
     ) -> Option<(Slot, u32, Blocked)> {
         let pe = self.extents[p as usize];
-        let limit = pe.zmin + eps;
+        let limit = pe.zmin;
         let mut near = std::mem::take(&mut self.near);
         near.clear();
         let (x0, x1, y0, y1) = self.grid.span(&pe);
@@ -123,7 +131,7 @@ impl Orderer {
                     }
                     // Tests 1-3 never block, so only the rest need the
                     // ordered pass below.
-                    match extents_decide(&pe, qe, eps) {
+                    match extents_decide(&pe, qe) {
                         Some(d) => {
                             stats.comparisons += 1;
                             match d {
@@ -145,7 +153,7 @@ impl Orderer {
                 continue;
             }
             let (qq, qe) = (&self.pieces[q as usize], &self.extents[q as usize]);
-            if let Some(b) = test_pair((pp, &pe), (qq, qe), eps, stats) {
+            if let Some(b) = test_pair((pp, &pe), (qq, qe), scene, stats) {
                 found = Some((Slot::Sorted(key), q, b));
                 break;
             }
@@ -163,13 +171,13 @@ impl Orderer {
 fn test_pair(
     (pp, pe): (&Piece, &Extent),
     (qq, qe): (&Piece, &Extent),
-    eps: f64,
+    scene: &ScreenScene,
     stats: &mut PainterStats,
 ) -> Option<Blocked> {
     stats.comparisons += 1;
-    let outcome = match extents_decide(pe, qe, eps) {
+    let outcome = match extents_decide(pe, qe) {
         Some(d) => Outcome::Ok(d),
-        None => may_precede_by_planes(pp, qq, eps),
+        None => may_precede_by_planes(pp, qq, scene),
     };
     match outcome {
         Outcome::Ok(d) => {

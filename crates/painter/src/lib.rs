@@ -73,6 +73,7 @@ pub mod painter;
 pub mod piece;
 mod raster;
 mod resolve;
+mod sides;
 pub mod split;
 pub mod stats;
 mod svg;

@@ -49,9 +49,6 @@ pub const SPLITS_BASE: u64 = 4096;
 /// Default of [`PainterOptions::max_bytes`]: 1 GiB.
 pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
 
-/// Default of [`PainterOptions::depth_epsilon`].
-pub const DEFAULT_DEPTH_EPSILON: f64 = 1e-10;
-
 /// Options of [`crate::Painter`] (Newell, Newell & Sancha with splitting).
 /// `Default` is the accurate choice: exact orders, a budget no real scene
 /// reaches, and vector output with every piece and no seam stroke.
@@ -81,14 +78,6 @@ pub struct PainterOptions {
     /// Most bytes the piece arena may hold; checked after every split, the
     /// frame stops with [`hider_scene::Error::Limit`] beyond it.
     pub max_bytes: u64,
-    /// Window-depth slack of the plane-side tests: a polygon counts as
-    /// behind a plane when no vertex is more than this in front of it.
-    /// Orders it decides are exact up to this depth difference, far inside
-    /// any tie tolerance (window depth 1e-10 is a relative camera distance
-    /// of about 1e-9 with the fit camera); it absorbs the rounding of
-    /// evaluating the depth planes so that touching polygons (mesh
-    /// neighbours) are ordered without a split.
-    pub depth_epsilon: f64,
     /// SVG output only: leave out pieces that own no pixel centre in the
     /// raster. Smaller files, but sub-pixel slivers that would show in a
     /// zoomed vector view are dropped, so off by default. When on, `render`
@@ -105,7 +94,6 @@ impl Default for PainterOptions {
         Self {
             max_splits: DEFAULT_MAX_SPLITS,
             max_bytes: DEFAULT_MAX_BYTES,
-            depth_epsilon: DEFAULT_DEPTH_EPSILON,
             svg_drop_hidden: false,
             svg_seam_stroke: 0.0,
         }
@@ -122,12 +110,6 @@ impl PainterOptions {
     /// Sets [`Self::max_splits`].
     pub fn with_max_splits(mut self, max_splits: u64) -> Self {
         self.max_splits = max_splits;
-        self
-    }
-
-    /// Sets [`Self::depth_epsilon`].
-    pub fn with_depth_epsilon(mut self, depth_epsilon: f64) -> Self {
-        self.depth_epsilon = depth_epsilon;
         self
     }
 

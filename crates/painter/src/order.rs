@@ -102,7 +102,6 @@ impl Orderer {
         let max_splits = options
             .max_splits
             .min(SPLITS_BASE + SPLITS_PER_TRIANGLE * scene.tris.len() as u64);
-        let eps = options.depth_epsilon;
         let mut arena = self.start(scene, stats)?;
         loop {
             let (cslot, p) = match (self.front.last(), self.sorted.last_key_value()) {
@@ -110,12 +109,12 @@ impl Orderer {
                 (None, Some((&key, &id))) => (Slot::Sorted(key), id),
                 (None, None) => break,
             };
-            let Some((qslot, q, blocked)) = self.find_blocker(cslot, p, eps, stats) else {
+            let Some((qslot, q, blocked)) = self.find_blocker(cslot, p, scene, stats) else {
                 self.remove(cslot);
                 self.order.push(p);
                 continue;
             };
-            if blocked.reverse_ok(eps) && !self.pieces[q as usize].moved {
+            if blocked.reverse_ok() && !self.pieces[q as usize].moved {
                 self.remove(qslot);
                 self.pieces[q as usize].moved = true;
                 self.front.push(q);
@@ -134,7 +133,7 @@ impl Orderer {
                 });
             }
             let before = self.pieces.len();
-            let freed = self.split((cslot, p), (qslot, q), &blocked, eps, stats)?;
+            let freed = self.split((cslot, p), (qslot, q), &blocked, &scene.tris, stats)?;
             arena.now += self.pieces[before..]
                 .iter()
                 .map(|p| p.bytes() as u64)

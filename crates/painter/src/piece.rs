@@ -21,7 +21,8 @@ use glam::DVec2;
 use hider_geom::PlaneEq;
 use hider_scene::ScreenTri;
 
-use crate::split::{range_over, split_convex};
+use crate::sides::{Tag, padded_range};
+use crate::split::split_tagged;
 
 /// One side of a splitting line, as a coverage rule.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,11 +56,18 @@ pub struct Piece {
     pub polygon: Vec<DVec2>,
     /// The cuts this piece went through, outermost first.
     pub cuts: Vec<Cut>,
+    /// Per polygon vertex, where it comes from: a corner of the source
+    /// triangle (exact) or a crossing on the planes of other triangles.
+    pub(crate) tags: Vec<Tag>,
     /// Window depth of the source triangle's plane.
     pub depth: PlaneEq,
-    /// Smallest window depth over the polygon (nearest point).
+    /// Smallest window depth over the piece (nearest point): exact for a
+    /// whole triangle (its nearest vertex), and for a cut piece widened by
+    /// a bound on the rounding of its polygon, so that no point the piece
+    /// covers is nearer.
     pub zmin: f64,
-    /// Largest window depth over the polygon (farthest point).
+    /// Largest window depth over the piece (farthest point), exact or
+    /// widened like [`Self::zmin`].
     pub zmax: f64,
     /// Bounding box corner with the smallest coordinates, pixels.
     pub min: DVec2,
@@ -80,17 +88,23 @@ impl Piece {
                 DVec2::new(x, y)
             })
             .collect();
-        Self::with_polygon(tri.prim, source, polygon, Vec::new(), tri.depth)
+        let tags = (0..3).map(Tag::corner).collect();
+        let mut piece = Self::with_polygon(tri.prim, source, polygon, tags, Vec::new(), tri.depth);
+        // The corners' window depths are the front end's own numbers.
+        piece.zmin = tri.z.iter().copied().fold(f64::INFINITY, f64::min);
+        piece.zmax = tri.z.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        piece
     }
 
     fn with_polygon(
         prim: u32,
         source: u32,
         polygon: Vec<DVec2>,
+        tags: Vec<Tag>,
         cuts: Vec<Cut>,
         depth: PlaneEq,
     ) -> Self {
-        let (zmin, zmax) = range_over(&polygon, &depth);
+        let (zmin, zmax) = padded_range(&polygon, &depth);
         let (min, max) = polygon.iter().fold(
             (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
             |(lo, hi), p| (lo.min(*p), hi.max(*p)),
@@ -100,6 +114,7 @@ impl Piece {
             source,
             polygon,
             cuts,
+            tags,
             depth,
             zmin,
             zmax,
@@ -119,19 +134,32 @@ impl Piece {
     /// or `None` when the line leaves one side without area (it does not
     /// really cut the polygon).
     pub fn split(&self, line: PlaneEq) -> Option<(Piece, Piece)> {
-        let (mut neg, mut pos) = (Vec::new(), Vec::new());
-        split_convex(&self.polygon, &line, &mut neg, &mut pos);
-        if neg.is_empty() || pos.is_empty() {
+        self.split_on(line, None)
+    }
+
+    /// [`Self::split`], where `line` is the meeting line of this piece's
+    /// plane with the plane of triangle `plane` (when given): the new
+    /// vertices are then known to lie on that plane.
+    pub(crate) fn split_on(&self, line: PlaneEq, plane: Option<u32>) -> Option<(Piece, Piece)> {
+        let (mut neg, mut pos) = ((Vec::new(), Vec::new()), (Vec::new(), Vec::new()));
+        split_tagged(
+            (&self.polygon, &self.tags),
+            &line,
+            plane,
+            &mut neg,
+            &mut pos,
+        );
+        if neg.0.is_empty() || pos.0.is_empty() {
             return None;
         }
-        let half = |polygon: Vec<DVec2>, keep_negative: bool| {
+        let half = |(polygon, tags): (Vec<DVec2>, Vec<Tag>), keep_negative: bool| {
             let mut cuts = Vec::with_capacity(self.cuts.len() + 1);
             cuts.extend_from_slice(&self.cuts);
             cuts.push(Cut {
                 line,
                 keep_negative,
             });
-            Piece::with_polygon(self.prim, self.source, polygon, cuts, self.depth)
+            Piece::with_polygon(self.prim, self.source, polygon, tags, cuts, self.depth)
         };
         Some((half(neg, true), half(pos, false)))
     }
@@ -155,6 +183,7 @@ impl Piece {
         std::mem::size_of::<Self>()
             + self.polygon.capacity() * std::mem::size_of::<DVec2>()
             + self.cuts.capacity() * std::mem::size_of::<Cut>()
+            + self.tags.capacity() * std::mem::size_of::<Tag>()
     }
 }
 
@@ -237,7 +266,9 @@ mod tests {
         }
         assert!(na > 0 && nb > 0);
         assert_eq!(na + nb, nw);
-        assert!(a.zmin >= whole.zmin - 1e-12 && a.zmax <= whole.zmax + 1e-12);
+        // A cut piece's range is padded by at most a TOUCH along the gradient.
+        assert!(a.zmin >= whole.zmin - 1e-9 && a.zmax <= whole.zmax + 1e-9);
+        assert!(a.zmin <= a.zmax && whole.zmin == 0.2 && whole.zmax == 0.8);
     }
 
     #[test]

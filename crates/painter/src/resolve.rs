@@ -12,16 +12,20 @@ use glam::DVec2;
 use hider_geom::PlaneEq;
 use hider_scene::{Error, Result};
 
+use hider_scene::ScreenTri;
+
 use crate::newell::{Blocked, CUT_MARGIN, Extent};
 use crate::order::{At, Orderer, Slot};
 use crate::piece::{Piece, depth_difference, edge_line};
+use crate::sides::sides;
 use crate::split::range_over;
 use crate::stats::PainterStats;
 
-/// One way to split: which piece, along which line, and whether the line
-/// is a plane intersection (counted in [`PainterStats::plane_splits`]) or a
-/// screen line ([`PainterStats::line_splits`]).
-type Attempt = (Slot, u32, PlaneEq, bool);
+/// One way to split: which piece, along which line, and the triangle whose
+/// plane meets the piece's along that line (counted in
+/// [`PainterStats::plane_splits`]) or `None` for a screen line
+/// ([`PainterStats::line_splits`]).
+type Attempt = (Slot, u32, PlaneEq, Option<u32>);
 
 impl Orderer {
     /// Resolves the pair (P, Q) by splitting one of them, trying the cuts
@@ -32,13 +36,13 @@ impl Orderer {
         (pslot, p): At,
         (qslot, q): At,
         blocked: &Blocked,
-        eps: f64,
+        tris: &[ScreenTri],
         stats: &mut PainterStats,
     ) -> Result<u64> {
-        for (slot, id, line, plane) in self.attempts((pslot, p), (qslot, q), blocked, eps) {
-            if let Some((a, b)) = self.pieces[id as usize].split(line) {
+        for (slot, id, line, plane) in self.attempts((pslot, p), (qslot, q), blocked, tris) {
+            if let Some((a, b)) = self.pieces[id as usize].split_on(line, plane) {
                 let freed = self.replace((slot, id), p, a, b);
-                if plane {
+                if plane.is_some() {
                     stats.plane_splits += 1;
                 } else {
                     stats.line_splits += 1;
@@ -63,15 +67,17 @@ impl Orderer {
         (pslot, p): At,
         (qslot, q): At,
         blocked: &Blocked,
-        eps: f64,
+        tris: &[ScreenTri],
     ) -> Vec<Attempt> {
         let (pp, qq) = (&self.pieces[p as usize], &self.pieces[q as usize]);
         let mut attempts: Vec<Attempt> = Vec::with_capacity(8);
-        if blocked.q_plane_cuts_p(eps) {
-            attempts.push((pslot, p, depth_difference(&pp.depth, &qq.depth), true));
+        if blocked.q_plane_cuts_p() {
+            let line = depth_difference(&pp.depth, &qq.depth);
+            attempts.push((pslot, p, line, Some(qq.source)));
         }
-        if blocked.p_plane_cuts_q(eps) {
-            attempts.push((qslot, q, depth_difference(&qq.depth, &pp.depth), true));
+        if blocked.p_plane_cuts_q() {
+            let line = depth_difference(&qq.depth, &pp.depth);
+            attempts.push((qslot, q, line, Some(pp.source)));
         }
         if attempts.is_empty() {
             // A cycle through moved pieces whose two ends do not cut each
@@ -85,17 +91,17 @@ impl Orderer {
                 let members: Vec<At> = (first..self.front.len())
                     .map(|k| (Slot::Front(k), self.front[k]))
                     .collect();
-                if let Some((slot, id, line)) = self.plane_cut_among(&members, eps) {
-                    attempts.push((slot, id, line, true));
+                if let Some((slot, id, line, plane)) = self.plane_cut_among(&members, tris) {
+                    attempts.push((slot, id, line, Some(plane)));
                 }
             }
         }
         // No plane cuts: cut along the other's outline, so that the pieces
         // outside it lose the constraint, or bisect.
-        attempts.extend(edge_lines_cutting(qq, pp).map(|l| (pslot, p, l, false)));
-        attempts.extend(edge_lines_cutting(pp, qq).map(|l| (qslot, q, l, false)));
-        attempts.push((pslot, p, bisector(pp), false));
-        attempts.push((qslot, q, bisector(qq), false));
+        attempts.extend(edge_lines_cutting(qq, pp).map(|l| (pslot, p, l, None)));
+        attempts.extend(edge_lines_cutting(pp, qq).map(|l| (qslot, q, l, None)));
+        attempts.push((pslot, p, bisector(pp), None));
+        attempts.push((qslot, q, bisector(qq), None));
         attempts
     }
 
@@ -126,6 +132,7 @@ impl Orderer {
         let freed = parent.bytes() as u64;
         parent.polygon = Vec::new();
         parent.cuts = Vec::new();
+        parent.tags = Vec::new();
         let freed = freed - parent.bytes() as u64;
         self.insert_sorted(base);
         self.insert_sorted(base + 1);
@@ -133,8 +140,13 @@ impl Orderer {
     }
 
     /// The first member of `members` whose polygon the plane of another
-    /// member with an overlapping bounding box really cuts, and that plane.
-    fn plane_cut_among(&self, members: &[At], eps: f64) -> Option<(Slot, u32, PlaneEq)> {
+    /// member with an overlapping bounding box really cuts, the meeting
+    /// line and the other member's triangle.
+    fn plane_cut_among(
+        &self,
+        members: &[At],
+        tris: &[ScreenTri],
+    ) -> Option<(Slot, u32, PlaneEq, u32)> {
         for &(slot, y) in members {
             let py = &self.pieces[y as usize];
             for &(_, x) in members {
@@ -146,10 +158,9 @@ impl Orderer {
                 if x == y || px.source == py.source || !boxes_meet {
                     continue;
                 }
-                let line = depth_difference(&py.depth, &px.depth);
-                let (lo, hi) = range_over(&py.polygon, &line);
-                if lo < -eps && hi > eps {
-                    return Some((slot, y, line));
+                if sides(py, px, tris).cut() {
+                    let line = depth_difference(&py.depth, &px.depth);
+                    return Some((slot, y, line, px.source));
                 }
             }
         }

@@ -17,6 +17,8 @@
 use glam::DVec2;
 use hider_geom::PlaneEq;
 
+use crate::sides::Tag;
+
 /// Splits the convex polygon `poly` (window pixels, either orientation) by
 /// the line `f(x, y) = 0`: `negative` receives the part where `f <= 0`,
 /// `positive` the part where `f >= 0`. Both keep the input's orientation.
@@ -66,6 +68,59 @@ pub fn split_convex(
 fn push_distinct(out: &mut Vec<DVec2>, p: DVec2) {
     if out.last() != Some(&p) {
         out.push(p);
+    }
+}
+
+/// A polygon with a [`Tag`] per vertex.
+pub(crate) type Tagged = (Vec<DVec2>, Vec<Tag>);
+
+/// [`split_convex`] carrying each vertex's [`Tag`]: a vertex kept keeps its
+/// tag, a crossing on the edge `a -> b` lies on the planes both `a` and
+/// `b` lie on and on `plane` (the plane whose meeting line `f` is, if
+/// any). Same vertices as [`split_convex`].
+pub(crate) fn split_tagged(
+    (poly, tags): (&[DVec2], &[Tag]),
+    f: &PlaneEq,
+    plane: Option<u32>,
+    negative: &mut Tagged,
+    positive: &mut Tagged,
+) {
+    for side in [&mut *negative, &mut *positive] {
+        side.0.clear();
+        side.1.clear();
+    }
+    let push = |out: &mut Tagged, p: DVec2, tag: Tag| {
+        if out.0.last() != Some(&p) {
+            out.0.push(p);
+            out.1.push(tag);
+        }
+    };
+    let n = poly.len();
+    for k in 0..n {
+        let (a, b) = (poly[k], poly[(k + 1) % n]);
+        let (fa, fb) = (f.eval(a.x, a.y), f.eval(b.x, b.y));
+        if fa <= 0.0 {
+            push(negative, a, tags[k]);
+        }
+        if fa >= 0.0 {
+            push(positive, a, tags[k]);
+        }
+        if (fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0) {
+            let p = a + (b - a) * (fa / (fa - fb));
+            let tag = Tag::crossing(tags[k], tags[(k + 1) % n], plane);
+            push(negative, p, tag);
+            push(positive, p, tag);
+        }
+    }
+    for side in [negative, positive] {
+        if side.0.len() > 1 && side.0.first() == side.0.last() {
+            side.0.pop();
+            side.1.pop();
+        }
+        if side.0.len() < 3 {
+            side.0.clear();
+            side.1.clear();
+        }
     }
 }
 

@@ -1,0 +1,166 @@
+//! The painter's hard cases: exactly symmetric cycles (pinwheels of bars
+//! on a lattice, whose cut lines of different planes coincide on screen
+//! and run through pixel centres) and tiny near planes (every depth
+//! difference of the scene squeezed into the last bits of window depth).
+//! The Newell painter must equal the oracle's ray cast on every pixel that
+//! is not a tie, whatever the symmetry, scale or near plane.
+
+use glam::DVec3;
+use hider_geom::{Camera, Projection};
+use hider_oracle::DEFAULT_TIE_TOLERANCE;
+use hider_painter::{NaivePainter, Painter};
+use hider_scene::{Frame, Hider, Material, Mesh, Scene, ScreenScene, procedural};
+use hider_testkit::reference;
+
+/// Rounds `v` to the lattice of step `2^-bits` (halves away from zero, so
+/// that rounding commutes with the sign changes of a half or quarter
+/// turn).
+fn snap(v: f64, bits: u32) -> f64 {
+    let scale = f64::from(1u32 << bits);
+    (v * scale).round() / scale
+}
+
+/// `order` bars in a pinwheel about the z axis, each passing over the next
+/// (high at its base, low at its tip): a cycle no depth order resolves.
+/// Bar 0 is a parallelogram of lattice points (step `2^-bits`); bar `k` is
+/// bar 0 turned by `k / order` of a turn and snapped again, so orders 2
+/// and 4 are exactly symmetric. With `mirrored` the mirror image about
+/// `x = 0` is added, whose bars pierce the first hand's.
+fn pinwheel(order: u32, mirrored: bool, bits: u32, phase: f64) -> Scene {
+    let n = f64::from(order);
+    let corner = |k: f64| {
+        let a = std::f64::consts::TAU * k / n + phase;
+        DVec3::new(4.0 * a.cos(), 4.0 * a.sin(), 0.0)
+    };
+    let along = corner(1.0) - corner(0.0);
+    let lattice = |v: DVec3| DVec3::new(snap(v.x, bits), snap(v.y, bits), v.z);
+    let base = lattice(corner(0.0) - along * 0.3 + DVec3::Z);
+    let tip = lattice(corner(1.0) + along * 0.3 - DVec3::Z);
+    let across = lattice(DVec3::new(-along.y, along.x, 0.0).normalize() * 0.6);
+    let bar = [base + across, base - across, tip - across, tip + across];
+    let mut scene = Scene::default();
+    for mirror in [false, true].into_iter().take(1 + usize::from(mirrored)) {
+        for k in 0..order {
+            let (s, c) = (std::f64::consts::TAU * f64::from(k) / n).sin_cos();
+            let positions = bar
+                .iter()
+                .map(|v| {
+                    let x = snap(v.x * c - v.y * s, bits);
+                    let y = snap(v.x * s + v.y * c, bits);
+                    DVec3::new(if mirror { -x } else { x }, y, v.z)
+                })
+                .collect();
+            let indices = if mirror {
+                vec![[0, 2, 1], [0, 3, 2]]
+            } else {
+                vec![[0, 1, 2], [0, 2, 3]]
+            };
+            scene.push_mesh(
+                Mesh {
+                    positions,
+                    indices,
+                    ..Mesh::default()
+                },
+                Some(Material::default()),
+            );
+        }
+    }
+    scene
+}
+
+/// Looking down the z axis from `z = 14` at the origin, near plane
+/// `near`, far plane 100.
+fn axis_camera(near: f64) -> Camera {
+    Camera::perspective(DVec3::new(0.0, 0.0, 14.0), DVec3::ZERO, near, 100.0)
+}
+
+/// The scene's fit camera with its near plane moved to `near` (what the
+/// command line's `--near` does).
+fn fit_camera_with_near(scene: &Scene, near: f64) -> Camera {
+    let mut camera = hider_scene::fit_camera(scene);
+    if let Projection::Perspective { near: n, .. } = &mut camera.projection {
+        *n = near;
+    }
+    camera
+}
+
+fn render<H: Hider>(h: &mut H, s: &ScreenScene) -> Frame {
+    let mut f = Frame::new(s.viewport.width, s.viewport.height).unwrap();
+    h.render(s, &mut f).unwrap();
+    f
+}
+
+/// Wrong ids off ties of the Newell painter and of the naive one against
+/// the oracle's ray cast, and the covered pixel count.
+fn wrong_pixels(s: &ScreenScene) -> (u64, u64, u64) {
+    let oracle = reference::ray_cast(s);
+    let frame = render(&mut Painter::default(), s);
+    let newell = oracle.compare_strict(&frame.ids, DEFAULT_TIE_TOLERANCE);
+    assert_eq!(newell.coverage_mismatches, 0, "{newell}");
+    let naive = render(&mut NaivePainter::default(), s);
+    let naive = oracle.compare_strict(&naive.ids, DEFAULT_TIE_TOLERANCE);
+    (
+        newell.wrong_ids,
+        naive.wrong_ids,
+        frame.covered_count() as u64,
+    )
+}
+
+/// Where the first corner of the pinwheel's polygon sits: on the y axis
+/// (bars along diagonals for order 4, cut lines along the axes) or at 45
+/// degrees (bars along the axes, cut lines along pixel-centre diagonals).
+const PHASES: [f64; 3] = [
+    std::f64::consts::FRAC_PI_2,
+    std::f64::consts::FRAC_PI_4,
+    0.0,
+];
+
+#[test]
+fn exactly_symmetric_pinwheels_are_exact_off_ties() {
+    let mut failures = Vec::new();
+    for order in 2..=6 {
+        for mirrored in [false, true] {
+            for (bits, phase) in [0, 2, 8].into_iter().flat_map(|b| PHASES.map(|p| (b, p))) {
+                let scene = pinwheel(order, mirrored, bits, phase);
+                for size in [64, 128, 512] {
+                    let s = hider_testkit::screen_with(&scene, axis_camera(0.1), size, size);
+                    let (wrong, _, covered) = wrong_pixels(&s);
+                    if wrong > 0 {
+                        failures.push(format!(
+                            "order {order} mirrored {mirrored} bits {bits} phase {phase} at {size}: \
+                             {wrong} wrong of {covered}"
+                        ));
+                    }
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
+
+#[test]
+fn tiny_near_planes_do_not_confuse_the_plane_tests() {
+    let mut failures = Vec::new();
+    let intersecting = procedural::intersecting_pair();
+    for near in [1e-8, 1e-9, 1e-12] {
+        let camera = fit_camera_with_near(&intersecting, near);
+        let s = hider_testkit::screen_with(&intersecting, camera, 128, 128);
+        let (wrong, naive, covered) = wrong_pixels(&s);
+        if wrong > 0 {
+            failures.push(format!(
+                "intersecting pair, near {near}: {wrong} wrong of {covered} (naive {naive})"
+            ));
+        }
+    }
+    let cycle = pinwheel(3, false, 8, std::f64::consts::FRAC_PI_2);
+    for near in [1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12] {
+        let s = hider_testkit::screen_with(&cycle, axis_camera(near), 128, 128);
+        let (wrong, naive, covered) = wrong_pixels(&s);
+        if wrong > 0 {
+            failures.push(format!(
+                "bar cycle, near {near}: {wrong} wrong of {covered} (naive {naive})"
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
