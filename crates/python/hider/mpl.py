@@ -19,6 +19,8 @@ coloured edges of polygons are cut where they pass behind a surface,
 against a depth buffer of the same projection.
 """
 
+from typing import NamedTuple
+
 import numpy as np
 from matplotlib import collections as mcoll
 from matplotlib import colors as mcolors
@@ -27,7 +29,7 @@ from mpl_toolkits.mplot3d import art3d, proj3d
 
 from . import _hider
 
-__all__ = ["resolve", "unresolve", "Resolved", "project", "zbuffer"]
+__all__ = ["resolve", "unresolve", "Resolved", "Projected", "project", "zbuffer"]
 
 # Window depth of the orthographic screen camera for depth t in [0, 1]:
 # the eye is one unit before t = 0, the near plane at 0.5 and the far at
@@ -84,9 +86,9 @@ class _Gathered:
 
     def __init__(self, ax, sources, width, height):
         pts, tris, tri_poly = [], [], []
-        face_rgba, edge_rgba, widths, outlines = [], [], [], []
+        face_rgba, edge_rgba, widths, outlines, which = [], [], [], [], []
         base, poly_base = 0, 0
-        for col in sources:
+        for c, col in enumerate(sources):
             faces, invalid, face, edge, lw = _polygon_source(col)
             n = len(faces)
             if n == 0:
@@ -107,6 +109,7 @@ class _Gathered:
             edge_rgba.append(edge)
             widths.append(lw)
             outlines.append((p, bad))
+            which.append(np.full(n, c))
             base += n * v
             poly_base += n
         self.width, self.height = width, height
@@ -117,6 +120,7 @@ class _Gathered:
         self.edge_rgba = np.concatenate(edge_rgba) if edge_rgba else np.zeros((0, 4))
         self.linewidths = np.concatenate(widths) if widths else np.zeros(0)
         self.outlines = outlines
+        self.collection = np.concatenate(which) if which else np.zeros(0, np.int64)
         # Depth over the points in use, mapped onto [0, 1].
         used = np.unique(self.faces) if len(self.faces) else np.zeros(0, np.int64)
         z = self.points[used, 2] if len(used) else np.zeros(1)
@@ -133,28 +137,49 @@ class _Gathered:
         return (t + _EYE_TO_FRONT - _NEAR) / (_FAR - _NEAR)
 
 
-def project(ax, width=None, height=None):
-    """The screen-space triangles of every Poly3DCollection of ``ax``, as
-    ``resolve`` sees them: ``(points, faces, polygon, (width, height))``.
+class Projected(NamedTuple):
+    """What ``project`` returns: the screen-space triangles of an axes."""
 
-    ``points`` are window pixels (x right, y down from the top of the
-    figure) with a depth in [0, 1] growing away from the viewer; ``faces``
-    index them; ``polygon[k]`` numbers the source polygon of triangle
-    ``k`` across the collections in ``ax.collections`` order. The axes must
-    have been drawn once (``fig.canvas.draw()``) so that its projection is
-    current.
+    #: (P, 3) window pixels (x right, y down from the top of the figure)
+    #: and a depth in [0, 1] growing away from the viewer.
+    points: np.ndarray
+    #: (T, 3) indices into ``points``; triangle ``k`` is id ``k`` of
+    #: ``zbuffer``.
+    faces: np.ndarray
+    #: (T,) the polygon each triangle comes from, numbered across the
+    #: collections in ``ax.collections`` order.
+    polygon: np.ndarray
+    #: (polygons,) the index in ``collections`` of each polygon's
+    #: collection.
+    collection: np.ndarray
+    #: (polygons, 4) the RGBA face colour matplotlib computed for each
+    #: polygon (shading, colour map, alpha).
+    facecolors: np.ndarray
+    #: The Poly3DCollections gathered.
+    collections: list
+    #: The window size in pixels, (width, height).
+    size: tuple
+
+
+def project(ax, width=None, height=None):
+    """The screen-space triangles of every Poly3DCollection of ``ax`` as
+    ``resolve`` sees them (a ``Projected``), by default at the figure's
+    size in pixels. The axes must have been drawn once
+    (``fig.canvas.draw()``) so that its projection is current.
     """
     width, height = _size(ax, width, height)
-    g = _Gathered(ax, _sources(ax), width, height)
-    return g.points, g.faces, g.tri_poly, (width, height)
+    sources = _sources(ax)
+    g = _Gathered(ax, sources, width, height)
+    return Projected(g.points, g.faces, g.tri_poly, g.collection, g.face_rgba,
+                     sources, (width, height))
 
 
 def zbuffer(ax, algo="zbuffer"):
     """Renders ``project(ax)`` at the figure's pixel size with the
     registered hider ``algo``: ``(ids, depth)`` as from ``hider.render``,
-    ids numbering the triangles of ``project``."""
-    points, faces, _, (w, h) = project(ax)
-    return _hider.screen_render(points, faces, w, h, algo)
+    the ids numbering the triangles of ``project``."""
+    p = project(ax)
+    return _hider.screen_render(p.points, p.faces, p.size[0], p.size[1], algo)
 
 
 def _size(ax, width=None, height=None):

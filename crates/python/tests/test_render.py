@@ -1,0 +1,150 @@
+"""hider.render and hider.visible_faces: the command line's dumps bit for
+bit, every dtype and memory order, and clear errors for bad input."""
+
+import threading
+
+import numpy as np
+import pytest
+
+import hider
+from conftest import ROOT, cli_render, read_obj, uv_sphere, write_obj
+
+SPIDER = ROOT.parent / "shared" / "gl-reference" / "models" / "spider.obj"
+
+
+def test_sphere_equals_the_command_line_bit_for_bit(hider_cli, tmp_path):
+    vertices, faces = uv_sphere(32, 16)
+    model = tmp_path / "sphere.obj"
+    write_obj(model, vertices, faces)
+    for algo in ["zbuffer", "zbuffer-tiled", "scanline"]:
+        want_ids, want_depth = cli_render(hider_cli, model, tmp_path, (96, 64), "--algo", algo)
+        ids, depth = hider.render(vertices, faces, width=96, height=64, algo=algo)
+        assert (want_ids >= 0).sum() > 300
+        np.testing.assert_array_equal(ids, want_ids)
+        assert depth.tobytes() == want_depth.tobytes(), algo
+
+
+def test_asset_sphere_with_a_camera_equals_the_command_line(hider_cli, tmp_path):
+    model = ROOT / "assets" / "sphere.obj"
+    vertices, faces = read_obj(model)
+    camera = ["--eye", "1.5,2,3", "--target", "0,0.1,0", "--up", "0,1,0.2",
+              "--fovy", "40", "--near", "0.5", "--far", "20"]
+    want_ids, want_depth = cli_render(hider_cli, model, tmp_path, (80, 80), *camera,
+                                      "--algo", "zbuffer-tiled")
+    ids, depth = hider.render(vertices, faces, width=80, height=80, eye=(1.5, 2, 3),
+                              target=[0, 0.1, 0], up=np.array([0, 1, 0.2]), fovy=40,
+                              near=0.5, far=20)
+    np.testing.assert_array_equal(ids, want_ids)
+    assert depth.tobytes() == want_depth.tobytes()
+
+
+@pytest.mark.skipif(not SPIDER.exists(), reason=f"the GL reference models are absent ({SPIDER})")
+def test_spider_equals_the_command_line_bit_for_bit(hider_cli, tmp_path):
+    vertices, faces = read_obj(SPIDER)
+    want_ids, want_depth = cli_render(hider_cli, SPIDER, tmp_path, (128, 128),
+                                      "--algo", "zbuffer-tiled")
+    ids, depth = hider.render(vertices, faces, width=128, height=128, threads=2)
+    assert len(np.unique(want_ids)) > 200
+    np.testing.assert_array_equal(ids, want_ids)
+    assert depth.tobytes() == want_depth.tobytes()
+
+
+def test_every_dtype_and_order_gives_the_same_buffers():
+    vertices, faces = uv_sphere(12, 6)
+    vertices = np.round(vertices * 8)  # exact in every dtype below
+    want = hider.render(vertices, faces, width=40, height=30)
+    assert want[0].dtype == np.int32 and want[1].dtype == np.float32
+    assert want[0].shape == want[1].shape == (30, 40)
+    for vdtype in [np.float32, np.float64, np.int16, np.int64, np.longdouble]:
+        for fdtype in [np.int32, np.uint16, np.int64, np.uint64]:
+            for order in "CF":
+                v = np.asarray(vertices, dtype=vdtype, order=order)
+                f = np.asarray(faces, dtype=fdtype, order=order)
+                ids, depth = hider.render(v, f, width=40, height=30)
+                np.testing.assert_array_equal(ids, want[0])
+                np.testing.assert_array_equal(depth, want[1])
+    strided = hider.render(np.repeat(vertices, 2, axis=0)[::2], faces.tolist(), width=40, height=30)
+    np.testing.assert_array_equal(strided[0], want[0])
+
+
+def test_visible_faces_is_the_set_of_ids_seen():
+    vertices, faces = uv_sphere(16, 8)
+    mask = hider.visible_faces(vertices, faces, width=64, height=64, eye=(0, 0, 4))
+    ids, _ = hider.render(vertices, faces, width=64, height=64, eye=(0, 0, 4))
+    assert mask.dtype == bool and mask.shape == (len(faces),)
+    assert set(np.nonzero(mask)[0]) == set(np.unique(ids[ids >= 0]))
+    # From +Z the far hemisphere is hidden: about half the faces are seen.
+    assert 0.3 * len(faces) < mask.sum() < 0.7 * len(faces)
+
+
+def test_every_registered_hider_renders_by_name():
+    vertices, faces = uv_sphere(8, 4)
+    want, _ = hider.render(vertices, faces, width=24, height=24, algo="oracle")
+    assert (want >= 0).sum() > 40
+    for algo in hider.algorithms():
+        ids, depth = hider.render(vertices, faces, width=24, height=24, algo=algo)
+        # Multi-sample hiders report a pixel's id by their own rule; the
+        # pixel-centre ones cover exactly the oracle's pixels.
+        assert (ids >= 0).sum() > 0 and ids.max() < len(faces), algo
+        assert ((ids >= 0) == (depth < 1.0)).all(), algo
+
+
+@pytest.mark.parametrize("vertices, faces, kwargs, error, message", [
+    ([[np.nan, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {}, ValueError,
+     "invalid scene: mesh 0 ('array') vertex 0 has a non-finite position [NaN, 0, 0]"),
+    ([[np.inf, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {}, ValueError, "non-finite"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 3]], {}, ValueError,
+     "invalid scene: mesh 0 ('array') triangle 0 uses vertex 3, but the mesh has 3 vertices"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, -1]], {}, ValueError, "uses vertex -1"),
+    ([[0, 0], [1, 0], [0, 1]], [[0, 1, 2]], {}, ValueError,
+     "vertices must have shape (N, 3), got (3, 2)"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [0, 1, 2], {}, ValueError,
+     "faces must have shape (M, 3), got (3,)"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0.0, 1.0, 2.0]], {}, ValueError,
+     "faces must be an integer array, got dtype float64"),
+    ([["a", "b", "c"]], [[0, 0, 0]], {}, ValueError, "real numeric array"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"width": 0}, ValueError,
+     "image width must be at least 1 pixel, got 0"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"height": 20000}, ValueError,
+     "image height 20000 is over the limit of 16384"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"algo": "nope"}, ValueError,
+     "unknown --algo 'nope'"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"eye": (0.5, 0.5, 0)}, ValueError,
+     "invalid camera"),
+    ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"threads": 0}, ValueError,
+     "threads must be 1 to 1024, got 0"),
+])
+def test_bad_input_is_one_clear_exception(vertices, faces, kwargs, error, message):
+    args = {"width": 16, "height": 16, **kwargs}
+    with pytest.raises(error) as info:
+        hider.render(np.array(vertices), np.array(faces), **args)
+    assert message in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_a_memory_budget_is_a_memory_error():
+    # The A-buffer's pixel table at the largest size is over its budget.
+    vertices, faces = uv_sphere(8, 4)
+    with pytest.raises(MemoryError, match="bytes"):
+        hider.render(vertices, faces, width=16384, height=16384, algo="ssaa-32")
+
+
+def test_the_gil_is_released_while_rendering():
+    vertices, faces = uv_sphere(64, 32)
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(1)
+            stop.wait(0.001)
+
+    t = threading.Thread(target=tick)
+    t.start()
+    try:
+        for _ in range(3):
+            hider.render(vertices, faces, width=1024, height=1024, algo="oracle")
+    finally:
+        stop.set()
+        t.join()
+    assert len(ticks) > 5
