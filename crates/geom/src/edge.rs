@@ -10,16 +10,22 @@
 //! # Fill rule
 //!
 //! A sample exactly on an edge (`E == 0`) belongs to the triangle only if the
-//! edge is a *top* or *left* edge, in y-down window coordinates with the
-//! positive orientation above:
-//! - top edge: horizontal (`dy == 0`) with the interior below it, i.e. `dx > 0`;
-//! - left edge: going up the screen (`dy < 0`), the interior to its right.
+//! edge is a *top* or *left* edge in the rasterizer's own row order, which
+//! is GL's: row 0 at the bottom of the image. That is what Mesa's llvmpipe
+//! does when it draws into a framebuffer object (its top-left rule, applied
+//! to rows in memory order, GL's bottom row first), and what reproduces its
+//! renders on every pixel. In hider's y-down window coordinates, with the
+//! positive orientation above, the owned edges are therefore:
+//! - left edge: going up the screen (`dy < 0`), the interior to its right;
+//! - bottom edge: horizontal (`dy == 0`) with the interior above it, i.e.
+//!   `dx < 0` (the top edge of GL's frame).
 //!
+//! The rule is the mirror image of the usual y-down top-left rule in y
+//! only: the two differ exactly on samples lying on horizontal edges.
 //! Two triangles sharing an edge see it with opposite directions, so exactly
 //! one of them owns samples on it; a vertex shared by a fan is owned by
 //! exactly one triangle too. A closed mesh therefore covers every sample
-//! exactly once. This is the rule Direct3D and GL implementations use, in
-//! the same y-down window coordinates as the GL reference read-back.
+//! exactly once.
 
 use crate::fixed::FixedPt;
 
@@ -30,20 +36,23 @@ pub fn orient2d(a: FixedPt, b: FixedPt, c: FixedPt) -> i64 {
     (i64::from(b.x) - ax) * (i64::from(c.y) - ay) - (i64::from(b.y) - ay) * (i64::from(c.x) - ax)
 }
 
-/// Whether the edge `a -> b` of a positively oriented triangle is a top or a
-/// left edge (owns the samples that lie exactly on it).
+/// Whether the edge `a -> b` of a positively oriented triangle owns the
+/// samples that lie exactly on it: a left edge, or a horizontal edge with
+/// the interior above it (a top edge in GL's bottom-up row order; see the
+/// module documentation).
 pub fn is_top_left(a: FixedPt, b: FixedPt) -> bool {
     top_left_bias(b.x - a.x, b.y - a.y) != 0
 }
 
-/// The fill rule as the bias of an edge function: 1 for a top or left edge
-/// of direction `(dx, dy)` (`to - from`, in a positively oriented
-/// triangle), 0 otherwise. An edge function plus its bias is positive
+/// The fill rule as the bias of an edge function: 1 for an edge of
+/// direction `(dx, dy)` (`to - from`, in a positively oriented triangle)
+/// that owns its samples ([`is_top_left`]: `dy < 0`, or `dy == 0` and
+/// `dx < 0`), 0 otherwise. An edge function plus its bias is positive
 /// exactly at the samples the edge owns. Branch-free, for loops that
 /// should vectorise.
 #[inline(always)]
 pub const fn top_left_bias(dx: i32, dy: i32) -> i32 {
-    ((dy < 0) | ((dy == 0) & (dx > 0))) as i32
+    ((dy < 0) | ((dy == 0) & (dx < 0))) as i32
 }
 
 /// [`top_left_bias`] of every lane.
@@ -81,7 +90,7 @@ impl EdgeFunction {
         let b = i64::from(to.x) - fx;
         // E(p) = b*(py - fy) + a*(px - fx); c collects the constant part.
         let c = -a * fx - b * fy;
-        // Top-left edges own E == 0: test E + 1 > 0 (i.e. E >= 0); others
+        // Owning edges (fill rule) test E + 1 > 0 (i.e. E >= 0); others
         // keep E > 0.
         let bias = if is_top_left(from, to) { 1 } else { 0 };
         Self { a, b, c: c + bias }
@@ -94,7 +103,7 @@ impl EdgeFunction {
     }
 
     /// Whether the sample at `(x, y)` (fixed point) is inside this edge
-    /// under the top-left rule.
+    /// under the fill rule.
     #[inline]
     pub fn contains(&self, x: i64, y: i64) -> bool {
         self.eval(x, y) > 0
@@ -113,7 +122,7 @@ pub fn triangle_edges(v: &[FixedPt; 3]) -> [EdgeFunction; 3] {
 }
 
 /// Whether the fixed-point sample `(x, y)` is covered by the positively
-/// oriented triangle `v` under the top-left rule. The single coverage
+/// oriented triangle `v` under the fill rule. The single coverage
 /// decision every hider shares.
 pub fn triangle_covers(v: &[FixedPt; 3], x: i64, y: i64) -> bool {
     triangle_edges(v).iter().all(|e| e.contains(x, y))
@@ -149,14 +158,15 @@ mod tests {
     }
 
     #[test]
-    fn top_and_left_edges() {
-        // Positive triangle (0,0) (4,0) (0,4): top edge a->b, left edge c->a.
-        assert!(is_top_left(p(0, 0), p(4, 0)));
+    fn left_and_bottom_edges_of_the_y_down_frame() {
+        // Positive triangle (0,0) (4,0) (0,4): top edge a->b (not owned: it
+        // is a bottom edge in GL's row order), left edge c->a (owned).
+        assert!(!is_top_left(p(0, 0), p(4, 0)));
         assert!(!is_top_left(p(4, 0), p(0, 4)));
         assert!(is_top_left(p(0, 4), p(0, 0)));
         // A bottom horizontal edge goes right-to-left in positive order.
-        assert!(!is_top_left(p(4, 4), p(0, 4)));
-        assert_eq!(top_left_biases([1, -1, 0, 5], [0, 0, -3, 2]), [1, 0, 1, 0]);
+        assert!(is_top_left(p(4, 4), p(0, 4)));
+        assert_eq!(top_left_biases([1, -1, 0, 5], [0, 0, -3, 2]), [0, 1, 1, 0]);
     }
 
     #[test]
@@ -182,8 +192,8 @@ mod tests {
         for k in 0..100 {
             assert!(!(c1[k] && c2[k]), "pixel {k} covered twice");
         }
-        // The union is the half-open square [a, c): the top and left sides
-        // are in, the bottom and right sides out: 8 x 8 pixels.
+        // The union is the half-open square: the bottom and left sides are
+        // in, the top and right sides out: 8 x 8 pixels.
         assert_eq!(square.iter().filter(|&&x| x).count(), 64);
     }
 

@@ -4,7 +4,7 @@
 //! ([`camera`]), homogeneous clipping with a guard band ([`clip`]), the
 //! viewport transform and snapping to 1/256 pixel the way a GL rasterizer
 //! does ([`viewport`], [`fixed`]),
-//! exact `i64` edge functions with the top-left fill rule ([`edge`]), affine
+//! exact `i64` edge functions with GL's fill rule ([`edge`]), affine
 //! depth and 1/w planes ([`plane`]) and the lecture's point-in-polygon tests
 //! ([`polygon`]), plus the instruction-set token the hot loops of the other
 //! crates pass down ([`isa`]). Everything that decides *whether a sample is covered* lives

@@ -114,9 +114,10 @@ impl Viewport {
     /// Hider's y-down fixed-point point of a point in GL's fixed-point
     /// frame (y up, pixel centres at multiples of 256): GL row `r` is image
     /// row `height - 1 - r`, so `y = height * 256 - 128 - fy` and
-    /// `x = fx + 128`. Exact (integers), so coverage decided with the
-    /// top-left rule in the y-down frame is coverage decided with GL's rule
-    /// in its own frame. Wrapping, so that out-of-range lanes never panic.
+    /// `x = fx + 128`. Exact (integers), so coverage decided in the y-down
+    /// frame with the mirrored rule of [`crate::edge`] is coverage decided
+    /// with the top-left rule in GL's row order. Wrapping, so that
+    /// out-of-range lanes never panic.
     #[inline(always)]
     pub fn from_gl_fixed(&self, fx: i32, fy: i32) -> FixedPt {
         let top = (self.height as i32).wrapping_mul(SUBPIXEL_SCALE) - HALF_PIXEL;
@@ -142,7 +143,7 @@ impl Viewport {
     /// Whether the snapped triangle `v` (signed doubled area `area`, not
     /// zero; either orientation) certainly covers no pixel centre: its box
     /// holds none, or holds at most [`FEW_CENTRES`] and the exact edge
-    /// functions of [`crate::edge`] (top-left rule) cover none of them.
+    /// functions of [`crate::edge`] (fill rule) cover none of them.
     /// Larger boxes answer `false` without a test. Far from the camera
     /// most triangles of a dense mesh are a pixel or less and miss every
     /// centre (281k of a 499k-triangle sphere's at 1024 x 1024): a hider
@@ -155,7 +156,7 @@ impl Viewport {
     /// Which pixel centres the snapped triangle `v` (signed doubled area
     /// `area`, not zero; either orientation) covers, when its box holds at
     /// most [`FEW_CENTRES`]: [`Centres::Few`], tested with the exact edge
-    /// functions of [`crate::edge`] (top-left rule), in row-major order.
+    /// functions of [`crate::edge`] (fill rule), in row-major order.
     /// Larger boxes answer [`Centres::Many`] without a test.
     ///
     /// On the 499k-triangle sphere at 1024 x 1024, 281k triangles cover
@@ -228,7 +229,7 @@ impl Centres {
 
 /// Whether centre `(px, py)` (fixed point) is inside the positively
 /// oriented triangle `a b c`: [`crate::edge`]'s edge functions written out
-/// (`E(p) = orient2d(from, to, p)`; top-left edges own `E == 0`).
+/// (`E(p) = orient2d(from, to, p)`; the fill rule's edges own `E == 0`).
 #[inline(always)]
 fn centre_inside(a: FixedPt, b: FixedPt, c: FixedPt, px: i32, py: i32) -> bool {
     let edge = |f: FixedPt, t: FixedPt| {
@@ -237,7 +238,7 @@ fn centre_inside(a: FixedPt, b: FixedPt, c: FixedPt, px: i32, py: i32) -> bool {
             i64::from(t.y) - i64::from(f.y),
         );
         let e = dx * (i64::from(py) - i64::from(f.y)) - dy * (i64::from(px) - i64::from(f.x));
-        e + i64::from((dy < 0) | ((dy == 0) & (dx > 0))) > 0
+        e + i64::from((dy < 0) | ((dy == 0) & (dx < 0))) > 0
     };
     edge(a, b) & edge(b, c) & edge(c, a)
 }

@@ -54,17 +54,18 @@ fn last_row_at_or_above(y: i32) -> i64 {
 fn polygon_rows(t: &ScreenTri, height: u32) -> Option<(u32, u32)> {
     let min_y = t.v.iter().map(|p| p.y).min()?;
     let max_y = t.v.iter().map(|p| p.y).max()?;
-    let first = first_row_at_or_below(min_y).max(0);
-    let mut last = last_row_at_or_above(max_y);
-    // A horizontal bottom edge is not a top-left edge: centres exactly on
-    // it belong to the triangle below, so its row is not this polygon's.
-    // (A horizontal top edge owns its centres and needs nothing.)
-    let on_bottom = t.v.iter().filter(|p| p.y == max_y).count() == 2;
-    if on_bottom
-        && (i64::from(max_y) - i64::from(HALF_PIXEL)).rem_euclid(i64::from(SUBPIXEL_SCALE)) == 0
+    let mut first = first_row_at_or_below(min_y);
+    let last = last_row_at_or_above(max_y);
+    // A horizontal top edge does not own its centres under GL's fill rule
+    // (hider_geom::edge): they belong to the triangle above, so its row is
+    // not this polygon's. (A horizontal bottom edge owns them.)
+    let on_top = t.v.iter().filter(|p| p.y == min_y).count() == 2;
+    if on_top
+        && (i64::from(min_y) - i64::from(HALF_PIXEL)).rem_euclid(i64::from(SUBPIXEL_SCALE)) == 0
     {
-        last -= 1;
+        first += 1;
     }
+    let first = first.max(0);
     let last = last.min(i64::from(height) - 1);
     (first <= last).then_some((first as u32, last as u32))
 }
@@ -291,23 +292,23 @@ mod tests {
             prim: 0,
             front_facing: true,
         };
-        // Bottom edge exactly on the centres of row 3: not owned.
+        // Bottom edge exactly on the centres of row 3: owned.
         let bottom = tri([
             FixedPt::new(128, 128),
             FixedPt::new(1000, 896),
             FixedPt::new(128, 896),
         ]);
         assert!(orient2d(bottom.v[0], bottom.v[1], bottom.v[2]) > 0);
-        assert_eq!(polygon_rows(&bottom, 100), Some((0, 2)));
-        // Top edge on row 0's centres: owned.
+        assert_eq!(polygon_rows(&bottom, 100), Some((0, 3)));
+        // Top edge on row 0's centres: not owned.
         let top = tri([
             FixedPt::new(128, 128),
             FixedPt::new(1000, 128),
             FixedPt::new(128, 896),
         ]);
         assert!(orient2d(top.v[0], top.v[1], top.v[2]) > 0);
-        assert_eq!(polygon_rows(&top, 100), Some((0, 3)));
-        assert_eq!(polygon_rows(&top, 2), Some((0, 1)));
+        assert_eq!(polygon_rows(&top, 100), Some((1, 3)));
+        assert_eq!(polygon_rows(&top, 2), Some((1, 1)));
         // Between two row centres: nothing.
         let thin = tri([
             FixedPt::new(0, 130),
