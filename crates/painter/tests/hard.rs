@@ -26,7 +26,7 @@ fn snap(v: f64, bits: u32) -> f64 {
 /// bar 0 turned by `k / order` of a turn and snapped again, so orders 2
 /// and 4 are exactly symmetric. With `mirrored` the mirror image about
 /// `x = 0` is added, whose bars pierce the first hand's.
-fn pinwheel(order: u32, mirrored: bool, bits: u32, phase: f64) -> Scene {
+fn pinwheel(order: u32, mirrored: bool, bits: u32, phase: f64, width: f64) -> Scene {
     let n = f64::from(order);
     let corner = |k: f64| {
         let a = std::f64::consts::TAU * k / n + phase;
@@ -36,7 +36,7 @@ fn pinwheel(order: u32, mirrored: bool, bits: u32, phase: f64) -> Scene {
     let lattice = |v: DVec3| DVec3::new(snap(v.x, bits), snap(v.y, bits), v.z);
     let base = lattice(corner(0.0) - along * 0.3 + DVec3::Z);
     let tip = lattice(corner(1.0) + along * 0.3 - DVec3::Z);
-    let across = lattice(DVec3::new(-along.y, along.x, 0.0).normalize() * 0.6);
+    let across = lattice(DVec3::new(-along.y, along.x, 0.0).normalize() * width);
     let bar = [base + across, base - across, tip - across, tip + across];
     let mut scene = Scene::default();
     for mirror in [false, true].into_iter().take(1 + usize::from(mirrored)) {
@@ -121,13 +121,16 @@ fn exactly_symmetric_pinwheels_are_exact_off_ties() {
     for order in 2..=6 {
         for mirrored in [false, true] {
             for (bits, phase) in [0, 2, 8].into_iter().flat_map(|b| PHASES.map(|p| (b, p))) {
-                let scene = pinwheel(order, mirrored, bits, phase);
-                for size in [64, 128, 512] {
+                for (width, size) in [0.6, 1.0]
+                    .into_iter()
+                    .flat_map(|w| [64, 128, 256].map(|s| (w, s)))
+                {
+                    let scene = pinwheel(order, mirrored, bits, phase, width);
                     let s = hider_testkit::screen_with(&scene, axis_camera(0.1), size, size);
                     let (wrong, _, covered) = wrong_pixels(&s);
                     if wrong > 0 {
                         failures.push(format!(
-                            "order {order} mirrored {mirrored} bits {bits} phase {phase} at {size}: \
+                            "order {order} mirrored {mirrored} bits {bits} phase {phase} width {width} at {size}: \
                              {wrong} wrong of {covered}"
                         ));
                     }
@@ -152,7 +155,7 @@ fn tiny_near_planes_do_not_confuse_the_plane_tests() {
             ));
         }
     }
-    let cycle = pinwheel(3, false, 8, std::f64::consts::FRAC_PI_2);
+    let cycle = pinwheel(3, false, 8, std::f64::consts::FRAC_PI_2, 0.6);
     for near in [1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12] {
         let s = hider_testkit::screen_with(&cycle, axis_camera(near), 128, 128);
         let (wrong, naive, covered) = wrong_pixels(&s);
