@@ -24,31 +24,57 @@
 //!    behind an opaque bound, per 8 x 8 block, per partial pixel before its
 //!    mask is computed.
 
+use hider_geom::PlaneEq;
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
+use rayon::prelude::*;
 
-use crate::bins::{Bins, LEADER, SOLE, TILE};
+use crate::bins::{Bins, TILE};
 use crate::centre::in_front;
 use crate::fragment::NIL;
 use crate::options::{ABufferOptions, DepthMode};
-use crate::raster::Rasterizer;
-use crate::resolve::{Input, Resolver};
+use crate::resolve::Band;
 use crate::stats::ABufferStats;
+use crate::worker::{Shared, Worker};
 
 /// Carpenter's A-buffer. See the crate documentation.
-#[derive(Clone, Debug, Default)]
+///
+/// Keeps its bins, depth planes, per-thread lists and thread pool from one
+/// frame to the next; a clone has the same options and none of that.
+#[derive(Debug, Default)]
 pub struct ABuffer {
     options: ABufferOptions,
-    raster: Rasterizer,
     bins: Bins,
-    resolver: Resolver,
-    /// Per item of the current tile that leads coincident ones: the
-    /// lowest id of an opaque one taken so far, `NO_ID` if none.
-    shadow: Vec<u32>,
+    /// Depth plane per triangle of the last frame (for [`Self::sample_ids`]
+    /// after it, and dense for the resolve).
+    planes: Vec<PlaneEq>,
+    /// One per thread of the last frame; band `b` (tile row `b`) was
+    /// rendered by worker `b % workers.len()`.
+    workers: Vec<Worker>,
+    /// Threads of the last frame.
+    used: usize,
+    /// The hider's own pool, when the caller's does not have the threads
+    /// asked for.
+    pool: Option<rayon::ThreadPool>,
     width: u32,
     height: u32,
 }
 
+impl Clone for ABuffer {
+    fn clone(&self) -> Self {
+        Self::new(self.options)
+    }
+}
+
 impl ABuffer {
+    /// The number of threads rendering: [`ABufferOptions::threads`], or
+    /// the machine's core count for 0.
+    pub fn threads(&self) -> usize {
+        match self.options.threads {
+            0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
+            n => n,
+        }
+    }
+
     /// After a render: the primitive in front at every sample, pixel by
     /// pixel (`samples` entries per pixel, row-major), [`NO_ID`] where no
     /// fragment covers the sample. Ordered as the resolve orders samples:
@@ -60,7 +86,7 @@ impl ABuffer {
         let n = pattern.count();
         let pixels = self.width as usize * self.height as usize;
         let per_sample = self.options.depth == DepthMode::PerSample;
-        let (pool, planes) = (&self.raster.lists.pool, &self.raster.lists.planes);
+        let planes = &self.planes;
         let mut out = vec![NO_ID; pixels * n];
         let mut best = vec![f32::INFINITY; n];
         for p in 0..pixels {
@@ -68,6 +94,8 @@ impl ABuffer {
                 (p % self.width as usize) as u32,
                 (p / self.width as usize) as u32,
             );
+            let band = (ij.1 / TILE) as usize;
+            let pool = &self.workers[band % self.used].raster.lists.pool;
             best.fill(f32::INFINITY);
             let ids = &mut out[p * n..(p + 1) * n];
             let mut cur = pool.head(p);
@@ -99,77 +127,73 @@ impl ABuffer {
                 value: "0".into(),
             });
         }
+        if o.threads > ABufferOptions::MAX_THREADS {
+            return Err(Error::OutOfRange {
+                what: "A-buffer threads",
+                expected: "at most 256 (0: every core)",
+                value: o.threads.to_string(),
+            });
+        }
         Ok(())
     }
 
-    /// Renders and resolves tile `t`, whose top-left pixel is `(x0, y0)`
-    /// and bottom-right `(x1, y1)`.
-    fn render_tile(
-        &mut self,
-        scene: &ScreenScene,
-        t: usize,
-        (x0, y0, x1, y1): (u32, u32, u32, u32),
-        frame: &mut Frame,
-        stats: &mut ABufferStats,
-    ) -> Result<()> {
-        let has_items = self.bins.has_items(t);
-        if !has_items && !self.bins.is_dirty(t) {
-            return Ok(());
+    /// Whether `threads` threads run in the hider's own pool (started on
+    /// first use): not with one thread, nor when the caller's pool has
+    /// exactly that many (two pools on the same cores only take turns).
+    fn own_pool(&mut self, threads: usize) -> Result<bool> {
+        if threads <= 1 || rayon::current_num_threads() == threads {
+            return Ok(false);
         }
-        let w = scene.viewport.width as usize;
-        let lists = &mut self.raster.lists;
-        for j in y0..=y1 {
-            lists
-                .pool
-                .clear_pixels(j as usize * w + x0 as usize, (x1 - x0 + 1) as usize);
+        if self
+            .pool
+            .as_ref()
+            .is_none_or(|p| p.current_num_threads() != threads)
+        {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| Error::Render {
+                    hider: "abuffer".into(),
+                    message: format!("cannot start {threads} threads: {e}"),
+                })?;
+            self.pool = Some(pool);
         }
-        self.bins.set_dirty(t, has_items);
-        if !has_items {
-            return Ok(());
-        }
-        lists.culling.begin_tile(x1 - x0, y1 - y0);
-        // Front to back: the nearest surfaces first set the opaque bounds
-        // that cull what lies behind them. The order changes no sample
-        // (the lists are sorted by depth at resolve), only how much work
-        // is culled.
-        let n = self.bins.order_tile(t, self.options.front_to_back);
-        self.shadow.clear();
-        self.shadow.resize(n, NO_ID);
-        for k in 0..n {
-            let item = self.bins.item(k);
-            let twin = self.bins.twin(k);
-            if twin != SOLE {
-                // Coincident triangles (a face whose vertex list repeats
-                // itself): an opaque one taken earlier, with a lower id,
-                // ties with this one at every sample and centre and wins
-                // every tie, so this one can change nothing. Without this
-                // the copies fill the lists (equal depths are never
-                // strictly behind) and overflow them.
-                let leader = if twin == LEADER { k } else { twin as usize };
-                if self.shadow[leader] <= item.prim {
-                    stats.coincident += 1;
-                    continue;
-                }
-                if self.raster.lists.prim_alpha(scene, item.prim) >= 1.0 {
-                    self.shadow[leader] = item.prim;
-                }
-            }
-            let (rx0, ry0, rx1, ry1) = item.range;
-            let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
-            self.raster.triangle(scene, item, rect, (x0, y0), stats)?;
-        }
-        let lists = &mut self.raster.lists;
-        let mut input = Input {
-            scene,
-            pool: &lists.pool,
-            planes: &lists.planes,
-            colors: &mut lists.colors,
-            options: &self.options,
-        };
-        self.resolver
-            .resolve_tile(&mut input, (x0, y0, x1, y1), frame, stats);
-        Ok(())
+        Ok(true)
     }
+}
+
+/// The counters of the workers' tiles, added up (the longest list is the
+/// longest of all; the mean list length comes from the resolvers' counts;
+/// memory is the sum of the workers' peaks).
+fn total_stats(workers: &[Worker]) -> ABufferStats {
+    let mut s = ABufferStats::default();
+    let (mut lists, mut total) = (0, 0);
+    for w in workers {
+        let t = &w.stats;
+        s.fragments += t.fragments;
+        s.full_coverage += t.full_coverage;
+        s.merged += t.merged;
+        s.culled += t.culled;
+        s.culled_blocks += t.culled_blocks;
+        s.pruned += t.pruned;
+        s.dropped += t.dropped;
+        s.coincident += t.coincident;
+        s.max_list_len = s.max_list_len.max(t.max_list_len);
+        s.per_sample_pixels += t.per_sample_pixels;
+        let pool = &w.raster.lists.pool;
+        s.pool_fragments += pool.peak_fragments() as u64;
+        s.bytes += pool.peak_bytes();
+        let (l, n) = w.resolver.list_counts();
+        lists += l;
+        total += n;
+    }
+    s.mean_list_len = if lists == 0 {
+        0.0
+    } else {
+        total as f64 / lists as f64
+    };
+    s.mean_list_len_x1000 = (s.mean_list_len * 1000.0).round() as u64;
+    s
 }
 
 impl Hider for ABuffer {
@@ -188,7 +212,7 @@ impl Hider for ABuffer {
     }
 
     fn name(&self) -> &str {
-        if self.options == ABufferOptions::carpenter() {
+        if self.options.is_carpenter() {
             "abuffer-carpenter"
         } else {
             "abuffer"
@@ -202,27 +226,58 @@ impl Hider for ABuffer {
         let (w, h) = (scene.viewport.width, scene.viewport.height);
         self.width = w;
         self.height = h;
-        let fresh = self.raster.begin_frame(scene, &self.options)?;
         let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
-        self.bins.bin(scene, self.options.pattern, tiles_x, tiles_y);
-        self.bins.track(fresh, (w, h), (tiles_x * tiles_y) as usize);
+        // No more threads than bands (tile rows): each takes every
+        // `threads`-th band, which spreads the work of a centred object.
+        let threads = self.threads().min(tiles_y as usize).max(1);
+        let mut options = self.options;
+        options.max_bytes /= threads as u64;
+        let tiles = (tiles_x * tiles_y) as usize;
+        if self.workers.len() < threads {
+            self.workers.resize_with(threads, Worker::default);
+        }
+        for worker in &mut self.workers[..threads] {
+            worker.begin_frame(scene, &options, tiles)?;
+        }
+        self.used = threads;
+        self.bins.bin(scene, options.pattern, tiles_x, tiles_y);
+        self.planes.clear();
+        self.planes.extend(scene.tris.iter().map(|t| t.depth));
         frame.coverage.clear();
         frame.coverage.resize(frame.len(), 0.0);
-        self.resolver.begin();
-        let mut stats = ABufferStats::default();
-        for ty in 0..tiles_y {
-            for tx in 0..tiles_x {
-                let t = (ty * tiles_x + tx) as usize;
-                let (x0, y0) = (tx * TILE, ty * TILE);
-                let (x1, y1) = ((x0 + TILE).min(w) - 1, (y0 + TILE).min(h) - 1);
-                self.render_tile(scene, t, (x0, y0, x1, y1), frame, &mut stats)?;
-            }
+        let own = self.own_pool(threads)?;
+        let mut bands = Band::split(frame, TILE as usize);
+        let mut jobs: Vec<Vec<(u32, Band<'_>)>> = (0..threads).map(|_| Vec::new()).collect();
+        for (ty, band) in bands.drain(..).enumerate() {
+            jobs[ty % threads].push((ty as u32, band));
         }
-        self.resolver.finish(&mut stats);
-        let pool = &self.raster.lists.pool;
-        stats.pool_fragments = pool.peak_fragments() as u64;
-        stats.bytes = pool.peak_bytes();
-        Ok(stats)
+        let shared = Shared {
+            scene,
+            options: &options,
+            bins: &self.bins,
+            planes: &self.planes,
+            tiles_x,
+        };
+        let run = |(worker, jobs): (&mut Worker, Vec<(u32, Band<'_>)>)| -> Result<()> {
+            for (ty, mut band) in jobs {
+                worker.band(&shared, ty, &mut band)?;
+            }
+            Ok(())
+        };
+        let mut workers = std::mem::take(&mut self.workers);
+        let result = if threads == 1 {
+            run((&mut workers[0], jobs.pop().unwrap_or_default()))
+        } else {
+            let pairs: Vec<_> = workers[..threads].iter_mut().zip(jobs).collect();
+            let all = || pairs.into_par_iter().map(run).collect::<Result<Vec<()>>>();
+            match self.pool.as_ref().filter(|_| own) {
+                Some(pool) => pool.install(all).map(drop),
+                None => all().map(drop),
+            }
+        };
+        self.workers = workers;
+        result?;
+        Ok(total_stats(&self.workers[..threads]))
     }
 
     fn resolves_color(&self) -> bool {
@@ -255,8 +310,9 @@ mod tests {
             ] {
                 let opts = ABufferOptions::default().with_depth(depth);
                 let mut fast = ABuffer::new(opts);
-                let mut slow = ABuffer::new(opts);
-                slow.resolver.no_shortcuts = true;
+                let mut slow = ABuffer::new(opts.with_threads(1));
+                slow.workers.resize_with(1, Worker::default);
+                slow.workers[0].resolver.no_shortcuts = true;
                 let (mut a, mut b) = (Frame::new(150, 90).unwrap(), Frame::new(150, 90).unwrap());
                 fast.render(&s, &mut a).unwrap();
                 slow.render(&s, &mut b).unwrap();

@@ -34,9 +34,9 @@ pub(crate) struct BinItem {
     pub(crate) v: [FixedPt; 3],
 }
 
-/// [`Bins::twin`]: no earlier item of the tile has the same geometry.
+/// [`TileQueue::twin`]: no earlier item of the tile has the same geometry.
 pub(crate) const SOLE: u32 = u32::MAX;
-/// [`Bins::twin`]: the first item of the tile with its geometry, and later
+/// [`TileQueue::twin`]: the first item of the tile with its geometry, and later
 /// ones share it.
 pub(crate) const LEADER: u32 = u32::MAX - 1;
 
@@ -65,22 +65,31 @@ fn order_key(x: f32) -> u32 {
 }
 
 /// Triangles binned by tile: `items[start[t]..start[t + 1]]` are the
-/// triangles (in submission order) whose pixel range meets tile `t`.
+/// triangles (in submission order) whose pixel range meets tile `t`. Read
+/// by every thread once binned.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Bins {
     start: Vec<u32>,
     /// The items, tile by tile.
     items: Vec<BinItem>,
+    ranges: Vec<(u32, u32, u32, u32)>,
+}
+
+/// One thread's view of the tiles it takes: the current tile's items in
+/// processing order, the coincident ones among them, and which tiles of
+/// the thread's pixel table hold lists.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TileQueue {
     /// The current tile's items in processing order: sort keys and
-    /// positions in `items`.
+    /// positions in the bins.
     order: Vec<(u64, u32)>,
     /// Per position of `order`: [`SOLE`], [`LEADER`] (the first of
     /// several coincident items), or the position of its leader.
     twin: Vec<u32>,
     /// Geometry keys of a long run of equal nearest depth, with positions.
     run: Vec<(Geometry, u32)>,
-    ranges: Vec<(u32, u32, u32, u32)>,
-    /// Tiles whose pixel entries may hold lists of the last frame.
+    /// Tiles whose entries in this thread's pixel table may hold lists of
+    /// an earlier frame.
     dirty: Vec<bool>,
     /// Frame size the dirty flags refer to.
     dims: (u32, u32),
@@ -145,6 +154,13 @@ impl Bins {
         }
     }
 
+    /// Whether tile `t` has triangles this frame.
+    pub(crate) fn has_items(&self, t: usize) -> bool {
+        self.start[t] != self.start[t + 1]
+    }
+}
+
+impl TileQueue {
     /// Starts tracking which tiles hold lists, for a frame of `dims` pixels
     /// and `tiles` tiles whose pixel table is `fresh` (just allocated,
     /// empty). A table kept from an earlier frame of another shape may
@@ -155,11 +171,6 @@ impl Bins {
             self.dirty.resize(tiles, !fresh);
             self.dims = dims;
         }
-    }
-
-    /// Whether tile `t` has triangles this frame.
-    pub(crate) fn has_items(&self, t: usize) -> bool {
-        self.start[t] != self.start[t + 1]
     }
 
     /// Whether tile `t`'s pixels may hold lists of an earlier frame.
@@ -176,22 +187,22 @@ impl Bins {
     /// (nearest vertex depth, then triangle index) or in submission order,
     /// and finds the coincident ones ([`Self::twin`]); returns how many
     /// items the tile has.
-    pub(crate) fn order_tile(&mut self, t: usize, front_to_back: bool) -> usize {
-        let (b0, b1) = (self.start[t] as usize, self.start[t + 1] as usize);
+    pub(crate) fn order_tile(&mut self, bins: &Bins, t: usize, front_to_back: bool) -> usize {
+        let (b0, b1) = (bins.start[t] as usize, bins.start[t + 1] as usize);
         self.order.clear();
         self.order
-            .extend((b0..b1).map(|b| (self.items[b].key, b as u32)));
+            .extend((b0..b1).map(|b| (bins.items[b].key, b as u32)));
         if front_to_back {
             self.order.sort_unstable_by_key(|&(key, _)| key);
         }
-        self.find_twins();
+        self.find_twins(bins);
         self.order.len()
     }
 
     /// Item `k` of the current tile in processing order.
     #[inline]
-    pub(crate) fn item(&self, k: usize) -> &BinItem {
-        &self.items[self.order[k].1 as usize]
+    pub(crate) fn item<'b>(&self, bins: &'b Bins, k: usize) -> &'b BinItem {
+        &bins.items[self.order[k].1 as usize]
     }
 
     /// Item `k`'s place among coincident items: [`SOLE`], [`LEADER`], or
@@ -206,7 +217,7 @@ impl Bins {
     /// depth keys (front to back: in triangle order within the run); only
     /// runs are searched, pair by pair when short, by sorting their
     /// geometry when long, so the cost stays `O(n log n)` per tile.
-    fn find_twins(&mut self) {
+    fn find_twins(&mut self, bins: &Bins) {
         let n = self.order.len();
         self.twin.clear();
         self.twin.resize(n, SOLE);
@@ -219,9 +230,9 @@ impl Bins {
             }
             if b - a <= PAIRWISE_RUN {
                 for k in a + 1..b {
-                    let g = self.item(k).geometry();
-                    if let Some(l) =
-                        (a..k).find(|&l| self.twin[l] >= LEADER && self.item(l).geometry() == g)
+                    let g = self.item(bins, k).geometry();
+                    if let Some(l) = (a..k)
+                        .find(|&l| self.twin[l] >= LEADER && self.item(bins, l).geometry() == g)
                     {
                         self.twin[k] = l as u32;
                         self.twin[l] = LEADER;
@@ -230,7 +241,7 @@ impl Bins {
             } else {
                 let mut run = std::mem::take(&mut self.run);
                 run.clear();
-                run.extend((a..b).map(|k| (self.item(k).geometry(), k as u32)));
+                run.extend((a..b).map(|k| (self.item(bins, k).geometry(), k as u32)));
                 run.sort_unstable();
                 for w in 1..run.len() {
                     let ((g, k), (h, l)) = (run[w], run[w - 1]);

@@ -84,6 +84,7 @@ mod resolve;
 mod sorted;
 mod ssaa;
 pub mod stats;
+mod worker;
 
 pub use abuffer::ABuffer;
 pub use bins::TILE;

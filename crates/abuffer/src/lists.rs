@@ -10,7 +10,6 @@
 //! if still full, the overflow policy fails the frame or drops the
 //! farthest fragment.
 
-use hider_geom::PlaneEq;
 use hider_scene::{Error, Result, ScreenScene};
 
 use crate::coverage::Coverage;
@@ -57,8 +56,6 @@ pub(crate) struct Lists {
     /// Colour and opacity per primitive, computed on first use (NaN until
     /// then, see [`shade_of`]).
     pub(crate) colors: Vec<[f32; 4]>,
-    /// Depth plane per triangle of the scene.
-    pub(crate) planes: Vec<PlaneEq>,
     /// Opaque bounds being gathered, block bounds.
     pub(crate) culling: Culling,
     /// A list with its colours, while pruning.
@@ -88,8 +85,6 @@ impl Lists {
             .reset(w as usize * h as usize, per_sample, options.max_bytes)?;
         self.colors.clear();
         self.colors.resize(scene.prims.len(), [f32::NAN; 4]);
-        self.planes.clear();
-        self.planes.extend(scene.tris.iter().map(|t| t.depth));
         Ok(fresh)
     }
 
@@ -281,7 +276,7 @@ impl Lists {
                         && tri.v.iter().any(|v| other.v.contains(v))
                 };
             if mergeable {
-                self.merge_into(ctx.ij, cur, (g, g_rgba), (f, f_rgba))?;
+                self.merge_into(ctx, cur, (g, g_rgba), (f, f_rgba))?;
                 return Ok(Some(cur));
             }
             cur = g.next;
@@ -290,14 +285,16 @@ impl Lists {
     }
 
     /// Merges `f` (colour `f_rgba`) into fragment `g` (colour `g_rgba`) at
-    /// index `idx` of pixel `(i, j)`'s list.
+    /// index `idx` of pixel `ctx.p`'s list.
     fn merge_into(
         &mut self,
-        (i, j): (u32, u32),
+        ctx: &Ctx<'_>,
         idx: u32,
         (g, g_rgba): (Fragment, [f32; 4]),
         (f, f_rgba): (&Fragment, [f32; 4]),
     ) -> Result<()> {
+        let (i, j) = ctx.ij;
+        let tris = &ctx.scene.tris;
         let (wg, wf) = (g.mask.count_ones() as f32, f.mask.count_ones() as f32);
         let mut rgba = g_rgba;
         if wg + wf > 0.0 {
@@ -315,7 +312,7 @@ impl Lists {
             // its sample depths move to a merged entry.
             let mut depths = [f32::INFINITY; MAX_SAMPLES];
             if keep_depths {
-                let plane = &self.planes[g.tri as usize];
+                let plane = &tris[g.tri as usize].depth;
                 for (k, &pos) in positions.iter().enumerate() {
                     if g.mask >> k & 1 == 1 {
                         depths[k] = plane_depth(plane, i, j, pos) as f32;
@@ -325,7 +322,7 @@ impl Lists {
             self.pool.add_merged(rgba, &depths)?
         };
         if keep_depths {
-            let plane = self.planes[f.tri as usize];
+            let plane = tris[f.tri as usize].depth;
             let stored = self.pool.merged_depths_mut(shade);
             for (k, &pos) in positions.iter().enumerate() {
                 if f.mask >> k & 1 == 1 {

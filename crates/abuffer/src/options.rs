@@ -131,6 +131,16 @@ pub struct ABufferOptions {
     /// Merging decisions, which look at the latest fragments of a list,
     /// and colour rounding may differ.
     pub front_to_back: bool,
+    /// Threads rendering bands of tiles: `1` renders on the calling
+    /// thread, `0` (the default) uses every core the machine reports. The
+    /// caller's rayon pool is used when it has exactly this many threads
+    /// (a command line with `--threads T` builds one), a pool of the
+    /// hider's own otherwise. Tiles are independent (their lists,
+    /// culling and resolve), so the image, the sample ids and the work
+    /// counters are the same at every thread count; each thread keeps a
+    /// pixel table and fragment pool of its own, and
+    /// [`Self::max_bytes`] is shared evenly among them.
+    pub threads: usize,
 }
 
 impl Default for ABufferOptions {
@@ -145,6 +155,7 @@ impl Default for ABufferOptions {
             shade: ShadeMode::Lambert,
             occlusion_culling: true,
             front_to_back: true,
+            threads: 0,
         }
     }
 }
@@ -210,6 +221,21 @@ impl ABufferOptions {
     pub fn with_front_to_back(mut self, on: bool) -> Self {
         self.front_to_back = on;
         self
+    }
+
+    /// Sets [`Self::threads`].
+    pub fn with_threads(mut self, threads: usize) -> Self {
+        self.threads = threads;
+        self
+    }
+
+    /// Largest accepted [`Self::threads`].
+    pub const MAX_THREADS: usize = 256;
+
+    /// Whether these are [`Self::carpenter`]'s options, whatever the
+    /// thread count (which changes no output).
+    pub fn is_carpenter(&self) -> bool {
+        self.with_threads(0) == Self::carpenter().with_threads(0)
     }
 }
 

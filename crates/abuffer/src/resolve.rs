@@ -65,6 +65,60 @@ impl Input<'_> {
     }
 }
 
+/// The rows of a frame that one band of tiles resolves into: the frame's
+/// buffers from pixel `first` on (row-major), so that bands resolved by
+/// different threads write disjoint memory.
+pub(crate) struct Band<'a> {
+    /// Frame width in pixels.
+    pub(crate) width: usize,
+    /// Index in the frame of the band's first pixel.
+    pub(crate) first: usize,
+    /// Visible primitive ids of the band's pixels.
+    pub(crate) ids: &'a mut [u32],
+    /// Window depths.
+    pub(crate) depth: &'a mut [f32],
+    /// Colours.
+    pub(crate) color: &'a mut [[u8; 4]],
+    /// Covered fractions.
+    pub(crate) coverage: &'a mut [f32],
+}
+
+impl<'a> Band<'a> {
+    /// `frame` cut into bands of `rows` rows each, top to bottom.
+    pub(crate) fn split(frame: &'a mut Frame, rows: usize) -> Vec<Self> {
+        let width = frame.width() as usize;
+        let n = rows * width;
+        frame
+            .ids
+            .chunks_mut(n)
+            .zip(frame.depth.chunks_mut(n))
+            .zip(frame.color.chunks_mut(n).zip(frame.coverage.chunks_mut(n)))
+            .enumerate()
+            .map(|(b, ((ids, depth), (color, coverage)))| Self {
+                width,
+                first: b * n,
+                ids,
+                depth,
+                color,
+                coverage,
+            })
+            .collect()
+    }
+
+    /// Writes the id and depth of frame pixel `p`.
+    #[inline]
+    fn set_id(&mut self, p: usize, id: u32, z: f32) {
+        self.ids[p - self.first] = id;
+        self.depth[p - self.first] = z;
+    }
+
+    /// Writes the covered fraction of frame pixel `p`.
+    #[inline]
+    fn set_coverage(&mut self, p: usize, c: f32) {
+        self.coverage[p - self.first] = c;
+    }
+}
+
 /// The sample pattern's numbers, per tile.
 struct Samples {
     /// The mask of every sample.
@@ -98,23 +152,18 @@ impl Resolver {
         self.memo = ([0.0; 3], to_pixel([0.0; 3]));
     }
 
-    /// Ends a frame: the mean list length.
-    pub(crate) fn finish(&mut self, stats: &mut ABufferStats) {
-        stats.mean_list_len = if self.lists == 0 {
-            0.0
-        } else {
-            self.total as f64 / self.lists as f64
-        };
-        stats.mean_list_len_x1000 = (stats.mean_list_len * 1000.0).round() as u64;
+    /// The lists resolved since [`Self::begin`] and their total length.
+    pub(crate) fn list_counts(&self) -> (u64, u64) {
+        (self.lists, self.total)
     }
 
     /// Resolves the pixels of rectangle `(x0, y0, x1, y1)` of `input` into
-    /// `frame` (whose coverage buffer is allocated).
+    /// `frame`, the band of the frame that holds them.
     pub(crate) fn resolve_tile(
         &mut self,
         input: &mut Input<'_>,
         (x0, y0, x1, y1): (u32, u32, u32, u32),
-        frame: &mut Frame,
+        frame: &mut Band<'_>,
         stats: &mut ABufferStats,
     ) {
         let pattern = input.options.pattern;
@@ -123,7 +172,7 @@ impl Resolver {
             inv_n: 1.0 / pattern.count() as f32,
             srgb: Srgb::new(),
         };
-        let w = frame.width() as usize;
+        let w = frame.width;
         for j in y0..=y1 {
             for i in x0..=x1 {
                 let p = j as usize * w + i as usize;
@@ -142,11 +191,11 @@ impl Resolver {
     /// Writes the colour of colour sum `sum` (already divided by the sample
     /// count) to pixel `p`.
     #[inline]
-    fn write_color(&mut self, k: &Samples, sum: [f32; 3], frame: &mut Frame, p: usize) {
+    fn write_color(&mut self, k: &Samples, sum: [f32; 3], frame: &mut Band<'_>, p: usize) {
         if sum != self.memo.0 {
             self.memo = (sum, k.srgb.pixel(sum));
         }
-        frame.color[p] = self.memo.1;
+        frame.color[p - frame.first] = self.memo.1;
     }
 
     /// Resolves pixel `p` when its list is one opaque fragment, or two
@@ -157,7 +206,7 @@ impl Resolver {
         input: &mut Input<'_>,
         k: &Samples,
         (p, ij): (usize, (u32, u32)),
-        frame: &mut Frame,
+        frame: &mut Band<'_>,
         stats: &mut ABufferStats,
     ) -> bool {
         let pool = input.pool;
@@ -172,10 +221,9 @@ impl Resolver {
             self.total += 1;
             stats.max_list_len = stats.max_list_len.max(1);
             if first.centre_prim != NO_ID {
-                frame.ids[p] = first.centre_prim;
-                frame.depth[p] = first.centre_z as f32;
+                frame.set_id(p, first.centre_prim, first.centre_z as f32);
             }
-            frame.coverage[p] = first.mask.count_ones() as f32 * k.inv_n;
+            frame.set_coverage(p, first.mask.count_ones() as f32 * k.inv_n);
             let weight = (first.mask & k.full).count_ones() as f32;
             let sum = [0, 1, 2].map(|c| (0.0 + first_rgba[c] * weight) * k.inv_n);
             self.write_color(k, sum, frame, p);
@@ -203,10 +251,9 @@ impl Resolver {
             }
         }
         if id != NO_ID {
-            frame.ids[p] = id;
-            frame.depth[p] = z as f32;
+            frame.set_id(p, id, z as f32);
         }
-        frame.coverage[p] = (first.mask | second.mask).count_ones() as f32 * k.inv_n;
+        frame.set_coverage(p, (first.mask | second.mask).count_ones() as f32 * k.inv_n);
         let wa = (first.mask & k.full).count_ones() as f32;
         let wb = (second.mask & k.full).count_ones() as f32;
         let sum = [0, 1, 2].map(|c| (0.0 + first_rgba[c] * wa + second_rgba[c] * wb) * k.inv_n);
@@ -220,7 +267,7 @@ impl Resolver {
         input: &mut Input<'_>,
         k: &Samples,
         (p, ij): (usize, (u32, u32)),
-        frame: &mut Frame,
+        frame: &mut Band<'_>,
         stats: &mut ABufferStats,
     ) {
         self.frags.clear();
@@ -254,10 +301,9 @@ impl Resolver {
             union |= f.mask;
         }
         if id != NO_ID {
-            frame.ids[p] = id;
-            frame.depth[p] = z as f32;
+            frame.set_id(p, id, z as f32);
         }
-        frame.coverage[p] = union.count_ones() as f32 * k.inv_n;
+        frame.set_coverage(p, union.count_ones() as f32 * k.inv_n);
 
         let sum = if len == 1 && self.frags[0].alpha >= 1.0 && !self.no_shortcuts {
             // What every path computes for one opaque fragment.

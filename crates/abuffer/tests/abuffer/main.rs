@@ -9,4 +9,5 @@ mod culling;
 mod depth_modes;
 mod exactness;
 mod memory;
+mod threads;
 mod transparency;

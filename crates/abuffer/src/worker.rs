@@ -1,0 +1,149 @@
+//! One thread's share of a frame: bands of tiles, each tile rendered into
+//! the thread's own lists and resolved at once.
+//!
+//! Tiles are independent: a tile's lists, its culling state and its
+//! resolve touch only its own pixels, and the shading of a primitive is a
+//! pure function of the scene. So a thread needs only scratch of its own
+//! (pixel table, fragment pool, colour cache, tile order, resolve
+//! scratch) and writes only the rows of its bands, and the frame, the
+//! sample ids and the work counters do not depend on which thread took
+//! which band.
+
+use hider_geom::PlaneEq;
+use hider_scene::{NO_ID, Result, ScreenScene};
+
+use crate::bins::{Bins, LEADER, SOLE, TILE, TileQueue};
+use crate::options::ABufferOptions;
+use crate::raster::Rasterizer;
+use crate::resolve::{Band, Input, Resolver};
+use crate::stats::ABufferStats;
+
+/// What one thread keeps from frame to frame.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Worker {
+    /// Its lists (pixel table, fragment pool) and rasteriser.
+    pub(crate) raster: Rasterizer,
+    /// Its resolve scratch.
+    pub(crate) resolver: Resolver,
+    /// Its tile order, coincident items and dirty tiles.
+    queue: TileQueue,
+    /// Per item of the current tile that leads coincident ones: the
+    /// lowest id of an opaque one taken so far, `NO_ID` if none.
+    shadow: Vec<u32>,
+    /// The counters of its tiles this frame.
+    pub(crate) stats: ABufferStats,
+}
+
+/// What every thread reads during a frame.
+pub(crate) struct Shared<'a> {
+    /// The scene.
+    pub(crate) scene: &'a ScreenScene,
+    /// The options (memory bound: this thread's share).
+    pub(crate) options: &'a ABufferOptions,
+    /// The binned triangles.
+    pub(crate) bins: &'a Bins,
+    /// Depth plane per triangle.
+    pub(crate) planes: &'a [PlaneEq],
+    /// Tiles per row.
+    pub(crate) tiles_x: u32,
+}
+
+impl Worker {
+    /// Starts a frame: empty lists under `options.max_bytes`, counters at
+    /// zero.
+    pub(crate) fn begin_frame(
+        &mut self,
+        scene: &ScreenScene,
+        options: &ABufferOptions,
+        tiles: usize,
+    ) -> Result<()> {
+        let fresh = self.raster.begin_frame(scene, options)?;
+        let dims = (scene.viewport.width, scene.viewport.height);
+        self.queue.track(fresh, dims, tiles);
+        self.resolver.begin();
+        self.stats = ABufferStats::default();
+        Ok(())
+    }
+
+    /// Renders and resolves the tiles of tile row `ty` into `band`.
+    pub(crate) fn band(&mut self, shared: &Shared<'_>, ty: u32, band: &mut Band<'_>) -> Result<()> {
+        let (w, h) = (shared.scene.viewport.width, shared.scene.viewport.height);
+        for tx in 0..shared.tiles_x {
+            let t = (ty * shared.tiles_x + tx) as usize;
+            let (x0, y0) = (tx * TILE, ty * TILE);
+            let (x1, y1) = ((x0 + TILE).min(w) - 1, (y0 + TILE).min(h) - 1);
+            self.tile(shared, t, (x0, y0, x1, y1), band)?;
+        }
+        Ok(())
+    }
+
+    /// Renders and resolves tile `t`, whose top-left pixel is `(x0, y0)`
+    /// and bottom-right `(x1, y1)`.
+    fn tile(
+        &mut self,
+        shared: &Shared<'_>,
+        t: usize,
+        (x0, y0, x1, y1): (u32, u32, u32, u32),
+        band: &mut Band<'_>,
+    ) -> Result<()> {
+        let (scene, bins) = (shared.scene, shared.bins);
+        let has_items = bins.has_items(t);
+        if !has_items && !self.queue.is_dirty(t) {
+            return Ok(());
+        }
+        let w = scene.viewport.width as usize;
+        let lists = &mut self.raster.lists;
+        for j in y0..=y1 {
+            lists
+                .pool
+                .clear_pixels(j as usize * w + x0 as usize, (x1 - x0 + 1) as usize);
+        }
+        self.queue.set_dirty(t, has_items);
+        if !has_items {
+            return Ok(());
+        }
+        lists.culling.begin_tile(x1 - x0, y1 - y0);
+        // Front to back: the nearest surfaces first set the opaque bounds
+        // that cull what lies behind them. The order changes no sample
+        // (the lists are sorted by depth at resolve), only how much work
+        // is culled.
+        let n = self.queue.order_tile(bins, t, shared.options.front_to_back);
+        self.shadow.clear();
+        self.shadow.resize(n, NO_ID);
+        let stats = &mut self.stats;
+        for k in 0..n {
+            let item = self.queue.item(bins, k);
+            let twin = self.queue.twin(k);
+            if twin != SOLE {
+                // Coincident triangles (a face whose vertex list repeats
+                // itself): an opaque one taken earlier, with a lower id,
+                // ties with this one at every sample and centre and wins
+                // every tie, so this one can change nothing. Without this
+                // the copies fill the lists (equal depths are never
+                // strictly behind) and overflow them.
+                let leader = if twin == LEADER { k } else { twin as usize };
+                if self.shadow[leader] <= item.prim {
+                    stats.coincident += 1;
+                    continue;
+                }
+                if self.raster.lists.prim_alpha(scene, item.prim) >= 1.0 {
+                    self.shadow[leader] = item.prim;
+                }
+            }
+            let (rx0, ry0, rx1, ry1) = item.range;
+            let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
+            self.raster.triangle(scene, item, rect, (x0, y0), stats)?;
+        }
+        let lists = &mut self.raster.lists;
+        let mut input = Input {
+            scene,
+            pool: &lists.pool,
+            planes: shared.planes,
+            colors: &mut lists.colors,
+            options: shared.options,
+        };
+        self.resolver
+            .resolve_tile(&mut input, (x0, y0, x1, y1), band, &mut self.stats);
+        Ok(())
+    }
+}

@@ -1,0 +1,99 @@
+//! Threads change nothing: bands of tiles rendered by 2, 3 or 5 threads
+//! give the frame, the sample ids and the work counters of one thread,
+//! bit for bit, on every hard case and on random soups, opaque and
+//! translucent, in every depth mode; and one thread equals the 32-sample
+//! supersampled z-buffer sample for sample.
+
+use hider_abuffer::{
+    ABuffer, ABufferOptions, ABufferStats, DepthMode, MergePolicy, SsaaOptions, SupersampledZBuffer,
+};
+use hider_scene::{Frame, Hider, Scene, procedural};
+use hider_testkit::{hard_cases, render, screen};
+use proptest::prelude::*;
+
+use crate::common::with_opacity;
+
+/// Frame sizes: several bands, fewer bands than threads, partial tiles.
+const SIZES: [(u32, u32); 3] = [(200, 330), (150, 90), (70, 20)];
+
+/// The counters that say what was done, without the memory figures (each
+/// thread has a pool of its own).
+fn work(s: &ABufferStats) -> ABufferStats {
+    ABufferStats {
+        pool_fragments: 0,
+        bytes: 0,
+        ..*s
+    }
+}
+
+/// Renders `scene` at every size with 1 thread and with 2, 3 and 5, and
+/// asserts identical frames, sample ids and counters.
+fn same_at_every_thread_count(scene: &Scene, options: ABufferOptions, what: &str) {
+    for (w, h) in SIZES {
+        let s = screen(scene, w, h);
+        let mut one = ABuffer::new(options.with_threads(1));
+        let (f1, s1): (Frame, ABufferStats) = render(&mut one, &s);
+        let ids1 = one.sample_ids();
+        for threads in [2, 3, 5] {
+            let mut many = ABuffer::new(options.with_threads(threads));
+            let (fm, sm) = render(&mut many, &s);
+            assert!(
+                f1 == fm,
+                "{what} at {w}x{h}, {threads} threads: frames differ"
+            );
+            assert!(
+                ids1 == many.sample_ids(),
+                "{what} at {w}x{h}, {threads} threads: sample ids differ"
+            );
+            assert_eq!(work(&s1), work(&sm), "{what} at {w}x{h}, {threads} threads");
+            // A second frame reuses the pools and bands.
+            let (again, _) = render(&mut many, &s);
+            assert!(f1 == again, "{what} at {w}x{h}, {threads} threads, reused");
+        }
+    }
+}
+
+#[test]
+fn every_hard_case_is_the_same_at_every_thread_count() {
+    for (name, scene) in hard_cases::all(11) {
+        same_at_every_thread_count(&scene, ABufferOptions::default(), name);
+        same_at_every_thread_count(&scene, ABufferOptions::carpenter(), name);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Random soups, opaque or translucent, in every depth mode.
+    #[test]
+    fn soups_are_the_same_at_every_thread_count(
+        count in 1u32..400,
+        seed in any::<u64>(),
+        glass in any::<bool>(),
+        mode in 0usize..3,
+    ) {
+        let mut scene = procedural::random_soup(count, seed);
+        if glass {
+            scene = with_opacity(scene, 0.5);
+        }
+        let depth = [DepthMode::PerSample, DepthMode::MinMax, DepthMode::ZminOrder][mode];
+        same_at_every_thread_count(&scene, ABufferOptions::default().with_depth(depth), "soup");
+    }
+
+    /// With several threads, per-sample depth and merging off, every
+    /// sample's front-most primitive is the 32-sample supersampled
+    /// z-buffer's, on frames of several bands.
+    #[test]
+    fn threaded_abuffer_equals_supersampling(count in 1u32..300, seed in any::<u64>()) {
+        let s = screen(&procedural::random_soup(count, seed), 150, 140);
+        let mut a = ABuffer::new(
+            ABufferOptions::default().with_merge(MergePolicy::Off).with_threads(3),
+        );
+        let mut z = SupersampledZBuffer::new(SsaaOptions::default());
+        let fa = render(&mut a, &s).0;
+        let fz = render(&mut z, &s).0;
+        prop_assert_eq!(a.sample_ids(), z.sample_ids().to_vec());
+        prop_assert_eq!(&fa.coverage, &fz.coverage);
+        prop_assert_eq!(&fa.ids, &fz.ids);
+    }
+}
