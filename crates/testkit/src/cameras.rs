@@ -1,5 +1,6 @@
-//! Cameras the tests look through: the 60-degree look-at camera and a
-//! random one for property tests.
+//! Cameras the tests look through: the 60-degree look-at camera, a
+//! random one for property tests, the cameras of the hard cases that need
+//! their own, and a near-plane override.
 
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
@@ -63,6 +64,51 @@ pub fn random_camera(scene: &Scene, rng: &mut SplitMix64) -> Camera {
         up,
         projection,
     }
+}
+
+/// The camera of the pinwheel hard cases: on the view (z) axis at `z = 14`,
+/// looking at the origin, with the given `near` plane distance and
+/// `far = 100`. A tiny `near` (down to `1e-12`) squeezes every depth
+/// difference of the scene into the last bits of window depth.
+pub fn pinwheel_camera(near: f64) -> Camera {
+    look_at(DVec3::new(0.0, 0.0, 14.0), DVec3::ZERO, near, 100.0)
+}
+
+/// The camera of the far-plane triangle hard case: eye at the origin
+/// looking down -Z, near 0.1, far 16.
+pub fn far_plane_camera() -> Camera {
+    look_at(DVec3::ZERO, DVec3::NEG_Z, 0.1, 16.0)
+}
+
+/// The world point (in the plane `z = 0`) that [`one_pixel_camera`] maps
+/// to a pixel centre at 64 x 64: column 32, row 31.
+pub const ONE_PIXEL_CENTRE: DVec3 = DVec3::new(1.0 / 64.0, 1.0 / 64.0, 0.0);
+
+/// An orthographic camera on the z axis looking down -Z, half height 1
+/// (a pixel is `1/32` world units wide at 64 x 64), near 1, far 20: the
+/// camera of the one-pixel pile hard case.
+pub fn one_pixel_camera() -> Camera {
+    Camera::orthographic(DVec3::new(0.0, 0.0, 10.0), DVec3::ZERO, 1.0, 1.0, 20.0)
+}
+
+/// `camera` with its near plane moved to `near` (the far plane kept):
+/// the `--near` flag of the command line.
+///
+/// ```
+/// use glam::DVec3;
+/// use hider_geom::Projection;
+/// use hider_testkit::cameras::{look_at, with_near};
+///
+/// let camera = with_near(look_at(DVec3::Z * 5.0, DVec3::ZERO, 0.5, 50.0), 1e-9);
+/// assert!(matches!(camera.projection, Projection::Perspective { near, .. } if near == 1e-9));
+/// ```
+pub fn with_near(mut camera: Camera, near: f64) -> Camera {
+    match &mut camera.projection {
+        Projection::Perspective { near: n, .. } | Projection::Orthographic { near: n, .. } => {
+            *n = near;
+        }
+    }
+    camera
 }
 
 /// A unit vector in a uniformly random direction (rejection sampling).

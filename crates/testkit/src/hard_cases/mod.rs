@@ -19,25 +19,36 @@
 //! | [`huge_coordinates`] | `1e7` world coordinates with unit-size triangles |
 //! | [`cyclic_overlap`] | no depth order exists at all |
 //! | [`heavy_overdraw`], `procedural::random_soup` | many layers per pixel, random interpenetration |
+//! | [`pinwheel`], [`bar_cycle`] | exactly symmetric cycles on a lattice: cut lines of different planes coincide on screen; tiny near planes |
+//! | [`far_plane_triangle`] | window depth exactly 1, the depth buffer's clear value |
+//! | [`one_pixel_pile`] | depth complexity `N` at one pixel: anything quadratic in it |
+//! | [`repeated_polygon`] | hundreds of exactly coincident copies of one face |
+//! | [`offset_sphere`] | a small object far from the origin (offsets up to `1e17`) |
 
 mod degenerate;
+mod extreme;
 mod ordering;
 mod precision;
 mod shared_edges;
 mod support;
+mod symmetric;
 #[cfg(test)]
 mod tests;
 
 use hider_scene::Scene;
 use hider_scene::procedural;
 
-pub use crate::cameras::look_at;
+pub use crate::cameras::{
+    ONE_PIXEL_CENTRE, far_plane_camera, look_at, one_pixel_camera, pinwheel_camera,
+};
 pub use degenerate::{near_degenerate_fan, slivers};
+pub use extreme::{far_plane_triangle, offset_sphere, one_pixel_pile, repeated_polygon};
 pub use ordering::{cyclic_overlap, heavy_overdraw, interpenetrating_boxes, intersecting_pairs};
 pub use precision::{
     coplanar_overlaps, huge_coordinates, huge_depth_range, near_coplanar_far, near_plane_crossing,
 };
 pub use shared_edges::{bipyramid, fan, torus};
+pub use symmetric::{bar_cycle, pinwheel};
 
 /// One modest instance of every hard case, by name, derived from `seed`:
 /// small enough that the exact oracle and every hider run on all of them in
@@ -66,6 +77,14 @@ pub fn all(seed: u64) -> Vec<(&'static str, Scene)> {
         ("cyclic_triple", procedural::cyclic_triple()),
         ("random_soup", procedural::random_soup(200, s(12))),
         ("heavy_overdraw", heavy_overdraw(100, s(13))),
+        ("pinwheel_4", pinwheel(4, false, 0)),
+        ("pinwheel_3_mirrored", pinwheel(3, true, 8)),
+        ("pinwheel_6", pinwheel(6, false, 4)),
+        ("bar_cycle_near_1e-9", bar_cycle(1e-9)),
+        ("far_plane_triangle", far_plane_triangle()),
+        ("one_pixel_pile", one_pixel_pile(200, s(14))),
+        ("repeated_polygon", repeated_polygon(20)),
+        ("offset_sphere", offset_sphere(12, 1e6)),
     ]
 }
 

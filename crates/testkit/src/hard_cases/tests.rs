@@ -96,3 +96,104 @@ fn huge_cases_have_what_they_promise() {
         .count();
     assert!(behind > 0);
 }
+
+#[test]
+fn pinwheels_of_order_two_and_four_are_exactly_symmetric_on_the_lattice() {
+    for (order, bits) in [(4, 0), (4, 3), (2, 0), (2, 5)] {
+        let s = pinwheel(order, false, bits);
+        assert_eq!(s.triangle_count(), 2 * order as usize);
+        let step = 2f64.powi(-(bits as i32));
+        let bars: Vec<&Vec<glam::DVec3>> = s.meshes.iter().map(|m| &m.positions).collect();
+        for (k, bar) in bars.iter().enumerate() {
+            for p in bar.iter() {
+                assert_eq!((p.x / step).fract(), 0.0, "order {order}: {p}");
+                assert_eq!((p.y / step).fract(), 0.0, "order {order}: {p}");
+            }
+            // The next bar is this one turned by a quarter (order 4) or a
+            // half (order 2) turn, exactly.
+            let next = bars[(k + 1) % bars.len()];
+            for (p, q) in bar.iter().zip(next.iter()) {
+                let turned = if order == 4 {
+                    glam::DVec3::new(-p.y, p.x, p.z)
+                } else {
+                    glam::DVec3::new(-p.x, -p.y, p.z)
+                };
+                assert_eq!(turned, *q, "order {order}, bar {k}");
+            }
+        }
+    }
+}
+
+#[test]
+fn pinwheel_bars_are_planar_and_mirrored_pinwheels_are_mirror_images() {
+    for order in 2..=6 {
+        let s = pinwheel(order, true, 8);
+        assert_eq!(s.meshes.len(), 2 * order as usize);
+        assert!(s.validate().is_ok());
+        let (right, left) = s.meshes.split_at(order as usize);
+        for (a, b) in right.iter().zip(left) {
+            for (p, q) in a.positions.iter().zip(&b.positions) {
+                assert_eq!(*q, glam::DVec3::new(-p.x, p.y, p.z));
+            }
+        }
+        // Bar 0 is a parallelogram whose height depends on the position
+        // along it alone: exactly planar.
+        let p = &right[0].positions;
+        assert_eq!(p[0] + p[2], p[1] + p[3]);
+    }
+}
+
+#[test]
+fn bar_cycle_has_the_near_plane_it_was_asked_for() {
+    let c = bar_cycle(1e-9).camera.unwrap();
+    assert!(matches!(c.projection, Projection::Perspective { near, .. } if near == 1e-9));
+    assert_eq!(bar_cycle(1e-9).triangle_count(), 6);
+}
+
+#[test]
+fn far_plane_triangle_lies_on_the_far_plane() {
+    let s = far_plane_triangle();
+    let Projection::Perspective { far, .. } = s.camera.unwrap().projection else {
+        panic!("perspective expected");
+    };
+    assert!(s.meshes[0].positions.iter().all(|p| -p.z == far));
+}
+
+#[test]
+fn one_pixel_pile_covers_exactly_one_pixel_centre() {
+    // Every triangle contains the pixel centre, seen along the view axis
+    // (the camera is orthographic, so screen position is world x, y).
+    let s = one_pixel_pile(500, 3);
+    let c = crate::cameras::ONE_PIXEL_CENTRE;
+    for (_, m, t) in s.triangles() {
+        let [a, b, d] = s.triangle_positions(m, t);
+        let side =
+            |p: glam::DVec3, q: glam::DVec3| (q.x - p.x) * (c.y - p.y) - (q.y - p.y) * (c.x - p.x);
+        let e = [side(a, b), side(b, d), side(d, a)];
+        assert!(e.iter().all(|&v| v > 0.0) || e.iter().all(|&v| v < 0.0));
+        for p in [a, b, d] {
+            assert!((p.x - c.x).abs() < 0.6 / 32.0 && (p.y - c.y).abs() < 0.6 / 32.0);
+        }
+    }
+}
+
+#[test]
+fn repeated_polygon_is_fan_split_into_coincident_copies() {
+    let s = repeated_polygon(475);
+    assert_eq!(s.triangle_count(), 4 * 475 - 2);
+    let m = &s.meshes[0];
+    assert_eq!(m.positions.len(), 4);
+    assert_eq!(
+        &m.indices[..4],
+        &[[0, 1, 2], [0, 2, 3], [0, 3, 0], [0, 0, 1]]
+    );
+    let copies = m.indices.iter().filter(|t| **t == [0, 1, 2]).count();
+    assert_eq!(copies, 475);
+}
+
+#[test]
+fn offset_sphere_is_a_unit_sphere_around_the_offset() {
+    let (lo, hi) = offset_sphere(16, 1e6).bounds().unwrap();
+    assert_eq!((lo + hi) * 0.5, glam::DVec3::splat(1e6));
+    assert!(((hi - lo) - glam::DVec3::splat(2.0)).abs().max_element() < 1e-6);
+}
