@@ -1,5 +1,7 @@
 //! Depth storage: one buffer, several formats, all compared with LESS on
-//! an encoded value so the rasteriser's inner loop is the same for all.
+//! an encoded value so the rasteriser's inner loop is the same for all; a
+//! pixel nothing has written can be told to accept any depth (see
+//! [`crate::DepthTest`]).
 
 use crate::options::DepthFormat;
 
@@ -54,39 +56,41 @@ impl DepthBuffer {
     }
 
     /// The depth test and write: if `depth` (window depth in [0, 1], f64)
-    /// passes LESS against pixel `i`, stores it and returns the stored value
-    /// decoded back to window depth.
+    /// passes LESS against pixel `i`, or `fresh` says the pixel is to accept
+    /// any depth (nothing has written it and the test is
+    /// [`crate::DepthTest::ViewVolume`]), stores it and returns the stored
+    /// value decoded back to window depth.
     #[inline]
-    pub(crate) fn test_and_set(&mut self, i: usize, depth: f64) -> Option<f64> {
+    pub(crate) fn test_and_set(&mut self, i: usize, depth: f64, fresh: bool) -> Option<f64> {
         match self.format {
             DepthFormat::F32 => {
                 let d = depth as f32;
-                (d < self.f32s[i]).then(|| {
+                (fresh || d < self.f32s[i]).then(|| {
                     self.f32s[i] = d;
                     f64::from(d)
                 })
             }
             DepthFormat::ReversedF32 => {
                 let d = (1.0 - depth) as f32;
-                (d > self.f32s[i]).then(|| {
+                (fresh || d > self.f32s[i]).then(|| {
                     self.f32s[i] = d;
                     1.0 - f64::from(d)
                 })
             }
-            DepthFormat::F64 => (depth < self.f64s[i]).then(|| {
+            DepthFormat::F64 => (fresh || depth < self.f64s[i]).then(|| {
                 self.f64s[i] = depth;
                 depth
             }),
             DepthFormat::Fixed24 => {
                 let q = quantize(depth, MAX24);
-                (q < self.u32s[i]).then(|| {
+                (fresh || q < self.u32s[i]).then(|| {
                     self.u32s[i] = q;
                     f64::from(q) / f64::from(MAX24)
                 })
             }
             DepthFormat::Fixed16 => {
                 let q = quantize(depth, u32::from(u16::MAX)) as u16;
-                (q < self.u16s[i]).then(|| {
+                (fresh || q < self.u16s[i]).then(|| {
                     self.u16s[i] = q;
                     f64::from(q) / f64::from(u16::MAX)
                 })
@@ -121,11 +125,14 @@ mod tests {
         for format in DepthFormat::ALL {
             let mut b = DepthBuffer::default();
             b.clear(format, 1);
-            assert!(b.test_and_set(0, 0.7).is_some(), "{format:?}");
-            assert!(b.test_and_set(0, 0.8).is_none(), "{format:?}");
-            let kept = b.test_and_set(0, 0.3).unwrap();
+            assert!(b.test_and_set(0, 0.7, false).is_some(), "{format:?}");
+            assert!(b.test_and_set(0, 0.8, false).is_none(), "{format:?}");
+            let kept = b.test_and_set(0, 0.3, false).unwrap();
             assert!((kept - 0.3).abs() < 1e-4, "{format:?} {kept}");
-            assert!(b.test_and_set(0, 0.3).is_none(), "LESS rejects equal depth");
+            assert!(
+                b.test_and_set(0, 0.3, false).is_none(),
+                "LESS rejects equal depth"
+            );
         }
     }
 
@@ -144,20 +151,38 @@ mod tests {
         ] {
             let mut b = DepthBuffer::default();
             b.clear(format, 1);
-            b.test_and_set(0, far);
-            assert_eq!(b.test_and_set(0, nearer).is_some(), separates, "{format:?}");
+            b.test_and_set(0, far, false);
+            assert_eq!(
+                b.test_and_set(0, nearer, false).is_some(),
+                separates,
+                "{format:?}"
+            );
         }
         // Far from the near plane f32 loses what reversed f32 keeps: depths
         // 1e-9 apart at 0.99999.
         let (a, c) = (0.999_99, 0.999_99 - 1e-9);
         let mut f = DepthBuffer::default();
         f.clear(DepthFormat::F32, 1);
-        f.test_and_set(0, a);
-        assert!(f.test_and_set(0, c).is_none());
+        f.test_and_set(0, a, false);
+        assert!(f.test_and_set(0, c, false).is_none());
         let mut r = DepthBuffer::default();
         r.clear(DepthFormat::ReversedF32, 1);
-        r.test_and_set(0, a);
-        assert!(r.test_and_set(0, c).is_some());
+        r.test_and_set(0, a, false);
+        assert!(r.test_and_set(0, c, false).is_some());
+    }
+
+    #[test]
+    fn a_fresh_pixel_accepts_the_far_plane_in_every_format() {
+        for format in DepthFormat::ALL {
+            let mut b = DepthBuffer::default();
+            b.clear(format, 1);
+            // GL's LESS against the clear value drops depth 1...
+            assert!(b.test_and_set(0, 1.0, false).is_none(), "{format:?}");
+            // ...a fresh pixel keeps it, and then LESS decides again.
+            assert_eq!(b.test_and_set(0, 1.0, true), Some(1.0), "{format:?}");
+            assert!(b.test_and_set(0, 1.0, false).is_none(), "{format:?}");
+            assert!(b.test_and_set(0, 0.5, false).is_some(), "{format:?}");
+        }
     }
 
     #[test]

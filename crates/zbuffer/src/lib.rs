@@ -72,7 +72,7 @@ mod raster;
 mod tiled;
 
 pub use depth_scene::{DepthFragment, DepthScene, DepthTri, prepare_depth_into};
-pub use options::{DepthFormat, DepthSource, ZBufferOptions};
+pub use options::{DepthFormat, DepthSource, DepthTest, ZBufferOptions};
 pub use raster::{ZBuffer, ZBufferStats};
 pub use tiled::{TiledZBuffer, TiledZBufferOptions, TiledZBufferStats};
 

@@ -92,6 +92,49 @@ impl DepthSource {
     }
 }
 
+/// Which fragments the depth test lets through.
+///
+/// A depth buffer is cleared to the far plane's window depth, 1. With GL's
+/// strict LESS against that clear value a fragment lying exactly on the far
+/// plane, or one whose depth rounds to 1 in the storage format (a sphere
+/// seen through a near plane of `1e-7` has every depth within `1e-8` of 1),
+/// never shows, although it is inside the view volume (whose far plane is
+/// closed) and the exact references draw it. The default keeps LESS between
+/// fragments but lets a pixel nothing has written accept any fragment, so
+/// that coverage never depends on the storage format.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DepthTest {
+    /// A pixel nothing has written accepts any fragment inside the view
+    /// volume, window depth 1 included; a written pixel accepts a fragment
+    /// whose stored depth is strictly less (of equal depths the earlier,
+    /// lower-id primitive stays). Agrees with the exact oracle on coverage
+    /// in every format. The default.
+    #[default]
+    ViewVolume,
+    /// GL's `glDepthFunc(GL_LESS)` against the clear value 1: a fragment
+    /// whose stored depth is not below 1 is dropped even on a pixel nothing
+    /// has written. What a GPU draws, for comparisons with GL renders.
+    GlLess,
+}
+
+impl DepthTest {
+    /// Both tests, for sweeps.
+    pub const ALL: [DepthTest; 2] = [DepthTest::ViewVolume, DepthTest::GlLess];
+
+    /// The name used on the command line and in tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            DepthTest::ViewVolume => "view-volume",
+            DepthTest::GlLess => "gl-less",
+        }
+    }
+
+    /// Parses [`DepthTest::name`].
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|t| t.name() == name)
+    }
+}
+
 /// Options of [`crate::ZBuffer`]. `Default` is the accurate choice for a
 /// real-time buffer: f32 window depth.
 ///
@@ -108,6 +151,8 @@ pub struct ZBufferOptions {
     pub depth_format: DepthFormat,
     /// What is compared.
     pub depth_source: DepthSource,
+    /// Which fragments pass on a pixel nothing has written yet.
+    pub depth_test: DepthTest,
 }
 
 impl ZBufferOptions {
@@ -120,6 +165,12 @@ impl ZBufferOptions {
     /// Sets [`Self::depth_source`].
     pub fn with_depth_source(mut self, source: DepthSource) -> Self {
         self.depth_source = source;
+        self
+    }
+
+    /// Sets [`Self::depth_test`].
+    pub fn with_depth_test(mut self, test: DepthTest) -> Self {
+        self.depth_test = test;
         self
     }
 }

@@ -4,10 +4,10 @@
 
 use hider_geom::PlaneEq;
 use hider_geom::fixed::{SUBPIXEL_SCALE, pixel_center};
-use hider_scene::{Error, Frame, Hider, Result, ScreenScene, ScreenTri, check_frame};
+use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ScreenTri, check_frame};
 
 use crate::depth::DepthBuffer;
-use crate::options::{DepthFormat, DepthSource, ZBufferOptions};
+use crate::options::{DepthFormat, DepthSource, DepthTest, ZBufferOptions};
 
 hider_scene::hider_stats! {
     /// Work counters of one z-buffer frame.
@@ -31,7 +31,11 @@ hider_scene::hider_stats! {
 ///
 /// Triangles are drawn in primitive-id order and the test is LESS, so of two
 /// surfaces at exactly the same stored depth the lower id stays: the tie rule
-/// the oracle uses too.
+/// the oracle uses too. By default ([`DepthTest::ViewVolume`]) a pixel
+/// nothing has written accepts any fragment, so a surface whose depth
+/// rounds to the clear value 1 still shows, as in the oracle; the frame's
+/// id buffer, cleared at the start of every frame, says which pixels were
+/// written.
 #[derive(Clone, Debug)]
 pub struct ZBuffer {
     options: ZBufferOptions,
@@ -41,7 +45,8 @@ pub struct ZBuffer {
 
 impl ZBuffer {
     /// The name of a z-buffer with `options`: `zbuffer` followed by the
-    /// non-default options (`zbuffer-fixed24`, `zbuffer-linear-z`...).
+    /// non-default options (`zbuffer-fixed24`, `zbuffer-linear-z`,
+    /// `zbuffer-gl-less`...).
     fn name_of(options: &ZBufferOptions) -> String {
         let format = match options.depth_format {
             DepthFormat::F32 => "",
@@ -54,7 +59,11 @@ impl ZBuffer {
             DepthSource::WindowZ => "",
             DepthSource::LinearViewZ => "-linear-z",
         };
-        format!("zbuffer{format}{source}")
+        let test = match options.depth_test {
+            DepthTest::ViewVolume => "",
+            DepthTest::GlLess => "-gl-less",
+        };
+        format!("zbuffer{format}{source}{test}")
     }
 
     fn draw(
@@ -72,6 +81,7 @@ impl ZBuffer {
         let edges = tri.edges();
         // Which plane the test compares: window depth, or (demonstration
         // only) camera depth interpolated linearly in screen space.
+        let accept_fresh = self.options.depth_test == DepthTest::ViewVolume;
         let (plane, to_window): (PlaneEq, Option<&LinearDepth>) = match linear {
             None => (tri.depth, None),
             Some(l) => match PlaneEq::from_points(&tri.v, tri.w) {
@@ -98,7 +108,8 @@ impl ZBuffer {
                         Some(l) => l.normalise(value),
                     };
                     let i = row + x as usize;
-                    if let Some(stored) = self.depth.test_and_set(i, key) {
+                    let fresh = accept_fresh && frame.ids[i] == NO_ID;
+                    if let Some(stored) = self.depth.test_and_set(i, key, fresh) {
                         stats.depth_passes += 1;
                         frame.ids[i] = tri.prim;
                         frame.depth[i] = match to_window {

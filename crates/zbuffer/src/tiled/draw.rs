@@ -13,7 +13,7 @@ use super::raster_tri::RasterTri;
 use super::scratch::{Scratch, TileKey};
 use super::stats::TiledZBufferStats;
 use super::tile::TileBuf;
-use crate::options::DepthFormat;
+use crate::options::{DepthFormat, DepthTest};
 
 impl TiledZBuffer {
     /// Validates the options, starts the pool if needed, then draws (and
@@ -69,7 +69,7 @@ impl TiledZBuffer {
         let tris = self
             .bins
             .fill((parts, fragments), (vp, grid, hiz), (pool, threads));
-        let bufs = tile_bufs::<K>(&mut self.scratch, grid);
+        let bufs = tile_bufs::<K>(&mut self.scratch, grid, self.options.depth_test);
         let jobs = Jobs {
             wide: self.wide_kernel,
             grid,
@@ -111,13 +111,16 @@ impl TiledZBuffer {
 }
 
 /// Format `K`'s tile buffers, one per tile of `grid`, reusing the memory
-/// (all dropped when the tile size changed).
-fn tile_bufs<K: TileKey>(formats: &mut Scratch, grid: Grid) -> &mut [TileBuf<K>] {
+/// (all dropped when the tile size changed), set to the depth `test`.
+fn tile_bufs<K: TileKey>(formats: &mut Scratch, grid: Grid, test: DepthTest) -> &mut [TileBuf<K>] {
     let bufs = K::bufs(formats);
     if bufs.first().is_some_and(|b| b.size() != grid.tile) {
         bufs.clear();
     }
     bufs.resize_with(grid.tiles(), || TileBuf::new(grid.tile));
     bufs.truncate(grid.tiles());
+    for b in bufs.iter_mut() {
+        b.set_test(test);
+    }
     bufs
 }

@@ -11,6 +11,12 @@
 //! `key_new < key_old` holds exactly when `stored_new > stored_old`, and the
 //! one LESS loop serves all five formats.
 //!
+//! A pixel nothing has written holds the clear key: [`DepthKey::FAR`]
+//! under [`crate::DepthTest::GlLess`], and under the default
+//! [`crate::DepthTest::ViewVolume`] [`DepthKey::BLANK`], a key above every
+//! encoded depth, so that LESS against it accepts any fragment (window
+//! depth 1 included) and the one LESS loop still serves both tests.
+//!
 //! Hierarchical depth relies on one property of every `encode`: it is
 //! monotone non-decreasing in the depth (rounding to f32, clamping,
 //! scaling and rounding to an integer all are, and the reversed key is
@@ -23,8 +29,12 @@ const MAX16: u32 = u16::MAX as u32;
 
 /// A depth format as a key type: encoding, decoding, and the far value.
 pub(crate) trait DepthKey: Copy + PartialOrd + Send + Sync + 'static {
-    /// The key of a cleared pixel (window depth 1, the far plane).
+    /// The key of window depth 1 (the far plane): GL's clear value.
     const FAR: Self;
+    /// A key above the encoding of every depth (never produced by
+    /// [`Self::encode`]): the clear value that lets a pixel accept any
+    /// fragment.
+    const BLANK: Self;
     /// The stored key of window depth `depth`, exactly as `ZBuffer` rounds.
     fn encode(depth: f64) -> Self;
     /// The window depth `ZBuffer` writes to the frame for a stored key.
@@ -43,6 +53,7 @@ pub(crate) trait DepthKey: Copy + PartialOrd + Send + Sync + 'static {
 
 impl DepthKey for f32 {
     const FAR: Self = 1.0;
+    const BLANK: Self = f32::INFINITY;
     #[inline(always)]
     fn select(mask: u32, new: Self, old: Self) -> Self {
         f32::from_bits((new.to_bits() & mask) | (old.to_bits() & !mask))
@@ -60,6 +71,7 @@ impl DepthKey for f32 {
 
 impl DepthKey for f64 {
     const FAR: Self = 1.0;
+    const BLANK: Self = f64::INFINITY;
     #[inline(always)]
     fn select(mask: u32, new: Self, old: Self) -> Self {
         let mask = u64::from(mask) | (u64::from(mask) << 32);
@@ -81,6 +93,9 @@ pub(crate) struct Fixed24(pub(super) u32);
 
 impl DepthKey for Fixed24 {
     const FAR: Self = Fixed24(MAX24);
+    // Still below 2^31, where the wide kernel's signed comparison is the
+    // unsigned one.
+    const BLANK: Self = Fixed24(MAX24 + 1);
     #[inline(always)]
     fn select(mask: u32, new: Self, old: Self) -> Self {
         Fixed24((new.0 & mask) | (old.0 & !mask))
@@ -95,20 +110,21 @@ impl DepthKey for Fixed24 {
     }
 }
 
-/// 16-bit unsigned normalised depth.
+/// 16-bit unsigned normalised depth, held in a `u32` so that the blank
+/// key has room above the largest depth.
 #[derive(Clone, Copy, Debug, PartialEq, PartialOrd)]
-pub(crate) struct Fixed16(u16);
+pub(crate) struct Fixed16(u32);
 
 impl DepthKey for Fixed16 {
-    const FAR: Self = Fixed16(u16::MAX);
+    const FAR: Self = Fixed16(MAX16);
+    const BLANK: Self = Fixed16(MAX16 + 1);
     #[inline(always)]
     fn select(mask: u32, new: Self, old: Self) -> Self {
-        let mask = mask as u16;
         Fixed16((new.0 & mask) | (old.0 & !mask))
     }
     #[inline]
     fn encode(depth: f64) -> Self {
-        Fixed16(quantize(depth, MAX16) as u16)
+        Fixed16(quantize(depth, MAX16))
     }
     #[inline]
     fn decode(self) -> f32 {
@@ -123,8 +139,10 @@ pub(crate) struct Reversed(pub(super) f32);
 
 impl DepthKey for Reversed {
     // ZBuffer clears reversed depth to 0; its negation is -0, which
-    // compares equal to 0, so nothing at the far plane passes, as there.
+    // compares equal to 0, so under GL's test nothing at the far plane
+    // passes, as there.
     const FAR: Self = Reversed(-0.0);
+    const BLANK: Self = Reversed(f32::INFINITY);
     #[inline(always)]
     fn select(mask: u32, new: Self, old: Self) -> Self {
         Reversed(f32::select(mask, new.0, old.0))
@@ -153,21 +171,38 @@ mod tests {
     use crate::options::DepthFormat;
 
     /// Replays a sequence of depths through the reference buffer and the
-    /// key, checking pass/fail and the decoded frame depth agree.
+    /// key, under both depth tests, checking pass/fail and the decoded
+    /// frame depth agree.
     fn agree<K: DepthKey>(format: DepthFormat, depths: &[f64]) {
+        agree_from::<K>(format, depths, K::FAR);
+        agree_from::<K>(format, depths, K::BLANK);
+    }
+
+    fn agree_from<K: DepthKey>(format: DepthFormat, depths: &[f64], clear: K) {
         let mut reference = DepthBuffer::default();
         reference.clear(format, 1);
-        let mut key = K::FAR;
+        let mut key = clear;
         let mut frame_depth = 1.0f32;
-        assert_eq!(key.decode(), 1.0, "{:?}: far decodes to 1", format);
+        let mut written = false;
+        assert_eq!(K::FAR.decode(), 1.0, "{:?}: far decodes to 1", format);
         for &d in depths {
             let new = K::encode(d);
+            assert!(
+                new < K::BLANK,
+                "{:?}: {d} encodes below the blank key",
+                format
+            );
             let pass = new < key;
-            let stored = reference.test_and_set(0, d);
+            let fresh = clear == K::BLANK && !written;
+            let stored = reference.test_and_set(0, d, fresh);
             assert_eq!(pass, stored.is_some(), "{:?} at {d}", format);
             if let Some(s) = stored {
                 key = new;
                 frame_depth = s as f32;
+                written = true;
+            }
+            if !written {
+                continue;
             }
             assert_eq!(
                 key.decode().to_bits(),
@@ -181,6 +216,7 @@ mod tests {
     #[test]
     fn keys_replay_the_reference_buffer_exactly() {
         let depths = [
+            1.0,
             0.9,
             0.95,
             0.5,

@@ -55,7 +55,7 @@ use hider_scene::{
 };
 
 use crate::depth_scene::{DepthFragment, DepthScene, DepthTri, prepare_depth_into};
-use crate::options::DepthFormat;
+use crate::options::{DepthFormat, DepthTest};
 use bins::Grid;
 use key::{Fixed16, Fixed24, Reversed};
 use scratch::Scratch;
@@ -171,13 +171,17 @@ impl Hider for TiledZBuffer {
 
     /// A tiled z-buffer with the given options (checked when rendering).
     /// Its [`Hider::name`] is `zbuffer-tiled` followed by the depth format
-    /// when it is not the default (`zbuffer-tiled-fixed24`...).
+    /// and test when they are not the defaults (`zbuffer-tiled-fixed24`,
+    /// `zbuffer-tiled-gl-less`...).
     fn new(options: TiledZBufferOptions) -> Self {
-        let name = match options.depth_format {
+        let mut name = match options.depth_format {
             DepthFormat::F32 => "zbuffer-tiled".to_owned(),
             DepthFormat::ReversedF32 => "zbuffer-tiled-reversed".to_owned(),
             f => format!("zbuffer-tiled-{}", f.name()),
         };
+        if options.depth_test == DepthTest::GlLess {
+            name.push_str("-gl-less");
+        }
         Self {
             options,
             name,

@@ -1,6 +1,6 @@
 //! Options of the tiled z-buffer.
 
-use crate::options::DepthFormat;
+use crate::options::{DepthFormat, DepthTest};
 
 /// Options of [`crate::TiledZBuffer`]. `Default` is accurate (f32 window
 /// depth, exactly [`crate::ZBuffer`]'s output) and fast (all cores, 64-pixel
@@ -19,6 +19,9 @@ pub struct TiledZBufferOptions {
     /// Storage format of the depth buffer; the output equals
     /// [`crate::ZBuffer`]'s with the same format, pixel for pixel.
     pub depth_format: DepthFormat,
+    /// Which fragments pass on a pixel nothing has written yet; the output
+    /// equals [`crate::ZBuffer`]'s with the same test.
+    pub depth_test: DepthTest,
     /// Worker threads rendering tiles: `1` renders on the calling thread
     /// with no pool, `0` uses every core the machine reports.
     pub threads: usize,
@@ -36,6 +39,7 @@ impl Default for TiledZBufferOptions {
     fn default() -> Self {
         Self {
             depth_format: DepthFormat::default(),
+            depth_test: DepthTest::default(),
             threads: 0,
             tile_size: 64,
             hierarchical_z: true,
@@ -54,6 +58,12 @@ impl TiledZBufferOptions {
     /// Sets [`Self::depth_format`].
     pub fn with_depth_format(mut self, format: DepthFormat) -> Self {
         self.depth_format = format;
+        self
+    }
+
+    /// Sets [`Self::depth_test`].
+    pub fn with_depth_test(mut self, test: DepthTest) -> Self {
+        self.depth_test = test;
         self
     }
 

@@ -56,7 +56,6 @@ impl Scratch {
     /// The id and decoded window depth of pixel `(x, y)` (image
     /// coordinates) of tile `t` in format `K`.
     pub(crate) fn pixel<K: TileKey>(&mut self, t: usize, x: u32, y: u32) -> (u32, f32) {
-        let (id, key) = K::bufs(self)[t].get(x, y);
-        (id, key.decode())
+        K::bufs(self)[t].get(x, y)
     }
 }

@@ -416,15 +416,27 @@ fn every_hard_case_matches_the_reference_bit_for_bit() {
 fn fragments_keep_primitive_order_on_ties() {
     use super::tile::TileBuf;
     use crate::DepthFragment;
-    let mut buf = TileBuf::<f32>::new(8);
-    buf.start(0, 0, 8, 8);
     let at = |depth: f64, prim: u32| DepthFragment {
         depth,
         x: 3,
         y: 5,
         prim,
     };
-    // Window depth 1 fails LESS against the cleared far value.
+    // By default a pixel nothing has written accepts window depth 1, and
+    // an equal depth from an earlier primitive still wins over it.
+    let mut buf = TileBuf::<f32>::new(8);
+    buf.start(0, 0, 8, 8);
+    buf.fragment(&at(1.0, 4));
+    assert_eq!(buf.get(3, 5), (4, 1.0));
+    buf.fragment(&at(1.0, 2));
+    assert_eq!(buf.get(3, 5), (2, 1.0));
+    buf.fragment(&at(1.0, 6));
+    assert_eq!(buf.get(3, 5), (2, 1.0));
+    // Under GL's test window depth 1 fails LESS against the cleared far
+    // value.
+    let mut buf = TileBuf::<f32>::new(8);
+    buf.set_test(crate::DepthTest::GlLess);
+    buf.start(0, 0, 8, 8);
     buf.fragment(&at(1.0, 4));
     assert_eq!(buf.get(3, 5), (NO_ID, 1.0));
     buf.fragment(&at(0.5, 7));

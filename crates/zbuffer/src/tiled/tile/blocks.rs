@@ -143,7 +143,7 @@ impl<K: WideBlock> TileBuf<K> {
                 self.refresh_block(block);
             }
             let max = self.block_max[block];
-            if max < K::FAR
+            if max < self.clear
                 && K::encode(b.rect_low(bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1))) >= max
             {
                 self.stats.hiz_block_rejects += 1;

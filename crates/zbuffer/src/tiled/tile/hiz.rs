@@ -72,7 +72,7 @@ impl<K: DepthKey> TileBuf<K> {
                 m = Some(m.map_or(b, |m| m.max_key(b)));
             }
         }
-        self.tile_max = m.unwrap_or(K::FAR);
+        self.tile_max = m.unwrap_or(self.clear);
         self.tile_passes = 0;
     }
 }

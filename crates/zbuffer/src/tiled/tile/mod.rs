@@ -31,6 +31,7 @@ use super::raster_tri::RasterTri;
 use super::stats::TiledZBufferStats;
 use super::wide::{Isa, WideBlock};
 use crate::depth_scene::DepthFragment;
+use crate::options::DepthTest;
 
 /// Side of a block, pixels.
 const BLOCK: u32 = 8;
@@ -53,6 +54,9 @@ pub(crate) struct TileBuf<K> {
     block_passes: Vec<u32>,
     /// Upper bound of every key of the tile, and passes since recomputed.
     tile_max: K,
+    /// The key of a pixel nothing has written: [`DepthKey::BLANK`] or,
+    /// under GL's test, [`DepthKey::FAR`] (see [`Self::set_test`]).
+    clear: K,
     tile_passes: u32,
     /// Per column of the current triangle, `value + dx * (x - x0)`.
     col: Vec<f64>,
@@ -73,11 +77,12 @@ impl<K: DepthKey> TileBuf<K> {
         let blocks = ((size / BLOCK) * (size / BLOCK)) as usize;
         Self {
             size,
-            keys: vec![K::FAR; n],
+            keys: vec![K::BLANK; n],
             ids: vec![NO_ID; n],
-            block_max: vec![K::FAR; blocks],
+            block_max: vec![K::BLANK; blocks],
             block_passes: vec![0; blocks],
-            tile_max: K::FAR,
+            tile_max: K::BLANK,
+            clear: K::BLANK,
             tile_passes: 0,
             col: vec![0.0; size as usize],
             x0: 0,
@@ -91,6 +96,18 @@ impl<K: DepthKey> TileBuf<K> {
 
     pub(crate) fn size(&self) -> u32 {
         self.size
+    }
+
+    /// Sets the depth test of the frames to come: the key a pixel is
+    /// cleared to. Under [`DepthTest::ViewVolume`] it is the blank key,
+    /// above every encoded depth, so the one LESS test accepts any
+    /// fragment on a pixel nothing has written; under
+    /// [`DepthTest::GlLess`] it is the far plane's key, as GL clears it.
+    pub(crate) fn set_test(&mut self, test: DepthTest) {
+        self.clear = match test {
+            DepthTest::ViewVolume => K::BLANK,
+            DepthTest::GlLess => K::FAR,
+        };
     }
 
     pub(crate) fn bytes(&self) -> usize {
@@ -119,7 +136,7 @@ impl<K: DepthKey> TileBuf<K> {
     pub(crate) fn start(&mut self, x0: u32, y0: u32, w: u32, h: u32) {
         (self.x0, self.y0, self.w, self.h) = (x0, y0, w, h);
         self.active = false;
-        self.tile_max = K::FAR;
+        self.tile_max = self.clear;
         self.tile_passes = 0;
         self.stats = TiledZBufferStats::default();
     }
@@ -130,28 +147,32 @@ impl<K: DepthKey> TileBuf<K> {
         self.active
     }
 
-    /// The id and stored depth key at pixel `(x, y)` (image coordinates,
-    /// inside the tile).
-    pub(crate) fn get(&self, x: u32, y: u32) -> (u32, K) {
+    /// The id and window depth at pixel `(x, y)` (image coordinates,
+    /// inside the tile), as the frame gets them: depth 1 for background.
+    pub(crate) fn get(&self, x: u32, y: u32) -> (u32, f32) {
         if self.active {
             let i = self.at(x, y);
-            (self.id(i), self.keys[i])
+            match self.id(i) {
+                NO_ID => (NO_ID, 1.0),
+                id => (id, self.keys[i].decode()),
+            }
         } else {
-            (NO_ID, K::FAR)
+            (NO_ID, 1.0)
         }
     }
 
     /// Clears the tile for its first triangle of the frame. The ids are
-    /// left as they are: a pixel's key is below the far key once anything
-    /// wrote it (LESS against the far key, and keys only fall), so a far
-    /// key means background whatever its id slot holds ([`Self::id`]). That
-    /// halves the clear (the spider at 1024 activates 36 tiles a frame).
+    /// left as they are: a pixel's key is below the clear key once anything
+    /// wrote it (LESS against the clear key, and keys only fall), so the
+    /// clear key means background whatever its id slot holds
+    /// ([`Self::id`]). That halves the clear (the spider at 1024 activates
+    /// 36 tiles a frame).
     #[inline(always)]
     fn activate(&mut self) {
         self.active = true;
         self.stats.tiles_drawn += 1;
-        self.keys.fill(K::FAR);
-        self.block_max.fill(K::FAR);
+        self.keys.fill(self.clear);
+        self.block_max.fill(self.clear);
         self.block_passes.fill(0);
     }
 
@@ -159,7 +180,7 @@ impl<K: DepthKey> TileBuf<K> {
     /// [`NO_ID`] where nothing was written (see [`Self::activate`]).
     #[inline(always)]
     fn id(&self, i: usize) -> u32 {
-        if self.keys[i] == K::FAR {
+        if self.keys[i] == self.clear {
             NO_ID
         } else {
             self.ids[i]
@@ -211,9 +232,11 @@ impl<K: DepthKey> TileBuf<K> {
                                 .zip(&self.keys[from..from + n]),
                         )
                     {
-                        // See `activate`: a far key is background.
-                        *id = if *k == K::FAR { NO_ID } else { i };
-                        *d = k.decode();
+                        // See `activate`: the clear key is background,
+                        // at depth 1 whichever key the test clears to.
+                        let background = *k == self.clear;
+                        *id = if background { NO_ID } else { i };
+                        *d = if background { 1.0 } else { k.decode() };
                     }
                 }
             } else {
