@@ -48,6 +48,19 @@ fn configured_tiled(config: &HiderConfig) -> Box<dyn DynHider> {
     Box::new(TiledZBuffer::new(options))
 }
 
+/// An A-buffer with these options, on the config's threads when it
+/// names a count (every core otherwise, its default).
+fn abuffer(options: ABufferOptions, config: &HiderConfig) -> Box<dyn DynHider> {
+    let options = config.threads.map_or(options, |t| options.with_threads(t));
+    Box::new(ABuffer::new(options))
+}
+
+/// Knobs of the A-buffer entries.
+const THREADS_KNOB: Knobs = Knobs {
+    threads: true,
+    ..Knobs::NONE
+};
+
 /// A supersampled z-buffer with this sample pattern.
 fn ssaa(pattern: SamplePattern) -> Box<dyn DynHider> {
     Box::new(SupersampledZBuffer::new(
@@ -192,18 +205,24 @@ fn multisample() -> [Entry; 8] {
                 ))
             },
         ),
-        plain(
-            "abuffer",
-            "A-buffer, 8x4 coverage masks, per-sample depth (exact), order-independent transparency",
-            MultiSample,
-            |_| Box::new(ABuffer::new(ABufferOptions::default())),
-        ),
-        plain(
-            "abuffer-carpenter",
-            "A-buffer as in Carpenter 1984: zmin/zmax per fragment, same-surface merging",
-            MultiSample,
-            |_| Box::new(ABuffer::new(ABufferOptions::carpenter())),
-        ),
+        Entry {
+            knobs: THREADS_KNOB,
+            ..plain(
+                "abuffer",
+                "A-buffer, 8x4 coverage masks, per-sample depth (exact), order-independent transparency",
+                MultiSample,
+                |c| abuffer(ABufferOptions::default(), c),
+            )
+        },
+        Entry {
+            knobs: THREADS_KNOB,
+            ..plain(
+                "abuffer-carpenter",
+                "A-buffer as in Carpenter 1984: zmin/zmax per fragment, same-surface merging",
+                MultiSample,
+                |c| abuffer(ABufferOptions::carpenter(), c),
+            )
+        },
         plain(
             "ssaa-4",
             "supersampled z-buffer, 4 samples (subset of the A-buffer mask)",
