@@ -71,12 +71,16 @@ pub struct RunArgs {
     /// comma-separated. Default: all.
     #[arg(long, value_delimiter = ',')]
     pub algos: Vec<String>,
-    /// Studies: accuracy, polygons, resolution, depth-complexity.
+    /// Studies: real-size, depth-precision, accuracy, polygons, resolution,
+    /// depth-complexity.
     #[arg(long, value_delimiter = ',', value_parser = parse_study)]
     pub studies: Vec<Study>,
     /// Square image sizes of the accuracy study (default 64,256).
     #[arg(long, value_delimiter = ',')]
     pub sizes: Vec<u32>,
+    /// Square size of the real-size study (default 1024).
+    #[arg(long)]
+    pub real_size: Option<u32>,
     /// Extra OBJ files to benchmark (accuracy study); repeatable.
     #[arg(long = "obj")]
     pub objs: Vec<PathBuf>,
@@ -162,6 +166,12 @@ impl RunArgs {
             .with_max_seconds(self.max_seconds);
         if self.quick {
             m.sizes = vec![32];
+            m.real_size = 128;
+            m.real_spheres = vec![32];
+            m.real_layers = vec![2];
+            m.precision_gaps = vec![1e-2, 1e-4, 1e-6];
+            m.precision_ratios = vec![1e-2, 1e-4];
+            m.precision_size = 32;
             m.polygon_steps = vec![8, 16, 32];
             m.resolution_steps = vec![32, 64, 128];
             m.resolution_sphere = 16;
@@ -178,6 +188,9 @@ impl RunArgs {
         set(&self.polygon_steps, &mut m.polygon_steps);
         set(&self.resolution_steps, &mut m.resolution_steps);
         set(&self.depth_steps, &mut m.depth_steps);
+        if let Some(s) = self.real_size {
+            m.real_size = s;
+        }
         if let Some(s) = self.scaling_size {
             m.scaling_size = s;
         }

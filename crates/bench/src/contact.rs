@@ -83,6 +83,12 @@ fn glyph(c: char) -> [u8; 5] {
     }
 }
 
+/// Width in pixels of `text` in the label font.
+fn text_width(text: &str) -> u32 {
+    let n = text.chars().count() as u32;
+    (n * 4 * FONT_SCALE).saturating_sub(FONT_SCALE)
+}
+
 /// Draws `text` with its top-left corner at `(x, y)`, clipped to
 /// `max_width` pixels and to the image.
 fn draw_text(img: &mut RgbaImage, x: u32, y: u32, text: &str, max_width: u32) {
@@ -142,16 +148,23 @@ pub fn compose(
     }
     let scale = (TILE_SIDE / w.max(h).max(1)).max(1);
     let (tw, th) = (w * scale, h * scale);
+    // Columns are as wide as the longest label, so no name is cut.
+    let label_width = tiles
+        .iter()
+        .map(|(name, _)| text_width(name))
+        .max()
+        .unwrap_or(0);
+    let cw = tw.max(label_width);
     let cols = (tiles.len() as u32).min(COLUMNS);
     let rows = (tiles.len() as u32).div_ceil(cols);
-    let width = GAP + cols * (tw + GAP);
+    let width = GAP + cols * (cw + GAP);
     let height = GAP + rows * (th + LABEL_HEIGHT + GAP);
     let mut img = RgbaImage::from_pixel(width, height, Rgba(SHEET_BACKGROUND));
     for (k, (name, color)) in tiles.iter().enumerate() {
         let (col, row) = (k as u32 % cols, k as u32 / cols);
-        let x0 = GAP + col * (tw + GAP);
+        let x0 = GAP + col * (cw + GAP);
         let y0 = GAP + row * (th + LABEL_HEIGHT + GAP);
-        draw_text(&mut img, x0, y0, name, tw);
+        draw_text(&mut img, x0, y0, name, cw);
         let y0 = y0 + LABEL_HEIGHT;
         for y in 0..th {
             for x in 0..tw {
@@ -219,6 +232,29 @@ mod tests {
         // The label strip holds text.
         assert!(
             (0..LABEL_HEIGHT).any(|y| (0..128).any(|x| img.get_pixel(GAP + x, GAP + y).0 == LABEL))
+        );
+    }
+
+    #[test]
+    fn long_names_are_not_cut() {
+        let scene = crate::scenes::linear_depth_probe();
+        let screen = screen(&scene, 32, 32);
+        let reference = RayCastOracle::default().evaluate(&screen);
+        let mut f = Frame::new(32, 32).unwrap();
+        let mut z = registry::by_name("zbuffer").unwrap().make();
+        z.render(&screen, &mut f).unwrap();
+        let name = "abuffer-carpenter";
+        let sheet = ContactSheet {
+            tiles: vec![(name.to_owned(), f)],
+        };
+        let img = compose(&screen, &reference, &sheet, 1e-5).unwrap();
+        let cw = text_width(name);
+        assert!(cw > 128, "the name is wider than a tile");
+        assert_eq!(img.width(), GAP + 2 * (cw + GAP));
+        // The name's last letters, right of the tile's 128 pixels, are drawn.
+        let x0 = GAP + cw + GAP;
+        assert!(
+            (0..LABEL_HEIGHT).any(|y| (128..cw).any(|x| img.get_pixel(x0 + x, GAP + y).0 == LABEL))
         );
     }
 }

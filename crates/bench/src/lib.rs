@@ -64,6 +64,7 @@ pub mod contact;
 pub mod machine;
 pub mod matrix;
 pub mod plots;
+pub mod precision;
 pub mod record;
 pub mod report;
 pub mod run;

@@ -16,6 +16,14 @@ use hider_plan::registry::{self, Entry};
 /// The study a case belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Study {
+    /// Real-size work: the bundled models and generated scenes at 1024 x
+    /// 1024, timed over the whole pipeline (front end and render, the span
+    /// a frame loop waits for) and scored against the oracle: the report's
+    /// answer to what accuracy costs in time.
+    RealSize,
+    /// Two nearly coplanar surfaces per depth format: how often the
+    /// farther one shows as their gap and the near/far ratio shrink.
+    DepthPrecision,
     /// Small scenes scored against the oracle: what each hider gets wrong.
     Accuracy,
     /// Cost as the number of polygons grows (UV spheres, fixed resolution).
@@ -28,16 +36,23 @@ pub enum Study {
 
 impl Study {
     /// Every study, in report order.
-    pub const ALL: [Study; 4] = [
+    pub const ALL: [Study; 6] = [
+        Study::RealSize,
+        Study::DepthPrecision,
         Study::Accuracy,
         Study::Polygons,
         Study::Resolution,
         Study::DepthComplexity,
     ];
 
+    /// The scaling studies (time along one axis), in report order.
+    pub const SCALING: [Study; 3] = [Study::Polygons, Study::Resolution, Study::DepthComplexity];
+
     /// Name used on the command line and in files.
     pub fn as_str(self) -> &'static str {
         match self {
+            Study::RealSize => "real-size",
+            Study::DepthPrecision => "depth-precision",
             Study::Accuracy => "accuracy",
             Study::Polygons => "polygons",
             Study::Resolution => "resolution",
@@ -76,9 +91,10 @@ impl Case {
 }
 
 /// What to put in the matrix. `Default` is the default matrix of
-/// `hider bench`: every bundled asset and hard case at 64 x 64 and
-/// 256 x 256 for accuracy, plus the three scaling sweeps at 256 x 256 (and
-/// 64 to 1024 for resolution); a few minutes on 2 cores.
+/// `hider bench`: every bundled asset plus generated spheres and layers at
+/// 1024 x 1024 (real size), the depth-precision sweep, every bundled asset
+/// and hard case at 64 x 64 and 256 x 256 for accuracy, plus the three
+/// scaling sweeps at 256 x 256 (and 64 to 1024 for resolution).
 #[derive(Clone, Debug, PartialEq)]
 pub struct MatrixOptions {
     /// Folder of the bundled OBJ scenes.
@@ -95,6 +111,21 @@ pub struct MatrixOptions {
     pub algos: Vec<String>,
     /// Studies to run.
     pub studies: Vec<Study>,
+    /// Square size of the real-size study.
+    pub real_size: u32,
+    /// UV sphere segment counts of the real-size study's generated spheres
+    /// (`2n(n-1)` triangles; 200 is the 79,600-triangle sphere of the fast
+    /// z-buffer's comparison with llvmpipe).
+    pub real_spheres: Vec<u32>,
+    /// Layer counts of the real-size study's stacked layers.
+    pub real_layers: Vec<u32>,
+    /// Gaps between the two surfaces of the depth-precision study,
+    /// relative to their distance from the eye.
+    pub precision_gaps: Vec<f64>,
+    /// Near/far ratios of the depth-precision study's camera.
+    pub precision_ratios: Vec<f64>,
+    /// Square size of the depth-precision study.
+    pub precision_size: u32,
     /// Square sizes of the accuracy study.
     pub sizes: Vec<u32>,
     /// UV sphere segment counts of the polygon study (`2n(n-1)` triangles).
@@ -118,6 +149,12 @@ impl Default for MatrixOptions {
             scenes: Vec::new(),
             algos: Vec::new(),
             studies: Study::ALL.to_vec(),
+            real_size: 1024,
+            real_spheres: vec![200],
+            real_layers: vec![8],
+            precision_gaps: vec![1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
+            precision_ratios: vec![1e-2, 1e-3, 1e-4, 1e-5],
+            precision_size: 128,
             sizes: vec![64, 256],
             polygon_steps: vec![8, 16, 32, 64, 128, 256],
             resolution_steps: vec![64, 128, 256, 512, 1024],
@@ -233,6 +270,17 @@ pub fn build_cases(options: &MatrixOptions) -> Result<Vec<Case>> {
     for &study in &options.studies {
         let s = options.scaling_size;
         match study {
+            Study::RealSize => real_size_cases(options, &mut all),
+            Study::DepthPrecision => {
+                for &gap in &options.precision_gaps {
+                    for &ratio in &options.precision_ratios {
+                        let source = Source::NearCoplanar { gap, ratio };
+                        let size = options.precision_size;
+                        let scene = crate::precision::scene_name(gap, ratio);
+                        all.push(square(study, scene, Group::Scaling, source, size));
+                    }
+                }
+            }
             Study::Accuracy => {
                 for (name, group, source) in accuracy_scenes(options) {
                     for &s in &options.sizes {
@@ -280,6 +328,25 @@ pub fn build_cases(options: &MatrixOptions) -> Result<Vec<Case>> {
         hider_scene::view::check_image_size(c.width, c.height)?;
     }
     Ok(cases)
+}
+
+/// The real-size cases: every bundled asset and user OBJ, then the
+/// generated spheres and layers, at the real size.
+fn real_size_cases(options: &MatrixOptions, all: &mut Vec<Case>) {
+    let (study, s) = (Study::RealSize, options.real_size);
+    for (name, group, source) in accuracy_scenes(options) {
+        if group != Group::HardCase {
+            all.push(square(study, name, group, source, s));
+        }
+    }
+    for &n in &options.real_spheres {
+        let scene = format!("sphere_{n}");
+        all.push(square(study, scene, Group::Scaling, Source::Sphere(n), s));
+    }
+    for &k in &options.real_layers {
+        let scene = format!("layers_{k}");
+        all.push(square(study, scene, Group::Scaling, Source::Layers(k), s));
+    }
 }
 
 /// A case of `size` x `size` pixels.

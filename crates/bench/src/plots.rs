@@ -1,27 +1,53 @@
-//! Plots with plotters, each written as SVG (labelled) and PNG: time
-//! against error per scene with the Pareto front, and time against
+//! Plots with plotters, each written as SVG and PNG with the same text:
+//! time against error per scene with the Pareto front, and time against
 //! triangle count, resolution and depth complexity.
 //!
-//! Only the features in the workspace's plotters dependency are used. The
-//! SVG backend writes text as `<text>` elements, but the bitmap backend
-//! needs a font feature (ttf or ab_glyph, with font files) to draw text at
-//! all, so the PNG versions carry the same marks and colours without any
-//! text; the report shows the SVGs.
+//! The bitmap backend draws text only through a font feature; the crate
+//! enables plotters' `ab_glyph` and registers the DejaVu Sans subset in
+//! `fonts/` (its licence beside it), so the PNGs carry the titles, axis
+//! titles, ticks and legend the SVGs do. The legend sits in a column of its
+//! own right of the data, and values of exactly 0 (no error), which a
+//! logarithmic axis cannot show, are drawn in a labelled band under the
+//! axis's smallest value instead of at a silent floor.
 
 use std::path::{Path, PathBuf};
+use std::sync::Once;
 
 use anyhow::{Result, anyhow};
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::{FontStyle, register_font};
 
 use crate::matrix::Study;
 use crate::record::Row;
 use crate::scaling::{axis_label, series};
 
-/// Errors of 0 are drawn at this value on the logarithmic error axis.
-pub const ERROR_FLOOR: f64 = 1e-6;
+/// Size of every plot, pixels.
+pub const SIZE: (u32, u32) = (900, 540);
+/// Width of the legend column right of the data, pixels.
+const LEGEND_WIDTH: u32 = 200;
+/// Height of the title strip, pixels.
+pub const TITLE_HEIGHT: u32 = 40;
+/// Height of the x-axis strip (ticks and axis title), pixels.
+pub const X_AXIS_HEIGHT: u32 = 56;
+/// Width of the y-axis strip (ticks and axis title), pixels.
+pub const Y_AXIS_WIDTH: u32 = 84;
+/// The font every plot uses (registered as `sans-serif`).
+const FONT: &str = "sans-serif";
+/// DejaVu Sans, printable ASCII and a few symbols (see `fonts/LICENSE`).
+static FONT_BYTES: &[u8] = include_bytes!("../fonts/DejaVuSans-subset.ttf");
 
-const SIZE: (u32, u32) = (720, 480);
+/// Registers the bundled font with plotters, once per process.
+fn register_the_font() -> Result<()> {
+    static ONCE: Once = Once::new();
+    let mut ok = true;
+    ONCE.call_once(|| ok = register_font(FONT, FontStyle::Normal, FONT_BYTES).is_ok());
+    if ok {
+        Ok(())
+    } else {
+        Err(anyhow!("the bundled plot font could not be read"))
+    }
+}
 
 /// Twenty well-separated colours (Tableau 20, dark shades first); hider
 /// `k` of the registry order gets colour `k mod 20` in every plot.
@@ -69,78 +95,138 @@ pub struct Series {
 /// A log-log plot.
 #[derive(Clone, Debug, Default)]
 pub struct Plot {
-    /// Title (SVG only).
+    /// Title.
     pub title: String,
-    /// X axis description (SVG only).
+    /// X axis title, with its unit.
     pub x_label: String,
-    /// Y axis description (SVG only).
+    /// Y axis title, with its unit.
     pub y_label: String,
-    /// The data.
+    /// The data; `y` may be 0 (drawn in the zero band).
     pub series: Vec<Series>,
     /// A polyline drawn under the points (the Pareto front).
     pub front: Vec<(f64, f64)>,
+    /// The label of the band under the y axis where values of exactly 0
+    /// are drawn (`"0 wrong"`); the band is drawn only when some value is
+    /// 0.
+    pub zero_label: String,
 }
 
-fn range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// `(lo, hi)` of the positive finite values, padded so that points do not
+/// sit on the frame, at least a decade wide; `None` without such values.
+fn range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     let (lo, hi) = values
         .filter(|v| *v > 0.0 && v.is_finite())
         .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
             (lo.min(v), hi.max(v))
         });
     if !lo.is_finite() {
-        return (0.1, 10.0);
+        return None;
     }
-    // Pad by a factor so points do not sit on the frame.
     let (lo, hi) = (lo / 1.6, hi * 1.6);
-    if hi / lo < 10.0 {
+    Some(if hi / lo < 10.0 {
         let mid = (lo * hi).sqrt();
         (mid / 3.2, mid * 3.2)
     } else {
         (lo, hi)
-    }
+    })
 }
 
-fn draw<DB: DrawingBackend>(
-    root: &DrawingArea<DB, Shift>,
-    plot: &Plot,
-    text: bool,
-) -> Result<(), String> {
-    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
-    root.fill(&WHITE).map_err(e)?;
-    let all = plot
+/// A tick label people read at a glance: `0.5`, `20`, `1k`, `10k`, `1e6`,
+/// `1e-4`.
+pub fn tick_label(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        return "0".into();
+    }
+    if !(1e-3..1e6).contains(&a) {
+        let text = format!("{v:.0e}");
+        return text;
+    }
+    let (value, suffix) = if a >= 1e3 { (v / 1e3, "k") } else { (v, "") };
+    // Three significant digits, trailing zeros dropped.
+    let digits = (2 - value.abs().log10().floor() as i32).clamp(0, 6) as usize;
+    let mut text = format!("{value:.digits$}");
+    if text.contains('.') {
+        text = text.trim_end_matches('0').trim_end_matches('.').to_owned();
+    }
+    format!("{text}{suffix}")
+}
+
+/// The y range with room for the zero band: `(axis from, axis to, where
+/// zeros are drawn, band top)`.
+fn y_layout(plot: &Plot) -> (f64, f64, f64, f64) {
+    let ys = plot
         .series
         .iter()
-        .flat_map(|s| s.points.iter())
-        .chain(&plot.front);
-    let (x0, x1) = range(all.clone().map(|p| p.0));
-    let (y0, y1) = range(all.map(|p| p.1));
-    let mut builder = ChartBuilder::on(root);
-    builder.margin(12);
-    if text {
-        builder
-            .caption(&plot.title, ("sans-serif", 20))
-            .x_label_area_size(40)
-            .y_label_area_size(64);
-    }
-    let mut chart = builder
+        .flat_map(|s| s.points.iter().map(|p| p.1));
+    let (lo, hi) = range(ys.chain(plot.front.iter().map(|p| p.1))).unwrap_or((1e-3, 1.0));
+    // The band spans a factor of 8 under the smallest value's decade.
+    (lo / 8.0, hi, lo / 2.83, lo / 1.41)
+}
+
+fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot) -> Result<(), String> {
+    let e = |e: DrawingAreaErrorKind<DB::ErrorType>| e.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let (chart_area, legend_area) = root.split_horizontally(SIZE.0 - LEGEND_WIDTH);
+    let xs = plot
+        .series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.0));
+    let (x0, x1) = range(xs.chain(plot.front.iter().map(|p| p.0))).unwrap_or((0.1, 10.0));
+    let (y0, y1, zero_y, band_top) = y_layout(plot);
+    let has_zero = plot
+        .series
+        .iter()
+        .any(|s| s.points.iter().any(|p| p.1 == 0.0));
+    let at = |p: (f64, f64)| (p.0, if p.1 > 0.0 { p.1 } else { zero_y });
+    let mut chart = ChartBuilder::on(&chart_area)
+        .margin(10)
+        .caption(&plot.title, (FONT, 22))
+        .x_label_area_size(X_AXIS_HEIGHT - 10)
+        .y_label_area_size(Y_AXIS_WIDTH - 10)
         .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
         .map_err(e)?;
-    let mut mesh = chart.configure_mesh();
-    mesh.light_line_style(RGBColor(235, 235, 235));
-    if text {
-        mesh.x_desc(&plot.x_label)
-            .y_desc(&plot.y_label)
-            .x_label_formatter(&|v| format!("{v:.3}"))
-            .y_label_formatter(&|v| format!("{v:.0e}"));
-    } else {
-        mesh.x_labels(0).y_labels(0);
+    chart
+        .configure_mesh()
+        .light_line_style(RGBColor(242, 242, 242))
+        .bold_line_style(RGBColor(215, 215, 215))
+        .x_labels(8)
+        .y_labels(8)
+        .x_desc(&plot.x_label)
+        .y_desc(&plot.y_label)
+        .label_style((FONT, 14))
+        .axis_desc_style((FONT, 16))
+        .x_label_formatter(&|v| tick_label(*v))
+        // No tick labels inside the zero band: its label says what it is.
+        .y_label_formatter(&|v| {
+            if *v < band_top {
+                String::new()
+            } else {
+                tick_label(*v)
+            }
+        })
+        .draw()
+        .map_err(e)?;
+    if has_zero {
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(x0, y0), (x1, band_top)],
+                RGBColor(225, 240, 225).filled(),
+            )))
+            .map_err(e)?;
+        chart
+            .draw_series(std::iter::once(Text::new(
+                plot.zero_label.clone(),
+                (x0 * (x1 / x0).powf(0.01), band_top),
+                (FONT, 14).into_font().color(&RGBColor(40, 110, 40)),
+            )))
+            .map_err(e)?;
     }
-    mesh.draw().map_err(e)?;
     if plot.front.len() > 1 {
         chart
             .draw_series(LineSeries::new(
-                plot.front.iter().copied(),
-                RGBColor(160, 160, 160).stroke_width(6),
+                plot.front.iter().map(|&p| at(p)),
+                RGBColor(170, 170, 170).stroke_width(6),
             ))
             .map_err(e)?;
     }
@@ -148,44 +234,57 @@ fn draw<DB: DrawingBackend>(
         let c = colour(s.colour);
         if s.line && s.points.len() > 1 {
             chart
-                .draw_series(LineSeries::new(s.points.iter().copied(), c.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    s.points.iter().map(|&p| at(p)),
+                    c.stroke_width(2),
+                ))
                 .map_err(e)?;
         }
-        let drawn = chart
-            .draw_series(s.points.iter().map(|&p| Circle::new(p, 5, c.filled())))
-            .map_err(e)?;
-        if text {
-            drawn
-                .label(s.name.clone())
-                .legend(move |(x, y)| Circle::new((x + 8, y), 5, c.filled()));
-        }
-    }
-    if text && !plot.series.is_empty() {
         chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperLeft)
-            .draw()
+            .draw_series(s.points.iter().map(|&p| Circle::new(at(p), 5, c.filled())))
             .map_err(e)?;
     }
+    draw_legend(&legend_area, plot).map_err(e)?;
     root.present().map_err(e)?;
+    Ok(())
+}
+
+/// The legend, in its own column: one line per series, then the front.
+fn draw_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    plot: &Plot,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let style = (FONT, 14).into_font().color(&BLACK);
+    let mut y = TITLE_HEIGHT as i32 + 10;
+    let step = (((SIZE.1 - TITLE_HEIGHT - 20) / (plot.series.len() as u32 + 1).max(1)) as i32)
+        .clamp(12, 22);
+    for s in &plot.series {
+        area.draw(&Circle::new((14, y), 5, colour(s.colour).filled()))?;
+        area.draw(&Text::new(s.name.clone(), (26, y - 8), style.clone()))?;
+        y += step;
+    }
+    if plot.front.len() > 1 {
+        let grey = RGBColor(170, 170, 170).stroke_width(6);
+        area.draw(&PathElement::new(vec![(6, y), (22, y)], grey))?;
+        area.draw(&Text::new("Pareto front", (26, y - 8), style))?;
+    }
     Ok(())
 }
 
 /// Writes `DIR/STEM.svg` and `DIR/STEM.png`, atomically.
 pub fn write_plot(dir: &Path, stem: &str, plot: &Plot) -> Result<Vec<PathBuf>> {
+    register_the_font()?;
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
-        draw(&root, plot, true).map_err(|e| anyhow!("plot {stem}: {e}"))?;
+        draw(&root, plot).map_err(|e| anyhow!("plot {stem}: {e}"))?;
     }
     let svg_path = dir.join(format!("{stem}.svg"));
     crate::record::write_text_atomic(&svg_path, &svg)?;
     let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area();
-        draw(&root, plot, false).map_err(|e| anyhow!("plot {stem}: {e}"))?;
+        draw(&root, plot).map_err(|e| anyhow!("plot {stem}: {e}"))?;
     }
     let png_path = dir.join(format!("{stem}.png"));
     let img = image::RgbImage::from_raw(SIZE.0, SIZE.1, rgb)
@@ -223,7 +322,7 @@ pub fn pareto_plot(title: &str, rows: &[&Row], hiders: &[String]) -> Plot {
         let (Some(err), true) = (r.error(), r.is_ok()) else {
             continue;
         };
-        let p = (r.render_ms.max(1e-4), err.max(ERROR_FLOOR));
+        let p = (r.render_ms.max(1e-4), err);
         pts.push(p);
         series.push(Series {
             name: r.hider.clone(),
@@ -235,9 +334,10 @@ pub fn pareto_plot(title: &str, rows: &[&Row], hiders: &[String]) -> Plot {
     Plot {
         title: title.to_owned(),
         x_label: "render time, ms (median)".into(),
-        y_label: format!("error: wrong pixels / covered (0 drawn at {ERROR_FLOOR:.0e})"),
+        y_label: ERROR_AXIS.into(),
         front: pareto_front(&pts),
         series,
+        zero_label: "0 wrong, exact".into(),
     }
 }
 
@@ -256,10 +356,24 @@ pub fn scaling_plot(rows: &[Row], study: Study, hiders: &[String]) -> Plot {
         .collect();
     Plot {
         title: format!("render time vs {}", axis_label(study)),
-        x_label: axis_label(study).into(),
+        x_label: axis_title(study).into(),
         y_label: "render time, ms (median)".into(),
         series,
         front: Vec::new(),
+        zero_label: String::new(),
+    }
+}
+
+/// The y axis title of plots mixing both kinds of error.
+pub const ERROR_AXIS: &str = "error: wrong-pixel share, or mean coverage error";
+
+/// A scaling study's x axis title, with its unit.
+fn axis_title(study: Study) -> &'static str {
+    match study {
+        Study::Polygons => "triangles after clipping (count)",
+        Study::Resolution => "image size (pixels)",
+        Study::DepthComplexity => "depth complexity (surfaces per covered pixel)",
+        _ => axis_label(study),
     }
 }
 
@@ -285,26 +399,81 @@ mod tests {
     }
 
     #[test]
-    fn plots_are_written_as_svg_with_text_and_png_without() {
+    fn ticks_read_as_numbers_people_write() {
+        let got: Vec<String> = [
+            1e-6, 1e-4, 0.001, 0.05, 0.5, 2.0, 20.0, 100.0, 1e3, 1e4, 2.5e5, 1e6,
+        ]
+        .iter()
+        .map(|v| tick_label(*v))
+        .collect();
+        assert_eq!(
+            got,
+            [
+                "1e-6", "1e-4", "0.001", "0.05", "0.5", "2", "20", "100", "1k", "10k", "250k",
+                "1e6"
+            ]
+        );
+        assert_eq!(tick_label(0.0), "0");
+    }
+
+    /// Dark pixels (text or marks) in a rectangle of the image.
+    fn dark_pixels(img: &image::RgbImage, x: (u32, u32), y: (u32, u32)) -> usize {
+        (y.0..y.1)
+            .flat_map(|py| (x.0..x.1).map(move |px| (px, py)))
+            .filter(|&(px, py)| img.get_pixel(px, py).0.iter().all(|&c| c < 110))
+            .count()
+    }
+
+    #[test]
+    fn the_png_carries_title_axis_titles_ticks_and_legend() {
         let dir = std::env::temp_dir().join(format!("hider-bench-plots-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let plot = Plot {
-            title: "t".into(),
-            x_label: "x axis".into(),
-            y_label: "y".into(),
+            title: "Time against error".into(),
+            x_label: "render time, ms".into(),
+            y_label: "error".into(),
             series: vec![Series {
                 name: "zbuffer".into(),
                 colour: 0,
-                points: vec![(1.0, 2.0), (10.0, 30.0)],
+                points: vec![(1.0, 2.0), (10.0, 30.0), (100.0, 0.0)],
                 line: true,
             }],
-            front: vec![(1.0, 2.0)],
+            front: vec![(1.0, 2.0), (100.0, 0.0)],
+            zero_label: "0 wrong".into(),
         };
         let files = write_plot(&dir, "bench-test", &plot).unwrap();
         let svg = std::fs::read_to_string(&files[0]).unwrap();
-        assert!(svg.contains("<svg") && svg.contains("x axis") && svg.contains("zbuffer"));
-        let png = image::open(&files[1]).unwrap();
+        assert!(svg.contains("<svg") && svg.contains("render time, ms") && svg.contains("zbuffer"));
+        assert!(svg.contains(">0 wrong<"), "the zero band is labelled");
+        let png = image::open(&files[1]).unwrap().to_rgb8();
         assert_eq!((png.width(), png.height()), SIZE);
+        let (w, h) = SIZE;
+        let chart_w = w - LEGEND_WIDTH;
+        // Title strip: text only (no axis or data is drawn there).
+        assert!(
+            dark_pixels(&png, (0, chart_w), (0, TITLE_HEIGHT - 8)) > 50,
+            "title"
+        );
+        // The y axis title, rotated, in the leftmost column.
+        assert!(
+            dark_pixels(&png, (0, 30), (TITLE_HEIGHT, h - X_AXIS_HEIGHT)) > 20,
+            "y title"
+        );
+        // The x axis title, under the tick labels.
+        assert!(
+            dark_pixels(&png, (Y_AXIS_WIDTH, chart_w), (h - 28, h)) > 30,
+            "x title"
+        );
+        // Tick labels, between the axis line and the axis title.
+        assert!(
+            dark_pixels(
+                &png,
+                (Y_AXIS_WIDTH, chart_w),
+                (h - X_AXIS_HEIGHT + 6, h - 30)
+            ) > 30
+        );
+        // The legend column holds the series name.
+        assert!(dark_pixels(&png, (chart_w + 20, w), (TITLE_HEIGHT, TITLE_HEIGHT + 30)) > 20);
         // An empty plot still draws (a frame without points).
         write_plot(&dir, "bench-empty", &Plot::default()).unwrap();
         std::fs::remove_dir_all(&dir).unwrap();

@@ -15,7 +15,7 @@ use serde_json::{Map, Value};
 use crate::machine::Machine;
 
 /// Version of the result schema, stored in `results.json`.
-pub const SCHEMA_VERSION: u32 = 1;
+pub const SCHEMA_VERSION: u32 = 2;
 
 /// One run: one hider on one scene at one resolution.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -51,7 +51,9 @@ pub struct Row {
     pub load_ms: f64,
     /// The shared front end `prepare()`, median milliseconds (once per case).
     pub prepare_ms: f64,
-    /// Render time, median of the measured runs, milliseconds.
+    /// Render time, median of the measured runs, milliseconds (in the
+    /// real-size study the whole pipeline from the world-space scene: the
+    /// front end too).
     pub render_ms: f64,
     /// Fastest measured run, milliseconds.
     pub render_min_ms: f64,
@@ -85,6 +87,9 @@ pub struct Row {
     pub depth_error_mean: Option<f64>,
     /// Largest absolute window-depth difference to the oracle.
     pub depth_error_max: Option<f64>,
+    /// Depth-precision study: pixels showing the farther of the two
+    /// surfaces.
+    pub farther_pixels: Option<u64>,
     /// Multi-sample hiders: mean absolute difference between
     /// `Frame::coverage` and the analytic coverage, over all pixels.
     pub coverage_error: Option<f64>,
@@ -95,7 +100,7 @@ pub struct Row {
 }
 
 /// The CSV columns, in order: every field of [`Row`].
-pub const COLUMNS: [&str; 32] = [
+pub const COLUMNS: [&str; 33] = [
     "case",
     "study",
     "scene",
@@ -125,6 +130,7 @@ pub const COLUMNS: [&str; 32] = [
     "tie_differences",
     "depth_error_mean",
     "depth_error_max",
+    "farther_pixels",
     "coverage_error",
     "peak_bytes",
     "counters",

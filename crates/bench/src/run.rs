@@ -13,7 +13,8 @@ use hider_oracle::{
 use hider_plan::registry::{Entry, Kind};
 use hider_scene::timing::{Summary, Timer};
 use hider_scene::{
-    DynHider, Frame, PrepareOptions, ScreenScene, ShadeMode, StatsTable, View, prepare, shade_frame,
+    DynHider, Frame, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, StatsTable, View,
+    prepare, shade_frame,
 };
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -76,6 +77,10 @@ impl Default for RunOptions {
 
 /// A prepared case with its references.
 struct Prepared {
+    /// What the real-size study times from: the world-space scene and its
+    /// view (front end included).
+    scene: Scene,
+    view: View,
     screen: ScreenScene,
     analysis: SceneAnalysis,
     load: Summary,
@@ -117,10 +122,10 @@ fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Resul
     let coverage_cost = analysis.pixel_tests as f64 * analysis.depth_complexity().max(1.0);
     let coverage = if !need_coverage {
         Err("skipped: no multi-sample hider selected".to_owned())
-    } else if case.study != Study::Accuracy {
+    } else if !matches!(case.study, Study::Accuracy | Study::RealSize) {
         // Scaling rows measure time; their multi-sample accuracy is the
-        // accuracy study's business.
-        Err("not computed in scaling studies".to_owned())
+        // business of the accuracy and real-size studies.
+        Err("not computed in this study".to_owned())
     } else if coverage_cost > options.coverage_budget as f64 {
         Err(format!(
             "skipped: analytic coverage would cost about {coverage_cost:.0} clip steps (budget {})",
@@ -130,6 +135,8 @@ fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Resul
         Ok(analytic_coverage(&screen))
     };
     Ok(Prepared {
+        scene,
+        view,
         screen,
         analysis,
         load,
@@ -166,6 +173,7 @@ fn base_row(index: usize, case: &Case, p: &Prepared, entry: &Entry, machine: &Ma
 /// last render for the contact sheet.
 fn run_job(
     entry: &Entry,
+    study: Study,
     p: &Prepared,
     options: &RunOptions,
     stop: &AtomicBool,
@@ -179,7 +187,11 @@ fn run_job(
         }
     }
     let mut hider = entry.make();
-    let (summary, stats) = match time_render(hider.as_mut(), p, options, stop, frame) {
+    // The real-size study times what a frame loop waits for: the front
+    // end too (the tiled z-buffer brings a lean one of its own).
+    let whole = study == Study::RealSize;
+    let timing = study_timing(&options.timing, study);
+    let (summary, stats) = match time_render(hider.as_mut(), p, whole, &timing, stop, frame) {
         Ok(done) => done,
         Err(status) => {
             row.status = status;
@@ -190,7 +202,7 @@ fn run_job(
     row.render_ms = summary.median_ms;
     row.render_min_ms = summary.min_ms;
     row.render_max_ms = summary.max_ms;
-    row.warmup = options.timing.warmup;
+    row.warmup = timing.warmup;
     row.runs = summary.runs;
     row.peak_bytes = stats.peak_bytes;
     row.counters = stats
@@ -203,26 +215,52 @@ fn run_job(
         shade_frame(&p.screen, frame, ShadeMode::Lambert);
     }
     score(entry.kind, p, options, row, frame);
+    if study == Study::DepthPrecision {
+        row.farther_pixels = Some(crate::precision::farther_pixels(frame));
+    }
 }
 
-/// Renders with warm-up and repeats, catching errors and panics: the
-/// timing and the stats of the last render, or the row's status saying
-/// why there are none.
+/// How a study's jobs are timed: as asked, except that a real-size job
+/// takes at most 3 measured renders and stops repeating after a second
+/// (its frames take milliseconds to a second, and the default run should
+/// stay short), and a depth-precision job renders once (it is scored, not
+/// timed).
+pub fn study_timing(timing: &Timer, study: Study) -> Timer {
+    match study {
+        Study::RealSize => timing
+            .clone()
+            .with_runs(timing.runs.min(3))
+            .with_max_seconds(timing.max_seconds.min(1.0)),
+        Study::DepthPrecision => timing.clone().with_runs(1).with_warmup(0),
+        _ => timing.clone(),
+    }
+}
+
+/// Renders with warm-up and repeats (from the world-space scene, front end
+/// included, when `whole`; else from the prepared scene), catching errors
+/// and panics: the timing and the stats of the last render, or the row's
+/// status saying why there are none.
 fn time_render(
     hider: &mut dyn DynHider,
     p: &Prepared,
-    options: &RunOptions,
+    whole: bool,
+    timing: &Timer,
     stop: &AtomicBool,
     frame: &mut Frame,
 ) -> std::result::Result<(Summary, StatsTable), String> {
     let timed = catch_unwind(AssertUnwindSafe(|| {
         let mut last = None;
-        let summary = options
-            .timing
-            .try_time(&|| stop.load(Ordering::Relaxed), || {
-                last = Some(hider.render(&p.screen, frame)?);
-                Ok::<(), hider_scene::Error>(())
+        let mut screen = whole.then(|| p.screen.clone());
+        let prepare_options = PrepareOptions::default();
+        let summary = timing.try_time(&|| stop.load(Ordering::Relaxed), || {
+            last = Some(match &mut screen {
+                Some(screen) => {
+                    hider.render_scene(&p.scene, &p.view, &prepare_options, screen, frame)?
+                }
+                None => hider.render(&p.screen, frame)?,
             });
+            Ok::<(), hider_scene::Error>(())
+        });
         summary.map(|s| (s, last))
     }));
     match timed {
@@ -256,7 +294,18 @@ fn score(kind: Kind, p: &Prepared, options: &RunOptions, row: &mut Row, frame: &
             row.tie_differences = Some(s.tie_differences);
             row.depth_error_mean = Some(s.depth_error_mean);
             row.depth_error_max = Some(s.depth_error_max);
-            if kind == Kind::MultiSample {
+            if kind != Kind::MultiSample {
+                // One sample per pixel: coverage 0 or 1 at the centre, the
+                // first point of the anti-aliasing curve.
+                if let Ok(c) = &p.coverage {
+                    let binary: Vec<f32> = frame
+                        .ids
+                        .iter()
+                        .map(|&id| if id == NO_ID { 0.0 } else { 1.0 })
+                        .collect();
+                    row.coverage_error = Some(c.mean_coverage_error(&binary));
+                }
+            } else {
                 match &p.coverage {
                     Ok(c) => match score_coverage(c, frame) {
                         Some(e) => row.coverage_error = Some(e),
@@ -332,10 +381,18 @@ pub fn run(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<Run
                 complete = false;
                 break 'cases;
             }
+            // The oracle's time is the accuracy study's business: in the
+            // studies that only use it as a reference, it is not timed.
+            if entry.kind == Kind::Reference
+                && matches!(case.study, Study::RealSize | Study::DepthPrecision)
+            {
+                bar.inc(1);
+                continue;
+            }
             bar.set_message(format!("{} {}", case.label(), entry.name));
             let mut row = base_row(*index, case, &p, entry, &machine);
             frame.clear();
-            run_job(entry, &p, options, stop, &mut row, &mut frame);
+            run_job(entry, case.study, &p, options, stop, &mut row, &mut frame);
             if sheet_wanted && row.is_ok() && entry.kind != Kind::Reference {
                 sheet.tiles.push((entry.name.to_owned(), frame.clone()));
             }

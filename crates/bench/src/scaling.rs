@@ -14,7 +14,7 @@ use crate::record::Row;
 /// The quantity a scaling study varies, read from a row.
 pub fn axis(study: Study, row: &Row) -> Option<f64> {
     match study {
-        Study::Accuracy => None,
+        Study::Accuracy | Study::RealSize | Study::DepthPrecision => None,
         Study::Polygons => Some(row.triangles as f64),
         Study::Resolution => Some(f64::from(row.width) * f64::from(row.height)),
         Study::DepthComplexity => Some(row.depth_complexity),
@@ -24,7 +24,7 @@ pub fn axis(study: Study, row: &Row) -> Option<f64> {
 /// Axis label for tables and plots.
 pub fn axis_label(study: Study) -> &'static str {
     match study {
-        Study::Accuracy => "",
+        Study::Accuracy | Study::RealSize | Study::DepthPrecision => "",
         Study::Polygons => "triangles",
         Study::Resolution => "pixels",
         Study::DepthComplexity => "depth complexity",

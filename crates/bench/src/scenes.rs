@@ -58,6 +58,15 @@ pub enum Source {
     /// [`layers`]`(k)`: `k` stacked screen-filling layers of small
     /// triangles: the depth-complexity axis.
     Layers(u32),
+    /// [`crate::precision::near_coplanar`]: two parallel surfaces `gap`
+    /// (relative to their distance) apart, the camera's near/far ratio
+    /// `ratio`: the depth-precision study.
+    NearCoplanar {
+        /// Gap between the surfaces over their distance from the eye.
+        gap: f64,
+        /// Near plane over far plane.
+        ratio: f64,
+    },
     /// A scene built in memory (tests, library users).
     Scene(Box<Scene>),
 }
@@ -77,6 +86,7 @@ impl Source {
                 .with_context(|| format!("no hard case named {name}"))?,
             Source::Sphere(n) => procedural::uv_sphere(*n),
             Source::Layers(k) => layers(*k),
+            Source::NearCoplanar { gap, ratio } => crate::precision::near_coplanar(*gap, *ratio),
             Source::Scene(s) => (**s).clone(),
         })
     }

@@ -6,11 +6,10 @@ use std::path::Path;
 
 use anyhow::Result;
 
+use super::answer::{aa_plot, precision_plot};
 use super::rows::{accuracy_cases, accuracy_rows, geometric_mean, hider_order};
 use crate::matrix::Study;
-use crate::plots::{
-    ERROR_FLOOR, Plot, Series, pareto_front, pareto_plot, scaling_plot, write_plot,
-};
+use crate::plots::{ERROR_AXIS, Plot, Series, pareto_front, pareto_plot, scaling_plot, write_plot};
 use crate::record::{Results, Row};
 
 /// Writes every plot into `dir` (`bench-*.svg` and `.png`) and returns
@@ -20,6 +19,16 @@ pub fn write_plots(results: &Results, dir: &Path) -> Result<Vec<String>> {
     let rows = &results.rows;
     let hiders = hider_order(rows);
     let mut stems = Vec::new();
+    let answers = [
+        ("bench-answer-aa", aa_plot(rows, &hiders)),
+        ("bench-answer-precision", precision_plot(rows, &hiders)),
+    ];
+    for (stem, plot) in answers {
+        if let Some(plot) = plot {
+            write_plot(dir, stem, &plot)?;
+            stems.push(stem.to_owned());
+        }
+    }
     if let Some(plot) = pareto_all(rows, &hiders) {
         write_plot(dir, "bench-pareto-all", &plot)?;
         stems.push("bench-pareto-all".to_owned());
@@ -41,14 +50,14 @@ pub fn write_plots(results: &Results, dir: &Path) -> Result<Vec<String>> {
             dir,
             &stem,
             &pareto_plot(
-                &format!("{scene} at {w} px: time vs error"),
+                &format!("{scene} at {w} px: time against error"),
                 &case_rows,
                 &hiders,
             ),
         )?;
         stems.push(stem);
     }
-    for study in &Study::ALL[1..] {
+    for study in &Study::SCALING {
         if !rows.iter().any(|r| r.study == study.as_str() && r.is_ok()) {
             continue;
         }
@@ -78,7 +87,7 @@ fn pareto_all(rows: &[Row], hiders: &[String]) -> Option<Plot> {
         series_all.push(Series {
             name: h.clone(),
             colour: k,
-            points: vec![(t, err.max(ERROR_FLOOR))],
+            points: vec![(t, err)],
             line: false,
         });
     }
@@ -87,10 +96,11 @@ fn pareto_all(rows: &[Row], hiders: &[String]) -> Option<Plot> {
     }
     let pts: Vec<(f64, f64)> = series_all.iter().map(|s| s.points[0]).collect();
     Some(Plot {
-        title: "all accuracy scenes: time vs error".into(),
+        title: "Accuracy study, all scenes: time against error".into(),
         x_label: "render time, ms (geometric mean over scenes)".into(),
-        y_label: "mean error over scenes".into(),
+        y_label: format!("{ERROR_AXIS} (mean)"),
         front: pareto_front(&pts),
         series: series_all,
+        zero_label: "0 wrong, exact".into(),
     })
 }

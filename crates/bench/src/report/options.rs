@@ -12,9 +12,20 @@ pub struct ReportOptions {
     pub image_dir: PathBuf,
     /// The command that regenerates the report, quoted at the top.
     pub command: String,
+    /// Folder the report is written to, to link only the files beside it.
+    pub report_dir: PathBuf,
 }
 
 impl ReportOptions {
+    /// The link to `name` beside the report, or `None` when the report's
+    /// folder does not hold it (a link that would not resolve is left out).
+    pub fn file_link(&self, name: &str) -> Option<String> {
+        self.report_dir
+            .join(name)
+            .is_file()
+            .then(|| name.to_owned())
+    }
+
     /// The link to image `STEM.EXT`, or `None` when the image folder does
     /// not hold it (a plot that was not drawn is not linked).
     pub fn image_link(&self, stem: &str, ext: &str) -> Option<String> {

@@ -23,6 +23,51 @@ pub(super) fn kind_of(rows: &[Row], hider: &str) -> String {
         .map_or_else(String::new, |r| r.kind.clone())
 }
 
+/// What a registry kind means, for people: `exact, pixel centre` for
+/// `ExactPixelCentre`.
+pub fn kind_label(kind: &str) -> &str {
+    match kind {
+        "ExactPixelCentre" => "exact, pixel centre",
+        "ApproximatePixelCentre" => "shortcut (approximate)",
+        "MultiSample" => "anti-aliased (multi-sample)",
+        "Reference" => "reference (oracle)",
+        other => other,
+    }
+}
+
+/// The finished rows of one hider in one study.
+pub(super) fn study_rows<'a>(
+    rows: &'a [Row],
+    study: &'a str,
+    hider: &'a str,
+) -> impl Iterator<Item = &'a Row> + 'a {
+    rows.iter()
+        .filter(move |r| r.study == study && r.hider == hider && r.is_ok())
+}
+
+/// `(scene, width)` of a study's cases, in matrix order.
+pub(super) fn study_cases(rows: &[Row], study: &str) -> Vec<(String, u32)> {
+    let mut seen = Vec::new();
+    for r in rows.iter().filter(|r| r.study == study) {
+        let key = (r.scene.clone(), r.width);
+        if !seen.contains(&key) {
+            seen.push(key);
+        }
+    }
+    seen
+}
+
+/// The row of `hider` on one case of a study.
+pub(super) fn cell<'a>(
+    rows: &'a [Row],
+    study: &str,
+    case: &(String, u32),
+    hider: &str,
+) -> Option<&'a Row> {
+    rows.iter()
+        .find(|r| r.study == study && r.scene == case.0 && r.width == case.1 && r.hider == hider)
+}
+
 /// Geometric mean of the positive values, `None` if there are none.
 pub(super) fn geometric_mean(values: impl Iterator<Item = f64>) -> Option<f64> {
     let (sum, n) = values
@@ -42,14 +87,7 @@ pub(super) fn accuracy_rows<'a>(
 
 /// `(scene, width)` of the accuracy cases, in matrix order.
 pub(super) fn accuracy_cases(rows: &[Row]) -> Vec<(String, u32)> {
-    let mut seen = Vec::new();
-    for r in rows.iter().filter(|r| r.study == "accuracy") {
-        let key = (r.scene.clone(), r.width);
-        if !seen.contains(&key) {
-            seen.push(key);
-        }
-    }
-    seen
+    study_cases(rows, "accuracy")
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@ pub(super) fn scaling_section(
     hiders: &[String],
     options: &ReportOptions,
 ) {
-    let scaling: Vec<Study> = Study::ALL[1..]
+    let scaling: Vec<Study> = Study::SCALING
         .iter()
         .copied()
         .filter(|st| rows.iter().any(|r| r.study == st.as_str()))

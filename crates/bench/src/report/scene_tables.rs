@@ -4,7 +4,7 @@
 
 use std::fmt::Write as _;
 
-use super::format::fmt_ms;
+use super::format::{fmt_count, fmt_error, fmt_ms};
 use super::options::ReportOptions;
 use crate::record::Row;
 
@@ -58,7 +58,7 @@ fn accuracy_table(s: &mut String, rows: &[Row], hiders: &[String], cases: &[(Str
     let _ = writeln!(s, "## Accuracy: wrong pixels per scene\n");
     let _ = writeln!(
         s,
-        "Wrong = non-tie wrong ids + coverage mismatches; `ties` is the oracle's tie count for the scene; `c` is the coverage error of multi-sample hiders.\n"
+        "Pixel-centre hiders: wrong ids on non-tie pixels, then `+ N cov.` for coverage mismatches (pixel centres covered in one image and not the other), `0` when both are none; `ties` is the oracle's tie count for the scene (any surface accepted there). Anti-aliasing hiders: `c` and their mean coverage error against exact analytic coverage.\n"
     );
     header(s, "scene (triangles, ties)", hiders);
     for (scene, w) in cases {
@@ -82,18 +82,20 @@ fn accuracy_table(s: &mut String, rows: &[Row], hiders: &[String], cases: &[(Str
     }
 }
 
-/// What the accuracy table shows for one run: `0`, the wrong pixels in
-/// bold, the coverage error of a multi-sample hider, `ref`, `err` or `-`.
+/// What the accuracy table shows for one run: `0`, the wrong ids in bold
+/// and the coverage mismatches, the coverage error of a multi-sample
+/// hider, `ref`, `err` or `-`.
 fn accuracy_text(row: Option<&Row>) -> String {
     match row {
         None => "".into(),
         Some(r) if !r.is_ok() => "err".into(),
         Some(r) if r.kind == "MultiSample" && r.coverage_error.is_some() => {
-            format!("c {:.1e}", r.coverage_error.unwrap_or(0.0))
+            format!("c {}", fmt_error(r.coverage_error.unwrap_or(0.0)))
         }
         Some(r) => match (r.wrong_ids, r.coverage_mismatches) {
             (Some(0), Some(0)) => "0".into(),
-            (Some(a), Some(b)) => format!("**{}**", a + b),
+            (Some(a), Some(0)) => format!("**{}**", fmt_count(a)),
+            (Some(a), Some(b)) => format!("**{}** + {} cov.", fmt_count(a), fmt_count(b)),
             _ if r.accuracy == "reference" => "ref".into(),
             _ => "-".into(),
         },

@@ -3,7 +3,7 @@
 
 use std::fmt::Write as _;
 
-use super::format::{fmt_bytes, fmt_ms};
+use super::format::{fmt_bytes, fmt_error, fmt_ms};
 use super::rows::hider_order;
 use crate::matrix::Study;
 use crate::record::{Results, Row};
@@ -36,8 +36,8 @@ pub fn terminal_table(results: &Results) -> String {
 /// One row of the terminal table.
 fn terminal_line(s: &mut String, r: &Row) {
     let wrong = match (r.coverage_error, r.wrong_ids, r.coverage_mismatches) {
-        (Some(e), _, _) => format!("c {e:.1e}"),
-        (None, Some(w), Some(c)) => (w + c).to_string(),
+        (Some(e), _, _) if r.kind == "MultiSample" => format!("c {}", fmt_error(e)),
+        (_, Some(w), Some(c)) => (w + c).to_string(),
         _ => "-".into(),
     };
     let ties = r.ties.map_or_else(|| "-".into(), |t| t.to_string());
@@ -75,7 +75,7 @@ fn terminal_line(s: &mut String, r: &Row) {
 /// Growth exponents per hider and scaling study as a Markdown-ish table
 /// (readable in a terminal too).
 pub fn exponent_table(rows: &[Row]) -> String {
-    let studies: Vec<Study> = Study::ALL[1..]
+    let studies: Vec<Study> = Study::SCALING
         .iter()
         .copied()
         .filter(|s| rows.iter().any(|r| r.study == s.as_str()))
