@@ -11,8 +11,8 @@ use hider::plan::analyze::DEFAULT_PAIR_BUDGET;
 pub struct AnalyzeArgs {
     /// OBJ file, or a generated scene (as for `hider render`).
     model: String,
-    /// Square image size in pixels the analysis assumes.
-    #[arg(long, default_value_t = 512)]
+    /// Square image size in pixels the analysis assumes (1 to 16384).
+    #[arg(long, default_value_t = 512, value_parser = crate::args::side)]
     size: u32,
     /// Anti-aliasing will be asked for.
     #[arg(long)]
@@ -24,7 +24,7 @@ pub struct AnalyzeArgs {
     #[arg(long)]
     no_shading: bool,
     /// Most candidate pairs each pair search examines.
-    #[arg(long, default_value_t = DEFAULT_PAIR_BUDGET)]
+    #[arg(long, default_value_t = DEFAULT_PAIR_BUDGET, value_parser = crate::args::pair_budget)]
     pair_budget: u64,
 }
 
@@ -41,6 +41,6 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
     let planned = hider::plan::auto(&scene, &options)
         .with_context(|| format!("cannot analyse {}", args.model))?;
     println!("{}: {}", args.model, planned.effects);
-    println!("{}", planned.plan.summary());
+    println!("{}", planned.summary());
     Ok(())
 }

@@ -2,7 +2,9 @@
 //! what a model calls for, list the hiders, and start the benchmark.
 
 mod analyze;
+mod args;
 mod bench;
+mod empty;
 mod model;
 mod render;
 mod render_args;
@@ -24,6 +26,7 @@ struct Cli {
 enum Command {
     /// Render a model (an OBJ file, or a generated scene `gen:NAME`) to PNG
     /// and optional id/depth dumps.
+    #[command(allow_negative_numbers = true)]
     Render(Box<render::RenderArgs>),
     /// Benchmark every registered hider: accuracy against the oracle beside
     /// time; writes a table, results.csv/json, a report and plots.
@@ -41,18 +44,22 @@ enum Command {
     /// Report which effects a model calls for (transparency, textures,
     /// lighting, intersections, cyclic overlaps, back faces...) and what
     /// `--algo auto` would pick.
+    #[command(allow_negative_numbers = true)]
     Analyze(analyze::AnalyzeArgs),
 }
 
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
+        Err(e) if e.use_stderr() => {
+            // Usage errors: one line naming the flag and value, status 2.
+            eprintln!("hider: error: {}", args::usage_error_line(&e));
+            return ExitCode::from(2);
+        }
         Err(e) => {
-            // Usage errors: clap's message, exit status 2; help and version
-            // print normally with status 0.
-            let code = if e.use_stderr() { 2 } else { 0 };
+            // Help and version print normally with status 0.
             let _ = e.print();
-            return ExitCode::from(code);
+            return ExitCode::SUCCESS;
         }
     };
     let result = match cli.command {

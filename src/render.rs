@@ -4,8 +4,6 @@
 //! the flags set) or, with `--algo auto`, from the planner, which also
 //! hands over the scene its analysis prepared.
 
-use std::path::Path;
-
 use anyhow::{Context, Result, bail};
 use hider::plan::stages::prepare_surface;
 use hider::plan::{Plan, RenderOptions, Shader, Stages, planner, registry};
@@ -32,11 +30,12 @@ fn auto(args: &RenderArgs, scene: &Scene, view: &View, options: PrepareOptions) 
         .with_size(view.viewport.width, view.viewport.height)
         .with_camera(Some(view.camera))
         .with_shading(args.shade_mode() == ShadeMode::Lambert)
-        .with_vector_output(args.svg.is_some())
+        .with_antialiasing(args.aa)
+        .with_vector_output(args.vector || args.svg.is_some())
         .with_prepare(options);
     let planned = hider::plan::auto(scene, &analysis).context("scene analysis for --algo auto")?;
     let hider = planned.plan.build(&args.hider_config())?;
-    eprintln!("{}", planned.plan.summary());
+    eprintln!("{}", planned.summary());
     Ok(Chosen {
         hider,
         screen: planned.screen,
@@ -88,7 +87,7 @@ fn shade(args: &RenderArgs, chosen: &Chosen, stages: &Stages, frame: &mut Frame)
         ShadeMode::Lambert => {
             let trace = Shader::default().shade(&chosen.screen, frame, stages);
             for failure in trace.texture_failures {
-                eprintln!("warning: {failure}; the material's colour is used");
+                eprintln!("hider: warning: {failure}; the material's colour is used");
             }
         }
         mode => shade_frame(&chosen.screen, frame, mode),
@@ -98,7 +97,7 @@ fn shade(args: &RenderArgs, chosen: &Chosen, stages: &Stages, frame: &mut Frame)
 /// Runs `hider render`.
 pub fn run(args: &RenderArgs) -> Result<()> {
     let (width, height) = args.image_size()?;
-    args.check_threads()?;
+    args.check_requests()?;
     if args.threads > 1 {
         rayon::ThreadPoolBuilder::new()
             .num_threads(args.threads)
@@ -132,7 +131,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if chosen.hider.resolves_color() {
         // Hiders that composite colour themselves sample the textures.
         for failure in prepare_surface(&mut chosen.screen, &stages) {
-            eprintln!("warning: {failure}; the material's colour is used");
+            eprintln!("hider: warning: {failure}; the material's colour is used");
         }
     }
     let mut frame = Frame::new(width, height)?;
@@ -158,6 +157,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     shade(args, &chosen, &stages, &mut frame);
     write_outputs(args, &chosen, &frame)?;
+    if let Some(warning) =
+        crate::empty::nothing_on_screen(&scene, &chosen.screen, frame.covered_count())
+    {
+        eprintln!("hider: warning: {warning}");
+    }
     eprintln!(
         "{}: {} triangles in, {} on screen, {} pixels covered; {}",
         chosen.hider.name(),
@@ -183,20 +187,23 @@ fn write_outputs(args: &RenderArgs, chosen: &Chosen, frame: &Frame) -> Result<()
             Some((svg, output))
         }
     };
-    let out = |p: &Path| format!("cannot write {}", p.display());
+    // The scene crate's errors name the file; the context says which
+    // output it is.
     frame
         .write_png(&args.output)
-        .with_context(|| out(&args.output))?;
+        .context("cannot write the PNG")?;
     if let Some(p) = &args.ids_out {
-        frame.write_ids(p).with_context(|| out(p))?;
+        frame.write_ids(p).context("cannot write the id dump")?;
     }
     if let Some(p) = &args.depth_out {
-        frame.write_depth(p).with_context(|| out(p))?;
+        frame
+            .write_depth(p)
+            .context("cannot write the depth dump")?;
     }
     if let Some((svg, output)) = vector {
         output
             .write_svg(&chosen.screen, svg, args.shade_mode())
-            .with_context(|| out(svg))?;
+            .context("cannot write the SVG")?;
     }
     Ok(())
 }

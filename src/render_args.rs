@@ -5,12 +5,15 @@
 use std::path::PathBuf;
 
 use anyhow::{Context, Result, bail};
+
 use clap::{Args, ValueEnum};
 use glam::DVec3;
 use hider::geom::{Camera, Projection};
 use hider::plan::HiderConfig;
 use hider::scene::{PrepareOptions, Scene, ShadeMode, TransformPrecision, fit_camera};
 use hider::zbuffer::{DepthFormat, DepthSource};
+
+use crate::args;
 
 /// Arguments of `hider render`.
 #[derive(Args, Debug)]
@@ -22,18 +25,27 @@ pub struct RenderArgs {
     #[arg(short, long)]
     pub output: PathBuf,
     /// Square image size in pixels (1 to 16384).
-    #[arg(long, conflicts_with_all = ["width", "height"])]
+    #[arg(long, value_parser = args::side, conflicts_with_all = ["width", "height"])]
     size: Option<u32>,
     /// Image width in pixels (with --height).
-    #[arg(long, requires = "height")]
+    #[arg(long, value_parser = args::side)]
     width: Option<u32>,
     /// Image height in pixels (with --width).
-    #[arg(long, requires = "width")]
+    #[arg(long, value_parser = args::side)]
     height: Option<u32>,
-    /// Hidden-surface algorithm (see `hider list`), or `auto` for the
-    /// cheapest one exact for what the scene calls for.
-    #[arg(long, default_value = "zbuffer")]
+    /// Hidden-surface algorithm (see `hider list`), or `auto`: the planner
+    /// picks the cheapest one exact for what the scene calls for (and for
+    /// --aa, --vector) and says why.
+    #[arg(long, default_value = "auto")]
     pub algo: String,
+    /// Ask for anti-aliased edges: `--algo auto` picks the cheapest exact
+    /// anti-aliasing hider.
+    #[arg(long)]
+    pub aa: bool,
+    /// Ask for vector output: `--algo auto` picks a hider with an ordered
+    /// polygon list (write it with --svg; --svg implies --vector).
+    #[arg(long)]
+    pub vector: bool,
     /// Depth buffer format of the z-buffer.
     #[arg(long, value_enum)]
     depth_format: Option<DepthFormatArg>,
@@ -57,30 +69,30 @@ pub struct RenderArgs {
     #[arg(long, value_enum, default_value = "lambert")]
     shade: ShadeArg,
     /// Eye position x,y,z (default: the fit camera).
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = args::vec3, allow_hyphen_values = true)]
     eye: Option<DVec3>,
     /// Point looked at x,y,z.
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = args::vec3, allow_hyphen_values = true)]
     target: Option<DVec3>,
     /// Up direction x,y,z.
-    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    #[arg(long, value_parser = args::vec3, allow_hyphen_values = true)]
     up: Option<DVec3>,
     /// Vertical field of view in degrees.
-    #[arg(long)]
+    #[arg(long, value_parser = args::fovy)]
     fovy: Option<f64>,
     /// Near plane distance.
-    #[arg(long)]
+    #[arg(long, value_parser = args::distance)]
     near: Option<f64>,
     /// Far plane distance.
-    #[arg(long)]
+    #[arg(long, value_parser = args::distance)]
     far: Option<f64>,
     /// Worker threads: the tiled z-buffer renders tiles in parallel, and
     /// above 1 the front end prepares large scenes in parallel too.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = args::threads)]
     pub threads: usize,
     /// Render K times after a warm-up and print the median and minimum
     /// milliseconds of prepare + clear + rasterise.
-    #[arg(long, default_value_t = 0)]
+    #[arg(long, default_value_t = 0, value_parser = args::repeat)]
     pub repeat: u32,
 }
 
@@ -115,24 +127,6 @@ enum ShadeArg {
     Ids,
 }
 
-/// Parses `x,y,z` of finite numbers.
-fn parse_vec3(s: &str) -> Result<DVec3, String> {
-    let parts: Vec<&str> = s.split(',').collect();
-    if parts.len() != 3 {
-        return Err(format!("expected x,y,z, got '{s}'"));
-    }
-    let mut v = [0.0; 3];
-    for (slot, p) in v.iter_mut().zip(&parts) {
-        *slot = p
-            .trim()
-            .parse::<f64>()
-            .ok()
-            .filter(|x| x.is_finite())
-            .ok_or_else(|| format!("'{p}' is not a finite number"))?;
-    }
-    Ok(DVec3::from_array(v))
-}
-
 impl RenderArgs {
     /// The image size, `--size` or `--width` and `--height` (512 x 512 by
     /// default), checked.
@@ -140,23 +134,39 @@ impl RenderArgs {
         let (width, height) = match (self.size, self.width, self.height) {
             (Some(n), _, _) => (n, n),
             (None, Some(w), Some(h)) => (w, h),
-            _ => (512, 512),
+            (None, Some(w), None) => {
+                bail!("--width {w} needs --height too (or --size for a square)")
+            }
+            (None, None, Some(h)) => {
+                bail!("--height {h} needs --width too (or --size for a square)")
+            }
+            (None, None, None) => (512, 512),
         };
         hider::scene::view::check_image_size(width, height).context("bad image size")?;
         Ok((width, height))
     }
 
-    /// Checks `--threads`.
-    pub fn check_threads(&self) -> Result<()> {
-        if self.threads == 0 || self.threads > 1024 {
-            bail!("--threads must be 1 to 1024, got {}", self.threads);
-        }
-        Ok(())
-    }
-
     /// Whether `--algo auto` asks the planner to choose.
     pub fn planned(&self) -> bool {
         self.algo == "auto"
+    }
+
+    /// Checks the requests to the planner: `--aa` and `--vector` need
+    /// `--algo auto` (a named hider does what it does), and `--vector`
+    /// needs `--svg` to write the vector output to.
+    pub fn check_requests(&self) -> Result<()> {
+        for (asked, flag) in [(self.aa, "--aa"), (self.vector, "--vector")] {
+            if asked && !self.planned() {
+                bail!(
+                    "{flag} is a request to the planner (--algo auto), but --algo {} was named",
+                    self.algo
+                );
+            }
+        }
+        if self.vector && self.svg.is_none() {
+            bail!("--vector needs --svg FILE to write the vector output to");
+        }
+        Ok(())
     }
 
     /// The knobs for the hider: depth format and source, threads, vector

@@ -70,7 +70,7 @@ fn bad_inputs_exit_2_with_one_line() {
 
     let good = write(&dir, "good.obj", &format!("{tri}f 1 2 3\n"));
     let out = hider(&["render", &good, "-o", &png_s, "--size", "0"]);
-    assert_fails(&out, &["width", "at least 1"], &png);
+    assert_fails(&out, &["--size", "'0'", "1 to 16384"], &png);
     let out = hider(&["render", &good, "-o", &png_s, "--size", "16385"]);
     assert_fails(&out, &["16385", "16384"], &png);
     let out = hider(&["render", &good, "-o", &png_s, "--algo", "nonesuch"]);
@@ -212,6 +212,8 @@ fn painter_writes_svg_and_other_hiders_refuse_it() {
         "gen:cube",
         "-o",
         png.to_str().unwrap(),
+        "--algo",
+        "zbuffer",
         "--svg",
         svg.to_str().unwrap(),
     ]);

@@ -94,6 +94,42 @@ impl RenderOptions {
         self
     }
 
+    /// What these options ask for, in words: "a shaded 512 x 512 image",
+    /// with "anti-aliased" and "with vector output" when asked.
+    ///
+    /// ```
+    /// use hider_plan::RenderOptions;
+    ///
+    /// let asked = RenderOptions::default().with_antialiasing(true).requested();
+    /// assert_eq!(asked, "an anti-aliased shaded 512 x 512 image");
+    /// ```
+    pub fn requested(&self) -> String {
+        let mut words = Vec::new();
+        if self.antialiasing {
+            words.push("anti-aliased");
+        }
+        words.push(if self.shading {
+            "shaded"
+        } else {
+            "id-coloured"
+        });
+        let article = if words[0].starts_with(['a', 'e', 'i', 'o', 'u']) {
+            "an"
+        } else {
+            "a"
+        };
+        let mut s = format!(
+            "{article} {} {} x {} image",
+            words.join(" "),
+            self.width,
+            self.height
+        );
+        if self.vector_output {
+            s.push_str(" with vector output");
+        }
+        s
+    }
+
     /// The view these options describe for `scene` (size checked).
     pub fn view(&self, scene: &Scene) -> Result<View> {
         Ok(match self.camera {

@@ -103,6 +103,19 @@ pub struct Planned {
     /// ([`Plan::prepare_options`] of the analysis's `prepare`): what
     /// `prepare` would give, without preparing a second time.
     pub screen: ScreenScene,
+    /// What the caller asked for, in words
+    /// ([`RenderOptions::requested`]).
+    pub requested: String,
+}
+
+impl Planned {
+    /// One line: what was asked for, the choice and why
+    /// ([`Plan::summary`] after the request).
+    pub fn summary(&self) -> String {
+        let plan = self.plan.summary();
+        let choice = plan.strip_prefix("auto: ").unwrap_or(&plan);
+        format!("auto, asked for {}: {choice}", self.requested)
+    }
 }
 
 /// Analyses `scene` and plans for it with the registered hiders.
@@ -131,6 +144,7 @@ pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
         plan,
         view: analysis.view,
         screen,
+        requested: options.requested(),
     })
 }
 

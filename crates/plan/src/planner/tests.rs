@@ -135,6 +135,7 @@ fn check_exact(name: &str, scene: &Scene, options: RenderOptions) {
         plan,
         view,
         screen,
+        ..
     } = auto(scene, &options).unwrap();
     let full = prepare(scene, &view, &PrepareOptions::default()).unwrap();
     let reference = reference::ray_cast(&full);
@@ -210,4 +211,34 @@ fn auto_refuses_depth_knobs_and_takes_threads_and_vector_output() {
     let planned = auto(&procedural::cyclic_triple(), &vector.with_size(32, 32)).unwrap();
     assert_eq!(planned.plan.algo, "painter");
     assert!(planned.plan.build(&config).is_ok());
+}
+
+#[test]
+fn the_one_line_says_what_was_asked_and_what_was_chosen() {
+    let scene = procedural::cube();
+    let options = RenderOptions::default().with_size(32, 16);
+    let line = auto(&scene, &options).unwrap().summary();
+    assert!(
+        line.starts_with("auto, asked for a shaded 32 x 16 image: zbuffer-tiled ("),
+        "{line}"
+    );
+    let line = auto(&scene, &options.with_antialiasing(true))
+        .unwrap()
+        .summary();
+    assert!(
+        line.starts_with("auto, asked for an anti-aliased shaded 32 x 16 image: abuffer ("),
+        "{line}"
+    );
+    let line = auto(
+        &scene,
+        &options.with_vector_output(true).with_shading(false),
+    )
+    .unwrap()
+    .summary();
+    assert!(
+        line.starts_with(
+            "auto, asked for an id-coloured 32 x 16 image with vector output: painter"
+        ),
+        "{line}"
+    );
 }

@@ -1,0 +1,190 @@
+//! Checking command-line values the way the rest of the tool reports
+//! errors: one line naming the flag and the value, exit status 2.
+//!
+//! clap's own messages for a bad value span several lines (the error, a
+//! tip, the usage, a pointer to `--help`), and a negative number after a
+//! flag is taken for another flag. The value parsers here give the reason
+//! in words, and [`usage_error_line`] folds any clap error into one line.
+
+use clap::error::{ContextKind, ContextValue, ErrorKind};
+
+/// Largest image side in pixels (the scene crate's limit).
+const MAX_SIDE: u64 = hider::geom::fixed::MAX_IMAGE_SIDE as u64;
+
+/// A whole number from `lo` to `hi`, or the reason it is not.
+fn whole(s: &str, lo: u64, hi: u64, what: &str) -> Result<u64, String> {
+    let range = || format!("must be a whole number of {what} from {lo} to {hi}");
+    match s.trim().parse::<i128>() {
+        Ok(n) if n >= i128::from(lo) && n <= i128::from(hi) => Ok(n as u64),
+        _ => Err(range()),
+    }
+}
+
+/// `--size`, `--width`, `--height`: 1 to 16384 pixels.
+pub fn side(s: &str) -> Result<u32, String> {
+    whole(s, 1, MAX_SIDE, "pixels").map(|n| n as u32)
+}
+
+/// `--threads`: 1 to 1024.
+pub fn threads(s: &str) -> Result<usize, String> {
+    whole(s, 1, 1024, "threads").map(|n| n as usize)
+}
+
+/// `--repeat`: 0 to 1 000 000 timed renders.
+pub fn repeat(s: &str) -> Result<u32, String> {
+    whole(s, 0, 1_000_000, "renders").map(|n| n as u32)
+}
+
+/// `--pair-budget`: 0 to 10^12 candidate pairs.
+pub fn pair_budget(s: &str) -> Result<u64, String> {
+    whole(s, 0, 1_000_000_000_000, "pairs")
+}
+
+/// A finite number.
+fn finite(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|x| x.is_finite())
+        .ok_or_else(|| "must be a finite number".to_owned())
+}
+
+/// `--fovy`: strictly between 0 and 180 degrees.
+pub fn fovy(s: &str) -> Result<f64, String> {
+    let x = finite(s)?;
+    if x > 0.0 && x < 180.0 {
+        Ok(x)
+    } else {
+        Err("must be more than 0 and less than 180 degrees".to_owned())
+    }
+}
+
+/// `--near`, `--far`: a distance in front of the eye, more than 0.
+pub fn distance(s: &str) -> Result<f64, String> {
+    let x = finite(s)?;
+    if x > 0.0 {
+        Ok(x)
+    } else {
+        Err("must be a distance more than 0".to_owned())
+    }
+}
+
+/// Parses `x,y,z` of finite numbers (`--eye`, `--target`, `--up`).
+pub fn vec3(s: &str) -> Result<glam::DVec3, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 3 {
+        return Err(format!(
+            "must be three numbers x,y,z, got {} number{}",
+            parts.len(),
+            if parts.len() == 1 { "" } else { "s" }
+        ));
+    }
+    let mut v = [0.0; 3];
+    for (slot, p) in v.iter_mut().zip(&parts) {
+        *slot = finite(p).map_err(|_| format!("'{}' is not a finite number", p.trim()))?;
+    }
+    Ok(glam::DVec3::from_array(v))
+}
+
+/// The flag of a clap argument description (`--size <SIZE>` -> `--size`).
+fn flag(context: Option<&ContextValue>) -> Option<String> {
+    match context? {
+        ContextValue::String(s) => s.split_whitespace().next().map(str::to_owned),
+        ContextValue::Strings(v) => Some(
+            v.iter()
+                .filter_map(|s| s.split_whitespace().next())
+                .collect::<Vec<_>>()
+                .join(", "),
+        ),
+        _ => None,
+    }
+}
+
+/// A clap usage error as the one line the tool prints after `hider:
+/// error: `: the flag, the value and why for a bad value; clap's first
+/// paragraph with its tips joined for anything else.
+pub fn usage_error_line(e: &clap::Error) -> String {
+    let arg = flag(e.get(ContextKind::InvalidArg));
+    let value = match e.get(ContextKind::InvalidValue) {
+        Some(ContextValue::String(v)) => Some(v.clone()),
+        _ => None,
+    };
+    match (e.kind(), arg, value) {
+        (ErrorKind::ValueValidation, Some(arg), Some(value)) => {
+            let why = std::error::Error::source(e)
+                .map(|s| s.to_string())
+                .unwrap_or_else(|| "is not valid".to_owned());
+            format!("{arg} '{value}': {why}")
+        }
+        (ErrorKind::InvalidValue, Some(arg), Some(value)) => {
+            let valid = match e.get(ContextKind::ValidValue) {
+                Some(ContextValue::Strings(v)) if !v.is_empty() => Some(v.join(", ")),
+                _ => None,
+            };
+            match (value.is_empty(), valid) {
+                (true, None) => format!("{arg} needs a value"),
+                (true, Some(valid)) => format!("{arg} needs a value: one of {valid}"),
+                (false, Some(valid)) => format!("{arg} '{value}': must be one of {valid}"),
+                (false, None) => format!("{arg} '{value}' is not valid"),
+            }
+        }
+        (ErrorKind::MissingRequiredArgument, Some(arg), _) => {
+            format!("missing {arg} (see --help)")
+        }
+        (
+            ErrorKind::MissingSubcommand | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand,
+            ..,
+        ) => "no subcommand given: render, analyze, list or bench (see hider --help)".to_owned(),
+        _ => collapse(&e.render().to_string()),
+    }
+}
+
+/// clap's rendered message in one line: the error without its `error: `
+/// prefix, then its tips, joined by "; "; usage and help pointers left
+/// out.
+fn collapse(rendered: &str) -> String {
+    let mut parts: Vec<&str> = Vec::new();
+    for line in rendered.lines().map(str::trim) {
+        if line.starts_with("Usage:") || line.starts_with("For more information") {
+            break;
+        }
+        if !line.is_empty() {
+            parts.push(line.strip_prefix("error: ").unwrap_or(line));
+        }
+    }
+    parts.join("; ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn values_are_checked_with_reasons() {
+        assert_eq!(side("512"), Ok(512));
+        assert!(side("-5").unwrap_err().contains("from 1 to 16384"));
+        assert!(side("0").is_err() && side("16385").is_err() && side("x").is_err());
+        assert_eq!(threads("2"), Ok(2));
+        assert!(threads("-1").is_err() && threads("0").is_err());
+        assert_eq!(fovy("45"), Ok(45.0));
+        assert!(fovy("-30").is_err() && fovy("180").is_err() && fovy("nan").is_err());
+        assert!(distance("-1").is_err() && distance("0").is_err() && distance("inf").is_err());
+        assert_eq!(vec3("1, -2,3e0"), Ok(glam::DVec3::new(1.0, -2.0, 3.0)));
+        assert_eq!(
+            vec3("1,2").unwrap_err(),
+            "must be three numbers x,y,z, got 2 numbers"
+        );
+        assert!(vec3("1,2,nan").unwrap_err().contains("'nan'"));
+    }
+
+    #[test]
+    fn clap_paragraphs_fold_into_one_line() {
+        let text = "error: unexpected argument '--nope' found\n\n  tip: to pass '--nope' as a \
+                    value, use '-- --nope'\n\nUsage: hider render [OPTIONS]\n\nFor more \
+                    information, try '--help'.\n";
+        assert_eq!(
+            collapse(text),
+            "unexpected argument '--nope' found; tip: to pass '--nope' as a value, use '-- --nope'"
+        );
+    }
+}

@@ -1,0 +1,242 @@
+//! What a new user hits at the edges of `hider`: outputs that are not
+//! regular files, bad flag values, and a picture with nothing in it. Each
+//! test starts from an example an outside tester found.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn hider(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hider"))
+        .args(args)
+        .output()
+        .expect("hider runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hider-edges-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+/// Asserts exit status 2 with exactly one line on stderr holding every
+/// needle.
+fn assert_one_line_error(out: &Output, needles: &[&str]) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    assert!(err.starts_with("hider: error: "), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "'{n}' missing from: {err}");
+    }
+}
+
+#[test]
+fn every_bad_flag_value_is_one_line_naming_flag_and_value() {
+    let dir = temp_dir("flags");
+    let png = dir.join("out.png");
+    let png = png.to_str().unwrap();
+    let render = |extra: &[&str]| {
+        let mut args = vec!["render", "gen:cube", "-o", png];
+        args.extend_from_slice(extra);
+        hider(&args)
+    };
+    let cases: &[(&[&str], &[&str])] = &[
+        (&["--size", "-5"], &["--size", "'-5'", "1 to 16384"]),
+        (&["--size", "1e3"], &["--size", "'1e3'"]),
+        (&["--width", "-1", "--height", "4"], &["--width", "'-1'"]),
+        (&["--fovy", "-30"], &["--fovy", "'-30'", "180"]),
+        (&["--fovy", "180"], &["--fovy", "'180'"]),
+        (&["--near", "-1"], &["--near", "'-1'", "more than 0"]),
+        (&["--far", "0"], &["--far", "'0'"]),
+        (&["--eye", "1,2"], &["--eye", "'1,2'", "x,y,z"]),
+        (&["--target", "1,2,x"], &["--target", "'x'"]),
+        (&["--up", "-1,-2,nan"], &["--up", "'nan'"]),
+        (&["--width", "10"], &["--width 10", "--height"]),
+        (&["--height", "10"], &["--height 10", "--width"]),
+        (&["--threads", "-1"], &["--threads", "'-1'", "1 to 1024"]),
+        (&["--threads", "0"], &["--threads", "'0'"]),
+        (&["--repeat", "-3"], &["--repeat", "'-3'"]),
+        (
+            &["--shade", "phong"],
+            &["--shade", "'phong'", "lambert, ids"],
+        ),
+        (
+            &["--depth-format", "f16"],
+            &["--depth-format", "'f16'", "fixed24"],
+        ),
+        (&["--precision", "f128"], &["--precision", "'f128'"]),
+        (&["--eye"], &["--eye", "needs a value"]),
+        (&["--size", "5", "--width", "4"], &["--size", "--width"]),
+        (&["--frobnicate"], &["--frobnicate"]),
+        (&["--aa", "--algo", "zbuffer"], &["--aa", "--algo zbuffer"]),
+        (&["--vector"], &["--vector", "--svg"]),
+    ];
+    for (extra, needles) in cases {
+        let out = render(extra);
+        assert_one_line_error(&out, needles);
+        assert!(!Path::new(png).exists(), "{extra:?} wrote an image");
+    }
+    let out = hider(&["render", "gen:cube"]);
+    assert_one_line_error(&out, &["--output"]);
+    let out = hider(&["analyze", "gen:cube", "--size", "-5"]);
+    assert_one_line_error(&out, &["--size", "'-5'"]);
+    let out = hider(&["analyze", "gen:cube", "--pair-budget", "-1"]);
+    assert_one_line_error(&out, &["--pair-budget", "'-1'"]);
+    let out = hider(&["lsit"]);
+    assert_one_line_error(&out, &["'lsit'", "list"]);
+    let out = hider(&["list", "extra"]);
+    assert_one_line_error(&out, &["'extra'"]);
+    let out = hider(&[]);
+    assert_one_line_error(&out, &["no subcommand", "render"]);
+    // Help is not an error.
+    let out = hider(&["render", "--help"]);
+    assert_eq!(out.status.code(), Some(0));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[cfg(target_os = "linux")]
+#[test]
+fn a_full_device_is_written_through_and_reported() {
+    use std::os::unix::fs::FileTypeExt;
+    let is_device =
+        || std::fs::symlink_metadata("/dev/full").is_ok_and(|m| m.file_type().is_char_device());
+    if !is_device() {
+        eprintln!("no /dev/full here: skipped");
+        return;
+    }
+    let dir = temp_dir("full");
+    let png = dir.join("out.png");
+    let png = png.to_str().unwrap();
+    // A named hider, so that stderr holds only the error.
+    for (flag, algo) in [
+        ("-o", "zbuffer"),
+        ("--ids-out", "zbuffer-tiled"),
+        ("--depth-out", "scanline"),
+        ("--svg", "painter"),
+    ] {
+        let output = if flag == "-o" { "/dev/full" } else { png };
+        let mut args = vec!["render", "gen:cube", "--size", "16", "-o", output];
+        if flag != "-o" {
+            args.extend([flag, "/dev/full"]);
+        }
+        args.extend(["--algo", algo]);
+        let out = hider(&args);
+        assert_one_line_error(&out, &["/dev/full", "No space left on device"]);
+        assert!(is_device(), "{flag} replaced /dev/full");
+    }
+    // /dev/null takes the output and stays a device.
+    let out = hider(&["render", "gen:cube", "--size", "16", "-o", "/dev/null"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(std::fs::symlink_metadata("/dev/null").is_ok_and(|m| m.file_type().is_char_device()));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[cfg(unix)]
+#[test]
+fn outputs_through_a_symbolic_link_keep_the_link() {
+    let dir = temp_dir("link");
+    let real = dir.join("real.png");
+    std::fs::write(&real, "old").unwrap();
+    let link = dir.join("link.png");
+    std::os::unix::fs::symlink("real.png", &link).unwrap();
+    let out = hider(&[
+        "render",
+        "gen:cube",
+        "--size",
+        "16",
+        "-o",
+        link.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink()
+    );
+    assert!(std::fs::read(&real).unwrap().starts_with(b"\x89PNG"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_plane_seen_edge_on_warns_and_suggests_an_eye() {
+    let dir = temp_dir("edge-on");
+    // A square in the plane y = 0: the fit camera's eye sits in that plane.
+    let obj = dir.join("floor.obj");
+    std::fs::write(&obj, "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 2 3 4\n").unwrap();
+    let png = dir.join("floor.png");
+    let out = hider(&[
+        "render",
+        obj.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "64",
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    let warning = err
+        .lines()
+        .find(|l| l.starts_with("hider: warning: nothing on screen"))
+        .unwrap_or_else(|| panic!("no warning: {err}"));
+    assert!(
+        warning.contains("edge-on") && warning.contains("--eye"),
+        "{warning}"
+    );
+    // The suggested eye sees the square.
+    let eye = warning
+        .split("--eye ")
+        .nth(1)
+        .and_then(|s| s.split_whitespace().next())
+        .unwrap();
+    let out = hider(&[
+        "render",
+        obj.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "64",
+        "--eye",
+        eye,
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains("nothing on screen"), "--eye {eye}: {err}");
+
+    // Everything behind the eye: outside the view.
+    let out = hider(&[
+        "render",
+        "gen:cube",
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "32",
+        "--eye",
+        "0,0,10",
+        "--target",
+        "0,0,20",
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("nothing on screen") && err.contains("outside the view"),
+        "{err}"
+    );
+    // A picture with something in it has no such warning.
+    let out = hider(&[
+        "render",
+        "gen:cube",
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "32",
+    ]);
+    assert!(!stderr(&out).contains("nothing on screen"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
