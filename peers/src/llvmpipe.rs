@@ -37,6 +37,11 @@ use libloading::Library;
 
 use crate::scenes::Workload;
 
+/// llvmpipe with 4x multisampling, resolved (a child module: the same
+/// context and entry points).
+#[path = "msaa.rs"]
+pub mod msaa;
+
 type GLenum = u32;
 type GLint = i32;
 type GLuint = u32;
@@ -186,6 +191,8 @@ gl_api! {
     glGenRenderbuffers: fn(GLsizei, *mut GLuint);
     glBindRenderbuffer: fn(GLenum, GLuint);
     glRenderbufferStorage: fn(GLenum, GLenum, GLsizei, GLsizei);
+    glRenderbufferStorageMultisample: fn(GLenum, GLsizei, GLenum, GLsizei, GLsizei);
+    glBlitFramebuffer: fn(GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLint, GLbitfield, GLenum);
     glDeleteRenderbuffers: fn(GLsizei, *const GLuint);
     glClear: fn(GLbitfield);
     glDrawArrays: fn(GLenum, GLint, GLsizei);

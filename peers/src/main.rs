@@ -14,7 +14,9 @@
 //! (default 2): the peers take turns R times — euc, then one llvmpipe child
 //! process per thread count — and each keeps its best median and its
 //! overall minimum; `--peers euc,llvmpipe` (default both); `--gl-target
-//! fbo|window` (default fbo, see `llvmpipe.rs`); `--json PATH` writes an
+//! fbo|window` (default fbo, see `llvmpipe.rs`); `--msaa` adds llvmpipe
+//! drawing with 4x MSAA and resolving (`msaa.rs`, peer `llvmpipe-msaa4`,
+//! at the same thread counts); `--json PATH` writes an
 //! array of `{scene, size, peer, threads, median_ms, min_ms}`.
 //!
 //! llvmpipe reads `LP_NUM_THREADS` once per process, so each thread count
@@ -59,6 +61,12 @@ const NO_LIBRARY: i32 = 3;
 /// Largest coverage difference from hider accepted for llvmpipe (0.5 %):
 /// same snapping and top-left rule, so only the odd edge pixel may differ.
 const GL_TOLERANCE: f64 = 0.005;
+/// The peer name of llvmpipe with 4x MSAA in the table and the JSON.
+const MSAA_PEER: &str = "llvmpipe-msaa4";
+/// The same for llvmpipe with 4x MSAA (5 %): a pixel counts when any of
+/// its 4 samples is covered, so silhouette pixels whose centre is outside
+/// count too.
+const MSAA_TOLERANCE: f64 = 0.05;
 /// The same for euc (1 %): it has no fill rule (a pixel centre on an edge
 /// is inside both triangles) and its own float edge tests.
 const EUC_TOLERANCE: f64 = 0.01;
@@ -74,6 +82,8 @@ struct Args {
     target: Target,
     json: Option<String>,
     child: bool,
+    /// Also llvmpipe with 4x MSAA (`--msaa`, see `msaa.rs`).
+    msaa: bool,
 }
 
 fn parse_list<T: std::str::FromStr>(flag: &str, value: &str) -> Result<Vec<T>, String> {
@@ -98,6 +108,7 @@ fn parse_args() -> Result<Args, String> {
         target: Target::Fbo,
         json: None,
         child: false,
+        msaa: false,
     };
     let mut it = std::env::args().skip(1);
     while let Some(flag) = it.next() {
@@ -108,6 +119,7 @@ fn parse_args() -> Result<Args, String> {
             "--threads" => args.threads = parse_list(&flag, &value()?)?,
             "--rounds" => args.rounds = parse_list(&flag, &value()?)?[0],
             "--json" => args.json = Some(value()?),
+            "--msaa" => args.msaa = true,
             "--gl-target" => {
                 let v = value()?;
                 args.target = Target::parse(&v)
@@ -131,7 +143,7 @@ fn parse_args() -> Result<Args, String> {
             "-h" | "--help" => {
                 return Err(
                     "usage: peers [--runs K] [--sizes 512,1024,2048] [--threads 1,2] \
-                     [--rounds R] [--peers euc,llvmpipe] [--gl-target fbo|window] [--json PATH]"
+                     [--rounds R] [--peers euc,llvmpipe] [--gl-target fbo|window] [--msaa] [--json PATH]"
                         .into(),
                 );
             }
@@ -163,6 +175,9 @@ struct ChildReport {
     renderer: String,
     other_threads: Option<usize>,
     results: Vec<RawResult>,
+    /// With `--msaa`: the same workloads with 4x MSAA, resolved.
+    #[serde(default)]
+    msaa: Vec<RawResult>,
 }
 
 /// One row of `--json`.
@@ -235,7 +250,22 @@ fn run_child(args: &Args) -> ExitCode {
         }
     };
     let mut results = Vec::new();
+    let mut msaa = Vec::new();
     for w in &work {
+        if args.msaa {
+            match gl.time_msaa(w, WARMUPS, args.runs) {
+                Ok(run) => msaa.push(RawResult {
+                    scene: w.name.to_owned(),
+                    size: w.size,
+                    ms: run.ms,
+                    covered: run.covered,
+                }),
+                Err(e) => {
+                    eprintln!("llvmpipe 4x MSAA on {} at {}: {e}", w.name, w.size);
+                    return ExitCode::FAILURE;
+                }
+            }
+        }
         match gl.time(w, args.target, WARMUPS, args.runs) {
             Ok(run) => results.push(RawResult {
                 scene: w.name.to_owned(),
@@ -253,6 +283,7 @@ fn run_child(args: &Args) -> ExitCode {
         renderer: gl.describe(),
         other_threads: llvmpipe::other_threads(),
         results,
+        msaa,
     };
     match serde_json::to_string(&report) {
         Ok(s) => {
@@ -280,6 +311,7 @@ fn llvmpipe_child(args: &Args, threads: u32) -> Result<Option<ChildReport>, Stri
             &threads.to_string(),
         ])
         .args(["--gl-target", args.target.name()])
+        .args(args.msaa.then_some("--msaa"))
         .env("LP_NUM_THREADS", threads.to_string())
         .stdin(Stdio::null())
         .stderr(Stdio::inherit())
@@ -365,6 +397,12 @@ fn main() -> ExitCode {
                             .or_default()
                             .add(&r.ms, r.covered);
                     }
+                    for r in report.msaa {
+                        results
+                            .entry((r.size, r.scene, MSAA_PEER, threads))
+                            .or_default()
+                            .add(&r.ms, r.covered);
+                    }
                 }
                 Ok(None) => llvmpipe = false,
                 Err(e) => eprintln!("{e}"),
@@ -384,6 +422,10 @@ fn main() -> ExitCode {
         for &t in &args.threads {
             header += &format!(" llvmpipe {t}T |");
             columns.push(("llvmpipe", t));
+        }
+        for &t in args.threads.iter().filter(|_| args.msaa) {
+            header += &format!(" llvmpipe 4x MSAA {t}T |");
+            columns.push((MSAA_PEER, t));
         }
     }
     println!("median (min) ms at size x size, fit camera; clear + draw (+ glFinish)\n");
@@ -419,10 +461,10 @@ fn main() -> ExitCode {
             let Some(a) = results.get(&(w.size, w.name.to_owned(), peer, t)) else {
                 continue;
             };
-            let tolerance = if peer == "euc" {
-                EUC_TOLERANCE
-            } else {
-                GL_TOLERANCE
+            let tolerance = match peer {
+                "euc" => EUC_TOLERANCE,
+                MSAA_PEER => MSAA_TOLERANCE,
+                _ => GL_TOLERANCE,
             };
             let diff = (a.covered as f64 - want as f64) / (want.max(1) as f64);
             let verdict = if diff.abs() <= tolerance {

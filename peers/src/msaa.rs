@@ -1,0 +1,222 @@
+//! llvmpipe with 4x multisample anti-aliasing: what hider's A-buffer
+//! (32 coverage samples per pixel, resolved to one colour) is measured
+//! against.
+//!
+//! The workload and state are those of the single-sample measurement
+//! ([`Llvmpipe::time`]: the same vertex buffer, matrix, depth test
+//! `GL_LESS`, no culling, blending or dithering, one flat colour), drawn
+//! into a framebuffer object whose `RGBA8` colour and
+//! `DEPTH_COMPONENT24` renderbuffers have 4 samples
+//! (`glRenderbufferStorageMultisample`), then resolved with
+//! `glBlitFramebuffer` into a single-sample `RGBA8` framebuffer object, as
+//! an application presenting an anti-aliased frame does. The span timed
+//! is `glClear(COLOR | DEPTH)` + `glDrawArrays` + the resolve blit +
+//! `glFinish`.
+//!
+//! Coverage is read back from the resolved image: a pixel counts as
+//! covered when any of its samples is (alpha not 0), so silhouette pixels
+//! whose centre is outside count too.
+
+use std::time::Instant;
+
+use super::{
+    GL_ARRAY_BUFFER, GL_BLEND, GL_COLOR_ATTACHMENT0, GL_COLOR_BUFFER_BIT, GL_CULL_FACE,
+    GL_DEPTH_ATTACHMENT, GL_DEPTH_BUFFER_BIT, GL_DEPTH_COMPONENT24, GL_DEPTH_TEST, GL_DITHER,
+    GL_FLAT, GL_FLOAT, GL_FRAMEBUFFER, GL_FRAMEBUFFER_COMPLETE, GL_LESS, GL_MODELVIEW,
+    GL_PROJECTION, GL_RENDERBUFFER, GL_RGBA, GL_RGBA8, GL_STATIC_DRAW, GL_TRIANGLES,
+    GL_UNSIGNED_BYTE, GL_VERTEX_ARRAY, GLsizei, GLsizeiptr, GLuint, GlRun, Llvmpipe,
+};
+use crate::scenes::Workload;
+
+/// Samples per pixel of the multisampled framebuffer.
+pub const SAMPLES: GLsizei = 4;
+
+const GL_READ_FRAMEBUFFER: u32 = 0x8CA8;
+const GL_DRAW_FRAMEBUFFER: u32 = 0x8CA9;
+const GL_NEAREST: u32 = 0x2600;
+const GL_SAMPLES: u32 = 0x80A9;
+
+/// The framebuffer objects of one measurement.
+struct Targets {
+    /// Multisampled draw target and the single-sample resolve target.
+    fbos: [GLuint; 2],
+    /// Multisampled colour and depth, single-sample colour.
+    rbs: [GLuint; 3],
+}
+
+impl Llvmpipe {
+    /// Draws `work` into a 4-sample framebuffer and resolves it, at least
+    /// `warmups` times (see [`crate::timed_runs`]), then `runs` times,
+    /// timed (clear + draw + resolve blit + `glFinish`); then reads the
+    /// resolved image back and counts the pixels any sample covers.
+    pub fn time_msaa(
+        &mut self,
+        work: &Workload,
+        warmups: usize,
+        runs: usize,
+    ) -> Result<GlRun, String> {
+        let side = work.size as GLsizei;
+        self.bind_window(work.size)?;
+        let targets = self.msaa_targets(side)?;
+        let gl = &self.gl;
+        let vertices = work.positions.len() as GLsizei;
+        let mut vbo = 0;
+        // SAFETY: the context is current on this thread; every pointer
+        // handed to GL points to live memory of the size given
+        // (`positions` is `3 * vertices` f32s; `mvp` 16 f32s).
+        unsafe {
+            (gl.glViewport)(0, 0, side, side);
+            (gl.glMatrixMode)(GL_PROJECTION);
+            (gl.glLoadMatrixf)(work.mvp.to_cols_array().as_ptr());
+            (gl.glMatrixMode)(GL_MODELVIEW);
+            (gl.glLoadIdentity)();
+            (gl.glEnable)(GL_DEPTH_TEST);
+            (gl.glDepthFunc)(GL_LESS);
+            (gl.glDisable)(GL_CULL_FACE);
+            (gl.glDisable)(GL_BLEND);
+            (gl.glDisable)(GL_DITHER);
+            (gl.glShadeModel)(GL_FLAT);
+            (gl.glColor4ub)(255, 255, 255, 255);
+            (gl.glClearColor)(0.0, 0.0, 0.0, 0.0);
+            (gl.glClearDepth)(1.0);
+            (gl.glGenBuffers)(1, &mut vbo);
+            (gl.glBindBuffer)(GL_ARRAY_BUFFER, vbo);
+            (gl.glBufferData)(
+                GL_ARRAY_BUFFER,
+                std::mem::size_of_val(work.positions.as_slice()) as GLsizeiptr,
+                work.positions.as_ptr().cast(),
+                GL_STATIC_DRAW,
+            );
+            (gl.glVertexPointer)(3, GL_FLOAT, 0, std::ptr::null());
+            (gl.glEnableClientState)(GL_VERTEX_ARRAY);
+        }
+        self.check("multisample set-up")?;
+
+        let [draw, resolve] = targets.fbos;
+        let ms = crate::timed_runs(warmups, runs, || {
+            let t = Instant::now();
+            // SAFETY: the context is current; the bound VBO holds
+            // `vertices` vertices; both framebuffers are complete and
+            // `side x side`.
+            unsafe {
+                (gl.glBindFramebuffer)(GL_FRAMEBUFFER, draw);
+                (gl.glClear)(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+                (gl.glDrawArrays)(GL_TRIANGLES, 0, vertices);
+                (gl.glBindFramebuffer)(GL_READ_FRAMEBUFFER, draw);
+                (gl.glBindFramebuffer)(GL_DRAW_FRAMEBUFFER, resolve);
+                (gl.glBlitFramebuffer)(
+                    0,
+                    0,
+                    side,
+                    side,
+                    0,
+                    0,
+                    side,
+                    side,
+                    GL_COLOR_BUFFER_BIT,
+                    GL_NEAREST,
+                );
+                (gl.glFinish)();
+            }
+            t.elapsed().as_secs_f64() * 1e3
+        });
+        self.check("multisample drawing and resolve")?;
+
+        let mut pixels = vec![0u32; work.size as usize * work.size as usize];
+        // SAFETY: the context is current; `pixels` holds side x side RGBA
+        // u8 pixels; the names deleted are the ones generated here.
+        unsafe {
+            (gl.glBindFramebuffer)(GL_FRAMEBUFFER, resolve);
+            (gl.glReadPixels)(
+                0,
+                0,
+                side,
+                side,
+                GL_RGBA,
+                GL_UNSIGNED_BYTE,
+                pixels.as_mut_ptr().cast(),
+            );
+            (gl.glDisableClientState)(GL_VERTEX_ARRAY);
+            (gl.glBindBuffer)(GL_ARRAY_BUFFER, 0);
+            (gl.glDeleteBuffers)(1, &vbo);
+            (gl.glBindFramebuffer)(GL_FRAMEBUFFER, 0);
+            (gl.glDeleteFramebuffers)(2, targets.fbos.as_ptr());
+            (gl.glDeleteRenderbuffers)(3, targets.rbs.as_ptr());
+        }
+        self.check("multisample read-back")?;
+        // Alpha is the top byte of each little-endian RGBA pixel: the
+        // resolved alpha is the covered fraction of the samples.
+        let covered = pixels.iter().filter(|&&p| p >> 24 != 0).count() as u64;
+        Ok(GlRun { ms, covered })
+    }
+
+    /// Creates the 4-sample draw framebuffer and the single-sample resolve
+    /// framebuffer, both `side x side`, and checks that the first really
+    /// has 4 samples and a 24-bit depth buffer.
+    fn msaa_targets(&mut self, side: GLsizei) -> Result<Targets, String> {
+        let gl = &self.gl;
+        let mut t = Targets {
+            fbos: [0; 2],
+            rbs: [0; 3],
+        };
+        // SAFETY: the context is current; the arrays passed have the
+        // lengths given.
+        let (status, samples, depth_bits) = unsafe {
+            (gl.glGenRenderbuffers)(3, t.rbs.as_mut_ptr());
+            (gl.glGenFramebuffers)(2, t.fbos.as_mut_ptr());
+            (gl.glBindRenderbuffer)(GL_RENDERBUFFER, t.rbs[0]);
+            (gl.glRenderbufferStorageMultisample)(GL_RENDERBUFFER, SAMPLES, GL_RGBA8, side, side);
+            (gl.glBindRenderbuffer)(GL_RENDERBUFFER, t.rbs[1]);
+            (gl.glRenderbufferStorageMultisample)(
+                GL_RENDERBUFFER,
+                SAMPLES,
+                GL_DEPTH_COMPONENT24,
+                side,
+                side,
+            );
+            (gl.glBindRenderbuffer)(GL_RENDERBUFFER, t.rbs[2]);
+            (gl.glRenderbufferStorage)(GL_RENDERBUFFER, GL_RGBA8, side, side);
+            (gl.glBindFramebuffer)(GL_FRAMEBUFFER, t.fbos[1]);
+            (gl.glFramebufferRenderbuffer)(
+                GL_FRAMEBUFFER,
+                GL_COLOR_ATTACHMENT0,
+                GL_RENDERBUFFER,
+                t.rbs[2],
+            );
+            let resolve = (gl.glCheckFramebufferStatus)(GL_FRAMEBUFFER);
+            (gl.glBindFramebuffer)(GL_FRAMEBUFFER, t.fbos[0]);
+            (gl.glFramebufferRenderbuffer)(
+                GL_FRAMEBUFFER,
+                GL_COLOR_ATTACHMENT0,
+                GL_RENDERBUFFER,
+                t.rbs[0],
+            );
+            (gl.glFramebufferRenderbuffer)(
+                GL_FRAMEBUFFER,
+                GL_DEPTH_ATTACHMENT,
+                GL_RENDERBUFFER,
+                t.rbs[1],
+            );
+            let draw = (gl.glCheckFramebufferStatus)(GL_FRAMEBUFFER);
+            let (mut samples, mut depth_bits) = (0, 0);
+            (gl.glGetIntegerv)(GL_SAMPLES, &mut samples);
+            (gl.glGetIntegerv)(super::GL_DEPTH_BITS, &mut depth_bits);
+            let status = if draw != GL_FRAMEBUFFER_COMPLETE {
+                draw
+            } else {
+                resolve
+            };
+            (status, samples, depth_bits)
+        };
+        if status != GL_FRAMEBUFFER_COMPLETE {
+            return Err(format!("multisample framebuffer incomplete: 0x{status:04x}"));
+        }
+        if samples != SAMPLES || depth_bits != 24 {
+            return Err(format!(
+                "multisample framebuffer has {samples} samples and {depth_bits} depth bits, \
+                 not {SAMPLES} and 24"
+            ));
+        }
+        Ok(t)
+    }
+}
