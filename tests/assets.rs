@@ -37,3 +37,27 @@ fn assets_match_their_generators() {
         assert_eq!(loaded.materials.len(), scene.materials.len());
     }
 }
+
+/// The spider (from assimp's test models, see `assets/spider/LICENSE`)
+/// loads with its five textures found: the README's first example
+/// renders it.
+#[test]
+fn the_bundled_spider_loads_with_its_textures() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/spider/spider.obj");
+    let spider = load_obj(&path).unwrap();
+    assert_eq!(spider.triangle_count(), 1368);
+    assert_eq!(spider.materials.len(), 5);
+    for m in &spider.materials {
+        let texture = m
+            .diffuse_texture
+            .as_ref()
+            .expect("every material is textured");
+        assert!(texture.is_file(), "{}", texture.display());
+    }
+    // Its one warning: the degenerate triangles the exporter wrote.
+    assert!(
+        spider.warnings.iter().all(|w| w.contains("degenerate")),
+        "{:?}",
+        spider.warnings
+    );
+}
