@@ -126,19 +126,31 @@ impl Scanline {
     /// the next crossing column.
     fn sweep(&mut self, out: &mut RowOut<'_>, stats: &mut ScanlineStats) {
         let keys = &self.crossings;
+        let polys = &self.table.polys;
+        let last_column = out.ids.len() as i64 - 1;
         let mut k = 0;
         while k < keys.len() {
             let x = (keys[k] >> 32) as u32;
+            let mut leaving = false;
             while k < keys.len() && (keys[k] >> 32) as u32 == x {
                 let slot = (keys[k] & SLOT) as u32;
                 if keys[k] & ENTER != 0 {
                     self.apl.push(Active { depth: 0.0, slot });
-                } else if let Some(pos) = self.apl.iter().position(|a| a.slot == slot) {
-                    // `remove`, not `swap_remove`: keeps the depth order
-                    // for the next span's insertion sort.
-                    self.apl.remove(pos);
+                } else {
+                    leaving = true;
                 }
                 k += 1;
+            }
+            if leaving {
+                // Every polygon whose run ends before `x` leaves at once,
+                // in one pass that keeps the depth order for the next
+                // span's sort: removing them one by one (a search and a
+                // shift each) was quadratic when thousands of polygons
+                // end on the same column.
+                stats.apl_removal_passes += 1;
+                stats.apl_removal_scanned += self.apl.len() as u64;
+                self.apl
+                    .retain(|a| polys[a.slot as usize].r.min(last_column) >= i64::from(x));
             }
             if k < keys.len() && !self.apl.is_empty() {
                 let next = (keys[k] >> 32) as u32;

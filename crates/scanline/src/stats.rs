@@ -48,6 +48,17 @@ hider_scene::hider_stats! {
         pub depth_evaluations: u64 => "depth evaluations",
         /// Pixels written (each covered pixel exactly once: no overdraw).
         pub pixels_written: u64 => "pixels written",
+        /// Passes over the active polygon list removing the polygons whose
+        /// runs ended (at most one per crossing column of a row).
+        pub apl_removal_passes: u64 => "apl removal passes",
+        /// Active polygon list entries those passes examined: linear in
+        /// the crossings of a row when polygons leave together, where a
+        /// removal per polygon examined the list once per polygon.
+        pub apl_removal_scanned: u64 => "apl removal scanned",
+        /// Comparisons made sorting active polygon lists by depth: close to
+        /// linear in the list length when the order is coherent from one
+        /// span to the next, `N log N` at worst.
+        pub sort_comparisons: u64 => "sort comparisons",
         /// Peak bytes of the working tables and lists (capacity, not
         /// length).
         pub peak_bytes: u64 => PEAK,
@@ -116,6 +127,9 @@ mod tests {
                 "span polygons max",
                 "depth evaluations",
                 "pixels written",
+                "apl removal passes",
+                "apl removal scanned",
+                "sort comparisons",
             ]
         );
     }
