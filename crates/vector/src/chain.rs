@@ -5,65 +5,112 @@ use std::collections::HashMap;
 
 use crate::lines::{LineKind, Polyline};
 
-/// End points closer than this (pixels) are the same point.
-const JOIN: f64 = 1e-6;
+/// End points closer than this (pixels) are the same point: the ends of
+/// one intersection curve's pieces come from different triangle pairs and
+/// agree only to rounding.
+const JOIN: f64 = 1e-4;
 
-fn key(p: (f64, f64)) -> (i64, i64) {
-    ((p.0 / JOIN).round() as i64, (p.1 / JOIN).round() as i64)
+/// How far (pixels) an interior point may stray from the line through its
+/// neighbours and still be dropped: pieces of one intersection line come
+/// from different triangle pairs' snapped planes.
+const STRAIGHT: f64 = 1e-3;
+
+/// A piece: `(x, y, depth)` at both ends, and its kind.
+pub type Piece = ([f64; 3], [f64; 3], LineKind);
+
+/// Gives end points node ids, points within [`JOIN`] of an earlier one
+/// (searched in the neighbouring cells too) taking its id.
+#[derive(Default)]
+struct Nodes {
+    cells: HashMap<(i64, i64, LineKind), Vec<(usize, [f64; 3])>>,
+    count: usize,
 }
 
-/// Joins segments of one kind that share end points into polylines
+impl Nodes {
+    fn id(&mut self, p: [f64; 3], kind: LineKind) -> usize {
+        let (cx, cy) = ((p[0] / JOIN).floor() as i64, (p[1] / JOIN).floor() as i64);
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                if let Some(list) = self.cells.get(&(cx + dx, cy + dy, kind)) {
+                    for &(id, q) in list {
+                        if (p[0] - q[0]).hypot(p[1] - q[1]) <= JOIN {
+                            return id;
+                        }
+                    }
+                }
+            }
+        }
+        let id = self.count;
+        self.count += 1;
+        self.cells.entry((cx, cy, kind)).or_default().push((id, p));
+        id
+    }
+}
+
+/// Joins pieces of one kind that share end points into polylines
 /// (greedily, walking from an end of degree one where there is one), then
 /// removes interior points where the line goes straight on.
-pub fn join_segments(segments: &[((f64, f64), (f64, f64), LineKind)]) -> Vec<Polyline> {
-    let mut at: HashMap<((i64, i64), LineKind), Vec<usize>> = HashMap::new();
-    for (k, &(a, b, kind)) in segments.iter().enumerate() {
-        at.entry((key(a), kind)).or_default().push(k);
-        at.entry((key(b), kind)).or_default().push(k);
+pub fn join_segments(pieces: &[Piece]) -> Vec<Polyline> {
+    let mut nodes = Nodes::default();
+    let ends: Vec<(usize, usize)> = pieces
+        .iter()
+        .map(|&(a, b, kind)| (nodes.id(a, kind), nodes.id(b, kind)))
+        .collect();
+    let mut at: Vec<Vec<usize>> = vec![Vec::new(); nodes.count];
+    for (k, &(a, b)) in ends.iter().enumerate() {
+        at[a].push(k);
+        at[b].push(k);
     }
-    let mut used = vec![false; segments.len()];
+    let mut used = vec![false; pieces.len()];
     let mut out = Vec::new();
     // Start at ends of degree one first, so open chains are walked whole.
-    let mut starts: Vec<usize> = (0..segments.len()).collect();
-    starts.sort_by_key(|&k| {
-        let (a, b, kind) = segments[k];
-        let degree = |p| at.get(&(key(p), kind)).map_or(0, Vec::len);
-        degree(a).min(degree(b)) != 1
-    });
+    let mut starts: Vec<usize> = (0..pieces.len()).collect();
+    starts.sort_by_key(|&k| at[ends[k].0].len().min(at[ends[k].1].len()) != 1);
     for start in starts {
         if used[start] {
             continue;
         }
         used[start] = true;
-        let (a, b, kind) = segments[start];
-        let degree = |p| at.get(&(key(p), kind)).map_or(0, Vec::len);
-        let (first, mut end) = if degree(a) == 1 || degree(b) != 1 { (a, b) } else { (b, a) };
+        let (a, b, kind) = pieces[start];
+        let forward = at[ends[start].0].len() == 1 || at[ends[start].1].len() != 1;
+        let (first, mut end, mut node) = if forward {
+            (a, b, ends[start].1)
+        } else {
+            (b, a, ends[start].0)
+        };
         let mut points = vec![first, end];
-        while let Some(&next) = at
-            .get(&(key(end), kind))
-            .and_then(|list| list.iter().find(|&&k| !used[k]))
-        {
+        while let Some(&next) = at[node].iter().find(|&&k| !used[k]) {
             used[next] = true;
-            let (p, q, _) = segments[next];
-            end = if key(p) == key(end) { q } else { p };
+            let (p, q, _) = pieces[next];
+            (end, node) = if ends[next].0 == node {
+                (q, ends[next].1)
+            } else {
+                (p, ends[next].0)
+            };
             points.push(end);
         }
-        out.push(Polyline { kind, points: straighten(points) });
+        let points = straighten(points);
+        out.push(Polyline {
+            kind,
+            points: points.iter().map(|p| (p[0], p[1])).collect(),
+            depths: points.iter().map(|p| p[2]).collect(),
+        });
     }
     out
 }
 
-/// Drops interior points where the polyline goes straight on (collinear
-/// within a relative 1e-9 of the segment lengths).
-fn straighten(points: Vec<(f64, f64)>) -> Vec<(f64, f64)> {
-    let mut out: Vec<(f64, f64)> = Vec::with_capacity(points.len());
+/// Drops interior points where the polyline goes straight on: within
+/// [`STRAIGHT`] of the line through their neighbours.
+fn straighten(points: Vec<[f64; 3]>) -> Vec<[f64; 3]> {
+    let mut out: Vec<[f64; 3]> = Vec::with_capacity(points.len());
     for p in points {
         if out.len() >= 2 {
             let (a, b) = (out[out.len() - 2], out[out.len() - 1]);
-            let cross = (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0);
-            let dot = (b.0 - a.0) * (p.0 - b.0) + (b.1 - a.1) * (p.1 - b.1);
-            let scale = ((b.0 - a.0).hypot(b.1 - a.1)) * ((p.0 - b.0).hypot(p.1 - b.1));
-            if cross.abs() <= 1e-9 * scale && dot > 0.0 {
+            let cross = (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+            let dot = (b[0] - a[0]) * (p[0] - b[0]) + (b[1] - a[1]) * (p[1] - b[1]);
+            let base = (p[0] - a[0]).hypot(p[1] - a[1]);
+            let tiny = (b[0] - a[0]).hypot(b[1] - a[1]) <= JOIN;
+            if tiny || (cross.abs() <= STRAIGHT * base && dot > 0.0) {
                 out.pop();
             }
         }

@@ -28,11 +28,13 @@ impl Grid {
     pub fn for_scene(scene: &ScreenScene, refine_bits: u32) -> Result<Self> {
         let side = u64::from(scene.viewport.width.max(scene.viewport.height).max(1));
         let side_bits = 64 - (side - 1).leading_zeros();
-        let room = LIMIT_BITS.checked_sub(side_bits + SUBPIXEL_BITS).ok_or_else(|| {
-            crate::render_error(format!(
-                "image side {side} pixels is too large for the exact polygon grid"
-            ))
-        })?;
+        let room = LIMIT_BITS
+            .checked_sub(side_bits + SUBPIXEL_BITS)
+            .ok_or_else(|| {
+                crate::render_error(format!(
+                    "image side {side} pixels is too large for the exact polygon grid"
+                ))
+            })?;
         let shift = refine_bits.min(room);
         Ok(Self {
             shift,
@@ -49,12 +51,16 @@ impl Grid {
     /// The centre of pixel `(i, j)` in grid units.
     pub fn pixel_centre(&self, i: u32, j: u32) -> (i64, i64) {
         let unit = 1i64 << (SUBPIXEL_BITS + self.shift);
-        (i64::from(i) * unit + unit / 2, i64::from(j) * unit + unit / 2)
+        (
+            i64::from(i) * unit + unit / 2,
+            i64::from(j) * unit + unit / 2,
+        )
     }
 
     /// A triangle's vertices in grid units (not clipped).
     pub fn tri_points(&self, tri: &ScreenTri) -> [(i64, i64); 3] {
-        tri.v.map(|p| (i64::from(p.x) << self.shift, i64::from(p.y) << self.shift))
+        tri.v
+            .map(|p| (i64::from(p.x) << self.shift, i64::from(p.y) << self.shift))
     }
 
     /// A grid point as pixels.
@@ -79,11 +85,19 @@ impl Grid {
             .iter()
             .all(|&(x, y)| (0..=self.width).contains(&x) && (0..=self.height).contains(&y));
         if inside {
-            return pts.iter().map(|&(x, y)| IntPoint::new(x as i32, y as i32)).collect();
+            return pts
+                .iter()
+                .map(|&(x, y)| IntPoint::new(x as i32, y as i32))
+                .collect();
         }
         let mut poly: Vec<(i64, i64)> = pts.to_vec();
         // (axis, bound, keep below) for the four sides of the image.
-        for (axis, bound, below) in [(0, 0, false), (0, self.width, true), (1, 0, false), (1, self.height, true)] {
+        for (axis, bound, below) in [
+            (0, 0, false),
+            (0, self.width, true),
+            (1, 0, false),
+            (1, self.height, true),
+        ] {
             poly = clip_axis(&poly, axis, bound, below);
             if poly.is_empty() {
                 return Vec::new();
@@ -96,7 +110,9 @@ impl Grid {
         if poly.len() < 3 {
             return Vec::new();
         }
-        poly.iter().map(|&(x, y)| IntPoint::new(x as i32, y as i32)).collect()
+        poly.iter()
+            .map(|&(x, y)| IntPoint::new(x as i32, y as i32))
+            .collect()
     }
 }
 
@@ -104,7 +120,13 @@ impl Grid {
 /// to the nearest grid point.
 fn clip_axis(poly: &[(i64, i64)], axis: usize, bound: i64, below: bool) -> Vec<(i64, i64)> {
     let coord = |p: (i64, i64)| if axis == 0 { p.0 } else { p.1 };
-    let keep = |p: (i64, i64)| if below { coord(p) <= bound } else { coord(p) >= bound };
+    let keep = |p: (i64, i64)| {
+        if below {
+            coord(p) <= bound
+        } else {
+            coord(p) >= bound
+        }
+    };
     let mut out = Vec::with_capacity(poly.len() + 2);
     for k in 0..poly.len() {
         let a = poly[k];
@@ -120,7 +142,11 @@ fn clip_axis(poly: &[(i64, i64)], axis: usize, bound: i64, below: bool) -> Vec<(
             let num = i128::from(qo - po) * i128::from(bound - pc);
             let den = i128::from(qc - pc);
             let other = po + div_round(num, den) as i64;
-            out.push(if axis == 0 { (bound, other) } else { (other, bound) });
+            out.push(if axis == 0 {
+                (bound, other)
+            } else {
+                (other, bound)
+            });
         }
     }
     out
@@ -129,7 +155,11 @@ fn clip_axis(poly: &[(i64, i64)], axis: usize, bound: i64, below: bool) -> Vec<(
 /// `num / den` rounded to the nearest integer (halves away from zero).
 fn div_round(num: i128, den: i128) -> i128 {
     let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
-    if num >= 0 { (2 * num + den) / (2 * den) } else { -((-2 * num + den) / (2 * den)) }
+    if num >= 0 {
+        (2 * num + den) / (2 * den)
+    } else {
+        -((-2 * num + den) / (2 * den))
+    }
 }
 
 /// A uniform grid of bins over the image, each listing the triangles whose
@@ -163,12 +193,22 @@ impl Bins {
                 }
             }
         }
-        Self { size, cols, rows, cells }
+        Self {
+            size,
+            cols,
+            rows,
+            cells,
+        }
     }
 
     fn range(size: i64, cols: i64, rows: i64, lo: IntPoint, hi: IntPoint) -> (i64, i64, i64, i64) {
         let cell = |v: i32, n: i64| (i64::from(v) / size).clamp(0, n - 1);
-        (cell(lo.x, cols), cell(lo.y, rows), cell(hi.x, cols), cell(hi.y, rows))
+        (
+            cell(lo.x, cols),
+            cell(lo.y, rows),
+            cell(hi.x, cols),
+            cell(hi.y, rows),
+        )
     }
 
     /// Calls `visit` with every item whose bins meet the box (an item may
@@ -189,6 +229,9 @@ impl Bins {
 pub fn bounds(poly: &[IntPoint]) -> Option<(IntPoint, IntPoint)> {
     let first = *poly.first()?;
     Some(poly.iter().fold((first, first), |(lo, hi), p| {
-        (IntPoint::new(lo.x.min(p.x), lo.y.min(p.y)), IntPoint::new(hi.x.max(p.x), hi.y.max(p.y)))
+        (
+            IntPoint::new(lo.x.min(p.x), lo.y.min(p.y)),
+            IntPoint::new(hi.x.max(p.x), hi.y.max(p.y)),
+        )
     }))
 }

@@ -49,5 +49,8 @@ pub use svg::{lines_svg, regions_svg, write_lines_svg, write_regions_svg};
 
 /// The error every failure of this crate is reported as.
 pub(crate) fn render_error(message: String) -> hider_scene::Error {
-    hider_scene::Error::Render { hider: "vector".to_owned(), message }
+    hider_scene::Error::Render {
+        hider: "vector".to_owned(),
+        message,
+    }
 }

@@ -17,6 +17,8 @@ use glam::{DVec3, DVec4};
 use hider_scene::{Result, ScreenScene, ScreenTri};
 use i_overlay::i_float::int::point::IntPoint;
 
+use hider_geom::fixed::SUBPIXEL_SCALE;
+
 use crate::VectorOptions;
 use crate::chain::join_segments;
 use crate::grid::{Bins, Grid, bounds};
@@ -45,6 +47,8 @@ pub struct Polyline {
     pub kind: LineKind,
     /// The points, joined end to end; collinear interior points removed.
     pub points: Vec<(f64, f64)>,
+    /// Window depth at each point (for depth cueing, and for checking).
+    pub depths: Vec<f64>,
 }
 
 hider_scene::hider_stats! {
@@ -76,7 +80,10 @@ pub struct LineDrawing {
 impl LineDrawing {
     /// The number of straight segments over all visible polylines.
     pub fn visible_segments(&self) -> usize {
-        self.visible.iter().map(|p| p.points.len().saturating_sub(1)).sum()
+        self.visible
+            .iter()
+            .map(|p| p.points.len().saturating_sub(1))
+            .sum()
     }
 }
 
@@ -91,7 +98,11 @@ struct Feature {
 
 /// The line drawing of `scene`; `map` supplies the intersection pairs
 /// found while computing the visible regions.
-pub fn hidden_lines(scene: &ScreenScene, map: &RegionMap, options: &VectorOptions) -> Result<LineDrawing> {
+pub fn hidden_lines(
+    scene: &ScreenScene,
+    map: &RegionMap,
+    options: &VectorOptions,
+) -> Result<LineDrawing> {
     options.validate()?;
     let mut features = edge_features(scene, options.crease_degrees);
     for &(a, b) in &map.cut_pairs {
@@ -105,15 +116,22 @@ pub fn hidden_lines(scene: &ScreenScene, map: &RegionMap, options: &VectorOption
         }
     }
     let grid = map.grid;
-    let polys: Vec<Vec<IntPoint>> =
-        scene.tris.iter().map(|t| grid.clip_to_image(&grid.tri_points(t))).collect();
+    let polys: Vec<Vec<IntPoint>> = scene
+        .tris
+        .iter()
+        .map(|t| grid.clip_to_image(&grid.tri_points(t)))
+        .collect();
     let boxes: Vec<_> = polys.iter().map(|p| bounds(p)).collect();
     let bins = Bins::new(&grid, &boxes);
-    let mut stats = LineStats { feature_edges: features.len() as u64, ..LineStats::default() };
+    let mut stats = LineStats {
+        feature_edges: features.len() as u64,
+        ..LineStats::default()
+    };
     let mut visible = Vec::new();
     let mut hidden = Vec::new();
     for f in &features {
-        let (shown, unseen) = split_visibility(scene, &grid, &bins, f, options.depth_tolerance, &mut stats);
+        let (shown, unseen) =
+            split_visibility(scene, &grid, &bins, f, options.depth_tolerance, &mut stats);
         for (a, b) in shown {
             visible.push((point_at(f, a), point_at(f, b), f.kind));
         }
@@ -127,13 +145,22 @@ pub fn hidden_lines(scene: &ScreenScene, map: &RegionMap, options: &VectorOption
     let visible = join_segments(&visible);
     let hidden = join_segments(&hidden);
     stats.polylines = visible.len() as u64;
-    Ok(LineDrawing { visible, hidden, stats })
+    Ok(LineDrawing {
+        visible,
+        hidden,
+        stats,
+    })
 }
 
-fn point_at(f: &Feature, t: f64) -> (f64, f64) {
-    let p = f.ends[0].lerp(f.ends[1], t);
-    (p.x, p.y)
+fn point_at(f: &Feature, t: f64) -> [f64; 3] {
+    f.ends[0].lerp(f.ends[1], t).to_array()
 }
+
+/// Fixed-point units per pixel.
+const SCALE: f64 = SUBPIXEL_SCALE as f64;
+
+/// Visible or hidden pieces shorter than this (pixels) are dropped.
+const MIN_LENGTH: f64 = 1e-3;
 
 /// Pieces shorter than this (in parameter) are dropped: they come from
 /// occluders that only touch the segment at a shared vertex.
@@ -172,21 +199,25 @@ fn split_visibility(
         }
     });
     cover.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // Pieces under a thousandth of a pixel are where faces merely touch
+    // the segment at a shared corner.
+    let length = (q.x - p.x).hypot(q.y - p.y);
+    let min_piece = (MIN_LENGTH / length).max(MIN_PIECE);
     let mut shown = Vec::new();
     let mut unseen = Vec::new();
     let mut at = 0.0;
     for (a, b) in cover {
-        if a > at + MIN_PIECE {
+        if a > at + min_piece {
             shown.push((at, a));
         }
         if b > at {
-            if b - a.max(at) > MIN_PIECE {
+            if b - a.max(at) > min_piece {
                 unseen.push((a.max(at), b));
             }
             at = b;
         }
     }
-    if 1.0 > at + MIN_PIECE {
+    if 1.0 > at + min_piece {
         shown.push((at, 1.0));
     }
     (shown, unseen)
@@ -248,13 +279,18 @@ fn edge_features(scene: &ScreenScene, crease_degrees: f64) -> Vec<Feature> {
     let facing = |prim: u32| {
         let c = scene.prims[prim as usize].camera;
         let n = (c[1] - c[0]).cross(c[2] - c[0]);
-        if scene.is_perspective() { n.dot(-c[0]) > 0.0 } else { n.z > 0.0 }
+        if scene.is_perspective() {
+            n.dot(-c[0]) > 0.0
+        } else {
+            n.z > 0.0
+        }
     };
     let mut out = Vec::new();
     for (key, users) in &edges {
         let kind = match users.as_slice() {
             [(a, fa), (b, fb)] => {
-                let material = scene.prims[*a as usize].material != scene.prims[*b as usize].material;
+                let material =
+                    scene.prims[*a as usize].material != scene.prims[*b as usize].material;
                 // Consistent winding runs a shared edge in opposite
                 // directions; otherwise one normal is flipped.
                 let cos = normal(*a).dot(normal(*b)) * if fa != fb { 1.0 } else { -1.0 };
@@ -272,7 +308,13 @@ fn edge_features(scene: &ScreenScene, crease_degrees: f64) -> Vec<Feature> {
             _ => Some(LineKind::Boundary),
         };
         let Some(kind) = kind else { continue };
-        let from_bits = |k: [u64; 3]| DVec3::new(f64::from_bits(k[0]), f64::from_bits(k[1]), f64::from_bits(k[2]));
+        let from_bits = |k: [u64; 3]| {
+            DVec3::new(
+                f64::from_bits(k[0]),
+                f64::from_bits(k[1]),
+                f64::from_bits(k[2]),
+            )
+        };
         let own = [users[0].0, users.get(1).map_or(users[0].0, |u| u.0)];
         if let Some(ends) = project_segment(scene, from_bits(key.0), from_bits(key.1)) {
             out.push(Feature { ends, own, kind });
@@ -293,7 +335,10 @@ fn project_segment(scene: &ScreenScene, a: DVec3, b: DVec3) -> Option<[DVec3; 2]
     let m = scene.projection_matrix;
     let (mut ca, mut cb) = (m * a.extend(1.0), m * b.extend(1.0));
     // GL clip space: near is w + z >= 0, far is w - z >= 0.
-    for plane in [DVec4::new(0.0, 0.0, 1.0, 1.0), DVec4::new(0.0, 0.0, -1.0, 1.0)] {
+    for plane in [
+        DVec4::new(0.0, 0.0, 1.0, 1.0),
+        DVec4::new(0.0, 0.0, -1.0, 1.0),
+    ] {
         let (da, db) = (plane.dot(ca), plane.dot(cb));
         if da < 0.0 && db < 0.0 {
             return None;
@@ -307,6 +352,13 @@ fn project_segment(scene: &ScreenScene, a: DVec3, b: DVec3) -> Option<[DVec3; 2]
     if ca.w <= 0.0 || cb.w <= 0.0 {
         return None;
     }
-    let win = |c: DVec4| scene.viewport.ndc_to_window(c.truncate() / c.w);
+    // Snapped to 1/256 pixel like the front end's vertices, so an edge
+    // ends exactly where its triangles' corners are and the faces meeting
+    // there do not hide a sliver of it.
+    let snap = |v: f64| (v * SCALE).round() / SCALE;
+    let win = |c: DVec4| {
+        let w = scene.viewport.ndc_to_window(c.truncate() / c.w);
+        DVec3::new(snap(w.x), snap(w.y), w.z)
+    };
     Some([win(ca), win(cb)])
 }

@@ -92,17 +92,27 @@ impl VectorOptions {
 
     /// Errors naming the first option that is out of range.
     pub(crate) fn validate(&self) -> hider_scene::Result<()> {
-        let bad = if !(self.crease_degrees.is_finite() && (0.0..=180.0).contains(&self.crease_degrees)) {
-            Some(format!("crease_degrees {} is not in [0, 180]", self.crease_degrees))
-        } else if !(self.stroke_width.is_finite() && self.stroke_width > 0.0) {
-            Some(format!("stroke_width {} is not a positive number", self.stroke_width))
-        } else if !(self.depth_tolerance.is_finite() && self.depth_tolerance >= 0.0) {
-            Some(format!("depth_tolerance {} is not a non-negative number", self.depth_tolerance))
-        } else if self.refine_bits > 16 {
-            Some(format!("refine_bits {} is above 16", self.refine_bits))
-        } else {
-            None
-        };
+        let bad =
+            if !(self.crease_degrees.is_finite() && (0.0..=180.0).contains(&self.crease_degrees)) {
+                Some(format!(
+                    "crease_degrees {} is not in [0, 180]",
+                    self.crease_degrees
+                ))
+            } else if !(self.stroke_width.is_finite() && self.stroke_width > 0.0) {
+                Some(format!(
+                    "stroke_width {} is not a positive number",
+                    self.stroke_width
+                ))
+            } else if !(self.depth_tolerance.is_finite() && self.depth_tolerance >= 0.0) {
+                Some(format!(
+                    "depth_tolerance {} is not a non-negative number",
+                    self.depth_tolerance
+                ))
+            } else if self.refine_bits > 16 {
+                Some(format!("refine_bits {} is above 16", self.refine_bits))
+            } else {
+                None
+            };
         match bad {
             Some(message) => Err(crate::render_error(message)),
             None => Ok(()),

@@ -84,7 +84,11 @@ pub fn relation(
         dmax = dmax.max(d);
     }
     if dmin >= -tolerance && dmax <= tolerance {
-        return if u.prim < t.prim { Relation::Front } else { Relation::Behind };
+        return if u.prim < t.prim {
+            Relation::Front
+        } else {
+            Relation::Behind
+        };
     }
     if dmin >= -tolerance {
         return Relation::Behind;
@@ -94,7 +98,11 @@ pub fn relation(
     }
     // Keep the part of `u` where it is nearer: d < 0.
     let cut = clip_by_plane(grid, u_poly, |x, y| sign * diff.eval(x, y));
-    if cut.len() < 3 { Relation::Behind } else { Relation::Cut(cut) }
+    if cut.len() < 3 {
+        Relation::Behind
+    } else {
+        Relation::Cut(cut)
+    }
 }
 
 /// `lo` clipped by `hi`'s three edges, in pixels (f64).

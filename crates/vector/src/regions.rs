@@ -103,11 +103,18 @@ pub struct RegionMap {
 /// assert!(map.groups.len() <= 3);
 /// # Ok::<(), hider_scene::Error>(())
 /// ```
-pub fn visible_regions(scene: &ScreenScene, options: &VectorOptions, mode: ShadeMode) -> Result<RegionMap> {
+pub fn visible_regions(
+    scene: &ScreenScene,
+    options: &VectorOptions,
+    mode: ShadeMode,
+) -> Result<RegionMap> {
     options.validate()?;
     let grid = Grid::for_scene(scene, options.refine_bits)?;
-    let polys: Vec<Vec<IntPoint>> =
-        scene.tris.iter().map(|t| grid.clip_to_image(&grid.tri_points(t))).collect();
+    let polys: Vec<Vec<IntPoint>> = scene
+        .tris
+        .iter()
+        .map(|t| grid.clip_to_image(&grid.tri_points(t)))
+        .collect();
     let boxes: Vec<_> = polys.iter().map(|p| bounds(p)).collect();
     let bins = Bins::new(&grid, &boxes);
     let mut stats = RegionStats {
@@ -128,13 +135,21 @@ pub fn visible_regions(scene: &ScreenScene, options: &VectorOptions, mode: Shade
             }
             seen[u_idx] = ti as u32;
             let u = &scene.tris[u_idx];
-            let Some((ulo, uhi)) = boxes[u_idx] else { return };
+            let Some((ulo, uhi)) = boxes[u_idx] else {
+                return;
+            };
             let apart = uhi.x <= lo.x || ulo.x >= hi.x || uhi.y <= lo.y || ulo.y >= hi.y;
             if u.prim == t.prim || apart || !interiors_overlap(t, u) {
                 return;
             }
             stats.overlapping_pairs += 1;
-            let rel = relation(&grid, (ti, t), (u_idx, u), &polys[u_idx], options.depth_tolerance);
+            let rel = relation(
+                &grid,
+                (ti, t),
+                (u_idx, u),
+                &polys[u_idx],
+                options.depth_tolerance,
+            );
             match rel {
                 Relation::Behind => {}
                 Relation::Front => occluders.push(polys[u_idx].clone()),
@@ -150,7 +165,8 @@ pub fn visible_regions(scene: &ScreenScene, options: &VectorOptions, mode: Shade
             vec![vec![polys[ti].clone()]]
         } else {
             stats.differences += 1;
-            let mut overlay = Overlay::new(polys[ti].len() + occluders.iter().map(Vec::len).sum::<usize>());
+            let mut overlay =
+                Overlay::new(polys[ti].len() + occluders.iter().map(Vec::len).sum::<usize>());
             overlay.add_contour(&polys[ti], ShapeType::Subject);
             for o in &occluders {
                 overlay.add_contour(o, ShapeType::Clip);
@@ -164,7 +180,11 @@ pub fn visible_regions(scene: &ScreenScene, options: &VectorOptions, mode: Shade
     stats.cut_pairs = cut_pairs.len() as u64;
     let mut prims: Vec<PrimRegion> = per_prim
         .into_iter()
-        .map(|(prim, shapes)| PrimRegion { prim, group: 0, shapes })
+        .map(|(prim, shapes)| PrimRegion {
+            prim,
+            group: 0,
+            shapes,
+        })
         .collect();
     prims.sort_by_key(|r| r.prim);
     let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
@@ -175,17 +195,31 @@ pub fn visible_regions(scene: &ScreenScene, options: &VectorOptions, mode: Shade
         .flat_map(|g| g.shapes.iter().flatten())
         .map(|c| c.len() as u64)
         .sum();
-    Ok(RegionMap { grid, prims, groups, stats, cut_pairs })
+    Ok(RegionMap {
+        grid,
+        prims,
+        groups,
+        stats,
+        cut_pairs,
+    })
 }
 
 /// The key that puts coplanar primitives of one colour together: the fill
 /// colour and opacity as written, and the camera-space plane quantised.
 fn group_key(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> (String, u32, [i64; 4]) {
     let (rgb, a) = prim_color(scene, prim, mode);
-    let fill = format!("#{:02x}{:02x}{:02x}", to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]));
+    let fill = format!(
+        "#{:02x}{:02x}{:02x}",
+        to_srgb8(rgb[0]),
+        to_srgb8(rgb[1]),
+        to_srgb8(rgb[2])
+    );
     let c = scene.prims[prim as usize].camera;
     let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
-    let scale = c.iter().map(|p| p.abs().max_element()).fold(1e-300, f64::max);
+    let scale = c
+        .iter()
+        .map(|p| p.abs().max_element())
+        .fold(1e-300, f64::max);
     // About six significant digits: triangles of one flat face agree far
     // closer than that, distinct faces differ far more.
     let q = |v: f64| (v * 1e6).round() as i64;
@@ -194,7 +228,12 @@ fn group_key(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> (String, u32, [
 }
 
 /// Assigns every region a face group and builds the groups' paths.
-fn group_regions(scene: &ScreenScene, prims: &mut [PrimRegion], mode: ShadeMode, merge: bool) -> Vec<FaceGroup> {
+fn group_regions(
+    scene: &ScreenScene,
+    prims: &mut [PrimRegion],
+    mode: ShadeMode,
+    merge: bool,
+) -> Vec<FaceGroup> {
     let mut index: HashMap<(String, u32, [i64; 4]), u32> = HashMap::new();
     let mut groups: Vec<FaceGroup> = Vec::new();
     for (k, region) in prims.iter_mut().enumerate() {
@@ -207,12 +246,24 @@ fn group_regions(scene: &ScreenScene, prims: &mut [PrimRegion], mode: ShadeMode,
         let g = *index.entry(key).or_insert(next);
         if g == next {
             let (rgb, a) = prim_color(scene, region.prim, mode);
-            let fill = format!("#{:02x}{:02x}{:02x}", to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]));
-            groups.push(FaceGroup { prims: Vec::new(), fill, opacity: a, shapes: Vec::new() });
+            let fill = format!(
+                "#{:02x}{:02x}{:02x}",
+                to_srgb8(rgb[0]),
+                to_srgb8(rgb[1]),
+                to_srgb8(rgb[2])
+            );
+            groups.push(FaceGroup {
+                prims: Vec::new(),
+                fill,
+                opacity: a,
+                shapes: Vec::new(),
+            });
         }
         region.group = g;
         groups[g as usize].prims.push(region.prim);
-        groups[g as usize].shapes.extend(region.shapes.iter().cloned());
+        groups[g as usize]
+            .shapes
+            .extend(region.shapes.iter().cloned());
     }
     for group in &mut groups {
         if group.prims.len() > 1 || group.shapes.len() > 1 {

@@ -43,11 +43,16 @@ fn header(scene: &ScreenScene, background: bool) -> String {
 pub fn regions_svg(scene: &ScreenScene, map: &RegionMap, options: &VectorOptions) -> String {
     let mut s = header(scene, options.background);
     let scale = 1.0 / map.grid.units_per_pixel();
-    let _ = writeln!(s, r#"<g transform="scale({scale})" stroke="none" fill-rule="evenodd">"#);
+    let _ = writeln!(
+        s,
+        r#"<g transform="scale({scale})" stroke="none" fill-rule="evenodd">"#
+    );
     for group in &map.groups {
         let _ = write!(s, r#"<path data-prim="{}" d=""#, group.prims[0]);
         for contour in group.shapes.iter().flatten() {
-            let Some(first) = contour.first() else { continue };
+            let Some(first) = contour.first() else {
+                continue;
+            };
             let _ = write!(s, "M{} {}l", first.x, first.y);
             let mut prev = *first;
             for (k, p) in contour.iter().enumerate().skip(1) {
@@ -76,7 +81,11 @@ fn stroke_colour(kind: LineKind) -> &'static str {
 
 fn write_polylines(s: &mut String, lines: &[Polyline]) {
     for line in lines {
-        let _ = write!(s, r#"<polyline stroke="{}" points=""#, stroke_colour(line.kind));
+        let _ = write!(
+            s,
+            r#"<polyline stroke="{}" points=""#,
+            stroke_colour(line.kind)
+        );
         for (k, (x, y)) in line.points.iter().enumerate() {
             let sep = if k == 0 { "" } else { " " };
             // Four decimals: 1/10000 pixel, below any plotter's step.
@@ -107,7 +116,10 @@ pub fn lines_svg(scene: &ScreenScene, drawing: &LineDrawing, options: &VectorOpt
         write_polylines(&mut s, &drawing.hidden);
         s.push_str("</g>\n");
     }
-    let _ = writeln!(s, r#"<g fill="none" stroke-width="{w}" stroke-linecap="round" stroke-linejoin="round">"#);
+    let _ = writeln!(
+        s,
+        r#"<g fill="none" stroke-width="{w}" stroke-linecap="round" stroke-linejoin="round">"#
+    );
     write_polylines(&mut s, &drawing.visible);
     s.push_str("</g>\n</svg>\n");
     s
@@ -123,11 +135,21 @@ fn write_text(path: &Path, doc: &str) -> Result<()> {
 }
 
 /// Writes [`regions_svg`] to `path` atomically.
-pub fn write_regions_svg(scene: &ScreenScene, map: &RegionMap, options: &VectorOptions, path: &Path) -> Result<()> {
+pub fn write_regions_svg(
+    scene: &ScreenScene,
+    map: &RegionMap,
+    options: &VectorOptions,
+    path: &Path,
+) -> Result<()> {
     write_text(path, &regions_svg(scene, map, options))
 }
 
 /// Writes [`lines_svg`] to `path` atomically.
-pub fn write_lines_svg(scene: &ScreenScene, drawing: &LineDrawing, options: &VectorOptions, path: &Path) -> Result<()> {
+pub fn write_lines_svg(
+    scene: &ScreenScene,
+    drawing: &LineDrawing,
+    options: &VectorOptions,
+    path: &Path,
+) -> Result<()> {
     write_text(path, &lines_svg(scene, drawing, options))
 }

@@ -36,9 +36,9 @@ fn region_ids(s: &ScreenScene, map: &RegionMap) -> (Vec<u32>, usize) {
             for j in to_px(y0, h)..=to_px(y1, h) {
                 for i in to_px(x0, w)..=to_px(x1, w) {
                     let c = map.grid.pixel_centre(i, j);
-                    let inside = contours
-                        .iter()
-                        .fold(false, |acc, contour| acc ^ crossing_number_inside(contour, c));
+                    let inside = contours.iter().fold(false, |acc, contour| {
+                        acc ^ crossing_number_inside(contour, c)
+                    });
                     if inside {
                         let k = (j * w + i) as usize;
                         if ids[k] != NO_ID {
@@ -112,7 +112,11 @@ fn check(name: &str, s: &ScreenScene) -> (usize, usize) {
     assert_eq!(doubles, 0, "{name}: pixel centres inside two regions");
     let (mut compared, mut ties) = (0, 0);
     for (k, (&mine, &z)) in ids.iter().zip(&frame.ids).enumerate() {
-        assert_eq!(mine == NO_ID, z == NO_ID, "{name}: coverage differs at pixel {k}");
+        assert_eq!(
+            mine == NO_ID,
+            z == NO_ID,
+            "{name}: coverage differs at pixel {k}"
+        );
         if reference.is_tie(k, DEFAULT_TIE_TOLERANCE) {
             ties += 1;
             continue;
@@ -142,6 +146,19 @@ fn regions_give_the_zbuffer_id_on_random_scenes() {
     }
 }
 
+/// Hard cases made of meshes whose faces meet only along shared edges.
+const MESHES: &[&str] = &[
+    "near_degenerate_fan",
+    "fan",
+    "bipyramid",
+    "cube",
+    "uv_sphere",
+    "torus",
+    "offset_sphere",
+    "repeated_polygon",
+    "far_plane_triangle",
+];
+
 #[test]
 fn regions_never_overlap_and_cover_what_the_triangles_cover() {
     let mut cases = hard_cases::all(3);
@@ -151,12 +168,26 @@ fn regions_never_overlap_and_cover_what_the_triangles_cover() {
         let map = visible_regions(&s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
         let (overlap, differ) = overlap_and_cover(&s, &map);
         let unit2 = map.grid.units_per_pixel().powi(2);
-        eprintln!(
-            "{name}: overlap {} px^2, cover difference {} px^2",
-            overlap as f64 / 2.0 / unit2,
-            differ as f64 / 2.0 / unit2
-        );
-        assert_eq!(overlap, 0, "{name}: regions overlap");
-        assert_eq!(differ, 0, "{name}: the regions' union is not the covered set");
+        let (overlap_px, differ_px) = (overlap as f64 / 2.0 / unit2, differ as f64 / 2.0 / unit2);
+        if MESHES.contains(&name) {
+            // No cut lines and no crossing edges inside a face: nothing is
+            // rounded, so the partition is exact.
+            assert_eq!(overlap, 0, "{name}: regions overlap");
+            assert_eq!(
+                differ, 0,
+                "{name}: the regions' union is not the covered set"
+            );
+        } else {
+            // Cut points are rounded to the grid (1/16384 pixel by default):
+            // slivers of that width along cut lines are all that may differ.
+            assert!(
+                overlap_px < 5e-3,
+                "{name}: regions overlap by {overlap_px} px^2"
+            );
+            assert!(
+                differ_px < 1e-2,
+                "{name}: union differs from the cover by {differ_px} px^2"
+            );
+        }
     }
 }
