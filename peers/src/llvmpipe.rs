@@ -37,6 +37,11 @@ use libloading::Library;
 
 use crate::scenes::Workload;
 
+/// Reference renders for hider's GL agreement test (a child module: it
+/// drives the same context and entry points).
+#[path = "reference.rs"]
+pub mod reference;
+
 /// llvmpipe with 4x multisampling, resolved (a child module: the same
 /// context and entry points).
 #[path = "msaa.rs"]
@@ -179,6 +184,7 @@ gl_api! {
     glEnableClientState: fn(GLenum);
     glDisableClientState: fn(GLenum);
     glVertexPointer: fn(GLint, GLenum, GLsizei, *const c_void);
+    glColorPointer: fn(GLint, GLenum, GLsizei, *const c_void);
     glGenBuffers: fn(GLsizei, *mut GLuint);
     glBindBuffer: fn(GLenum, GLuint);
     glBufferData: fn(GLenum, GLsizeiptr, *const c_void, GLenum);

@@ -338,6 +338,9 @@ fn load_average() -> String {
 }
 
 fn main() -> ExitCode {
+    if let Some(code) = llvmpipe::reference::from_args() {
+        return code;
+    }
     let args = match parse_args() {
         Ok(a) => a,
         Err(e) => {
