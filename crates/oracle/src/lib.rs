@@ -48,7 +48,7 @@ pub mod window_depth;
 
 pub use agreement::Agreement;
 pub use coverage::{CoverageReference, analytic_coverage};
-pub use options::{DepthPlane, OracleOptions};
+pub use options::{DEFAULT_MAX_BYTES, DepthPlane, OracleOptions};
 pub use raycast::{OracleStats, RayCastOracle};
 pub use reference::Reference;
 pub use tolerance::{DEFAULT_TIE_TOLERANCE, WINDOW_TIE_TOLERANCE};

@@ -33,8 +33,10 @@ pub enum DepthPlane {
 ///
 /// let options = OracleOptions::default()
 ///     .with_depth_plane(DepthPlane::Source)
-///     .with_max_pixel_tests(1 << 20);
+///     .with_max_pixel_tests(1 << 20)
+///     .with_max_bytes(64 << 20);
 /// assert_eq!(options.depth_plane, DepthPlane::Source);
+/// assert_eq!(options.max_bytes, 64 << 20);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -51,7 +53,18 @@ pub struct OracleOptions {
     /// and `render`: the oracle is slow on purpose and should refuse rather
     /// than run for hours.
     pub max_pixel_tests: u64,
+    /// Budget for the per-pixel working arrays (nearest surfaces, camera
+    /// rays and the reference's ids, depths and gaps: about 100 bytes a
+    /// pixel, [`RayCastOracle::bytes_needed`](crate::RayCastOracle::bytes_needed)),
+    /// checked before anything is allocated: an image that would need more
+    /// is refused with [`hider_scene::Error::Limit`] instead of exhausting
+    /// the machine's memory (16384 x 16384 pixels would need about 28 GB).
+    /// Default 2 GiB, enough for 4096 x 4096.
+    pub max_bytes: u64,
 }
+
+/// The default [`OracleOptions::max_bytes`]: 2 GiB.
+pub const DEFAULT_MAX_BYTES: u64 = 1 << 31;
 
 impl Default for OracleOptions {
     fn default() -> Self {
@@ -59,6 +72,7 @@ impl Default for OracleOptions {
             depth_plane: DepthPlane::Snapped,
             tie_tolerance: DEFAULT_TIE_TOLERANCE,
             max_pixel_tests: 1 << 34,
+            max_bytes: DEFAULT_MAX_BYTES,
         }
     }
 }
@@ -79,6 +93,12 @@ impl OracleOptions {
     /// Sets [`Self::max_pixel_tests`].
     pub fn with_max_pixel_tests(mut self, tests: u64) -> Self {
         self.max_pixel_tests = tests;
+        self
+    }
+
+    /// Sets [`Self::max_bytes`].
+    pub fn with_max_bytes(mut self, bytes: u64) -> Self {
+        self.max_bytes = bytes;
         self
     }
 }

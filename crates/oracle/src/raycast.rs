@@ -92,8 +92,21 @@ impl RayCastOracle {
             .sum()
     }
 
+    /// Bytes of the working arrays evaluating a `width x height` image
+    /// takes: per pixel the nearest two surfaces, the camera ray, and the
+    /// reference's id, depth and two gaps.
+    pub fn bytes_needed(width: u32, height: u32) -> u64 {
+        let per_pixel = std::mem::size_of::<Nearest>()
+            + std::mem::size_of::<(DVec3, DVec3)>()
+            + std::mem::size_of::<u32>()
+            + std::mem::size_of::<f32>()
+            + 2 * std::mem::size_of::<f64>();
+        u64::from(width) * u64::from(height) * per_pixel as u64
+    }
+
     /// Like [`Self::evaluate`], but refuses with [`Error::Limit`] a scene
-    /// costing more than [`OracleOptions::max_pixel_tests`].
+    /// costing more than [`OracleOptions::max_pixel_tests`] or needing more
+    /// memory than [`OracleOptions::max_bytes`].
     pub fn try_evaluate(&mut self, scene: &ScreenScene) -> Result<Reference> {
         self.check_budget(scene)?;
         Ok(self.evaluate(scene))
@@ -107,8 +120,19 @@ impl RayCastOracle {
         self.run(scene).0
     }
 
-    /// Errors when `scene` costs more tests than the budget allows.
+    /// Errors when `scene` needs more memory or costs more tests than the
+    /// budgets allow; the memory first, as it is known from the image size
+    /// alone.
     fn check_budget(&self, scene: &ScreenScene) -> Result<()> {
+        let vp = scene.viewport;
+        let bytes = Self::bytes_needed(vp.width, vp.height);
+        if bytes > self.options.max_bytes {
+            return Err(Error::Limit {
+                what: "oracle working bytes",
+                value: bytes,
+                limit: self.options.max_bytes,
+            });
+        }
         let tests = Self::pixel_tests(scene);
         if tests > self.options.max_pixel_tests {
             return Err(Error::Limit {
@@ -268,9 +292,10 @@ impl Hider for RayCastOracle {
         "oracle"
     }
 
-    /// Writes the reference ids and window depths into `frame`. Errors when
-    /// the frame's size differs from the scene's or the scene costs more
-    /// than [`OracleOptions::max_pixel_tests`].
+    /// Writes the reference ids and window depths into `frame`. Errors,
+    /// before allocating anything, when the frame's size differs from the
+    /// scene's, the image needs more than [`OracleOptions::max_bytes`] or
+    /// the scene costs more than [`OracleOptions::max_pixel_tests`].
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<OracleStats> {
         check_frame("oracle", scene, frame)?;
         self.check_budget(scene)?;
