@@ -11,9 +11,9 @@
 use hider_scene::ScreenScene;
 
 use crate::bins::Key;
+use crate::centres::{Centres, centre_test};
 use crate::newell::{Blocked, Decided, Extent, Outcome, extents_decide, may_precede_by_planes};
 use crate::order::{At, Orderer, Slot};
-use crate::piece::Piece;
 use crate::stats::PainterStats;
 
 /// How many entries of the depth-overlapping run are compared one by one
@@ -45,23 +45,49 @@ impl Orderer {
         scene: &ScreenScene,
         stats: &mut PainterStats,
     ) -> Option<(Slot, u32, Blocked)> {
-        let pp = &self.pieces[p as usize];
+        if self.centres[p as usize] == Centres::None {
+            // It shows nowhere: no order matters.
+            return None;
+        }
         let pe = self.extents[p as usize];
         // Moved pieces are out of depth order: compare with all of them.
         for (k, &q) in self.front.iter().enumerate().rev() {
             if Slot::Front(k) == cslot {
                 continue;
             }
-            let (qq, qe) = (&self.pieces[q as usize], &self.extents[q as usize]);
-            if let Some(b) = test_pair((pp, &pe), (qq, qe), scene, stats) {
+            if let Some(b) = self.test_pair((p, &pe), (q, &self.extents[q as usize]), scene, stats)
+            {
                 return Some((Slot::Front(k), q, b));
             }
         }
         match self.scan_linear(cslot, p, scene, stats) {
             Linear::Found((slot, q), b) => Some((slot, q, b)),
             Linear::Settled => None,
-            Linear::Rest(upper) => self.scan_bins(cslot, p, upper, scene, stats),
+            Linear::Rest(upper) => self
+                .scan_bins(cslot, p, upper, scene, stats)
+                .or_else(|| self.index_blocker(p, scene, stats)),
         }
+    }
+
+    /// The rest of the small pieces (those covering one centre, kept out
+    /// of the bin grid): the farthest on a centre P covers, if farther
+    /// than P there.
+    fn index_blocker(
+        &self,
+        p: u32,
+        scene: &ScreenScene,
+        stats: &mut PainterStats,
+    ) -> Option<(Slot, u32, Blocked)> {
+        let q = self.centre_blocker(p, scene)?;
+        stats.comparisons += 1;
+        stats.blocked += 1;
+        let slot = if self.pieces[q as usize].moved {
+            let k = self.front.iter().position(|&f| f == q)?;
+            Slot::Front(k)
+        } else {
+            Slot::Sorted(self.keys[q as usize])
+        };
+        Some((slot, q, Blocked::by_centre()))
     }
 
     /// The first entries of the sorted list one by one, farthest first.
@@ -72,7 +98,6 @@ impl Orderer {
         scene: &ScreenScene,
         stats: &mut PainterStats,
     ) -> Linear {
-        let pp = &self.pieces[p as usize];
         let pe = self.extents[p as usize];
         let limit = pe.zmin;
         let mut scanned = 0;
@@ -90,7 +115,7 @@ impl Orderer {
                 return Linear::Rest(key);
             }
             scanned += 1;
-            if let Some(b) = test_pair((pp, &pe), (&self.pieces[q as usize], qe), scene, stats) {
+            if let Some(b) = self.test_pair((p, &pe), (q, qe), scene, stats) {
                 return Linear::Found((Slot::Sorted(key), q), b);
             }
         }
@@ -146,14 +171,13 @@ impl Orderer {
             }
         }
         near.sort_unstable_by_key(|e| std::cmp::Reverse(e.0));
-        let pp = &self.pieces[p as usize];
         let mut found = None;
         for &(key, q) in &near {
             if Slot::Sorted(key) == cslot {
                 continue;
             }
-            let (qq, qe) = (&self.pieces[q as usize], &self.extents[q as usize]);
-            if let Some(b) = test_pair((pp, &pe), (qq, qe), scene, stats) {
+            if let Some(b) = self.test_pair((p, &pe), (q, &self.extents[q as usize]), scene, stats)
+            {
                 found = Some((Slot::Sorted(key), q, b));
                 break;
             }
@@ -166,34 +190,53 @@ impl Orderer {
     }
 }
 
-/// Tests 1 to 6 on the pair (P, Q), counting the comparison and the test
-/// that settled it; the blocked outcome when none did.
-fn test_pair(
-    (pp, pe): (&Piece, &Extent),
-    (qq, qe): (&Piece, &Extent),
-    scene: &ScreenScene,
-    stats: &mut PainterStats,
-) -> Option<Blocked> {
-    stats.comparisons += 1;
-    let outcome = match extents_decide(pe, qe) {
-        Some(d) => Outcome::Ok(d),
-        None => may_precede_by_planes(pp, qq, scene),
-    };
-    match outcome {
-        Outcome::Ok(d) => {
-            *match d {
-                Decided::Depth => &mut stats.decided_depth,
-                Decided::X => &mut stats.decided_x,
-                Decided::Y => &mut stats.decided_y,
-                Decided::PBehind => &mut stats.decided_p_behind,
-                Decided::QInFront => &mut stats.decided_q_in_front,
-                Decided::Projection => &mut stats.decided_projection,
-            } += 1;
-            None
-        }
-        Outcome::Blocked(b) => {
-            stats.blocked += 1;
-            Some(b)
+impl Orderer {
+    /// Tests 1 to 6 on the pair (P, Q), or the centre test when one of
+    /// them covers at most one pixel centre, counting the comparison and
+    /// the test that settled it; the blocked outcome when none did.
+    fn test_pair(
+        &self,
+        (p, pe): (u32, &Extent),
+        (q, qe): (u32, &Extent),
+        scene: &ScreenScene,
+        stats: &mut PainterStats,
+    ) -> Option<Blocked> {
+        stats.comparisons += 1;
+        let (pp, qq) = (&self.pieces[p as usize], &self.pieces[q as usize]);
+        let outcome = match extents_decide(pe, qe) {
+            Some(d) => Outcome::Ok(d),
+            None => {
+                let (pt, qt) = (
+                    &scene.tris[pp.source as usize],
+                    &scene.tris[qq.source as usize],
+                );
+                match centre_test(
+                    (pp, self.centres[p as usize], pt),
+                    (qq, self.centres[q as usize], qt),
+                ) {
+                    Some(true) => Outcome::Ok(Decided::Centre),
+                    Some(false) => Outcome::Blocked(Blocked::by_centre()),
+                    None => may_precede_by_planes(pp, qq, scene),
+                }
+            }
+        };
+        match outcome {
+            Outcome::Ok(d) => {
+                *match d {
+                    Decided::Depth => &mut stats.decided_depth,
+                    Decided::X => &mut stats.decided_x,
+                    Decided::Y => &mut stats.decided_y,
+                    Decided::PBehind => &mut stats.decided_p_behind,
+                    Decided::QInFront => &mut stats.decided_q_in_front,
+                    Decided::Projection => &mut stats.decided_projection,
+                    Decided::Centre => &mut stats.decided_centre,
+                } += 1;
+                None
+            }
+            Outcome::Blocked(b) => {
+                stats.blocked += 1;
+                Some(b)
+            }
         }
     }
 }

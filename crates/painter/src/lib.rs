@@ -65,6 +65,7 @@
 
 mod bins;
 mod blocker;
+mod centres;
 pub mod naive;
 pub mod newell;
 pub mod options;

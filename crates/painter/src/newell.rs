@@ -72,6 +72,9 @@ pub(crate) enum Decided {
     QInFront,
     /// Test 6: projections do not overlap.
     Projection,
+    /// One of the two covers at most one pixel centre, and on it P is not
+    /// nearer ([`crate::centres`]).
+    Centre,
 }
 
 /// The outcome of testing whether P may be painted before Q.
@@ -97,6 +100,22 @@ pub(crate) struct Blocked {
 }
 
 impl Blocked {
+    /// P is nearer than Q on the one pixel centre that matters (one of them
+    /// covers no other): Q may go first, and no plane needs to cut.
+    pub fn by_centre() -> Self {
+        Self {
+            p: Sides {
+                front: true,
+                behind: false,
+            },
+            q: Sides {
+                front: false,
+                behind: true,
+            },
+            touch_reverse: true,
+        }
+    }
+
     /// Whether Q may be painted before P instead (tests 4 and 5 with the
     /// roles swapped): Q behind P's plane, or P in front of Q's plane, or
     /// they only touch and Q is nearer where they do.

@@ -40,6 +40,7 @@ use std::collections::BTreeMap;
 use hider_scene::{Error, Result, ScreenScene};
 
 use crate::bins::{Grid, Key, depth_bits};
+use crate::centres::{CentreIndex, Centres};
 use crate::newell::Extent;
 use crate::options::{PainterOptions, SPLITS_BASE, SPLITS_PER_TRIANGLE};
 use crate::piece::Piece;
@@ -70,8 +71,15 @@ pub(crate) struct Orderer {
     pub extents: Vec<Extent>,
     /// Pieces not yet painted nor moved, by key (farthest last).
     pub sorted: BTreeMap<Key, u32>,
-    /// The same pieces by screen bin.
+    /// The same pieces by screen bin, those covering several centres only
+    /// (the others are in `index`).
     pub grid: Grid,
+    /// Which centres each piece covers, by piece index.
+    pub centres: Vec<Centres>,
+    /// The pieces covering exactly one centre, not yet painted, by centre.
+    pub index: CentreIndex,
+    /// Each piece's key in `sorted` (meaningful while it is there).
+    pub keys: Vec<Key>,
     /// Next tie-break for an insertion (decreasing).
     next_tie: i64,
     /// Moved pieces, the last moved on top.
@@ -111,6 +119,7 @@ impl Orderer {
             };
             let Some((qslot, q, blocked)) = self.find_blocker(cslot, p, scene, stats) else {
                 self.remove(cslot);
+                self.unindex(p, scene);
                 self.order.push(p);
                 continue;
             };
@@ -133,7 +142,7 @@ impl Orderer {
                 });
             }
             let before = self.pieces.len();
-            let freed = self.split((cslot, p), (qslot, q), &blocked, &scene.tris, stats)?;
+            let freed = self.split((cslot, p), (qslot, q), &blocked, scene, stats)?;
             arena.now += self.pieces[before..]
                 .iter()
                 .map(|p| p.bytes() as u64)
@@ -151,7 +160,10 @@ impl Orderer {
         stats.splits = stats.plane_splits + stats.line_splits;
         stats.pieces_out = self.order.len() as u64;
         // The tree's nodes hold about one key and id per entry.
-        let lists = self.extents.capacity() * std::mem::size_of::<Extent>()
+        let lists = self.extents.capacity()
+            * (std::mem::size_of::<Extent>()
+                + std::mem::size_of::<Centres>()
+                + std::mem::size_of::<Key>())
             + self.grid.bytes()
             + (self.front.capacity() + self.order.capacity()) * 4;
         stats.peak_bytes = arena.peak + lists as u64;
@@ -166,6 +178,9 @@ impl Orderer {
         self.extents.clear();
         self.sorted.clear();
         self.front.clear();
+        self.centres.clear();
+        self.index.clear();
+        self.keys.clear();
         if scene.tris.len() >= u32::MAX as usize {
             return Err(Error::Limit {
                 what: "painter triangles",
@@ -178,6 +193,9 @@ impl Orderer {
             self.pieces.push(Piece::from_tri(tri, k as u32));
         }
         self.extents.extend(self.pieces.iter().map(Extent::of));
+        for k in 0..self.pieces.len() {
+            self.index_piece(k as u32, scene);
+        }
         stats.triangles = scene.tris.len() as u64;
         let bytes: u64 = self.pieces.iter().map(|p| p.bytes() as u64).sum();
         // Bins about as wide as the mean bounding box, so that a typical
@@ -194,7 +212,10 @@ impl Orderer {
         for (k, e) in self.extents.iter().enumerate() {
             let key = (depth_bits(e.zmax), -(k as i64));
             self.sorted.insert(key, k as u32);
-            self.grid.insert(key, k as u32, e);
+            self.keys.push(key);
+            if self.centres[k] == Centres::Many {
+                self.grid.insert(key, k as u32, e);
+            }
         }
         self.next_tie = -(self.pieces.len() as i64) - 1;
         Ok(Arena {
@@ -210,7 +231,9 @@ impl Orderer {
                 self.front.remove(k);
             }
             Slot::Sorted(key) => {
-                if let Some(id) = self.sorted.remove(&key) {
+                if let Some(id) = self.sorted.remove(&key)
+                    && self.centres[id as usize] == Centres::Many
+                {
                     self.grid.remove(key, &self.extents[id as usize]);
                 }
             }
@@ -224,7 +247,13 @@ impl Orderer {
         let key = (depth_bits(extent.zmax), self.next_tie);
         self.next_tie -= 1;
         self.sorted.insert(key, id);
-        self.grid.insert(key, id, &extent);
+        if self.keys.len() <= id as usize {
+            self.keys.resize(id as usize + 1, key);
+        }
+        self.keys[id as usize] = key;
+        if self.centres[id as usize] == Centres::Many {
+            self.grid.insert(key, id, &extent);
+        }
     }
 }
 

@@ -12,7 +12,7 @@ use glam::DVec2;
 use hider_geom::PlaneEq;
 use hider_scene::{Error, Result};
 
-use hider_scene::ScreenTri;
+use hider_scene::{ScreenScene, ScreenTri};
 
 use crate::newell::{Blocked, CUT_MARGIN, Extent};
 use crate::order::{At, Orderer, Slot};
@@ -36,12 +36,13 @@ impl Orderer {
         (pslot, p): At,
         (qslot, q): At,
         blocked: &Blocked,
-        tris: &[ScreenTri],
+        scene: &ScreenScene,
         stats: &mut PainterStats,
     ) -> Result<u64> {
-        for (slot, id, line, plane) in self.attempts((pslot, p), (qslot, q), blocked, tris) {
+        let attempts = self.attempts((pslot, p), (qslot, q), blocked, &scene.tris);
+        for (slot, id, line, plane) in attempts {
             if let Some((a, b)) = self.pieces[id as usize].split_on(line, plane) {
-                let freed = self.replace((slot, id), p, a, b);
+                let freed = self.replace((slot, id), p, (a, b), scene);
                 if plane.is_some() {
                     stats.plane_splits += 1;
                 } else {
@@ -107,8 +108,15 @@ impl Orderer {
 
     /// Replaces piece `id` (at `slot`) by its halves `a` and `b` in the
     /// sorted list; `p` is the candidate. Returns the bytes freed.
-    fn replace(&mut self, (slot, id): At, p: u32, a: Piece, b: Piece) -> u64 {
+    fn replace(
+        &mut self,
+        (slot, id): At,
+        p: u32,
+        (a, b): (Piece, Piece),
+        scene: &ScreenScene,
+    ) -> u64 {
         self.remove(slot);
+        self.unindex(id, scene);
         if id != p {
             // The moved stack is a chain (each entry must precede the one
             // beneath it, the bottom one the head of the sorted list);
@@ -126,6 +134,8 @@ impl Orderer {
         self.extents.push(Extent::of(&b));
         self.pieces.push(a);
         self.pieces.push(b);
+        self.index_piece(base, scene);
+        self.index_piece(base + 1, scene);
         // The parent is never painted: free its outline and cuts (its
         // index stays valid, so ids need no remapping).
         let parent = &mut self.pieces[id as usize];

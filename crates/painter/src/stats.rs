@@ -27,6 +27,10 @@ hider_scene::hider_stats! {
         /// Pairs settled by test 6: the projections do not overlap (exact
         /// for uncut triangles), or both are pieces of one triangle.
         pub decided_projection: u64 => "decided by projection",
+        /// Pairs settled on the one pixel centre that matters: one of the
+        /// two covers at most one centre, and P is not nearer there (or
+        /// they share none).
+        pub decided_centre: u64 => "decided by pixel centre",
         /// Pairs where every test failed (Q may be hidden by P).
         pub blocked: u64 => "blocked",
         /// Times a blocking Q was moved to the head of the list.
@@ -77,6 +81,7 @@ mod tests {
                 "decided by P behind Q's plane",
                 "decided by Q in front of P's plane",
                 "decided by projection",
+                "decided by pixel centre",
                 "blocked",
                 "moves",
                 "plane splits",
@@ -86,7 +91,7 @@ mod tests {
                 "pixels painted",
             ]
         );
-        assert_eq!(table.counters[12], ("splits", 3));
+        assert_eq!(table.counters[13], ("splits", 3));
         assert_eq!(table.peak_bytes, 64);
     }
 }

@@ -1,0 +1,225 @@
+//! Pieces that cover at most one pixel centre, ordered by what the raster
+//! shows.
+//!
+//! The painter's raster is exact when, at every pixel centre, the pieces
+//! covering it are painted far to near by their depth there: an order
+//! between two pieces matters only on the centres both cover. A piece
+//! that covers no centre constrains nothing, and a piece that covers one
+//! centre is constrained only there, by one depth comparison per other
+//! piece covering it. Newell, Newell & Sancha's tests answer a stronger
+//! question (the order of the whole polygons), which for a pile of
+//! sub-pixel triangles around one centre means comparing every pair whose
+//! depth ranges overlap, and splitting every pair that intersects between
+//! the centres: quadratic in the depth complexity. So pairs with such a
+//! small piece are decided on the centre ([`centre_test`]), and the small
+//! pieces still to be painted sit in a per-centre index sorted by depth
+//! ([`CentreIndex`]): the one a candidate must wait for is the farthest
+//! at its centre, found in logarithmic time instead of by a scan.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use hider_geom::Viewport;
+use hider_geom::fixed::pixel_center;
+use hider_scene::{ScreenScene, ScreenTri};
+
+use crate::bins::depth_bits;
+use crate::newell::CUT_MARGIN;
+use crate::piece::Piece;
+
+/// Which pixel centres a piece covers, as far as ordering cares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Centres {
+    /// None at all: the piece never shows in the raster.
+    None,
+    /// Exactly the centre of pixel (column, row).
+    One(u32, u32),
+    /// Possibly several (or its box holds too many centres to count).
+    Many,
+}
+
+/// Most candidate centres in a piece's box for which the covered ones are
+/// counted; a larger piece is [`Centres::Many`] without looking.
+const COUNTED: u64 = 4;
+
+/// The pixel columns and rows whose centres a piece's box (widened by
+/// [`CUT_MARGIN`]) may contain, clamped to the viewport; `None` if empty.
+pub(crate) fn centre_box(piece: &Piece, vp: Viewport) -> Option<(u32, u32, u32, u32)> {
+    let first = |m: f64| (m - CUT_MARGIN - 0.5).ceil().max(0.0);
+    let last = |m: f64, n: u32| (m + CUT_MARGIN - 0.5).floor().min(f64::from(n) - 1.0);
+    let (i0, i1) = (first(piece.min.x), last(piece.max.x, vp.width));
+    let (j0, j1) = (first(piece.min.y), last(piece.max.y, vp.height));
+    // Also false for NaN bounds.
+    if !(i0 <= i1 && j0 <= j1) {
+        return None;
+    }
+    Some((i0 as u32, i1 as u32, j0 as u32, j1 as u32))
+}
+
+/// Whether `piece` (of triangle `tri`) covers the centre of pixel `(i, j)`,
+/// under the exact coverage rule it is painted with.
+pub(crate) fn covers_centre(piece: &Piece, tri: &ScreenTri, (i, j): (u32, u32)) -> bool {
+    piece.covers(
+        tri,
+        pixel_center(i as i32).into(),
+        pixel_center(j as i32).into(),
+    )
+}
+
+/// Which centres `piece` (of triangle `tri`) covers.
+pub(crate) fn classify(piece: &Piece, tri: &ScreenTri, vp: Viewport) -> Centres {
+    let Some((i0, i1, j0, j1)) = centre_box(piece, vp) else {
+        return Centres::None;
+    };
+    if u64::from(i1 - i0 + 1) * u64::from(j1 - j0 + 1) > COUNTED {
+        return Centres::Many;
+    }
+    let mut found = Centres::None;
+    for j in j0..=j1 {
+        for i in i0..=i1 {
+            if covers_centre(piece, tri, (i, j)) {
+                if found != Centres::None {
+                    return Centres::Many;
+                }
+                found = Centres::One(i, j);
+            }
+        }
+    }
+    found
+}
+
+/// The window depth of triangle `tri` at the centre of pixel `(i, j)`, as
+/// the raster writes it.
+pub(crate) fn depth_at(tri: &ScreenTri, (i, j): (u32, u32)) -> f64 {
+    tri.depth.eval(f64::from(i) + 0.5, f64::from(j) + 0.5)
+}
+
+/// Whether P may be painted before Q as far as the raster can tell, when
+/// one of them covers at most one centre: `Some(true)` when they share no
+/// centre or P is nowhere nearer on the one they share, `Some(false)` when
+/// P is nearer there (Q must go first), `None` when both may cover several
+/// centres (the polygon tests decide).
+pub(crate) fn centre_test(
+    (p, pc, pt): (&Piece, Centres, &ScreenTri),
+    (q, qc, qt): (&Piece, Centres, &ScreenTri),
+) -> Option<bool> {
+    let c = match (pc, qc) {
+        (Centres::None, _) | (_, Centres::None) => return Some(true),
+        (Centres::One(i, j), Centres::One(k, l)) if (i, j) != (k, l) => return Some(true),
+        (Centres::One(i, j), Centres::One(..)) => (i, j),
+        (Centres::One(i, j), Centres::Many) if covers_centre(q, qt, (i, j)) => (i, j),
+        (Centres::Many, Centres::One(i, j)) if covers_centre(p, pt, (i, j)) => (i, j),
+        (Centres::Many, Centres::Many) => return None,
+        _ => return Some(true),
+    };
+    Some(depth_at(pt, c) >= depth_at(qt, c))
+}
+
+/// The small pieces not yet painted, by the centre they cover, each set
+/// sorted by the piece's depth there (as an order-preserving bit pattern),
+/// then piece index.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct CentreIndex {
+    /// Keyed by (row, column), so that a box is a range per row.
+    map: BTreeMap<(u32, u32), BTreeSet<(u64, u32)>>,
+}
+
+impl CentreIndex {
+    /// Empties the index.
+    pub fn clear(&mut self) {
+        self.map.clear();
+    }
+
+    /// Whether no piece is indexed.
+    pub fn is_empty(&self) -> bool {
+        self.map.is_empty()
+    }
+
+    /// Lists piece `id`, covering only centre `(i, j)` at depth `z`.
+    pub fn insert(&mut self, (i, j): (u32, u32), z: f64, id: u32) {
+        self.map
+            .entry((j, i))
+            .or_default()
+            .insert((depth_bits(z), id));
+    }
+
+    /// Takes piece `id` out, listed with the same centre and depth.
+    pub fn remove(&mut self, (i, j): (u32, u32), z: f64, id: u32) {
+        if let Some(set) = self.map.get_mut(&(j, i)) {
+            set.remove(&(depth_bits(z), id));
+            if set.is_empty() {
+                self.map.remove(&(j, i));
+            }
+        }
+    }
+
+    /// The piece at centre `(i, j)` farther than depth `z` (strictly),
+    /// other than `id`: the farthest one, if any.
+    pub fn farther_than(&self, (i, j): (u32, u32), z: f64, id: u32) -> Option<u32> {
+        let bits = depth_bits(z);
+        self.map
+            .get(&(j, i))?
+            .iter()
+            .rev()
+            .take_while(|&&(d, _)| d > bits)
+            .find(|&&(_, q)| q != id)
+            .map(|&(_, q)| q)
+    }
+
+    /// The indexed centres in columns `i0..=i1` and rows `j0..=j1`.
+    pub fn occupied(
+        &self,
+        (i0, i1, j0, j1): (u32, u32, u32, u32),
+    ) -> impl Iterator<Item = (u32, u32)> + '_ {
+        (j0..=j1).flat_map(move |j| {
+            self.map
+                .range((j, i0)..=(j, i1))
+                .map(|(&(row, col), _)| (col, row))
+        })
+    }
+}
+
+impl crate::order::Orderer {
+    /// Classifies piece `id` (the last one pushed, or an earlier one) and
+    /// lists it in the centre index when it covers exactly one centre.
+    pub(crate) fn index_piece(&mut self, id: u32, scene: &ScreenScene) {
+        let piece = &self.pieces[id as usize];
+        let tri = &scene.tris[piece.source as usize];
+        let centres = classify(piece, tri, scene.viewport);
+        if self.centres.len() <= id as usize {
+            self.centres.resize(id as usize + 1, Centres::Many);
+        }
+        self.centres[id as usize] = centres;
+        if let Centres::One(i, j) = centres {
+            self.index.insert((i, j), depth_at(tri, (i, j)), id);
+        }
+    }
+
+    /// Takes piece `id` out of the centre index (painted or split).
+    pub(crate) fn unindex(&mut self, id: u32, scene: &ScreenScene) {
+        if let Centres::One(i, j) = self.centres[id as usize] {
+            let tri = &scene.tris[self.pieces[id as usize].source as usize];
+            self.index.remove((i, j), depth_at(tri, (i, j)), id);
+        }
+    }
+
+    /// A small piece still to be painted that is farther than P on a
+    /// centre both cover (P must wait for it), if any.
+    pub(crate) fn centre_blocker(&self, p: u32, scene: &ScreenScene) -> Option<u32> {
+        if self.index.is_empty() {
+            return None;
+        }
+        let pp = &self.pieces[p as usize];
+        let pt = &scene.tris[pp.source as usize];
+        match self.centres[p as usize] {
+            Centres::None => None,
+            Centres::One(i, j) => self.index.farther_than((i, j), depth_at(pt, (i, j)), p),
+            Centres::Many => {
+                let bounds = centre_box(pp, scene.viewport)?;
+                self.index
+                    .occupied(bounds)
+                    .filter(|&c| covers_centre(pp, pt, c))
+                    .find_map(|c| self.index.farther_than(c, depth_at(pt, c), p))
+            }
+        }
+    }
+}
