@@ -31,7 +31,9 @@ pub struct AnalyzeArgs {
 /// Runs `hider analyze`: prints the effects report and the plan.
 pub fn run(args: &AnalyzeArgs) -> Result<()> {
     hider::scene::view::check_image_size(args.size, args.size).context("bad image size")?;
-    let scene = crate::model::load(&args.model)?;
+    let progress = crate::progress::Progress::start("loading the model");
+    let scene = crate::model::load(&args.model, &progress)?;
+    progress.stage("analysing the scene");
     let options = RenderOptions::default()
         .with_size(args.size, args.size)
         .with_antialiasing(args.aa)
@@ -40,6 +42,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
         .with_pair_budget(args.pair_budget);
     let planned = hider::plan::auto(&scene, &options)
         .with_context(|| format!("cannot analyse {}", args.model))?;
+    drop(progress);
     println!("{}: {}", args.model, planned.effects);
     println!("{}", planned.summary());
     Ok(())

@@ -3,12 +3,16 @@
 use anyhow::Result;
 use hider::scene::Scene;
 
+use crate::progress::Progress;
+
 /// Loads an OBJ file or builds a generated scene (`gen:NAME`), printing the
-/// loader's warnings on stderr.
-pub fn load(model: &str) -> Result<Scene> {
+/// loader's warnings on stderr (with the spinner lifted).
+pub fn load(model: &str, progress: &Progress) -> Result<Scene> {
     let scene = hider::plan::load_model(model)?;
-    for w in &scene.warnings {
-        eprintln!("hider: warning: {w}");
-    }
+    progress.suspend(|| {
+        for w in &scene.warnings {
+            eprintln!("hider: warning: {w}");
+        }
+    });
     Ok(scene)
 }

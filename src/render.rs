@@ -12,6 +12,7 @@ use hider::scene::{
     DynHider, Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, shade_frame,
 };
 
+use crate::progress::Progress;
 pub use crate::render_args::RenderArgs;
 
 /// The hider to run, the scene prepared for it, and the plan behind it
@@ -25,7 +26,13 @@ struct Chosen {
 /// `--algo auto`: analyses the scene for the view, prints one line with
 /// the choice and why, and returns the chosen hider with the scene the
 /// analysis prepared (the plan's culling applied).
-fn auto(args: &RenderArgs, scene: &Scene, view: &View, options: PrepareOptions) -> Result<Chosen> {
+fn auto(
+    args: &RenderArgs,
+    scene: &Scene,
+    view: &View,
+    options: PrepareOptions,
+    progress: &Progress,
+) -> Result<Chosen> {
     let analysis = RenderOptions::default()
         .with_size(view.viewport.width, view.viewport.height)
         .with_camera(Some(view.camera))
@@ -35,7 +42,7 @@ fn auto(args: &RenderArgs, scene: &Scene, view: &View, options: PrepareOptions) 
         .with_prepare(options);
     let planned = hider::plan::auto(scene, &analysis).context("scene analysis for --algo auto")?;
     let hider = planned.plan.build(&args.hider_config())?;
-    eprintln!("{}", planned.summary());
+    progress.suspend(|| eprintln!("{}", planned.summary()));
     Ok(Chosen {
         hider,
         screen: planned.screen,
@@ -79,7 +86,13 @@ fn colour_stages(args: &RenderArgs, chosen: &Chosen, scene: &Scene) -> Stages {
 
 /// Colours the frame unless the hider did: from the ids, with only the
 /// stages the scene calls for under Lambert shading.
-fn shade(args: &RenderArgs, chosen: &Chosen, stages: &Stages, frame: &mut Frame) {
+fn shade(
+    args: &RenderArgs,
+    chosen: &Chosen,
+    stages: &Stages,
+    frame: &mut Frame,
+    progress: &Progress,
+) {
     if chosen.hider.resolves_color() {
         return;
     }
@@ -87,7 +100,9 @@ fn shade(args: &RenderArgs, chosen: &Chosen, stages: &Stages, frame: &mut Frame)
         ShadeMode::Lambert => {
             let trace = Shader::default().shade(&chosen.screen, frame, stages);
             for failure in trace.texture_failures {
-                eprintln!("hider: warning: {failure}; the material's colour is used");
+                progress.suspend(|| {
+                    eprintln!("hider: warning: {failure}; the material's colour is used");
+                });
             }
         }
         mode => shade_frame(&chosen.screen, frame, mode),
@@ -113,7 +128,13 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     } else {
         Some(registry::find(&args.algo)?.build(&config)?)
     };
-    let scene = crate::model::load(&args.model)?;
+    let progress = Progress::start("loading the model");
+    let scene = crate::model::load(&args.model, &progress)?;
+    progress.stage(if args.planned() {
+        "analysing the scene"
+    } else {
+        "preparing the scene"
+    });
     let view = View::new(args.camera(&scene), width, height)?;
     let mut options = args.prepare_options();
     let mut chosen = match fixed {
@@ -122,7 +143,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             screen: prepare(&scene, &view, &options)?,
             plan: None,
         },
-        None => auto(args, &scene, &view, options)?,
+        None => auto(args, &scene, &view, options, &progress)?,
     };
     if let Some(plan) = &chosen.plan {
         options = plan.prepare_options(options);
@@ -131,12 +152,16 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     if chosen.hider.resolves_color() {
         // Hiders that composite colour themselves sample the textures.
         for failure in prepare_surface(&mut chosen.screen, &stages) {
-            eprintln!("hider: warning: {failure}; the material's colour is used");
+            progress.suspend(|| {
+                eprintln!("hider: warning: {failure}; the material's colour is used");
+            });
         }
     }
+    progress.stage(&format!("rendering with {}", chosen.hider.name()));
     let mut frame = Frame::new(width, height)?;
     let stats = chosen.hider.render(&chosen.screen, &mut frame)?;
     if args.repeat > 0 {
+        progress.stage(&format!("timing {} renders", args.repeat));
         let summary = time_frames(
             args,
             chosen.hider.as_mut(),
@@ -146,17 +171,22 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             &mut chosen.screen,
             &mut frame,
         )?;
-        println!(
-            "{}: {} triangles, {}x{}, threads {}: {summary} (prepare + clear + rasterise)",
-            chosen.hider.name(),
-            scene.triangle_count(),
-            width,
-            height,
-            args.threads,
-        );
+        progress.suspend(|| {
+            println!(
+                "{}: {} triangles, {}x{}, threads {}: {summary} (prepare + clear + rasterise)",
+                chosen.hider.name(),
+                scene.triangle_count(),
+                width,
+                height,
+                args.threads,
+            );
+        });
     }
-    shade(args, &chosen, &stages, &mut frame);
+    progress.stage("shading");
+    shade(args, &chosen, &stages, &mut frame, &progress);
+    progress.stage("writing");
     write_outputs(args, &chosen, &frame)?;
+    drop(progress);
     if let Some(warning) =
         crate::empty::nothing_on_screen(&scene, &chosen.screen, frame.covered_count())
     {

@@ -1,0 +1,64 @@
+//! A spinner on the terminal for runs that take longer than a second:
+//! which stage the run is in and how long it has taken. Nothing is drawn
+//! when stderr is not a terminal (a pipe, a file, a test), nor for a run
+//! that ends within the second.
+
+use std::io::IsTerminal;
+use std::time::Duration;
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+/// How long a run goes before the spinner appears.
+const DELAY: Duration = Duration::from_secs(1);
+
+/// The spinner of one run; cleared when dropped.
+pub struct Progress {
+    bar: Option<ProgressBar>,
+}
+
+impl Progress {
+    /// Starts timing the run; the spinner appears after [`DELAY`] if the
+    /// run is still going and stderr is a terminal.
+    pub fn start(first_stage: &str) -> Self {
+        if !std::io::stderr().is_terminal() {
+            return Self { bar: None };
+        }
+        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden());
+        if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed} {msg}") {
+            bar.set_style(style);
+        }
+        bar.set_message(first_stage.to_owned());
+        let later = bar.clone();
+        std::thread::spawn(move || {
+            std::thread::sleep(DELAY);
+            if !later.is_finished() {
+                later.set_draw_target(ProgressDrawTarget::stderr());
+                later.enable_steady_tick(Duration::from_millis(120));
+            }
+        });
+        Self { bar: Some(bar) }
+    }
+
+    /// Names the stage the run is in now.
+    pub fn stage(&self, what: &str) {
+        if let Some(bar) = &self.bar {
+            bar.set_message(what.to_owned());
+        }
+    }
+
+    /// Runs `print` with the spinner lifted, so printed lines stay whole.
+    pub fn suspend<R>(&self, print: impl FnOnce() -> R) -> R {
+        match &self.bar {
+            Some(bar) => bar.suspend(print),
+            None => print(),
+        }
+    }
+}
+
+impl Drop for Progress {
+    fn drop(&mut self) {
+        if let Some(bar) = &self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}
