@@ -46,9 +46,17 @@ impl Default for PrepareOptions {
 }
 
 impl PrepareOptions {
-    /// The options that reproduce a GL pipeline (f32 transform).
+    /// The options that reproduce a GL pipeline, Mesa's llvmpipe on every
+    /// pixel of the reference renders: the `f32` transform, and no guard
+    /// band, because llvmpipe's draw module clips triangles at the
+    /// viewport's sides (a triangle reaching beyond them is cut there, and
+    /// its snapped pieces own slightly different pixels along its long
+    /// edges than the uncut triangle would: measured on a grazing view of
+    /// the strips scene).
     pub fn gl_compatible() -> Self {
-        Self::default().with_precision(TransformPrecision::F32)
+        Self::default()
+            .with_precision(TransformPrecision::F32)
+            .with_guard_band_pixels(0)
     }
 
     /// Sets [`Self::precision`].
