@@ -75,6 +75,38 @@ fn time_frames(
     Ok(summary)
 }
 
+/// The line `--repeat` prints on stdout.
+fn timing_line(
+    args: &RenderArgs,
+    name: &str,
+    scene: &Scene,
+    view: &View,
+    summary: &Summary,
+) -> String {
+    format!(
+        "{name}: {} triangles, {}x{}, threads {}: {summary} (prepare + clear + rasterise)",
+        scene.triangle_count(),
+        view.viewport.width,
+        view.viewport.height,
+        args.threads,
+    )
+}
+
+/// What the run ends with on stderr: why nothing is on screen if nothing
+/// is, then the hider's counts.
+fn report(scene: &Scene, chosen: &Chosen, frame: &Frame, stats: &dyn std::fmt::Display) {
+    let covered = frame.covered_count();
+    if let Some(warning) = crate::empty::nothing_on_screen(scene, &chosen.screen, covered) {
+        eprintln!("hider: warning: {warning}");
+    }
+    eprintln!(
+        "{}: {} triangles in, {} on screen, {covered} pixels covered; {stats}",
+        chosen.hider.name(),
+        scene.triangle_count(),
+        chosen.screen.tris.len(),
+    );
+}
+
 /// The colour stages the scene calls for: the plan's under `--algo auto`,
 /// else those found cheaply from the scene (textures, lighting).
 fn colour_stages(args: &RenderArgs, chosen: &Chosen, scene: &Scene) -> Stages {
@@ -171,35 +203,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             &mut chosen.screen,
             &mut frame,
         )?;
-        progress.suspend(|| {
-            println!(
-                "{}: {} triangles, {}x{}, threads {}: {summary} (prepare + clear + rasterise)",
-                chosen.hider.name(),
-                scene.triangle_count(),
-                width,
-                height,
-                args.threads,
-            );
-        });
+        let line = timing_line(args, chosen.hider.name(), &scene, &view, &summary);
+        progress.suspend(|| println!("{line}"));
     }
     progress.stage("shading");
     shade(args, &chosen, &stages, &mut frame, &progress);
     progress.stage("writing");
     write_outputs(args, &chosen, &frame)?;
     drop(progress);
-    if let Some(warning) =
-        crate::empty::nothing_on_screen(&scene, &chosen.screen, frame.covered_count())
-    {
-        eprintln!("hider: warning: {warning}");
-    }
-    eprintln!(
-        "{}: {} triangles in, {} on screen, {} pixels covered; {}",
-        chosen.hider.name(),
-        scene.triangle_count(),
-        chosen.screen.tris.len(),
-        frame.covered_count(),
-        stats
-    );
+    report(&scene, &chosen, &frame, &stats);
     Ok(())
 }
 
