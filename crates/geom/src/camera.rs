@@ -185,13 +185,22 @@ impl Camera {
             )));
         }
         let dir = self.target - self.eye;
-        if dir.length_squared() == 0.0 {
+        if !dir.is_finite() {
+            return Err(CameraError(format!(
+                "camera eye {} and target {} are too far apart",
+                self.eye, self.target
+            )));
+        }
+        if dir == DVec3::ZERO {
             return Err(CameraError(format!(
                 "camera eye and target are the same point {}",
                 self.eye
             )));
         }
-        if dir.cross(self.up).length_squared() <= 1e-24 * dir.length_squared() {
+        // Rescaled, so that a direction of any finite length (1e200 as well
+        // as 1e-200) squares without overflow or underflow.
+        let (d, up) = (rescaled(dir).normalize(), rescaled(self.up));
+        if up == DVec3::ZERO || d.cross(up.normalize()).length_squared() <= 1e-24 {
             return Err(CameraError(format!(
                 "camera up {} is parallel to the view direction {}",
                 self.up, dir
@@ -239,9 +248,49 @@ impl Camera {
 }
 
 /// Right-handed look-at matrix (`gluLookAt`): the eye ends at the origin
-/// looking down -Z with `up` projected to +Y.
+/// looking down -Z with `up` projected to +Y. The direction and `up` are
+/// rescaled by powers of two before they are normalised, so that a camera
+/// 1e200 from its target gets the same rotation as one 1 away (for lengths
+/// that square without overflow the result is bit for bit glam's
+/// `look_at_rh`: scaling by a power of two is exact).
 pub fn look_at(eye: DVec3, target: DVec3, up: DVec3) -> DMat4 {
-    DMat4::look_at_rh(eye, target, up)
+    DMat4::look_to_rh(eye, rescaled(target - eye).normalize(), rescaled(up))
+}
+
+/// `v` times the power of two that brings its largest component into
+/// [1, 2) (`v` itself when it is zero or not finite). Exact, so the
+/// direction is kept, and the result squares without overflow or
+/// underflow.
+pub fn rescaled(v: DVec3) -> DVec3 {
+    v * power_of_two_scale(v.abs().max_element())
+}
+
+/// The power of two that brings `m` (not negative) into [1, 2); 1 when
+/// `m` is zero or not finite.
+fn power_of_two_scale(m: f64) -> f64 {
+    if !(m > 0.0 && m.is_finite()) {
+        return 1.0;
+    }
+    // The exponent of a normal m, clamped so that the scale is a normal
+    // number: subnormals get 2^1022 (they stay small but non-zero, and
+    // overflow nothing), the top binade 2^-1022 (it lands in [2, 4)).
+    let e = ((m.to_bits() >> 52) as i32 - 1023).clamp(-1022, 1022);
+    f64::from_bits(((1023 - e) as u64) << 52)
+}
+
+/// The Euclidean length of `v` without overflow or underflow: equal to
+/// `v.length()` wherever that is finite and its squares are normal
+/// numbers (scaling by a power of two is exact), finite for every finite
+/// `v` whose length is below the largest `f64`.
+pub fn length(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if !(m > 0.0 && m.is_finite()) {
+        return v.length();
+    }
+    let r = rescaled(v);
+    // The scale rescaled applied, recovered exactly from one component.
+    let scale = r.abs().max_element() / m;
+    r.length() / scale
 }
 
 /// OpenGL perspective projection (`gluPerspective`), `fovy` in radians.
@@ -249,8 +298,15 @@ pub fn look_at(eye: DVec3, target: DVec3, up: DVec3) -> DMat4 {
 /// Maps camera-space depth `-near` to NDC z = -1 and `-far` to +1; clip w is
 /// `-z_camera`, the distance in front of the eye.
 pub fn perspective(fovy: f64, aspect: f64, near: f64, far: f64) -> DMat4 {
-    // glam's perspective_rh_gl is exactly gluPerspective's matrix.
-    DMat4::perspective_rh_gl(fovy, aspect, near, far)
+    // glam's perspective_rh_gl is exactly gluPerspective's matrix, but its
+    // `2 near far` overflows for distances near 1e200. Computed on near and
+    // far rescaled by a power of two and the one entry that scales with
+    // them scaled back: every operation commutes with the exact scaling,
+    // so the bits are glam's wherever glam's products do not overflow.
+    let s = power_of_two_scale(far.abs().max(near.abs()));
+    let mut m = DMat4::perspective_rh_gl(fovy, aspect, near * s, far * s);
+    m.w_axis.z /= s;
+    m
 }
 
 /// OpenGL orthographic projection symmetric about the view axis (`glOrtho`
@@ -290,6 +346,33 @@ mod tests {
         );
         let t = v.transform_point3(DVec3::new(1.0, 2.0, 0.0));
         assert!((t - DVec3::new(0.0, 0.0, -10.0)).length() < 1e-12);
+    }
+
+    #[test]
+    fn huge_and_tiny_distances_keep_their_rotation() {
+        let base = look_at(
+            DVec3::new(1.0, 2.0, 10.0),
+            DVec3::new(3.0, -1.0, 0.0),
+            DVec3::Y,
+        );
+        // 2^664 (about 1.9e200): every product of the rotation would
+        // overflow before the direction is rescaled.
+        let k = 2f64.powi(664);
+        let huge = look_at(
+            DVec3::new(1.0, 2.0, 10.0) * k,
+            DVec3::new(3.0, -1.0, 0.0) * k,
+            DVec3::Y * k,
+        );
+        for c in 0..3 {
+            assert_eq!(huge.col(c), base.col(c), "column {c}");
+        }
+        let camera = Camera::perspective(DVec3::Z * k, DVec3::ZERO, 0.1 * k, 10.0 * k);
+        assert!(camera.validate().is_ok(), "{:?}", camera.validate());
+        assert_eq!(length(DVec3::new(3.0, 4.0, 0.0) * k), 5.0 * k);
+        assert_eq!(length(DVec3::new(3.0, 4.0, 12.0)), 13.0);
+        assert_eq!(length(DVec3::ZERO), 0.0);
+        let tiny = 2f64.powi(-600);
+        assert_eq!(length(DVec3::new(3.0, 4.0, 0.0) * tiny), 5.0 * tiny);
     }
 
     #[test]

@@ -61,17 +61,36 @@ pub fn check_image_size(width: u32, height: u32) -> Result<()> {
 /// centre `c` = centre of the bounding box of all triangle vertices, `R` =
 /// half its diagonal (1 if 0); the eye at `c + (0, 0, 2.5 R)` looking down
 /// -Z with +Y up; fovy 60 degrees, near `0.1 R`, far `10 R`.
+///
+/// Huge but finite coordinates keep this camera: the centre and the
+/// diagonal are computed from halved corners and a rescaled length
+/// ([`hider_geom::camera::length`]), which overflow nowhere below the
+/// largest `f64` and give the same bits as the plain formulas wherever
+/// those do not overflow. When the scene is so small against its distance
+/// from the origin that `c + 2.5 R` rounds back to about `c` (a unit sphere
+/// offset by 1e17, where the spacing of `f64` is 16), the eye moves back to
+/// the nearest distance `D` the centre's precision resolves (16 units of
+/// its last place) and the field of view narrows to
+/// `2 atan(tan 30° · 2.5 R / D)`, with near `0.04 D` and far `4 D`, so the
+/// scene fills the image as it would at the origin.
 pub fn fit_camera(scene: &Scene) -> Camera {
     let (lo, hi) = scene.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
-    let centre = (lo + hi) * 0.5;
-    let r = (hi - lo).length() * 0.5;
+    // Halving is exact, so these equal `(lo + hi) * 0.5` and
+    // `(hi - lo).length() * 0.5` wherever the sums do not overflow.
+    let centre = lo * 0.5 + hi * 0.5;
+    let r = hider_geom::camera::length(hi * 0.5 - lo * 0.5);
     let r = if r > 0.0 && r.is_finite() { r } else { 1.0 };
-    Camera::perspective(
-        centre + DVec3::new(0.0, 0.0, 2.5 * r),
-        centre,
-        0.1 * r,
-        10.0 * r,
-    )
+    let distance = 2.5 * r;
+    let eye = centre + DVec3::new(0.0, 0.0, distance);
+    if eye.z - centre.z >= 0.5 * distance {
+        return Camera::perspective(eye, centre, 0.1 * r, 10.0 * r);
+    }
+    let resolvable = centre.abs().max_element() * f64::EPSILON * 16.0;
+    let eye = centre + DVec3::new(0.0, 0.0, resolvable.max(distance));
+    let d = eye.z - centre.z;
+    let half = (Camera::DEFAULT_FOVY_DEGREES.to_radians() * 0.5).tan() * distance / d;
+    Camera::perspective(eye, centre, 0.04 * d, 4.0 * d)
+        .with_fovy_degrees((2.0 * half.atan()).to_degrees())
 }
 
 #[cfg(test)]
@@ -105,6 +124,41 @@ mod tests {
                 far: 30.0
             }
         );
+    }
+
+    fn sphere(scale: f64, offset: f64) -> Scene {
+        let mut s = crate::procedural::uv_sphere(12);
+        for p in &mut s.meshes[0].positions {
+            *p = *p * scale + DVec3::splat(offset);
+        }
+        s
+    }
+
+    #[test]
+    fn fit_camera_survives_huge_coordinates() {
+        // Coordinates near 1e200: the squared diagonal overflowed, R fell
+        // back to 1 and the eye rounded onto the target. Scaled by a power
+        // of two, the camera is the unit sphere's camera scaled exactly.
+        let k = 2f64.powi(664);
+        let (unit, big) = (fit_camera(&sphere(1.0, 0.0)), fit_camera(&sphere(k, 0.0)));
+        assert!(big.validate().is_ok(), "{:?}", big.validate());
+        assert_eq!(big.eye, unit.eye * k);
+        let Projection::Perspective { near, far, .. } = unit.projection else {
+            unreachable!()
+        };
+        assert_eq!(
+            big.projection,
+            Projection::Perspective {
+                fovy_degrees: 60.0,
+                near: near * k,
+                far: far * k
+            }
+        );
+        // A unit sphere offset by 1e17: the spacing of f64 there is 16, so
+        // c + 2.5 R rounded back onto the centre.
+        let far_away = fit_camera(&sphere(1.0, 1e17));
+        assert!(far_away.validate().is_ok(), "{:?}", far_away.validate());
+        assert!(View::for_scene(&sphere(1.0, 1e17), 64, 64).is_ok());
     }
 
     #[test]

@@ -162,3 +162,70 @@ fn pixel_bounds_cover_exactly_the_candidate_centres() {
     }
     assert!(inside > 0);
 }
+
+/// The UV sphere scaled by `scale` (rounded to multiples of 16, so that
+/// adding a power-of-two offset near 1e17 is exact) and offset by
+/// `offset` on every axis.
+fn lattice_sphere(scale: f64, offset: f64) -> Scene {
+    let mut s = crate::procedural::uv_sphere(24);
+    for p in &mut s.meshes[0].positions {
+        *p = (*p * scale / 16.0).round() * 16.0 + DVec3::splat(offset);
+    }
+    s
+}
+
+fn screen_of(scene: &Scene, camera: Camera) -> ScreenScene {
+    let view = View::new(camera, 96, 96).unwrap();
+    prepare(scene, &view, &PrepareOptions::default()).unwrap()
+}
+
+#[test]
+fn a_scene_far_from_the_origin_renders_as_at_the_origin() {
+    // 2^56 is about 7.2e16; the spacing of f64 there is 16. The view
+    // matrix's translation cancelled two products near 1e17 and lost the
+    // sphere's last digits; the eye-relative transform subtracts exactly.
+    let offset = 2f64.powi(56);
+    let far = lattice_sphere(1024.0, offset);
+    let near = lattice_sphere(1024.0, 0.0);
+    let camera = crate::fit_camera(&far);
+    let mut moved = camera;
+    moved.eye -= DVec3::splat(offset);
+    moved.target -= DVec3::splat(offset);
+    let (a, b) = (screen_of(&far, camera), screen_of(&near, moved));
+    assert!(a.tris.len() > 500);
+    let key = |s: &ScreenScene| {
+        s.tris
+            .iter()
+            .map(|t| (t.prim, t.v, t.z))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(key(&a), key(&b));
+    assert_eq!(
+        a.prims.iter().map(|p| p.camera).collect::<Vec<_>>(),
+        b.prims.iter().map(|p| p.camera).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn coordinates_near_1e200_render_as_the_unit_scene() {
+    // Scaling by a power of two is exact through the whole front end once
+    // the camera and the transform stop overflowing.
+    let k = 2f64.powi(664);
+    let unit = crate::procedural::uv_sphere(24);
+    let mut big = unit.clone();
+    for p in &mut big.meshes[0].positions {
+        *p *= k;
+    }
+    let (a, b) = (
+        screen_of(&unit, crate::fit_camera(&unit)),
+        screen_of(&big, crate::fit_camera(&big)),
+    );
+    assert!(a.tris.len() > 500);
+    let key = |s: &ScreenScene| {
+        s.tris
+            .iter()
+            .map(|t| (t.prim, t.v, t.z))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(key(&a), key(&b));
+}
