@@ -111,8 +111,9 @@ pub struct Plot {
     pub zero_label: String,
 }
 
-/// `(lo, hi)` of the positive finite values, padded so that points do not
-/// sit on the frame, at least a decade wide; `None` without such values.
+/// `(lo, hi)` of the positive finite values, widened to whole decades so
+/// that every axis shows at least two labelled powers of ten; `None`
+/// without such values.
 fn range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     let (lo, hi) = values
         .filter(|v| *v > 0.0 && v.is_finite())
@@ -122,13 +123,14 @@ fn range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     if !lo.is_finite() {
         return None;
     }
-    let (lo, hi) = (lo / 1.6, hi * 1.6);
-    Some(if hi / lo < 10.0 {
-        let mid = (lo * hi).sqrt();
-        (mid / 3.2, mid * 3.2)
-    } else {
-        (lo, hi)
-    })
+    // A little room so that points do not sit on the frame; out to the
+    // enclosing decades when fewer than two powers of ten would show.
+    let (mut a, mut b) = (lo.log10() - 0.12, hi.log10() + 0.12);
+    if b.floor() - a.ceil() < 1.0 {
+        a = a.floor();
+        b = b.max(a + 1.0);
+    }
+    Some((10f64.powf(a), 10f64.powf(b)))
 }
 
 /// A tick label people read at a glance: `0.5`, `20`, `1k`, `10k`, `1e6`,
@@ -152,16 +154,20 @@ pub fn tick_label(v: f64) -> String {
     format!("{text}{suffix}")
 }
 
-/// The y range with room for the zero band: `(axis from, axis to, where
-/// zeros are drawn, band top)`.
-fn y_layout(plot: &Plot) -> (f64, f64, f64, f64) {
+/// The y range, with room for the zero band when some value is 0: `(axis
+/// from, axis to, where zeros are drawn, band top)`.
+fn y_layout(plot: &Plot, has_zero: bool) -> (f64, f64, f64, f64) {
     let ys = plot
         .series
         .iter()
         .flat_map(|s| s.points.iter().map(|p| p.1));
     let (lo, hi) = range(ys.chain(plot.front.iter().map(|p| p.1))).unwrap_or((1e-3, 1.0));
-    // The band spans a factor of 8 under the smallest value's decade.
-    (lo / 8.0, hi, lo / 2.83, lo / 1.41)
+    if has_zero {
+        // The band spans a factor of 4 under the smallest decade.
+        (lo / 4.0, hi, lo / 2.0, lo / 1.19)
+    } else {
+        (lo, hi, lo, lo)
+    }
 }
 
 fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot) -> Result<(), String> {
@@ -173,11 +179,11 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot) -> Resul
         .iter()
         .flat_map(|s| s.points.iter().map(|p| p.0));
     let (x0, x1) = range(xs.chain(plot.front.iter().map(|p| p.0))).unwrap_or((0.1, 10.0));
-    let (y0, y1, zero_y, band_top) = y_layout(plot);
     let has_zero = plot
         .series
         .iter()
         .any(|s| s.points.iter().any(|p| p.1 == 0.0));
+    let (y0, y1, zero_y, band_top) = y_layout(plot, has_zero);
     let at = |p: (f64, f64)| (p.0, if p.1 > 0.0 { p.1 } else { zero_y });
     let mut chart = ChartBuilder::on(&chart_area)
         .margin(10)
@@ -230,18 +236,29 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot) -> Resul
             ))
             .map_err(e)?;
     }
-    for s in &plot.series {
+    for (k, s) in plot.series.iter().enumerate() {
         let c = colour(s.colour);
+        // Earlier lines are drawn wider, so a later one lying on top of
+        // another leaves it showing as a rim instead of hiding it.
+        let wider = if s.line {
+            (plot.series.len() - 1 - k).min(4) as u32
+        } else {
+            0
+        };
         if s.line && s.points.len() > 1 {
             chart
                 .draw_series(LineSeries::new(
                     s.points.iter().map(|&p| at(p)),
-                    c.stroke_width(2),
+                    c.stroke_width(2 + wider),
                 ))
                 .map_err(e)?;
         }
         chart
-            .draw_series(s.points.iter().map(|&p| Circle::new(at(p), 5, c.filled())))
+            .draw_series(
+                s.points
+                    .iter()
+                    .map(|&p| Circle::new(at(p), 4 + wider, c.filled())),
+            )
             .map_err(e)?;
     }
     draw_legend(&legend_area, plot).map_err(e)?;
@@ -444,7 +461,7 @@ mod tests {
         let files = write_plot(&dir, "bench-test", &plot).unwrap();
         let svg = std::fs::read_to_string(&files[0]).unwrap();
         assert!(svg.contains("<svg") && svg.contains("render time, ms") && svg.contains("zbuffer"));
-        assert!(svg.contains(">0 wrong<"), "the zero band is labelled");
+        assert!(svg.contains("0 wrong"), "the zero band is labelled");
         let png = image::open(&files[1]).unwrap().to_rgb8();
         assert_eq!((png.width(), png.height()), SIZE);
         let (w, h) = SIZE;

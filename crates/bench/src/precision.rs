@@ -46,8 +46,9 @@ pub fn parse_scene_name(name: &str) -> Option<(f64, f64)> {
     Some((gap.parse().ok()?, ratio.parse().ok()?))
 }
 
-/// Two parallel square surfaces, tilted [`TILT_DEGREES`] from facing the
-/// eye, `gap` x [`DISTANCE`] apart along their normal, filling the view;
+/// Two parallel square surfaces, tilted 45 degrees from facing the eye,
+/// `gap` times their distance (10 units) apart along their normal, filling
+/// the view;
 /// the farther one first (primitives [`FARTHER_PRIMS`]). The camera's far
 /// plane is at 8 distances and its near plane at `ratio` times that.
 pub fn near_coplanar(gap: f64, ratio: f64) -> Scene {

@@ -227,12 +227,11 @@ fn run_job(
 /// timed).
 pub fn study_timing(timing: &Timer, study: Study) -> Timer {
     match study {
-        Study::RealSize => timing
-            .clone()
+        Study::RealSize => (*timing)
             .with_runs(timing.runs.min(3))
             .with_max_seconds(timing.max_seconds.min(1.0)),
-        Study::DepthPrecision => timing.clone().with_runs(1).with_warmup(0),
-        _ => timing.clone(),
+        Study::DepthPrecision => (*timing).with_runs(1).with_warmup(0),
+        _ => *timing,
     }
 }
 

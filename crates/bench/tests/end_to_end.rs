@@ -8,7 +8,7 @@ use std::sync::atomic::AtomicBool;
 
 use hider_bench::cli::merge;
 use hider_bench::matrix::{MatrixOptions, Shard, Study};
-use hider_bench::record::{COLUMNS, parse_csv, read_results, write_results};
+use hider_bench::record::{COLUMNS, Row, SCHEMA_VERSION, parse_csv, read_results, write_results};
 use hider_bench::report::write_report;
 use hider_bench::run::{RunOptions, run};
 use hider_bench::scenes::linear_depth_probe;
@@ -108,7 +108,7 @@ fn two_triangles_every_hider_and_the_csv_schema() {
     assert_eq!(read_results(&dir).unwrap(), out.results);
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("results.json")).unwrap()).unwrap();
-    assert_eq!(json["schema"], 1);
+    assert_eq!(json["schema"], SCHEMA_VERSION);
     assert!(json["machines"][0]["cpu"].is_string());
     let first = json["rows"][0].as_object().unwrap();
     assert_eq!(first.len(), COLUMNS.len());
@@ -136,6 +136,12 @@ fn shards_merge_into_the_full_run() {
             depth_steps: vec![1, 2],
             resolution_steps: vec![16],
             scaling_size: 16,
+            real_size: 16,
+            real_spheres: vec![4],
+            real_layers: vec![1],
+            precision_gaps: vec![1e-2],
+            precision_ratios: vec![1e-2],
+            precision_size: 16,
             ..MatrixOptions::default()
         }
         .with_scenes(vec!["cube".into(), "fan".into(), "scaling".into()])
@@ -162,7 +168,7 @@ fn shards_merge_into_the_full_run() {
         parts.push(part_dir);
     }
     let merged = merge(&parts).unwrap();
-    let key = |r: &hider_bench::record::Row| {
+    let key = |r: &Row| {
         (
             r.case,
             r.study.clone(),
@@ -212,5 +218,207 @@ fn bad_selections_are_errors_not_empty_sweeps() {
     o.matrix.scenes = vec!["model.obj".into()];
     let e = run(&o, &AtomicBool::new(false), "t").unwrap_err();
     assert!(format!("{e:#}").contains("model.obj"), "{e:#}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The Markdown table that follows `heading`: its lines of cells (header
+/// and rule included), up to the first line that is not a table line.
+fn table_after(report: &str, heading: &str) -> Vec<Vec<String>> {
+    let start = report
+        .find(heading)
+        .unwrap_or_else(|| panic!("no '{heading}' in the report"));
+    report[start..]
+        .lines()
+        .skip_while(|l| !l.starts_with('|'))
+        .take_while(|l| l.starts_with('|'))
+        .map(|l| {
+            l.trim_matches('|')
+                .split('|')
+                .map(|c| c.trim().to_owned())
+                .collect()
+        })
+        .collect()
+}
+
+/// A number as the report writes it (`1.23`, `4.5e-4`, `12%`, `1,234`).
+fn number(cell: &str) -> f64 {
+    let t = cell.split_whitespace().next().unwrap_or("");
+    let (t, scale) = match t.strip_suffix('%') {
+        Some(p) => (p, 0.01),
+        None => (t, 1.0),
+    };
+    t.replace(',', "")
+        .parse::<f64>()
+        .unwrap_or_else(|_| panic!("'{cell}' is not a number"))
+        * scale
+}
+
+/// Whether `shown` is `value` written with the report's rounding (two
+/// significant digits at worst).
+fn same(shown: f64, value: f64) -> bool {
+    (shown - value).abs() <= 0.051 * value.abs().max(1e-12) + 0.0005
+}
+
+fn geometric_mean(values: &[f64]) -> f64 {
+    (values.iter().map(|v| v.ln()).sum::<f64>() / values.len() as f64).exp()
+}
+
+/// Real-size, depth-precision and accuracy studies at small sizes through
+/// every hider: the report's answer section is read back and every number
+/// in its tables is checked against the results files of the same run.
+#[test]
+fn the_reports_numbers_are_the_results_files_numbers() {
+    let dir = temp_dir("answer");
+    let options = RunOptions {
+        matrix: MatrixOptions {
+            assets_dir: "/nonexistent".into(),
+            real_size: 40,
+            real_spheres: vec![6],
+            real_layers: vec![2],
+            precision_gaps: vec![1e-2, 1e-6],
+            precision_ratios: vec![1e-4],
+            precision_size: 24,
+            ..MatrixOptions::default()
+        }
+        .with_studies(vec![
+            Study::RealSize,
+            Study::DepthPrecision,
+            Study::Accuracy,
+        ])
+        .with_scenes(vec![
+            "probe".into(),
+            "scaling".into(),
+            "intersecting_pairs".into(),
+        ])
+        .with_scene("probe", linear_depth_probe())
+        .with_sizes(vec![24]),
+        timing: quick_timing(),
+        out_dir: dir.clone(),
+        ..RunOptions::default()
+    };
+    let out = run(&options, &AtomicBool::new(false), "test").unwrap();
+    write_results(&dir, &out.results).unwrap();
+    write_report(
+        &out.results,
+        &dir.join("report.md"),
+        &dir.join("images"),
+        "test",
+    )
+    .unwrap();
+    let rows = read_results(&dir).unwrap().rows;
+    let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    let find = |study: &str, scene: &str, hider: &str| -> &Row {
+        rows.iter()
+            .find(|r| r.study == study && r.scene == scene && r.hider == hider)
+            .unwrap_or_else(|| panic!("no {study} {scene} {hider}"))
+    };
+
+    // (a) Exact hiders per real-size scene, and their geometric means.
+    let exact = table_after(&report, "### Exact visibility at pixel centres");
+    let hiders = exact[0][1..].to_vec();
+    assert!(
+        hiders.contains(&"zbuffer-tiled".to_owned()) && hiders.contains(&"scanline".to_owned())
+    );
+    let scenes: Vec<String> = exact[2..]
+        .iter()
+        .filter(|l| !l[0].starts_with("**") && !l[0].starts_with("relative"))
+        .map(|l| l[0].split(" (").next().unwrap().to_owned())
+        .collect();
+    assert_eq!(scenes, ["probe", "sphere_6", "layers_2"]);
+    for line in &exact[2..2 + scenes.len()] {
+        let scene = line[0].split(" (").next().unwrap();
+        for (h, cell) in hiders.iter().zip(&line[1..]) {
+            let r = find("real-size", scene, h);
+            assert!(
+                same(number(cell), r.render_ms),
+                "{scene} {h}: {cell} vs {}",
+                r.render_ms
+            );
+        }
+    }
+    let means = &exact[2 + scenes.len()];
+    for (h, cell) in hiders.iter().zip(&means[1..]) {
+        let times: Vec<f64> = scenes
+            .iter()
+            .map(|s| find("real-size", s, h).render_ms)
+            .collect();
+        assert!(same(number(cell), geometric_mean(&times)), "{h} mean");
+    }
+
+    // (b) Coverage error and time of the anti-aliasing hiders.
+    let aa = table_after(&report, "### Anti-aliasing: coverage error against time");
+    assert!(aa.len() > 4);
+    for line in &aa[2..] {
+        let h = &line[0];
+        let with: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.study == "real-size" && &r.hider == h && r.coverage_error.is_some())
+            .collect();
+        let error = with.iter().map(|r| r.coverage_error.unwrap()).sum::<f64>() / with.len() as f64;
+        let times: Vec<f64> = with.iter().map(|r| r.render_ms).collect();
+        assert!(same(number(&line[1]), error), "{h}: {} vs {error}", line[1]);
+        assert!(same(number(&line[2]), geometric_mean(&times)), "{h} time");
+    }
+
+    // (c) Wrong pixels of each shortcut at real size.
+    let shortcuts = table_after(&report, "### What each shortcut costs");
+    for line in &shortcuts[2..] {
+        let h = line[0].split(' ').next().unwrap();
+        let wrong: u64 = rows
+            .iter()
+            .filter(|r| r.study == "real-size" && r.hider == h)
+            .map(|r| r.wrong_ids.unwrap() + r.coverage_mismatches.unwrap())
+            .sum();
+        assert_eq!(number(&line[2]) as u64, wrong, "{h}");
+    }
+
+    // (d) Share of pixels showing the farther surface.
+    let precision = table_after(&report, "### Depth precision");
+    for line in &precision[2..] {
+        let h = line[0].split('`').nth(1).unwrap();
+        for (k, gap) in ["1e-2", "1e-6"].iter().enumerate() {
+            let r = find("depth-precision", &format!("gap_{gap}_nf_1e-4"), h);
+            let share = r.farther_pixels.unwrap() as f64 / r.covered_pixels as f64;
+            assert!(same(number(&line[2 + k]), share), "{h} {gap}");
+        }
+    }
+    // The coarsest format loses the hair's gap, f64 keeps it.
+    let share = |h: &str| {
+        find("depth-precision", "gap_1e-6_nf_1e-4", h)
+            .farther_pixels
+            .unwrap()
+    };
+    assert!(share("zbuffer-fixed16") > 0);
+    assert_eq!(share("zbuffer-f64"), 0);
+
+    // The summary orders the tiled and the plain z-buffer as the data does,
+    // and the conclusions say the same.
+    let summary = table_after(&report, "## Summary per hider");
+    let time_in_summary = |h: &str| number(&summary.iter().find(|l| l[0] == h).unwrap()[2]);
+    let data = |h: &str| {
+        let t: Vec<f64> = scenes
+            .iter()
+            .map(|s| find("real-size", s, h).render_ms)
+            .collect();
+        geometric_mean(&t)
+    };
+    let faster = data("zbuffer-tiled") < data("zbuffer");
+    assert_eq!(
+        time_in_summary("zbuffer-tiled") < time_in_summary("zbuffer"),
+        faster
+    );
+    assert!(report.contains(if faster {
+        "x faster on the same scenes"
+    } else {
+        "x slower on the same scenes"
+    }));
+    // The folder reads on its own: the interpretation page beside the
+    // report, every linked file present.
+    assert!(dir.join("bench.md").is_file());
+    for link in report.split("](").skip(1) {
+        let target = link.split(')').next().unwrap();
+        assert!(dir.join(target).is_file(), "broken link {target}");
+    }
+    assert!(!report.contains("ExactPixelCentre") && !report.contains("0.00e0"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
