@@ -229,3 +229,30 @@ fn a_pile_over_one_pixel_costs_a_bounded_number_of_comparisons_per_triangle() {
     let reference = reference::pixel_centre(&s);
     assert_eq!(frame.ids, reference.ids);
 }
+
+/// Every hard case of `hider-testkit`, at several seeds and sizes: the
+/// painter equals the oracle's ray cast off ties, by relative gap alone
+/// (the strict standard: no excuse for what an `f32` depth cannot order).
+#[test]
+fn every_testkit_hard_case_is_exact_off_ties() {
+    let mut failures = Vec::new();
+    for seed in 0..8 {
+        for (name, scene) in hider_testkit::hard_cases::all(seed) {
+            for size in [48, 96, 160] {
+                let s = hider_testkit::screen(&scene, size, size);
+                let mut painter = Painter::default();
+                let mut frame = Frame::new(size, size).unwrap();
+                if let Err(e) = painter.render(&s, &mut frame) {
+                    failures.push(format!("{name} seed {seed} at {size}: {e}"));
+                    continue;
+                }
+                let agreement =
+                    reference::ray_cast(&s).compare_strict(&frame.ids, DEFAULT_TIE_TOLERANCE);
+                if !agreement.is_exact() {
+                    failures.push(format!("{name} seed {seed} at {size}: {agreement}"));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
