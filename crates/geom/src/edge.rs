@@ -1,4 +1,4 @@
-//! Exact integer edge functions and the top-left fill rule.
+//! Exact integer edge functions and GL's fill rule (top-left in GL's row order).
 //!
 //! For an edge from `a` to `b` the edge function is
 //! `E(p) = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)`, evaluated
@@ -76,13 +76,14 @@ pub struct EdgeFunction {
     pub b: i64,
     /// Constant term, already biased by the fill rule: samples with
     /// `E(p) > 0` are inside; `c` was lowered by one for edges that are not
-    /// top-left, so that `E == 0` on such an edge tests as outside.
+    /// owning (the fill rule), so that `E == 0` on such an edge tests as
+    /// outside.
     pub c: i64,
 }
 
 impl EdgeFunction {
     /// The edge function of `from -> to`, for a triangle whose orientation
-    /// is positive, with the top-left bias applied.
+    /// is positive, with the fill rule's bias applied.
     #[inline]
     pub fn new(from: FixedPt, to: FixedPt) -> Self {
         let (fx, fy) = (i64::from(from.x), i64::from(from.y));

@@ -58,7 +58,7 @@ impl Viewport {
     ///    bottom): `win = ndc * (N/2) + N/2`, a multiply and an add;
     /// 2. the half-pixel offset and 8 sub-pixel bits:
     ///    `round((win - 0.5) * 256)`, ties to even
-    ///    ([`gl_fixed_f32`](crate::fixed::gl_fixed_f32));
+    ///    ([`gl_fixed_f32`]);
     /// 3. the flip to hider's y-down frame, in integers
     ///    ([`Self::from_gl_fixed`]).
     ///

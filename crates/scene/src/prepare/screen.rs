@@ -33,7 +33,7 @@ pub struct ScreenTri {
 }
 
 impl ScreenTri {
-    /// The edge functions of this triangle (top-left rule applied).
+    /// The edge functions of this triangle (GL's fill rule applied, `hider_geom::edge`).
     #[inline]
     pub fn edges(&self) -> [hider_geom::EdgeFunction; 3] {
         hider_geom::edge::triangle_edges(&self.v)
@@ -46,7 +46,7 @@ impl ScreenTri {
     }
 
     /// Visits every pixel centre of [`Self::pixel_bounds`], row by row, with
-    /// whether the exact edge functions (top-left rule) cover it: the
+    /// whether the exact edge functions (fill rule) cover it: the
     /// brute-force coverage walk the references, the scene statistics and
     /// the watertightness checks share (the hiders' own loops are faster).
     pub fn for_each_centre(&self, viewport: Viewport, mut visit: impl FnMut(u32, u32, bool)) {

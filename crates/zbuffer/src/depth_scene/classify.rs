@@ -136,7 +136,7 @@ fn lane(x: [i32; 3], y: [i32; 3], (w, h): (i32, i32)) -> Lane {
     let x1 = last_center_upto(ax.max(bx).max(cx)).min(w);
     let y1 = last_center_upto(ay.max(by).max(cy)).min(h);
     let (cols, rows) = (x1 - x0 + 1, y1 - y0 + 1);
-    // Positive order, then the three edges with the top-left rule's bias.
+    // Positive order, then the three edges with the fill rule's bias.
     let (bx, by, cx, cy) = if area < 0 {
         (cx, cy, bx, by)
     } else {

@@ -18,7 +18,7 @@ pub struct DepthTri {
 }
 
 impl DepthTri {
-    /// The edge functions of this triangle (top-left rule applied).
+    /// The edge functions of this triangle (GL's fill rule applied, `hider_geom::edge`).
     #[inline]
     pub fn edges(&self) -> [EdgeFunction; 3] {
         hider_geom::edge::triangle_edges(&self.v)
