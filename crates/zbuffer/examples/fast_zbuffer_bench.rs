@@ -18,21 +18,20 @@
 //! each round every scene is rendered by each pipeline for a 40 ms warm-up
 //! and then [`TIMED`] frames in a row, timed (a frame loop's steady state:
 //! caches hold the pipeline's own data, and the pool's threads and both
-//! cores are awake). The
-//! table gives median (minimum) ms over all timed frames, Mtri/s from the
-//! median, and at 1024 the ratios to llvmpipe's and euc's figures from the
-//! targets (above 1 = faster than them).
+//! cores are awake). The table gives median (minimum) ms over all timed
+//! frames and Mtri/s from the median.
 //!
-//! The peers measured on this machine, in this run: with `--peers-bin
-//! PATH` (the `peers` package's binary: `cargo build --release
-//! --manifest-path peers/Cargo.toml`, then `peers/target/release/peers`)
-//! each round starts by running the peers once on every scene of the size
-//! (euc on 1 thread, llvmpipe on 1 and 2), so that they and hider share the
-//! same minutes of a noisy machine; the table then adds the ratios of
-//! their medians over the rounds to hider's. `--peers FILE` reads a JSON
-//! the peers wrote earlier instead.
+//! Peers only from this machine, in this run: with `--peers-bin PATH`
+//! (the `peers` package's binary: `cargo build --release --manifest-path
+//! peers/Cargo.toml`, then `peers/target/release/peers`) each round starts
+//! by running the peers once on every scene of the size (euc on 1 thread,
+//! llvmpipe on 1 and 2), so that they and hider share the same minutes of
+//! a noisy machine; the table then adds the ratios of their medians over
+//! the rounds to hider's (above 1 = faster than them). Without it the
+//! table has no peer columns and says that no peers were measured: a
+//! figure from another machine or another day is not a comparison.
 //!
-//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_bench [K] [SIZES...] [--peers-bin PATH | --peers FILE]`
+//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_bench [K] [SIZES...] [--peers-bin PATH]`
 //! (default K = 9 rounds, sizes 512 1024 2048).
 
 use std::path::PathBuf;
@@ -40,15 +39,6 @@ use std::time::Instant;
 
 use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural};
 use hider_zbuffer::{DepthScene, TiledZBuffer, TiledZBufferOptions, ZBuffer, prepare_depth_into};
-
-/// The fast z-buffer targets' figures at 1024: (scene, llvmpipe 1 thread,
-/// 2 threads, euc).
-const FIGURES: [(&str, f64, f64, f64); 4] = [
-    ("spider", 2.6, 1.8, 5.7),
-    ("sphere 200", 20.0, 22.0, 13.6),
-    ("sphere 500", 100.0, 59.0, 29.0),
-    ("soup 100k", 117.0, 72.0, 298.0),
-];
 
 fn ms(t: Instant) -> f64 {
     t.elapsed().as_secs_f64() * 1e3
@@ -78,7 +68,8 @@ struct PeerRow {
 /// to the median ms of each measurement.
 type Peers = Vec<((String, u32, String, u32), f64)>;
 
-/// Reads the `peers` package's JSON, appending to `out`.
+/// Reads the JSON the `peers` binary wrote in this run, appending to
+/// `out`.
 fn read_peers(path: &std::path::Path, out: &mut Peers) -> Result<(), String> {
     let path = path.display();
     let text = std::fs::read_to_string(path.to_string()).map_err(|e| format!("{path}: {e}"))?;
@@ -140,12 +131,14 @@ struct Workload<'a> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let mut peers = Peers::new();
-    if let Some(path) = take_flag(&mut args, "--peers")? {
-        read_peers(std::path::Path::new(&path), &mut peers)?;
+    if args.iter().any(|a| a == "--peers") {
+        return Err(
+            "--peers FILE: peers are compared only when measured in this run; pass --peers-bin PATH"
+                .into(),
+        );
     }
     let peers_bin = take_flag(&mut args, "--peers-bin")?;
-    let same_machine = !peers.is_empty() || peers_bin.is_some();
+    let same_machine = peers_bin.is_some();
     let runs: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(9);
     let mut sizes: Vec<u32> = args.iter().skip(1).filter_map(|a| a.parse().ok()).collect();
     if sizes.is_empty() {
@@ -170,16 +163,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "median (min) ms of {} frames ({runs} interleaved rounds) of prepare + clear + rasterise (f32 front end)\n",
         runs * TIMED
     );
+    if !same_machine {
+        println!(
+            "No peers were measured in this run (pass --peers-bin PATH to time llvmpipe and euc beside hider): the table has no peer columns.\n"
+        );
+    }
     println!(
-        "| scene | triangles | size | zbuffer | tiled 1 thread | tiled 2 threads | Mtri/s 1T / 2T | speed-up 1T / 2T | vs llvmpipe 1T / 2T | vs euc 1T |{}",
+        "| scene | triangles | size | zbuffer | tiled 1 thread | tiled 2 threads | Mtri/s 1T / 2T | speed-up 1T / 2T |{}",
         if same_machine {
-            " same machine: vs llvmpipe 1T / 2T | vs euc 1T |"
+            " measured in this run: vs llvmpipe 1T / 2T | vs euc 1T |"
         } else {
             ""
         }
     );
     println!(
-        "|---|---|---|---|---|---|---|---|---|---|{}",
+        "|---|---|---|---|---|---|---|---|{}",
         if same_machine { "---|---|" } else { "" }
     );
     for &size in &sizes {
@@ -226,9 +224,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             for w in &mut work {
                 time_round(w, &pool, &serial, &parallel)?;
             }
-        }
-        if peers_bin.is_none() {
-            here.clone_from(&peers);
         }
         for w in &mut work {
             report(w, size, &here, same_machine);
@@ -296,12 +291,6 @@ fn report(w: &mut Workload<'_>, size: u32, peers: &Peers, same_machine: bool) {
     let ((mz, nz), (m1, n1), (m2, n2)) = (stats(tz), stats(t1), stats(t2));
     let name = w.name;
     let tris = w.scene.triangle_count() as f64;
-    let vs = FIGURES
-        .iter()
-        .find(|f| f.0 == name && size == 1024)
-        .map_or("- | -".to_owned(), |f| {
-            format!("{:.2}x / {:.2}x | {:.2}x", f.1 / m1, f.2 / m2, f.3 / m1)
-        });
     // The median over this run's measurements of a peer.
     let peer = |peer: &str, threads: u32| {
         let v: Vec<f64> = peers
@@ -325,7 +314,7 @@ fn report(w: &mut Workload<'_>, size: u32, peers: &Peers, same_machine: bool) {
         String::new()
     };
     println!(
-        "| {name} | {} | {size} | {mz:.2} ({nz:.2}) | {m1:.2} ({n1:.2}) | {m2:.2} ({n2:.2}) | {:.0} / {:.0} | {:.1}x / {:.1}x | {vs} |{here}",
+        "| {name} | {} | {size} | {mz:.2} ({nz:.2}) | {m1:.2} ({n1:.2}) | {m2:.2} ({n2:.2}) | {:.0} / {:.0} | {:.1}x / {:.1}x |{here}",
         w.scene.triangle_count(),
         tris / m1 / 1e3,
         tris / m2 / 1e3,
