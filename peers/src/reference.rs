@@ -179,16 +179,7 @@ fn draw(gl: &mut Llvmpipe, scene: &Scene, view: &View) -> Result<(Vec<u8>, Vec<u
     gl.bind_window(size)?;
     let mvp = (view.camera.projection_matrix(view.viewport.aspect()) * view.camera.view_matrix())
         .as_mat4();
-    let mut positions: Vec<[f32; 3]> = Vec::with_capacity(scene.triangle_count() * 3);
-    let mut colours: Vec<[u8; 3]> = Vec::with_capacity(scene.triangle_count() * 3);
-    for (prim, m, t) in scene.triangles() {
-        let mesh = &scene.meshes[m];
-        let [r, g, b, _] = (prim + 1).to_le_bytes();
-        for &i in &mesh.indices[t] {
-            positions.push(mesh.positions[i as usize].as_vec3().to_array());
-            colours.push([r, g, b]);
-        }
-    }
+    let (positions, colours) = triangle_list(scene);
     let n = size as usize * size as usize;
     let (mut rgba, mut depth) = (vec![0u8; 4 * n], vec![0f32; n]);
     let (mut fbo, mut rbs) = (0, [0; 2]);
@@ -263,10 +254,30 @@ fn draw(gl: &mut Llvmpipe, scene: &Scene, view: &View) -> Result<(Vec<u8>, Vec<u
         (g.glDeleteRenderbuffers)(2, rbs.as_ptr());
     }
     gl.check("reference render")?;
-    // GL's rows are bottom-up: flip to top row first.
-    let row = size as usize;
-    let mut ids = Vec::with_capacity(3 * n);
-    let mut depth_bytes = Vec::with_capacity(4 * n);
+    Ok(top_row_first(size as usize, &rgba, &depth))
+}
+
+/// Three `f32` positions per triangle in primitive order, each with the
+/// flat colour `index + 1` as RGB bytes.
+fn triangle_list(scene: &Scene) -> (Vec<[f32; 3]>, Vec<[u8; 3]>) {
+    let mut positions = Vec::with_capacity(scene.triangle_count() * 3);
+    let mut colours = Vec::with_capacity(scene.triangle_count() * 3);
+    for (prim, m, t) in scene.triangles() {
+        let mesh = &scene.meshes[m];
+        let [r, g, b, _] = (prim + 1).to_le_bytes();
+        for &i in &mesh.indices[t] {
+            positions.push(mesh.positions[i as usize].as_vec3().to_array());
+            colours.push([r, g, b]);
+        }
+    }
+    (positions, colours)
+}
+
+/// GL's bottom-up rows, top row first: the ids as RGB bytes (alpha
+/// dropped) and the depths as their little-endian bytes.
+fn top_row_first(row: usize, rgba: &[u8], depth: &[f32]) -> (Vec<u8>, Vec<u8>) {
+    let mut ids = Vec::with_capacity(3 * depth.len());
+    let mut depth_bytes = Vec::with_capacity(4 * depth.len());
     for r in (0..row).rev() {
         for p in rgba[4 * r * row..4 * (r + 1) * row].chunks_exact(4) {
             ids.extend_from_slice(&p[..3]);
@@ -275,7 +286,7 @@ fn draw(gl: &mut Llvmpipe, scene: &Scene, view: &View) -> Result<(Vec<u8>, Vec<u
             depth_bytes.extend_from_slice(&d.to_le_bytes());
         }
     }
-    Ok((ids, depth_bytes))
+    (ids, depth_bytes)
 }
 
 /// Writes `NAME.ids.png` and `NAME.depth.png`.
