@@ -1,0 +1,226 @@
+//! The benchmark of the A-buffer's targets against llvmpipe's 4x MSAA and
+//! the tiled z-buffer: the scenes of the llvmpipe comparison (spider, UV
+//! sphere 200 and 500, random soup of 100,000 triangles) with the fit
+//! camera, timed over the span a GL draw call, its resolve and `glFinish`
+//! cover: everything after loading (the f32 GL-compatible front end
+//! `prepare`, then `render`: bins, tiles, lists, resolve into the frame).
+//!
+//! - `abuffer 1T` / `2T`: the exact A-buffer (per-sample depth) on 1
+//!   thread (no pool) and in a 2-thread pool (front end and bands in
+//!   parallel, in that pool);
+//! - `carpenter 1T`: [`ABufferOptions::carpenter`] (`zmin`/`zmax`
+//!   fragments, same-surface merging) on 1 thread;
+//! - `prepare 1T`: the front end alone, to show its share.
+//!
+//! Same run, same machine: with `--peers-bin PATH` (the `peers` package's
+//! binary) each round runs llvmpipe with 4x MSAA (`--msaa`) on 1 and 2
+//! threads, and with `--zbuffer-bin PATH` (the tiled z-buffer's benchmark
+//! example, `fast_zbuffer_bench`) each round times the tiled z-buffer on
+//! the same scenes and span; the table gives the medians over the rounds
+//! and the target ratios. Rounds interleave everything, so machine noise
+//! hits all alike; per round each pipeline renders for a 40 ms warm-up,
+//! then [`TIMED`] frames, timed.
+//!
+//! `cargo run --release -p hider-abuffer --example abuffer_bench -- [ROUNDS] [SIZE] [--peers-bin PATH] [--zbuffer-bin PATH]`
+//! (default 5 rounds at 1024).
+
+use std::path::PathBuf;
+use std::process::Command;
+use std::time::{Duration, Instant};
+
+use hider_abuffer::{ABuffer, ABufferOptions};
+use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, procedural};
+
+/// Frames timed per pipeline and round, after the warm-up.
+const TIMED: usize = 3;
+/// How long each pipeline renders untimed frames first, per round.
+const WARM_UP: Duration = Duration::from_millis(40);
+/// The pipelines timed here, in the table's order.
+const PIPELINES: [&str; 4] = ["abuffer 1T", "abuffer 2T", "carpenter 1T", "prepare 1T"];
+
+/// One row of the `peers` package's JSON.
+#[derive(serde::Deserialize)]
+struct PeerRow {
+    scene: String,
+    peer: String,
+    threads: u32,
+    median_ms: f64,
+}
+
+/// Median of `v` (the upper one for an even count); NaN when empty.
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// Takes the value of `--flag VALUE` out of `args`.
+fn take_flag(args: &mut Vec<String>, flag: &str) -> Option<String> {
+    let i = args.iter().position(|a| a == flag)?;
+    let value = args.get(i + 1).cloned();
+    args.drain(i..(i + 2).min(args.len()));
+    value
+}
+
+/// Runs llvmpipe with 4x MSAA on 1 and 2 threads once; its medians per
+/// (scene, threads).
+fn run_peers(bin: &str, size: u32) -> Result<Vec<(String, u32, f64)>, String> {
+    let json =
+        std::env::temp_dir().join(format!("hider-abuffer-peers-{}.json", std::process::id()));
+    let status = Command::new(bin)
+        .args([
+            "--peers", "llvmpipe", "--msaa", "--runs", "5", "--rounds", "1",
+        ])
+        .args(["--sizes", &size.to_string(), "--json"])
+        .arg(&json)
+        .stdout(std::process::Stdio::null())
+        .status()
+        .map_err(|e| format!("{bin}: {e}"))?;
+    if !status.success() {
+        return Err(format!("{bin} failed ({status})"));
+    }
+    let text = std::fs::read_to_string(&json).map_err(|e| format!("{}: {e}", json.display()))?;
+    let _ = std::fs::remove_file(&json);
+    let rows: Vec<PeerRow> = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    Ok(rows
+        .into_iter()
+        .filter(|r| r.peer == "llvmpipe-msaa4")
+        .map(|r| (r.scene, r.threads, r.median_ms))
+        .collect())
+}
+
+/// Runs the tiled z-buffer's benchmark for one round at `size`; the median
+/// ms of its `tiled 1 thread` column per scene (the fifth cell of its
+/// markdown rows, `median (min)`).
+fn run_tiled(bin: &str, size: u32) -> Result<Vec<(String, f64)>, String> {
+    let out = Command::new(bin)
+        .args(["1", &size.to_string()])
+        .output()
+        .map_err(|e| format!("{bin}: {e}"))?;
+    if !out.status.success() {
+        return Err(format!("{bin} failed ({})", out.status));
+    }
+    let text = String::from_utf8_lossy(&out.stdout);
+    Ok(text
+        .lines()
+        .filter_map(|line| {
+            let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+            let ms = cells.get(5)?.split_whitespace().next()?.parse().ok()?;
+            (cells.get(3)? == &size.to_string()).then(|| (cells[1].to_owned(), ms))
+        })
+        .collect())
+}
+
+/// Renders `frames` frames of `scene` from world space with `hider`
+/// (front end, then render), or only the front end when `hider` is
+/// `None`; the time of each, ms.
+fn frames(
+    scene: &Scene,
+    view: &View,
+    options: &PrepareOptions,
+    hider: Option<&mut ABuffer>,
+    count: usize,
+) -> Vec<f64> {
+    let mut screen = hider_scene::prepare(scene, view, options).expect("prepare");
+    let mut frame = Frame::new(view.viewport.width, view.viewport.height).expect("frame");
+    let mut hider = hider;
+    let mut one = || {
+        let t = Instant::now();
+        match hider.as_deref_mut() {
+            Some(h) => drop(
+                h.render_scene(scene, view, options, &mut screen, &mut frame)
+                    .expect("render"),
+            ),
+            None => hider_scene::prepare_into(scene, view, options, &mut screen).expect("prepare"),
+        }
+        t.elapsed().as_secs_f64() * 1e3
+    };
+    let start = Instant::now();
+    while start.elapsed() < WARM_UP {
+        one();
+    }
+    (0..count).map(|_| one()).collect()
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let peers_bin = take_flag(&mut args, "--peers-bin");
+    let tiled_bin = take_flag(&mut args, "--zbuffer-bin");
+    let rounds: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(5);
+    let size: u32 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(1024);
+    let spider = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/gl-reference/models/spider.obj");
+    let mut scenes: Vec<(&str, Scene)> = Vec::new();
+    match load_obj(&spider) {
+        Ok(s) => scenes.push(("spider", s)),
+        Err(e) => eprintln!("skipped the spider: {e}"),
+    }
+    scenes.push(("sphere 200", procedural::uv_sphere(200)));
+    scenes.push(("sphere 500", procedural::uv_sphere(500)));
+    scenes.push(("soup 100k", procedural::random_soup(100_000, 1)));
+
+    let serial = PrepareOptions::gl_compatible();
+    let parallel = serial.with_parallel(true);
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
+    let mut one = ABuffer::new(ABufferOptions::default().with_threads(1));
+    let mut two = ABuffer::new(ABufferOptions::default().with_threads(2));
+    let mut carpenter = ABuffer::new(ABufferOptions::carpenter().with_threads(1));
+    // Per scene: the pipelines' frame times, then the peers' and the tiled
+    // z-buffer's medians of each round.
+    let mut times = vec![vec![Vec::new(); PIPELINES.len()]; scenes.len()];
+    let mut msaa: Vec<[Vec<f64>; 2]> = vec![[Vec::new(), Vec::new()]; scenes.len()];
+    let mut tiled = vec![Vec::new(); scenes.len()];
+    for _ in 0..rounds {
+        if let Some(bin) = &peers_bin {
+            for (scene, threads, ms) in run_peers(bin, size)? {
+                if let Some(k) = scenes.iter().position(|(n, _)| *n == scene) {
+                    msaa[k][(threads.clamp(1, 2) - 1) as usize].push(ms);
+                }
+            }
+        }
+        if let Some(bin) = &tiled_bin {
+            for (scene, ms) in run_tiled(bin, size)? {
+                if let Some(k) = scenes.iter().position(|(n, _)| *n == scene) {
+                    tiled[k].push(ms);
+                }
+            }
+        }
+        for (k, (_, scene)) in scenes.iter().enumerate() {
+            let view = View::for_scene(scene, size, size)?;
+            let t = &mut times[k];
+            t[0].extend(frames(scene, &view, &serial, Some(&mut one), TIMED));
+            t[1].extend(pool.install(|| frames(scene, &view, &parallel, Some(&mut two), TIMED)));
+            t[2].extend(frames(scene, &view, &serial, Some(&mut carpenter), TIMED));
+            t[3].extend(frames(scene, &view, &serial, None, TIMED));
+        }
+    }
+    println!(
+        "median ms of {} frames ({rounds} interleaved rounds) at {size} x {size}: front end + render \
+         (llvmpipe 4x MSAA: clear + draw + resolve blit + glFinish; tiled z-buffer: its lean front end + draw)\n",
+        rounds * TIMED
+    );
+    println!(
+        "| scene | triangles | {} | tiled 1T | MSAA 1T | MSAA 2T | MSAA/A 1T | MSAA/A 2T | A/tiled 1T | carpenter/A | 2T speed-up |",
+        PIPELINES.join(" | ")
+    );
+    println!("|---|---|{}", "---|".repeat(PIPELINES.len() + 8));
+    for (k, (name, scene)) in scenes.iter().enumerate() {
+        let m: Vec<f64> = times[k].iter().cloned().map(median).collect();
+        let (t1, m1, m2) = (
+            median(tiled[k].clone()),
+            median(msaa[k][0].clone()),
+            median(msaa[k][1].clone()),
+        );
+        let cells: Vec<String> = m.iter().map(|v| format!("{v:.2}")).collect();
+        println!(
+            "| {name} | {} | {} | {t1:.2} | {m1:.2} | {m2:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+            scene.triangle_count(),
+            cells.join(" | "),
+            m1 / m[0],
+            m2 / m[1],
+            m[0] / t1,
+            m[2] / m[0],
+            m[0] / m[1],
+        );
+    }
+    Ok(())
+}
