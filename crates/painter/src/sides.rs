@@ -141,24 +141,33 @@ pub(crate) fn corner_sign(p: &ScreenTri, k: usize, q: &ScreenTri) -> i8 {
     }
 }
 
-/// The sum of the magnitudes of the terms of `plane` at `(x, y)`: the
-/// scale of its rounding error there.
-fn magnitude(plane: &PlaneEq, v: DVec2) -> f64 {
-    plane.value.abs() + (plane.dx * (v.x - plane.x0)).abs() + (plane.dy * (v.y - plane.y0)).abs()
+/// The sum of the magnitudes of the slope terms of `plane` at `v`: the
+/// scale of the rounding of its evaluation there, beyond that of its
+/// value (the front end's window depth at its reference corner, exact).
+fn slope_terms(plane: &PlaneEq, v: DVec2) -> f64 {
+    (plane.dx * (v.x - plane.x0)).abs() + (plane.dy * (v.y - plane.y0)).abs()
 }
 
-/// Rounding bound of an evaluation of two planes' difference, in units of
-/// the magnitudes of their terms: the evaluations themselves and the
-/// rounding of the planes' coefficients (set up from the corners).
+/// Rounding bound of an evaluation, in units of the magnitudes of the
+/// terms it adds: the evaluation itself and the rounding of the planes'
+/// slopes (set up from the corners with a few roundings each).
 const ROUNDING: f64 = 8.0 * f64::EPSILON;
 
 /// The sign of `d_P - d_Q` at a rounded vertex `v`: 0 within [`TOUCH`]
 /// pixels (along the gradient of the difference) plus the rounding of the
 /// evaluation, else the sign of the evaluated difference.
+///
+/// The two reference values are subtracted first: they are window depths
+/// that agree in their leading bits (exactly so behind a tiny near plane,
+/// where every depth is close to 1), so their difference is exact and the
+/// rounding bound scales with the depth differences, not with the depths.
 pub(crate) fn rounded_sign(v: DVec2, p: &PlaneEq, q: &PlaneEq) -> i8 {
-    let diff = p.eval(v.x, v.y) - q.eval(v.x, v.y);
+    let slope = |e: &PlaneEq| e.dx * (v.x - e.x0) + e.dy * (v.y - e.y0);
+    let base = p.value - q.value;
+    let diff = base + (slope(p) - slope(q));
     let gradient = (p.dx - q.dx).abs() + (p.dy - q.dy).abs();
-    let tolerance = TOUCH * gradient + ROUNDING * (magnitude(p, v) + magnitude(q, v));
+    let tolerance =
+        TOUCH * gradient + ROUNDING * (base.abs() + slope_terms(p, v) + slope_terms(q, v));
     if diff > tolerance {
         1
     } else if diff < -tolerance {
@@ -176,7 +185,7 @@ pub(crate) fn padded_range(poly: &[DVec2], depth: &PlaneEq) -> (f64, f64) {
     poly.iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             let z = depth.eval(v.x, v.y);
-            let pad = TOUCH * gradient + ROUNDING * magnitude(depth, *v);
+            let pad = TOUCH * gradient + ROUNDING * (z.abs() + slope_terms(depth, *v));
             (lo.min(z - pad), hi.max(z + pad))
         })
 }

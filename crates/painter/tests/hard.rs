@@ -256,3 +256,39 @@ fn every_testkit_hard_case_is_exact_off_ties() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// Pixels whose id differs from the ray cast's although the two nearest
+/// surfaces are at least the tie tolerance apart (relative gap) *and* the
+/// front end's window depths tell them apart by more than a few units in
+/// the last place. Behind a near plane of `1e-12` a relative gap of `1e-4`
+/// can be no window-depth gap at all: no window-space hider (the
+/// z-buffer on the same planes included) can see it, so it is a tie here.
+fn wrong_where_window_depth_resolves(oracle: &hider_oracle::Reference, ids: &[u32]) -> u64 {
+    let resolved = 8.0 * f64::EPSILON;
+    let mut wrong = 0;
+    for (k, (&want, &got)) in oracle.ids.iter().zip(ids).enumerate() {
+        let tie = oracle.gap[k] < DEFAULT_TIE_TOLERANCE || oracle.window_gap[k] <= resolved;
+        if (want == hider_scene::NO_ID) != (got == hider_scene::NO_ID) || (want != got && !tie) {
+            wrong += 1;
+        }
+    }
+    wrong
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+    /// Piles of large random triangles (many intersections and cycles)
+    /// behind near planes from `1e-1` down to `1e-12`: exact off ties by
+    /// relative gap, whatever squeezes the window depths.
+    #[test]
+    fn piles_behind_any_near_plane_are_exact_off_ties(
+        n in 2u32..40, seed in 0u64..1000, near_exponent in 1i32..=12,
+    ) {
+        let scene = hider_testkit::hard_cases::heavy_overdraw(n, seed);
+        let camera = fit_camera_with_near(&scene, 10f64.powi(-near_exponent));
+        let s = hider_testkit::screen_with(&scene, camera, 48, 48);
+        let frame = render(&mut Painter::default(), &s);
+        let wrong = wrong_where_window_depth_resolves(&reference::ray_cast(&s), &frame.ids);
+        proptest::prop_assert_eq!(wrong, 0);
+    }
+}
