@@ -52,12 +52,15 @@ pub(super) fn load_mtl(
         };
         let bad = first_failing_line(&lines);
         let (start, end, name) = material_block(&lines, bad);
-        warn(format!(
-            "{}:{}: {error} in '{}': material {name} gets the default material",
-            path.display(),
-            bad + 1,
-            lines[bad].trim()
-        ));
+        let at = format!("{}:{}", path.display(), bad + 1);
+        warn(match name {
+            // Nothing can select a material without a name.
+            None => format!("{at}: 'newmtl' without a name: its statements are skipped"),
+            Some(name) => format!(
+                "{at}: {error} in '{}': {name} gets the default material",
+                lines[bad].trim()
+            ),
+        });
         lines[start..end].fill("");
     }
     warn(format!(
@@ -89,8 +92,9 @@ fn first_failing_line(lines: &[&str]) -> usize {
 }
 
 /// The lines `start..end` of the material that line `bad` belongs to (from
-/// its `newmtl` to the next one), and its name as the warning shows it.
-fn material_block(lines: &[&str], bad: usize) -> (usize, usize, Cow<'static, str>) {
+/// its `newmtl` to the next one), and the material as the warning names it
+/// (`None` when its `newmtl` has no name).
+fn material_block(lines: &[&str], bad: usize) -> (usize, usize, Option<Cow<'static, str>>) {
     let is_newmtl = |l: &&str| l.split_whitespace().next() == Some("newmtl");
     let start = (0..=bad).rev().find(|&i| is_newmtl(&lines[i]));
     let end = lines[bad + 1..]
@@ -98,10 +102,10 @@ fn material_block(lines: &[&str], bad: usize) -> (usize, usize, Cow<'static, str
         .position(is_newmtl)
         .map_or(lines.len(), |k| bad + 1 + k);
     let name = match start {
-        None => Cow::Borrowed("(before the first newmtl)"),
+        None => Some(Cow::Borrowed("what comes before the first material")),
         Some(i) => match lines[i].trim()["newmtl".len()..].trim() {
-            "" => Cow::Borrowed("(unnamed)"),
-            n => Cow::Owned(format!("'{n}'")),
+            "" => None,
+            n => Some(Cow::Owned(format!("material '{n}'"))),
         },
     };
     (start.unwrap_or(0), end, name)

@@ -180,7 +180,7 @@ fn lines_and_points_are_skipped_with_a_warning() {
     let warning = s
         .warnings
         .iter()
-        .find(|w| w.contains("2 line elements ('l')") && w.contains("2 point elements ('p')"))
+        .find(|w| w.contains("skipped 2 line elements ('l') and 2 point elements ('p')"))
         .unwrap_or_else(|| panic!("{:?}", s.warnings));
     assert!(warning.contains("test.obj"), "{warning}");
     // The face ids stay those of the faces in file order.
@@ -214,11 +214,26 @@ fn load_with_mtl(name: &str, obj: &str, mtl: &str) -> (Result<Scene>, PathBuf) {
 #[test]
 fn a_broken_material_is_a_warning_naming_file_and_line() {
     let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\nf 1 2 3\n";
-    // (MTL text, line at fault, whether 'red' survives)
-    for (mtl, line, red_kept) in [
-        ("newmtl red\nKd 1 0 0\n\nnewmtl\nKd 0 1 0\n", 4, true),
-        ("newmtl red\nKd 1 0 0\nnewmtl   \n", 3, true),
-        ("newmtl red\nKd 1 zero 0\nnewmtl blue\nKd 0 0 1\n", 2, false),
+    // (MTL text, line at fault, whether 'red' survives, what is said)
+    for (mtl, line, red_kept, said) in [
+        (
+            "newmtl red\nKd 1 0 0\n\nnewmtl\nKd 0 1 0\n",
+            4,
+            true,
+            "'newmtl' without a name",
+        ),
+        (
+            "newmtl red\nKd 1 0 0\nnewmtl   \n",
+            3,
+            true,
+            "without a name",
+        ),
+        (
+            "newmtl red\nKd 1 zero 0\nnewmtl blue\nKd 0 0 1\n",
+            2,
+            false,
+            "'Kd 1 zero 0': material 'red' gets the default material",
+        ),
     ] {
         let (s, dir) = load_with_mtl("badmtl", obj, mtl);
         let s = s.unwrap_or_else(|e| panic!("{mtl:?}: {e}"));
@@ -240,7 +255,7 @@ fn a_broken_material_is_a_warning_naming_file_and_line() {
         assert!(
             s.warnings
                 .iter()
-                .any(|w| w.starts_with(&expect) && w.contains("default material")),
+                .any(|w| w.starts_with(&expect) && w.contains(said)),
             "{mtl:?}: {:?}",
             s.warnings
         );

@@ -55,12 +55,22 @@ impl Checked {
     pub(super) fn warnings(&self, name: &Path) -> Vec<String> {
         let count = |what: Skipped| self.skipped.iter().filter(|s| s.1 == what).count();
         let mut warnings = Vec::new();
-        let (lines, points) = (count(Skipped::Line), count(Skipped::Point));
-        if lines + points > 0 {
+        let elements = [
+            (count(Skipped::Line), "line", 'l'),
+            (count(Skipped::Point), "point", 'p'),
+        ]
+        .iter()
+        .filter(|e| e.0 > 0)
+        .map(|&(n, what, key)| {
+            let s = if n == 1 { "" } else { "s" };
+            format!("{n} {what} element{s} ('{key}')")
+        })
+        .collect::<Vec<_>>();
+        if !elements.is_empty() {
             warnings.push(format!(
-                "{}: skipped {lines} line elements ('l') and {points} point elements ('p'): \
-                 only faces are rendered",
-                name.display()
+                "{}: skipped {}: only faces are rendered",
+                name.display(),
+                elements.join(" and ")
             ));
         }
         for &(k, what) in &self.skipped {
