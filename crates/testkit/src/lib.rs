@@ -15,7 +15,10 @@
 //!   z-buffer's lean depth-only front end;
 //! - `hostile` (feature `hostile`): arbitrary bytes decoded as scenes and
 //!   the invariants every registered hider keeps on them, shared with the
-//!   fuzz targets.
+//!   fuzz targets;
+//! - `differential` (feature `hostile`): bytes decoded into the hard-case
+//!   families at extreme scales, offsets and near planes, and the check
+//!   that every exact hider equals the oracle off ties on them.
 //!
 //! A dev-dependency only (`publish = false`); test code panics on errors
 //! rather than returning them.
@@ -38,6 +41,8 @@
 //! ```
 
 pub mod cameras;
+#[cfg(feature = "hostile")]
+pub mod differential;
 pub mod hard_cases;
 #[cfg(feature = "hostile")]
 pub mod hostile;

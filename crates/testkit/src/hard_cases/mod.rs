@@ -31,7 +31,7 @@ mod ordering;
 mod precision;
 mod shared_edges;
 mod support;
-mod symmetric;
+pub(crate) mod symmetric;
 #[cfg(test)]
 mod tests;
 

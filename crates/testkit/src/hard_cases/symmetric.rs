@@ -21,7 +21,7 @@ fn snap(v: f64, bits: u32) -> f64 {
 /// multiple of a quarter turn lands exactly on the lattice point the exact
 /// turn gives: the trigonometric rounding (about `1e-16`) is far below half
 /// a lattice step.
-fn turn(p: DVec3, angle: f64, bits: u32) -> DVec3 {
+pub(crate) fn turn(p: DVec3, angle: f64, bits: u32) -> DVec3 {
     let (s, c) = angle.sin_cos();
     DVec3::new(
         snap(p.x * c - p.y * s, bits),
@@ -35,8 +35,8 @@ fn turn(p: DVec3, angle: f64, bits: u32) -> DVec3 {
 /// `P_k -> P_{k+1}` of a regular `order`-gon of radius 4, high (`z = +1`)
 /// at its base before `P_k` and low (`z = -1`) at its tip beyond
 /// `P_{k+1}`, so it passes under bar `k + 1` and over bar `k - 1`: no depth
-/// order of the bars exists. Two triangles per bar (four bars: 8
-/// triangles).
+/// order of the bars exists. Bars are 2 wide; two triangles per bar (four
+/// bars: 8 triangles).
 ///
 /// Every vertex lies on the lattice of step `2^-bits` (`bits = 0`: small
 /// integers). Bar 0 is snapped first and the others are bar 0 turned by
@@ -63,7 +63,9 @@ pub fn pinwheel(order: u32, mirrored: bool, bits: u32) -> Scene {
     };
     let (p, q) = (corner(0), corner(1));
     let along = q - p;
-    let across = DVec3::new(-along.y, along.x, 0.0).normalize() * 0.6;
+    // Half-width 1: at least one lattice step whatever the lattice, so no
+    // bar snaps to a segment.
+    let across = DVec3::new(-along.y, along.x, 0.0).normalize();
     let lattice = |v: DVec3| DVec3::new(snap(v.x, bits), snap(v.y, bits), v.z);
     // A parallelogram of lattice points: base and tip centres and the
     // half-width snapped separately, so the bar stays exactly planar (its

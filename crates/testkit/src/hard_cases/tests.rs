@@ -125,6 +125,29 @@ fn pinwheels_of_order_two_and_four_are_exactly_symmetric_on_the_lattice() {
 }
 
 #[test]
+fn pinwheel_bars_have_area_on_every_lattice() {
+    for order in 2..=6 {
+        for bits in [0, 1, 4, 8] {
+            for mirrored in [false, true] {
+                let s = pinwheel(order, mirrored, bits);
+                for (_, m, t) in s.triangles() {
+                    let [a, b, c] = s.triangle_positions(m, t);
+                    let area = (b - a).cross(c - a).length();
+                    assert!(area >= 1.0, "order {order} bits {bits}: area {area}");
+                }
+                let screen = crate::screen(&s, 64, 64);
+                let covered = crate::reference::pixel_centre(&screen)
+                    .ids
+                    .iter()
+                    .filter(|&&id| id != hider_scene::NO_ID)
+                    .count();
+                assert!(covered > 200, "order {order} bits {bits}: {covered} pixels");
+            }
+        }
+    }
+}
+
+#[test]
 fn pinwheel_bars_are_planar_and_mirrored_pinwheels_are_mirror_images() {
     for order in 2..=6 {
         let s = pinwheel(order, true, 8);
