@@ -180,8 +180,16 @@ pub fn plan(effects: &Effects) -> Plan {
 /// Plans with only the hiders named in `available` (registry names).
 pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
     let mut picker = rules::Picker::new(available);
-    let (algo, reason) = picker
-        .vector(effects)
+    let vector = picker.vector(effects);
+    if vector.is_some() && effects.antialiasing.present {
+        // The vector rule wins; the painters draw the raster image one
+        // sample per pixel.
+        picker.notes.push(
+            "the PNG is NOT anti-aliased: vector output comes first (the SVG has exact edges)"
+                .to_owned(),
+        );
+    }
+    let (algo, reason) = vector
         .or_else(|| picker.transparency(effects))
         .or_else(|| picker.antialiasing(effects))
         .unwrap_or_else(|| picker.raster(effects));

@@ -229,6 +229,16 @@ fn the_one_line_says_what_was_asked_and_what_was_chosen() {
         line.starts_with("auto, asked for an anti-aliased shaded 32 x 16 image: abuffer ("),
         "{line}"
     );
+    let both = auto(
+        &scene,
+        &options.with_vector_output(true).with_antialiasing(true),
+    )
+    .unwrap();
+    assert!(
+        both.summary().contains("the PNG is NOT anti-aliased"),
+        "{}",
+        both.summary()
+    );
     let line = auto(
         &scene,
         &options.with_vector_output(true).with_shading(false),
