@@ -340,3 +340,34 @@ fn every_case_has_its_two_images() {
         }
     }
 }
+
+/// The comparison can fail: llvmpipe's strips at 512 with one covered
+/// pixel cleared and one id replaced by a triangle that does not cover the
+/// pixel are one coverage mismatch and one wrong id, not ties.
+#[test]
+fn a_coverage_hole_and_a_wrong_id_are_caught() {
+    let case = cases()
+        .into_iter()
+        .find(|c| c.name == "strips_512")
+        .expect("strips_512 is a case");
+    let scene = load_scene(&case.scene);
+    let screen = prepare(
+        &scene,
+        &view(&case, &scene),
+        &PrepareOptions::gl_compatible(),
+    )
+    .unwrap();
+    let (mut gl, _) = gl_buffers(&case);
+    let covered: Vec<usize> = (0..gl.len()).filter(|&k| gl[k] != NO_ID).collect();
+    let (hole, wrong) = (covered[100], covered[covered.len() / 2]);
+    gl[hole] = NO_ID;
+    let other = (gl[wrong] + 600) % 1200;
+    gl[wrong] = other;
+    let mut frame = Frame::new(case.size, case.size).unwrap();
+    Hider::render(&mut ZBuffer::default(), &screen, &mut frame).unwrap();
+    let t = compare(&screen, &mut None, &frame.ids, &gl);
+    assert_eq!(t.coverage_mismatches, 1);
+    assert_eq!(t.ties + t.setup_ties, 0);
+    assert_eq!(t.wrong.len(), 1, "{:?}", t.wrong);
+    assert_eq!(t.wrong[0].3, other);
+}
