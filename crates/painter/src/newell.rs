@@ -24,14 +24,15 @@
 //! below fits an `f64` mantissa), and touching is allowed there: under the
 //! top-left rule a pixel centre on a shared boundary belongs to at most
 //! one of two triangles with disjoint interiors. Tests 4 and 5 are sign
-//! questions answered exactly at every exact vertex ([`crate::sides`]).
+//! questions answered exactly at every exact vertex, by Shewchuk's
+//! adaptive `orient3d` on the front end's own coordinates.
 //!
 //! Cut pieces have rounded vertices, and splitting makes them touch all
 //! the time (the pieces around the point where three planes meet touch at
 //! that point). Two cut pieces whose boxes or outlines come within
 //! [`TOUCH`] of each other are not taken as separated on the outlines'
 //! word: the pixel centres in that thin band are looked at one by one
-//! with the exact coverage rule of each piece ([`Overlap`]). Centres
+//! with the exact coverage rule of each piece. Centres
 //! neither piece shares, or shares with the order asked for, let the pair
 //! pass; only a shared centre where P is nearer blocks. Assuming instead
 //! that a centre on both outlines lies on a line where the two were cut
