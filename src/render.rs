@@ -5,7 +5,7 @@
 //! hands over the scene its analysis prepared.
 
 use anyhow::{Context, Result, bail};
-use hider::plan::stages::prepare_surface;
+use hider::plan::stages::{prepare_surface, transparency_warning};
 use hider::plan::{Plan, RenderOptions, Shader, Stages, planner, registry};
 use hider::scene::timing::{Summary, Timer};
 use hider::scene::{
@@ -181,6 +181,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         options = plan.prepare_options(options);
     }
     let stages = colour_stages(args, &chosen, &scene);
+    if let Some(warning) = transparency_warning(chosen.hider.name(), &stages) {
+        progress.suspend(|| eprintln!("hider: warning: {warning}"));
+    }
     if chosen.hider.resolves_color() {
         // Hiders that composite colour themselves sample the textures.
         for failure in prepare_surface(&mut chosen.screen, &stages) {

@@ -226,6 +226,22 @@ fn prim_shade(scene: &ScreenScene, prim: u32, stages: &Stages, trace: &mut Stage
     std::array::from_fn(|k| (f64::from(color[k]) * lit[k]) as f32)
 }
 
+/// The hiders that composite translucent surfaces: every other one keeps
+/// one surface per sample (or per pixel centre) and draws them opaque.
+pub const COMPOSITING_HIDERS: &[&str] = &["abuffer", "abuffer-carpenter", "ssaa-sorted"];
+
+/// A warning when `hider` cannot apply the transparency stage the scene
+/// calls for (it draws translucent surfaces opaque), naming the hider that
+/// can; `None` when it can or when nothing is translucent.
+pub fn transparency_warning(hider: &str, stages: &Stages) -> Option<String> {
+    (stages.transparency && !COMPOSITING_HIDERS.contains(&hider)).then(|| {
+        format!(
+            "the scene has translucent materials, but {hider} keeps one surface per sample \
+             and draws them opaque; --algo abuffer composites them"
+        )
+    })
+}
+
 /// Turns on in `screen` the stages a colour-resolving hider applies itself
 /// (today: texture; lighting comes with its Lambert shade mode), so that
 /// the A-buffer, supersampling and anti-aliased Warnock colour what the
@@ -243,6 +259,24 @@ pub fn prepare_surface(screen: &mut ScreenScene, stages: &Stages) -> Vec<String>
 mod tests {
     use super::*;
     use hider_scene::{PrepareOptions, View, prepare, procedural};
+
+    #[test]
+    fn only_hiders_that_composite_are_silent_on_translucent_scenes() {
+        let glass = Stages {
+            transparency: true,
+            ..Stages::default()
+        };
+        for name in crate::registry::names() {
+            let warned = transparency_warning(name, &glass).is_some();
+            assert_eq!(warned, !COMPOSITING_HIDERS.contains(&name), "{name}");
+            assert!(transparency_warning(name, &Stages::default()).is_none());
+        }
+        let line = transparency_warning("ssaa-8", &glass).unwrap();
+        assert!(
+            line.contains("ssaa-8") && line.contains("--algo abuffer"),
+            "{line}"
+        );
+    }
 
     #[test]
     fn flat_pass_runs_no_stage_and_matches_the_material_colour() {
