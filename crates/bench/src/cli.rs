@@ -21,7 +21,7 @@ use hider_scene::timing::Timer;
 
 use crate::matrix::{MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{Results, SCHEMA_VERSION, read_results, write_results};
-use crate::report::{terminal_table, write_report};
+use crate::report::{conclusions, terminal_table, write_report};
 use crate::run::{RunOptions, run};
 
 /// Arguments of `hider bench`.
@@ -317,6 +317,13 @@ fn run_matrix(args: &RunArgs) -> Result<()> {
     let command = command_line();
     let out = run(&options, &STOP, &command)?;
     print!("{}", terminal_table(&out.results));
+    let answer = conclusions(&out.results);
+    if !answer.is_empty() {
+        println!("\nWhat accuracy costs in time (from this run):");
+        for line in answer {
+            println!("- {}", line.replace('`', ""));
+        }
+    }
     publish(&out.results, &args.output, &command)?;
     if !out.results.complete {
         bail!(

@@ -238,9 +238,10 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot) -> Resul
     }
     for (k, s) in plot.series.iter().enumerate() {
         let c = colour(s.colour);
-        // Earlier lines are drawn wider, so a later one lying on top of
-        // another leaves it showing as a rim instead of hiding it.
-        let wider = if s.line {
+        // In plots of a few lines, earlier lines are drawn wider, so a
+        // later one lying on top of another leaves it showing as a rim
+        // instead of hiding it (with many lines the rims would crowd).
+        let wider = if s.line && plot.series.len() <= 6 {
             (plot.series.len() - 1 - k).min(4) as u32
         } else {
             0
@@ -372,7 +373,7 @@ pub fn scaling_plot(rows: &[Row], study: Study, hiders: &[String]) -> Plot {
         .filter(|s| !s.points.is_empty())
         .collect();
     Plot {
-        title: format!("render time vs {}", axis_label(study)),
+        title: format!("Render time against {}", axis_label(study)),
         x_label: axis_title(study).into(),
         y_label: "render time, ms (median)".into(),
         series,

@@ -339,21 +339,32 @@ fn shortcut_table(s: &mut String, rows: &[Row]) {
             fmt_count(f.wrong_ids + f.coverage_mismatches),
             f.wrong_cases,
             f.cases,
-            hard.map_or("-".into(), |(w, n)| format!(
-                "{} ({n} scenes)",
+            hard.map_or("-".into(), |(w, k, n)| format!(
+                "{} ({k}/{n})",
                 fmt_count(w)
             )),
             fmt_ms(f.time_ms),
             fmt_ms(e.time_ms),
-            fmt_pct(1.0 - f.time_ms / e.time_ms),
+            time_saved(f.time_ms, e.time_ms),
         );
     }
     s.push('\n');
 }
 
+/// What a shortcut saves against its exact hider: `38%`, or `none (41%
+/// slower)` when it is slower.
+pub(super) fn time_saved(fast_ms: f64, exact_ms: f64) -> String {
+    if fast_ms <= exact_ms {
+        fmt_pct(1.0 - fast_ms / exact_ms)
+    } else {
+        format!("none ({} slower)", fmt_pct(fast_ms / exact_ms - 1.0))
+    }
+}
+
 /// Wrong pixels of `hider` over the hard cases at the accuracy study's
-/// largest size, with the number of scenes: `None` without such rows.
-pub(super) fn hard_case_wrong(rows: &[Row], hider: &str) -> Option<(u64, usize)> {
+/// largest size, the scenes with any, and the scenes scored: `None`
+/// without such rows.
+pub(super) fn hard_case_wrong(rows: &[Row], hider: &str) -> Option<(u64, usize, usize)> {
     let largest = rows
         .iter()
         .filter(|r| r.study == "accuracy" && r.group == "hard-case")
@@ -369,11 +380,12 @@ pub(super) fn hard_case_wrong(rows: &[Row], hider: &str) -> Option<(u64, usize)>
                 && r.wrong_ids.is_some()
         })
         .collect();
-    let wrong = got
+    let wrong: Vec<u64> = got
         .iter()
         .map(|r| r.wrong_ids.unwrap_or(0) + r.coverage_mismatches.unwrap_or(0))
-        .sum();
-    (!got.is_empty()).then_some((wrong, got.len()))
+        .collect();
+    let scenes = wrong.iter().filter(|w| **w > 0).count();
+    (!got.is_empty()).then(|| (wrong.iter().sum(), scenes, got.len()))
 }
 
 /// Share of covered pixels showing the farther surface, per row.

@@ -74,7 +74,7 @@ fn aa_sentence(rows: &[Row], hiders: &[String]) -> Option<String> {
     ] {
         if let Some(a) = find(h) {
             parts.push(format!(
-                "{what} reaches a coverage error of {} at {} of the 32-sample time",
+                "{what}: {} at {} of the 32-sample time",
                 a.coverage_error.map_or("-".into(), fmt_error),
                 fmt_pct(a.time_ms / full.time_ms)
             ));
@@ -86,7 +86,7 @@ fn aa_sentence(rows: &[Row], hiders: &[String]) -> Option<String> {
             format!(" (one sample per pixel: {})", fmt_error(e))
         });
     Some(format!(
-        "Anti-aliasing at real size: 32 samples per pixel leave a mean coverage error of {}{one} in {} ms; {}.",
+        "Anti-aliasing at real size: 32 samples per pixel leave a mean coverage error of {}{one} in {} ms; the coverage error and the share of that time of the others: {}.",
         fmt_error(full_error),
         fmt_ms(full.time_ms),
         parts.join("; ")
@@ -107,14 +107,22 @@ fn shortcut_sentence(rows: &[Row]) -> Option<String> {
         ) else {
             continue;
         };
-        let hard = hard_case_wrong(rows, fast).map_or(String::new(), |(w, _)| {
-            format!(", {} in the hard cases", fmt_count(w))
+        let hard = hard_case_wrong(rows, fast).map_or(String::new(), |(w, k, n)| {
+            format!(" ({} on {k} of {n} hard cases)", fmt_count(w))
         });
-        let saved = 1.0 - f.time_ms / e.time_ms;
+        let saved = if f.time_ms <= e.time_ms {
+            format!(
+                "saves {} of `{exact}`'s time",
+                fmt_pct(1.0 - f.time_ms / e.time_ms)
+            )
+        } else {
+            format!(
+                "saves no time (it takes {} longer than `{exact}`)",
+                fmt_pct(f.time_ms / e.time_ms - 1.0)
+            )
+        };
         parts.push(format!(
-            "`{fast}` {} {} of `{exact}`'s time and gets {} pixels wrong on {} of {} real-size scenes{hard}",
-            if saved >= 0.0 { "saves" } else { "costs" },
-            fmt_pct(saved.abs()),
+            "`{fast}` {saved} and gets {} pixels wrong on {} of {} real-size scenes{hard}",
             fmt_count(f.wrong_ids + f.coverage_mismatches),
             f.wrong_cases,
             f.cases
@@ -143,7 +151,7 @@ fn precision_sentence(rows: &[Row]) -> Option<String> {
             .last()
             .map_or("none of the sweep".to_owned(), |g| format!("{g:.0e}"));
         parts.push(format!(
-            "{label} down to {resolved} ({} wrong at {smallest:.0e})",
+            "{label} down to {resolved} (at {smallest:.0e} the farther surface shows on {} of the pixels)",
             fmt_pct(worst)
         ));
     }

@@ -31,6 +31,13 @@ pub use options::ReportOptions;
 pub use rows::{hider_order, kind_label};
 pub use terminal::{exponent_table, terminal_table};
 
+/// The report's conclusions, one sentence each, every number from
+/// `results` (what the terminal prints after its table).
+pub fn conclusions(results: &Results) -> Vec<String> {
+    let rows = &results.rows;
+    conclusions::sentences(rows, &hider_order(rows))
+}
+
 /// The interpretation page, written beside every report it is not
 /// already beside, so that the report's folder reads on its own.
 const INTERPRETATION: &str = include_str!("../../../../docs/bench.md");
