@@ -58,6 +58,25 @@ fn xyz(v: DVec3) -> String {
     format!("{},{},{}", n(v.x), n(v.y), n(v.z))
 }
 
+/// "1 triangle" or "N triangles".
+fn count(n: usize) -> String {
+    if n == 1 {
+        "1 triangle".to_owned()
+    } else {
+        format!("{n} triangles")
+    }
+}
+
+/// The subject of a sentence about `n` triangles and its verb `to be`:
+/// ("the triangle", "is") or ("all N triangles", "are").
+fn all(n: usize) -> (String, &'static str) {
+    if n == 1 {
+        ("the triangle".to_owned(), "is")
+    } else {
+        (format!("all {n} triangles"), "are")
+    }
+}
+
 /// The warning when `covered` is 0 (nothing on screen), else `None`.
 pub fn nothing_on_screen(scene: &Scene, screen: &ScreenScene, covered: usize) -> Option<String> {
     if covered > 0 {
@@ -67,31 +86,37 @@ pub fn nothing_on_screen(scene: &Scene, screen: &ScreenScene, covered: usize) ->
     let total = scene.triangle_count();
     let camera = &screen.camera;
     let (flat, edge_on, normal) = edge_on(scene, screen);
+    let (culled, back) = (stats.culled as usize, stats.back_faces as usize);
     let why = if total > flat && edge_on == total - flat {
+        let (who, is) = all(edge_on);
+        format!("{who} {is} seen edge-on (the eye lies in their plane: they project to a line)")
+    } else if culled == total {
+        let (who, is) = all(total);
         format!(
-            "all {edge_on} triangles are seen edge-on (their plane passes through the eye, so \
-             they project to a line)"
+            "{who} {is} outside the view (behind the eye, off screen, or beyond the near or \
+             far plane)"
         )
-    } else if stats.culled == total as u64 {
+    } else if back > 0 && back + culled == total {
+        let (who, is) = all(back);
+        format!("{who} in view {is} back faces, culled")
+    } else if screen.tris.is_empty() && back == 0 && culled == 0 {
+        let (who, _) = all(total);
         format!(
-            "all {total} triangles are outside the view (behind the eye, off screen, or beyond \
-             the near or far plane)"
-        )
-    } else if stats.back_faces > 0 && stats.back_faces + stats.culled == total as u64 {
-        format!(
-            "the {} triangles in view are back faces, culled",
-            stats.back_faces
+            "{who} {} zero area on screen (smaller than the 1/256-pixel snapping step \
+             or seen edge-on)",
+            if total == 1 { "has" } else { "have" }
         )
     } else if screen.tris.is_empty() {
         format!(
-            "of {total} triangles, {} are outside the view, {} back faces culled and {} of zero \
-             area on screen",
-            stats.culled, stats.back_faces, stats.degenerate
+            "of {}, {culled} are outside the view, {back} back faces culled and the rest of \
+             zero area on screen",
+            count(total)
         )
     } else {
+        let (who, _) = all(screen.tris.len());
         format!(
-            "the {} triangles on screen cover no pixel centre (thinner or smaller than a pixel)",
-            screen.tris.len()
+            "{who} on screen cover{} no pixel centre (thinner or smaller than a pixel)",
+            if screen.tris.len() == 1 { "s" } else { "" }
         )
     };
     let distance = (camera.eye - camera.target).length();

@@ -228,6 +228,31 @@ fn a_plane_seen_edge_on_warns_and_suggests_an_eye() {
         err.contains("nothing on screen") && err.contains("outside the view"),
         "{err}"
     );
+    // A triangle far smaller than the snapping step: zero area on screen.
+    let tiny = dir.join("tiny.obj");
+    std::fs::write(&tiny, "v 0 0 0\nv 1e-4 0 0\nv 0 1e-4 0\nf 1 2 3\n").unwrap();
+    let out = hider(&[
+        "render",
+        tiny.to_str().unwrap(),
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "16",
+        "--eye",
+        "0.3,0.3,10",
+        "--target",
+        "0.3,0.3,0",
+        "--near",
+        "0.1",
+        "--far",
+        "100",
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(
+        err.contains("nothing on screen: the triangle has zero area on screen"),
+        "{err}"
+    );
     // A picture with something in it has no such warning.
     let out = hider(&[
         "render",
