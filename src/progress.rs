@@ -1,15 +1,31 @@
 //! A spinner on the terminal for runs that take longer than a second:
 //! which stage the run is in and how long it has taken. Nothing is drawn
 //! when stderr is not a terminal (a pipe, a file, a test), nor for a run
-//! that ends within the second.
+//! that ends within the second. The environment variable
+//! `HIDER_SPINNER_DELAY_MS` sets another delay (0 draws at once).
 
 use std::io::IsTerminal;
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-/// How long a run goes before the spinner appears.
+/// How long a run goes before the spinner appears, unless
+/// `HIDER_SPINNER_DELAY_MS` says otherwise.
 const DELAY: Duration = Duration::from_secs(1);
+
+/// The delay: [`DELAY`] or the environment's.
+fn delay() -> Duration {
+    std::env::var("HIDER_SPINNER_DELAY_MS")
+        .ok()
+        .and_then(|ms| ms.trim().parse().ok())
+        .map_or(DELAY, Duration::from_millis)
+}
+
+/// Draws `bar` on stderr from now on.
+fn show(bar: &ProgressBar) {
+    bar.set_draw_target(ProgressDrawTarget::stderr());
+    bar.enable_steady_tick(Duration::from_millis(120));
+}
 
 /// The spinner of one run; cleared when dropped.
 pub struct Progress {
@@ -17,7 +33,7 @@ pub struct Progress {
 }
 
 impl Progress {
-    /// Starts timing the run; the spinner appears after [`DELAY`] if the
+    /// Starts timing the run; the spinner appears after the delay if the
     /// run is still going and stderr is a terminal.
     pub fn start(first_stage: &str) -> Self {
         if !std::io::stderr().is_terminal() {
@@ -28,14 +44,19 @@ impl Progress {
             bar.set_style(style);
         }
         bar.set_message(first_stage.to_owned());
-        let later = bar.clone();
-        std::thread::spawn(move || {
-            std::thread::sleep(DELAY);
-            if !later.is_finished() {
-                later.set_draw_target(ProgressDrawTarget::stderr());
-                later.enable_steady_tick(Duration::from_millis(120));
-            }
-        });
+        let delay = delay();
+        if delay.is_zero() {
+            show(&bar);
+            bar.tick();
+        } else {
+            let later = bar.clone();
+            std::thread::spawn(move || {
+                std::thread::sleep(delay);
+                if !later.is_finished() {
+                    show(&later);
+                }
+            });
+        }
         Self { bar: Some(bar) }
     }
 

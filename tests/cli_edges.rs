@@ -265,3 +265,49 @@ fn a_plane_seen_edge_on_warns_and_suggests_an_eye() {
     assert!(!stderr(&out).contains("nothing on screen"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A render that takes over a second here, so past the spinner's delay.
+const LONG_RENDER: [&str; 8] = [
+    "render",
+    "gen:sphere:1000",
+    "--size",
+    "2048",
+    "--algo",
+    "scanline",
+    "-o",
+    "",
+];
+
+#[test]
+fn the_spinner_shows_on_a_terminal_only() {
+    let dir = temp_dir("spinner");
+    let png = dir.join("long.png");
+    let mut args = LONG_RENDER;
+    args[7] = png.to_str().unwrap();
+    // Not a terminal: nothing but whole lines, however long the run.
+    let out = hider(&args);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains('\r') && !err.contains('\u{1b}'), "{err:?}");
+    // On a terminal (a pseudo-terminal from `script`, where there is one),
+    // with the delay set to 0 so that the check does not hang on timing:
+    // the stage is named.
+    let command = format!(
+        "{} render gen:cube --size 16 -o {}",
+        env!("CARGO_BIN_EXE_hider"),
+        png.display()
+    );
+    let typescript = dir.join("typescript");
+    let on_terminal = Command::new("script")
+        .args(["-qec", &command, typescript.to_str().unwrap()])
+        .env("HIDER_SPINNER_DELAY_MS", "0")
+        .output();
+    match on_terminal {
+        Ok(out) if out.status.success() => {
+            let seen = String::from_utf8_lossy(&std::fs::read(&typescript).unwrap()).into_owned();
+            assert!(seen.contains("loading the model"), "{seen:?}");
+        }
+        _ => eprintln!("no `script` to make a terminal with: the terminal half skipped"),
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
