@@ -18,11 +18,14 @@ use hider_scene::{
 };
 use hider_vector::{VectorOptions, hidden_lines, lines_svg, regions_svg, visible_regions};
 
+/// A sheet: its name, colour and height over the ground plane.
+type Sheet = (&'static str, [f32; 3], fn(f64, f64) -> f64);
+
 /// Two height-field grids of `n x n` vertices crossing each other: a
 /// rippled sheet and a tilted one, as in a scientific 3D figure.
 fn intersecting_grids(n: u32) -> Scene {
     let mut scene = Scene::default();
-    let sheets: [(&str, [f32; 3], fn(f64, f64) -> f64); 2] = [
+    let sheets: [Sheet; 2] = [
         ("ripple", [0.85, 0.45, 0.2], |x, z| {
             0.25 * (3.0 * x).sin() * (2.0 * z).cos()
         }),
@@ -60,6 +63,13 @@ fn intersecting_grids(n: u32) -> Scene {
             }),
         );
     }
+    // A figure's usual view: from above and aside, not edge-on.
+    scene.camera = Some(hider_geom::Camera::perspective(
+        DVec3::new(2.2, 2.4, 3.0),
+        DVec3::ZERO,
+        0.5,
+        20.0,
+    ));
     scene
 }
 

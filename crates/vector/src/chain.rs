@@ -18,11 +18,14 @@ const STRAIGHT: f64 = 1e-3;
 /// A piece: `(x, y, depth)` at both ends, and its kind.
 pub type Piece = ([f64; 3], [f64; 3], LineKind);
 
+/// A cell of the joining hash: its coordinates and the kind of line.
+type Cell = (i64, i64, LineKind);
+
 /// Gives end points node ids, points within [`JOIN`] of an earlier one
 /// (searched in the neighbouring cells too) taking its id.
 #[derive(Default)]
 struct Nodes {
-    cells: HashMap<(i64, i64, LineKind), Vec<(usize, [f64; 3])>>,
+    cells: HashMap<Cell, Vec<(usize, [f64; 3])>>,
     count: usize,
 }
 

@@ -166,6 +166,12 @@ const MIN_LENGTH: f64 = 1e-3;
 /// occluders that only touch the segment at a shared vertex.
 const MIN_PIECE: f64 = 1e-9;
 
+/// A parameter interval `(from, to)` along a segment.
+type Interval = (f64, f64);
+
+/// An edge of a mesh: the keys of its two vertices, in ascending order.
+type EdgeKey = ([u64; 3], [u64; 3]);
+
 /// The visible and hidden parameter intervals of one feature segment.
 fn split_visibility(
     scene: &ScreenScene,
@@ -174,7 +180,7 @@ fn split_visibility(
     f: &Feature,
     tolerance: f64,
     stats: &mut LineStats,
-) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+) -> (Vec<Interval>, Vec<Interval>) {
     let [p, q] = f.ends;
     let (gx0, gy0) = grid.from_pixels(p.x.min(q.x), p.y.min(q.y));
     let (gx1, gy1) = grid.from_pixels(p.x.max(q.x), p.y.max(q.y));
@@ -259,7 +265,7 @@ fn vertex_key(p: DVec3) -> [u64; 3] {
 /// near and far planes.
 fn edge_features(scene: &ScreenScene, crease_degrees: f64) -> Vec<Feature> {
     // Edge (sorted vertex keys) -> [(prim, edge runs forward)].
-    let mut edges: HashMap<([u64; 3], [u64; 3]), Vec<(u32, bool)>> = HashMap::new();
+    let mut edges: HashMap<EdgeKey, Vec<(u32, bool)>> = HashMap::new();
     for (prim, info) in scene.prims.iter().enumerate() {
         let c = info.camera;
         if (c[1] - c[0]).cross(c[2] - c[0]).length_squared() == 0.0 {

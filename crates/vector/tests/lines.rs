@@ -10,7 +10,7 @@
 use glam::DVec3;
 use hider_scene::{Material, Mesh, Scene, ScreenScene, ShadeMode, procedural};
 use hider_testkit::cameras::look_at;
-use hider_testkit::{hard_cases, screen, screen_with};
+use hider_testkit::{hard_cases, screen_with};
 use hider_vector::{LineDrawing, LineKind, Polyline, VectorOptions, hidden_lines, visible_regions};
 
 /// Window-depth tolerance of the check for drawn points: the lines'
