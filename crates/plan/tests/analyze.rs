@@ -30,7 +30,11 @@ fn lighting_follows_shading_with_the_head_light_when_there_are_no_lights() {
     let bare = procedural::cube();
     let fx = analyze(&bare, &small()).unwrap();
     assert!(fx.lighting.present && fx.lighting.count == 0);
-    assert!(fx.lighting.detail.contains("head light"), "{}", fx.lighting.detail);
+    assert!(
+        fx.lighting.detail.contains("head light"),
+        "{}",
+        fx.lighting.detail
+    );
     assert!(
         !analyze(&bare, &small().with_shading(false))
             .unwrap()
