@@ -208,6 +208,13 @@ fn a_plane_seen_edge_on_warns_and_suggests_an_eye() {
     let err = stderr(&out);
     assert!(out.status.success(), "{err}");
     assert!(!err.contains("nothing on screen"), "--eye {eye}: {err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn an_empty_picture_says_why() {
+    let dir = temp_dir("empty");
+    let png = dir.join("empty.png");
 
     // Everything behind the eye: outside the view.
     let out = hider(&[
