@@ -30,7 +30,7 @@
 //! let options = RenderOptions::default().with_size(48, 48);
 //! let planned = auto(&scene, &options)?;
 //! assert_eq!(planned.effects.intersections.count, 1);
-//! println!("{}", planned.plan.summary());
+//! println!("{}", planned.summary());
 //!
 //! let mut hider = planned.plan.build(&HiderConfig::default())?;
 //! let mut frame = Frame::new(48, 48)?;
