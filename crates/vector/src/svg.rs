@@ -17,7 +17,7 @@ use crate::VectorOptions;
 use crate::lines::{LineDrawing, LineKind, Polyline};
 use crate::regions::RegionMap;
 
-fn header(scene: &ScreenScene, background: bool) -> String {
+fn header(scene: &ScreenScene, background: Option<[u8; 3]>) -> String {
     let (w, h) = (scene.viewport.width, scene.viewport.height);
     let mut s = String::new();
     // Writing to a String cannot fail.
@@ -26,8 +26,7 @@ fn header(scene: &ScreenScene, background: bool) -> String {
         s,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
     );
-    if background {
-        let bg = hider_scene::frame::BACKGROUND;
+    if let Some(bg) = background {
         let _ = writeln!(
             s,
             r##"<rect width="{w}" height="{h}" fill="#{:02x}{:02x}{:02x}"/>"##,
@@ -41,7 +40,9 @@ fn header(scene: &ScreenScene, background: bool) -> String {
 /// and one path per face group, tagged `data-prims` with its primitive
 /// count and the first primitive id.
 pub fn regions_svg(scene: &ScreenScene, map: &RegionMap, options: &VectorOptions) -> String {
-    let mut s = header(scene, options.background);
+    let bg = hider_scene::frame::BACKGROUND;
+    let background = options.background.then_some([bg[0], bg[1], bg[2]]);
+    let mut s = header(scene, background);
     let scale = 1.0 / map.grid.units_per_pixel();
     let _ = writeln!(
         s,
@@ -65,6 +66,15 @@ pub fn regions_svg(scene: &ScreenScene, map: &RegionMap, options: &VectorOptions
         let _ = write!(s, r#"" fill="{}""#, group.fill);
         if group.opacity < 1.0 {
             let _ = write!(s, r#" fill-opacity="{}""#, group.opacity);
+        }
+        if options.seam_stroke > 0.0 {
+            // In grid units: the group is drawn under the scale transform.
+            let width = options.seam_stroke * map.grid.units_per_pixel();
+            let _ = write!(
+                s,
+                r#" stroke="{}" stroke-width="{width}" stroke-linejoin="round""#,
+                group.fill
+            );
         }
         s.push_str("/>\n");
     }
@@ -100,10 +110,12 @@ fn round4(v: f64) -> f64 {
     (v * 1e4).round() / 1e4
 }
 
-/// The hidden-line SVG: the visible polylines (intersections in red), and
+/// The hidden-line SVG on white (when [`VectorOptions::background`]): the
+/// visible polylines (intersections in red), and
 /// the hidden ones dashed and grey when the drawing has them.
 pub fn lines_svg(scene: &ScreenScene, drawing: &LineDrawing, options: &VectorOptions) -> String {
-    let mut s = header(scene, options.background);
+    // Lines are drawn on paper: white under black strokes.
+    let mut s = header(scene, options.background.then_some([255, 255, 255]));
     let w = options.stroke_width;
     if !drawing.hidden.is_empty() {
         let _ = writeln!(
