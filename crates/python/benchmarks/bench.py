@@ -48,15 +48,17 @@ def surfaces_figure(resolved):
     X, Y = np.meshgrid(x, x)
     fig = plt.figure(figsize=(6, 6), dpi=100)
     ax = fig.add_subplot(projection="3d")
-    ax.plot_surface(X, Y, X * Y, cmap="viridis")
-    ax.plot_surface(X, Y, 0.5 * np.sin(3 * X) + 0.3 * Y, cmap="plasma")
+    ax.plot_surface(X, Y, X * Y, cmap="viridis", rstride=1, cstride=1)
+    ax.plot_surface(X, Y, 0.5 * np.sin(3 * X) + 0.3 * Y, cmap="plasma", rstride=1,
+                    cstride=1)
     r = hider.mpl.resolve(ax) if resolved else None
     return fig, ax, r
 
 
 def bench_resolve(repeat=5):
     fig, ax, _ = surfaces_figure(False)
-    tris = sum(2 * (len(c._faces)) for c in ax.collections)
+    fig.canvas.draw()
+    tris = len(hider.mpl.project(ax).faces)
     save = median_ms(lambda: fig.savefig(io.BytesIO(), format="png"), repeat)
     plt.close(fig)
     fig, ax, r = surfaces_figure(True)

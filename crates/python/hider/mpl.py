@@ -24,6 +24,7 @@ from typing import NamedTuple
 import numpy as np
 from matplotlib import collections as mcoll
 from matplotlib import colors as mcolors
+from matplotlib import path as mpath
 from matplotlib.transforms import IdentityTransform
 from mpl_toolkits.mplot3d import art3d, proj3d
 
@@ -65,9 +66,16 @@ def _rgba(colors, count):
 
 
 def _polygon_source(col):
-    """The polygons of a Poly3DCollection, projected by its last
-    do_3d_projection, with their colours in the user's order."""
-    col.do_3d_projection()
+    """The polygons of a Poly3DCollection with their colours in the user's
+    order, colour maps applied as its do_3d_projection applies them (that
+    method also sorts and sets its own 2D polygons, which is not needed
+    here)."""
+    if col._A is not None:
+        col.update_scalarmappable()
+        if col._face_is_mapped:
+            col._facecolor3d = col._facecolors
+        if col._edge_is_mapped:
+            col._edgecolor3d = col._edgecolors
     faces = np.asarray(col._faces, dtype=float)
     n, v = faces.shape[:2] if faces.ndim == 3 else (0, 0)
     invalid = np.broadcast_to(np.asarray(col._invalid_vertices, dtype=bool), (n, v)) \
@@ -122,8 +130,9 @@ class _Gathered:
         self.outlines = outlines
         self.collection = np.concatenate(which) if which else np.zeros(0, np.int64)
         # Depth over the points in use, mapped onto [0, 1].
-        used = np.unique(self.faces) if len(self.faces) else np.zeros(0, np.int64)
-        z = self.points[used, 2] if len(used) else np.zeros(1)
+        used = np.zeros(len(self.points), dtype=bool)
+        used[self.faces.ravel()] = True
+        z = self.points[used, 2] if used.any() else np.zeros(1)
         self.zlo, zhi = float(z.min()), float(z.max())
         self.zspan = zhi - self.zlo if zhi > self.zlo else 1.0
         self.points[:, 1] = height - self.points[:, 1]
@@ -337,8 +346,8 @@ class Resolved(mcoll.PolyCollection):
         self.pieces = len(prims)
         xy = xy.copy()
         xy[:, 1] = height - xy[:, 1]
-        self.set_verts(np.split(xy, offsets[1:-1]) if len(prims) else [], closed=True)
         poly = g.tri_poly[prims]
+        poly = poly[self._set_pieces(xy, offsets, poly)]
         face = g.face_rgba[poly]
         edge = g.edge_rgba[poly]
         lw = g.linewidths[poly]
@@ -351,9 +360,46 @@ class Resolved(mcoll.PolyCollection):
         edge[own] = face[own]
         self.set_facecolor(face)
         self.set_edgecolor(edge)
-        self.set_linewidth(lw if len(lw) else 0.0)
+        # One width for all is the common case, and much cheaper for
+        # matplotlib to set than one per piece.
+        same = len(lw) == 0 or np.all(lw == lw[0])
+        self.set_linewidth((lw[0] if len(lw) else 0.0) if same else lw)
         self._resolve_lines(g, len(prims) > 0)
-        return float(np.min(g.points[:, 2])) if len(g.points) else np.nan
+        return g.zlo if len(g.faces) else np.nan
+
+    def _set_pieces(self, xy, offsets, poly):
+        """The pieces as this collection's paths, in paint order; returns
+        the first piece of each path. Consecutive pieces of one polygon
+        become one path of several closed parts, filled in one pass, so
+        no seam shows between them (the two triangles of a quad, most
+        often), and there are fewer paths to make: tens of thousands of
+        path objects dominate the draw otherwise."""
+        k = len(offsets) - 1
+        counts = np.diff(offsets)
+        total = int(offsets[-1]) if k else 0
+        piece_of = np.repeat(np.arange(k), counts)
+        # Each piece's corners, then its first corner again to close it.
+        verts = np.empty((total + k, 2))
+        codes = np.full(total + k, mpath.Path.LINETO, dtype=mpath.Path.code_type)
+        verts[np.arange(total) + piece_of] = xy
+        close = offsets[1:] + np.arange(k)
+        verts[close] = xy[offsets[:-1]]
+        codes[offsets[:-1] + np.arange(k)] = mpath.Path.MOVETO
+        codes[close] = mpath.Path.CLOSEPOLY
+        first = np.nonzero(np.r_[True, poly[1:] != poly[:-1]])[0] if k else np.zeros(0, np.int64)
+        starts = (offsets[first] + first).tolist()
+        ends = starts[1:] + [total + k]
+        fast = getattr(mpath.Path, "_fast_from_codes_and_verts", None)
+        if fast is None:
+            self._paths = [mpath.Path(verts[a:b], codes[a:b]) for a, b in zip(starts, ends)]
+        else:
+            # The simplification settings are copied from one path made
+            # the ordinary way rather than looked up for every path.
+            like = mpath.Path(verts[:1])
+            self._paths = [fast(verts[a:b], codes[a:b], internals_from=like)
+                           for a, b in zip(starts, ends)]
+        self.stale = True
+        return first
 
     def _resolve_lines(self, g, any_faces):
         """Cuts the source lines and the outlines of edge-coloured polygons

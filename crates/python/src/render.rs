@@ -1,15 +1,22 @@
 //! `hider.render`: a mesh from numpy arrays through any registered hider,
 //! as the `hider render` command line does it.
 
-use glam::DVec3;
+use std::cell::RefCell;
+use std::sync::Arc;
+
+use glam::{DMat4, DVec3};
 use hider_geom::{Camera, Projection};
 use hider_plan::{HiderConfig, registry};
 use hider_scene::frame::id_to_i32;
-use hider_scene::{Frame, PrepareOptions, Scene, View, fit_camera, prepare};
+use hider_scene::{
+    DynHider, Frame, PrepareOptions, PrepareStats, Scene, ScreenScene, SurfaceTextures, View,
+    fit_camera,
+};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use rayon::ThreadPool;
 
 use crate::errors::{plan_error, scene_error};
 use crate::mesh::scene_from_arrays;
@@ -61,42 +68,142 @@ fn check_threads(threads: usize) -> PyResult<()> {
     Ok(())
 }
 
-/// Renders `scene` for `view` with the registered hider `algo` on
-/// `threads` threads: the command line's path from the model to its dumps
-/// (the registry's hider, the f64 front end, parallel above one thread).
-pub fn render_scene(scene: &Scene, view: &View, algo: &str, threads: usize) -> PyResult<Frame> {
-    check_threads(threads)?;
-    let config = HiderConfig::default().with_threads(threads);
-    let entry = registry::find(algo).map_err(plan_error)?;
-    let options = PrepareOptions::default().with_parallel(threads > 1);
-    let run = || -> hider_plan::Result<Frame> {
-        let mut hider = entry.build(&config)?;
-        let screen = prepare(scene, view, &options)?;
-        let mut frame = Frame::new(view.viewport.width, view.viewport.height)?;
-        hider.render(&screen, &mut frame)?;
-        Ok(frame)
-    };
-    let result = if threads > 1 {
-        // A pool of the caller's size for this call only: the command line
-        // sizes rayon's global pool, which a library must leave alone.
+/// What a render hands back: the ids as stored in dumps (`-1` for
+/// background) and the window depths, row by row, and the image size.
+pub struct Rendered {
+    ids: Vec<i32>,
+    depth: Vec<f32>,
+    width: u32,
+    height: u32,
+}
+
+/// A hider with its frame and screen scene, kept from one call to the next
+/// on the thread that made them, as a frame loop keeps them: at 1024 x 1024
+/// allocating (and the kernel zeroing) the frame and the hider's scratch
+/// buffers again would cost more than many renders.
+struct Workspace {
+    algo: String,
+    threads: usize,
+    hider: Box<dyn DynHider>,
+    frame: Frame,
+}
+
+thread_local! {
+    /// This thread's last hider and frame.
+    static WORKSPACE: RefCell<Option<Workspace>> = const { RefCell::new(None) };
+    /// This thread's pool for `threads` above 1, with its size.
+    static POOL: RefCell<Option<(usize, Arc<ThreadPool>)>> = const { RefCell::new(None) };
+}
+
+/// Renders with this thread's workspace, made anew when the hider or
+/// thread count differs from the last call's.
+fn render_with_workspace(
+    scene: &Scene,
+    view: &View,
+    entry: &registry::Entry,
+    threads: usize,
+) -> hider_plan::Result<Rendered> {
+    WORKSPACE.with_borrow_mut(|slot| {
+        let (width, height) = (view.viewport.width, view.viewport.height);
+        let reuse = slot
+            .as_ref()
+            .is_some_and(|w| w.algo == entry.name && w.threads == threads);
+        if !reuse {
+            // Drop the old workspace first: its memory is reused.
+            *slot = None;
+            let config = HiderConfig::default().with_threads(threads);
+            *slot = Some(Workspace {
+                algo: entry.name.to_owned(),
+                threads,
+                hider: entry.build(&config)?,
+                frame: Frame::new(width, height)?,
+            });
+        }
+        let ws = slot.as_mut().expect("the workspace was just made");
+        if ws.frame.width() != width || ws.frame.height() != height {
+            ws.frame.resize(width, height)?;
+        }
+        let options = PrepareOptions::default().with_parallel(threads > 1);
+        // The hider's whole pipeline, as `hider render --repeat` times it:
+        // the tiled z-buffer runs its lean depth-only front end, which
+        // keeps the shared front end's numbers bit for bit.
+        let mut screen = empty_screen(view);
+        let result = ws
+            .hider
+            .render_scene(scene, view, &options, &mut screen, &mut ws.frame);
+        if let Err(e) = result {
+            // A failed render may leave the hider's state half built.
+            *slot = None;
+            return Err(e.into());
+        }
+        let frame = &ws.frame;
+        Ok(Rendered {
+            ids: frame.ids.iter().map(|&id| id_to_i32(id)).collect(),
+            depth: frame.depth.clone(),
+            width,
+            height,
+        })
+    })
+}
+
+/// This thread's pool of `threads` workers, made when the size differs.
+fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
+    POOL.with_borrow_mut(|slot| {
+        if let Some((n, pool)) = slot.as_ref()
+            && *n == threads
+        {
+            return Ok(Arc::clone(pool));
+        }
+        // A pool of the caller's size: the command line sizes rayon's
+        // global pool, which a library must leave alone.
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
+            .map(Arc::new)
             .map_err(|e| PyValueError::new_err(format!("cannot start the thread pool: {e}")))?;
-        pool.install(run)
+        *slot = Some((threads, Arc::clone(&pool)));
+        Ok(pool)
+    })
+}
+
+/// Renders `scene` for `view` with the registered hider `algo` on
+/// `threads` threads: the command line's path from the model to its dumps
+/// (the registry's hider, the f64 front end, parallel above one thread).
+pub fn render_scene(scene: &Scene, view: &View, algo: &str, threads: usize) -> PyResult<Rendered> {
+    check_threads(threads)?;
+    let entry = registry::find(algo).map_err(plan_error)?;
+    let result = if threads > 1 {
+        pool(threads)?.install(|| render_with_workspace(scene, view, &entry, threads))
     } else {
-        run()
+        render_with_workspace(scene, view, &entry, threads)
     };
     result.map_err(plan_error)
 }
 
-/// A frame's ids and depths as numpy arrays of shape `(height, width)`.
-pub fn buffers(py: Python<'_>, frame: Frame) -> PyResult<Buffers<'_>> {
-    let shape = (frame.height() as usize, frame.width() as usize);
-    let ids: Vec<i32> = frame.ids.iter().map(|&id| id_to_i32(id)).collect();
+/// An empty screen scene for `view`, for
+/// [`DynHider::render_scene`](hider_scene::DynHider::render_scene) to fill
+/// (or to leave as it is, for a hider with a front end of its own).
+fn empty_screen(view: &View) -> ScreenScene {
+    ScreenScene {
+        viewport: view.viewport,
+        camera: view.camera,
+        view_matrix: DMat4::IDENTITY,
+        projection_matrix: DMat4::IDENTITY,
+        tris: Vec::new(),
+        prims: Vec::new(),
+        materials: Vec::new(),
+        lights: Vec::new(),
+        stats: PrepareStats::default(),
+        textures: SurfaceTextures::default(),
+    }
+}
+
+/// A render's ids and depths as numpy arrays of shape `(height, width)`.
+pub fn buffers(py: Python<'_>, rendered: Rendered) -> PyResult<Buffers<'_>> {
+    let shape = (rendered.height as usize, rendered.width as usize);
     let shape_error = |e: numpy::ndarray::ShapeError| PyValueError::new_err(e.to_string());
-    let ids = Array2::from_shape_vec(shape, ids).map_err(shape_error)?;
-    let depth = Array2::from_shape_vec(shape, frame.depth).map_err(shape_error)?;
+    let ids = Array2::from_shape_vec(shape, rendered.ids).map_err(shape_error)?;
+    let depth = Array2::from_shape_vec(shape, rendered.depth).map_err(shape_error)?;
     Ok((ids.into_pyarray(py), depth.into_pyarray(py)))
 }
 

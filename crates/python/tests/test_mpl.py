@@ -39,6 +39,19 @@ def bar_stack(ax):
     ax.bar3d([0.5], [1.0], [1.7], 0.6, 0.6, 0.5, color="tab:orange")
 
 
+def voxels_and_trisurf(ax):
+    """Three voxels of their own colours pierced by a tilted
+    plot_trisurf plane."""
+    filled = np.zeros((2, 2, 2), dtype=bool)
+    filled[0, 0, 0] = filled[1, 0, 0] = filled[1, 1, 1] = True
+    colors = np.empty(filled.shape, dtype=object)
+    colors[0, 0, 0], colors[1, 0, 0], colors[1, 1, 1] = "tab:blue", "tab:green", "tab:red"
+    ax.voxels(filled, facecolors=colors)
+    rng = np.random.default_rng(1)
+    x, y = rng.uniform(-0.2, 2.2, 60), rng.uniform(-0.2, 2.2, 60)
+    ax.plot_trisurf(x, y, 0.4 + 0.5 * x, color="tab:purple")
+
+
 def figure(scene, resolved, elev=30, azim=-60):
     fig = plt.figure(figsize=(4, 4), dpi=100)
     ax = fig.add_subplot(projection="3d")
@@ -89,7 +102,8 @@ def agreement(image, owner, palettes, margin=2):
     return float(np.mean(seen == owner[interior])), seen, owner[interior]
 
 
-@pytest.mark.parametrize("scene", [crossing_planes, crossing_grids, bar_stack])
+@pytest.mark.parametrize("scene", [crossing_planes, crossing_grids, bar_stack,
+                                   voxels_and_trisurf])
 def test_resolve_shows_the_nearer_surface(scene):
     fig, ax = figure(scene, resolved=True)
     owner, palettes = nearer_surface(ax)

@@ -148,3 +148,21 @@ def test_the_gil_is_released_while_rendering():
         stop.set()
         t.join()
     assert len(ticks) > 5
+
+
+def test_kept_memory_does_not_leak_between_calls():
+    # Each thread keeps its last hider and frame: another scene, size or
+    # hider in between must not change what a call returns.
+    sphere, sphere_faces = uv_sphere(16, 8)
+    first = hider.render(sphere, sphere_faces, width=50, height=40)
+    other, other_faces = uv_sphere(7, 3)
+    hider.render(other * 3, other_faces, width=50, height=40)
+    hider.render(other, other_faces, width=31, height=77, algo="scanline")
+    hider.render(other, other_faces, width=50, height=40, threads=2)
+    again = hider.render(sphere, sphere_faces, width=50, height=40)
+    np.testing.assert_array_equal(first[0], again[0])
+    np.testing.assert_array_equal(first[1], again[1])
+    # The arrays returned are the caller's own, not views of kept memory.
+    again[0][:] = 7
+    np.testing.assert_array_equal(hider.render(sphere, sphere_faces, width=50, height=40)[0],
+                                  first[0])
