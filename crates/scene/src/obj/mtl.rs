@@ -70,9 +70,27 @@ pub(super) fn load_mtl(
     none()
 }
 
-/// tobj's parse of the given lines.
+/// tobj's parse of the given lines, after the colour statements it cannot
+/// take: tobj panics on a colour (`Ka`, `Kd`, `Ks`, `Ke`) of fewer than
+/// three numbers, so one number is written three times (the format's
+/// grey, `Kd r` meaning `Kd r r r`) and none or two is refused here.
 fn parse(lines: &[&str]) -> tobj::MTLLoadResult {
-    let text = lines.join("\n");
+    let mut text = String::new();
+    for line in lines {
+        let mut words = line.split_whitespace();
+        let key = words.next();
+        let values: Vec<&str> = words.collect();
+        match (key, values.as_slice()) {
+            (Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")), [grey]) => {
+                text.push_str(&format!("{key} {grey} {grey} {grey}"));
+            }
+            (Some("Ka" | "Kd" | "Ks" | "Ke"), [] | [_, _]) => {
+                return Err(tobj::LoadError::MaterialParseError);
+            }
+            _ => text.push_str(line),
+        }
+        text.push('\n');
+    }
     tobj::load_mtl_buf(&mut std::io::Cursor::new(text.as_bytes()))
 }
 

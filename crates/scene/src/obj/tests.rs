@@ -319,3 +319,29 @@ fn utf16_and_utf8_byte_order_marks_are_decoded() {
     .to_string();
     assert!(e.starts_with("odd.obj:0:") && e.contains("UTF-16"), "{e}");
 }
+
+#[test]
+fn short_colours_and_texture_coordinates_load_as_the_format_means_them() {
+    // `Kd 0.5` is a grey; `Kd 1 0` and a bare `Kd` are broken (tobj
+    // panicked on both); `vt u` has v = 0.
+    let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.5\nvt 0.25\nvt 1\n\
+               usemtl grey\nf 1/1 2/2 3/3\nusemtl two\nf 1/1 3/3 2/2\nusemtl none\nf 2 1 3\n";
+    let mtl = "newmtl grey\nKd 0.5\nnewmtl two\nKd 1 0\nnewmtl none\nKs\n";
+    let (s, dir) = load_with_mtl("short", obj, mtl);
+    let s = s.unwrap();
+    assert_eq!(s.triangle_count(), 3);
+    let grey = &s.materials[s.meshes[0].material.unwrap()];
+    assert_eq!(grey.diffuse, [0.5, 0.5, 0.5]);
+    assert_eq!(s.meshes[0].uvs[0], Vec2::new(0.5, 0.0));
+    assert!(s.meshes[1..].iter().all(|m| m.material.is_none()));
+    let mtl_path = dir.join("m.mtl").display().to_string();
+    for line in [4, 6] {
+        let at = format!("{mtl_path}:{line}:");
+        assert!(
+            s.warnings.iter().any(|w| w.starts_with(&at)),
+            "{at} {:?}",
+            s.warnings
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

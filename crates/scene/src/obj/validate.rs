@@ -8,7 +8,8 @@ use std::path::Path;
 
 use crate::error::{Error, Result};
 
-/// A statement the loader leaves out of what tobj sees.
+/// A statement the loader leaves out of what tobj sees, or writes the
+/// way tobj reads it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Skipped {
     /// `l`: a polyline.
@@ -17,6 +18,9 @@ pub(super) enum Skipped {
     Point,
     /// `usemtl` without a name.
     Usemtl,
+    /// `vt u` with one coordinate (the format's `v` defaults to 0, tobj
+    /// wants it written): given to tobj as `vt u 0`.
+    Texcoord,
 }
 
 /// What the validation pass found in a valid file.
@@ -24,7 +28,7 @@ pub(super) enum Skipped {
 pub(super) struct Checked {
     /// Triangles after fan-splitting the faces.
     pub(super) triangles: u64,
-    /// The statements left out, by 0-based line index.
+    /// The statements left out or rewritten, by 0-based line index.
     pub(super) skipped: Vec<(usize, Skipped)>,
 }
 
@@ -39,13 +43,14 @@ impl Checked {
         if self.skipped.is_empty() {
             return Cow::Borrowed(text);
         }
-        let mut lines: Vec<&str> = text.split('\n').collect();
+        let mut lines: Vec<Cow<'_, str>> = text.split('\n').map(Cow::Borrowed).collect();
         for &(k, what) in &self.skipped {
             lines[k] = match what {
-                Skipped::Line | Skipped::Point => "",
+                Skipped::Line | Skipped::Point => Cow::Borrowed(""),
                 // A name no exporter writes, so the faces that follow get
                 // the default material.
-                Skipped::Usemtl => "usemtl <no material>",
+                Skipped::Usemtl => Cow::Borrowed("usemtl <no material>"),
+                Skipped::Texcoord => Cow::Owned(format!("{} 0", lines[k].trim_end())),
             };
         }
         Cow::Owned(lines.join("\n"))
@@ -135,6 +140,9 @@ pub(super) fn validate_obj(text: &str, name: &Path) -> Result<Checked> {
             }
             "vt" => {
                 floats(1, "vt")?;
+                if values.len() == 1 {
+                    checked.skip(k, Skipped::Texcoord);
+                }
                 nvt += 1;
             }
             "vn" => {
