@@ -6,7 +6,7 @@
 //! ones whose bounding box can meet its own: the [`Grid`] lists, per
 //! screen bin and in key order, the pieces whose box meets that bin.
 
-use crate::newell::Extent;
+use crate::newell::{Extent, TOUCH};
 
 /// Position of a piece in the sorted list: its farthest depth (as an
 /// order-preserving bit pattern), then a tie-break. Initial pieces of equal
@@ -70,16 +70,18 @@ impl Grid {
         self.bins.resize_with(self.cols * self.rows, Vec::new);
     }
 
-    /// The bins a box meets: columns and rows, inclusive. Clamping keeps
-    /// it a superset: boxes whose bin ranges are disjoint are disjoint.
+    /// The bins a box widened by [`TOUCH`] meets: columns and rows,
+    /// inclusive. Clamping keeps it a superset: boxes whose bin ranges are
+    /// disjoint are more than [`TOUCH`] apart, which tests 2 and 3 settle
+    /// for cut pieces too.
     pub fn span(&self, e: &Extent) -> (usize, usize, usize, usize) {
         let at =
             |v: f64, n: usize| ((v * self.scale).floor() as i64).clamp(0, n as i64 - 1) as usize;
         (
-            at(e.min.x, self.cols),
-            at(e.max.x, self.cols),
-            at(e.min.y, self.rows),
-            at(e.max.y, self.rows),
+            at(e.min.x - TOUCH, self.cols),
+            at(e.max.x + TOUCH, self.cols),
+            at(e.min.y - TOUCH, self.rows),
+            at(e.max.y + TOUCH, self.rows),
         )
     }
 
