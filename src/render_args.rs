@@ -10,7 +10,7 @@ use clap::{Args, ValueEnum};
 use glam::DVec3;
 use hider::geom::{Camera, Projection};
 use hider::plan::HiderConfig;
-use hider::scene::{PrepareOptions, Scene, ShadeMode, TransformPrecision, fit_camera};
+use hider::scene::{PrepareOptions, Scene, ShadeMode, fit_camera};
 use hider::zbuffer::{DepthFormat, DepthSource};
 
 use crate::args;
@@ -193,15 +193,15 @@ impl RenderArgs {
         config
     }
 
-    /// The front end's options: `--precision`, and parallel above one
-    /// thread.
+    /// The front end's options: `--precision` (`f32` is the GL-compatible
+    /// front end, which also clips at the viewport's sides as llvmpipe
+    /// does), and parallel above one thread.
     pub fn prepare_options(&self) -> PrepareOptions {
-        PrepareOptions::default()
-            .with_precision(match self.precision {
-                PrecisionArg::F32 => TransformPrecision::F32,
-                PrecisionArg::F64 => TransformPrecision::F64,
-            })
-            .with_parallel(self.threads > 1)
+        match self.precision {
+            PrecisionArg::F32 => PrepareOptions::gl_compatible(),
+            PrecisionArg::F64 => PrepareOptions::default(),
+        }
+        .with_parallel(self.threads > 1)
     }
 
     /// How to colour the image (`--shade`).
