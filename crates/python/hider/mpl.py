@@ -42,6 +42,9 @@ _NEAR, _EYE_TO_FRONT, _FAR = 0.5, 1.0, 2.5
 # polygons, whose f32 depth differs from the line's in the last bits.
 _LINE_DEPTH_TOLERANCE = 2e-4
 
+# Alpha from which a face counts as opaque (hides lines, gets a stroke).
+_OPAQUE = 0.999
+
 # Samples per pixel of line length for the visibility test.
 _LINE_SAMPLES_PER_PIXEL = 2.0
 
@@ -358,6 +361,9 @@ class Resolved(mcoll.PolyCollection):
         # drawn as lines.
         own = np.abs(edge - face).max(axis=1) > 1e-6 if len(poly) else np.zeros(0, bool)
         edge[own] = face[own]
+        # A translucent piece's stroke would darken every edge where it
+        # overlaps its own fill and its neighbours' strokes.
+        lw = np.where(face[:, 3] < _OPAQUE, 0.0, lw)
         self.set_facecolor(face)
         self.set_edgecolor(edge)
         # One width for all is the common case, and much cheaper for
@@ -413,8 +419,11 @@ class Resolved(mcoll.PolyCollection):
         if len(segs) == 0:
             self._lines.set_segments([])
             return
-        if any_faces:
-            _, depth = _hider.screen_render(g.points, g.faces, g.width, g.height, "zbuffer")
+        # Only opaque surfaces hide lines: one seen through a translucent
+        # surface stays, as matplotlib blends it.
+        opaque = g.faces[g.face_rgba[g.tri_poly, 3] >= _OPAQUE]
+        if any_faces and len(opaque):
+            _, depth = _hider.screen_render(g.points, opaque, g.width, g.height, "zbuffer")
             parts, src = _visible_parts(segs, g.window_depth, depth, g.height)
         else:
             parts, src = segs[:, :, :2], np.arange(len(segs))
