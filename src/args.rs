@@ -128,6 +128,11 @@ pub fn usage_error_line(e: &clap::Error) -> String {
                 (false, None) => format!("{arg} '{value}' is not valid"),
             }
         }
+        (ErrorKind::ArgumentConflict, Some(arg), _) => match flag(e.get(ContextKind::PriorArg)) {
+            Some(prior) if prior == arg => format!("{arg} is given more than once"),
+            Some(prior) => format!("{arg} cannot be used with {prior}"),
+            None => collapse(&e.render().to_string()),
+        },
         (ErrorKind::MissingRequiredArgument, Some(arg), _) => {
             format!("missing {arg} (see --help)")
         }

@@ -72,7 +72,14 @@ fn every_bad_flag_value_is_one_line_naming_flag_and_value() {
         ),
         (&["--precision", "f128"], &["--precision", "'f128'"]),
         (&["--eye"], &["--eye", "needs a value"]),
-        (&["--size", "5", "--width", "4"], &["--size", "--width"]),
+        (
+            &["--size", "5", "--width", "4"],
+            &["--size cannot be used with --width"],
+        ),
+        (
+            &["--algo", "zbuffer", "--algo", "scanline"],
+            &["--algo is given more than once"],
+        ),
         (&["--frobnicate"], &["--frobnicate"]),
         (&["--aa", "--algo", "zbuffer"], &["--aa", "--algo zbuffer"]),
         (&["--vector"], &["--vector", "--svg"]),
