@@ -3,11 +3,13 @@
 //!
 //! `cargo run --release -p hider-abuffer --example profile -- SCENE HIDER [RUNS] [SIZE]`
 //!
-//! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)), `one`
+//! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)),
+//! `sphere500`, `one`
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
-//! `carpenter`, or `cov` (mask generation alone). Prints the median and
+//! `carpenter`, `ps2` (per-sample on 2 threads; the others take 1), or
+//! `cov` (mask generation alone). Prints the median and
 //! fastest of the renders (the workspace's shared timer, no warm-up: a
 //! profile sees the first frame too) and the work counters.
 
@@ -26,6 +28,7 @@ fn main() {
         "soup10k" => procedural::random_soup(10_000, 1),
         "soup100k" => procedural::random_soup(100_000, 1),
         "sphere" => procedural::uv_sphere(200),
+        "sphere500" => procedural::uv_sphere(500),
         "one" => procedural::random_soup(1, 1),
         other => panic!("unknown scene {other}"),
     };
@@ -34,14 +37,19 @@ fn main() {
             SsaaOptions::default().with_pattern(SamplePattern::Centre),
         )),
         "ssaa32" => Box::new(SupersampledZBuffer::new(SsaaOptions::default())),
-        "ps" => Box::new(ABuffer::new(ABufferOptions::default())),
+        "ps" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(1))),
+        "ps2" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(2))),
         "ps-nomerge" => Box::new(ABuffer::new(
-            ABufferOptions::default().with_merge(hider_abuffer::MergePolicy::Off),
+            ABufferOptions::default()
+                .with_merge(hider_abuffer::MergePolicy::Off)
+                .with_threads(1),
         )),
         "mm" => Box::new(ABuffer::new(
-            ABufferOptions::default().with_depth(DepthMode::MinMax),
+            ABufferOptions::default()
+                .with_depth(DepthMode::MinMax)
+                .with_threads(1),
         )),
-        "carpenter" => Box::new(ABuffer::new(ABufferOptions::carpenter())),
+        "carpenter" => Box::new(ABuffer::new(ABufferOptions::carpenter().with_threads(1))),
         "cov" => Box::new(ABuffer::default()),
         other => panic!("unknown hider {other}"),
     };
