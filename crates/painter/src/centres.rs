@@ -27,12 +27,13 @@ use crate::newell::CUT_MARGIN;
 use crate::piece::Piece;
 
 /// Which pixel centres a piece covers, as far as ordering cares.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum Centres {
     /// None at all: the piece never shows in the raster.
     None,
-    /// Exactly the centre of pixel (column, row).
-    One(u32, u32),
+    /// Exactly the centre of pixel (column, row), with the window depth
+    /// the raster writes there ([`depth_at`]).
+    One(u32, u32, f64),
     /// Possibly several (or its box holds too many centres to count).
     Many,
 }
@@ -80,7 +81,7 @@ pub(crate) fn classify(piece: &Piece, tri: &ScreenTri, vp: Viewport) -> Centres 
                 if found != Centres::None {
                     return Centres::Many;
                 }
-                found = Centres::One(i, j);
+                found = Centres::One(i, j, depth_at(tri, (i, j)));
             }
         }
     }
@@ -102,16 +103,17 @@ pub(crate) fn centre_test(
     (p, pc, pt): (&Piece, Centres, &ScreenTri),
     (q, qc, qt): (&Piece, Centres, &ScreenTri),
 ) -> Option<bool> {
-    let c = match (pc, qc) {
-        (Centres::None, _) | (_, Centres::None) => return Some(true),
-        (Centres::One(i, j), Centres::One(k, l)) if (i, j) != (k, l) => return Some(true),
-        (Centres::One(i, j), Centres::One(..)) => (i, j),
-        (Centres::One(i, j), Centres::Many) if covers_centre(q, qt, (i, j)) => (i, j),
-        (Centres::Many, Centres::One(i, j)) if covers_centre(p, pt, (i, j)) => (i, j),
-        (Centres::Many, Centres::Many) => return None,
-        _ => return Some(true),
-    };
-    Some(depth_at(pt, c) >= depth_at(qt, c))
+    match (pc, qc) {
+        (Centres::None, _) | (_, Centres::None) => Some(true),
+        (Centres::One(i, j, zp), Centres::One(k, l, zq)) => Some((i, j) != (k, l) || zp >= zq),
+        (Centres::One(i, j, zp), Centres::Many) => {
+            Some(!covers_centre(q, qt, (i, j)) || zp >= depth_at(qt, (i, j)))
+        }
+        (Centres::Many, Centres::One(i, j, zq)) => {
+            Some(!covers_centre(p, pt, (i, j)) || depth_at(pt, (i, j)) >= zq)
+        }
+        (Centres::Many, Centres::Many) => None,
+    }
 }
 
 /// The small pieces not yet painted, by the centre they cover, each set
@@ -132,6 +134,20 @@ impl CentreIndex {
     /// Whether no piece is indexed.
     pub fn is_empty(&self) -> bool {
         self.map.is_empty()
+    }
+
+    /// Builds the index from `(centre, depth, piece)` entries at once
+    /// (sorted, then bulk-loaded: no search per entry).
+    pub fn build(&mut self, mut entries: Vec<((u32, u32), f64, u32)>) {
+        let mut keyed: Vec<((u32, u32), (u64, u32))> = entries
+            .drain(..)
+            .map(|((i, j), z, id)| ((j, i), (depth_bits(z), id)))
+            .collect();
+        keyed.sort_unstable();
+        self.map = keyed
+            .chunk_by(|a, b| a.0 == b.0)
+            .map(|run| (run[0].0, run.iter().map(|e| e.1).collect()))
+            .collect();
     }
 
     /// Lists piece `id`, covering only centre `(i, j)` at depth `z`.
@@ -179,8 +195,22 @@ impl CentreIndex {
 }
 
 impl crate::order::Orderer {
-    /// Classifies piece `id` (the last one pushed, or an earlier one) and
-    /// lists it in the centre index when it covers exactly one centre.
+    /// Classifies every piece of a new frame and builds the centre index.
+    pub(crate) fn index_all(&mut self, scene: &ScreenScene) {
+        self.centres.clear();
+        let mut entries = Vec::new();
+        for (k, piece) in self.pieces.iter().enumerate() {
+            let c = classify(piece, &scene.tris[piece.source as usize], scene.viewport);
+            self.centres.push(c);
+            if let Centres::One(i, j, z) = c {
+                entries.push(((i, j), z, k as u32));
+            }
+        }
+        self.index.build(entries);
+    }
+
+    /// Classifies piece `id` (the last one pushed) and lists it in the
+    /// centre index when it covers exactly one centre.
     pub(crate) fn index_piece(&mut self, id: u32, scene: &ScreenScene) {
         let piece = &self.pieces[id as usize];
         let tri = &scene.tris[piece.source as usize];
@@ -189,16 +219,15 @@ impl crate::order::Orderer {
             self.centres.resize(id as usize + 1, Centres::Many);
         }
         self.centres[id as usize] = centres;
-        if let Centres::One(i, j) = centres {
-            self.index.insert((i, j), depth_at(tri, (i, j)), id);
+        if let Centres::One(i, j, z) = centres {
+            self.index.insert((i, j), z, id);
         }
     }
 
     /// Takes piece `id` out of the centre index (painted or split).
-    pub(crate) fn unindex(&mut self, id: u32, scene: &ScreenScene) {
-        if let Centres::One(i, j) = self.centres[id as usize] {
-            let tri = &scene.tris[self.pieces[id as usize].source as usize];
-            self.index.remove((i, j), depth_at(tri, (i, j)), id);
+    pub(crate) fn unindex(&mut self, id: u32) {
+        if let Centres::One(i, j, z) = self.centres[id as usize] {
+            self.index.remove((i, j), z, id);
         }
     }
 
@@ -212,7 +241,7 @@ impl crate::order::Orderer {
         let pt = &scene.tris[pp.source as usize];
         match self.centres[p as usize] {
             Centres::None => None,
-            Centres::One(i, j) => self.index.farther_than((i, j), depth_at(pt, (i, j)), p),
+            Centres::One(i, j, z) => self.index.farther_than((i, j), z, p),
             Centres::Many => {
                 let bounds = centre_box(pp, scene.viewport)?;
                 self.index

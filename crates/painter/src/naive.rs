@@ -108,7 +108,7 @@ impl Hider for NaivePainter {
         self.last = None;
         let mut stats = self.sort(scene)?;
         frame.clear();
-        stats.pixels_painted = paint(scene, &self.pieces, &self.order, frame, None);
+        stats.pixels_painted = paint(scene, (&self.pieces, None), &self.order, frame, None);
         self.last = Some(LastFrame::of(scene));
         Ok(stats)
     }

@@ -119,7 +119,7 @@ impl Orderer {
             };
             let Some((qslot, q, blocked)) = self.find_blocker(cslot, p, scene, stats) else {
                 self.remove(cslot);
-                self.unindex(p, scene);
+                self.unindex(p);
                 self.order.push(p);
                 continue;
             };
@@ -193,9 +193,7 @@ impl Orderer {
             self.pieces.push(Piece::from_tri(tri, k as u32));
         }
         self.extents.extend(self.pieces.iter().map(Extent::of));
-        for k in 0..self.pieces.len() {
-            self.index_piece(k as u32, scene);
-        }
+        self.index_all(scene);
         stats.triangles = scene.tris.len() as u64;
         let bytes: u64 = self.pieces.iter().map(|p| p.bytes() as u64).sum();
         // Bins about as wide as the mean bounding box, so that a typical
@@ -211,12 +209,18 @@ impl Orderer {
             .reset(scene.viewport.width, scene.viewport.height, side);
         for (k, e) in self.extents.iter().enumerate() {
             let key = (depth_bits(e.zmax), -(k as i64));
-            self.sorted.insert(key, k as u32);
             self.keys.push(key);
             if self.centres[k] == Centres::Many {
                 self.grid.insert(key, k as u32, e);
             }
         }
+        // Bulk-loaded from the keys (sorted first): no search per entry.
+        self.sorted = self
+            .keys
+            .iter()
+            .zip(0..)
+            .map(|(&key, k)| (key, k))
+            .collect();
         self.next_tie = -(self.pieces.len() as i64) - 1;
         Ok(Arena {
             now: bytes,

@@ -99,7 +99,7 @@ impl Hider for Painter {
         let drop_hidden = self.options.svg_drop_hidden;
         stats.pixels_painted = paint(
             scene,
-            &self.orderer.pieces,
+            (&self.orderer.pieces, Some(&self.orderer.centres)),
             &self.orderer.order,
             frame,
             drop_hidden.then_some(&mut self.owner),

@@ -10,6 +10,7 @@
 use hider_geom::fixed::pixel_center;
 use hider_scene::{Error, Frame, Result, ScreenScene};
 
+use crate::centres::Centres;
 use crate::newell::CUT_MARGIN;
 use crate::piece::Piece;
 
@@ -18,11 +19,15 @@ pub(crate) const NO_OWNER: u32 = u32::MAX;
 
 /// Paints `order` (indices into `pieces`, farthest first) into `frame`,
 /// which must already be cleared. When `owner` is given it receives, per
-/// pixel, the position in `order` of the piece painted last. Returns the
-/// number of pixel writes.
+/// pixel, the position in `order` of the piece painted last. `centres`,
+/// when given, says per piece which centres it covers (as the ordering
+/// classified them with the same coverage rule): a piece covering none is
+/// skipped and one covering a single centre is written there directly,
+/// with the depth computed the same way. Returns the number of pixel
+/// writes.
 pub(crate) fn paint(
     scene: &ScreenScene,
-    pieces: &[Piece],
+    (pieces, centres): (&[Piece], Option<&[Centres]>),
     order: &[u32],
     frame: &mut Frame,
     mut owner: Option<&mut Vec<u32>>,
@@ -36,6 +41,20 @@ pub(crate) fn paint(
     let mut writes = 0;
     for (rank, &id) in order.iter().enumerate() {
         let piece = &pieces[id as usize];
+        match centres.map(|c| c[id as usize]) {
+            Some(Centres::None) => continue,
+            Some(Centres::One(i, j, z)) => {
+                let k = j as usize * width + i as usize;
+                frame.ids[k] = piece.prim;
+                frame.depth[k] = z as f32;
+                if let Some(o) = owner.as_deref_mut() {
+                    o[k] = rank as u32;
+                }
+                writes += 1;
+                continue;
+            }
+            Some(Centres::Many) | None => {}
+        }
         let tri = &scene.tris[piece.source as usize];
         let Some((x0, y0, x1, y1)) = tri.pixel_bounds(vp) else {
             continue;

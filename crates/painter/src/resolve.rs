@@ -116,7 +116,7 @@ impl Orderer {
         scene: &ScreenScene,
     ) -> u64 {
         self.remove(slot);
-        self.unindex(id, scene);
+        self.unindex(id);
         if id != p {
             // The moved stack is a chain (each entry must precede the one
             // beneath it, the bottom one the head of the sorted list);
