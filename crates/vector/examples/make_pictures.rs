@@ -3,7 +3,7 @@
 //! torus, and the painter's SVG of the spider beside the regions SVG.
 //!
 //! `cargo run --release -p hider-vector --example make_pictures [out_dir] [spider.obj]`
-//! (defaults `docs/images` and `/work/shared/gl-reference/models/spider.obj`;
+//! (defaults `docs/images` and `assets/spider/spider.obj`;
 //! the spider is skipped when the file is not there).
 
 use std::path::{Path, PathBuf};
@@ -99,7 +99,7 @@ fn main() -> Result<(), hider_scene::Error> {
     let spider = PathBuf::from(
         args.get(2)
             .cloned()
-            .unwrap_or_else(|| "/work/shared/gl-reference/models/spider.obj".into()),
+            .unwrap_or_else(|| "assets/spider/spider.obj".into()),
     );
     let options = VectorOptions::default();
     let dashed = VectorOptions::default().with_dashed_hidden(true);

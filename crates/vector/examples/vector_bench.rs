@@ -3,7 +3,7 @@
 //! (39,204 triangles), the spider and a 100k-triangle UV sphere.
 //!
 //! `cargo run --release -p hider-vector --example vector_bench [spider.obj] [size]`
-//! (default spider: `/work/shared/gl-reference/models/spider.obj` when it
+//! (default spider: `assets/spider/spider.obj` when it
 //! exists, size 800). Times are the best of three runs, in this process,
 //! so the ratios are same-run ratios.
 
@@ -108,7 +108,7 @@ fn main() -> Result<(), hider_scene::Error> {
     let spider = PathBuf::from(
         args.get(1)
             .cloned()
-            .unwrap_or_else(|| "/work/shared/gl-reference/models/spider.obj".into()),
+            .unwrap_or_else(|| "assets/spider/spider.obj".into()),
     );
     let size: u32 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(800);
     let mut scenes = vec![("intersecting grids", intersecting_grids(100))];

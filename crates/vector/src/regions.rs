@@ -166,19 +166,7 @@ pub fn visible_regions(
             vec![vec![polys[ti].clone()]]
         } else {
             stats.differences += 1;
-            // One triangle and its occluders are a small input, where the
-            // library's list solver beats its automatic choice (twice as
-            // fast on stacks of edge-on slivers).
-            let mut overlay = Overlay::new_custom(
-                polys[ti].len() + occluders.iter().map(Vec::len).sum::<usize>(),
-                IntOverlayOptions::default(),
-                Solver::LIST,
-            );
-            overlay.add_contour(&polys[ti], ShapeType::Subject);
-            for o in &occluders {
-                overlay.add_contour(o, ShapeType::Clip);
-            }
-            overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
+            subtract(&polys[ti], &mut occluders)
         };
         if !shapes.is_empty() {
             per_prim.entry(t.prim).or_default().extend(shapes);
@@ -209,6 +197,49 @@ pub fn visible_regions(
         stats,
         cut_pairs,
     })
+}
+
+/// Occluders subtracted in one boolean: past this, a triangle under a
+/// deep pile of occluders (depth complexity `N` at one spot) is cut down
+/// batch by batch, largest occluders first, and stops as soon as nothing
+/// is left, instead of intersecting all `N` occluders with each other for
+/// every one of the `N` triangles.
+const BATCH: usize = 16;
+
+/// `triangle` minus the union of `occluders` (reordered), by non-zero
+/// fill: all occluders are positively oriented.
+fn subtract(triangle: &[IntPoint], occluders: &mut [Vec<IntPoint>]) -> IntShapes {
+    if occluders.len() > BATCH {
+        occluders.sort_by_key(|o| std::cmp::Reverse(area2(o)));
+    }
+    let mut rest: IntShapes = vec![vec![triangle.to_vec()]];
+    for batch in occluders.chunks(BATCH) {
+        let points = rest.iter().flatten().map(Vec::len).sum::<usize>();
+        let mut overlay = Overlay::new(points + batch.iter().map(Vec::len).sum::<usize>());
+        for shape in &rest {
+            overlay.add_contours(shape, ShapeType::Subject);
+        }
+        for o in batch {
+            overlay.add_contour(o, ShapeType::Clip);
+        }
+        rest = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
+        if rest.is_empty() {
+            break;
+        }
+    }
+    rest
+}
+
+/// Twice the area of a simple polygon, unsigned.
+fn area2(poly: &[IntPoint]) -> i64 {
+    let n = poly.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            i64::from(a.x) * i64::from(b.y) - i64::from(b.x) * i64::from(a.y)
+        })
+        .sum::<i64>()
+        .abs()
 }
 
 /// The key that puts coplanar primitives of one colour together: the fill
