@@ -16,9 +16,8 @@ use std::collections::HashMap;
 use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{Result, ScreenScene, ShadeMode};
 use i_overlay::core::fill_rule::FillRule;
-use i_overlay::core::overlay::{IntOverlayOptions, Overlay, ShapeType};
+use i_overlay::core::overlay::{Overlay, ShapeType};
 use i_overlay::core::overlay_rule::OverlayRule;
-use i_overlay::core::solver::Solver;
 use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
