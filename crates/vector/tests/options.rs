@@ -1,0 +1,69 @@
+//! Bad options are a one-line error naming the option and the value, never
+//! a panic; the SVG writers produce what the map holds.
+
+use hider_scene::{ShadeMode, procedural};
+use hider_testkit::screen;
+use hider_vector::{VectorOptions, hidden_lines, lines_svg, regions_svg, visible_regions};
+
+#[test]
+fn bad_options_are_named_in_the_error() {
+    let s = screen(&procedural::cube(), 32, 32);
+    let cases = [
+        (
+            VectorOptions::default().with_crease_degrees(f64::NAN),
+            "crease_degrees NaN",
+        ),
+        (
+            VectorOptions::default().with_crease_degrees(190.0),
+            "crease_degrees 190",
+        ),
+        (
+            VectorOptions::default().with_stroke_width(0.0),
+            "stroke_width 0",
+        ),
+        (
+            VectorOptions::default().with_seam_stroke(-1.0),
+            "seam_stroke -1",
+        ),
+        (
+            VectorOptions::default().with_depth_tolerance(f64::INFINITY),
+            "depth_tolerance inf",
+        ),
+        (
+            VectorOptions::default().with_refine_bits(40),
+            "refine_bits 40",
+        ),
+    ];
+    for (options, expected) in cases {
+        let err = visible_regions(&s, &options, ShadeMode::Lambert)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains(expected), "{err:?} should name {expected:?}");
+        assert!(!err.contains('\n'), "one line: {err:?}");
+    }
+}
+
+#[test]
+fn one_path_per_group_and_one_polyline_per_line() {
+    let s = screen(&procedural::cube(), 64, 64);
+    let options = VectorOptions::default();
+    let map = visible_regions(&s, &options, ShadeMode::Lambert).unwrap();
+    let svg = regions_svg(&s, &map, &options);
+    assert_eq!(svg.matches("<path").count(), map.groups.len());
+    assert!(svg.contains("<rect"));
+    let bare = regions_svg(&s, &map, &options.clone().with_background(false));
+    assert!(!bare.contains("<rect"));
+    // Two triangles of one cube face are one group, one path.
+    assert!(
+        map.groups.iter().all(|g| g.prims.len() == 2),
+        "{:?}",
+        map.groups
+    );
+    let drawing = hidden_lines(&s, &map, &options).unwrap();
+    let lines = lines_svg(&s, &drawing, &options);
+    assert_eq!(lines.matches("<polyline").count(), drawing.visible.len());
+    assert!(
+        drawing.hidden.is_empty(),
+        "hidden parts only when asked for"
+    );
+}
