@@ -252,3 +252,95 @@ impl crate::order::Orderer {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hider_geom::{FixedPt, PlaneEq};
+
+    /// A triangle in 1/256 pixel units, at constant depth `z`.
+    fn tri(v: [(i32, i32); 3], z: f64) -> ScreenTri {
+        let v = v.map(|(x, y)| FixedPt::new(x, y));
+        ScreenTri {
+            v,
+            z: [z; 3],
+            w: [1.0; 3],
+            depth: PlaneEq::from_points(&v, [z; 3]).unwrap(),
+            inv_w: PlaneEq::constant(1.0),
+            prim: 0,
+            front_facing: true,
+        }
+    }
+
+    #[test]
+    fn pieces_are_classified_by_the_centres_they_cover() {
+        let vp = Viewport::new(8, 8);
+        // Around the centre of pixel (2, 3) = (2.5, 3.5) px: 640, 896.
+        let one = tri([(600, 850), (700, 870), (630, 950)], 0.5);
+        assert_eq!(
+            classify(&Piece::from_tri(&one, 0), &one, vp),
+            Centres::One(2, 3, 0.5)
+        );
+        // Between centres.
+        let none = tri([(520, 520), (600, 520), (520, 600)], 0.5);
+        assert_eq!(
+            classify(&Piece::from_tri(&none, 0), &none, vp),
+            Centres::None
+        );
+        // Over two centres, and a large one not counted.
+        let two = tri([(100, 100), (450, 100), (100, 400)], 0.5);
+        assert_eq!(classify(&Piece::from_tri(&two, 0), &two, vp), Centres::Many);
+        let big = tri([(0, 0), (2048, 0), (0, 2048)], 0.5);
+        assert_eq!(classify(&Piece::from_tri(&big, 0), &big, vp), Centres::Many);
+        // Off screen.
+        let off = tri([(-900, -900), (-700, -900), (-900, -700)], 0.5);
+        assert_eq!(classify(&Piece::from_tri(&off, 0), &off, vp), Centres::None);
+    }
+
+    #[test]
+    fn the_index_gives_the_farthest_other_piece_on_a_centre() {
+        let mut index = CentreIndex::default();
+        index.build(vec![((1, 1), 0.3, 0), ((1, 1), 0.7, 1), ((2, 1), 0.9, 2)]);
+        index.insert((1, 1), 0.5, 3);
+        // Piece 0 at 0.3 must wait for the farthest, piece 1 at 0.7.
+        assert_eq!(index.farther_than((1, 1), 0.3, 0), Some(1));
+        // The farthest waits for nobody; its own entry does not count.
+        assert_eq!(index.farther_than((1, 1), 0.7, 1), None);
+        index.remove((1, 1), 0.7, 1);
+        assert_eq!(index.farther_than((1, 1), 0.3, 0), Some(3));
+        // Equal depth is a tie, not a wait.
+        assert_eq!(index.farther_than((1, 1), 0.5, 0), None);
+        assert_eq!(
+            index.occupied((0, 7, 0, 7)).collect::<Vec<_>>(),
+            [(1, 1), (2, 1)]
+        );
+        assert_eq!(index.occupied((2, 7, 0, 7)).collect::<Vec<_>>(), [(2, 1)]);
+    }
+
+    #[test]
+    fn pairs_with_a_small_piece_are_decided_on_its_centre() {
+        let vp = Viewport::new(8, 8);
+        let small = tri([(600, 850), (700, 870), (630, 950)], 0.5);
+        let far = tri([(0, 0), (2048, 0), (0, 2048)], 0.8);
+        let near = tri([(0, 0), (2048, 0), (0, 2048)], 0.2);
+        let elsewhere = tri([(1500, 1500), (2000, 1500), (1500, 2000)], 0.2);
+        let (s, f, n, e) = (
+            Piece::from_tri(&small, 0),
+            Piece::from_tri(&far, 1),
+            Piece::from_tri(&near, 2),
+            Piece::from_tri(&elsewhere, 3),
+        );
+        let c = |p: &Piece, t: &ScreenTri| classify(p, t, vp);
+        let (cs, cf, cn, ce) = (c(&s, &small), c(&f, &far), c(&n, &near), c(&e, &elsewhere));
+        assert_eq!(centre_test((&f, cf, &far), (&s, cs, &small)), Some(true));
+        assert_eq!(centre_test((&s, cs, &small), (&f, cf, &far)), Some(false));
+        assert_eq!(centre_test((&s, cs, &small), (&n, cn, &near)), Some(true));
+        // No shared centre: either order.
+        assert_eq!(
+            centre_test((&s, cs, &small), (&e, ce, &elsewhere)),
+            Some(true)
+        );
+        // Two large pieces: the polygon tests decide.
+        assert_eq!(centre_test((&f, cf, &far), (&n, cn, &near)), None);
+    }
+}
