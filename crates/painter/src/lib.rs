@@ -15,7 +15,12 @@
 //!   two plane-side tests, exact projected overlap); polygons that must go
 //!   first are moved ahead, and where no order exists one polygon is split
 //!   by the other's plane ([`split`]) and the pieces re-inserted. Pieces
-//!   keep their primitive id, and a split budget bounds the work.
+//!   keep their primitive id, and a split budget bounds the work. Plane
+//!   sides are decided by Shewchuk's adaptive `orient3d` on the front
+//!   end's own coordinates, without a depth tolerance, so the order does
+//!   not depend on scale, near plane or symmetry; a pair where one piece
+//!   covers at most one pixel centre is decided by the depths on that
+//!   centre, which keeps a pile of sub-pixel triangles at O(n log n).
 //!
 //! Both paint through the shared coverage rules: a piece covers a pixel
 //! centre iff its source triangle does under the exact top-left edge
