@@ -134,18 +134,23 @@ fn range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
     Some((10f64.powf(a), 10f64.powf(b)))
 }
 
-/// A tick label people read at a glance: `0.5`, `20`, `1k`, `10k`, `1e6`,
+/// A tick label people read at a glance: `0.5`, `20`, `1k`, `10k`, `1M`,
 /// `1e-4`.
 pub fn tick_label(v: f64) -> String {
     let a = v.abs();
     if a == 0.0 {
         return "0".into();
     }
-    if !(1e-3..1e6).contains(&a) {
-        let text = format!("{v:.0e}");
-        return text;
+    if !(1e-3..1e9).contains(&a) {
+        return format!("{v:.0e}");
     }
-    let (value, suffix) = if a >= 1e3 { (v / 1e3, "k") } else { (v, "") };
+    let (value, suffix) = if a >= 1e6 {
+        (v / 1e6, "M")
+    } else if a >= 1e3 {
+        (v / 1e3, "k")
+    } else {
+        (v, "")
+    };
     // Three significant digits, trailing zeros dropped.
     let digits = (2 - value.abs().log10().floor() as i32).clamp(0, 6) as usize;
     let mut text = format!("{value:.digits$}");
@@ -425,7 +430,7 @@ mod tests {
     #[test]
     fn ticks_read_as_numbers_people_write() {
         let got: Vec<String> = [
-            1e-6, 1e-4, 0.001, 0.05, 0.5, 2.0, 20.0, 100.0, 1e3, 1e4, 2.5e5, 1e6,
+            1e-6, 1e-4, 0.001, 0.05, 0.5, 2.0, 20.0, 100.0, 1e3, 1e4, 2.5e5, 1e6, 1e10,
         ]
         .iter()
         .map(|v| tick_label(*v))
@@ -434,7 +439,7 @@ mod tests {
             got,
             [
                 "1e-6", "1e-4", "0.001", "0.05", "0.5", "2", "20", "100", "1k", "10k", "250k",
-                "1e6"
+                "1M", "1e10"
             ]
         );
         assert_eq!(tick_label(0.0), "0");
