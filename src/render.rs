@@ -39,6 +39,9 @@ fn auto(
         .with_shading(args.shade_mode() == ShadeMode::Lambert)
         .with_antialiasing(args.aa)
         .with_vector_output(args.vector || args.svg.is_some())
+        // The searches over pairs decide only vector plans and cost
+        // seconds on large scenes: a raster render leaves them out.
+        .with_pair_searches(false)
         .with_prepare(options);
     let planned = hider::plan::auto(scene, &analysis).context("scene analysis for --algo auto")?;
     let hider = planned.plan.build(&args.hider_config())?;

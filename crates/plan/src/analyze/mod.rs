@@ -19,7 +19,8 @@
 //! graph is built on the front faces only: that is what will be painted. The two
 //! searches over pairs stop at [`RenderOptions::pair_budget`]; an
 //! unfinished search reports its effect as *present but not certain*, so a
-//! planner stays on the safe side.
+//! planner stays on the safe side. Only vector output needs them, so a
+//! raster render may leave them out ([`RenderOptions::pair_searches`]).
 //!
 //! [`analyze_prepared`] also hands back the scene it prepared, so a caller
 //! that renders next does not run the front end a second time.
@@ -86,18 +87,51 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         ..Effects::default()
     };
 
+    fx.back_faces = evidence::back_faces(scene, &view, &screen, ex);
+    fx.cull_back_faces_exact =
+        !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
+    if options.pair_searches || options.vector_output {
+        pair_searches(scene, &screen, &in_view, options, &mut fx);
+    } else {
+        let skipped = Evidence {
+            present: true,
+            certain: false,
+            detail: "not searched: only vector output needs it".to_owned(),
+            ..Evidence::default()
+        };
+        fx.intersections = skipped.clone();
+        fx.coplanar_overlaps = skipped.clone();
+        fx.cyclic_overlap = skipped.clone();
+        fx.naive_order_violations = skipped;
+    }
+    fx.times.prepare_ms = prepare_ms;
+    fx.times.total_ms = ms(started);
+    Ok(Analysis {
+        effects: fx,
+        view,
+        screen,
+    })
+}
+
+/// The two searches over pairs: intersections and coplanar overlaps in
+/// space, then cycles and naive-order violations of the overlap graph on
+/// the screen (among the front faces when culling the back ones is exact,
+/// since that is what will be painted).
+fn pair_searches(
+    scene: &Scene,
+    screen: &ScreenScene,
+    in_view: &std::collections::HashSet<u32>,
+    options: &RenderOptions,
+    fx: &mut Effects,
+) {
+    let ex = options.max_examples;
     let t0 = Instant::now();
-    let crossings = search::intersections(scene, &in_view, options.pair_budget, ex);
+    let crossings = search::intersections(scene, in_view, options.pair_budget, ex);
     fx.times.intersections_ms = ms(t0);
     fx.intersections = crossings.intersections;
     fx.coplanar_overlaps = crossings.coplanar;
 
     let t1 = Instant::now();
-    // Back faces first: when culling them is exact, the order that matters
-    // is the one among the front faces.
-    fx.back_faces = evidence::back_faces(scene, &view, &screen, ex);
-    fx.cull_back_faces_exact =
-        !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
     let front: Vec<ScreenTri>;
     let graph_tris = if fx.cull_back_faces_exact {
         front = screen
@@ -120,14 +154,6 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
     fx.times.overlaps_ms = ms(t1);
     fx.cyclic_overlap = order.cyclic;
     fx.naive_order_violations = order.naive_violations;
-
-    fx.times.prepare_ms = prepare_ms;
-    fx.times.total_ms = ms(started);
-    Ok(Analysis {
-        effects: fx,
-        view,
-        screen,
-    })
 }
 
 /// Distance of the farthest corner in view over the near distance (1 for

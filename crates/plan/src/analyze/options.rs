@@ -32,6 +32,14 @@ pub struct RenderOptions {
     pub prepare: PrepareOptions,
     /// Most candidate pairs each pair search examines.
     pub pair_budget: u64,
+    /// Whether the pair searches (intersections, coplanar overlaps, cyclic
+    /// overlaps, naive-order violations) run when no vector output is
+    /// asked. Only the planner's vector-output rule reads them, and on
+    /// 10^5 triangles they take seconds where the render takes a fraction
+    /// of one, so a raster render may leave them out (they are then
+    /// reported as not ruled out). On by default: the analysis reports
+    /// everything. With vector output asked they always run.
+    pub pair_searches: bool,
     /// Most examples kept per effect.
     pub max_examples: usize,
 }
@@ -47,6 +55,7 @@ impl Default for RenderOptions {
             vector_output: false,
             prepare: PrepareOptions::default(),
             pair_budget: DEFAULT_PAIR_BUDGET,
+            pair_searches: true,
             max_examples: 5,
         }
     }
@@ -86,6 +95,11 @@ impl RenderOptions {
     /// Sets [`Self::pair_budget`].
     pub fn with_pair_budget(mut self, budget: u64) -> Self {
         self.pair_budget = budget;
+        self
+    }
+    /// Sets [`Self::pair_searches`].
+    pub fn with_pair_searches(mut self, pair_searches: bool) -> Self {
+        self.pair_searches = pair_searches;
         self
     }
     /// Sets [`Self::max_examples`].

@@ -252,3 +252,35 @@ fn the_one_line_says_what_was_asked_and_what_was_chosen() {
         "{line}"
     );
 }
+
+/// Leaving out the pair searches (as a raster render does) changes no
+/// plan: only the vector-output rule reads them, and asking for vector
+/// output runs them anyway.
+#[test]
+fn the_pair_searches_decide_only_vector_plans() {
+    for (name, scene) in hard_cases::all(13) {
+        let mut glass = scene.clone();
+        for m in &mut glass.materials {
+            m.opacity = 0.6;
+        }
+        for (scene, options) in [
+            (&scene, RenderOptions::default()),
+            (&scene, RenderOptions::default().with_antialiasing(true)),
+            (&glass, RenderOptions::default()),
+            (&scene, RenderOptions::default().with_vector_output(true)),
+        ] {
+            let options = options.with_size(48, 48);
+            let full = auto(scene, &options).unwrap();
+            let lean = auto(scene, &options.with_pair_searches(false)).unwrap();
+            assert_eq!(full.plan, lean.plan, "{name}: {options:?}");
+            assert_eq!(full.screen, lean.screen, "{name}");
+        }
+    }
+    let fx = analyze(
+        &procedural::cyclic_triple(),
+        &RenderOptions::default().with_pair_searches(false),
+    )
+    .unwrap();
+    assert!(fx.cyclic_overlap.present && !fx.cyclic_overlap.certain);
+    assert!(fx.cyclic_overlap.detail.contains("not searched"), "{fx}");
+}
