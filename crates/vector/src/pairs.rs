@@ -69,6 +69,21 @@ pub fn relation(
     u_poly: &[IntPoint],
     tolerance: f64,
 ) -> Relation {
+    // Depth ranges apart by more than the tolerance decide at once: a
+    // plane over a triangle stays within its corners' depths.
+    let range = |x: &ScreenTri| {
+        (
+            x.z[0].min(x.z[1]).min(x.z[2]),
+            x.z[0].max(x.z[1]).max(x.z[2]),
+        )
+    };
+    let ((t_min, t_max), (u_min, u_max)) = (range(t), range(u));
+    if u_max + tolerance < t_min {
+        return Relation::Front;
+    }
+    if u_min > t_max + tolerance {
+        return Relation::Behind;
+    }
     let (lo, hi, sign) = if ti < ui { (t, u, 1.0) } else { (u, t, -1.0) };
     let diff = DepthDiff { lo, hi };
     // The common area, always clipped in the same order for the pair.

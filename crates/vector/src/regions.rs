@@ -13,8 +13,9 @@
 
 use std::collections::HashMap;
 
+use hider_geom::edge::orient2d;
 use hider_scene::shade::{prim_color, to_srgb8};
-use hider_scene::{Result, ScreenScene, ShadeMode};
+use hider_scene::{Result, ScreenScene, ScreenTri, ShadeMode};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::{Overlay, ShapeType};
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -128,9 +129,12 @@ pub fn visible_regions(
     for (ti, t) in scene.tris.iter().enumerate() {
         let Some((lo, hi)) = boxes[ti] else { continue };
         occluders.clear();
+        // Set when one nearer triangle covers all of `t`: nothing of `t`
+        // is visible, and the remaining candidates need no test.
+        let mut buried = false;
         bins.query(lo, hi, |ui| {
             let u_idx = ui as usize;
-            if seen[u_idx] == ti as u32 || u_idx == ti {
+            if buried || seen[u_idx] == ti as u32 || u_idx == ti {
                 return;
             }
             seen[u_idx] = ti as u32;
@@ -152,16 +156,20 @@ pub fn visible_regions(
             );
             match rel {
                 Relation::Behind => {}
-                Relation::Front => occluders.push(polys[u_idx].clone()),
+                Relation::Front => {
+                    buried = covers(u, t);
+                    occluders.push(polys[u_idx].clone());
+                }
                 Relation::Cut(part) => {
                     occluders.push(part);
-                    if ti < u_idx {
-                        cut_pairs.push((ti as u32, ui));
-                    }
+                    // From either side: a buried triangle stops early.
+                    cut_pairs.push((ti.min(u_idx) as u32, ti.max(u_idx) as u32));
                 }
             }
         });
-        let shapes = if occluders.is_empty() {
+        let shapes = if buried {
+            Vec::new()
+        } else if occluders.is_empty() {
             vec![vec![polys[ti].clone()]]
         } else {
             stats.differences += 1;
@@ -171,6 +179,8 @@ pub fn visible_regions(
             per_prim.entry(t.prim).or_default().extend(shapes);
         }
     }
+    cut_pairs.sort_unstable();
+    cut_pairs.dedup();
     stats.cut_pairs = cut_pairs.len() as u64;
     let mut prims: Vec<PrimRegion> = per_prim
         .into_iter()
@@ -195,6 +205,15 @@ pub fn visible_regions(
         groups,
         stats,
         cut_pairs,
+    })
+}
+
+/// Whether triangle `outer` covers all of triangle `inner` (closed, exact
+/// on the fixed-point vertices).
+fn covers(outer: &ScreenTri, inner: &ScreenTri) -> bool {
+    (0..3).all(|k| {
+        let (a, b) = (outer.v[k], outer.v[(k + 1) % 3]);
+        inner.v.iter().all(|&c| orient2d(a, b, c) >= 0)
     })
 }
 
