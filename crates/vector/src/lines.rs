@@ -11,8 +11,6 @@
 //! invisibility reduced to its two values, seen / not seen, computed per
 //! occluder instead of propagated.
 
-use std::collections::HashMap;
-
 use glam::{DVec3, DVec4};
 use hider_scene::{Result, ScreenScene, ScreenTri};
 use i_overlay::i_float::int::point::IntPoint;
@@ -264,8 +262,9 @@ fn vertex_key(p: DVec3) -> [u64; 3] {
 /// The feature edges of the scene's meshes, projected and clipped to the
 /// near and far planes.
 fn edge_features(scene: &ScreenScene, crease_degrees: f64) -> Vec<Feature> {
-    // Edge (sorted vertex keys) -> [(prim, edge runs forward)].
-    let mut edges: HashMap<EdgeKey, Vec<(u32, bool)>> = HashMap::new();
+    // (edge as sorted vertex keys, prim, edge runs forward), sorted so the
+    // users of one edge are adjacent: cheaper than hashing 48-byte keys.
+    let mut uses: Vec<(EdgeKey, u32, bool)> = Vec::with_capacity(3 * scene.prims.len());
     for (prim, info) in scene.prims.iter().enumerate() {
         let c = info.camera;
         if (c[1] - c[0]).cross(c[2] - c[0]).length_squared() == 0.0 {
@@ -274,9 +273,14 @@ fn edge_features(scene: &ScreenScene, crease_degrees: f64) -> Vec<Feature> {
         for k in 0..3 {
             let (a, b) = (vertex_key(c[k]), vertex_key(c[(k + 1) % 3]));
             let key = if a < b { (a, b) } else { (b, a) };
-            edges.entry(key).or_default().push((prim as u32, a < b));
+            uses.push((key, prim as u32, a < b));
         }
     }
+    uses.sort_unstable();
+    let edges = uses.chunk_by(|x, y| x.0 == y.0).map(|run| {
+        let users: Vec<(u32, bool)> = run.iter().map(|u| (u.1, u.2)).collect();
+        (run[0].0, users)
+    });
     let cos_crease = crease_degrees.to_radians().cos();
     let normal = |prim: u32| {
         let c = scene.prims[prim as usize].camera;
@@ -292,7 +296,7 @@ fn edge_features(scene: &ScreenScene, crease_degrees: f64) -> Vec<Feature> {
         }
     };
     let mut out = Vec::new();
-    for (key, users) in &edges {
+    for (key, users) in edges {
         let kind = match users.as_slice() {
             [(a, fa), (b, fb)] => {
                 let material =
