@@ -16,8 +16,6 @@
 //!   perspective camera, the eye cannot be inside: it would lie in the
 //!   convex hull of vertices that are all in front of it).
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 use hider_geom::Projection;
 
@@ -47,20 +45,17 @@ pub fn hidden_back_faces(scene: &Scene, view: &View) -> Vec<bool> {
 
 /// Whether the triangles form a closed, consistently and outwardly
 /// oriented surface.
+///
+/// Edges are checked by sorting rather than hashing: every directed edge
+/// (between welded vertices) must occur once, and the set of reversed
+/// edges must be the same set. On a 2-million-triangle mesh this is a few
+/// sorts of 64-bit keys instead of millions of hash-map updates.
 pub fn closed_outward(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
     if indices.is_empty() {
         return false;
     }
-    let mut weld: HashMap<[u64; 3], u32> = HashMap::new();
-    let ids: Vec<u32> = positions
-        .iter()
-        .map(|p| {
-            let key = [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits());
-            let next = weld.len() as u32;
-            *weld.entry(key).or_insert(next)
-        })
-        .collect();
-    let mut directed: HashMap<(u32, u32), u32> = HashMap::with_capacity(indices.len() * 3);
+    let ids = weld(positions);
+    let mut edges: Vec<u64> = Vec::with_capacity(indices.len() * 3);
     let mut volume = 0.0;
     for t in indices {
         let w = t.map(|i| ids[i as usize]);
@@ -70,14 +65,41 @@ pub fn closed_outward(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
         let p = t.map(|i| positions[i as usize]);
         volume += p[0].dot(p[1].cross(p[2]));
         for k in 0..3 {
-            *directed.entry((w[k], w[(k + 1) % 3])).or_insert(0) += 1;
+            edges.push(u64::from(w[k]) << 32 | u64::from(w[(k + 1) % 3]));
         }
     }
-    !directed.is_empty()
-        && volume > 0.0
-        && directed
-            .iter()
-            .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1))
+    // A NaN volume is not positive either.
+    if edges.is_empty() || volume.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return false;
+    }
+    edges.sort_unstable();
+    if edges.windows(2).any(|pair| pair[0] == pair[1]) {
+        return false; // an edge used twice in one direction
+    }
+    // Swapping the halves of each key reverses its edge.
+    let mut reversed: Vec<u64> = edges.iter().map(|e| e.rotate_left(32)).collect();
+    reversed.sort_unstable();
+    reversed == edges
+}
+
+/// One id per distinct position (-0.0 and 0.0 alike), so that the split
+/// vertices of OBJ files with uvs or normals count as one.
+fn weld(positions: &[DVec3]) -> Vec<u32> {
+    let key = |i: u32| {
+        let p = positions[i as usize];
+        [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits())
+    };
+    let mut order: Vec<u32> = (0..positions.len() as u32).collect();
+    order.sort_unstable_by_key(|&i| key(i));
+    let mut ids = vec![0; positions.len()];
+    let mut next = 0;
+    for (k, &i) in order.iter().enumerate() {
+        if k > 0 && key(order[k - 1]) != key(i) {
+            next += 1;
+        }
+        ids[i as usize] = next;
+    }
+    ids
 }
 
 #[cfg(test)]
@@ -102,5 +124,12 @@ mod tests {
             indices.push([base, base + 1, base + 2]);
         }
         assert!(closed_outward(&positions, &indices));
+        // A face given twice uses its edges twice in one direction.
+        let mut twice = m.indices.clone();
+        twice.push(m.indices[0]);
+        assert!(!closed_outward(&m.positions, &twice));
+        let sphere = procedural::uv_sphere(12);
+        let s = &sphere.meshes[0];
+        assert!(closed_outward(&s.positions, &s.indices));
     }
 }
