@@ -159,27 +159,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let serial = PrepareOptions::gl_compatible();
     let parallel = serial.with_parallel(true);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build()?;
-    println!(
-        "median (min) ms of {} frames ({runs} interleaved rounds) of prepare + clear + rasterise (f32 front end)\n",
-        runs * TIMED
-    );
-    if !same_machine {
-        println!(
-            "No peers were measured in this run (pass --peers-bin PATH to time llvmpipe and euc beside hider): the table has no peer columns.\n"
-        );
-    }
-    println!(
-        "| scene | triangles | size | zbuffer | tiled 1 thread | tiled 2 threads | Mtri/s 1T / 2T | speed-up 1T / 2T |{}",
-        if same_machine {
-            " measured in this run: vs llvmpipe 1T / 2T | vs euc 1T |"
-        } else {
-            ""
-        }
-    );
-    println!(
-        "|---|---|---|---|---|---|---|---|{}",
-        if same_machine { "---|---|" } else { "" }
-    );
+    print_header(runs, same_machine);
     for &size in &sizes {
         let mut work = Vec::new();
         for (name, scene) in &scenes {
@@ -230,6 +210,32 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
     Ok(())
+}
+
+/// The table's title lines and header, with peer columns only when the
+/// peers are measured in this run.
+fn print_header(runs: usize, same_machine: bool) {
+    println!(
+        "median (min) ms of {} frames ({runs} interleaved rounds) of prepare + clear + rasterise (f32 front end)\n",
+        runs * TIMED
+    );
+    if !same_machine {
+        println!(
+            "No peers were measured in this run (pass --peers-bin PATH to time llvmpipe and euc beside hider): the table has no peer columns.\n"
+        );
+    }
+    println!(
+        "| scene | triangles | size | zbuffer | tiled 1 thread | tiled 2 threads | Mtri/s 1T / 2T | speed-up 1T / 2T |{}",
+        if same_machine {
+            " measured in this run: vs llvmpipe 1T / 2T | vs euc 1T |"
+        } else {
+            ""
+        }
+    );
+    println!(
+        "|---|---|---|---|---|---|---|---|{}",
+        if same_machine { "---|---|" } else { "" }
+    );
 }
 
 /// One round of one workload: each pipeline renders frames in a row, the
