@@ -4,7 +4,7 @@
 //! `cargo run --release -p hider-abuffer --example profile -- SCENE HIDER [RUNS] [SIZE]`
 //!
 //! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)),
-//! `sphere500`, `one`
+//! `sphere500`, `spider` (the GL reference's model), `one`
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
@@ -30,6 +30,11 @@ fn main() {
         "sphere" => procedural::uv_sphere(200),
         "sphere500" => procedural::uv_sphere(500),
         "one" => procedural::random_soup(1, 1),
+        "spider" => hider_scene::load_obj(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("../../../shared/gl-reference/models/spider.obj"),
+        )
+        .expect("the spider of the GL reference"),
         other => panic!("unknown scene {other}"),
     };
     let mut hider: Box<dyn DynHider> = match args.get(1).map_or("ps", String::as_str) {

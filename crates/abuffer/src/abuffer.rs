@@ -26,6 +26,8 @@
 
 use hider_geom::PlaneEq;
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
+use std::sync::{Mutex, PoisonError};
+
 use rayon::prelude::*;
 
 use crate::bins::{Bins, TILE};
@@ -47,11 +49,11 @@ pub struct ABuffer {
     /// Depth plane per triangle of the last frame (for [`Self::sample_ids`]
     /// after it, and dense for the resolve).
     planes: Vec<PlaneEq>,
-    /// One per thread of the last frame; band `b` (tile row `b`) was
-    /// rendered by worker `b % workers.len()`.
+    /// One per thread (those of the last frame first).
     workers: Vec<Worker>,
-    /// Threads of the last frame.
-    used: usize,
+    /// Per band (tile row) of the last frame: the worker that rendered
+    /// it, whose pool holds its lists.
+    owner: Vec<u32>,
     /// The hider's own pool, when the caller's does not have the threads
     /// asked for.
     pool: Option<rayon::ThreadPool>,
@@ -95,7 +97,7 @@ impl ABuffer {
                 (p / self.width as usize) as u32,
             );
             let band = (ij.1 / TILE) as usize;
-            let pool = &self.workers[band % self.used].raster.lists.pool;
+            let pool = &self.workers[self.owner[band] as usize].raster.lists.pool;
             best.fill(f32::INFINITY);
             let ids = &mut out[p * n..(p + 1) * n];
             let mut cur = pool.head(p);
@@ -227,8 +229,7 @@ impl Hider for ABuffer {
         self.width = w;
         self.height = h;
         let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
-        // No more threads than bands (tile rows): each takes every
-        // `threads`-th band, which spreads the work of a centred object.
+        // No more threads than bands (tile rows).
         let threads = self.threads().min(tiles_y as usize).max(1);
         let mut options = self.options;
         options.max_bytes /= threads as u64;
@@ -239,18 +240,22 @@ impl Hider for ABuffer {
         for worker in &mut self.workers[..threads] {
             worker.begin_frame(scene, &options, tiles)?;
         }
-        self.used = threads;
         self.bins.bin(scene, options.pattern, tiles_x, tiles_y);
         self.planes.clear();
         self.planes.extend(scene.tris.iter().map(|t| t.depth));
         frame.coverage.clear();
         frame.coverage.resize(frame.len(), 0.0);
         let own = self.own_pool(threads)?;
-        let mut bands = Band::split(frame, TILE as usize);
-        let mut jobs: Vec<Vec<(u32, Band<'_>)>> = (0..threads).map(|_| Vec::new()).collect();
-        for (ty, band) in bands.drain(..).enumerate() {
-            jobs[ty % threads].push((ty as u32, band));
-        }
+        // A queue of bands, top first: each thread takes the next one when
+        // it is done with its last, so a thread the machine slows down
+        // takes fewer (a fixed share would wait for the slowest).
+        let mut bands: Vec<(u32, Band<'_>)> = Band::split(frame, TILE as usize)
+            .into_iter()
+            .enumerate()
+            .map(|(ty, band)| (ty as u32, band))
+            .collect();
+        bands.reverse();
+        let queue = Mutex::new(bands);
         let shared = Shared {
             scene,
             options: &options,
@@ -258,25 +263,37 @@ impl Hider for ABuffer {
             planes: &self.planes,
             tiles_x,
         };
-        let run = |(worker, jobs): (&mut Worker, Vec<(u32, Band<'_>)>)| -> Result<()> {
-            for (ty, mut band) in jobs {
+        let run = |worker: &mut Worker| -> Result<Vec<u32>> {
+            let mut done = Vec::new();
+            loop {
+                let next = queue.lock().unwrap_or_else(PoisonError::into_inner).pop();
+                let Some((ty, mut band)) = next else {
+                    return Ok(done);
+                };
                 worker.band(&shared, ty, &mut band)?;
+                done.push(ty);
             }
-            Ok(())
         };
         let mut workers = std::mem::take(&mut self.workers);
         let result = if threads == 1 {
-            run((&mut workers[0], jobs.pop().unwrap_or_default()))
+            run(&mut workers[0]).map(|done| vec![done])
         } else {
-            let pairs: Vec<_> = workers[..threads].iter_mut().zip(jobs).collect();
-            let all = || pairs.into_par_iter().map(run).collect::<Result<Vec<()>>>();
+            let (mine, run) = (&mut workers[..threads], &run);
+            let mut all = move || mine.par_iter_mut().map(run).collect();
             match self.pool.as_ref().filter(|_| own) {
-                Some(pool) => pool.install(all).map(drop),
-                None => all().map(drop),
+                Some(pool) => pool.install(all),
+                None => all(),
             }
         };
         self.workers = workers;
-        result?;
+        let done: Vec<Vec<u32>> = result?;
+        self.owner.clear();
+        self.owner.resize(tiles_y as usize, 0);
+        for (k, bands) in done.iter().enumerate() {
+            for &ty in bands {
+                self.owner[ty as usize] = k as u32;
+            }
+        }
         Ok(total_stats(&self.workers[..threads]))
     }
 
