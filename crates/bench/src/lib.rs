@@ -5,7 +5,11 @@
 //! assets, the hard-case scenes of `hider-testkit`, any OBJ the user
 //! names, and generated scaling families, [`scenes`]) at several
 //! resolutions through every hider the registry of `hider-plan` lists
-//! (each entry is one algorithm with one set of options). Per scene and
+//! (each entry is one algorithm with one set of options). Its studies: real
+//! size (models and generated scenes at 1024 x 1024, timed from the
+//! world-space scene to the frame), depth precision ([`precision`]: two
+//! nearly coplanar surfaces per depth format), accuracy at small sizes, and
+//! scaling in polygons, pixels and depth complexity. Per scene and
 //! resolution it prepares the scene once, evaluates the exact oracle once
 //! ([`run`]), and for every hider:
 //! - times the render (with the shared [`Timer`](hider_scene::timing::Timer):
@@ -17,7 +21,8 @@
 //!
 //! Rows go to `results.csv` as they finish and to `results.json`
 //! ([`record`]); [`report`] turns them into a terminal table, a Markdown
-//! report and plots ([`plots`]: time vs error with the Pareto front, time
+//! report that leads with its answer to what accuracy costs in time, and
+//! plots ([`plots`]: time vs error with the Pareto front, time
 //! vs triangles, resolution and depth complexity, with fitted growth
 //! exponents, [`scaling`]); [`contact`] draws each hard case's renders with
 //! their wrong pixels. [`cli`] is the command line, run by the

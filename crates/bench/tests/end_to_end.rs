@@ -307,14 +307,33 @@ fn the_reports_numbers_are_the_results_files_numbers() {
     .unwrap();
     let rows = read_results(&dir).unwrap().rows;
     let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
-    let find = |study: &str, scene: &str, hider: &str| -> &Row {
-        rows.iter()
-            .find(|r| r.study == study && r.scene == scene && r.hider == hider)
-            .unwrap_or_else(|| panic!("no {study} {scene} {hider}"))
-    };
+    let scenes = check_exact(&report, &rows);
+    check_aa(&report, &rows);
+    check_shortcuts(&report, &rows);
+    check_precision(&report, &rows);
+    check_summary(&report, &rows, &scenes);
+    // The folder reads on its own: the interpretation page beside the
+    // report, every linked file present.
+    assert!(dir.join("bench.md").is_file());
+    for link in report.split("](").skip(1) {
+        let target = link.split(')').next().unwrap();
+        assert!(dir.join(target).is_file(), "broken link {target}");
+    }
+    assert!(!report.contains("ExactPixelCentre") && !report.contains("0.00e0"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
 
+/// The row of `hider` on `scene` in `study`.
+fn find<'a>(rows: &'a [Row], study: &str, scene: &str, hider: &str) -> &'a Row {
+    rows.iter()
+        .find(|r| r.study == study && r.scene == scene && r.hider == hider)
+        .unwrap_or_else(|| panic!("no {study} {scene} {hider}"))
+}
+
+/// Checks the exact hiders' table against the rows; returns its scenes.
+fn check_exact(report: &str, rows: &[Row]) -> Vec<String> {
     // (a) Exact hiders per real-size scene, and their geometric means.
-    let exact = table_after(&report, "### Exact visibility at pixel centres");
+    let exact = table_after(report, "### Exact visibility at pixel centres");
     let hiders = exact[0][1..].to_vec();
     assert!(
         hiders.contains(&"zbuffer-tiled".to_owned()) && hiders.contains(&"scanline".to_owned())
@@ -328,7 +347,7 @@ fn the_reports_numbers_are_the_results_files_numbers() {
     for line in &exact[2..2 + scenes.len()] {
         let scene = line[0].split(" (").next().unwrap();
         for (h, cell) in hiders.iter().zip(&line[1..]) {
-            let r = find("real-size", scene, h);
+            let r = find(rows, "real-size", scene, h);
             assert!(
                 same(number(cell), r.render_ms),
                 "{scene} {h}: {cell} vs {}",
@@ -340,13 +359,18 @@ fn the_reports_numbers_are_the_results_files_numbers() {
     for (h, cell) in hiders.iter().zip(&means[1..]) {
         let times: Vec<f64> = scenes
             .iter()
-            .map(|s| find("real-size", s, h).render_ms)
+            .map(|s| find(rows, "real-size", s, h).render_ms)
             .collect();
         assert!(same(number(cell), geometric_mean(&times)), "{h} mean");
     }
 
+    scenes
+}
+
+/// Checks the anti-aliasing table against the rows.
+fn check_aa(report: &str, rows: &[Row]) {
     // (b) Coverage error and time of the anti-aliasing hiders.
-    let aa = table_after(&report, "### Anti-aliasing: coverage error against time");
+    let aa = table_after(report, "### Anti-aliasing: coverage error against time");
     assert!(aa.len() > 4);
     for line in &aa[2..] {
         let h = &line[0];
@@ -359,9 +383,12 @@ fn the_reports_numbers_are_the_results_files_numbers() {
         assert!(same(number(&line[1]), error), "{h}: {} vs {error}", line[1]);
         assert!(same(number(&line[2]), geometric_mean(&times)), "{h} time");
     }
+}
 
+/// Checks the shortcuts' wrong pixels against the rows.
+fn check_shortcuts(report: &str, rows: &[Row]) {
     // (c) Wrong pixels of each shortcut at real size.
-    let shortcuts = table_after(&report, "### What each shortcut costs");
+    let shortcuts = table_after(report, "### What each shortcut costs");
     for line in &shortcuts[2..] {
         let h = line[0].split(' ').next().unwrap();
         let wrong: u64 = rows
@@ -371,34 +398,41 @@ fn the_reports_numbers_are_the_results_files_numbers() {
             .sum();
         assert_eq!(number(&line[2]) as u64, wrong, "{h}");
     }
+}
 
+/// Checks the depth-precision table against the rows.
+fn check_precision(report: &str, rows: &[Row]) {
     // (d) Share of pixels showing the farther surface.
-    let precision = table_after(&report, "### Depth precision");
+    let precision = table_after(report, "### Depth precision");
     for line in &precision[2..] {
         let h = line[0].split('`').nth(1).unwrap();
         for (k, gap) in ["1e-2", "1e-6"].iter().enumerate() {
-            let r = find("depth-precision", &format!("gap_{gap}_nf_1e-4"), h);
+            let r = find(rows, "depth-precision", &format!("gap_{gap}_nf_1e-4"), h);
             let share = r.farther_pixels.unwrap() as f64 / r.covered_pixels as f64;
             assert!(same(number(&line[2 + k]), share), "{h} {gap}");
         }
     }
     // The coarsest format loses the hair's gap, f64 keeps it.
     let share = |h: &str| {
-        find("depth-precision", "gap_1e-6_nf_1e-4", h)
+        find(rows, "depth-precision", "gap_1e-6_nf_1e-4", h)
             .farther_pixels
             .unwrap()
     };
     assert!(share("zbuffer-fixed16") > 0);
     assert_eq!(share("zbuffer-f64"), 0);
+}
 
+/// Checks that the summary and the conclusions order the tiled and the
+/// plain z-buffer as the rows do.
+fn check_summary(report: &str, rows: &[Row], scenes: &[String]) {
     // The summary orders the tiled and the plain z-buffer as the data does,
     // and the conclusions say the same.
-    let summary = table_after(&report, "## Summary per hider");
+    let summary = table_after(report, "## Summary per hider");
     let time_in_summary = |h: &str| number(&summary.iter().find(|l| l[0] == h).unwrap()[2]);
     let data = |h: &str| {
         let t: Vec<f64> = scenes
             .iter()
-            .map(|s| find("real-size", s, h).render_ms)
+            .map(|s| find(rows, "real-size", s, h).render_ms)
             .collect();
         geometric_mean(&t)
     };
@@ -412,13 +446,4 @@ fn the_reports_numbers_are_the_results_files_numbers() {
     } else {
         "x slower on the same scenes"
     }));
-    // The folder reads on its own: the interpretation page beside the
-    // report, every linked file present.
-    assert!(dir.join("bench.md").is_file());
-    for link in report.split("](").skip(1) {
-        let target = link.split(')').next().unwrap();
-        assert!(dir.join(target).is_file(), "broken link {target}");
-    }
-    assert!(!report.contains("ExactPixelCentre") && !report.contains("0.00e0"));
-    std::fs::remove_dir_all(&dir).unwrap();
 }
