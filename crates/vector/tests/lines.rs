@@ -234,3 +234,24 @@ fn two_intersecting_planes_show_their_intersection_segment() {
         "{ends:?} vs {a:?} {b:?}"
     );
 }
+
+#[test]
+fn every_hard_case_gives_finite_lines() {
+    let options = VectorOptions::default().with_dashed_hidden(true);
+    for (name, scene) in hard_cases::all(4) {
+        let s = hider_testkit::screen(&scene, 64, 64);
+        let d = drawing(&s, &options);
+        for line in d.visible.iter().chain(&d.hidden) {
+            assert!(line.points.len() >= 2, "{name}: {line:?}");
+            assert_eq!(line.points.len(), line.depths.len(), "{name}");
+            let finite = line
+                .points
+                .iter()
+                .all(|p| p.0.is_finite() && p.1.is_finite());
+            assert!(
+                finite && line.depths.iter().all(|z| z.is_finite()),
+                "{name}: {line:?}"
+            );
+        }
+    }
+}
