@@ -178,3 +178,19 @@ def test_unresolve_restores_matplotlib():
     assert not any(isinstance(c, hider.mpl.Resolved) for c in ax.collections)
     assert all(c.get_visible() for c in ax.collections)
     plt.close(fig)
+
+
+def test_savefig_at_another_dpi_re_resolves():
+    fig, ax = figure(crossing_grids, resolved=True)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=150)
+    buf.seek(0)
+    image = plt.imread(buf)[..., :3]
+    # The reference at the saved size: the figure drawn at that dpi.
+    fig.set_dpi(150)
+    fig.canvas.draw()
+    owner, palettes = nearer_surface(ax)
+    plt.close(fig)
+    assert image.shape[:2] == owner.shape == (600, 600)
+    share, _, _ = agreement(image, owner, palettes)
+    assert share >= 0.99, share
