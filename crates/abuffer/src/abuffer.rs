@@ -32,7 +32,7 @@ use rayon::prelude::*;
 
 use crate::bins::{Bins, TILE};
 use crate::centre::in_front;
-use crate::fragment::NIL;
+use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode};
 use crate::resolve::Band;
 use crate::stats::ABufferStats;
@@ -229,8 +229,17 @@ impl Hider for ABuffer {
         self.width = w;
         self.height = h;
         let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
-        // No more threads than bands (tile rows).
-        let threads = self.threads().min(tiles_y as usize).max(1);
+        // No more threads than bands (tile rows), nor than `max_bytes`
+        // holds with twice a pixel table each (each thread has a table
+        // of the whole frame: many cores on a large frame would spend the
+        // budget on tables and leave no room for fragments).
+        let table = u64::from(w) * u64::from(h) * PIXEL_BYTES;
+        let fit = (self.options.max_bytes / (2 * table).max(1)).max(1);
+        let threads = self
+            .threads()
+            .min(tiles_y as usize)
+            .min(usize::try_from(fit).unwrap_or(usize::MAX))
+            .max(1);
         let mut options = self.options;
         options.max_bytes /= threads as u64;
         let tiles = (tiles_x * tiles_y) as usize;

@@ -139,7 +139,8 @@ pub struct ABufferOptions {
     /// culling and resolve), so the image, the sample ids and the work
     /// counters are the same at every thread count; each thread keeps a
     /// pixel table and fragment pool of its own, and
-    /// [`Self::max_bytes`] is shared evenly among them.
+    /// [`Self::max_bytes`] is shared evenly among them (fewer threads
+    /// run when the bound does not hold two pixel tables per thread).
     pub threads: usize,
 }
 

@@ -97,3 +97,19 @@ proptest! {
         prop_assert_eq!(&fa.ids, &fz.ids);
     }
 }
+
+/// Each thread has a pixel table of the whole frame: with a budget of four
+/// tables, four threads would have no room left for fragments, so two run
+/// (before this bound, the frame failed with a memory limit error).
+#[test]
+fn threads_are_capped_by_the_memory_bound() {
+    let s = screen(&procedural::random_soup(60, 5), 64, 256);
+    let table = 64 * 256 * 16;
+    let options = ABufferOptions::default().with_max_bytes(4 * table);
+    let (one, _) = render(&mut ABuffer::new(options.with_threads(1)), &s);
+    let mut four = ABuffer::new(options.with_threads(4));
+    let mut frame = Frame::new(64, 256).unwrap();
+    let stats = four.render(&s, &mut frame).unwrap();
+    assert!(stats.bytes <= 4 * table, "{stats:?}");
+    assert!(one == frame);
+}
