@@ -69,7 +69,7 @@ impl Default for RunOptions {
             contact_dir: None,
             tie_tolerance: DEFAULT_TIE_TOLERANCE,
             oracle_budget: 200_000_000,
-            coverage_budget: 20_000_000,
+            coverage_budget: 200_000_000,
             progress: false,
         }
     }
