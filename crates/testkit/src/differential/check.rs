@@ -3,7 +3,8 @@
 //!
 //! - every exact hider ([`Kind::ExactPixelCentre`]) gives the oracle's id
 //!   on every pixel that is not a tie, and refuses only with a documented
-//!   budget ([`Error::Limit`]);
+//!   budget ([`is_budget`]); such refusals are listed in
+//!   [`Outcome::budget_refusals`] for campaigns to count;
 //! - coverage is identical across every pixel-centre hider (exact or
 //!   approximate) and the oracle;
 //! - no hider reports holding more than its default budget, [`BUDGET`].
@@ -20,6 +21,17 @@ use super::DiffCase;
 /// The default memory budget of every hider (`max_bytes`, 1 GiB): what a
 /// frame of these small cases must stay far under.
 pub const BUDGET: u64 = 1 << 30;
+
+/// Whether `e` is a refusal under a documented budget: [`Error::Limit`]
+/// (checked before any work), or a hider's error saying a budget it
+/// documents ran out (the painter's split budget).
+pub fn is_budget(e: &Error) -> bool {
+    match e {
+        Error::Limit { .. } => true,
+        Error::Render { message, .. } => message.contains("budget"),
+        _ => false,
+    }
+}
 
 /// What one case did, for tallies.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -78,7 +90,7 @@ pub fn check_case(case: &DiffCase) -> Result<Outcome, String> {
             Ok(stats) => stats,
             // A documented budget; the case is small, but a pile can be
             // deep.
-            Err(e @ Error::Limit { .. }) => {
+            Err(e) if is_budget(&e) => {
                 outcome.budget_refusals.push(format!("{}: {e}", entry.name));
                 continue;
             }
