@@ -2,7 +2,8 @@
 //! (`f 1 2 3 4 1 2 3 4 ...`, 1900 entries): about 950 triangles, in two
 //! sets of exactly coincident copies, at 512 x 512, opaque and translucent.
 //!
-//! `cargo run --release -p hider-abuffer --example coincident`
+//! `cargo run --release -p hider-abuffer --example coincident [-- "1 2 3 4 2 3 4 1"]`
+//! (the vertex list that repeats, default `1 2 3 4`)
 
 use std::path::Path;
 use std::time::Instant;
@@ -13,9 +14,11 @@ use hider_scene::{Frame, Hider, Material};
 use hider_testkit::screen;
 
 fn main() {
+    let face = std::env::args().nth(1).unwrap_or_else(|| "1 2 3 4".into());
     let mut obj = String::from("v -1 -1 0\nv 1 -1 0.3\nv 1 1 0.1\nv -1 1 -0.2\nf");
-    for _ in 0..475 {
-        obj.push_str(" 1 2 3 4");
+    for _ in 0..1900 / face.split_whitespace().count().max(1) {
+        obj.push(' ');
+        obj.push_str(&face);
     }
     obj.push('\n');
     let options = ObjOptions::default();
