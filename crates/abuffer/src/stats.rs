@@ -57,6 +57,7 @@ hider_scene::hider_stats! {
         /// Working memory at its peak: pixel table plus fragment pool, bytes.
         pub bytes: u64 => PEAK,
     }
+    warnings: ABufferStats::warnings
 }
 
 impl ABufferStats {

@@ -30,6 +30,8 @@ pub struct StatsTable {
     /// Peak bytes of working memory (buffers, fragment arenas, lists), not
     /// counting the output frame.
     pub peak_bytes: u64,
+    /// [`HiderStats::warnings`] of the frame.
+    pub warnings: Vec<String>,
 }
 
 impl std::fmt::Display for StatsTable {
@@ -55,6 +57,14 @@ impl std::fmt::Display for StatsTable {
 pub trait HiderStats: Clone + std::fmt::Debug {
     /// The counters as the benchmark prints them.
     fn table(&self) -> StatsTable;
+
+    /// What a user must be told about the frame, one line each (lost
+    /// fragments, a budget that cut work short): empty by default. The
+    /// command line prints them as warnings; [`StatsTable::warnings`]
+    /// carries them through [`DynHider`].
+    fn warnings(&self) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 /// A value the stats table can print as a counter.
@@ -83,7 +93,9 @@ impl Counter for usize {
 
 /// Declares a hider's stats struct and its [`HiderStats`] table in one
 /// place: each field carries the name the table prints it under, `PEAK` for
-/// the peak working bytes, or `_` for a field the table leaves out.
+/// the peak working bytes, or `_` for a field the table leaves out. An
+/// optional `warnings: path` after the struct names the function (taking
+/// `&Self`, returning `Vec<String>`) behind [`HiderStats::warnings`].
 ///
 /// ```
 /// hider_scene::hider_stats! {
@@ -102,6 +114,27 @@ impl Counter for usize {
 /// let s = ExampleStats { triangles: 3, bytes: 64, internal: 1 };
 /// assert_eq!(s.table().counters, vec![("triangles", 3)]);
 /// assert_eq!(s.table().peak_bytes, 64);
+/// assert!(s.table().warnings.is_empty());
+///
+/// hider_scene::hider_stats! {
+///     /// A hider that can lose work.
+///     #[derive(Clone, Copy, Debug, Default)]
+///     pub struct LossyStats {
+///         /// Fragments dropped.
+///         pub dropped: u64 => "dropped",
+///     }
+///     warnings: LossyStats::lost
+/// }
+/// impl LossyStats {
+///     fn lost(&self) -> Vec<String> {
+///         (self.dropped > 0)
+///             .then(|| format!("{} fragments dropped", self.dropped))
+///             .into_iter()
+///             .collect()
+///     }
+/// }
+/// let lossy = LossyStats { dropped: 2 };
+/// assert_eq!(lossy.table().warnings, vec!["2 fragments dropped".to_owned()]);
 /// ```
 #[macro_export]
 macro_rules! hider_stats {
@@ -113,6 +146,7 @@ macro_rules! hider_stats {
                 $field_vis:vis $field:ident : $field_ty:ty => $label:tt
             ),* $(,)?
         }
+        $(warnings: $warnings:path)?
     ) => {
         $(#[$meta])*
         $vis struct $name {
@@ -126,8 +160,14 @@ macro_rules! hider_stats {
             fn table(&self) -> $crate::StatsTable {
                 let mut table = $crate::StatsTable::default();
                 $( $crate::__hider_stats_entry!(table, $label, self.$field); )*
+                table.warnings = $crate::HiderStats::warnings(self);
                 table
             }
+            $(
+                fn warnings(&self) -> Vec<String> {
+                    $warnings(self)
+                }
+            )?
         }
     };
 }

@@ -215,6 +215,7 @@ impl HiderStats for WarnockStats {
         StatsTable {
             counters,
             peak_bytes: self.peak_bytes,
+            warnings: Vec::new(),
         }
     }
 }

@@ -1,6 +1,7 @@
-//! A hider that keeps one surface per sample draws translucent surfaces
-//! opaque; `hider render` says so, naming the hider that composites them,
-//! instead of writing a wrong picture without a word.
+//! Warnings `hider render` owes its user instead of a wrong picture
+//! without a word: a hider that keeps one surface per sample draws
+//! translucent surfaces opaque, and says so, naming the hider that
+//! composites them; fragments the A-buffer drops are counted in a warning.
 
 use std::path::PathBuf;
 use std::process::Command;
@@ -53,5 +54,41 @@ fn hiders_that_cannot_composite_warn_on_translucent_scenes() {
         let warned = stderr.contains("draws them opaque; --algo abuffer composites them");
         assert_eq!(warned, warns, "{algo}: {stderr}");
     }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Fragments the A-buffer drops from full pixel lists are named in a
+/// warning, not lost silently: 200 translucent copies of one face are more
+/// layers than a list holds (128).
+#[test]
+fn dropped_fragments_are_a_warning() {
+    let dir = std::env::temp_dir().join(format!("hider-dropped-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut obj =
+        String::from("mtllib glass.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl glass\n");
+    for _ in 0..200 {
+        obj.push_str("f 1 2 3 4\n");
+    }
+    std::fs::write(dir.join("layers.obj"), obj).unwrap();
+    std::fs::write(
+        dir.join("glass.mtl"),
+        "newmtl glass\nKd 0.5 0.7 0.9\nd 0.3\n",
+    )
+    .unwrap();
+    let run = Command::new(env!("CARGO_BIN_EXE_hider"))
+        .args(["render", "--size", "16", "--algo", "abuffer"])
+        .arg(dir.join("layers.obj"))
+        .arg("-o")
+        .arg(dir.join("out.png"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    let line = stderr
+        .lines()
+        .find(|l| l.starts_with("hider: warning: abuffer dropped "))
+        .unwrap_or_else(|| panic!("no dropped-fragment warning in: {stderr}"));
+    assert!(line.contains("fragments"), "{line}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
