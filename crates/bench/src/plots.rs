@@ -229,13 +229,14 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot) -> Resul
         chart
             .draw_series(std::iter::once(Text::new(
                 plot.zero_label.clone(),
-                // At the right end: the fast exact results (and the
-                // Pareto front through them) sit at the left.
-                (x1 / (x1 / x0).powf(0.01), band_top),
+                // At the right end and under the zero line: the fast
+                // exact results (and the Pareto front through them) sit
+                // at the left, and lines reach down only to the zero line.
+                (x1 / (x1 / x0).powf(0.01), y0 * (zero_y / y0).powf(0.1)),
                 (FONT, 14)
                     .into_font()
                     .color(&RGBColor(40, 110, 40))
-                    .pos(Pos::new(HPos::Right, VPos::Top)),
+                    .pos(Pos::new(HPos::Right, VPos::Bottom)),
             )))
             .map_err(e)?;
     }
