@@ -59,7 +59,7 @@ pub(crate) fn timed_runs(warmups: usize, runs: usize, mut frame: impl FnMut() ->
 /// Exit status of a child that found no libOSMesa (it said so already).
 const NO_LIBRARY: i32 = 3;
 /// Largest coverage difference from hider accepted for llvmpipe (0.5 %):
-/// same snapping and top-left rule, so only the odd edge pixel may differ.
+/// same snapping and fill rule, so only the odd edge pixel may differ.
 const GL_TOLERANCE: f64 = 0.005;
 /// The peer name of llvmpipe with 4x MSAA in the table and the JSON.
 const MSAA_PEER: &str = "llvmpipe-msaa4";

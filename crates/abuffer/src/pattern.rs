@@ -6,7 +6,7 @@
 //! same 8 columns x 4 rows mask) gives every fragment a 32-bit coverage
 //! mask, one bit per cell of an 8 x 4 grid over the pixel. Here each cell is sampled at its centre, on the 1/256-pixel
 //! fixed-point grid of the front end, so a mask bit is decided by the same
-//! exact integer edge functions and top-left rule as every other hider:
+//! exact integer edge functions and fill rule as every other hider:
 //!
 //! ```text
 //! cell (column c, row r), c in 0..8, r in 0..4:

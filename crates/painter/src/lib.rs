@@ -23,7 +23,7 @@
 //!   centre, which keeps a pile of sub-pixel triangles at O(n log n).
 //!
 //! Both paint through the shared coverage rules: a piece covers a pixel
-//! centre iff its source triangle does under the exact top-left edge
+//! centre iff its source triangle does under the exact edge
 //! functions and its cuts keep it ([`Cut`]), so split pieces never crack or
 //! double-cover, and on every pixel that is not a depth tie [`Painter`]
 //! gives the z-buffer's (and the oracle's) primitive. Both keep the ordered

@@ -22,7 +22,7 @@
 //! Tests 1 to 3 and 6 are exact for uncut triangles, whose vertices are
 //! the front end's fixed-point positions and window depths (every product
 //! below fits an `f64` mantissa), and touching is allowed there: under the
-//! top-left rule a pixel centre on a shared boundary belongs to at most
+//! fill rule a pixel centre on a shared boundary belongs to at most
 //! one of two triangles with disjoint interiors. Tests 4 and 5 are sign
 //! questions answered exactly at every exact vertex, by Shewchuk's
 //! adaptive `orient3d` on the front end's own coordinates.

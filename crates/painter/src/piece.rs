@@ -7,7 +7,7 @@
 //!   order*: depth extents, bounding boxes, plane sides, projected overlap;
 //! - its **coverage rule**: a pixel centre belongs to the piece iff the
 //!   original [`ScreenTri`] covers it (the shared exact integer edge
-//!   functions and top-left rule) *and* every [`Cut`] keeps it.
+//!   functions and fill rule) *and* every [`Cut`] keeps it.
 //!
 //! A cut is one affine function evaluated the same way for both pieces it
 //! creates: one keeps the centres where `f < 0`, the other those where
@@ -165,7 +165,7 @@ impl Piece {
     }
 
     /// Whether the piece covers the fixed-point sample `(x, y)`, given its
-    /// source triangle: the shared top-left edge test on the triangle, then
+    /// source triangle: the shared edge test with its fill rule on the triangle, then
     /// every cut at the same position in pixels.
     #[inline]
     pub fn covers(&self, tri: &ScreenTri, x: i64, y: i64) -> bool {

@@ -2,7 +2,7 @@
 //! rules.
 //!
 //! Each piece overwrites, far to near, the pixel centres it covers: those
-//! its source triangle covers under the shared top-left edge functions and
+//! its source triangle covers under the shared edge functions and fill rule and
 //! that all of its cuts keep ([`Piece::covers`]). The depth written is the
 //! source triangle's window-depth plane at the centre, as the z-buffer
 //! writes it, so the two frames can be compared value for value.

@@ -15,8 +15,8 @@
 //! Conventions (see `docs/conventions.md`): right-handed world, camera
 //! looking down -Z, GL clip space; window origin top-left with y down;
 //! pixel `(i, j)` sampled at `(i + 0.5, j + 0.5)`; vertices snapped to
-//! 1/256 pixel; coverage by exact integer edge functions under the top-left
-//! rule; window depth `z/w` in [0, 1].
+//! 1/256 pixel; coverage by exact integer edge functions under GL's fill
+//! rule (top-left in GL's bottom-up rows); window depth `z/w` in [0, 1].
 //!
 //! # Example
 //!

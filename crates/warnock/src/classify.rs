@@ -46,7 +46,7 @@ pub struct TriSetup {
     pub edge_a: [i32; 3],
     /// The `b` (y) coefficients of the three edge functions.
     pub edge_b: [i32; 3],
-    /// The constant terms, with the top-left rule folded in (`> 0` is
+    /// The constant terms, with the fill rule folded in (`> 0` is
     /// inside).
     pub edge_c: [i64; 3],
     /// Window depth plane.
@@ -92,7 +92,7 @@ impl TriSetup {
     }
 
     /// Whether the fixed-point sample `(x, y)` is covered: the shared
-    /// edge functions under the top-left rule, the one coverage decision
+    /// edge functions under the fill rule, the one coverage decision
     /// every hider makes.
     #[inline]
     pub fn covers(&self, x: i64, y: i64) -> bool {
