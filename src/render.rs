@@ -39,7 +39,7 @@ fn auto(
         .with_camera(Some(view.camera))
         .with_shading(args.shade_mode() == ShadeMode::Lambert)
         .with_antialiasing(args.aa)
-        .with_vector_output(args.vector || args.svg.is_some())
+        .with_vector_output(args.vector || args.painter_svg())
         // The searches over pairs decide only vector plans and cost
         // seconds on large scenes: a raster render leaves them out.
         .with_pair_searches(false)
@@ -230,14 +230,14 @@ pub fn run(args: &RenderArgs) -> Result<()> {
 /// had.
 fn write_outputs(args: &RenderArgs, chosen: &Chosen, frame: &Frame) -> Result<()> {
     let vector = match &args.svg {
-        None => None,
-        Some(svg) => {
+        Some(svg) if args.painter_svg() => {
             let output = chosen
                 .hider
                 .vector_output()
                 .with_context(|| format!("--svg: {} gave no vector output", chosen.hider.name()))?;
             Some((svg, output))
         }
+        _ => None,
     };
     // The scene crate's errors name the file; the context says which
     // output it is.
@@ -257,5 +257,25 @@ fn write_outputs(args: &RenderArgs, chosen: &Chosen, frame: &Frame) -> Result<()
             .write_svg(&chosen.screen, svg, args.shade_mode())
             .context("cannot write the SVG")?;
     }
+    if let Some(svg) = args.svg.as_ref().filter(|_| !args.painter_svg()) {
+        write_vector_svg(args, chosen, svg)?;
+    }
     Ok(())
+}
+
+/// `--svg-mode regions` or `lines`: the exact visible regions or the
+/// hidden-line drawing of the scene the hider rendered, from hider-vector.
+fn write_vector_svg(args: &RenderArgs, chosen: &Chosen, svg: &std::path::Path) -> Result<()> {
+    use hider_vector::{VectorOptions, hidden_lines, visible_regions};
+    let options = VectorOptions::default();
+    let map = visible_regions(&chosen.screen, &options, args.shade_mode())
+        .context("cannot compute the visible regions")?;
+    let written = if args.svg_mode == crate::render_args::SvgMode::Lines {
+        let drawing = hidden_lines(&chosen.screen, &map, &options)
+            .context("cannot compute the hidden lines")?;
+        hider_vector::write_lines_svg(&chosen.screen, &drawing, &options, svg)
+    } else {
+        hider_vector::write_regions_svg(&chosen.screen, &map, &options, svg)
+    };
+    written.context("cannot write the SVG")
 }

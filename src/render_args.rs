@@ -43,7 +43,8 @@ pub struct RenderArgs {
     #[arg(long)]
     pub aa: bool,
     /// Ask for vector output: `--algo auto` picks a hider with an ordered
-    /// polygon list (write it with --svg; --svg implies --vector).
+    /// polygon list (write it with --svg and --svg-mode painter, which
+    /// imply --vector).
     #[arg(long)]
     pub vector: bool,
     /// Depth buffer format of the z-buffer.
@@ -55,10 +56,17 @@ pub struct RenderArgs {
     /// Transform arithmetic of the front end (f32 reproduces GL).
     #[arg(long, value_enum, default_value = "f64")]
     precision: PrecisionArg,
-    /// Also write the hider's vector output as SVG (the painters' ordered,
-    /// split polygon list: --algo painter or painter-naive).
+    /// Also write an SVG: the exact visible regions by default (see
+    /// --svg-mode).
     #[arg(long)]
     pub svg: Option<PathBuf>,
+    /// What --svg writes: `regions` (every surface's exact visible region,
+    /// one path per flat face), `lines` (the visible silhouettes, creases,
+    /// boundaries and intersection lines as polylines) or `painter` (the
+    /// painters' ordered, split polygon list: --algo painter or
+    /// painter-naive).
+    #[arg(long, value_enum, default_value = "regions")]
+    pub svg_mode: SvgMode,
     /// Write the visible primitive ids (int32 LE, -1 background).
     #[arg(long)]
     pub ids_out: Option<PathBuf>,
@@ -120,6 +128,17 @@ enum PrecisionArg {
     F64,
 }
 
+/// `--svg-mode`: what the SVG holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SvgMode {
+    /// The painter's ordered polygon list (its hidden parts painted over).
+    Painter,
+    /// The exact visible regions, one path per face group.
+    Regions,
+    /// The visible lines as polylines.
+    Lines,
+}
+
 /// `--shade`.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 enum ShadeArg {
@@ -144,6 +163,12 @@ impl RenderArgs {
         };
         hider::scene::view::check_image_size(width, height).context("bad image size")?;
         Ok((width, height))
+    }
+
+    /// Whether `--svg` asks for a painter's polygon list (`--svg-mode
+    /// painter`); the other modes work from any hider's scene.
+    pub fn painter_svg(&self) -> bool {
+        self.svg.is_some() && self.svg_mode == SvgMode::Painter
     }
 
     /// Whether `--algo auto` asks the planner to choose.
@@ -174,7 +199,7 @@ impl RenderArgs {
     pub fn hider_config(&self) -> HiderConfig {
         let mut config = HiderConfig::default()
             .with_threads(self.threads)
-            .with_vector_output(self.svg.is_some());
+            .with_vector_output(self.painter_svg());
         if let Some(format) = self.depth_format {
             config = config.with_depth_format(match format {
                 DepthFormatArg::F32 => DepthFormat::F32,

@@ -196,6 +196,8 @@ fn painter_writes_svg_and_other_hiders_refuse_it() {
         "painter",
         "--svg",
         svg.to_str().unwrap(),
+        "--svg-mode",
+        "painter",
     ]);
     assert!(
         out.status.success(),
@@ -216,6 +218,8 @@ fn painter_writes_svg_and_other_hiders_refuse_it() {
         "zbuffer",
         "--svg",
         svg.to_str().unwrap(),
+        "--svg-mode",
+        "painter",
     ]);
     assert_fails(&out, &["--svg", "painter"], &png);
     assert!(!svg.exists());

@@ -1,0 +1,104 @@
+//! `hider render --svg out.svg --svg-mode painter|regions|lines`: the
+//! exact visible regions (the default), the hidden-line drawing, or the
+//! painter's ordered polygon list.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn hider(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hider"))
+        .args(args)
+        .output()
+        .expect("hider runs")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hider-svg-modes-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Renders `model` with `extra` arguments and returns the SVG written.
+fn svg_of(dir: &std::path::Path, model: &str, extra: &[&str]) -> String {
+    let png = dir.join("out.png");
+    let svg = dir.join("out.svg");
+    let mut args = vec!["render", model, "-o", png.to_str().unwrap(), "--size", "64"];
+    args.extend_from_slice(&["--svg", svg.to_str().unwrap()]);
+    args.extend_from_slice(extra);
+    let out = hider(&args);
+    assert!(
+        out.status.success(),
+        "{:?}: {}",
+        args,
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&svg).unwrap();
+    std::fs::remove_file(&svg).unwrap();
+    text
+}
+
+#[test]
+fn regions_are_the_default_and_need_no_painter() {
+    let dir = temp_dir("regions");
+    // The intersecting pair: two primitives, each visible in one piece.
+    let text = svg_of(&dir, "gen:intersecting", &["--algo", "zbuffer"]);
+    assert_eq!(text.matches("<path").count(), 2, "{text}");
+    assert!(text.contains("transform=\"scale("), "{text}");
+    let same = svg_of(
+        &dir,
+        "gen:intersecting",
+        &["--algo", "zbuffer", "--svg-mode", "regions"],
+    );
+    assert_eq!(text, same);
+    // A cube from the fit camera: one path per visible face.
+    let cube = svg_of(&dir, "gen:cube", &[]);
+    assert!((1..=3).contains(&cube.matches("<path").count()), "{cube}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn lines_mode_writes_polylines() {
+    let dir = temp_dir("lines");
+    let text = svg_of(&dir, "gen:intersecting", &["--svg-mode", "lines"]);
+    assert!(text.contains("<polyline"), "{text}");
+    assert!(!text.contains("<path"), "{text}");
+    // The pair pierces itself: its intersection line is drawn (red).
+    assert!(text.contains("#b03030"), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn painter_mode_is_the_painters_polygon_list() {
+    let dir = temp_dir("painter");
+    let text = svg_of(
+        &dir,
+        "gen:intersecting",
+        &["--algo", "painter", "--svg-mode", "painter"],
+    );
+    // Splitting leaves three pieces, one path each.
+    assert_eq!(text.matches("<path").count(), 3, "{text}");
+    // A hider without a polygon list cannot write it.
+    let png = dir.join("cube.png");
+    let svg = dir.join("cube.svg");
+    let out = hider(&[
+        "render",
+        "gen:cube",
+        "-o",
+        png.to_str().unwrap(),
+        "--algo",
+        "zbuffer",
+        "--svg",
+        svg.to_str().unwrap(),
+        "--svg-mode",
+        "painter",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--svg") && stderr.contains("painter"),
+        "{stderr}"
+    );
+    assert!(!svg.exists() && !png.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
