@@ -4,6 +4,7 @@
 //! random scenes; they never overlap, and together they cover exactly what
 //! the triangles cover.
 
+use hider_geom::edge::top_left_bias;
 use hider_geom::polygon::{IPoint, crossing_number_inside};
 use hider_oracle::{DEFAULT_TIE_TOLERANCE, window_depth_reference};
 use hider_scene::{Hider, NO_ID, ScreenScene, ShadeMode, procedural};
@@ -17,7 +18,15 @@ use i_overlay::i_shape::int::shape::IntShapes;
 
 /// Per pixel: the primitive whose region holds the centre (`NO_ID` for
 /// none), and how many pixel centres fell in more than one region.
+///
+/// The crossing-number test's half-open rule decides a centre on an edge
+/// as if the centre were moved right by an infinitesimal, and down by a
+/// far smaller one: the fill rule that owns left and top edges. When the
+/// front end's rule owns bottom edges instead (GL's row order), the test
+/// runs on the mirror image in y, which moves the centre up.
 fn region_ids(s: &ScreenScene, map: &RegionMap) -> (Vec<u32>, usize) {
+    let bottom_edges_owned = top_left_bias(-1, 0) == 1;
+    let my = |y: i64| if bottom_edges_owned { -y } else { y };
     let (w, h) = (s.viewport.width, s.viewport.height);
     let mut ids = vec![NO_ID; (w * h) as usize];
     let mut doubles = 0;
@@ -25,17 +34,23 @@ fn region_ids(s: &ScreenScene, map: &RegionMap) -> (Vec<u32>, usize) {
         for shape in &region.shapes {
             let contours: Vec<Vec<IPoint>> = shape
                 .iter()
-                .map(|c| c.iter().map(|p| (i64::from(p.x), i64::from(p.y))).collect())
+                .map(|c| {
+                    c.iter()
+                        .map(|p| (i64::from(p.x), my(i64::from(p.y))))
+                        .collect()
+                })
                 .collect();
             let (mut x0, mut y0, mut x1, mut y1) = (i64::MAX, i64::MAX, i64::MIN, i64::MIN);
             for &(x, y) in contours.iter().flatten() {
+                let y = my(y);
                 (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x), y1.max(y));
             }
             let unit = map.grid.units_per_pixel() as i64;
             let to_px = |v: i64, n: u32| (v / unit).clamp(0, i64::from(n) - 1) as u32;
             for j in to_px(y0, h)..=to_px(y1, h) {
                 for i in to_px(x0, w)..=to_px(x1, w) {
-                    let c = map.grid.pixel_centre(i, j);
+                    let (cx, cy) = map.grid.pixel_centre(i, j);
+                    let c = (cx, my(cy));
                     let inside = contours.iter().fold(false, |acc, contour| {
                         acc ^ crossing_number_inside(contour, c)
                     });
