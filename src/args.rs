@@ -4,9 +4,10 @@
 //! clap's own messages for a bad value span several lines (the error, a
 //! tip, the usage, a pointer to `--help`), and a negative number after a
 //! flag is taken for another flag. The value parsers here give the reason
-//! in words, and [`usage_error_line`] folds any clap error into one line.
+//! in words, and [`usage_error_line`] folds any clap error into one line
+//! (with `hider_plan::cli_error`, which `hider-bench` shares).
 
-use clap::error::{ContextKind, ContextValue, ErrorKind};
+use clap::error::ErrorKind;
 
 /// Largest image side in pixels (the scene crate's limit).
 const MAX_SIDE: u64 = hider::geom::fixed::MAX_IMAGE_SIDE as u64;
@@ -86,78 +87,16 @@ pub fn vec3(s: &str) -> Result<glam::DVec3, String> {
     Ok(glam::DVec3::from_array(v))
 }
 
-/// The flag of a clap argument description (`--size <SIZE>` -> `--size`).
-fn flag(context: Option<&ContextValue>) -> Option<String> {
-    match context? {
-        ContextValue::String(s) => s.split_whitespace().next().map(str::to_owned),
-        ContextValue::Strings(v) => Some(
-            v.iter()
-                .filter_map(|s| s.split_whitespace().next())
-                .collect::<Vec<_>>()
-                .join(", "),
-        ),
-        _ => None,
-    }
-}
-
-/// A clap usage error as the one line the tool prints after `hider:
-/// error: `: the flag, the value and why for a bad value; clap's first
-/// paragraph with its tips joined for anything else.
+/// A clap usage error as the one line `hider` prints after `hider:
+/// error: ` ([`hider::plan::cli_error::usage_error_line`], with the
+/// subcommands named when none was given).
 pub fn usage_error_line(e: &clap::Error) -> String {
-    let arg = flag(e.get(ContextKind::InvalidArg));
-    let value = match e.get(ContextKind::InvalidValue) {
-        Some(ContextValue::String(v)) => Some(v.clone()),
-        _ => None,
-    };
-    match (e.kind(), arg, value) {
-        (ErrorKind::ValueValidation, Some(arg), Some(value)) => {
-            let why = std::error::Error::source(e)
-                .map(|s| s.to_string())
-                .unwrap_or_else(|| "is not valid".to_owned());
-            format!("{arg} '{value}': {why}")
+    match e.kind() {
+        ErrorKind::MissingSubcommand | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            "no subcommand given: render, analyze, list or bench (see hider --help)".to_owned()
         }
-        (ErrorKind::InvalidValue, Some(arg), Some(value)) => {
-            let valid = match e.get(ContextKind::ValidValue) {
-                Some(ContextValue::Strings(v)) if !v.is_empty() => Some(v.join(", ")),
-                _ => None,
-            };
-            match (value.is_empty(), valid) {
-                (true, None) => format!("{arg} needs a value"),
-                (true, Some(valid)) => format!("{arg} needs a value: one of {valid}"),
-                (false, Some(valid)) => format!("{arg} '{value}': must be one of {valid}"),
-                (false, None) => format!("{arg} '{value}' is not valid"),
-            }
-        }
-        (ErrorKind::ArgumentConflict, Some(arg), _) => match flag(e.get(ContextKind::PriorArg)) {
-            Some(prior) if prior == arg => format!("{arg} is given more than once"),
-            Some(prior) => format!("{arg} cannot be used with {prior}"),
-            None => collapse(&e.render().to_string()),
-        },
-        (ErrorKind::MissingRequiredArgument, Some(arg), _) => {
-            format!("missing {arg} (see --help)")
-        }
-        (
-            ErrorKind::MissingSubcommand | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand,
-            ..,
-        ) => "no subcommand given: render, analyze, list or bench (see hider --help)".to_owned(),
-        _ => collapse(&e.render().to_string()),
+        _ => hider::plan::cli_error::usage_error_line(e),
     }
-}
-
-/// clap's rendered message in one line: the error without its `error: `
-/// prefix, then its tips, joined by "; "; usage and help pointers left
-/// out.
-fn collapse(rendered: &str) -> String {
-    let mut parts: Vec<&str> = Vec::new();
-    for line in rendered.lines().map(str::trim) {
-        if line.starts_with("Usage:") || line.starts_with("For more information") {
-            break;
-        }
-        if !line.is_empty() {
-            parts.push(line.strip_prefix("error: ").unwrap_or(line));
-        }
-    }
-    parts.join("; ")
 }
 
 #[cfg(test)]
@@ -180,16 +119,5 @@ mod tests {
             "must be three numbers x,y,z, got 2 numbers"
         );
         assert!(vec3("1,2,nan").unwrap_err().contains("'nan'"));
-    }
-
-    #[test]
-    fn clap_paragraphs_fold_into_one_line() {
-        let text = "error: unexpected argument '--nope' found\n\n  tip: to pass '--nope' as a \
-                    value, use '-- --nope'\n\nUsage: hider render [OPTIONS]\n\nFor more \
-                    information, try '--help'.\n";
-        assert_eq!(
-            collapse(text),
-            "unexpected argument '--nope' found; tip: to pass '--nope' as a value, use '-- --nope'"
-        );
     }
 }

@@ -15,7 +15,7 @@ use hider_bench::BenchArgs;
 /// Benchmark every registered hider: accuracy against the oracle beside
 /// time; writes a table, results.csv/json, a report and plots.
 #[derive(Parser, Debug)]
-#[command(name = "hider-bench", version)]
+#[command(name = "hider-bench", version, allow_negative_numbers = true)]
 struct Cli {
     #[command(flatten)]
     args: BenchArgs,
@@ -25,11 +25,18 @@ fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {
-            // Usage errors: clap's message, exit status 2; help and version
-            // print normally with status 0.
-            let code = if e.use_stderr() { 2 } else { 0 };
-            let _ = e.print();
-            return ExitCode::from(code);
+            // Usage errors: one line naming the flag and the value, exit
+            // status 2, as `hider` prints them; help and version print
+            // normally with status 0.
+            if !e.use_stderr() {
+                let _ = e.print();
+                return ExitCode::SUCCESS;
+            }
+            eprintln!(
+                "hider-bench: error: {}",
+                hider_plan::cli_error::usage_error_line(&e)
+            );
+            return ExitCode::from(2);
         }
     };
     match hider_bench::run_command(&cli.args) {

@@ -186,14 +186,26 @@ pub fn linear_depth_probe() -> Scene {
     scene
 }
 
-/// The bundled OBJ files in `dir` (sorted by name), as `(name, path)`.
+/// The bundled OBJ files in `dir` and in its subfolders one level down (a
+/// model that ships with its textures, like `spider/spider.obj`), sorted
+/// by name, as `(name, path)`.
 pub fn bundled_assets(dir: &Path) -> Vec<(String, PathBuf)> {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return Vec::new();
+    let obj_files = |dir: &Path| -> Vec<PathBuf> {
+        std::fs::read_dir(dir)
+            .map(|entries| entries.filter_map(|e| e.ok().map(|e| e.path())).collect())
+            .unwrap_or_default()
     };
-    let mut found: Vec<(String, PathBuf)> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("obj")))
+    let is_obj = |p: &Path| p.extension().is_some_and(|x| x.eq_ignore_ascii_case("obj"));
+    let mut paths = Vec::new();
+    for path in obj_files(dir) {
+        if path.is_dir() {
+            paths.extend(obj_files(&path).into_iter().filter(|p| is_obj(p)));
+        } else if is_obj(&path) {
+            paths.push(path);
+        }
+    }
+    let mut found: Vec<(String, PathBuf)> = paths
+        .into_iter()
         .filter_map(|p| Some((p.file_stem()?.to_string_lossy().into_owned(), p)))
         .collect();
     found.sort();
@@ -212,6 +224,19 @@ pub fn hard_case_names() -> Vec<&'static str> {
 mod tests {
     use super::*;
     use hider_testkit::screen;
+
+    #[test]
+    fn bundled_assets_include_models_in_their_own_folders() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+        let names: Vec<String> = bundled_assets(&dir).into_iter().map(|(n, _)| n).collect();
+        for expected in ["cube", "sphere", "spider"] {
+            assert!(
+                names.iter().any(|n| n == expected),
+                "{expected} in {names:?}"
+            );
+        }
+        assert!(names.windows(2).all(|w| w[0] <= w[1]), "sorted: {names:?}");
+    }
 
     #[test]
     fn layers_cover_every_pixel_k_times() {

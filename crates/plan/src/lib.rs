@@ -45,6 +45,8 @@ mod error;
 mod load;
 pub mod planner;
 pub mod registry;
+#[cfg(feature = "cli")]
+pub mod cli_error;
 pub mod stages;
 pub mod texture;
 
