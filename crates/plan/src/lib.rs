@@ -40,13 +40,13 @@
 //! ```
 
 pub mod analyze;
+#[cfg(feature = "cli")]
+pub mod cli_error;
 mod config;
 mod error;
 mod load;
 pub mod planner;
 pub mod registry;
-#[cfg(feature = "cli")]
-pub mod cli_error;
 pub mod stages;
 pub mod texture;
 

@@ -123,7 +123,11 @@ impl SurfaceTextures {
     /// reported once and its material keeps its diffuse colour.
     pub fn load(&mut self, scene: &ScreenScene) -> TextureLoad {
         let mut report = TextureLoad::default();
-        for path in scene.materials.iter().filter_map(|m| m.diffuse_texture.as_ref()) {
+        for path in scene
+            .materials
+            .iter()
+            .filter_map(|m| m.diffuse_texture.as_ref())
+        {
             if self.cache.contains_key(path) {
                 continue;
             }
