@@ -195,7 +195,19 @@ pub fn depth_difference(a: &PlaneEq, b: &PlaneEq) -> PlaneEq {
     PlaneEq {
         x0: a.x0,
         y0: a.y0,
-        value: a.value - b.eval(a.x0, a.y0),
+        // The reference values are subtracted first, as in
+        // `sides::rounded_sign`: they are window depths that agree in their
+        // leading bits (all but equal behind a tiny near plane), so their
+        // difference is exact, and the line's offset is rounded relative to
+        // the depth differences rather than to the depths. Evaluating `b`
+        // at `a`'s reference point first would round at the scale of the
+        // depths, about one unit in the last place of 1, which behind a
+        // near plane of 1e-6 or less moves the line by micro-pixels to
+        // pixels: vertices the side test calls strictly in front then land
+        // on the far side of the cut, the cut only shaves a sliver off, and
+        // the same pair is cut again and again until the split budget runs
+        // out.
+        value: (a.value - b.value) - (b.dx * (a.x0 - b.x0) + b.dy * (a.y0 - b.y0)),
         dx: a.dx - b.dx,
         dy: a.dy - b.dy,
     }
