@@ -1,22 +1,11 @@
 //! The `hider` command line: bad input gives one line on stderr and exit
 //! status 2, never a panic and never a partial output file.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 
-fn hider(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hider"))
-        .args(args)
-        .output()
-        .expect("hider runs")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hider-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+mod cli_support;
+use cli_support::{hider, temp_dir};
 
 /// Asserts a failed run: status 2, exactly one line on stderr that contains
 /// every `needles`, no panic, and no output file left behind.

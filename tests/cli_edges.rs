@@ -2,22 +2,11 @@
 //! regular files, bad flag values, and a picture with nothing in it. Each
 //! test starts from an example an outside tester found.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
-fn hider(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hider"))
-        .args(args)
-        .output()
-        .expect("hider runs")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hider-edges-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+mod cli_support;
+use cli_support::{hider, temp_dir};
 
 fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()

@@ -2,22 +2,8 @@
 //! exact visible regions (the default), the hidden-line drawing, or the
 //! painter's ordered polygon list.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn hider(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_hider"))
-        .args(args)
-        .output()
-        .expect("hider runs")
-}
-
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hider-svg-modes-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+mod cli_support;
+use cli_support::{hider, temp_dir};
 
 /// Renders `model` with `extra` arguments and returns the SVG written.
 fn svg_of(dir: &std::path::Path, model: &str, extra: &[&str]) -> String {
