@@ -30,7 +30,6 @@ use hider_scene::{Frame, NO_ID, Scene, ScreenScene, SurfaceTextures, TextureOpti
 pub use hider_scene::surface::Mapping;
 
 use crate::analyze::Effects;
-use crate::texture::Filter;
 
 /// Which effect stages run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -93,35 +92,10 @@ impl Stages {
     }
 }
 
-/// Options of [`Shader`]. `Default` is the accurate choice.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[non_exhaustive]
-pub struct ShaderOptions {
-    /// Texture filter.
-    pub filter: Filter,
-    /// Texture coordinate interpolation.
-    pub mapping: Mapping,
-}
-
-impl ShaderOptions {
-    /// The texture sampling these options ask for.
-    pub fn texture_options(&self) -> TextureOptions {
-        TextureOptions::default()
-            .with_filter(self.filter)
-            .with_mapping(self.mapping)
-    }
-
-    /// Sets [`Self::filter`].
-    pub fn with_filter(mut self, filter: Filter) -> Self {
-        self.filter = filter;
-        self
-    }
-    /// Sets [`Self::mapping`].
-    pub fn with_mapping(mut self, mapping: Mapping) -> Self {
-        self.mapping = mapping;
-        self
-    }
-}
+/// Options of [`Shader`]: how textures are sampled, the same options the
+/// colour-resolving hiders sample with ([`TextureOptions`]). `Default` is
+/// the accurate choice.
+pub type ShaderOptions = TextureOptions;
 
 /// What a shading pass did: which stages ran and how much work they did.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -156,7 +130,7 @@ impl Shader {
     pub fn new(options: ShaderOptions) -> Self {
         Self {
             options,
-            textures: SurfaceTextures::new(options.texture_options()),
+            textures: SurfaceTextures::new(options),
             prims: Vec::new(),
         }
     }
