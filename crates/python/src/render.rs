@@ -4,14 +4,11 @@
 use std::cell::RefCell;
 use std::sync::Arc;
 
-use glam::{DMat4, DVec3};
+use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_plan::{HiderConfig, registry};
 use hider_scene::frame::id_to_i32;
-use hider_scene::{
-    DynHider, Frame, PrepareOptions, PrepareStats, Scene, ScreenScene, SurfaceTextures, View,
-    fit_camera,
-};
+use hider_scene::{DynHider, Frame, PrepareOptions, Scene, ScreenScene, View, fit_camera};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
@@ -184,18 +181,7 @@ pub fn render_scene(scene: &Scene, view: &View, algo: &str, threads: usize) -> P
 /// [`DynHider::render_scene`](hider_scene::DynHider::render_scene) to fill
 /// (or to leave as it is, for a hider with a front end of its own).
 fn empty_screen(view: &View) -> ScreenScene {
-    ScreenScene {
-        viewport: view.viewport,
-        camera: view.camera,
-        view_matrix: DMat4::IDENTITY,
-        projection_matrix: DMat4::IDENTITY,
-        tris: Vec::new(),
-        prims: Vec::new(),
-        materials: Vec::new(),
-        lights: Vec::new(),
-        stats: PrepareStats::default(),
-        textures: SurfaceTextures::default(),
-    }
+    ScreenScene::empty(view)
 }
 
 /// A render's ids and depths as numpy arrays of shape `(height, width)`.

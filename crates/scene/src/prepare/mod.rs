@@ -6,7 +6,6 @@
 //! consumes the result and none re-projects, which is what makes
 //! cross-validation between hiders exact rather than approximate.
 
-use glam::DMat4;
 use rayon::prelude::*;
 
 use crate::error::Result;
@@ -27,18 +26,7 @@ pub use options::{PrepareOptions, TransformPrecision};
 
 /// Runs the front end. See the module documentation.
 pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<ScreenScene> {
-    let mut out = ScreenScene {
-        viewport: view.viewport,
-        camera: view.camera,
-        view_matrix: DMat4::IDENTITY,
-        projection_matrix: DMat4::IDENTITY,
-        tris: Vec::new(),
-        prims: Vec::new(),
-        materials: Vec::new(),
-        lights: Vec::new(),
-        stats: PrepareStats::default(),
-        textures: SurfaceTextures::default(),
-    };
+    let mut out = ScreenScene::empty(view);
     prepare_into(scene, view, options, &mut out)?;
     Ok(out)
 }

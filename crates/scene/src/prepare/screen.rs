@@ -7,6 +7,7 @@ use hider_geom::{Camera, PlaneEq, Viewport};
 
 use crate::model::{Light, Material};
 use crate::surface::SurfaceTextures;
+use crate::view::View;
 
 /// A triangle ready for rasterisation: snapped, positively oriented, with
 /// its depth and 1/w planes.
@@ -148,6 +149,24 @@ pub struct ScreenScene {
 }
 
 impl ScreenScene {
+    /// A scene with nothing in it yet, for [`crate::prepare_into`] (or a
+    /// hider's own front end) to fill: `view`'s viewport and camera,
+    /// identity matrices, no triangles.
+    pub fn empty(view: &View) -> Self {
+        Self {
+            viewport: view.viewport,
+            camera: view.camera,
+            view_matrix: DMat4::IDENTITY,
+            projection_matrix: DMat4::IDENTITY,
+            tris: Vec::new(),
+            prims: Vec::new(),
+            materials: Vec::new(),
+            lights: Vec::new(),
+            stats: PrepareStats::default(),
+            textures: SurfaceTextures::default(),
+        }
+    }
+
     /// The material of a primitive.
     pub fn material(&self, prim: u32) -> &Material {
         &self.materials[self.prims[prim as usize].material as usize]
