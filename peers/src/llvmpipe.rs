@@ -370,7 +370,8 @@ impl Llvmpipe {
         self.bind_window(work.size)?;
         let gl = &self.gl;
         let vertices = work.positions.len() as GLsizei;
-        let (mut vbo, mut fbo, mut rbs) = (0, 0, [0; 2]);
+        let vbo;
+        let (mut fbo, mut rbs) = (0, [0; 2]);
         // SAFETY: the context is current on this thread; every pointer
         // handed to GL points to live memory of the size given
         // (`positions` is `3 * vertices` f32s; `mvp` 16 f32s).
@@ -407,30 +408,7 @@ impl Llvmpipe {
             if depth_bits != 24 {
                 return Err(format!("depth buffer has {depth_bits} bits, not 24"));
             }
-            (gl.glViewport)(0, 0, side, side);
-            (gl.glMatrixMode)(GL_PROJECTION);
-            (gl.glLoadMatrixf)(work.mvp.to_cols_array().as_ptr());
-            (gl.glMatrixMode)(GL_MODELVIEW);
-            (gl.glLoadIdentity)();
-            (gl.glEnable)(GL_DEPTH_TEST);
-            (gl.glDepthFunc)(GL_LESS);
-            (gl.glDisable)(GL_CULL_FACE);
-            (gl.glDisable)(GL_BLEND);
-            (gl.glDisable)(GL_DITHER);
-            (gl.glShadeModel)(GL_FLAT);
-            (gl.glColor4ub)(255, 255, 255, 255);
-            (gl.glClearColor)(0.0, 0.0, 0.0, 0.0);
-            (gl.glClearDepth)(1.0);
-            (gl.glGenBuffers)(1, &mut vbo);
-            (gl.glBindBuffer)(GL_ARRAY_BUFFER, vbo);
-            (gl.glBufferData)(
-                GL_ARRAY_BUFFER,
-                std::mem::size_of_val(work.positions.as_slice()) as GLsizeiptr,
-                work.positions.as_ptr().cast(),
-                GL_STATIC_DRAW,
-            );
-            (gl.glVertexPointer)(3, GL_FLOAT, 0, std::ptr::null());
-            (gl.glEnableClientState)(GL_VERTEX_ARRAY);
+            vbo = draw_state(gl, work, side);
         }
         self.check("set-up")?;
 
@@ -482,6 +460,49 @@ impl Drop for Llvmpipe {
         // destroyed once, while the library is still loaded.
         unsafe { (self.destroy)(self.context) };
     }
+}
+
+/// The fixed-function state both measurements (single-sample and 4x
+/// MSAA) draw with: viewport, the workload's matrix, depth test LESS, no
+/// culling, blending or dithering, flat white, clear to black and depth
+/// 1; the workload's positions in a new vertex buffer, bound. Returns the
+/// buffer.
+///
+/// # Safety
+///
+/// A GL context must be current on this thread and `gl` its functions.
+unsafe fn draw_state(gl: &Gl, work: &Workload, side: GLsizei) -> GLuint {
+    let mut vbo = 0;
+    // SAFETY: the caller's context is current; every pointer handed to GL
+    // points to live memory of the size given (`positions` is
+    // `3 * vertices` f32s; `mvp` 16 f32s).
+    unsafe {
+        (gl.glViewport)(0, 0, side, side);
+        (gl.glMatrixMode)(GL_PROJECTION);
+        (gl.glLoadMatrixf)(work.mvp.to_cols_array().as_ptr());
+        (gl.glMatrixMode)(GL_MODELVIEW);
+        (gl.glLoadIdentity)();
+        (gl.glEnable)(GL_DEPTH_TEST);
+        (gl.glDepthFunc)(GL_LESS);
+        (gl.glDisable)(GL_CULL_FACE);
+        (gl.glDisable)(GL_BLEND);
+        (gl.glDisable)(GL_DITHER);
+        (gl.glShadeModel)(GL_FLAT);
+        (gl.glColor4ub)(255, 255, 255, 255);
+        (gl.glClearColor)(0.0, 0.0, 0.0, 0.0);
+        (gl.glClearDepth)(1.0);
+        (gl.glGenBuffers)(1, &mut vbo);
+        (gl.glBindBuffer)(GL_ARRAY_BUFFER, vbo);
+        (gl.glBufferData)(
+            GL_ARRAY_BUFFER,
+            std::mem::size_of_val(work.positions.as_slice()) as GLsizeiptr,
+            work.positions.as_ptr().cast(),
+            GL_STATIC_DRAW,
+        );
+        (gl.glVertexPointer)(3, GL_FLOAT, 0, std::ptr::null());
+        (gl.glEnableClientState)(GL_VERTEX_ARRAY);
+    }
+    vbo
 }
 
 /// The number of threads of this process besides the calling one (the

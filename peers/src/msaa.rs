@@ -20,11 +20,10 @@
 use std::time::Instant;
 
 use super::{
-    GL_ARRAY_BUFFER, GL_BLEND, GL_COLOR_ATTACHMENT0, GL_COLOR_BUFFER_BIT, GL_CULL_FACE,
-    GL_DEPTH_ATTACHMENT, GL_DEPTH_BUFFER_BIT, GL_DEPTH_COMPONENT24, GL_DEPTH_TEST, GL_DITHER,
-    GL_FLAT, GL_FLOAT, GL_FRAMEBUFFER, GL_FRAMEBUFFER_COMPLETE, GL_LESS, GL_MODELVIEW,
-    GL_PROJECTION, GL_RENDERBUFFER, GL_RGBA, GL_RGBA8, GL_STATIC_DRAW, GL_TRIANGLES,
-    GL_UNSIGNED_BYTE, GL_VERTEX_ARRAY, GLsizei, GLsizeiptr, GLuint, GlRun, Llvmpipe,
+    GL_ARRAY_BUFFER, GL_COLOR_ATTACHMENT0, GL_COLOR_BUFFER_BIT, GL_DEPTH_ATTACHMENT,
+    GL_DEPTH_BUFFER_BIT, GL_DEPTH_COMPONENT24, GL_FRAMEBUFFER, GL_FRAMEBUFFER_COMPLETE,
+    GL_RENDERBUFFER, GL_RGBA, GL_RGBA8, GL_TRIANGLES, GL_UNSIGNED_BYTE, GL_VERTEX_ARRAY, GLsizei,
+    GLuint, GlRun, Llvmpipe,
 };
 use crate::scenes::Workload;
 
@@ -60,36 +59,8 @@ impl Llvmpipe {
         let targets = self.msaa_targets(side)?;
         let gl = &self.gl;
         let vertices = work.positions.len() as GLsizei;
-        let mut vbo = 0;
-        // SAFETY: the context is current on this thread; every pointer
-        // handed to GL points to live memory of the size given
-        // (`positions` is `3 * vertices` f32s; `mvp` 16 f32s).
-        unsafe {
-            (gl.glViewport)(0, 0, side, side);
-            (gl.glMatrixMode)(GL_PROJECTION);
-            (gl.glLoadMatrixf)(work.mvp.to_cols_array().as_ptr());
-            (gl.glMatrixMode)(GL_MODELVIEW);
-            (gl.glLoadIdentity)();
-            (gl.glEnable)(GL_DEPTH_TEST);
-            (gl.glDepthFunc)(GL_LESS);
-            (gl.glDisable)(GL_CULL_FACE);
-            (gl.glDisable)(GL_BLEND);
-            (gl.glDisable)(GL_DITHER);
-            (gl.glShadeModel)(GL_FLAT);
-            (gl.glColor4ub)(255, 255, 255, 255);
-            (gl.glClearColor)(0.0, 0.0, 0.0, 0.0);
-            (gl.glClearDepth)(1.0);
-            (gl.glGenBuffers)(1, &mut vbo);
-            (gl.glBindBuffer)(GL_ARRAY_BUFFER, vbo);
-            (gl.glBufferData)(
-                GL_ARRAY_BUFFER,
-                std::mem::size_of_val(work.positions.as_slice()) as GLsizeiptr,
-                work.positions.as_ptr().cast(),
-                GL_STATIC_DRAW,
-            );
-            (gl.glVertexPointer)(3, GL_FLOAT, 0, std::ptr::null());
-            (gl.glEnableClientState)(GL_VERTEX_ARRAY);
-        }
+        // SAFETY: the context is current on this thread (bound above).
+        let vbo = unsafe { super::draw_state(gl, work, side) };
         self.check("multisample set-up")?;
 
         let [draw, resolve] = targets.fbos;
@@ -209,7 +180,9 @@ impl Llvmpipe {
             (status, samples, depth_bits)
         };
         if status != GL_FRAMEBUFFER_COMPLETE {
-            return Err(format!("multisample framebuffer incomplete: 0x{status:04x}"));
+            return Err(format!(
+                "multisample framebuffer incomplete: 0x{status:04x}"
+            ));
         }
         if samples != SAMPLES || depth_bits != 24 {
             return Err(format!(
