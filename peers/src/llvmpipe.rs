@@ -425,20 +425,11 @@ impl Llvmpipe {
         });
         self.check("drawing")?;
 
-        let mut pixels = vec![0u32; work.size as usize * work.size as usize];
-        // SAFETY: the context is current; `pixels` holds side x side RGBA
-        // u8 pixels; the names deleted are the ones generated above (0 is
-        // ignored by the delete calls).
+        let covered;
+        // SAFETY: the context is current; the names deleted are the ones
+        // generated above (0 is ignored by the delete calls).
         unsafe {
-            (gl.glReadPixels)(
-                0,
-                0,
-                side,
-                side,
-                GL_RGBA,
-                GL_UNSIGNED_BYTE,
-                pixels.as_mut_ptr().cast(),
-            );
+            covered = covered_pixels(gl, side);
             (gl.glDisableClientState)(GL_VERTEX_ARRAY);
             (gl.glBindBuffer)(GL_ARRAY_BUFFER, 0);
             (gl.glDeleteBuffers)(1, &vbo);
@@ -447,9 +438,6 @@ impl Llvmpipe {
             (gl.glDeleteRenderbuffers)(2, rbs.as_ptr());
         }
         self.check("read-back")?;
-        // Alpha is the top byte of each little-endian RGBA pixel; the clear
-        // colour has alpha 0, the drawn colour 255.
-        let covered = pixels.iter().filter(|&&p| p >> 24 != 0).count() as u64;
         Ok(GlRun { ms, covered })
     }
 }
@@ -460,6 +448,33 @@ impl Drop for Llvmpipe {
         // destroyed once, while the library is still loaded.
         unsafe { (self.destroy)(self.context) };
     }
+}
+
+/// Reads the bound framebuffer (`side x side`) back and counts the pixels
+/// with a non-zero alpha: the clear colour has alpha 0, the drawn colour
+/// 255, and a resolved multisample pixel the covered fraction of its
+/// samples.
+///
+/// # Safety
+///
+/// A GL context must be current on this thread and `gl` its functions.
+unsafe fn covered_pixels(gl: &Gl, side: GLsizei) -> u64 {
+    let mut pixels = vec![0u32; side as usize * side as usize];
+    // SAFETY: the caller's context is current; `pixels` holds side x side
+    // RGBA u8 pixels.
+    unsafe {
+        (gl.glReadPixels)(
+            0,
+            0,
+            side,
+            side,
+            GL_RGBA,
+            GL_UNSIGNED_BYTE,
+            pixels.as_mut_ptr().cast(),
+        );
+    }
+    // Alpha is the top byte of each little-endian RGBA pixel.
+    pixels.iter().filter(|&&p| p >> 24 != 0).count() as u64
 }
 
 /// The fixed-function state both measurements (single-sample and 4x

@@ -22,8 +22,7 @@ use std::time::Instant;
 use super::{
     GL_ARRAY_BUFFER, GL_COLOR_ATTACHMENT0, GL_COLOR_BUFFER_BIT, GL_DEPTH_ATTACHMENT,
     GL_DEPTH_BUFFER_BIT, GL_DEPTH_COMPONENT24, GL_FRAMEBUFFER, GL_FRAMEBUFFER_COMPLETE,
-    GL_RENDERBUFFER, GL_RGBA, GL_RGBA8, GL_TRIANGLES, GL_UNSIGNED_BYTE, GL_VERTEX_ARRAY, GLsizei,
-    GLuint, GlRun, Llvmpipe,
+    GL_RENDERBUFFER, GL_RGBA8, GL_TRIANGLES, GL_VERTEX_ARRAY, GLsizei, GLuint, GlRun, Llvmpipe,
 };
 use crate::scenes::Workload;
 
@@ -93,20 +92,12 @@ impl Llvmpipe {
         });
         self.check("multisample drawing and resolve")?;
 
-        let mut pixels = vec![0u32; work.size as usize * work.size as usize];
-        // SAFETY: the context is current; `pixels` holds side x side RGBA
-        // u8 pixels; the names deleted are the ones generated here.
+        let covered;
+        // SAFETY: the context is current; the names deleted are the ones
+        // generated here.
         unsafe {
             (gl.glBindFramebuffer)(GL_FRAMEBUFFER, resolve);
-            (gl.glReadPixels)(
-                0,
-                0,
-                side,
-                side,
-                GL_RGBA,
-                GL_UNSIGNED_BYTE,
-                pixels.as_mut_ptr().cast(),
-            );
+            covered = super::covered_pixels(gl, side);
             (gl.glDisableClientState)(GL_VERTEX_ARRAY);
             (gl.glBindBuffer)(GL_ARRAY_BUFFER, 0);
             (gl.glDeleteBuffers)(1, &vbo);
@@ -115,9 +106,6 @@ impl Llvmpipe {
             (gl.glDeleteRenderbuffers)(3, targets.rbs.as_ptr());
         }
         self.check("multisample read-back")?;
-        // Alpha is the top byte of each little-endian RGBA pixel: the
-        // resolved alpha is the covered fraction of the samples.
-        let covered = pixels.iter().filter(|&&p| p >> 24 != 0).count() as u64;
         Ok(GlRun { ms, covered })
     }
 
