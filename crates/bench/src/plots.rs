@@ -35,6 +35,9 @@ pub const X_AXIS_HEIGHT: u32 = 56;
 pub const Y_AXIS_WIDTH: u32 = 84;
 /// The font every plot uses (registered as `sans-serif`).
 const FONT: &str = "sans-serif";
+/// The Pareto front: a thin dark-grey line under the points, thin enough
+/// that the points it joins stay readable where it passes through them.
+const FRONT_COLOUR: RGBColor = RGBColor(90, 90, 90);
 /// DejaVu Sans, printable ASCII and a few symbols (see `fonts/LICENSE`).
 static FONT_BYTES: &[u8] = include_bytes!("../fonts/DejaVuSans-subset.ttf");
 
@@ -244,7 +247,7 @@ fn draw<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, plot: &Plot) -> Resul
         chart
             .draw_series(LineSeries::new(
                 plot.front.iter().map(|&p| at(p)),
-                RGBColor(170, 170, 170).stroke_width(6),
+                FRONT_COLOUR.stroke_width(2),
             ))
             .map_err(e)?;
     }
@@ -294,7 +297,7 @@ fn draw_legend<DB: DrawingBackend>(
         y += step;
     }
     if plot.front.len() > 1 {
-        let grey = RGBColor(170, 170, 170).stroke_width(6);
+        let grey = FRONT_COLOUR.stroke_width(2);
         area.draw(&PathElement::new(vec![(6, y), (22, y)], grey))?;
         area.draw(&Text::new("Pareto front", (26, y - 8), style))?;
     }
