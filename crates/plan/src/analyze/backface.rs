@@ -24,7 +24,12 @@ use hider_scene::{Scene, View};
 /// Whether each mesh of the scene certainly hides its back faces from this
 /// view (see the module documentation), indexed like `scene.meshes`.
 pub fn hidden_back_faces(scene: &Scene, view: &View) -> Vec<bool> {
-    let view_matrix = view.camera.view_matrix();
+    // Eye-relative, as the front end transforms: subtracting the eye
+    // before the rotation keeps the depths of a scene 1e17 from the origin
+    // as accurate as at the origin.
+    let mut eye_to_camera = view.camera.view_matrix();
+    eye_to_camera.w_axis = glam::DVec4::W;
+    let eye = view.camera.eye;
     let (near, far) = match view.camera.projection {
         Projection::Perspective { near, far, .. } | Projection::Orthographic { near, far, .. } => {
             (near, far)
@@ -35,7 +40,9 @@ pub fn hidden_back_faces(scene: &Scene, view: &View) -> Vec<bool> {
         .iter()
         .map(|mesh| {
             let in_range = mesh.indices.iter().flatten().all(|&i| {
-                let d = -view_matrix.transform_point3(mesh.positions[i as usize]).z;
+                let d = -eye_to_camera
+                    .transform_point3(mesh.positions[i as usize] - eye)
+                    .z;
                 d > near && d < far
             });
             in_range && closed_outward(&mesh.positions, &mesh.indices)
@@ -56,13 +63,14 @@ pub fn closed_outward(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
     }
     let ids = weld(positions);
     let mut edges: Vec<u64> = Vec::with_capacity(indices.len() * 3);
+    let (origin, scale) = volume_frame(positions, indices);
     let mut volume = 0.0;
     for t in indices {
         let w = t.map(|i| ids[i as usize]);
         if w[0] == w[1] || w[1] == w[2] || w[0] == w[2] {
             continue; // no area, no edges
         }
-        let p = t.map(|i| positions[i as usize]);
+        let p = t.map(|i| (positions[i as usize] - origin) * scale);
         volume += p[0].dot(p[1].cross(p[2]));
         for k in 0..3 {
             edges.push(u64::from(w[k]) << 32 | u64::from(w[(k + 1) % 3]));
@@ -80,6 +88,31 @@ pub fn closed_outward(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
     let mut reversed: Vec<u64> = edges.iter().map(|e| e.rotate_left(32)).collect();
     reversed.sort_unstable();
     reversed == edges
+}
+
+/// Where and at what scale to sum the signed volume: the corner of the
+/// mesh's bounding box, and a power of two (exact) that brings its extent
+/// near 1. The sign of a closed mesh's volume does not depend on the
+/// origin, but its rounding does: summed about the world origin, a mesh
+/// 1e17 away cancels terms of 1e51 down to its true volume, and one of
+/// extent 1e200 overflows to infinity (or NaN).
+fn volume_frame(positions: &[DVec3], indices: &[[u32; 3]]) -> (DVec3, f64) {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for &i in indices.iter().flatten() {
+        let p = positions[i as usize];
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    // Half of each bound first, so the extent of coordinates near the
+    // largest f64 does not overflow.
+    let extent = (hi * 0.5 - lo * 0.5).max_element();
+    let scale = hider_geom::camera::rescaled(DVec3::new(extent, 0.0, 0.0)).x / extent;
+    if scale.is_finite() && scale > 0.0 {
+        (lo, scale)
+    } else {
+        (lo, 1.0)
+    }
 }
 
 /// One id per distinct position (-0.0 and 0.0 alike), so that the split
@@ -131,5 +164,37 @@ mod tests {
         let sphere = procedural::uv_sphere(12);
         let s = &sphere.meshes[0];
         assert!(closed_outward(&s.positions, &s.indices));
+    }
+
+    #[test]
+    fn huge_and_far_away_solids_are_still_closed_and_outward() {
+        let sphere = procedural::uv_sphere(12);
+        let s = &sphere.meshes[0];
+        // 2^664 ~ 1e200: the volume about the world origin overflowed.
+        let huge: Vec<DVec3> = s.positions.iter().map(|&p| p * 2f64.powi(664)).collect();
+        assert!(closed_outward(&huge, &s.indices));
+        // 2^40 away: summed about the world origin, the terms of 1e36
+        // cancel and the rounding error outweighs the true volume.
+        let offset = DVec3::splat(2f64.powi(40));
+        let far: Vec<DVec3> = s.positions.iter().map(|&p| p + offset).collect();
+        assert!(closed_outward(&far, &s.indices));
+        let flipped: Vec<[u32; 3]> = s.indices.iter().map(|t| [t[0], t[2], t[1]]).collect();
+        assert!(!closed_outward(&huge, &flipped));
+        assert!(!closed_outward(&far, &flipped));
+    }
+
+    #[test]
+    fn a_solid_far_from_the_origin_hides_its_back_faces_as_at_the_origin() {
+        let offset = DVec3::new(2f64.powi(50), -(2f64.powi(50)), 2f64.powi(49));
+        let mut scene = procedural::uv_sphere(12);
+        let at_origin = View::for_scene(&scene, 64, 64).unwrap();
+        assert_eq!(hidden_back_faces(&scene, &at_origin), vec![true]);
+        for p in &mut scene.meshes[0].positions {
+            *p += offset;
+        }
+        let mut moved = at_origin;
+        moved.camera.eye += offset;
+        moved.camera.target += offset;
+        assert_eq!(hidden_back_faces(&scene, &moved), vec![true]);
     }
 }
