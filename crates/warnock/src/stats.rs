@@ -57,9 +57,10 @@ pub const MAX_LEVEL: usize = 31;
 /// Work counters of one Warnock frame.
 ///
 /// Printed (through [`HiderStats::table`]) as: regions, the four
-/// classifications, the leaf regions per rule, the culls, depth
-/// evaluations, samples, peak candidates, and then one counter per
-/// subdivision level reached ("regions at level 0", ...).
+/// classifications, the leaf regions per rule, the culls, the sample
+/// resolves and list copies, depth evaluations, samples, peak candidates,
+/// and then two counters per subdivision level reached ("regions at level
+/// 0", ..., then "candidates at level 0", ...).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct WarnockStats {
     /// Regions visited (classified), in the pixel pass and, in the
@@ -69,6 +70,11 @@ pub struct WarnockStats {
     /// in the anti-aliased mode the levels inside a pixel continue the
     /// pixel pass's numbering).
     pub regions_per_level: Vec<u64>,
+    /// Candidates examined per subdivision level (indexed like
+    /// [`Self::regions_per_level`]): classifications against a region and
+    /// coverage tests at a one-sample region. Their sum is
+    /// [`Self::polygons_classified`]; this is the work each level does.
+    pub candidates_per_level: Vec<u64>,
     /// Polygon-against-region classifications performed.
     pub polygons_classified: u64,
     /// Classifications per relation: disjoint, surrounding, contained,
@@ -89,6 +95,14 @@ pub struct WarnockStats {
     /// front of all others (planes cross, or another polygon is nearer
     /// somewhere): subdivided further.
     pub surrounder_undecided: u64,
+    /// One-sample regions resolved by the depth test over their candidates
+    /// (the pixel-level resolves of the pixel pass, the sample-level ones
+    /// inside pixels).
+    pub sample_resolves: u64,
+    /// Candidate indices written into the arena: the copies of survivor
+    /// lists handed to children (a list every candidate of which survives
+    /// is passed through uncopied).
+    pub candidates_copied: u64,
     /// Depth-plane evaluations (corner tests and per-sample depths).
     pub depth_evaluations: u64,
     /// Samples written into the frame or a pixel's sample buffer.
@@ -119,6 +133,16 @@ impl WarnockStats {
             self.regions_per_level.resize(level + 1, 0);
         }
         self.regions_per_level[level] += 1;
+    }
+
+    /// Counts `n` candidates examined at `level` (the per-level work; the
+    /// relations are counted one by one by [`Self::classified`]).
+    #[inline]
+    pub(crate) fn examined(&mut self, level: usize, n: usize) {
+        if self.candidates_per_level.len() <= level {
+            self.candidates_per_level.resize(level + 1, 0);
+        }
+        self.candidates_per_level[level] += n as u64;
     }
 
     /// Counts one classification.
@@ -171,6 +195,42 @@ const LEVEL_NAMES: [&str; MAX_LEVEL + 1] = [
     "regions at level 31",
 ];
 
+/// Names of the per-level candidate counters in the table.
+const CANDIDATE_LEVEL_NAMES: [&str; MAX_LEVEL + 1] = [
+    "candidates at level 0",
+    "candidates at level 1",
+    "candidates at level 2",
+    "candidates at level 3",
+    "candidates at level 4",
+    "candidates at level 5",
+    "candidates at level 6",
+    "candidates at level 7",
+    "candidates at level 8",
+    "candidates at level 9",
+    "candidates at level 10",
+    "candidates at level 11",
+    "candidates at level 12",
+    "candidates at level 13",
+    "candidates at level 14",
+    "candidates at level 15",
+    "candidates at level 16",
+    "candidates at level 17",
+    "candidates at level 18",
+    "candidates at level 19",
+    "candidates at level 20",
+    "candidates at level 21",
+    "candidates at level 22",
+    "candidates at level 23",
+    "candidates at level 24",
+    "candidates at level 25",
+    "candidates at level 26",
+    "candidates at level 27",
+    "candidates at level 28",
+    "candidates at level 29",
+    "candidates at level 30",
+    "candidates at level 31",
+];
+
 /// The table's name of the leaf-region counter of each rule.
 fn decided_name(rule: Rule) -> &'static str {
     match rule {
@@ -202,6 +262,8 @@ impl HiderStats for WarnockStats {
         counters.extend([
             ("culled behind surrounder", self.culled_behind_surrounder),
             ("surrounder undecided", self.surrounder_undecided),
+            ("sample resolves", self.sample_resolves),
+            ("candidates copied", self.candidates_copied),
             ("depth evaluations", self.depth_evaluations),
             ("samples written", self.samples_written),
             ("peak candidates", self.peak_candidates),
@@ -211,6 +273,12 @@ impl HiderStats for WarnockStats {
                 .iter()
                 .copied()
                 .zip(self.regions_per_level.iter().copied()),
+        );
+        counters.extend(
+            CANDIDATE_LEVEL_NAMES
+                .iter()
+                .copied()
+                .zip(self.candidates_per_level.iter().copied()),
         );
         StatsTable {
             counters,
@@ -231,6 +299,7 @@ mod tests {
         let stats = WarnockStats {
             regions: 5,
             regions_per_level: vec![1, 4],
+            candidates_per_level: vec![3, 7],
             decided: [1, 2, 3, 4, 5, 6],
             peak_bytes: 99,
             ..WarnockStats::default()
@@ -254,16 +323,21 @@ mod tests {
                 "pixels subdivided",
                 "culled behind surrounder",
                 "surrounder undecided",
+                "sample resolves",
+                "candidates copied",
                 "depth evaluations",
                 "samples written",
                 "peak candidates",
                 "regions at level 0",
                 "regions at level 1",
+                "candidates at level 0",
+                "candidates at level 1",
             ]
         );
         assert_eq!(table.counters[0], ("regions", 5));
         assert_eq!(table.counters[11], ("pixels subdivided", 6));
-        assert_eq!(table.counters[18], ("regions at level 1", 4));
+        assert_eq!(table.counters[20], ("regions at level 1", 4));
+        assert_eq!(table.counters[22], ("candidates at level 1", 7));
         assert_eq!(table.peak_bytes, 99);
     }
 }

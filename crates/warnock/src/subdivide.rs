@@ -133,6 +133,7 @@ impl Subdivider {
         self.stack.clear();
         self.arena.extend(initial);
         let len = self.arena.len();
+        stats.candidates_copied += len as u64;
         for &region in roots.regions.iter().rev() {
             self.stack.push(Entry {
                 region,
@@ -148,6 +149,8 @@ impl Subdivider {
             stats.visit(e.level);
             if one_sample && e.region.is_single_cell() {
                 let list = &self.arena[e.start..];
+                stats.sample_resolves += 1;
+                stats.examined(e.level, list.len());
                 let rule = resolve_sample(grid, &e.region, list, setups, sink, stats);
                 stats.decided[rule as usize] += 1;
                 sink.leaf(&e.region, rule, e.level);
@@ -181,6 +184,8 @@ impl Subdivider {
         stats: &mut WarnockStats,
     ) -> Option<(u32, CornerDepths)> {
         let mut front: Option<(u32, CornerDepths)> = None;
+        stats.examined(e.level, e.len);
+        let out = self.arena.len();
         for k in e.start..e.start + e.len {
             let t = self.arena[k];
             let setup = &setups[t as usize];
@@ -199,6 +204,7 @@ impl Subdivider {
             }
             self.arena.push(t);
         }
+        stats.candidates_copied += (self.arena.len() - out) as u64;
         front
     }
 

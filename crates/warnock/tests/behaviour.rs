@@ -21,6 +21,10 @@ fn check_stats_consistency(stats: &WarnockStats) {
         stats.polygons_classified,
         stats.disjoint + stats.surrounding + stats.contained + stats.intersecting
     );
+    assert_eq!(
+        stats.polygons_classified,
+        stats.candidates_per_level.iter().sum::<u64>()
+    );
 }
 
 #[test]

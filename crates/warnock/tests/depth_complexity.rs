@@ -1,0 +1,70 @@
+//! Work on the deepest pile one pixel can hold: `N` tiny triangles all
+//! covering one pixel centre (`hard_cases::one_pixel_pile`). Every level of
+//! the subdivision holds all `N` in the one quadrant containing that
+//! pixel, so the counted work must grow linearly in `N`: this checks the
+//! counters, never the time (the scaling example measures that).
+
+use hider_scene::HiderStats;
+use hider_testkit::hard_cases::one_pixel_pile;
+use hider_testkit::screen;
+use hider_warnock::{Rule, WarnockOptions, WarnockStats};
+
+mod common;
+
+/// 64 x 64 is 2^6: the pixel is reached at level 6.
+const PIXEL_LEVEL: usize = 6;
+
+fn pile_stats(n: u32) -> WarnockStats {
+    let s = screen(&one_pixel_pile(n, 5), 64, 64);
+    assert_eq!(s.tris.len(), n as usize, "the pile is not clipped");
+    let (frame, stats) = common::render(&s, WarnockOptions::default());
+    // One pixel shows the pile; everything else is background.
+    let covered = frame.ids.iter().filter(|&&id| id != hider_scene::NO_ID);
+    assert_eq!(covered.count(), 1);
+    stats
+}
+
+/// `b / a`, for counters of the pile at `2N` and `N`.
+fn ratio(b: u64, a: u64) -> f64 {
+    b as f64 / a.max(1) as f64
+}
+
+#[test]
+fn work_on_a_one_pixel_pile_grows_linearly() {
+    let (small, large) = (4_000, 8_000);
+    let a = pile_stats(small);
+    let b = pile_stats(large);
+    // The same regions at both sizes: the pile only lengthens the lists.
+    assert_eq!(a.regions_per_level, b.regions_per_level);
+    assert_eq!(a.max_level(), PIXEL_LEVEL);
+    assert_eq!(a.sample_resolves, b.sample_resolves);
+    for (name, x, y) in [
+        ("classified", a.polygons_classified, b.polygons_classified),
+        ("copied", a.candidates_copied, b.candidates_copied),
+        (
+            "depth evaluations",
+            a.depth_evaluations,
+            b.depth_evaluations,
+        ),
+    ] {
+        let r = ratio(y, x);
+        assert!(r <= 2.1, "{name}: {x} at N = {small}, {y} at 2N: x{r:.3}");
+    }
+    for (level, (&x, &y)) in a
+        .candidates_per_level
+        .iter()
+        .zip(&b.candidates_per_level)
+        .enumerate()
+    {
+        let r = ratio(y, x);
+        assert!(r <= 2.1, "level {level}: {x} then {y} candidates: x{r:.3}");
+    }
+    // The pixel under the pile is resolved by the depth test over all N.
+    assert_eq!(b.decided_by(Rule::Sample), 1);
+    let table = b.table();
+    assert!(
+        table
+            .counters
+            .contains(&("sample resolves", b.sample_resolves))
+    );
+}
