@@ -52,10 +52,15 @@ pub fn prim_color(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> ([f32; 3],
 /// from a directional head light along the view axis when it has none.
 /// The diffuse colour (or texture) is multiplied by it.
 pub fn lambert_light(scene: &ScreenScene, prim: u32) -> [f64; 3] {
-    let c = scene.prims[prim as usize].camera;
+    lambert_light_at(&scene.prims[prim as usize].camera, &scene.lights)
+}
+
+/// [`lambert_light`] of a triangle with camera-space corners `c` under
+/// camera-space `lights`: for front ends that keep no [`ScreenScene`].
+pub fn lambert_light_at(c: &[DVec3; 3], lights: &[Light]) -> [f64; 3] {
     let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
     let centroid = (c[0] + c[1] + c[2]) / 3.0;
-    let diffuse = if scene.lights.is_empty() {
+    let diffuse = if lights.is_empty() {
         // A directional head light along the view axis, not a point light
         // at the eye: with a point light each triangle of a flat face sees
         // the light at its own angle (from its own centroid), which draws a
@@ -63,7 +68,7 @@ pub fn lambert_light(scene: &ScreenScene, prim: u32) -> [f64; 3] {
         // triangle the same shade, as flat shading should.
         DVec3::splat(n.z.abs())
     } else {
-        scene.lights.iter().fold(DVec3::ZERO, |acc, light| {
+        lights.iter().fold(DVec3::ZERO, |acc, light| {
             let (to_light, color) = match *light {
                 Light::Directional { direction, color } => (-direction, color),
                 Light::Point { position, color } => (position - centroid, color),
