@@ -103,6 +103,28 @@ impl Grid {
         }
     }
 
+    /// Lists many pieces at once, `(key, id, box)` in any order: each bin
+    /// is sorted once at the end instead of searched per entry.
+    pub fn insert_all<'a>(&mut self, entries: impl Iterator<Item = (Key, u32, &'a Extent)>) {
+        for (key, id, e) in entries {
+            let (x0, x1, y0, y1) = self.span(e);
+            let entry = BinEntry {
+                key,
+                extent: *e,
+                id,
+                first: (x0 as u16, y0 as u16),
+            };
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    self.bins[y * self.cols + x].push(entry);
+                }
+            }
+        }
+        for bin in &mut self.bins {
+            bin.sort_unstable_by_key(|b| b.key);
+        }
+    }
+
     /// Removes the piece listed under `key` with box `e`.
     pub fn remove(&mut self, key: Key, e: &Extent) {
         let (x0, x1, y0, y1) = self.span(e);

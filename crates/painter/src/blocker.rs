@@ -144,7 +144,13 @@ impl Orderer {
         for y in y0..=y1 {
             for x in x0..=x1 {
                 let bin = &self.grid.bins[y * self.grid.cols + x];
-                let end = bin.partition_point(|b| b.key <= upper);
+                // Only the entries above the linear prefix (at most its
+                // length) sort after `upper`: look from the end rather
+                // than bisect, which touches one cache line, not several.
+                let end = bin
+                    .iter()
+                    .rposition(|b| b.key <= upper)
+                    .map_or(0, |k| k + 1);
                 for b in bin[..end].iter().rev() {
                     let qe = &b.extent;
                     if qe.zmax <= limit {

@@ -207,13 +207,20 @@ impl Orderer {
             / (2.0 * n);
         self.grid
             .reset(scene.viewport.width, scene.viewport.height, side);
-        for (k, e) in self.extents.iter().enumerate() {
-            let key = (depth_bits(e.zmax), -(k as i64));
-            self.keys.push(key);
-            if self.centres[k] == Centres::Many {
-                self.grid.insert(key, k as u32, e);
-            }
-        }
+        self.keys.extend(
+            self.extents
+                .iter()
+                .enumerate()
+                .map(|(k, e)| (depth_bits(e.zmax), -(k as i64))),
+        );
+        self.grid.insert_all(
+            self.extents
+                .iter()
+                .zip(&self.keys)
+                .zip(0..)
+                .filter(|&(_, k)| self.centres[k as usize] == Centres::Many)
+                .map(|((e, &key), k)| (key, k, e)),
+        );
         // Bulk-loaded from the keys (sorted first): no search per entry.
         self.sorted = self
             .keys

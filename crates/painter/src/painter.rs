@@ -52,6 +52,25 @@ impl Painter {
             .map(|&id| &self.orderer.pieces[id as usize])
     }
 
+    /// Orders the scene's triangles back to front, splitting where needed,
+    /// without painting them: [`Self::ordered_pieces`] then lists the
+    /// pieces, and [`VectorOutput::write_svg`] writes them. This is all a
+    /// caller that draws the pieces itself needs (a vector drawing, a plot
+    /// library's polygons), and it skips the raster pass and the frame.
+    /// The statistics have no pixel writes.
+    ///
+    /// Errors when a triangle is not set up (non-finite depth plane, wrong
+    /// orientation), or the split or memory budget runs out.
+    pub fn order(&mut self, scene: &ScreenScene) -> Result<PainterStats> {
+        self.last = None;
+        self.visible.clear();
+        validate(Self::NAME, scene)?;
+        let mut stats = PainterStats::default();
+        self.orderer.run(scene, &self.options, &mut stats)?;
+        self.last = Some(LastFrame::of(scene));
+        Ok(stats)
+    }
+
     /// Marks the ranked pieces that own at least one pixel in `owner`.
     fn mark_visible(&mut self) {
         self.visible.clear();
@@ -91,10 +110,7 @@ impl Hider for Painter {
     /// or memory budget runs out.
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<PainterStats> {
         check_frame(Self::NAME, scene, frame)?;
-        self.last = None;
-        validate(Self::NAME, scene)?;
-        let mut stats = PainterStats::default();
-        self.orderer.run(scene, &self.options, &mut stats)?;
+        let mut stats = self.order(scene)?;
         frame.clear();
         let drop_hidden = self.options.svg_drop_hidden;
         stats.pixels_painted = paint(
@@ -107,7 +123,6 @@ impl Hider for Painter {
         if drop_hidden {
             self.mark_visible();
         }
-        self.last = Some(LastFrame::of(scene));
         Ok(stats)
     }
 
@@ -129,6 +144,14 @@ impl VectorOutput for Painter {
         LastFrame::check(self.last.as_ref(), Self::NAME, scene)?;
         let stroke = self.options.svg_seam_stroke;
         if self.options.svg_drop_hidden {
+            if self.visible.len() != self.orderer.order.len() {
+                return Err(hider_scene::Error::Render {
+                    hider: Self::NAME.into(),
+                    message: "the last frame was ordered without painting, so which pieces \
+                              are hidden is unknown; render it to drop hidden pieces"
+                        .into(),
+                });
+            }
             let pieces = self
                 .ordered_pieces()
                 .zip(&self.visible)

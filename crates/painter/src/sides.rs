@@ -128,6 +128,13 @@ fn corner(t: &ScreenTri, k: usize) -> Coord3D<f64> {
 /// Exactly: 1 when corner `k` of `p` is farther than the plane of `q`, -1
 /// when nearer, 0 when on it.
 pub(crate) fn corner_sign(p: &ScreenTri, k: usize, q: &ScreenTri) -> i8 {
+    // A corner that is one of the three points spanning Q's plane lies on
+    // it. Mesh neighbours share corners, and for those `orient3d` is
+    // exactly zero, which its adaptive stages confirm only after
+    // computing the whole exact expansion: the dearest case by far.
+    if (0..3).any(|m| q.v[m] == p.v[k] && q.z[m].to_bits() == p.z[k].to_bits()) {
+        return 0;
+    }
     // `orient3d(a, b, c, d)` is `-(d.z - plane(d.x, d.y))` times twice the
     // signed area of `a, b, c` in (x, y), which is positive for the
     // front end's triangles.

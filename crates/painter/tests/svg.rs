@@ -234,3 +234,50 @@ fn svg_before_a_render_or_after_a_failed_one_is_an_error() {
     );
     assert!(!path.exists());
 }
+
+/// Ordering without painting gives the pieces and the SVG a render gives,
+/// with no pixel written; hidden pieces cannot be dropped from it, since
+/// only painting tells which they are.
+#[test]
+fn ordering_alone_gives_the_pieces_of_a_render() {
+    let s = screen(&procedural::cyclic_triple(), 48);
+    let mut rendered = Painter::default();
+    let mut frame = Frame::new(48, 48).unwrap();
+    let stats = rendered.render(&s, &mut frame).unwrap();
+    let mut ordered = Painter::default();
+    let order_stats = ordered.order(&s).unwrap();
+    assert!(stats.splits > 0 && stats.pixels_painted > 0);
+    assert_eq!(order_stats.pixels_painted, 0);
+    assert_eq!(
+        order_stats,
+        hider_painter::PainterStats {
+            pixels_painted: 0,
+            ..stats
+        }
+    );
+    assert!(rendered.ordered_pieces().eq(ordered.ordered_pieces()));
+    let (a, b) = (temp("order-render.svg"), temp("order-only.svg"));
+    render_svg(&mut rendered, &s, &a, ShadeMode::Lambert).unwrap();
+    ordered
+        .vector_output()
+        .unwrap()
+        .write_svg(&s, &b, ShadeMode::Lambert)
+        .unwrap();
+    assert_eq!(
+        std::fs::read_to_string(&a).unwrap(),
+        std::fs::read_to_string(&b).unwrap()
+    );
+    let mut dropping = Painter::new(PainterOptions::default().with_svg_drop_hidden(true));
+    dropping.order(&s).unwrap();
+    let never = temp("order-drop.svg");
+    let err = dropping
+        .vector_output()
+        .unwrap()
+        .write_svg(&s, &never, ShadeMode::Lambert)
+        .unwrap_err();
+    assert!(
+        err.to_string().contains("ordered without painting"),
+        "{err}"
+    );
+    assert!(!never.exists());
+}

@@ -94,8 +94,8 @@ pub fn screen_pieces<'py>(
     let run = || -> hider_plan::Result<(Vec<i64>, Vec<i64>, Vec<f64>)> {
         let screen: ScreenScene = prepare(&scene, &view, &PrepareOptions::default())?;
         let mut painter = Painter::new(PainterOptions::default());
-        let mut frame = hider_scene::Frame::new(width, height)?;
-        painter.render(&screen, &mut frame)?;
+        // The pieces are drawn by the caller: no raster pass, no frame.
+        painter.order(&screen)?;
         let pieces = painter.ordered_pieces();
         let mut prims = Vec::with_capacity(pieces.len());
         let mut offsets = Vec::with_capacity(pieces.len() + 1);
