@@ -15,80 +15,56 @@
 //! every sample but passes the rectangle test is kept as intersecting, and a
 //! smaller region settles it.
 
-#[cfg(doc)]
-use hider_geom::EdgeFunction;
-use hider_geom::PlaneEq;
+use hider_geom::fixed::FIXED_LIMIT;
+use hider_geom::{EdgeFunction, FixedPt, PlaneEq};
 use hider_scene::ScreenTri;
 
 use crate::grid::SampleRect;
 
-/// What the subdivision needs of a triangle, set up once per frame.
+/// What classification reads of a triangle, set up once per frame: its
+/// three fixed-point vertices (and the primitive id, filling the record to
+/// 32 bytes).
 ///
-/// Classification is the inner loop, and the candidates of a region are a
-/// sparse subset of the scene (a random soup scatters them over memory), so
-/// everything it reads (bounding box and edge functions) is packed into the
-/// first 64-byte cache line of the record; the depth plane and id, read
-/// only for surrounders and samples, sit in the second.
+/// Classification is the inner loop, and on a deep pile every level of the
+/// subdivision streams every candidate's record through the cache, so the
+/// record is kept to what the four relations need: the bounding box and
+/// the edge functions are recomputed from the vertices, exactly (the
+/// shared [`EdgeFunction::new`] in `i64`), which costs a few integer
+/// multiplications and saves half the memory traffic of storing them. The
+/// depth plane, read only for surrounders and samples, lives apart in
+/// [`Setups::depth`].
 #[derive(Clone, Copy, Debug)]
-#[repr(C, align(64))]
+#[repr(C, align(32))]
 pub struct TriSetup {
-    /// Smallest vertex x, fixed point.
-    pub min_x: i32,
-    /// Largest vertex x, fixed point.
-    pub max_x: i32,
-    /// Smallest vertex y, fixed point.
-    pub min_y: i32,
-    /// Largest vertex y, fixed point.
-    pub max_y: i32,
-    /// The `a` (x) coefficients of the three edge functions. They are
-    /// vertex coordinate differences, within +-2^24 for coordinates inside
-    /// the guard band.
-    pub edge_a: [i32; 3],
-    /// The `b` (y) coefficients of the three edge functions.
-    pub edge_b: [i32; 3],
-    /// The constant terms, with the fill rule folded in (`> 0` is
-    /// inside).
-    pub edge_c: [i64; 3],
-    /// Window depth plane.
-    pub depth: PlaneEq,
+    /// The vertices on the fixed-point screen lattice, positively oriented.
+    pub v: [FixedPt; 3],
     /// Primitive id written to the frame.
     pub prim: u32,
 }
 
 impl TriSetup {
-    /// The set-up of a screen triangle, from the shared edge functions
-    /// ([`ScreenTri::edges`]); `None` if a coefficient does not fit the
-    /// packed form (impossible for coordinates inside the guard band).
+    /// The classification record of a screen triangle; `None` if a vertex
+    /// lies beyond [`FIXED_LIMIT`], where the edge functions' `i64`
+    /// products could overflow (the front end's guard band never lets one
+    /// through).
     pub fn new(t: &ScreenTri) -> Option<Self> {
-        let edges = t.edges();
-        let xs = t.v.map(|p| p.x);
-        let ys = t.v.map(|p| p.y);
-        let mut edge_a = [0; 3];
-        let mut edge_b = [0; 3];
-        let mut edge_c = [0; 3];
-        for (k, e) in edges.iter().enumerate() {
-            edge_a[k] = i32::try_from(e.a).ok()?;
-            edge_b[k] = i32::try_from(e.b).ok()?;
-            edge_c[k] = e.c;
-        }
-        Some(Self {
-            min_x: xs[0].min(xs[1]).min(xs[2]),
-            max_x: xs[0].max(xs[1]).max(xs[2]),
-            min_y: ys[0].min(ys[1]).min(ys[2]),
-            max_y: ys[0].max(ys[1]).max(ys[2]),
-            edge_a,
-            edge_b,
-            edge_c,
-            depth: t.depth,
+        let inside = |p: &FixedPt| p.x.abs() <= FIXED_LIMIT && p.y.abs() <= FIXED_LIMIT;
+        t.v.iter().all(inside).then_some(Self {
+            v: t.v,
             prim: t.prim,
         })
     }
 
-    /// Edge function `k` at the fixed-point sample `(x, y)`: the value of
-    /// [`EdgeFunction::eval`], from the packed coefficients.
+    /// The three edge functions with the fill rule: the shared ones
+    /// ([`ScreenTri::edges`]), recomputed from the vertices.
     #[inline]
-    pub fn edge(&self, k: usize, x: i64, y: i64) -> i64 {
-        i64::from(self.edge_a[k]) * x + i64::from(self.edge_b[k]) * y + self.edge_c[k]
+    pub fn edges(&self) -> [EdgeFunction; 3] {
+        let v = &self.v;
+        [
+            EdgeFunction::new(v[0], v[1]),
+            EdgeFunction::new(v[1], v[2]),
+            EdgeFunction::new(v[2], v[0]),
+        ]
     }
 
     /// Whether the fixed-point sample `(x, y)` is covered: the shared
@@ -96,26 +72,89 @@ impl TriSetup {
     /// every hider makes.
     #[inline]
     pub fn covers(&self, x: i64, y: i64) -> bool {
-        (0..3).all(|k| self.edge(k, x, y) > 0)
+        self.edges().iter().all(|e| e.eval(x, y) > 0)
     }
 
     /// The vertex bounds in x, fixed point.
     #[inline]
     pub fn x_bounds(&self) -> (i64, i64) {
-        (i64::from(self.min_x), i64::from(self.max_x))
+        let [a, b, c] = self.v.map(|p| p.x);
+        (i64::from(a.min(b).min(c)), i64::from(a.max(b).max(c)))
     }
 
     /// The vertex bounds in y, fixed point.
     #[inline]
     pub fn y_bounds(&self) -> (i64, i64) {
-        (i64::from(self.min_y), i64::from(self.max_y))
+        let [a, b, c] = self.v.map(|p| p.y);
+        (i64::from(a.min(b).min(c)), i64::from(a.max(b).max(c)))
+    }
+}
+
+/// Window depth at the fixed-point sample `(x, y)` on `plane`, evaluated
+/// exactly as the z-buffer evaluates it at a pixel centre.
+#[inline]
+pub fn depth_at(plane: &PlaneEq, x: i64, y: i64) -> f64 {
+    plane.eval(x as f64 / 256.0, y as f64 / 256.0)
+}
+
+/// The set-up of every triangle of a frame, in drawing order: the compact
+/// classification records ([`TriSetup`], read at every level) and, apart,
+/// the depth planes (read only for surrounders and samples).
+#[derive(Clone, Debug, Default)]
+pub struct Setups {
+    /// Classification records, indexed by triangle.
+    pub tris: Vec<TriSetup>,
+    /// Window depth planes, indexed by triangle.
+    pub depth: Vec<PlaneEq>,
+}
+
+impl Setups {
+    /// Bytes of set-up per triangle.
+    pub const BYTES_PER_TRIANGLE: usize =
+        std::mem::size_of::<TriSetup>() + std::mem::size_of::<PlaneEq>();
+
+    /// Triangle `t`: its record and its depth plane.
+    #[inline]
+    pub fn get(&self, t: u32) -> Tri<'_> {
+        Tri {
+            setup: &self.tris[t as usize],
+            depth: &self.depth[t as usize],
+        }
     }
 
-    /// Window depth at the fixed-point sample `(x, y)`, evaluated exactly as
-    /// the z-buffer evaluates it at a pixel centre.
+    /// Bytes held (capacity).
+    pub fn bytes(&self) -> usize {
+        self.tris.capacity() * std::mem::size_of::<TriSetup>()
+            + self.depth.capacity() * std::mem::size_of::<PlaneEq>()
+    }
+}
+
+/// One triangle's set-up: what the sinks draw with.
+#[derive(Clone, Copy, Debug)]
+pub struct Tri<'a> {
+    /// The classification record.
+    pub setup: &'a TriSetup,
+    /// The window depth plane.
+    pub depth: &'a PlaneEq,
+}
+
+impl Tri<'_> {
+    /// Primitive id written to the frame.
+    #[inline]
+    pub fn prim(&self) -> u32 {
+        self.setup.prim
+    }
+
+    /// See [`TriSetup::covers`].
+    #[inline]
+    pub fn covers(&self, x: i64, y: i64) -> bool {
+        self.setup.covers(x, y)
+    }
+
+    /// Window depth at the fixed-point sample `(x, y)` ([`depth_at`]).
     #[inline]
     pub fn depth_at(&self, x: i64, y: i64) -> f64 {
-        self.depth.eval(x as f64 / 256.0, y as f64 / 256.0)
+        depth_at(self.depth, x, y)
     }
 }
 
@@ -142,17 +181,16 @@ pub fn classify(t: &TriSetup, r: &SampleRect) -> Class {
         return Class::Disjoint;
     }
     let mut all_inside = true;
-    for k in 0..3 {
-        let (a, b) = (i64::from(t.edge_a[k]), i64::from(t.edge_b[k]));
-        let (ax0, ax1) = (a * r.x0, a * r.x1);
-        let (by0, by1) = (b * r.y0, b * r.y1);
+    for e in t.edges() {
+        let (ax0, ax1) = (e.a * r.x0, e.a * r.x1);
+        let (by0, by1) = (e.b * r.y0, e.b * r.y1);
         // The largest value over the rectangle: if even that is outside,
         // no sample of the region is inside this edge.
-        if t.edge_c[k] + ax0.max(ax1) + by0.max(by1) <= 0 {
+        if e.c + ax0.max(ax1) + by0.max(by1) <= 0 {
             return Class::Disjoint;
         }
         // The smallest value: if it is inside, every sample is.
-        if t.edge_c[k] + ax0.min(ax1) + by0.min(by1) <= 0 {
+        if e.c + ax0.min(ax1) + by0.min(by1) <= 0 {
             all_inside = false;
         }
     }
@@ -243,13 +281,15 @@ mod tests {
             front_facing: true,
         };
         let s = TriSetup::new(&t).unwrap();
-        // The packed edge functions are the shared ones.
-        for (k, e) in t.edges().iter().enumerate() {
-            for (x, y) in [(0, 0), (1000, -77), (-5000, 12345)] {
-                assert_eq!(s.edge(k, x, y), e.eval(x, y));
-            }
+        // The recomputed edge functions are the shared ones.
+        assert_eq!(s.edges(), t.edges());
+        for (x, y) in [(0, 0), (1000, -77), (-5000, 12345), (2560, 2560)] {
+            assert_eq!(
+                s.covers(x, y),
+                hider_geom::edge::triangle_covers(&t.v, x, y)
+            );
         }
-        assert_eq!(std::mem::size_of::<TriSetup>(), 128);
+        assert_eq!(std::mem::size_of::<TriSetup>(), 32);
         s
     }
 

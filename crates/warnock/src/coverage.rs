@@ -21,7 +21,7 @@
 use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{Frame, NO_ID, ScreenScene, ShadeMode};
 
-use crate::classify::TriSetup;
+use crate::classify::{Setups, Tri};
 use crate::debug::LeafRegion;
 use crate::grid::{Grid, Region};
 use crate::stats::{Rule, WarnockStats};
@@ -102,23 +102,23 @@ struct SampleSink<'a> {
 }
 
 impl Sink for SampleSink<'_> {
-    fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+    fn fill(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats) {
         for v in r.v0..r.v1 {
             for u in r.u0..r.u1 {
                 let d = t.depth_at(grid.sample_x(u), grid.sample_y(v));
-                self.buffer.set(u, v, t.prim, d, stats);
+                self.buffer.set(u, v, t.prim(), d, stats);
             }
         }
         stats.depth_evaluations += r.cells();
     }
 
-    fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+    fn single(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats) {
         for v in r.v0..r.v1 {
             for u in r.u0..r.u1 {
                 let (x, y) = (grid.sample_x(u), grid.sample_y(v));
                 if t.covers(x, y) {
                     stats.depth_evaluations += 1;
-                    self.buffer.set(u, v, t.prim, t.depth_at(x, y), stats);
+                    self.buffer.set(u, v, t.prim(), t.depth_at(x, y), stats);
                 }
             }
         }
@@ -201,13 +201,13 @@ impl CoverageSink<'_> {
 }
 
 impl Sink for CoverageSink<'_> {
-    fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+    fn fill(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats) {
         let n = self.side * self.side;
         for v in r.v0..r.v1 {
             for u in r.u0..r.u1 {
                 let color = self
                     .colors
-                    .at(self.scene, self.shade, t.prim, u, v)
+                    .at(self.scene, self.shade, t.prim(), u, v)
                     .map(|c| c * n as f32);
                 // Depth is affine: its minimum over the pixel's samples is
                 // at one of the corner samples.
@@ -217,20 +217,20 @@ impl Sink for CoverageSink<'_> {
                     .map(|(x, y)| t.depth_at(x, y))
                     .into_iter()
                     .fold(f64::INFINITY, f64::min);
-                self.write_pixel(u, v, t.prim, depth, n, color);
+                self.write_pixel(u, v, t.prim(), depth, n, color);
             }
         }
         stats.depth_evaluations += 4 * r.cells();
         stats.samples_written += u64::from(n) * r.cells();
     }
 
-    fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
-        let Some(b) = grid.cells_touching(r, t.x_bounds(), t.y_bounds()) else {
+    fn single(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats) {
+        let Some(b) = grid.cells_touching(r, t.setup.x_bounds(), t.setup.y_bounds()) else {
             return;
         };
         for v in b.v0..b.v1 {
             for u in b.u0..b.u1 {
-                let color = self.colors.at(self.scene, self.shade, t.prim, u, v);
+                let color = self.colors.at(self.scene, self.shade, t.prim(), u, v);
                 let g = Grid::samples_of_pixel(u, v, self.side);
                 let mut covered = 0;
                 let mut depth = f64::INFINITY;
@@ -250,7 +250,7 @@ impl Sink for CoverageSink<'_> {
                     self.write_pixel(
                         u,
                         v,
-                        t.prim,
+                        t.prim(),
                         depth,
                         covered,
                         color.map(|c| c * covered as f32),
@@ -270,7 +270,7 @@ impl Sink for CoverageSink<'_> {
         _grid: &Grid,
         r: &Region,
         candidates: &[u32],
-        setups: &[TriSetup],
+        setups: &Setups,
         level: usize,
         stats: &mut WarnockStats,
     ) -> Rule {

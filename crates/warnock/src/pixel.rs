@@ -10,7 +10,7 @@
 
 use hider_scene::Frame;
 
-use crate::classify::TriSetup;
+use crate::classify::Tri;
 use crate::debug::LeafRegion;
 use crate::grid::{Grid, Region};
 use crate::stats::{Rule, WarnockStats};
@@ -33,19 +33,19 @@ impl PixelSink<'_> {
 }
 
 impl Sink for PixelSink<'_> {
-    fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
+    fn fill(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats) {
         for v in r.v0..r.v1 {
             let y = grid.sample_y(v);
             for u in r.u0..r.u1 {
                 let d = t.depth_at(grid.sample_x(u), y);
-                self.write(u, v, t.prim, d, stats);
+                self.write(u, v, t.prim(), d, stats);
             }
         }
         stats.depth_evaluations += r.cells();
     }
 
-    fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats) {
-        let Some(b) = grid.cells_touching(r, t.x_bounds(), t.y_bounds()) else {
+    fn single(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats) {
+        let Some(b) = grid.cells_touching(r, t.setup.x_bounds(), t.setup.y_bounds()) else {
             return;
         };
         for v in b.v0..b.v1 {
@@ -54,7 +54,7 @@ impl Sink for PixelSink<'_> {
                 let x = grid.sample_x(u);
                 if t.covers(x, y) {
                     stats.depth_evaluations += 1;
-                    self.write(u, v, t.prim, t.depth_at(x, y), stats);
+                    self.write(u, v, t.prim(), t.depth_at(x, y), stats);
                 }
             }
         }

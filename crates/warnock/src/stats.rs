@@ -58,7 +58,7 @@ pub const MAX_LEVEL: usize = 31;
 ///
 /// Printed (through [`HiderStats::table`]) as: regions, the four
 /// classifications, the leaf regions per rule, the culls, the sample
-/// resolves and list copies, depth evaluations, samples, peak candidates,
+/// resolves, list copies and regions found empty by bounds, depth evaluations, samples, peak candidates,
 /// and then two counters per subdivision level reached ("regions at level
 /// 0", ..., then "candidates at level 0", ...).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -103,6 +103,10 @@ pub struct WarnockStats {
     /// lists handed to children (a list every candidate of which survives
     /// is passed through uncopied).
     pub candidates_copied: u64,
+    /// Regions settled empty from their parent's survivors' bounding box,
+    /// without examining a candidate: the box reaches none of their
+    /// samples.
+    pub empty_by_bounds: u64,
     /// Depth-plane evaluations (corner tests and per-sample depths).
     pub depth_evaluations: u64,
     /// Samples written into the frame or a pixel's sample buffer.
@@ -264,6 +268,7 @@ impl HiderStats for WarnockStats {
             ("surrounder undecided", self.surrounder_undecided),
             ("sample resolves", self.sample_resolves),
             ("candidates copied", self.candidates_copied),
+            ("empty by bounds", self.empty_by_bounds),
             ("depth evaluations", self.depth_evaluations),
             ("samples written", self.samples_written),
             ("peak candidates", self.peak_candidates),
@@ -325,6 +330,7 @@ mod tests {
                 "surrounder undecided",
                 "sample resolves",
                 "candidates copied",
+                "empty by bounds",
                 "depth evaluations",
                 "samples written",
                 "peak candidates",
@@ -336,8 +342,8 @@ mod tests {
         );
         assert_eq!(table.counters[0], ("regions", 5));
         assert_eq!(table.counters[11], ("pixels subdivided", 6));
-        assert_eq!(table.counters[20], ("regions at level 1", 4));
-        assert_eq!(table.counters[22], ("candidates at level 1", 7));
+        assert_eq!(table.counters[21], ("regions at level 1", 4));
+        assert_eq!(table.counters[23], ("candidates at level 1", 7));
         assert_eq!(table.peak_bytes, 99);
     }
 }

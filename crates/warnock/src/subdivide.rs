@@ -14,6 +14,13 @@
 //!   list above its own belongs to a finished sibling subtree and the arena
 //!   is truncated back to it. The arena never holds more than one list per
 //!   level on the current path.
+//! - A list is copied only once a candidate drops out of it: a region all
+//!   of whose candidates survive hands its parent's list on as it is. On a
+//!   pile of tiny triangles over one pixel every level keeps all of them in
+//!   the one quadrant holding that pixel, and nothing is copied.
+//! - A region also hands its children the bounding box of its survivors: a
+//!   child none of whose samples that box reaches is empty, settled without
+//!   looking at a candidate. The quadrants beside a pile are settled so.
 //! - Lists keep triangle order, so "the earlier triangle wins a depth tie"
 //!   stays true at every level.
 //!
@@ -21,7 +28,7 @@
 //! pixel-centre frame, a pixel with sub-pixel samples, or a pixel's sample
 //! buffer.
 
-use crate::classify::{Class, CornerDepths, TriSetup, certainly_behind, classify};
+use crate::classify::{Class, CornerDepths, Setups, Tri, TriSetup, certainly_behind, classify};
 use crate::grid::{Grid, Region, SampleRect};
 use crate::stats::{Rule, WarnockStats};
 
@@ -29,10 +36,10 @@ use crate::stats::{Rule, WarnockStats};
 pub(crate) trait Sink {
     /// `t` covers every sample of `r` and is in front of every other
     /// polygon there: draw it over the whole region.
-    fn fill(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats);
+    fn fill(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats);
 
     /// `t` is the only polygon reaching `r`: draw the samples it covers.
-    fn single(&mut self, grid: &Grid, r: &Region, t: &TriSetup, stats: &mut WarnockStats);
+    fn single(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats);
 
     /// The one sample of cell `(u, v)` shows primitive `prim` at `depth`.
     fn sample(&mut self, u: u32, v: u32, prim: u32, depth: f64, stats: &mut WarnockStats);
@@ -45,13 +52,13 @@ pub(crate) trait Sink {
         grid: &Grid,
         r: &Region,
         candidates: &[u32],
-        setups: &[TriSetup],
+        setups: &Setups,
         _level: usize,
         stats: &mut WarnockStats,
     ) -> Rule {
         let (x, y) = (grid.sample_x(r.u0), grid.sample_y(r.v0));
         if let Some((t, d)) = nearest_at(candidates, setups, x, y, stats) {
-            self.sample(r.u0, r.v0, setups[t as usize].prim, d, stats);
+            self.sample(r.u0, r.v0, setups.get(t).prim(), d, stats);
         }
         Rule::Sample
     }
@@ -60,24 +67,75 @@ pub(crate) trait Sink {
     fn leaf(&mut self, _r: &Region, _rule: Rule, _level: usize) {}
 }
 
-/// A region waiting on the stack, with where its candidate list is.
+/// A candidate list: a run of the arena.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct List {
+    start: usize,
+    len: usize,
+}
+
+impl List {
+    fn end(&self) -> usize {
+        self.start + self.len
+    }
+}
+
+/// A region waiting on the stack, with its candidate list.
 #[derive(Clone, Copy, Debug)]
 struct Entry {
     region: Region,
-    start: usize,
-    len: usize,
+    list: List,
     level: usize,
+}
+
+/// The union of the vertex bounding boxes of a list's triangles, fixed
+/// point: a sample outside it is covered by none of them.
+#[derive(Clone, Copy, Debug)]
+struct Bounds {
+    min_x: i64,
+    max_x: i64,
+    min_y: i64,
+    max_y: i64,
+}
+
+impl Bounds {
+    const EMPTY: Self = Self {
+        min_x: i64::MAX,
+        max_x: i64::MIN,
+        min_y: i64::MAX,
+        max_y: i64::MIN,
+    };
+
+    #[inline]
+    fn add(&mut self, t: &TriSetup) {
+        let (x0, x1) = t.x_bounds();
+        let (y0, y1) = t.y_bounds();
+        self.min_x = self.min_x.min(x0);
+        self.max_x = self.max_x.max(x1);
+        self.min_y = self.min_y.min(y0);
+        self.max_y = self.max_y.max(y1);
+    }
+
+    /// Whether no sample of the rectangle lies in the box: the bounding-box
+    /// half of [`classify`]'s disjoint test, for every triangle at once.
+    fn misses(&self, r: &SampleRect) -> bool {
+        self.max_x < r.x0 || self.min_x > r.x1 || self.max_y < r.y0 || self.min_y > r.y1
+    }
 }
 
 /// What classification and culling left of a region's list.
 #[derive(Clone, Copy, Debug)]
 struct Survivors {
-    /// Where the surviving list starts in the arena (it runs to the end).
-    out: usize,
+    /// The surviving list: the parent's when nothing dropped out, else a
+    /// new list at the end of the arena.
+    list: List,
     /// The surrounder nearest at the centre, with its corner depths.
     front: Option<(u32, CornerDepths)>,
     /// How many the surrounder culled.
     culled: u64,
+    /// The bounding box of the classified survivors (before culling, so
+    /// possibly larger than the culled list needs).
+    bounds: Bounds,
 }
 
 /// Where a subdivision starts: regions of a grid at a level.
@@ -125,30 +183,32 @@ impl Subdivider {
         &mut self,
         roots: Roots<'_>,
         initial: impl IntoIterator<Item = u32>,
-        setups: &[TriSetup],
+        setups: &Setups,
         sink: &mut S,
         stats: &mut WarnockStats,
     ) {
         self.arena.clear();
         self.stack.clear();
         self.arena.extend(initial);
-        let len = self.arena.len();
-        stats.candidates_copied += len as u64;
+        let list = List {
+            start: 0,
+            len: self.arena.len(),
+        };
+        stats.candidates_copied += list.len as u64;
         for &region in roots.regions.iter().rev() {
             self.stack.push(Entry {
                 region,
-                start: 0,
-                len,
+                list,
                 level: roots.level,
             });
         }
         let grid = roots.grid;
         let one_sample = grid.one_sample_per_cell();
         while let Some(e) = self.stack.pop() {
-            self.arena.truncate(e.start + e.len);
+            self.arena.truncate(e.list.end());
             stats.visit(e.level);
             if one_sample && e.region.is_single_cell() {
-                let list = &self.arena[e.start..];
+                let list = &self.arena[e.list.start..];
                 stats.sample_resolves += 1;
                 stats.examined(e.level, list.len());
                 let rule = resolve_sample(grid, &e.region, list, setups, sink, stats);
@@ -157,14 +217,18 @@ impl Subdivider {
                 continue;
             }
             let rect = grid.sample_rect(&e.region);
-            let out = self.arena.len();
-            let front = self.classify(&e, &rect, setups, stats);
-            let culled = match front {
-                Some((s, sd)) => self.cull_behind(out, s, &sd, &rect, setups, stats),
-                None => 0,
+            let (list, front, bounds) = self.classify(&e, &rect, setups, stats);
+            let (list, culled) = match front {
+                Some((s, sd)) => self.cull_behind(&e, list, s, &sd, &rect, setups, stats),
+                None => (list, 0),
             };
             self.peak = self.peak.max(self.arena.len());
-            let survivors = Survivors { out, front, culled };
+            let survivors = Survivors {
+                list,
+                front,
+                culled,
+                bounds,
+            };
             if let Some(rule) = self.decide(grid, &e, survivors, setups, sink, stats) {
                 stats.decided[rule as usize] += 1;
                 sink.leaf(&e.region, rule, e.level);
@@ -172,29 +236,72 @@ impl Subdivider {
         }
     }
 
-    /// Classifies the parent's survivors (the list of `e`) against the
-    /// region's samples `rect`, appending all but the disjoint ones to the
-    /// arena; returns the surrounder nearest at the centre, if any: if any
-    /// surrounder hides everything, that one does.
+    /// The candidates of `list` that `keep` accepts, in order. A list of
+    /// `e`'s own (made by this region, at the end of the arena) is
+    /// compacted in place; the list `e` was handed is never written: it is
+    /// returned as it is when every candidate is kept, and copied from the
+    /// first one dropped (the kept ones before it in one block).
+    fn filter(
+        &mut self,
+        e: &Entry,
+        list: List,
+        stats: &mut WarnockStats,
+        mut keep: impl FnMut(u32, &mut WarnockStats) -> bool,
+    ) -> List {
+        if list != e.list {
+            let mut kept = list.start;
+            for k in list.start..list.end() {
+                let t = self.arena[k];
+                if keep(t, stats) {
+                    self.arena[kept] = t;
+                    kept += 1;
+                }
+            }
+            self.arena.truncate(kept);
+            return List {
+                start: list.start,
+                len: kept - list.start,
+            };
+        }
+        let Some(first_out) = (list.start..list.end()).find(|&k| !keep(self.arena[k], stats))
+        else {
+            return list;
+        };
+        let out = self.arena.len();
+        self.arena.extend_from_within(list.start..first_out);
+        for k in first_out + 1..list.end() {
+            let t = self.arena[k];
+            if keep(t, stats) {
+                self.arena.push(t);
+            }
+        }
+        let len = self.arena.len() - out;
+        stats.candidates_copied += len as u64;
+        List { start: out, len }
+    }
+
+    /// Classifies the candidates `e` was handed against the region's
+    /// samples `rect`, keeping all but the disjoint ones; returns them, the
+    /// surrounder nearest at the centre, if any (if any surrounder hides
+    /// everything, that one does), and the survivors' bounding box.
     fn classify(
         &mut self,
         e: &Entry,
         rect: &SampleRect,
-        setups: &[TriSetup],
+        setups: &Setups,
         stats: &mut WarnockStats,
-    ) -> Option<(u32, CornerDepths)> {
+    ) -> (List, Option<(u32, CornerDepths)>, Bounds) {
         let mut front: Option<(u32, CornerDepths)> = None;
-        stats.examined(e.level, e.len);
-        let out = self.arena.len();
-        for k in e.start..e.start + e.len {
-            let t = self.arena[k];
-            let setup = &setups[t as usize];
+        let mut bounds = Bounds::EMPTY;
+        stats.examined(e.level, e.list.len);
+        let list = self.filter(e, e.list, stats, |t, stats| {
+            let setup = &setups.tris[t as usize];
             let class = classify(setup, rect);
             stats.classified(class);
             match class {
-                Class::Disjoint => continue,
+                Class::Disjoint => return false,
                 Class::Surrounding => {
-                    let d = CornerDepths::new(&setup.depth, rect);
+                    let d = CornerDepths::new(&setups.depth[t as usize], rect);
                     stats.depth_evaluations += 4;
                     if front.is_none_or(|(_, f)| d.sum() < f.sum()) {
                         front = Some((t, d));
@@ -202,61 +309,68 @@ impl Subdivider {
                 }
                 Class::Contained | Class::Intersecting => {}
             }
-            self.arena.push(t);
-        }
-        stats.candidates_copied += (self.arena.len() - out) as u64;
-        front
+            bounds.add(setup);
+            true
+        });
+        (list, front, bounds)
     }
 
-    /// Culls from the list starting at `out` what the surrounder `s` (with
-    /// corner depths `sd`) hides at every sample of the region: hidden
-    /// here, hidden in every subregion too. Returns how many went.
+    /// Culls from `list` what the surrounder `s` (with corner depths `sd`)
+    /// hides at every sample of the region: hidden here, hidden in every
+    /// subregion too. Returns what is left and how many went.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the loop's state, the region and the surrounder, all distinct"
+    )]
     fn cull_behind(
         &mut self,
-        out: usize,
+        e: &Entry,
+        list: List,
         s: u32,
         sd: &CornerDepths,
         rect: &SampleRect,
-        setups: &[TriSetup],
+        setups: &Setups,
         stats: &mut WarnockStats,
-    ) -> u64 {
+    ) -> (List, u64) {
         let mut culled = 0;
-        let mut kept = out;
-        for k in out..self.arena.len() {
-            let t = self.arena[k];
-            if t != s {
-                let d = CornerDepths::new(&setups[t as usize].depth, rect);
-                stats.depth_evaluations += 4;
-                if certainly_behind(&d, sd) {
-                    culled += 1;
-                    continue;
-                }
+        let list = self.filter(e, list, stats, |t, stats| {
+            if t == s {
+                return true;
             }
-            self.arena[kept] = t;
-            kept += 1;
-        }
-        self.arena.truncate(kept);
+            let d = CornerDepths::new(&setups.depth[t as usize], rect);
+            stats.depth_evaluations += 4;
+            let behind = certainly_behind(&d, sd);
+            culled += u64::from(behind);
+            !behind
+        });
         stats.culled_behind_surrounder += culled;
-        culled
+        (list, culled)
     }
 
     /// Decides region `e` from what classification and culling left: the
     /// rule that decided it, or `None` when it was split into children
-    /// pushed on the stack.
+    /// pushed on the stack (children the survivors' bounding box misses are
+    /// settled empty on the spot).
     fn decide<S: Sink>(
         &mut self,
         grid: &Grid,
         e: &Entry,
-        Survivors { out, front, culled }: Survivors,
-        setups: &[TriSetup],
+        survivors: Survivors,
+        setups: &Setups,
         sink: &mut S,
         stats: &mut WarnockStats,
     ) -> Option<Rule> {
-        let list = &self.arena[out..];
-        let rule = match (list.len(), front) {
+        let Survivors {
+            list,
+            front,
+            culled,
+            bounds,
+        } = survivors;
+        let candidates = &self.arena[list.start..list.end()];
+        let rule = match (list.len, front) {
             (0, _) => Rule::Empty,
             (1, Some((s, _))) => {
-                sink.fill(grid, &e.region, &setups[s as usize], stats);
+                sink.fill(grid, &e.region, setups.get(s), stats);
                 if culled > 0 {
                     Rule::SurrounderInFront
                 } else {
@@ -264,7 +378,7 @@ impl Subdivider {
                 }
             }
             (1, None) => {
-                sink.single(grid, &e.region, &setups[list[0] as usize], stats);
+                sink.single(grid, &e.region, setups.get(candidates[0]), stats);
                 Rule::SinglePolygon
             }
             _ => {
@@ -273,16 +387,22 @@ impl Subdivider {
                 }
                 let (children, n) = e.region.quadrants();
                 if n == 0 {
-                    sink.resolve_cell(grid, &e.region, list, setups, e.level, stats)
+                    sink.resolve_cell(grid, &e.region, candidates, setups, e.level, stats)
                 } else {
-                    let len = list.len();
+                    let level = e.level + 1;
                     for &region in children[..n].iter().rev() {
-                        self.stack.push(Entry {
-                            region,
-                            start: out,
-                            len,
-                            level: e.level + 1,
-                        });
+                        if bounds.misses(&grid.sample_rect(&region)) {
+                            stats.visit(level);
+                            stats.empty_by_bounds += 1;
+                            stats.decided[Rule::Empty as usize] += 1;
+                            sink.leaf(&region, Rule::Empty, level);
+                        } else {
+                            self.stack.push(Entry {
+                                region,
+                                list,
+                                level,
+                            });
+                        }
                     }
                     return None;
                 }
@@ -301,7 +421,7 @@ fn resolve_sample<S: Sink>(
     grid: &Grid,
     r: &Region,
     candidates: &[u32],
-    setups: &[TriSetup],
+    setups: &Setups,
     sink: &mut S,
     stats: &mut WarnockStats,
 ) -> Rule {
@@ -309,13 +429,13 @@ fn resolve_sample<S: Sink>(
     let mut best: Option<(u32, f64)> = None;
     let mut covering = 0;
     for &t in candidates {
-        let s = &setups[t as usize];
+        let s = setups.get(t);
         if s.covers(x, y) {
             stats.classified(Class::Surrounding);
             covering += 1;
             let d = s.depth_at(x, y);
             if best.is_none_or(|(_, b)| d < b) {
-                best = Some((s.prim, d));
+                best = Some((s.prim(), d));
             }
         } else {
             stats.classified(Class::Disjoint);
@@ -341,14 +461,14 @@ fn resolve_sample<S: Sink>(
 #[inline]
 pub(crate) fn nearest_at(
     candidates: &[u32],
-    setups: &[TriSetup],
+    setups: &Setups,
     x: i64,
     y: i64,
     stats: &mut WarnockStats,
 ) -> Option<(u32, f64)> {
     let mut best: Option<(u32, f64)> = None;
     for &t in candidates {
-        let s = &setups[t as usize];
+        let s = setups.get(t);
         if s.covers(x, y) {
             let d = s.depth_at(x, y);
             stats.depth_evaluations += 1;

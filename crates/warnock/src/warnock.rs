@@ -3,7 +3,7 @@
 
 use hider_scene::{Error, Frame, Hider, Result, ScreenScene, check_frame};
 
-use crate::classify::TriSetup;
+use crate::classify::{Setups, TriSetup};
 use crate::coverage::{ColorCache, CoverageSink, SampleBuffer};
 use crate::debug::LeafRegion;
 use crate::grid::{Grid, Region};
@@ -22,7 +22,7 @@ use crate::subdivide::{Roots, Subdivider};
 pub struct Warnock {
     options: WarnockOptions,
     name: String,
-    setups: Vec<TriSetup>,
+    setups: Setups,
     outer: Subdivider,
     inner: Subdivider,
     samples: SampleBuffer,
@@ -55,7 +55,7 @@ impl Warnock {
             } else {
                 0
             };
-        let mut bytes = lists * tris * 4 + tris * std::mem::size_of::<TriSetup>() as u64;
+        let mut bytes = lists * tris * 4 + tris * Setups::BYTES_PER_TRIANGLE as u64;
         if self.options.is_antialiased() {
             bytes += scene.prims.len() as u64 * 16;
         }
@@ -88,13 +88,15 @@ impl Warnock {
 
     /// The set-up record of every triangle.
     fn set_up(&mut self, scene: &ScreenScene) -> Result<()> {
-        self.setups.clear();
+        self.setups.tris.clear();
+        self.setups.depth.clear();
         for t in &scene.tris {
             let setup = TriSetup::new(t).ok_or_else(|| Error::Render {
                 hider: self.name.clone(),
                 message: format!("primitive {} lies outside the guard band", t.prim),
             })?;
-            self.setups.push(setup);
+            self.setups.tris.push(setup);
+            self.setups.depth.push(t.depth);
         }
         Ok(())
     }
@@ -149,7 +151,7 @@ impl Warnock {
 
     /// Bytes held by the working memory (capacity).
     fn bytes(&self) -> u64 {
-        (self.setups.capacity() * std::mem::size_of::<TriSetup>()
+        (self.setups.bytes()
             + self.outer.bytes()
             + self.inner.bytes()
             + self.samples.bytes()
@@ -178,7 +180,7 @@ impl Hider for Warnock {
         Self {
             options,
             name,
-            setups: Vec::new(),
+            setups: Setups::default(),
             outer: Subdivider::default(),
             inner: Subdivider::default(),
             samples: SampleBuffer::default(),
