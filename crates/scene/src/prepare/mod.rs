@@ -14,6 +14,7 @@ use crate::surface::SurfaceTextures;
 use crate::view::View;
 
 mod front_end;
+pub mod lean;
 mod options;
 mod screen;
 #[cfg(test)]

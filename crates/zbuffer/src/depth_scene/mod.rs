@@ -10,7 +10,8 @@
 //! primitive id. [`prepare_depth_into`] produces just those ([`DepthTri`],
 //! 72 bytes), and works per *vertex* where `prepare` works per triangle
 //! corner: each vertex is transformed, classified by its outcode, divided
-//! and snapped once, eight at a time (`vertices`), and triangles are
+//! and snapped once, eight at a time (the vertex pass shared with the
+//! A-buffer, [`hider_scene::prepare::lean`]), and triangles are
 //! classified eight at a time from the cached results (`classify`,
 //! `triangles`). A triangle that must be clipped goes through `prepare`'s
 //! own per-triangle path ([`FrontEnd::triangle`]).
@@ -39,17 +40,16 @@ mod classify;
 mod classify_avx2;
 mod depth_tri;
 mod triangles;
-mod vertices;
 
 pub use depth_tri::{DepthFragment, DepthTri};
 
 use hider_geom::Viewport;
 use hider_scene::prepare::FrontEnd;
-use hider_scene::{Error, PrepareOptions, PrepareStats, Result, Scene, View};
+use hider_scene::prepare::lean::{CachedVertex, fill_vertices, invalid_scene};
+use hider_scene::{PrepareOptions, PrepareStats, Result, Scene, View};
 use rayon::prelude::*;
 
 use triangles::{Outcome, Run};
-use vertices::CachedVertex;
 
 /// A scene as depth-only hiders consume it: what [`prepare_depth_into`]
 /// makes. Keeps its memory between frames.
@@ -118,8 +118,6 @@ impl DepthScene {
     }
 }
 
-/// Vertices per parallel work item of the vertex pass.
-const VERTEX_CHUNK: usize = 16 * 1024;
 /// Below this many triangles the scene is set up on one thread.
 const PARALLEL_MIN: usize = 32 * 1024;
 
@@ -145,32 +143,9 @@ pub fn prepare_depth_into(
     let count = scene.triangle_count();
     let parallel = options.parallel && rayon::current_num_threads() > 1 && count >= PARALLEL_MIN;
 
-    // 1. Vertices, once each.
-    let total: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
-    out.vertices.resize(total, CachedVertex::default());
-    let mut rest = &mut out.vertices[..];
-    let mut finite = true;
-    for mesh in &scene.meshes {
-        let (mine, tail) = rest.split_at_mut(mesh.positions.len());
-        rest = tail;
-        let work = |(c, chunk): (usize, &mut [CachedVertex])| {
-            let first = c * VERTEX_CHUNK;
-            let positions = &mesh.positions[first..first + chunk.len()];
-            vertices::vertices(&front, positions, chunk)
-        };
-        finite &= if parallel {
-            mine.par_chunks_mut(VERTEX_CHUNK)
-                .enumerate()
-                .map(work)
-                .reduce(|| true, |a, b| a & b)
-        } else {
-            mine.chunks_mut(VERTEX_CHUNK)
-                .enumerate()
-                .fold(true, |ok, c| ok & work(c))
-        };
-    }
-    if !finite {
-        return Err(invalid(scene));
+    // 1. Vertices, once each (the shared lean vertex pass).
+    if !fill_vertices(scene, &front, parallel, &mut out.vertices) {
+        return Err(invalid_scene(scene));
     }
 
     // 2. Triangles, in contiguous runs of primitive ids.
@@ -203,7 +178,7 @@ pub fn prepare_depth_into(
             r.tris.clear();
             r.fragments.clear();
         }
-        return Err(invalid(scene));
+        return Err(invalid_scene(scene));
     }
     let mut total_stats = PrepareStats {
         input: count as u64,
@@ -216,15 +191,4 @@ pub fn prepare_depth_into(
     out.stats = total_stats;
     out.viewport = front.viewport;
     Ok(())
-}
-
-/// The error of a scene whose positions or indices the passes found
-/// invalid, as [`Scene::validate`] words it (naming the mesh, vertex or
-/// triangle).
-#[cold]
-fn invalid(scene: &Scene) -> Error {
-    match scene.validate() {
-        Err(e) => e,
-        Ok(()) => Error::InvalidScene("a position or index is invalid".to_owned()),
-    }
 }

@@ -28,7 +28,7 @@ use hider_scene::{Mesh, PrepareStats, Scene};
 use super::classify::{LANES, Lanes};
 use super::classify_avx2;
 use super::depth_tri::{DepthFragment, DepthTri};
-use super::vertices::{CachedVertex, NO_WINDOW, NOT_FINITE};
+use hider_scene::prepare::lean::{CachedVertex, NO_WINDOW, NOT_FINITE};
 
 /// One contiguous run of primitive ids of the output.
 #[derive(Clone, Debug, Default)]

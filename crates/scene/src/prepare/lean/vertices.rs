@@ -17,22 +17,25 @@ use hider_geom::FixedPt;
 use hider_geom::clip::OUTSIDE_PLANES;
 use hider_geom::isa::Avx2;
 
-use hider_scene::TransformPrecision;
-use hider_scene::prepare::FrontEnd;
+use crate::prepare::{FrontEnd, TransformPrecision};
 
 /// Outcode bit: the clip-space position is not finite.
-pub(super) const NOT_FINITE: u32 = 1 << 30;
+pub const NOT_FINITE: u32 = 1 << 30;
 /// Outcode bit: the vertex has no window position (it fails a clip plane,
 /// so only the clipping path uses it, or its divide left the snappable
 /// range).
-pub(super) const NO_WINDOW: u32 = 1 << 31;
+pub const NO_WINDOW: u32 = 1 << 31;
 
 /// One vertex after transform, classification, divide and snap.
-#[derive(Clone, Copy, Debug, Default)]
-pub(super) struct CachedVertex {
-    pub(super) p: FixedPt,
-    pub(super) z: f64,
-    pub(super) code: u32,
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CachedVertex {
+    /// The snapped window position (0 when [`NO_WINDOW`] is set).
+    pub p: FixedPt,
+    /// The window depth, clamped to [0, 1] (0 when [`NO_WINDOW`] is set).
+    pub z: f64,
+    /// The clip volume's outcode, or [`NOT_FINITE`], with [`NO_WINDOW`]
+    /// when the vertex has no window position.
+    pub code: u32,
 }
 
 /// Vertices per batch.
@@ -41,7 +44,7 @@ const LANES: usize = 8;
 /// Runs the pass over one mesh's `positions` into `out` (the same
 /// length). Returns whether every world position is finite (a non-finite
 /// one is an invalid scene; the caller reports it).
-pub(super) fn vertices(front: &FrontEnd, positions: &[DVec3], out: &mut [CachedVertex]) -> bool {
+pub fn vertices(front: &FrontEnd, positions: &[DVec3], out: &mut [CachedVertex]) -> bool {
     #[cfg(target_arch = "x86_64")]
     if let Some(avx2) = Avx2::detect() {
         return vertices_avx2(front, positions, out, avx2);

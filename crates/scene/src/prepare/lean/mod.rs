@@ -1,0 +1,101 @@
+//! The lean front end: the numbers of [`prepare`](crate::prepare()), bit
+//! for bit, without what only some hiders read.
+//!
+//! [`prepare`](crate::prepare()) writes, per triangle, a 160-byte
+//! [`ScreenTri`] and a [`PrimInfo`](super::PrimInfo) (camera-space corners,
+//! normals, texture coordinates), and transforms each corner of each
+//! triangle: a vertex shared by six triangles is transformed six times.
+//! For half a million triangles that is most of what a frame costs. The
+//! lean front end works per *vertex*: each vertex is transformed,
+//! classified by its outcode, divided and snapped once, eight at a time
+//! ([`vertices`], cached in [`fill_vertices`]), and triangles are set up
+//! from the cached results. A triangle that must be clipped goes through
+//! `prepare`'s own per-triangle path ([`FrontEnd::triangle`]).
+//!
+//! Two users share the vertex pass: the tiled z-buffer's depth-only front
+//! end, which also drops triangles that cover no pixel centre, and
+//! [`prepare_lean_into`], which keeps exactly `prepare`'s triangles as
+//! [`LeanTri`]s (snapped corners, their depths, depth plane, primitive id, facing) for
+//! hiders that sample inside pixels (the A-buffer), and colours a
+//! primitive on demand ([`LeanScene::prim_color`]) from the world-space
+//! scene, as `prepare`'s [`PrimInfo`](super::PrimInfo) would have.
+
+mod scene;
+mod triangles;
+mod vertices;
+
+pub use scene::{LeanScene, LeanTri, prepare_lean_into};
+pub use vertices::{CachedVertex, NO_WINDOW, NOT_FINITE, vertices};
+
+use rayon::prelude::*;
+
+use crate::error::Error;
+use crate::model::Scene;
+
+use super::{FrontEnd, ScreenTri};
+
+/// Vertices per parallel work item of the vertex pass.
+const VERTEX_CHUNK: usize = 16 * 1024;
+
+/// Runs the vertex pass ([`vertices`]) over every mesh of `scene`, meshes
+/// one after the other, into `out` (resized to the scene's vertex count),
+/// on the current rayon pool when `parallel`. Returns whether every world
+/// position is finite (a non-finite one is an invalid scene: report it
+/// with [`invalid_scene`]).
+pub fn fill_vertices(
+    scene: &Scene,
+    front: &FrontEnd,
+    parallel: bool,
+    out: &mut Vec<CachedVertex>,
+) -> bool {
+    let total: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
+    out.resize(total, CachedVertex::default());
+    let mut rest = &mut out[..];
+    let mut finite = true;
+    for mesh in &scene.meshes {
+        let (mine, tail) = rest.split_at_mut(mesh.positions.len());
+        rest = tail;
+        let work = |(c, chunk): (usize, &mut [CachedVertex])| {
+            let first = c * VERTEX_CHUNK;
+            let positions = &mesh.positions[first..first + chunk.len()];
+            vertices(front, positions, chunk)
+        };
+        finite &= if parallel {
+            mine.par_chunks_mut(VERTEX_CHUNK)
+                .enumerate()
+                .map(work)
+                .reduce(|| true, |a, b| a & b)
+        } else {
+            mine.chunks_mut(VERTEX_CHUNK)
+                .enumerate()
+                .fold(true, |ok, c| ok & work(c))
+        };
+    }
+    finite
+}
+
+/// The error of a scene whose positions or indices a lean pass found
+/// invalid, as [`Scene::validate`] words it (naming the mesh, vertex or
+/// triangle).
+#[cold]
+pub fn invalid_scene(scene: &Scene) -> Error {
+    match scene.validate() {
+        Err(e) => e,
+        Ok(()) => Error::InvalidScene("a position or index is invalid".to_owned()),
+    }
+}
+
+impl From<&ScreenTri> for LeanTri {
+    fn from(t: &ScreenTri) -> Self {
+        Self {
+            v: t.v,
+            z: t.z,
+            depth: t.depth,
+            prim: t.prim,
+            front_facing: t.front_facing,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,220 @@
+//! [`LeanScene`]: `prepare`'s triangles without `prepare`'s per-primitive
+//! data, and the colour of a primitive computed when a hider asks for it.
+
+use glam::DVec3;
+use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport};
+use rayon::prelude::*;
+
+use crate::error::Result;
+use crate::model::{Light, Material, Scene};
+use crate::prepare::{FrontEnd, PrepareOptions, PrepareStats};
+use crate::shade::{ShadeMode, id_color, lambert_light_at};
+use crate::view::View;
+
+use super::triangles::{Outcome, triangles};
+use super::{CachedVertex, fill_vertices, invalid_scene};
+
+/// A screen triangle as a hider that samples inside pixels needs it:
+/// [`ScreenTri`](crate::ScreenTri) without the per-vertex clip `w` and the
+/// `1/w` plane (which only texturing reads).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct LeanTri {
+    /// Snapped vertices, ordered so that the edge functions are positive
+    /// inside (as [`ScreenTri::v`](crate::ScreenTri::v)).
+    pub v: [FixedPt; 3],
+    /// Window depth `z/w` in [0, 1] at each vertex (as
+    /// [`ScreenTri::z`](crate::ScreenTri::z)).
+    pub z: [f64; 3],
+    /// Window depth as an affine function of window position.
+    pub depth: PlaneEq,
+    /// Primitive id: index of the source triangle in the scene.
+    pub prim: u32,
+    /// Whether the source triangle faces the camera (as
+    /// [`ScreenTri::front_facing`](crate::ScreenTri::front_facing)).
+    pub front_facing: bool,
+}
+
+impl LeanTri {
+    /// The edge functions of this triangle (GL's fill rule applied,
+    /// `hider_geom::edge`).
+    #[inline]
+    pub fn edges(&self) -> [EdgeFunction; 3] {
+        hider_geom::edge::triangle_edges(&self.v)
+    }
+}
+
+/// What [`prepare_lean_into`] makes: `prepare`'s triangles, in the same
+/// order, as [`LeanTri`]s, and what it takes to colour a primitive. Keeps
+/// its memory between frames.
+#[derive(Clone, Debug, Default)]
+pub struct LeanScene {
+    /// The image size.
+    pub viewport: Viewport,
+    /// What the front end did: the same counts as `prepare`'s.
+    pub stats: PrepareStats,
+    tris: Vec<LeanTri>,
+    /// The output of each worker, before it is joined into `tris`.
+    runs: Vec<Vec<LeanTri>>,
+    /// Per vertex of every mesh (meshes one after the other).
+    vertices: Vec<CachedVertex>,
+    /// The first primitive id of each mesh.
+    mesh_starts: Vec<usize>,
+    /// The lights in camera space, as `prepare` transforms them.
+    lights: Vec<Light>,
+    /// The frame's transforms (`None` before the first frame).
+    front: Option<FrontEnd>,
+}
+
+/// Below this many triangles the scene is set up on one thread.
+const PARALLEL_MIN: usize = 32 * 1024;
+
+impl LeanScene {
+    /// An empty scene (the buffers grow on first use).
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The triangles, exactly `prepare`'s (the same pieces of clipped
+    /// triangles included), in the same order.
+    pub fn tris(&self) -> &[LeanTri] {
+        &self.tris
+    }
+
+    /// Bytes of memory held.
+    pub fn bytes(&self) -> usize {
+        (self.tris.capacity() + self.runs.iter().map(Vec::capacity).sum::<usize>())
+            * std::mem::size_of::<LeanTri>()
+            + self.vertices.capacity() * std::mem::size_of::<CachedVertex>()
+    }
+
+    /// The linear RGB colour of primitive `prim` of `scene` (the scene
+    /// this was prepared from) under `mode`, and its opacity: bit for bit
+    /// [`prim_color`](crate::shade::prim_color) on `prepare`'s output,
+    /// from the camera-space corners `prepare` would have stored.
+    ///
+    /// # Panics
+    ///
+    /// If `prim` is not a primitive id of the scene prepared last.
+    pub fn prim_color(&self, scene: &Scene, prim: u32, mode: ShadeMode) -> ([f32; 3], f32) {
+        let k = prim as usize;
+        let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
+        let mesh = &scene.meshes[m];
+        let fallback = Material::default();
+        let material = mesh
+            .material
+            .and_then(|i| scene.materials.get(i))
+            .unwrap_or(&fallback);
+        match mode {
+            ShadeMode::Ids => (id_color(prim), material.opacity),
+            ShadeMode::Lambert => {
+                let front = self.front.as_ref().expect("a prepared scene");
+                let idx = mesh.indices[k - self.mesh_starts[m]];
+                let camera: [DVec3; 3] = idx.map(|i| front.to_camera(mesh.positions[i as usize]));
+                let lit = lambert_light_at(&camera, &self.lights);
+                let kd = material.diffuse;
+                (
+                    [
+                        (f64::from(kd[0]) * lit[0]) as f32,
+                        (f64::from(kd[1]) * lit[1]) as f32,
+                        (f64::from(kd[2]) * lit[2]) as f32,
+                    ],
+                    material.opacity,
+                )
+            }
+        }
+    }
+
+    /// The material index `prepare` gives primitive `prim` (an index into
+    /// the scene's materials, or their count for the default material).
+    pub fn material_index(&self, scene: &Scene, prim: u32) -> u32 {
+        let k = prim as usize;
+        let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
+        scene.meshes[m]
+            .material
+            .map_or(scene.materials.len() as u32, |i| i as u32)
+    }
+}
+
+/// Runs the lean front end into `out`, reusing its memory: the vertex pass
+/// and the triangle pass, in parallel on the current rayon pool when
+/// [`PrepareOptions::parallel`] is set and the scene is large.
+///
+/// # Errors
+///
+/// As [`prepare`](crate::prepare()): an absurd image size, an invalid
+/// camera or an invalid scene.
+pub fn prepare_lean_into(
+    scene: &Scene,
+    view: &View,
+    options: &PrepareOptions,
+    out: &mut LeanScene,
+) -> Result<()> {
+    // Positions and indices are checked by the two passes, which read
+    // them all anyway.
+    let front = FrontEnd::checked(scene, view, options, false)?;
+    let count = scene.triangle_count();
+    let parallel = options.parallel && rayon::current_num_threads() > 1 && count >= PARALLEL_MIN;
+    if !fill_vertices(scene, &front, parallel, &mut out.vertices) {
+        return Err(invalid_scene(scene));
+    }
+    let parts = if parallel {
+        rayon::current_num_threads()
+    } else {
+        1
+    };
+    out.runs.resize_with(parts, Vec::new);
+    out.runs.truncate(parts);
+    let per = count.div_ceil(parts).max(1);
+    let cache = &out.vertices;
+    let front_ref = &front;
+    let run = |(k, run): (usize, &mut Vec<LeanTri>)| {
+        let range = (k * per).min(count)..((k + 1) * per).min(count);
+        triangles(scene, front_ref, cache, range, run)
+    };
+    let outcomes: Vec<Outcome> = if parallel {
+        out.runs.par_iter_mut().enumerate().map(run).collect()
+    } else {
+        out.runs.iter_mut().enumerate().map(run).collect()
+    };
+    out.tris.clear();
+    if outcomes.iter().any(|o| o.bad_index) {
+        return Err(invalid_scene(scene));
+    }
+    if parts == 1 {
+        std::mem::swap(&mut out.tris, &mut out.runs[0]);
+    } else {
+        for r in &out.runs {
+            out.tris.extend_from_slice(r);
+        }
+    }
+    let mut stats = PrepareStats {
+        input: count as u64,
+        ..PrepareStats::default()
+    };
+    for o in &outcomes {
+        stats.add(&o.stats);
+    }
+    stats.output = out.tris.len() as u64;
+    out.stats = stats;
+    out.viewport = front.viewport;
+    out.mesh_starts.clear();
+    let mut first = 0;
+    for mesh in &scene.meshes {
+        out.mesh_starts.push(first);
+        first += mesh.indices.len();
+    }
+    // `prepare`'s transform of the lights.
+    out.lights.clear();
+    out.lights.extend(scene.lights.iter().map(|l| match *l {
+        Light::Directional { direction, color } => Light::Directional {
+            direction: front.eye_to_camera.transform_vector3(direction),
+            color,
+        },
+        Light::Point { position, color } => Light::Point {
+            position: front.to_camera(position),
+            color,
+        },
+    }));
+    out.front = Some(front);
+    Ok(())
+}

@@ -1,0 +1,139 @@
+//! The lean front end against `prepare`: the same triangles in the same
+//! order, the same counts and the same colours, with clipping, culling,
+//! both precisions, a small guard band and in parallel.
+
+use glam::DVec3;
+use hider_geom::Camera;
+
+use super::*;
+use crate::model::{Light, Mesh};
+use crate::prepare::{PrepareOptions, TransformPrecision, prepare};
+use crate::procedural;
+use crate::shade::{ShadeMode, prim_color};
+use crate::view::View;
+
+/// Asserts that the lean front end gives `prepare`'s triangles, counts and
+/// colours for `scene` seen by `view` with `options`.
+fn check(scene: &Scene, view: &View, options: &PrepareOptions) {
+    let full = prepare(scene, view, options).unwrap();
+    let mut lean = LeanScene::new();
+    // Twice into the same scene: memory reuse changes nothing.
+    for _ in 0..2 {
+        prepare_lean_into(scene, view, options, &mut lean).unwrap();
+        let want: Vec<LeanTri> = full.tris.iter().map(LeanTri::from).collect();
+        assert_eq!(lean.tris().len(), want.len());
+        assert!(lean.tris() == want.as_slice(), "triangles differ");
+        assert_eq!(lean.stats, full.stats);
+        assert_eq!(lean.viewport, full.viewport);
+    }
+    for prim in 0..scene.triangle_count() as u32 {
+        for mode in [ShadeMode::Lambert, ShadeMode::Ids] {
+            let (a, b) = (
+                lean.prim_color(scene, prim, mode),
+                prim_color(&full, prim, mode),
+            );
+            assert_eq!(a.0.map(f32::to_bits), b.0.map(f32::to_bits), "prim {prim}");
+            assert_eq!(a.1.to_bits(), b.1.to_bits());
+        }
+        assert_eq!(
+            lean.material_index(scene, prim),
+            full.prims[prim as usize].material
+        );
+    }
+}
+
+/// Cameras that see the scene whole, from inside it (the near plane and
+/// the guard band cut triangles) and from beside it.
+fn views(scene: &Scene) -> Vec<View> {
+    let inside = Camera::perspective(
+        DVec3::new(0.1, 0.2, 0.3),
+        DVec3::new(0.0, 0.0, -1.0),
+        0.05,
+        3.0,
+    );
+    let beside = Camera::perspective(DVec3::new(3.0, 0.5, 0.4), DVec3::ZERO, 2.0, 3.5);
+    vec![
+        View::for_scene(scene, 97, 61).unwrap(),
+        View::new(inside, 80, 80).unwrap(),
+        View::new(beside, 64, 40).unwrap(),
+    ]
+}
+
+#[test]
+fn lean_front_end_is_prepare_bit_for_bit() {
+    let mut lit = procedural::uv_sphere(20);
+    lit.lights.push(Light::Point {
+        position: DVec3::new(2.0, 3.0, 4.0),
+        color: [0.9, 0.8, 0.7],
+    });
+    lit.lights.push(Light::Directional {
+        direction: DVec3::new(-1.0, -0.5, -0.2),
+        color: [0.3, 0.3, 0.4],
+    });
+    // A second mesh with no material and an empty mesh between.
+    let mut two = procedural::random_soup(300, 5);
+    two.push_mesh(Mesh::default(), None);
+    let cube = procedural::cube();
+    two.push_mesh(
+        Mesh {
+            positions: cube.meshes[0].positions.clone(),
+            indices: cube.meshes[0].indices.clone(),
+            ..Mesh::default()
+        },
+        None,
+    );
+    let scenes = [
+        lit,
+        two,
+        procedural::random_soup(1500, 11),
+        procedural::intersecting_pair(),
+        procedural::cyclic_triple(),
+    ];
+    for scene in &scenes {
+        for view in views(scene) {
+            for precision in [TransformPrecision::F64, TransformPrecision::F32] {
+                for cull in [false, true] {
+                    let options = PrepareOptions::default()
+                        .with_precision(precision)
+                        .with_cull_back_faces(cull);
+                    check(scene, &view, &options);
+                    check(scene, &view, &options.with_guard_band_pixels(4));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn lean_front_end_in_parallel_is_prepare() {
+    // Above the size where both front ends split the work.
+    let scene = procedural::random_soup(40_000, 3);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(3)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        for view in views(&scene) {
+            check(&scene, &view, &PrepareOptions::default());
+        }
+    });
+}
+
+#[test]
+fn bad_input_is_an_error_naming_it() {
+    let mut scene = procedural::cube();
+    scene.meshes[0].indices[3][1] = 99;
+    let view = View::for_scene(&procedural::cube(), 32, 32).unwrap();
+    let mut lean = LeanScene::new();
+    let e = prepare_lean_into(&scene, &view, &PrepareOptions::default(), &mut lean).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        prepare(&scene, &view, &PrepareOptions::default())
+            .unwrap_err()
+            .to_string()
+    );
+    let mut scene = procedural::cube();
+    scene.meshes[0].positions[2].y = f64::NAN;
+    let e = prepare_lean_into(&scene, &view, &PrepareOptions::default(), &mut lean).unwrap_err();
+    assert!(e.to_string().contains("mesh"), "{e}");
+}
