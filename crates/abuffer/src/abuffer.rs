@@ -25,7 +25,10 @@
 //!    mask is computed.
 
 use hider_geom::PlaneEq;
-use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
+use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
+use hider_scene::{
+    Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, View, check_frame_size,
+};
 use std::sync::{Mutex, PoisonError};
 
 use rayon::prelude::*;
@@ -35,6 +38,7 @@ use crate::centre::in_front;
 use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode};
 use crate::resolve::Band;
+use crate::source::Source;
 use crate::stats::ABufferStats;
 use crate::worker::{Shared, Worker};
 
@@ -57,6 +61,12 @@ pub struct ABuffer {
     /// The hider's own pool, when the caller's does not have the threads
     /// asked for.
     pool: Option<rayon::ThreadPool>,
+    /// The lean front end's output, kept between frames
+    /// ([`Hider::render_scene`]).
+    lean: LeanScene,
+    /// A prepared scene's triangles as the lean front end gives them
+    /// ([`Hider::render`]).
+    screen_tris: Vec<LeanTri>,
     width: u32,
     height: u32,
 }
@@ -137,6 +147,92 @@ impl ABuffer {
             });
         }
         Ok(())
+    }
+
+    /// Renders the triangles of `scene` into `frame`.
+    fn run(&mut self, scene: &Source<'_>, frame: &mut Frame) -> Result<ABufferStats> {
+        check_frame_size("abuffer", scene.viewport, frame)?;
+        self.check_options()?;
+        frame.clear();
+        let (w, h) = (scene.viewport.width, scene.viewport.height);
+        self.width = w;
+        self.height = h;
+        let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
+        // No more threads than bands (tile rows), nor than `max_bytes`
+        // holds with twice a pixel table each (each thread has a table
+        // of the whole frame: many cores on a large frame would spend the
+        // budget on tables and leave no room for fragments).
+        let table = u64::from(w) * u64::from(h) * PIXEL_BYTES;
+        let fit = (self.options.max_bytes / (2 * table).max(1)).max(1);
+        let threads = self
+            .threads()
+            .min(tiles_y as usize)
+            .min(usize::try_from(fit).unwrap_or(usize::MAX))
+            .max(1);
+        let mut options = self.options;
+        options.max_bytes /= threads as u64;
+        let tiles = (tiles_x * tiles_y) as usize;
+        if self.workers.len() < threads {
+            self.workers.resize_with(threads, Worker::default);
+        }
+        for worker in &mut self.workers[..threads] {
+            worker.begin_frame(scene, &options, tiles)?;
+        }
+        self.bins.bin(scene, options.pattern, tiles_x, tiles_y);
+        self.planes.clear();
+        self.planes.extend(scene.tris.iter().map(|t| t.depth));
+        frame.coverage.clear();
+        frame.coverage.resize(frame.len(), 0.0);
+        let own = self.own_pool(threads)?;
+        // A queue of bands, top first: each thread takes the next one when
+        // it is done with its last, so a thread the machine slows down
+        // takes fewer (a fixed share would wait for the slowest).
+        let mut bands: Vec<(u32, Band<'_>)> = Band::split(frame, TILE as usize)
+            .into_iter()
+            .enumerate()
+            .map(|(ty, band)| (ty as u32, band))
+            .collect();
+        bands.reverse();
+        let queue = Mutex::new(bands);
+        let shared = Shared {
+            scene,
+            options: &options,
+            bins: &self.bins,
+            planes: &self.planes,
+            tiles_x,
+        };
+        let run = |worker: &mut Worker| -> Result<Vec<u32>> {
+            let mut done = Vec::new();
+            loop {
+                let next = queue.lock().unwrap_or_else(PoisonError::into_inner).pop();
+                let Some((ty, mut band)) = next else {
+                    return Ok(done);
+                };
+                worker.band(&shared, ty, &mut band)?;
+                done.push(ty);
+            }
+        };
+        let mut workers = std::mem::take(&mut self.workers);
+        let result = if threads == 1 {
+            run(&mut workers[0]).map(|done| vec![done])
+        } else {
+            let (mine, run) = (&mut workers[..threads], &run);
+            let mut all = move || mine.par_iter_mut().map(run).collect();
+            match self.pool.as_ref().filter(|_| own) {
+                Some(pool) => pool.install(all),
+                None => all(),
+            }
+        };
+        self.workers = workers;
+        let done: Vec<Vec<u32>> = result?;
+        self.owner.clear();
+        self.owner.resize(tiles_y as usize, 0);
+        for (k, bands) in done.iter().enumerate() {
+            for &ty in bands {
+                self.owner[ty as usize] = k as u32;
+            }
+        }
+        Ok(total_stats(&self.workers[..threads]))
     }
 
     /// Whether `threads` threads run in the hider's own pool (started on
@@ -222,88 +318,36 @@ impl Hider for ABuffer {
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<ABufferStats> {
-        check_frame("abuffer", scene, frame)?;
-        self.check_options()?;
-        frame.clear();
-        let (w, h) = (scene.viewport.width, scene.viewport.height);
-        self.width = w;
-        self.height = h;
-        let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
-        // No more threads than bands (tile rows), nor than `max_bytes`
-        // holds with twice a pixel table each (each thread has a table
-        // of the whole frame: many cores on a large frame would spend the
-        // budget on tables and leave no room for fragments).
-        let table = u64::from(w) * u64::from(h) * PIXEL_BYTES;
-        let fit = (self.options.max_bytes / (2 * table).max(1)).max(1);
-        let threads = self
-            .threads()
-            .min(tiles_y as usize)
-            .min(usize::try_from(fit).unwrap_or(usize::MAX))
-            .max(1);
-        let mut options = self.options;
-        options.max_bytes /= threads as u64;
-        let tiles = (tiles_x * tiles_y) as usize;
-        if self.workers.len() < threads {
-            self.workers.resize_with(threads, Worker::default);
+        let mut tris = std::mem::take(&mut self.screen_tris);
+        tris.clear();
+        tris.extend(scene.tris.iter().map(LeanTri::from));
+        let result = self.run(&Source::screen(scene, &tris), frame);
+        self.screen_tris = tris;
+        result
+    }
+
+    /// The lean front end ([`prepare_lean_into`]: `prepare`'s triangles,
+    /// transformed per vertex, without its per-primitive data), then the
+    /// same rendering as [`Hider::render`]: the same frame, bit for bit.
+    /// A scene whose textures are loaded into `screen` takes the shared
+    /// front end (texturing reads what only it keeps).
+    fn render_scene(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+        options: &PrepareOptions,
+        screen: &mut ScreenScene,
+        frame: &mut Frame,
+    ) -> Result<ABufferStats> {
+        if screen.textures.is_active() {
+            hider_scene::prepare_into(scene, view, options, screen)?;
+            return self.render(screen, frame);
         }
-        for worker in &mut self.workers[..threads] {
-            worker.begin_frame(scene, &options, tiles)?;
-        }
-        self.bins.bin(scene, options.pattern, tiles_x, tiles_y);
-        self.planes.clear();
-        self.planes.extend(scene.tris.iter().map(|t| t.depth));
-        frame.coverage.clear();
-        frame.coverage.resize(frame.len(), 0.0);
-        let own = self.own_pool(threads)?;
-        // A queue of bands, top first: each thread takes the next one when
-        // it is done with its last, so a thread the machine slows down
-        // takes fewer (a fixed share would wait for the slowest).
-        let mut bands: Vec<(u32, Band<'_>)> = Band::split(frame, TILE as usize)
-            .into_iter()
-            .enumerate()
-            .map(|(ty, band)| (ty as u32, band))
-            .collect();
-        bands.reverse();
-        let queue = Mutex::new(bands);
-        let shared = Shared {
-            scene,
-            options: &options,
-            bins: &self.bins,
-            planes: &self.planes,
-            tiles_x,
-        };
-        let run = |worker: &mut Worker| -> Result<Vec<u32>> {
-            let mut done = Vec::new();
-            loop {
-                let next = queue.lock().unwrap_or_else(PoisonError::into_inner).pop();
-                let Some((ty, mut band)) = next else {
-                    return Ok(done);
-                };
-                worker.band(&shared, ty, &mut band)?;
-                done.push(ty);
-            }
-        };
-        let mut workers = std::mem::take(&mut self.workers);
-        let result = if threads == 1 {
-            run(&mut workers[0]).map(|done| vec![done])
-        } else {
-            let (mine, run) = (&mut workers[..threads], &run);
-            let mut all = move || mine.par_iter_mut().map(run).collect();
-            match self.pool.as_ref().filter(|_| own) {
-                Some(pool) => pool.install(all),
-                None => all(),
-            }
-        };
-        self.workers = workers;
-        let done: Vec<Vec<u32>> = result?;
-        self.owner.clear();
-        self.owner.resize(tiles_y as usize, 0);
-        for (k, bands) in done.iter().enumerate() {
-            for &ty in bands {
-                self.owner[ty as usize] = k as u32;
-            }
-        }
-        Ok(total_stats(&self.workers[..threads]))
+        let mut lean = std::mem::take(&mut self.lean);
+        let result = prepare_lean_into(scene, view, options, &mut lean)
+            .and_then(|()| self.run(&Source::lean(&lean, scene), frame));
+        self.lean = lean;
+        result
     }
 
     fn resolves_color(&self) -> bool {

@@ -6,10 +6,10 @@
 //! visited out of index order, and reading them from the scene would cost a
 //! cache miss each.
 
+use crate::source::Source;
 use hider_geom::{FixedPt, PlaneEq};
-use hider_scene::ScreenScene;
 
-use crate::coverage::pixel_range;
+use crate::coverage::pixel_range_of;
 use crate::pattern::SamplePattern;
 
 /// Side of the square screen tiles, in pixels. Triangles are binned to
@@ -26,7 +26,7 @@ pub(crate) struct BinItem {
     pub(crate) tri: u32,
     /// Its primitive.
     pub(crate) prim: u32,
-    /// Its pixel range `(x0, y0, x1, y1)` (see [`pixel_range`]).
+    /// Its pixel range `(x0, y0, x1, y1)` (see [`crate::coverage::pixel_range`]).
     pub(crate) range: (u32, u32, u32, u32),
     /// Its depth plane.
     pub(crate) plane: PlaneEq,
@@ -100,7 +100,7 @@ impl Bins {
     /// order kept), for a frame of `tiles_x x tiles_y` tiles.
     pub(crate) fn bin(
         &mut self,
-        scene: &ScreenScene,
+        scene: &Source<'_>,
         pattern: SamplePattern,
         tiles_x: u32,
         tiles_y: u32,
@@ -111,8 +111,8 @@ impl Bins {
         self.start.resize(tiles + 1, 0);
         self.ranges.clear();
         const NONE: (u32, u32, u32, u32) = (1, 1, 0, 0);
-        for tri in &scene.tris {
-            let r = pixel_range(tri, pattern, w, h).unwrap_or(NONE);
+        for tri in scene.tris {
+            let r = pixel_range_of(&tri.v, pattern, w, h).unwrap_or(NONE);
             self.ranges.push(r);
             let (x0, y0, x1, y1) = r;
             if x0 > x1 {
@@ -131,7 +131,7 @@ impl Bins {
         self.items
             .resize(self.start[tiles] as usize, BinItem::default());
         let mut fill = self.start.clone();
-        for (t, (&(x0, y0, x1, y1), tri)) in self.ranges.iter().zip(&scene.tris).enumerate() {
+        for (t, (&(x0, y0, x1, y1), tri)) in self.ranges.iter().zip(scene.tris).enumerate() {
             if x0 > x1 {
                 continue;
             }

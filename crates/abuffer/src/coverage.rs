@@ -115,6 +115,11 @@ const fn grid_y(r: usize) -> i64 {
 impl TriCoverage {
     /// Sets up `tri` for sampling with `pattern`.
     pub fn new(tri: &ScreenTri, pattern: SamplePattern) -> Self {
+        Self::from_vertices(&tri.v, pattern)
+    }
+
+    /// [`Self::new`] from the triangle's snapped vertices alone.
+    pub fn from_vertices(v: &[FixedPt; 3], pattern: SamplePattern) -> Self {
         let mut setup = Self {
             edges: [EdgeFunction { a: 0, b: 0, c: 0 }; 3],
             noff: [[0; 32]; 3],
@@ -126,7 +131,7 @@ impl TriCoverage {
             pattern,
             full: 0,
         };
-        setup.reset(tri, pattern);
+        setup.reset_vertices(v, pattern);
         setup
     }
 
@@ -353,11 +358,21 @@ pub fn pixel_range(
     width: u32,
     height: u32,
 ) -> Option<(u32, u32, u32, u32)> {
+    pixel_range_of(&tri.v, pattern, width, height)
+}
+
+/// [`pixel_range`] of the triangle with snapped vertices `v`.
+pub fn pixel_range_of(
+    v: &[FixedPt; 3],
+    pattern: SamplePattern,
+    width: u32,
+    height: u32,
+) -> Option<(u32, u32, u32, u32)> {
     let (hx0, hy0, hx1, hy1) = pattern.hull();
-    let min_x = tri.v.iter().map(|p| p.x).min()?;
-    let max_x = tri.v.iter().map(|p| p.x).max()?;
-    let min_y = tri.v.iter().map(|p| p.y).min()?;
-    let max_y = tri.v.iter().map(|p| p.y).max()?;
+    let min_x = v.iter().map(|p| p.x).min()?;
+    let max_x = v.iter().map(|p| p.x).max()?;
+    let min_y = v.iter().map(|p| p.y).min()?;
+    let max_y = v.iter().map(|p| p.y).max()?;
     // Pixel i's samples span [i*256 + h0, i*256 + h1]: it can be hit when
     // i*256 + h1 >= min and i*256 + h0 <= max.
     let s = SUBPIXEL_SCALE;

@@ -82,6 +82,7 @@ pub mod pool;
 mod raster;
 mod resolve;
 mod sorted;
+mod source;
 mod ssaa;
 pub mod stats;
 mod worker;

@@ -10,16 +10,16 @@
 //! if still full, the overflow policy fails the frame or drops the
 //! farthest fragment.
 
-use hider_scene::{Error, Result, ScreenScene};
+use hider_scene::{Error, Result};
 
 use crate::coverage::Coverage;
 use crate::culling::{Culling, HiddenScratch, hidden_fragments, key_at_or_beyond};
 use crate::depth::plane_depth;
 use crate::fragment::{Fragment, MERGED_BASE, NIL, Shaded};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy};
-use crate::palette::{at_pixel, shade_of};
 use crate::pattern::MAX_SAMPLES;
 use crate::pool::FragmentPool;
+use crate::source::Source;
 use crate::stats::ABufferStats;
 
 /// Two colour channels closer than this count as equal for
@@ -36,7 +36,7 @@ pub const MERGE_SEARCH: usize = 8;
 /// Where a fragment goes, besides the fragment.
 pub(crate) struct Ctx<'a> {
     /// The scene being rendered.
-    pub(crate) scene: &'a ScreenScene,
+    pub(crate) scene: &'a Source<'a>,
     /// Index of the pixel in the frame.
     pub(crate) p: usize,
     /// The pixel.
@@ -74,7 +74,7 @@ impl Lists {
     /// [`FragmentPool::reset`]).
     pub(crate) fn begin_frame(
         &mut self,
-        scene: &ScreenScene,
+        scene: &Source<'_>,
         options: &ABufferOptions,
     ) -> Result<bool> {
         self.options = *options;
@@ -84,7 +84,7 @@ impl Lists {
             .pool
             .reset(w as usize * h as usize, per_sample, options.max_bytes)?;
         self.colors.clear();
-        self.colors.resize(scene.prims.len(), [f32::NAN; 4]);
+        self.colors.resize(scene.prims(), [f32::NAN; 4]);
         Ok(fresh)
     }
 
@@ -95,20 +95,20 @@ impl Lists {
 
     /// The opacity of primitive `prim`, its shading computed on first use.
     #[inline]
-    pub(crate) fn prim_alpha(&mut self, scene: &ScreenScene, prim: u32) -> f32 {
-        shade_of(&mut self.colors, scene, self.options.shade, prim)[3]
+    pub(crate) fn prim_alpha(&mut self, scene: &Source<'_>, prim: u32) -> f32 {
+        scene.shade_of(&mut self.colors, self.options.shade, prim)[3]
     }
 
     /// The colour and opacity of shading index `shade` in pixel `ij` (a
     /// primitive's flat colour computed on first use, textured at the pixel
     /// centre).
     #[inline]
-    pub(crate) fn rgba(&mut self, scene: &ScreenScene, shade: u32, ij: (u32, u32)) -> [f32; 4] {
+    pub(crate) fn rgba(&mut self, scene: &Source<'_>, shade: u32, ij: (u32, u32)) -> [f32; 4] {
         if shade >= MERGED_BASE {
             self.pool.merged(shade).rgba
         } else {
-            let flat = shade_of(&mut self.colors, scene, self.options.shade, shade);
-            at_pixel(scene, shade, flat, ij)
+            let flat = scene.shade_of(&mut self.colors, self.options.shade, shade);
+            scene.at_pixel(shade, flat, ij)
         }
     }
 
@@ -226,7 +226,7 @@ impl Lists {
 
     /// Removes the fragments of pixel `p` hidden in every sample and at the
     /// centre by nearer opaque fragments; returns how many.
-    fn prune_hidden(&mut self, scene: &ScreenScene, p: usize, full: u32) -> u64 {
+    fn prune_hidden(&mut self, scene: &Source<'_>, p: usize, full: u32) -> u64 {
         let mut list = std::mem::take(&mut self.scratch);
         list.clear();
         let w = scene.viewport.width as usize;
@@ -271,8 +271,7 @@ impl Lists {
                     // Scene lookups (cache misses) only for candidates.
                     let (tri, other) = (&scene.tris[f.tri as usize], &scene.tris[g.tri as usize]);
                     other.front_facing == tri.front_facing
-                        && scene.prims[g.prim as usize].material
-                            == scene.prims[f.prim as usize].material
+                        && scene.material(g.prim) == scene.material(f.prim)
                         && tri.v.iter().any(|v| other.v.contains(v))
                 };
             if mergeable {

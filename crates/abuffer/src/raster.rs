@@ -9,7 +9,7 @@
 //! the primitives with a triangle that survives the block test only.
 
 use hider_geom::PlaneEq;
-use hider_scene::{NO_ID, Result, ScreenScene};
+use hider_scene::{NO_ID, Result};
 
 use crate::bins::{BinItem, TILE};
 use crate::coverage::{Class, Coverage, TriCoverage};
@@ -19,11 +19,12 @@ use crate::fragment::{Fragment, NIL};
 use crate::lists::{Ctx, Lists};
 use crate::options::{ABufferOptions, DepthMode};
 use crate::pattern::CENTRE;
+use crate::source::Source;
 use crate::stats::ABufferStats;
 
 /// What rasterising one triangle needs at every pixel.
 struct TriRaster<'a> {
-    scene: &'a ScreenScene,
+    scene: &'a Source<'a>,
     tri: u32,
     prim: u32,
     plane: PlaneEq,
@@ -53,7 +54,7 @@ impl Rasterizer {
     /// Starts a frame of `scene` with `options` (see [`Lists::begin_frame`]).
     pub(crate) fn begin_frame(
         &mut self,
-        scene: &ScreenScene,
+        scene: &Source<'_>,
         options: &ABufferOptions,
     ) -> Result<bool> {
         self.dims = (scene.viewport.width, scene.viewport.height);
@@ -74,7 +75,7 @@ impl Rasterizer {
     /// set-up when every block is.
     pub(crate) fn triangle(
         &mut self,
-        scene: &ScreenScene,
+        scene: &Source<'_>,
         item: &BinItem,
         rect: (u32, u32, u32, u32),
         tile: (u32, u32),
@@ -90,7 +91,7 @@ impl Rasterizer {
         let mut setup = self
             .setup
             .take()
-            .unwrap_or_else(|| Box::new(TriCoverage::new(&scene.tris[item.tri as usize], pattern)));
+            .unwrap_or_else(|| Box::new(TriCoverage::from_vertices(&item.v, pattern)));
         setup.reset_vertices(&item.v, pattern);
         let plane = item.plane;
         let (hx0, hy0, hx1, hy1) = pattern.hull();

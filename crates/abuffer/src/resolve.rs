@@ -27,20 +27,21 @@
 //! conversion, which is exact and table-driven ([`crate::palette`]).
 
 use hider_geom::PlaneEq;
-use hider_scene::{Frame, NO_ID, ScreenScene};
+use hider_scene::{Frame, NO_ID};
 
 use crate::centre::in_front;
 use crate::composite::{blend, mask_path, overlapping, per_sample};
 use crate::fragment::{Fragment, NIL, Shaded};
 use crate::options::{ABufferOptions, DepthMode};
-use crate::palette::{Srgb, at_pixel, shade_of, to_pixel};
+use crate::palette::{Srgb, to_pixel};
 use crate::pool::FragmentPool;
+use crate::source::Source;
 use crate::stats::ABufferStats;
 
 /// What the resolve reads: the lists, and how to colour their fragments.
 pub(crate) struct Input<'a> {
     /// The scene the lists were made from.
-    pub(crate) scene: &'a ScreenScene,
+    pub(crate) scene: &'a Source<'a>,
     /// The lists.
     pub(crate) pool: &'a FragmentPool,
     /// Depth plane per triangle.
@@ -59,8 +60,10 @@ impl Input<'_> {
         if f.is_merged() {
             self.pool.merged(f.shade).rgba
         } else {
-            let flat = shade_of(self.colors, self.scene, self.options.shade, f.shade);
-            at_pixel(self.scene, f.shade, flat, ij)
+            let flat = self
+                .scene
+                .shade_of(self.colors, self.options.shade, f.shade);
+            self.scene.at_pixel(f.shade, flat, ij)
         }
     }
 }

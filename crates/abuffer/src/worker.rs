@@ -10,7 +10,9 @@
 //! which band.
 
 use hider_geom::PlaneEq;
-use hider_scene::{NO_ID, Result, ScreenScene};
+use hider_scene::{NO_ID, Result};
+
+use crate::source::Source;
 
 use crate::bins::{Bins, LEADER, SOLE, TILE, TileQueue};
 use crate::options::ABufferOptions;
@@ -37,7 +39,7 @@ pub(crate) struct Worker {
 /// What every thread reads during a frame.
 pub(crate) struct Shared<'a> {
     /// The scene.
-    pub(crate) scene: &'a ScreenScene,
+    pub(crate) scene: &'a Source<'a>,
     /// The options (memory bound: this thread's share).
     pub(crate) options: &'a ABufferOptions,
     /// The binned triangles.
@@ -53,7 +55,7 @@ impl Worker {
     /// zero.
     pub(crate) fn begin_frame(
         &mut self,
-        scene: &ScreenScene,
+        scene: &Source<'_>,
         options: &ABufferOptions,
         tiles: usize,
     ) -> Result<()> {

@@ -8,6 +8,7 @@ mod convergence;
 mod culling;
 mod depth_modes;
 mod exactness;
+mod lean;
 mod memory;
 mod threads;
 mod transparency;

@@ -1,0 +1,197 @@
+//! The lean front end changes nothing: rendering from the world-space
+//! scene (`Hider::render_scene`, the lean front end) gives the frame, the
+//! sample ids and the work counters of rendering `prepare`'s output
+//! (`Hider::render`), bit for bit, on every hard case and on random soups
+//! (opaque and translucent, every depth mode, lit or false-coloured), at 1
+//! and several threads; through it the A-buffer still equals the 32-sample
+//! supersampled z-buffer sample for sample, and the three translucent
+//! triangles composite to the same image in all 6 orders.
+
+use glam::DVec3;
+use hider_abuffer::{
+    ABuffer, ABufferOptions, ABufferStats, DepthMode, MergePolicy, SsaaOptions, SupersampledZBuffer,
+};
+use hider_scene::{
+    Frame, Hider, Light, PrepareOptions, Scene, ScreenScene, ShadeMode, View, procedural,
+};
+use hider_testkit::{hard_cases, render, screen};
+use proptest::prelude::*;
+
+use crate::common::{max_color_diff, three_glass, with_opacity};
+
+/// Frame sizes: several bands, fewer bands than threads, partial tiles.
+const SIZES: [(u32, u32); 3] = [(200, 330), (150, 90), (70, 20)];
+
+/// The counters that say what was done, without the memory figures.
+fn work(s: &ABufferStats) -> ABufferStats {
+    ABufferStats {
+        pool_fragments: 0,
+        bytes: 0,
+        ..*s
+    }
+}
+
+/// Renders `scene` at `w x h` through the lean front end with `hider`.
+fn render_lean(hider: &mut ABuffer, scene: &Scene, w: u32, h: u32) -> (Frame, ABufferStats) {
+    let view = View::for_scene(scene, w, h).unwrap();
+    let mut unused = ScreenScene::empty(&view);
+    let mut frame = Frame::new(w, h).unwrap();
+    let stats = hider
+        .render_scene(
+            scene,
+            &view,
+            &PrepareOptions::default(),
+            &mut unused,
+            &mut frame,
+        )
+        .unwrap();
+    // The lean path leaves the caller's prepared scene alone.
+    assert!(unused.tris.is_empty());
+    (frame, stats)
+}
+
+/// Asserts that the lean front end and `prepare` give the same frames,
+/// sample ids and counters for `scene` at every size, with 1 and 3
+/// threads, twice on the same hider.
+fn lean_is_prepared(scene: &Scene, options: ABufferOptions, what: &str) {
+    for (w, h) in SIZES {
+        let s = screen(scene, w, h);
+        for threads in [1, 3] {
+            let options = options.with_threads(threads);
+            let mut full = ABuffer::new(options);
+            let (f1, s1) = render(&mut full, &s);
+            let mut lean = ABuffer::new(options);
+            for round in 0..2 {
+                let (f2, s2) = render_lean(&mut lean, scene, w, h);
+                let at = format!("{what} at {w}x{h}, {threads} threads, round {round}");
+                assert!(f1 == f2, "{at}: frames differ");
+                assert!(
+                    full.sample_ids() == lean.sample_ids(),
+                    "{at}: sample ids differ"
+                );
+                assert_eq!(work(&s1), work(&s2), "{at}");
+            }
+        }
+    }
+}
+
+#[test]
+fn every_hard_case_is_the_same_through_the_lean_front_end() {
+    for (name, scene) in hard_cases::all(11) {
+        lean_is_prepared(&scene, ABufferOptions::default(), name);
+        lean_is_prepared(&scene, ABufferOptions::carpenter(), name);
+    }
+}
+
+#[test]
+fn lights_and_false_colours_are_the_same_through_the_lean_front_end() {
+    let mut scene = procedural::uv_sphere(30);
+    scene.lights.push(Light::Point {
+        position: DVec3::new(2.0, 3.0, 4.0),
+        color: [0.9, 0.8, 0.7],
+    });
+    scene.lights.push(Light::Directional {
+        direction: DVec3::new(-1.0, -0.5, -0.2),
+        color: [0.3, 0.3, 0.4],
+    });
+    lean_is_prepared(&scene, ABufferOptions::default(), "lit sphere");
+    let ids = ABufferOptions::default().with_shade(ShadeMode::Ids);
+    lean_is_prepared(&with_opacity(scene, 0.6), ids, "translucent sphere, ids");
+}
+
+#[test]
+fn six_orders_of_glass_are_one_image_through_the_lean_front_end() {
+    let orders = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
+    for depth in [DepthMode::PerSample, DepthMode::MinMax] {
+        let options = ABufferOptions::default().with_depth(depth);
+        let mut first: Option<Frame> = None;
+        for order in orders {
+            let scene = three_glass(order);
+            lean_is_prepared(&scene, options, "three glass");
+            let (frame, _) = render_lean(&mut ABuffer::new(options), &scene, 96, 96);
+            match &first {
+                None => first = Some(frame),
+                Some(f) => assert!(max_color_diff(f, &frame) <= 1, "{depth:?} {order:?}"),
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(10))]
+
+    /// Random soups, opaque or translucent, in every depth mode.
+    #[test]
+    fn soups_are_the_same_through_the_lean_front_end(
+        count in 1u32..400,
+        seed in any::<u64>(),
+        glass in any::<bool>(),
+        mode in 0usize..3,
+    ) {
+        let mut scene = procedural::random_soup(count, seed);
+        if glass {
+            scene = with_opacity(scene, 0.5);
+        }
+        let depth = [DepthMode::PerSample, DepthMode::MinMax, DepthMode::ZminOrder][mode];
+        lean_is_prepared(&scene, ABufferOptions::default().with_depth(depth), "soup");
+    }
+
+    /// Through the lean front end, with several threads, per-sample depth
+    /// and merging off, every sample's front-most primitive, the coverage
+    /// and the centre ids are the 32-sample supersampled z-buffer's.
+    #[test]
+    fn lean_abuffer_equals_supersampling(count in 1u32..300, seed in any::<u64>()) {
+        let scene = procedural::random_soup(count, seed);
+        let s = screen(&scene, 150, 140);
+        let mut a = ABuffer::new(
+            ABufferOptions::default().with_merge(MergePolicy::Off).with_threads(3),
+        );
+        let mut z = SupersampledZBuffer::new(SsaaOptions::default());
+        let fa = render_lean(&mut a, &scene, 150, 140).0;
+        let fz = render(&mut z, &s).0;
+        prop_assert_eq!(a.sample_ids(), z.sample_ids().to_vec());
+        prop_assert_eq!(&fa.coverage, &fz.coverage);
+        prop_assert_eq!(&fa.ids, &fz.ids);
+    }
+}
+
+/// A hider that renders a prepared scene and then the lean path (and
+/// back) gives each frame as a fresh hider does.
+#[test]
+fn switching_paths_on_one_hider_changes_nothing() {
+    let a = procedural::random_soup(200, 4);
+    let b = with_opacity(procedural::uv_sphere(16), 0.5);
+    let mut mixed = ABuffer::new(ABufferOptions::default().with_threads(2));
+    for scene in [&a, &b, &a] {
+        let s = screen(scene, 120, 100);
+        let (want, _) = render(&mut ABuffer::new(ABufferOptions::default()), &s);
+        assert!(render(&mut mixed, &s).0 == want);
+        assert!(render_lean(&mut mixed, scene, 120, 100).0 == want);
+    }
+}
+
+/// A frame of the wrong size is a one-line error, as through `render`.
+#[test]
+fn wrong_frame_size_is_an_error() {
+    let scene = procedural::cube();
+    let view = View::for_scene(&scene, 64, 64).unwrap();
+    let mut unused = ScreenScene::empty(&view);
+    let mut frame = Frame::new(32, 64).unwrap();
+    let e = ABuffer::new(ABufferOptions::default())
+        .render_scene(
+            &scene,
+            &view,
+            &PrepareOptions::default(),
+            &mut unused,
+            &mut frame,
+        )
+        .unwrap_err();
+    assert!(e.to_string().contains("32x64"), "{e}");
+}
