@@ -9,21 +9,36 @@
 //! quadratic. A hider whose last time, scaled quadratically, would pass
 //! the time limit is skipped at the larger sizes (shown as `-`).
 //!
+//! Above the hiders, in the same run, yardsticks say what those exponents
+//! mean on this machine: `N log N` itself (the model, no timing), a
+//! `sort_unstable_by` of `N` random `f32` keys (what an `N log N` hider
+//! cannot beat), and one linear pass over `N` records of 32 bytes (the
+//! Warnock classification record), 128 bytes (two cache lines) and the
+//! size of a screen triangle (what every hider's set-up reads once). A
+//! linear pass whose records outgrow the caches between the sizes shows an
+//! exponent above 1 too: that part of a hider's excess is the memory
+//! system, not the algorithm.
+//!
 //! ```text
-//! cargo run --release -p hider-testkit --features hostile --example one_pixel_scaling -- [N...] [--only NAME] [--limit SECONDS]
+//! cargo run --release -p hider-testkit --features hostile --example one_pixel_scaling -- [N...] [--only NAME] [--limit SECONDS] [--counters NAME]
 //! ```
 
 use std::time::Instant;
 
+use std::hint::black_box;
+
 use hider_plan::registry;
-use hider_scene::{Frame, ScreenScene};
+use hider_scene::procedural::SplitMix64;
+use hider_scene::{Frame, ScreenScene, ScreenTri, StatsTable};
 use hider_testkit::{hard_cases, screen};
 
-/// The sizes, the hiders to run (all when empty) and the time limit.
+/// The sizes, the hiders to run (all when empty), the time limit and the
+/// hiders whose work counters to print.
 struct Args {
     sizes: Vec<u32>,
     only: Vec<String>,
     limit: f64,
+    counters: Vec<String>,
 }
 
 fn parse_args() -> Args {
@@ -31,11 +46,13 @@ fn parse_args() -> Args {
         sizes: Vec::new(),
         only: Vec::new(),
         limit: 30.0,
+        counters: Vec::new(),
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
             "--only" => args.only.push(it.next().expect("--only NAME")),
+            "--counters" => args.counters.push(it.next().expect("--counters NAME")),
             "--limit" => {
                 args.limit = it
                     .next()
@@ -69,20 +86,125 @@ fn exponent(points: &[(u32, f64)]) -> Option<f64> {
 }
 
 /// Seconds of the median of up to three renders (one when a render takes
-/// over a second), or the error.
-fn time_render(hider: &mut dyn hider_scene::DynHider, s: &ScreenScene) -> Result<f64, String> {
+/// over a second) and the last render's counters, or the error.
+fn time_render(
+    hider: &mut dyn hider_scene::DynHider,
+    s: &ScreenScene,
+) -> Result<(f64, StatsTable), String> {
     let mut frame = Frame::new(s.viewport.width, s.viewport.height).map_err(|e| e.to_string())?;
     let mut times = Vec::new();
+    let mut table = StatsTable::default();
     for _ in 0..3 {
         let start = Instant::now();
-        hider.render(s, &mut frame).map_err(|e| e.to_string())?;
+        table = hider.render(s, &mut frame).map_err(|e| e.to_string())?;
         times.push(start.elapsed().as_secs_f64());
         if times[0] > 1.0 {
             break;
         }
     }
     times.sort_by(f64::total_cmp);
-    Ok(times[times.len() / 2])
+    Ok((times[times.len() / 2], table))
+}
+
+/// Prints the non-zero counters of `name` at each size, one line each.
+fn print_counters(name: &str, tables: &[(u32, StatsTable)]) {
+    for (n, table) in tables {
+        let counters: Vec<String> = table
+            .counters
+            .iter()
+            .filter(|&&(_, v)| v != 0)
+            .map(|(k, v)| format!("{k} {v}"))
+            .collect();
+        println!("  {name} N = {n}: {}", counters.join(", "));
+    }
+}
+
+/// Seconds of the median of five runs of `f`, each after `setup` (the
+/// machine is shared: one run can be twice as slow as the next).
+fn median_time<T>(mut setup: impl FnMut() -> T, mut f: impl FnMut(T)) -> f64 {
+    let mut times: Vec<f64> = (0..5)
+        .map(|_| {
+            let input = setup();
+            let start = Instant::now();
+            f(input);
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    times[2]
+}
+
+/// Time to sort `n` random `f32` keys with `sort_unstable_by`.
+fn sort_time(n: u32) -> f64 {
+    let mut rng = SplitMix64::new(u64::from(n));
+    let keys: Vec<f32> = (0..n).map(|_| rng.range(0.0, 1.0) as f32).collect();
+    median_time(
+        || keys.clone(),
+        |mut k| {
+            k.sort_unstable_by(f32::total_cmp);
+            black_box(k);
+        },
+    )
+}
+
+/// Time of one pass summing every word of `n` records of `W` words.
+fn pass_time<const W: usize>(n: u32) -> f64 {
+    let records: Vec<[u64; W]> = (0..u64::from(n)).map(|i| [i; W]).collect();
+    median_time(
+        || (),
+        |()| {
+            let sum = records
+                .iter()
+                .flatten()
+                .fold(0u64, |acc, &w| acc.wrapping_add(w));
+            black_box(sum);
+        },
+    )
+}
+
+/// Words (8 bytes) of a screen triangle, rounded up.
+const SCREEN_TRI_WORDS: usize = std::mem::size_of::<ScreenTri>().div_ceil(8);
+
+/// Prints one table row: `name`, a time per size (`-` where missing) and
+/// the fitted exponent.
+fn print_row(name: &str, sizes: &[u32], points: &[(u32, f64)]) {
+    let mut row = format!("{name:<24}");
+    for n in sizes {
+        match points.iter().find(|&&(m, _)| m == *n) {
+            Some(&(_, t)) => row.push_str(&format!("{t:>11.5}s")),
+            None => row.push_str(&format!("{:>12}", "-")),
+        }
+    }
+    match exponent(points) {
+        Some(k) => row.push_str(&format!("{k:>10.2}")),
+        None => row.push_str(&format!("{:>10}", "-")),
+    }
+    println!("{row}");
+}
+
+/// A timed yardstick: its row name and the seconds it takes at a size.
+type Yardstick = (String, fn(u32) -> f64);
+
+/// The yardstick rows: the `N log N` model, a sort, linear passes.
+fn print_yardsticks(sizes: &[u32]) {
+    let model: Vec<(u32, f64)> = sizes
+        .iter()
+        .map(|&n| (n, f64::from(n) * f64::from(n).ln() * 1e-8))
+        .collect();
+    print_row("N log N (model)", sizes, &model);
+    let rows: [Yardstick; 4] = [
+        ("sort N f32 keys".to_owned(), sort_time),
+        ("pass N x 32 B".to_owned(), pass_time::<4>),
+        ("pass N x 128 B".to_owned(), pass_time::<16>),
+        (
+            format!("pass N x {} B", 8 * SCREEN_TRI_WORDS),
+            pass_time::<SCREEN_TRI_WORDS>,
+        ),
+    ];
+    for (name, time) in rows {
+        let points: Vec<(u32, f64)> = sizes.iter().map(|&n| (n, time(n))).collect();
+        print_row(&name, sizes, &points);
+    }
 }
 
 fn main() {
@@ -111,9 +233,11 @@ fn main() {
         print!("{:>12}", format!("N={n}"));
     }
     println!("{:>10}", "exponent");
+    print_yardsticks(&args.sizes);
     for entry in entries {
         let mut hider = entry.make();
         let mut points: Vec<(u32, f64)> = Vec::new();
+        let mut tables: Vec<(u32, StatsTable)> = Vec::new();
         let mut row = format!("{:<24}", entry.name);
         for (n, s) in &screens {
             let too_slow = points.last().is_some_and(|&(m, t)| {
@@ -125,9 +249,10 @@ fn main() {
                 continue;
             }
             match time_render(hider.as_mut(), s) {
-                Ok(t) => {
+                Ok((t, table)) => {
                     row.push_str(&format!("{:>11.3}s", t));
                     points.push((*n, t));
+                    tables.push((*n, table));
                 }
                 Err(e) => {
                     row.push_str(&format!("{:>12}", "refused"));
@@ -140,5 +265,8 @@ fn main() {
             None => row.push_str(&format!("{:>10}", "-")),
         }
         println!("{row}");
+        if args.counters.iter().any(|c| c == entry.name) {
+            print_counters(entry.name, &tables);
+        }
     }
 }
