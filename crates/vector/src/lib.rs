@@ -39,6 +39,7 @@ mod lines;
 mod options;
 mod pairs;
 mod regions;
+mod snap;
 mod svg;
 
 pub use grid::Grid;

@@ -25,6 +25,7 @@ use i_overlay::i_shape::int::shape::IntShapes;
 use crate::VectorOptions;
 use crate::grid::{Bins, Grid, bounds};
 use crate::pairs::{Relation, interiors_overlap, relation};
+use crate::snap::snap_round;
 
 hider_scene::hider_stats! {
     /// What [`visible_regions`] did.
@@ -38,6 +39,11 @@ hider_scene::hider_stats! {
         pub cut_pairs: u64 => "cut pairs",
         /// Boolean differences run (triangles with something in front).
         pub differences: u64 => "differences",
+        /// Primitives whose region the snap rounding rerouted (see
+        /// [`visible_regions`]).
+        pub snapped: u64 => "snapped regions",
+        /// Boolean differences of the ownership pass.
+        pub ownership_differences: u64 => "ownership differences",
         /// Primitives with a visible region.
         pub visible_prims: u64 => "visible prims",
         /// Face groups (paths of the regions SVG).
@@ -182,15 +188,25 @@ pub fn visible_regions(
     cut_pairs.sort_unstable();
     cut_pairs.dedup();
     stats.cut_pairs = cut_pairs.len() as u64;
+    let mut per_prim: Vec<(u32, IntShapes)> = per_prim.into_iter().collect();
+    per_prim.sort_unstable_by_key(|r| r.0);
+    let mut shapes: Vec<IntShapes> = per_prim
+        .iter_mut()
+        .map(|r| std::mem::take(&mut r.1))
+        .collect();
+    let touched = snap_round(&mut shapes);
+    stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
+    stats.ownership_differences = settle_ownership(&grid, &mut shapes, &touched);
     let mut prims: Vec<PrimRegion> = per_prim
-        .into_iter()
-        .map(|(prim, shapes)| PrimRegion {
+        .iter()
+        .zip(shapes)
+        .filter(|(_, shapes)| !shapes.is_empty())
+        .map(|(&(prim, _), shapes)| PrimRegion {
             prim,
             group: 0,
             shapes,
         })
         .collect();
-    prims.sort_by_key(|r| r.prim);
     let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
     stats.visible_prims = prims.len() as u64;
     stats.groups = groups.len() as u64;
@@ -206,6 +222,52 @@ pub fn visible_regions(
         stats,
         cut_pairs,
     })
+}
+
+/// Makes the snapped regions disjoint: each region in ascending primitive
+/// order loses what the regions before it already own. After snap
+/// rounding no two region edges cross except at grid points, so these
+/// differences have nothing to round and the result is exact. Only
+/// regions the snapping rerouted, or that overlap one it rerouted, can
+/// overlap another (two untouched regions meet only along common edges),
+/// so only those are differenced. Returns how many differences ran.
+fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> u64 {
+    let boxes: Vec<_> = shapes
+        .iter()
+        .map(|s| bounds(&s.iter().flatten().flatten().copied().collect::<Vec<_>>()))
+        .collect();
+    let bins = Bins::new(grid, &boxes);
+    let mut seen = vec![usize::MAX; shapes.len()];
+    let mut runs = 0;
+    for k in 0..shapes.len() {
+        let Some((lo, hi)) = boxes[k] else { continue };
+        let mut earlier = Vec::new();
+        bins.query(lo, hi, |j| {
+            let j = j as usize;
+            if j >= k || seen[j] == k {
+                return;
+            }
+            seen[j] = k;
+            if let Some((jlo, jhi)) = boxes[j] {
+                let apart = jhi.x <= lo.x || jlo.x >= hi.x || jhi.y <= lo.y || jlo.y >= hi.y;
+                if !apart && !shapes[j].is_empty() {
+                    earlier.push(j);
+                }
+            }
+        });
+        if !touched[k] && !earlier.iter().any(|&j| touched[j]) {
+            continue;
+        }
+        runs += 1;
+        let points = shapes[k].iter().flatten().map(Vec::len).sum::<usize>();
+        let mut overlay = Overlay::new(points + 16 * earlier.len());
+        overlay.add_shapes(&shapes[k], ShapeType::Subject);
+        for &j in &earlier {
+            overlay.add_shapes(&shapes[j], ShapeType::Clip);
+        }
+        shapes[k] = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
+    }
+    runs
 }
 
 /// Whether triangle `outer` covers all of triangle `inner` (closed, exact

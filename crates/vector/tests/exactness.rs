@@ -184,21 +184,21 @@ fn regions_never_overlap_and_cover_what_the_triangles_cover() {
         let (overlap, differ) = overlap_and_cover(&s, &map);
         let unit2 = map.grid.units_per_pixel().powi(2);
         let (overlap_px, differ_px) = (overlap as f64 / 2.0 / unit2, differ as f64 / 2.0 / unit2);
+        // Snap rounding puts every region on one arrangement: regions of
+        // different primitives share no area anywhere.
+        assert_eq!(overlap, 0, "{name}: regions overlap by {overlap_px} px^2");
+        eprintln!("{name}: union differs from the cover by {differ_px} px^2");
         if MESHES.contains(&name) {
             // No cut lines and no crossing edges inside a face: nothing is
-            // rounded, so the partition is exact.
-            assert_eq!(overlap, 0, "{name}: regions overlap");
+            // rounded, so the union is exactly the covered set.
             assert_eq!(
                 differ, 0,
                 "{name}: the regions' union is not the covered set"
             );
         } else {
-            // Cut points are rounded to the grid (1/16384 pixel by default):
-            // slivers of that width along cut lines are all that may differ.
-            assert!(
-                overlap_px < 5e-3,
-                "{name}: regions overlap by {overlap_px} px^2"
-            );
+            // Where cut points are rounded to the grid (1/16384 pixel by
+            // default), the union may differ from the covered set (itself
+            // rounded by the polygon library) by slivers that thin.
             assert!(
                 differ_px < 1e-2,
                 "{name}: union differs from the cover by {differ_px} px^2"

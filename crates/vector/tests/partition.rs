@@ -1,0 +1,114 @@
+//! The region map is a partition: the output polygons of different
+//! primitives share no area at all, measured exactly on the integer grid,
+//! on scenes full of crossings (interpenetrating surfaces, cyclic overlap,
+//! occluding edges crossing the edges behind them), where every cut point
+//! has to be rounded.
+
+use hider_scene::{ShadeMode, procedural};
+use hider_testkit::{hard_cases, screen};
+use hider_vector::{RegionMap, VectorOptions, visible_regions};
+use i_overlay::core::fill_rule::FillRule;
+use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay_rule::OverlayRule;
+use i_overlay::i_float::int::point::IntPoint;
+use i_overlay::i_shape::int::shape::IntShapes;
+
+/// Twice the signed area of a polygon set (outer contours positive, holes
+/// negative), exact in `i128`.
+fn area2(shapes: &IntShapes) -> i128 {
+    shapes
+        .iter()
+        .flatten()
+        .map(|c| {
+            (0..c.len())
+                .map(|k| {
+                    let (a, b) = (c[k], c[(k + 1) % c.len()]);
+                    i128::from(a.x) * i128::from(b.y) - i128::from(b.x) * i128::from(a.y)
+                })
+                .sum::<i128>()
+        })
+        .sum()
+}
+
+fn bounds(shapes: &IntShapes) -> (IntPoint, IntPoint) {
+    let mut lo = IntPoint::new(i32::MAX, i32::MAX);
+    let mut hi = IntPoint::new(i32::MIN, i32::MIN);
+    for p in shapes.iter().flatten().flatten() {
+        lo = IntPoint::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = IntPoint::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    (lo, hi)
+}
+
+/// Twice the total area of the pairwise intersections of different
+/// primitives' regions, and how many pairs have any.
+fn overlap(map: &RegionMap) -> (i128, usize) {
+    let boxes: Vec<_> = map.prims.iter().map(|r| bounds(&r.shapes)).collect();
+    let (mut total, mut pairs) = (0, 0);
+    for (a, ra) in map.prims.iter().enumerate() {
+        for (b, rb) in map.prims.iter().enumerate().skip(a + 1) {
+            let ((alo, ahi), (blo, bhi)) = (boxes[a], boxes[b]);
+            if ahi.x <= blo.x || bhi.x <= alo.x || ahi.y <= blo.y || bhi.y <= alo.y {
+                continue;
+            }
+            let mut o = Overlay::new(64);
+            o.add_shapes(&ra.shapes, ShapeType::Subject);
+            o.add_shapes(&rb.shapes, ShapeType::Clip);
+            let area = area2(&o.overlay(OverlayRule::Intersect, FillRule::NonZero));
+            if area != 0 {
+                total += area;
+                pairs += 1;
+            }
+        }
+    }
+    (total, pairs)
+}
+
+fn assert_partition(name: &str, scene: &hider_scene::Scene, size: u32) {
+    let s = screen(scene, size, size);
+    let map = visible_regions(&s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
+    let (area, pairs) = overlap(&map);
+    assert_eq!(
+        (area, pairs),
+        (0, 0),
+        "{name}: {pairs} pairs of regions overlap by {area} / 2 grid units^2 ({} cut pairs)",
+        map.stats.cut_pairs
+    );
+    // Every region is a proper polygon set: positive area.
+    for region in &map.prims {
+        assert!(
+            area2(&region.shapes) > 0,
+            "{name}: empty region {}",
+            region.prim
+        );
+    }
+}
+
+#[test]
+fn regions_of_the_hard_cases_share_no_area() {
+    for seed in [1, 2, 3] {
+        for (name, scene) in hard_cases::all(seed) {
+            assert_partition(&format!("{name} seed {seed}"), &scene, 64);
+        }
+    }
+}
+
+#[test]
+fn regions_of_cyclic_bars_and_crossing_surfaces_share_no_area() {
+    assert_partition("bar_cycle", &hard_cases::bar_cycle(1e-3), 96);
+    assert_partition("intersecting_pair", &procedural::intersecting_pair(), 96);
+    assert_partition("cyclic_triple", &procedural::cyclic_triple(), 96);
+    assert_partition(
+        "interpenetrating_boxes",
+        &hard_cases::interpenetrating_boxes(6, 5),
+        128,
+    );
+}
+
+#[test]
+fn regions_of_random_soups_share_no_area() {
+    for seed in 0..8 {
+        let scene = procedural::random_soup(80, seed);
+        assert_partition(&format!("random_soup seed {seed}"), &scene, 96);
+    }
+}
