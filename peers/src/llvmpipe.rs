@@ -234,6 +234,9 @@ pub struct GlRun {
     pub ms: Vec<f64>,
     /// Pixels covered in the last frame (alpha not 0 on read-back).
     pub covered: u64,
+    /// Samples covered in the last frame: a pixel's alpha is the covered
+    /// fraction of its samples after the resolve (all or none with one).
+    pub samples: u64,
 }
 
 impl Llvmpipe {
@@ -425,11 +428,11 @@ impl Llvmpipe {
         });
         self.check("drawing")?;
 
-        let covered;
+        let (covered, samples);
         // SAFETY: the context is current; the names deleted are the ones
         // generated above (0 is ignored by the delete calls).
         unsafe {
-            covered = covered_pixels(gl, side);
+            (covered, samples) = covered_pixels(gl, side, 1);
             (gl.glDisableClientState)(GL_VERTEX_ARRAY);
             (gl.glBindBuffer)(GL_ARRAY_BUFFER, 0);
             (gl.glDeleteBuffers)(1, &vbo);
@@ -438,7 +441,11 @@ impl Llvmpipe {
             (gl.glDeleteRenderbuffers)(2, rbs.as_ptr());
         }
         self.check("read-back")?;
-        Ok(GlRun { ms, covered })
+        Ok(GlRun {
+            ms,
+            covered,
+            samples,
+        })
     }
 }
 
@@ -451,14 +458,16 @@ impl Drop for Llvmpipe {
 }
 
 /// Reads the bound framebuffer (`side x side`) back and counts the pixels
-/// with a non-zero alpha: the clear colour has alpha 0, the drawn colour
-/// 255, and a resolved multisample pixel the covered fraction of its
-/// samples.
+/// with a non-zero alpha and the samples covered, for `samples` samples
+/// per pixel: the clear colour has alpha 0, the drawn colour 255, and a
+/// resolved multisample pixel the covered fraction of its samples
+/// (`k * 255 / samples`, rounded), so `alpha * samples / 255` rounded is
+/// the pixel's count of covered samples.
 ///
 /// # Safety
 ///
 /// A GL context must be current on this thread and `gl` its functions.
-unsafe fn covered_pixels(gl: &Gl, side: GLsizei) -> u64 {
+unsafe fn covered_pixels(gl: &Gl, side: GLsizei, samples: GLsizei) -> (u64, u64) {
     let mut pixels = vec![0u32; side as usize * side as usize];
     // SAFETY: the caller's context is current; `pixels` holds side x side
     // RGBA u8 pixels.
@@ -474,7 +483,11 @@ unsafe fn covered_pixels(gl: &Gl, side: GLsizei) -> u64 {
         );
     }
     // Alpha is the top byte of each little-endian RGBA pixel.
-    pixels.iter().filter(|&&p| p >> 24 != 0).count() as u64
+    let alpha = pixels.iter().map(|&p| u64::from(p >> 24));
+    let n = samples as u64;
+    alpha.fold((0, 0), |(covered, sampled), a| {
+        (covered + u64::from(a != 0), sampled + (a * n + 127) / 255)
+    })
 }
 
 /// The fixed-function state both measurements (single-sample and 4x

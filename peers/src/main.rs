@@ -34,7 +34,7 @@ use std::process::{Command, ExitCode, Stdio};
 use serde::{Deserialize, Serialize};
 
 use crate::llvmpipe::{Llvmpipe, Target};
-use crate::scenes::{NamedScene, Workload, hider_coverage, load_scenes};
+use crate::scenes::{NamedScene, Workload, hider_coverage, hider_msaa_samples, load_scenes};
 
 /// Warm-up frames before the timed runs of each scene and size (at the
 /// least; see [`WARM_UP`]).
@@ -63,10 +63,10 @@ const NO_LIBRARY: i32 = 3;
 const GL_TOLERANCE: f64 = 0.005;
 /// The peer name of llvmpipe with 4x MSAA in the table and the JSON.
 const MSAA_PEER: &str = "llvmpipe-msaa4";
-/// The same for llvmpipe with 4x MSAA (5 %): a pixel counts when any of
-/// its 4 samples is covered, so silhouette pixels whose centre is outside
-/// count too.
-const MSAA_TOLERANCE: f64 = 0.05;
+/// The same for llvmpipe with 4x MSAA, on covered *samples* against the
+/// samples hider's front end covers at llvmpipe's 4 positions (0.5 %):
+/// the same snapping, fill rule and sample points.
+const MSAA_TOLERANCE: f64 = 0.005;
 /// The same for euc (1 %): it has no fill rule (a pixel centre on an edge
 /// is inside both triangles) and its own float edge tests.
 const EUC_TOLERANCE: f64 = 0.01;
@@ -167,6 +167,9 @@ struct RawResult {
     size: u32,
     ms: Vec<f64>,
     covered: u64,
+    /// Samples covered (pixels when single-sampled).
+    #[serde(default)]
+    samples: u64,
 }
 
 /// What an llvmpipe child prints on standard output.
@@ -204,11 +207,12 @@ struct Agg {
     best_median: f64,
     min: f64,
     covered: u64,
+    samples: u64,
     rounds: usize,
 }
 
 impl Agg {
-    fn add(&mut self, ms: &[f64], covered: u64) {
+    fn add(&mut self, ms: &[f64], (covered, samples): (u64, u64)) {
         let (median, min) = median_min(ms);
         if self.rounds == 0 {
             (self.best_median, self.min) = (median, min);
@@ -217,6 +221,7 @@ impl Agg {
             self.min = self.min.min(min);
         }
         self.covered = covered;
+        self.samples = samples;
         self.rounds += 1;
     }
 }
@@ -259,6 +264,7 @@ fn run_child(args: &Args) -> ExitCode {
                     size: w.size,
                     ms: run.ms,
                     covered: run.covered,
+                    samples: run.samples,
                 }),
                 Err(e) => {
                     eprintln!("llvmpipe 4x MSAA on {} at {}: {e}", w.name, w.size);
@@ -272,6 +278,7 @@ fn run_child(args: &Args) -> ExitCode {
                 size: w.size,
                 ms: run.ms,
                 covered: run.covered,
+                samples: run.samples,
             }),
             Err(e) => {
                 eprintln!("llvmpipe on {} at {}: {e}", w.name, w.size);
@@ -377,7 +384,7 @@ fn main() -> ExitCode {
                 results
                     .entry((w.size, w.name.to_owned(), "euc", 1))
                     .or_default()
-                    .add(&run.ms, run.covered);
+                    .add(&run.ms, (run.covered, run.covered));
             }
         }
         for &threads in &args.threads {
@@ -398,13 +405,13 @@ fn main() -> ExitCode {
                         results
                             .entry((r.size, r.scene, "llvmpipe", threads))
                             .or_default()
-                            .add(&r.ms, r.covered);
+                            .add(&r.ms, (r.covered, r.samples));
                     }
                     for r in report.msaa {
                         results
                             .entry((r.size, r.scene, MSAA_PEER, threads))
                             .or_default()
-                            .add(&r.ms, r.covered);
+                            .add(&r.ms, (r.covered, r.samples));
                     }
                 }
                 Ok(None) => llvmpipe = false,
@@ -445,8 +452,12 @@ fn main() -> ExitCode {
         println!("{row}");
     }
 
-    // The coverage checks against hider's reference z-buffer.
-    println!("\ncovered pixels (hider's ZBuffer, f32 front end, vs each peer's last frame):");
+    // The coverage checks against hider's reference z-buffer (pixel
+    // centres) and, for 4x MSAA, against the samples hider's front end
+    // covers at llvmpipe's sample positions.
+    println!(
+        "\ncovered pixels (hider's ZBuffer, f32 front end, vs each peer's last frame; 4x MSAA: covered samples):"
+    );
     let mut failures = Vec::new();
     for w in &work {
         let Some(scene) = scenes.iter().find(|s| s.name == w.name) else {
@@ -459,33 +470,48 @@ fn main() -> ExitCode {
                 continue;
             }
         };
+        let msaa = columns.iter().any(|&(peer, _)| peer == MSAA_PEER);
+        let want_samples = match msaa.then(|| hider_msaa_samples(scene, w.size)) {
+            Some(Ok(n)) => Some(n),
+            Some(Err(e)) => {
+                failures.push(e);
+                continue;
+            }
+            None => None,
+        };
         let mut line = format!("  {} at {}: hider {want}", w.name, w.size);
+        if let Some(n) = want_samples {
+            line += &format!(" ({n} samples of 4 per pixel)");
+        }
         for &(peer, t) in &columns {
             let Some(a) = results.get(&(w.size, w.name.to_owned(), peer, t)) else {
                 continue;
             };
-            let tolerance = match peer {
-                "euc" => EUC_TOLERANCE,
-                MSAA_PEER => MSAA_TOLERANCE,
-                _ => GL_TOLERANCE,
+            let (tolerance, got, want, unit) = match peer {
+                "euc" => (EUC_TOLERANCE, a.covered, want, "pixels"),
+                MSAA_PEER => (
+                    MSAA_TOLERANCE,
+                    a.samples,
+                    want_samples.unwrap_or(0),
+                    "samples",
+                ),
+                _ => (GL_TOLERANCE, a.covered, want, "pixels"),
             };
-            let diff = (a.covered as f64 - want as f64) / (want.max(1) as f64);
+            let diff = (got as f64 - want as f64) / (want.max(1) as f64);
             let verdict = if diff.abs() <= tolerance {
                 "ok"
             } else {
                 failures.push(format!(
-                    "{peer} {t}T on {} at {} covers {} pixels, hider {want}: {:+.3} %, over the {} % allowed",
+                    "{peer} {t}T on {} at {} covers {got} {unit}, hider {want}: {:+.3} %, over the {} % allowed",
                     w.name,
                     w.size,
-                    a.covered,
                     diff * 100.0,
                     tolerance * 100.0
                 ));
                 "FAILED"
             };
             line += &format!(
-                "; {peer} {t}T {} ({:+.3} %, {verdict} within {} %)",
-                a.covered,
+                "; {peer} {t}T {got} {unit} ({:+.3} %, {verdict} within {} %)",
                 diff * 100.0,
                 tolerance * 100.0
             );

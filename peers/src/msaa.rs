@@ -13,9 +13,13 @@
 //! is `glClear(COLOR | DEPTH)` + `glDrawArrays` + the resolve blit +
 //! `glFinish`.
 //!
-//! Coverage is read back from the resolved image: a pixel counts as
-//! covered when any of its samples is (alpha not 0), so silhouette pixels
-//! whose centre is outside count too.
+//! Coverage is read back from the resolved image as covered *samples*
+//! (a pixel's alpha is the covered fraction of its 4 samples) and checked
+//! against the samples hider's front end covers at llvmpipe's 4 sample
+//! positions ([`crate::scenes::hider_msaa_samples`]): comparing covered
+//! pixels with pixel centres instead counts a pixel whose centre is
+//! outside but one sample inside, which thin triangles (the spider's
+//! legs) make by the hundred.
 
 use std::time::Instant;
 
@@ -92,12 +96,12 @@ impl Llvmpipe {
         });
         self.check("multisample drawing and resolve")?;
 
-        let covered;
+        let (covered, samples);
         // SAFETY: the context is current; the names deleted are the ones
         // generated here.
         unsafe {
             (gl.glBindFramebuffer)(GL_FRAMEBUFFER, resolve);
-            covered = super::covered_pixels(gl, side);
+            (covered, samples) = super::covered_pixels(gl, side, SAMPLES);
             (gl.glDisableClientState)(GL_VERTEX_ARRAY);
             (gl.glBindBuffer)(GL_ARRAY_BUFFER, 0);
             (gl.glDeleteBuffers)(1, &vbo);
@@ -106,7 +110,11 @@ impl Llvmpipe {
             (gl.glDeleteRenderbuffers)(3, targets.rbs.as_ptr());
         }
         self.check("multisample read-back")?;
-        Ok(GlRun { ms, covered })
+        Ok(GlRun {
+            ms,
+            covered,
+            samples,
+        })
     }
 
     /// Creates the 4-sample draw framebuffer and the single-sample resolve

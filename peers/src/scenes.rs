@@ -122,3 +122,50 @@ pub fn hider_coverage(scene: &NamedScene, size: u32) -> Result<u64, String> {
         .map_err(fail)?;
     Ok(frame.ids.iter().filter(|&&id| id != NO_ID).count() as u64)
 }
+
+/// llvmpipe's 4x sample positions (Mesa's `lp_sample_pos_4x`, the
+/// standard pattern of Direct3D and most GL drivers), in 1/256 pixel from
+/// the pixel's top-left corner in hider's frame (y down: GL's offsets
+/// from the bottom edge, flipped).
+pub const MSAA_POSITIONS: [(i64, i64); 4] = [(96, 224), (224, 160), (32, 96), (160, 32)];
+
+/// The samples covered at [`MSAA_POSITIONS`] by the triangles of hider's
+/// GL-compatible front end, counted once per pixel and position whatever
+/// the number of triangles covering it (the depth test decides colour,
+/// not coverage): what a 4x multisampled llvmpipe frame covers, since it
+/// snaps to the same 1/256 grid and uses the same fill rule.
+pub fn hider_msaa_samples(scene: &NamedScene, size: u32) -> Result<u64, String> {
+    let fail = |e: hider_scene::Error| format!("hider on {} at {size}: {e}", scene.name);
+    let view = View::for_scene(&scene.scene, size, size).map_err(fail)?;
+    let screen = prepare(&scene.scene, &view, &PrepareOptions::gl_compatible()).map_err(fail)?;
+    let side = size as i64;
+    let mut masks = vec![0u8; (side * side) as usize];
+    for tri in &screen.tris {
+        let edges = tri.edges();
+        let xs = tri.v.map(|p| i64::from(p.x));
+        let ys = tri.v.map(|p| i64::from(p.y));
+        // Pixels whose samples may be inside: the box of the corners.
+        let x0 = (xs.iter().min().unwrap_or(&0).div_euclid(256)).max(0);
+        let x1 = (xs.iter().max().unwrap_or(&0).div_euclid(256)).min(side - 1);
+        let y0 = (ys.iter().min().unwrap_or(&0).div_euclid(256)).max(0);
+        let y1 = (ys.iter().max().unwrap_or(&0).div_euclid(256)).min(side - 1);
+        for j in y0..=y1 {
+            for (k, &(sx, sy)) in MSAA_POSITIONS.iter().enumerate() {
+                // Edge values at the sample of the row's first pixel,
+                // stepped by a whole pixel (exact integers).
+                let y = j * 256 + sy;
+                let mut e = edges.map(|f| f.eval(x0 * 256 + sx, y));
+                let step = edges.map(|f| f.a * 256);
+                for i in x0..=x1 {
+                    if e.iter().all(|&v| v > 0) {
+                        masks[(j * side + i) as usize] |= 1 << k;
+                    }
+                    for (v, s) in e.iter_mut().zip(&step) {
+                        *v += s;
+                    }
+                }
+            }
+        }
+    }
+    Ok(masks.iter().map(|m| u64::from(m.count_ones())).sum())
+}
