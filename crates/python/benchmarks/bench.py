@@ -43,6 +43,13 @@ def median_ms(f, repeat):
     return float(np.median(times)), float(np.min(times))
 
 
+def timed(f):
+    """Wall and process CPU milliseconds of one call of f."""
+    w, c = time.perf_counter(), time.process_time()
+    f()
+    return (time.perf_counter() - w) * 1e3, (time.process_time() - c) * 1e3
+
+
 def surfaces_figure(resolved):
     x = np.linspace(-1, 1, 100)
     X, Y = np.meshgrid(x, x)
@@ -55,22 +62,44 @@ def surfaces_figure(resolved):
     return fig, ax, r
 
 
-def bench_resolve(repeat=5):
+def bench_resolve(rounds=15):
+    """The three timings interleaved round by round, so that load from
+    other processes falls on all of them alike; the ratio is taken per
+    round, then its median."""
     fig, ax, _ = surfaces_figure(False)
     fig.canvas.draw()
     tris = len(hider.mpl.project(ax).faces)
-    save = median_ms(lambda: fig.savefig(io.BytesIO(), format="png"), repeat)
+    rfig, rax, r = surfaces_figure(True)
+    rfig.canvas.draw()
+
+    def save_plain():
+        fig.savefig(io.BytesIO(), format="png")
+
+    def save_resolved():
+        rfig.savefig(io.BytesIO(), format="png")
+
+    rows = {"save": [], "resolve": [], "save_resolved": []}
+    for _ in range(rounds):
+        rows["save"].append(timed(save_plain))
+        rows["resolve"].append(timed(r.do_3d_projection))
+        rows["save_resolved"].append(timed(save_resolved))
     plt.close(fig)
-    fig, ax, r = surfaces_figure(True)
-    fig.canvas.draw()
-    order = median_ms(r.do_3d_projection, repeat)
-    save_resolved = median_ms(lambda: fig.savefig(io.BytesIO(), format="png"), repeat)
-    print(f"resolve: {tris} triangles, {r.pieces} pieces after splitting")
-    print(f"  matplotlib savefig PNG (its own sort): median {save[0]:.0f} ms (min {save[1]:.0f})")
-    print(f"  resolve at draw time (gather, order, split): median {order[0]:.0f} ms "
-          f"(min {order[1]:.0f}); ratio {order[0] / save[0]:.2f}")
-    print(f"  savefig PNG with resolve: median {save_resolved[0]:.0f} ms (min {save_resolved[1]:.0f})")
-    plt.close(fig)
+    plt.close(rfig)
+    a = {k: np.array(v) for k, v in rows.items()}
+
+    def line(what, k):
+        wall, cpu = a[k][:, 0], a[k][:, 1]
+        return (f"  {what}: median {np.median(wall):.0f} ms wall (min {wall.min():.0f}), "
+                f"{np.median(cpu):.0f} ms CPU")
+
+    print(f"resolve: {tris} triangles, {r.pieces} pieces after splitting, "
+          f"{len(r.get_paths())} paths, {rounds} interleaved rounds")
+    print(line("matplotlib savefig PNG (its own sort)", "save"))
+    print(line("resolve at draw time (gather, order, split, paths)", "resolve"))
+    print(line("savefig PNG with resolve (resolve included)", "save_resolved"))
+    for i, what in ((0, "wall"), (1, "CPU")):
+        ratio = np.median(a["resolve"][:, i] / a["save"][:, i])
+        print(f"  resolve / savefig, median of per-round ratios ({what}): {ratio:.2f}")
 
 
 def bench_render(cli, repeat=10, algo="zbuffer-tiled"):

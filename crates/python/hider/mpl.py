@@ -91,6 +91,33 @@ def _polygon_source(col):
     return faces, invalid, face, edge, lw
 
 
+def _fan(depth, bad, base):
+    """Fans each polygon (rows of ``depth``, the view depth of its corners)
+    into triangles from its farthest valid corner: ``(triangles as point
+    indices from base, polygon of each)``, each polygon's triangles one
+    after another. A triangle with a bad corner is left out.
+
+    All the triangles of a polygon then share its farthest depth, which is
+    the painter's sort key, so they sort together and are mostly painted
+    one after another: the pieces of one polygon painted in a row are
+    drawn as one path, and a quad becomes one path rather than two (a fan
+    from a fixed corner would give the two triangles of a surface's quads
+    different keys, with unrelated polygons sorted between them). Any
+    corner gives the same outline for a polygon that is convex on screen,
+    as the polygons of surfaces, bars and voxels are."""
+    n, v = depth.shape
+    if v < 3:
+        return np.zeros((0, 3), np.int64), np.zeros(0, np.int64)
+    apex = np.argmax(np.where(bad, -np.inf, depth), axis=1)
+    k = np.arange(1, v - 1)
+    corners = np.stack([np.broadcast_to(apex[:, None], (n, v - 2)),
+                        (apex[:, None] + k) % v, (apex[:, None] + k + 1) % v], axis=2)
+    ok = ~np.take_along_axis(bad, corners.reshape(n, -1), axis=1).reshape(n, v - 2, 3).any(axis=2)
+    idx = corners + (np.arange(n) * v + base)[:, None, None]
+    poly = np.broadcast_to(np.arange(n)[:, None], (n, v - 2))
+    return idx[ok], poly[ok]
+
+
 class _Gathered:
     """Every polygon of the sources fanned into triangles in window pixels
     (y down) with depth t in [0, 1], plus each triangle's polygon."""
@@ -109,12 +136,9 @@ class _Gathered:
             p = np.concatenate([disp, proj[..., 2:3]], axis=-1)
             bad = invalid | ~np.isfinite(p).all(axis=-1)
             v = faces.shape[1]
-            idx = np.arange(n * v).reshape(n, v) + base
-            for k in range(1, v - 1):
-                ok = ~(bad[:, 0] | bad[:, k] | bad[:, k + 1])
-                t = np.stack([idx[:, 0], idx[:, k], idx[:, k + 1]], axis=1)[ok]
-                tris.append(t)
-                tri_poly.append(np.nonzero(ok)[0] + poly_base)
+            t, poly = _fan(p[..., 2], bad, base)
+            tris.append(t)
+            tri_poly.append(poly + poly_base)
             pts.append(p.reshape(-1, 3))
             face_rgba.append(face)
             edge_rgba.append(edge)

@@ -194,3 +194,20 @@ def test_savefig_at_another_dpi_re_resolves():
     assert image.shape[:2] == owner.shape == (600, 600)
     share, _, _ = agreement(image, owner, palettes)
     assert share >= 0.99, share
+
+
+def test_a_quads_triangles_are_drawn_as_one_path():
+    # Each quad is fanned from its farthest corner, so its two triangles
+    # share the painter's sort key and are painted one after the other:
+    # one path per quad, but for the few cut along the crossing.
+    fig, ax = figure(crossing_grids, resolved=True)
+    resolved = next(c for c in ax.collections if isinstance(c, hider.mpl.Resolved))
+    quads = 2 * 49 * 49
+    paths = len(resolved.get_paths())
+    p = hider.mpl.project(ax)
+    plt.close(fig)
+    assert len(p.faces) == 2 * quads
+    assert quads <= paths < 1.1 * quads, paths
+    # The fan's apex is each polygon's farthest corner.
+    far = p.points[p.faces, 2].max(axis=1)
+    assert np.all(p.points[p.faces[:, 0], 2] == far)
