@@ -22,20 +22,42 @@ Example::
     assert ids[32, 32] == 0 and ids[0, 0] == -1
 """
 
+from typing import NamedTuple
+
 import numpy as np
 
 from . import _hider
 
-__all__ = ["render", "visible_faces", "algorithms", "DEFAULT_ALGO"]
+__all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "AUTO", "DEFAULT_ALGO"]
 
 #: The hider ``render`` uses unless told: the binned, tiled z-buffer, the
 #: fastest exact one.
 DEFAULT_ALGO = "zbuffer-tiled"
 
 
+#: The ``algo`` that lets hider's planner choose, as the command line's
+#: ``--algo auto``: the cheapest registered hider that is exact for the
+#: scene and view (``plan`` says which, and why).
+AUTO = "auto"
+
+
 def algorithms():
-    """The names of every registered hider, for ``algo=``."""
+    """The names of every registered hider, for ``algo=`` (besides
+    ``"auto"``)."""
     return list(_hider.algorithms())
+
+
+class Plan(NamedTuple):
+    """The planner's choice, as ``plan`` returns it."""
+
+    #: The registry name of the chosen hider (one of ``algorithms()``):
+    #: what ``algo="auto"`` renders with.
+    algo: str
+    #: Why, in one sentence.
+    reason: str
+    #: The command line's line for ``--algo auto``: what was asked for,
+    #: the choice, why, and the stages that would run.
+    summary: str
 
 
 def _as_vertices(vertices, name="vertices"):
@@ -104,7 +126,10 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
         Clip distances (default 0.1 and 10 times the half diagonal).
     algo : str
         Any name of ``algorithms()``; all of them agree on every pixel that
-        is not a depth tie.
+        is not a depth tie. ``"auto"`` lets the planner choose the cheapest
+        exact one for this mesh and view, as ``hider render --algo auto``
+        does (``plan`` with the same arguments says which, and why); the
+        buffers are then those of the hider chosen.
     threads : int
         Worker threads for the hiders that render in parallel (1 to 1024).
 
@@ -138,6 +163,36 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
         None if far is None else float(far),
         str(algo), int(threads),
     )
+
+
+def plan(vertices, faces, *, width, height, eye=None, target=None, up=None,
+         fovy=60.0, near=None, far=None, threads=1):
+    """The hider ``render(..., algo="auto")`` chooses for these arguments.
+
+    The scene is analysed as the command line's ``--algo auto`` analyses it
+    for an id and depth image (no shading, anti-aliasing or vector
+    output): depth range against the near plane, back faces, effects the
+    mesh calls for. Returns a ``Plan``; the arguments and errors are
+    ``render``'s.
+
+    Example::
+
+        >>> import numpy as np, hider
+        >>> v = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
+        >>> hider.plan(v, [[0, 1, 2]], width=64, height=64).algo
+        'zbuffer-tiled'
+    """
+    v = _as_vertices(vertices)
+    f = _as_faces(faces)
+    algo, reason, summary = _hider.plan(
+        v, f, _as_size(width, "width"), _as_size(height, "height"),
+        _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
+        None if fovy is None else float(fovy),
+        None if near is None else float(near),
+        None if far is None else float(far),
+        int(threads),
+    )
+    return Plan(algo, reason, summary)
 
 
 def visible_faces(vertices, faces, **kwargs):

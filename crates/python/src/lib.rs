@@ -21,12 +21,13 @@ mod screen;
 
 use pyo3::prelude::*;
 
-/// The extension module: `render`, `algorithms`, and the screen-space
+/// The extension module: `render`, `algorithms`, `plan`, and the screen-space
 /// functions of `hider.mpl`.
 #[pymodule]
 fn _hider(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(render::algorithms, m)?)?;
+    m.add_function(wrap_pyfunction!(render::plan, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_render, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_pieces, m)?)?;
     Ok(())

@@ -6,7 +6,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
-use hider_plan::{HiderConfig, registry};
+use hider_plan::{HiderConfig, Planned, RenderOptions, auto, registry};
 use hider_scene::frame::id_to_i32;
 use hider_scene::{DynHider, Frame, PrepareOptions, Scene, ScreenScene, View, fit_camera};
 use numpy::ndarray::Array2;
@@ -163,11 +163,39 @@ fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
     })
 }
 
+/// The name `algo` asks the planner to choose ([`plan_scene`]), as the
+/// command line's `--algo auto`.
+pub const AUTO: &str = "auto";
+
+/// What the planner chooses for `scene` seen through `view` when only the
+/// ids and depths are wanted (no shading, no anti-aliasing, no vector
+/// output), as `hider render --algo auto` would for that request. The
+/// pair searches, which decide only vector plans and take seconds on
+/// large scenes, are left out as the command line leaves them out.
+pub fn plan_scene(scene: &Scene, view: &View, threads: usize) -> hider_plan::Result<Planned> {
+    let options = RenderOptions::default()
+        .with_size(view.viewport.width, view.viewport.height)
+        .with_camera(Some(view.camera))
+        .with_shading(false)
+        .with_pair_searches(false)
+        .with_prepare(PrepareOptions::default().with_parallel(threads > 1));
+    auto(scene, &options)
+}
+
 /// Renders `scene` for `view` with the registered hider `algo` on
 /// `threads` threads: the command line's path from the model to its dumps
 /// (the registry's hider, the f64 front end, parallel above one thread).
+/// `algo` [`AUTO`] renders with the planner's choice ([`plan_scene`]),
+/// which gives the same buffers as naming that hider.
 pub fn render_scene(scene: &Scene, view: &View, algo: &str, threads: usize) -> PyResult<Rendered> {
     check_threads(threads)?;
+    let planned;
+    let algo = if algo == AUTO {
+        planned = plan_scene(scene, view, threads).map_err(plan_error)?;
+        planned.plan.algo
+    } else {
+        algo
+    };
     let entry = registry::find(algo).map_err(plan_error)?;
     let result = if threads > 1 {
         pool(threads)?.install(|| render_with_workspace(scene, view, &entry, threads))
@@ -193,6 +221,19 @@ pub fn buffers(py: Python<'_>, rendered: Rendered) -> PyResult<Buffers<'_>> {
     Ok((ids.into_pyarray(py), depth.into_pyarray(py)))
 }
 
+/// The one-mesh scene of the arrays and the view of `size` pixels through
+/// its camera with the caller's overrides.
+fn scene_and_view(
+    vertices: &PyReadonlyArray2<'_, f64>,
+    faces: &PyReadonlyArray2<'_, i64>,
+    (width, height): (u32, u32),
+    camera: &CameraArgs,
+) -> PyResult<(Scene, View)> {
+    let scene = scene_from_arrays(vertices, faces)?;
+    let view = View::new(camera.camera(&scene), width, height).map_err(scene_error)?;
+    Ok((scene, view))
+}
+
 /// Renders the mesh of `vertices` and `faces`; see the Python wrapper
 /// `hider.render` for the arguments.
 #[pyfunction]
@@ -216,8 +257,7 @@ pub fn render<'py>(
     algo: &str,
     threads: usize,
 ) -> PyResult<Buffers<'py>> {
-    let scene = scene_from_arrays(&vertices, &faces)?;
-    let args = CameraArgs {
+    let camera = CameraArgs {
         eye,
         target,
         up,
@@ -225,7 +265,7 @@ pub fn render<'py>(
         near,
         far,
     };
-    let view = View::new(args.camera(&scene), width, height).map_err(scene_error)?;
+    let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
     let frame = py.detach(|| render_scene(&scene, &view, algo, threads))?;
     buffers(py, frame)
 }
@@ -234,4 +274,45 @@ pub fn render<'py>(
 #[pyfunction]
 pub fn algorithms() -> Vec<&'static str> {
     registry::names()
+}
+
+/// The planner's choice for the mesh of `vertices` and `faces`, as
+/// `render` with `algo="auto"` makes it: `(algo, reason, summary)`, the
+/// registry name, why in one sentence, and the command line's one-line
+/// summary. See the Python wrapper `hider.plan` for the arguments.
+#[pyfunction]
+#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, threads))]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the keyword arguments of the Python function, one for one"
+)]
+pub fn plan<'py>(
+    py: Python<'py>,
+    vertices: PyReadonlyArray2<'py, f64>,
+    faces: PyReadonlyArray2<'py, i64>,
+    width: u32,
+    height: u32,
+    eye: Option<[f64; 3]>,
+    target: Option<[f64; 3]>,
+    up: Option<[f64; 3]>,
+    fovy: Option<f64>,
+    near: Option<f64>,
+    far: Option<f64>,
+    threads: usize,
+) -> PyResult<(&'static str, String, String)> {
+    check_threads(threads)?;
+    let camera = CameraArgs {
+        eye,
+        target,
+        up,
+        fovy,
+        near,
+        far,
+    };
+    let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
+    let planned = py
+        .detach(|| plan_scene(&scene, &view, threads))
+        .map_err(plan_error)?;
+    let summary = planned.summary();
+    Ok((planned.plan.algo, planned.plan.reason, summary))
 }

@@ -77,6 +77,39 @@ def test_visible_faces_is_the_set_of_ids_seen():
     assert 0.3 * len(faces) < mask.sum() < 0.7 * len(faces)
 
 
+def test_auto_renders_with_the_planners_choice(hider_cli, tmp_path):
+    vertices, faces = uv_sphere(24, 12)
+    model = tmp_path / "sphere.obj"
+    write_obj(model, vertices, faces)
+    size = {"width": 64, "height": 48}
+    # An ordinary view: the tiled z-buffer. A near plane a million times
+    # nearer than the sphere: f32 window depth runs out of bits, so the
+    # planner takes the reversed-Z z-buffer.
+    for camera, flags, want_algo in [
+        ({}, [], "zbuffer-tiled"),
+        ({"near": 1e-6}, ["--near", "1e-6"], "zbuffer-reversed"),
+    ]:
+        p = hider.plan(vertices, faces, **size, **camera)
+        assert p.algo == want_algo, p
+        assert p.algo in hider.algorithms()
+        assert p.summary.startswith("auto, asked for an id-coloured 64 x 48 image: " + want_algo)
+        assert p.reason in p.summary
+        ids, depth = hider.render(vertices, faces, **size, **camera, algo="auto")
+        named = hider.render(vertices, faces, **size, **camera, algo=p.algo)
+        np.testing.assert_array_equal(ids, named[0])
+        assert depth.tobytes() == named[1].tobytes()
+        # The command line's --algo auto gives the same dumps.
+        want_ids, want_depth = cli_render(hider_cli, model, tmp_path, (64, 48), *flags,
+                                          "--algo", "auto")
+        assert (want_ids >= 0).sum() > 250
+        np.testing.assert_array_equal(ids, want_ids)
+        assert depth.tobytes() == want_depth.tobytes(), want_algo
+        mask = hider.visible_faces(vertices, faces, **size, **camera, algo=hider.AUTO)
+        assert set(np.nonzero(mask)[0]) == set(np.unique(ids[ids >= 0]))
+    with pytest.raises(ValueError, match="uses vertex 999"):
+        hider.plan(vertices, np.array([[0, 1, 999]]), **size)
+
+
 def test_every_registered_hider_renders_by_name():
     vertices, faces = uv_sphere(8, 4)
     want, _ = hider.render(vertices, faces, width=24, height=24, algo="oracle")
