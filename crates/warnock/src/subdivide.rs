@@ -28,7 +28,9 @@
 //! pixel-centre frame, a pixel with sub-pixel samples, or a pixel's sample
 //! buffer.
 
-use crate::classify::{Class, CornerDepths, Setups, Tri, TriSetup, certainly_behind, classify};
+use crate::classify::{
+    BoundingBox, Class, CornerDepths, Setups, Tri, certainly_behind, classify_in_box,
+};
 use crate::grid::{Grid, Region, SampleRect};
 use crate::stats::{Rule, WarnockStats};
 
@@ -88,41 +90,6 @@ struct Entry {
     level: usize,
 }
 
-/// The union of the vertex bounding boxes of a list's triangles, fixed
-/// point: a sample outside it is covered by none of them.
-#[derive(Clone, Copy, Debug)]
-struct Bounds {
-    min_x: i64,
-    max_x: i64,
-    min_y: i64,
-    max_y: i64,
-}
-
-impl Bounds {
-    const EMPTY: Self = Self {
-        min_x: i64::MAX,
-        max_x: i64::MIN,
-        min_y: i64::MAX,
-        max_y: i64::MIN,
-    };
-
-    #[inline]
-    fn add(&mut self, t: &TriSetup) {
-        let (x0, x1) = t.x_bounds();
-        let (y0, y1) = t.y_bounds();
-        self.min_x = self.min_x.min(x0);
-        self.max_x = self.max_x.max(x1);
-        self.min_y = self.min_y.min(y0);
-        self.max_y = self.max_y.max(y1);
-    }
-
-    /// Whether no sample of the rectangle lies in the box: the bounding-box
-    /// half of [`classify`]'s disjoint test, for every triangle at once.
-    fn misses(&self, r: &SampleRect) -> bool {
-        self.max_x < r.x0 || self.min_x > r.x1 || self.max_y < r.y0 || self.min_y > r.y1
-    }
-}
-
 /// What classification and culling left of a region's list.
 #[derive(Clone, Copy, Debug)]
 struct Survivors {
@@ -135,7 +102,7 @@ struct Survivors {
     culled: u64,
     /// The bounding box of the classified survivors (before culling, so
     /// possibly larger than the culled list needs).
-    bounds: Bounds,
+    bounds: BoundingBox,
 }
 
 /// Where a subdivision starts: regions of a grid at a level.
@@ -290,13 +257,14 @@ impl Subdivider {
         rect: &SampleRect,
         setups: &Setups,
         stats: &mut WarnockStats,
-    ) -> (List, Option<(u32, CornerDepths)>, Bounds) {
+    ) -> (List, Option<(u32, CornerDepths)>, BoundingBox) {
         let mut front: Option<(u32, CornerDepths)> = None;
-        let mut bounds = Bounds::EMPTY;
+        let mut bounds = BoundingBox::EMPTY;
         stats.examined(e.level, e.list.len);
         let list = self.filter(e, e.list, stats, |t, stats| {
             let setup = &setups.tris[t as usize];
-            let class = classify(setup, rect);
+            let b = setup.bounding_box();
+            let class = classify_in_box(setup, &b, rect);
             stats.classified(class);
             match class {
                 Class::Disjoint => return false,
@@ -309,7 +277,7 @@ impl Subdivider {
                 }
                 Class::Contained | Class::Intersecting => {}
             }
-            bounds.add(setup);
+            bounds = bounds.union(&b);
             true
         });
         (list, front, bounds)
