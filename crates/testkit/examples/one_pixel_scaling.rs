@@ -250,7 +250,7 @@ fn main() {
             }
             match time_render(hider.as_mut(), s) {
                 Ok((t, table)) => {
-                    row.push_str(&format!("{:>11.3}s", t));
+                    row.push_str(&format!("{:>11.5}s", t));
                     points.push((*n, t));
                     tables.push((*n, table));
                 }
