@@ -8,8 +8,11 @@
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
-//! `carpenter`, `ps2` (per-sample on 2 threads; the others take 1), or
-//! `cov` (mask generation alone). Prints the median and
+//! `carpenter`, `ps2` (per-sample on 2 threads; the others take 1),
+//! `cov` (mask generation alone), `ps-scene` / `carpenter-scene` (the
+//! whole pipeline from the world-space scene: the lean front end, then
+//! the render, GL-compatible front end), `lean` (the lean front end
+//! alone) or `prepare` (`prepare` alone). Prints the median and
 //! fastest of the renders (the workspace's shared timer, no warm-up: a
 //! profile sees the first frame too) and the work counters.
 
@@ -17,7 +20,10 @@ use hider_abuffer::coverage::{TriCoverage, pixel_range};
 use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, SamplePattern, SsaaOptions, SupersampledZBuffer,
 };
-use hider_scene::{DynHider, Frame, Hider, StatsTable, procedural};
+use hider_scene::prepare::lean::{LeanScene, prepare_lean_into};
+use hider_scene::{
+    DynHider, Frame, Hider, PrepareOptions, ScreenScene, StatsTable, View, prepare_into, procedural,
+};
 use hider_testkit::screen;
 use hider_testkit::timer::Timer;
 
@@ -55,7 +61,9 @@ fn main() {
                 .with_threads(1),
         )),
         "carpenter" => Box::new(ABuffer::new(ABufferOptions::carpenter().with_threads(1))),
-        "cov" => Box::new(ABuffer::default()),
+        "cov" | "lean" | "prepare" => Box::new(ABuffer::default()),
+        "ps-scene" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(1))),
+        "carpenter-scene" => Box::new(ABuffer::new(ABufferOptions::carpenter().with_threads(1))),
         other => panic!("unknown hider {other}"),
     };
     let runs: u32 = args.get(2).map_or(3, |r| r.parse().expect("runs"));
@@ -87,6 +95,24 @@ fn main() {
     }
     let mut frame = Frame::new(size, size).expect("frame");
     let mut stats = StatsTable::default();
+    let which = args.get(1).map_or("ps", String::as_str);
+    if matches!(which, "ps-scene" | "carpenter-scene" | "lean" | "prepare") {
+        let view = View::for_scene(&scene, size, size).expect("view");
+        let options = PrepareOptions::gl_compatible();
+        let mut screen = ScreenScene::empty(&view);
+        let mut lean = LeanScene::new();
+        let summary = timer.time(|| match which {
+            "lean" => prepare_lean_into(&scene, &view, &options, &mut lean).expect("lean"),
+            "prepare" => prepare_into(&scene, &view, &options, &mut screen).expect("prepare"),
+            _ => {
+                stats = hider
+                    .render_scene(&scene, &view, &options, &mut screen, &mut frame)
+                    .expect("render")
+            }
+        });
+        println!("{summary}  {stats}");
+        return;
+    }
     let summary = timer.time(|| stats = hider.render(&s, &mut frame).expect("render"));
     println!("{summary}  {stats}");
 }

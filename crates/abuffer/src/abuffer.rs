@@ -273,6 +273,7 @@ fn total_stats(workers: &[Worker]) -> ABufferStats {
         s.merged += t.merged;
         s.culled += t.culled;
         s.culled_blocks += t.culled_blocks;
+        s.culled_tiles += t.culled_tiles;
         s.pruned += t.pruned;
         s.dropped += t.dropped;
         s.coincident += t.coincident;

@@ -32,11 +32,21 @@ const _: () = assert!(BLOCKS * BLOCKS <= 64 && TILE % BLOCK == 0);
 /// (`open > 0`) it is infinite; after that it is their maximum, recomputed
 /// only when a test needs it and a bound dropped since (`stale`). Bounds
 /// only decrease, so a stale value is still an upper bound.
+///
+/// The tile's bound is the maximum of its blocks' (infinite while a block
+/// is open), cached and recomputed from `far` when a block's value changed
+/// (`tile_dirty`): an upper bound of every pixel's bound in the tile.
 #[derive(Clone, Debug)]
 struct BlockFar {
     far: [f32; BLOCKS * BLOCKS],
     open: [u8; BLOCKS * BLOCKS],
     stale: u64,
+    /// The blocks with pixels in the frame.
+    exists: u64,
+    /// How many of them are open.
+    open_blocks: u32,
+    tile_far: f32,
+    tile_dirty: bool,
 }
 
 impl BlockFar {
@@ -45,12 +55,36 @@ impl BlockFar {
     fn reset(&mut self, x1: u32, y1: u32) {
         self.far = [f32::INFINITY; BLOCKS * BLOCKS];
         self.stale = 0;
+        self.exists = 0;
         for (b, open) in self.open.iter_mut().enumerate() {
             let (bx, by) = ((b % BLOCKS) as u32 * BLOCK, (b / BLOCKS) as u32 * BLOCK);
             let w = (x1 + 1).saturating_sub(bx).min(BLOCK);
             let h = (y1 + 1).saturating_sub(by).min(BLOCK);
             *open = (w * h) as u8;
+            self.exists |= u64::from(w * h > 0) << b;
         }
+        self.open_blocks = self.exists.count_ones();
+        self.tile_far = f32::INFINITY;
+        self.tile_dirty = false;
+    }
+
+    /// An upper bound of the opaque bounds of every pixel of the tile
+    /// (infinite while a pixel has none).
+    fn tile_far(&mut self) -> f32 {
+        if self.open_blocks > 0 {
+            return f32::INFINITY;
+        }
+        if self.tile_dirty {
+            self.tile_dirty = false;
+            let mut bits = self.exists;
+            let mut far = f32::NEG_INFINITY;
+            while bits != 0 {
+                far = far.max(self.far[bits.trailing_zeros() as usize]);
+                bits &= bits - 1;
+            }
+            self.tile_far = far;
+        }
+        self.tile_far
     }
 }
 
@@ -60,6 +94,10 @@ impl Default for BlockFar {
             far: [f32::INFINITY; BLOCKS * BLOCKS],
             open: [(BLOCK * BLOCK) as u8; BLOCKS * BLOCKS],
             stale: 0,
+            exists: u64::MAX,
+            open_blocks: (BLOCKS * BLOCKS) as u32,
+            tile_far: f32::INFINITY,
+            tile_dirty: false,
         }
     }
 }
@@ -165,6 +203,16 @@ impl Culling {
         self.gather[g] = Gather::EMPTY;
     }
 
+    /// An upper bound of the opaque bounds of every pixel of the tile
+    /// (infinite while a pixel has none): a triangle whose fragments all
+    /// have `zmin` beyond it would be culled in every block
+    /// ([`Self::block_hidden`] would say so for each), so the tile test is
+    /// that test for all blocks at once.
+    #[inline]
+    pub(crate) fn tile_far(&mut self) -> f32 {
+        self.blocks.tile_far()
+    }
+
     /// Whether every fragment that a triangle could make in block `b` of
     /// the tile at `(tx0, ty0)`, all with `zmin >= near`, would be culled:
     /// `near` is beyond the opaque bound of every pixel of the block (whose
@@ -201,6 +249,7 @@ impl Culling {
             }
         }
         blocks.far[b] = far;
+        blocks.tile_dirty = true;
         near > far
     }
 
@@ -247,6 +296,10 @@ impl Culling {
             self.blocks.stale |= 1 << b;
             if e.occluder == f32::INFINITY {
                 self.blocks.open[b] -= 1;
+                if self.blocks.open[b] == 0 {
+                    self.blocks.open_blocks -= 1;
+                    self.blocks.tile_dirty = true;
+                }
             }
             self.gather[g] = Gather::EMPTY;
             if e.far > bound {

@@ -133,6 +133,29 @@ impl Rasterizer {
         let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
         let (bx0, bx1) = ((x0 - tx0) / BLOCK, (x1 - tx0) / BLOCK);
         let (by0, by1) = ((y0 - ty0) / BLOCK, (y1 - ty0) / BLOCK);
+        // The tile first, for a triangle over several blocks (for one, the
+        // block test is as cheap): the plane at the rectangle's near
+        // corner is a lower bound of its value at every block's near
+        // corner (the plane is monotonic), so when it is beyond the tile's
+        // bound every block is hidden, as the loop below would find one by
+        // one.
+        let blocks = (bx1 - bx0 + 1) * (by1 - by0 + 1);
+        if blocks > 1 {
+            let tile_far = self.lists.culling.tile_far();
+            if tile_far < f32::INFINITY {
+                let near = plane_depth(
+                    &plane,
+                    if up_x { x0 } else { x1 },
+                    if up_y { y0 } else { y1 },
+                    (if up_x { hx0 } else { hx1 }, if up_y { hy0 } else { hy1 }),
+                ) as f32;
+                if near > tile_far {
+                    stats.culled_tiles += 1;
+                    stats.culled_blocks += u64::from(blocks);
+                    return 0;
+                }
+            }
+        }
         let mut live = 0u64;
         for by in by0..=by1 {
             let (py0, py1) = (
