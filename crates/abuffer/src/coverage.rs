@@ -16,6 +16,7 @@
 
 use hider_geom::edge::triangle_edges;
 use hider_geom::fixed::SUBPIXEL_SCALE;
+use hider_geom::isa::Avx2;
 use hider_geom::{EdgeFunction, FixedPt};
 use hider_scene::ScreenTri;
 
@@ -85,7 +86,9 @@ pub enum Class {
 /// crosses the sample hull, all those values fit in `i32`, so the 32
 /// samples are 3 x 32 lane-parallel adds and `and`s (the offsets are
 /// precomputed per triangle) whose sign bits are gathered with one
-/// multiply per row; otherwise the same test runs in `i64`.
+/// multiply per row (on a CPU with AVX2, one register and one
+/// `movemask` per row: `coverage/avx2.rs`); otherwise the same test runs
+/// in `i64`.
 /// Either way each bit is exactly the shared `contains` test. Patterns
 /// smaller than 32 pick their cells out of the grid mask.
 #[derive(Clone, Debug)]
@@ -102,6 +105,8 @@ pub struct TriCoverage {
     hull_max: [i64; 3],
     pattern: SamplePattern,
     full: u32,
+    /// The instruction-set token of the AVX2 mask, when the CPU has it.
+    avx2: Option<Avx2>,
 }
 
 /// x of grid column `c` and y of grid row `r`, in 1/256 pixel.
@@ -130,6 +135,7 @@ impl TriCoverage {
             hull_max: [0; 3],
             pattern,
             full: 0,
+            avx2: Avx2::detect(),
         };
         setup.reset_vertices(v, pattern);
         setup
@@ -315,6 +321,10 @@ impl TriCoverage {
         // -E clamped: an edge that far from the pixel is decided for every
         // sample, and the clamp keeps it decided the same way.
         let nb = base.map(|b| (-b).clamp(-CLAMP, CLAMP) as i32);
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = self.avx2 {
+            return avx2::grid_mask(avx2, &self.noff, nb);
+        }
         let mut bytes = [0u8; 32];
         for (k, byte) in bytes.iter_mut().enumerate() {
             // Negative in all three edges = inside all three.
@@ -385,5 +395,7 @@ pub fn pixel_range_of(
     (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32))
 }
 
+#[cfg(target_arch = "x86_64")]
+mod avx2;
 #[cfg(test)]
 mod tests;

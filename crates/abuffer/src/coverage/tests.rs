@@ -133,3 +133,32 @@ fn incremental_step_matches_direct_evaluation() {
         base = [0, 1, 2].map(|e| base[e] + step[e]);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+    /// The AVX2 grid mask is the portable one, bit for bit, at every pixel
+    /// around random triangles of the 32-bit path (every pattern, centre
+    /// included).
+    #[test]
+    fn avx2_masks_equal_portable_masks(
+        c in proptest::array::uniform6(-512i32..20 * 256),
+        pattern_index in 0usize..5,
+    ) {
+        let Some(avx2) = hider_geom::isa::Avx2::detect() else { return Ok(()) };
+        let v = [FixedPt::new(c[0], c[1]), FixedPt::new(c[2], c[3]), FixedPt::new(c[4], c[5])];
+        let Some(t) = tri(v) else { return Ok(()) };
+        let pattern = SamplePattern::ALL[pattern_index];
+        let mut wide = TriCoverage::new(&t, pattern);
+        wide.avx2 = Some(avx2);
+        let mut portable = wide.clone();
+        portable.avx2 = None;
+        prop_assert!(wide.narrow);
+        for j in 0..22 {
+            for i in 0..22 {
+                let base = wide.corner_values(i, j);
+                prop_assert_eq!(wide.at(base), portable.at(base), "pixel {} {}", i, j);
+                prop_assert_eq!(wide.partial(base), portable.partial(base), "pixel {} {}", i, j);
+            }
+        }
+    }
+}

@@ -1,0 +1,60 @@
+//! The 8 x 4 grid mask of the 32-bit path with AVX2 intrinsics, chosen at
+//! run time behind [`Avx2`], the instruction-set token the tiled
+//! z-buffer's front end uses too.
+//!
+//! The portable code computes, per cell, the sign of
+//! `(-E0 - off0) & (-E1 - off1) & (-E2 - off2)` in 32 `i32` lanes and
+//! gathers the signs with a multiply per row of 8; left to the compiler on
+//! baseline x86-64 that is four SSE2 registers per row and edge. Here a
+//! row of 8 cells is one 256-bit register per edge, and
+//! `_mm256_movemask_ps` gathers its 8 sign bits in one instruction: the
+//! same adds (wrapping, like the portable lanes, which never overflow:
+//! the values are clamped to +-2^30 and the offsets are below 2^30) and
+//! the same bits.
+
+use hider_geom::isa::Avx2;
+
+/// The grid mask (bit `r * 8 + c` = cell `(c, r)`) from the clamped,
+/// negated corner values `nb` and the per-cell offsets `noff`: the
+/// portable `grid_mask`'s answer, bit for bit.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads from arrays of 32 i32"
+)]
+#[inline]
+pub(super) fn grid_mask(_proof: Avx2, noff: &[[i32; 32]; 3], nb: [i32; 3]) -> u32 {
+    #[target_feature(enable = "avx2")]
+    fn wide(noff: &[[i32; 32]; 3], nb: [i32; 3]) -> u32 {
+        use std::arch::x86_64::{
+            __m256i, _mm256_add_epi32, _mm256_and_si256, _mm256_castsi256_ps, _mm256_loadu_si256,
+            _mm256_movemask_ps, _mm256_set1_epi32,
+        };
+        let b = [
+            _mm256_set1_epi32(nb[0]),
+            _mm256_set1_epi32(nb[1]),
+            _mm256_set1_epi32(nb[2]),
+        ];
+        let mut mask = 0u32;
+        for r in 0..4 {
+            // SAFETY: `noff[e][8 * r..8 * r + 8]` is 8 initialised i32s,
+            // 32 bytes; `loadu` accepts any alignment.
+            let row = |e: usize| unsafe {
+                _mm256_loadu_si256(noff[e][8 * r..8 * r + 8].as_ptr().cast::<__m256i>())
+            };
+            let w = _mm256_and_si256(
+                _mm256_and_si256(
+                    _mm256_add_epi32(b[0], row(0)),
+                    _mm256_add_epi32(b[1], row(1)),
+                ),
+                _mm256_add_epi32(b[2], row(2)),
+            );
+            // Negative in all three edges = inside all three.
+            let signs = _mm256_movemask_ps(_mm256_castsi256_ps(w)) as u32;
+            mask |= signs << (8 * r);
+        }
+        mask
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(noff, nb) }
+}
