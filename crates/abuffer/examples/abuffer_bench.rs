@@ -2,15 +2,18 @@
 //! the tiled z-buffer: the scenes of the llvmpipe comparison (spider, UV
 //! sphere 200 and 500, random soup of 100,000 triangles) with the fit
 //! camera, timed over the span a GL draw call, its resolve and `glFinish`
-//! cover: everything after loading (the f32 GL-compatible front end
-//! `prepare`, then `render`: bins, tiles, lists, resolve into the frame).
+//! cover: everything after loading (`Hider::render_scene` with the f32
+//! GL-compatible options: the lean front end, then bins, tiles, lists,
+//! resolve into the frame).
 //!
 //! - `abuffer 1T` / `2T`: the exact A-buffer (per-sample depth) on 1
 //!   thread (no pool) and in a 2-thread pool (front end and bands in
 //!   parallel, in that pool);
 //! - `carpenter 1T`: [`ABufferOptions::carpenter`] (`zmin`/`zmax`
 //!   fragments, same-surface merging) on 1 thread;
-//! - `prepare 1T`: the front end alone, to show its share.
+//! - `lean 1T`: the lean front end alone (what `render_scene` runs), to
+//!   show its share; `prepare 1T`: the shared front end `prepare` alone,
+//!   which the A-buffer ran before it had the lean one.
 //!
 //! Same run, same machine: with `--peers-bin PATH` (the `peers` package's
 //! binary) each round runs llvmpipe with 4x MSAA (`--msaa`) on 1 and 2
@@ -29,14 +32,31 @@ use std::process::Command;
 use std::time::{Duration, Instant};
 
 use hider_abuffer::{ABuffer, ABufferOptions};
-use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, procedural};
+use hider_scene::prepare::lean::{LeanScene, prepare_lean_into};
+use hider_scene::{Frame, Hider, PrepareOptions, Scene, ScreenScene, View, load_obj, procedural};
 
 /// Frames timed per pipeline and round, after the warm-up.
 const TIMED: usize = 3;
 /// How long each pipeline renders untimed frames first, per round.
 const WARM_UP: Duration = Duration::from_millis(40);
 /// The pipelines timed here, in the table's order.
-const PIPELINES: [&str; 4] = ["abuffer 1T", "abuffer 2T", "carpenter 1T", "prepare 1T"];
+const PIPELINES: [&str; 5] = [
+    "abuffer 1T",
+    "abuffer 2T",
+    "carpenter 1T",
+    "lean 1T",
+    "prepare 1T",
+];
+
+/// What [`frames`] times.
+enum Timed<'a> {
+    /// The whole pipeline through this hider.
+    Hider(&'a mut ABuffer),
+    /// The lean front end alone.
+    Lean,
+    /// `prepare` alone.
+    Prepare,
+}
 
 /// One row of the `peers` package's JSON.
 #[derive(serde::Deserialize)]
@@ -110,27 +130,29 @@ fn run_tiled(bin: &str, size: u32) -> Result<Vec<(String, f64)>, String> {
         .collect())
 }
 
-/// Renders `frames` frames of `scene` from world space with `hider`
-/// (front end, then render), or only the front end when `hider` is
-/// `None`; the time of each, ms.
+/// Times `count` frames of `scene` from world space: the whole pipeline
+/// of a hider, or a front end alone; the time of each, ms.
 fn frames(
     scene: &Scene,
     view: &View,
     options: &PrepareOptions,
-    hider: Option<&mut ABuffer>,
+    mut what: Timed<'_>,
     count: usize,
 ) -> Vec<f64> {
-    let mut screen = hider_scene::prepare(scene, view, options).expect("prepare");
+    let mut screen = ScreenScene::empty(view);
+    let mut lean = LeanScene::new();
     let mut frame = Frame::new(view.viewport.width, view.viewport.height).expect("frame");
-    let mut hider = hider;
     let mut one = || {
         let t = Instant::now();
-        match hider.as_deref_mut() {
-            Some(h) => drop(
+        match &mut what {
+            Timed::Hider(h) => drop(
                 h.render_scene(scene, view, options, &mut screen, &mut frame)
                     .expect("render"),
             ),
-            None => hider_scene::prepare_into(scene, view, options, &mut screen).expect("prepare"),
+            Timed::Lean => prepare_lean_into(scene, view, options, &mut lean).expect("lean"),
+            Timed::Prepare => {
+                hider_scene::prepare_into(scene, view, options, &mut screen).expect("prepare")
+            }
         }
         t.elapsed().as_secs_f64() * 1e3
     };
@@ -187,10 +209,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         for (k, (_, scene)) in scenes.iter().enumerate() {
             let view = View::for_scene(scene, size, size)?;
             let t = &mut times[k];
-            t[0].extend(frames(scene, &view, &serial, Some(&mut one), TIMED));
-            t[1].extend(pool.install(|| frames(scene, &view, &parallel, Some(&mut two), TIMED)));
-            t[2].extend(frames(scene, &view, &serial, Some(&mut carpenter), TIMED));
-            t[3].extend(frames(scene, &view, &serial, None, TIMED));
+            t[0].extend(frames(scene, &view, &serial, Timed::Hider(&mut one), TIMED));
+            t[1].extend(
+                pool.install(|| frames(scene, &view, &parallel, Timed::Hider(&mut two), TIMED)),
+            );
+            t[2].extend(frames(
+                scene,
+                &view,
+                &serial,
+                Timed::Hider(&mut carpenter),
+                TIMED,
+            ));
+            t[3].extend(frames(scene, &view, &serial, Timed::Lean, TIMED));
+            t[4].extend(frames(scene, &view, &serial, Timed::Prepare, TIMED));
         }
     }
     println!(
