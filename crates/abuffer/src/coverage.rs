@@ -155,15 +155,10 @@ impl TriCoverage {
         let narrow = edges
             .iter()
             .all(|e| e.a.abs() < NARROW && e.b.abs() < NARROW);
+        if narrow {
+            self.fill_offsets(&edges);
+        }
         for (e, edge) in edges.iter().enumerate() {
-            if narrow {
-                let col: [i32; 8] = std::array::from_fn(|c| -(edge.a * grid_x(c)) as i32);
-                let row: [i32; 4] = std::array::from_fn(|r| -(edge.b * grid_y(r)) as i32);
-                for (cells, r) in self.noff[e].chunks_exact_mut(8).zip(row) {
-                    let sums: [i32; 8] = std::array::from_fn(|c| col[c].wrapping_add(r));
-                    cells.copy_from_slice(&sums);
-                }
-            }
             let off = |x: i32, y: i32| edge.a * i64::from(x) + edge.b * i64::from(y);
             self.centre[e] = off(CENTRE.0, CENTRE.1);
             // The offset is affine: its extremes over the hull are at the
@@ -182,6 +177,25 @@ impl TriCoverage {
         self.narrow = narrow;
         self.pattern = pattern;
         self.full = pattern.full_mask();
+    }
+
+    /// Fills [`Self::noff`] for `edges` (32-bit path): with AVX2 when the
+    /// CPU has it, the same values.
+    #[inline]
+    fn fill_offsets(&mut self, edges: &[EdgeFunction; 3]) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = self.avx2 {
+            avx2::offsets(avx2, edges, &mut self.noff);
+            return;
+        }
+        for (e, edge) in edges.iter().enumerate() {
+            let col: [i32; 8] = std::array::from_fn(|c| -(edge.a * grid_x(c)) as i32);
+            let row: [i32; 4] = std::array::from_fn(|r| -(edge.b * grid_y(r)) as i32);
+            for (cells, r) in self.noff[e].chunks_exact_mut(8).zip(row) {
+                let sums: [i32; 8] = std::array::from_fn(|c| col[c].wrapping_add(r));
+                cells.copy_from_slice(&sums);
+            }
+        }
     }
 
     /// The three biased edge values at the top-left corner of pixel

@@ -10,8 +10,13 @@
 //! `_mm256_movemask_ps` gathers its 8 sign bits in one instruction: the
 //! same adds (wrapping, like the portable lanes, which never overflow:
 //! the values are clamped to +-2^30 and the offsets are below 2^30) and
-//! the same bits.
+//! the same bits. The per-triangle offsets `-(a*x_c + b*y_r)` are set up
+//! the same way, a row of 8 per register: every value is below 2^29 in
+//! magnitude on this path (edge coefficients below 2^20, sample
+//! coordinates below 256), so `i32` arithmetic gives the portable `i64`
+//! values exactly.
 
+use hider_geom::EdgeFunction;
 use hider_geom::isa::Avx2;
 
 /// The grid mask (bit `r * 8 + c` = cell `(c, r)`) from the clamped,
@@ -57,4 +62,39 @@ pub(super) fn grid_mask(_proof: Avx2, noff: &[[i32; 32]; 3], nb: [i32; 3]) -> u3
     }
     // SAFETY: an `Avx2` value exists only where AVX2 was detected.
     unsafe { wide(noff, nb) }
+}
+
+/// The offsets `-(a*x_c + b*y_r)` of each edge and grid cell `r * 8 + c`
+/// (`x_c = 32c + 16`, `y_r = 64r + 32`) into `noff`: the portable set-up's
+/// values, for edges of the 32-bit path.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token, and unaligned stores into arrays of 32 i32"
+)]
+#[inline]
+pub(super) fn offsets(_proof: Avx2, edges: &[EdgeFunction; 3], noff: &mut [[i32; 32]; 3]) {
+    #[target_feature(enable = "avx2")]
+    fn wide(edges: &[EdgeFunction; 3], noff: &mut [[i32; 32]; 3]) {
+        use std::arch::x86_64::{
+            __m256i, _mm256_add_epi32, _mm256_mullo_epi32, _mm256_set1_epi32, _mm256_setr_epi32,
+            _mm256_storeu_si256,
+        };
+        let x = _mm256_setr_epi32(16, 48, 80, 112, 144, 176, 208, 240);
+        for (edge, out) in edges.iter().zip(noff.iter_mut()) {
+            // |a|, |b| < 2^20: -a and every product fit i32.
+            let col = _mm256_mullo_epi32(_mm256_set1_epi32(-(edge.a as i32)), x);
+            for r in 0..4 {
+                let row = -(edge.b * (r as i64 * 64 + 32)) as i32;
+                let cells = _mm256_add_epi32(col, _mm256_set1_epi32(row));
+                // SAFETY: `out[8 * r..8 * r + 8]` is 8 i32s, 32 writable
+                // bytes; `storeu` accepts any alignment.
+                unsafe {
+                    _mm256_storeu_si256(out[8 * r..8 * r + 8].as_mut_ptr().cast::<__m256i>(), cells)
+                };
+            }
+        }
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(edges, noff) }
 }

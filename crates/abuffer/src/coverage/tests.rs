@@ -136,9 +136,9 @@ fn incremental_step_matches_direct_evaluation() {
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(256))]
-    /// The AVX2 grid mask is the portable one, bit for bit, at every pixel
-    /// around random triangles of the 32-bit path (every pattern, centre
-    /// included).
+    /// The AVX2 offsets and grid mask are the portable ones, bit for bit,
+    /// at every pixel around random triangles of the 32-bit path (every
+    /// pattern, centre included).
     #[test]
     fn avx2_masks_equal_portable_masks(
         c in proptest::array::uniform6(-512i32..20 * 256),
@@ -152,7 +152,9 @@ proptest! {
         wide.avx2 = Some(avx2);
         let mut portable = wide.clone();
         portable.avx2 = None;
+        portable.reset(&t, pattern);
         prop_assert!(wide.narrow);
+        prop_assert_eq!(wide.noff, portable.noff);
         for j in 0..22 {
             for i in 0..22 {
                 let base = wide.corner_values(i, j);
