@@ -269,6 +269,13 @@ impl BoundingBox {
         }
     }
 
+    /// Whether every sample of the rectangle `r` lies in the box: what a
+    /// triangle must satisfy to surround the region of `r`.
+    #[inline]
+    pub fn holds(&self, r: &SampleRect) -> bool {
+        self.min_x <= r.x0 && self.max_x >= r.x1 && self.min_y <= r.y0 && self.max_y >= r.y1
+    }
+
     /// Whether no sample of the rectangle `r` lies in the box.
     #[inline]
     pub fn misses(&self, r: &SampleRect) -> bool {

@@ -58,9 +58,10 @@ pub const MAX_LEVEL: usize = 31;
 ///
 /// Printed (through [`HiderStats::table`]) as: regions, the four
 /// classifications, the leaf regions per rule, the culls, the sample
-/// resolves, list copies and regions found empty by bounds, depth evaluations, samples, peak candidates,
-/// and then two counters per subdivision level reached ("regions at level
-/// 0", ..., then "candidates at level 0", ...).
+/// resolves, list copies, regions found empty by bounds and regions passed
+/// through, depth evaluations, samples, peak candidates, and then two
+/// counters per subdivision level reached ("regions at level 0", ..., then
+/// "candidates at level 0", ...).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct WarnockStats {
     /// Regions visited (classified), in the pixel pass and, in the
@@ -107,6 +108,11 @@ pub struct WarnockStats {
     /// without examining a candidate: the box reaches none of their
     /// samples.
     pub empty_by_bounds: u64,
+    /// Regions split without classifying their list: their parent's
+    /// survivors' bounding box reaches no other quadrant and cannot hold
+    /// all their samples, so nothing surrounds them and they would be split
+    /// anyway (counted as visits, with no candidate examined).
+    pub passed_through: u64,
     /// Depth-plane evaluations (corner tests and per-sample depths).
     pub depth_evaluations: u64,
     /// Samples written into the frame or a pixel's sample buffer.
@@ -269,6 +275,7 @@ impl HiderStats for WarnockStats {
             ("sample resolves", self.sample_resolves),
             ("candidates copied", self.candidates_copied),
             ("empty by bounds", self.empty_by_bounds),
+            ("passed through", self.passed_through),
             ("depth evaluations", self.depth_evaluations),
             ("samples written", self.samples_written),
             ("peak candidates", self.peak_candidates),
@@ -331,6 +338,7 @@ mod tests {
                 "sample resolves",
                 "candidates copied",
                 "empty by bounds",
+                "passed through",
                 "depth evaluations",
                 "samples written",
                 "peak candidates",
@@ -342,8 +350,8 @@ mod tests {
         );
         assert_eq!(table.counters[0], ("regions", 5));
         assert_eq!(table.counters[11], ("pixels subdivided", 6));
-        assert_eq!(table.counters[21], ("regions at level 1", 4));
-        assert_eq!(table.counters[23], ("candidates at level 1", 7));
+        assert_eq!(table.counters[22], ("regions at level 1", 4));
+        assert_eq!(table.counters[24], ("candidates at level 1", 7));
         assert_eq!(table.peak_bytes, 99);
     }
 }

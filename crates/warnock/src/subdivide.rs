@@ -20,7 +20,9 @@
 //!   the one quadrant holding that pixel, and nothing is copied.
 //! - A region also hands its children the bounding box of its survivors: a
 //!   child none of whose samples that box reaches is empty, settled without
-//!   looking at a candidate. The quadrants beside a pile are settled so.
+//!   looking at a candidate. The quadrants beside a pile are settled so, and
+//!   when the box reaches one quadrant only (and cannot surround it), that
+//!   quadrant is split in turn without a look at its list.
 //! - Lists keep triangle order, so "the earlier triangle wins a depth tie"
 //!   stays true at every level.
 //!
@@ -353,30 +355,78 @@ impl Subdivider {
                 if front.is_some() {
                     stats.surrounder_undecided += 1;
                 }
-                let (children, n) = e.region.quadrants();
-                if n == 0 {
+                if e.region.quadrants().1 == 0 {
                     sink.resolve_cell(grid, &e.region, candidates, setups, e.level, stats)
                 } else {
-                    let level = e.level + 1;
-                    for &region in children[..n].iter().rev() {
-                        if bounds.misses(&grid.sample_rect(&region)) {
-                            stats.visit(level);
-                            stats.empty_by_bounds += 1;
-                            stats.decided[Rule::Empty as usize] += 1;
-                            sink.leaf(&region, Rule::Empty, level);
-                        } else {
-                            self.stack.push(Entry {
-                                region,
-                                list,
-                                level,
-                            });
-                        }
-                    }
+                    self.split(grid, e.region, e.level, list, &bounds, sink, stats);
                     return None;
                 }
             }
         };
         Some(rule)
+    }
+
+    /// Splits `region` (at `level`, holding `list`, whose bounding box is
+    /// `bounds`) and pushes the children the box reaches; the others are
+    /// settled empty on the spot.
+    ///
+    /// When the box reaches one child only and cannot hold all of its
+    /// samples, that child is split in turn without classifying its list
+    /// (counted in [`WarnockStats::passed_through`]). No candidate can
+    /// surround it (a surrounder's box holds every sample), so no rule
+    /// could settle it whole unless classification left one candidate or
+    /// none; and whatever happens below, the region finally pushed
+    /// classifies the list against itself, dropping everything the skipped
+    /// levels would have dropped (what misses a region by the rectangle
+    /// tests misses each of its subregions), so the picture is the same. A
+    /// pile over one pixel goes from the window straight down to that
+    /// pixel.
+    #[allow(
+        clippy::too_many_arguments,
+        reason = "the loop's state, the region and its list, all distinct"
+    )]
+    fn split<S: Sink>(
+        &mut self,
+        grid: &Grid,
+        mut region: Region,
+        mut level: usize,
+        list: List,
+        bounds: &BoundingBox,
+        sink: &mut S,
+        stats: &mut WarnockStats,
+    ) {
+        loop {
+            let (children, n) = region.quadrants();
+            level += 1;
+            let mut reached = [false; 4];
+            for (k, child) in children[..n].iter().enumerate() {
+                reached[k] = !bounds.misses(&grid.sample_rect(child));
+                if !reached[k] {
+                    stats.visit(level);
+                    stats.empty_by_bounds += 1;
+                    stats.decided[Rule::Empty as usize] += 1;
+                    sink.leaf(child, Rule::Empty, level);
+                }
+            }
+            let mut only = (0..n).filter(|&k| reached[k]);
+            if let (Some(k), None) = (only.next(), only.next()) {
+                let child = children[k];
+                if child.quadrants().1 > 0 && !bounds.holds(&grid.sample_rect(&child)) {
+                    stats.visit(level);
+                    stats.passed_through += 1;
+                    region = child;
+                    continue;
+                }
+            }
+            for k in (0..n).rev().filter(|&k| reached[k]) {
+                self.stack.push(Entry {
+                    region: children[k],
+                    list,
+                    level,
+                });
+            }
+            return;
+        }
     }
 }
 

@@ -69,23 +69,30 @@ fn work_on_a_one_pixel_pile_grows_linearly() {
     );
 }
 
-/// Each level looks at the pile once: the quadrants beside the one holding
-/// the pixel are settled empty from the survivors' bounding box, and the
-/// list, whose every candidate survives down to the pixel, is handed on
-/// without a copy. Before that, every level classified the pile in all
-/// four quadrants (`4N` per level) and copied it once more (`7N` in all).
+/// The pile is looked at twice: classified against the whole window, then
+/// resolved at its pixel. The quadrants beside the one holding the pixel are
+/// settled empty from the survivors' bounding box, the levels between are
+/// passed through (nothing can surround them), and the list, every
+/// candidate of which survives, is handed on without a copy. Before that,
+/// every level classified the pile in all four quadrants (`4N` per level,
+/// `25N` in all) and copied it once more (`7N` in all).
 #[test]
-fn a_one_pixel_pile_is_examined_once_per_level_and_never_copied() {
+fn a_one_pixel_pile_is_examined_twice_and_never_copied() {
     let n = 3_000;
     let stats = pile_stats(n);
-    let per_level = vec![u64::from(n); PIXEL_LEVEL + 1];
+    let mut per_level = vec![0; PIXEL_LEVEL + 1];
+    per_level[0] = u64::from(n);
+    per_level[PIXEL_LEVEL] = u64::from(n);
     assert_eq!(stats.candidates_per_level, per_level);
-    assert_eq!(stats.polygons_classified, u64::from(n) * 7);
+    assert_eq!(stats.polygons_classified, 2 * u64::from(n));
     // The root list is the only one written.
     assert_eq!(stats.candidates_copied, u64::from(n));
     assert_eq!(stats.peak_candidates, u64::from(n));
-    // Three quadrants beside the pile at each of the six splits.
+    // Three quadrants beside the pile at each of the six splits; the five
+    // levels between the window and the pixel's 2 x 2 block passed through.
     assert_eq!(stats.empty_by_bounds, 3 * PIXEL_LEVEL as u64);
     assert_eq!(stats.decided_by(Rule::Empty), 3 * PIXEL_LEVEL as u64);
+    assert_eq!(stats.passed_through, PIXEL_LEVEL as u64 - 1);
+    assert_eq!(stats.regions, 1 + 4 * PIXEL_LEVEL as u64);
     assert_eq!(stats.sample_resolves, 1);
 }
