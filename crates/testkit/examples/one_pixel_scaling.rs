@@ -2,7 +2,9 @@
 //! one pixel: `N` tiny triangles all covering one pixel centre at 64 x 64
 //! (`hard_cases::one_pixel_pile`), `N` from `1e5` to `1e6` by default.
 //!
-//! Prints one row per hider with its render time (median of a few runs,
+//! Prints one row per hider with its render time (median of `--runs`
+//! renders, 3 by default, or one when a render takes over a second; `--runs
+//! 1` for instruction counts under `valgrind --tool=callgrind`,
 //! the shared front end excluded and timed on its own line) at each `N`
 //! and the exponent of the least-squares fit `time ~ N^k` over the sizes
 //! it ran: about 1 is linear, about 1.1 is `N log N` over this range, 2 is
@@ -20,7 +22,7 @@
 //! system, not the algorithm.
 //!
 //! ```text
-//! cargo run --release -p hider-testkit --features hostile --example one_pixel_scaling -- [N...] [--only NAME] [--limit SECONDS] [--counters NAME]
+//! cargo run --release -p hider-testkit --features hostile --example one_pixel_scaling -- [N...] [--only NAME] [--limit SECONDS] [--counters NAME] [--runs COUNT]
 //! ```
 
 use std::time::Instant;
@@ -32,13 +34,14 @@ use hider_scene::procedural::SplitMix64;
 use hider_scene::{Frame, ScreenScene, ScreenTri, StatsTable};
 use hider_testkit::{hard_cases, screen};
 
-/// The sizes, the hiders to run (all when empty), the time limit and the
-/// hiders whose work counters to print.
+/// The sizes, the hiders to run (all when empty), the time limit, the
+/// hiders whose work counters to print and the renders per size.
 struct Args {
     sizes: Vec<u32>,
     only: Vec<String>,
     limit: f64,
     counters: Vec<String>,
+    runs: usize,
 }
 
 fn parse_args() -> Args {
@@ -47,12 +50,20 @@ fn parse_args() -> Args {
         only: Vec::new(),
         limit: 30.0,
         counters: Vec::new(),
+        runs: 3,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
         match a.as_str() {
             "--only" => args.only.push(it.next().expect("--only NAME")),
             "--counters" => args.counters.push(it.next().expect("--counters NAME")),
+            "--runs" => {
+                args.runs = it
+                    .next()
+                    .and_then(|s| s.parse().ok())
+                    .filter(|&r| r > 0)
+                    .expect("--runs COUNT (at least 1)");
+            }
             "--limit" => {
                 args.limit = it
                     .next()
@@ -85,16 +96,17 @@ fn exponent(points: &[(u32, f64)]) -> Option<f64> {
     Some(sxy / sxx)
 }
 
-/// Seconds of the median of up to three renders (one when a render takes
+/// Seconds of the median of up to `runs` renders (one when a render takes
 /// over a second) and the last render's counters, or the error.
 fn time_render(
     hider: &mut dyn hider_scene::DynHider,
     s: &ScreenScene,
+    runs: usize,
 ) -> Result<(f64, StatsTable), String> {
     let mut frame = Frame::new(s.viewport.width, s.viewport.height).map_err(|e| e.to_string())?;
     let mut times = Vec::new();
     let mut table = StatsTable::default();
-    for _ in 0..3 {
+    for _ in 0..runs {
         let start = Instant::now();
         table = hider.render(s, &mut frame).map_err(|e| e.to_string())?;
         times.push(start.elapsed().as_secs_f64());
@@ -248,7 +260,7 @@ fn main() {
                 row.push_str(&format!("{:>12}", "-"));
                 continue;
             }
-            match time_render(hider.as_mut(), s) {
+            match time_render(hider.as_mut(), s, args.runs) {
                 Ok((t, table)) => {
                     row.push_str(&format!("{:>11.5}s", t));
                     points.push((*n, t));
