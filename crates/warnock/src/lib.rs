@@ -24,7 +24,11 @@
 //!   z-buffer does (`LESS`, ties to the earlier primitive), so the picture
 //!   equals the oracle's on every non-tie pixel, with identical coverage;
 //! - candidate lists pass down the recursion in one reusable arena: a
-//!   region's children see only its survivors;
+//!   region's children see only its survivors, a list every candidate of
+//!   which survives is handed on uncopied, and quadrants the survivors'
+//!   bounding box misses are settled empty without a look (a pile of `N`
+//!   triangles over one pixel costs `2N` classifications, not `N` per
+//!   level);
 //! - optionally ([`WarnockOptions::samples_per_side`]) the subdivision goes
 //!   on inside pixels to an `n x n` sample grid for anti-aliased coverage
 //!   ([`coverage`]);
