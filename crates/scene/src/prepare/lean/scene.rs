@@ -63,6 +63,8 @@ pub struct LeanScene {
     lights: Vec<Light>,
     /// The frame's transforms (`None` before the first frame).
     front: Option<FrontEnd>,
+    /// The material of meshes without one (made once, not per colour).
+    default_material: Material,
 }
 
 /// Below this many triangles the scene is set up on one thread.
@@ -99,11 +101,10 @@ impl LeanScene {
         let k = prim as usize;
         let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
         let mesh = &scene.meshes[m];
-        let fallback = Material::default();
         let material = mesh
             .material
             .and_then(|i| scene.materials.get(i))
-            .unwrap_or(&fallback);
+            .unwrap_or(&self.default_material);
         match mode {
             ShadeMode::Ids => (id_color(prim), material.opacity),
             ShadeMode::Lambert => {
