@@ -73,6 +73,7 @@ fn main() -> Result<(), hider_scene::Error> {
     let order = timer.time(|| {
         stats = painter.render(&screen, &mut frame).expect("rendered once");
     });
+    println!("painter counters: {stats:?}");
     // Ordering alone, as a caller that draws the pieces itself runs it.
     let ordered = timer.time(|| {
         painter.order(&screen).expect("ordered once");

@@ -131,7 +131,11 @@ impl Grid {
         for y in y0..=y1 {
             for x in x0..=x1 {
                 let bin = &mut self.bins[y * self.cols + x];
-                if let Ok(at) = bin.binary_search_by(|b| b.key.cmp(&key)) {
+                // The piece painted next is the farthest left, the last
+                // entry of each of its bins: no search, no shift.
+                if bin.last().is_some_and(|b| b.key == key) {
+                    bin.pop();
+                } else if let Ok(at) = bin.binary_search_by(|b| b.key.cmp(&key)) {
                     bin.remove(at);
                 }
             }

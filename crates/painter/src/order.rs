@@ -91,6 +91,15 @@ pub(crate) struct Orderer {
     pub linear_scan: Option<usize>,
 }
 
+/// Width of a grid bin in mean piece bounding boxes. Each bin a candidate
+/// meets costs a cache miss or two at its end (bins are separate lists,
+/// visited in depth order, not screen order), while the entries scanned
+/// within a bin are contiguous and mostly settled by their inline extents:
+/// on two intersecting 100 x 100 height fields (the `surfaces` example)
+/// bins three boxes wide order about 15% faster than bins one box wide,
+/// and random soups and spheres are as fast either way.
+const BIN_BOXES: f64 = 3.0;
+
 /// Bytes of the piece arena now and at its peak.
 #[derive(Clone, Copy, Debug)]
 struct Arena {
@@ -196,15 +205,16 @@ impl Orderer {
         self.index_all(scene);
         stats.triangles = scene.tris.len() as u64;
         let bytes: u64 = self.pieces.iter().map(|p| p.bytes() as u64).sum();
-        // Bins about as wide as the mean bounding box, so that a typical
-        // piece meets a few of them.
+        // Bins a few mean bounding boxes wide ([`BIN_BOXES`]), so that a
+        // typical piece meets one to four of them.
         let n = self.extents.len().max(1) as f64;
         let side = self
             .extents
             .iter()
             .map(|e| (e.max.x - e.min.x) + (e.max.y - e.min.y))
             .sum::<f64>()
-            / (2.0 * n);
+            / (2.0 * n)
+            * BIN_BOXES;
         self.grid
             .reset(scene.viewport.width, scene.viewport.height, side);
         self.keys.extend(
@@ -242,7 +252,14 @@ impl Orderer {
                 self.front.remove(k);
             }
             Slot::Sorted(key) => {
-                if let Some(id) = self.sorted.remove(&key)
+                // Most often the farthest entry, painted next.
+                let last = self.sorted.last_key_value().is_some_and(|(&k, _)| k == key);
+                let removed = if last {
+                    self.sorted.pop_last().map(|(_, id)| id)
+                } else {
+                    self.sorted.remove(&key)
+                };
+                if let Some(id) = removed
                     && self.centres[id as usize] == Centres::Many
                 {
                     self.grid.remove(key, &self.extents[id as usize]);
