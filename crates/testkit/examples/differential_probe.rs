@@ -8,9 +8,11 @@
 //! cargo run --release -p hider-testkit --features hostile --example differential_probe -- --bytes 0,3,1,8
 //! ```
 //!
-//! `PROBE_VERBOSE=1` prints every case's label and outcome; a progress
-//! line goes to stderr every 1,000 cases, and every case slower than half a
-//! second is named there.
+//! `PROBE_VERBOSE=1` prints every case's label and outcome;
+//! `PROBE_FILTER=TEXT` checks only the cases whose label contains `TEXT`
+//! (to hunt one family). A progress line goes to stderr every 1,000
+//! cases, and every case slower than half a second is named there with its
+//! bytes, so it can be replayed.
 
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -26,7 +28,12 @@ fn replay(bytes: &str) {
         .collect();
     match differential_case(&data) {
         None => println!("{data:?}: the camera is refused"),
-        Some(case) => println!("{}\n  {:?}", case.label, check_case(&case)),
+        Some(case) => {
+            let t = Instant::now();
+            let result = check_case(&case);
+            let dt = t.elapsed().as_secs_f64();
+            println!("{}\n  {result:?}\n  {dt:.3} s", case.label);
+        }
     }
 }
 
@@ -51,6 +58,7 @@ fn main() {
     let cases: u64 = args.first().and_then(|s| s.parse().ok()).unwrap_or(20);
     let seed: u64 = args.get(1).and_then(|s| s.parse().ok()).unwrap_or(1);
     let verbose = std::env::var_os("PROBE_VERBOSE").is_some();
+    let filter = std::env::var("PROBE_FILTER").unwrap_or_default();
     let mut rng = SplitMix64::new(seed);
     let (mut rendered, mut slowest) = (0u64, (0.0f64, String::new()));
     let mut findings: BTreeMap<String, u64> = BTreeMap::new();
@@ -69,6 +77,9 @@ fn main() {
         let Some(case) = differential_case(&data) else {
             continue;
         };
+        if !case.label.contains(&filter) {
+            continue;
+        }
         let t = Instant::now();
         let result = check_case(&case);
         let dt = t.elapsed().as_secs_f64();
@@ -76,7 +87,8 @@ fn main() {
             slowest = (dt, case.label.clone());
         }
         if dt > 0.5 {
-            eprintln!("slow: {dt:.2} s: {}", case.label);
+            let bytes: Vec<String> = data.iter().map(u8::to_string).collect();
+            eprintln!("slow: {dt:.2} s: {} --bytes {}", case.label, bytes.join(","));
         }
         match result {
             Ok(o) => {
