@@ -88,7 +88,11 @@ fn main() {
         }
         if dt > 0.5 {
             let bytes: Vec<String> = data.iter().map(u8::to_string).collect();
-            eprintln!("slow: {dt:.2} s: {} --bytes {}", case.label, bytes.join(","));
+            eprintln!(
+                "slow: {dt:.2} s: {} --bytes {}",
+                case.label,
+                bytes.join(",")
+            );
         }
         match result {
             Ok(o) => {
