@@ -118,13 +118,21 @@ def _fan(depth, bad, base):
     return idx[ok], poly[ok]
 
 
+def _convex(xy):
+    """Whether each polygon of ``xy`` (n, v, 2) is convex (turns one way
+    only; straight and degenerate corners allowed)."""
+    e = np.roll(xy, -1, axis=1) - xy
+    turn = e[..., 0] * np.roll(e[..., 1], -1, axis=1) - e[..., 1] * np.roll(e[..., 0], -1, axis=1)
+    return (turn >= 0).all(axis=1) | (turn <= 0).all(axis=1)
+
+
 class _Gathered:
     """Every polygon of the sources fanned into triangles in window pixels
     (y down) with depth t in [0, 1], plus each triangle's polygon."""
 
     def __init__(self, ax, sources, width, height):
         pts, tris, tri_poly = [], [], []
-        face_rgba, edge_rgba, widths, outlines, which = [], [], [], [], []
+        face_rgba, edge_rgba, widths, outlines, which, convex = [], [], [], [], [], []
         base, poly_base = 0, 0
         for c, col in enumerate(sources):
             faces, invalid, face, edge, lw = _polygon_source(col)
@@ -144,6 +152,7 @@ class _Gathered:
             edge_rgba.append(edge)
             widths.append(lw)
             outlines.append((p, bad))
+            convex.append(_convex(disp) & ~bad.any(axis=1))
             which.append(np.full(n, c))
             base += n * v
             poly_base += n
@@ -156,6 +165,11 @@ class _Gathered:
         self.linewidths = np.concatenate(widths) if widths else np.zeros(0)
         self.outlines = outlines
         self.collection = np.concatenate(which) if which else np.zeros(0, np.int64)
+        #: Per polygon: convex on screen with every corner valid, so that
+        #: its fan's triangles fill exactly its outline.
+        self.convex = np.concatenate(convex) if convex else np.zeros(0, bool)
+        #: Per polygon, the number of triangles of its fan.
+        self.tri_count = np.bincount(self.tri_poly, minlength=len(self.collection))
         # Depth over the points in use, mapped onto [0, 1].
         used = np.zeros(len(self.points), dtype=bool)
         used[self.faces.ravel()] = True
@@ -345,6 +359,38 @@ def _outline_segments(g):
     return np.concatenate(segs), np.concatenate(rgba), np.concatenate(widths)
 
 
+def _path(verts, codes, like):
+    """A Path of these vertices and codes with the simplification settings
+    of ``like``, made without the checks of the constructor (tens of
+    thousands are made per draw)."""
+    fast = getattr(mpath.Path, "_fast_from_codes_and_verts", None)
+    if fast is None:
+        return mpath.Path(verts, codes)
+    return fast(verts, codes, internals_from=like)
+
+
+def _whole_paths(paths, runs, run_poly, g, like):
+    """Fills ``paths[r]`` for each run ``r`` of ``runs`` with the outline of
+    its polygon ``run_poly[r]``: its corners in display pixels and the
+    first again to close it, one code array shared by the polygons of a
+    collection (they have the same corner count)."""
+    if len(runs) == 0:
+        return
+    polys = run_poly[runs]
+    base = 0
+    for p, _ in g.outlines:
+        n, v = p.shape[:2]
+        mine = (polys >= base) & (polys < base + n)
+        if mine.any():
+            local = polys[mine] - base
+            verts = np.concatenate([p[local, :, :2], p[local, :1, :2]], axis=1)
+            codes = np.full(v + 1, mpath.Path.LINETO, dtype=mpath.Path.code_type)
+            codes[0], codes[-1] = mpath.Path.MOVETO, mpath.Path.CLOSEPOLY
+            for r, vv in zip(runs[mine].tolist(), verts):
+                paths[r] = _path(vv, codes, like)
+        base += n
+
+
 class Resolved(mcoll.PolyCollection):
     """The artist ``resolve`` adds: at each draw it gathers the hidden
     source collections, orders and splits their polygons with hider's
@@ -369,12 +415,12 @@ class Resolved(mcoll.PolyCollection):
         ax = self._ax
         width, height = _size(ax)
         g = _Gathered(ax, self.sources, width, height)
-        prims, offsets, xy = _hider.screen_pieces(g.points, g.faces, width, height)
+        prims, offsets, xy, uncut = _hider.screen_pieces(g.points, g.faces, width, height)
         self.pieces = len(prims)
         xy = xy.copy()
         xy[:, 1] = height - xy[:, 1]
         poly = g.tri_poly[prims]
-        poly = poly[self._set_pieces(xy, offsets, poly)]
+        poly = poly[self._set_pieces(xy, offsets, poly, uncut, g)]
         face = g.face_rgba[poly]
         edge = g.edge_rgba[poly]
         lw = g.linewidths[poly]
@@ -397,18 +443,35 @@ class Resolved(mcoll.PolyCollection):
         self._resolve_lines(g, len(prims) > 0)
         return g.zlo if len(g.faces) else np.nan
 
-    def _set_pieces(self, xy, offsets, poly):
+    def _set_pieces(self, xy, offsets, poly, uncut, g):
         """The pieces as this collection's paths, in paint order; returns
         the first piece of each path. Consecutive pieces of one polygon
-        become one path of several closed parts, filled in one pass, so
-        no seam shows between them (the two triangles of a quad, most
-        often), and there are fewer paths to make: tens of thousands of
-        path objects dominate the draw otherwise."""
+        become one path, filled in one pass, so no seam shows between them
+        (the two triangles of a quad, most often), and there are fewer
+        paths to make: tens of thousands of path objects dominate the draw
+        otherwise. When the run is the whole polygon (all its triangles,
+        none cut) and the polygon is convex on screen, the path is the
+        polygon's own outline, as matplotlib would draw it; otherwise it
+        has one closed part per piece."""
         k = len(offsets) - 1
+        if k == 0:
+            self._paths = []
+            self.stale = True
+            return np.zeros(0, np.int64)
         counts = np.diff(offsets)
-        total = int(offsets[-1]) if k else 0
+        first = np.nonzero(np.r_[True, poly[1:] != poly[:-1]])[0]
+        run_length = np.diff(np.r_[first, k])
+        run_poly = poly[first]
+        cut_in_run = np.add.reduceat((~uncut).astype(np.int64), first) > 0
+        whole = (~cut_in_run & (run_length == g.tri_count[run_poly])
+                 & g.convex[run_poly])
+        paths = [None] * len(first)
+        like = mpath.Path(np.zeros((1, 2)))
+        _whole_paths(paths, np.nonzero(whole)[0], run_poly, g, like)
+        # The other runs: each piece's corners, then its first corner
+        # again to close it.
+        total = int(offsets[-1])
         piece_of = np.repeat(np.arange(k), counts)
-        # Each piece's corners, then its first corner again to close it.
         verts = np.empty((total + k, 2))
         codes = np.full(total + k, mpath.Path.LINETO, dtype=mpath.Path.code_type)
         verts[np.arange(total) + piece_of] = xy
@@ -416,18 +479,12 @@ class Resolved(mcoll.PolyCollection):
         verts[close] = xy[offsets[:-1]]
         codes[offsets[:-1] + np.arange(k)] = mpath.Path.MOVETO
         codes[close] = mpath.Path.CLOSEPOLY
-        first = np.nonzero(np.r_[True, poly[1:] != poly[:-1]])[0] if k else np.zeros(0, np.int64)
-        starts = (offsets[first] + first).tolist()
-        ends = starts[1:] + [total + k]
-        fast = getattr(mpath.Path, "_fast_from_codes_and_verts", None)
-        if fast is None:
-            self._paths = [mpath.Path(verts[a:b], codes[a:b]) for a, b in zip(starts, ends)]
-        else:
-            # The simplification settings are copied from one path made
-            # the ordinary way rather than looked up for every path.
-            like = mpath.Path(verts[:1])
-            self._paths = [fast(verts[a:b], codes[a:b], internals_from=like)
-                           for a, b in zip(starts, ends)]
+        starts = offsets[first] + first
+        ends = np.r_[starts[1:], total + k]
+        for r, a, b in zip(np.nonzero(~whole)[0].tolist(), starts[~whole].tolist(),
+                           ends[~whole].tolist()):
+            paths[r] = _path(verts[a:b], codes[a:b], like)
+        self._paths = paths
         self.stale = True
         return first
 

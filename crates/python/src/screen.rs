@@ -73,12 +73,19 @@ type Pieces<'py> = (
     Bound<'py, PyArray1<i64>>,
     Bound<'py, PyArray1<i64>>,
     Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyArray1<bool>>,
 );
+
+/// What the ordering hands back, as plain vectors: per piece its face and
+/// whether it is uncut, the offsets of its corners, the corners' x, y.
+type PieceLists = (Vec<i64>, Vec<i64>, Vec<f64>, Vec<bool>);
 
 /// Orders and splits screen-space faces with Newell, Newell & Sancha's
 /// painter and returns its pieces in paint order, farthest first:
-/// `(faces, offsets, xy)`, where piece `k` is a convex polygon of face
-/// `faces[k]` with the window-pixel corners `xy[offsets[k]:offsets[k+1]]`.
+/// `(faces, offsets, xy, uncut)`, where piece `k` is a convex polygon of
+/// face `faces[k]` with the window-pixel corners
+/// `xy[offsets[k]:offsets[k+1]]`, and `uncut[k]` says whether it is the
+/// whole face.
 /// Drawn in that order, each over the ones before, they show every face
 /// exactly where it is the nearest.
 #[pyfunction]
@@ -91,26 +98,28 @@ pub fn screen_pieces<'py>(
     height: u32,
 ) -> PyResult<Pieces<'py>> {
     let (scene, view) = screen_view(&points, &faces, width, height)?;
-    let run = || -> hider_plan::Result<(Vec<i64>, Vec<i64>, Vec<f64>)> {
+    let run = || -> hider_plan::Result<PieceLists> {
         let screen: ScreenScene = prepare(&scene, &view, &PrepareOptions::default())?;
         let mut painter = Painter::new(PainterOptions::default());
         // The pieces are drawn by the caller: no raster pass, no frame.
         painter.order(&screen)?;
         let pieces = painter.ordered_pieces();
         let mut prims = Vec::with_capacity(pieces.len());
+        let mut uncut = Vec::with_capacity(pieces.len());
         let mut offsets = Vec::with_capacity(pieces.len() + 1);
         let mut xy = Vec::new();
         offsets.push(0);
         for piece in pieces {
             prims.push(i64::from(piece.prim));
+            uncut.push(piece.is_uncut());
             for v in &piece.polygon {
                 xy.extend([v.x, v.y]);
             }
             offsets.push((xy.len() / 2) as i64);
         }
-        Ok((prims, offsets, xy))
+        Ok((prims, offsets, xy, uncut))
     };
-    let (prims, offsets, xy) = py.detach(run).map_err(plan_error)?;
+    let (prims, offsets, xy, uncut) = py.detach(run).map_err(plan_error)?;
     let corners = xy.len() / 2;
     let xy = Array2::from_shape_vec((corners, 2), xy)
         .map_err(|e| PyValueError::new_err(e.to_string()))?;
@@ -118,5 +127,6 @@ pub fn screen_pieces<'py>(
         Array1::from(prims).into_pyarray(py),
         Array1::from(offsets).into_pyarray(py),
         xy.into_pyarray(py),
+        Array1::from(uncut).into_pyarray(py),
     ))
 }
