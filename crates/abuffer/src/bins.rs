@@ -193,7 +193,13 @@ impl TileQueue {
         self.order
             .extend((b0..b1).map(|b| (bins.items[b].key, b as u32)));
         if front_to_back {
-            self.order.sort_unstable_by_key(|&(key, _)| key);
+            // Items are binned in submission order, so the tile's items
+            // are in index order: a stable sort by the depth half of the
+            // key alone gives the order of the whole key (depth, then
+            // index). A radix sort (4 passes of 8 bits) instead of a
+            // comparison sort: 6 % of the instructions of the 500 sphere's
+            // frame went to sorting tiles of about 2,000 items.
+            radsort::sort_by_key(&mut self.order, |&(key, _)| (key >> 32) as u32);
         }
         self.find_twins(bins);
         self.order.len()
@@ -262,6 +268,33 @@ impl TileQueue {
         match self.twin[k as usize] {
             SOLE | LEADER => k,
             l => l,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// The stable radix sort by the depth half of the keys, on items in
+    /// index order, is the order of the whole keys (ties in depth, the
+    /// case that matters for coincident triangles, included).
+    #[test]
+    fn radix_order_is_key_order() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for n in [0usize, 1, 7, 300, 5000] {
+            // Few distinct depths: many ties.
+            let mut order: Vec<(u64, u32)> = (0..n as u32)
+                .map(|b| ((next() % 37) << 32 | u64::from(b), b))
+                .collect();
+            let mut want = order.clone();
+            want.sort_unstable_by_key(|&(key, _)| key);
+            radsort::sort_by_key(&mut order, |&(key, _)| (key >> 32) as u32);
+            assert_eq!(order, want, "{n} items");
         }
     }
 }
