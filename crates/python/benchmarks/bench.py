@@ -102,24 +102,29 @@ def bench_resolve(rounds=15):
         print(f"  resolve / savefig, median of per-round ratios ({what}): {ratio:.2f}")
 
 
-def bench_render(cli, repeat=10, algo="zbuffer-tiled"):
+def bench_render(cli, repeat=10, algo="zbuffer-tiled", rounds=3):
+    """The command line's ``--repeat`` median and ``hider.render``'s median
+    over the same number of renders, alternated ``rounds`` times so that
+    load from other processes falls on both alike; the ratio is taken per
+    round, then its median."""
     vertices, faces = uv_sphere(512, 128)
+    ratios = []
     with tempfile.TemporaryDirectory() as tmp:
         model = pathlib.Path(tmp) / "sphere.obj"
         write_obj(model, vertices, faces)
-        out = subprocess.run(
-            [str(cli), "render", str(model), "-o", str(pathlib.Path(tmp) / "o.png"),
-             "--size", "1024", "--algo", algo, "--repeat", str(repeat)],
-            check=True, capture_output=True, text=True).stdout
-    m = re.search(r"median ([0-9.]+)", out)
-    py = median_ms(lambda: hider.render(vertices, faces, width=1024, height=1024, algo=algo),
-                   repeat)
-    print(f"render: {len(faces)} triangles at 1024x1024, {algo}, 1 thread")
-    print(f"  hider CLI --repeat {repeat}: {out.strip()}")
-    if m:
-        cli_ms = float(m.group(1))
-        print(f"  hider.render: median {py[0]:.1f} ms (min {py[1]:.1f}); "
-              f"ratio to the CLI {py[0] / cli_ms:.2f}")
+        print(f"render: {len(faces)} triangles at 1024x1024, {algo}, 1 thread")
+        for _ in range(rounds):
+            out = subprocess.run(
+                [str(cli), "render", str(model), "-o", str(pathlib.Path(tmp) / "o.png"),
+                 "--size", "1024", "--algo", algo, "--repeat", str(repeat)],
+                check=True, capture_output=True, text=True).stdout
+            cli_ms = float(re.search(r"median ([0-9.]+)", out).group(1))
+            py = median_ms(lambda: hider.render(vertices, faces, width=1024, height=1024,
+                                                algo=algo), repeat)
+            ratios.append(py[0] / cli_ms)
+            print(f"  hider CLI --repeat {repeat}: median {cli_ms:.2f} ms; hider.render: "
+                  f"median {py[0]:.2f} ms (min {py[1]:.2f}); ratio {ratios[-1]:.2f}")
+    print(f"  hider.render / CLI, median of per-round ratios: {np.median(ratios):.2f}")
 
 
 if __name__ == "__main__":
