@@ -344,6 +344,151 @@ fn load_average() -> String {
         .unwrap_or_else(|_| "?".into())
 }
 
+/// The coverage checks against hider's reference z-buffer (pixel
+/// centres) and, for 4x MSAA, against the samples hider's front end
+/// covers at llvmpipe's sample positions; prints one line per workload
+/// and returns the failures.
+fn check_coverage(
+    work: &[Workload],
+    scenes: &[NamedScene],
+    columns: &[(&'static str, u32)],
+    results: &Results,
+) -> Vec<String> {
+    println!(
+        "\ncovered pixels (hider's ZBuffer, f32 front end, vs each peer's last frame; 4x MSAA: covered samples):"
+    );
+    let mut failures = Vec::new();
+    for w in work {
+        let Some(scene) = scenes.iter().find(|s| s.name == w.name) else {
+            continue;
+        };
+        let want = match hider_coverage(scene, w.size) {
+            Ok(n) => n,
+            Err(e) => {
+                failures.push(e);
+                continue;
+            }
+        };
+        let msaa = columns.iter().any(|&(peer, _)| peer == MSAA_PEER);
+        let want_samples = match msaa.then(|| hider_msaa_samples(scene, w.size)) {
+            Some(Ok(n)) => Some(n),
+            Some(Err(e)) => {
+                failures.push(e);
+                continue;
+            }
+            None => None,
+        };
+        let mut line = format!("  {} at {}: hider {want}", w.name, w.size);
+        if let Some(n) = want_samples {
+            line += &format!(" ({n} samples of 4 per pixel)");
+        }
+        for &(peer, t) in columns {
+            let Some(a) = results.get(&(w.size, w.name.to_owned(), peer, t)) else {
+                continue;
+            };
+            let (tolerance, got, want, unit) = match peer {
+                "euc" => (EUC_TOLERANCE, a.covered, want, "pixels"),
+                MSAA_PEER => (
+                    MSAA_TOLERANCE,
+                    a.samples,
+                    want_samples.unwrap_or(0),
+                    "samples",
+                ),
+                _ => (GL_TOLERANCE, a.covered, want, "pixels"),
+            };
+            let diff = (got as f64 - want as f64) / (want.max(1) as f64);
+            let verdict = if diff.abs() <= tolerance {
+                "ok"
+            } else {
+                failures.push(format!(
+                    "{peer} {t}T on {} at {} covers {got} {unit}, hider {want}: {:+.3} %, over the {} % allowed",
+                    w.name,
+                    w.size,
+                    diff * 100.0,
+                    tolerance * 100.0
+                ));
+                "FAILED"
+            };
+            line += &format!(
+                "; {peer} {t}T {got} {unit} ({:+.3} %, {verdict} within {} %)",
+                diff * 100.0,
+                tolerance * 100.0
+            );
+        }
+        println!("{line}");
+    }
+    failures
+}
+
+/// Writes the medians and minima of every workload and column to `path`
+/// as JSON, in the table's order, milliseconds rounded to the microsecond.
+fn write_json(
+    path: &str,
+    work: &[Workload],
+    columns: &[(&'static str, u32)],
+    results: &Results,
+) -> Result<(), String> {
+    let us = |ms: f64| (ms * 1e3).round() / 1e3;
+    let rows: Vec<JsonRow<'_>> = work
+        .iter()
+        .flat_map(|w| columns.iter().map(move |&(peer, t)| (w, peer, t)))
+        .filter_map(|(w, peer, threads)| {
+            let a = results.get(&(w.size, w.name.to_owned(), peer, threads))?;
+            Some(JsonRow {
+                scene: w.name,
+                size: w.size,
+                peer,
+                threads,
+                median_ms: us(a.best_median),
+                min_ms: us(a.min),
+            })
+        })
+        .collect();
+    serde_json::to_string_pretty(&rows)
+        .map_err(|e| e.to_string())
+        .and_then(|s| std::fs::write(path, s + "\n").map_err(|e| e.to_string()))
+}
+
+/// Prints the table (one row per workload, one column per peer and
+/// thread count that ran) and returns its columns.
+fn print_table(
+    args: &Args,
+    llvmpipe: bool,
+    work: &[Workload],
+    results: &Results,
+) -> Vec<(&'static str, u32)> {
+    let mut header = "| scene | triangles | size |".to_owned();
+    let mut columns: Vec<(&'static str, u32)> = Vec::new();
+    if args.euc {
+        header += " euc 1T |";
+        columns.push(("euc", 1));
+    }
+    if llvmpipe {
+        for &t in &args.threads {
+            header += &format!(" llvmpipe {t}T |");
+            columns.push(("llvmpipe", t));
+        }
+        for &t in args.threads.iter().filter(|_| args.msaa) {
+            header += &format!(" llvmpipe 4x MSAA {t}T |");
+            columns.push((MSAA_PEER, t));
+        }
+    }
+    println!("median (min) ms at size x size, fit camera; clear + draw (+ glFinish)\n");
+    println!("{header}");
+    println!("|---|---|---|{}", "---|".repeat(columns.len()));
+    for w in work {
+        let mut row = format!("| {} | {} | {} |", w.name, w.triangles(), w.size);
+        for &(peer, t) in &columns {
+            match results.get(&(w.size, w.name.to_owned(), peer, t)) {
+                Some(a) => row += &format!(" {:.2} ({:.2}) |", a.best_median, a.min),
+                None => row += " - |",
+            }
+        }
+        println!("{row}");
+    }
+    columns
+}
+
 fn main() -> ExitCode {
     if let Some(code) = llvmpipe::reference::from_args() {
         return code;
@@ -421,104 +566,9 @@ fn main() -> ExitCode {
     }
     println!("load average at end {}\n", load_average());
 
-    // The table.
-    let mut header = "| scene | triangles | size |".to_owned();
-    let mut columns: Vec<(&'static str, u32)> = Vec::new();
-    if args.euc {
-        header += " euc 1T |";
-        columns.push(("euc", 1));
-    }
-    if llvmpipe {
-        for &t in &args.threads {
-            header += &format!(" llvmpipe {t}T |");
-            columns.push(("llvmpipe", t));
-        }
-        for &t in args.threads.iter().filter(|_| args.msaa) {
-            header += &format!(" llvmpipe 4x MSAA {t}T |");
-            columns.push((MSAA_PEER, t));
-        }
-    }
-    println!("median (min) ms at size x size, fit camera; clear + draw (+ glFinish)\n");
-    println!("{header}");
-    println!("|---|---|---|{}", "---|".repeat(columns.len()));
-    for w in &work {
-        let mut row = format!("| {} | {} | {} |", w.name, w.triangles(), w.size);
-        for &(peer, t) in &columns {
-            match results.get(&(w.size, w.name.to_owned(), peer, t)) {
-                Some(a) => row += &format!(" {:.2} ({:.2}) |", a.best_median, a.min),
-                None => row += " - |",
-            }
-        }
-        println!("{row}");
-    }
+    let columns = print_table(&args, llvmpipe, &work, &results);
 
-    // The coverage checks against hider's reference z-buffer (pixel
-    // centres) and, for 4x MSAA, against the samples hider's front end
-    // covers at llvmpipe's sample positions.
-    println!(
-        "\ncovered pixels (hider's ZBuffer, f32 front end, vs each peer's last frame; 4x MSAA: covered samples):"
-    );
-    let mut failures = Vec::new();
-    for w in &work {
-        let Some(scene) = scenes.iter().find(|s| s.name == w.name) else {
-            continue;
-        };
-        let want = match hider_coverage(scene, w.size) {
-            Ok(n) => n,
-            Err(e) => {
-                failures.push(e);
-                continue;
-            }
-        };
-        let msaa = columns.iter().any(|&(peer, _)| peer == MSAA_PEER);
-        let want_samples = match msaa.then(|| hider_msaa_samples(scene, w.size)) {
-            Some(Ok(n)) => Some(n),
-            Some(Err(e)) => {
-                failures.push(e);
-                continue;
-            }
-            None => None,
-        };
-        let mut line = format!("  {} at {}: hider {want}", w.name, w.size);
-        if let Some(n) = want_samples {
-            line += &format!(" ({n} samples of 4 per pixel)");
-        }
-        for &(peer, t) in &columns {
-            let Some(a) = results.get(&(w.size, w.name.to_owned(), peer, t)) else {
-                continue;
-            };
-            let (tolerance, got, want, unit) = match peer {
-                "euc" => (EUC_TOLERANCE, a.covered, want, "pixels"),
-                MSAA_PEER => (
-                    MSAA_TOLERANCE,
-                    a.samples,
-                    want_samples.unwrap_or(0),
-                    "samples",
-                ),
-                _ => (GL_TOLERANCE, a.covered, want, "pixels"),
-            };
-            let diff = (got as f64 - want as f64) / (want.max(1) as f64);
-            let verdict = if diff.abs() <= tolerance {
-                "ok"
-            } else {
-                failures.push(format!(
-                    "{peer} {t}T on {} at {} covers {got} {unit}, hider {want}: {:+.3} %, over the {} % allowed",
-                    w.name,
-                    w.size,
-                    diff * 100.0,
-                    tolerance * 100.0
-                ));
-                "FAILED"
-            };
-            line += &format!(
-                "; {peer} {t}T {got} {unit} ({:+.3} %, {verdict} within {} %)",
-                diff * 100.0,
-                tolerance * 100.0
-            );
-        }
-        println!("{line}");
-    }
-
+    let failures = check_coverage(&work, &scenes, &columns, &results);
     if !failures.is_empty() {
         for f in &failures {
             eprintln!("COVERAGE CHECK FAILED: {f}");
@@ -528,27 +578,7 @@ fn main() -> ExitCode {
     }
 
     if let Some(path) = &args.json {
-        // In the table's order; milliseconds rounded to the microsecond.
-        let us = |ms: f64| (ms * 1e3).round() / 1e3;
-        let rows: Vec<JsonRow<'_>> = work
-            .iter()
-            .flat_map(|w| columns.iter().map(move |&(peer, t)| (w, peer, t)))
-            .filter_map(|(w, peer, threads)| {
-                let a = results.get(&(w.size, w.name.to_owned(), peer, threads))?;
-                Some(JsonRow {
-                    scene: w.name,
-                    size: w.size,
-                    peer,
-                    threads,
-                    median_ms: us(a.best_median),
-                    min_ms: us(a.min),
-                })
-            })
-            .collect();
-        let written = serde_json::to_string_pretty(&rows)
-            .map_err(|e| e.to_string())
-            .and_then(|s| std::fs::write(path, s + "\n").map_err(|e| e.to_string()));
-        match written {
+        match write_json(path, &work, &columns, &results) {
             Ok(()) => println!("\nwrote {path}"),
             Err(e) => {
                 eprintln!("cannot write {path}: {e}");
