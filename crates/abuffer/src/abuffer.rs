@@ -13,6 +13,11 @@
 //! z-buffer's is not.
 //!
 //! How a frame runs:
+//! 0. **Front end.** [`Hider::render`] takes `prepare`'s triangles;
+//!    [`Hider::render_scene`] runs the lean front end
+//!    ([`hider_scene::prepare::lean`]) for the same triangles without
+//!    `prepare`'s per-primitive data; either fills a `Source` (triangles
+//!    and colours), and everything after is the same.
 //! 1. **Bins.** Triangles are binned to 64 x 64 pixel tiles
 //!    ([`crate::bins`]).
 //! 2. **Tiles, front to back.** Each tile sorts its triangles by nearest
@@ -20,9 +25,9 @@
 //!    at resolve) and renders them into its pixels' lists
 //!    ([`crate::raster`], [`crate::lists`]); then the tile is resolved at
 //!    once, while its lists are in cache.
-//! 3. **Culling, three levels, all exact** ([`crate::culling`]): per pixel
-//!    behind an opaque bound, per 8 x 8 block, per partial pixel before its
-//!    mask is computed.
+//! 3. **Culling, four levels, all exact** ([`crate::culling`]): per pixel
+//!    behind an opaque bound, per 8 x 8 block, per tile before the blocks,
+//!    per partial pixel before its mask is computed.
 
 use hider_geom::PlaneEq;
 use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};

@@ -1,4 +1,4 @@
-//! Exact occlusion culling, at three levels.
+//! Exact occlusion culling, at four levels.
 //!
 //! Per pixel an *opaque bound*: a depth such that every sample and the
 //! centre is covered by opaque fragments of the list no farther than it (a
@@ -9,8 +9,11 @@
 //! block, the farthest bound of its pixels: a triangle whose plane is
 //! beyond it over the block (one evaluation, the plane being monotonic)
 //! makes no fragment there, and a triangle with no live block is not even
-//! set up. Per partial pixel, the plane at the hull corner bounds `zmin`
-//! from below before the mask is computed (that last test is in the
+//! set up. Per tile, the farthest bound of its blocks: a triangle over
+//! several blocks whose plane is beyond it over its part of the tile is
+//! rejected before the block tests, which would each reject it. Per
+//! partial pixel, the plane at the hull corner bounds `zmin` from below
+//! before the mask is computed (the tile, block and pixel tests are in the
 //! rasteriser).
 //!
 //! When a list overflows, [`hidden_fragments`] finds the fragments

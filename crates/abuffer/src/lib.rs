@@ -31,6 +31,13 @@
 //!   (`"ssaa-sorted"`, opaque first, then translucent triangles sorted back
 //!   to front).
 //!
+//! From a world-space scene, [`ABuffer`]'s
+//! [`Hider::render_scene`](hider_scene::Hider::render_scene) runs the lean
+//! front end ([`hider_scene::prepare::lean`], shared with the tiled
+//! z-buffer: each vertex transformed and snapped once, no per-primitive
+//! data but the colours asked for) instead of `prepare`, with the same
+//! frame bit for bit.
+//!
 //! All three write `Frame::color` (composited in linear light, then sRGB),
 //! `Frame::coverage` (covered fraction of the samples), and, in
 //! `Frame::ids` / `Frame::depth`, the front-most surface covering the
