@@ -10,7 +10,8 @@ use pyo3::exceptions::PyValueError;
 pub const MESH_NAME: &str = "array";
 
 /// The rows of an `(N, 3)` array (the Python layer has made it contiguous
-/// and checked its shape; checked again here for direct callers).
+/// and checked its shape; checked again here for direct callers), read
+/// straight from its memory when it is contiguous.
 fn rows<T: numpy::Element + Copy>(
     what: &str,
     a: &PyReadonlyArray2<'_, T>,
@@ -21,6 +22,9 @@ fn rows<T: numpy::Element + Copy>(
             "{what} must have shape (N, 3), got ({}, {})",
             shape[0], shape[1]
         )));
+    }
+    if let Ok(flat) = a.as_slice() {
+        return Ok(flat.chunks_exact(3).map(|r| [r[0], r[1], r[2]]).collect());
     }
     let view = a.as_array();
     Ok(view
@@ -43,17 +47,22 @@ pub fn scene_from_arrays(
         .map(DVec3::from_array)
         .collect();
     let n = positions.len();
-    let mut indices = Vec::with_capacity(faces.shape()[0]);
-    for (t, tri) in rows("faces", faces)?.into_iter().enumerate() {
-        if let Some(&i) = tri.iter().find(|&&i| i < 0 || i as u64 >= n as u64) {
-            return Err(PyValueError::new_err(format!(
-                "invalid scene: mesh 0 ('{MESH_NAME}') triangle {t} uses vertex {i}, but the mesh has {n} vertices"
-            )));
-        }
-        // In range of a vertex count, so below u32::MAX only if n is; the
-        // front end refuses meshes of more vertices than ids can name.
-        indices.push(tri.map(|i| u32::try_from(i).unwrap_or(u32::MAX)));
+    let faces = rows("faces", faces)?;
+    if let Some((t, &i)) = faces.iter().enumerate().find_map(|(t, tri)| {
+        tri.iter()
+            .find(|&&i| i < 0 || i as u64 >= n as u64)
+            .map(|i| (t, i))
+    }) {
+        return Err(PyValueError::new_err(format!(
+            "invalid scene: mesh 0 ('{MESH_NAME}') triangle {t} uses vertex {i}, but the mesh has {n} vertices"
+        )));
     }
+    // In range of a vertex count, so below u32::MAX only if n is; the
+    // front end refuses meshes of more vertices than ids can name.
+    let indices = faces
+        .into_iter()
+        .map(|tri| tri.map(|i| u32::try_from(i).unwrap_or(u32::MAX)))
+        .collect();
     let mut scene = Scene::default();
     scene.push_mesh(
         Mesh {

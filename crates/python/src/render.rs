@@ -7,10 +7,8 @@ use std::sync::Arc;
 use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_plan::{HiderConfig, Planned, RenderOptions, auto, registry};
-use hider_scene::frame::id_to_i32;
 use hider_scene::{DynHider, Frame, PrepareOptions, Scene, ScreenScene, View, fit_camera};
-use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray2, PyReadonlyArray2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::ThreadPool;
@@ -65,13 +63,21 @@ fn check_threads(threads: usize) -> PyResult<()> {
     Ok(())
 }
 
-/// What a render hands back: the ids as stored in dumps (`-1` for
-/// background) and the window depths, row by row, and the image size.
-pub struct Rendered {
-    ids: Vec<i32>,
-    depth: Vec<f32>,
-    width: u32,
-    height: u32,
+/// What a render leaves for [`buffers`].
+pub enum Rendered {
+    /// The frame stays in the calling thread's workspace, to be copied out
+    /// with the GIL held.
+    InWorkspace,
+    /// A copy of the frame made on a pool thread, whose workspace the
+    /// calling thread cannot see: the ids and depths, row by row.
+    Copied {
+        /// Ids as the frame holds them ([`hider_scene::NO_ID`] for none).
+        ids: Vec<u32>,
+        /// Window depths.
+        depth: Vec<f32>,
+        /// The frame's `[height, width]`.
+        shape: [usize; 2],
+    },
 }
 
 /// A hider with its frame and screen scene, kept from one call to the next
@@ -133,13 +139,7 @@ fn render_with_workspace(
             *slot = None;
             return Err(e.into());
         }
-        let frame = &ws.frame;
-        Ok(Rendered {
-            ids: frame.ids.iter().map(|&id| id_to_i32(id)).collect(),
-            depth: frame.depth.clone(),
-            width,
-            height,
-        })
+        Ok(Rendered::InWorkspace)
     })
 }
 
@@ -198,7 +198,15 @@ pub fn render_scene(scene: &Scene, view: &View, algo: &str, threads: usize) -> P
     };
     let entry = registry::find(algo).map_err(plan_error)?;
     let result = if threads > 1 {
-        pool(threads)?.install(|| render_with_workspace(scene, view, &entry, threads))
+        pool(threads)?.install(|| {
+            render_with_workspace(scene, view, &entry, threads)?;
+            copy_workspace_frame().ok_or_else(|| {
+                hider_plan::PlanError::Scene(hider_scene::Error::Render {
+                    hider: entry.name.to_owned(),
+                    message: "internal error: the pool thread kept no frame".into(),
+                })
+            })
+        })
     } else {
         render_with_workspace(scene, view, &entry, threads)
     };
@@ -212,13 +220,55 @@ fn empty_screen(view: &View) -> ScreenScene {
     ScreenScene::empty(view)
 }
 
-/// A render's ids and depths as numpy arrays of shape `(height, width)`.
+/// The ids (as stored in dumps, `-1` for background) and window depths of
+/// the frame this thread rendered last, as new numpy arrays of shape
+/// `(height, width)`.
+///
+/// The arrays are allocated by numpy and the frame copied into them: an
+/// allocation of this size by numpy is backed by huge pages where the
+/// system offers them (numpy asks for them on Linux), and page faults on
+/// fresh memory cost more at 1024 x 1024 than the copy itself.
 pub fn buffers(py: Python<'_>, rendered: Rendered) -> PyResult<Buffers<'_>> {
-    let shape = (rendered.height as usize, rendered.width as usize);
-    let shape_error = |e: numpy::ndarray::ShapeError| PyValueError::new_err(e.to_string());
-    let ids = Array2::from_shape_vec(shape, rendered.ids).map_err(shape_error)?;
-    let depth = Array2::from_shape_vec(shape, rendered.depth).map_err(shape_error)?;
-    Ok((ids.into_pyarray(py), depth.into_pyarray(py)))
+    // The dumps' int32 id (`hider_scene::frame::id_to_i32`) is the id's
+    // bit pattern, NO_ID (u32::MAX) being -1: the ids are copied as they
+    // are and viewed as int32.
+    const { assert!(hider_scene::NO_ID == u32::MAX) };
+    let (ids, depth, shape) = match rendered {
+        Rendered::Copied { ids, depth, shape } => (
+            PyArray1::from_vec(py, ids),
+            PyArray1::from_vec(py, depth),
+            shape,
+        ),
+        Rendered::InWorkspace => WORKSPACE.with_borrow(|slot| {
+            let frame = &slot
+                .as_ref()
+                .ok_or_else(|| PyValueError::new_err("internal error: no frame was rendered"))?
+                .frame;
+            let shape = [frame.height() as usize, frame.width() as usize];
+            PyResult::Ok((
+                PyArray1::from_slice(py, &frame.ids),
+                PyArray1::from_slice(py, &frame.depth),
+                shape,
+            ))
+        })?,
+    };
+    let ids = ids
+        .reshape(shape)?
+        .call_method1("view", ("int32",))?
+        .cast_into::<PyArray2<i32>>()?;
+    Ok((ids, depth.reshape(shape)?))
+}
+
+/// A copy of the frame this thread's workspace rendered last, if any.
+fn copy_workspace_frame() -> Option<Rendered> {
+    WORKSPACE.with_borrow(|slot| {
+        let frame = &slot.as_ref()?.frame;
+        Some(Rendered::Copied {
+            ids: frame.ids.clone(),
+            depth: frame.depth.clone(),
+            shape: [frame.height() as usize, frame.width() as usize],
+        })
+    })
 }
 
 /// The one-mesh scene of the arrays and the view of `size` pixels through
