@@ -11,8 +11,11 @@ use glam::DVec3;
 use hider_abuffer::{
     ABuffer, ABufferOptions, ABufferStats, DepthMode, MergePolicy, SsaaOptions, SupersampledZBuffer,
 };
+use hider_scene::geom::{Camera, Projection};
+use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
 use hider_scene::{
-    Frame, Hider, Light, PrepareOptions, Scene, ScreenScene, ShadeMode, View, procedural,
+    Frame, Hider, Light, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, TransformPrecision,
+    View, procedural,
 };
 use hider_testkit::{hard_cases, render, screen};
 use proptest::prelude::*;
@@ -194,4 +197,135 @@ fn wrong_frame_size_is_an_error() {
         )
         .unwrap_err();
     assert!(e.to_string().contains("32x64"), "{e}");
+}
+
+/// A hostile case from raw floats, as the front-end fuzz target decodes
+/// its bytes: any camera (perspective when `c[9]` is positive,
+/// orthographic otherwise), up to 5 triangles with any `f32` corners, a
+/// window of `w x h` pixels.
+fn hostile_case(
+    c: &[f32; 13],
+    corners: &[f32],
+    (w, h): (u32, u32),
+    f32_front: bool,
+) -> Option<(Scene, View, PrepareOptions)> {
+    let v3 = |k: usize| DVec3::new(c[k].into(), c[k + 1].into(), c[k + 2].into());
+    let projection = if c[9].is_sign_negative() {
+        Projection::Orthographic {
+            half_height: c[10].abs().into(),
+            near: c[11].into(),
+            far: c[12].into(),
+        }
+    } else {
+        Projection::Perspective {
+            fovy_degrees: c[10].abs().into(),
+            near: c[11].abs().into(),
+            far: c[12].abs().into(),
+        }
+    };
+    let camera = Camera {
+        eye: v3(0),
+        target: v3(3),
+        up: v3(6),
+        projection,
+    };
+    let positions: Vec<DVec3> = corners
+        .chunks_exact(3)
+        .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
+        .collect();
+    let n = positions.len() as u32 / 3;
+    let mut scene = Scene::default();
+    scene.push_mesh(
+        Mesh {
+            positions,
+            indices: (0..n).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
+            ..Mesh::default()
+        },
+        None,
+    );
+    let view = View::new(camera, w, h).ok()?;
+    let precision = if f32_front {
+        TransformPrecision::F32
+    } else {
+        TransformPrecision::F64
+    };
+    Some((
+        scene,
+        view,
+        PrepareOptions::default().with_precision(precision),
+    ))
+}
+
+/// The lean front end refuses what `prepare` refuses (with the same
+/// message), and otherwise gives `prepare`'s triangles and counts, and
+/// the A-buffer the same frame through both.
+fn hostile_case_agrees(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<(), String> {
+    let full = hider_scene::prepare(scene, view, options);
+    let mut lean = LeanScene::new();
+    let lean_ok = prepare_lean_into(scene, view, options, &mut lean);
+    let screen = match (full, lean_ok) {
+        (Err(a), Err(b)) if a.to_string() == b.to_string() => return Ok(()),
+        (Ok(screen), Ok(())) => screen,
+        (a, b) => return Err(format!("prepare {:?}, lean {b:?}", a.map(|_| ()))),
+    };
+    let want: Vec<LeanTri> = screen.tris.iter().map(LeanTri::from).collect();
+    if lean.tris() != want.as_slice() || lean.stats != screen.stats {
+        return Err(format!(
+            "lean {:?} {:?}\nprepare {want:?} {:?}",
+            lean.tris(),
+            lean.stats,
+            screen.stats
+        ));
+    }
+    let (w, h) = (screen.viewport.width, screen.viewport.height);
+    let (a, _) = render(&mut ABuffer::new(ABufferOptions::default()), &screen);
+    let mut b = Frame::new(w, h).map_err(|e| e.to_string())?;
+    let mut unused = ScreenScene::empty(view);
+    ABuffer::new(ABufferOptions::default())
+        .render_scene(scene, view, options, &mut unused, &mut b)
+        .map_err(|e| e.to_string())?;
+    if a != b {
+        return Err("the A-buffer's frames differ".to_owned());
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Hostile scenes and cameras (any `f32`: huge, tiny, infinite, NaN;
+    /// eyes inside the scene; degenerate cameras, refused by both).
+    #[test]
+    fn hostile_inputs_agree_through_the_lean_front_end(
+        c in proptest::array::uniform13(any::<f32>()),
+        corners in proptest::collection::vec(any::<f32>(), 0..45),
+        size in (1u32..17, 1u32..17),
+        f32_front in any::<bool>(),
+    ) {
+        if let Some((scene, view, options)) = hostile_case(&c, &corners, size, f32_front) {
+            let agrees = hostile_case_agrees(&scene, &view, &options);
+            prop_assert!(agrees.is_ok(), "{:?}", agrees);
+        }
+    }
+
+    /// The same with cameras that see the corners: a fit camera on
+    /// corners of any magnitude and sign.
+    #[test]
+    fn hostile_corners_agree_through_the_lean_front_end(
+        corners in proptest::collection::vec(-1e30f32..1e30, 9..45),
+        scale in -30i32..30,
+        size in (1u32..17, 1u32..17),
+        f32_front in any::<bool>(),
+    ) {
+        let corners: Vec<f32> = corners.iter().map(|v| v * 10f32.powi(scale) * 1e-30).collect();
+        let (_, _, options) = hostile_case(&[0.0, 0.0, 5.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 45.0, 0.1, 10.0], &corners, size, f32_front).unwrap();
+        let positions: Vec<DVec3> = corners.chunks_exact(3).map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into())).collect();
+        let n = positions.len() as u32 / 3;
+        let mut scene = Scene::default();
+        scene.push_mesh(Mesh { positions, indices: (0..n).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(), ..Mesh::default() }, None);
+        if let Ok(view) = View::for_scene(&scene, size.0, size.1) {
+            let agrees = hostile_case_agrees(&scene, &view, &options);
+            prop_assert!(agrees.is_ok(), "{:?}", agrees);
+        }
+    }
 }
