@@ -34,6 +34,7 @@
 //! ```
 
 mod chain;
+mod cover;
 mod grid;
 mod lines;
 mod options;

@@ -23,6 +23,7 @@ use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::VectorOptions;
+use crate::cover::{Cover, decide};
 use crate::grid::{Bins, Grid, bounds};
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
@@ -39,6 +40,9 @@ hider_scene::hider_stats! {
         pub cut_pairs: u64 => "cut pairs",
         /// Boolean differences run (triangles with something in front).
         pub differences: u64 => "differences",
+        /// Triangles with occluders decided without a boolean: buried
+        /// under, or clear of, their occluders' union.
+        pub decided: u64 => "decided without boolean",
         /// Primitives whose region the snap rounding rerouted (see
         /// [`visible_regions`]).
         pub snapped: u64 => "snapped regions",
@@ -132,6 +136,8 @@ pub fn visible_regions(
     let mut cut_pairs = Vec::new();
     let mut seen = vec![u32::MAX; scene.tris.len()];
     let mut occluders: Vec<Vec<IntPoint>> = Vec::new();
+    // One overlay for all differences: its buffers are kept between uses.
+    let mut overlay = Overlay::new(64);
     for (ti, t) in scene.tris.iter().enumerate() {
         let Some((lo, hi)) = boxes[ti] else { continue };
         occluders.clear();
@@ -178,8 +184,20 @@ pub fn visible_regions(
         } else if occluders.is_empty() {
             vec![vec![polys[ti].clone()]]
         } else {
-            stats.differences += 1;
-            subtract(&polys[ti], &mut occluders)
+            match decide(&polys[ti], &occluders) {
+                Some(Cover::Buried) => {
+                    stats.decided += 1;
+                    Vec::new()
+                }
+                Some(Cover::Clear) => {
+                    stats.decided += 1;
+                    vec![vec![polys[ti].clone()]]
+                }
+                None => {
+                    stats.differences += 1;
+                    subtract(&mut overlay, &polys[ti], &mut occluders)
+                }
+            }
         };
         if !shapes.is_empty() {
             per_prim.entry(t.prim).or_default().extend(shapes);
@@ -195,6 +213,7 @@ pub fn visible_regions(
         .map(|r| std::mem::take(&mut r.1))
         .collect();
     let touched = snap_round(&mut shapes);
+
     stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
     stats.ownership_differences = settle_ownership(&grid, &mut shapes, &touched);
     let mut prims: Vec<PrimRegion> = per_prim
@@ -288,19 +307,33 @@ const BATCH: usize = 16;
 
 /// `triangle` minus the union of `occluders` (reordered), by non-zero
 /// fill: all occluders are positively oriented.
-fn subtract(triangle: &[IntPoint], occluders: &mut [Vec<IntPoint>]) -> IntShapes {
+fn subtract(
+    overlay: &mut Overlay,
+    triangle: &[IntPoint],
+    occluders: &mut [Vec<IntPoint>],
+) -> IntShapes {
     if occluders.len() > BATCH {
         occluders.sort_by_key(|o| std::cmp::Reverse(area2(o)));
     }
     let mut rest: IntShapes = vec![vec![triangle.to_vec()]];
-    for batch in occluders.chunks(BATCH) {
-        let points = rest.iter().flatten().map(Vec::len).sum::<usize>();
-        let mut overlay = Overlay::new(points + batch.iter().map(Vec::len).sum::<usize>());
+    let mut next = 0;
+    while next < occluders.len() {
+        // Only occluders that still meet what is left can take anything.
+        overlay.clear();
+        let mut taken = 0;
+        while next < occluders.len() && taken < BATCH {
+            let o = &occluders[next];
+            next += 1;
+            if next <= BATCH || rest.iter().any(|shape| meets(o, &shape[0])) {
+                overlay.add_contour(o, ShapeType::Clip);
+                taken += 1;
+            }
+        }
+        if taken == 0 {
+            break;
+        }
         for shape in &rest {
             overlay.add_contours(shape, ShapeType::Subject);
-        }
-        for o in batch {
-            overlay.add_contour(o, ShapeType::Clip);
         }
         rest = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
         if rest.is_empty() {
@@ -308,6 +341,27 @@ fn subtract(triangle: &[IntPoint], occluders: &mut [Vec<IntPoint>]) -> IntShapes
         }
     }
     rest
+}
+
+/// Whether a convex, positively oriented polygon may meet the inside of a
+/// contour: false when one of its edges has the whole contour on its
+/// closed outer side (a separating line), decided exactly.
+fn meets(convex: &[IntPoint], contour: &[IntPoint]) -> bool {
+    let n = convex.len();
+    !(0..n).any(|k| {
+        let (a, b) = (convex[k], convex[(k + 1) % n]);
+        let (abx, aby) = (
+            i64::from(b.x) - i64::from(a.x),
+            i64::from(b.y) - i64::from(a.y),
+        );
+        contour.iter().all(|&c| {
+            let (acx, acy) = (
+                i64::from(c.x) - i64::from(a.x),
+                i64::from(c.y) - i64::from(a.y),
+            );
+            i128::from(abx) * i128::from(acy) - i128::from(aby) * i128::from(acx) <= 0
+        })
+    })
 }
 
 /// Twice the area of a simple polygon, unsigned.

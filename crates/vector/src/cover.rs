@@ -1,0 +1,118 @@
+//! A triangle's occluders decided without a boolean when their union
+//! either covers it entirely or misses its interior.
+//!
+//! Across an edge shared by two occluders in opposite directions (the
+//! common edge of two mesh neighbours, both positively oriented) the number
+//! of occluders covering a point does not change; it changes only across
+//! the other, *unmatched* edges. So when no unmatched edge meets the open
+//! polygon, the count is the same all over its interior, and one interior
+//! point tells whether the polygon is buried or untouched. This is what
+//! happens to most hidden triangles of a closed mesh (the back faces,
+//! behind a patch of front faces whose inner edges all match), and it
+//! costs a few exact orientation tests instead of a polygon boolean.
+
+use i_overlay::i_float::int::point::IntPoint;
+
+/// What the occluders do to a polygon, when it can be decided cheaply.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cover {
+    /// Every point of the polygon is under some occluder.
+    Buried,
+    /// No occluder meets the polygon's interior.
+    Clear,
+}
+
+type P = (i64, i64);
+
+fn p(v: IntPoint) -> P {
+    (i64::from(v.x), i64::from(v.y))
+}
+
+/// The sign of the turn `a -> b -> c`, exact.
+fn orient(a: P, b: P, c: P) -> i32 {
+    let d = i128::from(b.0 - a.0) * i128::from(c.1 - a.1)
+        - i128::from(b.1 - a.1) * i128::from(c.0 - a.0);
+    d.signum() as i32
+}
+
+/// Twice the signed area.
+fn signed_area2(poly: &[IntPoint]) -> i128 {
+    let n = poly.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (p(poly[k]), p(poly[(k + 1) % n]));
+            i128::from(a.0) * i128::from(b.1) - i128::from(b.0) * i128::from(a.1)
+        })
+        .sum()
+}
+
+/// Decides `polygon` (convex, positively oriented, at least three
+/// vertices) against `occluders` (convex, positively oriented) when the
+/// unmatched occluder edges stay off its interior; `None` otherwise.
+pub fn decide(polygon: &[IntPoint], occluders: &[Vec<IntPoint>]) -> Option<Cover> {
+    if signed_area2(polygon) <= 0 {
+        return None;
+    }
+    let mut edges: Vec<(P, P)> = Vec::with_capacity(occluders.len() * 3);
+    for o in occluders {
+        if signed_area2(o) <= 0 {
+            return None;
+        }
+        let n = o.len();
+        edges.extend((0..n).map(|k| (p(o[k]), p(o[(k + 1) % n]))));
+    }
+    // Matched pairs (a, b) / (b, a) cancel: sort by the undirected edge.
+    let undirected = |e: &(P, P)| if e.0 <= e.1 { (e.0, e.1) } else { (e.1, e.0) };
+    edges.sort_unstable_by_key(undirected);
+    let mut k = 0;
+    while k < edges.len() {
+        let mut j = k + 1;
+        while j < edges.len() && undirected(&edges[j]) == undirected(&edges[k]) {
+            j += 1;
+        }
+        let forward = edges[k..j].iter().filter(|e| e.0 <= e.1).count();
+        let backward = (j - k) - forward;
+        if forward != backward {
+            let e = edges[k];
+            if meets_interior(polygon, e) {
+                return None;
+            }
+        }
+        k = j;
+    }
+    let inside = interior_point(polygon)?;
+    let covered = occluders.iter().any(|o| {
+        let n = o.len();
+        (0..n).all(|k| {
+            let (a, b) = (p(o[k]), p(o[(k + 1) % n]));
+            orient((3 * a.0, 3 * a.1), (3 * b.0, 3 * b.1), inside) >= 0
+        })
+    });
+    Some(if covered { Cover::Buried } else { Cover::Clear })
+}
+
+/// Whether segment `e` meets the open convex `polygon`: not separated by
+/// a polygon edge (both ends on its closed outer side) nor by the
+/// segment's own line (all vertices on one closed side).
+fn meets_interior(polygon: &[IntPoint], e: (P, P)) -> bool {
+    let n = polygon.len();
+    let by_edge = (0..n).any(|k| {
+        let (a, b) = (p(polygon[k]), p(polygon[(k + 1) % n]));
+        orient(a, b, e.0) <= 0 && orient(a, b, e.1) <= 0
+    });
+    if by_edge {
+        return false;
+    }
+    let sides: Vec<i32> = polygon.iter().map(|&v| orient(e.0, e.1, p(v))).collect();
+    !(sides.iter().all(|&s| s >= 0) || sides.iter().all(|&s| s <= 0))
+}
+
+/// Three times a point strictly inside the convex polygon: the centroid of
+/// a fan triangle of positive area.
+fn interior_point(polygon: &[IntPoint]) -> Option<P> {
+    let v0 = p(polygon[0]);
+    (1..polygon.len() - 1).find_map(|k| {
+        let (a, b) = (p(polygon[k]), p(polygon[k + 1]));
+        (orient(v0, a, b) > 0).then_some((v0.0 + a.0 + b.0, v0.1 + a.1 + b.1))
+    })
+}
