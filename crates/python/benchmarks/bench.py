@@ -13,6 +13,7 @@ Run from the repository root with the package installed:
 """
 
 import io
+import os
 import pathlib
 import re
 import subprocess
@@ -20,7 +21,13 @@ import sys
 import tempfile
 import time
 
-import matplotlib
+# numpy's OpenBLAS threads spin for a while after each matrix product
+# (matplotlib's projection makes many) and take a core from whatever runs
+# next: on a 2-core machine that made hider.render's times bimodal. Both
+# sides of every comparison here run with one BLAS thread.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
