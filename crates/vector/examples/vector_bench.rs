@@ -1,8 +1,9 @@
 //! Regions and lines SVG against the painter's SVG: file size, path
 //! count and time, on the two intersecting 100 x 100 surface grids
-//! (39,204 triangles), the spider and a 100k-triangle UV sphere.
+//! (39,204 triangles), the spider and a 100k-triangle UV sphere; with
+//! `--edge-on` also the grids seen exactly along the tilted sheet.
 //!
-//! `cargo run --release -p hider-vector --example vector_bench [spider.obj] [size]`
+//! `cargo run --release -p hider-vector --example vector_bench [--edge-on] [spider.obj] [size]`
 //! (default spider: `assets/spider/spider.obj` when it
 //! exists, size 800). Times are the best of three runs, in this process,
 //! so the ratios are same-run ratios.
@@ -104,7 +105,9 @@ fn painter_svg(s: &ScreenScene) -> Result<String, hider_scene::Error> {
 }
 
 fn main() -> Result<(), hider_scene::Error> {
-    let args: Vec<String> = std::env::args().collect();
+    let mut args: Vec<String> = std::env::args().collect();
+    let edge_on = args.iter().any(|a| a == "--edge-on");
+    args.retain(|a| a != "--edge-on");
     let spider = PathBuf::from(
         args.get(1)
             .cloned()
@@ -112,6 +115,18 @@ fn main() -> Result<(), hider_scene::Error> {
     );
     let size: u32 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(800);
     let mut scenes = vec![("intersecting grids", intersecting_grids(100))];
+    if edge_on {
+        // The same grids from a point of the tilted sheet's plane, which
+        // sees that sheet exactly edge-on: a pile of slivers along a line.
+        let mut grids = intersecting_grids(100);
+        grids.camera = Some(hider_geom::Camera::perspective(
+            DVec3::new(3.0, 0.6, 3.0),
+            DVec3::ZERO,
+            0.5,
+            20.0,
+        ));
+        scenes.push(("intersecting grids, edge-on", grids));
+    }
     if spider.exists() {
         scenes.push(("spider", load_obj(&spider)?));
     } else {

@@ -116,3 +116,44 @@ fn interior_point(polygon: &[IntPoint]) -> Option<P> {
         (orient(v0, a, b) > 0).then_some((v0.0 + a.0 + b.0, v0.1 + a.1 + b.1))
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn poly(points: &[(i32, i32)]) -> Vec<IntPoint> {
+        points.iter().map(|&(x, y)| IntPoint::new(x, y)).collect()
+    }
+
+    /// Two triangles sharing a diagonal: a square.
+    fn square(offset: i32) -> Vec<Vec<IntPoint>> {
+        let o = offset;
+        vec![
+            poly(&[(o, o), (o + 10, o), (o + 10, o + 10)]),
+            poly(&[(o, o), (o + 10, o + 10), (o, o + 10)]),
+        ]
+    }
+
+    #[test]
+    fn a_triangle_under_two_neighbours_is_buried() {
+        let t = poly(&[(2, 1), (8, 2), (5, 8)]);
+        assert_eq!(decide(&t, &square(0)), Some(Cover::Buried));
+    }
+
+    #[test]
+    fn occluders_off_the_interior_leave_it_clear() {
+        let t = poly(&[(2, 1), (8, 2), (5, 8)]);
+        assert_eq!(decide(&t, &square(100)), Some(Cover::Clear));
+        // Touching along an edge only is still clear.
+        let below = vec![poly(&[(0, -5), (10, -5), (10, 1), (0, 1)])];
+        let t = poly(&[(0, 1), (10, 1), (5, 8)]);
+        assert_eq!(decide(&t, &below), Some(Cover::Clear));
+    }
+
+    #[test]
+    fn an_unmatched_edge_across_the_interior_needs_the_boolean() {
+        let t = poly(&[(2, 1), (8, 2), (5, 8)]);
+        let half = vec![square(0).remove(0)];
+        assert_eq!(decide(&t, &half), None);
+    }
+}
