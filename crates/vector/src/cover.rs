@@ -22,7 +22,8 @@ pub enum Cover {
     Clear,
 }
 
-type P = (i64, i64);
+/// A grid point in `i64`.
+pub type P = (i64, i64);
 
 fn p(v: IntPoint) -> P {
     (i64::from(v.x), i64::from(v.y))
@@ -46,13 +47,13 @@ fn signed_area2(poly: &[IntPoint]) -> i128 {
         .sum()
 }
 
-/// Decides `polygon` (convex, positively oriented, at least three
-/// vertices) against `occluders` (convex, positively oriented) when the
-/// unmatched occluder edges stay off its interior; `None` otherwise.
-pub fn decide(polygon: &[IntPoint], occluders: &[Vec<IntPoint>]) -> Option<Cover> {
-    if signed_area2(polygon) <= 0 {
-        return None;
-    }
+/// The directed edges of `occluders` (convex, positively oriented) that
+/// are not cancelled by an opposite copy: `k` copies of `a -> b` and `m`
+/// of `b -> a` leave `k - m` of the first (or `m - k` of the second). The
+/// winding number of every point is the same for these edges as for the
+/// occluders, so they bound the same union. `None` when an occluder is
+/// not positively oriented.
+pub fn unmatched_edges(occluders: &[Vec<IntPoint>]) -> Option<Vec<(P, P)>> {
     let mut edges: Vec<(P, P)> = Vec::with_capacity(occluders.len() * 3);
     for o in occluders {
         if signed_area2(o) <= 0 {
@@ -61,24 +62,40 @@ pub fn decide(polygon: &[IntPoint], occluders: &[Vec<IntPoint>]) -> Option<Cover
         let n = o.len();
         edges.extend((0..n).map(|k| (p(o[k]), p(o[(k + 1) % n]))));
     }
-    // Matched pairs (a, b) / (b, a) cancel: sort by the undirected edge.
     let undirected = |e: &(P, P)| if e.0 <= e.1 { (e.0, e.1) } else { (e.1, e.0) };
     edges.sort_unstable_by_key(undirected);
+    let mut out = Vec::new();
     let mut k = 0;
     while k < edges.len() {
+        let key = undirected(&edges[k]);
         let mut j = k + 1;
-        while j < edges.len() && undirected(&edges[j]) == undirected(&edges[k]) {
+        while j < edges.len() && undirected(&edges[j]) == key {
             j += 1;
         }
         let forward = edges[k..j].iter().filter(|e| e.0 <= e.1).count();
         let backward = (j - k) - forward;
-        if forward != backward {
-            let e = edges[k];
-            if meets_interior(polygon, e) {
-                return None;
-            }
-        }
+        let (edge, copies) = if forward >= backward {
+            (key, forward - backward)
+        } else {
+            ((key.1, key.0), backward - forward)
+        };
+        out.extend(std::iter::repeat_n(edge, copies));
         k = j;
+    }
+    Some(out)
+}
+
+/// Decides `polygon` (convex, positively oriented, at least three
+/// vertices) against `occluders` (convex, positively oriented, with
+/// `unmatched` their [`unmatched_edges`]) when no unmatched edge meets the
+/// polygon's interior; `None` otherwise.
+pub fn decide(
+    polygon: &[IntPoint],
+    unmatched: &[(P, P)],
+    occluders: &[Vec<IntPoint>],
+) -> Option<Cover> {
+    if signed_area2(polygon) <= 0 || unmatched.iter().any(|&e| meets_interior(polygon, e)) {
+        return None;
     }
     let inside = interior_point(polygon)?;
     let covered = occluders.iter().any(|o| {
@@ -89,6 +106,40 @@ pub fn decide(polygon: &[IntPoint], occluders: &[Vec<IntPoint>]) -> Option<Cover
         })
     });
     Some(if covered { Cover::Buried } else { Cover::Clear })
+}
+
+/// The unmatched edges chained into closed loops (every point has as many
+/// edges out as in, so every walk closes): contours with the occluders'
+/// winding numbers and far fewer edges when the occluders are a mesh
+/// patch.
+pub fn loops(unmatched: &[(P, P)]) -> Vec<Vec<IntPoint>> {
+    let mut from: std::collections::HashMap<P, Vec<usize>> = std::collections::HashMap::new();
+    for (k, e) in unmatched.iter().enumerate() {
+        from.entry(e.0).or_default().push(k);
+    }
+    let mut used = vec![false; unmatched.len()];
+    let mut out = Vec::new();
+    for start in 0..unmatched.len() {
+        if used[start] {
+            continue;
+        }
+        let mut contour = Vec::new();
+        let mut k = start;
+        loop {
+            used[k] = true;
+            let (a, b) = unmatched[k];
+            contour.push(IntPoint::new(a.0 as i32, a.1 as i32));
+            let next = from
+                .get(&b)
+                .and_then(|list| list.iter().copied().find(|&j| !used[j]));
+            match next {
+                Some(j) => k = j,
+                None => break,
+            }
+        }
+        out.push(contour);
+    }
+    out
 }
 
 /// Whether segment `e` meets the open convex `polygon`: not separated by
@@ -137,23 +188,32 @@ mod tests {
     #[test]
     fn a_triangle_under_two_neighbours_is_buried() {
         let t = poly(&[(2, 1), (8, 2), (5, 8)]);
-        assert_eq!(decide(&t, &square(0)), Some(Cover::Buried));
+        assert_eq!(
+            decide(&t, &unmatched_edges(&square(0)).unwrap(), &square(0)),
+            Some(Cover::Buried)
+        );
     }
 
     #[test]
     fn occluders_off_the_interior_leave_it_clear() {
         let t = poly(&[(2, 1), (8, 2), (5, 8)]);
-        assert_eq!(decide(&t, &square(100)), Some(Cover::Clear));
+        assert_eq!(
+            decide(&t, &unmatched_edges(&square(100)).unwrap(), &square(100)),
+            Some(Cover::Clear)
+        );
         // Touching along an edge only is still clear.
         let below = vec![poly(&[(0, -5), (10, -5), (10, 1), (0, 1)])];
         let t = poly(&[(0, 1), (10, 1), (5, 8)]);
-        assert_eq!(decide(&t, &below), Some(Cover::Clear));
+        assert_eq!(
+            decide(&t, &unmatched_edges(&below).unwrap(), &below),
+            Some(Cover::Clear)
+        );
     }
 
     #[test]
     fn an_unmatched_edge_across_the_interior_needs_the_boolean() {
         let t = poly(&[(2, 1), (8, 2), (5, 8)]);
         let half = vec![square(0).remove(0)];
-        assert_eq!(decide(&t, &half), None);
+        assert_eq!(decide(&t, &unmatched_edges(&half).unwrap(), &half), None);
     }
 }

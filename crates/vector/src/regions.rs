@@ -23,7 +23,7 @@ use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::VectorOptions;
-use crate::cover::{Cover, decide};
+use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::grid::{Bins, Grid, bounds};
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
@@ -184,16 +184,31 @@ pub fn visible_regions(
         } else if occluders.is_empty() {
             vec![vec![polys[ti].clone()]]
         } else {
-            match decide(&polys[ti], &occluders) {
-                Some(Cover::Buried) => {
+            let unmatched = unmatched_edges(&occluders);
+            let decided = unmatched
+                .as_ref()
+                .and_then(|edges| decide(&polys[ti], edges, &occluders));
+            match (decided, unmatched) {
+                (Some(Cover::Buried), _) => {
                     stats.decided += 1;
                     Vec::new()
                 }
-                Some(Cover::Clear) => {
+                (Some(Cover::Clear), _) => {
                     stats.decided += 1;
                     vec![vec![polys[ti].clone()]]
                 }
-                None => {
+                (None, Some(edges)) if edges.len() <= 3 * BATCH => {
+                    // The occluders' outline: the same union in one small
+                    // boolean.
+                    stats.differences += 1;
+                    overlay.clear();
+                    overlay.add_contour(&polys[ti], ShapeType::Subject);
+                    for contour in loops(&edges) {
+                        overlay.add_contour(&contour, ShapeType::Clip);
+                    }
+                    overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
+                }
+                (None, _) => {
                     stats.differences += 1;
                     subtract(&mut overlay, &polys[ti], &mut occluders)
                 }
