@@ -184,35 +184,7 @@ pub fn visible_regions(
         } else if occluders.is_empty() {
             vec![vec![polys[ti].clone()]]
         } else {
-            let unmatched = unmatched_edges(&occluders);
-            let decided = unmatched
-                .as_ref()
-                .and_then(|edges| decide(&polys[ti], edges, &occluders));
-            match (decided, unmatched) {
-                (Some(Cover::Buried), _) => {
-                    stats.decided += 1;
-                    Vec::new()
-                }
-                (Some(Cover::Clear), _) => {
-                    stats.decided += 1;
-                    vec![vec![polys[ti].clone()]]
-                }
-                (None, Some(edges)) if edges.len() <= 3 * BATCH => {
-                    // The occluders' outline: the same union in one small
-                    // boolean.
-                    stats.differences += 1;
-                    overlay.clear();
-                    overlay.add_contour(&polys[ti], ShapeType::Subject);
-                    for contour in loops(&edges) {
-                        overlay.add_contour(&contour, ShapeType::Clip);
-                    }
-                    overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
-                }
-                (None, _) => {
-                    stats.differences += 1;
-                    subtract(&mut overlay, &polys[ti], &mut occluders)
-                }
-            }
+            visible_part(&mut overlay, &polys[ti], &mut occluders, &mut stats)
         };
         if !shapes.is_empty() {
             per_prim.entry(t.prim).or_default().extend(shapes);
@@ -221,26 +193,7 @@ pub fn visible_regions(
     cut_pairs.sort_unstable();
     cut_pairs.dedup();
     stats.cut_pairs = cut_pairs.len() as u64;
-    let mut per_prim: Vec<(u32, IntShapes)> = per_prim.into_iter().collect();
-    per_prim.sort_unstable_by_key(|r| r.0);
-    let mut shapes: Vec<IntShapes> = per_prim
-        .iter_mut()
-        .map(|r| std::mem::take(&mut r.1))
-        .collect();
-    let touched = snap_round(&mut shapes);
-
-    stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
-    stats.ownership_differences = settle_ownership(&grid, &mut shapes, &touched);
-    let mut prims: Vec<PrimRegion> = per_prim
-        .iter()
-        .zip(shapes)
-        .filter(|(_, shapes)| !shapes.is_empty())
-        .map(|(&(prim, _), shapes)| PrimRegion {
-            prim,
-            group: 0,
-            shapes,
-        })
-        .collect();
+    let mut prims = settle(&grid, per_prim, &mut stats);
     let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
     stats.visible_prims = prims.len() as u64;
     stats.groups = groups.len() as u64;
@@ -256,6 +209,74 @@ pub fn visible_regions(
         stats,
         cut_pairs,
     })
+}
+
+/// What is left of `polygon` under `occluders` (reordered): decided by
+/// the cover test when it can be, else by one boolean against the
+/// occluders' outline when that is small, else by [`subtract`].
+fn visible_part(
+    overlay: &mut Overlay,
+    polygon: &[IntPoint],
+    occluders: &mut [Vec<IntPoint>],
+    stats: &mut RegionStats,
+) -> IntShapes {
+    let unmatched = unmatched_edges(occluders);
+    let decided = unmatched
+        .as_ref()
+        .and_then(|edges| decide(polygon, edges, occluders));
+    match (decided, unmatched) {
+        (Some(Cover::Buried), _) => {
+            stats.decided += 1;
+            Vec::new()
+        }
+        (Some(Cover::Clear), _) => {
+            stats.decided += 1;
+            vec![vec![polygon.to_vec()]]
+        }
+        (None, Some(edges)) if edges.len() <= 3 * BATCH => {
+            // The occluders' outline: the same union in one small boolean.
+            stats.differences += 1;
+            overlay.clear();
+            overlay.add_contour(polygon, ShapeType::Subject);
+            for contour in loops(&edges) {
+                overlay.add_contour(&contour, ShapeType::Clip);
+            }
+            overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
+        }
+        (None, _) => {
+            stats.differences += 1;
+            subtract(overlay, polygon, occluders)
+        }
+    }
+}
+
+/// The per-primitive regions made one partition: snap rounded together,
+/// then made disjoint by [`settle_ownership`]; by ascending primitive id,
+/// empty ones dropped.
+fn settle(
+    grid: &Grid,
+    per_prim: HashMap<u32, IntShapes>,
+    stats: &mut RegionStats,
+) -> Vec<PrimRegion> {
+    let mut per_prim: Vec<(u32, IntShapes)> = per_prim.into_iter().collect();
+    per_prim.sort_unstable_by_key(|r| r.0);
+    let mut shapes: Vec<IntShapes> = per_prim
+        .iter_mut()
+        .map(|r| std::mem::take(&mut r.1))
+        .collect();
+    let touched = snap_round(&mut shapes);
+    stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
+    stats.ownership_differences = settle_ownership(grid, &mut shapes, &touched);
+    per_prim
+        .iter()
+        .zip(shapes)
+        .filter(|(_, shapes)| !shapes.is_empty())
+        .map(|(&(prim, _), shapes)| PrimRegion {
+            prim,
+            group: 0,
+            shapes,
+        })
+        .collect()
 }
 
 /// Makes the snapped regions disjoint: each region in ascending primitive
