@@ -30,7 +30,7 @@ pub struct Painter {
     /// Per ranked piece, whether it owns a pixel (only with
     /// [`PainterOptions::svg_drop_hidden`]).
     visible: Vec<bool>,
-    /// The scene of the last successful render.
+    /// The scene of the last successful render or [`Self::order`].
     last: Option<LastFrame>,
 }
 
@@ -38,9 +38,9 @@ impl Painter {
     /// The name under which it reports (`"painter"`).
     pub const NAME: &'static str = "painter";
 
-    /// The pieces of the last successful render in paint order: farthest
-    /// first, each painted over the ones before. Empty before the first
-    /// render and after a failed one.
+    /// The pieces of the last successful render (or [`Self::order`]) in
+    /// paint order: farthest first, each painted over the ones before.
+    /// Empty before the first render and after a failed one.
     pub fn ordered_pieces(&self) -> impl ExactSizeIterator<Item = &Piece> + '_ {
         let n = if self.last.is_some() {
             self.orderer.order.len()
