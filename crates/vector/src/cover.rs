@@ -54,30 +54,42 @@ fn signed_area2(poly: &[IntPoint]) -> i128 {
 /// occluders, so they bound the same union. `None` when an occluder is
 /// not positively oriented.
 pub fn unmatched_edges(occluders: &[Vec<IntPoint>]) -> Option<Vec<(P, P)>> {
-    let mut edges: Vec<(P, P)> = Vec::with_capacity(occluders.len() * 3);
+    // One integer key per undirected edge (the grid stays within 2^29, so
+    // four non-negative coordinates pack into 128 bits) and its direction.
+    let mut keys: Vec<(u128, bool)> = Vec::with_capacity(occluders.len() * 3);
     for o in occluders {
         if signed_area2(o) <= 0 {
             return None;
         }
         let n = o.len();
-        edges.extend((0..n).map(|k| (p(o[k]), p(o[(k + 1) % n]))));
+        keys.extend((0..n).map(|k| {
+            let (a, b) = (o[k], o[(k + 1) % n]);
+            let forward = (a.x, a.y) <= (b.x, b.y);
+            let (lo, hi) = if forward { (a, b) } else { (b, a) };
+            let key = [lo.x, lo.y, hi.x, hi.y]
+                .iter()
+                .fold(0u128, |key, &v| (key << 32) | u128::from(v as u32));
+            (key, forward)
+        }));
     }
-    let undirected = |e: &(P, P)| if e.0 <= e.1 { (e.0, e.1) } else { (e.1, e.0) };
-    edges.sort_unstable_by_key(undirected);
+    keys.sort_unstable();
+    let unpack = |key: u128, shift: u32| i64::from((key >> shift) as u32 as i32);
     let mut out = Vec::new();
     let mut k = 0;
-    while k < edges.len() {
-        let key = undirected(&edges[k]);
+    while k < keys.len() {
+        let key = keys[k].0;
         let mut j = k + 1;
-        while j < edges.len() && undirected(&edges[j]) == key {
+        while j < keys.len() && keys[j].0 == key {
             j += 1;
         }
-        let forward = edges[k..j].iter().filter(|e| e.0 <= e.1).count();
+        let forward = keys[k..j].iter().filter(|e| e.1).count();
         let backward = (j - k) - forward;
+        let lo = (unpack(key, 96), unpack(key, 64));
+        let hi = (unpack(key, 32), unpack(key, 0));
         let (edge, copies) = if forward >= backward {
-            (key, forward - backward)
+            ((lo, hi), forward - backward)
         } else {
-            ((key.1, key.0), backward - forward)
+            ((hi, lo), backward - forward)
         };
         out.extend(std::iter::repeat_n(edge, copies));
         k = j;
