@@ -93,12 +93,6 @@ impl Lists {
         &self.options
     }
 
-    /// The opacity of primitive `prim`, its shading computed on first use.
-    #[inline]
-    pub(crate) fn prim_alpha(&mut self, scene: &Source<'_>, prim: u32) -> f32 {
-        scene.shade_of(&mut self.colors, self.options.shade, prim)[3]
-    }
-
     /// The colour and opacity of shading index `shade` in pixel `ij` (a
     /// primitive's flat colour computed on first use, textured at the pixel
     /// centre).
@@ -253,18 +247,28 @@ impl Lists {
     /// `ctx.p`'s list and merges into it, returning its index.
     fn try_merge(&mut self, ctx: &Ctx<'_>, f: &Fragment) -> Result<Option<u32>> {
         let scene = ctx.scene;
-        let f_rgba = self.rgba(scene, f.shade, ctx.ij);
+        // `f`'s colour only once a partner passes the mask tests: on a
+        // pile of fragments that all cover the centre none does, and the
+        // colour lookup is a cache miss per primitive.
+        let mut f_color = None;
         let mut cur = self.pool.head(ctx.p);
         for _ in 0..MERGE_SEARCH {
             if cur == NIL {
                 return Ok(None);
             }
             let g = *self.pool.get(cur);
+            // Fields of the fragment first; the colours and the scene
+            // lookups last.
+            if g.mask & f.mask != 0 || (g.covers_centre() && f.covers_centre()) {
+                cur = g.next;
+                continue;
+            }
+            let f_rgba = match f_color {
+                Some(c) => c,
+                None => *f_color.insert(self.rgba(scene, f.shade, ctx.ij)),
+            };
             let g_rgba = self.rgba(scene, g.shade, ctx.ij);
-            // Fields of the fragment first; the scene lookups last.
-            let mergeable = g.mask & f.mask == 0
-                && !(g.covers_centre() && f.covers_centre())
-                && g_rgba[3] == f_rgba[3]
+            let mergeable = g_rgba[3] == f_rgba[3]
                 && (self.options.merge == MergePolicy::SameSurface
                     || (0..3).all(|c| (g_rgba[c] - f_rgba[c]).abs() <= MERGE_COLOR_TOLERANCE))
                 && {

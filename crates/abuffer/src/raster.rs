@@ -5,8 +5,8 @@
 //!
 //! Fragments are 40 bytes: depth bounds from at most 4 plane evaluations
 //! each, equal to the extremes over the samples ([`DepthBounds`]); sample
-//! depths are recomputed at resolve where needed; shading is computed for
-//! the primitives with a triangle that survives the block test only.
+//! depths are recomputed at resolve where needed; the opacity comes with
+//! the bin item, and shading waits for the fragments that need a colour.
 
 use hider_geom::PlaneEq;
 use hider_scene::{NO_ID, Result};
@@ -101,9 +101,7 @@ impl Rasterizer {
             prim: item.prim,
             plane,
             bounds: DepthBounds::new(&plane, pattern, options.depth != DepthMode::PerSample),
-            // Shading (and opacity) is computed for the primitives that
-            // reach this point, not for those culled whole.
-            alpha: self.lists.prim_alpha(scene, item.prim),
+            alpha: item.alpha,
             full_mask: pattern.full_mask(),
             near_corner: (
                 if plane.dx >= 0.0 { hx0 } else { hx1 },

@@ -69,6 +69,19 @@ impl<'a> Source<'a> {
         }
     }
 
+    /// The opacity of `prim`, clamped to [0, 1]: the last channel of
+    /// [`Self::prim_rgba`], from the material alone (no shading, so it is
+    /// cheap enough to compute for every triangle at binning).
+    pub(crate) fn opacity(&self, prim: u32) -> f32 {
+        let alpha = match self.kind {
+            Kind::Screen(s) => s.material(prim).opacity,
+            // The identifier colour is a hash of the id: no vertex or
+            // normal is read.
+            Kind::Lean(lean, scene) => lean.prim_color(scene, prim, ShadeMode::Ids).1,
+        };
+        alpha.clamp(0.0, 1.0)
+    }
+
     /// The material index of `prim` (merging requires equal ones).
     pub(crate) fn material(&self, prim: u32) -> u32 {
         match self.kind {

@@ -114,7 +114,7 @@ impl Worker {
         self.shadow.resize(n, NO_ID);
         let stats = &mut self.stats;
         for k in 0..n {
-            let item = self.queue.item(bins, k);
+            let item = self.queue.item(k);
             let twin = self.queue.twin(k);
             if twin != SOLE {
                 // Coincident triangles (a face whose vertex list repeats
@@ -128,7 +128,7 @@ impl Worker {
                     stats.coincident += 1;
                     continue;
                 }
-                if self.raster.lists.prim_alpha(scene, item.prim) >= 1.0 {
+                if item.alpha >= 1.0 {
                     self.shadow[leader] = item.prim;
                 }
             }
