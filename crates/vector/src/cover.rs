@@ -106,18 +106,40 @@ pub fn decide(
     unmatched: &[(P, P)],
     occluders: &[Vec<IntPoint>],
 ) -> Option<Cover> {
-    if signed_area2(polygon) <= 0 || unmatched.iter().any(|&e| meets_interior(polygon, e)) {
+    if signed_area2(polygon) <= 0 {
         return None;
     }
+    let crossing = unmatched
+        .iter()
+        .filter(|&&e| meets_interior(polygon, e))
+        .count();
     let inside = interior_point(polygon)?;
-    let covered = occluders.iter().any(|o| {
-        let n = o.len();
-        (0..n).all(|k| {
-            let (a, b) = (p(o[k]), p(o[(k + 1) % n]));
-            orient((3 * a.0, 3 * a.1), (3 * b.0, 3 * b.1), inside) >= 0
-        })
-    });
-    Some(if covered { Cover::Buried } else { Cover::Clear })
+    // How many occluders hold the point, on their closed or open side.
+    let holding = |strict: bool| {
+        occluders
+            .iter()
+            .filter(|o| {
+                let n = o.len();
+                (0..n).all(|k| {
+                    let (a, b) = (p(o[k]), p(o[(k + 1) % n]));
+                    let side = orient((3 * a.0, 3 * a.1), (3 * b.0, 3 * b.1), inside);
+                    if strict { side > 0 } else { side >= 0 }
+                })
+            })
+            .count()
+    };
+    if crossing == 0 {
+        return Some(if holding(false) > 0 {
+            Cover::Buried
+        } else {
+            Cover::Clear
+        });
+    }
+    // From the point to any other point of the convex polygon a straight
+    // path crosses each unmatched edge at most once, and only those
+    // crossings lower the count: more occluders over the point than
+    // unmatched edges across the polygon leave none of it uncovered.
+    (holding(true) > crossing).then_some(Cover::Buried)
 }
 
 /// The unmatched edges chained into closed loops (every point has as many
@@ -220,6 +242,18 @@ mod tests {
             decide(&t, &unmatched_edges(&below).unwrap(), &below),
             Some(Cover::Clear)
         );
+    }
+
+    #[test]
+    fn more_layers_than_edges_across_bury_the_polygon() {
+        let t = poly(&[(2, 1), (8, 2), (5, 8)]);
+        // A square and half of another: the half's diagonal crosses the
+        // triangle, but two layers lie over its interior point.
+        let mut occluders = square(0);
+        occluders.push(square(0).remove(0));
+        let edges = unmatched_edges(&occluders).unwrap();
+        assert_eq!(edges.iter().filter(|&&e| meets_interior(&t, e)).count(), 1);
+        assert_eq!(decide(&t, &edges, &occluders), Some(Cover::Buried));
     }
 
     #[test]

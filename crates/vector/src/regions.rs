@@ -121,6 +121,7 @@ pub fn visible_regions(
 ) -> Result<RegionMap> {
     options.validate()?;
     let grid = Grid::for_scene(scene, options.refine_bits)?;
+
     let polys: Vec<Vec<IntPoint>> = scene
         .tris
         .iter()
@@ -194,6 +195,7 @@ pub fn visible_regions(
     cut_pairs.dedup();
     stats.cut_pairs = cut_pairs.len() as u64;
     let mut prims = settle(&grid, per_prim, &mut stats);
+
     let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
     stats.visible_prims = prims.len() as u64;
     stats.groups = groups.len() as u64;
@@ -233,13 +235,22 @@ fn visible_part(
             stats.decided += 1;
             vec![vec![polygon.to_vec()]]
         }
-        (None, Some(edges)) if edges.len() <= 3 * BATCH => {
+        (None, Some(edges)) if edges.len() <= 6 * BATCH => {
             // The occluders' outline: the same union in one small boolean.
             stats.differences += 1;
             overlay.clear();
             overlay.add_contour(polygon, ShapeType::Subject);
+            // A loop whose box misses the polygon's winds zero over it.
+            let (lo, hi) = bounds(polygon).unwrap_or_default();
             for contour in loops(&edges) {
-                overlay.add_contour(&contour, ShapeType::Clip);
+                if let Some((clo, chi)) = bounds(&contour)
+                    && clo.x < hi.x
+                    && chi.x > lo.x
+                    && clo.y < hi.y
+                    && chi.y > lo.y
+                {
+                    overlay.add_contour(&contour, ShapeType::Clip);
+                }
             }
             overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
         }
