@@ -1,28 +1,47 @@
 //! The effects read off the prepared scene one primitive at a time:
 //! transparency, textures, lighting, anti-aliasing and back faces.
 
-use std::collections::HashSet;
-
 use hider_scene::{Scene, ScreenScene, View};
 
 use super::backface;
 use super::effects::Evidence;
 use crate::texture;
 
-/// Primitive ids with at least one screen triangle.
-pub(crate) fn prims_in_view(screen: &ScreenScene) -> HashSet<u32> {
-    screen.tris.iter().map(|t| t.prim).collect()
+/// The primitives with at least one screen triangle: their ids in
+/// ascending order, and a membership flag per primitive id. Both are one
+/// sequential pass over the triangles; a hash set of ids cost the analysis
+/// more than the evidence it serves on scenes of 10^5 triangles.
+pub(crate) struct InView {
+    /// The ids, ascending.
+    pub ids: Vec<u32>,
+    /// `member[id]`: whether primitive `id` is in view.
+    member: Vec<bool>,
 }
 
-fn sorted(ids: &HashSet<u32>) -> Vec<u32> {
-    let mut v: Vec<u32> = ids.iter().copied().collect();
-    v.sort_unstable();
-    v
+impl InView {
+    /// The primitives of `screen`'s triangles.
+    pub(crate) fn of(screen: &ScreenScene) -> Self {
+        let mut member = vec![false; screen.prims.len()];
+        for t in &screen.tris {
+            member[t.prim as usize] = true;
+        }
+        let ids = (0..member.len() as u32)
+            .filter(|&p| member[p as usize])
+            .collect();
+        Self { ids, member }
+    }
+
+    /// Whether primitive `id` is in view.
+    pub(crate) fn contains(&self, id: u32) -> bool {
+        self.member.get(id as usize).copied().unwrap_or(false)
+    }
 }
 
-pub(crate) fn transparency(screen: &ScreenScene, in_view: &HashSet<u32>, ex: usize) -> Evidence {
-    let ids: Vec<u32> = sorted(in_view)
-        .into_iter()
+pub(crate) fn transparency(screen: &ScreenScene, in_view: &InView, ex: usize) -> Evidence {
+    let ids: Vec<u32> = in_view
+        .ids
+        .iter()
+        .copied()
         .filter(|&p| screen.material(p).opacity < 1.0)
         .collect();
     let mut names: Vec<&str> = ids
@@ -47,12 +66,12 @@ pub(crate) fn transparency(screen: &ScreenScene, in_view: &HashSet<u32>, ex: usi
     )
 }
 
-pub(crate) fn textures(screen: &ScreenScene, in_view: &HashSet<u32>, ex: usize) -> Evidence {
+pub(crate) fn textures(screen: &ScreenScene, in_view: &InView, ex: usize) -> Evidence {
     let mut probe: Vec<Option<std::result::Result<(u32, u32), String>>> =
         vec![None; screen.materials.len()];
     let mut ids = Vec::new();
     let mut failures: Vec<String> = Vec::new();
-    for p in sorted(in_view) {
+    for &p in &in_view.ids {
         let prim = &screen.prims[p as usize];
         let k = prim.material as usize;
         let Some(path) = &screen.materials[k].diffuse_texture else {

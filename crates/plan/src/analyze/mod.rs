@@ -74,7 +74,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
     let screen = prepare(scene, &view, &options.prepare.with_cull_back_faces(false))?;
     let prepare_ms = ms(started);
     let ex = options.max_examples;
-    let in_view = evidence::prims_in_view(&screen);
+    let in_view = evidence::InView::of(&screen);
     let mut fx = Effects {
         triangles: scene.triangle_count() as u64,
         on_screen: screen.tris.len() as u64,
@@ -120,7 +120,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
 fn pair_searches(
     scene: &Scene,
     screen: &ScreenScene,
-    in_view: &std::collections::HashSet<u32>,
+    in_view: &evidence::InView,
     options: &RenderOptions,
     fx: &mut Effects,
 ) {
@@ -158,10 +158,11 @@ fn pair_searches(
 
 /// Distance of the farthest corner in view over the near distance (1 for
 /// an orthographic camera): see [`Effects::depth_ratio`].
-fn depth_ratio(view: &View, screen: &ScreenScene, in_view: &std::collections::HashSet<u32>) -> f64 {
+fn depth_ratio(view: &View, screen: &ScreenScene, in_view: &evidence::InView) -> f64 {
     match view.camera.projection {
         Projection::Perspective { near, far, .. } => {
             let deepest = in_view
+                .ids
                 .iter()
                 .flat_map(|&p| screen.prims[p as usize].camera)
                 .map(|c| -c.z)

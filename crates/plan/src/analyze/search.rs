@@ -9,6 +9,7 @@ use hider_geom::Viewport;
 use hider_scene::{Scene, ScreenTri};
 
 use super::effects::Evidence;
+use super::evidence::InView;
 use super::{intersect, overlap};
 
 /// What the intersection search found.
@@ -34,15 +35,10 @@ fn budget_note(complete: bool) -> &'static str {
 
 /// Searches the triangles of `scene` whose primitives are `in_view` for
 /// interpenetrating and coplanar overlapping pairs, in world space.
-pub(crate) fn intersections(
-    scene: &Scene,
-    in_view: &HashSet<u32>,
-    budget: u64,
-    ex: usize,
-) -> Crossings {
+pub(crate) fn intersections(scene: &Scene, in_view: &InView, budget: u64, ex: usize) -> Crossings {
     let world: Vec<(u32, [DVec3; 3])> = scene
         .triangles()
-        .filter(|(id, _, _)| in_view.contains(id))
+        .filter(|&(id, _, _)| in_view.contains(id))
         .map(|(id, m, t)| (id, scene.triangle_positions(m, t)))
         .collect();
     let pairs = intersect::find_pairs(&world, budget);
