@@ -37,7 +37,7 @@ pub(crate) struct BinItem {
     pub(crate) plane: PlaneEq,
     /// Its vertices.
     pub(crate) v: [FixedPt; 3],
-    /// The opacity of its primitive ([`Source::opacity`]), read in
+    /// The opacity of its primitive ([`Source::opacity_runs`]), read in
     /// triangle order at binning: the culling bookkeeping needs it for
     /// every fragment, the colour only fragments that are resolved.
     pub(crate) alpha: f32,
@@ -82,6 +82,8 @@ pub(crate) struct Bins {
     /// The items, tile by tile.
     items: Vec<BinItem>,
     ranges: Vec<(u32, u32, u32, u32)>,
+    /// [`Source::opacity_runs`] of the frame.
+    opacity: Vec<(u32, f32)>,
 }
 
 /// One thread's view of the tiles it takes: the current tile's items in
@@ -142,17 +144,21 @@ impl Bins {
         self.items
             .resize(self.start[tiles] as usize, BinItem::default());
         let mut fill = self.start.clone();
-        // A face's triangles are consecutive: its opacity is looked up once.
-        let (mut prim, mut alpha) = (u32::MAX, 0.0);
+        scene.opacity_runs(&mut self.opacity);
+        // Triangles come in primitive order: the run of the previous one
+        // is almost always the right one.
+        let mut run = 0;
         for (t, (&(x0, y0, x1, y1), tri)) in self.ranges.iter().zip(scene.tris).enumerate() {
             if x0 > x1 {
                 continue;
             }
             let near = tri.z.iter().copied().fold(f64::INFINITY, f64::min) as f32;
-            if tri.prim != prim {
-                prim = tri.prim;
-                alpha = scene.opacity(prim);
+            let prim = tri.prim;
+            let start = if run == 0 { 0 } else { self.opacity[run - 1].0 };
+            if prim < start || prim >= self.opacity[run].0 {
+                run = self.opacity.partition_point(|&(end, _)| end <= prim);
             }
+            let alpha = self.opacity[run].1;
             let item = BinItem {
                 key: u64::from(order_key(near)) << 32 | t as u64,
                 tri: t as u32,
@@ -295,6 +301,69 @@ impl TileQueue {
 
 #[cfg(test)]
 mod tests {
+    use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
+    use hider_scene::{Material, PrepareOptions, Scene, ShadeMode, View, procedural};
+
+    use super::{Bins, TILE};
+    use crate::pattern::SamplePattern;
+    use crate::source::Source;
+
+    /// Every bin item carries its primitive's opacity, through both front
+    /// ends, on meshes whose opacities repeat, differ, default and
+    /// are empty (the runs of [`Source::opacity_runs`] merge and skip).
+    #[test]
+    fn bin_items_carry_the_opacity_of_their_primitive() {
+        let mut scene = Scene::default();
+        let opacities = [
+            Some(1.0),
+            Some(0.5),
+            Some(0.5),
+            None,
+            Some(0.25),
+            Some(1.0),
+            Some(0.0),
+        ];
+        for (k, opacity) in opacities.into_iter().enumerate() {
+            let mesh = procedural::random_soup(30, k as u64).meshes.remove(0);
+            let material = opacity.map(|opacity| Material {
+                opacity,
+                ..Material::default()
+            });
+            scene.push_mesh(mesh, material);
+            if k == 3 {
+                // An empty mesh between two others.
+                let empty = procedural::random_soup(0, 0).meshes.remove(0);
+                scene.push_mesh(empty, Some(Material::default()));
+            }
+        }
+        let (w, h) = (100, 70);
+        let view = View::for_scene(&scene, w, h).expect("a camera");
+        let options = PrepareOptions::default();
+        let screen = hider_scene::prepare(&scene, &view, &options).expect("prepared");
+        let tris: Vec<LeanTri> = screen.tris.iter().map(LeanTri::from).collect();
+        let mut lean = LeanScene::new();
+        prepare_lean_into(&scene, &view, &options, &mut lean).expect("prepared");
+        for source in [Source::screen(&screen, &tris), Source::lean(&lean, &scene)] {
+            let mut bins = Bins::default();
+            bins.bin(
+                &source,
+                SamplePattern::Grid32,
+                w.div_ceil(TILE),
+                h.div_ceil(TILE),
+            );
+            let mut seen: Vec<f32> = Vec::new();
+            for item in &bins.items {
+                let want = source.prim_rgba(item.prim, ShadeMode::Lambert)[3];
+                assert_eq!(item.alpha, want, "primitive {}", item.prim);
+                if !seen.contains(&want) {
+                    seen.push(want);
+                }
+            }
+            seen.sort_by(f32::total_cmp);
+            assert_eq!(seen, [0.0, 0.25, 0.5, 1.0], "the opacities binned");
+        }
+    }
+
     /// The stable radix sort by the depth half of the keys, on items in
     /// index order, is the order of the whole keys (ties in depth, the
     /// case that matters for coincident triangles, included).

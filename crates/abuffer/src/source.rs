@@ -69,17 +69,39 @@ impl<'a> Source<'a> {
         }
     }
 
-    /// The opacity of `prim`, clamped to [0, 1]: the last channel of
-    /// [`Self::prim_rgba`], from the material alone (no shading, so it is
-    /// cheap enough to compute for every triangle at binning).
-    pub(crate) fn opacity(&self, prim: u32) -> f32 {
-        let alpha = match self.kind {
-            Kind::Screen(s) => s.material(prim).opacity,
-            // The identifier colour is a hash of the id: no vertex or
-            // normal is read.
-            Kind::Lean(lean, scene) => lean.prim_color(scene, prim, ShadeMode::Ids).1,
+    /// The opacity of every primitive, clamped to [0, 1] (the last
+    /// channel of [`Self::prim_rgba`]), as runs: `out[k] = (end, alpha)`
+    /// gives `alpha` to the primitives from the previous run's end up to
+    /// `end` (exclusive); neighbouring runs differ. From the materials
+    /// alone, no shading: a mesh's primitives share its material, so the
+    /// lean front end's scene needs one look-up per mesh, not one per
+    /// triangle.
+    pub(crate) fn opacity_runs(&self, out: &mut Vec<(u32, f32)>) {
+        out.clear();
+        let mut push = |end: u32, alpha: f32| match out.last_mut() {
+            Some(last) if last.1 == alpha => last.0 = end,
+            _ => out.push((end, alpha)),
         };
-        alpha.clamp(0.0, 1.0)
+        match self.kind {
+            Kind::Screen(s) => {
+                for prim in 0..s.prims.len() as u32 {
+                    push(prim + 1, s.material(prim).opacity.clamp(0.0, 1.0));
+                }
+            }
+            Kind::Lean(lean, scene) => {
+                let mut first = 0u32;
+                for mesh in &scene.meshes {
+                    let end = first + mesh.indices.len() as u32;
+                    if end > first {
+                        // The identifier colour is a hash of the id: no
+                        // vertex or normal is read.
+                        let alpha = lean.prim_color(scene, first, ShadeMode::Ids).1;
+                        push(end, alpha.clamp(0.0, 1.0));
+                    }
+                    first = end;
+                }
+            }
+        }
     }
 
     /// The material index of `prim` (merging requires equal ones).
