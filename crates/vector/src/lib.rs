@@ -34,6 +34,7 @@
 //! ```
 
 mod chain;
+mod closed;
 mod cover;
 mod grid;
 mod lines;

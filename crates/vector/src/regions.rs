@@ -23,6 +23,7 @@ use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::VectorOptions;
+use crate::closed::hidden_back_faces;
 use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::grid::{Bins, Grid, bounds};
 use crate::pairs::{Relation, interiors_overlap, relation};
@@ -40,6 +41,9 @@ hider_scene::hider_stats! {
         pub cut_pairs: u64 => "cut pairs",
         /// Boolean differences run (triangles with something in front).
         pub differences: u64 => "differences",
+        /// Back faces of closed solids seen from outside, skipped (see
+        /// the method in `docs/vector.md`).
+        pub hidden_back_faces: u64 => "hidden back faces",
         /// Triangles with occluders decided without a boolean: buried
         /// under, or clear of, their occluders' union.
         pub decided: u64 => "decided without boolean",
@@ -139,8 +143,13 @@ pub fn visible_regions(
     let mut occluders: Vec<Vec<IntPoint>> = Vec::new();
     // One overlay for all differences: its buffers are kept between uses.
     let mut overlay = Overlay::new(64);
+    let hidden = hidden_back_faces(scene);
     for (ti, t) in scene.tris.iter().enumerate() {
         let Some((lo, hi)) = boxes[ti] else { continue };
+        if hidden[ti] {
+            stats.hidden_back_faces += 1;
+            continue;
+        }
         occluders.clear();
         // Set when one nearer triangle covers all of `t`: nothing of `t`
         // is visible, and the remaining candidates need no test.
