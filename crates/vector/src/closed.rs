@@ -86,34 +86,41 @@ fn closed_outward_components(scene: &ScreenScene) -> Vec<bool> {
             _ => open[p] = true,
         }
     }
-    // Per component: open at all, signed volume (times 6), winding number
-    // around the eye (solid angles, Van Oosterom and Strackee), extent.
-    let mut sums: FxHashMap<usize, (bool, f64, f64, f64)> = FxHashMap::default();
+    // Per component: open at all; then, for closed ones only, signed
+    // volume (times 6), winding number around the eye (solid angles, Van
+    // Oosterom and Strackee) and extent.
+    let roots: Vec<usize> = (0..n).map(|p| find(&mut parent, p)).collect();
+    let mut any_open = vec![false; n];
+    for p in 0..n {
+        any_open[roots[p]] |= open[p];
+    }
+    let mut sums = vec![(0.0, 0.0, 0.0); n];
     for (p, prim) in scene.prims.iter().enumerate() {
-        let root = find(&mut parent, p);
+        if any_open[roots[p]] {
+            continue;
+        }
         let [a, b, c] = prim.camera;
         let det = a.dot(b.cross(c));
         let (la, lb, lc) = (a.length(), b.length(), c.length());
         let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-        let angle = 2.0 * det.atan2(den);
         let extent = [a, b, c]
             .iter()
             .map(|v| v.abs().max_element())
             .fold(0.0, f64::max);
-        let sum = sums.entry(root).or_insert((false, 0.0, 0.0, 0.0));
-        sum.0 |= open[p];
-        sum.1 += det;
-        sum.2 += angle;
-        sum.3 = sum.3.max(extent);
+        let sum = &mut sums[roots[p]];
+        sum.0 += det;
+        sum.1 += 2.0 * det.atan2(den);
+        sum.2 = f64::max(sum.2, extent);
     }
     (0..n)
         .map(|p| {
-            let (any_open, volume6, angles, extent) = sums[&find(&mut parent, p)];
+            let root = roots[p];
+            let (volume6, angles, extent) = sums[root];
             let winding = angles / (4.0 * std::f64::consts::PI);
             // The eye in camera space is the origin: the winding number is
             // 0 outside a closed surface and +-1 inside; a volume far from
             // zero against the extent tells outward from inward.
-            !any_open && winding.abs() < 0.25 && volume6 > 1e-9 * extent.powi(3)
+            !any_open[root] && winding.abs() < 0.25 && volume6 > 1e-9 * extent.powi(3)
         })
         .collect()
 }
