@@ -156,7 +156,9 @@ pub fn visible_regions(
         let mut buried = false;
         bins.query(lo, hi, |ui| {
             let u_idx = ui as usize;
-            if buried || seen[u_idx] == ti as u32 || u_idx == ti {
+            // A skipped back face hides nothing its solid's nearer front
+            // faces do not hide already.
+            if buried || hidden[u_idx] || seen[u_idx] == ti as u32 || u_idx == ti {
                 return;
             }
             seen[u_idx] = ti as u32;
