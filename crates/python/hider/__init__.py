@@ -129,9 +129,9 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
         is not a depth tie. ``"auto"`` lets the planner choose the cheapest
         exact one for this mesh and view, as ``hider render --algo auto``
         does (``plan`` with the same arguments says which, and why); the
-        buffers are then those of the hider chosen. The analysis costs
-        more than a render on large meshes: to render one mesh many times,
-        call ``plan`` once and pass its ``algo``.
+        buffers are then those of the hider chosen. The analysis runs the
+        front end once more than a named hider: to render one mesh many
+        times, call ``plan`` once and pass its ``algo``.
     threads : int
         Worker threads for the hiders that render in parallel (1 to 1024).
 
