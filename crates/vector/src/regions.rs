@@ -249,19 +249,26 @@ fn visible_part(
         (None, Some(edges)) if edges.len() <= 6 * BATCH => {
             // The occluders' outline: the same union in one small boolean.
             stats.differences += 1;
-            overlay.clear();
-            overlay.add_contour(polygon, ShapeType::Subject);
             // A loop whose box misses the polygon's winds zero over it.
             let (lo, hi) = bounds(polygon).unwrap_or_default();
-            for contour in loops(&edges) {
-                if let Some((clo, chi)) = bounds(&contour)
-                    && clo.x < hi.x
-                    && chi.x > lo.x
-                    && clo.y < hi.y
-                    && chi.y > lo.y
-                {
-                    overlay.add_contour(&contour, ShapeType::Clip);
-                }
+            let mut parts: Vec<IntShapes> = loops(&edges)
+                .into_iter()
+                .filter(|contour| {
+                    bounds(contour).is_some_and(|(clo, chi)| {
+                        clo.x < hi.x && chi.x > lo.x && clo.y < hi.y && chi.y > lo.y
+                    })
+                })
+                .map(|contour| vec![vec![contour]])
+                .collect();
+            parts.push(vec![vec![polygon.to_vec()]]);
+            if occluders.iter().any(|o| is_sliver(o)) {
+                snap_round(&mut parts);
+            }
+            overlay.clear();
+            let (subject, clips) = parts.split_last().expect("the polygon was pushed");
+            overlay.add_shapes(subject, ShapeType::Subject);
+            for o in clips {
+                overlay.add_shapes(o, ShapeType::Clip);
             }
             overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
         }
@@ -375,23 +382,33 @@ fn subtract(
     }
     let mut rest: IntShapes = vec![vec![triangle.to_vec()]];
     let mut next = 0;
+    let mut batch: Vec<IntShapes> = Vec::with_capacity(BATCH + 1);
     while next < occluders.len() {
         // Only occluders that still meet what is left can take anything.
-        overlay.clear();
-        let mut taken = 0;
-        while next < occluders.len() && taken < BATCH {
+        batch.clear();
+        while next < occluders.len() && batch.len() < BATCH {
             let o = &occluders[next];
             next += 1;
             if next <= BATCH || rest.iter().any(|shape| meets(o, &shape[0])) {
-                overlay.add_contour(o, ShapeType::Clip);
-                taken += 1;
+                batch.push(vec![vec![o.clone()]]);
             }
         }
-        if taken == 0 {
+        if batch.is_empty() {
             break;
         }
-        for shape in &rest {
-            overlay.add_contours(shape, ShapeType::Subject);
+        // Slivers crossing at tiny angles make the polygon library round
+        // crossing after crossing, each making new ones; rounded once and
+        // together beforehand, they have no crossings left to round.
+        let thin = batch.iter().any(|o| is_sliver(&o[0][0]));
+        batch.push(std::mem::take(&mut rest));
+        if thin {
+            snap_round(&mut batch);
+        }
+        overlay.clear();
+        let (subject, clips) = batch.split_last().expect("the rest was pushed");
+        overlay.add_shapes(subject, ShapeType::Subject);
+        for o in clips {
+            overlay.add_shapes(o, ShapeType::Clip);
         }
         rest = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
         if rest.is_empty() {
@@ -399,6 +416,23 @@ fn subtract(
         }
     }
     rest
+}
+
+/// Whether a polygon is a sliver: narrower than 1/1024 of its longest
+/// edge, as triangles seen nearly edge-on are.
+fn is_sliver(poly: &[IntPoint]) -> bool {
+    let n = poly.len();
+    let longest = (0..n)
+        .map(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let (dx, dy) = (i128::from(b.x - a.x), i128::from(b.y - a.y));
+            dx * dx + dy * dy
+        })
+        .max()
+        .unwrap_or(0);
+    // Width = 2 area / longest edge; compare squares to stay in integers.
+    let a2 = i128::from(area2(poly));
+    a2 * a2 * 1024 * 1024 < longest * longest
 }
 
 /// Whether a convex, positively oriented polygon may meet the inside of a
