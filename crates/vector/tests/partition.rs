@@ -64,7 +64,7 @@ fn overlap(map: &RegionMap) -> (i128, usize) {
     (total, pairs)
 }
 
-fn assert_partition(name: &str, scene: &hider_scene::Scene, size: u32) {
+fn assert_partition(name: &str, scene: &hider_scene::Scene, size: u32) -> RegionMap {
     let s = screen(scene, size, size);
     let map = visible_regions(&s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
     let (area, pairs) = overlap(&map);
@@ -82,26 +82,79 @@ fn assert_partition(name: &str, scene: &hider_scene::Scene, size: u32) {
             region.prim
         );
     }
+    map
 }
 
 #[test]
 fn regions_of_the_hard_cases_share_no_area() {
     for seed in [1, 2, 3] {
         for (name, scene) in hard_cases::all(seed) {
-            assert_partition(&format!("{name} seed {seed}"), &scene, 64);
+            let _ = assert_partition(&format!("{name} seed {seed}"), &scene, 64);
         }
     }
 }
 
 #[test]
 fn regions_of_cyclic_bars_and_crossing_surfaces_share_no_area() {
-    assert_partition("bar_cycle", &hard_cases::bar_cycle(1e-3), 96);
-    assert_partition("intersecting_pair", &procedural::intersecting_pair(), 96);
-    assert_partition("cyclic_triple", &procedural::cyclic_triple(), 96);
-    assert_partition(
+    let _ = assert_partition("bar_cycle", &hard_cases::bar_cycle(1e-3), 96);
+    let _ = assert_partition("intersecting_pair", &procedural::intersecting_pair(), 96);
+    let _ = assert_partition("cyclic_triple", &procedural::cyclic_triple(), 96);
+    let _ = assert_partition(
         "interpenetrating_boxes",
         &hard_cases::interpenetrating_boxes(6, 5),
         128,
+    );
+}
+
+/// A 12 x 12 grid on the plane `y = 0.4 x - 0.2 z`, seen from a point of
+/// that plane: every triangle a sliver along one line.
+fn edge_on_sheet() -> hider_scene::Scene {
+    use glam::DVec3;
+    let n = 12u32;
+    let mut positions = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let x = -1.0 + 2.0 * f64::from(i) / f64::from(n - 1);
+            let z = -1.0 + 2.0 * f64::from(j) / f64::from(n - 1);
+            positions.push(DVec3::new(x, 0.4 * x - 0.2 * z, z));
+        }
+    }
+    let mut indices = Vec::new();
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let k = j * n + i;
+            indices.push([k, k + n, k + 1]);
+            indices.push([k + 1, k + n, k + n + 1]);
+        }
+    }
+    let mut scene = hider_scene::Scene::default();
+    scene.push_mesh(
+        hider_scene::Mesh {
+            name: "sheet".into(),
+            positions,
+            indices,
+            ..hider_scene::Mesh::default()
+        },
+        None,
+    );
+    scene.camera = Some(hider_geom::Camera::perspective(
+        DVec3::new(3.0, 0.6, 3.0),
+        DVec3::ZERO,
+        0.5,
+        20.0,
+    ));
+    scene
+}
+
+#[test]
+fn regions_of_a_sheet_seen_edge_on_share_no_area() {
+    let map = assert_partition("edge-on sheet", &edge_on_sheet(), 128);
+    // Slivers, but many of them, overlapping each other along the line.
+    assert!(map.stats.triangles > 100, "{:?}", map.stats);
+    assert!(
+        map.stats.overlapping_pairs > map.stats.triangles,
+        "{:?}",
+        map.stats
     );
 }
 
@@ -109,6 +162,6 @@ fn regions_of_cyclic_bars_and_crossing_surfaces_share_no_area() {
 fn regions_of_random_soups_share_no_area() {
     for seed in 0..8 {
         let scene = procedural::random_soup(80, seed);
-        assert_partition(&format!("random_soup seed {seed}"), &scene, 96);
+        let _ = assert_partition(&format!("random_soup seed {seed}"), &scene, 96);
     }
 }
