@@ -67,23 +67,26 @@ fn closed_outward_components(scene: &ScreenScene) -> Vec<bool> {
         }
         k
     }
-    let mut directed: FxHashMap<(Key, Key), (u32, usize)> = FxHashMap::default();
-    directed.reserve(3 * n);
+    // Per undirected edge: how often it runs each way, and a primitive
+    // on each side.
+    let mut edges: FxHashMap<(Key, Key), [(u32, usize); 2]> = FxHashMap::default();
+    edges.reserve(3 * n);
     for (p, prim) in scene.prims.iter().enumerate() {
         for k in 0..3 {
-            let e = (key(prim.camera[k]), key(prim.camera[(k + 1) % 3]));
-            let entry = directed.entry(e).or_insert((0, p));
-            entry.0 += 1;
+            let (a, b) = (key(prim.camera[k]), key(prim.camera[(k + 1) % 3]));
+            let (e, side) = if a <= b { ((a, b), 0) } else { ((b, a), 1) };
+            let entry = edges.entry(e).or_insert([(0, p); 2]);
+            entry[side] = (entry[side].0 + 1, p);
         }
     }
     let mut open = vec![false; n];
-    for (&(a, b), &(count, p)) in &directed {
-        match directed.get(&(b, a)) {
-            Some(&(back, q)) if count == 1 && back == 1 => {
-                let (rp, rq) = (find(&mut parent, p), find(&mut parent, q));
-                parent[rp] = rq;
-            }
-            _ => open[p] = true,
+    for [(forward, p), (backward, q)] in edges.into_values() {
+        if forward == 1 && backward == 1 {
+            let (rp, rq) = (find(&mut parent, p), find(&mut parent, q));
+            parent[rp] = rq;
+        } else {
+            open[p] = true;
+            open[q] = true;
         }
     }
     // Per component: open at all; then, for closed ones only, signed
