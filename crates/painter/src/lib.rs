@@ -86,8 +86,8 @@ mod svg;
 
 pub use naive::NaivePainter;
 pub use options::{
-    DEFAULT_MAX_BYTES, NaivePainterOptions, PainterOptions, SPLITS_BASE, SPLITS_PER_TRIANGLE,
-    SortKey,
+    DEFAULT_MAX_BYTES, NaivePainterOptions, PainterOptions, SPLITS_BASE, SPLITS_PAIRS_UP_TO,
+    SPLITS_PER_PAIR, SPLITS_PER_TRIANGLE, SortKey, split_cap,
 };
 pub use painter::Painter;
 pub use piece::{Cut, Piece};

@@ -42,7 +42,7 @@ use hider_scene::{Error, Result, ScreenScene};
 use crate::bins::{Grid, Key, depth_bits};
 use crate::centres::{CentreIndex, Centres};
 use crate::newell::Extent;
-use crate::options::{PainterOptions, SPLITS_BASE, SPLITS_PER_TRIANGLE};
+use crate::options::{PainterOptions, split_cap};
 use crate::piece::Piece;
 use crate::stats::PainterStats;
 
@@ -116,9 +116,7 @@ impl Orderer {
         options: &PainterOptions,
         stats: &mut PainterStats,
     ) -> Result<()> {
-        let max_splits = options
-            .max_splits
-            .min(SPLITS_BASE + SPLITS_PER_TRIANGLE * scene.tris.len() as u64);
+        let max_splits = options.max_splits.min(split_cap(scene.tris.len() as u64));
         let mut arena = self.start(scene, stats)?;
         loop {
             let (cslot, p) = match (self.front.last(), self.sorted.last_key_value()) {
