@@ -34,6 +34,7 @@
 //! ```
 
 mod chain;
+mod close;
 mod closed;
 mod cover;
 mod grid;

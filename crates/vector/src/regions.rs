@@ -23,6 +23,7 @@ use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::VectorOptions;
+use crate::close::{close_to_cover, outline};
 use crate::closed::hidden_back_faces;
 use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::grid::{Bins, Grid, bounds};
@@ -101,6 +102,10 @@ pub struct RegionMap {
     /// Pairs of triangle indices whose depth planes cross inside their
     /// common area (the lower index first): the intersection lines.
     pub cut_pairs: Vec<(u32, u32)>,
+    /// The covered set: the union of the triangles on the grid, snap
+    /// rounded together with the regions; the union of the regions is
+    /// exactly this set.
+    pub covered: IntShapes,
 }
 
 /// Computes the visible region of every primitive of `scene`, grouped and
@@ -205,7 +210,8 @@ pub fn visible_regions(
     cut_pairs.sort_unstable();
     cut_pairs.dedup();
     stats.cut_pairs = cut_pairs.len() as u64;
-    let mut prims = settle(&grid, per_prim, &mut stats);
+    let outline = outline(&polys, &hidden);
+    let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats);
 
     let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
     stats.visible_prims = prims.len() as u64;
@@ -221,6 +227,7 @@ pub fn visible_regions(
         groups,
         stats,
         cut_pairs,
+        covered,
     })
 }
 
@@ -285,18 +292,25 @@ fn visible_part(
 fn settle(
     grid: &Grid,
     per_prim: HashMap<u32, IntShapes>,
+    outline: IntShapes,
     stats: &mut RegionStats,
-) -> Vec<PrimRegion> {
+) -> (Vec<PrimRegion>, IntShapes) {
     let mut per_prim: Vec<(u32, IntShapes)> = per_prim.into_iter().collect();
     per_prim.sort_unstable_by_key(|r| r.0);
     let mut shapes: Vec<IntShapes> = per_prim
         .iter_mut()
         .map(|r| std::mem::take(&mut r.1))
         .collect();
-    let touched = snap_round(&mut shapes);
+    // The covered set's outline is rounded in the same arrangement, so
+    // that the regions can be closed onto it exactly.
+    shapes.push(outline);
+    let mut touched = snap_round(&mut shapes);
+    let covered = shapes.pop().unwrap_or_default();
+    let _ = touched.pop();
     stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
     stats.ownership_differences = settle_ownership(grid, &mut shapes, &touched);
-    per_prim
+    close_to_cover(&covered, &mut shapes);
+    let prims = per_prim
         .iter()
         .zip(shapes)
         .filter(|(_, shapes)| !shapes.is_empty())
@@ -305,7 +319,8 @@ fn settle(
             group: 0,
             shapes,
         })
-        .collect()
+        .collect();
+    (prims, covered)
 }
 
 /// Makes the snapped regions disjoint: each region in ascending primitive

@@ -2,7 +2,8 @@
 //! primitives share no area at all, measured exactly on the integer grid,
 //! on scenes full of crossings (interpenetrating surfaces, cyclic overlap,
 //! occluding edges crossing the edges behind them), where every cut point
-//! has to be rounded.
+//! has to be rounded; and their union is the covered set, to the last
+//! grid unit.
 
 use hider_scene::{ShadeMode, procedural};
 use hider_testkit::{hard_cases, screen};
@@ -82,7 +83,76 @@ fn assert_partition(name: &str, scene: &hider_scene::Scene, size: u32) -> Region
             region.prim
         );
     }
+    let (gap, footprint) = xor_with_footprint(&map);
+    assert_eq!(
+        gap, 0,
+        "{name}: union of regions XOR covered set is {gap} / 2 grid units^2 \
+         (covered {footprint} / 2, {} cut pairs)",
+        map.stats.cut_pairs
+    );
+    covered_is_the_triangles(name, &s, &map);
     map
+}
+
+/// Twice the area of (union of regions) XOR (covered set), and twice the
+/// covered set's area.
+///
+/// What "covered set" means exactly on the grid: the union of the
+/// triangles with their vertices on the grid and clipped to the image as
+/// the region map clips them. Its outline crosses itself (surfaces
+/// interpenetrate, triangles overlap) at points off the grid, so no integer
+/// polygon equals it; the map carries it snap rounded in the same
+/// arrangement as its regions (Hobby's "Practical segment intersection
+/// with finite precision output"), where every boolean is exact. The
+/// regions' union must equal that set to the last grid unit (checked
+/// here), and that set must be the triangles' union moved by at most one
+/// grid unit along its outline (checked by [`covered_is_the_triangles`]).
+fn xor_with_footprint(map: &RegionMap) -> (i128, i128) {
+    let mut regions = Overlay::new(64);
+    for r in &map.prims {
+        regions.add_shapes(&r.shapes, ShapeType::Subject);
+    }
+    let union = regions.overlay(OverlayRule::Subject, FillRule::NonZero);
+    (xor_area2(&union, &map.covered), area2(&map.covered))
+}
+
+/// Twice the area of `a` XOR `b`.
+fn xor_area2(a: &IntShapes, b: &IntShapes) -> i128 {
+    let mut o = Overlay::new(64);
+    o.add_shapes(a, ShapeType::Subject);
+    o.add_shapes(b, ShapeType::Clip);
+    area2(&o.overlay(OverlayRule::Xor, FillRule::NonZero))
+}
+
+/// The map's covered set differs from the plain union of the triangles on
+/// the grid by at most a band one grid unit wide along that union's
+/// outline (snap rounding moves an edge by less than one unit).
+fn covered_is_the_triangles(name: &str, s: &hider_scene::ScreenScene, map: &RegionMap) {
+    let mut o = Overlay::new(64);
+    for t in &s.tris {
+        let poly = map.grid.clip_to_image(&map.grid.tri_points(t));
+        if poly.len() >= 3 {
+            o.add_contour(&poly, ShapeType::Subject);
+        }
+    }
+    let raw = o.overlay(OverlayRule::Subject, FillRule::NonZero);
+    let perimeter: f64 = raw
+        .iter()
+        .flatten()
+        .map(|c| {
+            (0..c.len())
+                .map(|k| {
+                    let (a, b) = (c[k], c[(k + 1) % c.len()]);
+                    f64::from(a.x - b.x).hypot(f64::from(a.y - b.y))
+                })
+                .sum::<f64>()
+        })
+        .sum();
+    let moved = xor_area2(&raw, &map.covered) as f64 / 2.0;
+    assert!(
+        moved <= perimeter,
+        "{name}: covered set moved by {moved} grid units^2 over an outline of {perimeter} units"
+    );
 }
 
 #[test]

@@ -1,0 +1,144 @@
+//! Closing the region map onto the covered set.
+//!
+//! After the snap rounding and the ownership pass the regions share no
+//! area, but their union and the union of the triangles can still differ
+//! by slivers narrower than one grid unit: the region contours were cut
+//! and rounded by their own booleans, the triangles' outline was not. This
+//! pass snap rounds the region contours and the triangles' outlines in one
+//! arrangement (Hobby's "Practical segment intersection with finite
+//! precision output"), so that no two edges of either cross except at grid
+//! points and every boolean below is exact; it then clips the regions to
+//! the covered set and hands each piece of the covered set no region holds
+//! to the region it shares most vertices with.
+
+use std::collections::{HashMap, HashSet};
+
+use i_overlay::core::fill_rule::FillRule;
+use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay_rule::OverlayRule;
+use i_overlay::i_float::int::point::IntPoint;
+use i_overlay::i_shape::int::shape::IntShapes;
+
+use crate::grid::bounds;
+
+/// The covered set's outline: the union of `polys` (the triangles on the
+/// grid) that are not `hidden`, before snap rounding.
+pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
+    let mut overlay = Overlay::new(64);
+    for (poly, _) in polys
+        .iter()
+        .zip(hidden)
+        .filter(|(p, h)| p.len() >= 3 && !**h)
+    {
+        overlay.add_contour(poly, ShapeType::Subject);
+    }
+    overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+}
+
+/// Makes the union of `regions` equal `covered`, the outline snap rounded
+/// in one arrangement with the regions (so every boolean here is exact).
+pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
+    let mut overlay = Overlay::new(64);
+    for region in regions.iter() {
+        overlay.add_shapes(region, ShapeType::Subject);
+    }
+    overlay.add_shapes(covered, ShapeType::Clip);
+    let excess = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
+    let boxes: Vec<_> = regions.iter().map(|r| shapes_box(r)).collect();
+    for piece in excess {
+        let piece = vec![piece];
+        let Some(pb) = shapes_box(&piece) else {
+            continue;
+        };
+        for (region, rb) in regions.iter_mut().zip(&boxes) {
+            if rb.is_some_and(|rb| meets(rb, pb)) {
+                *region = boolean(region, &piece, OverlayRule::Difference);
+            }
+        }
+    }
+    let mut overlay = Overlay::new(64);
+    overlay.add_shapes(covered, ShapeType::Subject);
+    for region in regions.iter() {
+        overlay.add_shapes(region, ShapeType::Clip);
+    }
+    let gap = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
+    if gap.is_empty() {
+        return;
+    }
+    // Which regions have each vertex: a gap piece goes to the region it
+    // shares most vertices with.
+    let mut owners: HashMap<IntPoint, Vec<usize>> = HashMap::new();
+    for (k, region) in regions.iter().enumerate() {
+        for &p in region.iter().flatten().flatten() {
+            owners.entry(p).or_default().push(k);
+        }
+    }
+    for piece in gap {
+        let mut counts: HashMap<usize, usize> = HashMap::new();
+        let corners: HashSet<IntPoint> = piece.iter().flatten().copied().collect();
+        for p in &corners {
+            for &k in owners.get(p).into_iter().flatten() {
+                *counts.entry(k).or_default() += 1;
+            }
+        }
+        let owner = counts
+            .into_iter()
+            .map(|(k, c)| (c, k))
+            .max()
+            .map(|(_, k)| k);
+        // A piece touching no region (left where a sliver's own region
+        // vanished) goes to the region with the nearest vertex.
+        if let Some(k) = owner.or_else(|| nearest(regions, &piece)) {
+            regions[k] = boolean(&regions[k], &vec![piece], OverlayRule::Union);
+        }
+    }
+}
+
+/// The bounding box of a polygon set.
+fn shapes_box(shapes: &[Vec<Vec<IntPoint>>]) -> Option<(IntPoint, IntPoint)> {
+    let points: Vec<IntPoint> = shapes.iter().flatten().flatten().copied().collect();
+    bounds(&points)
+}
+
+/// Whether two boxes share area or boundary.
+fn meets(a: (IntPoint, IntPoint), b: (IntPoint, IntPoint)) -> bool {
+    a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y
+}
+
+/// The region with the vertex nearest to a vertex of `piece`.
+fn nearest(regions: &[IntShapes], piece: &[Vec<IntPoint>]) -> Option<usize> {
+    let far = |p: &IntPoint| {
+        piece
+            .iter()
+            .flatten()
+            .map(|q| {
+                let (dx, dy) = (
+                    i64::from(p.x) - i64::from(q.x),
+                    i64::from(p.y) - i64::from(q.y),
+                );
+                dx * dx + dy * dy
+            })
+            .min()
+            .unwrap_or(i64::MAX)
+    };
+    (0..regions.len())
+        .filter_map(|k| {
+            regions[k]
+                .iter()
+                .flatten()
+                .flatten()
+                .map(far)
+                .min()
+                .map(|d| (d, k))
+        })
+        .min()
+        .map(|(_, k)| k)
+}
+
+/// One boolean of two polygon sets.
+fn boolean(a: &IntShapes, b: &IntShapes, rule: OverlayRule) -> IntShapes {
+    let mut overlay = Overlay::new(64);
+    overlay.add_shapes(a, ShapeType::Subject);
+    overlay.add_shapes(b, ShapeType::Clip);
+    overlay.overlay(rule, FillRule::NonZero)
+}
