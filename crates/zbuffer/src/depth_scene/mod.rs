@@ -45,11 +45,10 @@ pub use depth_tri::{DepthFragment, DepthTri};
 
 use hider_geom::Viewport;
 use hider_scene::prepare::FrontEnd;
-use hider_scene::prepare::lean::{CachedVertex, fill_vertices, invalid_scene};
+use hider_scene::prepare::lean::{CachedVertex, fill_vertices, in_runs, invalid_scene, run_split};
 use hider_scene::{PrepareOptions, PrepareStats, Result, Scene, View};
-use rayon::prelude::*;
 
-use triangles::{Outcome, Run};
+use triangles::Run;
 
 /// A scene as depth-only hiders consume it: what [`prepare_depth_into`]
 /// makes. Keeps its memory between frames.
@@ -118,9 +117,6 @@ impl DepthScene {
     }
 }
 
-/// Below this many triangles the scene is set up on one thread.
-const PARALLEL_MIN: usize = 32 * 1024;
-
 /// Runs the lean front end into `out`, reusing its memory. With
 /// [`PrepareOptions::parallel`] and a large scene the work is split over
 /// the current rayon pool and [`DepthScene::parts`] has one run per
@@ -141,25 +137,16 @@ pub fn prepare_depth_into(
     // 499k sphere's frame).
     let front = FrontEnd::checked(scene, view, options, false)?;
     let count = scene.triangle_count();
-    let parallel = options.parallel && rayon::current_num_threads() > 1 && count >= PARALLEL_MIN;
+    let split = run_split(options, count);
 
     // 1. Vertices, once each (the shared lean vertex pass).
-    if !fill_vertices(scene, &front, parallel, &mut out.vertices) {
+    if !fill_vertices(scene, &front, split.0, &mut out.vertices) {
         return Err(invalid_scene(scene));
     }
 
     // 2. Triangles, in contiguous runs of primitive ids.
-    let parts = if parallel {
-        rayon::current_num_threads()
-    } else {
-        1
-    };
-    out.runs.resize_with(parts, Run::default);
-    out.runs.truncate(parts);
-    let per = count.div_ceil(parts).max(1);
     let vertices = &out.vertices;
-    let run = |(k, run): (usize, &mut Run)| {
-        let range = (k * per).min(count)..((k + 1) * per).min(count);
+    let stats = in_runs(count, split, &mut out.runs, |range, run| {
         let input = triangles::Input {
             scene,
             front: &front,
@@ -167,28 +154,16 @@ pub fn prepare_depth_into(
             range,
         };
         triangles::triangles(&input, run)
-    };
-    let outcomes: Vec<Outcome> = if parallel {
-        out.runs.par_iter_mut().enumerate().map(run).collect()
-    } else {
-        out.runs.iter_mut().enumerate().map(run).collect()
-    };
-    if outcomes.iter().any(|o| o.bad_index) {
+    });
+    let Some(mut stats) = stats else {
         for r in &mut out.runs {
             r.tris.clear();
             r.fragments.clear();
         }
         return Err(invalid_scene(scene));
-    }
-    let mut total_stats = PrepareStats {
-        input: count as u64,
-        ..PrepareStats::default()
     };
-    for o in &outcomes {
-        total_stats.add(&o.stats);
-    }
-    total_stats.output = out.len() as u64;
-    out.stats = total_stats;
+    stats.output = out.len() as u64;
+    out.stats = stats;
     out.viewport = front.viewport;
     Ok(())
 }

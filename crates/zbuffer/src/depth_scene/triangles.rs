@@ -28,7 +28,7 @@ use hider_scene::{Mesh, PrepareStats, Scene};
 use super::classify::{LANES, Lanes};
 use super::classify_avx2;
 use super::depth_tri::{DepthFragment, DepthTri};
-use hider_scene::prepare::lean::{CachedVertex, NO_WINDOW, NOT_FINITE};
+use hider_scene::prepare::lean::{CachedVertex, NO_WINDOW, NOT_FINITE, RunOutcome};
 
 /// One contiguous run of primitive ids of the output.
 #[derive(Clone, Debug, Default)]
@@ -48,12 +48,6 @@ const OUT_OF_RANGE: CachedVertex = CachedVertex {
 /// Codes that send a triangle off the common path.
 const SPECIAL: u32 = NOT_FINITE | OUTSIDE_PLANES | NO_WINDOW;
 
-/// What the pass did: its counters, and whether an index was out of range.
-pub(super) struct Outcome {
-    pub(super) stats: PrepareStats,
-    pub(super) bad_index: bool,
-}
-
 /// What the pass reads: the scene, the frame's transforms, the vertex
 /// cache (every mesh's vertices one after the other) and the primitive
 /// ids to set up.
@@ -65,7 +59,7 @@ pub(super) struct Input<'a> {
 }
 
 /// Sets up the triangles of `input` into `run`.
-pub(super) fn triangles(input: &Input<'_>, run: &mut Run) -> Outcome {
+pub(super) fn triangles(input: &Input<'_>, run: &mut Run) -> RunOutcome {
     #[cfg(target_arch = "x86_64")]
     if let Some(avx2) = Avx2::detect() {
         return triangles_avx2(input, run, avx2);
@@ -85,9 +79,9 @@ pub(super) fn triangles(input: &Input<'_>, run: &mut Run) -> Outcome {
     unsafe_code,
     reason = "a target-feature call, proven sound by the Avx2 token"
 )]
-fn triangles_avx2(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> Outcome {
+fn triangles_avx2(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> RunOutcome {
     #[target_feature(enable = "avx2,fma")]
-    fn wide(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> Outcome {
+    fn wide(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> RunOutcome {
         pass(input, run, avx2)
     }
     // SAFETY: an `Avx2` value exists only where AVX2 and FMA were detected.
@@ -95,7 +89,7 @@ fn triangles_avx2(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> Outcome {
 }
 
 #[inline(always)]
-fn pass<I: Isa>(input: &Input<'_>, run: &mut Run, isa: I) -> Outcome {
+fn pass<I: Isa>(input: &Input<'_>, run: &mut Run, isa: I) -> RunOutcome {
     let Input {
         scene,
         front,
@@ -144,7 +138,7 @@ fn pass<I: Isa>(input: &Input<'_>, run: &mut Run, isa: I) -> Outcome {
         ..
     } = pass;
     stats.add(&fallback.stats);
-    Outcome { stats, bad_index }
+    RunOutcome { stats, bad_index }
 }
 
 /// A mesh, its cached vertices and its first primitive id.

@@ -32,10 +32,73 @@ use rayon::prelude::*;
 use crate::error::Error;
 use crate::model::Scene;
 
-use super::{FrontEnd, ScreenTri};
+use super::{FrontEnd, PrepareOptions, PrepareStats, ScreenTri};
 
 /// Vertices per parallel work item of the vertex pass.
 const VERTEX_CHUNK: usize = 16 * 1024;
+
+/// Triangles below which a lean triangle pass stays on one thread.
+const PARALLEL_MIN: usize = 32 * 1024;
+
+/// What a triangle pass did over one run of primitive ids: its counters,
+/// and whether an index was out of range.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RunOutcome {
+    /// The front end's counters for the run's triangles.
+    pub stats: PrepareStats,
+    /// Whether a triangle indexed a vertex its mesh does not have.
+    pub bad_index: bool,
+}
+
+/// How a lean front end splits a scene of `count` triangles: whether it
+/// works on the current rayon pool (asked for by `options`, more than one
+/// thread, and a scene large enough to pay for it), and into how many
+/// contiguous runs of primitive ids.
+pub fn run_split(options: &PrepareOptions, count: usize) -> (bool, usize) {
+    let parallel = options.parallel && rayon::current_num_threads() > 1 && count >= PARALLEL_MIN;
+    (
+        parallel,
+        if parallel {
+            rayon::current_num_threads()
+        } else {
+            1
+        },
+    )
+}
+
+/// Runs a triangle pass over primitive ids `0..count` cut into contiguous
+/// runs, one per entry of `runs` (resized to `parts`), in parallel on the
+/// current rayon pool when `parallel` ([`run_split`] gives both). Returns
+/// the counters summed over the runs (`input` is `count`), or `None` when
+/// a run found an index out of range.
+pub fn in_runs<R: Default + Send>(
+    count: usize,
+    (parallel, parts): (bool, usize),
+    runs: &mut Vec<R>,
+    pass: impl Fn(std::ops::Range<usize>, &mut R) -> RunOutcome + Sync,
+) -> Option<PrepareStats> {
+    runs.resize_with(parts, R::default);
+    runs.truncate(parts);
+    let per = count.div_ceil(parts).max(1);
+    let work =
+        |(k, run): (usize, &mut R)| pass((k * per).min(count)..((k + 1) * per).min(count), run);
+    let outcomes: Vec<RunOutcome> = if parallel {
+        runs.par_iter_mut().enumerate().map(work).collect()
+    } else {
+        runs.iter_mut().enumerate().map(work).collect()
+    };
+    if outcomes.iter().any(|o| o.bad_index) {
+        return None;
+    }
+    let mut stats = PrepareStats {
+        input: count as u64,
+        ..PrepareStats::default()
+    };
+    for o in &outcomes {
+        stats.add(&o.stats);
+    }
+    Some(stats)
+}
 
 /// Runs the vertex pass ([`vertices`]) over every mesh of `scene`, meshes
 /// one after the other, into `out` (resized to the scene's vertex count),

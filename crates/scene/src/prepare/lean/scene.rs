@@ -3,7 +3,6 @@
 
 use glam::DVec3;
 use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport};
-use rayon::prelude::*;
 
 use crate::error::Result;
 use crate::model::{Light, Material, Scene};
@@ -11,8 +10,8 @@ use crate::prepare::{FrontEnd, PrepareOptions, PrepareStats};
 use crate::shade::{ShadeMode, id_color, lambert_light_at};
 use crate::view::View;
 
-use super::triangles::{Outcome, triangles};
-use super::{CachedVertex, fill_vertices, invalid_scene};
+use super::triangles::triangles;
+use super::{CachedVertex, fill_vertices, in_runs, invalid_scene, run_split};
 
 /// A screen triangle as a hider that samples inside pixels needs it:
 /// [`ScreenTri`](crate::ScreenTri) without the per-vertex clip `w` and the
@@ -66,9 +65,6 @@ pub struct LeanScene {
     /// The material of meshes without one (made once, not per colour).
     default_material: Material,
 }
-
-/// Below this many triangles the scene is set up on one thread.
-const PARALLEL_MIN: usize = 32 * 1024;
 
 impl LeanScene {
     /// An empty scene (the buffers grow on first use).
@@ -154,46 +150,24 @@ pub fn prepare_lean_into(
     // them all anyway.
     let front = FrontEnd::checked(scene, view, options, false)?;
     let count = scene.triangle_count();
-    let parallel = options.parallel && rayon::current_num_threads() > 1 && count >= PARALLEL_MIN;
-    if !fill_vertices(scene, &front, parallel, &mut out.vertices) {
+    let split = run_split(options, count);
+    if !fill_vertices(scene, &front, split.0, &mut out.vertices) {
         return Err(invalid_scene(scene));
     }
-    let parts = if parallel {
-        rayon::current_num_threads()
-    } else {
-        1
-    };
-    out.runs.resize_with(parts, Vec::new);
-    out.runs.truncate(parts);
-    let per = count.div_ceil(parts).max(1);
     let cache = &out.vertices;
-    let front_ref = &front;
-    let run = |(k, run): (usize, &mut Vec<LeanTri>)| {
-        let range = (k * per).min(count)..((k + 1) * per).min(count);
-        triangles(scene, front_ref, cache, range, run)
-    };
-    let outcomes: Vec<Outcome> = if parallel {
-        out.runs.par_iter_mut().enumerate().map(run).collect()
-    } else {
-        out.runs.iter_mut().enumerate().map(run).collect()
-    };
+    let stats = in_runs(count, split, &mut out.runs, |range, run| {
+        triangles(scene, &front, cache, range, run)
+    });
     out.tris.clear();
-    if outcomes.iter().any(|o| o.bad_index) {
+    let Some(mut stats) = stats else {
         return Err(invalid_scene(scene));
-    }
-    if parts == 1 {
+    };
+    if split.1 == 1 {
         std::mem::swap(&mut out.tris, &mut out.runs[0]);
     } else {
         for r in &out.runs {
             out.tris.extend_from_slice(r);
         }
-    }
-    let mut stats = PrepareStats {
-        input: count as u64,
-        ..PrepareStats::default()
-    };
-    for o in &outcomes {
-        stats.add(&o.stats);
     }
     stats.output = out.tris.len() as u64;
     out.stats = stats;

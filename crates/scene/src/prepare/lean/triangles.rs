@@ -6,8 +6,9 @@ use hider_geom::clip::{OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
 use hider_geom::{FixedPt, orient2d};
 
 use crate::model::{Mesh, Scene};
-use crate::prepare::{ClipScratch, FrontEnd, Part, PrepareStats, WindowVertex, setup_depth};
+use crate::prepare::{ClipScratch, FrontEnd, Part, WindowVertex, setup_depth};
 
+use super::RunOutcome;
 use super::scene::LeanTri;
 use super::vertices::{CachedVertex, NO_WINDOW, NOT_FINITE};
 
@@ -19,13 +20,6 @@ const OUT_OF_RANGE: CachedVertex = CachedVertex {
     code: NOT_FINITE,
 };
 
-/// What the pass did: its counters, and whether an index was out of range.
-#[derive(Default)]
-pub(super) struct Outcome {
-    pub(super) stats: PrepareStats,
-    pub(super) bad_index: bool,
-}
-
 /// Sets up the triangles of primitive ids `range` of `scene` into `out`
 /// (cleared first), from `cache` (every mesh's vertices one after the
 /// other).
@@ -35,13 +29,13 @@ pub(super) fn triangles(
     cache: &[CachedVertex],
     range: std::ops::Range<usize>,
     out: &mut Vec<LeanTri>,
-) -> Outcome {
+) -> RunOutcome {
     out.clear();
     let mut pass = Pass {
         scene,
         front,
         out,
-        outcome: Outcome::default(),
+        outcome: RunOutcome::default(),
         fallback: Part::default(),
         scratch: ClipScratch::default(),
     };
@@ -71,7 +65,7 @@ struct Pass<'a> {
     scene: &'a Scene,
     front: &'a FrontEnd,
     out: &'a mut Vec<LeanTri>,
-    outcome: Outcome,
+    outcome: RunOutcome,
     /// `prepare`'s per-triangle output, for triangles that must be clipped.
     fallback: Part,
     scratch: ClipScratch,
