@@ -28,7 +28,7 @@ use hider_scene::{Mesh, PrepareStats, Scene};
 use super::classify::{LANES, Lanes};
 use super::classify_avx2;
 use super::depth_tri::{DepthFragment, DepthTri};
-use hider_scene::prepare::lean::{CachedVertex, NO_WINDOW, NOT_FINITE, RunOutcome};
+use hider_scene::prepare::lean::{CachedVertex, NO_WINDOW, NOT_FINITE, RunOutcome, mesh_parts};
 
 /// One contiguous run of primitive ids of the output.
 #[derive(Clone, Debug, Default)]
@@ -108,17 +108,13 @@ fn pass<I: Isa>(input: &Input<'_>, run: &mut Run, isa: I) -> RunOutcome {
         fallback: Part::default(),
         scratch: ClipScratch::default(),
     };
-    let (mut first_prim, mut first_vertex) = (0usize, 0usize);
-    for (m, mesh) in scene.meshes.iter().enumerate() {
-        let n = mesh.indices.len();
-        let lo = range.start.max(first_prim).saturating_sub(first_prim);
-        let hi = range.end.min(first_prim + n).saturating_sub(first_prim);
-        let cache = &vertices[first_vertex..first_vertex + mesh.positions.len()];
+    for part in mesh_parts(scene, vertices, range.clone()) {
+        let (lo, hi) = (part.triangles.start, part.triangles.end);
         let mesh = MeshRef {
-            m,
-            mesh,
-            cache,
-            first_prim,
+            m: part.m,
+            mesh: part.mesh,
+            cache: part.cache,
+            first_prim: part.first_prim,
         };
         let mut t = lo;
         while t + LANES <= hi {
@@ -128,8 +124,6 @@ fn pass<I: Isa>(input: &Input<'_>, run: &mut Run, isa: I) -> RunOutcome {
         for t in t..hi {
             pass.one(&mesh, t);
         }
-        first_prim += n;
-        first_vertex += mesh.mesh.positions.len();
     }
     let Pass {
         mut stats,

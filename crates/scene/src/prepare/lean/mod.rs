@@ -50,6 +50,48 @@ pub struct RunOutcome {
     pub bad_index: bool,
 }
 
+/// One mesh's share of a run of primitive ids: the mesh's index, the mesh,
+/// its cached vertices, the primitive id of its first triangle, and the
+/// indices of its triangles the run holds.
+pub struct MeshPart<'a> {
+    /// Index in [`Scene::meshes`].
+    pub m: usize,
+    /// The mesh.
+    pub mesh: &'a crate::model::Mesh,
+    /// Its vertices from the vertex pass.
+    pub cache: &'a [CachedVertex],
+    /// The primitive id of its triangle 0.
+    pub first_prim: usize,
+    /// Its triangles in the run (indices into `mesh.indices`).
+    pub triangles: std::ops::Range<usize>,
+}
+
+/// The meshes of `scene` with their part of the primitive ids `range`,
+/// each with its slice of `cache` (every mesh's vertices one after the
+/// other, as [`fill_vertices`] writes them).
+pub fn mesh_parts<'a>(
+    scene: &'a Scene,
+    cache: &'a [CachedVertex],
+    range: std::ops::Range<usize>,
+) -> impl Iterator<Item = MeshPart<'a>> + 'a {
+    let (mut first_prim, mut first_vertex) = (0usize, 0usize);
+    scene.meshes.iter().enumerate().map(move |(m, mesh)| {
+        let n = mesh.indices.len();
+        let lo = range.start.max(first_prim).saturating_sub(first_prim);
+        let hi = range.end.min(first_prim + n).saturating_sub(first_prim);
+        let part = MeshPart {
+            m,
+            mesh,
+            cache: &cache[first_vertex..first_vertex + mesh.positions.len()],
+            first_prim,
+            triangles: lo..hi.max(lo),
+        };
+        first_prim += n;
+        first_vertex += mesh.positions.len();
+        part
+    })
+}
+
 /// How a lean front end splits a scene of `count` triangles: whether it
 /// works on the current rayon pool (asked for by `options`, more than one
 /// thread, and a scene large enough to pay for it), and into how many

@@ -8,9 +8,9 @@ use hider_geom::{FixedPt, orient2d};
 use crate::model::{Mesh, Scene};
 use crate::prepare::{ClipScratch, FrontEnd, Part, WindowVertex, setup_depth};
 
-use super::RunOutcome;
 use super::scene::LeanTri;
 use super::vertices::{CachedVertex, NO_WINDOW, NOT_FINITE};
+use super::{RunOutcome, mesh_parts};
 
 /// A vertex with a code that culls the triangle: what an index out of
 /// range reads (the caller turns that into an error).
@@ -39,17 +39,14 @@ pub(super) fn triangles(
         fallback: Part::default(),
         scratch: ClipScratch::default(),
     };
-    let (mut first_prim, mut first_vertex) = (0usize, 0usize);
-    for (m, mesh) in scene.meshes.iter().enumerate() {
-        let n = mesh.indices.len();
-        let lo = range.start.max(first_prim).saturating_sub(first_prim);
-        let hi = range.end.min(first_prim + n).saturating_sub(first_prim);
-        let mine = &cache[first_vertex..first_vertex + mesh.positions.len()];
-        for t in lo..hi {
-            pass.one(mesh, mine, (m, t, (first_prim + t) as u32));
+    for part in mesh_parts(scene, cache, range) {
+        for t in part.triangles {
+            pass.one(
+                part.mesh,
+                part.cache,
+                (part.m, t, (part.first_prim + t) as u32),
+            );
         }
-        first_prim += n;
-        first_vertex += mesh.positions.len();
     }
     let Pass {
         mut outcome,
