@@ -20,11 +20,7 @@
 //! # Ok::<(), hider_scene::Error>(())
 //! ```
 
-use glam::DVec3;
-use hider_geom::{Camera, Projection};
-use hider_scene::{
-    Frame, Hider, Mesh, NO_ID, PrepareOptions, Scene, ScreenScene, TransformPrecision, View,
-};
+use hider_scene::{Frame, Hider, NO_ID, ScreenScene};
 use hider_zbuffer::{
     DepthFragment, DepthScene, DepthTri, TiledZBuffer, TiledZBufferOptions, ZBuffer,
     prepare_depth_into,
@@ -32,78 +28,7 @@ use hider_zbuffer::{
 
 use crate::lean_reference::lean_reference;
 
-/// A decoded front-end case: a scene, a view and front-end options.
-#[derive(Clone, Debug)]
-pub struct Case {
-    /// Up to 5 triangles with arbitrary `f32` corners.
-    pub scene: Scene,
-    /// An arbitrary camera (perspective or orthographic) and a window of
-    /// 1 to 16 pixels a side.
-    pub view: View,
-    /// f32 or f64 transform.
-    pub options: PrepareOptions,
-}
-
-/// Decodes bytes as `[13 camera floats][triangle corner floats...]`
-/// (little-endian `f32`), the first bytes doubling as window size and
-/// precision. `None` when too short or when the camera or size is refused
-/// (which is itself the behaviour under test: refused, not panicking).
-pub fn front_end_case(data: &[u8]) -> Option<Case> {
-    if data.len() < 4 * 13 {
-        return None;
-    }
-    let f: Vec<f32> = data
-        .chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect();
-    let v3 = |k: usize| DVec3::new(f[k].into(), f[k + 1].into(), f[k + 2].into());
-    let projection = if f[9].is_sign_negative() {
-        Projection::Orthographic {
-            half_height: f[10].abs().into(),
-            near: f[11].into(),
-            far: f[12].into(),
-        }
-    } else {
-        Projection::Perspective {
-            fovy_degrees: f[10].abs().into(),
-            near: f[11].abs().into(),
-            far: f[12].abs().into(),
-        }
-    };
-    let camera = Camera {
-        eye: v3(0),
-        target: v3(3),
-        up: v3(6),
-        projection,
-    };
-    let positions: Vec<DVec3> = f[13..]
-        .chunks_exact(3)
-        .take(15)
-        .map(|c| DVec3::new(c[0].into(), c[1].into(), c[2].into()))
-        .collect();
-    let n = positions.len() as u32 / 3;
-    let mut scene = Scene::default();
-    scene.push_mesh(
-        Mesh {
-            positions,
-            indices: (0..n).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
-            ..Mesh::default()
-        },
-        None,
-    );
-    let (w, h) = (1 + u32::from(data[0]) % 16, 1 + u32::from(data[1]) % 16);
-    let view = View::new(camera, w, h).ok()?;
-    let precision = if data[2] & 1 == 0 {
-        TransformPrecision::F64
-    } else {
-        TransformPrecision::F32
-    };
-    Some(Case {
-        scene,
-        view,
-        options: PrepareOptions::default().with_precision(precision),
-    })
-}
+pub use crate::front_end_input::{Case, front_end_case};
 
 /// How far outside [0, 1] a written window depth may be. Vertex depths are
 /// exact in [0, 1], but evaluating the affine depth plane at a pixel centre

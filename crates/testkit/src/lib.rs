@@ -43,6 +43,7 @@
 pub mod cameras;
 #[cfg(feature = "hostile")]
 pub mod differential;
+pub mod front_end_input;
 pub mod hard_cases;
 #[cfg(feature = "hostile")]
 pub mod hostile;

@@ -11,12 +11,12 @@ use glam::DVec3;
 use hider_abuffer::{
     ABuffer, ABufferOptions, ABufferStats, DepthMode, MergePolicy, SsaaOptions, SupersampledZBuffer,
 };
-use hider_scene::geom::{Camera, Projection};
 use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
 use hider_scene::{
-    Frame, Hider, Light, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, TransformPrecision,
-    View, procedural,
+    Frame, Hider, Light, PrepareOptions, Scene, ScreenScene, ShadeMode, TransformPrecision, View,
+    procedural,
 };
+use hider_testkit::front_end_input::{case_from_floats, soup_from_floats};
 use hider_testkit::{hard_cases, render, screen};
 use proptest::prelude::*;
 
@@ -199,61 +199,13 @@ fn wrong_frame_size_is_an_error() {
     assert!(e.to_string().contains("32x64"), "{e}");
 }
 
-/// A hostile case from raw floats, as the front-end fuzz target decodes
-/// its bytes: any camera (perspective when `c[9]` is positive,
-/// orthographic otherwise), up to 5 triangles with any `f32` corners, a
-/// window of `w x h` pixels.
-fn hostile_case(
-    c: &[f32; 13],
-    corners: &[f32],
-    (w, h): (u32, u32),
-    f32_front: bool,
-) -> Option<(Scene, View, PrepareOptions)> {
-    let v3 = |k: usize| DVec3::new(c[k].into(), c[k + 1].into(), c[k + 2].into());
-    let projection = if c[9].is_sign_negative() {
-        Projection::Orthographic {
-            half_height: c[10].abs().into(),
-            near: c[11].into(),
-            far: c[12].into(),
-        }
-    } else {
-        Projection::Perspective {
-            fovy_degrees: c[10].abs().into(),
-            near: c[11].abs().into(),
-            far: c[12].abs().into(),
-        }
-    };
-    let camera = Camera {
-        eye: v3(0),
-        target: v3(3),
-        up: v3(6),
-        projection,
-    };
-    let positions: Vec<DVec3> = corners
-        .chunks_exact(3)
-        .map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into()))
-        .collect();
-    let n = positions.len() as u32 / 3;
-    let mut scene = Scene::default();
-    scene.push_mesh(
-        Mesh {
-            positions,
-            indices: (0..n).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
-            ..Mesh::default()
-        },
-        None,
-    );
-    let view = View::new(camera, w, h).ok()?;
-    let precision = if f32_front {
+/// The transform precision a drawn flag picks.
+fn precision(f32_front: bool) -> TransformPrecision {
+    if f32_front {
         TransformPrecision::F32
     } else {
         TransformPrecision::F64
-    };
-    Some((
-        scene,
-        view,
-        PrepareOptions::default().with_precision(precision),
-    ))
+    }
 }
 
 /// The lean front end refuses what `prepare` refuses (with the same
@@ -302,8 +254,8 @@ proptest! {
         size in (1u32..17, 1u32..17),
         f32_front in any::<bool>(),
     ) {
-        if let Some((scene, view, options)) = hostile_case(&c, &corners, size, f32_front) {
-            let agrees = hostile_case_agrees(&scene, &view, &options);
+        if let Some(case) = case_from_floats(&c, &corners, size, precision(f32_front)) {
+            let agrees = hostile_case_agrees(&case.scene, &case.view, &case.options);
             prop_assert!(agrees.is_ok(), "{:?}", agrees);
         }
     }
@@ -318,11 +270,8 @@ proptest! {
         f32_front in any::<bool>(),
     ) {
         let corners: Vec<f32> = corners.iter().map(|v| v * 10f32.powi(scale) * 1e-30).collect();
-        let (_, _, options) = hostile_case(&[0.0, 0.0, 5.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 45.0, 0.1, 10.0], &corners, size, f32_front).unwrap();
-        let positions: Vec<DVec3> = corners.chunks_exact(3).map(|p| DVec3::new(p[0].into(), p[1].into(), p[2].into())).collect();
-        let n = positions.len() as u32 / 3;
-        let mut scene = Scene::default();
-        scene.push_mesh(Mesh { positions, indices: (0..n).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(), ..Mesh::default() }, None);
+        let options = PrepareOptions::default().with_precision(precision(f32_front));
+        let scene = soup_from_floats(&corners);
         if let Ok(view) = View::for_scene(&scene, size.0, size.1) {
             let agrees = hostile_case_agrees(&scene, &view, &options);
             prop_assert!(agrees.is_ok(), "{:?}", agrees);
