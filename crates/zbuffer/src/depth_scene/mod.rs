@@ -44,8 +44,7 @@ mod triangles;
 pub use depth_tri::{DepthFragment, DepthTri};
 
 use hider_geom::Viewport;
-use hider_scene::prepare::FrontEnd;
-use hider_scene::prepare::lean::{CachedVertex, fill_vertices, in_runs, invalid_scene, run_split};
+use hider_scene::prepare::lean::{CachedVertex, lean_passes};
 use hider_scene::{PrepareOptions, PrepareStats, Result, Scene, View};
 
 use triangles::Run;
@@ -132,35 +131,33 @@ pub fn prepare_depth_into(
     options: &PrepareOptions,
     out: &mut DepthScene,
 ) -> Result<()> {
-    // Positions and indices are checked by the two passes, which read
-    // them all anyway (a separate `Scene::validate` pass cost 4 % of the
-    // 499k sphere's frame).
-    let front = FrontEnd::checked(scene, view, options, false)?;
-    let count = scene.triangle_count();
-    let split = run_split(options, count);
-
-    // 1. Vertices, once each (the shared lean vertex pass).
-    if !fill_vertices(scene, &front, split.0, &mut out.vertices) {
-        return Err(invalid_scene(scene));
-    }
-
-    // 2. Triangles, in contiguous runs of primitive ids.
-    let vertices = &out.vertices;
-    let stats = in_runs(count, split, &mut out.runs, |range, run| {
-        let input = triangles::Input {
-            scene,
-            front: &front,
-            vertices,
-            range,
-        };
-        triangles::triangles(&input, run)
-    });
-    let Some(mut stats) = stats else {
-        for r in &mut out.runs {
-            r.tris.clear();
-            r.fragments.clear();
+    // The shared vertex pass, then this crate's triangle pass over runs
+    // of primitive ids.
+    let passes = lean_passes(
+        scene,
+        view,
+        options,
+        &mut out.vertices,
+        &mut out.runs,
+        |front, vertices, range, run| {
+            let input = triangles::Input {
+                scene,
+                front,
+                vertices,
+                range,
+            };
+            triangles::triangles(&input, run)
+        },
+    );
+    let (front, mut stats) = match passes {
+        Ok(passes) => passes,
+        Err(error) => {
+            for r in &mut out.runs {
+                r.tris.clear();
+                r.fragments.clear();
+            }
+            return Err(error);
         }
-        return Err(invalid_scene(scene));
     };
     stats.output = out.len() as u64;
     out.stats = stats;

@@ -33,6 +33,8 @@ use crate::error::Error;
 use crate::model::Scene;
 
 use super::{FrontEnd, PrepareOptions, PrepareStats, ScreenTri};
+use crate::error::Result;
+use crate::view::View;
 
 /// Vertices per parallel work item of the vertex pass.
 const VERTEX_CHUNK: usize = 16 * 1024;
@@ -92,11 +94,49 @@ pub fn mesh_parts<'a>(
     })
 }
 
+/// The two passes of a lean front end: the frame's transforms (checked as
+/// [`prepare`](crate::prepare()) checks them), the vertex pass into
+/// `vertices`, then `pass` over contiguous runs of primitive ids, one per
+/// entry of `runs`, in parallel on the current rayon pool when `options`
+/// ask for it and the scene is large. Returns the transforms and the
+/// counters summed over the runs (`output` left for the caller, which
+/// knows what it kept).
+///
+/// # Errors
+///
+/// As [`prepare`](crate::prepare()): an absurd image size, an invalid
+/// camera, or an invalid scene (a non-finite position or an index out of
+/// range, found by the passes).
+pub fn lean_passes<R: Default + Send>(
+    scene: &Scene,
+    view: &View,
+    options: &PrepareOptions,
+    vertices: &mut Vec<CachedVertex>,
+    runs: &mut Vec<R>,
+    pass: impl Fn(&FrontEnd, &[CachedVertex], std::ops::Range<usize>, &mut R) -> RunOutcome + Sync,
+) -> Result<(FrontEnd, PrepareStats)> {
+    // Positions and indices are checked by the two passes, which read
+    // them all anyway (a separate `Scene::validate` pass cost 4 % of the
+    // 499k sphere's frame).
+    let front = FrontEnd::checked(scene, view, options, false)?;
+    let count = scene.triangle_count();
+    let split = run_split(options, count);
+    if !fill_vertices(scene, &front, split.0, vertices) {
+        return Err(invalid_scene(scene));
+    }
+    let cache = &vertices[..];
+    let stats = in_runs(count, split, runs, |range, run| {
+        pass(&front, cache, range, run)
+    })
+    .ok_or_else(|| invalid_scene(scene))?;
+    Ok((front, stats))
+}
+
 /// How a lean front end splits a scene of `count` triangles: whether it
 /// works on the current rayon pool (asked for by `options`, more than one
 /// thread, and a scene large enough to pay for it), and into how many
 /// contiguous runs of primitive ids.
-pub fn run_split(options: &PrepareOptions, count: usize) -> (bool, usize) {
+fn run_split(options: &PrepareOptions, count: usize) -> (bool, usize) {
     let parallel = options.parallel && rayon::current_num_threads() > 1 && count >= PARALLEL_MIN;
     (
         parallel,
@@ -110,10 +150,10 @@ pub fn run_split(options: &PrepareOptions, count: usize) -> (bool, usize) {
 
 /// Runs a triangle pass over primitive ids `0..count` cut into contiguous
 /// runs, one per entry of `runs` (resized to `parts`), in parallel on the
-/// current rayon pool when `parallel` ([`run_split`] gives both). Returns
+/// current rayon pool when `parallel` (`run_split` gives both). Returns
 /// the counters summed over the runs (`input` is `count`), or `None` when
 /// a run found an index out of range.
-pub fn in_runs<R: Default + Send>(
+fn in_runs<R: Default + Send>(
     count: usize,
     (parallel, parts): (bool, usize),
     runs: &mut Vec<R>,

@@ -11,7 +11,7 @@ use crate::shade::{ShadeMode, id_color, lambert_light_at};
 use crate::view::View;
 
 use super::triangles::triangles;
-use super::{CachedVertex, fill_vertices, in_runs, invalid_scene, run_split};
+use super::{CachedVertex, lean_passes};
 
 /// A screen triangle as a hider that samples inside pixels needs it:
 /// [`ScreenTri`](crate::ScreenTri) without the per-vertex clip `w` and the
@@ -146,23 +146,16 @@ pub fn prepare_lean_into(
     options: &PrepareOptions,
     out: &mut LeanScene,
 ) -> Result<()> {
-    // Positions and indices are checked by the two passes, which read
-    // them all anyway.
-    let front = FrontEnd::checked(scene, view, options, false)?;
-    let count = scene.triangle_count();
-    let split = run_split(options, count);
-    if !fill_vertices(scene, &front, split.0, &mut out.vertices) {
-        return Err(invalid_scene(scene));
-    }
-    let cache = &out.vertices;
-    let stats = in_runs(count, split, &mut out.runs, |range, run| {
-        triangles(scene, &front, cache, range, run)
-    });
     out.tris.clear();
-    let Some(mut stats) = stats else {
-        return Err(invalid_scene(scene));
-    };
-    if split.1 == 1 {
+    let (front, mut stats) = lean_passes(
+        scene,
+        view,
+        options,
+        &mut out.vertices,
+        &mut out.runs,
+        |front, cache, range, run| triangles(scene, front, cache, range, run),
+    )?;
+    if out.runs.len() == 1 {
         std::mem::swap(&mut out.tris, &mut out.runs[0]);
     } else {
         for r in &out.runs {
