@@ -7,7 +7,7 @@ use hider_geom::fixed::{FixedPt, GUARD_BAND_PIXELS};
 use hider_geom::{PlaneEq, Viewport, orient2d};
 
 use crate::error::Result;
-use crate::model::Scene;
+use crate::model::{Light, Scene};
 use crate::view::{View, check_image_size};
 
 use super::options::{PrepareOptions, TransformPrecision};
@@ -143,6 +143,21 @@ impl FrontEnd {
     #[inline]
     pub fn to_camera(&self, p: DVec3) -> DVec3 {
         self.eye_to_camera.transform_vector3(p - self.eye)
+    }
+
+    /// A world-space light in camera space, where shading works: a
+    /// direction rotated, a position moved relative to the eye first.
+    pub fn light_to_camera(&self, light: &Light) -> Light {
+        match *light {
+            Light::Directional { direction, color } => Light::Directional {
+                direction: self.eye_to_camera.transform_vector3(direction),
+                color,
+            },
+            Light::Point { position, color } => Light::Point {
+                position: self.to_camera(position),
+                color,
+            },
+        }
     }
 
     /// Transforms, clips, projects, snaps and sets up triangle `t` of mesh

@@ -9,7 +9,7 @@
 use rayon::prelude::*;
 
 use crate::error::Result;
-use crate::model::{Light, Material, Scene};
+use crate::model::{Material, Scene};
 use crate::surface::SurfaceTextures;
 use crate::view::View;
 
@@ -105,16 +105,7 @@ pub fn prepare_into(
     let lights = scene
         .lights
         .iter()
-        .map(|l| match *l {
-            Light::Directional { direction, color } => Light::Directional {
-                direction: front.eye_to_camera.transform_vector3(direction),
-                color,
-            },
-            Light::Point { position, color } => Light::Point {
-                position: front.to_camera(position),
-                color,
-            },
-        })
+        .map(|l| front.light_to_camera(l))
         .collect();
     let mut textures = std::mem::take(&mut out.textures);
     *out = ScreenScene {

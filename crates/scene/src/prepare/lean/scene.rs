@@ -173,16 +173,8 @@ pub fn prepare_lean_into(
     }
     // `prepare`'s transform of the lights.
     out.lights.clear();
-    out.lights.extend(scene.lights.iter().map(|l| match *l {
-        Light::Directional { direction, color } => Light::Directional {
-            direction: front.eye_to_camera.transform_vector3(direction),
-            color,
-        },
-        Light::Point { position, color } => Light::Point {
-            position: front.to_camera(position),
-            color,
-        },
-    }));
+    out.lights
+        .extend(scene.lights.iter().map(|l| front.light_to_camera(l)));
     out.front = Some(front);
     Ok(())
 }
