@@ -41,8 +41,9 @@ use rayon::prelude::*;
 use crate::bins::{Bins, TILE};
 use crate::centre::in_front;
 use crate::fragment::{NIL, PIXEL_BYTES};
-use crate::options::{ABufferOptions, DepthMode};
+use crate::options::{ABufferOptions, DepthMode, MergePolicy};
 use crate::resolve::Band;
+use crate::samples::{PASS_ROWS, SAMPLE_BUFFER_BYTES, SampleBuffer};
 use crate::source::Source;
 use crate::stats::ABufferStats;
 use crate::worker::{Shared, Worker};
@@ -103,6 +104,9 @@ impl ABuffer {
         let n = pattern.count();
         let pixels = self.width as usize * self.height as usize;
         let per_sample = self.options.depth == DepthMode::PerSample;
+        if per_sample {
+            return self.sample_ids_from_bins();
+        }
         let planes = &self.planes;
         let mut out = vec![NO_ID; pixels * n];
         let mut best = vec![f32::INFINITY; n];
@@ -130,6 +134,49 @@ impl ABuffer {
                     }
                 }
                 cur = f.next;
+            }
+        }
+        out
+    }
+
+    /// [`Self::sample_ids`] in [`DepthMode::PerSample`]: the front
+    /// primitive of every sample by its own depth, which is what the lists
+    /// order each sample by and what the sample buffer keeps, found by
+    /// running the last frame's binned triangles through a sample buffer
+    /// (tiles resolved from samples keep no lists to read).
+    fn sample_ids_from_bins(&self) -> Vec<u32> {
+        let pattern = self.options.pattern;
+        let n = pattern.count();
+        let (w, h) = (self.width, self.height);
+        let mut out = vec![NO_ID; w as usize * h as usize * n];
+        if self.bins.is_empty() {
+            return out;
+        }
+        let tiles_x = w.div_ceil(TILE);
+        let mut buffer = SampleBuffer::default();
+        let mut stats = ABufferStats::default();
+        for ty in 0..h.div_ceil(TILE) {
+            for tx in 0..tiles_x {
+                let items = self.bins.tile_items((ty * tiles_x + tx) as usize);
+                let (x0, y0) = (tx * TILE, ty * TILE);
+                let (x1, y1) = ((x0 + TILE).min(w) - 1, (y0 + TILE).min(h) - 1);
+                let mut py0 = y0;
+                while py0 <= y1 && !items.is_empty() {
+                    let py1 = (py0 + PASS_ROWS - 1).min(y1);
+                    buffer.begin((x0, py0, x1, py1), true);
+                    for item in items {
+                        buffer.triangle(item, pattern, &mut stats);
+                    }
+                    for j in py0..=py1 {
+                        for i in x0..=x1 {
+                            if let Some(prims) = buffer.sample_prims(i, j) {
+                                let p = j as usize * w as usize + i as usize;
+                                out[p * n..(p + 1) * n].copy_from_slice(&prims[..n]);
+                            }
+                        }
+                    }
+                    py0 = py1 + 1;
+                }
             }
         }
         out
@@ -205,6 +252,10 @@ impl ABuffer {
             bins: &self.bins,
             planes: &self.planes,
             tiles_x,
+            sample_tiles: options.sample_tiles
+                && options.depth == DepthMode::PerSample
+                && options.merge != MergePolicy::SameSurface
+                && options.max_bytes >= table + SAMPLE_BUFFER_BYTES,
         };
         let run = |worker: &mut Worker| -> Result<Vec<u32>> {
             let mut done = Vec::new();
@@ -284,9 +335,13 @@ fn total_stats(workers: &[Worker]) -> ABufferStats {
         s.coincident += t.coincident;
         s.max_list_len = s.max_list_len.max(t.max_list_len);
         s.per_sample_pixels += t.per_sample_pixels;
+        s.sample_tiles += t.sample_tiles;
         let pool = &w.raster.lists.pool;
         s.pool_fragments += pool.peak_fragments() as u64;
         s.bytes += pool.peak_bytes();
+        if t.sample_tiles > 0 {
+            s.bytes += SAMPLE_BUFFER_BYTES;
+        }
         let (l, n) = w.resolver.list_counts();
         lists += l;
         total += n;

@@ -178,6 +178,16 @@ impl Bins {
         }
     }
 
+    /// The items of tile `t`, in submission order.
+    pub(crate) fn tile_items(&self, t: usize) -> &[BinItem] {
+        &self.items[self.start[t] as usize..self.start[t + 1] as usize]
+    }
+
+    /// Whether nothing was binned yet.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.start.is_empty()
+    }
+
     /// Whether tile `t` has triangles this frame.
     pub(crate) fn has_items(&self, t: usize) -> bool {
         self.start[t] != self.start[t + 1]

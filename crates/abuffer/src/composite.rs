@@ -56,6 +56,100 @@ pub(crate) fn mask_path(frags: &[Shaded], full: u32) -> [f32; 3] {
     sum
 }
 
+/// How many of a pixel's samples show one opaque primitive, and its colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Shown {
+    /// The primitive.
+    pub(crate) prim: u32,
+    /// Samples in which it is the front surface.
+    pub(crate) samples: u32,
+    /// Its linear colour in this pixel.
+    pub(crate) rgb: [f32; 3],
+}
+
+/// The colour sum of a pixel whose samples show opaque surfaces only,
+/// from how many samples each primitive shows in: the primitives in
+/// ascending id, each adding `rgb * samples` once (entries of one
+/// primitive are first added up).
+///
+/// One canonical order, whatever produced the counts: fragment lists in
+/// any order, merged or not, composited by whole masks or sample by sample,
+/// and the tiles resolved from a sample buffer ([`crate::samples`]) give
+/// the same sum bit for bit. (Floating-point addition is not associative:
+/// summing per fragment in depth order, as before, made the last bit
+/// depend on how the samples were grouped into fragments.) `shown` is
+/// sorted in place.
+pub(crate) fn opaque_sum(shown: &mut [Shown]) -> [f32; 3] {
+    // Short lists: insertion sort.
+    for a in 1..shown.len() {
+        let mut b = a;
+        while b > 0 && shown[b - 1].prim > shown[b].prim {
+            shown.swap(b - 1, b);
+            b -= 1;
+        }
+    }
+    let mut sum = [0.0f32; 3];
+    let mut k = 0;
+    while k < shown.len() {
+        let (prim, rgb) = (shown[k].prim, shown[k].rgb);
+        let mut samples = 0;
+        while k < shown.len() && shown[k].prim == prim {
+            samples += shown[k].samples;
+            k += 1;
+        }
+        if samples > 0 {
+            add(&mut sum, rgb, samples as f32);
+        }
+    }
+    sum
+}
+
+/// How many samples each fragment of an opaque list (sorted by
+/// [`crate::fragment::Fragment::order`]) is the front surface in, in
+/// `shown` (one entry per fragment, list order): by whole masks when the
+/// list order is every sample's order (`overlap` false), else sample by
+/// sample in each sample's own depth order (depths from `pool` and
+/// `planes`, at `positions`).
+pub(crate) fn opaque_shown(
+    frags: &[Shaded],
+    overlap: bool,
+    (pool, planes): (&FragmentPool, &[PlaneEq]),
+    ij: (u32, u32),
+    positions: &[(i32, i32)],
+    shown: &mut Vec<Shown>,
+) {
+    shown.clear();
+    shown.extend(frags.iter().map(|s| Shown {
+        prim: s.frag.prim,
+        samples: 0,
+        rgb: s.rgb,
+    }));
+    if !overlap {
+        let mut alive = u32::MAX;
+        for (s, out) in frags.iter().zip(shown.iter_mut()) {
+            out.samples = (s.frag.mask & alive).count_ones();
+            alive &= !s.frag.mask;
+        }
+        return;
+    }
+    for k in 0..positions.len() {
+        let mut best: Option<(f32, u32, usize)> = None;
+        for (i, s) in frags.iter().enumerate() {
+            if s.frag.mask >> k & 1 == 1 {
+                let z = pool.sample_depth(planes, &s.frag, ij, positions, k);
+                let nearer = best
+                    .is_none_or(|(bz, bp, _)| z.total_cmp(&bz).then(s.frag.prim.cmp(&bp)).is_lt());
+                if nearer {
+                    best = Some((z, s.frag.prim, i));
+                }
+            }
+        }
+        if let Some((_, _, i)) = best {
+            shown[i].samples += 1;
+        }
+    }
+}
+
 /// Sample-by-sample compositing of the fragments of pixel `ij` in each
 /// sample's own depth order (the depths from `pool` and `planes`, at
 /// `positions`); `samples` is scratch memory.

@@ -88,6 +88,7 @@ pub mod pattern;
 pub mod pool;
 mod raster;
 mod resolve;
+mod samples;
 mod sorted;
 mod source;
 mod ssaa;

@@ -30,10 +30,13 @@ use hider_geom::PlaneEq;
 use hider_scene::{Frame, NO_ID};
 
 use crate::centre::in_front;
-use crate::composite::{blend, mask_path, overlapping, per_sample};
+use crate::composite::{
+    Shown, blend, mask_path, opaque_shown, opaque_sum, overlapping, per_sample,
+};
 use crate::fragment::{Fragment, NIL, Shaded};
 use crate::options::{ABufferOptions, DepthMode};
 use crate::palette::{Srgb, to_pixel};
+use crate::pattern::SamplePattern;
 use crate::pool::FragmentPool;
 use crate::source::Source;
 use crate::stats::ABufferStats;
@@ -53,6 +56,14 @@ pub(crate) struct Input<'a> {
 }
 
 impl Input<'_> {
+    /// The colour and opacity of primitive `prim` in pixel `ij` (computed
+    /// on first use, textured at the pixel centre).
+    #[inline]
+    pub(crate) fn prim_rgba(&mut self, prim: u32, ij: (u32, u32)) -> [f32; 4] {
+        let flat = self.scene.shade_of(self.colors, self.options.shade, prim);
+        self.scene.at_pixel(prim, flat, ij)
+    }
+
     /// The colour and opacity of fragment `f` in pixel `ij` (textured at
     /// the pixel centre).
     #[inline]
@@ -110,25 +121,36 @@ impl<'a> Band<'a> {
 
     /// Writes the id and depth of frame pixel `p`.
     #[inline]
-    fn set_id(&mut self, p: usize, id: u32, z: f32) {
+    pub(crate) fn set_id(&mut self, p: usize, id: u32, z: f32) {
         self.ids[p - self.first] = id;
         self.depth[p - self.first] = z;
     }
 
     /// Writes the covered fraction of frame pixel `p`.
     #[inline]
-    fn set_coverage(&mut self, p: usize, c: f32) {
+    pub(crate) fn set_coverage(&mut self, p: usize, c: f32) {
         self.coverage[p - self.first] = c;
     }
 }
 
 /// The sample pattern's numbers, per tile.
-struct Samples {
+pub(crate) struct Samples {
     /// The mask of every sample.
     full: u32,
     /// One over the sample count.
-    inv_n: f32,
+    pub(crate) inv_n: f32,
     srgb: Srgb,
+}
+
+impl Samples {
+    /// The numbers of `pattern`.
+    pub(crate) fn new(pattern: SamplePattern) -> Self {
+        Self {
+            full: pattern.full_mask(),
+            inv_n: 1.0 / pattern.count() as f32,
+            srgb: Srgb::new(),
+        }
+    }
 }
 
 /// Scratch memory of the resolve, kept between frames.
@@ -137,6 +159,7 @@ pub(crate) struct Resolver {
     frags: Vec<Shaded>,
     samples: Vec<(f32, u32, u32)>,
     stack: Vec<(u32, u32, f32)>,
+    shown: Vec<Shown>,
     lists: u64,
     total: u64,
     /// The last colour sum converted and its pixel: neighbouring pixels
@@ -169,12 +192,7 @@ impl Resolver {
         frame: &mut Band<'_>,
         stats: &mut ABufferStats,
     ) {
-        let pattern = input.options.pattern;
-        let k = Samples {
-            full: pattern.full_mask(),
-            inv_n: 1.0 / pattern.count() as f32,
-            srgb: Srgb::new(),
-        };
+        let k = Samples::new(input.options.pattern);
         let w = frame.width;
         for j in y0..=y1 {
             for i in x0..=x1 {
@@ -194,7 +212,13 @@ impl Resolver {
     /// Writes the colour of colour sum `sum` (already divided by the sample
     /// count) to pixel `p`.
     #[inline]
-    fn write_color(&mut self, k: &Samples, sum: [f32; 3], frame: &mut Band<'_>, p: usize) {
+    pub(crate) fn write_color(
+        &mut self,
+        k: &Samples,
+        sum: [f32; 3],
+        frame: &mut Band<'_>,
+        p: usize,
+    ) {
         if sum != self.memo.0 {
             self.memo = (sum, k.srgb.pixel(sum));
         }
@@ -243,7 +267,8 @@ impl Resolver {
         // Two opaque fragments with disjoint masks: each shows all its
         // samples, so every path (mask path or blender, in either depth
         // order) adds `rgb * samples` of each to zero, and a sum of two
-        // terms does not depend on their order.
+        // terms does not depend on their order; two fragments of one
+        // primitive count as one ([`opaque_sum`]).
         self.lists += 1;
         self.total += 2;
         stats.max_list_len = stats.max_list_len.max(2);
@@ -259,7 +284,11 @@ impl Resolver {
         frame.set_coverage(p, (first.mask | second.mask).count_ones() as f32 * k.inv_n);
         let wa = (first.mask & k.full).count_ones() as f32;
         let wb = (second.mask & k.full).count_ones() as f32;
-        let sum = [0, 1, 2].map(|c| (0.0 + first_rgba[c] * wa + second_rgba[c] * wb) * k.inv_n);
+        let sum = if first.prim == second.prim {
+            [0, 1, 2].map(|c| (0.0 + first_rgba[c] * (wa + wb)) * k.inv_n)
+        } else {
+            [0, 1, 2].map(|c| (0.0 + first_rgba[c] * wa + second_rgba[c] * wb) * k.inv_n)
+        };
         self.write_color(k, sum, frame, p);
         true
     }
@@ -315,10 +344,18 @@ impl Resolver {
             s.rgb.map(|c| 0.0 + c * weight)
         } else {
             let positions = input.options.pattern.positions();
+            let lists = (input.pool, input.planes);
+            let opaque = self.frags.iter().all(|s| s.alpha >= 1.0);
             match input.options.depth {
+                DepthMode::PerSample if opaque => {
+                    let overlap = overlapping(&self.frags);
+                    stats.per_sample_pixels += u64::from(overlap);
+                    let shown = &mut self.shown;
+                    opaque_shown(&self.frags, overlap, lists, ij, positions, shown);
+                    opaque_sum(shown)
+                }
                 DepthMode::PerSample if overlapping(&self.frags) => {
                     stats.per_sample_pixels += 1;
-                    let lists = (input.pool, input.planes);
                     per_sample(&self.frags, &mut self.samples, lists, ij, positions)
                 }
                 DepthMode::PerSample => mask_path(&self.frags, k.full),

@@ -55,6 +55,10 @@ hider_scene::hider_stats! {
         /// Pixels resolved sample by sample (per-sample depth with fragments
         /// overlapping in depth and in mask); the others take the mask path.
         pub per_sample_pixels: u64 => "per-sample pixels",
+        /// Tiles resolved from the sample buffer instead of fragment lists
+        /// ([`crate::ABufferOptions::sample_tiles`]); their fragments count
+        /// in [`Self::fragments`] and [`Self::culled`] like the lists'.
+        pub sample_tiles: u64 => "sample tiles",
         /// Fragments held by the pool at its fullest (live fragments plus
         /// free slots).
         pub pool_fragments: u64 => "pool fragments",

@@ -17,7 +17,8 @@ use crate::source::Source;
 use crate::bins::{Bins, LEADER, SOLE, TILE, TileQueue};
 use crate::options::ABufferOptions;
 use crate::raster::Rasterizer;
-use crate::resolve::{Band, Input, Resolver};
+use crate::resolve::{Band, Input, Resolver, Samples};
+use crate::samples::{PASS_ROWS, SampleBuffer};
 use crate::stats::ABufferStats;
 
 /// What one thread keeps from frame to frame.
@@ -32,6 +33,8 @@ pub(crate) struct Worker {
     /// Per item of the current tile that leads coincident ones: the
     /// lowest id of an opaque one taken so far, `NO_ID` if none.
     shadow: Vec<u32>,
+    /// Its sample buffer, made on first use.
+    samples: Option<Box<SampleBuffer>>,
     /// The counters of its tiles this frame.
     pub(crate) stats: ABufferStats,
 }
@@ -48,6 +51,8 @@ pub(crate) struct Shared<'a> {
     pub(crate) planes: &'a [PlaneEq],
     /// Tiles per row.
     pub(crate) tiles_x: u32,
+    /// Whether opaque tiles take the sample buffer this frame.
+    pub(crate) sample_tiles: bool,
 }
 
 impl Worker {
@@ -90,47 +95,46 @@ impl Worker {
     ) -> Result<()> {
         let (scene, bins) = (shared.scene, shared.bins);
         let has_items = bins.has_items(t);
-        if !has_items && !self.queue.is_dirty(t) {
+        let dirty = self.queue.is_dirty(t);
+        if !has_items && !dirty {
             return Ok(());
         }
+        // Front to back: the nearest surfaces first set the opaque bounds
+        // (or the sample buffer's depths) that cull what lies behind them.
+        // The order changes no sample (the lists are sorted by depth at
+        // resolve), only how much work is culled.
+        let n = if has_items {
+            self.queue.order_tile(bins, t, shared.options.front_to_back)
+        } else {
+            0
+        };
+        let sampled =
+            has_items && shared.sample_tiles && (0..n).all(|k| self.queue.item(k).alpha >= 1.0);
         let w = scene.viewport.width as usize;
         let lists = &mut self.raster.lists;
-        for j in y0..=y1 {
-            lists
-                .pool
-                .clear_pixels(j as usize * w + x0 as usize, (x1 - x0 + 1) as usize);
+        if dirty || !sampled {
+            for j in y0..=y1 {
+                lists
+                    .pool
+                    .clear_pixels(j as usize * w + x0 as usize, (x1 - x0 + 1) as usize);
+            }
         }
-        self.queue.set_dirty(t, has_items);
+        self.queue.set_dirty(t, has_items && !sampled);
         if !has_items {
             return Ok(());
         }
+        if sampled {
+            self.sample_tile(shared, n, (x0, y0, x1, y1), band);
+            return Ok(());
+        }
         lists.culling.begin_tile(x1 - x0, y1 - y0);
-        // Front to back: the nearest surfaces first set the opaque bounds
-        // that cull what lies behind them. The order changes no sample
-        // (the lists are sorted by depth at resolve), only how much work
-        // is culled.
-        let n = self.queue.order_tile(bins, t, shared.options.front_to_back);
         self.shadow.clear();
         self.shadow.resize(n, NO_ID);
         let stats = &mut self.stats;
         for k in 0..n {
             let item = self.queue.item(k);
-            let twin = self.queue.twin(k);
-            if twin != SOLE {
-                // Coincident triangles (a face whose vertex list repeats
-                // itself): an opaque one taken earlier, with a lower id,
-                // ties with this one at every sample and centre and wins
-                // every tie, so this one can change nothing. Without this
-                // the copies fill the lists (equal depths are never
-                // strictly behind) and overflow them.
-                let leader = if twin == LEADER { k } else { twin as usize };
-                if self.shadow[leader] <= item.prim {
-                    stats.coincident += 1;
-                    continue;
-                }
-                if item.alpha >= 1.0 {
-                    self.shadow[leader] = item.prim;
-                }
+            if shadowed(&self.queue, &mut self.shadow, k, stats) {
+                continue;
             }
             let (rx0, ry0, rx1, ry1) = item.range;
             let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
@@ -148,4 +152,73 @@ impl Worker {
             .resolve_tile(&mut input, (x0, y0, x1, y1), band, &mut self.stats);
         Ok(())
     }
+
+    /// Renders and resolves the `n` items of the current tile, all
+    /// opaque, through the sample buffer, in passes of [`PASS_ROWS`] rows.
+    fn sample_tile(
+        &mut self,
+        shared: &Shared<'_>,
+        n: usize,
+        (x0, y0, x1, y1): (u32, u32, u32, u32),
+        band: &mut Band<'_>,
+    ) {
+        let pattern = shared.options.pattern;
+        let k = Samples::new(pattern);
+        let mut buffer = self.samples.take().unwrap_or_default();
+        let mut stats = self.stats;
+        let mut py0 = y0;
+        while py0 <= y1 {
+            let py1 = (py0 + PASS_ROWS - 1).min(y1);
+            buffer.begin((x0, py0, x1, py1), shared.options.occlusion_culling);
+            self.shadow.clear();
+            self.shadow.resize(n, NO_ID);
+            for q in 0..n {
+                let (_, ry0, _, ry1) = self.queue.item(q).range;
+                if ry0 > py1 || ry1 < py0 || shadowed(&self.queue, &mut self.shadow, q, &mut stats)
+                {
+                    continue;
+                }
+                buffer.triangle(self.queue.item(q), pattern, &mut stats);
+            }
+            let mut input = Input {
+                scene: shared.scene,
+                pool: &self.raster.lists.pool,
+                planes: shared.planes,
+                colors: &mut self.raster.lists.colors,
+                options: shared.options,
+            };
+            buffer.resolve(&mut input, &mut self.resolver, &k, band);
+            py0 = py1 + 1;
+        }
+        stats.sample_tiles += 1;
+        self.stats = stats;
+        self.samples = Some(buffer);
+    }
+}
+
+/// Whether item `k` of the current tile is a coincident copy that can
+/// change nothing (counted in [`ABufferStats::coincident`]); notes it
+/// as taken otherwise.
+///
+/// Coincident triangles (a face whose vertex list repeats itself): an
+/// opaque one taken earlier, with a lower id, ties with this one at
+/// every sample and centre and wins every tie. Without this the copies
+/// fill the lists (equal depths are never strictly behind) and
+/// overflow them.
+#[inline]
+fn shadowed(queue: &TileQueue, shadow: &mut [u32], k: usize, stats: &mut ABufferStats) -> bool {
+    let twin = queue.twin(k);
+    if twin == SOLE {
+        return false;
+    }
+    let item = queue.item(k);
+    let leader = if twin == LEADER { k } else { twin as usize };
+    if shadow[leader] <= item.prim {
+        stats.coincident += 1;
+        return true;
+    }
+    if item.alpha >= 1.0 {
+        shadow[leader] = item.prim;
+    }
+    false
 }

@@ -3,10 +3,17 @@
 //! prepared and rendered with `hider_testkit`.
 
 use glam::DVec3;
-use hider_abuffer::SamplePattern;
+use hider_abuffer::{ABufferOptions, SamplePattern};
 use hider_scene::geom::fixed::SUBPIXEL_SCALE;
 use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{Frame, Material, Mesh, Scene, ScreenScene, ShadeMode};
+
+/// The default options with every tile on fragment lists (no sample
+/// buffer for opaque tiles): what the tests of the lists' own machinery
+/// (culling, pruning, merging, memory) render with.
+pub fn lists() -> ABufferOptions {
+    ABufferOptions::default().with_sample_tiles(false)
+}
 
 /// Largest per-channel difference between two colour buffers.
 pub fn max_color_diff(a: &Frame, b: &Frame) -> u8 {

@@ -8,7 +8,7 @@ use hider_scene::{Hider, Material, Scene, procedural};
 use hider_testkit::{render, screen};
 use proptest::prelude::*;
 
-use crate::common::max_color_diff;
+use crate::common::{lists, max_color_diff};
 
 /// Frame sizes around the 64-pixel tiles: several tiles, partial tiles,
 /// one-pixel rows and columns.
@@ -77,7 +77,7 @@ proptest! {
     ) {
         let (w, h) = SIZES[size];
         let s = screen(&big_triangles(big, small, seed), w, h);
-        let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
+        let opts = lists().with_merge(MergePolicy::Off);
         let mut culled = ABuffer::new(opts);
         let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
         let fc = render(&mut culled, &s).0;
@@ -105,7 +105,7 @@ proptest! {
     ) {
         let (w, h) = SIZES[size];
         let s = screen(&mixed_soup(opaque, glass, seed), w, h);
-        let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
+        let opts = lists().with_merge(MergePolicy::Off);
         let mut culled = ABuffer::new(opts);
         let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
         let fc = render(&mut culled, &s).0;
@@ -134,9 +134,9 @@ proptest! {
     ) {
         let (w, h) = SIZES[size];
         let s = screen(&mixed_soup(opaque, glass, seed), w, h);
-        let fc = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
+        let fc = render(&mut ABuffer::new(lists()), &s).0;
         let fr = render(
-            &mut ABuffer::new(ABufferOptions::default().with_occlusion_culling(false)),
+            &mut ABuffer::new(lists().with_occlusion_culling(false)),
             &s,
         ).0;
         prop_assert_eq!(&fc.coverage, &fr.coverage);
@@ -178,7 +178,7 @@ fn stack_and_soup() -> Scene {
 fn every_culling_stage_fires_on_a_deep_scene() {
     for scene in [stack_and_soup(), procedural::random_soup(3000, 5)] {
         let s = screen(&scene, 200, 140);
-        let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
+        let opts = lists().with_merge(MergePolicy::Off);
         // Submission order: the soup arrives before the squares hiding it,
         // so it is inserted and then pruned.
         let mut a = ABuffer::new(opts.with_front_to_back(false));
@@ -196,10 +196,10 @@ fn every_culling_stage_fires_on_a_deep_scene() {
     // the next ones: whole blocks of them are skipped. Front to back (the
     // default) the soup is skipped too, and nothing needs pruning.
     let s = screen(&stack_and_soup(), 200, 140);
-    let mut a = ABuffer::new(ABufferOptions::default().with_front_to_back(false));
+    let mut a = ABuffer::new(lists().with_front_to_back(false));
     let (fa, submitted) = render(&mut a, &s);
     assert!(submitted.culled_blocks > 100, "{submitted:?}");
-    let mut b = ABuffer::new(ABufferOptions::default());
+    let mut b = ABuffer::new(lists());
     let (fb, sorted) = render(&mut b, &s);
     assert!(sorted.culled_blocks > submitted.culled_blocks, "{sorted:?}");
     assert!(sorted.fragments < submitted.fragments, "{sorted:?}");
@@ -229,7 +229,7 @@ proptest! {
             scene.push_mesh(mesh, Some(material));
         }
         let s = screen(&scene, w, h);
-        let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
+        let opts = lists().with_merge(MergePolicy::Off);
         let mut sorted = ABuffer::new(opts);
         let mut submitted = ABuffer::new(opts.with_front_to_back(false));
         let fs = render(&mut sorted, &s).0;
@@ -247,7 +247,7 @@ proptest! {
 #[test]
 fn reuse_across_frame_sizes_equals_fresh_renders() {
     let scene = mixed_soup(300, 20, 9);
-    let mut reused = ABuffer::new(ABufferOptions::default());
+    let mut reused = ABuffer::new(lists());
     for (w, h) in [
         (150, 90),
         (90, 150),
@@ -258,7 +258,7 @@ fn reuse_across_frame_sizes_equals_fresh_renders() {
     ] {
         let s = screen(&scene, w, h);
         let again = render(&mut reused, &s).0;
-        let mut fresh = ABuffer::new(ABufferOptions::default());
+        let mut fresh = ABuffer::new(lists());
         let first = render(&mut fresh, &s).0;
         assert_eq!(again, first, "{w} x {h}");
         assert_eq!(reused.sample_ids(), fresh.sample_ids(), "{w} x {h}");
@@ -267,7 +267,7 @@ fn reuse_across_frame_sizes_equals_fresh_renders() {
     // cleared.
     let one = screen(&procedural::random_soup(1, 3), 150, 90);
     let after = render(&mut reused, &one).0;
-    let fresh = render(&mut ABuffer::new(ABufferOptions::default()), &one).0;
+    let fresh = render(&mut ABuffer::new(lists()), &one).0;
     assert_eq!(after, fresh);
 }
 
@@ -326,8 +326,8 @@ fn a_pixel_whose_centre_is_open_keeps_the_surface_behind() {
             .all(|(q, &id)| q == p || id != NO_ID && id < 6)
     );
     for opts in [
-        ABufferOptions::default(),
-        ABufferOptions::default().with_merge(MergePolicy::Off),
+        lists(),
+        lists().with_merge(MergePolicy::Off),
         ABufferOptions::carpenter(),
     ] {
         let mut a = ABuffer::new(opts);
@@ -375,7 +375,7 @@ fn tile_bound_rejects_hidden_triangles_and_changes_nothing() {
     for scene in &scenes {
         for (w, h) in SIZES {
             let s = screen(scene, w, h);
-            let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
+            let opts = lists().with_merge(MergePolicy::Off);
             let mut a = ABuffer::new(opts);
             let mut r = ABuffer::new(opts.with_occlusion_culling(false));
             let mut z = SupersampledZBuffer::new(SsaaOptions::default());
@@ -396,7 +396,7 @@ fn tile_bound_rejects_hidden_triangles_and_changes_nothing() {
     // at a time.
     for scene in &scenes[..2] {
         let s = screen(scene, 400, 300);
-        let opts = ABufferOptions::default().with_merge(MergePolicy::Off);
+        let opts = lists().with_merge(MergePolicy::Off);
         let mut a = ABuffer::new(opts);
         let (fa, st) = render(&mut a, &s);
         let mut r = ABuffer::new(opts.with_occlusion_culling(false));

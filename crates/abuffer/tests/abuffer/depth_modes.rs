@@ -32,7 +32,7 @@ fn per_sample_depth_is_exact_where_the_approximation_is_not() {
         // pixel boundary and no pixel holds the intersection.
         let s = screen(&scene, 61, 61);
         let exact = render(&mut SupersampledZBuffer::new(SsaaOptions::default()), &s).0;
-        let mut per_sample = ABuffer::new(ABufferOptions::default());
+        let mut per_sample = ABuffer::new(crate::common::lists());
         let (frame_ps, stats_ps) = render(&mut per_sample, &s);
         let (e_ps, bad_ps) = error(&frame_ps, &exact);
         assert_eq!(

@@ -10,5 +10,6 @@ mod depth_modes;
 mod exactness;
 mod lean;
 mod memory;
+mod sample_tiles;
 mod threads;
 mod transparency;

@@ -5,12 +5,12 @@ use hider_abuffer::{ABuffer, ABufferOptions, MergePolicy, OverflowPolicy};
 use hider_scene::{Error, Frame, Hider, HiderStats, Mesh, Scene, procedural};
 use hider_testkit::{render, screen};
 
-use crate::common::max_color_diff;
+use crate::common::{lists, max_color_diff};
 
 #[test]
 fn pixel_table_over_budget_is_refused_before_allocating() {
     let s = screen(&procedural::cube(), 64, 64);
-    let mut a = ABuffer::new(ABufferOptions::default().with_max_bytes(1000));
+    let mut a = ABuffer::new(lists().with_max_bytes(1000));
     let mut f = Frame::new(64, 64).unwrap();
     let e = a.render(&s, &mut f).unwrap_err();
     assert!(
@@ -30,7 +30,7 @@ fn pixel_table_over_budget_is_refused_before_allocating() {
 fn fragment_pool_over_budget_is_a_limit_error() {
     let s = screen(&procedural::random_soup(200, 1), 64, 64);
     let budget = 64 * 64 * 16 + 100 * 184;
-    let mut a = ABuffer::new(ABufferOptions::default().with_max_bytes(budget));
+    let mut a = ABuffer::new(lists().with_max_bytes(budget));
     let mut f = Frame::new(64, 64).unwrap();
     let e = a.render(&s, &mut f).unwrap_err();
     assert!(
@@ -38,7 +38,7 @@ fn fragment_pool_over_budget_is_a_limit_error() {
         "{e}"
     );
     // Within budget the same hider renders, and stays within it.
-    let full = ABufferOptions::default();
+    let full = lists();
     let mut a = ABuffer::new(full);
     let st = a.render(&s, &mut f).unwrap();
     assert!(st.bytes > budget && st.bytes <= full.max_bytes);
@@ -49,12 +49,12 @@ fn list_overflow_errors_or_drops_the_farthest() {
     // A translucent soup: nothing can be culled or pruned.
     let scene = crate::common::with_opacity(procedural::random_soup(300, 4), 0.5);
     let s = screen(&scene, 32, 32);
-    let unbounded = ABuffer::new(ABufferOptions::default());
+    let unbounded = ABuffer::new(lists());
     let mut probe = unbounded.clone();
     let longest = render(&mut probe, &s).1.max_list_len as u32;
     assert!(longest > 4, "{longest}");
 
-    let limited = ABufferOptions::default().with_max_list_len(4);
+    let limited = lists().with_max_list_len(4);
     let mut a = ABuffer::new(limited.with_overflow(OverflowPolicy::Error));
     let mut f = Frame::new(32, 32).unwrap();
     let e = a.render(&s, &mut f).unwrap_err().to_string();
@@ -98,8 +98,8 @@ fn opaque_layers_fit_short_lists_exactly() {
         // (culled whatever the submission order).
         for sorted in [false, true] {
             let s = screen(&stack(back_to_front), 48, 48);
-            let full = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
-            let limited = ABufferOptions::default()
+            let full = render(&mut ABuffer::new(lists()), &s).0;
+            let limited = lists()
                 .with_max_list_len(3)
                 .with_overflow(OverflowPolicy::Error);
             let mut a = ABuffer::new(limited.with_front_to_back(sorted));
@@ -120,8 +120,8 @@ fn opaque_layers_fit_short_lists_exactly() {
 #[test]
 fn merging_saves_fragments_on_planar_quads() {
     let s = screen(&procedural::cube(), 64, 64);
-    let mut on = ABuffer::new(ABufferOptions::default());
-    let mut off = ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off));
+    let mut on = ABuffer::new(lists());
+    let mut off = ABuffer::new(lists().with_merge(MergePolicy::Off));
     let (a, on_stats) = render(&mut on, &s);
     let (b, off_stats) = render(&mut off, &s);
     assert!(on_stats.merged > 0, "{on_stats:?}");
@@ -138,7 +138,7 @@ fn merging_saves_fragments_on_planar_quads() {
 fn scratch_memory_is_reused_across_frames_and_sizes() {
     let big = screen(&procedural::uv_sphere(12), 48, 48);
     let small = screen(&procedural::cube(), 16, 24);
-    let mut a = ABuffer::new(ABufferOptions::default());
+    let mut a = ABuffer::new(lists());
     let first = render(&mut a, &small).0;
     render(&mut a, &big);
     let again = render(&mut a, &small).0;
@@ -153,7 +153,7 @@ fn scratch_memory_is_reused_across_frames_and_sizes() {
 #[test]
 fn stats_add_up() {
     let s = screen(&procedural::uv_sphere(12), 40, 40);
-    let mut a = ABuffer::new(ABufferOptions::default());
+    let mut a = ABuffer::new(lists());
     let st = a.render(&s, &mut Frame::new(40, 40).unwrap()).unwrap();
     let table = st.table();
     let fragments = table.counters.iter().find(|(name, _)| *name == "fragments");

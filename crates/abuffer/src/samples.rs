@@ -1,0 +1,448 @@
+//! Opaque tiles through a sample buffer: what their fragment lists would
+//! resolve to, sample for sample, without the lists.
+//!
+//! Carpenter's pixel holds a plain depth when one opaque surface covers it
+//! and a fragment list only where surfaces share it; his argument is that
+//! most pixels need no list. In a tile whose triangles are all opaque the
+//! lists only ever decide, per sample, which surface is in front (the
+//! nearest by the sample's own depth, the lower primitive id on ties), and
+//! per pixel which one is in front at the centre: a depth and a primitive
+//! per sample answer exactly that. So such a tile keeps, per pixel, the
+//! 32 samples' depths (the triangle's plane at the sample, the very `f32`
+//! the lists compare, [`crate::depth::plane_depth`]) and primitives, and
+//! the centre's `f64` depth and primitive, in a buffer the size of half a
+//! tile that stays in the core's cache; triangles are taken front to back
+//! and a pixel's farthest depth rejects what lies behind it before its
+//! mask is computed. The resolve counts, per pixel, the samples each
+//! primitive shows in and sums colours in the one canonical order the
+//! lists use too ([`crate::composite::opaque_sum`]): the image, coverage
+//! and ids are those of the lists, bit for bit (property-tested against
+//! them), at a fraction of the cost: no fragment is allocated, linked,
+//! merged, pruned or sorted.
+//!
+//! Tiles with a translucent triangle keep the lists (the samples would
+//! need every layer); so do [`crate::DepthMode::MinMax`] and
+//! [`crate::DepthMode::ZminOrder`], which are about the fragments' depth
+//! ranges, and [`crate::MergePolicy::SameSurface`], whose averaged colours
+//! show in the image ([`crate::ABufferOptions::sample_tiles`]).
+
+use hider_geom::PlaneEq;
+use hider_geom::isa::Avx2;
+use hider_scene::NO_ID;
+
+use crate::bins::{BinItem, TILE};
+use crate::centre::in_front;
+use crate::composite::{Shown, opaque_sum};
+use crate::coverage::{Class, Coverage, TriCoverage};
+use crate::depth::plane_depth;
+use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
+use crate::resolve::{Band, Input, Resolver, Samples};
+use crate::stats::ABufferStats;
+
+#[cfg(target_arch = "x86_64")]
+mod avx2;
+
+/// Rows of a tile taken in one pass: 64 x 32 pixels of 32 samples of 8
+/// bytes are 512 KiB, which stays in a 1 MiB level-2 cache.
+pub(crate) const PASS_ROWS: u32 = 32;
+/// Pixels of one pass.
+const PASS_PIXELS: usize = (TILE * PASS_ROWS) as usize;
+
+/// The key of an empty sample: beyond the key of every depth.
+const EMPTY: i32 = i32::MAX;
+
+/// Side of the square blocks of pixels whose farthest key is kept.
+const BLOCK: u32 = 8;
+/// Blocks per row of a pass.
+const BLOCKS_X: u32 = TILE / BLOCK;
+/// Blocks of a pass.
+const BLOCKS: usize = (BLOCKS_X * PASS_ROWS / BLOCK) as usize;
+
+/// A signed key ordered like `f32::total_cmp`, the order the lists sort
+/// sample depths by.
+#[inline]
+pub(crate) fn depth_key(z: f32) -> i32 {
+    let b = z.to_bits() as i32;
+    b ^ (((b >> 31) as u32) >> 1) as i32
+}
+
+/// One pass's pixels: per sample a depth key and a primitive, per pixel
+/// the centre and the farthest key.
+#[derive(Clone, Debug)]
+pub(crate) struct SampleBuffer {
+    /// Depth key per sample ([`depth_key`]; [`EMPTY`] when uncovered).
+    keys: Vec<[i32; MAX_SAMPLES]>,
+    /// Front primitive per sample ([`NO_ID`] when uncovered).
+    prims: Vec<[u32; MAX_SAMPLES]>,
+    /// Per pixel the largest of its sample keys and its centre's key
+    /// ([`EMPTY`] while any is uncovered): a triangle whose nearest depth
+    /// over the pixel has a larger key is behind everywhere.
+    far: Vec<i32>,
+    /// Depth at the centre (`f64`, as the lists keep it).
+    centre_z: Vec<f64>,
+    /// Front primitive at the centre.
+    centre_prim: Vec<u32>,
+    /// Per row of the pass, the pixels written this pass (bit = column).
+    touched: [u64; PASS_ROWS as usize],
+    /// Whether hidden triangles are rejected per block and per pixel
+    /// before their samples are tested
+    /// ([`crate::ABufferOptions::occlusion_culling`]; the answer is the
+    /// same either way).
+    cull: bool,
+    /// Per 8 x 8 block, an upper bound of its pixels' farthest keys
+    /// ([`EMPTY`] while one of them is unwritten): exact when its bit of
+    /// `stale` is clear, recomputed when a test needs it. Pixels' keys only
+    /// fall, so a stale bound stays an upper bound and culls only what the
+    /// exact one would.
+    block_far: [i32; BLOCKS],
+    /// Blocks written since their bound was last computed.
+    stale: u32,
+    /// The AVX2 depth test, when the CPU has it.
+    avx2: Option<Avx2>,
+    /// The pass's pixels: top-left `(x0, y0)`, bottom-right `(x1, y1)`.
+    rect: (u32, u32, u32, u32),
+    /// The triangle set-up, reused (taken while a triangle is rendered).
+    setup: Option<Box<TriCoverage>>,
+    /// Resolve scratch: samples shown per primitive.
+    shown: Vec<Shown>,
+}
+
+impl Default for SampleBuffer {
+    fn default() -> Self {
+        Self {
+            keys: vec![[EMPTY; MAX_SAMPLES]; PASS_PIXELS],
+            prims: vec![[NO_ID; MAX_SAMPLES]; PASS_PIXELS],
+            far: vec![EMPTY; PASS_PIXELS],
+            centre_z: vec![f64::INFINITY; PASS_PIXELS],
+            centre_prim: vec![NO_ID; PASS_PIXELS],
+            touched: [0; PASS_ROWS as usize],
+            cull: true,
+            block_far: [EMPTY; BLOCKS],
+            stale: 0,
+            avx2: Avx2::detect(),
+            rect: (1, 1, 0, 0),
+            setup: None,
+            shown: Vec::new(),
+        }
+    }
+}
+
+/// Bytes of one thread's sample buffer.
+pub(crate) const SAMPLE_BUFFER_BYTES: u64 =
+    PASS_PIXELS as u64 * (MAX_SAMPLES as u64 * 8 + 4 + 8 + 4);
+
+impl SampleBuffer {
+    /// Starts a pass over the pixels `(x0, y0)` to `(x1, y1)` (inside one
+    /// tile, at most [`PASS_ROWS`] rows): every pixel empty. Pixels are
+    /// cleared when first written, so an empty pass costs nothing.
+    pub(crate) fn begin(&mut self, rect: (u32, u32, u32, u32), cull: bool) {
+        self.rect = rect;
+        self.cull = cull;
+        self.touched = [0; PASS_ROWS as usize];
+        self.block_far = [EMPTY; BLOCKS];
+        self.stale = 0;
+    }
+
+    /// The farthest key of the written pixels of block `b`, [`EMPTY`] if
+    /// one is unwritten.
+    fn block_bound(&self, b: usize) -> i32 {
+        let (x0, y0, x1, y1) = self.rect;
+        let (bx, by) = (b as u32 % BLOCKS_X, b as u32 / BLOCKS_X);
+        let (i0, j0) = (x0 + bx * BLOCK, y0 + by * BLOCK);
+        let (i1, j1) = ((i0 + BLOCK - 1).min(x1), (j0 + BLOCK - 1).min(y1));
+        let bits = (1u64 << (i1 - i0 + 1)) - 1;
+        let mut far = i32::MIN;
+        for j in j0..=j1 {
+            if (self.touched[(j - y0) as usize] >> (i0 - x0)) & bits != bits {
+                return EMPTY;
+            }
+            let p = self.index(i0, j);
+            for &f in &self.far[p..=p + (i1 - i0) as usize] {
+                far = far.max(f);
+            }
+        }
+        far
+    }
+
+    /// The blocks of the pass where the triangle of plane `plane` may win
+    /// a sample or the centre inside `(x0, y0, x1, y1)`, as bits; counts
+    /// the others in [`ABufferStats::culled_blocks`]. The plane at the
+    /// block's near corner (of the sample hull `hull`) is a lower bound of
+    /// the triangle's depth at every sample and centre of the block.
+    fn live_blocks(
+        &mut self,
+        plane: &PlaneEq,
+        (x0, y0, x1, y1): (u32, u32, u32, u32),
+        hull: (i32, i32, i32, i32),
+        stats: &mut ABufferStats,
+    ) -> u32 {
+        let (px0, py0) = (self.rect.0, self.rect.1);
+        let (hx0, hy0, hx1, hy1) = hull;
+        let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
+        let mut live = 0u32;
+        for by in (y0 - py0) / BLOCK..=(y1 - py0) / BLOCK {
+            let (j0, j1) = (
+                (py0 + by * BLOCK).max(y0),
+                (py0 + by * BLOCK + BLOCK - 1).min(y1),
+            );
+            let (j, sy) = if up_y { (j0, hy0) } else { (j1, hy1) };
+            for bx in (x0 - px0) / BLOCK..=(x1 - px0) / BLOCK {
+                let b = (by * BLOCKS_X + bx) as usize;
+                if self.block_far[b] == EMPTY && self.stale >> b & 1 == 0 {
+                    live |= 1 << b;
+                    continue;
+                }
+                let (i0, i1) = (
+                    (px0 + bx * BLOCK).max(x0),
+                    (px0 + bx * BLOCK + BLOCK - 1).min(x1),
+                );
+                let (i, sx) = if up_x { (i0, hx0) } else { (i1, hx1) };
+                let near = depth_key(plane_depth(plane, i, j, (sx, sy)) as f32);
+                if near <= self.block_far[b] && self.stale >> b & 1 == 1 {
+                    self.block_far[b] = self.block_bound(b);
+                    self.stale &= !(1 << b);
+                }
+                if near > self.block_far[b] {
+                    stats.culled_blocks += 1;
+                } else {
+                    live |= 1 << b;
+                }
+            }
+        }
+        live
+    }
+
+    /// Index of pixel `(i, j)` of the pass.
+    #[inline]
+    fn index(&self, i: u32, j: u32) -> usize {
+        ((j - self.rect.1) * TILE + (i - self.rect.0)) as usize
+    }
+
+    /// Renders the part of `item`'s triangle inside the pass.
+    pub(crate) fn triangle(
+        &mut self,
+        item: &BinItem,
+        pattern: SamplePattern,
+        stats: &mut ABufferStats,
+    ) {
+        let (x0, y0, x1, y1) = self.rect;
+        let (rx0, ry0, rx1, ry1) = item.range;
+        let (x0, y0, x1, y1) = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
+        if x0 > x1 || y0 > y1 {
+            return;
+        }
+        let (hx0, hy0, hx1, hy1) = pattern.hull();
+        let plane = item.plane;
+        let live = if self.cull {
+            self.live_blocks(&plane, (x0, y0, x1, y1), pattern.hull(), stats)
+        } else {
+            u32::MAX
+        };
+        if live == 0 {
+            return;
+        }
+        let mut setup = self
+            .setup
+            .take()
+            .unwrap_or_else(|| Box::new(TriCoverage::from_vertices(&item.v, pattern)));
+        setup.reset_vertices(&item.v, pattern);
+        // The corner of the sample hull where the plane is nearest: its
+        // value is a lower bound of every sample's and the centre's
+        // (the plane is monotonic, see `DepthBounds`).
+        let near_corner = (
+            if plane.dx >= 0.0 { hx0 } else { hx1 },
+            if plane.dy >= 0.0 { hy0 } else { hy1 },
+        );
+        let full = Coverage {
+            mask: pattern.full_mask(),
+            centre: true,
+            full: true,
+        };
+        let grid = (pattern == SamplePattern::Grid32)
+            .then_some(self.avx2)
+            .flatten();
+        let step = setup.step_x();
+        let (px0, py0) = (self.rect.0, self.rect.1);
+        for j in y0..=y1 {
+            let by = (j - py0) / BLOCK;
+            let row_live = (live >> (by * BLOCKS_X)) & ((1 << BLOCKS_X) - 1);
+            if row_live == 0 {
+                continue;
+            }
+            // The row's live blocks, as one pixel range (blocks in between
+            // that are hidden only cost their pixels' cull tests).
+            let first = px0 + row_live.trailing_zeros() * BLOCK;
+            let last = px0 + (32 - row_live.leading_zeros()) * BLOCK - 1;
+            let (sx0, sx1) = setup.row_span(first.max(x0), last.min(x1), j);
+            if sx0 > sx1 {
+                continue;
+            }
+            let mut base = setup.corner_values(sx0, j);
+            for i in sx0..=sx1 {
+                let here = base;
+                base = [0, 1, 2].map(|e| base[e] + step[e]);
+                let class = setup.classify(here);
+                if class == Class::Empty {
+                    continue;
+                }
+                let p = self.index(i, j);
+                let row = (j - py0) as usize;
+                let live_px = self.touched[row] >> (i - px0) & 1 == 1;
+                if self.cull && live_px && self.far[p] != EMPTY {
+                    // Strictly behind the farthest of the pixel's samples
+                    // and centre: loses every sample and the centre.
+                    let near = plane_depth(&plane, i, j, near_corner) as f32;
+                    if depth_key(near) > self.far[p] {
+                        stats.fragments += 1;
+                        stats.culled += 1;
+                        continue;
+                    }
+                }
+                let c = if class == Class::Full {
+                    full
+                } else {
+                    let c = setup.partial(here);
+                    if c.is_empty() {
+                        continue;
+                    }
+                    c
+                };
+                stats.fragments += 1;
+                stats.full_coverage += u64::from(c.full);
+                if !live_px {
+                    self.keys[p] = [EMPTY; MAX_SAMPLES];
+                    self.prims[p] = [NO_ID; MAX_SAMPLES];
+                    self.centre_z[p] = f64::INFINITY;
+                    self.centre_prim[p] = NO_ID;
+                    self.touched[row] |= 1 << (i - px0);
+                }
+                self.write(p, (i, j), &plane, item.prim, c, (pattern, grid));
+                self.stale |= 1 << ((j - py0) / BLOCK * BLOCKS_X + (i - px0) / BLOCK);
+            }
+        }
+        self.setup = Some(setup);
+    }
+
+    /// Depth-tests the samples of `c` and its centre at pixel `p` (at
+    /// `ij`) against what the pixel holds, keeping the nearer, then
+    /// updates the pixel's farthest key.
+    #[inline]
+    fn write(
+        &mut self,
+        p: usize,
+        (i, j): (u32, u32),
+        plane: &PlaneEq,
+        prim: u32,
+        c: Coverage,
+        (pattern, grid): (SamplePattern, Option<Avx2>),
+    ) {
+        let keys = &mut self.keys[p];
+        let prims = &mut self.prims[p];
+        let positions = pattern.positions();
+        let n = positions.len();
+        #[cfg(target_arch = "x86_64")]
+        let wide = grid.map(|isa| avx2::write_grid(isa, keys, prims, plane, (i, j), prim, c.mask));
+        #[cfg(not(target_arch = "x86_64"))]
+        let wide = grid.map(|_| 0);
+        let samples_far = match wide {
+            Some(far) => far,
+            None => {
+                let mut m = c.mask;
+                while m != 0 {
+                    let k = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    let key = depth_key(plane_depth(plane, i, j, positions[k]) as f32);
+                    if key < keys[k] || (key == keys[k] && prim < prims[k]) {
+                        keys[k] = key;
+                        prims[k] = prim;
+                    }
+                }
+                keys[..n].iter().copied().fold(i32::MIN, i32::max)
+            }
+        };
+        if c.centre {
+            let z = plane_depth(plane, i, j, CENTRE);
+            if in_front(z, prim, self.centre_z[p], self.centre_prim[p]) {
+                self.centre_z[p] = z;
+                self.centre_prim[p] = prim;
+            }
+        }
+        self.far[p] = if self.centre_prim[p] == NO_ID {
+            EMPTY
+        } else {
+            samples_far.max(depth_key(self.centre_z[p] as f32))
+        };
+    }
+
+    /// The front primitive of each sample of pixel `(i, j)` of the pass,
+    /// `None` when nothing was written there.
+    pub(crate) fn sample_prims(&self, i: u32, j: u32) -> Option<&[u32; MAX_SAMPLES]> {
+        let live = self.touched[(j - self.rect.1) as usize] >> (i - self.rect.0) & 1 == 1;
+        live.then(|| &self.prims[self.index(i, j)])
+    }
+
+    /// The mask of the samples of `prims` equal to `value`.
+    #[inline]
+    fn equal_mask(&self, prims: &[u32; MAX_SAMPLES], value: u32) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(isa) = self.avx2 {
+            return avx2::equal_mask(isa, prims, value);
+        }
+        let mut mask = 0u32;
+        for (k, &id) in prims.iter().enumerate() {
+            mask |= u32::from(id == value) << k;
+        }
+        mask
+    }
+
+    /// Resolves the pass's written pixels into `frame`: coverage, the
+    /// centre's id and depth, and the colour sum of the samples' front
+    /// primitives in the lists' canonical order.
+    pub(crate) fn resolve(
+        &mut self,
+        input: &mut Input<'_>,
+        resolver: &mut Resolver,
+        k: &Samples,
+        frame: &mut Band<'_>,
+    ) {
+        let (x0, y0, _, y1) = self.rect;
+        let n = input.options.pattern.count();
+        let w = frame.width;
+        for j in y0..=y1 {
+            let mut row = self.touched[(j - y0) as usize];
+            while row != 0 {
+                let i = x0 + row.trailing_zeros();
+                row &= row - 1;
+                let q = self.index(i, j);
+                let p = j as usize * w + i as usize;
+                if self.centre_prim[q] != NO_ID {
+                    frame.set_id(p, self.centre_prim[q], self.centre_z[q] as f32);
+                }
+                let prims = &self.prims[q];
+                let all = if n == MAX_SAMPLES {
+                    u32::MAX
+                } else {
+                    (1 << n) - 1
+                };
+                self.shown.clear();
+                let mut covered = 0u32;
+                let mut left = !self.equal_mask(prims, NO_ID) & all;
+                while left != 0 {
+                    let prim = prims[left.trailing_zeros() as usize];
+                    let same = self.equal_mask(prims, prim) & all;
+                    left &= !same;
+                    covered += same.count_ones();
+                    let rgba = input.prim_rgba(prim, (i, j));
+                    self.shown.push(Shown {
+                        prim,
+                        samples: same.count_ones(),
+                        rgb: [rgba[0], rgba[1], rgba[2]],
+                    });
+                }
+                frame.set_coverage(p, covered as f32 * k.inv_n);
+                let sum = opaque_sum(&mut self.shown).map(|c| c * k.inv_n);
+                resolver.write_color(k, sum, frame, p);
+            }
+        }
+    }
+}

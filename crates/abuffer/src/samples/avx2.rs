@@ -1,0 +1,155 @@
+//! The depth test of one pixel's 8 x 4 grid samples with AVX2 intrinsics,
+//! chosen at run time behind [`Avx2`], the token the masks use.
+//!
+//! The portable code evaluates the triangle's plane at each covered
+//! sample (`value + dx * (x - x0) + dy * (y - y0)` in `f64`, rounded to
+//! `f32`, [`crate::depth::plane_depth`]) and keeps it where it is nearer
+//! than the sample's depth, or as near with a lower primitive id. Here a
+//! row of 8 samples is two registers of 4 `f64` and one of 8 keys: the
+//! same operations in the same order (IEEE adds, subtractions and
+//! multiplies give the same result in any lane; there is no fused
+//! multiply-add), the same rounding to `f32` (to nearest, as `as f32`),
+//! so the same depths and the same winners, bit for bit (property-tested
+//! against the portable path).
+
+use hider_geom::PlaneEq;
+use hider_geom::isa::Avx2;
+
+/// Depth-tests the samples of `mask` (bit `r * 8 + c` = cell `(c, r)`)
+/// of pixel `(i, j)` on plane `plane` for primitive `prim` against
+/// `keys` and `prims`, keeping the winners; returns the largest key of
+/// the pixel's samples afterwards.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads and stores of arrays of 32 i32"
+)]
+#[inline]
+pub(super) fn write_grid(
+    _proof: Avx2,
+    keys: &mut [i32; 32],
+    prims: &mut [u32; 32],
+    plane: &PlaneEq,
+    (i, j): (u32, u32),
+    prim: u32,
+    mask: u32,
+) -> i32 {
+    #[target_feature(enable = "avx2")]
+    fn wide(
+        keys: &mut [i32; 32],
+        prims: &mut [u32; 32],
+        plane: &PlaneEq,
+        (i, j): (u32, u32),
+        prim: u32,
+        mask: u32,
+    ) -> i32 {
+        use std::arch::x86_64::{
+            __m256i, _mm_cvtsi128_si32, _mm_max_epi32, _mm_shuffle_epi32, _mm256_add_pd,
+            _mm256_and_si256, _mm256_blendv_epi8, _mm256_castps_si256, _mm256_castsi256_si128,
+            _mm256_cmpeq_epi32, _mm256_cmpgt_epi32, _mm256_cvtpd_ps, _mm256_extracti128_si256,
+            _mm256_loadu_si256, _mm256_max_epi32, _mm256_mul_pd, _mm256_or_si256, _mm256_set_m128,
+            _mm256_set1_epi32, _mm256_set1_pd, _mm256_setr_epi32, _mm256_setr_pd,
+            _mm256_srai_epi32, _mm256_srli_epi32, _mm256_storeu_si256, _mm256_sub_pd,
+            _mm256_xor_si256,
+        };
+        let fi = f64::from(i);
+        // x of columns 0-3 and 4-7: i + (32c + 16) / 256, exact.
+        let x_lo = _mm256_setr_pd(fi + 0.0625, fi + 0.1875, fi + 0.3125, fi + 0.4375);
+        let x_hi = _mm256_setr_pd(fi + 0.5625, fi + 0.6875, fi + 0.8125, fi + 0.9375);
+        let (x0, dx, value) = (
+            _mm256_set1_pd(plane.x0),
+            _mm256_set1_pd(plane.dx),
+            _mm256_set1_pd(plane.value),
+        );
+        // value + dx * (x - x0), per column.
+        let a_lo = _mm256_add_pd(value, _mm256_mul_pd(dx, _mm256_sub_pd(x_lo, x0)));
+        let a_hi = _mm256_add_pd(value, _mm256_mul_pd(dx, _mm256_sub_pd(x_hi, x0)));
+        let bias = _mm256_set1_epi32(i32::MIN);
+        let prim_v = _mm256_set1_epi32(prim as i32);
+        let prim_b = _mm256_xor_si256(prim_v, bias);
+        let lane = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+        let mut far = _mm256_set1_epi32(i32::MIN);
+        for r in 0..4 {
+            // SAFETY: `keys[8 * r..8 * r + 8]` and `prims[...]` are 8
+            // initialised 4-byte values, 32 bytes; `loadu` and `storeu`
+            // accept any alignment.
+            let (kp, pp) = unsafe {
+                (
+                    keys.as_mut_ptr().add(8 * r).cast::<__m256i>(),
+                    prims.as_mut_ptr().add(8 * r).cast::<__m256i>(),
+                )
+            };
+            let old = unsafe { _mm256_loadu_si256(kp) };
+            let bits = (mask >> (8 * r)) & 0xff;
+            if bits == 0 {
+                far = _mm256_max_epi32(far, old);
+                continue;
+            }
+            // + dy * (y - y0), y = j + (64r + 32) / 256, exact.
+            let ty = plane.dy * ((f64::from(j) + (r as f64 * 64.0 + 32.0) / 256.0) - plane.y0);
+            let ty = _mm256_set1_pd(ty);
+            let z = _mm256_set_m128(
+                _mm256_cvtpd_ps(_mm256_add_pd(a_hi, ty)),
+                _mm256_cvtpd_ps(_mm256_add_pd(a_lo, ty)),
+            );
+            // Keys ordered like `total_cmp`: negative values flip their
+            // magnitude bits.
+            let zb = _mm256_castps_si256(z);
+            let key = _mm256_xor_si256(zb, _mm256_srli_epi32(_mm256_srai_epi32(zb, 31), 1));
+            let old_p = unsafe { _mm256_loadu_si256(pp) };
+            let nearer = _mm256_cmpgt_epi32(old, key);
+            let tie = _mm256_and_si256(
+                _mm256_cmpeq_epi32(old, key),
+                _mm256_cmpgt_epi32(_mm256_xor_si256(old_p, bias), prim_b),
+            );
+            let bv = _mm256_set1_epi32(bits as i32);
+            let covered = _mm256_cmpeq_epi32(_mm256_and_si256(bv, lane), lane);
+            let win = _mm256_and_si256(_mm256_or_si256(nearer, tie), covered);
+            let new = _mm256_blendv_epi8(old, key, win);
+            unsafe {
+                _mm256_storeu_si256(kp, new);
+                _mm256_storeu_si256(pp, _mm256_blendv_epi8(old_p, prim_v, win));
+            }
+            far = _mm256_max_epi32(far, new);
+        }
+        let half = _mm_max_epi32(
+            _mm256_castsi256_si128(far),
+            _mm256_extracti128_si256(far, 1),
+        );
+        let half = _mm_max_epi32(half, _mm_shuffle_epi32(half, 0b01_00_11_10));
+        let half = _mm_max_epi32(half, _mm_shuffle_epi32(half, 0b10_11_00_01));
+        _mm_cvtsi128_si32(half)
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(keys, prims, plane, (i, j), prim, mask) }
+}
+
+/// The mask of the samples of `prims` equal to `value` (bit `k` =
+/// sample `k`).
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads of an array of 32 u32"
+)]
+#[inline]
+pub(super) fn equal_mask(_proof: Avx2, prims: &[u32; 32], value: u32) -> u32 {
+    #[target_feature(enable = "avx2")]
+    fn wide(prims: &[u32; 32], value: u32) -> u32 {
+        use std::arch::x86_64::{
+            __m256i, _mm256_castsi256_ps, _mm256_cmpeq_epi32, _mm256_loadu_si256,
+            _mm256_movemask_ps, _mm256_set1_epi32,
+        };
+        let v = _mm256_set1_epi32(value as i32);
+        let mut mask = 0u32;
+        for r in 0..4 {
+            // SAFETY: `prims[8 * r..8 * r + 8]` is 8 initialised u32s,
+            // 32 bytes; `loadu` accepts any alignment.
+            let row = unsafe { _mm256_loadu_si256(prims.as_ptr().add(8 * r).cast::<__m256i>()) };
+            let eq = _mm256_cmpeq_epi32(row, v);
+            mask |= (_mm256_movemask_ps(_mm256_castsi256_ps(eq)) as u32) << (8 * r);
+        }
+        mask
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(prims, value) }
+}

@@ -1,0 +1,147 @@
+//! The sample buffer of opaque tiles gives what the fragment lists give:
+//! with merging off, the same colours, coverage, ids, depths and sample
+//! ids, bit for bit, on every hard case and on random soups (opaque,
+//! translucent, mixed: tiles with a translucent triangle keep their lists),
+//! at several frame sizes and thread counts; with the default same-colour
+//! merging, whose averaged colours the lists show, the same coverage, ids
+//! and depths and colours within one 8-bit step.
+
+use hider_abuffer::{ABuffer, ABufferOptions, ABufferStats, MergePolicy, SamplePattern};
+use hider_scene::{Frame, Hider, Scene, procedural};
+use hider_testkit::{hard_cases, render, screen};
+use proptest::prelude::*;
+
+use crate::common::{max_color_diff, with_opacity};
+
+/// Frame sizes around the 64-pixel tiles and 32-row passes.
+const SIZES: [(u32, u32); 4] = [(150, 90), (70, 131), (64, 33), (1, 77)];
+
+/// Renders `scene` at every size through the sample buffer (at `threads`)
+/// and through lists only, with `merge`, and compares.
+fn samples_equal_lists(scene: &Scene, merge: MergePolicy, threads: usize, what: &str) {
+    let options = ABufferOptions::default().with_merge(merge);
+    samples_equal_lists_with(scene, options, threads, what);
+}
+
+/// [`samples_equal_lists`] with `options` (merging from them).
+fn samples_equal_lists_with(scene: &Scene, options: ABufferOptions, threads: usize, what: &str) {
+    let merge = options.merge;
+    for (w, h) in SIZES {
+        let s = screen(scene, w, h);
+        let mut sampled = ABuffer::new(options.with_threads(threads));
+        let mut listed = ABuffer::new(options.with_sample_tiles(false).with_threads(1));
+        let (a, sa): (Frame, ABufferStats) = render(&mut sampled, &s);
+        let (b, sb): (Frame, ABufferStats) = render(&mut listed, &s);
+        assert_eq!(sb.sample_tiles, 0, "{what}");
+        if sb.dropped > 0 {
+            // The lists lost fragments the sample buffer keeps.
+            continue;
+        }
+        assert_eq!(a.coverage, b.coverage, "{what} {w}x{h}: coverage");
+        assert_eq!(a.ids, b.ids, "{what} {w}x{h}: ids");
+        assert_eq!(a.depth, b.depth, "{what} {w}x{h}: depth");
+        assert_eq!(sampled.sample_ids(), listed.sample_ids(), "{what} {w}x{h}");
+        if merge == MergePolicy::Off {
+            assert_eq!(a.color, b.color, "{what} {w}x{h}: colour");
+        } else {
+            assert!(max_color_diff(&a, &b) <= 1, "{what} {w}x{h}: colour");
+        }
+        let opaque = scene
+            .meshes
+            .iter()
+            .all(|m| m.material.is_none_or(|k| scene.materials[k].opacity >= 1.0));
+        if opaque && !b.ids.iter().all(|&id| id == hider_scene::NO_ID) {
+            assert!(sa.sample_tiles > 0, "{what} {w}x{h}: {sa:?}");
+        }
+    }
+}
+
+#[test]
+fn every_hard_case_resolves_from_samples_as_from_lists() {
+    for (name, scene) in hard_cases::all(13) {
+        for threads in [1, 3] {
+            samples_equal_lists(&scene, MergePolicy::Off, threads, name);
+        }
+        samples_equal_lists(&scene, MergePolicy::SameColor, 2, name);
+    }
+}
+
+#[test]
+fn procedural_meshes_resolve_from_samples_as_from_lists() {
+    for (name, scene) in [
+        ("sphere", procedural::uv_sphere(40)),
+        ("cube", procedural::cube()),
+        ("pair", procedural::intersecting_pair()),
+    ] {
+        samples_equal_lists(&scene, MergePolicy::Off, 1, name);
+        samples_equal_lists(&scene, MergePolicy::SameColor, 2, name);
+    }
+}
+
+/// The smaller patterns take the portable depth test (the 8 x 4 grid the
+/// AVX2 one where the CPU has it): the same answer as the lists too.
+#[test]
+fn every_pattern_resolves_from_samples_as_from_lists() {
+    let scenes = [
+        ("sphere", procedural::uv_sphere(24)),
+        ("pair", procedural::intersecting_pair()),
+        ("soup", procedural::random_soup(300, 9)),
+    ];
+    for pattern in [
+        SamplePattern::Centre,
+        SamplePattern::Grid4,
+        SamplePattern::Grid8,
+        SamplePattern::Grid16,
+        SamplePattern::Grid32,
+    ] {
+        for (name, scene) in &scenes {
+            let options = ABufferOptions::default()
+                .with_merge(MergePolicy::Off)
+                .with_pattern(pattern);
+            samples_equal_lists_with(scene, options, 1, name);
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Random soups, opaque or partly translucent (the translucent tiles
+    /// keep lists, the others take samples: the frame is the lists').
+    #[test]
+    fn random_soups_resolve_from_samples_as_from_lists(
+        n in 1u32..500,
+        seed in any::<u64>(),
+        glass in prop::sample::select(vec![1.0f32, 1.0, 0.5]),
+        threads in 1usize..4,
+    ) {
+        let scene = with_opacity(procedural::random_soup(n, seed), glass);
+        samples_equal_lists(&scene, MergePolicy::Off, threads, "soup");
+    }
+}
+
+/// Culling in the sample buffer (per block, per pixel) changes nothing:
+/// the same frame and sample ids with it off, and it does reject work.
+#[test]
+fn sample_buffer_culling_changes_nothing() {
+    // The sphere's far side lies behind its near side: whole blocks of it
+    // are hidden.
+    let mut scene = procedural::uv_sphere(48);
+    for mesh in procedural::random_soup(2000, 5).meshes {
+        scene.push_mesh(mesh, None);
+    }
+    let s = screen(&scene, 200, 140);
+    let mut culled = ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off));
+    let mut all = ABuffer::new(
+        ABufferOptions::default()
+            .with_merge(MergePolicy::Off)
+            .with_occlusion_culling(false),
+    );
+    let (a, sa) = render(&mut culled, &s);
+    let (b, sb) = render(&mut all, &s);
+    assert!(sa.culled > 0 && sa.culled_blocks > 0, "{sa:?}");
+    assert_eq!((sb.culled, sb.culled_blocks), (0, 0));
+    assert!(sa.sample_tiles > 0 && sa.fragments < sb.fragments);
+    assert_eq!(a, b);
+    assert_eq!(culled.sample_ids(), all.sample_ids());
+}
