@@ -24,7 +24,10 @@
 //!   back and resolved in cache, exact occlusion culling per pixel and per
 //!   8 x 8 block, merging of neighbouring fragments of one surface, an
 //!   overflow policy; resolve with exact per-sample depth or the paper's
-//!   `zmin`/`zmax` approximation;
+//!   `zmin`/`zmax` approximation; tiles whose triangles are all opaque
+//!   resolved from a sample buffer instead of lists (a depth and a
+//!   primitive per sample, [`ABufferOptions::sample_tiles`]), with the
+//!   lists' image bit for bit;
 //! - the baselines it is measured against, both with [`SsaaOptions`] and
 //!   [`SsaaStats`]: [`SupersampledZBuffer`] (`"ssaa-N"`, N = 1 to 32
 //!   samples at the same positions) and [`SortedTransparencyZBuffer`]

@@ -7,7 +7,12 @@
 //! - **coverage**: covered samples of the union of all masks / samples;
 //! - **colour**, summed over samples and divided by their number
 //!   (the black background adds nothing), linear, then sRGB
-//!   ([`crate::composite`]):
+//!   ([`crate::composite`]); a list of opaque fragments in
+//!   [`DepthMode::PerSample`] counts the samples each primitive is in
+//!   front in (by whole masks, or sample by sample where fragments
+//!   overlap) and sums `colour * samples` by ascending primitive id, the
+//!   canonical order the sample buffer of opaque tiles sums in too
+//!   ([`crate::composite::opaque_sum`]); otherwise:
 //!   - [`DepthMode::PerSample`]: when no two fragments with intersecting
 //!     masks overlap in depth, the list order is every sample's order and
 //!     the *mask path* composites whole masks at once (an opaque fragment

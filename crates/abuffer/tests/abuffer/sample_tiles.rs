@@ -145,3 +145,31 @@ fn sample_buffer_culling_changes_nothing() {
     assert_eq!(a, b);
     assert_eq!(culled.sample_ids(), all.sample_ids());
 }
+
+/// One A-buffer rendering frame after frame, its tiles switching between
+/// lists (a translucent frame) and the sample buffer (an opaque one),
+/// gives what a fresh one gives each time: no list of an earlier frame
+/// survives into a sampled tile, nor a sampled pass into a list.
+#[test]
+fn tiles_switching_between_lists_and_samples_keep_no_stale_state() {
+    let opaque = procedural::random_soup(400, 21);
+    let glass = with_opacity(procedural::random_soup(400, 22), 0.5);
+    let mut reused = ABuffer::new(ABufferOptions::default().with_threads(2));
+    let frames = [
+        (&opaque, true),
+        (&glass, false),
+        (&opaque, true),
+        (&glass, false),
+        (&glass, false),
+        (&opaque, true),
+    ];
+    for (k, (scene, sampled)) in frames.into_iter().enumerate() {
+        let s = screen(scene, 150, 90);
+        let (a, sa) = render(&mut reused, &s);
+        let mut fresh = ABuffer::new(ABufferOptions::default().with_threads(2));
+        let (b, _) = render(&mut fresh, &s);
+        assert_eq!(a, b, "frame {k}");
+        assert_eq!(reused.sample_ids(), fresh.sample_ids(), "frame {k}");
+        assert_eq!(sa.sample_tiles > 0, sampled, "frame {k}: {sa:?}");
+    }
+}
