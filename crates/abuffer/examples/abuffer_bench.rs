@@ -11,6 +11,10 @@
 //!   parallel, in that pool);
 //! - `carpenter 1T`: [`ABufferOptions::carpenter`] (`zmin`/`zmax`
 //!   fragments, same-surface merging) on 1 thread;
+//! - `lists 1T`: the exact A-buffer with every tile on fragment lists
+//!   ([`ABufferOptions::with_sample_tiles`] off), what it was before
+//!   opaque tiles took the sample buffer, and what Carpenter's
+//!   configuration (lists always) compares with like for like;
 //! - `lean 1T`: the lean front end alone (what `render_scene` runs), to
 //!   show its share; `prepare 1T`: the shared front end `prepare` alone,
 //!   which the A-buffer ran before it had the lean one.
@@ -40,12 +44,13 @@ const TIMED: usize = 3;
 /// How long each pipeline renders untimed frames first, per round.
 const WARM_UP: Duration = Duration::from_millis(40);
 /// The pipelines timed here, in the table's order.
-const PIPELINES: [&str; 5] = [
+const PIPELINES: [&str; 6] = [
     "abuffer 1T",
     "abuffer 2T",
     "carpenter 1T",
     "lean 1T",
     "prepare 1T",
+    "lists 1T",
 ];
 
 /// What [`frames`] times.
@@ -186,6 +191,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut one = ABuffer::new(ABufferOptions::default().with_threads(1));
     let mut two = ABuffer::new(ABufferOptions::default().with_threads(2));
     let mut carpenter = ABuffer::new(ABufferOptions::carpenter().with_threads(1));
+    let mut lists = ABuffer::new(
+        ABufferOptions::default()
+            .with_sample_tiles(false)
+            .with_threads(1),
+    );
     // Per scene: the pipelines' frame times, then the peers' and the tiled
     // z-buffer's medians of each round.
     let mut times = vec![vec![Vec::new(); PIPELINES.len()]; scenes.len()];
@@ -222,6 +232,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ));
             t[3].extend(frames(scene, &view, &serial, Timed::Lean, TIMED));
             t[4].extend(frames(scene, &view, &serial, Timed::Prepare, TIMED));
+            t[5].extend(frames(
+                scene,
+                &view,
+                &serial,
+                Timed::Hider(&mut lists),
+                TIMED,
+            ));
         }
     }
     println!(
@@ -230,10 +247,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rounds * TIMED
     );
     println!(
-        "| scene | triangles | {} | tiled 1T | MSAA 1T | MSAA 2T | MSAA/A 1T | MSAA/A 2T | A/tiled 1T | carpenter/A | 2T speed-up |",
+        "| scene | triangles | {} | tiled 1T | MSAA 1T | MSAA 2T | MSAA/A 1T | MSAA/A 2T | A/tiled 1T | carpenter/A | carpenter/lists | lists/A | 2T speed-up |",
         PIPELINES.join(" | ")
     );
-    println!("|---|---|{}", "---|".repeat(PIPELINES.len() + 8));
+    println!("|---|---|{}", "---|".repeat(PIPELINES.len() + 10));
     for (k, (name, scene)) in scenes.iter().enumerate() {
         let m: Vec<f64> = times[k].iter().cloned().map(median).collect();
         let (t1, m1, m2) = (
@@ -243,13 +260,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         );
         let cells: Vec<String> = m.iter().map(|v| format!("{v:.2}")).collect();
         println!(
-            "| {name} | {} | {} | {t1:.2} | {m1:.2} | {m2:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
+            "| {name} | {} | {} | {t1:.2} | {m1:.2} | {m2:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} | {:.2} |",
             scene.triangle_count(),
             cells.join(" | "),
             m1 / m[0],
             m2 / m[1],
             m[0] / t1,
             m[2] / m[0],
+            m[2] / m[5],
+            m[5] / m[0],
             m[0] / m[1],
         );
     }

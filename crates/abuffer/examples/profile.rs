@@ -9,9 +9,10 @@
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
 //! `carpenter`, `ps2` (per-sample on 2 threads; the others take 1),
-//! `cov` (mask generation alone), `ps-scene` / `carpenter-scene` (the
-//! whole pipeline from the world-space scene: the lean front end, then
-//! the render, GL-compatible front end), `lean` (the lean front end
+//! `cov` (mask generation alone), `ps-scene` / `carpenter-scene` /
+//! `lists-scene` (the whole pipeline from the world-space scene: the lean
+//! front end, then the render, GL-compatible front end; `lists-scene` with
+//! every tile on fragment lists), `lean` (the lean front end
 //! alone) or `prepare` (`prepare` alone). Prints the median and
 //! fastest of the renders (the workspace's shared timer, no warm-up: a
 //! profile sees the first frame too) and the work counters.
@@ -63,6 +64,11 @@ fn main() {
         "carpenter" => Box::new(ABuffer::new(ABufferOptions::carpenter().with_threads(1))),
         "cov" | "lean" | "prepare" => Box::new(ABuffer::default()),
         "ps-scene" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(1))),
+        "lists-scene" => Box::new(ABuffer::new(
+            ABufferOptions::default()
+                .with_sample_tiles(false)
+                .with_threads(1),
+        )),
         "carpenter-scene" => Box::new(ABuffer::new(ABufferOptions::carpenter().with_threads(1))),
         other => panic!("unknown hider {other}"),
     };
@@ -96,7 +102,10 @@ fn main() {
     let mut frame = Frame::new(size, size).expect("frame");
     let mut stats = StatsTable::default();
     let which = args.get(1).map_or("ps", String::as_str);
-    if matches!(which, "ps-scene" | "carpenter-scene" | "lean" | "prepare") {
+    if matches!(
+        which,
+        "ps-scene" | "lists-scene" | "carpenter-scene" | "lean" | "prepare"
+    ) {
         let view = View::for_scene(&scene, size, size).expect("view");
         let options = PrepareOptions::gl_compatible();
         let mut screen = ScreenScene::empty(&view);

@@ -225,6 +225,26 @@ impl SampleBuffer {
         pattern: SamplePattern,
         stats: &mut ABufferStats,
     ) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(isa) = self.avx2.filter(|_| pattern == SamplePattern::Grid32) {
+            // The whole loop compiled for AVX2, so that the mask and the
+            // depth test inline into it.
+            avx2::triangle(isa, self, item, stats);
+            return;
+        }
+        self.triangle_with(item, pattern, stats, None);
+    }
+
+    /// [`Self::triangle`], with the AVX2 depth test of the 8 x 4 grid
+    /// when `grid` is given.
+    #[inline(always)]
+    pub(super) fn triangle_with(
+        &mut self,
+        item: &BinItem,
+        pattern: SamplePattern,
+        stats: &mut ABufferStats,
+        grid: Option<Avx2>,
+    ) {
         let (x0, y0, x1, y1) = self.rect;
         let (rx0, ry0, rx1, ry1) = item.range;
         let (x0, y0, x1, y1) = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
@@ -258,9 +278,6 @@ impl SampleBuffer {
             centre: true,
             full: true,
         };
-        let grid = (pattern == SamplePattern::Grid32)
-            .then_some(self.avx2)
-            .flatten();
         let step = setup.step_x();
         let (px0, py0) = (self.rect.0, self.rect.1);
         for j in y0..=y1 {
@@ -326,7 +343,7 @@ impl SampleBuffer {
     /// Depth-tests the samples of `c` and its centre at pixel `p` (at
     /// `ij`) against what the pixel holds, keeping the nearer, then
     /// updates the pixel's farthest key.
-    #[inline]
+    #[inline(always)]
     fn write(
         &mut self,
         p: usize,

@@ -15,6 +15,33 @@
 use hider_geom::PlaneEq;
 use hider_geom::isa::Avx2;
 
+use super::SampleBuffer;
+use crate::bins::BinItem;
+use crate::pattern::SamplePattern;
+use crate::stats::ABufferStats;
+
+/// [`SampleBuffer::triangle`] for the 8 x 4 grid, the whole loop compiled
+/// with AVX2 enabled so that the depth test and the mask inline into it.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token"
+)]
+pub(super) fn triangle(
+    isa: Avx2,
+    buffer: &mut SampleBuffer,
+    item: &BinItem,
+    stats: &mut ABufferStats,
+) {
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    fn wide(isa: Avx2, buffer: &mut SampleBuffer, item: &BinItem, stats: &mut ABufferStats) {
+        buffer.triangle_with(item, SamplePattern::Grid32, stats, Some(isa));
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(isa, buffer, item, stats) }
+}
+
 /// Depth-tests the samples of `mask` (bit `r * 8 + c` = cell `(c, r)`)
 /// of pixel `(i, j)` on plane `plane` for primitive `prim` against
 /// `keys` and `prims`, keeping the winners; returns the largest key of
@@ -24,7 +51,7 @@ use hider_geom::isa::Avx2;
     unsafe_code,
     reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads and stores of arrays of 32 i32"
 )]
-#[inline]
+#[inline(always)]
 pub(super) fn write_grid(
     _proof: Avx2,
     keys: &mut [i32; 32],
@@ -35,6 +62,7 @@ pub(super) fn write_grid(
     mask: u32,
 ) -> i32 {
     #[target_feature(enable = "avx2")]
+    #[inline]
     fn wide(
         keys: &mut [i32; 32],
         prims: &mut [u32; 32],
@@ -134,6 +162,7 @@ pub(super) fn write_grid(
 #[inline]
 pub(super) fn equal_mask(_proof: Avx2, prims: &[u32; 32], value: u32) -> u32 {
     #[target_feature(enable = "avx2")]
+    #[inline]
     fn wide(prims: &[u32; 32], value: u32) -> u32 {
         use std::arch::x86_64::{
             __m256i, _mm256_castsi256_ps, _mm256_cmpeq_epi32, _mm256_loadu_si256,
