@@ -97,6 +97,10 @@ pub(crate) struct SampleBuffer {
     block_far: [i32; BLOCKS],
     /// Blocks written since their bound was last computed.
     stale: u32,
+    /// Per block, its pixels whose farthest key is still [`EMPTY`]
+    /// (unwritten, or a sample or the centre uncovered): while any is,
+    /// the block hides nothing and its bound is not computed.
+    open: [u8; BLOCKS],
     /// The AVX2 depth test, when the CPU has it.
     avx2: Option<Avx2>,
     /// The pass's pixels: top-left `(x0, y0)`, bottom-right `(x1, y1)`.
@@ -119,6 +123,7 @@ impl Default for SampleBuffer {
             cull: true,
             block_far: [EMPTY; BLOCKS],
             stale: 0,
+            open: [0; BLOCKS],
             avx2: Avx2::detect(),
             rect: (1, 1, 0, 0),
             setup: None,
@@ -141,6 +146,14 @@ impl SampleBuffer {
         self.touched = [0; PASS_ROWS as usize];
         self.block_far = [EMPTY; BLOCKS];
         self.stale = 0;
+        let (x0, y0, x1, y1) = rect;
+        for (b, open) in self.open.iter_mut().enumerate() {
+            let (bx, by) = (b as u32 % BLOCKS_X, b as u32 / BLOCKS_X);
+            let (i0, j0) = (x0 + bx * BLOCK, y0 + by * BLOCK);
+            let w = (i0 + BLOCK).min(x1 + 1).saturating_sub(i0);
+            let h = (j0 + BLOCK).min(y1 + 1).saturating_sub(j0);
+            *open = (w * h) as u8;
+        }
     }
 
     /// The farthest key of the written pixels of block `b`, [`EMPTY`] if
@@ -188,7 +201,7 @@ impl SampleBuffer {
             let (j, sy) = if up_y { (j0, hy0) } else { (j1, hy1) };
             for bx in (x0 - px0) / BLOCK..=(x1 - px0) / BLOCK {
                 let b = (by * BLOCKS_X + bx) as usize;
-                if self.block_far[b] == EMPTY && self.stale >> b & 1 == 0 {
+                if self.open[b] > 0 || (self.block_far[b] == EMPTY && self.stale >> b & 1 == 0) {
                     live |= 1 << b;
                     continue;
                 }
@@ -333,8 +346,13 @@ impl SampleBuffer {
                     self.centre_prim[p] = NO_ID;
                     self.touched[row] |= 1 << (i - px0);
                 }
+                let was_open = !live_px || self.far[p] == EMPTY;
                 self.write(p, (i, j), &plane, item.prim, c, (pattern, grid));
-                self.stale |= 1 << ((j - py0) / BLOCK * BLOCKS_X + (i - px0) / BLOCK);
+                let b = ((j - py0) / BLOCK * BLOCKS_X + (i - px0) / BLOCK) as usize;
+                self.stale |= 1 << b;
+                if was_open && self.far[p] != EMPTY {
+                    self.open[b] -= 1;
+                }
             }
         }
         self.setup = Some(setup);
