@@ -30,7 +30,8 @@ hider_scene::hider_stats! {
         pub culled_blocks: u64 => "culled blocks",
         /// (Triangle, tile) pairs over more than one 8 x 8 block rejected
         /// whole by the tile's opaque bound, before any block test (their
-        /// blocks count in [`Self::culled_blocks`] too).
+        /// blocks count in [`Self::culled_blocks`] too); in a tile resolved
+        /// from the sample buffer, (triangle, pass of 32 rows) pairs.
         pub culled_tiles: u64 => "culled tiles",
         /// Fragments removed from a list when the pixel's opaque bound
         /// dropped in front of them, or when an overflowing list was pruned
