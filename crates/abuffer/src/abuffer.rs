@@ -38,12 +38,12 @@ use std::sync::{Mutex, PoisonError};
 
 use rayon::prelude::*;
 
-use crate::bins::{Bins, TILE};
+use crate::bins::{Bins, TILE, tile_rect};
 use crate::centre::in_front;
 use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy};
 use crate::resolve::Band;
-use crate::samples::{PASS_ROWS, SAMPLE_BUFFER_BYTES, SampleBuffer};
+use crate::samples::{SAMPLE_BUFFER_BYTES, SampleBuffer, passes};
 use crate::source::Source;
 use crate::stats::ABufferStats;
 use crate::worker::{Shared, Worker};
@@ -158,12 +158,12 @@ impl ABuffer {
         for ty in 0..h.div_ceil(TILE) {
             for tx in 0..tiles_x {
                 let items = self.bins.tile_items((ty * tiles_x + tx) as usize);
-                let (x0, y0) = (tx * TILE, ty * TILE);
-                let (x1, y1) = ((x0 + TILE).min(w) - 1, (y0 + TILE).min(h) - 1);
-                let mut py0 = y0;
-                while py0 <= y1 && !items.is_empty() {
-                    let py1 = (py0 + PASS_ROWS - 1).min(y1);
-                    buffer.begin((x0, py0, x1, py1), true);
+                if items.is_empty() {
+                    continue;
+                }
+                for pass in passes(tile_rect(tx, ty, (w, h))) {
+                    let (x0, py0, x1, py1) = pass;
+                    buffer.begin(pass, true);
                     for item in items {
                         buffer.triangle(item, pattern, &mut stats);
                     }
@@ -175,7 +175,6 @@ impl ABuffer {
                             }
                         }
                     }
-                    py0 = py1 + 1;
                 }
             }
         }

@@ -15,12 +15,26 @@ use crate::source::Source;
 use hider_geom::{FixedPt, PlaneEq};
 
 use crate::coverage::pixel_range_of;
+use crate::depth::depth_key;
 use crate::pattern::SamplePattern;
 
 /// Side of the square screen tiles, in pixels. Triangles are binned to
 /// tiles; each tile is rendered and resolved before the next, so its
 /// pixel entries and fragments stay in cache from insertion to resolve.
 pub const TILE: u32 = 64;
+
+/// The pixels of tile `(tx, ty)` of a `width x height` frame: top-left
+/// and bottom-right, inclusive (the last row and column of tiles may be
+/// partial).
+pub(crate) fn tile_rect(tx: u32, ty: u32, (width, height): (u32, u32)) -> (u32, u32, u32, u32) {
+    let (x0, y0) = (tx * TILE, ty * TILE);
+    (
+        x0,
+        y0,
+        (x0 + TILE).min(width) - 1,
+        (y0 + TILE).min(height) - 1,
+    )
+}
 
 /// One triangle of a bin, with what rasterising it needs.
 #[derive(Clone, Copy, Debug, Default)]
@@ -66,11 +80,11 @@ impl BinItem {
     }
 }
 
-/// An unsigned key ordered like `f32::total_cmp`.
+/// An unsigned key ordered like `f32::total_cmp`: the signed
+/// [`depth_key`] with its sign bit flipped.
 #[inline]
 fn order_key(x: f32) -> u32 {
-    let b = x.to_bits();
-    if b >> 31 == 1 { !b } else { b | 1 << 31 }
+    (depth_key(x) as u32) ^ (1 << 31)
 }
 
 /// Triangles binned by tile: `items[start[t]..start[t + 1]]` are the
@@ -314,7 +328,7 @@ mod tests {
     use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
     use hider_scene::{Material, PrepareOptions, Scene, ShadeMode, View, procedural};
 
-    use super::{Bins, TILE};
+    use super::{Bins, TILE, order_key};
     use crate::pattern::SamplePattern;
     use crate::source::Source;
 
@@ -374,18 +388,38 @@ mod tests {
         }
     }
 
+    /// The key orders depths like `f32::total_cmp`, signed zeros,
+    /// infinities and subnormals included, as the sort needs.
+    #[test]
+    fn order_key_is_total_order() {
+        let values = [
+            f32::NEG_INFINITY,
+            -1e30,
+            -1.0,
+            -f32::MIN_POSITIVE,
+            -1e-45,
+            -0.0,
+            0.0,
+            1e-45,
+            f32::MIN_POSITIVE,
+            0.5,
+            1.0,
+            1e30,
+            f32::INFINITY,
+        ];
+        for a in values {
+            for b in values {
+                assert_eq!(order_key(a).cmp(&order_key(b)), a.total_cmp(&b), "{a} {b}");
+            }
+        }
+    }
+
     /// The stable radix sort by the depth half of the keys, on items in
     /// index order, is the order of the whole keys (ties in depth, the
     /// case that matters for coincident triangles, included).
     #[test]
     fn radix_order_is_key_order() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut next = crate::test_rng::xorshift();
         for n in [0usize, 1, 7, 300, 5000] {
             // Few distinct depths: many ties.
             let mut order: Vec<(u64, u32)> = (0..n as u32)

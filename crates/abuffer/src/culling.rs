@@ -399,13 +399,7 @@ mod tests {
     /// fragments and partial masks.
     #[test]
     fn sweep_equals_the_pairwise_definition() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut next = crate::test_rng::xorshift();
         let (mut scratch, mut hidden) = (HiddenScratch::default(), Vec::new());
         for case in 0..2000 {
             let len = 1 + (next() % 40) as usize;

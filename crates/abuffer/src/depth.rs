@@ -33,6 +33,43 @@ pub fn plane_depth(plane: &PlaneEq, i: u32, j: u32, (sx, sy): (i32, i32)) -> f64
     )
 }
 
+/// The corner of the sample hull `hull` ([`SamplePattern::hull`]) where
+/// `plane` is lowest: the one its slopes point away from (the plane is
+/// monotonic in each coordinate, see [`DepthBounds`]).
+#[inline]
+pub(crate) fn near_corner(
+    plane: &PlaneEq,
+    (hx0, hy0, hx1, hy1): (i32, i32, i32, i32),
+) -> (i32, i32) {
+    (
+        if plane.dx >= 0.0 { hx0 } else { hx1 },
+        if plane.dy >= 0.0 { hy0 } else { hy1 },
+    )
+}
+
+/// A lower bound of `plane`'s value at every sample and centre of the
+/// pixels `(x0, y0)` to `(x1, y1)`: its value at the near corner of the
+/// sample hull `hull` of the rectangle's near pixel, exactly as
+/// [`plane_depth`] computes it there (what the culling tests compare).
+#[inline]
+pub(crate) fn nearest_over(
+    plane: &PlaneEq,
+    (x0, y0, x1, y1): (u32, u32, u32, u32),
+    hull: (i32, i32, i32, i32),
+) -> f64 {
+    let i = if plane.dx >= 0.0 { x0 } else { x1 };
+    let j = if plane.dy >= 0.0 { y0 } else { y1 };
+    plane_depth(plane, i, j, near_corner(plane, hull))
+}
+
+/// A signed key ordered like `f32::total_cmp` (the order sample depths are
+/// sorted by): negative values flip their magnitude bits.
+#[inline]
+pub(crate) fn depth_key(z: f32) -> i32 {
+    let b = z.to_bits() as i32;
+    b ^ (((b >> 31) as u32) >> 1) as i32
+}
+
 /// Exact depth bounds of a fragment from a few plane evaluations.
 ///
 /// [`plane_depth`] is monotonic in each coordinate: `x - x0`, the products

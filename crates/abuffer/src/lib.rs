@@ -96,6 +96,8 @@ mod sorted;
 mod source;
 mod ssaa;
 pub mod stats;
+#[cfg(test)]
+mod test_rng;
 mod worker;
 
 pub use abuffer::ABuffer;

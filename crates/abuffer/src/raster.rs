@@ -14,7 +14,7 @@ use hider_scene::{NO_ID, Result};
 use crate::bins::{BinItem, TILE};
 use crate::coverage::{Class, Coverage, TriCoverage};
 use crate::culling::{BLOCK, BLOCKS};
-use crate::depth::{DepthBounds, plane_depth};
+use crate::depth::{DepthBounds, near_corner, nearest_over, plane_depth};
 use crate::fragment::{Fragment, NIL};
 use crate::lists::{Ctx, Lists};
 use crate::options::{ABufferOptions, DepthMode};
@@ -94,7 +94,6 @@ impl Rasterizer {
             .unwrap_or_else(|| Box::new(TriCoverage::from_vertices(&item.v, pattern)));
         setup.reset_vertices(&item.v, pattern);
         let plane = item.plane;
-        let (hx0, hy0, hx1, hy1) = pattern.hull();
         let tri = TriRaster {
             scene,
             tri: item.tri,
@@ -103,10 +102,7 @@ impl Rasterizer {
             bounds: DepthBounds::new(&plane, pattern, options.depth != DepthMode::PerSample),
             alpha: item.alpha,
             full_mask: pattern.full_mask(),
-            near_corner: (
-                if plane.dx >= 0.0 { hx0 } else { hx1 },
-                if plane.dy >= 0.0 { hy0 } else { hy1 },
-            ),
+            near_corner: near_corner(&plane, pattern.hull()),
             tile,
         };
         let result = self.live_pixels(&tri, &setup, live, rect, stats);
@@ -127,8 +123,7 @@ impl Rasterizer {
         let pattern = self.lists.options().pattern;
         let plane = item.plane;
         let (tx0, ty0) = tile;
-        let (hx0, hy0, hx1, hy1) = pattern.hull();
-        let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
+        let hull = pattern.hull();
         let (bx0, bx1) = ((x0 - tx0) / BLOCK, (x1 - tx0) / BLOCK);
         let (by0, by1) = ((y0 - ty0) / BLOCK, (y1 - ty0) / BLOCK);
         // The tile first, for a triangle over several blocks (for one, the
@@ -141,12 +136,7 @@ impl Rasterizer {
         if blocks > 1 {
             let tile_far = self.lists.culling.tile_far();
             if tile_far < f32::INFINITY {
-                let near = plane_depth(
-                    &plane,
-                    if up_x { x0 } else { x1 },
-                    if up_y { y0 } else { y1 },
-                    (if up_x { hx0 } else { hx1 }, if up_y { hy0 } else { hy1 }),
-                ) as f32;
+                let near = nearest_over(&plane, (x0, y0, x1, y1), hull) as f32;
                 if near > tile_far {
                     stats.culled_tiles += 1;
                     stats.culled_blocks += u64::from(blocks);
@@ -160,15 +150,13 @@ impl Rasterizer {
                 (ty0 + by * BLOCK).max(y0),
                 (ty0 + by * BLOCK + BLOCK - 1).min(y1),
             );
-            let (j, sy) = if up_y { (py0, hy0) } else { (py1, hy1) };
             for bx in bx0..=bx1 {
                 let b = (by * BLOCKS as u32 + bx) as usize;
                 let (px0, px1) = (
                     (tx0 + bx * BLOCK).max(x0),
                     (tx0 + bx * BLOCK + BLOCK - 1).min(x1),
                 );
-                let (i, sx) = if up_x { (px0, hx0) } else { (px1, hx1) };
-                let near = plane_depth(&plane, i, j, (sx, sy)) as f32;
+                let near = nearest_over(&plane, (px0, py0, px1, py1), hull) as f32;
                 let lists = &mut self.lists;
                 if lists
                     .culling

@@ -76,10 +76,7 @@ impl Input<'_> {
         if f.is_merged() {
             self.pool.merged(f.shade).rgba
         } else {
-            let flat = self
-                .scene
-                .shade_of(self.colors, self.options.shade, f.shade);
-            self.scene.at_pixel(f.shade, flat, ij)
+            self.prim_rgba(f.shade, ij)
         }
     }
 }
@@ -141,7 +138,7 @@ impl<'a> Band<'a> {
 /// The sample pattern's numbers, per tile.
 pub(crate) struct Samples {
     /// The mask of every sample.
-    full: u32,
+    pub(crate) full: u32,
     /// One over the sample count.
     pub(crate) inv_n: f32,
     srgb: Srgb,

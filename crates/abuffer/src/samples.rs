@@ -34,7 +34,7 @@ use crate::bins::{BinItem, TILE};
 use crate::centre::in_front;
 use crate::composite::{Shown, opaque_sum};
 use crate::coverage::{Class, Coverage, TriCoverage};
-use crate::depth::plane_depth;
+use crate::depth::{depth_key, near_corner, nearest_over, plane_depth};
 use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
 use crate::resolve::{Band, Input, Resolver, Samples};
 use crate::stats::ABufferStats;
@@ -57,14 +57,6 @@ const BLOCK: u32 = 8;
 const BLOCKS_X: u32 = TILE / BLOCK;
 /// Blocks of a pass.
 const BLOCKS: usize = (BLOCKS_X * PASS_ROWS / BLOCK) as usize;
-
-/// A signed key ordered like `f32::total_cmp`, the order the lists sort
-/// sample depths by.
-#[inline]
-pub(crate) fn depth_key(z: f32) -> i32 {
-    let b = z.to_bits() as i32;
-    b ^ (((b >> 31) as u32) >> 1) as i32
-}
 
 /// One pass's pixels: per sample a depth key and a primitive, per pixel
 /// the centre and the farthest key.
@@ -136,6 +128,16 @@ impl Default for SampleBuffer {
 pub(crate) const SAMPLE_BUFFER_BYTES: u64 =
     PASS_PIXELS as u64 * (MAX_SAMPLES as u64 * 8 + 4 + 8 + 4);
 
+/// The passes of the tile `(x0, y0)` to `(x1, y1)`: its rows,
+/// [`PASS_ROWS`] at a time, top first.
+pub(crate) fn passes(
+    (x0, y0, x1, y1): (u32, u32, u32, u32),
+) -> impl Iterator<Item = (u32, u32, u32, u32)> {
+    (y0..=y1)
+        .step_by(PASS_ROWS as usize)
+        .map(move |py0| (x0, py0, x1, (py0 + PASS_ROWS - 1).min(y1)))
+}
+
 impl SampleBuffer {
     /// Starts a pass over the pixels `(x0, y0)` to `(x1, y1)` (inside one
     /// tile, at most [`PASS_ROWS`] rows): every pixel empty. Pixels are
@@ -190,8 +192,6 @@ impl SampleBuffer {
         stats: &mut ABufferStats,
     ) -> u32 {
         let (px0, py0) = (self.rect.0, self.rect.1);
-        let (hx0, hy0, hx1, hy1) = hull;
-        let (up_x, up_y) = (plane.dx >= 0.0, plane.dy >= 0.0);
         let (bx0, bx1) = ((x0 - px0) / BLOCK, (x1 - px0) / BLOCK);
         let (by0, by1) = ((y0 - py0) / BLOCK, (y1 - py0) / BLOCK);
         let blocks = (bx1 - bx0 + 1) * (by1 - by0 + 1);
@@ -218,9 +218,7 @@ impl SampleBuffer {
                 }
             }
             if far != EMPTY {
-                let corner = (if up_x { x0 } else { x1 }, if up_y { y0 } else { y1 });
-                let sample = (if up_x { hx0 } else { hx1 }, if up_y { hy0 } else { hy1 });
-                let near = depth_key(plane_depth(plane, corner.0, corner.1, sample) as f32);
+                let near = depth_key(nearest_over(plane, (x0, y0, x1, y1), hull) as f32);
                 if near > far {
                     stats.culled_blocks += u64::from(blocks);
                     stats.culled_tiles += 1;
@@ -234,7 +232,6 @@ impl SampleBuffer {
                 (py0 + by * BLOCK).max(y0),
                 (py0 + by * BLOCK + BLOCK - 1).min(y1),
             );
-            let (j, sy) = if up_y { (j0, hy0) } else { (j1, hy1) };
             for bx in bx0..=bx1 {
                 let b = (by * BLOCKS_X + bx) as usize;
                 if self.open[b] > 0 || (self.block_far[b] == EMPTY && self.stale >> b & 1 == 0) {
@@ -245,8 +242,7 @@ impl SampleBuffer {
                     (px0 + bx * BLOCK).max(x0),
                     (px0 + bx * BLOCK + BLOCK - 1).min(x1),
                 );
-                let (i, sx) = if up_x { (i0, hx0) } else { (i1, hx1) };
-                let near = depth_key(plane_depth(plane, i, j, (sx, sy)) as f32);
+                let near = depth_key(nearest_over(plane, (i0, j0, i1, j1), hull) as f32);
                 if near <= self.block_far[b] && self.stale >> b & 1 == 1 {
                     self.block_far[b] = self.block_bound(b);
                     self.stale &= !(1 << b);
@@ -300,7 +296,6 @@ impl SampleBuffer {
         if x0 > x1 || y0 > y1 {
             return;
         }
-        let (hx0, hy0, hx1, hy1) = pattern.hull();
         let plane = item.plane;
         let live = if self.cull {
             self.live_blocks(&plane, (x0, y0, x1, y1), pattern.hull(), stats)
@@ -315,13 +310,9 @@ impl SampleBuffer {
             .take()
             .unwrap_or_else(|| Box::new(TriCoverage::from_vertices(&item.v, pattern)));
         setup.reset_vertices(&item.v, pattern);
-        // The corner of the sample hull where the plane is nearest: its
-        // value is a lower bound of every sample's and the centre's
-        // (the plane is monotonic, see `DepthBounds`).
-        let near_corner = (
-            if plane.dx >= 0.0 { hx0 } else { hx1 },
-            if plane.dy >= 0.0 { hy0 } else { hy1 },
-        );
+        // Its value there is a lower bound of every sample's and the
+        // centre's in the pixel.
+        let near_corner = near_corner(&plane, pattern.hull());
         let full = Coverage {
             mask: pattern.full_mask(),
             centre: true,
@@ -477,7 +468,6 @@ impl SampleBuffer {
         frame: &mut Band<'_>,
     ) {
         let (x0, y0, _, y1) = self.rect;
-        let n = input.options.pattern.count();
         let w = frame.width;
         for j in y0..=y1 {
             let mut row = self.touched[(j - y0) as usize];
@@ -490,11 +480,7 @@ impl SampleBuffer {
                     frame.set_id(p, self.centre_prim[q], self.centre_z[q] as f32);
                 }
                 let prims = &self.prims[q];
-                let all = if n == MAX_SAMPLES {
-                    u32::MAX
-                } else {
-                    (1 << n) - 1
-                };
+                let all = k.full;
                 self.shown.clear();
                 let mut covered = 0u32;
                 let mut left = !self.equal_mask(prims, NO_ID) & all;

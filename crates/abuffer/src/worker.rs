@@ -14,11 +14,11 @@ use hider_scene::{NO_ID, Result};
 
 use crate::source::Source;
 
-use crate::bins::{Bins, LEADER, SOLE, TILE, TileQueue};
+use crate::bins::{Bins, LEADER, SOLE, TileQueue, tile_rect};
 use crate::options::ABufferOptions;
 use crate::raster::Rasterizer;
 use crate::resolve::{Band, Input, Resolver, Samples};
-use crate::samples::{PASS_ROWS, SampleBuffer};
+use crate::samples::{SampleBuffer, passes};
 use crate::stats::ABufferStats;
 
 /// What one thread keeps from frame to frame.
@@ -74,12 +74,10 @@ impl Worker {
 
     /// Renders and resolves the tiles of tile row `ty` into `band`.
     pub(crate) fn band(&mut self, shared: &Shared<'_>, ty: u32, band: &mut Band<'_>) -> Result<()> {
-        let (w, h) = (shared.scene.viewport.width, shared.scene.viewport.height);
+        let dims = (shared.scene.viewport.width, shared.scene.viewport.height);
         for tx in 0..shared.tiles_x {
             let t = (ty * shared.tiles_x + tx) as usize;
-            let (x0, y0) = (tx * TILE, ty * TILE);
-            let (x1, y1) = ((x0 + TILE).min(w) - 1, (y0 + TILE).min(h) - 1);
-            self.tile(shared, t, (x0, y0, x1, y1), band)?;
+            self.tile(shared, t, tile_rect(tx, ty, dims), band)?;
         }
         Ok(())
     }
@@ -154,22 +152,21 @@ impl Worker {
     }
 
     /// Renders and resolves the `n` items of the current tile, all
-    /// opaque, through the sample buffer, in passes of [`PASS_ROWS`] rows.
+    /// opaque, through the sample buffer, pass by pass ([`passes`]).
     fn sample_tile(
         &mut self,
         shared: &Shared<'_>,
         n: usize,
-        (x0, y0, x1, y1): (u32, u32, u32, u32),
+        rect: (u32, u32, u32, u32),
         band: &mut Band<'_>,
     ) {
         let pattern = shared.options.pattern;
         let k = Samples::new(pattern);
         let mut buffer = self.samples.take().unwrap_or_default();
         let mut stats = self.stats;
-        let mut py0 = y0;
-        while py0 <= y1 {
-            let py1 = (py0 + PASS_ROWS - 1).min(y1);
-            buffer.begin((x0, py0, x1, py1), shared.options.occlusion_culling);
+        for pass in passes(rect) {
+            let (_, py0, _, py1) = pass;
+            buffer.begin(pass, shared.options.occlusion_culling);
             self.shadow.clear();
             self.shadow.resize(n, NO_ID);
             for q in 0..n {
@@ -188,7 +185,6 @@ impl Worker {
                 options: shared.options,
             };
             buffer.resolve(&mut input, &mut self.resolver, &k, band);
-            py0 = py1 + 1;
         }
         stats.sample_tiles += 1;
         self.stats = stats;
