@@ -269,8 +269,9 @@ impl Resolver {
         // Two opaque fragments with disjoint masks: each shows all its
         // samples, so every path (mask path or blender, in either depth
         // order) adds `rgb * samples` of each to zero, and a sum of two
-        // terms does not depend on their order; two fragments of one
-        // primitive count as one ([`opaque_sum`]).
+        // terms does not depend on their order; in per-sample mode two
+        // fragments of one primitive count as one ([`opaque_sum`]), the
+        // blender of the other modes adds them one by one.
         self.lists += 1;
         self.total += 2;
         stats.max_list_len = stats.max_list_len.max(2);
@@ -286,7 +287,7 @@ impl Resolver {
         frame.set_coverage(p, (first.mask | second.mask).count_ones() as f32 * k.inv_n);
         let wa = (first.mask & k.full).count_ones() as f32;
         let wb = (second.mask & k.full).count_ones() as f32;
-        let sum = if first.prim == second.prim {
+        let sum = if first.prim == second.prim && input.options.depth == DepthMode::PerSample {
             [0, 1, 2].map(|c| (0.0 + first_rgba[c] * (wa + wb)) * k.inv_n)
         } else {
             [0, 1, 2].map(|c| (0.0 + first_rgba[c] * wa + second_rgba[c] * wb) * k.inv_n)
