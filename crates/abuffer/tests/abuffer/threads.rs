@@ -11,7 +11,7 @@ use hider_scene::{Frame, Hider, Scene, procedural};
 use hider_testkit::{hard_cases, render, screen};
 use proptest::prelude::*;
 
-use crate::common::with_opacity;
+use crate::common::{lists, with_opacity};
 
 /// Frame sizes: several bands, fewer bands than threads, partial tiles.
 const SIZES: [(u32, u32); 3] = [(200, 330), (150, 90), (70, 20)];
@@ -57,6 +57,9 @@ fn same_at_every_thread_count(scene: &Scene, options: ABufferOptions, what: &str
 fn every_hard_case_is_the_same_at_every_thread_count() {
     for (name, scene) in hard_cases::all(11) {
         same_at_every_thread_count(&scene, ABufferOptions::default(), name);
+        // The exact A-buffer's lists, which the default takes only for
+        // translucent tiles.
+        same_at_every_thread_count(&scene, lists(), name);
         same_at_every_thread_count(&scene, ABufferOptions::carpenter(), name);
     }
 }
