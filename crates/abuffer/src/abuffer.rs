@@ -335,6 +335,7 @@ fn total_stats(workers: &[Worker]) -> ABufferStats {
         s.max_list_len = s.max_list_len.max(t.max_list_len);
         s.per_sample_pixels += t.per_sample_pixels;
         s.sample_tiles += t.sample_tiles;
+        s.whole_pixels += t.whole_pixels;
         let pool = &w.raster.lists.pool;
         s.pool_fragments += pool.peak_fragments() as u64;
         s.bytes += pool.peak_bytes();

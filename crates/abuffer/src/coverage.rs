@@ -300,6 +300,28 @@ impl TriCoverage {
         }
     }
 
+    /// [`Self::classify`] for every pixel of `(x0, y0)` to `(x1, y1)` at
+    /// once: [`Class::Full`] when each of them is full, [`Class::Empty`]
+    /// when one edge rejects each of them, else [`Class::Partial`] (then
+    /// classify pixel by pixel). An edge value is affine in the pixel, so
+    /// its extremes over the rectangle are at the corners its signs pick.
+    #[inline]
+    pub fn classify_rect(&self, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> Class {
+        let s = i64::from(SUBPIXEL_SCALE);
+        let mut full = true;
+        for (e, edge) in self.edges.iter().enumerate() {
+            let (xl, xh) = if edge.a >= 0 { (x0, x1) } else { (x1, x0) };
+            let (yl, yh) = if edge.b >= 0 { (y0, y1) } else { (y1, y0) };
+            let high = edge.eval(i64::from(xh) * s, i64::from(yh) * s) + self.hull_max[e];
+            if high <= 0 {
+                return Class::Empty;
+            }
+            let low = edge.eval(i64::from(xl) * s, i64::from(yl) * s) + self.hull_min[e];
+            full &= low > 0;
+        }
+        if full { Class::Full } else { Class::Partial }
+    }
+
     /// The second step of [`Self::at`] for a [`Class::Partial`] pixel: its
     /// mask and centre, tested sample by sample (possibly empty).
     #[inline]

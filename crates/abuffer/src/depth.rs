@@ -47,6 +47,17 @@ pub(crate) fn near_corner(
     )
 }
 
+/// The corner of the sample hull `hull` where `plane` is highest: the one
+/// opposite [`near_corner`] (an upper bound of the plane's computed value
+/// at every sample and the centre of a pixel, by the same monotonicity).
+#[inline]
+pub(crate) fn far_corner(
+    plane: &PlaneEq,
+    (hx0, hy0, hx1, hy1): (i32, i32, i32, i32),
+) -> (i32, i32) {
+    near_corner(plane, (hx1, hy1, hx0, hy0))
+}
+
 /// A lower bound of `plane`'s value at every sample and centre of the
 /// pixels `(x0, y0)` to `(x1, y1)`: its value at the near corner of the
 /// sample hull `hull` of the rectangle's near pixel, exactly as

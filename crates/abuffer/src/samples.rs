@@ -34,7 +34,7 @@ use crate::bins::{BinItem, TILE};
 use crate::centre::in_front;
 use crate::composite::{Shown, opaque_sum};
 use crate::coverage::{Class, Coverage, TriCoverage};
-use crate::depth::{depth_key, near_corner, nearest_over, plane_depth};
+use crate::depth::{depth_key, far_corner, near_corner, nearest_over, plane_depth};
 use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
 use crate::resolve::{Band, Input, Resolver, Samples};
 use crate::stats::ABufferStats;
@@ -58,6 +58,26 @@ const BLOCKS_X: u32 = TILE / BLOCK;
 /// Blocks of a pass.
 const BLOCKS: usize = (BLOCKS_X * PASS_ROWS / BLOCK) as usize;
 
+/// What the pixels of one triangle share while it is rendered.
+struct Tri {
+    /// Its depth plane.
+    plane: PlaneEq,
+    /// Its primitive.
+    prim: u32,
+    /// The corners of the sample hull where its plane is lowest and
+    /// highest ([`near_corner`], [`far_corner`]).
+    near_corner: (i32, i32),
+    far_corner: (i32, i32),
+    /// The coverage of a fully covered pixel.
+    full: Coverage,
+    /// Its index in [`SampleBuffer::planes`], once it holds a pixel whole.
+    own_plane: Option<u32>,
+    /// The sample pattern.
+    pattern: SamplePattern,
+    /// The AVX2 depth test of the 8 x 4 grid, when taken.
+    grid: Option<Avx2>,
+}
+
 /// One pass's pixels: per sample a depth key and a primitive, per pixel
 /// the centre and the farthest key.
 #[derive(Clone, Debug)]
@@ -76,6 +96,19 @@ pub(crate) struct SampleBuffer {
     centre_prim: Vec<u32>,
     /// Per row of the pass, the pixels written this pass (bit = column).
     touched: [u64; PASS_ROWS as usize],
+    /// Per row of the pass, the written pixels held whole (bit = column):
+    /// one primitive, `centre_prim`, in front at every sample and the
+    /// centre, its sample depths not computed (`keys` and `prims` are
+    /// stale there) until a fragment that shares the pixel needs them.
+    whole: [u64; PASS_ROWS as usize],
+    /// Per whole pixel, the smallest key of its samples and centre (its
+    /// plane at the near corner of the sample hull): a fully covering
+    /// triangle farther than that nowhere wins every sample outright.
+    near: Vec<i32>,
+    /// Per whole pixel, its plane, an index into `planes`.
+    plane_of: Vec<u32>,
+    /// The planes of the triangles that made whole pixels this pass.
+    planes: Vec<PlaneEq>,
     /// Whether hidden triangles are rejected per block and per pixel
     /// before their samples are tested
     /// ([`crate::ABufferOptions::occlusion_culling`]; the answer is the
@@ -112,6 +145,10 @@ impl Default for SampleBuffer {
             centre_z: vec![f64::INFINITY; PASS_PIXELS],
             centre_prim: vec![NO_ID; PASS_PIXELS],
             touched: [0; PASS_ROWS as usize],
+            whole: [0; PASS_ROWS as usize],
+            near: vec![EMPTY; PASS_PIXELS],
+            plane_of: vec![0; PASS_PIXELS],
+            planes: Vec::new(),
             cull: true,
             block_far: [EMPTY; BLOCKS],
             stale: 0,
@@ -126,7 +163,7 @@ impl Default for SampleBuffer {
 
 /// Bytes of one thread's sample buffer.
 pub(crate) const SAMPLE_BUFFER_BYTES: u64 =
-    PASS_PIXELS as u64 * (MAX_SAMPLES as u64 * 8 + 4 + 8 + 4);
+    PASS_PIXELS as u64 * (MAX_SAMPLES as u64 * 8 + 4 + 8 + 4 + 4 + 4);
 
 /// The passes of the tile `(x0, y0)` to `(x1, y1)`: its rows,
 /// [`PASS_ROWS`] at a time, top first.
@@ -146,6 +183,8 @@ impl SampleBuffer {
         self.rect = rect;
         self.cull = cull;
         self.touched = [0; PASS_ROWS as usize];
+        self.whole = [0; PASS_ROWS as usize];
+        self.planes.clear();
         self.block_far = [EMPTY; BLOCKS];
         self.stale = 0;
         let (x0, y0, x1, y1) = rect;
@@ -310,79 +349,185 @@ impl SampleBuffer {
             .take()
             .unwrap_or_else(|| Box::new(TriCoverage::from_vertices(&item.v, pattern)));
         setup.reset_vertices(&item.v, pattern);
-        // Its value there is a lower bound of every sample's and the
-        // centre's in the pixel.
-        let near_corner = near_corner(&plane, pattern.hull());
+        let mut tri = Tri {
+            plane,
+            prim: item.prim,
+            // The plane there is a lower bound of every sample's and the
+            // centre's depth in a pixel, and at the far corner an upper
+            // bound.
+            near_corner: near_corner(&plane, pattern.hull()),
+            far_corner: far_corner(&plane, pattern.hull()),
+            full: Coverage {
+                mask: pattern.full_mask(),
+                centre: true,
+                full: true,
+            },
+            own_plane: None,
+            pattern,
+            grid,
+        };
+        let step = setup.step_x();
+        let (px0, py0) = (self.rect.0, self.rect.1);
+        // Block by block, as the tiled z-buffer: the edge functions at a
+        // block's extreme corners reject it whole (no pixel of it touches
+        // the triangle) or accept it whole (every pixel covered: no pixel
+        // is classified, no mask computed).
+        let mut blocks = live & self.blocks_over((x0, y0, x1, y1));
+        while blocks != 0 {
+            let b = blocks.trailing_zeros();
+            blocks &= blocks - 1;
+            let (bx, by) = (b % BLOCKS_X, b / BLOCKS_X);
+            let (i0, j0) = ((px0 + bx * BLOCK).max(x0), (py0 + by * BLOCK).max(y0));
+            let (i1, j1) = (
+                (px0 + bx * BLOCK + BLOCK - 1).min(x1),
+                (py0 + by * BLOCK + BLOCK - 1).min(y1),
+            );
+            let class = setup.classify_rect((i0, j0, i1, j1));
+            if class == Class::Empty {
+                continue;
+            }
+            for j in j0..=j1 {
+                let mut base = setup.corner_values(i0, j);
+                for i in i0..=i1 {
+                    let here = base;
+                    base = [0, 1, 2].map(|e| base[e] + step[e]);
+                    let class = if class == Class::Full {
+                        Class::Full
+                    } else {
+                        setup.classify(here)
+                    };
+                    if class != Class::Empty {
+                        self.pixel(&mut tri, (i, j), (class, &setup, here), stats);
+                    }
+                }
+            }
+        }
+        self.setup = Some(setup);
+    }
+
+    /// The blocks of the pass that meet the pixels `(x0, y0)` to
+    /// `(x1, y1)`, as bits.
+    fn blocks_over(&self, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> u32 {
+        let (px0, py0) = (self.rect.0, self.rect.1);
+        let (bx0, bx1) = ((x0 - px0) / BLOCK, (x1 - px0) / BLOCK);
+        let (by0, by1) = ((y0 - py0) / BLOCK, (y1 - py0) / BLOCK);
+        let row = ((1u32 << (bx1 + 1)) - 1) & !((1u32 << bx0) - 1);
+        let mut bits = 0;
+        for by in by0..=by1 {
+            bits |= row << (by * BLOCKS_X);
+        }
+        bits
+    }
+
+    /// Renders triangle `tri` at pixel `(i, j)`, which it touches
+    /// (`class` is not [`Class::Empty`]; `here` are its edge values there
+    /// for `setup`).
+    #[inline(always)]
+    fn pixel(
+        &mut self,
+        tri: &mut Tri,
+        (i, j): (u32, u32),
+        (class, setup, here): (Class, &TriCoverage, [i64; 3]),
+        stats: &mut ABufferStats,
+    ) {
+        let (px0, py0) = (self.rect.0, self.rect.1);
+        let plane = &tri.plane;
+        let p = self.index(i, j);
+        let row = (j - py0) as usize;
+        let bit = 1u64 << (i - px0);
+        let live_px = self.touched[row] & bit != 0;
+        let mut near = None;
+        if self.cull && live_px && self.far[p] != EMPTY {
+            // Strictly behind the farthest of the pixel's samples and
+            // centre: loses every sample and the centre.
+            let key = depth_key(plane_depth(plane, i, j, tri.near_corner) as f32);
+            if key > self.far[p] {
+                stats.fragments += 1;
+                stats.culled += 1;
+                return;
+            }
+            near = Some(key);
+        }
+        let whole_px = self.whole[row] & bit != 0;
+        let b = ((j - py0) / BLOCK * BLOCKS_X + (i - px0) / BLOCK) as usize;
+        if class == Class::Full && (!live_px || whole_px) {
+            // Carpenter's common case: one opaque surface over the whole
+            // pixel. Nearer than everything there at its farthest sample,
+            // it wins every sample and the centre (the depths round
+            // monotonically, so a strict order of the bounds orders every
+            // sample), and the pixel is held as that one primitive: what
+            // the samples would say, without computing them.
+            let far = depth_key(plane_depth(plane, i, j, tri.far_corner) as f32);
+            if !live_px || far < self.near[p] {
+                let near = near
+                    .unwrap_or_else(|| depth_key(plane_depth(plane, i, j, tri.near_corner) as f32));
+                let index = *tri.own_plane.get_or_insert_with(|| {
+                    self.planes.push(*plane);
+                    self.planes.len() as u32 - 1
+                });
+                stats.fragments += 1;
+                stats.full_coverage += 1;
+                stats.whole_pixels += 1;
+                if !live_px {
+                    self.touched[row] |= bit;
+                    self.whole[row] |= bit;
+                    self.open[b] -= 1;
+                }
+                self.centre_z[p] = plane_depth(plane, i, j, CENTRE);
+                self.centre_prim[p] = tri.prim;
+                self.far[p] = far;
+                self.near[p] = near;
+                self.plane_of[p] = index;
+                self.stale |= 1 << b;
+                return;
+            }
+        }
+        let c = if class == Class::Full {
+            tri.full
+        } else {
+            let c = setup.partial(here);
+            if c.is_empty() {
+                return;
+            }
+            c
+        };
+        stats.fragments += 1;
+        stats.full_coverage += u64::from(c.full);
+        let how = (tri.pattern, tri.grid);
+        if !live_px {
+            self.keys[p] = [EMPTY; MAX_SAMPLES];
+            self.prims[p] = [NO_ID; MAX_SAMPLES];
+            self.centre_z[p] = f64::INFINITY;
+            self.centre_prim[p] = NO_ID;
+            self.touched[row] |= bit;
+        } else if whole_px {
+            self.expand(p, (i, j), how);
+            self.whole[row] &= !bit;
+        }
+        let was_open = !live_px || self.far[p] == EMPTY;
+        self.write(p, (i, j), plane, tri.prim, c, how);
+        self.stale |= 1 << b;
+        if was_open && self.far[p] != EMPTY {
+            self.open[b] -= 1;
+        }
+    }
+
+    /// Turns whole pixel `p` (at `ij`) into samples: its primitive's
+    /// depth at every sample, as its write to the empty pixel (or over
+    /// the whole primitive it beat everywhere) would have left them.
+    #[inline(always)]
+    fn expand(&mut self, p: usize, ij: (u32, u32), (pattern, grid): (SamplePattern, Option<Avx2>)) {
+        let plane = self.planes[self.plane_of[p] as usize];
         let full = Coverage {
             mask: pattern.full_mask(),
             centre: true,
             full: true,
         };
-        let step = setup.step_x();
-        let (px0, py0) = (self.rect.0, self.rect.1);
-        for j in y0..=y1 {
-            let by = (j - py0) / BLOCK;
-            let row_live = (live >> (by * BLOCKS_X)) & ((1 << BLOCKS_X) - 1);
-            if row_live == 0 {
-                continue;
-            }
-            // The row's live blocks, as one pixel range (blocks in between
-            // that are hidden only cost their pixels' cull tests).
-            let first = px0 + row_live.trailing_zeros() * BLOCK;
-            let last = px0 + (32 - row_live.leading_zeros()) * BLOCK - 1;
-            let (sx0, sx1) = setup.row_span(first.max(x0), last.min(x1), j);
-            if sx0 > sx1 {
-                continue;
-            }
-            let mut base = setup.corner_values(sx0, j);
-            for i in sx0..=sx1 {
-                let here = base;
-                base = [0, 1, 2].map(|e| base[e] + step[e]);
-                let class = setup.classify(here);
-                if class == Class::Empty {
-                    continue;
-                }
-                let p = self.index(i, j);
-                let row = (j - py0) as usize;
-                let live_px = self.touched[row] >> (i - px0) & 1 == 1;
-                if self.cull && live_px && self.far[p] != EMPTY {
-                    // Strictly behind the farthest of the pixel's samples
-                    // and centre: loses every sample and the centre.
-                    let near = plane_depth(&plane, i, j, near_corner) as f32;
-                    if depth_key(near) > self.far[p] {
-                        stats.fragments += 1;
-                        stats.culled += 1;
-                        continue;
-                    }
-                }
-                let c = if class == Class::Full {
-                    full
-                } else {
-                    let c = setup.partial(here);
-                    if c.is_empty() {
-                        continue;
-                    }
-                    c
-                };
-                stats.fragments += 1;
-                stats.full_coverage += u64::from(c.full);
-                if !live_px {
-                    self.keys[p] = [EMPTY; MAX_SAMPLES];
-                    self.prims[p] = [NO_ID; MAX_SAMPLES];
-                    self.centre_z[p] = f64::INFINITY;
-                    self.centre_prim[p] = NO_ID;
-                    self.touched[row] |= 1 << (i - px0);
-                }
-                let was_open = !live_px || self.far[p] == EMPTY;
-                self.write(p, (i, j), &plane, item.prim, c, (pattern, grid));
-                let b = ((j - py0) / BLOCK * BLOCKS_X + (i - px0) / BLOCK) as usize;
-                self.stale |= 1 << b;
-                if was_open && self.far[p] != EMPTY {
-                    self.open[b] -= 1;
-                }
-            }
-        }
-        self.setup = Some(setup);
+        self.keys[p] = [EMPTY; MAX_SAMPLES];
+        self.prims[p] = [NO_ID; MAX_SAMPLES];
+        // The centre already holds this primitive's depth: the write
+        // leaves it (no primitive is in front of itself).
+        self.write(p, ij, &plane, self.centre_prim[p], full, (pattern, grid));
     }
 
     /// Depth-tests the samples of `c` and its centre at pixel `p` (at
@@ -438,9 +583,14 @@ impl SampleBuffer {
 
     /// The front primitive of each sample of pixel `(i, j)` of the pass,
     /// `None` when nothing was written there.
-    pub(crate) fn sample_prims(&self, i: u32, j: u32) -> Option<&[u32; MAX_SAMPLES]> {
-        let live = self.touched[(j - self.rect.1) as usize] >> (i - self.rect.0) & 1 == 1;
-        live.then(|| &self.prims[self.index(i, j)])
+    pub(crate) fn sample_prims(&self, i: u32, j: u32) -> Option<[u32; MAX_SAMPLES]> {
+        let (row, bit) = ((j - self.rect.1) as usize, 1u64 << (i - self.rect.0));
+        let p = self.index(i, j);
+        if self.whole[row] & bit != 0 {
+            Some([self.centre_prim[p]; MAX_SAMPLES])
+        } else {
+            (self.touched[row] & bit != 0).then(|| self.prims[p])
+        }
     }
 
     /// The mask of the samples of `prims` equal to `value`.
@@ -479,9 +629,24 @@ impl SampleBuffer {
                 if self.centre_prim[q] != NO_ID {
                     frame.set_id(p, self.centre_prim[q], self.centre_z[q] as f32);
                 }
-                let prims = &self.prims[q];
                 let all = k.full;
                 self.shown.clear();
+                if self.whole[(j - y0) as usize] >> (i - x0) & 1 == 1 {
+                    // What the samples say of a whole pixel: its one
+                    // primitive at every sample.
+                    let prim = self.centre_prim[q];
+                    let rgba = input.prim_rgba(prim, (i, j));
+                    self.shown.push(Shown {
+                        prim,
+                        samples: all.count_ones(),
+                        rgb: [rgba[0], rgba[1], rgba[2]],
+                    });
+                    frame.set_coverage(p, all.count_ones() as f32 * k.inv_n);
+                    let sum = opaque_sum(&mut self.shown).map(|c| c * k.inv_n);
+                    resolver.write_color(k, sum, frame, p);
+                    continue;
+                }
+                let prims = &self.prims[q];
                 let mut covered = 0u32;
                 let mut left = !self.equal_mask(prims, NO_ID) & all;
                 while left != 0 {

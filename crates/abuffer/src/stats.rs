@@ -60,6 +60,11 @@ hider_scene::hider_stats! {
         /// ([`crate::ABufferOptions::sample_tiles`]); their fragments count
         /// in [`Self::fragments`] and [`Self::culled`] like the lists'.
         pub sample_tiles: u64 => "sample tiles",
+        /// Of the sample buffer's fragments, those that covered their whole
+        /// pixel in front of everything there and were kept as one
+        /// primitive for the pixel, with no per-sample depth (a later
+        /// fragment that shares the pixel expands it to samples).
+        pub whole_pixels: u64 => "whole pixels",
         /// Fragments held by the pool at its fullest (live fragments plus
         /// free slots).
         pub pool_fragments: u64 => "pool fragments",
