@@ -300,6 +300,27 @@ impl TriCoverage {
         }
     }
 
+    /// [`Self::classify`] of the 8 pixels of a row from the one whose
+    /// corner values are `base` on, as bits (bit `k` = pixel `k`): those
+    /// [`Class::Full`], and those not [`Class::Empty`]. Branch-free.
+    #[inline(always)]
+    pub fn classify_run(&self, base: [i64; 3]) -> (u32, u32) {
+        let step = self.step_x();
+        let (mut full, mut touched) = (0u32, 0u32);
+        for k in 0..8 {
+            let mut f = true;
+            let mut t = true;
+            for e in 0..3 {
+                let v = base[e] + k as i64 * step[e];
+                f &= v + self.hull_min[e] > 0;
+                t &= v + self.hull_max[e] > 0;
+            }
+            full |= u32::from(f) << k;
+            touched |= u32::from(t) << k;
+        }
+        (full, touched)
+    }
+
     /// [`Self::classify`] for every pixel of `(x0, y0)` to `(x1, y1)` at
     /// once: [`Class::Full`] when each of them is full, [`Class::Empty`]
     /// when one edge rejects each of them, else [`Class::Partial`] (then

@@ -52,6 +52,11 @@ const PASS_PIXELS: usize = (TILE * PASS_ROWS) as usize;
 /// The key of an empty sample: beyond the key of every depth.
 const EMPTY: i32 = i32::MAX;
 
+/// Rows of a block at least this long are classified and depth-tested
+/// 8 pixels at once ([`SampleBuffer::row_culled`]); shorter ones pixel by
+/// pixel.
+const RUN_MIN: u32 = 4;
+
 /// Side of the square blocks of pixels whose farthest key is kept.
 const BLOCK: u32 = 8;
 /// Blocks per row of a pass.
@@ -142,7 +147,9 @@ impl Default for SampleBuffer {
         Self {
             keys: vec![[EMPTY; MAX_SAMPLES]; PASS_PIXELS],
             prims: vec![[NO_ID; MAX_SAMPLES]; PASS_PIXELS],
-            far: vec![EMPTY; PASS_PIXELS],
+            // Padded by a block row: the culling tests read 8 pixels from
+            // any pixel of the pass on (the ones past its end are masked).
+            far: vec![EMPTY; PASS_PIXELS + BLOCK as usize],
             centre_z: vec![f64::INFINITY; PASS_PIXELS],
             centre_prim: vec![NO_ID; PASS_PIXELS],
             touched: [0; PASS_ROWS as usize],
@@ -443,19 +450,48 @@ impl SampleBuffer {
             if class == Class::Empty {
                 continue;
             }
+            let n = i1 - i0 + 1;
+            let all = (1u32 << n) - 1;
+            if n < RUN_MIN {
+                self.short_rows(&mut tri, (i0, j0, i1, j1), (class, &setup), stats);
+                continue;
+            }
             for j in j0..=j1 {
-                let mut base = setup.corner_values(i0, j);
-                for i in i0..=i1 {
-                    let here = base;
-                    base = [0, 1, 2].map(|e| base[e] + step[e]);
-                    let class = if class == Class::Full {
+                // The row's pixels as bits: which it touches, which it
+                // covers whole, which it loses to the pixel's farthest
+                // depth. Branch-free over the row, then a branch per
+                // pixel left (the tests one by one mispredicted).
+                let base = setup.corner_values(i0, j);
+                let (full, touched) = if class == Class::Full {
+                    (all, all)
+                } else {
+                    let (full, touched) = setup.classify_run(base);
+                    (full & all, touched & all)
+                };
+                if touched == 0 {
+                    continue;
+                }
+                let mut left = touched;
+                let mut near = None;
+                if self.cull {
+                    let keys = self.row_near_keys(&tri, (i0, j));
+                    let culled = self.row_culled(&keys, (i0, j)) & touched;
+                    stats.fragments += u64::from(culled.count_ones());
+                    stats.culled += u64::from(culled.count_ones());
+                    left &= !culled;
+                    near = Some(keys);
+                }
+                while left != 0 {
+                    let k = left.trailing_zeros();
+                    left &= left - 1;
+                    let here = [0, 1, 2].map(|e| base[e] + i64::from(k) * step[e]);
+                    let class = if full >> k & 1 == 1 {
                         Class::Full
                     } else {
-                        setup.classify(here)
+                        Class::Partial
                     };
-                    if class != Class::Empty {
-                        self.pixel(&mut tri, (i, j), (class, &setup, here), stats);
-                    }
+                    let near = near.map(|keys| keys[k as usize]);
+                    self.pixel(&mut tri, (i0 + k, j), (class, &setup, here), near, stats);
                 }
             }
         }
@@ -476,15 +512,96 @@ impl SampleBuffer {
         bits
     }
 
+    /// The rows `j0..=j1` of pixels `i0..=i1` (fewer than [`RUN_MIN`]) of
+    /// a block of class `class`: pixel by pixel, each classified and
+    /// depth-tested alone (for so few, cheaper than [`Self::row_culled`]).
+    #[inline(always)]
+    fn short_rows(
+        &mut self,
+        tri: &mut Tri,
+        (i0, j0, i1, j1): (u32, u32, u32, u32),
+        (class, setup): (Class, &TriCoverage),
+        stats: &mut ABufferStats,
+    ) {
+        let step = setup.step_x();
+        for j in j0..=j1 {
+            let mut base = setup.corner_values(i0, j);
+            for i in i0..=i1 {
+                let here = base;
+                base = [0, 1, 2].map(|e| base[e] + step[e]);
+                let class = if class == Class::Full {
+                    Class::Full
+                } else {
+                    setup.classify(here)
+                };
+                if class == Class::Empty {
+                    continue;
+                }
+                let p = self.index(i, j);
+                let live_px =
+                    self.touched[(j - self.rect.1) as usize] >> (i - self.rect.0) & 1 == 1;
+                let mut near = None;
+                if self.cull && live_px && self.far[p] != EMPTY {
+                    // Strictly behind the farthest of the pixel's samples
+                    // and centre: loses every sample and the centre.
+                    let key = depth_key(plane_depth(&tri.plane, i, j, tri.near_corner) as f32);
+                    if key > self.far[p] {
+                        stats.fragments += 1;
+                        stats.culled += 1;
+                        continue;
+                    }
+                    near = Some(key);
+                }
+                self.pixel(tri, (i, j), (class, setup, here), near, stats);
+            }
+        }
+    }
+
+    /// The key of the plane of `tri` at the near corner of each of the 8
+    /// pixels from `(i0, j)` on (a lower bound of its depth at their
+    /// samples and centres), as [`plane_depth`] computes it (the loop
+    /// vectorises where the caller is compiled for AVX2).
+    #[inline(always)]
+    fn row_near_keys(&self, tri: &Tri, (i0, j): (u32, u32)) -> [i32; BLOCK as usize] {
+        let plane = &tri.plane;
+        let scale = f64::from(SUBPIXEL_SCALE);
+        let (sx, sy) = tri.near_corner;
+        let y = f64::from(j) + f64::from(sy) / scale;
+        let dy = plane.dy * (y - plane.y0);
+        std::array::from_fn(|k| {
+            let x = f64::from(i0 + k as u32) + f64::from(sx) / scale;
+            depth_key(((plane.value + plane.dx * (x - plane.x0)) + dy) as f32)
+        })
+    }
+
+    /// The pixels of the 8 from `(i0, j)` on (bit `k` = pixel `i0 + k`)
+    /// that a triangle whose near keys there are `keys` loses entirely:
+    /// strictly behind the farthest of the pixel's samples and centre.
+    #[inline(always)]
+    fn row_culled(&self, keys: &[i32; BLOCK as usize], (i0, j): (u32, u32)) -> u32 {
+        let row = (j - self.rect.1) as usize;
+        let live = (self.touched[row] >> (i0 - self.rect.0)) as u32;
+        let p = self.index(i0, j);
+        let far = &self.far[p..p + BLOCK as usize];
+        let mut culled = 0u32;
+        for (k, (&key, &far)) in keys.iter().zip(far).enumerate() {
+            // An open pixel's farthest key is EMPTY: nothing is beyond it.
+            culled |= u32::from(key > far) << k;
+        }
+        culled & live
+    }
+
     /// Renders triangle `tri` at pixel `(i, j)`, which it touches
     /// (`class` is not [`Class::Empty`]; `here` are its edge values there
-    /// for `setup`).
+    /// for `setup`) and which is not culled; `near` is its near key there
+    /// if known.
     #[inline(always)]
     fn pixel(
         &mut self,
         tri: &mut Tri,
         (i, j): (u32, u32),
         (class, setup, here): (Class, &TriCoverage, [i64; 3]),
+        near: Option<i32>,
         stats: &mut ABufferStats,
     ) {
         let (px0, py0) = (self.rect.0, self.rect.1);
@@ -493,18 +610,6 @@ impl SampleBuffer {
         let row = (j - py0) as usize;
         let bit = 1u64 << (i - px0);
         let live_px = self.touched[row] & bit != 0;
-        let mut near = None;
-        if self.cull && live_px && self.far[p] != EMPTY {
-            // Strictly behind the farthest of the pixel's samples and
-            // centre: loses every sample and the centre.
-            let key = depth_key(plane_depth(plane, i, j, tri.near_corner) as f32);
-            if key > self.far[p] {
-                stats.fragments += 1;
-                stats.culled += 1;
-                return;
-            }
-            near = Some(key);
-        }
         let whole_px = self.whole[row] & bit != 0;
         let b = ((j - py0) / BLOCK * BLOCKS_X + (i - px0) / BLOCK) as usize;
         if class == Class::Full && (!live_px || whole_px) {

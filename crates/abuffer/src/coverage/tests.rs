@@ -164,3 +164,59 @@ proptest! {
         }
     }
 }
+
+/// [`TriCoverage::classify`] of every pixel of `(x0, y0)` to `(x1, y1)`.
+fn classes(setup: &TriCoverage, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> Vec<Class> {
+    (y0..=y1)
+        .flat_map(|j| (x0..=x1).map(move |i| setup.classify(setup.corner_values(i, j))))
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2048))]
+    /// The classes of whole rectangles and of runs of 8 pixels agree with
+    /// the pixels' own: a rectangle is full only when every pixel is, empty
+    /// only when every pixel is, and a run's bits are the pixels' classes,
+    /// for small and huge triangles and every pattern.
+    #[test]
+    fn rectangle_and_run_classes_agree_with_the_pixels(
+        c in proptest::array::uniform6(-4i32..24),
+        huge in any::<bool>(),
+        rect in proptest::array::uniform4(0u32..8),
+        pattern_index in 0usize..5,
+    ) {
+        // Whole pixels plus a hull corner's or the centre's offset: edges
+        // run through hull corners, samples and centres, where a strict
+        // test and a loose one differ.
+        let c = c.map(|c| c.div_euclid(4) * 256 + [16, 32, 224, 240][c.rem_euclid(4) as usize]);
+        let scale = if huge { 1 << 8 } else { 1 };
+        let v = [
+            FixedPt::new(c[0] % 6000, c[1] % 6000),
+            FixedPt::new(c[2] * scale, c[3] * scale),
+            FixedPt::new(c[4] * scale, c[5] * scale),
+        ];
+        let Some(t) = tri(v) else { return Ok(()) };
+        let pattern = SamplePattern::ALL[pattern_index];
+        let setup = TriCoverage::new(&t, pattern);
+        let (x0, x1) = (rect[0].min(rect[1]), rect[0].max(rect[1]));
+        let (y0, y1) = (rect[2].min(rect[3]), rect[2].max(rect[3]));
+        let pixels = classes(&setup, (x0, y0, x1, y1));
+        match setup.classify_rect((x0, y0, x1, y1)) {
+            Class::Full => prop_assert!(pixels.iter().all(|&c| c == Class::Full)),
+            Class::Empty => prop_assert!(pixels.iter().all(|&c| c == Class::Empty)),
+            Class::Partial => prop_assert!(!pixels.iter().all(|&c| c == Class::Full)),
+        }
+        for j in y0..=y1 {
+            for i in x0..=x1 {
+                // One pixel's rectangle is that pixel's class, exactly.
+                let one = setup.classify(setup.corner_values(i, j));
+                prop_assert_eq!(setup.classify_rect((i, j, i, j)), one, "pixel {} {}", i, j);
+            }
+            let (full, touched) = setup.classify_run(setup.corner_values(x0, j));
+            for (k, class) in classes(&setup, (x0, j, x0 + 7, j)).into_iter().enumerate() {
+                prop_assert_eq!(full >> k & 1 == 1, class == Class::Full, "pixel {} {}", x0 + k as u32, j);
+                prop_assert_eq!(touched >> k & 1 == 1, class != Class::Empty, "pixel {} {}", x0 + k as u32, j);
+            }
+        }
+    }
+}
