@@ -157,14 +157,14 @@ impl ABuffer {
         let mut stats = ABufferStats::default();
         for ty in 0..h.div_ceil(TILE) {
             for tx in 0..tiles_x {
-                let items = self.bins.tile_items((ty * tiles_x + tx) as usize);
-                if items.is_empty() {
+                let t = (ty * tiles_x + tx) as usize;
+                if !self.bins.has_items(t) {
                     continue;
                 }
                 for pass in passes(tile_rect(tx, ty, (w, h))) {
                     let (x0, py0, x1, py1) = pass;
                     buffer.begin(pass, true);
-                    for item in items {
+                    for item in self.bins.tile_items(t) {
                         buffer.triangle(item, pattern, &mut stats);
                     }
                     for j in py0..=py1 {

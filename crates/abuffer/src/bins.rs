@@ -87,15 +87,18 @@ fn order_key(x: f32) -> u32 {
     (depth_key(x) as u32) ^ (1 << 31)
 }
 
-/// Triangles binned by tile: `items[start[t]..start[t + 1]]` are the
-/// triangles (in submission order) whose pixel range meets tile `t`. Read
-/// by every thread once binned.
+/// Triangles binned by tile: `items[refs[b]]` for `b` in
+/// `start[t]..start[t + 1]` are the triangles (in submission order) whose
+/// pixel range meets tile `t`. Read by every thread once binned.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Bins {
     start: Vec<u32>,
-    /// The items, tile by tile.
+    /// One item per triangle that meets the frame, in submission order
+    /// (written once, in order: a triangle over several tiles is not
+    /// copied into each, and no slot is written twice).
     items: Vec<BinItem>,
-    ranges: Vec<(u32, u32, u32, u32)>,
+    /// Per tile, the indices into `items` of its triangles.
+    refs: Vec<u32>,
     /// [`Source::opacity_runs`] of the frame.
     opacity: Vec<(u32, f32)>,
 }
@@ -136,35 +139,19 @@ impl Bins {
         let tiles = (tiles_x * tiles_y) as usize;
         self.start.clear();
         self.start.resize(tiles + 1, 0);
-        self.ranges.clear();
-        const NONE: (u32, u32, u32, u32) = (1, 1, 0, 0);
-        for tri in scene.tris {
-            let r = pixel_range_of(&tri.v, pattern, w, h).unwrap_or(NONE);
-            self.ranges.push(r);
-            let (x0, y0, x1, y1) = r;
-            if x0 > x1 {
-                continue;
-            }
-            for ty in y0 / TILE..=y1 / TILE {
-                for tx in x0 / TILE..=x1 / TILE {
-                    self.start[(ty * tiles_x + tx) as usize + 1] += 1;
-                }
-            }
-        }
-        for t in 0..tiles {
-            self.start[t + 1] += self.start[t];
-        }
         self.items.clear();
-        self.items
-            .resize(self.start[tiles] as usize, BinItem::default());
-        let mut fill = self.start.clone();
         scene.opacity_runs(&mut self.opacity);
         // Triangles come in primitive order: the run of the previous one
         // is almost always the right one.
         let mut run = 0;
-        for (t, (&(x0, y0, x1, y1), tri)) in self.ranges.iter().zip(scene.tris).enumerate() {
-            if x0 > x1 {
+        for (t, tri) in scene.tris.iter().enumerate() {
+            let Some((x0, y0, x1, y1)) = pixel_range_of(&tri.v, pattern, w, h) else {
                 continue;
+            };
+            for ty in y0 / TILE..=y1 / TILE {
+                for tx in x0 / TILE..=x1 / TILE {
+                    self.start[(ty * tiles_x + tx) as usize + 1] += 1;
+                }
             }
             let near = tri.z.iter().copied().fold(f64::INFINITY, f64::min) as f32;
             let prim = tri.prim;
@@ -172,20 +159,28 @@ impl Bins {
             if prim < start || prim >= self.opacity[run].0 {
                 run = self.opacity.partition_point(|&(end, _)| end <= prim);
             }
-            let alpha = self.opacity[run].1;
-            let item = BinItem {
+            self.items.push(BinItem {
                 key: u64::from(order_key(near)) << 32 | t as u64,
                 tri: t as u32,
-                prim: tri.prim,
+                prim,
                 range: (x0, y0, x1, y1),
                 plane: tri.depth,
                 v: tri.v,
-                alpha,
-            };
+                alpha: self.opacity[run].1,
+            });
+        }
+        for t in 0..tiles {
+            self.start[t + 1] += self.start[t];
+        }
+        self.refs.clear();
+        self.refs.resize(self.start[tiles] as usize, 0);
+        let mut fill = self.start.clone();
+        for (k, item) in self.items.iter().enumerate() {
+            let (x0, y0, x1, y1) = item.range;
             for ty in y0 / TILE..=y1 / TILE {
                 for tx in x0 / TILE..=x1 / TILE {
                     let slot = &mut fill[(ty * tiles_x + tx) as usize];
-                    self.items[*slot as usize] = item;
+                    self.refs[*slot as usize] = k as u32;
                     *slot += 1;
                 }
             }
@@ -193,8 +188,10 @@ impl Bins {
     }
 
     /// The items of tile `t`, in submission order.
-    pub(crate) fn tile_items(&self, t: usize) -> &[BinItem] {
-        &self.items[self.start[t] as usize..self.start[t + 1] as usize]
+    pub(crate) fn tile_items(&self, t: usize) -> impl Iterator<Item = &BinItem> + '_ {
+        self.refs[self.start[t] as usize..self.start[t + 1] as usize]
+            .iter()
+            .map(|&k| &self.items[k as usize])
     }
 
     /// Whether nothing was binned yet.
@@ -238,8 +235,11 @@ impl TileQueue {
     pub(crate) fn order_tile(&mut self, bins: &Bins, t: usize, front_to_back: bool) -> usize {
         let (b0, b1) = (bins.start[t] as usize, bins.start[t + 1] as usize);
         self.order.clear();
-        self.order
-            .extend((b0..b1).map(|b| (bins.items[b].key, b as u32)));
+        self.order.extend(
+            bins.refs[b0..b1]
+                .iter()
+                .map(|&k| (bins.items[k as usize].key, k)),
+        );
         if front_to_back {
             // Items are binned in submission order, so the tile's items
             // are in index order: a stable sort by the depth half of the
