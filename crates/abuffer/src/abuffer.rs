@@ -29,7 +29,6 @@
 //!    behind an opaque bound, per 8 x 8 block, per tile before the blocks,
 //!    per partial pixel before its mask is computed.
 
-use hider_geom::PlaneEq;
 use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
 use hider_scene::{
     Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, View, check_frame_size,
@@ -50,15 +49,12 @@ use crate::worker::{Shared, Worker};
 
 /// Carpenter's A-buffer. See the crate documentation.
 ///
-/// Keeps its bins, depth planes, per-thread lists and thread pool from one
+/// Keeps its bins, per-thread lists and thread pool from one
 /// frame to the next; a clone has the same options and none of that.
 #[derive(Debug, Default)]
 pub struct ABuffer {
     options: ABufferOptions,
     bins: Bins,
-    /// Depth plane per triangle of the last frame (for [`Self::sample_ids`]
-    /// after it, and dense for the resolve).
-    planes: Vec<PlaneEq>,
     /// One per thread (those of the last frame first).
     workers: Vec<Worker>,
     /// Per band (tile row) of the last frame: the worker that rendered
@@ -103,11 +99,10 @@ impl ABuffer {
         let pattern = self.options.pattern;
         let n = pattern.count();
         let pixels = self.width as usize * self.height as usize;
-        let per_sample = self.options.depth == DepthMode::PerSample;
-        if per_sample {
+        if self.options.depth == DepthMode::PerSample {
             return self.sample_ids_from_bins();
         }
-        let planes = &self.planes;
+        // The other modes order a fragment's samples by its zmin.
         let mut out = vec![NO_ID; pixels * n];
         let mut best = vec![f32::INFINITY; n];
         for p in 0..pixels {
@@ -123,13 +118,8 @@ impl ABuffer {
             while cur != NIL {
                 let f = pool.get(cur);
                 for k in (0..n).filter(|&k| f.mask >> k & 1 == 1) {
-                    let z = if per_sample {
-                        pool.sample_depth(planes, f, ij, pattern.positions(), k)
-                    } else {
-                        f.zmin
-                    };
-                    if in_front(z, f.prim, best[k], ids[k]) {
-                        best[k] = z;
+                    if in_front(f.zmin, f.prim, best[k], ids[k]) {
+                        best[k] = f.zmin;
                         ids[k] = f.prim;
                     }
                 }
@@ -230,8 +220,6 @@ impl ABuffer {
             worker.begin_frame(scene, &options, tiles)?;
         }
         self.bins.bin(scene, options.pattern, tiles_x, tiles_y);
-        self.planes.clear();
-        self.planes.extend(scene.tris.iter().map(|t| t.depth));
         frame.coverage.clear();
         frame.coverage.resize(frame.len(), 0.0);
         let own = self.own_pool(threads)?;
@@ -249,7 +237,6 @@ impl ABuffer {
             scene,
             options: &options,
             bins: &self.bins,
-            planes: &self.planes,
             tiles_x,
             sample_tiles: options.sample_tiles
                 && options.depth == DepthMode::PerSample

@@ -9,7 +9,7 @@
 //! merged entry that would pass it, growing its buffers by at most
 //! doubling and never beyond the bound.
 
-use hider_geom::PlaneEq;
+use hider_scene::prepare::lean::LeanTri;
 use hider_scene::{Error, Result};
 
 use crate::depth::plane_depth;
@@ -270,12 +270,13 @@ impl FragmentPool {
     }
 
     /// The depth of fragment `f` of pixel `(i, j)` at sample `k` (per-sample
-    /// mode): from its merged entry, or its triangle's plane in `planes`,
+    /// mode): from its merged entry, or its triangle's plane (its entry in
+    /// `tris`, the frame's triangles),
     /// with the expression the supersampled z-buffer uses.
     #[inline]
     pub fn sample_depth(
         &self,
-        planes: &[PlaneEq],
+        tris: &[LeanTri],
         f: &Fragment,
         (i, j): (u32, u32),
         positions: &[(i32, i32)],
@@ -284,7 +285,7 @@ impl FragmentPool {
         if f.is_merged() {
             self.merged_depths(f.shade)[k]
         } else {
-            plane_depth(&planes[f.tri as usize], i, j, positions[k]) as f32
+            plane_depth(&tris[f.tri as usize].depth, i, j, positions[k]) as f32
         }
     }
 }

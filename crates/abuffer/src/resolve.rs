@@ -31,7 +31,7 @@
 //! them; neighbouring pixels with the same colour sum reuse the last sRGB
 //! conversion, which is exact and table-driven ([`crate::palette`]).
 
-use hider_geom::PlaneEq;
+use hider_scene::prepare::lean::LeanTri;
 use hider_scene::{Frame, NO_ID};
 
 use crate::centre::in_front;
@@ -53,7 +53,7 @@ pub(crate) struct Input<'a> {
     /// The lists.
     pub(crate) pool: &'a FragmentPool,
     /// Depth plane per triangle.
-    pub(crate) planes: &'a [PlaneEq],
+    pub(crate) tris: &'a [LeanTri],
     /// Colour and opacity per primitive, computed on first use.
     pub(crate) colors: &'a mut [[f32; 4]],
     /// The options of the frame.
@@ -347,7 +347,7 @@ impl Resolver {
             s.rgb.map(|c| 0.0 + c * weight)
         } else {
             let positions = input.options.pattern.positions();
-            let lists = (input.pool, input.planes);
+            let lists = (input.pool, input.tris);
             let opaque = self.frags.iter().all(|s| s.alpha >= 1.0);
             match input.options.depth {
                 DepthMode::PerSample if opaque => {

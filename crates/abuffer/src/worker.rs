@@ -9,7 +9,6 @@
 //! sample ids and the work counters do not depend on which thread took
 //! which band.
 
-use hider_geom::PlaneEq;
 use hider_scene::{NO_ID, Result};
 
 use crate::source::Source;
@@ -47,8 +46,6 @@ pub(crate) struct Shared<'a> {
     pub(crate) options: &'a ABufferOptions,
     /// The binned triangles.
     pub(crate) bins: &'a Bins,
-    /// Depth plane per triangle.
-    pub(crate) planes: &'a [PlaneEq],
     /// Tiles per row.
     pub(crate) tiles_x: u32,
     /// Whether opaque tiles take the sample buffer this frame.
@@ -142,7 +139,7 @@ impl Worker {
         let mut input = Input {
             scene,
             pool: &lists.pool,
-            planes: shared.planes,
+            tris: scene.tris,
             colors: &mut lists.colors,
             options: shared.options,
         };
@@ -180,7 +177,7 @@ impl Worker {
             let mut input = Input {
                 scene: shared.scene,
                 pool: &self.raster.lists.pool,
-                planes: shared.planes,
+                tris: shared.scene.tris,
                 colors: &mut self.raster.lists.colors,
                 options: shared.options,
             };
