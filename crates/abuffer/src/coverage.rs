@@ -306,6 +306,10 @@ impl TriCoverage {
     #[inline(always)]
     pub fn classify_run(&self, base: [i64; 3]) -> (u32, u32) {
         let step = self.step_x();
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = self.avx2 {
+            return avx2::classify_run(avx2, base, step, (self.hull_min, self.hull_max));
+        }
         let (mut full, mut touched) = (0u32, 0u32);
         for k in 0..8 {
             let mut f = true;

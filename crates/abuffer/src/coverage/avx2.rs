@@ -98,3 +98,56 @@ pub(super) fn offsets(_proof: Avx2, edges: &[EdgeFunction; 3], noff: &mut [[i32;
     // SAFETY: an `Avx2` value exists only where AVX2 was detected.
     unsafe { wide(edges, noff) }
 }
+
+/// [`super::TriCoverage::classify_run`] with AVX2: the 8 pixels' edge
+/// values `base + k * step` plus the hull offsets in two registers of 4
+/// `i64` per edge, compared with zero and gathered by `movemask`. The
+/// same integer sums (no lane overflows: edge values stay far below
+/// `2^62`) and the same strict comparisons, so the same bits.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token"
+)]
+#[inline]
+pub(super) fn classify_run(
+    _proof: Avx2,
+    base: [i64; 3],
+    step: [i64; 3],
+    (hull_min, hull_max): ([i64; 3], [i64; 3]),
+) -> (u32, u32) {
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    fn wide(
+        base: [i64; 3],
+        step: [i64; 3],
+        (hull_min, hull_max): ([i64; 3], [i64; 3]),
+    ) -> (u32, u32) {
+        use std::arch::x86_64::{
+            _mm256_add_epi64, _mm256_and_si256, _mm256_castsi256_pd, _mm256_cmpgt_epi64,
+            _mm256_movemask_pd, _mm256_set_epi64x, _mm256_set1_epi64x, _mm256_setzero_si256,
+        };
+        let zero = _mm256_setzero_si256();
+        let all = _mm256_set1_epi64x(-1);
+        let (mut full_lo, mut full_hi, mut touched_lo, mut touched_hi) = (all, all, all, all);
+        for e in 0..3 {
+            let s = step[e];
+            let lo = _mm256_set_epi64x(3 * s, 2 * s, s, 0);
+            let hi = _mm256_add_epi64(lo, _mm256_set1_epi64x(4 * s));
+            let low = _mm256_set1_epi64x(base[e] + hull_min[e]);
+            let high = _mm256_set1_epi64x(base[e] + hull_max[e]);
+            let inside = |b, k| _mm256_cmpgt_epi64(_mm256_add_epi64(b, k), zero);
+            full_lo = _mm256_and_si256(full_lo, inside(low, lo));
+            full_hi = _mm256_and_si256(full_hi, inside(low, hi));
+            touched_lo = _mm256_and_si256(touched_lo, inside(high, lo));
+            touched_hi = _mm256_and_si256(touched_hi, inside(high, hi));
+        }
+        let bits = |lo, hi| {
+            (_mm256_movemask_pd(_mm256_castsi256_pd(lo))
+                | _mm256_movemask_pd(_mm256_castsi256_pd(hi)) << 4) as u32
+        };
+        (bits(full_lo, full_hi), bits(touched_lo, touched_hi))
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(base, step, (hull_min, hull_max)) }
+}

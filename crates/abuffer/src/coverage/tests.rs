@@ -176,8 +176,9 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(2048))]
     /// The classes of whole rectangles and of runs of 8 pixels agree with
     /// the pixels' own: a rectangle is full only when every pixel is, empty
-    /// only when every pixel is, and a run's bits are the pixels' classes,
-    /// for small and huge triangles and every pattern.
+    /// only when every pixel is, and a run's bits are the pixels' classes
+    /// (with AVX2 and without), for small and huge triangles and every
+    /// pattern.
     #[test]
     fn rectangle_and_run_classes_agree_with_the_pixels(
         c in proptest::array::uniform6(-4i32..24),
@@ -213,6 +214,10 @@ proptest! {
                 prop_assert_eq!(setup.classify_rect((i, j, i, j)), one, "pixel {} {}", i, j);
             }
             let (full, touched) = setup.classify_run(setup.corner_values(x0, j));
+            // The portable run is the AVX2 one, where the CPU has AVX2.
+            let mut portable = setup.clone();
+            portable.avx2 = None;
+            prop_assert_eq!(portable.classify_run(setup.corner_values(x0, j)), (full, touched));
             for (k, class) in classes(&setup, (x0, j, x0 + 7, j)).into_iter().enumerate() {
                 prop_assert_eq!(full >> k & 1 == 1, class == Class::Full, "pixel {} {}", x0 + k as u32, j);
                 prop_assert_eq!(touched >> k & 1 == 1, class != Class::Empty, "pixel {} {}", x0 + k as u32, j);
