@@ -182,3 +182,77 @@ pub(super) fn equal_mask(_proof: Avx2, prims: &[u32; 32], value: u32) -> u32 {
     // SAFETY: an `Avx2` value exists only where AVX2 was detected.
     unsafe { wide(prims, value) }
 }
+
+/// [`SampleBuffer::row_near_keys`]: the key of `plane` at `x + k + frac`
+/// for `k` = 0 to 7 (`x` a pixel column, `frac` the corner's offset in
+/// it) plus the row's term `dy`, in the portable order
+/// (`(value + dx * (x - x0)) + dy`, no fused multiply-add, rounded to
+/// `f32` to nearest), so the same keys.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token, and an unaligned store of 8 i32"
+)]
+#[inline(always)]
+pub(super) fn row_keys(_proof: Avx2, plane: &PlaneEq, x: f64, frac: f64, dy: f64) -> [i32; 8] {
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    fn wide(plane: &PlaneEq, x: f64, frac: f64, dy: f64) -> [i32; 8] {
+        use std::arch::x86_64::{
+            __m256i, _mm256_add_pd, _mm256_castps_si256, _mm256_cvtpd_ps, _mm256_mul_pd,
+            _mm256_set_m128, _mm256_set1_pd, _mm256_setr_pd, _mm256_srai_epi32,
+            _mm256_srli_epi32, _mm256_storeu_si256, _mm256_sub_pd, _mm256_xor_si256,
+        };
+        // Pixel columns and corner offsets are exact in f64: x + k + frac
+        // is the portable f64::from(i0 + k) + f64::from(sx) / 256.
+        let frac = _mm256_set1_pd(frac);
+        let lo = _mm256_add_pd(_mm256_setr_pd(x, x + 1.0, x + 2.0, x + 3.0), frac);
+        let hi = _mm256_add_pd(_mm256_setr_pd(x + 4.0, x + 5.0, x + 6.0, x + 7.0), frac);
+        let (x0, dx, value, dy) = (
+            _mm256_set1_pd(plane.x0),
+            _mm256_set1_pd(plane.dx),
+            _mm256_set1_pd(plane.value),
+            _mm256_set1_pd(dy),
+        );
+        let z = |x| _mm256_add_pd(_mm256_add_pd(value, _mm256_mul_pd(dx, _mm256_sub_pd(x, x0))), dy);
+        let z = _mm256_set_m128(_mm256_cvtpd_ps(z(hi)), _mm256_cvtpd_ps(z(lo)));
+        let zb = _mm256_castps_si256(z);
+        let key = _mm256_xor_si256(zb, _mm256_srli_epi32(_mm256_srai_epi32(zb, 31), 1));
+        let mut out = [0i32; 8];
+        // SAFETY: `out` is 8 i32s, 32 writable bytes; `storeu` accepts any
+        // alignment.
+        unsafe { _mm256_storeu_si256(out.as_mut_ptr().cast::<__m256i>(), key) };
+        out
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(plane, x, frac, dy) }
+}
+
+/// The lanes `k` where `a[k] > b[k]`, as bits.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads of 8 i32"
+)]
+#[inline(always)]
+pub(super) fn greater(_proof: Avx2, a: &[i32; 8], b: &[i32; 8]) -> u32 {
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    fn wide(a: &[i32; 8], b: &[i32; 8]) -> u32 {
+        use std::arch::x86_64::{
+            __m256i, _mm256_castsi256_ps, _mm256_cmpgt_epi32, _mm256_loadu_si256,
+            _mm256_movemask_ps,
+        };
+        // SAFETY: `a` and `b` are 8 i32s, 32 bytes each; `loadu` accepts
+        // any alignment.
+        let (a, b) = unsafe {
+            (
+                _mm256_loadu_si256(a.as_ptr().cast::<__m256i>()),
+                _mm256_loadu_si256(b.as_ptr().cast::<__m256i>()),
+            )
+        };
+        _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(a, b))) as u32
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(a, b) }
+}
