@@ -219,10 +219,15 @@ impl ABuffer {
         for worker in &mut self.workers[..threads] {
             worker.begin_frame(scene, &options, tiles)?;
         }
-        self.bins.bin(scene, options.pattern, tiles_x, tiles_y);
+        let own = self.own_pool(threads)?;
+        let (bins, pattern) = (&mut self.bins, options.pattern);
+        let mut bin = || bins.bin(scene, pattern, (tiles_x, tiles_y), threads);
+        match self.pool.as_ref().filter(|_| own) {
+            Some(pool) => pool.install(bin),
+            None => bin(),
+        }
         frame.coverage.clear();
         frame.coverage.resize(frame.len(), 0.0);
-        let own = self.own_pool(threads)?;
         // A queue of bands, top first: each thread takes the next one when
         // it is done with its last, so a thread the machine slows down
         // takes fewer (a fixed share would wait for the slowest).

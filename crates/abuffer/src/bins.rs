@@ -13,6 +13,8 @@
 
 use crate::source::Source;
 use hider_geom::{FixedPt, PlaneEq};
+use hider_scene::prepare::lean::LeanTri;
+use rayon::prelude::*;
 
 use crate::coverage::pixel_range_of;
 use crate::depth::depth_key;
@@ -87,21 +89,38 @@ fn order_key(x: f32) -> u32 {
     (depth_key(x) as u32) ^ (1 << 31)
 }
 
-/// Triangles binned by tile: `items[refs[b]]` for `b` in
-/// `start[t]..start[t + 1]` are the triangles (in submission order) whose
-/// pixel range meets tile `t`. Read by every thread once binned.
+/// Triangles binned by tile: the triangles (in submission order) whose
+/// pixel range meets tile `t` are, chunk after chunk, `items[refs[b]]`
+/// for `b` in `start[t]..start[t + 1]` of each [`Chunk`]. Read by every
+/// thread once binned.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Bins {
-    start: Vec<u32>,
-    /// One item per triangle that meets the frame, in submission order
-    /// (written once, in order: a triangle over several tiles is not
-    /// copied into each, and no slot is written twice).
+    /// One item per triangle of the scene, in submission order (written
+    /// once: a triangle over several tiles is not copied into each; the
+    /// vector keeps its length from frame to frame, so no slot is written
+    /// twice either). Triangles that meet no pixel have an empty range.
     items: Vec<BinItem>,
-    /// Per tile, the indices into `items` of its triangles.
-    refs: Vec<u32>,
+    /// The triangles in contiguous chunks, one per thread, each binned
+    /// on its own (in parallel).
+    chunks: Vec<Chunk>,
+    /// Tiles of the frame binned last (0 before the first).
+    tiles: usize,
     /// [`Source::opacity_runs`] of the frame.
     opacity: Vec<(u32, f32)>,
 }
+
+/// The bins of one contiguous run of triangles.
+#[derive(Clone, Debug, Default)]
+struct Chunk {
+    /// Per tile, where its indices start in `refs` (and one past the end).
+    start: Vec<u32>,
+    /// Per tile, the indices into [`Bins::items`] of the chunk's triangles
+    /// that meet it, in order.
+    refs: Vec<u32>,
+}
+
+/// The empty pixel range.
+const NONE: (u32, u32, u32, u32) = (1, 1, 0, 0);
 
 /// One thread's view of the tiles it takes: the current tile's items in
 /// processing order, the coincident ones among them, and which tiles of
@@ -127,47 +146,116 @@ pub(crate) struct TileQueue {
 
 impl Bins {
     /// Bins the triangles of `scene` by tile (counting sort, submission
-    /// order kept), for a frame of `tiles_x x tiles_y` tiles.
+    /// order kept), for a frame of `tiles_x x tiles_y` tiles, in `threads`
+    /// chunks of triangles binned in parallel on the current rayon pool
+    /// (one chunk, in order, for one thread).
     pub(crate) fn bin(
         &mut self,
         scene: &Source<'_>,
         pattern: SamplePattern,
-        tiles_x: u32,
-        tiles_y: u32,
+        (tiles_x, tiles_y): (u32, u32),
+        threads: usize,
+    ) {
+        let tiles = (tiles_x * tiles_y) as usize;
+        self.tiles = tiles;
+        scene.opacity_runs(&mut self.opacity);
+        let n = scene.tris.len();
+        if self.items.len() < n {
+            self.items.resize(n, BinItem::default());
+        }
+        self.items.truncate(n);
+        let len = n.div_ceil(threads.max(1)).max(1);
+        self.chunks.resize_with(n.div_ceil(len), Chunk::default);
+        let grid = (tiles_x, tiles_y);
+        let opacity = &self.opacity;
+        let work =
+            |(c, ((items, tris), chunk)): (usize, ((&mut [BinItem], &[LeanTri]), &mut Chunk))| {
+                chunk.bin((items, tris), c * len, (scene, pattern, grid), opacity);
+            };
+        let parallel = self.chunks.len() > 1;
+        let parts = self
+            .items
+            .chunks_mut(len)
+            .zip(scene.tris.chunks(len))
+            .zip(self.chunks.iter_mut());
+        if parallel {
+            let parts: Vec<_> = parts.collect();
+            parts.into_par_iter().enumerate().for_each(work);
+        } else {
+            parts.enumerate().for_each(work);
+        }
+    }
+
+    /// The indices into `items` of tile `t`'s triangles, in submission
+    /// order.
+    fn tile_refs(&self, t: usize) -> impl Iterator<Item = u32> + '_ {
+        self.chunks
+            .iter()
+            .flat_map(move |c| c.refs[c.start[t] as usize..c.start[t + 1] as usize].iter())
+            .copied()
+    }
+
+    /// The items of tile `t`, in submission order.
+    pub(crate) fn tile_items(&self, t: usize) -> impl Iterator<Item = &BinItem> + '_ {
+        self.tile_refs(t).map(|k| &self.items[k as usize])
+    }
+
+    /// Whether nothing was binned yet.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.tiles == 0
+    }
+
+    /// Whether tile `t` has triangles this frame.
+    pub(crate) fn has_items(&self, t: usize) -> bool {
+        self.chunks.iter().any(|c| c.start[t] != c.start[t + 1])
+    }
+}
+
+impl Chunk {
+    /// Bins the triangles `tris`, the first of which is triangle `first`
+    /// of the scene, writing their items into `items` (as many), for
+    /// `scene` sampled with `pattern` on `grid` tiles; `opacity` is
+    /// [`Source::opacity_runs`].
+    fn bin(
+        &mut self,
+        (items, tris): (&mut [BinItem], &[LeanTri]),
+        first: usize,
+        (scene, pattern, (tiles_x, tiles_y)): (&Source<'_>, SamplePattern, (u32, u32)),
+        opacity: &[(u32, f32)],
     ) {
         let (w, h) = (scene.viewport.width, scene.viewport.height);
         let tiles = (tiles_x * tiles_y) as usize;
         self.start.clear();
         self.start.resize(tiles + 1, 0);
-        self.items.clear();
-        scene.opacity_runs(&mut self.opacity);
         // Triangles come in primitive order: the run of the previous one
         // is almost always the right one.
         let mut run = 0;
-        for (t, tri) in scene.tris.iter().enumerate() {
-            let Some((x0, y0, x1, y1)) = pixel_range_of(&tri.v, pattern, w, h) else {
-                continue;
-            };
-            for ty in y0 / TILE..=y1 / TILE {
-                for tx in x0 / TILE..=x1 / TILE {
-                    self.start[(ty * tiles_x + tx) as usize + 1] += 1;
+        for (k, (item, tri)) in items.iter_mut().zip(tris).enumerate() {
+            let t = first + k;
+            let range = pixel_range_of(&tri.v, pattern, w, h).unwrap_or(NONE);
+            let (x0, y0, x1, y1) = range;
+            if x0 <= x1 {
+                for ty in y0 / TILE..=y1 / TILE {
+                    for tx in x0 / TILE..=x1 / TILE {
+                        self.start[(ty * tiles_x + tx) as usize + 1] += 1;
+                    }
                 }
             }
             let near = tri.z.iter().copied().fold(f64::INFINITY, f64::min) as f32;
             let prim = tri.prim;
-            let start = if run == 0 { 0 } else { self.opacity[run - 1].0 };
-            if prim < start || prim >= self.opacity[run].0 {
-                run = self.opacity.partition_point(|&(end, _)| end <= prim);
+            let start = if run == 0 { 0 } else { opacity[run - 1].0 };
+            if prim < start || prim >= opacity[run].0 {
+                run = opacity.partition_point(|&(end, _)| end <= prim);
             }
-            self.items.push(BinItem {
+            *item = BinItem {
                 key: u64::from(order_key(near)) << 32 | t as u64,
                 tri: t as u32,
                 prim,
-                range: (x0, y0, x1, y1),
+                range,
                 plane: tri.depth,
                 v: tri.v,
-                alpha: self.opacity[run].1,
-            });
+                alpha: opacity[run].1,
+            };
         }
         for t in 0..tiles {
             self.start[t + 1] += self.start[t];
@@ -175,33 +263,19 @@ impl Bins {
         self.refs.clear();
         self.refs.resize(self.start[tiles] as usize, 0);
         let mut fill = self.start.clone();
-        for (k, item) in self.items.iter().enumerate() {
+        for (k, item) in items.iter().enumerate() {
             let (x0, y0, x1, y1) = item.range;
+            if x0 > x1 {
+                continue;
+            }
             for ty in y0 / TILE..=y1 / TILE {
                 for tx in x0 / TILE..=x1 / TILE {
                     let slot = &mut fill[(ty * tiles_x + tx) as usize];
-                    self.refs[*slot as usize] = k as u32;
+                    self.refs[*slot as usize] = (first + k) as u32;
                     *slot += 1;
                 }
             }
         }
-    }
-
-    /// The items of tile `t`, in submission order.
-    pub(crate) fn tile_items(&self, t: usize) -> impl Iterator<Item = &BinItem> + '_ {
-        self.refs[self.start[t] as usize..self.start[t + 1] as usize]
-            .iter()
-            .map(|&k| &self.items[k as usize])
-    }
-
-    /// Whether nothing was binned yet.
-    pub(crate) fn is_empty(&self) -> bool {
-        self.start.is_empty()
-    }
-
-    /// Whether tile `t` has triangles this frame.
-    pub(crate) fn has_items(&self, t: usize) -> bool {
-        self.start[t] != self.start[t + 1]
     }
 }
 
@@ -233,13 +307,9 @@ impl TileQueue {
     /// and finds the coincident ones ([`Self::twin`]); returns how many
     /// items the tile has.
     pub(crate) fn order_tile(&mut self, bins: &Bins, t: usize, front_to_back: bool) -> usize {
-        let (b0, b1) = (bins.start[t] as usize, bins.start[t + 1] as usize);
         self.order.clear();
-        self.order.extend(
-            bins.refs[b0..b1]
-                .iter()
-                .map(|&k| (bins.items[k as usize].key, k)),
-        );
+        self.order
+            .extend(bins.tile_refs(t).map(|k| (bins.items[k as usize].key, k)));
         if front_to_back {
             // Items are binned in submission order, so the tile's items
             // are in index order: a stable sort by the depth half of the
@@ -329,6 +399,7 @@ mod tests {
     use hider_scene::{Material, PrepareOptions, Scene, ShadeMode, View, procedural};
 
     use super::{Bins, TILE, order_key};
+    use crate::coverage::pixel_range_of;
     use crate::pattern::SamplePattern;
     use crate::source::Source;
 
@@ -372,8 +443,8 @@ mod tests {
             bins.bin(
                 &source,
                 SamplePattern::Grid32,
-                w.div_ceil(TILE),
-                h.div_ceil(TILE),
+                (w.div_ceil(TILE), h.div_ceil(TILE)),
+                1,
             );
             let mut seen: Vec<f32> = Vec::new();
             for item in &bins.items {
@@ -385,6 +456,59 @@ mod tests {
             }
             seen.sort_by(f32::total_cmp);
             assert_eq!(seen, [0.0, 0.25, 0.5, 1.0], "the opacities binned");
+        }
+    }
+
+    /// Each tile holds exactly the triangles whose pixel range meets it, in
+    /// submission order, whether binned in one chunk or in several (in
+    /// parallel), on a frame that cuts through the scene (triangles off it
+    /// meet no tile) and one whose size is not a multiple of the tile.
+    #[test]
+    fn tiles_hold_the_triangles_that_meet_them_in_any_number_of_chunks() {
+        let scene = procedural::random_soup(3000, 7);
+        let view = View::for_scene(&scene, 300, 200).expect("a camera");
+        let options = PrepareOptions::default();
+        let mut lean = LeanScene::new();
+        prepare_lean_into(&scene, &view, &options, &mut lean).expect("prepared");
+        // A frame smaller than the view: many triangles fall off it.
+        let mut source = Source::lean(&lean, &scene);
+        source.viewport.width = 150;
+        source.viewport.height = 90;
+        let (w, h) = (150u32, 90u32);
+        let grid = (w.div_ceil(TILE), h.div_ceil(TILE));
+        let tiles = (grid.0 * grid.1) as usize;
+        let mut want: Vec<Vec<u32>> = vec![Vec::new(); tiles];
+        for (t, tri) in source.tris.iter().enumerate() {
+            if let Some((x0, y0, x1, y1)) = pixel_range_of(&tri.v, SamplePattern::Grid32, w, h) {
+                for ty in y0 / TILE..=y1 / TILE {
+                    for tx in x0 / TILE..=x1 / TILE {
+                        want[(ty * grid.0 + tx) as usize].push(t as u32);
+                    }
+                }
+            }
+        }
+        let on = source
+            .tris
+            .iter()
+            .filter(|tri| pixel_range_of(&tri.v, SamplePattern::Grid32, w, h).is_some())
+            .count();
+        assert!(
+            0 < on && on < source.tris.len(),
+            "{on} of {} on the frame",
+            source.tris.len()
+        );
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(3)
+            .build()
+            .expect("a pool");
+        let mut bins = Bins::default();
+        for threads in [1, 3, 2, 7, 1] {
+            pool.install(|| bins.bin(&source, SamplePattern::Grid32, grid, threads));
+            for (t, want) in want.iter().enumerate() {
+                let got: Vec<u32> = bins.tile_items(t).map(|item| item.tri).collect();
+                assert_eq!(&got, want, "tile {t}, {threads} chunks");
+                assert_eq!(bins.has_items(t), !want.is_empty());
+            }
         }
     }
 

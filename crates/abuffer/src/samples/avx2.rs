@@ -200,8 +200,8 @@ pub(super) fn row_keys(_proof: Avx2, plane: &PlaneEq, x: f64, frac: f64, dy: f64
     fn wide(plane: &PlaneEq, x: f64, frac: f64, dy: f64) -> [i32; 8] {
         use std::arch::x86_64::{
             __m256i, _mm256_add_pd, _mm256_castps_si256, _mm256_cvtpd_ps, _mm256_mul_pd,
-            _mm256_set_m128, _mm256_set1_pd, _mm256_setr_pd, _mm256_srai_epi32,
-            _mm256_srli_epi32, _mm256_storeu_si256, _mm256_sub_pd, _mm256_xor_si256,
+            _mm256_set_m128, _mm256_set1_pd, _mm256_setr_pd, _mm256_srai_epi32, _mm256_srli_epi32,
+            _mm256_storeu_si256, _mm256_sub_pd, _mm256_xor_si256,
         };
         // Pixel columns and corner offsets are exact in f64: x + k + frac
         // is the portable f64::from(i0 + k) + f64::from(sx) / 256.
@@ -214,7 +214,12 @@ pub(super) fn row_keys(_proof: Avx2, plane: &PlaneEq, x: f64, frac: f64, dy: f64
             _mm256_set1_pd(plane.value),
             _mm256_set1_pd(dy),
         );
-        let z = |x| _mm256_add_pd(_mm256_add_pd(value, _mm256_mul_pd(dx, _mm256_sub_pd(x, x0))), dy);
+        let z = |x| {
+            _mm256_add_pd(
+                _mm256_add_pd(value, _mm256_mul_pd(dx, _mm256_sub_pd(x, x0))),
+                dy,
+            )
+        };
         let z = _mm256_set_m128(_mm256_cvtpd_ps(z(hi)), _mm256_cvtpd_ps(z(lo)));
         let zb = _mm256_castps_si256(z);
         let key = _mm256_xor_si256(zb, _mm256_srli_epi32(_mm256_srai_epi32(zb, 31), 1));
