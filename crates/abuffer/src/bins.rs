@@ -119,6 +119,10 @@ struct Chunk {
     refs: Vec<u32>,
 }
 
+/// A chunk's share of a frame's binning: its items to write, its
+/// triangles, and its bins.
+type ChunkWork<'a> = ((&'a mut [BinItem], &'a [LeanTri]), &'a mut Chunk);
+
 /// The empty pixel range.
 const NONE: (u32, u32, u32, u32) = (1, 1, 0, 0);
 
@@ -168,10 +172,9 @@ impl Bins {
         self.chunks.resize_with(n.div_ceil(len), Chunk::default);
         let grid = (tiles_x, tiles_y);
         let opacity = &self.opacity;
-        let work =
-            |(c, ((items, tris), chunk)): (usize, ((&mut [BinItem], &[LeanTri]), &mut Chunk))| {
-                chunk.bin((items, tris), c * len, (scene, pattern, grid), opacity);
-            };
+        let work = |(c, ((items, tris), chunk)): (usize, ChunkWork<'_>)| {
+            chunk.bin((items, tris), c * len, (scene, pattern, grid), opacity);
+        };
         let parallel = self.chunks.len() > 1;
         let parts = self
             .items
