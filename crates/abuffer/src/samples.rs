@@ -13,7 +13,13 @@
 //! the centre's `f64` depth and primitive, in a buffer the size of half a
 //! tile that stays in the core's cache; triangles are taken front to back
 //! and a pixel's farthest depth rejects what lies behind it before its
-//! mask is computed. The resolve counts, per pixel, the samples each
+//! mask is computed. A triangle is walked 8 x 8 block by block (blocks
+//! rejected or accepted whole from the edge functions at their corners,
+//! the rows of the others classified and culled 8 pixels at once). A
+//! pixel covered entirely by a triangle in front of everything there is
+//! Carpenter's plain pixel: it is held *whole*, as that one primitive,
+//! and its 32 depths are computed only if a later fragment shares it.
+//! The resolve counts, per pixel, the samples each
 //! primitive shows in and sums colours in the one canonical order the
 //! lists use too ([`crate::composite::opaque_sum`]): the image, coverage
 //! and ids are those of the lists, bit for bit (property-tested against
