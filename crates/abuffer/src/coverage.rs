@@ -98,8 +98,6 @@ pub struct TriCoverage {
     /// (32-bit path).
     noff: [[i32; 32]; 3],
     narrow: bool,
-    /// `1 / (256 a)` per edge (0 when `a == 0`), for [`Self::span`].
-    inv_step: [f64; 3],
     centre: [i64; 3],
     hull_min: [i64; 3],
     hull_max: [i64; 3],
@@ -129,7 +127,6 @@ impl TriCoverage {
             edges: [EdgeFunction { a: 0, b: 0, c: 0 }; 3],
             noff: [[0; 32]; 3],
             narrow: false,
-            inv_step: [0.0; 3],
             centre: [0; 3],
             hull_min: [0; 3],
             hull_max: [0; 3],
@@ -167,11 +164,6 @@ impl TriCoverage {
             let (yl, yh) = if edge.b >= 0 { (hy0, hy1) } else { (hy1, hy0) };
             self.hull_min[e] = off(xl, yl);
             self.hull_max[e] = off(xh, yh);
-            self.inv_step[e] = if edge.a == 0 {
-                0.0
-            } else {
-                1.0 / (edge.a * i64::from(SUBPIXEL_SCALE)) as f64
-            };
         }
         self.edges = edges;
         self.narrow = narrow;
@@ -230,7 +222,10 @@ impl TriCoverage {
         let (mut lo, mut hi) = (f64::from(x0), f64::from(x1));
         for (e, edge) in self.edges.iter().enumerate() {
             let k = (base[e] + self.hull_max[e]) as f64;
-            let t = -k * self.inv_step[e];
+            // Divided here, not at set-up: most triangles never ask for a
+            // span (the sample buffer walks blocks), and three divisions
+            // per triangle were a measurable share of its set-up.
+            let t = -k / (edge.a * i64::from(SUBPIXEL_SCALE)) as f64;
             // Truncation moves t by less than one: two pixels of margin.
             match edge.a.signum() {
                 1 => lo = lo.max(t.trunc_fast() - 2.0),
