@@ -770,7 +770,7 @@ impl SampleBuffer {
     }
 
     /// The mask of the samples of `prims` equal to `value`.
-    #[inline]
+    #[inline(always)]
     fn equal_mask(&self, prims: &[u32; MAX_SAMPLES], value: u32) -> u32 {
         #[cfg(target_arch = "x86_64")]
         if let Some(isa) = self.avx2 {
@@ -787,6 +787,25 @@ impl SampleBuffer {
     /// centre's id and depth, and the colour sum of the samples' front
     /// primitives in the lists' canonical order.
     pub(crate) fn resolve(
+        &mut self,
+        input: &mut Input<'_>,
+        resolver: &mut Resolver,
+        k: &Samples,
+        frame: &mut Band<'_>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(isa) = self.avx2 {
+            // The whole loop compiled for AVX2, so that the per-primitive
+            // sample counts inline into it.
+            avx2::resolve(isa, self, (input, resolver), k, frame);
+            return;
+        }
+        self.resolve_with(input, resolver, k, frame);
+    }
+
+    /// [`Self::resolve`], inlined into its AVX2 and portable callers.
+    #[inline(always)]
+    pub(super) fn resolve_with(
         &mut self,
         input: &mut Input<'_>,
         resolver: &mut Resolver,

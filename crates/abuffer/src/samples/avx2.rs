@@ -18,6 +18,7 @@ use hider_geom::isa::Avx2;
 use super::SampleBuffer;
 use crate::bins::BinItem;
 use crate::pattern::SamplePattern;
+use crate::resolve::{Band, Input, Resolver, Samples};
 use crate::stats::ABufferStats;
 
 /// [`SampleBuffer::triangle`] for the 8 x 4 grid, the whole loop compiled
@@ -40,6 +41,35 @@ pub(super) fn triangle(
     }
     // SAFETY: an `Avx2` value exists only where AVX2 was detected.
     unsafe { wide(isa, buffer, item, stats) }
+}
+
+/// [`SampleBuffer::resolve`] compiled with AVX2 enabled, so that the
+/// per-primitive sample counts ([`equal_mask`]) inline into it.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token"
+)]
+pub(super) fn resolve(
+    isa: Avx2,
+    buffer: &mut SampleBuffer,
+    (input, resolver): (&mut Input<'_>, &mut Resolver),
+    k: &Samples,
+    frame: &mut Band<'_>,
+) {
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    fn wide(
+        buffer: &mut SampleBuffer,
+        (input, resolver): (&mut Input<'_>, &mut Resolver),
+        k: &Samples,
+        frame: &mut Band<'_>,
+    ) {
+        buffer.resolve_with(input, resolver, k, frame);
+    }
+    let _ = isa;
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(buffer, (input, resolver), k, frame) }
 }
 
 /// Depth-tests the samples of `mask` (bit `r * 8 + c` = cell `(c, r)`)
@@ -159,7 +189,7 @@ pub(super) fn write_grid(
     unsafe_code,
     reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads of an array of 32 u32"
 )]
-#[inline]
+#[inline(always)]
 pub(super) fn equal_mask(_proof: Avx2, prims: &[u32; 32], value: u32) -> u32 {
     #[target_feature(enable = "avx2")]
     #[inline]
