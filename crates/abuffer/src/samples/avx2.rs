@@ -51,7 +51,7 @@ pub(super) fn triangle(
     reason = "a target-feature call proven sound by the Avx2 token"
 )]
 pub(super) fn resolve(
-    isa: Avx2,
+    _proof: Avx2,
     buffer: &mut SampleBuffer,
     (input, resolver): (&mut Input<'_>, &mut Resolver),
     k: &Samples,
@@ -67,7 +67,6 @@ pub(super) fn resolve(
     ) {
         buffer.resolve_with(input, resolver, k, frame);
     }
-    let _ = isa;
     // SAFETY: an `Avx2` value exists only where AVX2 was detected.
     unsafe { wide(buffer, (input, resolver), k, frame) }
 }
