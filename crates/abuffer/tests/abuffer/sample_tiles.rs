@@ -78,6 +78,32 @@ fn procedural_meshes_resolve_from_samples_as_from_lists() {
     }
 }
 
+/// Pixels covered whole by one front triangle are held whole (and counted
+/// in `whole_pixels`, which only the sample buffer makes); where two large
+/// triangles pierce each other, the second one taken is in front of the
+/// first one's whole pixels on one side of the line they cross on (it
+/// takes them whole), behind on the other (culled), and along the line
+/// in front at some samples only (it expands them to samples); the image
+/// is the lists' bit for bit.
+#[test]
+fn whole_pixels_are_kept_and_expanded_as_the_lists_say() {
+    let scene = procedural::intersecting_pair();
+    let s = screen(&scene, 128, 128);
+    let mut sampled = ABuffer::new(ABufferOptions::default().with_threads(1));
+    let mut listed = ABuffer::new(
+        ABufferOptions::default()
+            .with_sample_tiles(false)
+            .with_merge(MergePolicy::Off),
+    );
+    let (a, sa): (Frame, ABufferStats) = render(&mut sampled, &s);
+    let (b, sb): (Frame, ABufferStats) = render(&mut listed, &s);
+    assert!(sa.whole_pixels > 1000, "{sa:?}");
+    assert!(sa.full_coverage > sa.whole_pixels, "{sa:?}");
+    assert_eq!(sb.whole_pixels, 0, "{sb:?}");
+    assert_eq!(a.color, b.color);
+    assert_eq!((a.coverage, a.ids, a.depth), (b.coverage, b.ids, b.depth));
+}
+
 /// The smaller patterns take the portable depth test (the 8 x 4 grid the
 /// AVX2 one where the CPU has it): the same answer as the lists too.
 #[test]
