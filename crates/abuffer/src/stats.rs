@@ -46,9 +46,13 @@ hider_scene::hider_stats! {
         /// depth at every sample and lose every tie (a face whose vertex
         /// list repeats itself is fan-split into such copies).
         pub coincident: u64 => "coincident",
-        /// Longest list of any pixel at resolve time.
+        /// Longest list of any pixel at resolve time, in the tiles resolved
+        /// from lists (0 when every tile took the sample buffer, whose
+        /// pixels keep no lists: [`Self::sample_tiles`]).
         pub max_list_len: u64 => "max list",
-        /// Mean list length over the pixels with at least one fragment.
+        /// Mean list length over the pixels with at least one fragment, in
+        /// the tiles resolved from lists (0 when every tile took the sample
+        /// buffer).
         pub mean_list_len: f64 => _,
         /// [`Self::mean_list_len`] times 1000, rounded: the mean as the
         /// table prints it (its counters are integers).
