@@ -33,7 +33,6 @@
 //! show in the image ([`crate::ABufferOptions::sample_tiles`]).
 
 use hider_geom::PlaneEq;
-use hider_geom::fixed::SUBPIXEL_SCALE;
 use hider_geom::isa::Avx2;
 use hider_scene::NO_ID;
 
@@ -516,18 +515,12 @@ impl SampleBuffer {
     /// the same operations on 4 lanes at a time).
     #[inline(always)]
     fn row_near_keys(&self, tri: &Tri, (i0, j): (u32, u32)) -> [i32; BLOCK as usize] {
-        let plane = &tri.plane;
-        let scale = f64::from(SUBPIXEL_SCALE);
-        let (sx, sy) = tri.near_corner;
-        let y = f64::from(j) + f64::from(sy) / scale;
-        let dy = plane.dy * (y - plane.y0);
         #[cfg(target_arch = "x86_64")]
         if let Some(isa) = self.avx2 {
-            return avx2::row_keys(isa, plane, f64::from(i0), f64::from(sx) / scale, dy);
+            return avx2::row_keys(isa, &tri.plane, (i0, j), tri.near_corner);
         }
         std::array::from_fn(|k| {
-            let x = f64::from(i0 + k as u32) + f64::from(sx) / scale;
-            depth_key(((plane.value + plane.dx * (x - plane.x0)) + dy) as f32)
+            depth_key(plane_depth(&tri.plane, i0 + k as u32, j, tri.near_corner) as f32)
         })
     }
 

@@ -102,12 +102,10 @@ pub(super) fn write_grid(
     ) -> i32 {
         use std::arch::x86_64::{
             __m256i, _mm_cvtsi128_si32, _mm_max_epi32, _mm_shuffle_epi32, _mm256_add_pd,
-            _mm256_and_si256, _mm256_blendv_epi8, _mm256_castps_si256, _mm256_castsi256_si128,
-            _mm256_cmpeq_epi32, _mm256_cmpgt_epi32, _mm256_cvtpd_ps, _mm256_extracti128_si256,
-            _mm256_loadu_si256, _mm256_max_epi32, _mm256_mul_pd, _mm256_or_si256, _mm256_set_m128,
-            _mm256_set1_epi32, _mm256_set1_pd, _mm256_setr_epi32, _mm256_setr_pd,
-            _mm256_srai_epi32, _mm256_srli_epi32, _mm256_storeu_si256, _mm256_sub_pd,
-            _mm256_xor_si256,
+            _mm256_and_si256, _mm256_blendv_epi8, _mm256_castsi256_si128, _mm256_cmpeq_epi32,
+            _mm256_cmpgt_epi32, _mm256_extracti128_si256, _mm256_loadu_si256, _mm256_max_epi32,
+            _mm256_mul_pd, _mm256_or_si256, _mm256_set1_epi32, _mm256_set1_pd, _mm256_setr_epi32,
+            _mm256_setr_pd, _mm256_storeu_si256, _mm256_sub_pd, _mm256_xor_si256,
         };
         let fi = f64::from(i);
         // x of columns 0-3 and 4-7: i + (32c + 16) / 256, exact.
@@ -145,14 +143,7 @@ pub(super) fn write_grid(
             // + dy * (y - y0), y = j + (64r + 32) / 256, exact.
             let ty = plane.dy * ((f64::from(j) + (r as f64 * 64.0 + 32.0) / 256.0) - plane.y0);
             let ty = _mm256_set1_pd(ty);
-            let z = _mm256_set_m128(
-                _mm256_cvtpd_ps(_mm256_add_pd(a_hi, ty)),
-                _mm256_cvtpd_ps(_mm256_add_pd(a_lo, ty)),
-            );
-            // Keys ordered like `total_cmp`: negative values flip their
-            // magnitude bits.
-            let zb = _mm256_castps_si256(z);
-            let key = _mm256_xor_si256(zb, _mm256_srli_epi32(_mm256_srai_epi32(zb, 31), 1));
+            let key = keys8(_mm256_add_pd(a_lo, ty), _mm256_add_pd(a_hi, ty));
             let old_p = unsafe { _mm256_loadu_si256(pp) };
             let nearer = _mm256_cmpgt_epi32(old, key);
             let tie = _mm256_and_si256(
@@ -212,36 +203,41 @@ pub(super) fn equal_mask(_proof: Avx2, prims: &[u32; 32], value: u32) -> u32 {
     unsafe { wide(prims, value) }
 }
 
-/// [`SampleBuffer::row_near_keys`]: the key of `plane` at `x + k + frac`
-/// for `k` = 0 to 7 (`x` a pixel column, `frac` the corner's offset in
-/// it) plus the row's term `dy`, in the portable order
-/// (`(value + dx * (x - x0)) + dy`, no fused multiply-add, rounded to
-/// `f32` to nearest), so the same keys.
+/// [`SampleBuffer::row_near_keys`]: the key of `plane` at the sample-hull
+/// corner `corner` of the 8 pixels from `(i0, j)` on, in the portable
+/// order of [`crate::depth::plane_depth`] (`value + dx * (x - x0)` first,
+/// then `dy * (y - y0)` added; no fused multiply-add; rounded to `f32` to
+/// nearest), so the same keys.
 #[cfg(target_arch = "x86_64")]
 #[allow(
     unsafe_code,
     reason = "a target-feature call proven sound by the Avx2 token, and an unaligned store of 8 i32"
 )]
 #[inline(always)]
-pub(super) fn row_keys(_proof: Avx2, plane: &PlaneEq, x: f64, frac: f64, dy: f64) -> [i32; 8] {
+pub(super) fn row_keys(
+    _proof: Avx2,
+    plane: &PlaneEq,
+    (i0, j): (u32, u32),
+    (sx, sy): (i32, i32),
+) -> [i32; 8] {
     #[target_feature(enable = "avx2")]
     #[inline]
-    fn wide(plane: &PlaneEq, x: f64, frac: f64, dy: f64) -> [i32; 8] {
+    fn wide(plane: &PlaneEq, (i0, j): (u32, u32), (sx, sy): (i32, i32)) -> [i32; 8] {
         use std::arch::x86_64::{
-            __m256i, _mm256_add_pd, _mm256_castps_si256, _mm256_cvtpd_ps, _mm256_mul_pd,
-            _mm256_set_m128, _mm256_set1_pd, _mm256_setr_pd, _mm256_srai_epi32, _mm256_srli_epi32,
-            _mm256_storeu_si256, _mm256_sub_pd, _mm256_xor_si256,
+            __m256i, _mm256_add_pd, _mm256_mul_pd, _mm256_set1_pd, _mm256_setr_pd,
+            _mm256_storeu_si256, _mm256_sub_pd,
         };
-        // Pixel columns and corner offsets are exact in f64: x + k + frac
-        // is the portable f64::from(i0 + k) + f64::from(sx) / 256.
-        let frac = _mm256_set1_pd(frac);
+        // Pixel columns and corner offsets (1/256 pixel) are exact in f64:
+        // x + k + sx / 256 is the portable f64::from(i0 + k) + sx / 256.
+        let (x, frac) = (f64::from(i0), _mm256_set1_pd(f64::from(sx) / 256.0));
         let lo = _mm256_add_pd(_mm256_setr_pd(x, x + 1.0, x + 2.0, x + 3.0), frac);
         let hi = _mm256_add_pd(_mm256_setr_pd(x + 4.0, x + 5.0, x + 6.0, x + 7.0), frac);
+        let y = f64::from(j) + f64::from(sy) / 256.0;
         let (x0, dx, value, dy) = (
             _mm256_set1_pd(plane.x0),
             _mm256_set1_pd(plane.dx),
             _mm256_set1_pd(plane.value),
-            _mm256_set1_pd(dy),
+            _mm256_set1_pd(plane.dy * (y - plane.y0)),
         );
         let z = |x| {
             _mm256_add_pd(
@@ -249,9 +245,7 @@ pub(super) fn row_keys(_proof: Avx2, plane: &PlaneEq, x: f64, frac: f64, dy: f64
                 dy,
             )
         };
-        let z = _mm256_set_m128(_mm256_cvtpd_ps(z(hi)), _mm256_cvtpd_ps(z(lo)));
-        let zb = _mm256_castps_si256(z);
-        let key = _mm256_xor_si256(zb, _mm256_srli_epi32(_mm256_srai_epi32(zb, 31), 1));
+        let key = keys8(z(lo), z(hi));
         let mut out = [0i32; 8];
         // SAFETY: `out` is 8 i32s, 32 writable bytes; `storeu` accepts any
         // alignment.
@@ -259,7 +253,27 @@ pub(super) fn row_keys(_proof: Avx2, plane: &PlaneEq, x: f64, frac: f64, dy: f64
         out
     }
     // SAFETY: an `Avx2` value exists only where AVX2 was detected.
-    unsafe { wide(plane, x, frac, dy) }
+    unsafe { wide(plane, (i0, j), (sx, sy)) }
+}
+
+/// The depth keys ([`crate::depth::depth_key`]) of 8 depths given in two
+/// registers of 4 `f64` (lanes 0-3 and 4-7), each rounded to `f32` to
+/// nearest as `as f32` does.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+fn keys8(
+    lo: std::arch::x86_64::__m256d,
+    hi: std::arch::x86_64::__m256d,
+) -> std::arch::x86_64::__m256i {
+    use std::arch::x86_64::{
+        _mm256_castps_si256, _mm256_cvtpd_ps, _mm256_set_m128, _mm256_srai_epi32,
+        _mm256_srli_epi32, _mm256_xor_si256,
+    };
+    let z = _mm256_castps_si256(_mm256_set_m128(_mm256_cvtpd_ps(hi), _mm256_cvtpd_ps(lo)));
+    // Keys ordered like `total_cmp`: negative values flip their magnitude
+    // bits.
+    _mm256_xor_si256(z, _mm256_srli_epi32(_mm256_srai_epi32(z, 31), 1))
 }
 
 /// The lanes `k` where `a[k] > b[k]`, as bits.
