@@ -766,42 +766,48 @@ impl SampleBuffer {
                 }
                 let all = k.full;
                 self.shown.clear();
-                if self.whole[(j - y0) as usize] >> (i - x0) & 1 == 1 {
+                let covered = if self.whole[(j - y0) as usize] >> (i - x0) & 1 == 1 {
                     // What the samples say of a whole pixel: its one
                     // primitive at every sample.
-                    let prim = self.centre_prim[q];
-                    let rgba = input.prim_rgba(prim, (i, j));
-                    self.shown.push(Shown {
-                        prim,
-                        samples: all.count_ones(),
-                        rgb: [rgba[0], rgba[1], rgba[2]],
-                    });
-                    frame.set_coverage(p, all.count_ones() as f32 * k.inv_n);
-                    let sum = opaque_sum(&mut self.shown).map(|c| c * k.inv_n);
-                    resolver.write_color(k, sum, frame, p);
-                    continue;
-                }
-                let prims = &self.prims[q];
-                let mut covered = 0u32;
-                let mut left = !self.equal_mask(prims, NO_ID) & all;
-                while left != 0 {
-                    let prim = prims[left.trailing_zeros() as usize];
-                    let same = self.equal_mask(prims, prim) & all;
-                    left &= !same;
-                    covered += same.count_ones();
-                    let rgba = input.prim_rgba(prim, (i, j));
-                    self.shown.push(Shown {
-                        prim,
-                        samples: same.count_ones(),
-                        rgb: [rgba[0], rgba[1], rgba[2]],
-                    });
-                }
+                    show(&mut self.shown, input, self.centre_prim[q], all, (i, j))
+                } else {
+                    let prims = &self.prims[q];
+                    let mut covered = 0u32;
+                    let mut left = !self.equal_mask(prims, NO_ID) & all;
+                    while left != 0 {
+                        let prim = prims[left.trailing_zeros() as usize];
+                        let same = self.equal_mask(prims, prim) & all;
+                        left &= !same;
+                        covered += show(&mut self.shown, input, prim, same, (i, j));
+                    }
+                    covered
+                };
                 frame.set_coverage(p, covered as f32 * k.inv_n);
                 let sum = opaque_sum(&mut self.shown).map(|c| c * k.inv_n);
                 resolver.write_color(k, sum, frame, p);
             }
         }
     }
+}
+
+/// Notes in `shown` that primitive `prim` is the front surface at the
+/// samples of `mask` of pixel `ij` (its colour there from `input`);
+/// returns how many samples that is.
+#[inline(always)]
+fn show(
+    shown: &mut Vec<Shown>,
+    input: &mut Input<'_>,
+    prim: u32,
+    mask: u32,
+    ij: (u32, u32),
+) -> u32 {
+    let rgba = input.prim_rgba(prim, ij);
+    shown.push(Shown {
+        prim,
+        samples: mask.count_ones(),
+        rgb: [rgba[0], rgba[1], rgba[2]],
+    });
+    mask.count_ones()
 }
 
 #[cfg(test)]
