@@ -38,15 +38,16 @@ use hider_scene::NO_ID;
 
 use crate::bins::{BinItem, TILE};
 use crate::centre::in_front;
-use crate::composite::{Shown, opaque_sum};
+use crate::composite::Shown;
 use crate::coverage::{Class, Coverage, TriCoverage};
-use crate::depth::{depth_key, far_corner, near_corner, nearest_over, plane_depth};
+use crate::depth::{depth_key, far_corner, near_corner, plane_depth};
 use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
-use crate::resolve::{Band, Input, Resolver, Samples};
 use crate::stats::ABufferStats;
 
 #[cfg(target_arch = "x86_64")]
 mod avx2;
+mod culling;
+mod resolve;
 
 /// Rows of a tile taken in one pass: 64 x 32 pixels of 32 samples of 8
 /// bytes are 512 KiB, which stays in a 1 MiB level-2 cache.
@@ -208,108 +209,6 @@ impl SampleBuffer {
             let h = (j0 + BLOCK).min(y1 + 1).saturating_sub(j0);
             *open = (w * h) as u8;
         }
-    }
-
-    /// The farthest key of the written pixels of block `b`, [`EMPTY`] if
-    /// one is unwritten.
-    fn block_bound(&self, b: usize) -> i32 {
-        let (x0, y0, x1, y1) = self.rect;
-        let (bx, by) = (b as u32 % BLOCKS_X, b as u32 / BLOCKS_X);
-        let (i0, j0) = (x0 + bx * BLOCK, y0 + by * BLOCK);
-        let (i1, j1) = ((i0 + BLOCK - 1).min(x1), (j0 + BLOCK - 1).min(y1));
-        let bits = (1u64 << (i1 - i0 + 1)) - 1;
-        let mut far = i32::MIN;
-        for j in j0..=j1 {
-            if (self.touched[(j - y0) as usize] >> (i0 - x0)) & bits != bits {
-                return EMPTY;
-            }
-            let p = self.index(i0, j);
-            for &f in &self.far[p..=p + (i1 - i0) as usize] {
-                far = far.max(f);
-            }
-        }
-        far
-    }
-
-    /// The blocks of the pass where the triangle of plane `plane` may win
-    /// a sample or the centre inside `(x0, y0, x1, y1)`, as bits; counts
-    /// the others in [`ABufferStats::culled_blocks`]. The plane at the
-    /// block's near corner (of the sample hull `hull`) is a lower bound of
-    /// the triangle's depth at every sample and centre of the block.
-    // Inlined into the AVX2 triangle loop: called out of line it made the
-    // soup 6 % slower.
-    #[inline(always)]
-    fn live_blocks(
-        &mut self,
-        plane: &PlaneEq,
-        (x0, y0, x1, y1): (u32, u32, u32, u32),
-        hull: (i32, i32, i32, i32),
-        stats: &mut ABufferStats,
-    ) -> u32 {
-        let (px0, py0) = (self.rect.0, self.rect.1);
-        let (bx0, bx1) = ((x0 - px0) / BLOCK, (x1 - px0) / BLOCK);
-        let (by0, by1) = ((y0 - py0) / BLOCK, (y1 - py0) / BLOCK);
-        let blocks = (bx1 - bx0 + 1) * (by1 - by0 + 1);
-        if blocks > 1 {
-            // The whole rectangle first, with one evaluation: the plane at
-            // its near corner is a lower bound of its value at every
-            // block's near corner (the plane is monotonic), and the
-            // largest of the blocks' bounds (upper bounds, stale or not)
-            // bounds every pixel. The evaluations per block are a chain of
-            // dependent `f64` operations each: on large hidden triangles
-            // they were a tenth of the frame.
-            let mut far = i32::MIN;
-            'blocks: for by in by0..=by1 {
-                for bx in bx0..=bx1 {
-                    let b = (by * BLOCKS_X + bx) as usize;
-                    far = far.max(if self.open[b] > 0 {
-                        EMPTY
-                    } else {
-                        self.block_far[b]
-                    });
-                    if far == EMPTY {
-                        break 'blocks;
-                    }
-                }
-            }
-            if far != EMPTY {
-                let near = depth_key(nearest_over(plane, (x0, y0, x1, y1), hull) as f32);
-                if near > far {
-                    stats.culled_blocks += u64::from(blocks);
-                    stats.culled_tiles += 1;
-                    return 0;
-                }
-            }
-        }
-        let mut live = 0u32;
-        for by in by0..=by1 {
-            let (j0, j1) = (
-                (py0 + by * BLOCK).max(y0),
-                (py0 + by * BLOCK + BLOCK - 1).min(y1),
-            );
-            for bx in bx0..=bx1 {
-                let b = (by * BLOCKS_X + bx) as usize;
-                if self.open[b] > 0 || (self.block_far[b] == EMPTY && self.stale >> b & 1 == 0) {
-                    live |= 1 << b;
-                    continue;
-                }
-                let (i0, i1) = (
-                    (px0 + bx * BLOCK).max(x0),
-                    (px0 + bx * BLOCK + BLOCK - 1).min(x1),
-                );
-                let near = depth_key(nearest_over(plane, (i0, j0, i1, j1), hull) as f32);
-                if near <= self.block_far[b] && self.stale >> b & 1 == 1 {
-                    self.block_far[b] = self.block_bound(b);
-                    self.stale &= !(1 << b);
-                }
-                if near > self.block_far[b] {
-                    stats.culled_blocks += 1;
-                } else {
-                    live |= 1 << b;
-                }
-            }
-        }
-        live
     }
 
     /// Index of pixel `(i, j)` of the pass.
@@ -509,42 +408,6 @@ impl SampleBuffer {
         }
     }
 
-    /// The key of the plane of `tri` at the near corner of each of the 8
-    /// pixels from `(i0, j)` on (a lower bound of its depth at their
-    /// samples and centres), as [`plane_depth`] computes it (with AVX2:
-    /// the same operations on 4 lanes at a time).
-    #[inline(always)]
-    fn row_near_keys(&self, tri: &Tri, (i0, j): (u32, u32)) -> [i32; BLOCK as usize] {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(isa) = self.avx2 {
-            return avx2::row_keys(isa, &tri.plane, (i0, j), tri.near_corner);
-        }
-        std::array::from_fn(|k| {
-            depth_key(plane_depth(&tri.plane, i0 + k as u32, j, tri.near_corner) as f32)
-        })
-    }
-
-    /// The pixels of the 8 from `(i0, j)` on (bit `k` = pixel `i0 + k`)
-    /// that a triangle whose near keys there are `keys` loses entirely:
-    /// strictly behind the farthest of the pixel's samples and centre.
-    #[inline(always)]
-    fn row_culled(&self, keys: &[i32; BLOCK as usize], (i0, j): (u32, u32)) -> u32 {
-        let row = (j - self.rect.1) as usize;
-        let live = (self.touched[row] >> (i0 - self.rect.0)) as u32;
-        let p = self.index(i0, j);
-        let far = &self.far[p..p + BLOCK as usize];
-        #[cfg(target_arch = "x86_64")]
-        if let Some(isa) = self.avx2 {
-            return avx2::greater(isa, keys, far.try_into().expect("8 keys")) & live;
-        }
-        let mut culled = 0u32;
-        for (k, (&key, &far)) in keys.iter().zip(far).enumerate() {
-            // An open pixel's farthest key is EMPTY: nothing is beyond it.
-            culled |= u32::from(key > far) << k;
-        }
-        culled & live
-    }
-
     /// Renders triangle `tri` at pixel `(i, j)`, which it touches
     /// (`class` is not [`Class::Empty`]; `here` are its edge values there
     /// for `setup`) and which is not culled; `near` is its near key there
@@ -706,173 +569,6 @@ impl SampleBuffer {
             Some([self.centre_prim[p]; MAX_SAMPLES])
         } else {
             (self.touched[row] & bit != 0).then(|| self.prims[p])
-        }
-    }
-
-    /// The mask of the samples of `prims` equal to `value`.
-    #[inline(always)]
-    fn equal_mask(&self, prims: &[u32; MAX_SAMPLES], value: u32) -> u32 {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(isa) = self.avx2 {
-            return avx2::equal_mask(isa, prims, value);
-        }
-        let mut mask = 0u32;
-        for (k, &id) in prims.iter().enumerate() {
-            mask |= u32::from(id == value) << k;
-        }
-        mask
-    }
-
-    /// Resolves the pass's written pixels into `frame`: coverage, the
-    /// centre's id and depth, and the colour sum of the samples' front
-    /// primitives in the lists' canonical order.
-    pub(crate) fn resolve(
-        &mut self,
-        input: &mut Input<'_>,
-        resolver: &mut Resolver,
-        k: &Samples,
-        frame: &mut Band<'_>,
-    ) {
-        #[cfg(target_arch = "x86_64")]
-        if let Some(isa) = self.avx2 {
-            // The whole loop compiled for AVX2, so that the per-primitive
-            // sample counts inline into it.
-            avx2::resolve(isa, self, (input, resolver), k, frame);
-            return;
-        }
-        self.resolve_with(input, resolver, k, frame);
-    }
-
-    /// [`Self::resolve`], inlined into its AVX2 and portable callers.
-    #[inline(always)]
-    pub(super) fn resolve_with(
-        &mut self,
-        input: &mut Input<'_>,
-        resolver: &mut Resolver,
-        k: &Samples,
-        frame: &mut Band<'_>,
-    ) {
-        let (x0, y0, _, y1) = self.rect;
-        let w = frame.width;
-        for j in y0..=y1 {
-            let mut row = self.touched[(j - y0) as usize];
-            while row != 0 {
-                let i = x0 + row.trailing_zeros();
-                row &= row - 1;
-                let q = self.index(i, j);
-                let p = j as usize * w + i as usize;
-                if self.centre_prim[q] != NO_ID {
-                    frame.set_id(p, self.centre_prim[q], self.centre_z[q] as f32);
-                }
-                let all = k.full;
-                self.shown.clear();
-                let covered = if self.whole[(j - y0) as usize] >> (i - x0) & 1 == 1 {
-                    // What the samples say of a whole pixel: its one
-                    // primitive at every sample.
-                    show(&mut self.shown, input, self.centre_prim[q], all, (i, j))
-                } else {
-                    let prims = &self.prims[q];
-                    let mut covered = 0u32;
-                    let mut left = !self.equal_mask(prims, NO_ID) & all;
-                    while left != 0 {
-                        let prim = prims[left.trailing_zeros() as usize];
-                        let same = self.equal_mask(prims, prim) & all;
-                        left &= !same;
-                        covered += show(&mut self.shown, input, prim, same, (i, j));
-                    }
-                    covered
-                };
-                frame.set_coverage(p, covered as f32 * k.inv_n);
-                let sum = opaque_sum(&mut self.shown).map(|c| c * k.inv_n);
-                resolver.write_color(k, sum, frame, p);
-            }
-        }
-    }
-}
-
-/// Notes in `shown` that primitive `prim` is the front surface at the
-/// samples of `mask` of pixel `ij` (its colour there from `input`);
-/// returns how many samples that is.
-#[inline(always)]
-fn show(
-    shown: &mut Vec<Shown>,
-    input: &mut Input<'_>,
-    prim: u32,
-    mask: u32,
-    ij: (u32, u32),
-) -> u32 {
-    let rgba = input.prim_rgba(prim, ij);
-    shown.push(Shown {
-        prim,
-        samples: mask.count_ones(),
-        rgb: [rgba[0], rgba[1], rgba[2]],
-    });
-    mask.count_ones()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::test_rng::xorshift;
-
-    /// The AVX2 row of near keys and the AVX2 comparison give the portable
-    /// results bit for bit, on planes of every scale and sign (negative
-    /// depths, huge slopes, values that round to the same `f32`).
-    #[test]
-    fn row_keys_and_culling_equal_the_portable_ones() {
-        let Some(isa) = Avx2::detect() else { return };
-        let mut next = xorshift();
-        let mut unit = move || (next() >> 11) as f64 / (1u64 << 53) as f64;
-        let mut buffer = SampleBuffer::default();
-        buffer.begin((64, 32, 127, 63), true);
-        for case in 0..4000 {
-            let scale = [1e-9, 1e-3, 1.0, 1e3, 1e12][case % 5];
-            let plane = PlaneEq {
-                x0: unit() * 2048.0 - 512.0,
-                y0: unit() * 2048.0 - 512.0,
-                value: (unit() - 0.5) * 4.0,
-                dx: (unit() - 0.5) * scale,
-                dy: (unit() - 0.5) * scale,
-            };
-            let hull = SamplePattern::ALL[case % 5].hull();
-            let tri = Tri {
-                plane,
-                prim: 0,
-                near_corner: near_corner(&plane, hull),
-                far_corner: far_corner(&plane, hull),
-                full: Coverage::default(),
-                own_plane: None,
-                pattern: SamplePattern::Grid32,
-                grid: None,
-            };
-            let (i0, j) = (64 + (unit() * 56.0) as u32, 32 + (unit() * 32.0) as u32);
-            buffer.avx2 = Some(isa);
-            let wide = buffer.row_near_keys(&tri, (i0, j));
-            buffer.avx2 = None;
-            let portable = buffer.row_near_keys(&tri, (i0, j));
-            assert_eq!(wide, portable, "case {case}: {plane:?} at {i0} {j}");
-            for (k, &key) in portable.iter().enumerate() {
-                let z = plane_depth(&plane, i0 + k as u32, j, tri.near_corner) as f32;
-                assert_eq!(key, depth_key(z), "case {case} pixel {k}");
-            }
-            let other: [i32; 8] = std::array::from_fn(|k| {
-                if k % 3 == 0 {
-                    portable[k]
-                } else {
-                    next_key(&mut unit)
-                }
-            });
-            let scalar = (0..8).fold(0u32, |m, k| m | u32::from(portable[k] > other[k]) << k);
-            assert_eq!(avx2::greater(isa, &portable, &other), scalar, "case {case}");
-        }
-    }
-
-    /// A key anywhere in the range, the empty one included.
-    fn next_key(unit: &mut impl FnMut() -> f64) -> i32 {
-        match (unit() * 4.0) as u32 {
-            0 => EMPTY,
-            1 => i32::MIN,
-            _ => ((unit() - 0.5) * 2.0 * f64::from(i32::MAX)) as i32,
         }
     }
 }

@@ -1,0 +1,116 @@
+//! The sample buffer's resolve: per written pixel, its coverage, the
+//! centre's id and depth, and the colour sum of the samples' front
+//! primitives in the canonical order the lists use too
+//! ([`crate::composite::opaque_sum`]), so both give the same image.
+
+use hider_scene::NO_ID;
+
+use super::SampleBuffer;
+use crate::composite::{Shown, opaque_sum};
+use crate::pattern::MAX_SAMPLES;
+use crate::resolve::{Band, Input, Resolver, Samples};
+
+#[cfg(target_arch = "x86_64")]
+use super::avx2;
+
+impl SampleBuffer {
+    /// The mask of the samples of `prims` equal to `value`.
+    #[inline(always)]
+    pub(super) fn equal_mask(&self, prims: &[u32; MAX_SAMPLES], value: u32) -> u32 {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(isa) = self.avx2 {
+            return avx2::equal_mask(isa, prims, value);
+        }
+        let mut mask = 0u32;
+        for (k, &id) in prims.iter().enumerate() {
+            mask |= u32::from(id == value) << k;
+        }
+        mask
+    }
+
+    /// Resolves the pass's written pixels into `frame`: coverage, the
+    /// centre's id and depth, and the colour sum of the samples' front
+    /// primitives in the lists' canonical order.
+    pub(crate) fn resolve(
+        &mut self,
+        input: &mut Input<'_>,
+        resolver: &mut Resolver,
+        k: &Samples,
+        frame: &mut Band<'_>,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        if let Some(isa) = self.avx2 {
+            // The whole loop compiled for AVX2, so that the per-primitive
+            // sample counts inline into it.
+            avx2::resolve(isa, self, (input, resolver), k, frame);
+            return;
+        }
+        self.resolve_with(input, resolver, k, frame);
+    }
+
+    /// [`Self::resolve`], inlined into its AVX2 and portable callers.
+    #[inline(always)]
+    pub(super) fn resolve_with(
+        &mut self,
+        input: &mut Input<'_>,
+        resolver: &mut Resolver,
+        k: &Samples,
+        frame: &mut Band<'_>,
+    ) {
+        let (x0, y0, _, y1) = self.rect;
+        let w = frame.width;
+        for j in y0..=y1 {
+            let mut row = self.touched[(j - y0) as usize];
+            while row != 0 {
+                let i = x0 + row.trailing_zeros();
+                row &= row - 1;
+                let q = self.index(i, j);
+                let p = j as usize * w + i as usize;
+                if self.centre_prim[q] != NO_ID {
+                    frame.set_id(p, self.centre_prim[q], self.centre_z[q] as f32);
+                }
+                let all = k.full;
+                self.shown.clear();
+                let covered = if self.whole[(j - y0) as usize] >> (i - x0) & 1 == 1 {
+                    // What the samples say of a whole pixel: its one
+                    // primitive at every sample.
+                    show(&mut self.shown, input, self.centre_prim[q], all, (i, j))
+                } else {
+                    let prims = &self.prims[q];
+                    let mut covered = 0u32;
+                    let mut left = !self.equal_mask(prims, NO_ID) & all;
+                    while left != 0 {
+                        let prim = prims[left.trailing_zeros() as usize];
+                        let same = self.equal_mask(prims, prim) & all;
+                        left &= !same;
+                        covered += show(&mut self.shown, input, prim, same, (i, j));
+                    }
+                    covered
+                };
+                frame.set_coverage(p, covered as f32 * k.inv_n);
+                let sum = opaque_sum(&mut self.shown).map(|c| c * k.inv_n);
+                resolver.write_color(k, sum, frame, p);
+            }
+        }
+    }
+}
+
+/// Notes in `shown` that primitive `prim` is the front surface at the
+/// samples of `mask` of pixel `ij` (its colour there from `input`);
+/// returns how many samples that is.
+#[inline(always)]
+fn show(
+    shown: &mut Vec<Shown>,
+    input: &mut Input<'_>,
+    prim: u32,
+    mask: u32,
+    ij: (u32, u32),
+) -> u32 {
+    let rgba = input.prim_rgba(prim, ij);
+    shown.push(Shown {
+        prim,
+        samples: mask.count_ones(),
+        rgb: [rgba[0], rgba[1], rgba[2]],
+    });
+    mask.count_ones()
+}
