@@ -31,6 +31,7 @@
 //! them; neighbouring pixels with the same colour sum reuse the last sRGB
 //! conversion, which is exact and table-driven ([`crate::palette`]).
 
+use hider_scene::frame::BACKGROUND;
 use hider_scene::prepare::lean::LeanTri;
 use hider_scene::{Frame, NO_ID};
 
@@ -119,6 +120,15 @@ impl<'a> Band<'a> {
                 coverage,
             })
             .collect()
+    }
+
+    /// Clears the band: no id, depth 1, the background colour, no
+    /// coverage (what [`Frame::clear`] does to the whole frame).
+    pub(crate) fn clear(&mut self) {
+        self.ids.fill(NO_ID);
+        self.depth.fill(1.0);
+        self.color.fill(BACKGROUND);
+        self.coverage.fill(0.0);
     }
 
     /// Writes the id and depth of frame pixel `p`.

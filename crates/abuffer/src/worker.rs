@@ -72,6 +72,7 @@ impl Worker {
     /// Renders and resolves the tiles of tile row `ty` into `band`.
     pub(crate) fn band(&mut self, shared: &Shared<'_>, ty: u32, band: &mut Band<'_>) -> Result<()> {
         let dims = (shared.scene.viewport.width, shared.scene.viewport.height);
+        band.clear();
         for tx in 0..shared.tiles_x {
             let t = (ty * shared.tiles_x + tx) as usize;
             self.tile(shared, t, tile_rect(tx, ty, dims), band)?;

@@ -116,3 +116,24 @@ fn threads_are_capped_by_the_memory_bound() {
     assert!(stats.bytes <= 4 * table, "{stats:?}");
     assert!(one == frame);
 }
+
+/// A frame that held another image is overwritten everywhere, also in the
+/// bands the new scene leaves empty (each band is cleared by the thread
+/// that renders it, not by a pass over the whole frame first): the same
+/// frame as a fresh one, at 1, 2 and 3 threads.
+#[test]
+fn a_reused_frame_keeps_nothing_of_the_last_image() {
+    let full = procedural::random_soup(600, 4);
+    // One small triangle: a single band of tiles holds anything.
+    let one = procedural::random_soup(1, 8);
+    for threads in [1, 2, 3] {
+        let mut hider = ABuffer::new(ABufferOptions::default().with_threads(threads));
+        let a = screen(&full, 150, 330);
+        let b = screen(&one, 150, 330);
+        let (mut frame, _) = render(&mut hider, &a);
+        assert!(frame.ids.iter().any(|&id| id != hider_scene::NO_ID));
+        hider.render(&b, &mut frame).expect("renders");
+        let (fresh, _) = render(&mut ABuffer::new(ABufferOptions::default()), &b);
+        assert_eq!(frame, fresh, "{threads} threads");
+    }
+}
