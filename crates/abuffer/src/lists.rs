@@ -19,7 +19,7 @@ use crate::fragment::{Fragment, MERGED_BASE, NIL, Shaded};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy};
 use crate::pattern::MAX_SAMPLES;
 use crate::pool::FragmentPool;
-use crate::source::Source;
+use crate::source::{ColorCache, Source};
 use crate::stats::ABufferStats;
 
 /// Two colour channels closer than this count as equal for
@@ -53,9 +53,8 @@ pub(crate) struct Ctx<'a> {
 pub(crate) struct Lists {
     /// The lists and their fragments.
     pub(crate) pool: FragmentPool,
-    /// Colour and opacity per primitive, computed on first use (NaN until
-    /// then, see [`shade_of`]).
-    pub(crate) colors: Vec<[f32; 4]>,
+    /// Colour and opacity per primitive, computed on first use.
+    pub(crate) colors: ColorCache,
     /// Opaque bounds being gathered, block bounds.
     pub(crate) culling: Culling,
     /// A list with its colours, while pruning.
@@ -83,8 +82,7 @@ impl Lists {
         let fresh = self
             .pool
             .reset(w as usize * h as usize, per_sample, options.max_bytes)?;
-        self.colors.clear();
-        self.colors.resize(scene.prims(), [f32::NAN; 4]);
+        self.colors.begin(scene.prims());
         Ok(fresh)
     }
 
@@ -101,7 +99,7 @@ impl Lists {
         if shade >= MERGED_BASE {
             self.pool.merged(shade).rgba
         } else {
-            let flat = scene.shade_of(&mut self.colors, self.options.shade, shade);
+            let flat = self.colors.get(scene, self.options.shade, shade);
             scene.at_pixel(shade, flat, ij)
         }
     }

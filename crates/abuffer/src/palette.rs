@@ -21,10 +21,9 @@ pub fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
 }
 
 /// The colour and opacity of primitive `prim` from `colors`, computed on
-/// first use: the A-buffer fills `colors` with NaN at the start of a frame
-/// and shades a primitive only when a fragment of it is merged, pruned or
-/// resolved (the opacity the culling needs comes from the material alone),
-/// so primitives culled or dropped whole are never shaded.
+/// first use: an entry whose opacity is NaN is not shaded yet (fill
+/// `colors` with NaN to start), so primitives never asked for are never
+/// shaded.
 #[inline]
 pub fn shade_of(
     colors: &mut [[f32; 4]],

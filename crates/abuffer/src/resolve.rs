@@ -44,7 +44,7 @@ use crate::options::{ABufferOptions, DepthMode};
 use crate::palette::{Srgb, to_pixel};
 use crate::pattern::SamplePattern;
 use crate::pool::FragmentPool;
-use crate::source::Source;
+use crate::source::{ColorCache, Source};
 use crate::stats::ABufferStats;
 
 /// What the resolve reads: the lists, and how to colour their fragments.
@@ -56,7 +56,7 @@ pub(crate) struct Input<'a> {
     /// Depth plane per triangle.
     pub(crate) tris: &'a [LeanTri],
     /// Colour and opacity per primitive, computed on first use.
-    pub(crate) colors: &'a mut [[f32; 4]],
+    pub(crate) colors: &'a mut ColorCache,
     /// The options of the frame.
     pub(crate) options: &'a ABufferOptions,
 }
@@ -66,7 +66,7 @@ impl Input<'_> {
     /// on first use, textured at the pixel centre).
     #[inline]
     pub(crate) fn prim_rgba(&mut self, prim: u32, ij: (u32, u32)) -> [f32; 4] {
-        let flat = self.scene.shade_of(self.colors, self.options.shade, prim);
+        let flat = self.colors.get(self.scene, self.options.shade, prim);
         self.scene.at_pixel(prim, flat, ij)
     }
 
