@@ -346,7 +346,12 @@ impl TriCoverage {
     /// mask and centre, tested sample by sample (possibly empty).
     #[inline]
     pub fn partial(&self, base: [i64; 3]) -> Coverage {
-        let centre = (0..3).all(|e| base[e] + self.centre[e] > 0);
+        // Non-short-circuit `&`: whether the centre is covered is a coin
+        // toss on a partial pixel, and as branches the three tests
+        // mispredicted.
+        let centre = (base[0] + self.centre[0] > 0)
+            & (base[1] + self.centre[1] > 0)
+            & (base[2] + self.centre[2] > 0);
         let mask = match self.pattern {
             SamplePattern::Centre => u32::from(centre),
             SamplePattern::Grid32 => self.grid_mask(base),
