@@ -16,7 +16,8 @@ use hider_scene::{Frame, NO_ID};
 /// depend on submission order.
 #[inline]
 pub fn in_front<Z: PartialOrd>(z: Z, prim: u32, z0: Z, prim0: u32) -> bool {
-    z < z0 || (z == z0 && prim < prim0)
+    // Non-short-circuit: no branch for callers to mispredict.
+    (z < z0) | ((z == z0) & (prim < prim0))
 }
 
 /// A one-sample depth buffer at pixel centres.

@@ -35,6 +35,7 @@
 use hider_geom::PlaneEq;
 use hider_geom::isa::Avx2;
 use hider_scene::NO_ID;
+use std::hint::select_unpredictable;
 
 use crate::bins::{BinItem, TILE};
 use crate::centre::in_front;
@@ -546,18 +547,20 @@ impl SampleBuffer {
                 keys[..n].iter().copied().fold(i32::MIN, i32::max)
             }
         };
-        if c.centre {
-            let z = plane_depth(plane, i, j, CENTRE);
-            if in_front(z, prim, self.centre_z[p], self.centre_prim[p]) {
-                self.centre_z[p] = z;
-                self.centre_prim[p] = prim;
-            }
-        }
-        self.far[p] = if self.centre_prim[p] == NO_ID {
-            EMPTY
-        } else {
-            samples_far.max(depth_key(self.centre_z[p] as f32))
-        };
+        // Branch-free (selects): whether a partial fragment covers the
+        // centre, and wins it, is a coin toss; as branches they
+        // mispredicted (callgrind's branch simulation).
+        let z = plane_depth(plane, i, j, CENTRE);
+        let (z0, prim0) = (self.centre_z[p], self.centre_prim[p]);
+        let take = c.centre & in_front(z, prim, z0, prim0);
+        let (z, prim) = (
+            select_unpredictable(take, z, z0),
+            select_unpredictable(take, prim, prim0),
+        );
+        self.centre_z[p] = z;
+        self.centre_prim[p] = prim;
+        self.far[p] =
+            select_unpredictable(prim == NO_ID, EMPTY, samples_far.max(depth_key(z as f32)));
     }
 
     /// The front primitive of each sample of pixel `(i, j)` of the pass,

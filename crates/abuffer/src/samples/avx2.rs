@@ -135,11 +135,10 @@ pub(super) fn write_grid(
                 )
             };
             let old = unsafe { _mm256_loadu_si256(kp) };
+            // An empty row is computed too (its lanes keep their keys):
+            // whether a partial mask misses a row is a coin toss, and as
+            // a branch it mispredicted.
             let bits = (mask >> (8 * r)) & 0xff;
-            if bits == 0 {
-                far = _mm256_max_epi32(far, old);
-                continue;
-            }
             // + dy * (y - y0), y = j + (64r + 32) / 256, exact.
             let ty = plane.dy * ((f64::from(j) + (r as f64 * 64.0 + 32.0) / 256.0) - plane.y0);
             let ty = _mm256_set1_pd(ty);
