@@ -35,7 +35,6 @@
 use hider_geom::PlaneEq;
 use hider_geom::isa::Avx2;
 use hider_scene::NO_ID;
-use std::hint::select_unpredictable;
 
 use crate::bins::{BinItem, TILE};
 use crate::centre::in_front;
@@ -174,6 +173,14 @@ impl Default for SampleBuffer {
             shown: Vec::new(),
         }
     }
+}
+
+/// `a` if `take`, else `b`, by masks: no branch to mispredict (the
+/// standard `select_unpredictable` is newer than the crate's MSRV).
+#[inline(always)]
+fn pick(take: bool, a: u64, b: u64) -> u64 {
+    let all = u64::from(take).wrapping_neg();
+    (a & all) | (b & !all)
 }
 
 /// Bytes of one thread's sample buffer.
@@ -553,14 +560,16 @@ impl SampleBuffer {
         let z = plane_depth(plane, i, j, CENTRE);
         let (z0, prim0) = (self.centre_z[p], self.centre_prim[p]);
         let take = c.centre & in_front(z, prim, z0, prim0);
-        let (z, prim) = (
-            select_unpredictable(take, z, z0),
-            select_unpredictable(take, prim, prim0),
-        );
+        let z = f64::from_bits(pick(take, z.to_bits(), z0.to_bits()));
+        let prim = pick(take, u64::from(prim), u64::from(prim0)) as u32;
         self.centre_z[p] = z;
         self.centre_prim[p] = prim;
-        self.far[p] =
-            select_unpredictable(prim == NO_ID, EMPTY, samples_far.max(depth_key(z as f32)));
+        let far = samples_far.max(depth_key(z as f32));
+        self.far[p] = pick(
+            prim == NO_ID,
+            u64::from(EMPTY as u32),
+            u64::from(far as u32),
+        ) as i32;
     }
 
     /// The front primitive of each sample of pixel `(i, j)` of the pass,
