@@ -82,10 +82,13 @@ pub fn at_sample(
 /// `[0, 1]` (as bits) that `to_srgb8` maps to `v` or more, for `v =
 /// 1..=255`; `base[b >> 16]` is the value at the start of the bucket of
 /// bits `b` (a bucket of 2^16 consecutive floats spans at most a step or
-/// two, so a lookup is one load and a short scan).
+/// two, so a lookup is one load and a short scan of `steps` compares).
 pub struct Table {
-    thresholds: [u32; 255],
+    /// The 255 thresholds, then `u32::MAX` (no value passes 255).
+    thresholds: [u32; 256],
     base: Vec<u8>,
+    /// The most thresholds inside one bucket: the scan's fixed length.
+    steps: u32,
 }
 
 /// The table, or `None` if the conversion is found not to be monotonic
@@ -104,8 +107,8 @@ fn table() -> Option<&'static Table> {
         .get_or_init(|| {
             let one = 1.0f32.to_bits();
             let level = |bits: u32| to_srgb8(f32::from_bits(bits));
-            let mut thresholds = [0u32; 255];
-            for (k, t) in thresholds.iter_mut().enumerate() {
+            let mut thresholds = [u32::MAX; 256];
+            for (k, t) in thresholds[..255].iter_mut().enumerate() {
                 let v = k as u8 + 1;
                 let (mut lo, mut hi) = (0u32, one);
                 while lo < hi {
@@ -121,10 +124,17 @@ fn table() -> Option<&'static Table> {
                 }
                 *t = lo;
             }
-            let base = (0..=one >> 16)
-                .map(|key| thresholds.partition_point(|&t| t <= key << 16) as u8)
-                .collect();
-            Some(Table { thresholds, base })
+            let below = |bits: u32| thresholds.partition_point(|&t| t <= bits);
+            let base = (0..=one >> 16).map(|key| below(key << 16) as u8).collect();
+            let steps = (0..=one >> 16)
+                .map(|key| (below(key << 16 | 0xffff) - below(key << 16)) as u32)
+                .max()
+                .unwrap_or(0);
+            Some(Table {
+                thresholds,
+                base,
+                steps,
+            })
         })
         .as_ref()
 }
@@ -135,8 +145,11 @@ fn srgb8(table: &Table, x: f32) -> u8 {
     if x > 0.0 && x < 1.0 {
         let bits = x.to_bits();
         let mut v = table.base[(bits >> 16) as usize];
-        while v < 255 && table.thresholds[v as usize] <= bits {
-            v += 1;
+        // A fixed number of compares, not a loop that stops at the value:
+        // how many thresholds a colour passes in its bucket varies from
+        // pixel to pixel, and the loop's exit mispredicted.
+        for _ in 0..table.steps {
+            v += u8::from(table.thresholds[usize::from(v)] <= bits);
         }
         v
     } else {
@@ -191,7 +204,9 @@ mod tests {
     #[test]
     fn the_table_is_to_srgb8() {
         let t = table().expect("monotonic conversion");
-        for &b in t.thresholds.iter() {
+        // The scan is short (it runs for every channel of every pixel).
+        assert!((1..=4).contains(&t.steps), "{} steps", t.steps);
+        for &b in &t.thresholds[..255] {
             for bits in b.saturating_sub(3)..=b + 3 {
                 let x = f32::from_bits(bits);
                 assert_eq!(srgb8(t, x), to_srgb8(x), "{x:e}");
