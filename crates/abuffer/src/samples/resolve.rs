@@ -70,12 +70,20 @@ impl SampleBuffer {
                     frame.set_id(p, self.centre_prim[q], self.centre_z[q] as f32);
                 }
                 let all = k.full;
-                self.shown.clear();
-                let covered = if self.whole[(j - y0) as usize] >> (i - x0) & 1 == 1 {
+                if self.whole[(j - y0) as usize] >> (i - x0) & 1 == 1 {
                     // What the samples say of a whole pixel: its one
-                    // primitive at every sample.
-                    show(&mut self.shown, input, self.centre_prim[q], all, (i, j))
-                } else {
+                    // primitive at every sample. The colour sum of one
+                    // primitive, as `opaque_sum` computes it (`0 + rgb *
+                    // n`, then `* (1 / n)`), without the list it sorts.
+                    let rgba = input.prim_rgba(self.centre_prim[q], (i, j));
+                    let n = all.count_ones() as f32;
+                    frame.set_coverage(p, n * k.inv_n);
+                    let sum = [0, 1, 2].map(|c| (0.0 + rgba[c] * n) * k.inv_n);
+                    resolver.write_color(k, sum, frame, p);
+                    continue;
+                }
+                self.shown.clear();
+                let covered = {
                     let prims = &self.prims[q];
                     let mut covered = 0u32;
                     let mut left = !self.equal_mask(prims, NO_ID) & all;
