@@ -360,10 +360,15 @@ impl TileQueue {
             }
             if b - a <= PAIRWISE_RUN {
                 for k in a + 1..b {
-                    let g = self.item(k).geometry();
-                    if let Some(l) =
-                        (a..k).find(|&l| self.twin[l] >= LEADER && self.item(l).geometry() == g)
-                    {
+                    // The vertices first (24 bytes, and they differ for
+                    // all but coincident triangles), the plane only then.
+                    let v = self.item(k).v;
+                    let same = |l: usize| {
+                        self.twin[l] >= LEADER
+                            && self.item(l).v == v
+                            && self.item(l).geometry() == self.item(k).geometry()
+                    };
+                    if let Some(l) = (a..k).find(|&l| same(l)) {
                         self.twin[k] = l as u32;
                         self.twin[l] = LEADER;
                     }
