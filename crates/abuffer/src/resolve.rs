@@ -32,7 +32,6 @@
 //! conversion, which is exact and table-driven ([`crate::palette`]).
 
 use hider_scene::frame::BACKGROUND;
-use hider_scene::prepare::lean::LeanTri;
 use hider_scene::{Frame, NO_ID};
 
 use crate::centre::in_front;
@@ -53,8 +52,6 @@ pub(crate) struct Input<'a> {
     pub(crate) scene: &'a Source<'a>,
     /// The lists.
     pub(crate) pool: &'a FragmentPool,
-    /// Depth plane per triangle.
-    pub(crate) tris: &'a [LeanTri],
     /// Colour and opacity per primitive, computed on first use.
     pub(crate) colors: &'a mut ColorCache,
     /// The options of the frame.
@@ -357,7 +354,7 @@ impl Resolver {
             s.rgb.map(|c| 0.0 + c * weight)
         } else {
             let positions = input.options.pattern.positions();
-            let lists = (input.pool, input.tris);
+            let lists = (input.pool, input.scene.tris);
             let opaque = self.frags.iter().all(|s| s.alpha >= 1.0);
             match input.options.depth {
                 DepthMode::PerSample if opaque => {

@@ -140,7 +140,6 @@ impl Worker {
         let mut input = Input {
             scene,
             pool: &lists.pool,
-            tris: scene.tris,
             colors: &mut lists.colors,
             options: shared.options,
         };
@@ -178,7 +177,6 @@ impl Worker {
             let mut input = Input {
                 scene: shared.scene,
                 pool: &self.raster.lists.pool,
-                tris: shared.scene.tris,
                 colors: &mut self.raster.lists.colors,
                 options: shared.options,
             };
