@@ -30,6 +30,24 @@ pub(crate) const BLOCKS: usize = (TILE / BLOCK) as usize;
 // A tile's blocks are the bits of a `u64`.
 const _: () = assert!(BLOCKS * BLOCKS <= 64 && TILE % BLOCK == 0);
 
+/// The pixels of block `(bx, by)`, of the blocks laid from pixel `origin`,
+/// that lie inside the pixels `(x0, y0)` to `(x1, y1)`: its part of the
+/// rectangle, inclusive (empty, `x0 > x1` or `y0 > y1`, if they miss).
+#[inline(always)]
+pub(crate) fn block_part(
+    origin: (u32, u32),
+    (bx, by): (u32, u32),
+    (x0, y0, x1, y1): (u32, u32, u32, u32),
+) -> (u32, u32, u32, u32) {
+    let (i, j) = (origin.0 + bx * BLOCK, origin.1 + by * BLOCK);
+    (
+        i.max(x0),
+        j.max(y0),
+        (i + BLOCK - 1).min(x1),
+        (j + BLOCK - 1).min(y1),
+    )
+}
+
 /// Per 8 x 8 block of the current tile: an upper bound of the opaque
 /// bounds of its pixels. While some pixel of the block has no bound yet
 /// (`open > 0`) it is infinite; after that it is their maximum, recomputed

@@ -13,7 +13,7 @@ use hider_scene::{NO_ID, Result};
 
 use crate::bins::{BinItem, TILE};
 use crate::coverage::{Class, Coverage, TriCoverage};
-use crate::culling::{BLOCK, BLOCKS};
+use crate::culling::{BLOCK, BLOCKS, block_part};
 use crate::depth::{DepthBounds, near_corner, nearest_over, plane_depth};
 use crate::fragment::{Fragment, NIL};
 use crate::lists::{Ctx, Lists};
@@ -146,17 +146,10 @@ impl Rasterizer {
         }
         let mut live = 0u64;
         for by in by0..=by1 {
-            let (py0, py1) = (
-                (ty0 + by * BLOCK).max(y0),
-                (ty0 + by * BLOCK + BLOCK - 1).min(y1),
-            );
             for bx in bx0..=bx1 {
                 let b = (by * BLOCKS as u32 + bx) as usize;
-                let (px0, px1) = (
-                    (tx0 + bx * BLOCK).max(x0),
-                    (tx0 + bx * BLOCK + BLOCK - 1).min(x1),
-                );
-                let near = nearest_over(&plane, (px0, py0, px1, py1), hull) as f32;
+                let part = block_part(tile, (bx, by), (x0, y0, x1, y1));
+                let near = nearest_over(&plane, part, hull) as f32;
                 let lists = &mut self.lists;
                 if lists
                     .culling

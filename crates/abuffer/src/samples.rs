@@ -40,6 +40,8 @@ use crate::bins::{BinItem, TILE};
 use crate::centre::in_front;
 use crate::composite::Shown;
 use crate::coverage::{Class, Coverage, TriCoverage};
+// Blocks of pixels whose farthest key is kept: the lists' culling blocks.
+use crate::culling::{BLOCK, block_part};
 use crate::depth::{depth_key, far_corner, near_corner, plane_depth};
 use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
 use crate::stats::ABufferStats;
@@ -63,8 +65,6 @@ const EMPTY: i32 = i32::MAX;
 /// pixel.
 const RUN_MIN: u32 = 4;
 
-/// Side of the square blocks of pixels whose farthest key is kept.
-const BLOCK: u32 = 8;
 /// Blocks per row of a pass.
 const BLOCKS_X: u32 = TILE / BLOCK;
 /// Blocks of a pass.
@@ -299,12 +299,8 @@ impl SampleBuffer {
         while blocks != 0 {
             let b = blocks.trailing_zeros();
             blocks &= blocks - 1;
-            let (bx, by) = (b % BLOCKS_X, b / BLOCKS_X);
-            let (i0, j0) = ((px0 + bx * BLOCK).max(x0), (py0 + by * BLOCK).max(y0));
-            let (i1, j1) = (
-                (px0 + bx * BLOCK + BLOCK - 1).min(x1),
-                (py0 + by * BLOCK + BLOCK - 1).min(y1),
-            );
+            let block = (b % BLOCKS_X, b / BLOCKS_X);
+            let (i0, j0, i1, j1) = block_part((px0, py0), block, (x0, y0, x1, y1));
             let class = setup.classify_rect((i0, j0, i1, j1));
             if class == Class::Empty {
                 continue;

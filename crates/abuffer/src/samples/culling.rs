@@ -9,6 +9,7 @@
 use hider_geom::PlaneEq;
 
 use super::{BLOCK, BLOCKS_X, EMPTY, SampleBuffer, Tri};
+use crate::culling::block_part;
 use crate::depth::{depth_key, nearest_over, plane_depth};
 use crate::stats::ABufferStats;
 
@@ -19,10 +20,9 @@ impl SampleBuffer {
     /// The farthest key of the written pixels of block `b`, [`EMPTY`] if
     /// one is unwritten.
     pub(super) fn block_bound(&self, b: usize) -> i32 {
-        let (x0, y0, x1, y1) = self.rect;
-        let (bx, by) = (b as u32 % BLOCKS_X, b as u32 / BLOCKS_X);
-        let (i0, j0) = (x0 + bx * BLOCK, y0 + by * BLOCK);
-        let (i1, j1) = ((i0 + BLOCK - 1).min(x1), (j0 + BLOCK - 1).min(y1));
+        let (x0, y0, _, _) = self.rect;
+        let block = (b as u32 % BLOCKS_X, b as u32 / BLOCKS_X);
+        let (i0, j0, i1, j1) = block_part((x0, y0), block, self.rect);
         let bits = (1u64 << (i1 - i0 + 1)) - 1;
         let mut far = i32::MIN;
         for j in j0..=j1 {
@@ -89,21 +89,14 @@ impl SampleBuffer {
         }
         let mut live = 0u32;
         for by in by0..=by1 {
-            let (j0, j1) = (
-                (py0 + by * BLOCK).max(y0),
-                (py0 + by * BLOCK + BLOCK - 1).min(y1),
-            );
             for bx in bx0..=bx1 {
                 let b = (by * BLOCKS_X + bx) as usize;
                 if self.open[b] > 0 || (self.block_far[b] == EMPTY && self.stale >> b & 1 == 0) {
                     live |= 1 << b;
                     continue;
                 }
-                let (i0, i1) = (
-                    (px0 + bx * BLOCK).max(x0),
-                    (px0 + bx * BLOCK + BLOCK - 1).min(x1),
-                );
-                let near = depth_key(nearest_over(plane, (i0, j0, i1, j1), hull) as f32);
+                let part = block_part((px0, py0), (bx, by), (x0, y0, x1, y1));
+                let near = depth_key(nearest_over(plane, part, hull) as f32);
                 if near <= self.block_far[b] && self.stale >> b & 1 == 1 {
                     self.block_far[b] = self.block_bound(b);
                     self.stale &= !(1 << b);
