@@ -20,24 +20,6 @@ pub fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
     [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
 }
 
-/// The colour and opacity of primitive `prim` from `colors`, computed on
-/// first use: an entry whose opacity is NaN is not shaded yet (fill
-/// `colors` with NaN to start), so primitives never asked for are never
-/// shaded.
-#[inline]
-pub fn shade_of(
-    colors: &mut [[f32; 4]],
-    scene: &ScreenScene,
-    mode: ShadeMode,
-    prim: u32,
-) -> [f32; 4] {
-    let c = &mut colors[prim as usize];
-    if c[3].is_nan() {
-        *c = prim_rgba(scene, prim, mode);
-    }
-    *c
-}
-
 /// `rgba` (a primitive's flat colour) times the primitive's texture at
 /// window point `(x, y)` when the scene's textures are loaded
 /// ([`ScreenScene::load_textures`]); `rgba` otherwise.
