@@ -12,6 +12,7 @@
 //! random over 100 MB).
 
 use crate::source::Source;
+use hider_geom::isa::prefetch;
 use hider_geom::{FixedPt, PlaneEq};
 use hider_scene::prepare::lean::LeanTri;
 use rayon::prelude::*;
@@ -41,8 +42,6 @@ pub(crate) fn tile_rect(tx: u32, ty: u32, (width, height): (u32, u32)) -> (u32, 
 /// One triangle of a bin, with what rasterising it needs.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct BinItem {
-    /// Sort key: nearest vertex depth (total order), then triangle index.
-    pub(crate) key: u64,
     /// Index of the triangle in the scene.
     pub(crate) tri: u32,
     /// Its primitive.
@@ -114,14 +113,26 @@ pub(crate) struct Bins {
 struct Chunk {
     /// Per tile, where its indices start in `refs` (and one past the end).
     start: Vec<u32>,
-    /// Per tile, the indices into [`Bins::items`] of the chunk's triangles
-    /// that meet it, in order.
-    refs: Vec<u32>,
+    /// Per tile, the chunk's triangles that meet it, in order, as sort
+    /// keys: the nearest vertex depth's total order ([`order_key`]) in the
+    /// high half, the index into [`Bins::items`] in the low half. A tile's order is sorted from these alone,
+    /// without reading its items (a gather over the whole item array
+    /// was 5 % of the 500 sphere's frame).
+    refs: Vec<u64>,
+    /// Per triangle of the chunk, its sort key's depth half, between
+    /// the counting and the filling pass.
+    near: Vec<u32>,
 }
 
 /// A chunk's share of a frame's binning: its items to write, its
 /// triangles, and its bins.
 type ChunkWork<'a> = ((&'a mut [BinItem], &'a [LeanTri]), &'a mut Chunk);
+
+/// How many items ahead of the one being copied into a tile's order
+/// the next is prefetched ([`prefetch`]): a tile's items, in depth order,
+/// are scattered through the item array (500 sphere: -2 to -3 % of the
+/// frame).
+const PREFETCH_AHEAD: usize = 8;
 
 /// The empty pixel range.
 const NONE: (u32, u32, u32, u32) = (1, 1, 0, 0);
@@ -131,9 +142,9 @@ const NONE: (u32, u32, u32, u32) = (1, 1, 0, 0);
 /// the thread's pixel table hold lists.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct TileQueue {
-    /// The current tile's items in processing order: sort keys and
-    /// positions in the bins.
-    order: Vec<(u64, u32)>,
+    /// The current tile's items in processing order, as their sort keys
+    /// (see [`Chunk::refs`]; the low half is the position in the bins).
+    order: Vec<u64>,
     /// The current tile's items themselves, in processing order.
     items: Vec<BinItem>,
     /// Per position of `order`: [`SOLE`], [`LEADER`] (the first of
@@ -191,7 +202,7 @@ impl Bins {
 
     /// The indices into `items` of tile `t`'s triangles, in submission
     /// order.
-    fn tile_refs(&self, t: usize) -> impl Iterator<Item = u32> + '_ {
+    fn tile_refs(&self, t: usize) -> impl Iterator<Item = u64> + '_ {
         self.chunks
             .iter()
             .flat_map(move |c| c.refs[c.start[t] as usize..c.start[t + 1] as usize].iter())
@@ -200,7 +211,7 @@ impl Bins {
 
     /// The items of tile `t`, in submission order.
     pub(crate) fn tile_items(&self, t: usize) -> impl Iterator<Item = &BinItem> + '_ {
-        self.tile_refs(t).map(|k| &self.items[k as usize])
+        self.tile_refs(t).map(|k| &self.items[k as u32 as usize])
     }
 
     /// Whether nothing was binned yet.
@@ -233,6 +244,7 @@ impl Chunk {
         // Triangles come in primitive order: the run of the previous one
         // is almost always the right one.
         let mut run = 0;
+        self.near.clear();
         for (k, (item, tri)) in items.iter_mut().zip(tris).enumerate() {
             let t = first + k;
             let range = pixel_range_of(&tri.v, pattern, w, h).unwrap_or(NONE);
@@ -245,13 +257,13 @@ impl Chunk {
                 }
             }
             let near = tri.z.iter().copied().fold(f64::INFINITY, f64::min) as f32;
+            self.near.push(order_key(near));
             let prim = tri.prim;
             let start = if run == 0 { 0 } else { opacity[run - 1].0 };
             if prim < start || prim >= opacity[run].0 {
                 run = opacity.partition_point(|&(end, _)| end <= prim);
             }
             *item = BinItem {
-                key: u64::from(order_key(near)) << 32 | t as u64,
                 tri: t as u32,
                 prim,
                 range,
@@ -274,7 +286,7 @@ impl Chunk {
             for ty in y0 / TILE..=y1 / TILE {
                 for tx in x0 / TILE..=x1 / TILE {
                     let slot = &mut fill[(ty * tiles_x + tx) as usize];
-                    self.refs[*slot as usize] = (first + k) as u32;
+                    self.refs[*slot as usize] = u64::from(self.near[k]) << 32 | (first + k) as u64;
                     *slot += 1;
                 }
             }
@@ -311,8 +323,7 @@ impl TileQueue {
     /// items the tile has.
     pub(crate) fn order_tile(&mut self, bins: &Bins, t: usize, front_to_back: bool) -> usize {
         self.order.clear();
-        self.order
-            .extend(bins.tile_refs(t).map(|k| (bins.items[k as usize].key, k)));
+        self.order.extend(bins.tile_refs(t));
         if front_to_back {
             // Items are binned in submission order, so the tile's items
             // are in index order: a stable sort by the depth half of the
@@ -320,11 +331,16 @@ impl TileQueue {
             // index). A radix sort (4 passes of 8 bits) instead of a
             // comparison sort: 6 % of the instructions of the 500 sphere's
             // frame went to sorting tiles of about 2,000 items.
-            radsort::sort_by_key(&mut self.order, |&(key, _)| (key >> 32) as u32);
+            radsort::sort_by_key(&mut self.order, |&key| (key >> 32) as u32);
         }
         self.items.clear();
-        self.items
-            .extend(self.order.iter().map(|&(_, b)| bins.items[b as usize]));
+        let order = &self.order;
+        self.items.extend(order.iter().enumerate().map(|(k, &key)| {
+            if let Some(&ahead) = order.get(k + PREFETCH_AHEAD) {
+                prefetch(&bins.items[ahead as u32 as usize]);
+            }
+            bins.items[key as u32 as usize]
+        }));
         self.find_twins();
         self.order.len()
     }
@@ -353,9 +369,9 @@ impl TileQueue {
         self.twin.resize(n, SOLE);
         let mut a = 0;
         while a < n {
-            let depth = self.order[a].0 >> 32;
+            let depth = self.order[a] >> 32;
             let mut b = a + 1;
-            while b < n && self.order[b].0 >> 32 == depth {
+            while b < n && self.order[b] >> 32 == depth {
                 b += 1;
             }
             if b - a <= PAIRWISE_RUN {

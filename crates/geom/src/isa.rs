@@ -59,3 +59,36 @@ impl Isa for Avx2 {
         Some(self)
     }
 }
+
+/// Asks the CPU to start loading `value` into cache: the cache lines of
+/// its first and last byte (every line of a value of up to two lines).
+/// For gathers a hardware prefetcher cannot predict: a tile's
+/// triangles are scattered through the triangle list, and without it
+/// every one is a cache miss.
+///
+/// ```
+/// let items = vec![[0u64; 12]; 100];
+/// hider_geom::isa::prefetch(&items[42]);
+/// ```
+///
+/// One of the workspace's `unsafe` sites (listed in `docs/zbuffer.md`):
+/// `_mm_prefetch` is marked unsafe only because it is a `target_feature`
+/// intrinsic; SSE is part of every x86-64 CPU, and a prefetch is a hint
+/// that never faults nor changes memory, whatever the address.
+#[inline(always)]
+#[allow(unsafe_code, reason = "a prefetch hint, which never faults nor writes")]
+pub fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        let first = std::ptr::from_ref(value).cast::<i8>();
+        let last = first.wrapping_add(size_of::<T>().saturating_sub(1));
+        // SAFETY: see above; the pointers come from a reference.
+        unsafe {
+            _mm_prefetch::<_MM_HINT_T0>(first);
+            _mm_prefetch::<_MM_HINT_T0>(last);
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}

@@ -20,6 +20,7 @@
 //! triangle count whatever the image size.
 
 use hider_geom::Viewport;
+use hider_geom::isa::prefetch;
 
 use super::bounds::DepthBounds;
 use super::pool::{Workers, install};
@@ -285,26 +286,6 @@ impl FragmentBins {
 /// a tile's triangles are scattered through the triangle list, and
 /// without it every one is a cache miss.
 const PREFETCH_AHEAD: usize = 6;
-
-/// Asks the CPU to start loading `tri` into cache.
-///
-/// One of the project's six `unsafe` sites (listed in `docs/zbuffer.md`):
-/// `_mm_prefetch` is marked unsafe only
-/// because it is a `target_feature` intrinsic; SSE is part of every
-/// x86-64 CPU, and a prefetch is a hint that never faults nor changes
-/// memory, whatever the address.
-#[inline(always)]
-#[allow(unsafe_code, reason = "a prefetch hint, which never faults nor writes")]
-fn prefetch<T>(tri: &T) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
-        // SAFETY: see above; the pointer comes from a reference.
-        unsafe { _mm_prefetch::<_MM_HINT_T0>(std::ptr::from_ref(tri).cast::<i8>()) };
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = tri;
-}
 
 /// What [`for_each_in_tile`] hands each triangle to. A trait with an
 /// `#[inline(always)]` method rather than a closure, so that the whole
