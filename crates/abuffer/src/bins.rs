@@ -219,6 +219,14 @@ impl Bins {
         self.tiles == 0
     }
 
+    /// How many triangles tile `t` has this frame.
+    pub(crate) fn tile_len(&self, t: usize) -> usize {
+        self.chunks
+            .iter()
+            .map(|c| (c.start[t + 1] - c.start[t]) as usize)
+            .sum()
+    }
+
     /// Whether tile `t` has triangles this frame.
     pub(crate) fn has_items(&self, t: usize) -> bool {
         self.chunks.iter().any(|c| c.start[t] != c.start[t + 1])
@@ -532,6 +540,7 @@ mod tests {
                 let got: Vec<u32> = bins.tile_items(t).map(|item| item.tri).collect();
                 assert_eq!(&got, want, "tile {t}, {threads} chunks");
                 assert_eq!(bins.has_items(t), !want.is_empty());
+                assert_eq!(bins.tile_len(t), want.len(), "tile {t}, {threads} chunks");
             }
         }
     }
