@@ -265,6 +265,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         PIPELINES.join(" | ")
     );
     println!("|---|---|{}", "---|".repeat(PIPELINES.len() + 10));
+    // Per target, the scenes that meet it in this run.
+    let mut met: [Vec<&str>; 3] = Default::default();
     for (k, (name, scene)) in scenes.iter().enumerate() {
         let m: Vec<f64> = times[k].iter().cloned().map(median).collect();
         let (t1, m1, m2) = (
@@ -285,6 +287,33 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             m[5] / m[0],
             m[0] / m[1],
         );
+        let targets = [
+            m1 / m[0] >= 4.0 && m2 / m[1] >= 4.0,
+            m[0] / t1 <= 2.0,
+            m[2] <= m[0],
+        ];
+        for (list, hit) in met.iter_mut().zip(targets) {
+            if hit {
+                list.push(name);
+            }
+        }
+    }
+    // Without a peer's numbers its ratios are NaN, and NaN meets nothing.
+    println!("\ntargets met in this run ({} scenes):", scenes.len());
+    for (target, list) in [
+        "MSAA / A >= 4 at 1 and 2 threads",
+        "A / tiled <= 2 at 1 thread",
+        "Carpenter at most A at 1 thread",
+    ]
+    .into_iter()
+    .zip(&met)
+    {
+        let scenes = if list.is_empty() {
+            "none".to_string()
+        } else {
+            list.join(", ")
+        };
+        println!("- {target}: {scenes}");
     }
     Ok(())
 }
