@@ -18,7 +18,7 @@ use hider_scene::prepare::lean::LeanTri;
 use rayon::prelude::*;
 
 use crate::coverage::pixel_range_of;
-use crate::depth::depth_key;
+use crate::depth::{depth_key, nearest_over};
 use crate::pattern::SamplePattern;
 
 /// Side of the square screen tiles, in pixels. Triangles are binned to
@@ -56,6 +56,15 @@ pub(crate) struct BinItem {
     /// triangle order at binning: the culling bookkeeping needs it for
     /// every fragment, the colour only fragments that are resolved.
     pub(crate) alpha: f32,
+    /// Its depth plane at the near corner of its whole pixel range, as
+    /// [`nearest_over`] computes it, rounded to `f32`: a lower bound of
+    /// its depth at every sample and centre it covers, in any part of
+    /// that range (the plane is monotonic). The culling tests try it
+    /// before the tighter bound of the part a pass or a block holds:
+    /// computed at binning, in triangle order, it is not a chain of
+    /// dependent `f64` operations that a branch waits for (that
+    /// evaluation was 5 % of the soup's frame).
+    pub(crate) near: f32,
 }
 
 /// [`TileQueue::twin`]: no earlier item of the tile has the same geometry.
@@ -278,6 +287,11 @@ impl Chunk {
                 plane: tri.depth,
                 v: tri.v,
                 alpha: opacity[run].1,
+                near: if x0 <= x1 {
+                    nearest_over(&tri.depth, range, pattern.hull()) as f32
+                } else {
+                    f32::INFINITY
+                },
             };
         }
         for t in 0..tiles {

@@ -260,7 +260,7 @@ impl SampleBuffer {
         }
         let plane = item.plane;
         let live = if self.cull {
-            self.live_blocks(&plane, (x0, y0, x1, y1), pattern.hull(), stats)
+            self.live_blocks(item, (x0, y0, x1, y1), pattern.hull(), stats)
         } else {
             u32::MAX
         };

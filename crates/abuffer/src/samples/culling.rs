@@ -6,9 +6,8 @@
 //! pixels hold, compared strictly, so culling removes only what would
 //! lose every sample and the centre: it changes no sample (tested).
 
-use hider_geom::PlaneEq;
-
 use super::{BLOCK, BLOCKS_X, EMPTY, SampleBuffer, Tri};
+use crate::bins::BinItem;
 use crate::culling::block_part;
 use crate::depth::{depth_key, nearest_over, plane_depth};
 use crate::stats::ABufferStats;
@@ -37,21 +36,26 @@ impl SampleBuffer {
         far
     }
 
-    /// The blocks of the pass where the triangle of plane `plane` may win
-    /// a sample or the centre inside `(x0, y0, x1, y1)`, as bits; counts
-    /// the others in [`ABufferStats::culled_blocks`]. The plane at the
-    /// block's near corner (of the sample hull `hull`) is a lower bound of
-    /// the triangle's depth at every sample and centre of the block.
+    /// The blocks of the pass where `item`'s triangle may win a sample or
+    /// the centre inside `(x0, y0, x1, y1)`, as bits; counts the others in
+    /// [`ABufferStats::culled_blocks`]. The plane at the block's near
+    /// corner (of the sample hull `hull`) is a lower bound of the
+    /// triangle's depth at every sample and centre of the block; the
+    /// item's own bound ([`BinItem::near`], over its whole range) is a
+    /// lower one, tried first: when it is beyond, so is the tighter one,
+    /// so the decisions are those of the tighter bound alone.
     // Inlined into the AVX2 triangle loop: called out of line it made the
     // soup 6 % slower.
     #[inline(always)]
     pub(super) fn live_blocks(
         &mut self,
-        plane: &PlaneEq,
+        item: &BinItem,
         (x0, y0, x1, y1): (u32, u32, u32, u32),
         hull: (i32, i32, i32, i32),
         stats: &mut ABufferStats,
     ) -> u32 {
+        let plane = &item.plane;
+        let item_near = depth_key(item.near);
         let (px0, py0) = (self.rect.0, self.rect.1);
         let (bx0, bx1) = ((x0 - px0) / BLOCK, (x1 - px0) / BLOCK);
         let (by0, by1) = ((y0 - py0) / BLOCK, (y1 - py0) / BLOCK);
@@ -79,8 +83,9 @@ impl SampleBuffer {
                 }
             }
             if far != EMPTY {
-                let near = depth_key(nearest_over(plane, (x0, y0, x1, y1), hull) as f32);
-                if near > far {
+                let hidden = item_near > far
+                    || depth_key(nearest_over(plane, (x0, y0, x1, y1), hull) as f32) > far;
+                if hidden {
                     stats.culled_blocks += u64::from(blocks);
                     stats.culled_tiles += 1;
                     return 0;
@@ -93,6 +98,10 @@ impl SampleBuffer {
                 let b = (by * BLOCKS_X + bx) as usize;
                 if self.open[b] > 0 || (self.block_far[b] == EMPTY && self.stale >> b & 1 == 0) {
                     live |= 1 << b;
+                    continue;
+                }
+                if item_near > self.block_far[b] {
+                    stats.culled_blocks += 1;
                     continue;
                 }
                 let part = block_part((px0, py0), (bx, by), (x0, y0, x1, y1));
@@ -155,6 +164,7 @@ mod tests {
     use crate::depth::{far_corner, near_corner};
     use crate::pattern::SamplePattern;
     use crate::test_rng::xorshift;
+    use hider_geom::PlaneEq;
     use hider_geom::isa::Avx2;
 
     /// The AVX2 row of near keys and the AVX2 comparison give the portable
