@@ -159,38 +159,32 @@ impl DepthBounds {
                 self.bound(plane, (i, j), c, centre_z, true),
             );
         }
-        let (mut lo, mut hi) = if c.centre {
-            (centre_z, centre_z)
-        } else {
-            (f64::INFINITY, f64::NEG_INFINITY)
-        };
+        // Branch-free: whether a row of a partial mask is empty, or holds
+        // one sample, is a coin toss, and as branches those tests
+        // mispredicted. Every row is evaluated at its first and last
+        // covered column (an empty row at columns 7 and 0, whose values
+        // are then not taken); a value is taken exactly when the `<` and
+        // `>` of the comparisons one by one would take it.
+        let (mut lo, mut hi) = (
+            select(c.centre, centre_z, f64::INFINITY),
+            select(c.centre, centre_z, f64::NEG_INFINITY),
+        );
         let (xi, yj) = (f64::from(i), f64::from(j));
-        let mut mask = c.mask;
-        for y in GRID_Y {
-            let row = mask as u8;
-            mask >>= 8;
-            if row != 0 {
-                let (first, last) = (row.trailing_zeros(), 7 - row.leading_zeros());
-                // Along the row the depth runs from `first` to `last`.
-                let (near, far) = if self.up_x {
-                    (first, last)
-                } else {
-                    (last, first)
-                };
-                let y = yj + y;
-                let zn = plane.eval(xi + GRID_X[near as usize], y);
-                let zf = if first == last {
-                    zn
-                } else {
-                    plane.eval(xi + GRID_X[far as usize], y)
-                };
-                if zn < lo {
-                    lo = zn;
-                }
-                if zf > hi {
-                    hi = zf;
-                }
-            }
+        for (r, y) in GRID_Y.into_iter().enumerate() {
+            let row = (c.mask >> (8 * r)) as u8;
+            let (first, last) = (row.trailing_zeros().min(7), 7 - row.leading_zeros().min(7));
+            // Along the row the depth runs from `first` to `last`.
+            let (near, far) = if self.up_x {
+                (first, last)
+            } else {
+                (last, first)
+            };
+            let y = yj + y;
+            let zn = plane.eval(xi + GRID_X[near as usize], y);
+            let zf = plane.eval(xi + GRID_X[far as usize], y);
+            let live = row != 0;
+            lo = select(live & (zn < lo), zn, lo);
+            hi = select(live & (zf > hi), zf, hi);
         }
         (lo, hi)
     }
@@ -245,6 +239,13 @@ impl DepthBounds {
         }
         z
     }
+}
+
+/// `a` if `take`, else `b`, by masks: no branch to mispredict.
+#[inline(always)]
+fn select(take: bool, a: f64, b: f64) -> f64 {
+    let all = u64::from(take).wrapping_neg();
+    f64::from_bits((a.to_bits() & all) | (b.to_bits() & !all))
 }
 
 /// `x_c / 256` of the grid columns and `y_r / 256` of the grid rows
