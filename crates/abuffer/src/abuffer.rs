@@ -236,7 +236,8 @@ impl ABuffer {
         // fixed share would wait for the slowest). The bands with the most
         // triangles go first (longest processing time first): a costly
         // band taken last would leave the other threads idle while it
-        // runs (the spider fills 6 of 16 bands, unevenly).
+        // runs (a model in the middle of the frame fills a few of the
+        // bands, unevenly).
         let bins = &self.bins;
         let cost = |ty: u32| -> usize {
             (0..tiles_x)
