@@ -147,6 +147,17 @@ pub fn prepare_lean_into(
     out: &mut LeanScene,
 ) -> Result<()> {
     out.tris.clear();
+    // The first run writes into the output's own buffer, which holds the
+    // whole frame's triangles (the runs' buffers are swapped back after
+    // the passes); the other runs' triangles are then appended. Copying
+    // every run into the output, serially, made the parallel front end
+    // slower than the serial one on the 500 sphere at 2 threads (7.6 to
+    // 8.1 ms against 6.0 to 6.2; 6.4 to 6.7 with only the second run
+    // copied), and alternating the output with the first run's buffer
+    // kept two buffers of the frame's size.
+    if let Some(first) = out.runs.first_mut() {
+        std::mem::swap(&mut out.tris, first);
+    }
     let (front, mut stats) = lean_passes(
         scene,
         view,
@@ -155,12 +166,9 @@ pub fn prepare_lean_into(
         &mut out.runs,
         |front, cache, range, run| triangles(scene, front, cache, range, run),
     )?;
-    if out.runs.len() == 1 {
-        std::mem::swap(&mut out.tris, &mut out.runs[0]);
-    } else {
-        for r in &out.runs {
-            out.tris.extend_from_slice(r);
-        }
+    std::mem::swap(&mut out.tris, &mut out.runs[0]);
+    for r in &out.runs[1..] {
+        out.tris.extend_from_slice(r);
     }
     stats.output = out.tris.len() as u64;
     out.stats = stats;

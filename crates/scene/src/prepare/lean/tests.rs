@@ -114,9 +114,74 @@ fn lean_front_end_in_parallel_is_prepare() {
         .unwrap();
     pool.install(|| {
         for view in views(&scene) {
-            check(&scene, &view, &PrepareOptions::default());
+            check(
+                &scene,
+                &view,
+                &PrepareOptions::default().with_parallel(true),
+            );
         }
     });
+}
+
+/// One lean scene reused across frames that split the work differently
+/// (serial, 2 and 3 runs, a small scene that does not split), with a
+/// failed frame between them, gives `prepare`'s triangles every time: the
+/// output trades buffers with the first run, and the runs change in number.
+#[test]
+fn a_reused_lean_scene_follows_every_split() {
+    let big = procedural::random_soup(40_000, 5);
+    let small = procedural::cube();
+    let mut broken = procedural::cube();
+    broken.meshes[0].indices[3][1] = 99;
+    let pools: Vec<rayon::ThreadPool> = [2, 3]
+        .map(|n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        })
+        .into();
+    let mut lean = LeanScene::new();
+    let mut frame = |scene: &Scene, pool: Option<&rayon::ThreadPool>, parallel: bool| {
+        // The broken cube has no bounds: it is seen as the cube is.
+        let framed = if std::ptr::eq(scene, &broken) {
+            &small
+        } else {
+            scene
+        };
+        let view = View::for_scene(framed, 97, 61).unwrap();
+        let options = PrepareOptions::default().with_parallel(parallel);
+        let run = |lean: &mut LeanScene| prepare_lean_into(scene, &view, &options, lean);
+        let result = match pool {
+            Some(pool) => pool.install(|| run(&mut lean)),
+            None => run(&mut lean),
+        };
+        if result.is_ok() {
+            let want: Vec<LeanTri> = prepare(scene, &view, &options)
+                .unwrap()
+                .tris
+                .iter()
+                .map(LeanTri::from)
+                .collect();
+            assert!(lean.tris() == want.as_slice(), "triangles differ");
+        }
+        result
+    };
+    let (two, three) = (Some(&pools[0]), Some(&pools[1]));
+    for (scene, pool, parallel) in [
+        (&big, two, true),
+        (&big, two, true),
+        (&big, None, false),
+        (&big, three, true),
+        (&small, three, true),
+        (&big, two, true),
+        (&big, three, false),
+        (&big, three, true),
+    ] {
+        frame(scene, pool, parallel).unwrap();
+        // A failed frame in between changes nothing that follows.
+        assert!(frame(&broken, pool, parallel).is_err());
+    }
 }
 
 #[test]
