@@ -52,7 +52,9 @@ pub struct LeanScene {
     /// What the front end did: the same counts as `prepare`'s.
     pub stats: PrepareStats,
     tris: Vec<LeanTri>,
-    /// The output of each worker, before it is joined into `tris`.
+    /// The output of each worker but the first (which writes into `tris`
+    /// itself: its slot holds the buffer `tris` lends it), before it is
+    /// appended to `tris`.
     runs: Vec<Vec<LeanTri>>,
     /// Per vertex of every mesh (meshes one after the other).
     vertices: Vec<CachedVertex>,
