@@ -11,6 +11,7 @@ use hider_scene::ScreenTri;
 
 use crate::coverage::Coverage;
 use crate::pattern::SamplePattern;
+use crate::select::pick_f64;
 
 /// The window depth of `tri` at sample `(sx, sy)` (1/256 pixel) of pixel
 /// `(i, j)`: the affine depth plane evaluated in `f64`. Every hider of this
@@ -166,8 +167,8 @@ impl DepthBounds {
         // are then not taken); a value is taken exactly when the `<` and
         // `>` of the comparisons one by one would take it.
         let (mut lo, mut hi) = (
-            select(c.centre, centre_z, f64::INFINITY),
-            select(c.centre, centre_z, f64::NEG_INFINITY),
+            pick_f64(c.centre, centre_z, f64::INFINITY),
+            pick_f64(c.centre, centre_z, f64::NEG_INFINITY),
         );
         let (xi, yj) = (f64::from(i), f64::from(j));
         for (r, y) in GRID_Y.into_iter().enumerate() {
@@ -183,8 +184,8 @@ impl DepthBounds {
             let zn = plane.eval(xi + GRID_X[near as usize], y);
             let zf = plane.eval(xi + GRID_X[far as usize], y);
             let live = row != 0;
-            lo = select(live & (zn < lo), zn, lo);
-            hi = select(live & (zf > hi), zf, hi);
+            lo = pick_f64(live & (zn < lo), zn, lo);
+            hi = pick_f64(live & (zf > hi), zf, hi);
         }
         (lo, hi)
     }
@@ -239,13 +240,6 @@ impl DepthBounds {
         }
         z
     }
-}
-
-/// `a` if `take`, else `b`, by masks: no branch to mispredict.
-#[inline(always)]
-fn select(take: bool, a: f64, b: f64) -> f64 {
-    let all = u64::from(take).wrapping_neg();
-    f64::from_bits((a.to_bits() & all) | (b.to_bits() & !all))
 }
 
 /// `x_c / 256` of the grid columns and `y_r / 256` of the grid rows

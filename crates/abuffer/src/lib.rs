@@ -92,6 +92,7 @@ pub mod pool;
 mod raster;
 mod resolve;
 mod samples;
+mod select;
 mod sorted;
 mod source;
 mod ssaa;

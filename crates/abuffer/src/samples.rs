@@ -44,6 +44,7 @@ use crate::coverage::{Class, Coverage, TriCoverage};
 use crate::culling::{BLOCK, block_part};
 use crate::depth::{depth_key, far_corner, near_corner, plane_depth};
 use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
+use crate::select::{pick, pick_f64};
 use crate::stats::ABufferStats;
 
 #[cfg(target_arch = "x86_64")]
@@ -173,14 +174,6 @@ impl Default for SampleBuffer {
             shown: Vec::new(),
         }
     }
-}
-
-/// `a` if `take`, else `b`, by masks: no branch to mispredict (the
-/// standard `select_unpredictable` is newer than the crate's MSRV).
-#[inline(always)]
-fn pick(take: bool, a: u64, b: u64) -> u64 {
-    let all = u64::from(take).wrapping_neg();
-    (a & all) | (b & !all)
 }
 
 /// Bytes of one thread's sample buffer.
@@ -556,7 +549,7 @@ impl SampleBuffer {
         let z = plane_depth(plane, i, j, CENTRE);
         let (z0, prim0) = (self.centre_z[p], self.centre_prim[p]);
         let take = c.centre & in_front(z, prim, z0, prim0);
-        let z = f64::from_bits(pick(take, z.to_bits(), z0.to_bits()));
+        let z = pick_f64(take, z, z0);
         let prim = pick(take, u64::from(prim), u64::from(prim0)) as u32;
         self.centre_z[p] = z;
         self.centre_prim[p] = prim;
