@@ -135,13 +135,16 @@ impl Rasterizer {
         let blocks = (bx1 - bx0 + 1) * (by1 - by0 + 1);
         if blocks > 1 {
             let tile_far = self.lists.culling.tile_far();
-            if tile_far < f32::INFINITY {
-                let near = nearest_over(&plane, (x0, y0, x1, y1), hull) as f32;
-                if near > tile_far {
-                    stats.culled_tiles += 1;
-                    stats.culled_blocks += u64::from(blocks);
-                    return 0;
-                }
+            // The item's bound over its whole range first (see
+            // [`BinItem::near`]): weaker, so it hides only what the
+            // rectangle's own bound would.
+            if tile_far < f32::INFINITY
+                && (item.near > tile_far
+                    || nearest_over(&plane, (x0, y0, x1, y1), hull) as f32 > tile_far)
+            {
+                stats.culled_tiles += 1;
+                stats.culled_blocks += u64::from(blocks);
+                return 0;
             }
         }
         let mut live = 0u64;
