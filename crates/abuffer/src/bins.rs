@@ -109,9 +109,12 @@ struct Chunk {
     /// tile's order is sorted from these alone, without reading its items
     /// (gathering their keys was 5 % of the 500 sphere's frame).
     refs: Vec<u64>,
-    /// Per triangle of the chunk, its sort key's depth half, between
-    /// the counting and the filling pass.
-    depth_keys: Vec<u32>,
+    /// Per triangle of the chunk, its sort key's depth half and the
+    /// tiles its pixel range meets (`(tx0, ty0, tx1, ty1)`, `tx0 > tx1`
+    /// for none), between the counting and the filling pass: the filling
+    /// pass reads these 12 bytes a triangle, not its 96-byte item (on the
+    /// 500 sphere a third of binning's memory traffic).
+    depth_keys: Vec<(u32, [u16; 4])>,
 }
 
 /// A chunk's share of a frame's binning: its items to write, its
@@ -225,15 +228,20 @@ impl Chunk {
             let t = first + k;
             let range = pixel_range_of(&tri.v, pattern, w, h).unwrap_or(NONE);
             let (x0, y0, x1, y1) = range;
-            if x0 <= x1 {
+            // Tile coordinates fit 16 bits: a side is at most
+            // `hider_geom::fixed::MAX_IMAGE_SIDE` (16,384) pixels.
+            let tiles = if x0 <= x1 {
                 for ty in y0 / TILE..=y1 / TILE {
                     for tx in x0 / TILE..=x1 / TILE {
                         self.start[(ty * tiles_x + tx) as usize + 1] += 1;
                     }
                 }
-            }
+                [x0 / TILE, y0 / TILE, x1 / TILE, y1 / TILE].map(|c| c as u16)
+            } else {
+                [1, 0, 0, 0]
+            };
             let near = tri.z.iter().copied().fold(f64::INFINITY, f64::min) as f32;
-            self.depth_keys.push(order_key(near));
+            self.depth_keys.push((order_key(near), tiles));
             let prim = tri.prim;
             let start = if run == 0 { 0 } else { opacity[run - 1].0 };
             if prim < start || prim >= opacity[run].0 {
@@ -259,16 +267,12 @@ impl Chunk {
         self.refs.clear();
         self.refs.resize(self.start[tiles] as usize, 0);
         let mut fill = self.start.clone();
-        for (k, item) in items.iter().enumerate() {
-            let (x0, y0, x1, y1) = item.range;
-            if x0 > x1 {
-                continue;
-            }
-            for ty in y0 / TILE..=y1 / TILE {
-                for tx in x0 / TILE..=x1 / TILE {
+        for (k, &(key, [tx0, ty0, tx1, ty1])) in self.depth_keys.iter().enumerate() {
+            let r = u64::from(key) << 32 | (first + k) as u64;
+            for ty in u32::from(ty0)..=u32::from(ty1) {
+                for tx in u32::from(tx0)..=u32::from(tx1) {
                     let slot = &mut fill[(ty * tiles_x + tx) as usize];
-                    self.refs[*slot as usize] =
-                        u64::from(self.depth_keys[k]) << 32 | (first + k) as u64;
+                    self.refs[*slot as usize] = r;
                     *slot += 1;
                 }
             }
