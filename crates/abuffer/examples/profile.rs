@@ -12,7 +12,8 @@
 //! `cov` (mask generation alone), `ps-scene` / `carpenter-scene` /
 //! `lists-scene` (the whole pipeline from the world-space scene: the lean
 //! front end, then the render, GL-compatible front end; `lists-scene` with
-//! every tile on fragment lists), `lean` (the lean front end
+//! every tile on fragment lists; `ids-scene` as `ps-scene` with identifier
+//! colours, no Lambert shading), `lean` (the lean front end
 //! alone) or `prepare` (`prepare` alone). Prints the median and
 //! fastest of the renders (the workspace's shared timer, no warm-up: a
 //! profile sees the first frame too) and the work counters.
@@ -64,6 +65,11 @@ fn main() {
         "carpenter" => Box::new(ABuffer::new(ABufferOptions::carpenter().with_threads(1))),
         "cov" | "lean" | "prepare" => Box::new(ABuffer::default()),
         "ps-scene" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(1))),
+        "ids-scene" => Box::new(ABuffer::new(
+            ABufferOptions::default()
+                .with_shade(hider_scene::ShadeMode::Ids)
+                .with_threads(1),
+        )),
         "lists-scene" => Box::new(ABuffer::new(
             ABufferOptions::default()
                 .with_sample_tiles(false)
@@ -104,7 +110,7 @@ fn main() {
     let which = args.get(1).map_or("ps", String::as_str);
     if matches!(
         which,
-        "ps-scene" | "lists-scene" | "carpenter-scene" | "lean" | "prepare"
+        "ps-scene" | "ids-scene" | "lists-scene" | "carpenter-scene" | "lean" | "prepare"
     ) {
         let view = View::for_scene(&scene, size, size).expect("view");
         let options = PrepareOptions::gl_compatible();
