@@ -149,7 +149,12 @@ impl Bins {
         let grid = (tiles_x, tiles_y);
         let opacity = &self.opacity;
         let work = |(c, ((items, tris), chunk)): (usize, ChunkWork<'_>)| {
-            chunk.bin((items, tris), c * len, (scene, pattern, grid), opacity);
+            // Binned on this thread's stack: the chunks' headers sit side
+            // by side in `chunks`, and lengths updated on every triangle
+            // shared a cache line with the other threads'.
+            let mut local = std::mem::take(chunk);
+            local.bin((items, tris), c * len, (scene, pattern, grid), opacity);
+            *chunk = local;
         };
         let parallel = self.chunks.len() > 1;
         let parts = self

@@ -162,8 +162,17 @@ fn in_runs<R: Default + Send>(
     runs.resize_with(parts, R::default);
     runs.truncate(parts);
     let per = count.div_ceil(parts).max(1);
-    let work =
-        |(k, run): (usize, &mut R)| pass((k * per).min(count)..((k + 1) * per).min(count), run);
+    let work = |(k, run): (usize, &mut R)| {
+        // The run's output is moved to this thread's stack while it is
+        // written: the runs' headers sit side by side in `runs`, and a
+        // length updated on every push shared a cache line with the
+        // other thread's (the 500 sphere's triangle pass took 6.2 to 6.6
+        // ms at 2 threads against 4.3 ms on one).
+        let mut local = std::mem::take(run);
+        let outcome = pass((k * per).min(count)..((k + 1) * per).min(count), &mut local);
+        *run = local;
+        outcome
+    };
     let outcomes: Vec<RunOutcome> = if parallel {
         runs.par_iter_mut().enumerate().map(work).collect()
     } else {

