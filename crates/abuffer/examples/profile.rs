@@ -13,7 +13,7 @@
 //! `lists-scene` (the whole pipeline from the world-space scene: the lean
 //! front end, then the render, GL-compatible front end; `lists-scene` with
 //! every tile on fragment lists; `ids-scene` as `ps-scene` with identifier
-//! colours, no Lambert shading), `lean` (the lean front end
+//! colours, no Lambert shading; `ps2-scene` on 2 threads), `lean` (the lean front end
 //! alone) or `prepare` (`prepare` alone). Prints the median and
 //! fastest of the renders (the workspace's shared timer, no warm-up: a
 //! profile sees the first frame too) and the work counters.
@@ -65,6 +65,7 @@ fn main() {
         "carpenter" => Box::new(ABuffer::new(ABufferOptions::carpenter().with_threads(1))),
         "cov" | "lean" | "prepare" => Box::new(ABuffer::default()),
         "ps-scene" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(1))),
+        "ps2-scene" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(2))),
         "ids-scene" => Box::new(ABuffer::new(
             ABufferOptions::default()
                 .with_shade(hider_scene::ShadeMode::Ids)
@@ -110,10 +111,25 @@ fn main() {
     let which = args.get(1).map_or("ps", String::as_str);
     if matches!(
         which,
-        "ps-scene" | "ids-scene" | "lists-scene" | "carpenter-scene" | "lean" | "prepare"
+        "ps-scene"
+            | "ps2-scene"
+            | "ids-scene"
+            | "lists-scene"
+            | "carpenter-scene"
+            | "lean"
+            | "prepare"
     ) {
         let view = View::for_scene(&scene, size, size).expect("view");
-        let options = PrepareOptions::gl_compatible();
+        // `ps2-scene`: the front end and the bands in parallel in one
+        // 2-thread pool, as `abuffer_bench` runs them.
+        let two = which == "ps2-scene";
+        let options = PrepareOptions::gl_compatible().with_parallel(two);
+        if two {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(2)
+                .build_global()
+                .expect("a 2-thread pool");
+        }
         let mut screen = ScreenScene::empty(&view);
         let mut lean = LeanScene::new();
         let summary = timer.time(|| match which {
