@@ -54,6 +54,22 @@ pub(crate) struct BinEntry {
     pub first: (u16, u16),
 }
 
+/// Bins as (first column, last column, first row, last row), inclusive.
+pub(crate) type Span = (usize, usize, usize, usize);
+
+impl BinEntry {
+    /// The entry of piece `id` under `key` with box `e`, which meets the
+    /// bins `span`.
+    fn new(key: Key, id: u32, e: &Extent, (x0, _, y0, _): Span) -> Self {
+        BinEntry {
+            key,
+            extent: *e,
+            id,
+            first: (x0 as u16, y0 as u16),
+        }
+    }
+}
+
 impl Grid {
     /// Empties the grid and sizes it for `width` x `height` pixels with
     /// bins about `side` pixels wide.
@@ -74,7 +90,7 @@ impl Grid {
     /// inclusive. Clamping keeps it a superset: boxes whose bin ranges are
     /// disjoint are more than [`TOUCH`] apart, which tests 2 and 3 settle
     /// for cut pieces too.
-    pub fn span(&self, e: &Extent) -> (usize, usize, usize, usize) {
+    pub fn span(&self, e: &Extent) -> Span {
         let at =
             |v: f64, n: usize| ((v * self.scale).floor() as i64).clamp(0, n as i64 - 1) as usize;
         (
@@ -85,40 +101,32 @@ impl Grid {
         )
     }
 
-    /// Lists piece `id` under `key` in every bin its box `e` meets.
-    pub fn insert(&mut self, key: Key, id: u32, e: &Extent) {
-        let (x0, x1, y0, y1) = self.span(e);
-        let entry = BinEntry {
-            key,
-            extent: *e,
-            id,
-            first: (x0 as u16, y0 as u16),
-        };
+    /// Calls `f` on each bin of `span`.
+    fn for_each_bin(&mut self, (x0, x1, y0, y1): Span, mut f: impl FnMut(&mut Vec<BinEntry>)) {
         for y in y0..=y1 {
             for x in x0..=x1 {
-                let bin = &mut self.bins[y * self.cols + x];
-                let at = bin.partition_point(|b| b.key < key);
-                bin.insert(at, entry);
+                f(&mut self.bins[y * self.cols + x]);
             }
         }
+    }
+
+    /// Lists piece `id` under `key` in every bin its box `e` meets.
+    pub fn insert(&mut self, key: Key, id: u32, e: &Extent) {
+        let span = self.span(e);
+        let entry = BinEntry::new(key, id, e, span);
+        self.for_each_bin(span, |bin| {
+            let at = bin.partition_point(|b| b.key < key);
+            bin.insert(at, entry);
+        });
     }
 
     /// Lists many pieces at once, `(key, id, box)` in any order: each bin
     /// is sorted once at the end instead of searched per entry.
     pub fn insert_all<'a>(&mut self, entries: impl Iterator<Item = (Key, u32, &'a Extent)>) {
         for (key, id, e) in entries {
-            let (x0, x1, y0, y1) = self.span(e);
-            let entry = BinEntry {
-                key,
-                extent: *e,
-                id,
-                first: (x0 as u16, y0 as u16),
-            };
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    self.bins[y * self.cols + x].push(entry);
-                }
-            }
+            let span = self.span(e);
+            let entry = BinEntry::new(key, id, e, span);
+            self.for_each_bin(span, |bin| bin.push(entry));
         }
         for bin in &mut self.bins {
             bin.sort_unstable_by_key(|b| b.key);
@@ -127,19 +135,15 @@ impl Grid {
 
     /// Removes the piece listed under `key` with box `e`.
     pub fn remove(&mut self, key: Key, e: &Extent) {
-        let (x0, x1, y0, y1) = self.span(e);
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                let bin = &mut self.bins[y * self.cols + x];
-                // The piece painted next is the farthest left, the last
-                // entry of each of its bins: no search, no shift.
-                if bin.last().is_some_and(|b| b.key == key) {
-                    bin.pop();
-                } else if let Ok(at) = bin.binary_search_by(|b| b.key.cmp(&key)) {
-                    bin.remove(at);
-                }
+        self.for_each_bin(self.span(e), |bin| {
+            // The piece painted next is the farthest left, the last entry of
+            // each of its bins: no search, no shift.
+            if bin.last().is_some_and(|b| b.key == key) {
+                bin.pop();
+            } else if let Ok(at) = bin.binary_search_by(|b| b.key.cmp(&key)) {
+                bin.remove(at);
             }
-        }
+        });
     }
 
     /// Bytes held (capacity).
