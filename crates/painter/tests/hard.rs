@@ -106,6 +106,27 @@ fn wrong_pixels(s: &ScreenScene) -> (u64, u64, u64) {
     )
 }
 
+/// Near planes from `1e-7` down to `1e-12`.
+const TINY_NEARS: [f64; 6] = [1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12];
+
+/// Renders `what` behind each of `nears` (`screen_at` makes the screen
+/// scene for a near plane) and adds a failure for each with wrong pixels.
+fn check_near_planes(
+    what: &str,
+    nears: &[f64],
+    screen_at: impl Fn(f64) -> ScreenScene,
+    failures: &mut Vec<String>,
+) {
+    for &near in nears {
+        let (wrong, naive, covered) = wrong_pixels(&screen_at(near));
+        if wrong > 0 {
+            failures.push(format!(
+                "{what}, near {near}: {wrong} wrong of {covered} (naive {naive})"
+            ));
+        }
+    }
+}
+
 /// Where the first corner of the pinwheel's polygon sits: on the y axis
 /// (bars along diagonals for order 4, cut lines along the axes) or at 45
 /// degrees (bars along the axes, cut lines along pixel-centre diagonals).
@@ -145,26 +166,22 @@ fn exactly_symmetric_pinwheels_are_exact_off_ties() {
 fn tiny_near_planes_do_not_confuse_the_plane_tests() {
     let mut failures = Vec::new();
     let intersecting = procedural::intersecting_pair();
-    for near in [1e-8, 1e-9, 1e-12] {
-        let camera = fit_camera_with_near(&intersecting, near);
-        let s = hider_testkit::screen_with(&intersecting, camera, 128, 128);
-        let (wrong, naive, covered) = wrong_pixels(&s);
-        if wrong > 0 {
-            failures.push(format!(
-                "intersecting pair, near {near}: {wrong} wrong of {covered} (naive {naive})"
-            ));
-        }
-    }
+    check_near_planes(
+        "intersecting pair",
+        &[1e-8, 1e-9, 1e-12],
+        |near| {
+            let camera = fit_camera_with_near(&intersecting, near);
+            hider_testkit::screen_with(&intersecting, camera, 128, 128)
+        },
+        &mut failures,
+    );
     let cycle = pinwheel(3, false, 8, std::f64::consts::FRAC_PI_2, 0.6);
-    for near in [1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12] {
-        let s = hider_testkit::screen_with(&cycle, axis_camera(near), 128, 128);
-        let (wrong, naive, covered) = wrong_pixels(&s);
-        if wrong > 0 {
-            failures.push(format!(
-                "bar cycle, near {near}: {wrong} wrong of {covered} (naive {naive})"
-            ));
-        }
-    }
+    check_near_planes(
+        "bar cycle",
+        &TINY_NEARS,
+        |near| hider_testkit::screen_with(&cycle, axis_camera(near), 128, 128),
+        &mut failures,
+    );
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
@@ -193,15 +210,12 @@ fn the_testkit_symmetric_families_are_exact_off_ties() {
             }
         }
     }
-    for near in [1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12] {
-        let s = hider_testkit::screen(&bar_cycle(near), 128, 128);
-        let (wrong, naive, covered) = wrong_pixels(&s);
-        if wrong > 0 {
-            failures.push(format!(
-                "bar cycle, near {near}: {wrong} wrong of {covered} (naive {naive})"
-            ));
-        }
-    }
+    check_near_planes(
+        "bar cycle",
+        &TINY_NEARS,
+        |near| hider_testkit::screen(&bar_cycle(near), 128, 128),
+        &mut failures,
+    );
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
