@@ -153,12 +153,38 @@ fn clip_axis(poly: &[(i64, i64)], axis: usize, bound: i64, below: bool) -> Vec<(
 }
 
 /// `num / den` rounded to the nearest integer (halves away from zero).
-fn div_round(num: i128, den: i128) -> i128 {
+pub fn div_round(num: i128, den: i128) -> i128 {
     let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
     if num >= 0 {
         (2 * num + den) / (2 * den)
     } else {
         -((-2 * num + den) / (2 * den))
+    }
+}
+
+/// The triangles of a scene clipped to the image on the grid, indexed by
+/// their boxes: what both the regions and the line drawing search for the
+/// triangles that may cover a place.
+pub struct ClippedTris {
+    /// Triangle `k` clipped to the image; empty when nothing is left.
+    pub polys: Vec<Vec<IntPoint>>,
+    /// The inclusive box of `polys[k]`; `None` when it is empty.
+    pub boxes: Vec<Option<(IntPoint, IntPoint)>>,
+    /// The bins over `boxes`.
+    pub bins: Bins,
+}
+
+impl ClippedTris {
+    /// Clips and bins every triangle of `scene`, in the scene's order.
+    pub fn new(scene: &ScreenScene, grid: &Grid) -> Self {
+        let polys: Vec<Vec<IntPoint>> = scene
+            .tris
+            .iter()
+            .map(|t| grid.clip_to_image(&grid.tri_points(t)))
+            .collect();
+        let boxes: Vec<_> = polys.iter().map(|p| bounds(p)).collect();
+        let bins = Bins::new(grid, &boxes);
+        Self { polys, boxes, bins }
     }
 }
 

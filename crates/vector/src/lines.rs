@@ -19,7 +19,7 @@ use hider_geom::fixed::SUBPIXEL_SCALE;
 
 use crate::VectorOptions;
 use crate::chain::join_segments;
-use crate::grid::{Bins, Grid, bounds};
+use crate::grid::{Bins, ClippedTris, Grid};
 use crate::pairs::intersection_segment;
 use crate::regions::RegionMap;
 
@@ -114,13 +114,7 @@ pub fn hidden_lines(
         }
     }
     let grid = map.grid;
-    let polys: Vec<Vec<IntPoint>> = scene
-        .tris
-        .iter()
-        .map(|t| grid.clip_to_image(&grid.tri_points(t)))
-        .collect();
-    let boxes: Vec<_> = polys.iter().map(|p| bounds(p)).collect();
-    let bins = Bins::new(&grid, &boxes);
+    let bins = ClippedTris::new(scene, &grid).bins;
     let mut stats = LineStats {
         feature_edges: features.len() as u64,
         ..LineStats::default()

@@ -26,7 +26,7 @@ use crate::VectorOptions;
 use crate::close::{close_to_cover, outline};
 use crate::closed::hidden_back_faces;
 use crate::cover::{Cover, decide, loops, unmatched_edges};
-use crate::grid::{Bins, Grid, bounds};
+use crate::grid::{Bins, ClippedTris, Grid, bounds};
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
 
@@ -131,13 +131,7 @@ pub fn visible_regions(
     options.validate()?;
     let grid = Grid::for_scene(scene, options.refine_bits)?;
 
-    let polys: Vec<Vec<IntPoint>> = scene
-        .tris
-        .iter()
-        .map(|t| grid.clip_to_image(&grid.tri_points(t)))
-        .collect();
-    let boxes: Vec<_> = polys.iter().map(|p| bounds(p)).collect();
-    let bins = Bins::new(&grid, &boxes);
+    let ClippedTris { polys, boxes, bins } = ClippedTris::new(scene, &grid);
     let mut stats = RegionStats {
         triangles: boxes.iter().flatten().count() as u64,
         ..RegionStats::default()

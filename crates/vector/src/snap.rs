@@ -19,6 +19,8 @@ use std::collections::HashMap;
 use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
+use crate::grid::div_round;
+
 /// Snaps the contours of every region in place. Returns, per region,
 /// whether any of its edges was rerouted.
 pub fn snap_round(regions: &mut [IntShapes]) -> Vec<bool> {
@@ -130,16 +132,6 @@ fn crossing(p: Segment, q: Segment) -> IntPoint {
         (i128::from(base) + v) as i32
     };
     IntPoint::new(at(p.0.x, r.0), at(p.0.y, r.1))
-}
-
-/// `num / den` rounded to the nearest integer (halves away from zero).
-fn div_round(num: i128, den: i128) -> i128 {
-    let (num, den) = if den < 0 { (-num, -den) } else { (num, den) };
-    if num >= 0 {
-        (2 * num + den) / (2 * den)
-    } else {
-        -((-2 * num + den) / (2 * den))
-    }
 }
 
 /// A uniform grid of square cells over a set of boxes.
