@@ -4,6 +4,9 @@
 //! random scenes; they never overlap, and together they cover exactly what
 //! the triangles cover.
 
+mod common;
+
+use common::area2;
 use hider_geom::edge::top_left_bias;
 use hider_geom::polygon::{IPoint, crossing_number_inside};
 use hider_oracle::{DEFAULT_TIE_TOLERANCE, window_depth_reference};
@@ -14,7 +17,6 @@ use hider_zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::{Overlay, ShapeType};
 use i_overlay::core::overlay_rule::OverlayRule;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 /// Per pixel: the primitive whose region holds the centre (`NO_ID` for
 /// none), and how many pixel centres fell in more than one region.
@@ -68,26 +70,10 @@ fn region_ids(s: &ScreenScene, map: &RegionMap) -> (Vec<u32>, usize) {
     (ids, doubles)
 }
 
-fn area2(shapes: &IntShapes) -> i64 {
-    shapes
-        .iter()
-        .flatten()
-        .map(|c| {
-            (0..c.len())
-                .map(|k| {
-                    let (a, b) = (c[k], c[(k + 1) % c.len()]);
-                    i64::from(a.x) * i64::from(b.y) - i64::from(b.x) * i64::from(a.y)
-                })
-                .sum::<i64>()
-        })
-        .sum::<i64>()
-        .abs()
-}
-
 /// Twice the total area of pairwise overlaps between different
 /// primitives' regions, and twice the area where the union of the regions
 /// and the union of the triangles differ, in grid units squared.
-fn overlap_and_cover(s: &ScreenScene, map: &RegionMap) -> (i64, i64) {
+fn overlap_and_cover(s: &ScreenScene, map: &RegionMap) -> (i128, i128) {
     let mut overlap = 0;
     for (a, ra) in map.prims.iter().enumerate() {
         for rb in &map.prims[a + 1..] {
@@ -98,7 +84,7 @@ fn overlap_and_cover(s: &ScreenScene, map: &RegionMap) -> (i64, i64) {
             for shape in &rb.shapes {
                 o.add_contours(shape, ShapeType::Clip);
             }
-            overlap += area2(&o.overlay(OverlayRule::Intersect, FillRule::NonZero));
+            overlap += area2(&o.overlay(OverlayRule::Intersect, FillRule::NonZero)).abs();
         }
     }
     let mut o = Overlay::new(16);
@@ -113,7 +99,7 @@ fn overlap_and_cover(s: &ScreenScene, map: &RegionMap) -> (i64, i64) {
             o.add_contour(&poly, ShapeType::Clip);
         }
     }
-    let differ = area2(&o.overlay(OverlayRule::Xor, FillRule::NonZero));
+    let differ = area2(&o.overlay(OverlayRule::Xor, FillRule::NonZero)).abs();
     (overlap, differ)
 }
 

@@ -5,6 +5,9 @@
 //! has to be rounded; and their union is the covered set, to the last
 //! grid unit.
 
+mod common;
+
+use common::area2;
 use hider_scene::{ShadeMode, procedural};
 use hider_testkit::{hard_cases, screen};
 use hider_vector::{RegionMap, VectorOptions, visible_regions};
@@ -13,23 +16,6 @@ use i_overlay::core::overlay::{Overlay, ShapeType};
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
-
-/// Twice the signed area of a polygon set (outer contours positive, holes
-/// negative), exact in `i128`.
-fn area2(shapes: &IntShapes) -> i128 {
-    shapes
-        .iter()
-        .flatten()
-        .map(|c| {
-            (0..c.len())
-                .map(|k| {
-                    let (a, b) = (c[k], c[(k + 1) % c.len()]);
-                    i128::from(a.x) * i128::from(b.y) - i128::from(b.x) * i128::from(a.y)
-                })
-                .sum::<i128>()
-        })
-        .sum()
-}
 
 fn bounds(shapes: &IntShapes) -> (IntPoint, IntPoint) {
     let mut lo = IntPoint::new(i32::MAX, i32::MAX);

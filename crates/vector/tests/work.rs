@@ -3,6 +3,9 @@
 //! or decided by the cover test when the solid is open; and the back-face
 //! shortcut never hides what is seen.
 
+mod common;
+
+use common::area2;
 use hider_scene::{Scene, ShadeMode, procedural};
 use hider_testkit::screen;
 use hider_vector::{RegionMap, VectorOptions, visible_regions};
@@ -46,20 +49,7 @@ fn an_inside_out_sphere_keeps_its_near_faces() {
     }
     let flipped = regions(&scene);
     assert_eq!(flipped.stats.hidden_back_faces, 0);
-    let area = |map: &RegionMap| {
-        map.prims
-            .iter()
-            .flat_map(|r| r.shapes.iter().flatten())
-            .map(|c| {
-                (0..c.len())
-                    .map(|k| {
-                        let (a, b) = (c[k], c[(k + 1) % c.len()]);
-                        i128::from(a.x) * i128::from(b.y) - i128::from(b.x) * i128::from(a.y)
-                    })
-                    .sum::<i128>()
-            })
-            .sum::<i128>()
-    };
+    let area = |map: &RegionMap| map.prims.iter().map(|r| area2(&r.shapes)).sum::<i128>();
     // The same disc is covered either way.
     assert!(area(&flipped) > 0);
     assert_eq!(area(&flipped), area(&closed));
