@@ -259,6 +259,20 @@ pub fn buffers(py: Python<'_>, rendered: Rendered) -> PyResult<Buffers<'_>> {
     Ok((ids, depth.reshape(shape)?))
 }
 
+/// Renders `scene` as [`render_scene`] does, with the GIL released so
+/// that other Python threads run meanwhile, and returns the frame as
+/// [`buffers`] does.
+pub fn render_buffers<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    view: &View,
+    algo: &str,
+    threads: usize,
+) -> PyResult<Buffers<'py>> {
+    let rendered = py.detach(|| render_scene(scene, view, algo, threads))?;
+    buffers(py, rendered)
+}
+
 /// A copy of the frame this thread's workspace rendered last, if any.
 fn copy_workspace_frame() -> Option<Rendered> {
     WORKSPACE.with_borrow(|slot| {
@@ -316,8 +330,7 @@ pub fn render<'py>(
         far,
     };
     let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
-    let frame = py.detach(|| render_scene(&scene, &view, algo, threads))?;
-    buffers(py, frame)
+    render_buffers(py, &scene, &view, algo, threads)
 }
 
 /// The names of the registered hiders, in the registry's order.

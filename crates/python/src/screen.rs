@@ -21,7 +21,7 @@ use pyo3::prelude::*;
 
 use crate::errors::{plan_error, scene_error};
 use crate::mesh::scene_from_arrays;
-use crate::render::{Buffers, buffers, render_scene};
+use crate::render::{Buffers, render_buffers};
 
 /// Distance from the eye to depth `t = 0`; `t = 1` is one unit farther.
 const EYE_TO_FRONT: f64 = 1.0;
@@ -64,8 +64,7 @@ pub fn screen_render<'py>(
     algo: &str,
 ) -> PyResult<Buffers<'py>> {
     let (scene, view) = screen_view(&points, &faces, width, height)?;
-    let frame = py.detach(|| render_scene(&scene, &view, algo, 1))?;
-    buffers(py, frame)
+    render_buffers(py, &scene, &view, algo, 1)
 }
 
 /// The painter's pieces in paint order (farthest first).
