@@ -5,18 +5,13 @@ use std::path::Path;
 use std::process::Output;
 
 mod cli_support;
-use cli_support::{hider, temp_dir};
+use cli_support::{assert_mentions, assert_one_line_failure, assert_success, render, temp_dir};
 
 /// Asserts a failed run: status 2, exactly one line on stderr that contains
 /// every `needles`, no panic, and no output file left behind.
 fn assert_fails(out: &Output, needles: &[&str], png: &Path) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "one line: {stderr}");
-    for n in needles {
-        assert!(stderr.contains(n), "'{n}' missing from: {stderr}");
-    }
+    let stderr = assert_one_line_failure(out);
+    assert_mentions(&stderr, needles);
     assert!(!png.exists(), "no output file after an error");
     let dir = png.parent().unwrap();
     let leftovers: Vec<_> = std::fs::read_dir(dir)
@@ -38,38 +33,37 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
 fn bad_inputs_exit_2_with_one_line() {
     let dir = temp_dir("bad");
     let png = dir.join("out.png");
-    let png_s = png.to_string_lossy().into_owned();
     let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 
     let missing = dir.join("missing.obj");
-    let out = hider(&["render", missing.to_str().unwrap(), "-o", &png_s]);
+    let out = render(missing.to_str().unwrap(), &png, &[]);
     assert_fails(&out, &["missing.obj", "No such file"], &png);
 
     let bad = write(&dir, "malformed.obj", &format!("{tri}f 1 2 three\n"));
-    let out = hider(&["render", &bad, "-o", &png_s]);
+    let out = render(&bad, &png, &[]);
     assert_fails(&out, &["malformed.obj:4", "'three'"], &png);
 
     let range = write(&dir, "range.obj", &format!("{tri}f 1 2 9\n"));
-    let out = hider(&["render", &range, "-o", &png_s]);
+    let out = render(&range, &png, &[]);
     assert_fails(&out, &["range.obj:4", "index 9 out of range"], &png);
 
     let nan = write(&dir, "nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
-    let out = hider(&["render", &nan, "-o", &png_s]);
+    let out = render(&nan, &png, &[]);
     assert_fails(&out, &["nan.obj:2", "NaN"], &png);
 
     let good = write(&dir, "good.obj", &format!("{tri}f 1 2 3\n"));
-    let out = hider(&["render", &good, "-o", &png_s, "--size", "0"]);
+    let out = render(&good, &png, &["--size", "0"]);
     assert_fails(&out, &["--size", "'0'", "1 to 16384"], &png);
-    let out = hider(&["render", &good, "-o", &png_s, "--size", "16385"]);
+    let out = render(&good, &png, &["--size", "16385"]);
     assert_fails(&out, &["16385", "16384"], &png);
-    let out = hider(&["render", &good, "-o", &png_s, "--algo", "nonesuch"]);
+    let out = render(&good, &png, &["--algo", "nonesuch"]);
     assert_fails(&out, &["nonesuch", "zbuffer"], &png);
-    let out = hider(&["render", &good, "-o", &png_s, "--eye", "0,0,nan"]);
+    let out = render(&good, &png, &["--eye", "0,0,nan"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(!png.exists());
 
     let nowhere = dir.join("no/such/dir/out.png");
-    let out = hider(&["render", &good, "-o", nowhere.to_str().unwrap()]);
+    let out = render(&good, &nowhere, &[]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("no/such/dir/out.png"));
     std::fs::remove_dir_all(&dir).unwrap();
@@ -81,30 +75,26 @@ fn render_writes_png_and_gl_format_dumps() {
     let png = dir.join("cube.png");
     let ids = dir.join("cube.i32");
     let depth = dir.join("cube.f32");
-    let out = hider(&[
-        "render",
+    let out = render(
         "gen:cube",
-        "-o",
-        png.to_str().unwrap(),
-        "--width",
-        "40",
-        "--height",
-        "30",
-        "--ids-out",
-        ids.to_str().unwrap(),
-        "--depth-out",
-        depth.to_str().unwrap(),
-        "--shade",
-        "ids",
-        "--repeat",
-        "2",
-    ]);
-    let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+        &png,
+        &[
+            "--width",
+            "40",
+            "--height",
+            "30",
+            "--ids-out",
+            ids.to_str().unwrap(),
+            "--depth-out",
+            depth.to_str().unwrap(),
+            "--shade",
+            "ids",
+            "--repeat",
+            "2",
+        ],
     );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_success(&out);
     assert!(
         stdout.contains("median") && stdout.contains("min"),
         "{stdout}"
@@ -132,30 +122,26 @@ fn tiled_repeat_times_its_own_pipeline_and_writes_the_same_ids() {
         ("zbuffer-tiled", "2"),
     ] {
         let file = dir.join(format!("{algo}-{threads}.i32"));
-        let out = hider(&[
-            "render",
+        let out = render(
             "gen:sphere:24",
-            "-o",
-            dir.join("s.png").to_str().unwrap(),
-            "--size",
-            "70",
-            "--algo",
-            algo,
-            "--threads",
-            threads,
-            "--precision",
-            "f32",
-            "--ids-out",
-            file.to_str().unwrap(),
-            "--repeat",
-            "3",
-        ]);
-        let stdout = String::from_utf8_lossy(&out.stdout);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
+            &dir.join("s.png"),
+            &[
+                "--size",
+                "70",
+                "--algo",
+                algo,
+                "--threads",
+                threads,
+                "--precision",
+                "f32",
+                "--ids-out",
+                file.to_str().unwrap(),
+                "--repeat",
+                "3",
+            ],
         );
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert_success(&out);
         assert!(
             stdout.contains("median") && stdout.contains("over 3 runs"),
             "{stdout}"
@@ -174,42 +160,38 @@ fn painter_writes_svg_and_other_hiders_refuse_it() {
     let dir = temp_dir("svg");
     let png = dir.join("pair.png");
     let svg = dir.join("pair.svg");
-    let out = hider(&[
-        "render",
+    let out = render(
         "gen:intersecting",
-        "-o",
-        png.to_str().unwrap(),
-        "--size",
-        "64",
-        "--algo",
-        "painter",
-        "--svg",
-        svg.to_str().unwrap(),
-        "--svg-mode",
-        "painter",
-    ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+        &png,
+        &[
+            "--size",
+            "64",
+            "--algo",
+            "painter",
+            "--svg",
+            svg.to_str().unwrap(),
+            "--svg-mode",
+            "painter",
+        ],
     );
+    assert_success(&out);
     let text = std::fs::read_to_string(&svg).unwrap();
     // The pair pierces itself: splitting leaves three pieces, one path each.
     assert_eq!(text.matches("<path").count(), 3, "{text}");
     std::fs::remove_file(&png).unwrap();
     std::fs::remove_file(&svg).unwrap();
-    let out = hider(&[
-        "render",
+    let out = render(
         "gen:cube",
-        "-o",
-        png.to_str().unwrap(),
-        "--algo",
-        "zbuffer",
-        "--svg",
-        svg.to_str().unwrap(),
-        "--svg-mode",
-        "painter",
-    ]);
+        &png,
+        &[
+            "--algo",
+            "zbuffer",
+            "--svg",
+            svg.to_str().unwrap(),
+            "--svg-mode",
+            "painter",
+        ],
+    );
     assert_fails(&out, &["--svg", "painter"], &png);
     assert!(!svg.exists());
     std::fs::remove_dir_all(&dir).unwrap();

@@ -7,7 +7,7 @@ use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
 mod cli_support;
-use cli_support::{hider, temp_dir};
+use cli_support::{assert_success, render, temp_dir};
 
 fn assets() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets")
@@ -35,22 +35,21 @@ impl Rendered {
 }
 
 /// Renders `model` at `size` with the default hider choice.
-fn render(dir: &Path, model: &Path, size: u32) -> Rendered {
+fn render_default(dir: &Path, model: &Path, size: u32) -> Rendered {
+    render_with(dir, model.to_str().unwrap(), size, &[])
+}
+
+/// Renders `model` at `size` with `extra` flags (the camera, say) but no
+/// hider named.
+fn render_with(dir: &Path, model: &str, size: u32, extra: &[&str]) -> Rendered {
     let png = dir.join("out.png");
     let ids = dir.join("out.i32");
     let size_s = size.to_string();
-    let out = hider(&[
-        "render",
-        model.to_str().unwrap(),
-        "-o",
-        png.to_str().unwrap(),
-        "--size",
-        &size_s,
-        "--ids-out",
-        ids.to_str().unwrap(),
-    ]);
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(out.status.success(), "{stderr}");
+    let mut args = vec!["--size", &size_s];
+    args.extend_from_slice(extra);
+    args.extend_from_slice(&["--ids-out", ids.to_str().unwrap()]);
+    let out = render(model, &png, &args);
+    let stderr = assert_success(&out);
     let image = image::open(&png).unwrap().to_rgb8();
     let rgb = image.pixels().map(|p| p.0).collect();
     let ids = hider::scene::frame::read_ids(&ids, size, size)
@@ -74,7 +73,7 @@ fn linear(c: u8) -> f64 {
 #[test]
 fn a_textured_model_comes_out_textured() {
     let dir = temp_dir("spider");
-    let image = render(&dir, &assets().join("spider/spider.obj"), 256);
+    let image = render_default(&dir, &assets().join("spider/spider.obj"), 256);
     assert!(image.stderr.contains("auto, asked for"), "{}", image.stderr);
     assert!(image.stderr.contains("texture"), "{}", image.stderr);
     // One flat-shaded triangle has one colour; a textured one many.
@@ -95,38 +94,10 @@ fn a_flat_face_comes_out_in_one_shade() {
     let dir = temp_dir("flat");
     // The cube: six quads, each two triangles; seen from above and aside
     // so that three faces show.
-    let image = {
-        let png = dir.join("cube.png");
-        let ids = dir.join("cube.i32");
-        let out = hider(&[
-            "render",
-            "gen:cube",
-            "-o",
-            png.to_str().unwrap(),
-            "--size",
-            "96",
-            "--eye",
-            "3,4,5",
-            "--ids-out",
-            ids.to_str().unwrap(),
-        ]);
-        assert!(
-            out.status.success(),
-            "{}",
-            String::from_utf8_lossy(&out.stderr)
-        );
-        let rgb: Vec<[u8; 3]> = image::open(&png)
-            .unwrap()
-            .to_rgb8()
-            .pixels()
-            .map(|p| p.0)
-            .collect();
-        let ids = hider::scene::frame::read_ids(&ids, 96, 96).unwrap();
-        (rgb, ids)
-    };
+    let image = render_with(&dir, "gen:cube", 96, &["--eye", "3,4,5"]);
     let mut per_face: HashMap<u32, HashSet<[u8; 3]>> = HashMap::new();
-    for (id, rgb) in image.1.iter().zip(&image.0) {
-        if *id != hider::scene::NO_ID {
+    for (id, rgb) in image.ids.iter().zip(&image.rgb) {
+        if let Some(id) = id {
             per_face.entry(id / 2).or_default().insert(*rgb);
         }
     }
@@ -166,9 +137,9 @@ fn a_textured_translucent_model_comes_out_textured_and_translucent() {
     };
     let model = dir.join("checker_plane.obj");
     with_opacity("1");
-    let opaque = render(&dir, &model, 128);
+    let opaque = render_default(&dir, &model, 128);
     with_opacity("0.6");
-    let glass = render(&dir, &model, 128);
+    let glass = render_default(&dir, &model, 128);
     assert!(glass.stderr.contains("transparency"), "{}", glass.stderr);
     assert_eq!(opaque.ids, glass.ids, "the same pixels are covered");
     // Textured: light and dark squares.

@@ -2,39 +2,25 @@
 //! regular files, bad flag values, and a picture with nothing in it. Each
 //! test starts from an example an outside tester found.
 
-use std::path::Path;
 use std::process::{Command, Output};
 
 mod cli_support;
-use cli_support::{hider, temp_dir};
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
-}
+use cli_support::{
+    assert_mentions, assert_one_line_failure, assert_success, hider, render, stderr, temp_dir,
+};
 
 /// Asserts exit status 2 with exactly one line on stderr holding every
 /// needle.
 fn assert_one_line_error(out: &Output, needles: &[&str]) {
-    let err = stderr(out);
-    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
-    assert!(!err.contains("panicked"), "{err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    let err = assert_one_line_failure(out);
     assert!(err.starts_with("hider: error: "), "{err}");
-    for n in needles {
-        assert!(err.contains(n), "'{n}' missing from: {err}");
-    }
+    assert_mentions(&err, needles);
 }
 
 #[test]
 fn every_bad_flag_value_is_one_line_naming_flag_and_value() {
     let dir = temp_dir("flags");
     let png = dir.join("out.png");
-    let png = png.to_str().unwrap();
-    let render = |extra: &[&str]| {
-        let mut args = vec!["render", "gen:cube", "-o", png];
-        args.extend_from_slice(extra);
-        hider(&args)
-    };
     let cases: &[(&[&str], &[&str])] = &[
         (&["--size", "-5"], &["--size", "'-5'", "1 to 16384"]),
         (&["--size", "1e3"], &["--size", "'1e3'"]),
@@ -74,9 +60,9 @@ fn every_bad_flag_value_is_one_line_naming_flag_and_value() {
         (&["--vector"], &["--vector", "--svg"]),
     ];
     for (extra, needles) in cases {
-        let out = render(extra);
+        let out = render("gen:cube", &png, extra);
         assert_one_line_error(&out, needles);
-        assert!(!Path::new(png).exists(), "{extra:?} wrote an image");
+        assert!(!png.exists(), "{extra:?} wrote an image");
     }
     let out = hider(&["render", "gen:cube"]);
     assert_one_line_error(&out, &["--output"]);
@@ -128,7 +114,7 @@ fn a_full_device_is_written_through_and_reported() {
     }
     // /dev/null takes the output and stays a device.
     let out = hider(&["render", "gen:cube", "--size", "16", "-o", "/dev/null"]);
-    assert!(out.status.success(), "{}", stderr(&out));
+    assert_success(&out);
     assert!(std::fs::symlink_metadata("/dev/null").is_ok_and(|m| m.file_type().is_char_device()));
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -149,7 +135,7 @@ fn outputs_through_a_symbolic_link_keep_the_link() {
         "-o",
         link.to_str().unwrap(),
     ]);
-    assert!(out.status.success(), "{}", stderr(&out));
+    assert_success(&out);
     assert!(
         std::fs::symlink_metadata(&link)
             .unwrap()
@@ -166,17 +152,10 @@ fn a_plane_seen_edge_on_warns_and_suggests_an_eye() {
     // A square in the plane y = 0: the fit camera's eye sits in that plane.
     let obj = dir.join("floor.obj");
     std::fs::write(&obj, "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nf 1 2 3 4\n").unwrap();
+    let obj = obj.to_str().unwrap();
     let png = dir.join("floor.png");
-    let out = hider(&[
-        "render",
-        obj.to_str().unwrap(),
-        "-o",
-        png.to_str().unwrap(),
-        "--size",
-        "64",
-    ]);
-    let err = stderr(&out);
-    assert!(out.status.success(), "{err}");
+    let out = render(obj, &png, &["--size", "64"]);
+    let err = assert_success(&out);
     let warning = err
         .lines()
         .find(|l| l.starts_with("hider: warning: nothing on screen"))
@@ -191,18 +170,8 @@ fn a_plane_seen_edge_on_warns_and_suggests_an_eye() {
         .nth(1)
         .and_then(|s| s.split_whitespace().next())
         .unwrap();
-    let out = hider(&[
-        "render",
-        obj.to_str().unwrap(),
-        "-o",
-        png.to_str().unwrap(),
-        "--size",
-        "64",
-        "--eye",
-        eye,
-    ]);
-    let err = stderr(&out);
-    assert!(out.status.success(), "{err}");
+    let out = render(obj, &png, &["--size", "64", "--eye", eye]);
+    let err = assert_success(&out);
     assert!(!err.contains("nothing on screen"), "--eye {eye}: {err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -213,20 +182,12 @@ fn an_empty_picture_says_why() {
     let png = dir.join("empty.png");
 
     // Everything behind the eye: outside the view.
-    let out = hider(&[
-        "render",
+    let out = render(
         "gen:cube",
-        "-o",
-        png.to_str().unwrap(),
-        "--size",
-        "32",
-        "--eye",
-        "0,0,10",
-        "--target",
-        "0,0,20",
-    ]);
-    let err = stderr(&out);
-    assert!(out.status.success(), "{err}");
+        &png,
+        &["--size", "32", "--eye", "0,0,10", "--target", "0,0,20"],
+    );
+    let err = assert_success(&out);
     assert!(
         err.contains("nothing on screen") && err.contains("outside the view"),
         "{err}"
@@ -234,37 +195,29 @@ fn an_empty_picture_says_why() {
     // A triangle far smaller than the snapping step: zero area on screen.
     let tiny = dir.join("tiny.obj");
     std::fs::write(&tiny, "v 0 0 0\nv 1e-4 0 0\nv 0 1e-4 0\nf 1 2 3\n").unwrap();
-    let out = hider(&[
-        "render",
+    let out = render(
         tiny.to_str().unwrap(),
-        "-o",
-        png.to_str().unwrap(),
-        "--size",
-        "16",
-        "--eye",
-        "0.3,0.3,10",
-        "--target",
-        "0.3,0.3,0",
-        "--near",
-        "0.1",
-        "--far",
-        "100",
-    ]);
-    let err = stderr(&out);
-    assert!(out.status.success(), "{err}");
+        &png,
+        &[
+            "--size",
+            "16",
+            "--eye",
+            "0.3,0.3,10",
+            "--target",
+            "0.3,0.3,0",
+            "--near",
+            "0.1",
+            "--far",
+            "100",
+        ],
+    );
+    let err = assert_success(&out);
     assert!(
         err.contains("nothing on screen: the triangle has zero area on screen"),
         "{err}"
     );
     // A picture with something in it has no such warning.
-    let out = hider(&[
-        "render",
-        "gen:cube",
-        "-o",
-        png.to_str().unwrap(),
-        "--size",
-        "32",
-    ]);
+    let out = render("gen:cube", &png, &["--size", "32"]);
     assert!(!stderr(&out).contains("nothing on screen"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -289,8 +242,7 @@ fn the_spinner_shows_on_a_terminal_only() {
     args[7] = png.to_str().unwrap();
     // Not a terminal: nothing but whole lines, however long the run.
     let out = hider(&args);
-    let err = stderr(&out);
-    assert!(out.status.success(), "{err}");
+    let err = assert_success(&out);
     assert!(!err.contains('\r') && !err.contains('\u{1b}'), "{err:?}");
     // On a terminal (a pseudo-terminal from `script`, where there is one),
     // with the delay set to 0 so that the check does not hang on timing:
