@@ -41,6 +41,37 @@ fn render(hider: &mut dyn DynHider, s: &ScreenScene) -> Frame {
     frame
 }
 
+/// Runs `property` on the cases `strategy` draws, `default_cases` of them
+/// unless `PROPTEST_CASES` says otherwise, replaying and keeping shrunk
+/// failures in `regressions`; then prints the tally under `label`.
+fn check_property<S: Strategy>(
+    regressions: &'static str,
+    default_cases: u32,
+    strategy: S,
+    label: &str,
+    property: impl Fn(S::Value, &Tally) -> Result<(), TestCaseError>,
+) {
+    let tally = Tally::default();
+    let mut runner = TestRunner::new(config(regressions, default_cases));
+    runner
+        .run(&strategy, |value| property(value, &tally))
+        .unwrap();
+    tally.report(label);
+}
+
+/// Whether two buffers of one size are equal bit for bit: determinism
+/// means the same bits, so a NaN must equal itself and -0 differ from 0.
+fn same_bits(a: &[f32], b: &[f32]) -> bool {
+    a.iter().zip(b).all(|(a, b)| a.to_bits() == b.to_bits())
+}
+
+/// Whether every value is finite and in [0, 1].
+fn all_in_unit_range(values: &[f32]) -> bool {
+    values
+        .iter()
+        .all(|v| v.is_finite() && (0.0..=1.0).contains(v))
+}
+
 fn pixel_centre_entries() -> Vec<registry::Entry> {
     registry::all()
         .into_iter()
@@ -106,20 +137,17 @@ fn every_hard_case_agrees_with_the_oracle() {
 
 #[test]
 fn random_scenes_agree_with_the_oracle() {
-    let tally = Tally::default();
-    let mut runner = TestRunner::new(config(
+    check_property(
         "proptest-regressions/cross_validation-agree.txt",
         256,
-    ));
-    let strategy = (0..scene_kinds(), any::<u64>(), 8u32..48);
-    runner
-        .run(&strategy, |(kind, seed, size)| {
+        (0..scene_kinds(), any::<u64>(), 8u32..48),
+        "oracle agreement",
+        |(kind, seed, size), tally| {
             let (name, sc) = scene(kind, seed);
             Tally::add(&tally.cases, 1);
-            agree_with_oracle(&name, &screen(&sc, size, size), &tally)
-        })
-        .unwrap();
-    tally.report("oracle agreement");
+            agree_with_oracle(&name, &screen(&sc, size, size), tally)
+        },
+    );
 }
 
 /// The scene with its triangles in the order `perm` (new id k is old id
@@ -150,14 +178,12 @@ fn permuted(scene: &Scene, perm: &[u32]) -> Scene {
 
 #[test]
 fn renders_are_deterministic_and_order_independent() {
-    let tally = Tally::default();
-    let mut runner = TestRunner::new(config(
+    check_property(
         "proptest-regressions/cross_validation-determinism.txt",
         64,
-    ));
-    let strategy = (0..scene_kinds(), any::<u64>(), 8u32..40);
-    runner
-        .run(&strategy, |(kind, seed, size)| {
+        (0..scene_kinds(), any::<u64>(), 8u32..40),
+        "determinism and order independence",
+        |(kind, seed, size), tally| {
             Tally::add(&tally.cases, 1);
             let (name, sc) = scene(kind, seed);
             let s = screen(&sc, size, size);
@@ -188,22 +214,14 @@ fn renders_are_deterministic_and_order_independent() {
                 for other in [&again, &fresh] {
                     prop_assert_eq!(&first.ids, &other.ids, "{} on {}", entry.name, name);
                     prop_assert!(
-                        first
-                            .depth
-                            .iter()
-                            .zip(&other.depth)
-                            .all(|(a, b)| a.to_bits() == b.to_bits()),
+                        same_bits(&first.depth, &other.depth),
                         "{} on {}: depth differs",
                         entry.name,
                         name
                     );
                     prop_assert_eq!(&first.color, &other.color, "{} on {}", entry.name, name);
                     prop_assert!(
-                        first
-                            .coverage
-                            .iter()
-                            .zip(&other.coverage)
-                            .all(|(a, b)| a.to_bits() == b.to_bits()),
+                        same_bits(&first.coverage, &other.coverage),
                         "{} on {}: coverage differs",
                         entry.name,
                         name
@@ -224,9 +242,8 @@ fn renders_are_deterministic_and_order_independent() {
                 Tally::add(&tally.frames, 4);
             }
             Ok(())
-        })
-        .unwrap();
-    tally.report("determinism and order independence");
+        },
+    );
 }
 
 /// Property 5 on one scene: every registered hider renders it without
@@ -241,19 +258,13 @@ fn finite_buffers(name: &str, s: &ScreenScene, tally: &Tally) -> Result<(), Test
         }
         Tally::add(&tally.frames, 1);
         prop_assert!(
-            frame
-                .depth
-                .iter()
-                .all(|d| d.is_finite() && (0.0..=1.0).contains(d)),
+            all_in_unit_range(&frame.depth),
             "{} on {}: depth out of [0, 1]",
             entry.name,
             name
         );
         prop_assert!(
-            frame
-                .coverage
-                .iter()
-                .all(|c| c.is_finite() && (0.0..=1.0).contains(c)),
+            all_in_unit_range(&frame.coverage),
             "{} on {}: coverage out of [0, 1]",
             entry.name,
             name
@@ -315,24 +326,21 @@ fn wild_scene(seed: u64, count: u32) -> Scene {
 
 #[test]
 fn no_generated_input_panics_or_leaks_non_finite_values() {
-    let tally = Tally::default();
-    let mut runner = TestRunner::new(config(
+    check_property(
         "proptest-regressions/cross_validation-finite.txt",
         128,
-    ));
-    let strategy = (0..scene_kinds() + 1, any::<u64>(), 1u32..40, 1u32..60);
-    runner
-        .run(&strategy, |(kind, seed, size, count)| {
+        (0..scene_kinds() + 1, any::<u64>(), 1u32..40, 1u32..60),
+        "finite buffers",
+        |(kind, seed, size, count), tally| {
             Tally::add(&tally.cases, 1);
             let (name, sc) = if kind == scene_kinds() {
                 ("wild".to_owned(), wild_scene(seed, count))
             } else {
                 scene(kind, seed)
             };
-            finite_buffers(&name, &screen(&sc, size, size), &tally)
-        })
-        .unwrap();
-    tally.report("finite buffers");
+            finite_buffers(&name, &screen(&sc, size, size), tally)
+        },
+    );
 }
 
 /// The worked example of scratchapixel's depth-buffer lesson in 3D: a wall whose edge runs from
