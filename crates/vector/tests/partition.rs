@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::area2;
+use common::{area2, edge_sum};
 use hider_scene::{ShadeMode, procedural};
 use hider_testkit::{hard_cases, screen};
 use hider_vector::{RegionMap, VectorOptions, visible_regions};
@@ -122,18 +122,9 @@ fn covered_is_the_triangles(name: &str, s: &hider_scene::ScreenScene, map: &Regi
         }
     }
     let raw = o.overlay(OverlayRule::Subject, FillRule::NonZero);
-    let perimeter: f64 = raw
-        .iter()
-        .flatten()
-        .map(|c| {
-            (0..c.len())
-                .map(|k| {
-                    let (a, b) = (c[k], c[(k + 1) % c.len()]);
-                    f64::from(a.x - b.x).hypot(f64::from(a.y - b.y))
-                })
-                .sum::<f64>()
-        })
-        .sum();
+    let perimeter: f64 = edge_sum(&raw, |a, b| {
+        f64::from(a.x - b.x).hypot(f64::from(a.y - b.y))
+    });
     let moved = xor_area2(&raw, &map.covered) as f64 / 2.0;
     assert!(
         moved <= perimeter,
