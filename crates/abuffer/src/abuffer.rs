@@ -19,7 +19,9 @@
 //!    `prepare`'s per-primitive data; either fills a `Source` (triangles
 //!    and colours), and everything after is the same.
 //! 1. **Bins.** Triangles are binned to 64 x 64 pixel tiles
-//!    ([`crate::bins`]).
+//!    ([`crate::bins`]): `prepare`'s after the front end, the lean front
+//!    end's by each of its runs as it sets them up (no triangle is stored
+//!    between the two).
 //! 2. **Tiles, front to back.** Each tile sorts its triangles by nearest
 //!    vertex depth (the order changes no sample: lists are sorted by depth
 //!    at resolve) and renders them into its pixels' lists
@@ -29,7 +31,7 @@
 //!    behind an opaque bound, per 8 x 8 block, per tile before the blocks,
 //!    per partial pixel before its mask is computed.
 
-use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
+use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_sinks};
 use hider_scene::{
     Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, View, check_frame_size,
 };
@@ -37,13 +39,13 @@ use std::sync::{Mutex, PoisonError};
 
 use rayon::prelude::*;
 
-use crate::bins::{Bins, TILE, tile_rect};
+use crate::bins::{BinRun, Bins, Grid, TILE, tile_rect};
 use crate::centre::in_front;
 use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy};
 use crate::resolve::Band;
 use crate::samples::{SAMPLE_BUFFER_BYTES, SampleBuffer, passes};
-use crate::source::Source;
+use crate::source::{Source, scene_opacity_runs};
 use crate::stats::ABufferStats;
 use crate::worker::{Shared, Worker};
 
@@ -69,6 +71,11 @@ pub struct ABuffer {
     /// A prepared scene's triangles as the lean front end gives them
     /// ([`Hider::render`]).
     screen_tris: Vec<LeanTri>,
+    /// The lean front end's runs, each binning its triangles as it sets
+    /// them up ([`Hider::render_scene`]).
+    bin_runs: Vec<BinRun>,
+    /// The opacity runs of the scene being binned by `bin_runs`.
+    opacity: Vec<(u32, f32)>,
     width: u32,
     height: u32,
 }
@@ -190,8 +197,9 @@ impl ABuffer {
         Ok(())
     }
 
-    /// Renders the triangles of `scene` into `frame`.
-    fn run(&mut self, scene: &Source<'_>, frame: &mut Frame) -> Result<ABufferStats> {
+    /// Renders the triangles of `scene` into `frame`; `binned` when the
+    /// lean front end has binned them already ([`BinRun`]).
+    fn run(&mut self, scene: &Source<'_>, binned: bool, frame: &mut Frame) -> Result<ABufferStats> {
         check_frame_size("abuffer", scene.viewport, frame)?;
         self.check_options()?;
         let (w, h) = (scene.viewport.width, scene.viewport.height);
@@ -219,12 +227,16 @@ impl ABuffer {
             worker.begin_frame(scene, &options, tiles)?;
         }
         let own = self.own_pool(threads)?;
-        let (bins, pattern) = (&mut self.bins, options.pattern);
-        let mut bin = || bins.bin(scene, pattern, (tiles_x, tiles_y), threads);
-        match self.pool.as_ref().filter(|_| own) {
-            Some(pool) => pool.install(bin),
-            None => bin(),
+        if !binned {
+            let bins = &mut self.bins;
+            let grid = Grid::new(options.pattern, (w, h));
+            let mut bin = || bins.bin(scene, grid, threads);
+            match self.pool.as_ref().filter(|_| own) {
+                Some(pool) => pool.install(bin),
+                None => bin(),
+            }
         }
+        let scene = &scene.with_items(self.bins.items());
         // Each band is cleared by the thread that renders it, just before
         // (`Band::clear`): the frame's 16 bytes a pixel are written in
         // parallel, and not by a serial pass over the whole frame first
@@ -399,14 +411,16 @@ impl Hider for ABuffer {
         let mut tris = std::mem::take(&mut self.screen_tris);
         tris.clear();
         tris.extend(scene.tris.iter().map(LeanTri::from));
-        let result = self.run(&Source::screen(scene, &tris), frame);
+        let result = self.run(&Source::screen(scene, &tris), false, frame);
         self.screen_tris = tris;
         result
     }
 
-    /// The lean front end ([`prepare_lean_into`]: `prepare`'s triangles,
-    /// transformed per vertex, without its per-primitive data), then the
-    /// same rendering as [`Hider::render`]: the same frame, bit for bit.
+    /// The lean front end ([`prepare_lean_sinks`]: `prepare`'s triangles,
+    /// transformed per vertex, without its per-primitive data, each run of
+    /// its triangle pass binning its triangles as it sets them up), then
+    /// the same rendering as [`Hider::render`]: the same frame, bit for
+    /// bit.
     /// A scene whose textures are loaded into `screen` takes the shared
     /// front end (texturing reads what only it keeps).
     fn render_scene(
@@ -421,9 +435,30 @@ impl Hider for ABuffer {
             hider_scene::prepare_into(scene, view, options, screen)?;
             return self.render(screen, frame);
         }
+        // Checked before the front end bins anything.
+        check_frame_size("abuffer", view.viewport, frame)?;
+        self.check_options()?;
+        let grid = Grid::new(self.options.pattern, (frame.width(), frame.height()));
         let mut lean = std::mem::take(&mut self.lean);
-        let result = prepare_lean_into(scene, view, options, &mut lean)
-            .and_then(|()| self.run(&Source::lean(&lean, scene), frame));
+        let mut runs = std::mem::take(&mut self.bin_runs);
+        scene_opacity_runs(scene, &mut self.opacity);
+        let opacity = &self.opacity;
+        self.bins.lend(&mut runs);
+        let prepared = prepare_lean_sinks(scene, view, options, &mut lean, &mut runs, |_, run| {
+            run.begin(grid, opacity)
+        });
+        let result = match prepared {
+            Ok(()) => {
+                self.bins.adopt(&mut runs, grid);
+                self.run(&Source::lean(&lean, scene), true, frame)
+            }
+            Err(e) => {
+                // The runs stopped part way: no bins of this frame.
+                self.bins.abandon(&mut runs);
+                Err(e)
+            }
+        };
+        self.bin_runs = runs;
         self.lean = lean;
         result
     }

@@ -21,8 +21,10 @@ use crate::depth::{depth_key, nearest_over};
 use crate::pattern::SamplePattern;
 
 mod queue;
+mod runs;
 
 pub(crate) use queue::{LEADER, SOLE, TileQueue};
+pub(crate) use runs::BinRun;
 
 /// Side of the square screen tiles, in pixels. Triangles are binned to
 /// tiles; each tile is rendered and resolved before the next, so its
@@ -43,10 +45,8 @@ pub(crate) fn tile_rect(tx: u32, ty: u32, (width, height): (u32, u32)) -> (u32, 
 }
 
 /// One triangle of a bin, with what rasterising it needs.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct BinItem {
-    /// Index of the triangle in the scene.
-    pub(crate) tri: u32,
     /// Its primitive.
     pub(crate) prim: u32,
     /// Its pixel range `(x0, y0, x1, y1)` (see [`crate::coverage::pixel_range`]).
@@ -69,6 +69,10 @@ pub(crate) struct BinItem {
     /// put 5 % of the soup's frame on that evaluation; the 500 sphere
     /// measured 1 to 2.7 % faster with this bound, the others the same).
     pub(crate) near: f32,
+    /// Whether its source triangle faces the camera (merging needs equal
+    /// facings). Its index in the frame's triangles is its place in
+    /// [`Bins::items`], which the tile refs carry.
+    pub(crate) front_facing: bool,
 }
 
 /// An unsigned key ordered like `f32::total_cmp`: the signed
@@ -115,6 +119,34 @@ struct Chunk {
     /// pass reads these 12 bytes a triangle, not its 96-byte item (on the
     /// 500 sphere a third of binning's memory traffic).
     key_tiles: Vec<(u32, [u16; 4])>,
+    /// The run of opacities the last triangle's primitive fell in
+    /// (triangles come in primitive order: almost always the next one's).
+    opacity_run: usize,
+}
+
+/// What binning one triangle needs besides the triangle: the sample
+/// pattern, the frame's size and its tiles per row.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Grid {
+    pub(crate) pattern: SamplePattern,
+    pub(crate) dims: (u32, u32),
+    pub(crate) tiles: (u32, u32),
+}
+
+impl Grid {
+    /// The grid of a `dims` frame sampled with `pattern`.
+    pub(crate) fn new(pattern: SamplePattern, (w, h): (u32, u32)) -> Self {
+        Self {
+            pattern,
+            dims: (w, h),
+            tiles: (w.div_ceil(TILE), h.div_ceil(TILE)),
+        }
+    }
+
+    /// How many tiles the frame has.
+    pub(crate) fn count(&self) -> usize {
+        (self.tiles.0 * self.tiles.1) as usize
+    }
 }
 
 /// A chunk's share of a frame's binning: its items to write, its
@@ -126,18 +158,11 @@ const NONE: (u32, u32, u32, u32) = (1, 1, 0, 0);
 
 impl Bins {
     /// Bins the triangles of `scene` by tile (counting sort, submission
-    /// order kept), for a frame of `tiles_x x tiles_y` tiles, in `threads`
-    /// chunks of triangles binned in parallel on the current rayon pool
-    /// (one chunk, in order, for one thread).
-    pub(crate) fn bin(
-        &mut self,
-        scene: &Source<'_>,
-        pattern: SamplePattern,
-        (tiles_x, tiles_y): (u32, u32),
-        threads: usize,
-    ) {
-        let tiles = (tiles_x * tiles_y) as usize;
-        self.tiles = tiles;
+    /// order kept), on `grid`, in `threads` chunks of triangles binned in
+    /// parallel on the current rayon pool (one chunk, in order, for one
+    /// thread).
+    pub(crate) fn bin(&mut self, scene: &Source<'_>, grid: Grid, threads: usize) {
+        self.tiles = grid.count();
         scene.opacity_runs(&mut self.opacity);
         let n = scene.tris.len();
         if self.items.len() < n {
@@ -146,14 +171,17 @@ impl Bins {
         self.items.truncate(n);
         let len = n.div_ceil(threads.max(1)).max(1);
         self.chunks.resize_with(n.div_ceil(len), Chunk::default);
-        let grid = (tiles_x, tiles_y);
         let opacity = &self.opacity;
         let work = |(c, ((items, tris), chunk)): (usize, ChunkWork<'_>)| {
             // Binned on this thread's stack: the chunks' headers sit side
             // by side in `chunks`, and lengths updated on every triangle
             // shared a cache line with the other threads'.
             let mut local = std::mem::take(chunk);
-            local.bin((items, tris), c * len, (scene, pattern, grid), opacity);
+            local.begin(grid.count());
+            for (item, tri) in items.iter_mut().zip(tris) {
+                *item = local.add(tri, grid, opacity);
+            }
+            local.fill(c * len, grid.tiles.0);
             *chunk = local;
         };
         let parallel = self.chunks.len() > 1;
@@ -190,6 +218,12 @@ impl Bins {
         &self.items[key as u32 as usize]
     }
 
+    /// The frame's binned triangles, in the frame's order (a tile ref's
+    /// low half indexes them).
+    pub(crate) fn items(&self) -> &[BinItem] {
+        &self.items
+    }
+
     /// Whether nothing was binned yet.
     pub(crate) fn is_empty(&self) -> bool {
         self.tiles == 0
@@ -210,62 +244,61 @@ impl Bins {
 }
 
 impl Chunk {
-    /// Bins the triangles `tris`, the first of which is triangle `first`
-    /// of the scene, writing their items into `items` (as many), for
-    /// `scene` sampled with `pattern` on `grid` tiles; `opacity` is
-    /// [`Source::opacity_runs`].
-    fn bin(
-        &mut self,
-        (items, tris): (&mut [BinItem], &[LeanTri]),
-        first: usize,
-        (scene, pattern, (tiles_x, tiles_y)): (&Source<'_>, SamplePattern, (u32, u32)),
-        opacity: &[(u32, f32)],
-    ) {
-        let (w, h) = (scene.viewport.width, scene.viewport.height);
-        let tiles = (tiles_x * tiles_y) as usize;
+    /// Starts binning a run of triangles into `tiles` tiles.
+    fn begin(&mut self, tiles: usize) {
         self.start.clear();
         self.start.resize(tiles + 1, 0);
-        // Triangles come in primitive order: the run of the previous one
-        // is almost always the right one.
-        let mut run = 0;
         self.key_tiles.clear();
-        for (k, (item, tri)) in items.iter_mut().zip(tris).enumerate() {
-            let t = first + k;
-            let range = pixel_range_of(&tri.v, pattern, w, h).unwrap_or(NONE);
-            let (x0, y0, x1, y1) = range;
-            // Tile coordinates fit 16 bits: a side is at most
-            // `hider_geom::fixed::MAX_IMAGE_SIDE` (16,384) pixels.
-            let tiles = if x0 <= x1 {
-                for ty in y0 / TILE..=y1 / TILE {
-                    for tx in x0 / TILE..=x1 / TILE {
-                        self.start[(ty * tiles_x + tx) as usize + 1] += 1;
-                    }
+        self.opacity_run = 0;
+    }
+
+    /// Counts the next triangle of the run, `tri`, into the tiles of
+    /// `grid` its pixel range meets, and returns its item; `opacity` is
+    /// [`Source::opacity_runs`].
+    #[inline(always)]
+    fn add(&mut self, tri: &LeanTri, grid: Grid, opacity: &[(u32, f32)]) -> BinItem {
+        let ((w, h), tiles_x, pattern) = (grid.dims, grid.tiles.0, grid.pattern);
+        let range = pixel_range_of(&tri.v, pattern, w, h).unwrap_or(NONE);
+        let (x0, y0, x1, y1) = range;
+        // Tile coordinates fit 16 bits: a side is at most
+        // `hider_geom::fixed::MAX_IMAGE_SIDE` (16,384) pixels.
+        let tiles = if x0 <= x1 {
+            for ty in y0 / TILE..=y1 / TILE {
+                for tx in x0 / TILE..=x1 / TILE {
+                    self.start[(ty * tiles_x + tx) as usize + 1] += 1;
                 }
-                [x0 / TILE, y0 / TILE, x1 / TILE, y1 / TILE].map(|c| c as u16)
-            } else {
-                [1, 1, 0, 0]
-            };
-            let near = tri.z.iter().copied().fold(f64::INFINITY, f64::min) as f32;
-            self.key_tiles.push((order_key(near), tiles));
-            let prim = tri.prim;
-            let start = if run == 0 { 0 } else { opacity[run - 1].0 };
-            if prim < start || prim >= opacity[run].0 {
-                run = opacity.partition_point(|&(end, _)| end <= prim);
             }
-            *item = BinItem {
-                tri: t as u32,
-                prim,
-                range,
-                plane: tri.depth,
-                v: tri.v,
-                alpha: opacity[run].1,
-                near: if x0 <= x1 {
-                    nearest_over(&tri.depth, range, pattern.hull()) as f32
-                } else {
-                    f32::INFINITY
-                },
-            };
+            [x0 / TILE, y0 / TILE, x1 / TILE, y1 / TILE].map(|c| c as u16)
+        } else {
+            [1, 1, 0, 0]
+        };
+        let near = tri.z.iter().copied().fold(f64::INFINITY, f64::min) as f32;
+        self.key_tiles.push((order_key(near), tiles));
+        let prim = tri.prim;
+        let run = self.opacity_run;
+        let start = if run == 0 { 0 } else { opacity[run - 1].0 };
+        if prim < start || prim >= opacity[run].0 {
+            self.opacity_run = opacity.partition_point(|&(end, _)| end <= prim);
         }
+        BinItem {
+            prim,
+            range,
+            plane: tri.depth,
+            v: tri.v,
+            alpha: opacity[self.opacity_run].1,
+            near: if x0 <= x1 {
+                nearest_over(&tri.depth, range, pattern.hull()) as f32
+            } else {
+                f32::INFINITY
+            },
+            front_facing: tri.front_facing,
+        }
+    }
+
+    /// Fills the run's bins once every triangle is counted: its triangles
+    /// are items `first..` of the frame, on `tiles_x` tiles per row.
+    fn fill(&mut self, first: usize, tiles_x: u32) {
+        let tiles = self.start.len() - 1;
         for t in 0..tiles {
             self.start[t + 1] += self.start[t];
         }
@@ -290,7 +323,7 @@ mod tests {
     use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
     use hider_scene::{Material, PrepareOptions, Scene, ShadeMode, View, procedural};
 
-    use super::{Bins, TILE, order_key};
+    use super::{Bins, Grid, TILE, order_key};
     use crate::coverage::pixel_range_of;
     use crate::pattern::SamplePattern;
     use crate::source::Source;
@@ -332,12 +365,7 @@ mod tests {
         prepare_lean_into(&scene, &view, &options, &mut lean).expect("prepared");
         for source in [Source::screen(&screen, &tris), Source::lean(&lean, &scene)] {
             let mut bins = Bins::default();
-            bins.bin(
-                &source,
-                SamplePattern::Grid32,
-                (w.div_ceil(TILE), h.div_ceil(TILE)),
-                1,
-            );
+            bins.bin(&source, Grid::new(SamplePattern::Grid32, (w, h)), 1);
             let mut seen: Vec<f32> = Vec::new();
             for item in &bins.items {
                 let want = source.prim_rgba(item.prim, ShadeMode::Lambert)[3];
@@ -395,9 +423,10 @@ mod tests {
             .expect("a pool");
         let mut bins = Bins::default();
         for threads in [1, 3, 2, 7, 1] {
-            pool.install(|| bins.bin(&source, SamplePattern::Grid32, grid, threads));
+            let g = Grid::new(SamplePattern::Grid32, (w, h));
+            pool.install(|| bins.bin(&source, g, threads));
             for (t, want) in want.iter().enumerate() {
-                let got: Vec<u32> = bins.tile_items(t).map(|item| item.tri).collect();
+                let got: Vec<u32> = bins.tile_refs(t).map(|key| key as u32).collect();
                 assert_eq!(&got, want, "tile {t}, {threads} chunks");
                 assert_eq!(bins.has_items(t), !want.is_empty());
                 assert_eq!(bins.tile_len(t), want.len(), "tile {t}, {threads} chunks");

@@ -6,7 +6,7 @@
 //! (the black background adding nothing); the caller divides by the
 //! sample count.
 
-use hider_scene::prepare::lean::LeanTri;
+use crate::bins::BinItem;
 
 use crate::fragment::Shaded;
 use crate::pool::FragmentPool;
@@ -109,11 +109,11 @@ pub(crate) fn opaque_sum(shown: &mut [Shown]) -> [f32; 3] {
 /// `shown` (one entry per fragment, list order): by whole masks when the
 /// list order is every sample's order (`overlap` false), else sample by
 /// sample in each sample's own depth order (depths from `pool` and
-/// the planes of `tris`, at `positions`).
+/// the planes of `tris`, the frame's binned triangles, at `positions`).
 pub(crate) fn opaque_shown(
     frags: &[Shaded],
     overlap: bool,
-    (pool, tris): (&FragmentPool, &[LeanTri]),
+    (pool, tris): (&FragmentPool, &[BinItem]),
     ij: (u32, u32),
     positions: &[(i32, i32)],
     shown: &mut Vec<Shown>,
@@ -136,7 +136,8 @@ pub(crate) fn opaque_shown(
         let mut best: Option<(f32, u32, usize)> = None;
         for (i, s) in frags.iter().enumerate() {
             if s.frag.mask >> k & 1 == 1 {
-                let z = pool.sample_depth(tris, &s.frag, ij, positions, k);
+                let plane = &tris[s.frag.tri as usize].plane;
+                let z = pool.sample_depth(plane, &s.frag, ij, positions, k);
                 let nearer = best
                     .is_none_or(|(bz, bp, _)| z.total_cmp(&bz).then(s.frag.prim.cmp(&bp)).is_lt());
                 if nearer {
@@ -156,7 +157,7 @@ pub(crate) fn opaque_shown(
 pub(crate) fn per_sample(
     frags: &[Shaded],
     samples: &mut Vec<(f32, u32, u32)>,
-    (pool, tris): (&FragmentPool, &[LeanTri]),
+    (pool, tris): (&FragmentPool, &[BinItem]),
     ij: (u32, u32),
     positions: &[(i32, i32)],
 ) -> [f32; 3] {
@@ -165,7 +166,8 @@ pub(crate) fn per_sample(
         samples.clear();
         for (i, s) in frags.iter().enumerate() {
             if s.frag.mask >> k & 1 == 1 {
-                let z = pool.sample_depth(tris, &s.frag, ij, positions, k);
+                let plane = &tris[s.frag.tri as usize].plane;
+                let z = pool.sample_depth(plane, &s.frag, ij, positions, k);
                 samples.push((z, s.frag.prim, i as u32));
             }
         }

@@ -271,7 +271,7 @@ impl Lists {
                     || (0..3).all(|c| (g_rgba[c] - f_rgba[c]).abs() <= MERGE_COLOR_TOLERANCE))
                 && {
                     // Scene lookups (cache misses) only for candidates.
-                    let (tri, other) = (&scene.tris[f.tri as usize], &scene.tris[g.tri as usize]);
+                    let (tri, other) = (&scene.items[f.tri as usize], &scene.items[g.tri as usize]);
                     other.front_facing == tri.front_facing
                         && scene.material(g.prim) == scene.material(f.prim)
                         && tri.v.iter().any(|v| other.v.contains(v))
@@ -295,7 +295,7 @@ impl Lists {
         (f, f_rgba): (&Fragment, [f32; 4]),
     ) -> Result<()> {
         let (i, j) = ctx.ij;
-        let tris = &ctx.scene.tris;
+        let tris = ctx.scene.items;
         let (wg, wf) = (g.mask.count_ones() as f32, f.mask.count_ones() as f32);
         let mut rgba = g_rgba;
         if wg + wf > 0.0 {
@@ -313,7 +313,7 @@ impl Lists {
             // its sample depths move to a merged entry.
             let mut depths = [f32::INFINITY; MAX_SAMPLES];
             if keep_depths {
-                let plane = &tris[g.tri as usize].depth;
+                let plane = &tris[g.tri as usize].plane;
                 for (k, &pos) in positions.iter().enumerate() {
                     if g.mask >> k & 1 == 1 {
                         depths[k] = plane_depth(plane, i, j, pos) as f32;
@@ -323,7 +323,7 @@ impl Lists {
             self.pool.add_merged(rgba, &depths)?
         };
         if keep_depths {
-            let plane = tris[f.tri as usize].depth;
+            let plane = tris[f.tri as usize].plane;
             let stored = self.pool.merged_depths_mut(shade);
             for (k, &pos) in positions.iter().enumerate() {
                 if f.mask >> k & 1 == 1 {

@@ -9,7 +9,7 @@
 //! merged entry that would pass it, growing its buffers by at most
 //! doubling and never beyond the bound.
 
-use hider_scene::prepare::lean::LeanTri;
+use hider_geom::PlaneEq;
 use hider_scene::{Error, Result};
 
 use crate::depth::plane_depth;
@@ -270,13 +270,12 @@ impl FragmentPool {
     }
 
     /// The depth of fragment `f` of pixel `(i, j)` at sample `k` (per-sample
-    /// mode): from its merged entry, or its triangle's plane (its entry in
-    /// `tris`, the frame's triangles),
+    /// mode): from its merged entry, or `plane`, its triangle's depth plane,
     /// with the expression the supersampled z-buffer uses.
     #[inline]
     pub fn sample_depth(
         &self,
-        tris: &[LeanTri],
+        plane: &PlaneEq,
         f: &Fragment,
         (i, j): (u32, u32),
         positions: &[(i32, i32)],
@@ -285,7 +284,7 @@ impl FragmentPool {
         if f.is_merged() {
             self.merged_depths(f.shade)[k]
         } else {
-            plane_depth(&tris[f.tri as usize].depth, i, j, positions[k]) as f32
+            plane_depth(plane, i, j, positions[k]) as f32
         }
     }
 }

@@ -76,7 +76,7 @@ impl Rasterizer {
     pub(crate) fn triangle(
         &mut self,
         scene: &Source<'_>,
-        item: &BinItem,
+        (item, index): (&BinItem, u32),
         rect: (u32, u32, u32, u32),
         tile: (u32, u32),
         stats: &mut ABufferStats,
@@ -96,7 +96,7 @@ impl Rasterizer {
         let plane = item.plane;
         let tri = TriRaster {
             scene,
-            tri: item.tri,
+            tri: index,
             prim: item.prim,
             plane,
             bounds: DepthBounds::new(&plane, pattern, options.depth != DepthMode::PerSample),

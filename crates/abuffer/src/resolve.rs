@@ -354,7 +354,7 @@ impl Resolver {
             s.rgb.map(|c| 0.0 + c * weight)
         } else {
             let positions = input.options.pattern.positions();
-            let lists = (input.pool, input.scene.tris);
+            let lists = (input.pool, input.scene.items);
             let opaque = self.frags.iter().all(|s| s.alpha >= 1.0);
             match input.options.depth {
                 DepthMode::PerSample if opaque => {

@@ -8,7 +8,9 @@
 
 use hider_geom::Viewport;
 use hider_scene::prepare::lean::{LeanScene, LeanTri};
-use hider_scene::{Scene, ScreenScene, ShadeMode};
+use hider_scene::{Material, Scene, ScreenScene, ShadeMode};
+
+use crate::bins::BinItem;
 
 use crate::palette;
 
@@ -26,8 +28,13 @@ enum Kind<'a> {
 pub(crate) struct Source<'a> {
     /// The image size.
     pub(crate) viewport: Viewport,
-    /// The triangles, in `prepare`'s order.
+    /// The triangles, in `prepare`'s order (none when the lean front end
+    /// binned them as it set them up: [`crate::bins::BinRun`]).
     pub(crate) tris: &'a [LeanTri],
+    /// The frame's binned triangles, in the same order, once binned: what
+    /// the lists read of a fragment's triangle (its plane, vertices and
+    /// facing) by its index.
+    pub(crate) items: &'a [BinItem],
     kind: Kind<'a>,
 }
 
@@ -37,6 +44,7 @@ impl<'a> Source<'a> {
         Self {
             viewport: scene.viewport,
             tris,
+            items: &[],
             kind: Kind::Screen(scene),
         }
     }
@@ -46,8 +54,14 @@ impl<'a> Source<'a> {
         Self {
             viewport: lean.viewport,
             tris: lean.tris(),
+            items: &[],
             kind: Kind::Lean(lean, scene),
         }
+    }
+
+    /// This source with the frame's binned triangles, `items`.
+    pub(crate) fn with_items(self, items: &'a [BinItem]) -> Self {
+        Self { items, ..self }
     }
 
     /// The number of primitives (ids are below it).
@@ -88,19 +102,7 @@ impl<'a> Source<'a> {
                     push(prim + 1, s.material(prim).opacity.clamp(0.0, 1.0));
                 }
             }
-            Kind::Lean(lean, scene) => {
-                let mut first = 0u32;
-                for mesh in &scene.meshes {
-                    let end = first + mesh.indices.len() as u32;
-                    if end > first {
-                        // The identifier colour is a hash of the id: no
-                        // vertex or normal is read.
-                        let alpha = lean.prim_color(scene, first, ShadeMode::Ids).1;
-                        push(end, alpha.clamp(0.0, 1.0));
-                    }
-                    first = end;
-                }
-            }
+            Kind::Lean(_, scene) => scene_opacity_runs(scene, out),
         }
     }
 
@@ -165,6 +167,31 @@ impl ColorCache {
             self.stamps[k] = self.frame;
         }
         self.colors[k]
+    }
+}
+
+/// [`Source::opacity_runs`] of a scene the lean front end prepares, from
+/// its meshes' materials alone (as [`LeanScene::prim_color`] finds a
+/// primitive's material: the mesh's, or the default one), so that it can
+/// be known before the front end has run.
+pub(crate) fn scene_opacity_runs(scene: &Scene, out: &mut Vec<(u32, f32)>) {
+    out.clear();
+    let default = Material::default().opacity;
+    let mut end = 0u32;
+    for mesh in &scene.meshes {
+        if mesh.indices.is_empty() {
+            continue;
+        }
+        end += mesh.indices.len() as u32;
+        let alpha = mesh
+            .material
+            .and_then(|i| scene.materials.get(i))
+            .map_or(default, |m| m.opacity)
+            .clamp(0.0, 1.0);
+        match out.last_mut() {
+            Some(last) if last.1 == alpha => last.0 = end,
+            _ => out.push((end, alpha)),
+        }
     }
 }
 

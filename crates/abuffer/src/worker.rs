@@ -134,7 +134,9 @@ impl Worker {
             }
             let (rx0, ry0, rx1, ry1) = item.range;
             let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
-            self.raster.triangle(scene, item, rect, (x0, y0), stats)?;
+            let index = self.queue.index(k);
+            self.raster
+                .triangle(scene, (item, index), rect, (x0, y0), stats)?;
         }
         let lists = &mut self.raster.lists;
         let mut input = Input {

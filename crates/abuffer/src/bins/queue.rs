@@ -115,6 +115,12 @@ impl TileQueue {
         &self.items[k]
     }
 
+    /// Item `k`'s index in the frame's triangles ([`Bins::items`]).
+    #[inline]
+    pub(crate) fn index(&self, k: usize) -> u32 {
+        self.order[k] as u32
+    }
+
     /// Item `k`'s place among coincident items: [`SOLE`], [`LEADER`], or
     /// the position of the earlier item it coincides with.
     #[inline]

@@ -278,3 +278,47 @@ proptest! {
         }
     }
 }
+
+/// The lean front end in parallel runs, each binning its triangles as it
+/// sets them up, gives the frames, sample ids and counters of `prepare`'s
+/// output rendered on one thread, in pools of 2 and 3 threads (scenes
+/// large enough to be split); a scene with a non-finite position fails
+/// part way between them and changes nothing after it.
+#[test]
+fn parallel_runs_bin_as_one_front_end() {
+    let sphere = procedural::uv_sphere(130);
+    let soup = procedural::random_soup(40_000, 9);
+    let mut broken = procedural::random_soup(40_000, 3);
+    broken.meshes[0].positions[30_000] = DVec3::new(f64::NAN, 0.0, 0.0);
+    assert!(sphere.triangle_count() > 32 * 1024, "large enough to split");
+    let (w, h) = (160, 120);
+    let options = PrepareOptions::default().with_parallel(true);
+    for threads in [2, 3] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let mut hider = ABuffer::new(ABufferOptions::default().with_threads(threads));
+        for (k, scene) in [&sphere, &soup, &broken, &sphere].into_iter().enumerate() {
+            let view = View::for_scene(scene, w, h).unwrap();
+            let mut unused = ScreenScene::empty(&view);
+            let mut frame = Frame::new(w, h).unwrap();
+            let result = pool
+                .install(|| hider.render_scene(scene, &view, &options, &mut unused, &mut frame));
+            let at = format!("frame {k}, {threads} threads");
+            if k == 2 {
+                assert!(result.is_err(), "{at}: the broken scene renders");
+                continue;
+            }
+            let stats = result.unwrap();
+            let mut one = ABuffer::new(ABufferOptions::default().with_threads(1));
+            let (want, want_stats) = render(&mut one, &screen(scene, w, h));
+            assert!(frame == want, "{at}: frames differ");
+            assert!(
+                one.sample_ids() == hider.sample_ids(),
+                "{at}: sample ids differ"
+            );
+            assert_eq!(work(&want_stats), work(&stats), "{at}");
+        }
+    }
+}

@@ -18,13 +18,16 @@
 //! [`LeanTri`]s (snapped corners, their depths, depth plane, primitive id, facing) for
 //! hiders that sample inside pixels (the A-buffer), and colours a
 //! primitive on demand ([`LeanScene::prim_color`]) from the world-space
-//! scene, as `prepare`'s [`PrimInfo`](super::PrimInfo) would have.
+//! scene, as `prepare`'s [`PrimInfo`](super::PrimInfo) would have; or,
+//! through [`prepare_lean_sinks`], hands each run's triangles to a
+//! [`LeanSink`] of the hider's as they are set up (the A-buffer bins them
+//! there, instead of storing them and reading them back).
 
 mod scene;
 mod triangles;
 mod vertices;
 
-pub use scene::{LeanScene, LeanTri, prepare_lean_into};
+pub use scene::{LeanScene, LeanSink, LeanTri, prepare_lean_into, prepare_lean_sinks};
 pub use vertices::{CachedVertex, NO_WINDOW, NOT_FINITE, vertices};
 
 use rayon::prelude::*;

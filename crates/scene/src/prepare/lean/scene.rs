@@ -177,18 +177,92 @@ pub fn prepare_lean_into(
         out.tris.par_extend(r.par_iter().copied());
     }
     stats.output = out.tris.len() as u64;
-    out.stats = stats;
-    out.viewport = front.viewport;
-    out.mesh_starts.clear();
-    let mut first = 0;
-    for mesh in &scene.meshes {
-        out.mesh_starts.push(first);
-        first += mesh.indices.len();
-    }
-    // `prepare`'s transform of the lights.
-    out.lights.clear();
-    out.lights
-        .extend(scene.lights.iter().map(|l| front.light_to_camera(l)));
-    out.front = Some(front);
+    out.finish(scene, front, stats);
     Ok(())
+}
+
+/// Where the triangle pass of [`prepare_lean_sinks`] puts a run's
+/// triangles, in order: a hider's own per-triangle records, made as each
+/// triangle is set up (no [`LeanTri`] is stored and read back).
+pub trait LeanSink: Default + Send {
+    /// Forgets the triangles of the last frame (keeping the memory).
+    fn clear(&mut self);
+    /// Takes the run's next triangle.
+    fn push(&mut self, tri: LeanTri);
+    /// How many triangles the run has taken since [`Self::clear`].
+    fn len(&self) -> usize;
+    /// Whether the run has taken no triangle since [`Self::clear`].
+    fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+}
+
+impl LeanSink for Vec<LeanTri> {
+    fn clear(&mut self) {
+        Vec::clear(self);
+    }
+
+    fn push(&mut self, tri: LeanTri) {
+        Vec::push(self, tri);
+    }
+
+    fn len(&self) -> usize {
+        Vec::len(self)
+    }
+}
+
+/// [`prepare_lean_into`] with the triangles handed to `runs` instead of
+/// stored: one sink per contiguous run of primitive ids (as many as the
+/// pass has runs; run `k`'s triangles all come before run `k + 1`'s, each
+/// run's in `prepare`'s order), each first given the frame's transforms
+/// through `begin`. `out` keeps what colouring a primitive needs and the
+/// counters; its [`LeanScene::tris`] is left empty.
+///
+/// # Errors
+///
+/// As [`prepare_lean_into`].
+pub fn prepare_lean_sinks<S: LeanSink>(
+    scene: &Scene,
+    view: &View,
+    options: &PrepareOptions,
+    out: &mut LeanScene,
+    runs: &mut Vec<S>,
+    begin: impl Fn(&FrontEnd, &mut S) + Sync,
+) -> Result<()> {
+    out.tris.clear();
+    let (front, mut stats) = lean_passes(
+        scene,
+        view,
+        options,
+        &mut out.vertices,
+        runs,
+        |front, cache, range, run| {
+            begin(front, run);
+            triangles(scene, front, cache, range, run)
+        },
+    )?;
+    stats.output = runs.iter().map(|r| r.len() as u64).sum();
+    out.finish(scene, front, stats);
+    Ok(())
+}
+
+impl LeanScene {
+    /// What both front ends keep after the passes: the counters, the
+    /// image size, and what colouring a primitive needs.
+    fn finish(&mut self, scene: &Scene, front: FrontEnd, stats: PrepareStats) {
+        let out = self;
+        out.stats = stats;
+        out.viewport = front.viewport;
+        out.mesh_starts.clear();
+        let mut first = 0;
+        for mesh in &scene.meshes {
+            out.mesh_starts.push(first);
+            first += mesh.indices.len();
+        }
+        // `prepare`'s transform of the lights.
+        out.lights.clear();
+        out.lights
+            .extend(scene.lights.iter().map(|l| front.light_to_camera(l)));
+        out.front = Some(front);
+    }
 }

@@ -123,6 +123,72 @@ fn lean_front_end_in_parallel_is_prepare() {
     });
 }
 
+/// A sink of the lean front end's own (here, the triangles as they come):
+/// a run of sinks takes `prepare`'s triangles in order, one contiguous
+/// run of primitive ids per sink, each sink told the frame's viewport
+/// first; the lean scene keeps the counters and colours and no triangle.
+#[derive(Default)]
+struct Counted {
+    tris: Vec<LeanTri>,
+    begun: Option<(u32, u32)>,
+}
+
+impl LeanSink for Counted {
+    fn clear(&mut self) {
+        self.tris.clear();
+    }
+
+    fn push(&mut self, tri: LeanTri) {
+        assert!(self.begun.is_some(), "a triangle before the frame began");
+        self.tris.push(tri);
+    }
+
+    fn len(&self) -> usize {
+        self.tris.len()
+    }
+}
+
+#[test]
+fn sinks_take_prepares_triangles_in_runs() {
+    let scene = procedural::random_soup(40_000, 8);
+    let view = View::for_scene(&scene, 120, 90).unwrap();
+    let full = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+    let want: Vec<LeanTri> = full.tris.iter().map(LeanTri::from).collect();
+    let mut lean = LeanScene::new();
+    let mut sinks: Vec<Counted> = Vec::new();
+    for threads in [1, 3, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        let options = PrepareOptions::default().with_parallel(true);
+        pool.install(|| {
+            prepare_lean_sinks(
+                &scene,
+                &view,
+                &options,
+                &mut lean,
+                &mut sinks,
+                |front, s| {
+                    s.begun = Some((front.viewport.width, front.viewport.height));
+                },
+            )
+        })
+        .unwrap();
+        assert_eq!(sinks.len(), threads, "one sink per run");
+        assert!(sinks.iter().all(|s| s.begun == Some((120, 90))));
+        let got: Vec<LeanTri> = sinks.iter().flat_map(|s| s.tris.clone()).collect();
+        assert!(got == want, "{threads} runs: the triangles differ");
+        assert!(lean.tris().is_empty(), "{threads} runs: triangles kept");
+        assert_eq!(lean.stats, full.stats, "{threads} runs");
+        assert_eq!(
+            lean.prim_color(&scene, 77, ShadeMode::Lambert),
+            prim_color(&full, 77, ShadeMode::Lambert),
+            "{threads} runs"
+        );
+    }
+}
+
 /// One lean scene reused across frames that split the work differently
 /// (serial, 2 and 3 runs, a small scene that does not split), with a
 /// failed frame between them, gives `prepare`'s triangles every time: the

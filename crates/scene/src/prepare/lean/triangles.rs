@@ -8,7 +8,7 @@ use hider_geom::{FixedPt, orient2d};
 use crate::model::{Mesh, Scene};
 use crate::prepare::{ClipScratch, FrontEnd, Part, WindowVertex, setup_depth};
 
-use super::scene::LeanTri;
+use super::scene::{LeanSink, LeanTri};
 use super::vertices::{CachedVertex, NO_WINDOW, NOT_FINITE};
 use super::{RunOutcome, mesh_parts};
 
@@ -23,12 +23,12 @@ const OUT_OF_RANGE: CachedVertex = CachedVertex {
 /// Sets up the triangles of primitive ids `range` of `scene` into `out`
 /// (cleared first), from `cache` (every mesh's vertices one after the
 /// other).
-pub(super) fn triangles(
+pub(super) fn triangles<S: LeanSink>(
     scene: &Scene,
     front: &FrontEnd,
     cache: &[CachedVertex],
     range: std::ops::Range<usize>,
-    out: &mut Vec<LeanTri>,
+    out: &mut S,
 ) -> RunOutcome {
     out.clear();
     let mut pass = Pass {
@@ -58,17 +58,17 @@ pub(super) fn triangles(
 }
 
 /// The state of the pass over one run.
-struct Pass<'a> {
+struct Pass<'a, S> {
     scene: &'a Scene,
     front: &'a FrontEnd,
-    out: &'a mut Vec<LeanTri>,
+    out: &'a mut S,
     outcome: RunOutcome,
     /// `prepare`'s per-triangle output, for triangles that must be clipped.
     fallback: Part,
     scratch: ClipScratch,
 }
 
-impl Pass<'_> {
+impl<S: LeanSink> Pass<'_, S> {
     /// Triangle `t` of mesh `m` (primitive `prim`), with the mesh's cached
     /// vertices.
     #[inline(always)]
@@ -136,6 +136,8 @@ impl Pass<'_> {
         part.tris.clear();
         self.front
             .triangle(self.scene, which, part, &mut self.scratch);
-        self.out.extend(part.tris.iter().map(LeanTri::from));
+        for tri in &part.tris {
+            self.out.push(LeanTri::from(tri));
+        }
     }
 }
