@@ -31,7 +31,7 @@
 //! them; neighbouring pixels with the same colour sum reuse the last sRGB
 //! conversion, which is exact and table-driven ([`crate::palette`]).
 
-use hider_scene::frame::BACKGROUND;
+use hider_scene::frame::{BACKGROUND, BACKGROUND_DEPTH};
 use hider_scene::{Frame, NO_ID};
 
 use crate::centre::in_front;
@@ -119,11 +119,12 @@ impl<'a> Band<'a> {
             .collect()
     }
 
-    /// Clears the band: no id, depth 1, the background colour, no
-    /// coverage (what [`Frame::clear`] does to the whole frame).
+    /// Clears the band: no id, the background's depth and colour, no
+    /// coverage (what [`Frame::clear`] does to the whole frame, with the
+    /// same constants).
     pub(crate) fn clear(&mut self) {
         self.ids.fill(NO_ID);
-        self.depth.fill(1.0);
+        self.depth.fill(BACKGROUND_DEPTH);
         self.color.fill(BACKGROUND);
         self.coverage.fill(0.0);
     }

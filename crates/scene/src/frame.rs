@@ -34,6 +34,9 @@ pub struct Frame {
 /// The colour of background pixels.
 pub const BACKGROUND: [u8; 4] = [0, 0, 0, 255];
 
+/// The depth of background pixels: the far plane.
+pub const BACKGROUND_DEPTH: f32 = 1.0;
+
 impl Frame {
     /// A cleared frame of `width x height` pixels; the size is checked
     /// against the limits before anything is allocated.
@@ -44,7 +47,7 @@ impl Frame {
             width,
             height,
             ids: vec![NO_ID; n],
-            depth: vec![1.0; n],
+            depth: vec![BACKGROUND_DEPTH; n],
             color: vec![BACKGROUND; n],
             coverage: Vec::new(),
         })
@@ -80,7 +83,7 @@ impl Frame {
     /// [`BACKGROUND`], coverage emptied).
     pub fn clear(&mut self) {
         self.ids.fill(NO_ID);
-        self.depth.fill(1.0);
+        self.depth.fill(BACKGROUND_DEPTH);
         self.color.fill(BACKGROUND);
         self.coverage.clear();
     }
@@ -92,7 +95,7 @@ impl Frame {
         self.width = width;
         self.height = height;
         self.ids.resize(n, NO_ID);
-        self.depth.resize(n, 1.0);
+        self.depth.resize(n, BACKGROUND_DEPTH);
         self.color.resize(n, BACKGROUND);
         self.clear();
         Ok(())
