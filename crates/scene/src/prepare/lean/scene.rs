@@ -250,19 +250,18 @@ impl LeanScene {
     /// What both front ends keep after the passes: the counters, the
     /// image size, and what colouring a primitive needs.
     fn finish(&mut self, scene: &Scene, front: FrontEnd, stats: PrepareStats) {
-        let out = self;
-        out.stats = stats;
-        out.viewport = front.viewport;
-        out.mesh_starts.clear();
+        self.stats = stats;
+        self.viewport = front.viewport;
+        self.mesh_starts.clear();
         let mut first = 0;
         for mesh in &scene.meshes {
-            out.mesh_starts.push(first);
+            self.mesh_starts.push(first);
             first += mesh.indices.len();
         }
         // `prepare`'s transform of the lights.
-        out.lights.clear();
-        out.lights
+        self.lights.clear();
+        self.lights
             .extend(scene.lights.iter().map(|l| front.light_to_camera(l)));
-        out.front = Some(front);
+        self.front = Some(front);
     }
 }
