@@ -15,9 +15,10 @@
 //!   ([`ABufferOptions::with_sample_tiles`] off), what it was before
 //!   opaque tiles took the sample buffer, and what Carpenter's
 //!   configuration (lists always) compares with like for like;
-//! - `lean 1T`: the lean front end alone (what `render_scene` runs), to
-//!   show its share; `prepare 1T`: the shared front end `prepare` alone,
-//!   which the A-buffer ran before it had the lean one.
+//! - `lean 1T`: the lean front end alone, storing its triangles
+//!   (`render_scene` runs it binning each triangle as it is set up
+//!   instead), to show its share; `prepare 1T`: the shared front end
+//!   `prepare` alone, which the A-buffer ran before it had the lean one.
 //!
 //! Same run, same machine: with `--peers-bin PATH` (the `peers` package's
 //! binary) each round runs llvmpipe with 4x MSAA (`--msaa`) on 1 and 2
