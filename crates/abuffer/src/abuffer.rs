@@ -45,7 +45,7 @@ use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy};
 use crate::resolve::Band;
 use crate::samples::{SAMPLE_BUFFER_BYTES, SampleBuffer, passes};
-use crate::source::{Source, scene_opacity_runs};
+use crate::source::Source;
 use crate::stats::ABufferStats;
 use crate::worker::{Shared, Worker};
 
@@ -74,8 +74,6 @@ pub struct ABuffer {
     /// The lean front end's runs, each binning its triangles as it sets
     /// them up ([`Hider::render_scene`]).
     bin_runs: Vec<BinRun>,
-    /// The opacity runs of the scene being binned by `bin_runs`.
-    opacity: Vec<(u32, f32)>,
     width: u32,
     height: u32,
 }
@@ -205,7 +203,8 @@ impl ABuffer {
         let (w, h) = (scene.viewport.width, scene.viewport.height);
         self.width = w;
         self.height = h;
-        let (tiles_x, tiles_y) = (w.div_ceil(TILE), h.div_ceil(TILE));
+        let grid = Grid::new(self.options.pattern, (w, h));
+        let (tiles_x, tiles_y) = grid.tiles;
         // No more threads than bands (tile rows), nor than `max_bytes`
         // holds with twice a pixel table each (each thread has a table
         // of the whole frame: many cores on a large frame would spend the
@@ -219,7 +218,7 @@ impl ABuffer {
             .max(1);
         let mut options = self.options;
         options.max_bytes /= threads as u64;
-        let tiles = (tiles_x * tiles_y) as usize;
+        let tiles = grid.count();
         if self.workers.len() < threads {
             self.workers.resize_with(threads, Worker::default);
         }
@@ -229,7 +228,6 @@ impl ABuffer {
         let own = self.own_pool(threads)?;
         if !binned {
             let bins = &mut self.bins;
-            let grid = Grid::new(options.pattern, (w, h));
             let mut bin = || bins.bin(scene, grid, threads);
             match self.pool.as_ref().filter(|_| own) {
                 Some(pool) => pool.install(bin),
@@ -441,9 +439,8 @@ impl Hider for ABuffer {
         let grid = Grid::new(self.options.pattern, (frame.width(), frame.height()));
         let mut lean = std::mem::take(&mut self.lean);
         let mut runs = std::mem::take(&mut self.bin_runs);
-        scene_opacity_runs(scene, &mut self.opacity);
-        let opacity = &self.opacity;
         self.bins.lend(&mut runs);
+        let opacity = self.bins.scene_opacity(scene);
         let prepared = prepare_lean_sinks(scene, view, options, &mut lean, &mut runs, |_, run| {
             run.begin(grid, opacity)
         });

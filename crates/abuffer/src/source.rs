@@ -91,15 +91,11 @@ impl<'a> Source<'a> {
     /// lean front end's scene needs one look-up per mesh, not one per
     /// triangle.
     pub(crate) fn opacity_runs(&self, out: &mut Vec<(u32, f32)>) {
-        out.clear();
-        let mut push = |end: u32, alpha: f32| match out.last_mut() {
-            Some(last) if last.1 == alpha => last.0 = end,
-            _ => out.push((end, alpha)),
-        };
         match self.kind {
             Kind::Screen(s) => {
+                out.clear();
                 for prim in 0..s.prims.len() as u32 {
-                    push(prim + 1, s.material(prim).opacity.clamp(0.0, 1.0));
+                    push_opacity(out, prim + 1, s.material(prim).opacity.clamp(0.0, 1.0));
                 }
             }
             Kind::Lean(_, scene) => scene_opacity_runs(scene, out),
@@ -188,10 +184,17 @@ pub(crate) fn scene_opacity_runs(scene: &Scene, out: &mut Vec<(u32, f32)>) {
             .and_then(|i| scene.materials.get(i))
             .map_or(default, |m| m.opacity)
             .clamp(0.0, 1.0);
-        match out.last_mut() {
-            Some(last) if last.1 == alpha => last.0 = end,
-            _ => out.push((end, alpha)),
-        }
+        push_opacity(out, end, alpha);
+    }
+}
+
+/// Gives `alpha` to the primitives from the end of `out`'s last run up to
+/// `end`: that run grows when its opacity is the same, so neighbouring
+/// runs differ.
+fn push_opacity(out: &mut Vec<(u32, f32)>, end: u32, alpha: f32) {
+    match out.last_mut() {
+        Some(last) if last.1 == alpha => last.0 = end,
+        _ => out.push((end, alpha)),
     }
 }
 

@@ -5,10 +5,12 @@
 //! read by binning, 48 MB a frame, and a copy of the second run's
 //! triangles at 2 threads.
 
+use hider_scene::Scene;
 use hider_scene::prepare::lean::{LeanSink, LeanTri};
 use rayon::prelude::*;
 
 use super::{BinItem, Bins, Chunk, Grid};
+use crate::source::scene_opacity_runs;
 
 /// One run of the lean front end's triangle pass, binned as it goes: its
 /// items in order and its chunk of the bins (counted, filled by
@@ -50,6 +52,14 @@ impl LeanSink for BinRun {
 }
 
 impl Bins {
+    /// The opacity runs of `scene`, before the lean front end has run
+    /// ([`scene_opacity_runs`]), kept where [`Self::bin`] keeps a
+    /// prepared scene's.
+    pub(crate) fn scene_opacity(&mut self, scene: &Scene) -> &[(u32, f32)] {
+        scene_opacity_runs(scene, &mut self.opacity);
+        &self.opacity
+    }
+
     /// Lends the items' memory to the first of `runs` before a frame, so
     /// that the first run writes the frame's items in place (the others
     /// are appended by [`Self::adopt`]).
