@@ -31,6 +31,7 @@
 //!    behind an opaque bound, per 8 x 8 block, per tile before the blocks,
 //!    per partial pixel before its mask is computed.
 
+use hider_geom::Viewport;
 use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_sinks};
 use hider_scene::{
     Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, View, check_frame_size,
@@ -176,7 +177,10 @@ impl ABuffer {
         out
     }
 
-    fn check_options(&self) -> Result<()> {
+    /// Refuses a frame that is not `viewport`'s size and options out of
+    /// range, before anything is binned or drawn.
+    fn check(&self, viewport: Viewport, frame: &Frame) -> Result<()> {
+        check_frame_size("abuffer", viewport, frame)?;
         let o = &self.options;
         if o.max_list_len == 0 {
             return Err(Error::OutOfRange {
@@ -196,10 +200,9 @@ impl ABuffer {
     }
 
     /// Renders the triangles of `scene` into `frame`; `binned` when the
-    /// lean front end has binned them already ([`BinRun`]).
+    /// lean front end has binned them already ([`BinRun`]). The caller
+    /// has checked the frame and the options ([`Self::check`]).
     fn run(&mut self, scene: &Source<'_>, binned: bool, frame: &mut Frame) -> Result<ABufferStats> {
-        check_frame_size("abuffer", scene.viewport, frame)?;
-        self.check_options()?;
         let (w, h) = (scene.viewport.width, scene.viewport.height);
         self.width = w;
         self.height = h;
@@ -406,6 +409,7 @@ impl Hider for ABuffer {
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<ABufferStats> {
+        self.check(scene.viewport, frame)?;
         let mut tris = std::mem::take(&mut self.screen_tris);
         tris.clear();
         tris.extend(scene.tris.iter().map(LeanTri::from));
@@ -434,8 +438,7 @@ impl Hider for ABuffer {
             return self.render(screen, frame);
         }
         // Checked before the front end bins anything.
-        check_frame_size("abuffer", view.viewport, frame)?;
-        self.check_options()?;
+        self.check(view.viewport, frame)?;
         let grid = Grid::new(self.options.pattern, (frame.width(), frame.height()));
         let mut lean = std::mem::take(&mut self.lean);
         let mut runs = std::mem::take(&mut self.bin_runs);
@@ -468,7 +471,48 @@ impl Hider for ABuffer {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use hider_scene::{PrepareOptions, View, prepare, procedural};
+    use hider_scene::{PrepareOptions, ScreenScene, View, prepare, procedural};
+
+    /// Both entry points refuse a frame of another size and options out of
+    /// range with a one-line error, and leave the frame as it was.
+    #[test]
+    fn both_entry_points_refuse_bad_frames_and_options() {
+        let scene = procedural::cube();
+        let view = View::for_scene(&scene, 64, 48).unwrap();
+        let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+        let mut unused = ScreenScene::empty(&view);
+        let bad_list = ABufferOptions {
+            max_list_len: 0,
+            ..ABufferOptions::default()
+        };
+        let cases = [
+            (ABufferOptions::default(), (48, 64), "48x64"),
+            (bad_list, (64, 48), "max_list_len"),
+            (
+                ABufferOptions::default().with_threads(257),
+                (64, 48),
+                "threads",
+            ),
+        ];
+        for (options, (w, h), says) in cases {
+            let mut hider = ABuffer::new(options);
+            let mut frame = Frame::new(w, h).unwrap();
+            let before = frame.clone();
+            let e = hider.render(&screen, &mut frame).unwrap_err();
+            assert!(e.to_string().contains(says), "render: {e}");
+            let e = hider
+                .render_scene(
+                    &scene,
+                    &view,
+                    &PrepareOptions::default(),
+                    &mut unused,
+                    &mut frame,
+                )
+                .unwrap_err();
+            assert!(e.to_string().contains(says), "render_scene: {e}");
+            assert_eq!(frame, before, "{says}");
+        }
+    }
 
     /// The resolve's shortcuts for lists of one or two opaque fragments give
     /// bit for bit what the general paths give, in every depth mode, with
