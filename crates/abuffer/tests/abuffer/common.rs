@@ -1,12 +1,25 @@
 //! Shared helpers of the integration tests: the translucent scenes, colour
-//! differences, and the per-sample compositing reference. Scenes are
-//! prepared and rendered with `hider_testkit`.
+//! differences, the per-sample compositing reference, and the comparisons
+//! of two renders that several files make. Scenes are prepared and
+//! rendered with `hider_testkit`.
 
 use glam::DVec3;
-use hider_abuffer::{ABufferOptions, SamplePattern};
+use hider_abuffer::{
+    ABuffer, ABufferOptions, ABufferStats, DepthMode, SamplePattern, SsaaOptions,
+    SupersampledZBuffer,
+};
 use hider_scene::geom::fixed::SUBPIXEL_SCALE;
 use hider_scene::shade::{prim_color, to_srgb8};
-use hider_scene::{Frame, Material, Mesh, Scene, ScreenScene, ShadeMode};
+use hider_scene::{Frame, Hider, Material, Mesh, Scene, ScreenScene, ShadeMode, procedural};
+use hider_testkit::render;
+use proptest::prelude::*;
+
+/// Every depth mode.
+pub const DEPTH_MODES: [DepthMode; 3] = [
+    DepthMode::PerSample,
+    DepthMode::MinMax,
+    DepthMode::ZminOrder,
+];
 
 /// The default options with every tile on fragment lists (no sample
 /// buffer for opaque tiles): what the tests of the lists' own machinery
@@ -92,6 +105,60 @@ pub fn with_opacity(mut scene: Scene, opacity: f32) -> Scene {
         m.opacity = opacity;
     }
     scene
+}
+
+/// A random soup of `count` triangles, translucent (opacity 0.5) if
+/// `glass`: the scenes of the soup properties.
+pub fn soup(count: u32, seed: u64, glass: bool) -> Scene {
+    let scene = procedural::random_soup(count, seed);
+    if glass {
+        with_opacity(scene, 0.5)
+    } else {
+        scene
+    }
+}
+
+/// The counters that say what was done, without the memory figures (each
+/// thread has a pool of its own).
+fn work(s: &ABufferStats) -> ABufferStats {
+    ABufferStats {
+        pool_fragments: 0,
+        bytes: 0,
+        ..*s
+    }
+}
+
+/// Asserts that a render `got` gave what a reference render `want` of the
+/// same scene gave: the same frame, sample ids and work counters (frame,
+/// sample ids, counters in each). `at` says which render, in every message.
+pub fn assert_same_render(
+    at: &str,
+    want: (&Frame, &[u32], &ABufferStats),
+    got: (&Frame, &[u32], &ABufferStats),
+) {
+    // `assert!`, not `assert_eq!`: a dump of a whole frame or of every
+    // sample would bury the message.
+    assert!(want.0 == got.0, "{at}: frames differ");
+    assert!(want.1 == got.1, "{at}: sample ids differ");
+    assert_eq!(work(want.2), work(got.2), "{at}");
+}
+
+/// Checks, in a `proptest!` body (`?`), that `a`, which rendered `s` into
+/// `fa`, sampled it as the supersampled z-buffer with `options` does: every
+/// sample's front-most primitive, the coverage and the centre ids. Returns
+/// the z-buffer's frame for the caller's further checks.
+pub fn equals_supersampling(
+    s: &ScreenScene,
+    options: SsaaOptions,
+    a: &ABuffer,
+    fa: &Frame,
+) -> Result<Frame, TestCaseError> {
+    let mut z = SupersampledZBuffer::new(options);
+    let fz = render(&mut z, s).0;
+    prop_assert_eq!(a.sample_ids(), z.sample_ids().to_vec());
+    prop_assert_eq!(&fa.coverage, &fz.coverage);
+    prop_assert_eq!(&fa.ids, &fz.ids);
+    Ok(fz)
 }
 
 /// An independent reference for per-sample compositing: for every sample

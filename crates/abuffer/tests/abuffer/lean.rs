@@ -8,9 +8,7 @@
 //! triangles composite to the same image in all 6 orders.
 
 use glam::DVec3;
-use hider_abuffer::{
-    ABuffer, ABufferOptions, ABufferStats, DepthMode, MergePolicy, SsaaOptions, SupersampledZBuffer,
-};
+use hider_abuffer::{ABuffer, ABufferOptions, ABufferStats, DepthMode, MergePolicy, SsaaOptions};
 use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
 use hider_scene::{
     Frame, Hider, Light, PrepareOptions, Scene, ScreenScene, ShadeMode, TransformPrecision, View,
@@ -20,19 +18,13 @@ use hider_testkit::front_end_input::{case_from_floats, soup_from_floats};
 use hider_testkit::{hard_cases, render, screen};
 use proptest::prelude::*;
 
-use crate::common::{max_color_diff, three_glass, with_opacity};
+use crate::common::{
+    DEPTH_MODES, assert_same_render, equals_supersampling, max_color_diff, soup, three_glass,
+    with_opacity,
+};
 
 /// Frame sizes: several bands, fewer bands than threads, partial tiles.
 const SIZES: [(u32, u32); 3] = [(200, 330), (150, 90), (70, 20)];
-
-/// The counters that say what was done, without the memory figures.
-fn work(s: &ABufferStats) -> ABufferStats {
-    ABufferStats {
-        pool_fragments: 0,
-        bytes: 0,
-        ..*s
-    }
-}
 
 /// Renders `scene` at `w x h` through the lean front end with `hider`.
 fn render_lean(hider: &mut ABuffer, scene: &Scene, w: u32, h: u32) -> (Frame, ABufferStats) {
@@ -63,16 +55,12 @@ fn lean_is_prepared(scene: &Scene, options: ABufferOptions, what: &str) {
             let options = options.with_threads(threads);
             let mut full = ABuffer::new(options);
             let (f1, s1) = render(&mut full, &s);
+            let ids1 = full.sample_ids();
             let mut lean = ABuffer::new(options);
             for round in 0..2 {
                 let (f2, s2) = render_lean(&mut lean, scene, w, h);
                 let at = format!("{what} at {w}x{h}, {threads} threads, round {round}");
-                assert!(f1 == f2, "{at}: frames differ");
-                assert!(
-                    full.sample_ids() == lean.sample_ids(),
-                    "{at}: sample ids differ"
-                );
-                assert_eq!(work(&s1), work(&s2), "{at}");
+                assert_same_render(&at, (&f1, &ids1, &s1), (&f2, &lean.sample_ids(), &s2));
             }
         }
     }
@@ -138,12 +126,8 @@ proptest! {
         glass in any::<bool>(),
         mode in 0usize..3,
     ) {
-        let mut scene = procedural::random_soup(count, seed);
-        if glass {
-            scene = with_opacity(scene, 0.5);
-        }
-        let depth = [DepthMode::PerSample, DepthMode::MinMax, DepthMode::ZminOrder][mode];
-        lean_is_prepared(&scene, ABufferOptions::default().with_depth(depth), "soup");
+        let options = ABufferOptions::default().with_depth(DEPTH_MODES[mode]);
+        lean_is_prepared(&soup(count, seed, glass), options, "soup");
     }
 
     /// Through the lean front end, with several threads, per-sample depth
@@ -156,12 +140,8 @@ proptest! {
         let mut a = ABuffer::new(
             ABufferOptions::default().with_merge(MergePolicy::Off).with_threads(3),
         );
-        let mut z = SupersampledZBuffer::new(SsaaOptions::default());
         let fa = render_lean(&mut a, &scene, 150, 140).0;
-        let fz = render(&mut z, &s).0;
-        prop_assert_eq!(a.sample_ids(), z.sample_ids().to_vec());
-        prop_assert_eq!(&fa.coverage, &fz.coverage);
-        prop_assert_eq!(&fa.ids, &fz.ids);
+        equals_supersampling(&s, SsaaOptions::default(), &a, &fa)?;
     }
 }
 
@@ -313,12 +293,11 @@ fn parallel_runs_bin_as_one_front_end() {
             let stats = result.unwrap();
             let mut one = ABuffer::new(ABufferOptions::default().with_threads(1));
             let (want, want_stats) = render(&mut one, &screen(scene, w, h));
-            assert!(frame == want, "{at}: frames differ");
-            assert!(
-                one.sample_ids() == hider.sample_ids(),
-                "{at}: sample ids differ"
+            assert_same_render(
+                &at,
+                (&want, &one.sample_ids(), &want_stats),
+                (&frame, &hider.sample_ids(), &stats),
             );
-            assert_eq!(work(&want_stats), work(&stats), "{at}");
         }
     }
 }

@@ -4,27 +4,15 @@
 //! translucent, in every depth mode; and one thread equals the 32-sample
 //! supersampled z-buffer sample for sample.
 
-use hider_abuffer::{
-    ABuffer, ABufferOptions, ABufferStats, DepthMode, MergePolicy, SsaaOptions, SupersampledZBuffer,
-};
+use hider_abuffer::{ABuffer, ABufferOptions, ABufferStats, MergePolicy, SsaaOptions};
 use hider_scene::{Frame, Hider, Scene, procedural};
 use hider_testkit::{hard_cases, render, screen};
 use proptest::prelude::*;
 
-use crate::common::{lists, with_opacity};
+use crate::common::{DEPTH_MODES, assert_same_render, equals_supersampling, lists, soup};
 
 /// Frame sizes: several bands, fewer bands than threads, partial tiles.
 const SIZES: [(u32, u32); 3] = [(200, 330), (150, 90), (70, 20)];
-
-/// The counters that say what was done, without the memory figures (each
-/// thread has a pool of its own).
-fn work(s: &ABufferStats) -> ABufferStats {
-    ABufferStats {
-        pool_fragments: 0,
-        bytes: 0,
-        ..*s
-    }
-}
 
 /// Renders `scene` at every size with 1 thread and with 2, 3 and 5, and
 /// asserts identical frames, sample ids and counters.
@@ -37,18 +25,11 @@ fn same_at_every_thread_count(scene: &Scene, options: ABufferOptions, what: &str
         for threads in [2, 3, 5] {
             let mut many = ABuffer::new(options.with_threads(threads));
             let (fm, sm) = render(&mut many, &s);
-            assert!(
-                f1 == fm,
-                "{what} at {w}x{h}, {threads} threads: frames differ"
-            );
-            assert!(
-                ids1 == many.sample_ids(),
-                "{what} at {w}x{h}, {threads} threads: sample ids differ"
-            );
-            assert_eq!(work(&s1), work(&sm), "{what} at {w}x{h}, {threads} threads");
+            let at = format!("{what} at {w}x{h}, {threads} threads");
+            assert_same_render(&at, (&f1, &ids1, &s1), (&fm, &many.sample_ids(), &sm));
             // A second frame reuses the pools and bands.
             let (again, _) = render(&mut many, &s);
-            assert!(f1 == again, "{what} at {w}x{h}, {threads} threads, reused");
+            assert!(f1 == again, "{at}, reused");
         }
     }
 }
@@ -75,12 +56,8 @@ proptest! {
         glass in any::<bool>(),
         mode in 0usize..3,
     ) {
-        let mut scene = procedural::random_soup(count, seed);
-        if glass {
-            scene = with_opacity(scene, 0.5);
-        }
-        let depth = [DepthMode::PerSample, DepthMode::MinMax, DepthMode::ZminOrder][mode];
-        same_at_every_thread_count(&scene, ABufferOptions::default().with_depth(depth), "soup");
+        let options = ABufferOptions::default().with_depth(DEPTH_MODES[mode]);
+        same_at_every_thread_count(&soup(count, seed, glass), options, "soup");
     }
 
     /// With several threads, per-sample depth and merging off, every
@@ -92,12 +69,8 @@ proptest! {
         let mut a = ABuffer::new(
             ABufferOptions::default().with_merge(MergePolicy::Off).with_threads(3),
         );
-        let mut z = SupersampledZBuffer::new(SsaaOptions::default());
         let fa = render(&mut a, &s).0;
-        let fz = render(&mut z, &s).0;
-        prop_assert_eq!(a.sample_ids(), z.sample_ids().to_vec());
-        prop_assert_eq!(&fa.coverage, &fz.coverage);
-        prop_assert_eq!(&fa.ids, &fz.ids);
+        equals_supersampling(&s, SsaaOptions::default(), &a, &fa)?;
     }
 }
 
