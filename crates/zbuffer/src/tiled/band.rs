@@ -213,28 +213,27 @@ fn for_each_band<K: TileKey>(
     let band_len = frame.width() as usize * grid.tile as usize;
     let cols = grid.cols as usize;
     let work = |(b, (out, band)): (usize, (FrameBand<'_>, &mut [TileBuf<K>]))| work(b, out, band);
+    /// The bands, numbered: each band's rows of the frame's ids, depths
+    /// and colours with its row of tiles, split by `$chunks` (the slices'
+    /// `chunks_mut`, or rayon's `par_chunks_mut` for the pool): one
+    /// pairing of rows and tiles for both ways of running.
+    macro_rules! bands {
+        ($chunks:ident) => {
+            frame
+                .ids
+                .$chunks(band_len)
+                .zip(frame.depth.$chunks(band_len))
+                .zip(frame.color.$chunks(band_len))
+                .zip(bufs.$chunks(cols))
+                .enumerate()
+        };
+    }
     match pool {
         Some(pool) => {
             use rayon::prelude::*;
-            install(pool, || {
-                frame
-                    .ids
-                    .par_chunks_mut(band_len)
-                    .zip(frame.depth.par_chunks_mut(band_len))
-                    .zip(frame.color.par_chunks_mut(band_len))
-                    .zip(bufs.par_chunks_mut(cols))
-                    .enumerate()
-                    .for_each(work)
-            });
+            install(pool, || bands!(par_chunks_mut).for_each(work));
         }
-        None => frame
-            .ids
-            .chunks_mut(band_len)
-            .zip(frame.depth.chunks_mut(band_len))
-            .zip(frame.color.chunks_mut(band_len))
-            .zip(bufs.chunks_mut(cols))
-            .enumerate()
-            .for_each(work),
+        None => bands!(chunks_mut).for_each(work),
     }
 }
 
