@@ -143,6 +143,16 @@ pub fn assert_same_render(
     assert_eq!(work(want.2), work(got.2), "{at}");
 }
 
+/// Checks, in a `proptest!` body (`?`), that two frames of one scene agree
+/// where only the compositing's rounding may differ: the same coverage and
+/// centre ids, colours within one 8-bit step.
+pub fn same_image(a: &Frame, b: &Frame) -> Result<(), TestCaseError> {
+    prop_assert_eq!(&a.coverage, &b.coverage);
+    prop_assert_eq!(&a.ids, &b.ids);
+    prop_assert!(max_color_diff(a, b) <= 1);
+    Ok(())
+}
+
 /// Checks, in a `proptest!` body (`?`), that `a`, which rendered `s` into
 /// `fa`, sampled it as the supersampled z-buffer with `options` does: every
 /// sample's front-most primitive, the coverage and the centre ids. Returns

@@ -3,12 +3,14 @@
 //! culling off, and the 32-sample supersampled z-buffer, sample for sample,
 //! on frames of several tiles (partial tiles included).
 
-use hider_abuffer::{ABuffer, ABufferOptions, MergePolicy, SsaaOptions, SupersampledZBuffer};
-use hider_scene::{Hider, Material, Scene, procedural};
+use hider_abuffer::{
+    ABuffer, ABufferOptions, ABufferStats, MergePolicy, SsaaOptions, SupersampledZBuffer,
+};
+use hider_scene::{Frame, Hider, Material, Scene, ScreenScene, procedural};
 use hider_testkit::{render, screen};
 use proptest::prelude::*;
 
-use crate::common::{lists, max_color_diff};
+use crate::common::{equals_supersampling, lists, max_color_diff, same_image};
 
 /// Frame sizes around the 64-pixel tiles: several tiles, partial tiles,
 /// one-pixel rows and columns.
@@ -63,6 +65,24 @@ fn big_triangles(n: u32, small: u32, seed: u64) -> Scene {
     s
 }
 
+/// Renders `s` with the lists, merging off, with occlusion culling and
+/// without, and checks (in a `proptest!` body, `?`) that culling changes no
+/// sample: the same sample ids, coverage and centre ids, colours within one
+/// 8-bit step. Returns the culled hider and frame, and the unculled frame
+/// and counters, for each test's further checks.
+fn culling_changes_no_sample(
+    s: &ScreenScene,
+) -> Result<(ABuffer, Frame, Frame, ABufferStats), TestCaseError> {
+    let opts = lists().with_merge(MergePolicy::Off);
+    let mut culled = ABuffer::new(opts);
+    let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
+    let fc = render(&mut culled, s).0;
+    let (fr, st) = render(&mut reference, s);
+    prop_assert_eq!(culled.sample_ids(), reference.sample_ids());
+    same_image(&fc, &fr)?;
+    Ok((culled, fc, fr, st))
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(32))]
 
@@ -77,19 +97,10 @@ proptest! {
     ) {
         let (w, h) = SIZES[size];
         let s = screen(&big_triangles(big, small, seed), w, h);
-        let opts = lists().with_merge(MergePolicy::Off);
-        let mut culled = ABuffer::new(opts);
-        let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
-        let fc = render(&mut culled, &s).0;
-        let fr = render(&mut reference, &s).0;
-        let ids = culled.sample_ids();
-        prop_assert_eq!(&ids, &reference.sample_ids());
-        prop_assert_eq!(&fc.coverage, &fr.coverage);
-        prop_assert_eq!(&fc.ids, &fr.ids);
-        prop_assert!(max_color_diff(&fc, &fr) <= 1);
+        let (culled, ..) = culling_changes_no_sample(&s)?;
         let mut ssaa = SupersampledZBuffer::new(SsaaOptions::default());
         render(&mut ssaa, &s);
-        prop_assert_eq!(&ids, ssaa.sample_ids());
+        prop_assert_eq!(&culled.sample_ids(), ssaa.sample_ids());
     }
 
     /// With per-sample depth and merging off, culling on and off give the
@@ -105,23 +116,10 @@ proptest! {
     ) {
         let (w, h) = SIZES[size];
         let s = screen(&mixed_soup(opaque, glass, seed), w, h);
-        let opts = lists().with_merge(MergePolicy::Off);
-        let mut culled = ABuffer::new(opts);
-        let mut reference = ABuffer::new(opts.with_occlusion_culling(false));
-        let fc = render(&mut culled, &s).0;
-        let (fr, st) = render(&mut reference, &s);
+        let (culled, fc, fr, st) = culling_changes_no_sample(&s)?;
         prop_assert_eq!((st.culled, st.culled_blocks, st.pruned), (0, 0, 0));
-        let ids = culled.sample_ids();
-        prop_assert_eq!(&ids, &reference.sample_ids());
-        prop_assert_eq!(&fc.coverage, &fr.coverage);
-        prop_assert_eq!(&fc.ids, &fr.ids);
         prop_assert_eq!(&fc.depth, &fr.depth);
-        prop_assert!(max_color_diff(&fc, &fr) <= 1);
-        let mut ssaa = SupersampledZBuffer::new(SsaaOptions::default());
-        let fz = render(&mut ssaa, &s).0;
-        prop_assert_eq!(&ids, ssaa.sample_ids());
-        prop_assert_eq!(&fc.coverage, &fz.coverage);
-        prop_assert_eq!(&fc.ids, &fz.ids);
+        equals_supersampling(&s, SsaaOptions::default(), &culled, &fc)?;
     }
 
     /// The default A-buffer (same-colour merging) likewise.
@@ -139,9 +137,7 @@ proptest! {
             &mut ABuffer::new(lists().with_occlusion_culling(false)),
             &s,
         ).0;
-        prop_assert_eq!(&fc.coverage, &fr.coverage);
-        prop_assert_eq!(&fc.ids, &fr.ids);
-        prop_assert!(max_color_diff(&fc, &fr) <= 1);
+        same_image(&fc, &fr)?;
     }
 }
 
@@ -235,9 +231,7 @@ proptest! {
         let fs = render(&mut sorted, &s).0;
         let fu = render(&mut submitted, &s).0;
         prop_assert_eq!(sorted.sample_ids(), submitted.sample_ids());
-        prop_assert_eq!(&fs.coverage, &fu.coverage);
-        prop_assert_eq!(&fs.ids, &fu.ids);
-        prop_assert!(max_color_diff(&fs, &fu) <= 1);
+        same_image(&fs, &fu)?;
     }
 }
 

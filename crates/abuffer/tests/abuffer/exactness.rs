@@ -2,15 +2,14 @@
 //! pixel-centre oracle.
 
 use hider_abuffer::{
-    ABuffer, ABufferOptions, DepthMode, MergePolicy, SamplePattern, SsaaOptions,
-    SupersampledZBuffer,
+    ABuffer, ABufferOptions, MergePolicy, SamplePattern, SsaaOptions, SupersampledZBuffer,
 };
 use hider_oracle::DEFAULT_TIE_TOLERANCE;
 use hider_scene::{Hider, procedural};
 use hider_testkit::{hard_cases, reference, render, screen};
 use proptest::prelude::*;
 
-use crate::common::max_color_diff;
+use crate::common::{DEPTH_MODES, equals_supersampling, max_color_diff, same_image};
 
 /// A few procedural scenes and every hard case.
 fn hard_scenes() -> Vec<hider_scene::Scene> {
@@ -43,12 +42,8 @@ proptest! {
         let mut a = ABuffer::new(
             ABufferOptions::default().with_pattern(pattern).with_merge(MergePolicy::Off),
         );
-        let mut z = SupersampledZBuffer::new(SsaaOptions::default().with_pattern(pattern));
         let fa = render(&mut a, &s).0;
-        let fz = render(&mut z, &s).0;
-        prop_assert_eq!(a.sample_ids(), z.sample_ids().to_vec());
-        prop_assert_eq!(&fa.coverage, &fz.coverage);
-        prop_assert_eq!(&fa.ids, &fz.ids);
+        let fz = equals_supersampling(&s, SsaaOptions::default().with_pattern(pattern), &a, &fa)?;
         prop_assert!(max_color_diff(&fa, &fz) <= 1);
     }
 
@@ -59,9 +54,7 @@ proptest! {
         let s = screen(&procedural::random_soup(count, seed), 32, 32);
         let fa = render(&mut ABuffer::new(ABufferOptions::default()), &s).0;
         let fo = render(&mut ABuffer::new(ABufferOptions::default().with_merge(MergePolicy::Off)), &s).0;
-        prop_assert_eq!(&fa.coverage, &fo.coverage);
-        prop_assert_eq!(&fa.ids, &fo.ids);
-        prop_assert!(max_color_diff(&fa, &fo) <= 1);
+        same_image(&fa, &fo)?;
     }
 }
 
@@ -88,18 +81,13 @@ fn thirty_two_samples_equal_the_32_sample_zbuffer_on_hard_cases() {
 /// depth mode and pattern (they do not depend on the masks).
 #[test]
 fn centre_ids_equal_the_oracle() {
-    let modes = [
-        DepthMode::PerSample,
-        DepthMode::MinMax,
-        DepthMode::ZminOrder,
-    ];
     let mut scenes = hard_scenes();
     scenes.push(procedural::random_soup(80, 3));
     for scene in scenes {
         let s = screen(&scene, 40, 40);
         let reference = reference::ray_cast(&s);
         for (k, pattern) in SamplePattern::ALL.into_iter().enumerate() {
-            let depth = modes[k % 3];
+            let depth = DEPTH_MODES[k % 3];
             let opts = ABufferOptions::default()
                 .with_pattern(pattern)
                 .with_depth(depth);
