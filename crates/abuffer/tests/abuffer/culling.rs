@@ -6,7 +6,7 @@
 use hider_abuffer::{
     ABuffer, ABufferOptions, ABufferStats, MergePolicy, SsaaOptions, SupersampledZBuffer,
 };
-use hider_scene::{Frame, Hider, Material, Scene, ScreenScene, procedural};
+use hider_scene::{Frame, Hider, Material, Mesh, Scene, ScreenScene, procedural};
 use hider_testkit::{render, screen};
 use proptest::prelude::*;
 
@@ -54,11 +54,11 @@ fn big_triangles(n: u32, small: u32, seed: u64) -> Scene {
         }
     }
     s.push_mesh(
-        hider_scene::Mesh {
+        Mesh {
             name: "big".into(),
             indices: (0..n).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
             positions,
-            ..hider_scene::Mesh::default()
+            ..Mesh::default()
         },
         None,
     );
@@ -141,6 +141,16 @@ proptest! {
     }
 }
 
+/// A quad: two triangles through the corners `c`, in order around it.
+fn quad(name: String, c: [glam::DVec3; 4]) -> Mesh {
+    Mesh {
+        name,
+        positions: c.to_vec(),
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        ..Mesh::default()
+    }
+}
+
 /// Twelve opaque squares stacked along the view axis, nearest first, each
 /// a little bigger than the one in front, plus a soup of small triangles
 /// behind them all.
@@ -155,15 +165,8 @@ fn stack_and_soup() -> Scene {
         let z = -0.2 * f64::from(k);
         let r = 1.2 + 0.1 * f64::from(k);
         let p = |x: f64, y: f64| glam::DVec3::new(x * r, y * r * 0.8, z);
-        s.push_mesh(
-            hider_scene::Mesh {
-                name: format!("layer {k}"),
-                positions: vec![p(-1.0, -1.0), p(1.0, -1.0), p(1.0, 1.0), p(-1.0, 1.0)],
-                indices: vec![[0, 1, 2], [0, 2, 3]],
-                ..hider_scene::Mesh::default()
-            },
-            None,
-        );
+        let corners = [p(-1.0, -1.0), p(1.0, -1.0), p(1.0, 1.0), p(-1.0, 1.0)];
+        s.push_mesh(quad(format!("layer {k}"), corners), None);
     }
     s
 }
@@ -341,15 +344,8 @@ fn a_pixel_whose_centre_is_open_keeps_the_surface_behind() {
 fn wall_and_soup() -> Scene {
     let mut s = procedural::random_soup(3000, 21);
     let p = |x: f64, y: f64| glam::DVec3::new(x, y, 0.6 * x);
-    s.push_mesh(
-        hider_scene::Mesh {
-            name: "wall".into(),
-            positions: vec![p(-3.0, -3.0), p(3.0, -3.0), p(3.0, 3.0), p(-3.0, 3.0)],
-            indices: vec![[0, 1, 2], [0, 2, 3]],
-            ..hider_scene::Mesh::default()
-        },
-        None,
-    );
+    let corners = [p(-3.0, -3.0), p(3.0, -3.0), p(3.0, 3.0), p(-3.0, 3.0)];
+    s.push_mesh(quad("wall".into(), corners), None);
     s
 }
 
