@@ -160,25 +160,6 @@ fn switching_paths_on_one_hider_changes_nothing() {
     }
 }
 
-/// A frame of the wrong size is a one-line error, as through `render`.
-#[test]
-fn wrong_frame_size_is_an_error() {
-    let scene = procedural::cube();
-    let view = View::for_scene(&scene, 64, 64).unwrap();
-    let mut unused = ScreenScene::empty(&view);
-    let mut frame = Frame::new(32, 64).unwrap();
-    let e = ABuffer::new(ABufferOptions::default())
-        .render_scene(
-            &scene,
-            &view,
-            &PrepareOptions::default(),
-            &mut unused,
-            &mut frame,
-        )
-        .unwrap_err();
-    assert!(e.to_string().contains("32x64"), "{e}");
-}
-
 /// The transform precision a drawn flag picks.
 fn precision(f32_front: bool) -> TransformPrecision {
     if f32_front {
