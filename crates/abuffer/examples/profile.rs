@@ -4,7 +4,8 @@
 //! `cargo run --release -p hider-abuffer --example profile -- SCENE HIDER [RUNS] [SIZE]`
 //!
 //! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)),
-//! `sphere500`, `spider` (the GL reference's model), `one`
+//! `sphere500`, `spider` (the GL reference's model), `cube` (12 large
+//! triangles: whole pixels), `one`
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
@@ -38,6 +39,7 @@ fn main() {
         "sphere" => procedural::uv_sphere(200),
         "sphere500" => procedural::uv_sphere(500),
         "one" => procedural::random_soup(1, 1),
+        "cube" => procedural::cube(),
         "spider" => hider_scene::load_obj(
             std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
                 .join("../../../shared/gl-reference/models/spider.obj"),

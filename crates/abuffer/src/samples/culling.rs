@@ -6,6 +6,8 @@
 //! pixels hold, compared strictly, so culling removes only what would
 //! lose every sample and the centre: it changes no sample (tested).
 
+use hider_geom::PlaneEq;
+
 use super::{BLOCK, BLOCKS_X, EMPTY, SampleBuffer, Tri};
 use crate::bins::BinItem;
 use crate::culling::block_part;
@@ -126,13 +128,23 @@ impl SampleBuffer {
     /// the same operations on 4 lanes at a time).
     #[inline(always)]
     pub(super) fn row_near_keys(&self, tri: &Tri, (i0, j): (u32, u32)) -> [i32; BLOCK as usize] {
+        self.row_keys(&tri.plane, (i0, j), tri.near_corner)
+    }
+
+    /// The key of `plane` at the sample-hull corner `corner` of each of
+    /// the 8 pixels from `(i0, j)` on, as [`plane_depth`] computes it.
+    #[inline(always)]
+    pub(super) fn row_keys(
+        &self,
+        plane: &PlaneEq,
+        (i0, j): (u32, u32),
+        corner: (i32, i32),
+    ) -> [i32; BLOCK as usize] {
         #[cfg(target_arch = "x86_64")]
         if let Some(isa) = self.avx2 {
-            return avx2::row_keys(isa, &tri.plane, (i0, j), tri.near_corner);
+            return avx2::row_keys(isa, plane, (i0, j), corner);
         }
-        std::array::from_fn(|k| {
-            depth_key(plane_depth(&tri.plane, i0 + k as u32, j, tri.near_corner) as f32)
-        })
+        std::array::from_fn(|k| depth_key(plane_depth(plane, i0 + k as u32, j, corner) as f32))
     }
 
     /// The pixels of the 8 from `(i0, j)` on (bit `k` = pixel `i0 + k`)
