@@ -229,10 +229,17 @@ impl Resolver {
         frame: &mut Band<'_>,
         p: usize,
     ) {
+        frame.color[p - frame.first] = self.color(k, sum);
+    }
+
+    /// The pixel colour of colour sum `sum` (already divided by the sample
+    /// count).
+    #[inline]
+    pub(crate) fn color(&mut self, k: &Samples, sum: [f32; 3]) -> [u8; 4] {
         if sum != self.memo.0 {
             self.memo = (sum, k.srgb.pixel(sum));
         }
-        frame.color[p - frame.first] = self.memo.1;
+        self.memo.1
     }
 
     /// Resolves pixel `p` when its list is one opaque fragment, or two

@@ -110,6 +110,15 @@ impl<'a> Source<'a> {
         }
     }
 
+    /// Whether a primitive's colour is the same at every pixel (no
+    /// texture is loaded): [`Self::at_pixel`] gives back its `rgba`.
+    pub(crate) fn flat_colors(&self) -> bool {
+        match self.kind {
+            Kind::Screen(s) => !s.textures.is_active(),
+            Kind::Lean(..) => true,
+        }
+    }
+
     /// [`palette::at_pixel`]: `rgba` textured at the centre of pixel `ij`
     /// when the scene's textures are loaded (the lean front end is used
     /// only when they are not).

@@ -6,9 +6,15 @@
 use hider_scene::NO_ID;
 
 use super::SampleBuffer;
+use crate::bins::TILE;
 use crate::composite::{Shown, opaque_sum};
 use crate::pattern::MAX_SAMPLES;
 use crate::resolve::{Band, Input, Resolver, Samples};
+
+/// Whole pixels a row needs before they are resolved as runs
+/// ([`SampleBuffer::resolve_whole_runs`]): fewer, in short runs between
+/// partial pixels, resolve faster one by one.
+const RUN_PIXELS: u32 = 16;
 
 #[cfg(target_arch = "x86_64")]
 use super::avx2;
@@ -59,8 +65,14 @@ impl SampleBuffer {
     ) {
         let (x0, y0, _, y1) = self.rect;
         let w = frame.width;
+        let flat = input.scene.flat_colors();
         for j in y0..=y1 {
             let mut row = self.touched[(j - y0) as usize];
+            let whole = row & self.whole[(j - y0) as usize];
+            if flat && whole.count_ones() >= RUN_PIXELS {
+                self.resolve_whole_runs(input, resolver, k, frame, (j, whole));
+                row &= !whole;
+            }
             while row != 0 {
                 let i = x0 + row.trailing_zeros();
                 row &= row - 1;
@@ -98,6 +110,60 @@ impl SampleBuffer {
                 frame.set_coverage(p, covered as f32 * k.inv_n);
                 let sum = opaque_sum(&mut self.shown).map(|c| c * k.inv_n);
                 resolver.write_color(k, sum, frame, p);
+            }
+        }
+    }
+}
+
+impl SampleBuffer {
+    /// Resolves the whole pixels `whole` (bit = column of the pass) of row
+    /// `j` of a scene whose colours are flat: a run of them held by one
+    /// primitive shares its colour, coverage and id, and only the depth
+    /// differs, so each run is written at once. The values are the ones
+    /// [`Self::resolve_with`] writes pixel by pixel (which cost a large
+    /// triangle's frame as much as drawing it).
+    #[inline(never)]
+    fn resolve_whole_runs(
+        &self,
+        input: &mut Input<'_>,
+        resolver: &mut Resolver,
+        k: &Samples,
+        frame: &mut Band<'_>,
+        (j, whole): (u32, u64),
+    ) {
+        let (x0, y0) = (self.rect.0, self.rect.1);
+        let n = k.full.count_ones() as f32;
+        let coverage = n * k.inv_n;
+        let mut left = whole;
+        while left != 0 {
+            let start = left.trailing_zeros();
+            let len = (!(left >> start)).trailing_zeros();
+            left &= !(u64::MAX >> (64 - len) << start);
+            let q0 = ((j - y0) * TILE + start) as usize;
+            let p0 = j as usize * frame.width + (x0 + start) as usize - frame.first;
+            let mut a = 0;
+            while a < len as usize {
+                let prim = self.centre_prim[q0 + a];
+                let b = a
+                    + 1
+                    + self.centre_prim[q0 + a + 1..q0 + len as usize]
+                        .iter()
+                        .take_while(|&&id| id == prim)
+                        .count();
+                // The colour sum of one primitive, as `opaque_sum`
+                // computes it (`0 + rgb * n`, then `* (1 / n)`).
+                let rgba = input.prim_rgba(prim, (x0 + start + a as u32, j));
+                let color = resolver.color(k, [0, 1, 2].map(|c| (0.0 + rgba[c] * n) * k.inv_n));
+                frame.ids[p0 + a..p0 + b].fill(prim);
+                frame.coverage[p0 + a..p0 + b].fill(coverage);
+                frame.color[p0 + a..p0 + b].fill(color);
+                for (d, &z) in frame.depth[p0 + a..p0 + b]
+                    .iter_mut()
+                    .zip(&self.centre_z[q0 + a..q0 + b])
+                {
+                    *d = z as f32;
+                }
+                a = b;
             }
         }
     }
