@@ -6,8 +6,9 @@
 //! merging, whose averaged colours the lists show, the same coverage, ids
 //! and depths and colours within one 8-bit step.
 
+use glam::DVec3;
 use hider_abuffer::{ABuffer, ABufferOptions, ABufferStats, MergePolicy, SamplePattern};
-use hider_scene::{Frame, Hider, Scene, procedural};
+use hider_scene::{Frame, Hider, Mesh, Scene, procedural};
 use hider_testkit::{hard_cases, render, screen};
 use proptest::prelude::*;
 
@@ -102,6 +103,70 @@ fn whole_pixels_are_kept_and_expanded_as_the_lists_say() {
     assert_eq!(sb.whole_pixels, 0, "{sb:?}");
     assert_eq!(a.color, b.color);
     assert_eq!((a.coverage, a.ids, a.depth), (b.coverage, b.ids, b.depth));
+}
+
+/// Vertical bars side by side, each its own primitive pair, with
+/// horizontal bars in front: where a shared edge falls between two
+/// pixels' samples, whole pixels of different primitives meet in a row,
+/// and the rows' runs of whole pixels split by primitive.
+fn bars() -> Scene {
+    let mut scene = Scene::default();
+    let quad = |x0: f64, y0: f64, x1: f64, y1: f64, z: f64| Mesh {
+        name: format!("bar {x0} {y0}"),
+        positions: vec![
+            DVec3::new(x0, y0, z),
+            DVec3::new(x1, y0, z),
+            DVec3::new(x1, y1, z),
+            DVec3::new(x0, y1, z),
+        ],
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        ..Mesh::default()
+    };
+    for k in 0..23 {
+        let x = -1.0 + 2.0 * f64::from(k) / 23.0;
+        scene.push_mesh(quad(x, -1.0, x + 2.0 / 23.0, 1.0, 0.0), None);
+    }
+    for k in 0..5 {
+        let y = -0.9 + 0.37 * f64::from(k);
+        scene.push_mesh(
+            quad(-0.8, y, 0.7, y + 0.21, 0.1 + 0.05 * f64::from(k)),
+            None,
+        );
+    }
+    scene
+}
+
+/// A row's whole pixels resolve as runs of one primitive: where runs of
+/// several primitives meet, the frame is the lists' bit for bit (the
+/// scene is checked to have such meetings: fully covered neighbours of
+/// different ids in a row).
+#[test]
+fn runs_of_whole_pixels_resolve_as_the_lists_say() {
+    let scene = bars();
+    for (w, h) in [(300, 200), (199, 101), (512, 300)] {
+        let s = screen(&scene, w, h);
+        let mut sampled = ABuffer::new(ABufferOptions::default().with_threads(1));
+        let mut listed = ABuffer::new(
+            ABufferOptions::default()
+                .with_sample_tiles(false)
+                .with_merge(MergePolicy::Off),
+        );
+        let (a, sa): (Frame, ABufferStats) = render(&mut sampled, &s);
+        let (b, _): (Frame, ABufferStats) = render(&mut listed, &s);
+        let meetings = (0..a.ids.len() - 1)
+            .filter(|&p| (p + 1) % w as usize != 0)
+            .filter(|&p| a.coverage[p] == 1.0 && a.coverage[p + 1] == 1.0)
+            .filter(|&p| a.ids[p] != a.ids[p + 1])
+            .count();
+        assert!(meetings > h as usize, "{w}x{h}: {meetings} meetings");
+        assert!(sa.whole_pixels > u64::from(w * h) / 20, "{w}x{h}: {sa:?}");
+        assert_eq!(a.color, b.color, "{w}x{h}");
+        assert_eq!(
+            (&a.coverage, &a.ids, &a.depth),
+            (&b.coverage, &b.ids, &b.depth),
+            "{w}x{h}"
+        );
+    }
 }
 
 /// The smaller patterns take the portable depth test (the 8 x 4 grid the
