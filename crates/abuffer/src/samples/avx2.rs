@@ -15,7 +15,7 @@
 use hider_geom::PlaneEq;
 use hider_geom::isa::Avx2;
 
-use super::SampleBuffer;
+use super::{Held, SampleBuffer};
 use crate::bins::BinItem;
 use crate::pattern::SamplePattern;
 use crate::resolve::{Band, Input, Resolver, Samples};
@@ -41,6 +41,29 @@ pub(super) fn triangle(
     }
     // SAFETY: an `Avx2` value exists only where AVX2 was detected.
     unsafe { wide(isa, buffer, item, stats) }
+}
+
+/// [`SampleBuffer::whole_block`] compiled with AVX2 enabled, so that the
+/// rows' plane evaluations inline into it.
+#[cfg(target_arch = "x86_64")]
+#[allow(
+    unsafe_code,
+    reason = "a target-feature call proven sound by the Avx2 token"
+)]
+pub(super) fn whole_block(
+    _proof: Avx2,
+    buffer: &mut SampleBuffer,
+    held: Held,
+    ij: (u32, u32),
+    stats: &mut ABufferStats,
+) {
+    #[target_feature(enable = "avx2")]
+    #[inline]
+    fn wide(buffer: &mut SampleBuffer, held: Held, ij: (u32, u32), stats: &mut ABufferStats) {
+        buffer.whole_block_with(held, ij, stats);
+    }
+    // SAFETY: an `Avx2` value exists only where AVX2 was detected.
+    unsafe { wide(buffer, held, ij, stats) }
 }
 
 /// [`SampleBuffer::resolve`] compiled with AVX2 enabled, so that the
