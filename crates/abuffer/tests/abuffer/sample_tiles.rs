@@ -79,6 +79,22 @@ fn procedural_meshes_resolve_from_samples_as_from_lists() {
     }
 }
 
+/// `scene` at `w x h` through the sample buffer (default options, one
+/// thread) and through lists only with merging off: frames and counters.
+fn sampled_and_listed(
+    scene: &Scene,
+    (w, h): (u32, u32),
+) -> ((Frame, ABufferStats), (Frame, ABufferStats)) {
+    let s = screen(scene, w, h);
+    let mut sampled = ABuffer::new(ABufferOptions::default().with_threads(1));
+    let mut listed = ABuffer::new(
+        ABufferOptions::default()
+            .with_sample_tiles(false)
+            .with_merge(MergePolicy::Off),
+    );
+    (render(&mut sampled, &s), render(&mut listed, &s))
+}
+
 /// Pixels covered whole by one front triangle are held whole (and counted
 /// in `whole_pixels`, which only the sample buffer makes); where two large
 /// triangles pierce each other, the second one taken is in front of the
@@ -89,15 +105,7 @@ fn procedural_meshes_resolve_from_samples_as_from_lists() {
 #[test]
 fn whole_pixels_are_kept_and_expanded_as_the_lists_say() {
     let scene = procedural::intersecting_pair();
-    let s = screen(&scene, 128, 128);
-    let mut sampled = ABuffer::new(ABufferOptions::default().with_threads(1));
-    let mut listed = ABuffer::new(
-        ABufferOptions::default()
-            .with_sample_tiles(false)
-            .with_merge(MergePolicy::Off),
-    );
-    let (a, sa): (Frame, ABufferStats) = render(&mut sampled, &s);
-    let (b, sb): (Frame, ABufferStats) = render(&mut listed, &s);
+    let ((a, sa), (b, sb)) = sampled_and_listed(&scene, (128, 128));
     assert!(sa.whole_pixels > 1000, "{sa:?}");
     assert!(sa.full_coverage > sa.whole_pixels, "{sa:?}");
     assert_eq!(sb.whole_pixels, 0, "{sb:?}");
@@ -144,15 +152,7 @@ fn bars() -> Scene {
 fn runs_of_whole_pixels_resolve_as_the_lists_say() {
     let scene = bars();
     for (w, h) in [(300, 200), (199, 101), (512, 300)] {
-        let s = screen(&scene, w, h);
-        let mut sampled = ABuffer::new(ABufferOptions::default().with_threads(1));
-        let mut listed = ABuffer::new(
-            ABufferOptions::default()
-                .with_sample_tiles(false)
-                .with_merge(MergePolicy::Off),
-        );
-        let (a, sa): (Frame, ABufferStats) = render(&mut sampled, &s);
-        let (b, _): (Frame, ABufferStats) = render(&mut listed, &s);
+        let ((a, sa), (b, _)) = sampled_and_listed(&scene, (w, h));
         let meetings = (0..a.ids.len() - 1)
             .filter(|&p| (p + 1) % w as usize != 0)
             .filter(|&p| a.coverage[p] == 1.0 && a.coverage[p + 1] == 1.0)
