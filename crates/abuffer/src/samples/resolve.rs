@@ -113,9 +113,7 @@ impl SampleBuffer {
             }
         }
     }
-}
 
-impl SampleBuffer {
     /// Resolves the whole pixels `whole` (bit = column of the pass) of row
     /// `j` of a scene whose colours are flat: a run of them held by one
     /// primitive shares its colour, coverage and id, and only the depth
