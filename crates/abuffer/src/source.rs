@@ -188,9 +188,8 @@ pub(crate) fn scene_opacity_runs(scene: &Scene, out: &mut Vec<(u32, f32)>) {
             continue;
         }
         end += mesh.indices.len() as u32;
-        let alpha = mesh
-            .material
-            .and_then(|i| scene.materials.get(i))
+        let alpha = scene
+            .mesh_material(mesh)
             .map_or(default, |m| m.opacity)
             .clamp(0.0, 1.0);
         push_opacity(out, end, alpha);

@@ -107,6 +107,13 @@ impl Scene {
             .map(|(id, (m, t))| (id as u32, m, t))
     }
 
+    /// The material `mesh` names, `None` for the default material (the
+    /// front ends' [`Material::default`]; an index out of range, which
+    /// [`Self::validate`] refuses, also gives `None`).
+    pub fn mesh_material(&self, mesh: &Mesh) -> Option<&Material> {
+        mesh.material.and_then(|i| self.materials.get(i))
+    }
+
     /// The world-space corners of triangle `t` of mesh `m`.
     pub fn triangle_positions(&self, m: usize, t: usize) -> [DVec3; 3] {
         let mesh = &self.meshes[m];
@@ -278,6 +285,23 @@ mod tests {
             None,
         );
         s
+    }
+
+    /// A mesh names its material by index, or none for the default.
+    #[test]
+    fn a_mesh_names_its_material_or_the_default() {
+        let mut s = tri_scene();
+        let glass = Material {
+            name: "glass".into(),
+            opacity: 0.5,
+            ..Material::default()
+        };
+        s.push_mesh(s.meshes[0].clone(), Some(glass.clone()));
+        assert_eq!(s.mesh_material(&s.meshes[0]), None);
+        assert_eq!(s.mesh_material(&s.meshes[1]), Some(&glass));
+        let mut stray = s.meshes[1].clone();
+        stray.material = Some(7);
+        assert_eq!(s.mesh_material(&stray), None);
     }
 
     #[test]

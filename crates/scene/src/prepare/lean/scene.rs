@@ -100,10 +100,7 @@ impl LeanScene {
         let k = prim as usize;
         let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
         let mesh = &scene.meshes[m];
-        let material = mesh
-            .material
-            .and_then(|i| scene.materials.get(i))
-            .unwrap_or(&self.default_material);
+        let material = scene.mesh_material(mesh).unwrap_or(&self.default_material);
         match mode {
             ShadeMode::Ids => (id_color(prim), material.opacity),
             ShadeMode::Lambert => {
