@@ -95,7 +95,6 @@ impl Bins {
             self.items.par_extend(run.items.par_iter().copied());
         }
         self.chunks.resize_with(runs.len(), Chunk::default);
-        self.chunks.truncate(runs.len());
         let mut firsts = Vec::with_capacity(runs.len());
         let mut next = 0;
         for (chunk, run) in self.chunks.iter_mut().zip(runs.iter_mut()) {
@@ -106,10 +105,7 @@ impl Bins {
             next += chunk.key_tiles.len();
         }
         let fill = |(chunk, first): (&mut Chunk, usize)| {
-            // Filled on this thread's stack (see `Bins::bin`).
-            let mut local = std::mem::take(chunk);
-            local.fill(first, grid.tiles.0);
-            *chunk = local;
+            chunk.on_stack(|local| local.fill(first, grid.tiles.0));
         };
         if self.chunks.len() > 1 {
             self.chunks.par_iter_mut().zip(firsts).for_each(fill);

@@ -163,7 +163,6 @@ fn in_runs<R: Default + Send>(
     pass: impl Fn(std::ops::Range<usize>, &mut R) -> RunOutcome + Sync,
 ) -> Option<PrepareStats> {
     runs.resize_with(parts, R::default);
-    runs.truncate(parts);
     let per = count.div_ceil(parts).max(1);
     let work = |(k, run): (usize, &mut R)| {
         // The run's output is moved to this thread's stack while it is
