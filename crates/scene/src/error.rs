@@ -1,6 +1,6 @@
 //! The error type of the scene crate and of every hider.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Everything that can go wrong loading, preparing or rendering a scene.
 ///
@@ -18,11 +18,12 @@ pub enum Error {
         source: std::io::Error,
     },
     /// A file's contents could not be parsed.
-    #[error("{}:{line}: {message}", path.display())]
+    #[error("{}: {message}", location(path, *line))]
     Parse {
         /// The file.
         path: PathBuf,
-        /// 1-based line number (0 when the whole file is at fault).
+        /// 1-based line number (0 when the whole file is at fault; the
+        /// message then names the file alone).
         line: usize,
         /// What was wrong, quoting the offending text or value.
         message: String,
@@ -75,3 +76,28 @@ pub enum Error {
 
 /// `Result` with this crate's [`Error`].
 pub type Result<T, E = Error> = std::result::Result<T, E>;
+
+/// `file:line`, or the file alone when the whole file is at fault (line 0):
+/// an editor jumping to line 0 helps nobody.
+fn location(path: &Path, line: usize) -> String {
+    match line {
+        0 => path.display().to_string(),
+        _ => format!("{}:{line}", path.display()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_parse_error_names_the_line_only_when_there_is_one() {
+        let at = |line| Error::Parse {
+            path: "m.obj".into(),
+            line,
+            message: "bad".into(),
+        };
+        assert_eq!(at(7).to_string(), "m.obj:7: bad");
+        assert_eq!(at(0).to_string(), "m.obj: bad");
+    }
+}
