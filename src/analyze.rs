@@ -37,7 +37,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
     let options = RenderOptions::default()
         .with_size(args.size, args.size)
         .with_antialiasing(args.aa)
-        .with_vector_output(args.vector)
+        .with_ordered_polygons(args.vector)
         .with_shading(!args.no_shading)
         .with_pair_budget(args.pair_budget);
     let planned = hider::plan::auto(&scene, &options)

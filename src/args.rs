@@ -8,6 +8,7 @@
 //! (with `hider_plan::cli_error`, which `hider-bench` shares).
 
 use clap::error::ErrorKind;
+use hider::plan::{Knob, PlanError};
 
 /// Largest image side in pixels (the scene crate's limit).
 const MAX_SIDE: u64 = hider::geom::fixed::MAX_IMAGE_SIDE as u64;
@@ -119,5 +120,73 @@ mod tests {
             "must be three numbers x,y,z, got 2 numbers"
         );
         assert!(vec3("1,2,nan").unwrap_err().contains("'nan'"));
+    }
+}
+
+/// The command line's flag for a knob of the library.
+fn knob_flag(knob: Knob) -> &'static str {
+    match knob {
+        Knob::DepthFormat => "--depth-format",
+        Knob::DepthSource => "--depth-source",
+        Knob::OrderedPolygons => "--svg-mode painter",
+    }
+}
+
+/// A plan error in the command line's words: the flags a user set, not the
+/// library's knobs (`hider-plan`'s messages name no front end's flags).
+pub fn flag_error(error: PlanError) -> anyhow::Error {
+    match error {
+        PlanError::UnknownHider { name, known } => {
+            anyhow::anyhow!("unknown --algo '{name}' (one of: {})", known.join(", "))
+        }
+        PlanError::KnobNotApplicable {
+            hider,
+            knob,
+            takers,
+        } => {
+            let flag = knob_flag(knob);
+            let algos = match takers.split_last() {
+                None => "none".to_owned(),
+                Some((last, [])) => (*last).to_owned(),
+                Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+            };
+            anyhow::anyhow!(
+                "{flag} applies to --algo {algos} only, not to --algo {hider} ({})",
+                knob.reason(hider)
+            )
+        }
+        other => other.into(),
+    }
+}
+
+#[cfg(test)]
+mod flag_tests {
+    use super::*;
+
+    /// Every typed plan error the CLI can meet is spelled with its flags.
+    #[test]
+    fn plan_errors_name_the_flags() {
+        let unknown = hider::registry::find("nonesuch").unwrap_err();
+        let line = flag_error(unknown).to_string();
+        assert!(
+            line.starts_with("unknown --algo 'nonesuch' (one of: zbuffer,"),
+            "{line}"
+        );
+        let config =
+            hider::plan::HiderConfig::default().with_depth_format(hider::zbuffer::DepthFormat::F64);
+        let refused = hider::registry::find("painter").unwrap().build(&config);
+        let line = flag_error(refused.err().unwrap()).to_string();
+        assert_eq!(
+            line,
+            "--depth-format applies to --algo zbuffer or zbuffer-tiled only, not to --algo painter \
+             (painter has a fixed depth format)"
+        );
+        let painter = hider::plan::HiderConfig::default().with_ordered_polygons(true);
+        let refused = hider::registry::find("zbuffer").unwrap().build(&painter);
+        let line = flag_error(refused.err().unwrap()).to_string();
+        assert!(
+            line.starts_with("--svg-mode painter applies to --algo painter or painter-naive only"),
+            "{line}"
+        );
     }
 }

@@ -8,7 +8,7 @@ use crate::progress::Progress;
 /// Loads an OBJ file or builds a generated scene (`gen:NAME`), printing the
 /// loader's warnings on stderr (with the spinner lifted).
 pub fn load(model: &str, progress: &Progress) -> Result<Scene> {
-    let scene = hider::plan::load_model(model)?;
+    let scene = hider::scene::load_model(model)?;
     progress.suspend(|| {
         for w in &scene.warnings {
             eprintln!("hider: warning: {w}");

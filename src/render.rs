@@ -1,32 +1,37 @@
 //! `hider render`: one model, one hider, PNG and dumps out, optional timing.
 //!
 //! The hider comes from the registry of `hider-plan` (built with the knobs
-//! the flags set) or, with `--algo auto`, from the planner, which also
-//! hands over the scene its analysis prepared.
+//! the flags set) or, with `--algo auto`, from the planner, whose plan is
+//! options: the hider, the front end's options and the colour stages.
+//! Every frame, the one written and the ones `--repeat` times, comes from
+//! one call: the hider's own pipeline, [`DynHider::render_scene`].
 
-use anyhow::{Context, Result, bail};
-use hider::plan::stages::{prepare_surface, transparency_warning};
-use hider::plan::{Plan, RenderOptions, Shader, Stages, planner, registry};
+use anyhow::{Context, Result};
+use hider::plan::{RenderOptions, planner, registry};
+use hider::scene::shade::{
+    Prims, ScenePrims, Shader, Stages, id_frame, texture_failures, transparency_warning,
+};
 use hider::scene::timing::{Summary, Timer};
 use hider::scene::{
-    DynHider, Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, StatsTable, View, prepare,
-    shade_frame,
+    DynHider, Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, StatsTable, View,
 };
 
 use crate::progress::Progress;
 pub use crate::render_args::RenderArgs;
 
-/// The hider to run, the scene prepared for it, and the plan behind it
-/// with `--algo auto`.
+/// The hider to run and the options it runs with (the plan's, with
+/// `--algo auto`).
 struct Chosen {
     hider: Box<dyn DynHider>,
-    screen: ScreenScene,
-    plan: Option<Plan>,
+    /// The front end's options: the flags', with the plan's choices.
+    prepare: PrepareOptions,
+    /// The colour stages: the plan's, or those the scene calls for.
+    stages: Stages,
 }
 
 /// `--algo auto`: analyses the scene for the view, prints one line with
-/// the choice and why, and returns the chosen hider with the scene the
-/// analysis prepared (the plan's culling applied).
+/// the choice and why, and returns the chosen hider with the plan's
+/// options.
 fn auto(
     args: &RenderArgs,
     scene: &Scene,
@@ -39,8 +44,8 @@ fn auto(
         .with_camera(Some(view.camera))
         .with_shading(args.shade_mode() == ShadeMode::Lambert)
         .with_antialiasing(args.aa)
-        .with_vector_output(args.vector || args.painter_svg())
-        // The searches over pairs decide only vector plans and cost
+        .with_ordered_polygons(args.painter_svg())
+        // The searches over pairs decide only the painter's plans and cost
         // seconds on large scenes: a raster render leaves them out.
         .with_pair_searches(false)
         .with_prepare(options);
@@ -49,33 +54,29 @@ fn auto(
     progress.suspend(|| eprintln!("{}", planned.summary()));
     Ok(Chosen {
         hider,
-        screen: planned.screen,
-        plan: Some(planned.plan),
+        prepare: planned.prepare,
+        stages: planned.plan.stages,
     })
 }
 
-/// `--repeat`: times the hider's whole pipeline from the world-space scene
-/// ([`DynHider::render_scene`]: its front end, then the render into the
-/// frame) after a warm-up, reusing memory as a frame loop would, and checks
-/// that the frame comes out as the first render left it.
+/// `--repeat`: times the same call that made the written frame
+/// ([`DynHider::render_scene`]: the hider's front end, then the render into
+/// the frame) `args.repeat` more times, reusing memory as a frame loop
+/// would.
 fn time_frames(
     args: &RenderArgs,
-    hider: &mut dyn DynHider,
+    chosen: &mut Chosen,
     scene: &Scene,
     view: &View,
-    options: &PrepareOptions,
     screen: &mut ScreenScene,
     frame: &mut Frame,
 ) -> Result<Summary> {
-    let (ids, depth) = (frame.ids.clone(), frame.depth.clone());
     let summary = Timer::new(args.repeat).try_time(&|| false, || {
-        hider
-            .render_scene(scene, view, options, screen, frame)
+        chosen
+            .hider
+            .render_scene(scene, view, &chosen.prepare, screen, frame)
             .map(drop)
     })?;
-    if frame.ids != ids || frame.depth != depth {
-        bail!("internal error: the timed pipeline's image differs from the rendered one");
-    }
     Ok(summary)
 }
 
@@ -98,54 +99,55 @@ fn timing_line(
 
 /// What the run ends with on stderr: why nothing is on screen if nothing
 /// is, then the hider's counts.
-fn report(scene: &Scene, chosen: &Chosen, frame: &Frame, stats: &StatsTable) {
+fn report(
+    scene: &Scene,
+    view: &View,
+    chosen: &Chosen,
+    frame: &Frame,
+    stats: &StatsTable,
+) -> Result<()> {
     let covered = frame.covered_count();
-    if let Some(warning) = crate::empty::nothing_on_screen(scene, &chosen.screen, covered) {
-        eprintln!("hider: warning: {warning}");
+    if covered == 0 {
+        // Why: from the shared front end's account of every triangle (the
+        // hider's own front end may keep none).
+        let screen = hider::scene::prepare(scene, view, &chosen.prepare)?;
+        if let Some(warning) = crate::empty::nothing_on_screen(scene, &screen, covered) {
+            eprintln!("hider: warning: {warning}");
+        }
     }
     for warning in &stats.warnings {
         eprintln!("hider: warning: {warning}");
     }
     eprintln!(
-        "{}: {} triangles in, {} on screen, {covered} pixels covered; {stats}",
+        "{}: {} triangles in, {covered} pixels covered; {stats}",
         chosen.hider.name(),
         scene.triangle_count(),
-        chosen.screen.tris.len(),
     );
-}
-
-/// The colour stages the scene calls for: the plan's under `--algo auto`,
-/// else those found cheaply from the scene (textures, lighting).
-fn colour_stages(args: &RenderArgs, chosen: &Chosen, scene: &Scene) -> Stages {
-    match &chosen.plan {
-        Some(p) => p.stages,
-        None => Stages::for_scene(scene, args.shade_mode() == ShadeMode::Lambert),
-    }
+    Ok(())
 }
 
 /// Colours the frame unless the hider did: from the ids, with only the
-/// stages the scene calls for under Lambert shading.
+/// stages the scene calls for under Lambert shading, reading the
+/// primitives from the world-space scene (whatever front end the hider
+/// ran).
 fn shade(
     args: &RenderArgs,
     chosen: &Chosen,
-    stages: &Stages,
+    scene: &Scene,
+    view: &View,
     frame: &mut Frame,
-    progress: &Progress,
-) {
+) -> Result<()> {
     if chosen.hider.resolves_color() {
-        return;
+        return Ok(());
     }
     match args.shade_mode() {
         ShadeMode::Lambert => {
-            let trace = Shader::default().shade(&chosen.screen, frame, stages);
-            for failure in trace.texture_failures {
-                progress.suspend(|| {
-                    eprintln!("hider: warning: {failure}; the material's colour is used");
-                });
-            }
+            let prims = ScenePrims::new(scene, view)?;
+            Shader::default().shade(Prims::Scene(&prims), frame, &chosen.stages);
         }
-        mode => shade_frame(&chosen.screen, frame, mode),
+        ShadeMode::Ids => id_frame(frame),
     }
+    Ok(())
 }
 
 /// Runs `hider render`.
@@ -162,10 +164,11 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     // at once; `--algo auto` needs the scene before it can choose.
     let config = args.hider_config();
     let fixed = if args.planned() {
-        planner::check_config(&config)?;
+        planner::check_config(&config).map_err(crate::args::flag_error)?;
         None
     } else {
-        Some(registry::find(&args.algo)?.build(&config)?)
+        let entry = registry::find(&args.algo).map_err(crate::args::flag_error)?;
+        Some(entry.build(&config).map_err(crate::args::flag_error)?)
     };
     let progress = Progress::start("loading the model");
     let scene = crate::model::load(&args.model, &progress)?;
@@ -175,66 +178,70 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         "preparing the scene"
     });
     let view = View::new(args.camera(&scene), width, height)?;
-    let mut options = args.prepare_options();
+    let options = args.prepare_options();
     let mut chosen = match fixed {
         Some(hider) => Chosen {
             hider,
-            screen: prepare(&scene, &view, &options)?,
-            plan: None,
+            prepare: options,
+            stages: Stages::for_scene(&scene, args.shade_mode() == ShadeMode::Lambert),
         },
         None => auto(args, &scene, &view, options, &progress)?,
     };
-    if let Some(plan) = &chosen.plan {
-        options = plan.prepare_options(options);
-    }
-    let stages = colour_stages(args, &chosen, &scene);
-    if let Some(warning) = transparency_warning(chosen.hider.name(), &stages) {
+    if let Some(warning) = transparency_warning(chosen.hider.as_ref(), &chosen.stages) {
         progress.suspend(|| eprintln!("hider: warning: {warning}"));
     }
-    if chosen.hider.resolves_color() {
-        // Hiders that composite colour themselves sample the textures.
-        for failure in prepare_surface(&mut chosen.screen, &stages) {
+    progress.stage(&format!("rendering with {}", chosen.hider.name()));
+    let mut frame = Frame::new(width, height)?;
+    let mut screen = ScreenScene::empty(&view);
+    let stats =
+        chosen
+            .hider
+            .render_scene(&scene, &view, &chosen.prepare, &mut screen, &mut frame)?;
+    progress.stage("shading");
+    shade(args, &chosen, &scene, &view, &mut frame)?;
+    // Textures decode on first use: those that failed were tried by now.
+    if chosen.stages.texture {
+        let textures = scene
+            .materials
+            .iter()
+            .filter_map(|m| m.diffuse_texture.as_ref());
+        for failure in texture_failures(textures) {
             progress.suspend(|| {
                 eprintln!("hider: warning: {failure}; the material's colour is used");
             });
         }
     }
-    progress.stage(&format!("rendering with {}", chosen.hider.name()));
-    let mut frame = Frame::new(width, height)?;
-    let stats = chosen.hider.render(&chosen.screen, &mut frame)?;
+    progress.stage("writing");
+    write_outputs(args, &chosen, &scene, &view, &screen, &frame)?;
     if args.repeat > 0 {
         progress.stage(&format!("timing {} renders", args.repeat));
-        let summary = time_frames(
-            args,
-            chosen.hider.as_mut(),
-            &scene,
-            &view,
-            &options,
-            &mut chosen.screen,
-            &mut frame,
-        )?;
+        let summary = time_frames(args, &mut chosen, &scene, &view, &mut screen, &mut frame)?;
         let line = timing_line(args, chosen.hider.name(), &scene, &view, &summary);
         progress.suspend(|| println!("{line}"));
     }
-    progress.stage("shading");
-    shade(args, &chosen, &stages, &mut frame, &progress);
-    progress.stage("writing");
-    write_outputs(args, &chosen, &frame)?;
     drop(progress);
-    report(&scene, &chosen, &frame, &stats);
+    report(&scene, &view, &chosen, &frame, &stats)?;
     Ok(())
 }
 
-/// Writes the PNG, the dumps asked for and the SVG (the vector output of
-/// the hider that ran), each atomically; nothing when the SVG cannot be
-/// had.
-fn write_outputs(args: &RenderArgs, chosen: &Chosen, frame: &Frame) -> Result<()> {
-    let vector = match &args.svg {
+/// Writes the PNG, the dumps asked for and the SVG, each atomically;
+/// nothing when the SVG cannot be had. The painter's ordered polygons
+/// (`--svg-mode painter`) are the painter's last frame, drawn from the
+/// shared front end's scene its pipeline left in `screen`; the regions and
+/// lines are computed from the scene prepared with the frame's options.
+fn write_outputs(
+    args: &RenderArgs,
+    chosen: &Chosen,
+    scene: &Scene,
+    view: &View,
+    screen: &ScreenScene,
+    frame: &Frame,
+) -> Result<()> {
+    let ordered = match &args.svg {
         Some(svg) if args.painter_svg() => {
-            let output = chosen
-                .hider
-                .vector_output()
-                .with_context(|| format!("--svg: {} gave no vector output", chosen.hider.name()))?;
+            let output = chosen.hider.ordered_polygons().with_context(|| {
+                format!("--svg: {} gave no ordered polygons", chosen.hider.name())
+            })?;
             Some((svg, output))
         }
         _ => None,
@@ -252,30 +259,31 @@ fn write_outputs(args: &RenderArgs, chosen: &Chosen, frame: &Frame) -> Result<()
             .write_depth(p)
             .context("cannot write the depth dump")?;
     }
-    if let Some((svg, output)) = vector {
+    if let Some((svg, output)) = ordered {
         output
-            .write_svg(&chosen.screen, svg, args.shade_mode())
+            .write_svg(screen, svg, args.shade_mode())
             .context("cannot write the SVG")?;
     }
     if let Some(svg) = args.svg.as_ref().filter(|_| !args.painter_svg()) {
-        write_vector_svg(args, chosen, svg)?;
+        let prepared = hider::scene::prepare(scene, view, &chosen.prepare)?;
+        write_vector_svg(args, &prepared, svg)?;
     }
     Ok(())
 }
 
 /// `--svg-mode regions` or `lines`: the exact visible regions or the
-/// hidden-line drawing of the scene the hider rendered, from hider-vector.
-fn write_vector_svg(args: &RenderArgs, chosen: &Chosen, svg: &std::path::Path) -> Result<()> {
+/// hidden-line drawing of the prepared scene, from hider-vector.
+fn write_vector_svg(args: &RenderArgs, screen: &ScreenScene, svg: &std::path::Path) -> Result<()> {
     use hider_vector::{VectorOptions, hidden_lines, visible_regions};
     let options = VectorOptions::default();
-    let map = visible_regions(&chosen.screen, &options, args.shade_mode())
+    let map = visible_regions(screen, &options, args.shade_mode())
         .context("cannot compute the visible regions")?;
     let written = if args.svg_mode == crate::render_args::SvgMode::Lines {
-        let drawing = hidden_lines(&chosen.screen, &map, &options)
-            .context("cannot compute the hidden lines")?;
-        hider_vector::write_lines_svg(&chosen.screen, &drawing, &options, svg)
+        let drawing =
+            hidden_lines(screen, &map, &options).context("cannot compute the hidden lines")?;
+        hider_vector::write_lines_svg(screen, &drawing, &options, svg)
     } else {
-        hider_vector::write_regions_svg(&chosen.screen, &map, &options, svg)
+        hider_vector::write_regions_svg(screen, &map, &options, svg)
     };
     written.context("cannot write the SVG")
 }

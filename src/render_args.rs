@@ -35,18 +35,13 @@ pub struct RenderArgs {
     height: Option<u32>,
     /// Hidden-surface algorithm (see `hider list`), or `auto`: the planner
     /// picks the cheapest one exact for what the scene calls for (and for
-    /// --aa, --vector) and says why.
+    /// --aa and --svg-mode painter) and says why.
     #[arg(long, default_value = "auto")]
     pub algo: String,
     /// Ask for anti-aliased edges: `--algo auto` picks the cheapest exact
     /// anti-aliasing hider.
     #[arg(long)]
     pub aa: bool,
-    /// Ask for vector output: `--algo auto` picks a hider with an ordered
-    /// polygon list (write it with --svg and --svg-mode painter, which
-    /// imply --vector).
-    #[arg(long)]
-    pub vector: bool,
     /// Depth buffer format of the z-buffer.
     #[arg(long, value_enum)]
     depth_format: Option<DepthFormatArg>,
@@ -62,9 +57,9 @@ pub struct RenderArgs {
     pub svg: Option<PathBuf>,
     /// What --svg writes: `regions` (every surface's exact visible region,
     /// one path per flat face), `lines` (the visible silhouettes, creases,
-    /// boundaries and intersection lines as polylines) or `painter` (the
-    /// painters' ordered, split polygon list: --algo painter or
-    /// painter-naive).
+    /// boundaries and intersection lines as polylines), both from any
+    /// hider's scene, or `painter` (the painters' ordered, split polygon
+    /// list: --algo painter or painter-naive; --algo auto then picks one).
     #[arg(long, value_enum, default_value = "regions")]
     pub svg_mode: SvgMode,
     /// Write the visible primitive ids (int32 LE, -1 background).
@@ -176,30 +171,29 @@ impl RenderArgs {
         self.algo == "auto"
     }
 
-    /// Checks the requests to the planner: `--aa` and `--vector` need
-    /// `--algo auto` (a named hider does what it does), and `--vector`
-    /// needs `--svg` to write the vector output to.
+    /// Checks the requests to the planner: `--aa` needs `--algo auto` (a
+    /// named hider does what it does), and `--svg-mode painter` needs
+    /// `--svg` to write the ordered polygons to.
     pub fn check_requests(&self) -> Result<()> {
-        for (asked, flag) in [(self.aa, "--aa"), (self.vector, "--vector")] {
-            if asked && !self.planned() {
-                bail!(
-                    "{flag} is a request to the planner (--algo auto), but --algo {} was named",
-                    self.algo
-                );
-            }
+        if self.aa && !self.planned() {
+            bail!(
+                "--aa is a request to the planner (--algo auto), but --algo {} was named",
+                self.algo
+            );
         }
-        if self.vector && self.svg.is_none() {
-            bail!("--vector needs --svg FILE to write the vector output to");
+        if self.svg_mode == SvgMode::Painter && self.svg.is_none() {
+            bail!("--svg-mode painter needs --svg FILE to write the ordered polygons to");
         }
         Ok(())
     }
 
-    /// The knobs for the hider: depth format and source, threads, vector
-    /// output.
+    /// The knobs for the hider: depth format and source, threads, ordered
+    /// polygons, shade mode.
     pub fn hider_config(&self) -> HiderConfig {
         let mut config = HiderConfig::default()
             .with_threads(self.threads)
-            .with_vector_output(self.painter_svg());
+            .with_ordered_polygons(self.painter_svg())
+            .with_shade(self.shade_mode());
         if let Some(format) = self.depth_format {
             config = config.with_depth_format(match format {
                 DepthFormatArg::F32 => DepthFormat::F32,

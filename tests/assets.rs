@@ -52,7 +52,7 @@ fn the_bundled_spider_loads_with_its_textures() {
             .diffuse_texture
             .as_ref()
             .expect("every material is textured");
-        assert!(texture.is_file(), "{}", texture.display());
+        assert!(texture.path().is_file(), "{}", texture.path().display());
     }
     // Its one warning: the degenerate triangles the exporter wrote.
     assert!(

@@ -57,7 +57,7 @@ fn every_bad_flag_value_is_one_line_naming_flag_and_value() {
         ),
         (&["--frobnicate"], &["--frobnicate"]),
         (&["--aa", "--algo", "zbuffer"], &["--aa", "--algo zbuffer"]),
-        (&["--vector"], &["--vector", "--svg"]),
+        (&["--svg-mode", "painter"], &["--svg-mode painter", "--svg"]),
     ];
     for (extra, needles) in cases {
         let out = render("gen:cube", &png, extra);

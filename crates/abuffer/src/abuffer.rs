@@ -34,7 +34,8 @@
 use hider_geom::Viewport;
 use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_sinks};
 use hider_scene::{
-    Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, View, check_frame_size,
+    Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, ShadeMode, View,
+    check_frame_size,
 };
 use std::sync::{Mutex, PoisonError};
 
@@ -44,6 +45,7 @@ use crate::bins::{BinRun, Bins, Grid, TILE, tile_rect};
 use crate::centre::in_front;
 use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy};
+use crate::palette;
 use crate::resolve::Band;
 use crate::samples::{SAMPLE_BUFFER_BYTES, SampleBuffer, passes};
 use crate::source::Source;
@@ -413,7 +415,8 @@ impl Hider for ABuffer {
         let mut tris = std::mem::take(&mut self.screen_tris);
         tris.clear();
         tris.extend(scene.tris.iter().map(LeanTri::from));
-        let result = self.run(&Source::screen(scene, &tris), false, frame);
+        let sampler = palette::sampler(scene, self.options.shade);
+        let result = self.run(&Source::screen(scene, &tris, sampler), false, frame);
         self.screen_tris = tris;
         result
     }
@@ -422,9 +425,9 @@ impl Hider for ABuffer {
     /// transformed per vertex, without its per-primitive data, each run of
     /// its triangle pass binning its triangles as it sets them up), then
     /// the same rendering as [`Hider::render`]: the same frame, bit for
-    /// bit.
-    /// A scene whose textures are loaded into `screen` takes the shared
-    /// front end (texturing reads what only it keeps).
+    /// bit. A textured scene drawn in Lambert mode takes the shared front
+    /// end into `screen` (texturing reads the per-primitive data only it
+    /// keeps); the decision is the scene's, known before anything runs.
     fn render_scene(
         &mut self,
         scene: &Scene,
@@ -433,7 +436,7 @@ impl Hider for ABuffer {
         screen: &mut ScreenScene,
         frame: &mut Frame,
     ) -> Result<ABufferStats> {
-        if screen.textures.is_active() {
+        if self.options.shade == ShadeMode::Lambert && scene.is_textured() {
             hider_scene::prepare_into(scene, view, options, screen)?;
             return self.render(screen, frame);
         }
@@ -464,6 +467,10 @@ impl Hider for ABuffer {
     }
 
     fn resolves_color(&self) -> bool {
+        true
+    }
+
+    fn composites_transparency(&self) -> bool {
         true
     }
 }

@@ -371,7 +371,10 @@ mod tests {
         let tris: Vec<LeanTri> = screen.tris.iter().map(LeanTri::from).collect();
         let mut lean = LeanScene::new();
         prepare_lean_into(&scene, &view, &options, &mut lean).expect("prepared");
-        for source in [Source::screen(&screen, &tris), Source::lean(&lean, &scene)] {
+        for source in [
+            Source::screen(&screen, &tris, None),
+            Source::lean(&lean, &scene),
+        ] {
             let mut bins = Bins::default();
             bins.bin(&source, Grid::new(SamplePattern::Grid32, (w, h)), 1);
             let mut seen: Vec<f32> = Vec::new();

@@ -106,7 +106,7 @@ pub struct ABufferOptions {
     pub overflow: OverflowPolicy,
     /// Bound on working memory (pixel table plus fragment pool), in bytes.
     /// The pixel table is checked before it is allocated; the pool stops
-    /// with [`hider_scene::Error::Limit`] when the next fragment would pass
+    /// with [`hider_scene::Error::Budget`] when the next fragment would pass
     /// the bound.
     pub max_bytes: u64,
     /// How primitives are coloured before compositing.
@@ -320,7 +320,7 @@ impl SsaaOptions {
     ) -> Result<u64> {
         let bytes = pixels as u64 * (self.pattern.count() as u64 * per_sample + 12);
         if bytes > self.max_bytes {
-            return Err(Error::Limit {
+            return Err(Error::Budget {
                 what: hider,
                 value: bytes,
                 limit: self.max_bytes,

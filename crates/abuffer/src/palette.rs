@@ -4,7 +4,7 @@
 use std::sync::OnceLock;
 
 use hider_scene::shade::{prim_color, to_srgb8};
-use hider_scene::{ScreenScene, ShadeMode};
+use hider_scene::{ScreenScene, ShadeMode, TextureOptions, TextureSampler};
 
 /// Fills `out` with `[r, g, b, opacity]` (linear) for every primitive of
 /// `scene`, reusing its memory.
@@ -20,15 +20,31 @@ pub fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
     [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
 }
 
+/// The texture sampler of a frame drawn under `mode`: `Some` when the
+/// frame's materials name textures and the mode shows them (Lambert; id
+/// colours are never textured).
+pub fn sampler(scene: &ScreenScene, mode: ShadeMode) -> Option<TextureSampler> {
+    let textured = scene.materials.iter().any(|m| m.diffuse_texture.is_some());
+    (textured && mode == ShadeMode::Lambert)
+        .then(|| TextureSampler::new(scene, TextureOptions::default()))
+}
+
 /// `rgba` (a primitive's flat colour) times the primitive's texture at
-/// window point `(x, y)` when the scene's textures are loaded
-/// ([`ScreenScene::load_textures`]); `rgba` otherwise.
+/// window point `(x, y)` when the frame is textured (`sampler`, see
+/// [`sampler`]); `rgba` otherwise.
 #[inline]
-pub fn at_point(scene: &ScreenScene, prim: u32, rgba: [f32; 4], x: f64, y: f64) -> [f32; 4] {
-    if !scene.textures.is_active() {
+pub fn at_point(
+    scene: &ScreenScene,
+    sampler: Option<&TextureSampler>,
+    prim: u32,
+    rgba: [f32; 4],
+    x: f64,
+    y: f64,
+) -> [f32; 4] {
+    let Some(sampler) = sampler else {
         return rgba;
-    }
-    let [r, g, b] = scene.surface_rgb(prim, [rgba[0], rgba[1], rgba[2]], x, y);
+    };
+    let [r, g, b] = scene.surface_rgb(sampler, prim, [rgba[0], rgba[1], rgba[2]], x, y);
     [r, g, b, rgba[3]]
 }
 
@@ -37,8 +53,21 @@ pub fn at_point(scene: &ScreenScene, prim: u32, rgba: [f32; 4], x: f64, y: f64) 
 /// multisample rasterisers shade (supersampling shades every sample, see
 /// [`at_sample`]).
 #[inline]
-pub fn at_pixel(scene: &ScreenScene, prim: u32, rgba: [f32; 4], (i, j): (u32, u32)) -> [f32; 4] {
-    at_point(scene, prim, rgba, f64::from(i) + 0.5, f64::from(j) + 0.5)
+pub fn at_pixel(
+    scene: &ScreenScene,
+    sampler: Option<&TextureSampler>,
+    prim: u32,
+    rgba: [f32; 4],
+    (i, j): (u32, u32),
+) -> [f32; 4] {
+    at_point(
+        scene,
+        sampler,
+        prim,
+        rgba,
+        f64::from(i) + 0.5,
+        f64::from(j) + 0.5,
+    )
 }
 
 /// [`at_point`] at the sample of pixel `(i, j)` at `pos` (1/256 pixel
@@ -46,6 +75,7 @@ pub fn at_pixel(scene: &ScreenScene, prim: u32, rgba: [f32; 4], (i, j): (u32, u3
 #[inline]
 pub fn at_sample(
     scene: &ScreenScene,
+    sampler: Option<&TextureSampler>,
     prim: u32,
     rgba: [f32; 4],
     (i, j): (u32, u32),
@@ -53,6 +83,7 @@ pub fn at_sample(
 ) -> [f32; 4] {
     at_point(
         scene,
+        sampler,
         prim,
         rgba,
         f64::from(i) + f64::from(pos.0) / 256.0,

@@ -40,7 +40,7 @@ impl FragmentPool {
     pub fn reset(&mut self, pixels: usize, keep_depths: bool, max_bytes: u64) -> Result<bool> {
         let table = pixels as u64 * PIXEL_BYTES;
         if table > max_bytes {
-            return Err(Error::Limit {
+            return Err(Error::Budget {
                 what: "A-buffer pixel table (bytes)",
                 value: table,
                 limit: max_bytes,
@@ -83,7 +83,7 @@ impl FragmentPool {
     }
 
     fn limit(&self, frags: usize, merged: usize) -> Error {
-        Error::Limit {
+        Error::Budget {
             what: "A-buffer working memory (bytes)",
             value: self.used_bytes(frags, merged),
             limit: self.max_bytes,
@@ -359,7 +359,7 @@ mod tests {
         let mut pool = FragmentPool::default();
         assert!(matches!(
             pool.reset(1000, false, 100),
-            Err(Error::Limit {
+            Err(Error::Budget {
                 value: 16_000,
                 limit: 100,
                 ..
@@ -371,10 +371,10 @@ mod tests {
             pool.alloc(frag(0.5)).unwrap();
         }
         let e = pool.alloc(frag(0.5)).unwrap_err();
-        assert!(matches!(e, Error::Limit { .. }), "{e}");
+        assert!(matches!(e, Error::Budget { .. }), "{e}");
         assert!(pool.peak_bytes() <= room);
         // Merged entries count against the same bound.
         let e = pool.add_merged([0.0; 4], &[0.0; MAX_SAMPLES]).unwrap_err();
-        assert!(matches!(e, Error::Limit { .. }), "{e}");
+        assert!(matches!(e, Error::Budget { .. }), "{e}");
     }
 }

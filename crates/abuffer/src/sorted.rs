@@ -18,7 +18,7 @@
 //! and depth from the pixel-centre test of [`crate::centre`], over all
 //! triangles whatever their opacity, as the A-buffer reports them.
 
-use hider_scene::{Frame, Hider, Result, ScreenScene, ScreenTri, check_frame};
+use hider_scene::{Frame, Hider, Result, ScreenScene, ScreenTri, TextureSampler, check_frame};
 
 use crate::centre::{CentreBuffer, in_front};
 use crate::coverage::{TriCoverage, pixel_range};
@@ -48,6 +48,7 @@ impl SortedTransparencyZBuffer {
     fn draw(
         &mut self,
         scene: &ScreenScene,
+        sampler: Option<&TextureSampler>,
         tri: &ScreenTri,
         translucent: bool,
         stats: &mut SsaaStats,
@@ -82,7 +83,7 @@ impl SortedTransparencyZBuffer {
                     }
                     stats.depth_writes += 1;
                     self.hit[s] = true;
-                    let [r, g, b, _] = at_sample(scene, tri.prim, flat, (i, j), pos);
+                    let [r, g, b, _] = at_sample(scene, sampler, tri.prim, flat, (i, j), pos);
                     if translucent {
                         let dst = self.color[s];
                         self.color[s] =
@@ -160,11 +161,13 @@ impl Hider for SortedTransparencyZBuffer {
         self.hit.resize(pixels * n, false);
         self.centre.reset(pixels);
         prim_colors(scene, self.options.shade, &mut self.colors);
+        let sampler = crate::palette::sampler(scene, self.options.shade);
+        let sampler = sampler.as_ref();
 
         self.order.clear();
         for (t, tri) in scene.tris.iter().enumerate() {
             if self.colors[tri.prim as usize][3] >= 1.0 {
-                self.draw(scene, tri, false, &mut stats);
+                self.draw(scene, sampler, tri, false, &mut stats);
             } else {
                 let mean = (tri.z[0] + tri.z[1] + tri.z[2]) / 3.0;
                 self.order.push((mean, t as u32));
@@ -175,7 +178,7 @@ impl Hider for SortedTransparencyZBuffer {
             .sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         let order = std::mem::take(&mut self.order);
         for &(_, t) in &order {
-            self.draw(scene, &scene.tris[t as usize], true, &mut stats);
+            self.draw(scene, sampler, &scene.tris[t as usize], true, &mut stats);
         }
         self.order = order;
         self.resolve(frame);
@@ -183,6 +186,10 @@ impl Hider for SortedTransparencyZBuffer {
     }
 
     fn resolves_color(&self) -> bool {
+        true
+    }
+
+    fn composites_transparency(&self) -> bool {
         true
     }
 }

@@ -8,7 +8,7 @@
 
 use hider_geom::Viewport;
 use hider_scene::prepare::lean::{LeanScene, LeanTri};
-use hider_scene::{Material, Scene, ScreenScene, ShadeMode};
+use hider_scene::{Material, Scene, ScreenScene, ShadeMode, TextureSampler};
 
 use crate::bins::BinItem;
 
@@ -17,8 +17,9 @@ use crate::palette;
 /// Where the colours come from.
 #[derive(Clone, Copy, Debug)]
 enum Kind<'a> {
-    /// `prepare`'s output (textures included).
-    Screen(&'a ScreenScene),
+    /// `prepare`'s output, and the frame's texture sampler when it is
+    /// textured.
+    Screen(&'a ScreenScene, Option<TextureSampler>),
     /// The lean front end's output, and the scene it was prepared from.
     Lean(&'a LeanScene, &'a Scene),
 }
@@ -39,13 +40,18 @@ pub(crate) struct Source<'a> {
 }
 
 impl<'a> Source<'a> {
-    /// `scene`'s triangles as `tris` (converted by the caller).
-    pub(crate) fn screen(scene: &'a ScreenScene, tris: &'a [LeanTri]) -> Self {
+    /// `scene`'s triangles as `tris` (converted by the caller), textured
+    /// through `sampler` when it is given ([`palette::sampler`]).
+    pub(crate) fn screen(
+        scene: &'a ScreenScene,
+        tris: &'a [LeanTri],
+        sampler: Option<TextureSampler>,
+    ) -> Self {
         Self {
             viewport: scene.viewport,
             tris,
             items: &[],
-            kind: Kind::Screen(scene),
+            kind: Kind::Screen(scene, sampler),
         }
     }
 
@@ -67,7 +73,7 @@ impl<'a> Source<'a> {
     /// The number of primitives (ids are below it).
     pub(crate) fn prims(&self) -> usize {
         match self.kind {
-            Kind::Screen(s) => s.prims.len(),
+            Kind::Screen(s, _) => s.prims.len(),
             Kind::Lean(_, scene) => scene.triangle_count(),
         }
     }
@@ -75,7 +81,7 @@ impl<'a> Source<'a> {
     /// `[r, g, b, opacity]` (linear, opacity clamped to [0, 1]) of `prim`.
     pub(crate) fn prim_rgba(&self, prim: u32, mode: ShadeMode) -> [f32; 4] {
         match self.kind {
-            Kind::Screen(s) => palette::prim_rgba(s, prim, mode),
+            Kind::Screen(s, _) => palette::prim_rgba(s, prim, mode),
             Kind::Lean(lean, scene) => {
                 let (rgb, alpha) = lean.prim_color(scene, prim, mode);
                 [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
@@ -92,7 +98,7 @@ impl<'a> Source<'a> {
     /// triangle.
     pub(crate) fn opacity_runs(&self, out: &mut Vec<(u32, f32)>) {
         match self.kind {
-            Kind::Screen(s) => {
+            Kind::Screen(s, _) => {
                 out.clear();
                 for prim in 0..s.prims.len() as u32 {
                     push_opacity(out, prim + 1, s.material(prim).opacity.clamp(0.0, 1.0));
@@ -105,27 +111,27 @@ impl<'a> Source<'a> {
     /// The material index of `prim` (merging requires equal ones).
     pub(crate) fn material(&self, prim: u32) -> u32 {
         match self.kind {
-            Kind::Screen(s) => s.prims[prim as usize].material,
+            Kind::Screen(s, _) => s.prims[prim as usize].material,
             Kind::Lean(lean, scene) => lean.material_index(scene, prim),
         }
     }
 
-    /// Whether a primitive's colour is the same at every pixel (no
-    /// texture is loaded): [`Self::at_pixel`] gives back its `rgba`.
+    /// Whether a primitive's colour is the same at every pixel (the frame
+    /// is not textured): [`Self::at_pixel`] gives back its `rgba`.
     pub(crate) fn flat_colors(&self) -> bool {
         match self.kind {
-            Kind::Screen(s) => !s.textures.is_active(),
+            Kind::Screen(_, sampler) => sampler.is_none(),
             Kind::Lean(..) => true,
         }
     }
 
     /// [`palette::at_pixel`]: `rgba` textured at the centre of pixel `ij`
-    /// when the scene's textures are loaded (the lean front end is used
-    /// only when they are not).
+    /// when the frame is textured (the lean front end is used only when it
+    /// is not).
     #[inline]
     pub(crate) fn at_pixel(&self, prim: u32, rgba: [f32; 4], ij: (u32, u32)) -> [f32; 4] {
-        match self.kind {
-            Kind::Screen(s) => palette::at_pixel(s, prim, rgba, ij),
+        match &self.kind {
+            Kind::Screen(s, sampler) => palette::at_pixel(s, sampler.as_ref(), prim, rgba, ij),
             Kind::Lean(..) => rgba,
         }
     }
@@ -217,7 +223,7 @@ mod tests {
     fn the_colour_cache_forgets_each_frame() {
         let screen = hider_testkit::screen(&procedural::random_soup(4, 1), 32, 32);
         let tris: Vec<LeanTri> = screen.tris.iter().map(LeanTri::from).collect();
-        let source = Source::screen(&screen, &tris);
+        let source = Source::screen(&screen, &tris, None);
         let mut cache = ColorCache::default();
         cache.begin(source.prims());
         let shaded = cache.get(&source, ShadeMode::Lambert, 2);

@@ -48,6 +48,7 @@ impl SupersampledZBuffer {
         let pixels = frame.len();
         let n = self.options.pattern.count();
         let positions = self.options.pattern.positions();
+        let sampler = crate::palette::sampler(scene, self.options.shade);
         let w = frame.width() as usize;
         self.centre.write(frame);
         frame.coverage.clear();
@@ -60,7 +61,14 @@ impl SupersampledZBuffer {
             for (&id, &pos) in self.ids[p * n..(p + 1) * n].iter().zip(positions) {
                 if id != NO_ID {
                     covered += 1;
-                    let c = at_sample(scene, id, self.colors[id as usize], ij, pos);
+                    let c = at_sample(
+                        scene,
+                        sampler.as_ref(),
+                        id,
+                        self.colors[id as usize],
+                        ij,
+                        pos,
+                    );
                     for (s, v) in sum.iter_mut().zip(c) {
                         *s += v;
                     }

@@ -127,7 +127,7 @@ impl RayCastOracle {
         let vp = scene.viewport;
         let bytes = Self::bytes_needed(vp.width, vp.height);
         if bytes > self.options.max_bytes {
-            return Err(Error::Limit {
+            return Err(Error::Budget {
                 what: "oracle working bytes",
                 value: bytes,
                 limit: self.options.max_bytes,

@@ -12,7 +12,7 @@ fn a_16384_pixel_image_is_refused_before_allocating() {
     let need = RayCastOracle::bytes_needed(16384, 16384);
     assert!(need > 20 << 30, "{need}");
     match RayCastOracle::default().try_evaluate(&s) {
-        Err(Error::Limit { what, value, limit }) => {
+        Err(Error::Budget { what, value, limit }) => {
             assert_eq!(what, "oracle working bytes");
             assert_eq!(value, need);
             assert_eq!(limit, hider_oracle::DEFAULT_MAX_BYTES);

@@ -43,7 +43,7 @@ fn main() -> Result<(), hider_scene::Error> {
             // The split cyclic triple, from the frame just painted.
             if col == 1 && row == 1 {
                 let svg = dir.join("painter-cycle.svg");
-                let vector = h.vector_output().expect("the painter writes SVG");
+                let vector = h.ordered_polygons().expect("the painter writes SVG");
                 vector.write_svg(&s, &svg, ShadeMode::Lambert)?;
                 println!("wrote {}", svg.display());
             }

@@ -28,7 +28,7 @@
 //! double-cover, and on every pixel that is not a depth tie [`Painter`]
 //! gives the z-buffer's (and the oracle's) primitive. Both keep the ordered
 //! pieces of their last frame and write them as SVG through
-//! [`Hider::vector_output`](hider_scene::Hider::vector_output).
+//! [`Hider::ordered_polygons`](hider_scene::Hider::ordered_polygons).
 //!
 //! # Example
 //!
@@ -60,7 +60,7 @@
 //! // The pieces of the frame just rendered, as SVG.
 //! let path = std::env::temp_dir().join("hider-painter-doc-example.svg");
 //! painter
-//!     .vector_output()
+//!     .ordered_polygons()
 //!     .expect("painters have vector output")
 //!     .write_svg(&screen, &path, ShadeMode::Lambert)?;
 //! assert!(std::fs::read_to_string(&path)?.contains("<path"));

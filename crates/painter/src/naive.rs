@@ -10,7 +10,7 @@
 
 use std::path::Path;
 
-use hider_scene::{Frame, Hider, Result, ScreenScene, ShadeMode, VectorOutput, check_frame};
+use hider_scene::{Frame, Hider, OrderedPolygons, Result, ScreenScene, ShadeMode, check_frame};
 
 use crate::options::{NaivePainterOptions, SortKey};
 use crate::piece::Piece;
@@ -22,7 +22,7 @@ use crate::svg::{LastFrame, write_svg};
 /// ([`NaivePainterOptions::sort_key`]), a stable sort farthest first (equal
 /// keys paint the lower primitive id first), and overwrite. Coverage is the
 /// shared exact one; only the visibility can be wrong. Its vector output
-/// ([`Hider::vector_output`]) is the triangles of the last frame in paint
+/// ([`Hider::ordered_polygons`]) is the triangles of the last frame in paint
 /// order, with the same errors.
 #[derive(Clone, Debug, Default)]
 pub struct NaivePainter {
@@ -113,12 +113,12 @@ impl Hider for NaivePainter {
         Ok(stats)
     }
 
-    fn vector_output(&self) -> Option<&dyn VectorOutput> {
+    fn ordered_polygons(&self) -> Option<&dyn OrderedPolygons> {
         Some(self)
     }
 }
 
-impl VectorOutput for NaivePainter {
+impl OrderedPolygons for NaivePainter {
     /// Writes the triangles of the last render of `scene` in paint order to
     /// `path` as SVG, atomically: the vector output of a plain depth sort,
     /// with its errors.

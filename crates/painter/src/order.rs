@@ -157,7 +157,7 @@ impl Orderer {
             arena.peak = arena.peak.max(arena.now);
             arena.now -= freed;
             if arena.now > options.max_bytes {
-                return Err(Error::Limit {
+                return Err(Error::Budget {
                     what: "painter piece memory in bytes",
                     value: arena.now,
                     limit: options.max_bytes,

@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use hider_scene::{Frame, Hider, Result, ScreenScene, ShadeMode, VectorOutput, check_frame};
+use hider_scene::{Frame, Hider, OrderedPolygons, Result, ScreenScene, ShadeMode, check_frame};
 
 use crate::options::PainterOptions;
 use crate::order::Orderer;
@@ -16,7 +16,7 @@ use crate::svg::{LastFrame, write_svg};
 /// tests, moving polygons that must go first, and splitting polygons by
 /// each other's planes where no order exists (intersections, cyclic
 /// overlaps). Its raster output equals the z-buffer's on every pixel that
-/// is not a depth tie; its vector output ([`Hider::vector_output`]) is the
+/// is not a depth tie; its vector output ([`Hider::ordered_polygons`]) is the
 /// ordered, split polygon list of the last frame.
 ///
 /// The piece arena and lists are kept between frames.
@@ -54,7 +54,7 @@ impl Painter {
 
     /// Orders the scene's triangles back to front, splitting where needed,
     /// without painting them: [`Self::ordered_pieces`] then lists the
-    /// pieces, and [`VectorOutput::write_svg`] writes them. This is all a
+    /// pieces, and [`OrderedPolygons::write_svg`] writes them. This is all a
     /// caller that draws the pieces itself needs (a vector drawing, a plot
     /// library's polygons), and it skips the raster pass and the frame.
     /// The statistics have no pixel writes.
@@ -126,12 +126,12 @@ impl Hider for Painter {
         Ok(stats)
     }
 
-    fn vector_output(&self) -> Option<&dyn VectorOutput> {
+    fn ordered_polygons(&self) -> Option<&dyn OrderedPolygons> {
         Some(self)
     }
 }
 
-impl VectorOutput for Painter {
+impl OrderedPolygons for Painter {
     /// Writes the ordered, split pieces of the last render of `scene` to
     /// `path` as SVG (one path per piece, farthest first, coloured with
     /// `mode`), atomically. With [`PainterOptions::svg_drop_hidden`] pieces

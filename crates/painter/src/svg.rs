@@ -10,7 +10,7 @@
 //! correctly.
 //!
 //! Both painters keep the ordered pieces of their last render and write
-//! them through [`hider_scene::VectorOutput`]; [`LastFrame`] remembers
+//! them through [`hider_scene::OrderedPolygons`]; [`LastFrame`] remembers
 //! which scene that was.
 
 use std::fmt::Write as _;

@@ -24,7 +24,7 @@ fn render_svg<H: Hider>(
     let mut frame = Frame::new(s.viewport.width, s.viewport.height)?;
     let stats = hider.render(s, &mut frame)?;
     hider
-        .vector_output()
+        .ordered_polygons()
         .expect("painters have vector output")
         .write_svg(s, path, mode)?;
     Ok(stats)
@@ -201,7 +201,7 @@ fn svg_before_a_render_or_after_a_failed_one_is_an_error() {
         &NaivePainter::default(),
     ] {
         let err = hider
-            .vector_output()
+            .ordered_polygons()
             .unwrap()
             .write_svg(&s, &path, ShadeMode::Lambert)
             .unwrap_err();
@@ -214,7 +214,7 @@ fn svg_before_a_render_or_after_a_failed_one_is_an_error() {
     assert!(painter.render(&s, &mut frame).is_err());
     assert_eq!(painter.ordered_pieces().len(), 0);
     let err = painter
-        .vector_output()
+        .ordered_polygons()
         .unwrap()
         .write_svg(&s, &path, ShadeMode::Lambert)
         .unwrap_err();
@@ -224,7 +224,7 @@ fn svg_before_a_render_or_after_a_failed_one_is_an_error() {
     painter.render(&s, &mut frame).unwrap();
     let other = screen(&procedural::cube(), 16);
     let err = painter
-        .vector_output()
+        .ordered_polygons()
         .unwrap()
         .write_svg(&other, &path, ShadeMode::Lambert)
         .unwrap_err();
@@ -259,7 +259,7 @@ fn ordering_alone_gives_the_pieces_of_a_render() {
     let (a, b) = (temp("order-render.svg"), temp("order-only.svg"));
     render_svg(&mut rendered, &s, &a, ShadeMode::Lambert).unwrap();
     ordered
-        .vector_output()
+        .ordered_polygons()
         .unwrap()
         .write_svg(&s, &b, ShadeMode::Lambert)
         .unwrap();
@@ -271,7 +271,7 @@ fn ordering_alone_gives_the_pieces_of_a_render() {
     dropping.order(&s).unwrap();
     let never = temp("order-drop.svg");
     let err = dropping
-        .vector_output()
+        .ordered_polygons()
         .unwrap()
         .write_svg(&s, &never, ShadeMode::Lambert)
         .unwrap_err();

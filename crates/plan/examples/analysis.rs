@@ -17,10 +17,9 @@
 use std::path::PathBuf;
 
 use glam::DVec3;
-use hider_plan::stages::Mapping;
-use hider_plan::texture::Filter;
-use hider_plan::{RenderOptions, Shader, ShaderOptions, Stages, analyze_prepared};
+use hider_plan::{RenderOptions, analyze_prepared};
 use hider_scene::geom::Camera;
+use hider_scene::shade::{Filter, Mapping, Prims, Shader, ShaderOptions, Stages};
 use hider_scene::{Frame, Hider, ScreenScene, load_obj, procedural};
 use hider_testkit::timer::Timer;
 use hider_zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
@@ -87,16 +86,16 @@ fn colour_pass() {
         let analysis = analyze_prepared(&scene, &RenderOptions::default()).unwrap();
         let screen = &analysis.screen;
         let mut frame = ids(screen);
-        let needed = Stages::for_effects(&analysis.effects);
+        let needed = analysis.effects.stages();
         let mut shader = Shader::default();
         let t_needed = best_of_20(|| {
-            shader.shade(screen, &mut frame, &needed);
+            shader.shade(Prims::Screen(screen), &mut frame, &needed);
         });
         // Lighting forced on costs per primitive; a texture stage on a
         // scene without uvs costs a check per primitive and nothing per
         // pixel: the pass is the same one.
         let t_all = best_of_20(|| {
-            shader.shade(screen, &mut frame, &Stages::ALL);
+            shader.shade(Prims::Screen(screen), &mut frame, &Stages::ALL);
         });
         println!(
             "| {name} | {:?} | {t_needed:.2} | {t_all:.2} |",
@@ -117,22 +116,22 @@ fn checker_plane(out: &PathBuf) {
         .with_camera(Some(camera));
     let analysis = analyze_prepared(&plane, &options).unwrap();
     let screen = &analysis.screen;
-    let stages = Stages::for_effects(&analysis.effects);
+    let stages = analysis.effects.stages();
     let mut untextured = plane.clone();
     untextured.materials[0].diffuse_texture = None;
     let fx_plain = hider_plan::analyze(&untextured, &options).unwrap();
     let mut frame = ids(screen);
     let mut shader = Shader::new(ShaderOptions::default());
     let t_tex = best_of_20(|| {
-        shader.shade(screen, &mut frame, &stages);
+        shader.shade(Prims::Screen(screen), &mut frame, &stages);
     });
     let t_plain = best_of_20(|| {
-        shader.shade(screen, &mut frame, &Stages::for_effects(&fx_plain));
+        shader.shade(Prims::Screen(screen), &mut frame, &fx_plain.stages());
     });
     println!(
         "| checker plane 256 x 256 | {:?} | {t_tex:.2} | without its texture ({:?}): {t_plain:.2} |",
         stages.names(),
-        Stages::for_effects(&fx_plain).names()
+        fx_plain.stages().names()
     );
 
     let mut picture = image::RgbaImage::new(512, 256);
@@ -146,7 +145,7 @@ fn checker_plane(out: &PathBuf) {
                 .with_filter(Filter::Bilinear)
                 .with_mapping(mapping),
         )
-        .shade(screen, &mut frame, &stages);
+        .shade(Prims::Screen(screen), &mut frame, &stages);
         for y in 0..256 {
             for x in 0..256 {
                 let c = frame.color[frame.index(x, y)];

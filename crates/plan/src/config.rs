@@ -1,10 +1,13 @@
-//! The knobs a caller (the `hider` command line) sets across hiders.
+//! The knobs a caller (the `hider` command line, the Python package, the
+//! benchmark) sets across hiders.
 
+use hider_scene::ShadeMode;
 use hider_zbuffer::{DepthFormat, DepthSource};
 
 /// Cross-cutting knobs for building a registered hider: each
 /// [`Entry`](crate::registry::Entry) applies the ones its hider has and
-/// refuses, naming the knob and the hider, the ones it does not.
+/// refuses, naming the [`Knob`](crate::Knob) and the hider, the ones it
+/// does not.
 ///
 /// `Default` sets nothing: every entry is built with its own options.
 ///
@@ -20,21 +23,23 @@ use hider_zbuffer::{DepthFormat, DepthSource};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct HiderConfig {
-    /// Depth buffer storage format (`--depth-format`), for the entries
-    /// whose format is not part of their name (`zbuffer`,
-    /// `zbuffer-tiled`).
+    /// Depth buffer storage format, for the entries whose format is not
+    /// part of their name (`zbuffer`, `zbuffer-tiled`).
     pub depth_format: Option<DepthFormat>,
-    /// What the depth test compares (`--depth-source`), for `zbuffer`.
+    /// What the depth test compares, for `zbuffer`.
     pub depth_source: Option<DepthSource>,
-    /// Worker threads (`--threads`) for the hiders that render in
-    /// parallel; the others ignore it (it also drives the front end, so it
-    /// is never refused).
+    /// Worker threads for the hiders that render in parallel; the others
+    /// ignore it (it also drives the front end, so it is never refused).
     pub threads: Option<usize>,
-    /// Whether vector output will be asked of the hider (`--svg`): only
-    /// entries whose hider has [`vector_output`] accept it.
+    /// Whether the depth-ordered polygons will be asked of the hider: only
+    /// entries whose hider has [`ordered_polygons`] accept it.
     ///
-    /// [`vector_output`]: hider_scene::DynHider::vector_output
-    pub vector_output: bool,
+    /// [`ordered_polygons`]: hider_scene::DynHider::ordered_polygons
+    pub ordered_polygons: bool,
+    /// How the hiders that resolve colour themselves colour primitives
+    /// (their options' `shade`); never refused: for the others the colour
+    /// pass over the ids applies it.
+    pub shade: Option<ShadeMode>,
 }
 
 impl HiderConfig {
@@ -56,9 +61,15 @@ impl HiderConfig {
         self
     }
 
-    /// Sets [`Self::vector_output`].
-    pub fn with_vector_output(mut self, vector_output: bool) -> Self {
-        self.vector_output = vector_output;
+    /// Sets [`Self::shade`].
+    pub fn with_shade(mut self, shade: ShadeMode) -> Self {
+        self.shade = Some(shade);
+        self
+    }
+
+    /// Sets [`Self::ordered_polygons`].
+    pub fn with_ordered_polygons(mut self, ordered_polygons: bool) -> Self {
+        self.ordered_polygons = ordered_polygons;
         self
     }
 }

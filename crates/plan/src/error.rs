@@ -1,61 +1,76 @@
 //! The error type of the plan crate: a hider that is not registered, a
-//! knob that does not apply to the chosen hider, a model that cannot be
-//! loaded, and the scene crate's errors.
+//! knob that does not apply to the chosen hider, and the scene crate's
+//! errors.
+//!
+//! The errors are typed and speak of hiders and knobs, not of any front
+//! end's spelling: the `hider` command line names its flags (`--algo`,
+//! `--depth-format`), the Python package its keywords (`algo=`), each from
+//! the fields.
 
-use std::num::ParseIntError;
+/// A cross-cutting knob of [`HiderConfig`](crate::HiderConfig) that only
+/// some hiders take.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Knob {
+    /// [`HiderConfig::depth_format`](crate::HiderConfig::depth_format).
+    DepthFormat,
+    /// [`HiderConfig::depth_source`](crate::HiderConfig::depth_source).
+    DepthSource,
+    /// [`HiderConfig::ordered_polygons`](crate::HiderConfig::ordered_polygons).
+    OrderedPolygons,
+}
+
+impl Knob {
+    /// The knob in words (`"depth format"`).
+    pub fn describe(self) -> &'static str {
+        match self {
+            Knob::DepthFormat => "depth format",
+            Knob::DepthSource => "depth source",
+            Knob::OrderedPolygons => "ordered polygons",
+        }
+    }
+
+    /// Why only some hiders take it, for `hider` (a name or `auto`).
+    pub fn reason(self, hider: &str) -> String {
+        match self {
+            Knob::DepthFormat => format!("{hider} has a fixed depth format"),
+            Knob::DepthSource => format!("{hider} compares window depth"),
+            Knob::OrderedPolygons => {
+                "the ordered polygons come from a painter's depth order".into()
+            }
+        }
+    }
+}
+
+impl std::fmt::Display for Knob {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.describe())
+    }
+}
 
 /// Everything that can go wrong choosing, building or feeding a hider.
-///
-/// The messages name the command-line flag (`--algo`, `--depth-format`,
-/// `--svg`...) or the model at fault, so the `hider` tool prints them as
-/// they are.
 #[derive(Debug, thiserror::Error)]
 pub enum PlanError {
     /// No registered hider has this name.
-    #[error("unknown --algo '{name}' (one of: {known})")]
+    #[error("no hider named '{name}' (registered: {})", known.join(", "))]
     UnknownHider {
         /// The name asked for.
         name: String,
-        /// Every registered name, comma separated.
-        known: String,
+        /// Every registered name, in registry order.
+        known: Vec<&'static str>,
     },
     /// A [`HiderConfig`](crate::HiderConfig) knob was set for a hider that
-    /// does not have it.
-    #[error("{message}")]
+    /// does not take it.
+    #[error("the {knob} applies to {} only, not to {hider} ({})", takers.join(", "), knob.reason(hider))]
     KnobNotApplicable {
-        /// The hider asked for.
+        /// The hider asked for (a registry name, or `auto` for the
+        /// planner).
         hider: &'static str,
-        /// The knob, as its command-line flag (`--depth-source`).
-        knob: &'static str,
-        /// The whole sentence: which hiders the knob applies to.
-        message: String,
+        /// The knob.
+        knob: Knob,
+        /// The registry names of the hiders that take it, sorted.
+        takers: Vec<&'static str>,
     },
-    /// An OBJ model could not be loaded.
-    #[error("cannot load model {model}")]
-    Load {
-        /// The path given.
-        model: String,
-        /// Why.
-        #[source]
-        source: hider_scene::Error,
-    },
-    /// A number in a `gen:` spec does not parse.
-    #[error("gen:{spec}: bad {what} '{value}'")]
-    GeneratedNumber {
-        /// The spec after `gen:`.
-        spec: String,
-        /// What the number is (`segment count`, `seed`...).
-        what: &'static str,
-        /// The text given.
-        value: String,
-        /// Why it does not parse.
-        #[source]
-        source: ParseIntError,
-    },
-    /// A `gen:` spec names no generated scene or asks for too much.
-    #[error("{0}")]
-    Generated(String),
-    /// The scene crate's error (preparing, analysing, rendering).
+    /// The scene crate's error (loading, preparing, analysing, rendering).
     #[error(transparent)]
     Scene(#[from] hider_scene::Error),
 }

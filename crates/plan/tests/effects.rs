@@ -26,12 +26,11 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use hider_abuffer::{ABufferOptions, SamplePattern, SsaaOptions};
-use hider_plan::stages::prepare_surface;
-use hider_plan::{HiderConfig, RenderOptions, Shader, Stages, registry};
+use hider_plan::{HiderConfig, RenderOptions, registry};
 use hider_scene::geom::Camera;
 use hider_scene::geom::fixed::pixel_center;
 use hider_scene::geom::triangle_covers;
-use hider_scene::shade::{prim_color, to_srgb8};
+use hider_scene::shade::{Prims, ScenePrims, Shader, Stages, TextureSampler, prim_color, to_srgb8};
 use hider_scene::{
     Frame, Light, Material, PrepareOptions, Scene, ScreenScene, ShadeMode, View, load_obj, prepare,
 };
@@ -121,12 +120,9 @@ fn screen(scene: &Scene) -> ScreenScene {
     prepare(scene, &view, &PrepareOptions::default()).unwrap()
 }
 
-/// [`screen`] with its textures loaded, for the reference.
+/// [`screen`], for the reference (textures decode on first use).
 fn textured_screen(scene: &Scene) -> ScreenScene {
-    let mut s = screen(scene);
-    let load = s.load_textures(Default::default());
-    assert!(load.failures.is_empty(), "{:?}", load.failures);
-    s
+    screen(scene)
 }
 
 /// Where a surface's texture is looked up for a sample.
@@ -178,6 +174,7 @@ fn reference(screen: &ScreenScene, samples: &[(i32, i32)], rate: Rate) -> Vec<[u
     let (w, h) = (screen.viewport.width, screen.viewport.height);
     let mut out = Vec::with_capacity((w * h) as usize);
     let mut hits: Vec<(f64, u32)> = Vec::new();
+    let sampler = TextureSampler::new(screen, Default::default());
     for j in 0..h {
         for i in 0..w {
             let mut sum = [0.0f64; 3];
@@ -201,8 +198,9 @@ fn reference(screen: &ScreenScene, samples: &[(i32, i32)], rate: Rate) -> Vec<[u
                     for &(_, prim) in &hits {
                         let (rgb, alpha) = prim_color(screen, prim, ShadeMode::Lambert);
                         let rgb = match rate {
-                            Rate::PerSample => screen.surface_rgb(prim, rgb, x, y),
+                            Rate::PerSample => screen.surface_rgb(&sampler, prim, rgb, x, y),
                             Rate::PerPixel => screen.surface_rgb(
+                                &sampler,
                                 prim,
                                 rgb,
                                 f64::from(i) + 0.5,
@@ -257,19 +255,31 @@ fn check(effect: &str, hider: &str, got: &[[u8; 4]], expected: &[[u8; 4]]) {
     );
 }
 
-/// Renders `scene` with `hider` as `hider render` does: the colour stages
-/// the scene calls for prepared for colour-resolving hiders, or run as the
-/// shading pass over the ids.
+/// Renders `scene` with `hider` as `hider render` does: one call of the
+/// hider's own pipeline (`render_scene`), then, unless the hider resolved
+/// colour itself, the colour pass over the ids with the stages the scene
+/// calls for, reading the primitives from the world-space scene.
 fn render(hider: &mut dyn hider_scene::DynHider, scene: &Scene, stages: &Stages) -> Vec<[u8; 4]> {
-    let mut screen = screen(scene);
-    if hider.resolves_color() {
-        let failures = prepare_surface(&mut screen, stages);
-        assert!(failures.is_empty(), "{failures:?}");
-    }
+    let view = View::for_scene(scene, SIZE, SIZE).unwrap();
+    let mut screen = ScreenScene::empty(&view);
     let mut frame = Frame::new(SIZE, SIZE).unwrap();
-    hider.render(&screen, &mut frame).unwrap();
+    hider
+        .render_scene(
+            scene,
+            &view,
+            &PrepareOptions::default(),
+            &mut screen,
+            &mut frame,
+        )
+        .unwrap();
     if !hider.resolves_color() {
-        Shader::default().shade(&screen, &mut frame, stages);
+        let prims = ScenePrims::new(scene, &view).unwrap();
+        let trace = Shader::default().shade(Prims::Scene(&prims), &mut frame, stages);
+        assert!(
+            trace.texture_failures.is_empty(),
+            "{:?}",
+            trace.texture_failures
+        );
     }
     frame.color
 }

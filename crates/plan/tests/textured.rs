@@ -1,5 +1,5 @@
 //! The bundled textured asset (`assets/checker_plane.*`, `assets/checker.png`)
-//! stays what `hider_plan::texture` generates (`HIDER_BLESS=1` rewrites
+//! stays what `hider_scene::shade::texture` generates (`HIDER_BLESS=1` rewrites
 //! it), renders with correct perspective, and without its texture skips
 //! the texture stage.
 
@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 
 use glam::DVec3;
 use hider_oracle::RayCastOracle;
-use hider_plan::stages::Mapping;
-use hider_plan::texture::{self, Filter};
-use hider_plan::{RenderOptions, Shader, ShaderOptions, Stages, analyze};
+use hider_plan::{RenderOptions, analyze};
 use hider_scene::geom::Camera;
+use hider_scene::shade::texture::{self, Filter};
+use hider_scene::shade::{Mapping, Prims, Shader, ShaderOptions, Stages};
 use hider_scene::{Frame, NO_ID, PrepareOptions, ScreenScene, View, load_obj, prepare};
 
 fn assets() -> PathBuf {
@@ -133,25 +133,26 @@ fn grazing_checkerboard_keeps_straight_lines_straight() {
     // below sees the texture alone.
     let stages = Stages {
         lighting: false,
-        ..Stages::for_effects(&effects)
+        ..effects.stages()
     };
     let view = options.view(&scene).unwrap();
     let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
     let mut frame = ids(&screen);
-    let render = |frame: &mut Frame, mapping: Mapping| {
+    // The texture decodes on first use, once: the second pass finds it.
+    let render = |frame: &mut Frame, mapping: Mapping, decodes: u64| {
         let mut shader = Shader::new(
             ShaderOptions::default()
                 .with_filter(Filter::Nearest)
                 .with_mapping(mapping),
         );
-        let trace = shader.shade(&screen, frame, &stages);
+        let trace = shader.shade(Prims::Screen(&screen), frame, &stages);
         assert_eq!(trace.ran, vec!["texture"]);
-        assert_eq!(trace.textures_loaded, 1);
+        assert_eq!(trace.textures_loaded, decodes);
         assert_eq!(trace.texture_samples, trace.pixels);
         worst_line_residual(&transitions(frame))
     };
     let rows = {
-        render(&mut frame, Mapping::PerspectiveCorrect);
+        render(&mut frame, Mapping::PerspectiveCorrect, 1);
         transitions(&frame)
     };
     assert!(rows.len() > 60, "only {} rows cross all lines", rows.len());
@@ -163,7 +164,7 @@ fn grazing_checkerboard_keeps_straight_lines_straight() {
     );
     // The same test catches screen-space (affine) interpolation: the lines
     // kink where the two triangles meet.
-    let affine = render(&mut frame, Mapping::Affine);
+    let affine = render(&mut frame, Mapping::Affine, 0);
     eprintln!(
         "checker lines over {} rows: worst residual {correct:.2} px perspective-correct, \
          {affine:.2} px affine",
@@ -187,12 +188,12 @@ fn without_its_texture_the_texture_stage_is_skipped() {
     }
     let without = analyze(&scene, &options).unwrap();
     assert!(!without.textures.present, "{}", without.textures.detail);
-    let stages = Stages::for_effects(&without);
+    let stages = without.stages();
     assert!(!stages.texture);
     let view = View::for_scene(&scene, 64, 64).unwrap();
     let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
     let mut frame = ids(&screen);
-    let trace = Shader::default().shade(&screen, &mut frame, &stages);
+    let trace = Shader::default().shade(Prims::Screen(&screen), &mut frame, &stages);
     assert_eq!(trace.ran, vec!["lighting"]);
     assert_eq!((trace.texture_samples, trace.textures_loaded), (0, 0));
     assert!(trace.pixels > 0);

@@ -1,32 +1,82 @@
-//! Rust errors as Python exceptions, with the command line's one-line
-//! messages.
+//! Rust errors as Python exceptions, chosen by the errors' types (never by
+//! their text) and worded with the Python API's keywords.
 
-use hider_plan::{PlanError, error_line};
+use hider_plan::{Knob, PlanError, error_line};
 use pyo3::PyErr;
 use pyo3::exceptions::{PyMemoryError, PyValueError};
 
-/// Whether a scene error is a memory budget running out (a hider's
-/// `max_bytes`), which Python callers expect as `MemoryError`; the other
-/// limits (image size, thread count) are bad values.
-fn is_memory_budget(error: &hider_scene::Error) -> bool {
-    matches!(error, hider_scene::Error::Limit { what, .. }
-        if what.contains("bytes") || what.contains("memory"))
-}
-
-/// A scene crate error as a Python exception.
+/// A scene crate error as a Python exception: a memory budget that ran out
+/// ([`hider_scene::Error::Budget`], a hider's `max_bytes`) is a
+/// `MemoryError`; every other error (a bad value, a size over a limit, a
+/// camera that cannot be used) is a `ValueError`.
 pub fn scene_error(error: hider_scene::Error) -> PyErr {
     let line = error_line(&error);
-    if is_memory_budget(&error) {
-        PyMemoryError::new_err(line)
-    } else {
-        PyValueError::new_err(line)
+    match error {
+        hider_scene::Error::Budget { .. } => PyMemoryError::new_err(line),
+        _ => PyValueError::new_err(line),
     }
 }
 
-/// A plan crate error as a Python exception.
+/// The Python keyword that sets a knob.
+fn knob_keyword(knob: Knob) -> &'static str {
+    match knob {
+        Knob::DepthFormat => "depth format",
+        Knob::DepthSource => "depth source",
+        Knob::OrderedPolygons => "ordered polygons",
+    }
+}
+
+/// A plan crate error as a Python exception, in the words of the Python
+/// API (`algo=`).
 pub fn plan_error(error: PlanError) -> PyErr {
     match error {
         PlanError::Scene(e) => scene_error(e),
-        other => PyValueError::new_err(error_line(&other)),
+        PlanError::UnknownHider { name, known } => PyValueError::new_err(format!(
+            "unknown algo '{name}' (one of: auto, {})",
+            known.join(", ")
+        )),
+        PlanError::KnobNotApplicable {
+            hider,
+            knob,
+            takers,
+        } => PyValueError::new_err(format!(
+            "the {} applies to algo {} only, not to '{hider}'",
+            knob_keyword(knob),
+            takers.join(", ")
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Errors map by type: a memory budget is a `MemoryError` whatever its
+    /// wording, a file size over a limit is not (its message says "bytes").
+    #[test]
+    fn exceptions_follow_the_error_types() {
+        pyo3::Python::initialize();
+        pyo3::Python::attach(|py| {
+            let budget = scene_error(hider_scene::Error::Budget {
+                what: "scanline table",
+                value: 2,
+                limit: 1,
+            });
+            assert!(budget.is_instance_of::<PyMemoryError>(py));
+            let limit = scene_error(hider_scene::Error::Limit {
+                what: "OBJ file size in bytes",
+                value: 2,
+                limit: 1,
+            });
+            assert!(limit.is_instance_of::<PyValueError>(py));
+            let unknown = plan_error(hider_plan::registry::find("nope").unwrap_err());
+            assert!(unknown.is_instance_of::<PyValueError>(py));
+            let text = unknown.value(py).to_string();
+            assert!(
+                text.starts_with("unknown algo 'nope' (one of: auto, zbuffer"),
+                "{text}"
+            );
+            assert!(!text.contains("--"), "{text}");
+        });
     }
 }

@@ -141,7 +141,7 @@ def test_every_registered_hider_renders_by_name():
     ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"height": 20000}, ValueError,
      "image height 20000 is over the limit of 16384"),
     ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"algo": "nope"}, ValueError,
-     "unknown --algo 'nope'"),
+     "unknown algo 'nope'"),
     ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"eye": (0.5, 0.5, 0)}, ValueError,
      "invalid camera"),
     ([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]], {"threads": 0}, ValueError,

@@ -161,7 +161,7 @@ impl EdgeTable {
             });
         }
         if need > budget {
-            return Err(Error::Limit {
+            return Err(Error::Budget {
                 what: "scanline table bytes",
                 value: need,
                 limit: budget,

@@ -30,7 +30,7 @@ pub struct ScanlineOptions {
     /// Budget for the working tables (polygon and edge tables, bucket
     /// indices, active lists, the row buffer), in bytes. Checked before
     /// anything is allocated; a scene that would need more is refused with
-    /// [`hider_scene::Error::Limit`]. Default 1 GiB.
+    /// [`hider_scene::Error::Budget`]. Default 1 GiB.
     pub max_bytes: u64,
     /// Record every run of pixels and how it was resolved
     /// ([`crate::Scanline::spans`]), for pictures and debugging. Off by

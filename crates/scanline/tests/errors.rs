@@ -22,7 +22,7 @@ fn budget_is_checked_before_allocating() {
     let mut frame = Frame::new(32, 32).unwrap();
     let mut hider = Scanline::new(ScanlineOptions::default().with_max_bytes(1000));
     let err = hider.render(&sphere(), &mut frame).unwrap_err();
-    assert!(matches!(err, Error::Limit { limit: 1000, .. }), "{err}");
+    assert!(matches!(err, Error::Budget { limit: 1000, .. }), "{err}");
     assert_eq!(hider.bytes(), 0, "nothing allocated");
 }
 

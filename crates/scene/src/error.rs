@@ -32,6 +32,10 @@ pub enum Error {
     /// index out of range, ...).
     #[error("invalid scene: {0}")]
     InvalidScene(String),
+    /// A generated scene spec (`gen:NAME[:ARGS]`) that names no generated
+    /// scene, does not parse, or asks for too much; the message quotes it.
+    #[error("{0}")]
+    Generated(String),
     /// A camera or view that cannot be used.
     #[error("invalid camera: {0}")]
     Camera(String),
@@ -44,6 +48,18 @@ pub enum Error {
         /// The requested value.
         value: u64,
         /// The limit.
+        limit: u64,
+    },
+    /// A memory budget ran out (a hider's `max_bytes`, or the working
+    /// memory a hider needs is over its documented bound); checked before
+    /// allocating. Python raises it as `MemoryError`.
+    #[error("{what} {value} is over the limit of {limit}")]
+    Budget {
+        /// Which memory.
+        what: &'static str,
+        /// The bytes needed.
+        value: u64,
+        /// The budget.
         limit: u64,
     },
     /// A requested value is out of its valid range.

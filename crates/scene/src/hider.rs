@@ -246,15 +246,24 @@ pub trait Hider {
         false
     }
 
-    /// The vector output of the last frame, for hiders that compute visible
-    /// polygons (the painters); `None` for the others.
-    fn vector_output(&self) -> Option<&dyn VectorOutput> {
+    /// Whether the hider composites translucent surfaces (every surface in
+    /// a sample, in depth order); the others keep one surface per sample
+    /// and draw translucent ones opaque.
+    fn composites_transparency(&self) -> bool {
+        false
+    }
+
+    /// The depth-ordered, split polygons of the last frame, for hiders that
+    /// compute them (the painters); `None` for the others. (The exact
+    /// visible regions and hidden lines are `hider-vector`'s, from any
+    /// prepared scene.)
+    fn ordered_polygons(&self) -> Option<&dyn OrderedPolygons> {
         None
     }
 }
 
-/// Vector output of a hider's last frame.
-pub trait VectorOutput {
+/// The depth-ordered polygons of a painter's last frame.
+pub trait OrderedPolygons {
     /// Writes the polygons of the last frame rendered from `scene` as SVG,
     /// coloured by `mode`, atomically.
     fn write_svg(&self, scene: &ScreenScene, path: &Path, mode: ShadeMode) -> Result<()>;
@@ -279,8 +288,10 @@ pub trait DynHider {
     ) -> Result<StatsTable>;
     /// See [`Hider::resolves_color`].
     fn resolves_color(&self) -> bool;
-    /// See [`Hider::vector_output`].
-    fn vector_output(&self) -> Option<&dyn VectorOutput>;
+    /// See [`Hider::composites_transparency`].
+    fn composites_transparency(&self) -> bool;
+    /// See [`Hider::ordered_polygons`].
+    fn ordered_polygons(&self) -> Option<&dyn OrderedPolygons>;
 }
 
 impl<H: Hider> DynHider for H {
@@ -307,8 +318,12 @@ impl<H: Hider> DynHider for H {
         Hider::resolves_color(self)
     }
 
-    fn vector_output(&self) -> Option<&dyn VectorOutput> {
-        Hider::vector_output(self)
+    fn composites_transparency(&self) -> bool {
+        Hider::composites_transparency(self)
+    }
+
+    fn ordered_polygons(&self) -> Option<&dyn OrderedPolygons> {
+        Hider::ordered_polygons(self)
     }
 }
 

@@ -7,10 +7,12 @@
 //!   [`ScreenScene`] of snapped, set-up [`ScreenTri`]s — no hider re-projects;
 //! - the [`Frame`] buffers with PNG output and the GL reference id/depth
 //!   dumps, written atomically;
-//! - the [`Hider`] trait (options, typed stats, one `new`, one `render`),
-//!   its object-safe twin [`DynHider`], shading from ids ([`shade`]) and
-//!   the textured surface colour that colour-resolving hiders composite
-//!   ([`surface`], [`texture`]).
+//! - the [`Hider`] trait (options, typed stats, one `new`, one `render`)
+//!   and its object-safe twin [`DynHider`];
+//! - all appearance in [`shade`]: materials' colours, lighting, textures
+//!   (decoded on first use), the effect stages and the colour pass over an
+//!   id buffer;
+//! - models by name ([`load`]): an OBJ path or a generated `gen:` scene.
 //!
 //! Conventions (see `docs/conventions.md`): right-handed world, camera
 //! looking down -Z, GL clip space; window origin top-left with y down;
@@ -43,22 +45,23 @@ pub mod atomic;
 pub mod error;
 pub mod frame;
 pub mod hider;
+pub mod load;
 pub mod model;
 pub mod obj;
 pub mod obj_write;
 pub mod prepare;
 pub mod procedural;
 pub mod shade;
-pub mod surface;
-pub mod texture;
 pub mod timing;
 pub mod view;
 
 pub use error::{Error, Result};
 pub use frame::{Frame, NO_ID};
 pub use hider::{
-    Counter, DynHider, Hider, HiderStats, StatsTable, VectorOutput, check_frame, check_frame_size,
+    Counter, DynHider, Hider, HiderStats, OrderedPolygons, StatsTable, check_frame,
+    check_frame_size,
 };
+pub use load::{MAX_SOUP_TRIANGLES, MAX_SPHERE_SEGMENTS, generated, load_model};
 pub use model::{Light, Material, Mesh, Scene};
 pub use obj::{load_obj, load_obj_with};
 pub use obj_write::save_obj;
@@ -66,9 +69,10 @@ pub use prepare::{
     PrepareOptions, PrepareStats, PrimInfo, ScreenScene, ScreenTri, TransformPrecision, prepare,
     prepare_into,
 };
-pub use shade::{ShadeMode, shade_frame};
-pub use surface::{Mapping, SurfaceTextures, TextureLoad, TextureOptions};
-pub use texture::{Filter, Texture};
+pub use shade::{
+    Filter, Mapping, ShadeMode, Shader, Stages, Texture, TextureOptions, TextureRef,
+    TextureSampler, shade_frame,
+};
 pub use view::{View, fit_camera};
 
 /// The geometry crate this one builds on.

@@ -2,9 +2,9 @@
 
 use glam::{DVec3, Vec2, Vec3};
 use hider_geom::Camera;
-use std::path::PathBuf;
 
 use crate::error::{Error, Result};
+use crate::shade::TextureRef;
 
 /// A surface material (the subset of MTL the hiders use).
 #[derive(Clone, Debug, PartialEq)]
@@ -16,8 +16,8 @@ pub struct Material {
     /// Opacity in [0, 1]: MTL `d`, or `1 - Tr`. 1 is opaque.
     pub opacity: f32,
     /// Diffuse texture `map_Kd`, resolved against the MTL file's folder
-    /// (Windows separators turned into `/`).
-    pub diffuse_texture: Option<PathBuf>,
+    /// (Windows separators turned into `/`), decoded on first use.
+    pub diffuse_texture: Option<TextureRef>,
 }
 
 impl Default for Material {
@@ -105,6 +105,17 @@ impl Scene {
             .flat_map(|(m, mesh)| (0..mesh.indices.len()).map(move |t| (m, t)))
             .enumerate()
             .map(|(id, (m, t))| (id as u32, m, t))
+    }
+
+    /// Whether a texture can show: a material names one (`map_Kd`) and a
+    /// mesh that uses it has texture coordinates.
+    pub fn is_textured(&self) -> bool {
+        self.meshes.iter().any(|mesh| {
+            !mesh.uvs.is_empty()
+                && self
+                    .mesh_material(mesh)
+                    .is_some_and(|m| m.diffuse_texture.is_some())
+        })
     }
 
     /// The material `mesh` names, `None` for the default material (the

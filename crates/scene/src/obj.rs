@@ -133,6 +133,13 @@ pub fn load_obj_bytes(
             .collect(),
         ..Scene::default()
     };
+    // Materials naming one file share one (lazy) decode.
+    crate::shade::TextureRef::share(
+        scene
+            .materials
+            .iter_mut()
+            .filter_map(|m| m.diffuse_texture.as_mut()),
+    );
     for model in models {
         let mesh = mesh_from_tobj(model, scene.materials.len());
         scene.meshes.push(mesh);
@@ -210,12 +217,12 @@ fn mesh_from_tobj(model: tobj::Model, material_count: usize) -> Mesh {
 fn content_warnings(scene: &Scene, warnings: &mut Vec<String>) {
     for m in &scene.materials {
         if let Some(t) = &m.diffuse_texture
-            && !t.is_file()
+            && !t.path().is_file()
         {
             warnings.push(format!(
                 "material '{}': texture {} not found; the material's diffuse colour is used",
                 m.name,
-                t.display()
+                t.path().display()
             ));
         }
     }

@@ -126,7 +126,7 @@ fn main() -> Result<(), hider_scene::Error> {
         painter.render(&s, &mut Frame::new(400, 400)?)?;
         let path = dir.join("vector-spider-painter.svg");
         painter
-            .vector_output()
+            .ordered_polygons()
             .expect("the painter writes SVG")
             .write_svg(&s, &path, ShadeMode::Lambert)?;
         println!("spider painter: {}", path.display());

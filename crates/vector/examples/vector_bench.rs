@@ -93,7 +93,7 @@ fn painter_svg(s: &ScreenScene) -> Result<String, hider_scene::Error> {
     let path =
         std::env::temp_dir().join(format!("vector-bench-painter-{}.svg", std::process::id()));
     painter
-        .vector_output()
+        .ordered_polygons()
         .expect("the painter writes SVG")
         .write_svg(s, &path, ShadeMode::Lambert)?;
     let text = std::fs::read_to_string(&path).map_err(|source| hider_scene::Error::Io {

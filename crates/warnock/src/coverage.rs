@@ -19,7 +19,7 @@
 //!   depth: its nearest sample depth.
 
 use hider_scene::shade::{prim_color, to_srgb8};
-use hider_scene::{Frame, NO_ID, ScreenScene, ShadeMode};
+use hider_scene::{Frame, NO_ID, ScreenScene, ShadeMode, TextureOptions, TextureSampler};
 
 use crate::classify::{Setups, Tri};
 use crate::debug::LeafRegion;
@@ -32,6 +32,8 @@ use crate::subdivide::{Roots, Sink, Subdivider};
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ColorCache {
     colors: Vec<Option<[f32; 3]>>,
+    /// The frame's texture sampler, when a material names a texture.
+    sampler: Option<TextureSampler>,
 }
 
 impl ColorCache {
@@ -39,6 +41,8 @@ impl ColorCache {
     pub fn reset(&mut self, scene: &ScreenScene) {
         self.colors.clear();
         self.colors.resize(scene.prims.len(), None);
+        let textured = scene.materials.iter().any(|m| m.diffuse_texture.is_some());
+        self.sampler = textured.then(|| TextureSampler::new(scene, TextureOptions::default()));
     }
 
     fn get(&mut self, scene: &ScreenScene, shade: ShadeMode, prim: u32) -> [f32; 3] {
@@ -49,12 +53,17 @@ impl ColorCache {
     }
 
     /// The colour of `prim` in pixel `(u, v)`: its flat colour, textured
-    /// at the pixel centre when the scene's textures are loaded (a
-    /// primitive is shaded once per pixel, as multisample rasterisers and
-    /// the A-buffer shade).
+    /// at the pixel centre under Lambert shading when its material has a
+    /// texture (a primitive is shaded once per pixel, as multisample
+    /// rasterisers and the A-buffer shade).
     fn at(&mut self, scene: &ScreenScene, shade: ShadeMode, prim: u32, u: u32, v: u32) -> [f32; 3] {
         let flat = self.get(scene, shade, prim);
-        scene.surface_rgb(prim, flat, f64::from(u) + 0.5, f64::from(v) + 0.5)
+        match &self.sampler {
+            Some(sampler) if shade == ShadeMode::Lambert => {
+                scene.surface_rgb(sampler, prim, flat, f64::from(u) + 0.5, f64::from(v) + 0.5)
+            }
+            _ => flat,
+        }
     }
 
     pub fn bytes(&self) -> usize {

@@ -73,7 +73,7 @@ impl Warnock {
         check_frame(&self.name, scene, frame)?;
         let bytes = self.working_bytes(scene);
         if bytes > self.options.max_bytes {
-            return Err(Error::Limit {
+            return Err(Error::Budget {
                 what: "warnock worst-case working memory (bytes)",
                 value: bytes,
                 limit: self.options.max_bytes,

@@ -173,7 +173,7 @@ fn bad_input_is_a_typed_error_and_leaves_the_frame_alone() {
     }
     let tight = WarnockOptions::default().with_max_bytes(100);
     let err = Warnock::new(tight).render(&screen, &mut frame);
-    assert!(matches!(err, Err(Error::Limit { .. })), "{err:?}");
+    assert!(matches!(err, Err(Error::Budget { .. })), "{err:?}");
     assert_eq!(frame.ids[5], 7, "an error is reported before drawing");
 }
 

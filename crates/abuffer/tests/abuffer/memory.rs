@@ -16,7 +16,7 @@ fn pixel_table_over_budget_is_refused_before_allocating() {
     assert!(
         matches!(
             e,
-            Error::Limit {
+            Error::Budget {
                 value: 65_536,
                 limit: 1000,
                 ..
@@ -34,7 +34,7 @@ fn fragment_pool_over_budget_is_a_limit_error() {
     let mut f = Frame::new(64, 64).unwrap();
     let e = a.render(&s, &mut f).unwrap_err();
     assert!(
-        matches!(e, Error::Limit { limit, .. } if limit == budget),
+        matches!(e, Error::Budget { limit, .. } if limit == budget),
         "{e}"
     );
     // Within budget the same hider renders, and stays within it.

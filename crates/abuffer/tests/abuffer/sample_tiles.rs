@@ -265,19 +265,17 @@ fn tiles_switching_between_lists_and_samples_keep_no_stale_state() {
     }
 }
 
-/// A textured model (the bundled spider, its textures loaded): the sample
-/// buffer colours each primitive at the pixel centre as the lists do, so
-/// the frames are the same bit for bit.
+/// A textured model (the bundled spider, whose materials' textures decode
+/// on first use): the sample buffer colours each primitive at the pixel
+/// centre as the lists do, so the frames are the same bit for bit.
 #[test]
 fn textured_spider_resolves_from_samples_as_from_lists() {
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/spider/spider.obj");
     let scene = hider_scene::load_obj(path).expect("the bundled spider");
     for (w, h) in [(96, 96), (150, 90)] {
-        let mut s = screen(&scene, w, h);
-        let load = s.load_textures(Default::default());
-        assert!(load.failures.is_empty(), "{:?}", load.failures);
-        assert!(s.is_textured());
+        let s = screen(&scene, w, h);
+        assert!(scene.is_textured());
         let options = ABufferOptions::default().with_merge(MergePolicy::Off);
         let mut sampled = ABuffer::new(options);
         let mut listed = ABuffer::new(options.with_sample_tiles(false));
@@ -285,5 +283,10 @@ fn textured_spider_resolves_from_samples_as_from_lists() {
         let (b, _) = render(&mut listed, &s);
         assert!(sa.sample_tiles > 0, "{sa:?}");
         assert_eq!(a, b, "{w}x{h}");
+        for m in &scene.materials {
+            if let Some(t) = &m.diffuse_texture {
+                assert!(t.error().is_none(), "{:?}", t.error());
+            }
+        }
     }
 }

@@ -66,7 +66,7 @@ pub struct Effects {
     /// Anti-aliasing asked: needs multi-sample coverage.
     pub antialiasing: Evidence,
     /// Whether vector output is asked.
-    pub vector_output: bool,
+    pub ordered_polygons: bool,
     /// Interpenetrating triangle pairs in view.
     pub intersections: Evidence,
     /// Coplanar overlapping pairs in view (depth ties, any hider's answer
@@ -90,4 +90,18 @@ pub struct Effects {
     pub depth_ratio: f64,
     /// Time spent.
     pub times: AnalysisTimes,
+}
+
+impl Effects {
+    /// The effect stages these effects call for: the colour stages
+    /// (texture, lighting) the colour pass runs, and the hider's
+    /// (transparency, multisample) the planner picks a hider for.
+    pub fn stages(&self) -> hider_scene::Stages {
+        hider_scene::Stages {
+            texture: self.textures.present,
+            lighting: self.lighting.present,
+            transparency: self.transparency.present,
+            multisample: self.antialiasing.present,
+        }
+    }
 }

@@ -5,7 +5,7 @@ use hider_scene::{Scene, ScreenScene, View};
 
 use super::backface;
 use super::effects::Evidence;
-use crate::texture;
+use hider_scene::shade::texture;
 
 /// The primitives with at least one screen triangle: their ids in
 /// ascending order, and a membership flag per primitive id. Both are one
@@ -78,7 +78,7 @@ pub(crate) fn textures(screen: &ScreenScene, in_view: &InView, ex: usize) -> Evi
             continue;
         };
         let r = probe[k].get_or_insert_with(|| {
-            texture::probe(path).map_err(|e| {
+            texture::probe(path.path()).map_err(|e| {
                 let msg = e.to_string();
                 failures.push(msg.clone());
                 msg

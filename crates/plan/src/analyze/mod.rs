@@ -78,7 +78,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
     let mut fx = Effects {
         triangles: scene.triangle_count() as u64,
         on_screen: screen.tris.len() as u64,
-        vector_output: options.vector_output,
+        ordered_polygons: options.ordered_polygons,
         depth_ratio: depth_ratio(&view, &screen, &in_view),
         transparency: evidence::transparency(&screen, &in_view, ex),
         textures: evidence::textures(&screen, &in_view, ex),
@@ -90,7 +90,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
     fx.back_faces = evidence::back_faces(scene, &view, &screen, ex);
     fx.cull_back_faces_exact =
         !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
-    if options.pair_searches || options.vector_output {
+    if options.pair_searches || options.ordered_polygons {
         pair_searches(scene, &screen, &in_view, options, &mut fx);
     } else {
         let skipped = Evidence {

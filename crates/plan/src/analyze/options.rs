@@ -27,7 +27,7 @@ pub struct RenderOptions {
     /// Whether anti-aliased edges are asked for.
     pub antialiasing: bool,
     /// Whether vector output (an ordered polygon list, SVG) is asked for.
-    pub vector_output: bool,
+    pub ordered_polygons: bool,
     /// The front end's options.
     pub prepare: PrepareOptions,
     /// Most candidate pairs each pair search examines.
@@ -52,7 +52,7 @@ impl Default for RenderOptions {
             camera: None,
             shading: true,
             antialiasing: false,
-            vector_output: false,
+            ordered_polygons: false,
             prepare: PrepareOptions::default(),
             pair_budget: DEFAULT_PAIR_BUDGET,
             pair_searches: true,
@@ -82,9 +82,9 @@ impl RenderOptions {
         self.antialiasing = antialiasing;
         self
     }
-    /// Sets [`Self::vector_output`].
-    pub fn with_vector_output(mut self, vector_output: bool) -> Self {
-        self.vector_output = vector_output;
+    /// Sets [`Self::ordered_polygons`].
+    pub fn with_ordered_polygons(mut self, ordered_polygons: bool) -> Self {
+        self.ordered_polygons = ordered_polygons;
         self
     }
     /// Sets [`Self::prepare`].
@@ -138,7 +138,7 @@ impl RenderOptions {
             self.width,
             self.height
         );
-        if self.vector_output {
+        if self.ordered_polygons {
             s.push_str(" with vector output");
         }
         s

@@ -61,7 +61,7 @@ impl fmt::Display for Effects {
         writeln!(
             f,
             "  vector output      {}",
-            if self.vector_output {
+            if self.ordered_polygons {
                 "asked"
             } else {
                 "not asked"

@@ -20,17 +20,20 @@
 //! On top of the hider, back faces are culled in the front end when the
 //! analysis proved them hidden (closed, outward, uncut meshes and no
 //! transparency), and only the colour stages the scene needs run
-//! ([`Stages::for_effects`]).
+//! ([`Effects::stages`]).
 //!
-//! [`auto`] does both and hands back the scene the analysis prepared, with
-//! the plan's culling applied, so the render does not prepare it again.
+//! A plan is options, nothing else: the caller builds the hider
+//! ([`Plan::build`]) and renders through its
+//! [`render_scene`](hider_scene::DynHider::render_scene) with the front
+//! end's options the plan gives ([`Plan::prepare_options`]); the planner
+//! never edits a prepared scene.
 
 mod rules;
 
 #[cfg(test)]
 mod tests;
 
-use hider_scene::{DynHider, PrepareOptions, Scene, ScreenScene, View};
+use hider_scene::{DynHider, PrepareOptions, Scene, Stages, View};
 
 pub use rules::MAX_F32_DEPTH_RATIO;
 
@@ -38,7 +41,6 @@ use crate::analyze::{Effects, RenderOptions, analyze_prepared};
 use crate::config::HiderConfig;
 use crate::error::Result;
 use crate::registry::{self, Knobs};
-use crate::stages::Stages;
 
 /// What the planner chose.
 #[derive(Clone, Debug, PartialEq)]
@@ -99,10 +101,9 @@ pub struct Planned {
     pub plan: Plan,
     /// The view analysed.
     pub view: View,
-    /// The scene through the front end with the plan's options
-    /// ([`Plan::prepare_options`] of the analysis's `prepare`): what
-    /// `prepare` would give, without preparing a second time.
-    pub screen: ScreenScene,
+    /// The front end's options to render with: the analysis's `prepare`
+    /// with the plan's choices ([`Plan::prepare_options`]).
+    pub prepare: PrepareOptions,
     /// What the caller asked for, in words
     /// ([`RenderOptions::requested`]).
     pub requested: String,
@@ -122,40 +123,28 @@ impl Planned {
 ///
 /// ```
 /// use hider_plan::{HiderConfig, RenderOptions, auto};
-/// use hider_scene::{Frame, procedural};
+/// use hider_scene::{Frame, ScreenScene, procedural};
 ///
-/// let planned = auto(&procedural::cube(), &RenderOptions::default().with_size(32, 32))?;
+/// let scene = procedural::cube();
+/// let planned = auto(&scene, &RenderOptions::default().with_size(32, 32))?;
 /// assert_eq!(planned.plan.algo, "zbuffer-tiled");
 /// let mut hider = planned.plan.build(&HiderConfig::default())?;
+/// let mut screen = ScreenScene::empty(&planned.view);
 /// let mut frame = Frame::new(32, 32)?;
-/// hider.render(&planned.screen, &mut frame)?;
+/// hider.render_scene(&scene, &planned.view, &planned.prepare, &mut screen, &mut frame)?;
 /// assert!(frame.covered_count() > 0);
 /// # Ok::<(), hider_plan::PlanError>(())
 /// ```
 pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
     let analysis = analyze_prepared(scene, options)?;
     let plan = plan(&analysis.effects);
-    let mut screen = analysis.screen;
-    if plan.prepare_options(options.prepare).cull_back_faces {
-        cull_back_faces(&mut screen);
-    }
     Ok(Planned {
         effects: analysis.effects,
+        prepare: plan.prepare_options(options.prepare),
         plan,
         view: analysis.view,
-        screen,
         requested: options.requested(),
     })
-}
-
-/// Drops the back-facing triangles of a scene prepared without culling,
-/// counting them as the front end does: the result equals preparing with
-/// [`PrepareOptions::cull_back_faces`] on.
-fn cull_back_faces(screen: &mut ScreenScene) {
-    let before = screen.tris.len();
-    screen.tris.retain(|t| t.front_facing);
-    screen.stats.back_faces += (before - screen.tris.len()) as u64;
-    screen.stats.output = screen.tris.len() as u64;
 }
 
 /// Checks the knobs of `config` that `--algo auto` can honour: threads and
@@ -163,7 +152,7 @@ fn cull_back_faces(screen: &mut ScreenScene) {
 pub fn check_config(config: &HiderConfig) -> Result<()> {
     let auto = Knobs {
         threads: true,
-        vector_output: true,
+        ordered_polygons: true,
         ..Knobs::NONE
     };
     match registry::refusal("auto", auto, config) {
@@ -196,7 +185,7 @@ pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
     Plan {
         algo,
         cull_back_faces: effects.cull_back_faces_exact,
-        stages: Stages::for_effects(effects),
+        stages: effects.stages(),
         reason,
         notes: picker.notes,
     }

@@ -61,7 +61,7 @@ impl<'a> Picker<'a> {
     /// Vector output: a painter, splitting only when intersections or
     /// cycles call for it.
     pub(crate) fn vector(&mut self, effects: &Effects) -> Option<(&'static str, String)> {
-        if !effects.vector_output {
+        if !effects.ordered_polygons {
             return None;
         }
         let hard = effects.intersections.present || effects.cyclic_overlap.present;

@@ -2,11 +2,12 @@
 //! exact (equal to the oracle on non-tie pixels) on every hard case.
 
 use hider_oracle::DEFAULT_TIE_TOLERANCE;
-use hider_scene::{Frame, PrepareOptions, prepare, procedural};
+use hider_scene::{Frame, PrepareOptions, ScreenScene, prepare, procedural};
 use hider_testkit::{hard_cases, reference};
 
 use super::*;
 use crate::analyze::analyze;
+use crate::{Knob, PlanError};
 
 const ALL: &[&str] = &[
     "zbuffer-tiled",
@@ -90,8 +91,8 @@ fn transparency_and_antialiasing_pick_compositing_hiders_with_fallbacks() {
 }
 
 #[test]
-fn vector_output_splits_only_when_it_must() {
-    let vector = RenderOptions::default().with_vector_output(true);
+fn ordered_polygons_splits_only_when_it_must() {
+    let vector = RenderOptions::default().with_ordered_polygons(true);
     let cyclic = fx(&procedural::cyclic_triple(), vector);
     assert_eq!(plan_among(&cyclic, ALL).algo, "painter");
     let crossing = fx(&procedural::intersecting_pair(), vector);
@@ -125,35 +126,33 @@ fn far_geometry_moves_to_reversed_z() {
     );
 }
 
-/// Renders with the plan (its hider, the scene it prepared) and compares
-/// with the oracle on the unculled scene; the prepared scene is the one
-/// the plan's front-end options give.
+/// Renders with the plan (its hider through `render_scene`, with the
+/// plan's front-end options) and compares with the oracle on the unculled
+/// scene.
 fn check_exact(name: &str, scene: &Scene, options: RenderOptions) {
     let options = options.with_size(48, 48);
     let Planned {
         effects,
         plan,
         view,
-        screen,
+        prepare: planned,
         ..
     } = auto(scene, &options).unwrap();
     let full = prepare(scene, &view, &PrepareOptions::default()).unwrap();
     let reference = reference::ray_cast(&full);
-    let again = prepare(
-        scene,
-        &view,
-        &plan.prepare_options(PrepareOptions::default()),
-    )
-    .unwrap();
     assert_eq!(
-        screen, again,
-        "{name}: the planned scene is the prepared one"
+        planned,
+        plan.prepare_options(PrepareOptions::default()),
+        "{name}: the planned front end is the plan's"
     );
     let mut hider = plan
         .build(&HiderConfig::default())
         .expect("the plan names a registered hider");
     let mut frame = Frame::new(48, 48).unwrap();
-    hider.render(&screen, &mut frame).unwrap();
+    let mut screen = ScreenScene::empty(&view);
+    hider
+        .render_scene(scene, &view, &planned, &mut screen, &mut frame)
+        .unwrap();
     let agreement = reference.compare(&frame.ids, DEFAULT_TIE_TOLERANCE);
     assert!(
         agreement.is_exact(),
@@ -169,7 +168,7 @@ fn the_plan_is_exact_on_every_hard_case() {
         check_exact(
             name,
             &scene,
-            RenderOptions::default().with_vector_output(true),
+            RenderOptions::default().with_ordered_polygons(true),
         );
     }
 }
@@ -191,23 +190,30 @@ fn the_plan_is_exact_with_transparency_and_antialiasing() {
 }
 
 #[test]
-fn auto_refuses_depth_knobs_and_takes_threads_and_vector_output() {
+fn auto_refuses_depth_knobs_and_takes_threads_and_ordered_polygons() {
     use hider_zbuffer::{DepthFormat, DepthSource};
-    for config in [
-        HiderConfig::default().with_depth_format(DepthFormat::F64),
-        HiderConfig::default().with_depth_source(DepthSource::LinearViewZ),
+    for (config, refused) in [
+        (
+            HiderConfig::default().with_depth_format(DepthFormat::F64),
+            Knob::DepthFormat,
+        ),
+        (
+            HiderConfig::default().with_depth_source(DepthSource::LinearViewZ),
+            Knob::DepthSource,
+        ),
     ] {
-        assert_eq!(
-            check_config(&config).unwrap_err().to_string(),
-            "--depth-format and --depth-source apply to --algo zbuffer and zbuffer-tiled only"
+        let e = check_config(&config).unwrap_err();
+        assert!(
+            matches!(&e, PlanError::KnobNotApplicable { hider: "auto", knob, .. } if *knob == refused),
+            "{e:?}"
         );
     }
     let config = HiderConfig::default()
         .with_threads(2)
-        .with_vector_output(true);
+        .with_ordered_polygons(true);
     assert!(check_config(&config).is_ok());
     // Vector output asked: the plan is a painter, which takes the knob.
-    let vector = RenderOptions::default().with_vector_output(true);
+    let vector = RenderOptions::default().with_ordered_polygons(true);
     let planned = auto(&procedural::cyclic_triple(), &vector.with_size(32, 32)).unwrap();
     assert_eq!(planned.plan.algo, "painter");
     assert!(planned.plan.build(&config).is_ok());
@@ -231,7 +237,7 @@ fn the_one_line_says_what_was_asked_and_what_was_chosen() {
     );
     let both = auto(
         &scene,
-        &options.with_vector_output(true).with_antialiasing(true),
+        &options.with_ordered_polygons(true).with_antialiasing(true),
     )
     .unwrap();
     assert!(
@@ -241,7 +247,7 @@ fn the_one_line_says_what_was_asked_and_what_was_chosen() {
     );
     let line = auto(
         &scene,
-        &options.with_vector_output(true).with_shading(false),
+        &options.with_ordered_polygons(true).with_shading(false),
     )
     .unwrap()
     .summary();
@@ -267,13 +273,13 @@ fn the_pair_searches_decide_only_vector_plans() {
             (&scene, RenderOptions::default()),
             (&scene, RenderOptions::default().with_antialiasing(true)),
             (&glass, RenderOptions::default()),
-            (&scene, RenderOptions::default().with_vector_output(true)),
+            (&scene, RenderOptions::default().with_ordered_polygons(true)),
         ] {
             let options = options.with_size(48, 48);
             let full = auto(scene, &options).unwrap();
             let lean = auto(scene, &options.with_pair_searches(false)).unwrap();
             assert_eq!(full.plan, lean.plan, "{name}: {options:?}");
-            assert_eq!(full.screen, lean.screen, "{name}");
+            assert_eq!(full.prepare, lean.prepare, "{name}");
         }
     }
     let fx = analyze(

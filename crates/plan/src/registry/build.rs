@@ -1,13 +1,13 @@
 //! Building an entry's hider for a [`HiderConfig`]: the knobs the entry
 //! takes are applied; a knob set for an entry that does not take it is
-//! refused, naming the knob and the entries that take it.
+//! refused, naming the knob ([`Knob`]) and the entries that take it.
 
 use hider_scene::DynHider;
 
 use super::entry::{Entry, Knobs};
 use super::table::all;
 use crate::config::HiderConfig;
-use crate::error::{PlanError, Result};
+use crate::error::{Knob, PlanError, Result};
 
 impl Entry {
     /// A fresh instance with the entry's own options and the knobs of
@@ -29,70 +29,40 @@ pub(crate) fn refusal(
     knobs: Knobs,
     config: &HiderConfig,
 ) -> Option<PlanError> {
-    let refuse = |knob: &'static str, message: String| {
-        Some(PlanError::KnobNotApplicable {
-            hider,
-            knob,
-            message,
-        })
-    };
-    let (format, source) = (config.depth_format.is_some(), config.depth_source.is_some());
-    if (format || source) && !knobs.any_depth() {
-        let knob = if format {
-            "--depth-format"
-        } else {
-            "--depth-source"
-        };
-        return refuse(
-            knob,
-            format!(
-                "--depth-format and --depth-source apply to --algo {} only",
-                takers(Knobs::any_depth, "and")
-            ),
-        );
-    }
-    if format && !knobs.depth_format {
-        return refuse(
-            "--depth-format",
-            format!(
-                "--depth-format applies to --algo {} only ({hider} has a fixed depth format)",
-                takers(|k| k.depth_format, "and")
-            ),
-        );
-    }
-    if source && !knobs.depth_source {
-        return refuse(
-            "--depth-source",
-            format!(
-                "--depth-source applies to --algo {} only ({hider} compares window depth)",
-                takers(|k| k.depth_source, "and")
-            ),
-        );
-    }
-    if config.vector_output && !knobs.vector_output {
-        return refuse(
-            "--svg",
-            format!(
-                "--svg needs --algo {} (vector output comes from the depth order)",
-                takers(|k| k.vector_output, "or")
-            ),
-        );
-    }
-    None
+    let refused = [
+        (
+            Knob::DepthFormat,
+            config.depth_format.is_some(),
+            knobs.depth_format,
+        ),
+        (
+            Knob::DepthSource,
+            config.depth_source.is_some(),
+            knobs.depth_source,
+        ),
+        (
+            Knob::OrderedPolygons,
+            config.ordered_polygons,
+            knobs.ordered_polygons,
+        ),
+    ]
+    .into_iter()
+    .find(|&(_, set, taken)| set && !taken)?;
+    let knob = refused.0;
+    Some(PlanError::KnobNotApplicable {
+        hider,
+        knob,
+        takers: takers(knob),
+    })
 }
 
-/// The names of the entries taking a knob, in alphabetical order, joined
-/// as in a sentence: `a`, `a and b`, `a, b and c`.
-fn takers(takes: fn(&Knobs) -> bool, conjunction: &str) -> String {
-    let mut names: Vec<&str> = all()
+/// The names of the entries taking `knob`, sorted.
+pub fn takers(knob: Knob) -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = all()
         .into_iter()
-        .filter(|e| takes(&e.knobs))
+        .filter(|e| e.knobs.takes(knob))
         .map(|e| e.name)
         .collect();
     names.sort_unstable();
-    match names.split_last() {
-        None => "none".to_owned(),
-        Some((last, [])) => (*last).to_owned(),
-        Some((last, rest)) => format!("{} {conjunction} {last}", rest.join(", ")),
-    }
+    names
 }

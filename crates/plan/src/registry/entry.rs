@@ -4,6 +4,7 @@
 use hider_scene::DynHider;
 
 use crate::config::HiderConfig;
+use crate::error::Knob;
 
 /// What kind of answer a hider gives, which decides how it is checked.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,8 +34,8 @@ pub struct Knobs {
     pub depth_source: bool,
     /// [`HiderConfig::threads`] (never refused: the others ignore it).
     pub threads: bool,
-    /// [`HiderConfig::vector_output`].
-    pub vector_output: bool,
+    /// [`HiderConfig::ordered_polygons`].
+    pub ordered_polygons: bool,
 }
 
 impl Knobs {
@@ -43,12 +44,21 @@ impl Knobs {
         depth_format: false,
         depth_source: false,
         threads: false,
-        vector_output: false,
+        ordered_polygons: false,
     };
 
     /// Whether a depth knob (format or source) is taken.
     pub fn any_depth(&self) -> bool {
         self.depth_format || self.depth_source
+    }
+
+    /// Whether `knob` is taken.
+    pub fn takes(&self, knob: Knob) -> bool {
+        match knob {
+            Knob::DepthFormat => self.depth_format,
+            Knob::DepthSource => self.depth_source,
+            Knob::OrderedPolygons => self.ordered_polygons,
+        }
     }
 }
 

@@ -5,8 +5,10 @@
 //! Each [`Entry`] builds its hider from the algorithm crate's typed options
 //! ([`Entry::make`]); [`Entry::build`] also applies the cross-cutting knobs
 //! of a [`HiderConfig`](crate::HiderConfig) the entry takes (depth format,
-//! depth source, threads, vector output) and refuses the others with a
-//! message naming the knob, so a caller never matches on hider names.
+//! depth source, threads, ordered polygons, shade mode) and refuses the
+//! others with a typed error naming the knob
+//! ([`PlanError::KnobNotApplicable`]), so a caller never matches on hider
+//! names.
 //!
 //! ```
 //! use hider_plan::registry::{self, Kind};
@@ -14,7 +16,10 @@
 //! let entry = registry::by_name("warnock").unwrap();
 //! assert_eq!(entry.kind, Kind::ExactPixelCentre);
 //! assert_eq!(entry.make().name(), "warnock");
-//! assert!(registry::find("nonesuch").unwrap_err().to_string().contains("zbuffer"));
+//! assert!(matches!(
+//!     registry::find("nonesuch"),
+//!     Err(hider_plan::PlanError::UnknownHider { .. })
+//! ));
 //! ```
 
 mod build;
@@ -27,6 +32,7 @@ mod tests;
 use hider_scene::DynHider;
 
 pub(crate) use build::refusal;
+pub use build::takers;
 pub use entry::{Entry, Kind, Knobs};
 pub use table::all;
 
@@ -41,7 +47,7 @@ pub fn by_name(name: &str) -> Option<Entry> {
 pub fn find(name: &str) -> Result<Entry> {
     by_name(name).ok_or_else(|| PlanError::UnknownHider {
         name: name.to_owned(),
-        known: names().join(", "),
+        known: names(),
     })
 }
 

@@ -52,6 +52,7 @@ fn configured_tiled(config: &HiderConfig) -> Box<dyn DynHider> {
 /// names a count (every core otherwise, its default).
 fn abuffer(options: ABufferOptions, config: &HiderConfig) -> Box<dyn DynHider> {
     let options = config.threads.map_or(options, |t| options.with_threads(t));
+    let options = config.shade.map_or(options, |s| options.with_shade(s));
     Box::new(ABuffer::new(options))
 }
 
@@ -61,11 +62,15 @@ const THREADS_KNOB: Knobs = Knobs {
     ..Knobs::NONE
 };
 
+/// The supersampling options of `pattern` with the config's shade mode.
+fn ssaa_options(pattern: SamplePattern, config: &HiderConfig) -> SsaaOptions {
+    let options = SsaaOptions::default().with_pattern(pattern);
+    config.shade.map_or(options, |s| options.with_shade(s))
+}
+
 /// A supersampled z-buffer with this sample pattern.
-fn ssaa(pattern: SamplePattern) -> Box<dyn DynHider> {
-    Box::new(SupersampledZBuffer::new(
-        SsaaOptions::default().with_pattern(pattern),
-    ))
+fn ssaa(pattern: SamplePattern, config: &HiderConfig) -> Box<dyn DynHider> {
+    Box::new(SupersampledZBuffer::new(ssaa_options(pattern, config)))
 }
 
 /// Knobs of the `zbuffer` entry.
@@ -84,7 +89,7 @@ const TILED_KNOBS: Knobs = Knobs {
 
 /// Knobs of the painters.
 const PAINTER_KNOBS: Knobs = Knobs {
-    vector_output: true,
+    ordered_polygons: true,
     ..Knobs::NONE
 };
 
@@ -199,10 +204,10 @@ fn multisample() -> [Entry; 8] {
             "warnock-4x4",
             "Warnock subdividing to 4x4 samples per pixel (anti-aliased)",
             MultiSample,
-            |_| {
-                Box::new(Warnock::new(
-                    WarnockOptions::default().with_samples_per_side(4),
-                ))
+            |c| {
+                let options = WarnockOptions::default().with_samples_per_side(4);
+                let options = c.shade.map_or(options, |s| options.with_shade(s));
+                Box::new(Warnock::new(options))
             },
         ),
         Entry {
@@ -227,31 +232,36 @@ fn multisample() -> [Entry; 8] {
             "ssaa-4",
             "supersampled z-buffer, 4 samples (subset of the A-buffer mask)",
             MultiSample,
-            |_| ssaa(SamplePattern::Grid4),
+            |c| ssaa(SamplePattern::Grid4, c),
         ),
         plain(
             "ssaa-8",
             "supersampled z-buffer, 8 samples",
             MultiSample,
-            |_| ssaa(SamplePattern::Grid8),
+            |c| ssaa(SamplePattern::Grid8, c),
         ),
         plain(
             "ssaa-16",
             "supersampled z-buffer, 16 samples",
             MultiSample,
-            |_| ssaa(SamplePattern::Grid16),
+            |c| ssaa(SamplePattern::Grid16, c),
         ),
         plain(
             "ssaa-32",
             "supersampled z-buffer, 32 samples (the A-buffer's mask)",
             MultiSample,
-            |_| ssaa(SamplePattern::Grid32),
+            |c| ssaa(SamplePattern::Grid32, c),
         ),
         plain(
             "ssaa-sorted",
             "32-sample z-buffer, opaque first then transparent sorted back to front (order-dependent)",
             MultiSample,
-            |_| Box::new(SortedTransparencyZBuffer::new(SsaaOptions::default())),
+            |c| {
+                Box::new(SortedTransparencyZBuffer::new(ssaa_options(
+                    SsaaOptions::default().pattern,
+                    c,
+                )))
+            },
         ),
     ]
 }

@@ -4,6 +4,7 @@ use hider_zbuffer::{DepthFormat, DepthSource};
 
 use super::*;
 use crate::config::HiderConfig;
+use crate::{Knob, PlanError};
 
 #[test]
 fn names_are_unique_and_instances_carry_them() {
@@ -23,12 +24,21 @@ fn names_are_unique_and_instances_carry_them() {
 
 #[test]
 fn unknown_names_list_the_registered_ones() {
-    let e = find("nonesuch").unwrap_err().to_string();
+    let e = find("nonesuch").unwrap_err();
+    match &e {
+        PlanError::UnknownHider { name, known } => {
+            assert_eq!(name, "nonesuch");
+            assert_eq!(known, &names());
+        }
+        other => panic!("{other:?}"),
+    }
+    // The library's message speaks of hiders, not of any front end's flags.
+    let line = e.to_string();
     assert!(
-        e.starts_with("unknown --algo 'nonesuch' (one of: zbuffer, zbuffer-f64,"),
-        "{e}"
+        line.starts_with("no hider named 'nonesuch' (registered: zbuffer, zbuffer-f64,"),
+        "{line}"
     );
-    assert!(e.ends_with("ssaa-sorted, oracle)"), "{e}");
+    assert!(!line.contains("--"), "{line}");
 }
 
 #[test]
@@ -42,41 +52,75 @@ fn knobs_reach_the_hiders_that_have_them() {
         assert!(find(name).unwrap().build(&format).is_ok(), "{name}");
     }
     assert!(find("zbuffer").unwrap().build(&both).is_ok());
-    let tiled = find("zbuffer-tiled").unwrap().build(&source);
+    let tiled = find("zbuffer-tiled").unwrap().build(&source).err().unwrap();
+    assert!(
+        matches!(&tiled, PlanError::KnobNotApplicable { hider: "zbuffer-tiled", knob: Knob::DepthSource, takers } if takers == &["zbuffer"]),
+        "{tiled:?}"
+    );
     assert_eq!(
-        tiled.err().unwrap().to_string(),
-        "--depth-source applies to --algo zbuffer only (zbuffer-tiled compares window depth)"
+        tiled.to_string(),
+        "the depth source applies to zbuffer only, not to zbuffer-tiled (zbuffer-tiled compares window depth)"
     );
     for name in ["zbuffer-f64", "painter", "abuffer", "oracle"] {
         let e = find(name).unwrap().build(&format).err().unwrap();
-        assert_eq!(
-            e.to_string(),
-            "--depth-format and --depth-source apply to --algo zbuffer and zbuffer-tiled only",
-            "{name}"
-        );
         assert!(
-            matches!(e, PlanError::KnobNotApplicable { hider, knob: "--depth-format", .. } if hider == name)
+            matches!(&e, PlanError::KnobNotApplicable { hider, knob: Knob::DepthFormat, takers }
+                if *hider == name && takers == &["zbuffer", "zbuffer-tiled"]),
+            "{name}: {e:?}"
         );
+        assert!(!e.to_string().contains("--"), "{e}");
     }
-    // Threads are never refused: they also drive the front end.
-    let threads = HiderConfig::default().with_threads(4);
+    // Threads are never refused: they also drive the front end; nor is
+    // the shade mode (the colour pass applies it to the others).
+    let threads = HiderConfig::default()
+        .with_threads(4)
+        .with_shade(hider_scene::ShadeMode::Ids);
     assert!(all().iter().all(|e| e.build(&threads).is_ok()));
 }
 
 #[test]
-fn vector_output_only_from_the_painters() {
-    let svg = HiderConfig::default().with_vector_output(true);
+fn ordered_polygons_only_from_the_painters() {
+    let svg = HiderConfig::default().with_ordered_polygons(true);
     for e in all() {
         let built = e.build(&svg);
         if e.name.starts_with("painter") {
             assert!(built.is_ok(), "{}", e.name);
+            assert!(
+                built.unwrap().ordered_polygons().is_none(),
+                "before a frame"
+            );
         } else {
-            assert_eq!(
-                built.err().unwrap().to_string(),
-                "--svg needs --algo painter or painter-naive (vector output comes from the depth order)",
-                "{}",
-                e.name
+            let e = built.err().unwrap();
+            assert!(
+                matches!(&e, PlanError::KnobNotApplicable { knob: Knob::OrderedPolygons, takers, .. }
+                    if takers == &["painter", "painter-naive"]),
+                "{e:?}"
             );
         }
     }
+}
+
+/// The registry knows which hiders composite translucent surfaces: they,
+/// and only they, are silent on a translucent scene.
+#[test]
+fn only_hiders_that_composite_are_silent_on_translucent_scenes() {
+    use hider_scene::shade::{Stages, transparency_warning};
+    let glass = Stages {
+        transparency: true,
+        ..Stages::default()
+    };
+    let mut compositing = Vec::new();
+    for e in all() {
+        let hider = e.make();
+        if transparency_warning(hider.as_ref(), &glass).is_none() {
+            compositing.push(e.name);
+        }
+        assert!(transparency_warning(hider.as_ref(), &Stages::default()).is_none());
+    }
+    assert_eq!(compositing, ["abuffer", "abuffer-carpenter", "ssaa-sorted"]);
+    let line = transparency_warning(by_name("ssaa-8").unwrap().make().as_ref(), &glass).unwrap();
+    assert!(
+        line.contains("ssaa-8") && line.contains("abuffer"),
+        "{line}"
+    );
 }

@@ -163,6 +163,6 @@ pub(super) fn convert_material(m: &tobj::Material, base: &Path) -> Material {
             .diffuse_texture
             .as_deref()
             .filter(|t| !t.trim().is_empty())
-            .map(|t| base.join(PathBuf::from(normalize_separators(t)))),
+            .map(|t| base.join(PathBuf::from(normalize_separators(t))).into()),
     }
 }

@@ -117,7 +117,7 @@ fn mtl_with_windows_texture_path_and_opacity() {
     let glass = &s.materials[s.meshes[0].material.unwrap()];
     assert_eq!(glass.diffuse, [0.1, 0.2, 0.3]);
     assert_eq!(glass.opacity, 0.25);
-    assert_eq!(glass.diffuse_texture, Some(dir.join("tex/a.jpg")));
+    assert_eq!(glass.diffuse_texture, Some(dir.join("tex/a.jpg").into()));
     assert!(
         s.warnings
             .iter()

@@ -160,6 +160,25 @@ impl FrontEnd {
         }
     }
 
+    /// The per-primitive data of triangle `t` of mesh `m`: what shading
+    /// reads (camera-space corners, material, normals, uvs).
+    pub fn prim_info(&self, scene: &Scene, m: usize, t: usize) -> PrimInfo {
+        let mesh = &scene.meshes[m];
+        let idx = mesh.indices[t];
+        PrimInfo {
+            camera: idx.map(|i| self.to_camera(mesh.positions[i as usize])),
+            material: mesh.material.map_or(self.default_material, |k| k as u32),
+            normals: (!mesh.normals.is_empty()).then(|| {
+                idx.map(|i| {
+                    self.normal_matrix
+                        .transform_vector3(mesh.normals[i as usize].as_dvec3())
+                        .as_vec3()
+                })
+            }),
+            uvs: (!mesh.uvs.is_empty()).then(|| idx.map(|i| mesh.uvs[i as usize])),
+        }
+    }
+
     /// Transforms, clips, projects, snaps and sets up triangle `t` of mesh
     /// `m` (primitive `prim`), appending its info and screen pieces.
     pub fn triangle(
@@ -171,20 +190,8 @@ impl FrontEnd {
     ) {
         let Part { prims, tris, stats } = out;
         let mesh = &scene.meshes[m];
-        let idx = mesh.indices[t];
-        let world = idx.map(|i| mesh.positions[i as usize]);
-        prims.push(PrimInfo {
-            camera: world.map(|p| self.to_camera(p)),
-            material: mesh.material.map_or(self.default_material, |k| k as u32),
-            normals: (!mesh.normals.is_empty()).then(|| {
-                idx.map(|i| {
-                    self.normal_matrix
-                        .transform_vector3(mesh.normals[i as usize].as_dvec3())
-                        .as_vec3()
-                })
-            }),
-            uvs: (!mesh.uvs.is_empty()).then(|| idx.map(|i| mesh.uvs[i as usize])),
-        });
+        let world = mesh.indices[t].map(|i| mesh.positions[i as usize]);
+        prims.push(self.prim_info(scene, m, t));
         let precision = self.options.precision;
         let clip: [DVec4; 3] = world.map(|p| self.clip(p));
         match clip_triangle(clip, &self.volume, &mut buf.polygon, &mut buf.scratch) {

@@ -10,7 +10,6 @@ use rayon::prelude::*;
 
 use crate::error::Result;
 use crate::model::{Material, Scene};
-use crate::surface::SurfaceTextures;
 use crate::view::View;
 
 mod front_end;
@@ -34,9 +33,7 @@ pub fn prepare(scene: &Scene, view: &View, options: &PrepareOptions) -> Result<S
 
 /// [`prepare`] into an existing [`ScreenScene`], reusing its memory: for
 /// repeated frames this avoids allocating (and the kernel zeroing) hundreds
-/// of megabytes for large scenes. Every field of `out` is overwritten but
-/// its decoded textures, which are re-bound to the new frame
-/// ([`SurfaceTextures::rebind`]).
+/// of megabytes for large scenes. Every field of `out` is overwritten.
 pub fn prepare_into(
     scene: &Scene,
     view: &View,
@@ -107,7 +104,6 @@ pub fn prepare_into(
         .iter()
         .map(|l| front.light_to_camera(l))
         .collect();
-    let mut textures = std::mem::take(&mut out.textures);
     *out = ScreenScene {
         viewport: vp,
         camera: view.camera,
@@ -118,9 +114,6 @@ pub fn prepare_into(
         materials,
         lights,
         stats,
-        textures: SurfaceTextures::default(),
     };
-    textures.rebind(out);
-    out.textures = textures;
     Ok(())
 }

@@ -6,7 +6,6 @@ use hider_geom::fixed::{FixedPt, pixel_center};
 use hider_geom::{Camera, PlaneEq, Viewport};
 
 use crate::model::{Light, Material};
-use crate::surface::SurfaceTextures;
 use crate::view::View;
 
 /// A triangle ready for rasterisation: snapped, positively oriented, with
@@ -142,10 +141,6 @@ pub struct ScreenScene {
     pub lights: Vec<Light>,
     /// What the front end did.
     pub stats: PrepareStats,
-    /// Decoded diffuse textures for the hiders that resolve colour
-    /// themselves: inactive until [`ScreenScene::load_textures`]; kept and
-    /// re-bound by [`crate::prepare_into`] between frames.
-    pub textures: SurfaceTextures,
 }
 
 impl ScreenScene {
@@ -163,7 +158,6 @@ impl ScreenScene {
             materials: Vec::new(),
             lights: Vec::new(),
             stats: PrepareStats::default(),
-            textures: SurfaceTextures::default(),
         }
     }
 

@@ -1,9 +1,10 @@
 //! Models by name, as the command line takes them: an OBJ file, or a
 //! generated scene `gen:NAME[:ARGS]`.
 
-use hider_scene::{Scene, load_obj, procedural};
-
-use crate::error::{PlanError, Result};
+use crate::error::{Error, Result};
+use crate::model::Scene;
+use crate::obj::load_obj;
+use crate::procedural;
 
 /// Most segments of `gen:sphere:N`.
 pub const MAX_SPHERE_SEGMENTS: u64 = 2000;
@@ -17,21 +18,21 @@ pub const MAX_SOUP_TRIANGLES: u64 = 10_000_000;
 /// The loader's warnings (a missing texture, a skipped statement) are in
 /// the scene's `warnings` for the caller to show.
 ///
+/// The errors of [`load_obj`] name the file (and the line); those of a
+/// `gen:` spec quote it.
+///
 /// ```
-/// let cube = hider_plan::load_model("gen:cube")?;
+/// let cube = hider_scene::load_model("gen:cube")?;
 /// assert_eq!(cube.triangle_count(), 12);
-/// let missing = hider_plan::load_model("no/such/model.obj").unwrap_err();
-/// assert_eq!(missing.to_string(), "cannot load model no/such/model.obj");
-/// # Ok::<(), hider_plan::PlanError>(())
+/// let missing = hider_scene::load_model("no/such/model.obj").unwrap_err();
+/// assert!(missing.to_string().starts_with("no/such/model.obj: "), "{missing}");
+/// # Ok::<(), hider_scene::Error>(())
 /// ```
 pub fn load_model(model: &str) -> Result<Scene> {
     if let Some(spec) = model.strip_prefix("gen:") {
         return generated(spec);
     }
-    load_obj(model).map_err(|source| PlanError::Load {
-        model: model.to_owned(),
-        source,
-    })
+    load_obj(model)
 }
 
 /// The generated scene of a spec (the text after `gen:`): `cube`,
@@ -44,12 +45,9 @@ pub fn generated(spec: &str) -> Result<Scene> {
     let mut num = |default: u64, what: &'static str| -> Result<u64> {
         match parts.next() {
             None => Ok(default),
-            Some(p) => p.parse().map_err(|source| PlanError::GeneratedNumber {
-                spec: spec.to_owned(),
-                what,
-                value: p.to_owned(),
-                source,
-            }),
+            Some(p) => p
+                .parse()
+                .map_err(|_| Error::Generated(format!("gen:{spec}: bad {what} '{p}'"))),
         }
     };
     Ok(match name {
@@ -57,7 +55,7 @@ pub fn generated(spec: &str) -> Result<Scene> {
         "sphere" => {
             let n = num(64, "segment count")?;
             if !(3..=MAX_SPHERE_SEGMENTS).contains(&n) {
-                return Err(PlanError::Generated(format!(
+                return Err(Error::Generated(format!(
                     "gen:{spec}: segment count {n} must be 3 to {MAX_SPHERE_SEGMENTS}"
                 )));
             }
@@ -67,7 +65,7 @@ pub fn generated(spec: &str) -> Result<Scene> {
             let count = num(10_000, "triangle count")?;
             let seed = num(1, "seed")?;
             if count > MAX_SOUP_TRIANGLES {
-                return Err(PlanError::Generated(format!(
+                return Err(Error::Generated(format!(
                     "gen:{spec}: triangle count {count} is over the limit of {MAX_SOUP_TRIANGLES}"
                 )));
             }
@@ -77,7 +75,7 @@ pub fn generated(spec: &str) -> Result<Scene> {
         "cyclic" => procedural::cyclic_triple(),
         "coplanar" => procedural::coplanar_pair(),
         _ => {
-            return Err(PlanError::Generated(format!(
+            return Err(Error::Generated(format!(
                 "unknown generated scene '{name}' (cube, sphere, soup, intersecting, cyclic, coplanar)"
             )));
         }
@@ -99,7 +97,6 @@ mod tests {
         );
         let e = generated("sphere:x").unwrap_err();
         assert_eq!(e.to_string(), "gen:sphere:x: bad segment count 'x'");
-        assert!(std::error::Error::source(&e).is_some());
         assert_eq!(
             generated("sphere:2").unwrap_err().to_string(),
             "gen:sphere:2: segment count 2 must be 3 to 2000"

@@ -8,8 +8,16 @@
 //!
 //! The size is read from the file header and checked against
 //! [`MAX_TEXTURE_SIDE`] before any pixel is decoded.
+//!
+//! A material names its texture with a [`TextureRef`]: the path, and the
+//! texture decoded on first use. Decoding is lazy so that a texture that
+//! no visible pixel samples costs nothing, and it is shared: clones of a
+//! material (every front end copies the scene's materials) and materials
+//! naming the same file share one decode.
 
-use std::path::Path;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, OnceLock};
 
 use crate::{Error, Result};
 
@@ -178,6 +186,119 @@ impl Texture {
                 })
             }
         }
+    }
+}
+
+/// A material's diffuse texture (`map_Kd`): its path, and the texture
+/// decoded the first time a sample needs it ([`Self::get`]).
+///
+/// Clones share the decode. Two references are equal when they name the
+/// same path.
+///
+/// ```
+/// use hider_scene::TextureRef;
+/// let missing = TextureRef::new("/no/such/texture.png");
+/// assert!(!missing.is_decoded());
+/// assert!(missing.get().is_none());
+/// assert!(missing.error().unwrap().contains("/no/such/texture.png"));
+/// ```
+#[derive(Clone, Debug)]
+pub struct TextureRef {
+    path: PathBuf,
+    decoded: Arc<OnceLock<std::result::Result<Arc<Texture>, String>>>,
+}
+
+impl TextureRef {
+    /// A reference to the image at `path`, not decoded yet.
+    pub fn new(path: impl Into<PathBuf>) -> Self {
+        Self {
+            path: path.into(),
+            decoded: Arc::new(OnceLock::new()),
+        }
+    }
+
+    /// A reference to an already decoded texture (for scenes built in
+    /// memory); `path` names it in messages.
+    pub fn from_texture(path: impl Into<PathBuf>, texture: Texture) -> Self {
+        let r = Self::new(path);
+        let _ = r.decoded.set(Ok(Arc::new(texture)));
+        r
+    }
+
+    /// The image file.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The texture, decoded now if this is the first use; `None` when it
+    /// cannot be loaded ([`Self::error`] says why).
+    pub fn get(&self) -> Option<&Texture> {
+        self.decoded
+            .get_or_init(|| {
+                Texture::load(&self.path)
+                    .map(Arc::new)
+                    .map_err(|e| e.to_string())
+            })
+            .as_ref()
+            .ok()
+            .map(Arc::as_ref)
+    }
+
+    /// Whether a decode was attempted (successful or not).
+    pub fn is_decoded(&self) -> bool {
+        self.decoded.get().is_some()
+    }
+
+    /// Why the texture could not be loaded, decoding it if that was not
+    /// tried yet; `None` when it loads.
+    pub fn error(&self) -> Option<&str> {
+        self.get();
+        self.decoded.get()?.as_ref().err().map(String::as_str)
+    }
+
+    /// Why the texture could not be loaded, only if a decode was already
+    /// attempted (never decodes).
+    pub fn failure(&self) -> Option<&str> {
+        self.decoded.get()?.as_ref().err().map(String::as_str)
+    }
+
+    /// Bytes held by the decoded texels (0 before decoding).
+    pub fn bytes(&self) -> usize {
+        match self.decoded.get() {
+            Some(Ok(t)) => t.bytes(),
+            _ => 0,
+        }
+    }
+
+    /// Makes references to the same path share one decode: the second and
+    /// later references of a path in `refs` take the first one's.
+    pub fn share<'a>(refs: impl IntoIterator<Item = &'a mut TextureRef>) {
+        type Slot = Arc<OnceLock<std::result::Result<Arc<Texture>, String>>>;
+        let mut seen: HashMap<PathBuf, Slot> = HashMap::new();
+        for r in refs {
+            let shared = seen
+                .entry(r.path.clone())
+                .or_insert_with(|| r.decoded.clone());
+            r.decoded = shared.clone();
+        }
+    }
+}
+
+impl PartialEq for TextureRef {
+    fn eq(&self, other: &Self) -> bool {
+        self.path == other.path
+    }
+}
+
+impl From<PathBuf> for TextureRef {
+    fn from(path: PathBuf) -> Self {
+        Self::new(path)
+    }
+}
+
+impl From<&Path> for TextureRef {
+    fn from(path: &Path) -> Self {
+        Self::new(path)
     }
 }
 

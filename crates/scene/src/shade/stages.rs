@@ -3,7 +3,10 @@
 //! After a pixel-centre hider has decided which primitive each pixel shows,
 //! colour is a separate pass over the id buffer. [`Shader`] runs it with
 //! only the stages [`Stages`] switches on — normally those the scene
-//! analysis found ([`Stages::for_effects`]):
+//! analysis of `hider-plan` found, or [`Stages::for_scene`]. It reads the
+//! primitives from a prepared scene or, after a hider with a lean front end
+//! of its own, from the world-space scene ([`Prims`]): the same colours
+//! either way.
 //! - **texture**: perspective-correct `map_Kd` sampling. For each pixel the
 //!   camera-space ray through its centre is intersected with the source
 //!   triangle, and the uvs are interpolated with the barycentrics of that
@@ -13,7 +16,7 @@
 //!   the screen instead, labelled as the error those texts warn about, to
 //!   show it.
 //! - **lighting**: flat two-sided Lambert
-//!   ([`hider_scene::shade::lambert_light`]).
+//!   ([`lambert_light_at`]).
 //!   Without it a primitive shows its material's diffuse colour.
 //!
 //! The two other effects are not colour passes but choices of hider, made
@@ -23,13 +26,13 @@
 //! needs none of the four pays for none: the pass is then one cached flat
 //! colour per primitive.
 
-use hider_scene::frame::BACKGROUND;
-use hider_scene::shade::{lambert_light, to_srgb8};
-use hider_scene::{Frame, NO_ID, Scene, ScreenScene, SurfaceTextures, TextureOptions};
-
-pub use hider_scene::surface::Mapping;
-
-use crate::analyze::Effects;
+use super::prims::Prims;
+use super::surface::TextureOptions;
+use super::texture::TextureRef;
+use super::{lambert_light_at, to_srgb8};
+use crate::frame::{BACKGROUND, Frame, NO_ID};
+use crate::hider::DynHider;
+use crate::model::Scene;
 
 /// Which effect stages run.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -53,25 +56,13 @@ impl Stages {
         multisample: true,
     };
 
-    /// Only the stages the analysed scene calls for.
-    pub fn for_effects(effects: &Effects) -> Self {
-        Self {
-            texture: effects.textures.present,
-            lighting: effects.lighting.present,
-            transparency: effects.transparency.present,
-            multisample: effects.antialiasing.present,
-        }
-    }
-
     /// The colour stages `scene` calls for, found without the full
     /// analysis (for a hider named on the command line): texture when a
     /// material has a `map_Kd` and a mesh has texture coordinates,
     /// lighting whenever `shading` is asked (lights, or the head light).
     pub fn for_scene(scene: &Scene, shading: bool) -> Self {
-        let textured = scene.meshes.iter().any(|m| !m.uvs.is_empty())
-            && scene.materials.iter().any(|m| m.diffuse_texture.is_some());
         Self {
-            texture: shading && textured,
+            texture: shading && scene.is_textured(),
             lighting: shading,
             transparency: scene.materials.iter().any(|m| m.opacity < 1.0),
             multisample: false,
@@ -109,19 +100,17 @@ pub struct StageTrace {
     pub texture_samples: u64,
     /// Primitives whose Lambert light was computed.
     pub lit_prims: u64,
-    /// Textures decoded in this pass (cached ones are not counted).
+    /// Textures decoded in this pass (textures decode on first use, once).
     pub textures_loaded: u64,
     /// Textures that failed to load (the material colour is used), with
-    /// the reason.
+    /// the reason: those this pass tried to sample.
     pub texture_failures: Vec<String>,
 }
 
-/// The shading pass. Keeps decoded textures and its per-primitive colour
-/// cache between frames.
+/// The shading pass. Keeps its per-primitive colour cache between frames.
 #[derive(Clone, Debug, Default)]
 pub struct Shader {
     options: ShaderOptions,
-    textures: SurfaceTextures,
     prims: Vec<Option<[f32; 3]>>,
 }
 
@@ -130,7 +119,6 @@ impl Shader {
     pub fn new(options: ShaderOptions) -> Self {
         Self {
             options,
-            textures: SurfaceTextures::new(options),
             prims: Vec::new(),
         }
     }
@@ -142,115 +130,122 @@ impl Shader {
 
     /// Fills `frame.color` from `frame.ids`, running only the colour stages
     /// `stages` switches on (`transparency` and `multisample` are the
-    /// hider's and ignored here).
-    pub fn shade(&mut self, scene: &ScreenScene, frame: &mut Frame, stages: &Stages) -> StageTrace {
+    /// hider's and ignored here), reading the primitives from `prims`.
+    pub fn shade(
+        &mut self,
+        prims: Prims<'_, '_>,
+        frame: &mut Frame,
+        stages: &Stages,
+    ) -> StageTrace {
         let mut trace = StageTrace::default();
+        let sampler = prims.sampler(self.options);
+        let textures = prims.textures();
+        let decoded_before = textures.iter().filter(|t| t.is_decoded()).count();
         if stages.texture {
             trace.ran.push("texture");
-            let load = self.textures.load(scene);
-            trace.textures_loaded = load.loaded;
-            trace.texture_failures = load.failures;
-        } else {
-            self.textures.deactivate();
         }
         if stages.lighting {
             trace.ran.push("lighting");
         }
         self.prims.clear();
-        self.prims.resize(scene.prims.len(), None);
+        self.prims.resize(prims.len(), None);
         let (w, h) = (frame.width(), frame.height());
+        let mut info = None;
         for y in 0..h {
             for x in 0..w {
                 let i = frame.index(x, y);
                 let id = frame.ids[i];
-                if id == NO_ID || id as usize >= scene.prims.len() {
+                if id == NO_ID || id as usize >= prims.len() {
                     frame.color[i] = BACKGROUND;
                     continue;
                 }
                 trace.pixels += 1;
+                // Runs of one primitive are the rule: one look-up per run.
+                let prim = match info {
+                    Some((last, p)) if last == id => p,
+                    _ => {
+                        let p = prims.info(id);
+                        info = Some((id, p));
+                        p
+                    }
+                };
                 let flat = match self.prims[id as usize] {
                     Some(c) => c,
                     None => {
-                        let c = prim_shade(scene, id, stages, &mut trace);
+                        let c = prim_shade(&prims, id, stages, &mut trace);
                         self.prims[id as usize] = Some(c);
                         c
                     }
                 };
-                let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let material = prims.material(prim.material);
                 let mut c = flat;
-                if self.textures.texture(scene, id).is_some() {
-                    c = self.textures.rgb_at(scene, id, flat, cx, cy);
+                if stages.texture && sampler.texture(&prim, material).is_some() {
+                    let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    c = sampler.rgb_at(&prim, material, flat, cx, cy);
                     trace.texture_samples += 1;
                 }
                 frame.color[i] = [to_srgb8(c[0]), to_srgb8(c[1]), to_srgb8(c[2]), 255];
             }
         }
+        let decoded = textures.iter().filter(|t| t.is_decoded()).count();
+        trace.textures_loaded = decoded.saturating_sub(decoded_before) as u64;
+        if stages.texture {
+            trace.texture_failures = texture_failures(textures.iter().copied());
+        }
         trace
     }
 }
 
+/// Why each texture that was tried and failed did not load, once per file
+/// (never decodes anything).
+pub fn texture_failures<'a>(textures: impl IntoIterator<Item = &'a TextureRef>) -> Vec<String> {
+    let mut failures: Vec<String> = Vec::new();
+    for t in textures {
+        if let Some(why) = t.failure()
+            && !failures.iter().any(|f| f == why)
+        {
+            failures.push(why.to_owned());
+        }
+    }
+    failures
+}
+
 /// The flat colour of `prim`: its diffuse colour, lit when lighting runs.
-fn prim_shade(scene: &ScreenScene, prim: u32, stages: &Stages, trace: &mut StageTrace) -> [f32; 3] {
-    let color = scene.material(prim).diffuse;
+fn prim_shade(
+    prims: &Prims<'_, '_>,
+    prim: u32,
+    stages: &Stages,
+    trace: &mut StageTrace,
+) -> [f32; 3] {
+    let info = prims.info(prim);
+    let color = prims.material(info.material).diffuse;
     if !stages.lighting {
         return color;
     }
-    let lit = lambert_light(scene, prim);
+    let lit = lambert_light_at(&info.camera, prims.lights());
     trace.lit_prims += 1;
     std::array::from_fn(|k| (f64::from(color[k]) * lit[k]) as f32)
 }
 
-/// The hiders that composite translucent surfaces: every other one keeps
-/// one surface per sample (or per pixel centre) and draws them opaque.
-pub const COMPOSITING_HIDERS: &[&str] = &["abuffer", "abuffer-carpenter", "ssaa-sorted"];
-
 /// A warning when `hider` cannot apply the transparency stage the scene
-/// calls for (it draws translucent surfaces opaque), naming the hider that
-/// can; `None` when it can or when nothing is translucent.
-pub fn transparency_warning(hider: &str, stages: &Stages) -> Option<String> {
-    (stages.transparency && !COMPOSITING_HIDERS.contains(&hider)).then(|| {
+/// calls for (it draws translucent surfaces opaque, see
+/// [`DynHider::composites_transparency`]); `None` when it can or when
+/// nothing is translucent.
+pub fn transparency_warning(hider: &dyn DynHider, stages: &Stages) -> Option<String> {
+    (stages.transparency && !hider.composites_transparency()).then(|| {
         format!(
-            "the scene has translucent materials, but {hider} keeps one surface per sample \
-             and draws them opaque; --algo abuffer composites them"
+            "the scene has translucent materials, but {} keeps one surface per sample \
+             and draws them opaque; the A-buffer (abuffer) composites them",
+            hider.name()
         )
     })
-}
-
-/// Turns on in `screen` the stages a colour-resolving hider applies itself
-/// (today: texture; lighting comes with its Lambert shade mode), so that
-/// the A-buffer, supersampling and anti-aliased Warnock colour what the
-/// scene calls for. Returns the textures that failed to load.
-pub fn prepare_surface(screen: &mut ScreenScene, stages: &Stages) -> Vec<String> {
-    if stages.texture {
-        screen.load_textures(TextureOptions::default()).failures
-    } else {
-        screen.textures.deactivate();
-        Vec::new()
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use hider_scene::{PrepareOptions, View, prepare, procedural};
-
-    #[test]
-    fn only_hiders_that_composite_are_silent_on_translucent_scenes() {
-        let glass = Stages {
-            transparency: true,
-            ..Stages::default()
-        };
-        for name in crate::registry::names() {
-            let warned = transparency_warning(name, &glass).is_some();
-            assert_eq!(warned, !COMPOSITING_HIDERS.contains(&name), "{name}");
-            assert!(transparency_warning(name, &Stages::default()).is_none());
-        }
-        let line = transparency_warning("ssaa-8", &glass).unwrap();
-        assert!(
-            line.contains("ssaa-8") && line.contains("--algo abuffer"),
-            "{line}"
-        );
-    }
+    use crate::shade::{ScenePrims, ShadeMode, shade_frame};
+    use crate::{PrepareOptions, View, prepare, procedural};
 
     #[test]
     fn flat_pass_runs_no_stage_and_matches_the_material_colour() {
@@ -266,22 +261,29 @@ mod tests {
             }
         }
         let mut shader = Shader::default();
-        let trace = shader.shade(&screen, &mut frame, &Stages::default());
+        let trace = shader.shade(Prims::Screen(&screen), &mut frame, &Stages::default());
         assert!(trace.ran.is_empty());
         assert_eq!(trace.lit_prims, 0);
         assert!(trace.pixels > 0);
         let k = frame.ids.iter().position(|&id| id != NO_ID).unwrap();
         let kd = screen.material(frame.ids[k]).diffuse;
         assert_eq!(frame.color[k][..3], kd.map(to_srgb8));
-        let lit = shader.shade(
-            &screen,
-            &mut frame,
-            &Stages {
-                lighting: true,
-                ..Stages::default()
-            },
-        );
+        let lighting = Stages {
+            lighting: true,
+            ..Stages::default()
+        };
+        let lit = shader.shade(Prims::Screen(&screen), &mut frame, &lighting);
         assert_eq!(lit.ran, vec!["lighting"]);
         assert!(lit.lit_prims > 0);
+        // The lit pass is flat Lambert: what shade_frame gives.
+        let mut flat = frame.clone();
+        shade_frame(&screen, &mut flat, ShadeMode::Lambert);
+        assert_eq!(flat.color, frame.color);
+        // Read from the world-space scene, the pass gives the same colours.
+        let on_demand = ScenePrims::new(&scene, &view).unwrap();
+        let mut again = frame.clone();
+        again.color.fill([1, 2, 3, 4]);
+        Shader::default().shade(Prims::Scene(&on_demand), &mut again, &lighting);
+        assert_eq!(again.color, frame.color);
     }
 }

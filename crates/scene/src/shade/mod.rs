@@ -1,11 +1,35 @@
-//! Shading from primitive ids: flat Lambert or false colours per id.
+//! Appearance, in one place: materials' colours, lighting, textures and
+//! the effect stages.
 //!
 //! Pixel-centre hiders only decide *which* primitive is visible; colour is
-//! a separate pass over the id buffer, so every hider's picture is shaded
-//! the same way and differences in the images are differences in
-//! visibility.
+//! a separate pass over the id buffer ([`Shader`], or [`shade_frame`] for
+//! flat colours), so every hider's picture is shaded the same way and
+//! differences in the images are differences in visibility. Hiders that
+//! resolve colour themselves (anti-aliasing, transparency) call the same
+//! functions per fragment or sample: [`prim_color`] for a primitive's flat
+//! colour and [`TextureSampler`] for its texture at a point.
+//!
+//! - [`stages`]: which effect stages run ([`Stages`]) and the colour pass
+//!   over an id buffer ([`Shader`]);
+//! - [`texture`]: decoding and sampling `map_Kd` images, decoded on first
+//!   use ([`TextureRef`]);
+//! - [`surface`]: perspective-correct texture coordinates at window points;
+//! - [`prims`]: the per-primitive data shading reads, from a prepared scene
+//!   or on demand from the world-space one.
 
 use glam::DVec3;
+
+pub mod prims;
+pub mod stages;
+pub mod surface;
+pub mod texture;
+
+pub use prims::{Prims, ScenePrims};
+pub use stages::{
+    Shader, ShaderOptions, StageTrace, Stages, texture_failures, transparency_warning,
+};
+pub use surface::{Mapping, TextureOptions, TextureSampler};
+pub use texture::{Filter, MAX_TEXTURE_SIDE, Texture, TextureRef};
 
 use crate::frame::{BACKGROUND, Frame, NO_ID};
 use crate::model::Light;
@@ -127,6 +151,28 @@ pub fn shade_frame(scene: &ScreenScene, frame: &mut Frame, mode: ShadeMode) {
     }
 }
 
+/// Fills `frame.color` with each id's false colour ([`id_color`]) and the
+/// background elsewhere: [`ShadeMode::Ids`] without reading any
+/// primitive, so it applies to any hider's ids.
+pub fn id_frame(frame: &mut Frame) {
+    let mut last: Option<(u32, [u8; 4])> = None;
+    for (id, out) in frame.ids.iter().zip(frame.color.iter_mut()) {
+        if *id == NO_ID {
+            *out = BACKGROUND;
+            continue;
+        }
+        *out = match last {
+            Some((k, c)) if k == *id => c,
+            _ => {
+                let [r, g, b] = id_color(*id);
+                let c = [to_srgb8(r), to_srgb8(g), to_srgb8(b), 255];
+                last = Some((*id, c));
+                c
+            }
+        };
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -168,6 +214,27 @@ mod tests {
         let (a, b) = (lambert_light(&screen, 0), lambert_light(&screen, 1));
         assert_eq!(a, b);
         assert!(a[0] > AMBIENT && a[0] < 1.0, "{a:?}");
+    }
+
+    /// The id pass is the ids mode of the prepared scene's pass.
+    #[test]
+    fn the_id_pass_equals_shading_in_ids_mode() {
+        use crate::{PrepareOptions, View, prepare, procedural};
+        let scene = procedural::uv_sphere(8);
+        let view = View::for_scene(&scene, 24, 24).unwrap();
+        let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
+        let mut frame = Frame::new(24, 24).unwrap();
+        for (k, id) in frame.ids.iter_mut().enumerate() {
+            *id = if k % 5 == 0 {
+                NO_ID
+            } else {
+                (k / 3) as u32 % 100
+            };
+        }
+        let mut expected = frame.clone();
+        shade_frame(&screen, &mut expected, ShadeMode::Ids);
+        id_frame(&mut frame);
+        assert_eq!(frame.color, expected.color);
     }
 
     #[test]
