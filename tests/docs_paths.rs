@@ -602,7 +602,7 @@ impl Repo {
                 let span: String = chars[start..end].iter().collect();
                 let span = span.trim();
                 let line = origin[i];
-                if span.starts_with("cargo ") {
+                if span.starts_with("cargo ") || span.contains(" cargo ") {
                     for p in self.check_command(span) {
                         report(line, p);
                     }
