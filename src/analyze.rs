@@ -17,9 +17,12 @@ pub struct AnalyzeArgs {
     /// Anti-aliasing will be asked for.
     #[arg(long)]
     aa: bool,
-    /// Vector output (SVG) will be asked for.
-    #[arg(long)]
-    vector: bool,
+    /// The SVG that will be asked for (`--svg-mode` of `hider render`):
+    /// `painter` asks for the painter's ordered polygons (the pair
+    /// searches then decide the plan); `regions` and `lines` work from any
+    /// hider's scene and change no plan.
+    #[arg(long, value_enum)]
+    svg_mode: Option<crate::render_args::SvgMode>,
     /// Only ids / false colours will be asked for (no shading).
     #[arg(long)]
     no_shading: bool,
@@ -37,7 +40,7 @@ pub fn run(args: &AnalyzeArgs) -> Result<()> {
     let options = RenderOptions::default()
         .with_size(args.size, args.size)
         .with_antialiasing(args.aa)
-        .with_ordered_polygons(args.vector)
+        .with_ordered_polygons(args.svg_mode == Some(crate::render_args::SvgMode::Painter))
         .with_shading(!args.no_shading)
         .with_pair_budget(args.pair_budget);
     let planned = hider::plan::auto(&scene, &options)

@@ -51,7 +51,7 @@ fn hiders_that_cannot_composite_warn_on_translucent_scenes() {
             .unwrap();
         let stderr = String::from_utf8_lossy(&run.stderr);
         assert!(run.status.success(), "{algo}: {stderr}");
-        let warned = stderr.contains("draws them opaque; --algo abuffer composites them");
+        let warned = stderr.contains("draws them opaque; the A-buffer (abuffer) composites them");
         assert_eq!(warned, warns, "{algo}: {stderr}");
     }
     std::fs::remove_dir_all(&dir).unwrap();

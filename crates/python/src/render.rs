@@ -170,7 +170,7 @@ pub const AUTO: &str = "auto";
 /// What the planner chooses for `scene` seen through `view` when only the
 /// ids and depths are wanted (no shading, no anti-aliasing, no vector
 /// output), as `hider render --algo auto` would for that request. The
-/// pair searches, which decide only vector plans and take seconds on
+/// pair searches, which decide only the painter plans and take seconds on
 /// large scenes, are left out as the command line leaves them out.
 pub fn plan_scene(scene: &Scene, view: &View, threads: usize) -> hider_plan::Result<Planned> {
     let options = RenderOptions::default()

@@ -65,7 +65,7 @@ pub struct Effects {
     pub lighting: Evidence,
     /// Anti-aliasing asked: needs multi-sample coverage.
     pub antialiasing: Evidence,
-    /// Whether vector output is asked.
+    /// Whether ordered polygons is asked.
     pub ordered_polygons: bool,
     /// Interpenetrating triangle pairs in view.
     pub intersections: Evidence,

@@ -19,7 +19,7 @@
 //! graph is built on the front faces only: that is what will be painted. The two
 //! searches over pairs stop at [`RenderOptions::pair_budget`]; an
 //! unfinished search reports its effect as *present but not certain*, so a
-//! planner stays on the safe side. Only vector output needs them, so a
+//! planner stays on the safe side. Only ordered polygons needs them, so a
 //! raster render may leave them out ([`RenderOptions::pair_searches`]).
 //!
 //! [`analyze_prepared`] also hands back the scene it prepared, so a caller
@@ -96,7 +96,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         let skipped = Evidence {
             present: true,
             certain: false,
-            detail: "not searched: only vector output needs it".to_owned(),
+            detail: "not searched: only ordered polygons needs it".to_owned(),
             ..Evidence::default()
         };
         fx.intersections = skipped.clone();

@@ -26,19 +26,19 @@ pub struct RenderOptions {
     pub shading: bool,
     /// Whether anti-aliased edges are asked for.
     pub antialiasing: bool,
-    /// Whether vector output (an ordered polygon list, SVG) is asked for.
+    /// Whether the painter's ordered polygons (its SVG) are asked for.
     pub ordered_polygons: bool,
     /// The front end's options.
     pub prepare: PrepareOptions,
     /// Most candidate pairs each pair search examines.
     pub pair_budget: u64,
     /// Whether the pair searches (intersections, coplanar overlaps, cyclic
-    /// overlaps, naive-order violations) run when no vector output is
-    /// asked. Only the planner's vector-output rule reads them, and on
+    /// overlaps, naive-order violations) run when no ordered polygons is
+    /// asked. Only the planner's ordered-polygons rule reads them, and on
     /// 10^5 triangles they take seconds where the render takes a fraction
     /// of one, so a raster render may leave them out (they are then
     /// reported as not ruled out). On by default: the analysis reports
-    /// everything. With vector output asked they always run.
+    /// everything. With ordered polygons asked they always run.
     pub pair_searches: bool,
     /// Most examples kept per effect.
     pub max_examples: usize,
@@ -109,7 +109,7 @@ impl RenderOptions {
     }
 
     /// What these options ask for, in words: "a shaded 512 x 512 image",
-    /// with "anti-aliased" and "with vector output" when asked.
+    /// with "anti-aliased" and "with ordered polygons" when asked.
     ///
     /// ```
     /// use hider_plan::RenderOptions;
@@ -139,7 +139,7 @@ impl RenderOptions {
             self.height
         );
         if self.ordered_polygons {
-            s.push_str(" with vector output");
+            s.push_str(" with ordered polygons");
         }
         s
     }

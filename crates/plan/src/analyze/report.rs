@@ -60,7 +60,7 @@ impl fmt::Display for Effects {
         line(f, "naive order wrong", &self.naive_order_violations)?;
         writeln!(
             f,
-            "  vector output      {}",
+            "  ordered polygons   {}",
             if self.ordered_polygons {
                 "asked"
             } else {

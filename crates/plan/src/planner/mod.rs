@@ -9,9 +9,9 @@
 //!
 //! | effects | choice (first registered) | why |
 //! |---|---|---|
-//! | vector output, intersections or cycles | `painter` | only splitting resolves them |
-//! | vector output, naive order already right | `painter-naive`, `painter` | one sort, no tests, no splits |
-//! | vector output otherwise | `painter` | Newell's tests reorder; no split is needed |
+//! | ordered polygons, intersections or cycles | `painter` | only splitting resolves them |
+//! | ordered polygons, naive order already right | `painter-naive`, `painter` | one sort, no tests, no splits |
+//! | ordered polygons otherwise | `painter` | Newell's tests reorder; no split is needed |
 //! | transparency | `abuffer`, `ssaa-sorted` | every surface in a pixel must be composited |
 //! | anti-aliasing | `abuffer`, `ssaa-8`, `ssaa-16`, `ssaa-32`, `ssaa-4` | coverage masks cost less than samples |
 //! | geometry far beyond the near plane | `zbuffer-reversed`, `zbuffer-f64`, `zbuffer` | f32 window depth runs out of bits near 1 |
@@ -148,7 +148,7 @@ pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
 }
 
 /// Checks the knobs of `config` that `--algo auto` can honour: threads and
-/// vector output; a depth format or source belongs to a named z-buffer.
+/// ordered polygons; a depth format or source belongs to a named z-buffer.
 pub fn check_config(config: &HiderConfig) -> Result<()> {
     let auto = Knobs {
         threads: true,
@@ -171,10 +171,10 @@ pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
     let mut picker = rules::Picker::new(available);
     let vector = picker.vector(effects);
     if vector.is_some() && effects.antialiasing.present {
-        // The vector rule wins; the painters draw the raster image one
+        // The ordered-polygons rule wins; the painters draw the raster image one
         // sample per pixel.
         picker.notes.push(
-            "the PNG is NOT anti-aliased: vector output comes first (the SVG has exact edges)"
+            "the PNG is NOT anti-aliased: ordered polygons comes first (the SVG has exact edges)"
                 .to_owned(),
         );
     }

@@ -69,7 +69,7 @@ impl<'a> Picker<'a> {
             (
                 &["painter"],
                 format!(
-                    "vector output with {} and {}: painter's with splitting",
+                    "ordered polygons with {} and {}: painter's with splitting",
                     count(&effects.intersections, "intersecting pairs"),
                     count(&effects.cyclic_overlap, "overlap cycles")
                 ),
@@ -77,7 +77,7 @@ impl<'a> Picker<'a> {
         } else if !effects.naive_order_violations.present {
             (
                 &["painter-naive", "painter"],
-                "vector output, no intersections or cycles and the farthest-vertex order is \
+                "ordered polygons, no intersections or cycles and the farthest-vertex order is \
                  already right: painter's without splitting or tests"
                     .to_owned(),
             )
@@ -85,7 +85,7 @@ impl<'a> Picker<'a> {
             (
                 &["painter"],
                 format!(
-                    "vector output, no intersections or cycles but {}: painter's reordering, \
+                    "ordered polygons, no intersections or cycles but {}: painter's reordering, \
                      no splits needed",
                     count(
                         &effects.naive_order_violations,

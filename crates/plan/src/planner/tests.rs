@@ -253,15 +253,15 @@ fn the_one_line_says_what_was_asked_and_what_was_chosen() {
     .summary();
     assert!(
         line.starts_with(
-            "auto, asked for an id-coloured 32 x 16 image with vector output: painter"
+            "auto, asked for an id-coloured 32 x 16 image with ordered polygons: painter"
         ),
         "{line}"
     );
 }
 
 /// Leaving out the pair searches (as a raster render does) changes no
-/// plan: only the vector-output rule reads them, and asking for vector
-/// output runs them anyway.
+/// plan: only the ordered-polygons rule reads them, and asking for the
+/// ordered polygons runs them anyway.
 #[test]
 fn the_pair_searches_decide_only_vector_plans() {
     for (name, scene) in hard_cases::all(13) {
