@@ -40,8 +40,6 @@
 //! ```
 
 pub mod analyze;
-#[cfg(feature = "cli")]
-pub mod cli_error;
 mod config;
 mod error;
 mod load;
