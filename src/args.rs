@@ -5,7 +5,7 @@
 //! tip, the usage, a pointer to `--help`), and a negative number after a
 //! flag is taken for another flag. The value parsers here give the reason
 //! in words, and [`usage_error_line`] folds any clap error into one line
-//! (with `hider_plan::cli_error`, which `hider-bench` shares).
+//! (with [`hider_cli::cli_error`], which `hider-bench` shares).
 
 use clap::error::ErrorKind;
 use hider::plan::{Knob, PlanError};
@@ -89,14 +89,14 @@ pub fn vec3(s: &str) -> Result<glam::DVec3, String> {
 }
 
 /// A clap usage error as the one line `hider` prints after `hider:
-/// error: ` ([`hider::plan::cli_error::usage_error_line`], with the
+/// error: ` ([`hider_cli::cli_error::usage_error_line`], with the
 /// subcommands named when none was given).
 pub fn usage_error_line(e: &clap::Error) -> String {
     match e.kind() {
         ErrorKind::MissingSubcommand | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             "no subcommand given: render, analyze, list or bench (see hider --help)".to_owned()
         }
-        _ => hider::plan::cli_error::usage_error_line(e),
+        _ => hider_cli::cli_error::usage_error_line(e),
     }
 }
 

@@ -1,57 +1,9 @@
-//! hider: the classic hidden-surface algorithms side by side.
+//! The library of the `hider` command-line tool: what the `hider` binary
+//! and the benchmark's `hider-bench` share, so that both report a usage
+//! error the same way (one line, exit status 2).
 //!
-//! This facade re-exports the workspace's crates and the [`registry`] of
-//! every hider, which the `hider` command-line tool, the benchmark and the
-//! cross-validating property tests all read:
-//!
-//! | crate | what |
-//! |---|---|
-//! | [`geom`] | camera, clipping, fixed-point snapping, edge functions, planes |
-//! | [`scene`] | scene model, OBJ/MTL, the shared front end `prepare`, frames, the `Hider` trait |
-//! | [`zbuffer`] | depth buffer with five depth formats, and its tiled parallel form |
-//! | [`abuffer`] | Carpenter's A-buffer with 8x4 coverage masks, and supersampling baselines |
-//! | [`painter`] | painter's algorithm: naive sort, Newell-Newell-Sancha with splitting, SVG |
-//! | [`warnock`] | Warnock's area subdivision |
-//! | [`scanline`] | scanline with edge table, active edge list and spans |
-//! | [`oracle`] | the slow exact references every test measures against |
-//! | [`plan`] | the registry of hiders, scene analysis, effect stages, the planner behind `--algo auto`, model loading |
-//!
-//! The comparative benchmark is a program of its own, `hider-bench` (the
-//! `hider-bench` crate), so neither this library nor `hider render` links
-//! its plotting and reporting.
-//!
-//! # Example
-//!
-//! Render a procedural cube with every exact pixel-centre hider and check
-//! that they agree:
-//!
-//! ```
-//! use hider::scene::{prepare, procedural, Frame, PrepareOptions, View};
-//!
-//! let scene = procedural::cube();
-//! let view = View::for_scene(&scene, 48, 48)?;
-//! let screen = prepare(&scene, &view, &PrepareOptions::default())?;
-//! let mut first: Option<Frame> = None;
-//! for mut hider in hider::registry::pixel_centre_hiders() {
-//!     let mut frame = Frame::new(48, 48)?;
-//!     hider.render(&screen, &mut frame)?;
-//!     match &first {
-//!         None => first = Some(frame),
-//!         Some(f) => assert_eq!(f.ids, frame.ids, "{}", hider.name()),
-//!     }
-//! }
-//! # Ok::<(), hider::scene::Error>(())
-//! ```
+//! The hidden-surface algorithms themselves are the `hider` library (the
+//! facade in `crates/hider`) and the crates it re-exports; this package is
+//! the program built on them.
 
-pub use hider_abuffer as abuffer;
-pub use hider_geom as geom;
-pub use hider_oracle as oracle;
-pub use hider_painter as painter;
-pub use hider_plan as plan;
-pub use hider_scanline as scanline;
-pub use hider_scene as scene;
-pub use hider_warnock as warnock;
-pub use hider_zbuffer as zbuffer;
-
-/// Every hider by name (re-exported from `hider-plan`).
-pub use hider_plan::registry;
+pub mod cli_error;

@@ -1,5 +1,5 @@
 //! The scenes, camera and triangle lists of hider's tiled z-buffer
-//! benchmark (`crates/zbuffer/examples/fast_zbuffer_bench.rs`), built with
+//! benchmark (`crates/bench/src/bin/fast_zbuffer_bench.rs`), built with
 //! hider's own scene crate so every peer sees exactly what hider sees.
 //!
 //! - Scenes: the spider OBJ of the GL reference, UV spheres of 200 and 500

@@ -28,6 +28,11 @@
 //! their wrong pixels. [`cli`] is the command line, run by the
 //! `hider-bench` binary and by `hider bench`.
 //!
+//! The package's other binaries (`src/bin`) are the timing and profiling
+//! programs of the single algorithms (`cargo run --release -p hider-bench
+//! --bin NAME -- ARGS`, each file's first lines say what it measures);
+//! [`programs`] holds what they share.
+//!
 //! # Example
 //!
 //! A tiny matrix: the hard case of triangles crossing the near plane, at
@@ -70,6 +75,7 @@ pub mod machine;
 pub mod matrix;
 pub mod plots;
 pub mod precision;
+pub mod programs;
 pub mod record;
 pub mod report;
 pub mod run;

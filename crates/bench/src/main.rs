@@ -34,7 +34,7 @@ fn main() -> ExitCode {
             }
             eprintln!(
                 "hider-bench: error: {}",
-                hider_plan::cli_error::usage_error_line(&e)
+                hider_cli::cli_error::usage_error_line(&e)
             );
             return ExitCode::from(2);
         }

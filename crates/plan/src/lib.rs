@@ -46,8 +46,6 @@
 //! ```
 
 pub mod analyze;
-#[cfg(feature = "cli")]
-pub mod cli_error;
 mod config;
 mod error;
 pub mod planner;

@@ -2,7 +2,7 @@
 //! triangles and reports the splits and wrong pixels (against a z-buffer
 //! on the same window-depth planes).
 //!
-//! `cargo run --release -p hider-painter --example bench [sizes...]`
+//! `cargo run --release -p hider-bench --bin painter_bench -- [sizes...]`
 //! (default sizes: 1000 10000 100000; image 512 x 512). A `soup` or
 //! `sphere` argument runs only that scene. `PAINTER_MAX_MIB` raises the
 //! painter's piece-memory budget (default 1 GiB).

@@ -1,9 +1,9 @@
 //! The scanline against the z-buffer (`hider-zbuffer`, f32 and f64 depth)
 //! on scenes with few large polygons and with many small ones.
 //!
-//! `cargo run --release --example scanline_versus_zbuffer [SIZE] [FILTER]`
-//! (an example of the facade, which links both hiders: neither algorithm
-//! crate depends on the other)
+//! `cargo run --release -p hider-bench --bin scanline_versus_zbuffer -- [SIZE] [FILTER]`
+//! (a program of the benchmark package, which links both hiders: neither
+//! algorithm crate depends on the other)
 //! (FILTER keeps the scenes whose name contains it).
 //!
 //! Prints, per scene and hider, the fastest frame of repeated runs (after
@@ -13,14 +13,14 @@
 //! Both hiders write the same ids (checked here); the table is for the
 //! closing note of `docs/scanline.md`.
 
-use hider::scanline::{Scanline, ScanlineStats};
-use hider::zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
+use hider_scanline::{Scanline, ScanlineStats};
 use hider_scene::geom::Camera;
 use hider_scene::geom::glam::DVec3;
 use hider_scene::{
     Frame, Hider, Mesh, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
 };
 use hider_testkit::timer::Timer;
+use hider_zbuffer::{DepthFormat, ZBuffer, ZBufferOptions};
 
 /// `layers` screen-filling quads one behind the other; `tilt` (radians)
 /// turns every other one about the vertical axis so that neighbours

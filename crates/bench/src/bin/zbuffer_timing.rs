@@ -4,11 +4,10 @@
 //! prepare excluded), median and minimum of `K` runs after a warm-up
 //! (the shared timer).
 //!
-//! `cargo run --release -p hider-zbuffer --example zbuffer_timing [K]`
+//! `cargo run --release -p hider-bench --bin zbuffer_timing -- [K]`
 
-use std::path::PathBuf;
-
-use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural};
+use hider_bench::programs;
+use hider_scene::{Frame, Hider, PrepareOptions, View, prepare};
 use hider_testkit::timer::Timer;
 use hider_zbuffer::ZBuffer;
 
@@ -17,15 +16,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .nth(1)
         .and_then(|a| a.parse().ok())
         .unwrap_or(7);
-    let spider = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/gl-reference/models/spider.obj");
-    let mut scenes: Vec<(&str, Scene)> = Vec::new();
-    if spider.exists() {
-        scenes.push(("spider", load_obj(&spider)?));
-    }
-    scenes.push(("sphere 200", procedural::uv_sphere(200)));
-    scenes.push(("sphere 500", procedural::uv_sphere(500)));
-    scenes.push(("soup 100k", procedural::random_soup(100_000, 1)));
+    let scenes = programs::llvmpipe_scenes();
     println!("| scene | triangles | median ms | min ms |");
     println!("|---|---|---|---|");
     for (name, scene) in &scenes {

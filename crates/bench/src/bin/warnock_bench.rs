@@ -2,7 +2,7 @@
 //! spheres of about 1k, 10k and 100k triangles) at 512 and 2048 pixels, and
 //! prints how the region counts grow with scene complexity and resolution.
 //!
-//! `cargo run --release -p hider-warnock --example warnock_bench [-- --aa]`
+//! `cargo run --release -p hider-bench --bin warnock_bench [-- --aa]`
 //!
 //! Small cases take the best of three runs (the shared timer of
 //! `hider-testkit`, no warm-up); the 100k-triangle ones at 2048 run once. With `--aa` the 4 x 4 sub-pixel mode is timed as well.

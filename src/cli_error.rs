@@ -13,7 +13,7 @@
 //!     size: u32,
 //! }
 //! let e = Cli::try_parse_from(["tool", "--size", "big"]).err().unwrap();
-//! let line = hider_plan::cli_error::usage_error_line(&e);
+//! let line = hider_cli::cli_error::usage_error_line(&e);
 //! assert!(line.starts_with("--size 'big': "), "{line}");
 //! assert!(!line.contains('\n'));
 //! ```

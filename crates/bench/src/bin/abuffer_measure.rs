@@ -1,7 +1,7 @@
 //! Measures the A-buffer against supersampled z-buffers: coverage error
 //! against the analytic oracle (1 to 32 samples), and time at 1024 x 1024.
 //!
-//! `cargo run --release -p hider-abuffer --example measure [-- --quick]`
+//! `cargo run --release -p hider-bench --bin abuffer_measure [-- --quick]`
 //!
 //! Prints two markdown tables (used in `docs/abuffer.md`). Timings are
 //! wall-clock time of `render` alone (the front end is shared and not

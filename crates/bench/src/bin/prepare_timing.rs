@@ -1,6 +1,6 @@
 //! Times the front end alone on the stress scenes at 1024 x 1024.
 //!
-//! `cargo run --release -p hider-scene --example prepare_timing`
+//! `cargo run --release -p hider-bench --bin prepare_timing`
 
 use hider_scene::timing::Timer;
 use hider_scene::{PrepareOptions, View, prepare, prepare_into, procedural};

@@ -7,20 +7,14 @@
 //! run per size; thread CPU time and wall time), prints its counters, checks the pixel against the window-depth
 //! z-buffer, and gives the growth exponent between successive sizes.
 //!
-//! `cargo run --release -p hider-painter --example pile [sizes...]`
+//! `cargo run --release -p hider-bench --bin painter_pile -- [sizes...]`
 //! (default sizes: 100000 300000 1000000).
 
+use hider_bench::programs::thread_cpu_seconds;
 use hider_painter::{Painter, PainterOptions};
 use hider_scene::{Frame, Hider, PrepareOptions, View, prepare};
 use hider_testkit::hard_cases::one_pixel_pile;
 use hider_testkit::reference;
-
-/// CPU time of the calling thread, seconds.
-fn cpu_seconds() -> Option<f64> {
-    cpu_time::ThreadTime::try_now()
-        .ok()
-        .map(|t| t.as_duration().as_secs_f64())
-}
 
 fn main() -> Result<(), hider_scene::Error> {
     let sizes: Vec<u32> = std::env::args()
@@ -44,12 +38,12 @@ fn main() -> Result<(), hider_scene::Error> {
         let mut frame = Frame::new(64, 64)?;
         let mut painter = Painter::new(PainterOptions::default());
         let start = std::time::Instant::now();
-        let cpu = cpu_seconds();
+        let cpu = thread_cpu_seconds();
         let stats = painter.render(&s, &mut frame)?;
         let wall = start.elapsed().as_secs_f64();
         // CPU time of this thread, when the platform gives it: the machine
         // is often shared, and wall time then measures the load.
-        let seconds = cpu_seconds().zip(cpu).map_or(wall, |(b, a)| b - a);
+        let seconds = thread_cpu_seconds().zip(cpu).map_or(wall, |(b, a)| b - a);
         let r = reference::pixel_centre(&s);
         let wrong = r.ids.iter().zip(&frame.ids).filter(|(a, b)| a != b).count();
         let exponent = last.map_or(String::from("-"), |(n0, t0)| {

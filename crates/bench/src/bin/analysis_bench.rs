@@ -2,7 +2,7 @@
 //! picture of `docs/analysis.md`.
 //!
 //! ```text
-//! cargo run --release -p hider-plan --example analysis [OUT.png]
+//! cargo run --release -p hider-bench --bin analysis_bench -- [OUT.png]
 //! ```
 //!
 //! 1. Analysis time on scenes of about 10^5 triangles (the intersection
@@ -161,7 +161,9 @@ fn main() {
     let out = std::env::args()
         .nth(1)
         .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from("docs/images/analysis-checker.png"));
+        .unwrap_or_else(|| {
+            PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../../docs/images/analysis-checker.png")
+        });
     analysis_times();
     colour_pass();
     checker_plane(&out);

@@ -4,7 +4,7 @@
 //! plus `glFinish` covers: everything after loading (transform, clip,
 //! set-up; clear; rasterise), with the GL-compatible f32 front end.
 //!
-//! - `zbuffer`: the reference pipeline, [`prepare`] then [`ZBuffer`].
+//! - `zbuffer`: the reference pipeline, [`prepare()`] then [`ZBuffer`].
 //! - `tiled 1T` / `tiled 2T`: the fast pipeline, [`prepare_depth_into`]
 //!   then [`TiledZBuffer::draw_depth_scene`], on 1 thread (no pool) and on
 //!   a 2-thread pool (front end and tiles in parallel, in that one pool:
@@ -31,13 +31,13 @@
 //! table has no peer columns and says that no peers were measured: a
 //! figure from another machine or another day is not a comparison.
 //!
-//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_bench [K] [SIZES...] [--peers-bin PATH]`
+//! `cargo run --release -p hider-bench --bin fast_zbuffer_bench -- [K] [SIZES...] [--peers-bin PATH]`
 //! (default K = 9 rounds, sizes 512 1024 2048).
 
-use std::path::PathBuf;
 use std::time::Instant;
 
-use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural};
+use hider_bench::programs;
+use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, prepare};
 use hider_zbuffer::{DepthScene, TiledZBuffer, TiledZBufferOptions, ZBuffer, prepare_depth_into};
 
 fn ms(t: Instant) -> f64 {
@@ -54,63 +54,19 @@ const TIMED: usize = 3;
 /// How long each pipeline renders untimed frames before, per round.
 const WARM_UP: std::time::Duration = std::time::Duration::from_millis(40);
 
-/// One row of the `peers` package's JSON (`--json`).
-#[derive(serde::Deserialize)]
-struct PeerRow {
-    scene: String,
-    size: u32,
-    peer: String,
-    threads: u32,
-    median_ms: f64,
-}
-
 /// Peers' figures measured on this machine: (scene, size, peer, threads)
 /// to the median ms of each measurement.
 type Peers = Vec<((String, u32, String, u32), f64)>;
 
-/// Reads the JSON the `peers` binary wrote in this run, appending to
-/// `out`.
-fn read_peers(path: &std::path::Path, out: &mut Peers) -> Result<(), String> {
-    let path = path.display();
-    let text = std::fs::read_to_string(path.to_string()).map_err(|e| format!("{path}: {e}"))?;
-    let rows: Vec<PeerRow> = serde_json::from_str(&text).map_err(|e| format!("{path}: {e}"))?;
+/// Runs the peers binary once on every scene at `size` and adds what it
+/// measured to `out`.
+fn run_peers(bin: &str, size: u32, out: &mut Peers) -> Result<(), String> {
     out.extend(
-        rows.into_iter()
+        programs::run_peers(bin, &[], size)?
+            .into_iter()
             .map(|r| ((r.scene, r.size, r.peer, r.threads), r.median_ms)),
     );
     Ok(())
-}
-
-/// Runs the peers binary once on every scene at `size` and reads what it
-/// measured.
-fn run_peers(bin: &str, size: u32, out: &mut Peers) -> Result<(), String> {
-    let json = std::env::temp_dir().join(format!("hider-peers-{}.json", std::process::id()));
-    let status = std::process::Command::new(bin)
-        .args(["--runs", "5", "--rounds", "1", "--sizes", &size.to_string()])
-        .arg("--json")
-        .arg(&json)
-        .stdout(std::process::Stdio::null())
-        .status()
-        .map_err(|e| format!("{bin}: {e}"))?;
-    if !status.success() {
-        return Err(format!("{bin} failed ({status})"));
-    }
-    let read = read_peers(&json, out);
-    let _ = std::fs::remove_file(&json);
-    read
-}
-
-/// Takes the value of `--flag VALUE` out of `args`.
-fn take_flag(args: &mut Vec<String>, flag: &str) -> Result<Option<String>, String> {
-    let Some(i) = args.iter().position(|a| a == flag) else {
-        return Ok(None);
-    };
-    let value = args
-        .get(i + 1)
-        .cloned()
-        .ok_or_else(|| format!("{flag} needs a value"))?;
-    args.drain(i..i + 2);
-    Ok(Some(value))
 }
 
 /// One scene at one size, ready to time: its view, and each pipeline's
@@ -137,24 +93,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .into(),
         );
     }
-    let peers_bin = take_flag(&mut args, "--peers-bin")?;
+    let peers_bin = programs::take_flag(&mut args, "--peers-bin")?;
     let same_machine = peers_bin.is_some();
     let runs: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(9);
     let mut sizes: Vec<u32> = args.iter().skip(1).filter_map(|a| a.parse().ok()).collect();
     if sizes.is_empty() {
         sizes = vec![512, 1024, 2048];
     }
-    let spider = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/gl-reference/models/spider.obj");
-    let mut scenes: Vec<(&str, Scene)> = Vec::new();
-    if spider.exists() {
-        scenes.push(("spider", load_obj(&spider)?));
-    } else {
-        eprintln!("skipped the spider: {} not found", spider.display());
-    }
-    scenes.push(("sphere 200", procedural::uv_sphere(200)));
-    scenes.push(("sphere 500", procedural::uv_sphere(500)));
-    scenes.push(("soup 100k", procedural::random_soup(100_000, 1)));
+    let scenes = programs::llvmpipe_scenes();
 
     let serial = PrepareOptions::gl_compatible();
     let parallel = serial.with_parallel(true);

@@ -8,7 +8,7 @@
 //! prints its counters and
 //! checks the raster against the window-depth z-buffer.
 //!
-//! `cargo run --release -p hider-painter --example surfaces [grid] [runs]`
+//! `cargo run --release -p hider-bench --bin painter_surfaces -- [grid] [runs]`
 //! (default grid 100, runs 9).
 
 use glam::DVec3;

@@ -1,10 +1,11 @@
 //! Renders one scene with one hider a few times, for profilers
 //! (`perf record`, `valgrind --tool=callgrind`).
 //!
-//! `cargo run --release -p hider-abuffer --example profile -- SCENE HIDER [RUNS] [SIZE]`
+//! `cargo run --release -p hider-bench --bin abuffer_profile -- SCENE HIDER [RUNS] [SIZE]`
 //!
 //! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)),
-//! `sphere500`, `spider` (the GL reference's model), `cube` (12 large
+//! `sphere500`, `spider` (the bundled
+//! `assets/spider`, the GL reference's model), `cube` (12 large
 //! triangles: whole pixels), `one`
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
@@ -40,11 +41,7 @@ fn main() {
         "sphere500" => procedural::uv_sphere(500),
         "one" => procedural::random_soup(1, 1),
         "cube" => procedural::cube(),
-        "spider" => hider_scene::load_obj(
-            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-                .join("../../../shared/gl-reference/models/spider.obj"),
-        )
-        .expect("the spider of the GL reference"),
+        "spider" => hider_bench::programs::spider().expect("the bundled spider"),
         other => panic!("unknown scene {other}"),
     };
     let mut hider: Box<dyn DynHider> = match args.get(1).map_or("ps", String::as_str) {

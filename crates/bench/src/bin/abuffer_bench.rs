@@ -22,23 +22,23 @@
 //!
 //! Same run, same machine: with `--peers-bin PATH` (the `peers` package's
 //! binary) each round runs llvmpipe with 4x MSAA (`--msaa`) on 1 and 2
-//! threads, and with `--zbuffer-bin PATH` (the tiled z-buffer's benchmark
-//! example, `fast_zbuffer_bench`) each round times the tiled z-buffer on
-//! the same scenes and span; the table gives the medians over the rounds
-//! and the target ratios. Rounds interleave everything, so machine noise
+//! threads, and with `--zbuffer-bin PATH` (the tiled z-buffer's benchmark,
+//! `target/release/fast_zbuffer_bench` of this package) each round times
+//! the tiled z-buffer on the same scenes and span; the table gives the
+//! medians over the rounds and the target ratios. Rounds interleave everything, so machine noise
 //! hits all alike; per round each pipeline renders for a 40 ms warm-up,
 //! then at least [`TIMED`] frames and [`TIMED_SPAN`] of them, timed.
 //!
-//! `cargo run --release -p hider-abuffer --example abuffer_bench -- [ROUNDS] [SIZE] [--peers-bin PATH] [--zbuffer-bin PATH]`
+//! `cargo run --release -p hider-bench --bin abuffer_bench -- [ROUNDS] [SIZE] [--peers-bin PATH] [--zbuffer-bin PATH]`
 //! (default 5 rounds at 1024).
 
-use std::path::PathBuf;
 use std::process::Command;
 use std::time::{Duration, Instant};
 
 use hider_abuffer::{ABuffer, ABufferOptions};
+use hider_bench::programs;
 use hider_scene::prepare::lean::{LeanScene, prepare_lean_into};
-use hider_scene::{Frame, Hider, PrepareOptions, Scene, ScreenScene, View, load_obj, procedural};
+use hider_scene::{Frame, Hider, PrepareOptions, Scene, ScreenScene, View};
 
 /// Frames timed per pipeline and round, after the warm-up: at least
 /// this many, and as many more as fit in [`TIMED_SPAN`].
@@ -72,49 +72,16 @@ enum Timed<'a> {
     Prepare,
 }
 
-/// One row of the `peers` package's JSON.
-#[derive(serde::Deserialize)]
-struct PeerRow {
-    scene: String,
-    peer: String,
-    threads: u32,
-    median_ms: f64,
-}
-
 /// Median of `v` (the upper one for an even count); NaN when empty.
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
 }
 
-/// Takes the value of `--flag VALUE` out of `args`.
-fn take_flag(args: &mut Vec<String>, flag: &str) -> Option<String> {
-    let i = args.iter().position(|a| a == flag)?;
-    let value = args.get(i + 1).cloned();
-    args.drain(i..(i + 2).min(args.len()));
-    value
-}
-
 /// Runs llvmpipe with 4x MSAA on 1 and 2 threads once; its medians per
 /// (scene, threads).
 fn run_peers(bin: &str, size: u32) -> Result<Vec<(String, u32, f64)>, String> {
-    let json =
-        std::env::temp_dir().join(format!("hider-abuffer-peers-{}.json", std::process::id()));
-    let status = Command::new(bin)
-        .args([
-            "--peers", "llvmpipe", "--msaa", "--runs", "5", "--rounds", "1",
-        ])
-        .args(["--sizes", &size.to_string(), "--json"])
-        .arg(&json)
-        .stdout(std::process::Stdio::null())
-        .status()
-        .map_err(|e| format!("{bin}: {e}"))?;
-    if !status.success() {
-        return Err(format!("{bin} failed ({status})"));
-    }
-    let text = std::fs::read_to_string(&json).map_err(|e| format!("{}: {e}", json.display()))?;
-    let _ = std::fs::remove_file(&json);
-    let rows: Vec<PeerRow> = serde_json::from_str(&text).map_err(|e| e.to_string())?;
+    let rows = programs::run_peers(bin, &["--peers", "llvmpipe", "--msaa"], size)?;
     Ok(rows
         .into_iter()
         .filter(|r| r.peer == "llvmpipe-msaa4")
@@ -184,20 +151,11 @@ fn frames(
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
-    let peers_bin = take_flag(&mut args, "--peers-bin");
-    let tiled_bin = take_flag(&mut args, "--zbuffer-bin");
+    let peers_bin = programs::take_flag(&mut args, "--peers-bin")?;
+    let tiled_bin = programs::take_flag(&mut args, "--zbuffer-bin")?;
     let rounds: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(5);
     let size: u32 = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(1024);
-    let spider = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../../../shared/gl-reference/models/spider.obj");
-    let mut scenes: Vec<(&str, Scene)> = Vec::new();
-    match load_obj(&spider) {
-        Ok(s) => scenes.push(("spider", s)),
-        Err(e) => eprintln!("skipped the spider: {e}"),
-    }
-    scenes.push(("sphere 200", procedural::uv_sphere(200)));
-    scenes.push(("sphere 500", procedural::uv_sphere(500)));
-    scenes.push(("soup 100k", procedural::random_soup(100_000, 1)));
+    let scenes = programs::llvmpipe_scenes();
 
     let serial = PrepareOptions::gl_compatible();
     let parallel = serial.with_parallel(true);

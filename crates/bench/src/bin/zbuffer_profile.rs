@@ -1,26 +1,17 @@
 //! Renders one scene of the benchmark a few times with one hider, for
 //! profilers (`valgrind --tool=callgrind`, `perf record`).
 //!
-//! `cargo run --release -p hider-zbuffer --example fast_zbuffer_profile -- SCENE HIDER [SIZE] [RUNS] [THREADS]`
+//! `cargo run --release -p hider-bench --bin zbuffer_profile -- SCENE HIDER [SIZE] [RUNS] [THREADS]`
 //! with SCENE one of `spider`, `sphere200`, `sphere500`, `soup`, and HIDER
 //! `zbuffer`, `tiled` (both on the full front end's scene, render only) or
 //! `lean` (the tiled hider's own pipeline: lean front end, then a draw
 //! into its tiles; prints both times).
 
-use std::path::PathBuf;
 use std::time::Instant;
 
-use hider_scene::{
-    DynHider, Frame, Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural,
-};
+use hider_bench::programs;
+use hider_scene::{DynHider, Frame, Hider, PrepareOptions, Scene, View, prepare, procedural};
 use hider_zbuffer::{DepthScene, TiledZBuffer, TiledZBufferOptions, ZBuffer, prepare_depth_into};
-
-/// CPU time of the calling thread in ms.
-fn thread_cpu_ms() -> Option<f64> {
-    cpu_time::ThreadTime::try_now()
-        .ok()
-        .map(|t| t.as_duration().as_secs_f64() * 1e3)
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -29,10 +20,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let runs: usize = arg(3, "3").parse()?;
     let threads: usize = arg(4, "1").parse()?;
     let scene: Scene = match arg(0, "sphere500").as_str() {
-        "spider" => load_obj(
-            PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-                .join("../../../shared/gl-reference/models/spider.obj"),
-        )?,
+        "spider" => programs::spider()?,
         "sphere200" => procedural::uv_sphere(200),
         "sphere500" => procedural::uv_sphere(500),
         "soup" => procedural::random_soup(100_000, 1),
@@ -50,7 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         // on the machine do not count); wall time otherwise.
         let clock = |t: Instant| {
             if threads == 1 {
-                thread_cpu_ms().unwrap_or_else(|| t.elapsed().as_secs_f64() * 1e3)
+                programs::thread_cpu_seconds().unwrap_or_else(|| t.elapsed().as_secs_f64()) * 1e3
             } else {
                 t.elapsed().as_secs_f64() * 1e3
             }

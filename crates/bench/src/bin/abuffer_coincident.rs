@@ -2,7 +2,7 @@
 //! (`f 1 2 3 4 1 2 3 4 ...`, 1900 entries): about 950 triangles, in two
 //! sets of exactly coincident copies, at 512 x 512, opaque and translucent.
 //!
-//! `cargo run --release -p hider-abuffer --example coincident [-- "1 2 3 4 2 3 4 1"]`
+//! `cargo run --release -p hider-bench --bin abuffer_coincident [-- "1 2 3 4 2 3 4 1"]`
 //! (the vertex list that repeats, default `1 2 3 4`)
 
 use std::path::Path;

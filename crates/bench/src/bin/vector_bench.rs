@@ -3,10 +3,10 @@
 //! (39,204 triangles), the spider and a 100k-triangle UV sphere; with
 //! `--edge-on` also the grids seen exactly along the tilted sheet.
 //!
-//! `cargo run --release -p hider-vector --example vector_bench [--edge-on] [spider.obj] [size]`
-//! (default spider: `assets/spider/spider.obj` when it
-//! exists, size 800). Times are the best of three runs, in this process,
-//! so the ratios are same-run ratios.
+//! `cargo run --release -p hider-bench --bin vector_bench -- [--edge-on] [spider.obj] [size]`
+//! (default spider: the bundled `assets/spider/spider.obj`, size 800).
+//! Times are the best of three runs, in this process, so the ratios are
+//! same-run ratios.
 
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -108,11 +108,9 @@ fn main() -> Result<(), hider_scene::Error> {
     let mut args: Vec<String> = std::env::args().collect();
     let edge_on = args.iter().any(|a| a == "--edge-on");
     args.retain(|a| a != "--edge-on");
-    let spider = PathBuf::from(
-        args.get(1)
-            .cloned()
-            .unwrap_or_else(|| "assets/spider/spider.obj".into()),
-    );
+    let spider = args
+        .get(1)
+        .map_or_else(hider_bench::programs::spider_path, PathBuf::from);
     let size: u32 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(800);
     let mut scenes = vec![("intersecting grids", intersecting_grids(100))];
     if edge_on {

@@ -22,7 +22,7 @@
 //! system, not the algorithm.
 //!
 //! ```text
-//! cargo run --release -p hider-testkit --features hostile --example one_pixel_scaling -- [N...] [--only NAME] [--limit SECONDS] [--counters NAME] [--runs COUNT]
+//! cargo run --release -p hider-bench --bin one_pixel_scaling -- [N...] [--only NAME] [--limit SECONDS] [--counters NAME] [--runs COUNT]
 //! ```
 
 use std::time::Instant;
