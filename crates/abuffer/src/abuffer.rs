@@ -32,6 +32,7 @@
 //!    per partial pixel before its mask is computed.
 
 use hider_geom::Viewport;
+use hider_scene::pool::{OwnPool, thread_count};
 use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_sinks};
 use hider_scene::{
     Error, Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, ShadeMode, View,
@@ -67,7 +68,7 @@ pub struct ABuffer {
     owner: Vec<u32>,
     /// The hider's own pool, when the caller's does not have the threads
     /// asked for.
-    pool: Option<rayon::ThreadPool>,
+    pool: OwnPool,
     /// The lean front end's output, kept between frames
     /// ([`Hider::render_scene`]).
     lean: LeanScene,
@@ -91,10 +92,7 @@ impl ABuffer {
     /// The number of threads rendering: [`ABufferOptions::threads`], or
     /// the machine's core count for 0.
     pub fn threads(&self) -> usize {
-        match self.options.threads {
-            0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-            n => n,
-        }
+        thread_count(self.options.threads)
     }
 
     /// After a render: the primitive in front at every sample, pixel by
@@ -230,14 +228,11 @@ impl ABuffer {
         for worker in &mut self.workers[..threads] {
             worker.begin_frame(scene, &options, tiles)?;
         }
-        let own = self.own_pool(threads)?;
+        self.pool.start(threads, "abuffer")?;
+        let pool = self.pool.workers(threads);
         if !binned {
             let bins = &mut self.bins;
-            let mut bin = || bins.bin(scene, grid, threads);
-            match self.pool.as_ref().filter(|_| own) {
-                Some(pool) => pool.install(bin),
-                None => bin(),
-            }
+            pool.install(|| bins.bin(scene, grid, threads));
         }
         let scene = &scene.with_items(self.bins.items());
         // Each band is cleared by the thread that renders it, just before
@@ -295,11 +290,7 @@ impl ABuffer {
             run(&mut workers[0]).map(|done| vec![done])
         } else {
             let (mine, run) = (&mut workers[..threads], &run);
-            let mut all = move || mine.par_iter_mut().map(run).collect();
-            match self.pool.as_ref().filter(|_| own) {
-                Some(pool) => pool.install(all),
-                None => all(),
-            }
+            pool.install(move || mine.par_iter_mut().map(run).collect())
         };
         self.workers = workers;
         let done: Vec<Vec<u32>> = match result {
@@ -320,30 +311,6 @@ impl ABuffer {
             }
         }
         Ok(total_stats(&self.workers[..threads]))
-    }
-
-    /// Whether `threads` threads run in the hider's own pool (started on
-    /// first use): not with one thread, nor when the caller's pool has
-    /// exactly that many (two pools on the same cores only take turns).
-    fn own_pool(&mut self, threads: usize) -> Result<bool> {
-        if threads <= 1 || rayon::current_num_threads() == threads {
-            return Ok(false);
-        }
-        if self
-            .pool
-            .as_ref()
-            .is_none_or(|p| p.current_num_threads() != threads)
-        {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .map_err(|e| Error::Render {
-                    hider: "abuffer".into(),
-                    message: format!("cannot start {threads} threads: {e}"),
-                })?;
-            self.pool = Some(pool);
-        }
-        Ok(true)
     }
 }
 

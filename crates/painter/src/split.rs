@@ -19,65 +19,21 @@ use hider_geom::PlaneEq;
 
 use crate::sides::Tag;
 
-/// Splits the convex polygon `poly` (window pixels, either orientation) by
-/// the line `f(x, y) = 0`: `negative` receives the part where `f <= 0`,
-/// `positive` the part where `f >= 0`. Both keep the input's orientation.
-/// A side that is not a proper polygon (fewer than three distinct vertices)
-/// is left empty. Both outputs are cleared first.
-///
-/// Each crossing point is computed once and pushed to both sides, so the
-/// two halves share their new edge bit for bit.
-pub fn split_convex(
-    poly: &[DVec2],
-    f: &PlaneEq,
-    negative: &mut Vec<DVec2>,
-    positive: &mut Vec<DVec2>,
-) {
-    negative.clear();
-    positive.clear();
-    let n = poly.len();
-    for k in 0..n {
-        let a = poly[k];
-        let b = poly[(k + 1) % n];
-        let fa = f.eval(a.x, a.y);
-        let fb = f.eval(b.x, b.y);
-        if fa <= 0.0 {
-            push_distinct(negative, a);
-        }
-        if fa >= 0.0 {
-            push_distinct(positive, a);
-        }
-        if (fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0) {
-            // t in (0, 1) because fa and fb have strictly opposite signs.
-            let t = fa / (fa - fb);
-            let p = a + (b - a) * t;
-            push_distinct(negative, p);
-            push_distinct(positive, p);
-        }
-    }
-    for side in [negative, positive] {
-        if side.len() > 1 && side.first() == side.last() {
-            side.pop();
-        }
-        if side.len() < 3 {
-            side.clear();
-        }
-    }
-}
-
-fn push_distinct(out: &mut Vec<DVec2>, p: DVec2) {
-    if out.last() != Some(&p) {
-        out.push(p);
-    }
-}
-
 /// A polygon with a [`Tag`] per vertex.
 pub(crate) type Tagged = (Vec<DVec2>, Vec<Tag>);
 
-/// [`split_convex`] carrying each vertex's [`Tag`]: a vertex kept keeps its
+/// Splits the convex polygon `poly` (window pixels, either orientation) by
+/// the line `f(x, y) = 0`, carrying each vertex's [`Tag`]: `negative`
+/// receives the part where `f <= 0`, `positive` the part where `f >= 0`.
+/// Both keep the input's orientation. A side that is not a proper polygon
+/// (fewer than three distinct vertices) is left empty. Both outputs are
+/// cleared first.
+///
+/// Each crossing point is computed once and pushed to both sides, so the
+/// two halves share their new edge bit for bit. A vertex kept keeps its
 /// tag, a crossing on the edge `a -> b` lies on the planes both `a` and
 /// `b` lie on and on `plane` (the plane whose meeting line `f` is, if
-/// any). Same vertices as [`split_convex`].
+/// any).
 pub(crate) fn split_tagged(
     (poly, tags): (&[DVec2], &[Tag]),
     f: &PlaneEq,
@@ -153,6 +109,57 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
+    /// The untagged split, the plain Sutherland-Hodgman step whose
+    /// vertices [`split_tagged`] must give: splits the convex polygon
+    /// `poly` by the line `f(x, y) = 0` into `negative` (`f <= 0`) and
+    /// `positive` (`f >= 0`), both cleared first, keeping the input's
+    /// orientation and leaving a side with fewer than three distinct
+    /// vertices empty; each crossing is computed once and pushed to both
+    /// sides.
+    fn split_convex(
+        poly: &[DVec2],
+        f: &PlaneEq,
+        negative: &mut Vec<DVec2>,
+        positive: &mut Vec<DVec2>,
+    ) {
+        negative.clear();
+        positive.clear();
+        let n = poly.len();
+        for k in 0..n {
+            let a = poly[k];
+            let b = poly[(k + 1) % n];
+            let fa = f.eval(a.x, a.y);
+            let fb = f.eval(b.x, b.y);
+            if fa <= 0.0 {
+                push_distinct(negative, a);
+            }
+            if fa >= 0.0 {
+                push_distinct(positive, a);
+            }
+            if (fa < 0.0 && fb > 0.0) || (fa > 0.0 && fb < 0.0) {
+                // t in (0, 1) because fa and fb have strictly opposite signs.
+                let t = fa / (fa - fb);
+                let p = a + (b - a) * t;
+                push_distinct(negative, p);
+                push_distinct(positive, p);
+            }
+        }
+        for side in [negative, positive] {
+            if side.len() > 1 && side.first() == side.last() {
+                side.pop();
+            }
+            if side.len() < 3 {
+                side.clear();
+            }
+        }
+    }
+
+    fn push_distinct(out: &mut Vec<DVec2>, p: DVec2) {
+        if out.last() != Some(&p) {
+            out.push(p);
+        }
+    }
+
     fn line_x(c: f64) -> PlaneEq {
         // f(x, y) = x - c
         PlaneEq {
@@ -225,6 +232,23 @@ mod tests {
             for p in &neg { prop_assert!(f.eval(p.x, p.y) <= 1e-12); }
             for p in &pos { prop_assert!(f.eval(p.x, p.y) >= -1e-12); }
             prop_assert!(doubled_area(&neg) >= 0.0 && doubled_area(&pos) >= 0.0);
+        }
+
+        #[test]
+        fn the_tagged_split_has_the_untagged_vertices(
+            c in -1.0f64..5.0, dx in -1.0f64..1.0, dy in -1.0f64..1.0,
+        ) {
+            let f = PlaneEq { x0: c, y0: 2.0, value: 0.0, dx, dy };
+            let (mut neg, mut pos) = (Vec::new(), Vec::new());
+            split_convex(&square(), &f, &mut neg, &mut pos);
+            let tags: Vec<Tag> = (0..4).map(|k| Tag::corner(k % 3)).collect();
+            let (mut tneg, mut tpos) = Default::default();
+            split_tagged((&square(), &tags), &f, Some(1), &mut tneg, &mut tpos);
+            let (tneg, tpos): (Tagged, Tagged) = (tneg, tpos);
+            prop_assert_eq!(&neg, &tneg.0);
+            prop_assert_eq!(&pos, &tpos.0);
+            prop_assert_eq!(tneg.0.len(), tneg.1.len());
+            prop_assert_eq!(tpos.0.len(), tpos.1.len());
         }
     }
 }

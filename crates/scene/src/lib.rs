@@ -5,6 +5,7 @@
 //!   from OBJ + MTL ([`obj`]) or generated ([`procedural`]);
 //! - the front end [`prepare()`], which turns a scene and a [`View`] into a
 //!   [`ScreenScene`] of snapped, set-up [`ScreenTri`]s — no hider re-projects;
+//! - the parallel hiders' one policy for their threads ([`pool`]);
 //! - the [`Frame`] buffers with PNG output and the GL reference id/depth
 //!   dumps, written atomically;
 //! - the [`Hider`] trait (options, typed stats, one `new`, one `render`)
@@ -49,6 +50,7 @@ pub mod load;
 pub mod model;
 pub mod obj;
 pub mod obj_write;
+pub mod pool;
 pub mod prepare;
 pub mod procedural;
 pub mod shade;

@@ -22,13 +22,15 @@
 use hider_geom::clip::{OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
 use hider_geom::isa::{Avx2, Isa, Portable};
 use hider_geom::{Centres, FixedPt, PlaneEq, orient2d};
-use hider_scene::prepare::{ClipScratch, FrontEnd, Part, WindowVertex, setup_depth};
+use hider_scene::prepare::{FrontEnd, WindowVertex, setup_depth};
 use hider_scene::{Mesh, PrepareStats, Scene};
 
 use super::classify::{LANES, Lanes};
 use super::classify_avx2;
 use super::depth_tri::{DepthFragment, DepthTri};
-use hider_scene::prepare::lean::{CachedVertex, NO_WINDOW, NOT_FINITE, RunOutcome, mesh_parts};
+use hider_scene::prepare::lean::{
+    CachedVertex, ClipFallback, NO_WINDOW, NOT_FINITE, RunOutcome, mesh_parts,
+};
 
 /// One contiguous run of primitive ids of the output.
 #[derive(Clone, Debug, Default)]
@@ -105,8 +107,7 @@ fn pass<I: Isa>(input: &Input<'_>, run: &mut Run, isa: I) -> RunOutcome {
         run,
         stats: PrepareStats::default(),
         bad_index: false,
-        fallback: Part::default(),
-        scratch: ClipScratch::default(),
+        fallback: ClipFallback::default(),
     };
     for part in mesh_parts(scene, vertices, range.clone()) {
         let (lo, hi) = (part.triangles.start, part.triangles.end);
@@ -131,7 +132,7 @@ fn pass<I: Isa>(input: &Input<'_>, run: &mut Run, isa: I) -> RunOutcome {
         bad_index,
         ..
     } = pass;
-    stats.add(&fallback.stats);
+    stats.add(fallback.stats());
     RunOutcome { stats, bad_index }
 }
 
@@ -163,9 +164,8 @@ struct Pass<'a, I> {
     run: &'a mut Run,
     stats: PrepareStats,
     bad_index: bool,
-    /// `prepare`'s per-triangle output, for triangles that must be clipped.
-    fallback: Part,
-    scratch: ClipScratch,
+    /// `prepare`'s per-triangle path, for triangles that must be clipped.
+    fallback: ClipFallback,
 }
 
 impl<I: Isa> Pass<'_, I> {
@@ -309,16 +309,12 @@ impl<I: Isa> Pass<'_, I> {
     /// A triangle that must be clipped: `prepare`'s own path, keeping the
     /// depth part of each piece that covers a pixel centre or may.
     fn clipped(&mut self, which: (usize, usize, u32)) {
-        let part = &mut self.fallback;
-        part.prims.clear();
-        part.tris.clear();
-        self.front
-            .triangle(self.scene, which, part, &mut self.scratch);
-        for t in &part.tris {
+        let (pieces, stats) = self.fallback.clip(self.front, self.scene, which);
+        for t in pieces {
             // Pieces are positively oriented already.
             match self.front.viewport.covered_centres(&t.v, 1) {
-                Centres::Few { count: 0, .. } => part.stats.empty += 1,
-                centres => emit(self.run, &mut part.stats, DepthTri::from(t), centres),
+                Centres::Few { count: 0, .. } => stats.empty += 1,
+                centres => emit(self.run, stats, DepthTri::from(t), centres),
             }
         }
     }

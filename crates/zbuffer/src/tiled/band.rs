@@ -6,9 +6,9 @@
 use hider_geom::Viewport;
 use hider_scene::Frame;
 use hider_scene::frame::BACKGROUND;
+use hider_scene::pool::Workers;
 
 use super::bins::{self, ChunkBins, FragmentBins, Grid};
-use super::pool::{Workers, install};
 use super::raster_tri::RasterTri;
 use super::scratch::TileKey;
 use super::tile::TileBuf;
@@ -55,13 +55,13 @@ impl<T: RasterTri> Jobs<'_, T> {
     /// take single tiles, which balances a small object in the middle of
     /// the image far better than bands do.
     pub(super) fn draw_tiles<K: TileKey>(&self, bufs: &mut [TileBuf<K>], pool: Workers<'_>) {
-        let Some(pool) = pool else {
+        if !pool.is_parallel() {
             let cols = self.grid.cols as usize;
             for (b, band) in bufs.chunks_mut(cols).enumerate() {
                 self.dispatch(b * cols, band);
             }
             return;
-        };
+        }
         use rayon::prelude::*;
         // Tiles nothing reaches are only flagged background, here; the
         // threads share the others, one task each (the spider at 1024
@@ -77,7 +77,7 @@ impl<T: RasterTri> Jobs<'_, T> {
         // Heaviest first: the last tasks, which decide when the threads
         // finish, are then the small ones.
         busy.sort_unstable_by_key(|&(load, t, _)| (std::cmp::Reverse(load), t));
-        install(pool, || {
+        pool.install(|| {
             busy.par_iter_mut()
                 .with_max_len(1)
                 .for_each(|(_, t, tile)| self.dispatch(*t, std::slice::from_mut(*tile)));
@@ -229,11 +229,11 @@ fn for_each_band<K: TileKey>(
         };
     }
     match pool {
-        Some(pool) => {
+        Workers::Here => bands!(chunks_mut).for_each(work),
+        pool => {
             use rayon::prelude::*;
-            install(pool, || bands!(par_chunks_mut).for_each(work));
+            pool.install(|| bands!(par_chunks_mut).for_each(work));
         }
-        None => bands!(chunks_mut).for_each(work),
     }
 }
 

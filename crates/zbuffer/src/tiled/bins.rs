@@ -21,9 +21,9 @@
 
 use hider_geom::Viewport;
 use hider_geom::isa::prefetch;
+use hider_scene::pool::Workers;
 
 use super::bounds::DepthBounds;
-use super::pool::{Workers, install};
 use super::raster_tri::RasterTri;
 use crate::depth_scene::DepthFragment;
 
@@ -55,7 +55,7 @@ impl Bins {
         (pool, threads): (Workers<'_>, usize),
     ) -> Vec<&'a [T]> {
         let total: usize = parts.iter().map(|p| p.len()).sum();
-        let wanted = if pool.is_some() {
+        let wanted = if pool.is_parallel() {
             threads.min(total / MIN_CHUNK).max(1)
         } else {
             1
@@ -76,9 +76,9 @@ impl Bins {
             bins.fill(run, vp, grid);
         };
         match pool {
-            Some(pool) if tris.len() > 1 || fragments.len() > 1 => {
+            pool if pool.is_parallel() && (tris.len() > 1 || fragments.len() > 1) => {
                 use rayon::prelude::*;
-                install(pool, || {
+                pool.install(|| {
                     rayon::join(
                         || self.chunks.par_iter_mut().zip(&tris).for_each(bin),
                         || {

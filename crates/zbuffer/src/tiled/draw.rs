@@ -8,7 +8,6 @@ use super::TiledZBuffer;
 use super::band::{self, Jobs};
 use super::bins::{Grid, Input};
 use super::key::{Fixed16, Fixed24, Reversed};
-use super::pool::{ambient_pool, wake, workers};
 use super::raster_tri::RasterTri;
 use super::scratch::{Scratch, TileKey};
 use super::stats::TiledZBufferStats;
@@ -27,19 +26,7 @@ impl TiledZBuffer {
         self.options.validate()?;
         hider_scene::view::check_image_size(vp.width, vp.height)?;
         let threads = self.threads();
-        if threads > 1
-            && !ambient_pool(threads)
-            && self
-                .pool
-                .as_ref()
-                .is_none_or(|p| p.current_num_threads() != threads)
-        {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .map_err(|e| self.error(format!("cannot start {threads} threads: {e}")))?;
-            self.pool = Some(pool);
-        }
+        self.pool.start(threads, &self.name)?;
         self.drawn = None;
         let stats = match self.options.depth_format {
             DepthFormat::F32 => self.draw_with::<T, f32>(input, vp, frame, threads),
@@ -63,8 +50,8 @@ impl TiledZBuffer {
         threads: usize,
     ) -> TiledZBufferStats {
         let grid = Grid::new(vp.width, vp.height, self.options.tile_size);
-        let pool = workers(self.pool.as_ref(), threads);
-        wake(pool);
+        let pool = self.pool.workers(threads);
+        pool.wake();
         let hiz = self.options.hierarchical_z;
         let tris = self
             .bins
@@ -105,7 +92,7 @@ impl TiledZBuffer {
 
     /// Copies the image held in format `K`'s tiles into `frame`.
     pub(super) fn read_with<K: TileKey>(&mut self, grid: Grid, frame: &mut Frame) {
-        let pool = workers(self.pool.as_ref(), self.threads());
+        let pool = self.pool.workers(self.threads());
         band::resolve(frame, K::bufs(&mut self.scratch), grid, pool);
     }
 }

@@ -38,7 +38,6 @@ mod bounds;
 mod draw;
 mod key;
 mod options;
-mod pool;
 mod raster_tri;
 mod scratch;
 mod stats;
@@ -53,6 +52,8 @@ use hider_scene::{
     Error, Frame, Hider, PrepareOptions, Result, Scene, ScreenScene, View, check_frame,
     check_frame_size,
 };
+
+use hider_scene::pool::{OwnPool, thread_count};
 
 use crate::depth_scene::{DepthFragment, DepthScene, DepthTri, prepare_depth_into};
 use crate::options::{DepthFormat, DepthTest};
@@ -72,7 +73,7 @@ pub use stats::TiledZBufferStats;
 pub struct TiledZBuffer {
     options: TiledZBufferOptions,
     name: String,
-    pool: Option<rayon::ThreadPool>,
+    pool: OwnPool,
     bins: bins::Bins,
     scratch: Scratch,
     /// The lean front end's output, for [`Hider::render_scene`].
@@ -88,10 +89,7 @@ impl TiledZBuffer {
     /// The number of threads rendering: [`TiledZBufferOptions::threads`],
     /// or the machine's core count for 0.
     pub fn threads(&self) -> usize {
-        match self.options.threads {
-            0 => std::thread::available_parallelism().map_or(1, |n| n.get()),
-            n => n,
-        }
+        thread_count(self.options.threads)
     }
 
     /// Draws a lean [`DepthScene`] into the hider's own tiled framebuffer
@@ -185,7 +183,7 @@ impl Hider for TiledZBuffer {
         Self {
             options,
             name,
-            pool: None,
+            pool: OwnPool::default(),
             bins: bins::Bins::default(),
             scratch: Scratch::default(),
             lean: DepthScene::new(),

@@ -10,7 +10,8 @@
 //! classified by its outcode, divided and snapped once, eight at a time
 //! ([`vertices`], cached in [`fill_vertices`]), and triangles are set up
 //! from the cached results. A triangle that must be clipped goes through
-//! `prepare`'s own per-triangle path ([`FrontEnd::triangle`]).
+//! `prepare`'s own per-triangle path ([`FrontEnd::triangle`], by way of
+//! [`ClipFallback`], which both users share).
 //!
 //! Two users share the vertex pass: the tiled z-buffer's depth-only front
 //! end, which also drops triangles that cover no pixel centre, and
@@ -23,10 +24,12 @@
 //! [`LeanSink`] of the hider's as they are set up (the A-buffer bins them
 //! there, instead of storing them and reading them back).
 
+mod clipped;
 mod scene;
 mod triangles;
 mod vertices;
 
+pub use clipped::ClipFallback;
 pub use scene::{LeanScene, LeanSink, LeanTri, prepare_lean_into, prepare_lean_sinks};
 pub use vertices::{CachedVertex, NO_WINDOW, NOT_FINITE, vertices};
 

@@ -6,11 +6,11 @@ use hider_geom::clip::{OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
 use hider_geom::{FixedPt, orient2d};
 
 use crate::model::{Mesh, Scene};
-use crate::prepare::{ClipScratch, FrontEnd, Part, WindowVertex, setup_depth};
+use crate::prepare::{FrontEnd, WindowVertex, setup_depth};
 
 use super::scene::{LeanSink, LeanTri};
 use super::vertices::{CachedVertex, NO_WINDOW, NOT_FINITE};
-use super::{RunOutcome, mesh_parts};
+use super::{ClipFallback, RunOutcome, mesh_parts};
 
 /// A vertex with a code that culls the triangle: what an index out of
 /// range reads (the caller turns that into an error).
@@ -36,8 +36,7 @@ pub(super) fn triangles<S: LeanSink>(
         front,
         out,
         outcome: RunOutcome::default(),
-        fallback: Part::default(),
-        scratch: ClipScratch::default(),
+        fallback: ClipFallback::default(),
     };
     for part in mesh_parts(scene, cache, range) {
         for t in part.triangles {
@@ -53,7 +52,7 @@ pub(super) fn triangles<S: LeanSink>(
         fallback,
         ..
     } = pass;
-    outcome.stats.add(&fallback.stats);
+    outcome.stats.add(fallback.stats());
     outcome
 }
 
@@ -63,9 +62,8 @@ struct Pass<'a, S> {
     front: &'a FrontEnd,
     out: &'a mut S,
     outcome: RunOutcome,
-    /// `prepare`'s per-triangle output, for triangles that must be clipped.
-    fallback: Part,
-    scratch: ClipScratch,
+    /// `prepare`'s per-triangle path, for triangles that must be clipped.
+    fallback: ClipFallback,
 }
 
 impl<S: LeanSink> Pass<'_, S> {
@@ -131,12 +129,8 @@ impl<S: LeanSink> Pass<'_, S> {
     /// A triangle that must be clipped: `prepare`'s own path, keeping its
     /// pieces.
     fn clipped(&mut self, which: (usize, usize, u32)) {
-        let part = &mut self.fallback;
-        part.prims.clear();
-        part.tris.clear();
-        self.front
-            .triangle(self.scene, which, part, &mut self.scratch);
-        for tri in &part.tris {
+        let (pieces, _) = self.fallback.clip(self.front, self.scene, which);
+        for tri in pieces {
             self.out.push(LeanTri::from(tri));
         }
     }
