@@ -383,7 +383,11 @@ impl Hider for ABuffer {
         tris.clear();
         tris.extend(scene.tris.iter().map(LeanTri::from));
         let sampler = palette::sampler(scene, self.options.shade);
-        let result = self.run(&Source::screen(scene, &tris, sampler), false, frame);
+        let result = self.run(
+            &Source::screen(scene, &tris, sampler.as_ref()),
+            false,
+            frame,
+        );
         self.screen_tris = tris;
         result
     }

@@ -19,7 +19,7 @@ use crate::palette;
 enum Kind<'a> {
     /// `prepare`'s output, and the frame's texture sampler when it is
     /// textured.
-    Screen(&'a ScreenScene, Option<TextureSampler>),
+    Screen(&'a ScreenScene, Option<&'a TextureSampler>),
     /// The lean front end's output, and the scene it was prepared from.
     Lean(&'a LeanScene, &'a Scene),
 }
@@ -45,7 +45,7 @@ impl<'a> Source<'a> {
     pub(crate) fn screen(
         scene: &'a ScreenScene,
         tris: &'a [LeanTri],
-        sampler: Option<TextureSampler>,
+        sampler: Option<&'a TextureSampler>,
     ) -> Self {
         Self {
             viewport: scene.viewport,
@@ -131,7 +131,7 @@ impl<'a> Source<'a> {
     #[inline]
     pub(crate) fn at_pixel(&self, prim: u32, rgba: [f32; 4], ij: (u32, u32)) -> [f32; 4] {
         match &self.kind {
-            Kind::Screen(s, sampler) => palette::at_pixel(s, sampler.as_ref(), prim, rgba, ij),
+            Kind::Screen(s, sampler) => palette::at_pixel(s, *sampler, prim, rgba, ij),
             Kind::Lean(..) => rgba,
         }
     }
