@@ -21,6 +21,8 @@ use hider_geom::{EdgeFunction, FixedPt};
 use hider_scene::ScreenTri;
 
 use crate::pattern::{CENTRE, SamplePattern};
+#[cfg(target_arch = "x86_64")]
+use crate::simd::coverage as avx2;
 
 /// What a triangle covers in one pixel.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -87,7 +89,7 @@ pub enum Class {
 /// samples are 3 x 32 lane-parallel adds and `and`s (the offsets are
 /// precomputed per triangle) whose sign bits are gathered with one
 /// multiply per row (on a CPU with AVX2, one register and one
-/// `movemask` per row: `coverage/avx2.rs`); otherwise the same test runs
+/// `movemask` per row: `simd/coverage.rs`); otherwise the same test runs
 /// in `i64`.
 /// Either way each bit is exactly the shared `contains` test. Patterns
 /// smaller than 32 pick their cells out of the grid mask.
@@ -456,7 +458,5 @@ pub fn pixel_range_of(
     (x0 <= x1 && y0 <= y1).then_some((x0 as u32, y0 as u32, x1 as u32, y1 as u32))
 }
 
-#[cfg(target_arch = "x86_64")]
-mod avx2;
 #[cfg(test)]
 mod tests;

@@ -93,6 +93,8 @@ mod raster;
 mod resolve;
 mod samples;
 mod select;
+#[cfg(target_arch = "x86_64")]
+mod simd;
 mod sorted;
 mod source;
 mod ssaa;

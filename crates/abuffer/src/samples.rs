@@ -47,15 +47,15 @@ use crate::culling::{BLOCK, block_part};
 use crate::depth::{depth_key, far_corner, near_corner, plane_depth};
 use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
 use crate::select::{pick, pick_f64};
+#[cfg(target_arch = "x86_64")]
+use crate::simd::samples as avx2;
 use crate::stats::ABufferStats;
 
-#[cfg(target_arch = "x86_64")]
-mod avx2;
 mod culling;
 mod resolve;
 mod whole;
 
-use whole::Held;
+pub(crate) use whole::Held;
 
 /// Rows of a tile taken in one pass: 64 x 32 pixels of 32 samples of 8
 /// bytes are 512 KiB, which stays in a 1 MiB level-2 cache.
@@ -243,7 +243,7 @@ impl SampleBuffer {
     /// [`Self::triangle`], with the AVX2 depth test of the 8 x 4 grid
     /// when `grid` is given.
     #[inline(always)]
-    pub(super) fn triangle_with(
+    pub(crate) fn triangle_with(
         &mut self,
         item: &BinItem,
         pattern: SamplePattern,

@@ -69,6 +69,7 @@ mod depth;
 mod depth_scene;
 mod options;
 mod raster;
+mod simd;
 mod tiled;
 
 pub use depth_scene::{DepthFragment, DepthScene, DepthTri, prepare_depth_into};

@@ -56,7 +56,7 @@ impl SampleBuffer {
 
     /// [`Self::resolve`], inlined into its AVX2 and portable callers.
     #[inline(always)]
-    pub(super) fn resolve_with(
+    pub(crate) fn resolve_with(
         &mut self,
         input: &mut Input<'_>,
         resolver: &mut Resolver,

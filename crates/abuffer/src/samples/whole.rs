@@ -18,7 +18,7 @@ use crate::pattern::{CENTRE, MAX_SAMPLES, SamplePattern};
 use crate::stats::ABufferStats;
 
 /// What [`SampleBuffer::whole_block`] needs of a triangle.
-pub(super) struct Held {
+pub(crate) struct Held {
     /// Its depth plane.
     pub(super) plane: PlaneEq,
     /// Its primitive.
@@ -72,7 +72,7 @@ impl SampleBuffer {
 
     /// [`Self::whole_block`], inlined into its AVX2 and portable callers.
     #[inline(always)]
-    pub(super) fn whole_block_with(
+    pub(crate) fn whole_block_with(
         &mut self,
         held: Held,
         (i0, j0): (u32, u32),

@@ -2,7 +2,7 @@
 //! by lane and without branches: orientation, facing, pixel box and the
 //! exact test of the (at most four) pixel centres of a small box.
 //!
-//! This is the portable definition; `classify_avx2` computes the same
+//! This is the portable definition; `simd/classify.rs` computes the same
 //! [`Lanes`] with AVX2 intrinsics. The pixel box, the centres and the fill
 //! rule are hider-geom's ([`first_center_from`], [`last_center_upto`],
 //! [`pixel_center`], [`top_left_bias`]), the same functions
@@ -17,29 +17,29 @@ use hider_geom::fixed::{SUBPIXEL_SCALE, first_center_from, last_center_upto, pix
 const _: () = assert!(FEW_CENTRES == 4);
 
 /// Triangles per batch.
-pub(super) const LANES: usize = 8;
+pub(crate) const LANES: usize = 8;
 
 /// The integer classification of a batch, lane by lane.
 #[derive(Debug, PartialEq, Eq)]
-pub(super) struct Lanes {
+pub(crate) struct Lanes {
     /// How many lanes are dropped for a zero area, for facing away, and
     /// for covering no centre (in that order of precedence, as the
     /// triangle pass's one-by-one path tests).
-    pub(super) degenerate: u64,
-    pub(super) back_faces: u64,
-    pub(super) empty: u64,
+    pub(crate) degenerate: u64,
+    pub(crate) back_faces: u64,
+    pub(crate) empty: u64,
     /// Bit `i`: lane `i` is kept.
-    pub(super) keep: u8,
+    pub(crate) keep: u8,
     /// Bit `i`: lane `i`'s last two corners must be swapped for positive
     /// order.
-    pub(super) swap: u8,
+    pub(crate) swap: u8,
     /// Bit `i`: lane `i`'s box holds at most [`FEW_CENTRES`] centres; then
     /// bit `j` of `covered[i]` says whether its `j`-th centre (row-major)
     /// is covered.
-    pub(super) few: u8,
-    pub(super) covered: [u8; LANES],
+    pub(crate) few: u8,
+    pub(crate) covered: [u8; LANES],
     /// The box's first pixel and its width.
-    pub(super) corner: [(u32, u32, u32); LANES],
+    pub(crate) corner: [(u32, u32, u32); LANES],
 }
 
 impl Lanes {
@@ -47,7 +47,7 @@ impl Lanes {
     /// in the order of the one-by-one path's tests: a zero area first,
     /// then the facing, then the centres.
     #[inline(always)]
-    pub(super) fn drop_reasons(&mut self, zero: u8, back: u8, empty: u8) {
+    pub(crate) fn drop_reasons(&mut self, zero: u8, back: u8, empty: u8) {
         let back = back & !zero;
         let empty = empty & !zero & !back;
         self.degenerate = u64::from(zero.count_ones());
@@ -62,7 +62,7 @@ impl Lanes {
     /// magnitude), so their differences fit `i32` and every product fits
     /// `i64` exactly, as in the scalar functions.
     #[inline(always)]
-    pub(super) fn classify(
+    pub(crate) fn classify(
         x: &[[i32; LANES]; 3],
         y: &[[i32; LANES]; 3],
         (width, height): (u32, u32),

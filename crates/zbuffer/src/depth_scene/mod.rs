@@ -36,8 +36,7 @@
 //! with clipping and culling, and the `front_end` fuzz target on hostile
 //! ones.
 
-mod classify;
-mod classify_avx2;
+pub(crate) mod classify;
 mod depth_tri;
 mod triangles;
 

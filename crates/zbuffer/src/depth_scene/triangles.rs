@@ -26,8 +26,10 @@ use hider_scene::prepare::{FrontEnd, WindowVertex, setup_depth};
 use hider_scene::{Mesh, PrepareStats, Scene};
 
 use super::classify::{LANES, Lanes};
-use super::classify_avx2;
 use super::depth_tri::{DepthFragment, DepthTri};
+use crate::simd;
+#[cfg(target_arch = "x86_64")]
+use crate::simd::Kernel;
 use hider_scene::prepare::lean::{
     CachedVertex, ClipFallback, NO_WINDOW, NOT_FINITE, RunOutcome, mesh_parts,
 };
@@ -60,34 +62,33 @@ pub(super) struct Input<'a> {
     pub(super) range: std::ops::Range<usize>,
 }
 
-/// Sets up the triangles of `input` into `run`.
+/// Sets up the triangles of `input` into `run`: in the [`pass`] compiled
+/// for AVX2 when the CPU has it ([`simd::with_avx2`]; integer arithmetic
+/// is exact and the few floating-point operations are IEEE operations Rust
+/// never fuses, so both copies give the same bits).
 pub(super) fn triangles(input: &Input<'_>, run: &mut Run) -> RunOutcome {
     #[cfg(target_arch = "x86_64")]
     if let Some(avx2) = Avx2::detect() {
-        return triangles_avx2(input, run, avx2);
+        return simd::with_avx2(Triangles { input, run }, avx2);
     }
     pass(input, run, Portable)
 }
 
-/// [`pass`] compiled for AVX2.
-///
-/// `unsafe` only because calling a `target_feature` function on a CPU
-/// without the feature would be undefined; the [`Avx2`] value proves it
-/// has it. Integer arithmetic is exact and the few floating-point
-/// operations are IEEE operations Rust never fuses, so both copies give
-/// the same bits.
+/// [`pass`] as a [`Kernel`], for [`simd::with_avx2`].
 #[cfg(target_arch = "x86_64")]
-#[allow(
-    unsafe_code,
-    reason = "a target-feature call, proven sound by the Avx2 token"
-)]
-fn triangles_avx2(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> RunOutcome {
-    #[target_feature(enable = "avx2,fma")]
-    fn wide(input: &Input<'_>, run: &mut Run, avx2: Avx2) -> RunOutcome {
-        pass(input, run, avx2)
+struct Triangles<'a, 'b> {
+    input: &'a Input<'b>,
+    run: &'a mut Run,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl Kernel for Triangles<'_, '_> {
+    type Output = RunOutcome;
+
+    #[inline(always)]
+    fn run<I: Isa>(self, isa: I) -> RunOutcome {
+        pass(self.input, self.run, isa)
     }
-    // SAFETY: an `Avx2` value exists only where AVX2 and FMA were detected.
-    unsafe { wide(input, run, avx2) }
 }
 
 #[inline(always)]
@@ -265,7 +266,7 @@ impl<I: Isa> Pass<'_, I> {
         let size = (self.front.viewport.width, self.front.viewport.height);
         let cull = self.front.options.cull_back_faces;
         let lanes = match self.isa.avx2() {
-            Some(avx2) => classify_avx2::classify(avx2, &x, &y, size, cull),
+            Some(avx2) => simd::classify::classify(avx2, &x, &y, size, cull),
             None => Lanes::classify(&x, &y, size, cull),
         };
         self.stats.degenerate += lanes.degenerate;

@@ -13,6 +13,8 @@ use super::raster_tri::RasterTri;
 use super::scratch::TileKey;
 use super::tile::TileBuf;
 use super::wide::{Avx2, Isa, Portable};
+#[cfg(target_arch = "x86_64")]
+use crate::simd::{self, Kernel};
 
 /// One band of the frame as the resolve receives it: ((ids, depth),
 /// colour) rows of one row of tiles.
@@ -29,6 +31,25 @@ pub(super) struct Jobs<'a, T> {
     /// Each run's fragments by tile, applied after the tile's triangles.
     pub(super) fragments: &'a [FragmentBins],
     pub(super) hiz: bool,
+}
+
+/// [`Jobs::draw`] of a run of tiles as a [`Kernel`], for
+/// [`simd::with_avx2`].
+#[cfg(target_arch = "x86_64")]
+struct DrawBand<'a, 'b, T, K> {
+    jobs: &'a Jobs<'b, T>,
+    first: usize,
+    band: &'a mut [TileBuf<K>],
+}
+
+#[cfg(target_arch = "x86_64")]
+impl<T: RasterTri, K: TileKey> Kernel for DrawBand<'_, '_, T, K> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<I: Isa>(self, isa: I) {
+        self.jobs.draw(self.first, self.band, isa);
+    }
 }
 
 impl<T: RasterTri> Jobs<'_, T> {
@@ -99,36 +120,11 @@ impl<T: RasterTri> Jobs<'_, T> {
     fn dispatch<K: TileKey>(&self, first: usize, band: &mut [TileBuf<K>]) {
         #[cfg(target_arch = "x86_64")]
         if let Some(avx2) = Avx2::detect().filter(|_| self.wide) {
-            self.draw_avx2(first, band, avx2);
+            let jobs = self;
+            simd::with_avx2(DrawBand { jobs, first, band }, avx2);
             return;
         }
         self.draw(first, band, Portable);
-    }
-
-    /// [`Self::draw`] compiled for AVX2 and FMA.
-    ///
-    /// One of the project's six `unsafe` sites (listed in
-    /// `docs/zbuffer.md`): calling a `target_feature` function is unsafe
-    /// only because the CPU might lack the feature, and the [`Avx2`] value
-    /// proves it has them.
-    #[cfg(target_arch = "x86_64")]
-    #[allow(
-        unsafe_code,
-        reason = "a target-feature call, proven sound by the Avx2 token"
-    )]
-    fn draw_avx2<K: TileKey>(&self, first: usize, band: &mut [TileBuf<K>], avx2: Avx2) {
-        #[target_feature(enable = "avx2,fma")]
-        unsafe fn kernel<T: RasterTri, K: TileKey>(
-            jobs: &Jobs<'_, T>,
-            first: usize,
-            band: &mut [TileBuf<K>],
-            avx2: Avx2,
-        ) {
-            jobs.draw(first, band, avx2);
-        }
-        // SAFETY: an `Avx2` value exists only where AVX2 and FMA were
-        // detected.
-        unsafe { kernel(self, first, band, avx2) }
     }
 
     /// Draws the run of tiles `band` (tiles `first..`, row-major) from

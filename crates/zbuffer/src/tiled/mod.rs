@@ -36,13 +36,13 @@ mod band;
 mod bins;
 mod bounds;
 mod draw;
-mod key;
+pub(crate) mod key;
 mod options;
 mod raster_tri;
 mod scratch;
 mod stats;
 mod tile;
-mod wide;
+pub(crate) mod wide;
 
 #[cfg(test)]
 mod tests;

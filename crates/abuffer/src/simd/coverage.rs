@@ -28,7 +28,7 @@ use hider_geom::isa::Avx2;
     reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads from arrays of 32 i32"
 )]
 #[inline]
-pub(super) fn grid_mask(_proof: Avx2, noff: &[[i32; 32]; 3], nb: [i32; 3]) -> u32 {
+pub(crate) fn grid_mask(_proof: Avx2, noff: &[[i32; 32]; 3], nb: [i32; 3]) -> u32 {
     #[target_feature(enable = "avx2")]
     fn wide(noff: &[[i32; 32]; 3], nb: [i32; 3]) -> u32 {
         use std::arch::x86_64::{
@@ -73,7 +73,7 @@ pub(super) fn grid_mask(_proof: Avx2, noff: &[[i32; 32]; 3], nb: [i32; 3]) -> u3
     reason = "a target-feature call proven sound by the Avx2 token, and unaligned stores into arrays of 32 i32"
 )]
 #[inline]
-pub(super) fn offsets(_proof: Avx2, edges: &[EdgeFunction; 3], noff: &mut [[i32; 32]; 3]) {
+pub(crate) fn offsets(_proof: Avx2, edges: &[EdgeFunction; 3], noff: &mut [[i32; 32]; 3]) {
     #[target_feature(enable = "avx2")]
     fn wide(edges: &[EdgeFunction; 3], noff: &mut [[i32; 32]; 3]) {
         use std::arch::x86_64::{
@@ -99,7 +99,7 @@ pub(super) fn offsets(_proof: Avx2, edges: &[EdgeFunction; 3], noff: &mut [[i32;
     unsafe { wide(edges, noff) }
 }
 
-/// [`super::TriCoverage::classify_run`] with AVX2: the 8 pixels' edge
+/// [`TriCoverage::classify_run`](crate::coverage::TriCoverage::classify_run) with AVX2: the 8 pixels' edge
 /// values `base + k * step` plus the hull offsets in two registers of 4
 /// `i64` per edge, compared with zero and gathered by `movemask`. The
 /// same integer sums (no lane overflows: edge values stay far below
@@ -110,7 +110,7 @@ pub(super) fn offsets(_proof: Avx2, edges: &[EdgeFunction; 3], noff: &mut [[i32;
     reason = "a target-feature call proven sound by the Avx2 token"
 )]
 #[inline]
-pub(super) fn classify_run(
+pub(crate) fn classify_run(
     _proof: Avx2,
     base: [i64; 3],
     step: [i64; 3],

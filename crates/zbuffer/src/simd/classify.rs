@@ -19,7 +19,7 @@
 use hider_geom::FEW_CENTRES;
 use hider_geom::isa::Avx2;
 
-use super::classify::{LANES, Lanes};
+use crate::depth_scene::classify::{LANES, Lanes};
 
 // The centre tests below are written out for the first four centres.
 const _: () = assert!(FEW_CENTRES == 4);
@@ -31,7 +31,7 @@ const _: () = assert!(FEW_CENTRES == 4);
 /// proof the CPU might lack them.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-pub(super) fn classify(
+pub(crate) fn classify(
     _proof: Avx2,
     x: &[[i32; LANES]; 3],
     y: &[[i32; LANES]; 3],
@@ -44,7 +44,7 @@ pub(super) fn classify(
 /// Without x86-64 there is no [`Avx2`] value, so this is never called.
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
-pub(super) fn classify(
+pub(crate) fn classify(
     proof: Avx2,
     _: &[[i32; LANES]; 3],
     _: &[[i32; LANES]; 3],
@@ -347,7 +347,7 @@ mod tests {
     use hider_geom::isa::Avx2;
     use proptest::prelude::*;
 
-    use super::super::classify::{LANES, Lanes};
+    use crate::depth_scene::classify::{LANES, Lanes};
 
     /// A batch's corners: small triangles around random points (boxes of a
     /// few centres, on or off the viewport) mixed with large ones, in

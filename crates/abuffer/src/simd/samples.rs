@@ -15,10 +15,10 @@
 use hider_geom::PlaneEq;
 use hider_geom::isa::Avx2;
 
-use super::{Held, SampleBuffer};
 use crate::bins::BinItem;
 use crate::pattern::SamplePattern;
 use crate::resolve::{Band, Input, Resolver, Samples};
+use crate::samples::{Held, SampleBuffer};
 use crate::stats::ABufferStats;
 
 /// [`SampleBuffer::triangle`] for the 8 x 4 grid, the whole loop compiled
@@ -28,7 +28,7 @@ use crate::stats::ABufferStats;
     unsafe_code,
     reason = "a target-feature call proven sound by the Avx2 token"
 )]
-pub(super) fn triangle(
+pub(crate) fn triangle(
     isa: Avx2,
     buffer: &mut SampleBuffer,
     item: &BinItem,
@@ -50,7 +50,7 @@ pub(super) fn triangle(
     unsafe_code,
     reason = "a target-feature call proven sound by the Avx2 token"
 )]
-pub(super) fn whole_block(
+pub(crate) fn whole_block(
     _proof: Avx2,
     buffer: &mut SampleBuffer,
     held: Held,
@@ -73,7 +73,7 @@ pub(super) fn whole_block(
     unsafe_code,
     reason = "a target-feature call proven sound by the Avx2 token"
 )]
-pub(super) fn resolve(
+pub(crate) fn resolve(
     _proof: Avx2,
     buffer: &mut SampleBuffer,
     (input, resolver): (&mut Input<'_>, &mut Resolver),
@@ -104,7 +104,7 @@ pub(super) fn resolve(
     reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads and stores of arrays of 32 i32"
 )]
 #[inline(always)]
-pub(super) fn write_grid(
+pub(crate) fn write_grid(
     _proof: Avx2,
     keys: &mut [i32; 32],
     prims: &mut [u32; 32],
@@ -202,7 +202,7 @@ pub(super) fn write_grid(
     reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads of an array of 32 u32"
 )]
 #[inline(always)]
-pub(super) fn equal_mask(_proof: Avx2, prims: &[u32; 32], value: u32) -> u32 {
+pub(crate) fn equal_mask(_proof: Avx2, prims: &[u32; 32], value: u32) -> u32 {
     #[target_feature(enable = "avx2")]
     #[inline]
     fn wide(prims: &[u32; 32], value: u32) -> u32 {
@@ -236,7 +236,7 @@ pub(super) fn equal_mask(_proof: Avx2, prims: &[u32; 32], value: u32) -> u32 {
     reason = "a target-feature call proven sound by the Avx2 token, and an unaligned store of 8 i32"
 )]
 #[inline(always)]
-pub(super) fn row_keys(
+pub(crate) fn row_keys(
     _proof: Avx2,
     plane: &PlaneEq,
     (i0, j): (u32, u32),
@@ -305,7 +305,7 @@ fn keys8(
     reason = "a target-feature call proven sound by the Avx2 token, and unaligned loads of 8 i32"
 )]
 #[inline(always)]
-pub(super) fn greater(_proof: Avx2, a: &[i32; 8], b: &[i32; 8]) -> u32 {
+pub(crate) fn greater(_proof: Avx2, a: &[i32; 8], b: &[i32; 8]) -> u32 {
     #[target_feature(enable = "avx2")]
     #[inline]
     fn wide(a: &[i32; 8], b: &[i32; 8]) -> u32 {
