@@ -396,9 +396,11 @@ impl Hider for ABuffer {
     /// transformed per vertex, without its per-primitive data, each run of
     /// its triangle pass binning its triangles as it sets them up), then
     /// the same rendering as [`Hider::render`]: the same frame, bit for
-    /// bit. A textured scene drawn in Lambert mode takes the shared front
-    /// end into `screen` (texturing reads the per-primitive data only it
-    /// keeps); the decision is the scene's, known before anything runs.
+    /// bit. A scene whose colours vary across primitives (textures, vertex
+    /// normals, highlights: [`Scene::varies_per_point`]) drawn in Lambert
+    /// mode takes the shared front end into `screen` (shading per point
+    /// reads the per-primitive data only it keeps); the decision is the
+    /// scene's, known before anything runs.
     fn render_scene(
         &mut self,
         scene: &Scene,
@@ -407,7 +409,7 @@ impl Hider for ABuffer {
         screen: &mut ScreenScene,
         frame: &mut Frame,
     ) -> Result<ABufferStats> {
-        if self.options.shade == ShadeMode::Lambert && scene.is_textured() {
+        if self.options.shade == ShadeMode::Lambert && scene.varies_per_point() {
             hider_scene::prepare_into(scene, view, options, screen)?;
             return self.render(screen, frame);
         }

@@ -20,18 +20,21 @@ pub fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
     [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
 }
 
-/// The texture sampler of a frame drawn under `mode`: `Some` when the
-/// frame's materials name textures and the mode shows them (Lambert; id
-/// colours are never textured).
+/// The sampler of a frame drawn under `mode`: `Some` when some
+/// primitive's colour varies across it (a texture, vertex normals,
+/// highlights: [`ScreenScene::varies`]) and the mode shows it (Lambert; id
+/// colours are flat).
 pub fn sampler(scene: &ScreenScene, mode: ShadeMode) -> Option<TextureSampler> {
-    let textured = scene.materials.iter().any(|m| m.diffuse_texture.is_some());
-    (textured && mode == ShadeMode::Lambert)
-        .then(|| TextureSampler::new(scene, TextureOptions::default()))
+    if mode != ShadeMode::Lambert {
+        return None;
+    }
+    let sampler = TextureSampler::new(scene, TextureOptions::default());
+    scene.varies(&sampler).then_some(sampler)
 }
 
-/// `rgba` (a primitive's flat colour) times the primitive's texture at
-/// window point `(x, y)` when the frame is textured (`sampler`, see
-/// [`sampler`]); `rgba` otherwise.
+/// The colour of primitive `prim` at window point `(x, y)` when its colour
+/// varies and the frame is shaded per point (`sampler`, see [`sampler`]);
+/// `rgba`, its flat colour, otherwise. The opacity is the flat one.
 #[inline]
 pub fn at_point(
     scene: &ScreenScene,

@@ -64,7 +64,7 @@ pub use hider::{
     check_frame_size,
 };
 pub use load::{MAX_SOUP_TRIANGLES, MAX_SPHERE_SEGMENTS, generated, load_model};
-pub use model::{Light, Material, Mesh, Scene};
+pub use model::{Illumination, Light, Material, Mesh, Scene};
 pub use obj::{load_obj, load_obj_with};
 pub use obj_write::save_obj;
 pub use prepare::{

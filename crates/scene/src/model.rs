@@ -6,18 +6,57 @@ use hider_geom::Camera;
 use crate::error::{Error, Result};
 use crate::shade::TextureRef;
 
-/// A surface material (the subset of MTL the hiders use).
+/// A surface material: what the MTL format says of a surface that the
+/// hiders simulate (see `docs/analysis.md` for every MTL key and what is
+/// done with it). Colours are linear RGB in [0, 1].
+///
+/// The lighting model (`hider_scene::shade::shade_point`) is the MTL
+/// specification's: `illum 0` shows `Kd` unlit, `illum 1` adds the
+/// ambient term `Ka` and Lambert diffuse `Kd`, `illum 2` adds Blinn-Phong
+/// highlights `Ks` with exponent `Ns`; the emission `Ke` is added in every
+/// model.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// Name from the MTL file, or a generated one.
     pub name: String,
-    /// Diffuse colour `Kd`, linear RGB in [0, 1].
+    /// Diffuse colour `Kd`.
     pub diffuse: [f32; 3],
+    /// Ambient colour `Ka`, lit by the ambient term; `None` when the file
+    /// gives none: the diffuse colour then takes the ambient light too (as
+    /// most viewers do).
+    pub ambient: Option<[f32; 3]>,
+    /// Specular colour `Ks` (highlights under `illum 2`).
+    pub specular: [f32; 3],
+    /// Specular exponent `Ns` (0 to 1000).
+    pub shininess: f32,
+    /// Emitted colour `Ke`, added whatever the light.
+    pub emission: [f32; 3],
+    /// The illumination model `illum`.
+    pub illumination: Illumination,
     /// Opacity in [0, 1]: MTL `d`, or `1 - Tr`. 1 is opaque.
     pub opacity: f32,
     /// Diffuse texture `map_Kd`, resolved against the MTL file's folder
-    /// (Windows separators turned into `/`), decoded on first use.
+    /// (Windows separators turned into `/`), decoded on first use, with
+    /// its statement's options (`-s`, `-o`, `-clamp`).
     pub diffuse_texture: Option<TextureRef>,
+    /// Specular texture `map_Ks`, multiplying `Ks`.
+    pub specular_texture: Option<TextureRef>,
+}
+
+/// The MTL illumination model (`illum`), as far as the hiders simulate it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Illumination {
+    /// `illum 0`: the diffuse colour, no lighting ("color on, ambient
+    /// off").
+    Color,
+    /// `illum 1`: ambient and Lambert diffuse.
+    Diffuse,
+    /// `illum 2` (and the models above it, whose reflection, refraction
+    /// and Fresnel terms are named in a warning): ambient, diffuse and
+    /// Blinn-Phong highlights. The default: without `Ks` the highlights are
+    /// black, so a file without `illum` looks as under `illum 1`.
+    #[default]
+    Highlight,
 }
 
 impl Default for Material {
@@ -25,9 +64,24 @@ impl Default for Material {
         Self {
             name: "default".into(),
             diffuse: [0.8, 0.8, 0.8],
+            ambient: None,
+            specular: [0.0; 3],
+            shininess: 0.0,
+            emission: [0.0; 3],
+            illumination: Illumination::default(),
             opacity: 1.0,
             diffuse_texture: None,
+            specular_texture: None,
         }
+    }
+}
+
+impl Material {
+    /// Whether highlights can show: `illum 2` with a specular colour or
+    /// texture.
+    pub fn has_highlights(&self) -> bool {
+        self.illumination == Illumination::Highlight
+            && (self.specular.iter().any(|&c| c > 0.0) && self.shininess.is_finite())
     }
 }
 
@@ -116,6 +170,22 @@ impl Scene {
                     .mesh_material(mesh)
                     .is_some_and(|m| m.diffuse_texture.is_some())
         })
+    }
+
+    /// Whether some primitive's colour can vary across it under Lambert
+    /// shading: a texture ([`Self::is_textured`]), vertex normals on a lit
+    /// material (smooth shading), or highlights. A colour-resolving hider
+    /// then shades per point, from the per-primitive data of the shared
+    /// front end.
+    pub fn varies_per_point(&self) -> bool {
+        self.is_textured()
+            || self.materials.iter().any(Material::has_highlights)
+            || self.meshes.iter().any(|mesh| {
+                !mesh.normals.is_empty()
+                    && self
+                        .mesh_material(mesh)
+                        .is_none_or(|m| m.illumination != Illumination::Color)
+            })
     }
 
     /// The material `mesh` names, `None` for the default material (the

@@ -15,6 +15,7 @@
 //! error: the faces get the default material, as GL viewers do.
 
 mod mtl;
+mod statements;
 mod text;
 mod validate;
 

@@ -32,7 +32,8 @@ use crate::subdivide::{Roots, Sink, Subdivider};
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ColorCache {
     colors: Vec<Option<[f32; 3]>>,
-    /// The frame's texture sampler, when a material names a texture.
+    /// The frame's sampler, when some primitive's colour varies across it
+    /// (a texture, vertex normals, highlights).
     sampler: Option<TextureSampler>,
 }
 
@@ -41,8 +42,8 @@ impl ColorCache {
     pub fn reset(&mut self, scene: &ScreenScene) {
         self.colors.clear();
         self.colors.resize(scene.prims.len(), None);
-        let textured = scene.materials.iter().any(|m| m.diffuse_texture.is_some());
-        self.sampler = textured.then(|| TextureSampler::new(scene, TextureOptions::default()));
+        let sampler = TextureSampler::new(scene, TextureOptions::default());
+        self.sampler = scene.varies(&sampler).then_some(sampler);
     }
 
     fn get(&mut self, scene: &ScreenScene, shade: ShadeMode, prim: u32) -> [f32; 3] {
@@ -52,10 +53,10 @@ impl ColorCache {
         }
     }
 
-    /// The colour of `prim` in pixel `(u, v)`: its flat colour, textured
-    /// at the pixel centre under Lambert shading when its material has a
-    /// texture (a primitive is shaded once per pixel, as multisample
-    /// rasterisers and the A-buffer shade).
+    /// The colour of `prim` in pixel `(u, v)`: its flat colour, or under
+    /// Lambert shading its colour at the pixel centre when it varies (a
+    /// primitive is shaded once per pixel, as multisample rasterisers and
+    /// the A-buffer shade).
     fn at(&mut self, scene: &ScreenScene, shade: ShadeMode, prim: u32, u: u32, v: u32) -> [f32; 3] {
         let flat = self.get(scene, shade, prim);
         match &self.sampler {

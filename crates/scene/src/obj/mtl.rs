@@ -11,7 +11,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use super::text::decode;
-use crate::model::Material;
+use crate::model::{Illumination, Material};
 
 /// Most broken materials reported and dropped in one MTL file before the
 /// whole file is given up.
@@ -45,6 +45,9 @@ pub(super) fn load_mtl(
         }
     };
     let mut lines: Vec<&str> = text.split('\n').collect();
+    for w in super::statements::warnings(&lines, &path.display().to_string()) {
+        warn(w);
+    }
     for _ in 0..MAX_BROKEN_MATERIALS {
         let error = match parse(&lines) {
             Ok(loaded) => return Ok(loaded),
@@ -70,13 +73,19 @@ pub(super) fn load_mtl(
     none()
 }
 
-/// tobj's parse of the given lines, after the colour statements it cannot
-/// take: tobj panics on a colour (`Ka`, `Kd`, `Ks`, `Ke`) of fewer than
-/// three numbers, so one number is written three times (the format's
-/// grey, `Kd r` meaning `Kd r r r`) and none or two is refused here.
+/// tobj's parse of the given lines, after the statements it cannot take:
+/// tobj panics on a colour (`Ka`, `Kd`, `Ks`, `Ke`) of fewer than three
+/// numbers, so one number is written three times (the format's grey, `Kd
+/// r` meaning `Kd r r r`) and none or two is refused here; `d -halo X` is
+/// read as `d X` (tobj refuses the option, which dropped the material).
 fn parse(lines: &[&str]) -> tobj::MTLLoadResult {
     let mut text = String::new();
     for line in lines {
+        if let Some(plain) = super::statements::without_halo(line) {
+            text.push_str(&plain);
+            text.push('\n');
+            continue;
+        }
         let mut words = line.split_whitespace();
         let key = words.next();
         let values: Vec<&str> = words.collect();
@@ -137,12 +146,12 @@ pub(super) fn normalize_separators(p: &str) -> String {
 }
 
 /// A tobj material as the scene's, `Tr` (transparency) read when `d`
-/// (dissolve) is absent, texture paths relative to `base`.
+/// (dissolve) is absent, texture statements split into their options and
+/// their file (relative to `base`), values clamped to their ranges.
 pub(super) fn convert_material(m: &tobj::Material, base: &Path) -> Material {
-    let diffuse = m
-        .diffuse
-        .map(|d| d.map(|c| (c as f32).clamp(0.0, 1.0)))
-        .unwrap_or(Material::default().diffuse);
+    let color =
+        |c: Option<[f64; 3]>| c.map(|d| d.map(|c| finite_or(c as f32, 0.0).clamp(0.0, 1.0)));
+    let diffuse = color(m.diffuse).unwrap_or(Material::default().diffuse);
     let from_tr = m
         .unknown_param
         .get("Tr")
@@ -155,14 +164,40 @@ pub(super) fn convert_material(m: &tobj::Material, base: &Path) -> Material {
         .filter(|o| o.is_finite())
         .unwrap_or(1.0)
         .clamp(0.0, 1.0);
+    let texture = |statement: &Option<String>| {
+        statement
+            .as_deref()
+            .filter(|t| !t.trim().is_empty())
+            .map(|t| {
+                let parsed = super::statements::texture_statement(t);
+                crate::shade::TextureRef::new(
+                    base.join(PathBuf::from(normalize_separators(&parsed.file))),
+                )
+                .with_transform(parsed.transform)
+            })
+            .filter(|t| !t.path().as_os_str().is_empty())
+    };
     Material {
         name: m.name.clone(),
         diffuse,
+        ambient: color(m.ambient),
+        specular: color(m.specular).unwrap_or([0.0; 3]),
+        shininess: m
+            .shininess
+            .map_or(0.0, |n| finite_or(n as f32, 0.0).clamp(0.0, 1000.0)),
+        emission: color(m.emissive).unwrap_or([0.0; 3]),
+        illumination: match m.illumination_model {
+            Some(0) => Illumination::Color,
+            Some(1) => Illumination::Diffuse,
+            _ => Illumination::Highlight,
+        },
         opacity,
-        diffuse_texture: m
-            .diffuse_texture
-            .as_deref()
-            .filter(|t| !t.trim().is_empty())
-            .map(|t| base.join(PathBuf::from(normalize_separators(t))).into()),
+        diffuse_texture: texture(&m.diffuse_texture),
+        specular_texture: texture(&m.specular_texture),
     }
+}
+
+/// `x`, or `default` when it is not finite.
+fn finite_or(x: f32, default: f32) -> f32 {
+    if x.is_finite() { x } else { default }
 }

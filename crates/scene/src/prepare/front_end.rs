@@ -71,6 +71,8 @@ pub struct FrontEnd {
     pub options: PrepareOptions,
     /// Index of the default material (after the scene's).
     pub default_material: u32,
+    /// Whether the camera is a perspective one (shading's view direction).
+    pub perspective: bool,
 }
 
 impl FrontEnd {
@@ -125,6 +127,10 @@ impl FrontEnd {
             viewport: vp,
             options: *options,
             default_material: scene.materials.len() as u32,
+            perspective: matches!(
+                view.camera.projection,
+                hider_geom::Projection::Perspective { .. }
+            ),
         })
     }
 

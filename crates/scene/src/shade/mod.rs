@@ -29,10 +29,10 @@ pub use stages::{
     Shader, ShaderOptions, StageTrace, Stages, texture_failures, transparency_warning,
 };
 pub use surface::{Mapping, TextureOptions, TextureSampler};
-pub use texture::{Filter, MAX_TEXTURE_SIDE, Texture, TextureRef};
+pub use texture::{Filter, MAX_TEXTURE_SIDE, Texture, TextureRef, TextureTransform};
 
 use crate::frame::{BACKGROUND, Frame, NO_ID};
-use crate::model::Light;
+use crate::model::{Illumination, Light, Material};
 use crate::prepare::ScreenScene;
 
 /// How to colour visible primitives.
@@ -47,27 +47,25 @@ pub enum ShadeMode {
     Ids,
 }
 
-/// Fraction of the diffuse colour lit by ambient light, so faces turned
-/// away from every light still read as shapes.
-const AMBIENT: f64 = 0.12;
+/// The ambient light's intensity (the ambient term of the lighting
+/// model), so faces turned away from every light still read as shapes.
+pub const AMBIENT: f64 = 0.12;
 
-/// The linear RGB colour of a primitive under `mode`, and its opacity.
+/// The linear RGB colour of a primitive under `mode`, and its opacity: in
+/// Lambert mode its flat colour ([`flat_color`]).
 pub fn prim_color(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> ([f32; 3], f32) {
     let material = scene.material(prim);
     match mode {
         ShadeMode::Ids => (id_color(prim), material.opacity),
-        ShadeMode::Lambert => {
-            let lit = lambert_light(scene, prim);
-            let kd = material.diffuse;
-            (
-                [
-                    (f64::from(kd[0]) * lit[0]) as f32,
-                    (f64::from(kd[1]) * lit[1]) as f32,
-                    (f64::from(kd[2]) * lit[2]) as f32,
-                ],
-                material.opacity,
-            )
-        }
+        ShadeMode::Lambert => (
+            flat_color(
+                material,
+                &scene.prims[prim as usize].camera,
+                &scene.lights,
+                scene.is_perspective(),
+            ),
+            material.opacity,
+        ),
     }
 }
 
@@ -84,24 +82,130 @@ pub fn lambert_light(scene: &ScreenScene, prim: u32) -> [f64; 3] {
 pub fn lambert_light_at(c: &[DVec3; 3], lights: &[Light]) -> [f64; 3] {
     let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
     let centroid = (c[0] + c[1] + c[2]) / 3.0;
-    let diffuse = if lights.is_empty() {
+    let diffuse = diffuse_light(n, centroid, lights);
+    (DVec3::splat(AMBIENT) + diffuse * (1.0 - AMBIENT)).to_array()
+}
+
+/// The diffuse light at camera-space `point` with unit normal `n`,
+/// two-sided (the cosine's magnitude), per channel.
+fn diffuse_light(n: DVec3, point: DVec3, lights: &[Light]) -> DVec3 {
+    if lights.is_empty() {
         // A directional head light along the view axis, not a point light
         // at the eye: with a point light each triangle of a flat face sees
         // the light at its own angle (from its own centroid), which draws a
         // seam across every flat quad; a direction gives every coplanar
         // triangle the same shade, as flat shading should.
-        DVec3::splat(n.z.abs())
-    } else {
-        lights.iter().fold(DVec3::ZERO, |acc, light| {
-            let (to_light, color) = match *light {
-                Light::Directional { direction, color } => (-direction, color),
-                Light::Point { position, color } => (position - centroid, color),
-            };
-            let k = n.dot(to_light.normalize_or_zero()).abs();
-            acc + DVec3::new(color[0].into(), color[1].into(), color[2].into()) * k
-        })
+        return DVec3::splat(n.z.abs());
+    }
+    lights.iter().fold(DVec3::ZERO, |acc, light| {
+        let (to_light, color) = light_at(light, point);
+        let k = n.dot(to_light).abs();
+        acc + DVec3::new(color[0].into(), color[1].into(), color[2].into()) * k
+    })
+}
+
+/// The unit direction from camera-space `point` to `light`, and its colour.
+fn light_at(light: &Light, point: DVec3) -> (DVec3, [f32; 3]) {
+    match *light {
+        Light::Directional { direction, color } => (-direction.normalize_or_zero(), color),
+        Light::Point { position, color } => ((position - point).normalize_or_zero(), color),
+    }
+}
+
+/// What the shading model needs of one point of a surface, in camera
+/// space: where it is, its normal, and its reflectances there (the
+/// material's, times its textures and vertex colours).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// Position in camera space.
+    pub position: DVec3,
+    /// Unit normal (either side: lighting is two-sided).
+    pub normal: DVec3,
+    /// Diffuse reflectance (`Kd`, times `map_Kd` and vertex colours).
+    pub diffuse: [f32; 3],
+    /// Ambient reflectance (`Ka` times `map_Kd`), `None` for the diffuse
+    /// one.
+    pub ambient: Option<[f32; 3]>,
+    /// Specular reflectance (`Ks` times `map_Ks`).
+    pub specular: [f32; 3],
+    /// Whether the camera is a perspective one (the view direction then
+    /// runs from the point to the eye; else along +Z).
+    pub perspective: bool,
+}
+
+/// The colour of a surface point under `material`'s illumination model
+/// (the MTL specification's, see [`crate::Illumination`]) and `lights` (a
+/// head light along the view axis when there are none):
+/// `Ke + Ia Ka + (1 - Ia) Kd sum |N.L| C + Ks sum max(N.H, 0)^Ns C`, with
+/// the ambient intensity `Ia` = [`AMBIENT`], two-sided diffuse light, and
+/// Blinn-Phong highlights under `illum 2` (H halfway between the light and
+/// the view direction, N turned towards the viewer). `illum 0` shows the
+/// diffuse colour unlit.
+pub fn shade_point(material: &Material, lights: &[Light], p: &SurfacePoint) -> [f32; 3] {
+    let e = material.emission;
+    if material.illumination == Illumination::Color {
+        return std::array::from_fn(|k| p.diffuse[k] + e[k]);
+    }
+    let diffuse = diffuse_light(p.normal, p.position, lights) * (1.0 - AMBIENT);
+    let mut c: [f64; 3] = match p.ambient {
+        // The diffuse colour takes the ambient light too: the same
+        // arithmetic as `lambert_light_at` times the colour, so flat
+        // primitives keep their colour bit for bit.
+        None => std::array::from_fn(|k| f64::from(p.diffuse[k]) * (AMBIENT + diffuse[k])),
+        Some(ka) => std::array::from_fn(|k| {
+            f64::from(ka[k]) * AMBIENT + f64::from(p.diffuse[k]) * diffuse[k]
+        }),
     };
-    (DVec3::splat(AMBIENT) + diffuse * (1.0 - AMBIENT)).to_array()
+    if material.illumination == Illumination::Highlight && p.specular.iter().any(|&s| s > 0.0) {
+        let view = if p.perspective {
+            (-p.position).normalize_or_zero()
+        } else {
+            DVec3::Z
+        };
+        let n = if p.normal.dot(view) < 0.0 {
+            -p.normal
+        } else {
+            p.normal
+        };
+        let head = [Light::Directional {
+            direction: -DVec3::Z,
+            color: [1.0; 3],
+        }];
+        let lights = if lights.is_empty() { &head[..] } else { lights };
+        let exponent = f64::from(material.shininess.max(0.0));
+        for light in lights {
+            let (to_light, color) = light_at(light, p.position);
+            if n.dot(to_light) <= 0.0 {
+                continue;
+            }
+            let h = (to_light + view).normalize_or_zero();
+            let k = n.dot(h).max(0.0).powf(exponent);
+            for (ck, (sk, lk)) in c.iter_mut().zip(p.specular.iter().zip(color)) {
+                *ck += f64::from(*sk) * f64::from(lk) * k;
+            }
+        }
+    }
+    std::array::from_fn(|k| (c[k] + f64::from(e[k])) as f32)
+}
+
+/// The flat colour of a triangle with camera-space corners `c` under
+/// `material` and `lights`: the shading model ([`shade_point`]) at its
+/// centroid, with its face normal and the material's own reflectances.
+pub fn flat_color(
+    material: &Material,
+    c: &[DVec3; 3],
+    lights: &[Light],
+    perspective: bool,
+) -> [f32; 3] {
+    let point = SurfacePoint {
+        position: (c[0] + c[1] + c[2]) / 3.0,
+        normal: (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero(),
+        diffuse: material.diffuse,
+        ambient: material.ambient,
+        specular: material.specular,
+        perspective,
+    };
+    shade_point(material, lights, &point)
 }
 
 /// A well-spread false colour for an id (golden-ratio hue walk), linear RGB.

@@ -169,6 +169,14 @@ impl Prims<'_, '_> {
             .collect()
     }
 
+    /// Whether the camera is a perspective one.
+    pub fn perspective(&self) -> bool {
+        match self {
+            Prims::Screen(s) => s.is_perspective(),
+            Prims::Scene(s) => s.front.perspective,
+        }
+    }
+
     /// A texture sampler for the frame these primitives are seen in.
     pub fn sampler(&self, options: TextureOptions) -> TextureSampler {
         match self {

@@ -16,7 +16,8 @@
 //!   the screen instead, labelled as the error those texts warn about, to
 //!   show it.
 //! - **lighting**: flat two-sided Lambert
-//!   ([`lambert_light_at`]).
+//!   ([`super::flat_color`]); per pixel ([`super::shade_point`]) where a
+//!   primitive's colour varies: vertex normals, highlights, textures.
 //!   Without it a primitive shows its material's diffuse colour.
 //!
 //! The two other effects are not colour passes but choices of hider, made
@@ -29,7 +30,7 @@
 use super::prims::Prims;
 use super::surface::TextureOptions;
 use super::texture::TextureRef;
-use super::{lambert_light_at, to_srgb8};
+use super::{flat_color, to_srgb8};
 use crate::frame::{BACKGROUND, Frame, NO_ID};
 use crate::hider::DynHider;
 use crate::model::Scene;
@@ -98,6 +99,9 @@ pub struct StageTrace {
     pub pixels: u64,
     /// Texture samples taken.
     pub texture_samples: u64,
+    /// Pixels shaded at their centre rather than with their primitive's
+    /// flat colour (textures, smooth normals, highlights).
+    pub points: u64,
     /// Primitives whose Lambert light was computed.
     pub lit_prims: u64,
     /// Textures decoded in this pass (textures decode on first use, once).
@@ -138,7 +142,9 @@ impl Shader {
         stages: &Stages,
     ) -> StageTrace {
         let mut trace = StageTrace::default();
-        let sampler = prims.sampler(self.options);
+        let sampler = prims
+            .sampler(self.options)
+            .with_stages(stages.texture, stages.lighting);
         let textures = prims.textures();
         let decoded_before = textures.iter().filter(|t| t.is_decoded()).count();
         if stages.texture {
@@ -179,10 +185,15 @@ impl Shader {
                 };
                 let material = prims.material(prim.material);
                 let mut c = flat;
-                if stages.texture && sampler.texture(&prim, material).is_some() {
+                if sampler.varies(&prim, material) {
                     let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
-                    c = sampler.rgb_at(&prim, material, flat, cx, cy);
-                    trace.texture_samples += 1;
+                    if let Some(at) = sampler.color_at(&prim, material, prims.lights(), cx, cy) {
+                        c = at;
+                        trace.points += 1;
+                    }
+                    if sampler.texture(&prim, material).is_some() {
+                        trace.texture_samples += 1;
+                    }
                 }
                 frame.color[i] = [to_srgb8(c[0]), to_srgb8(c[1]), to_srgb8(c[2]), 255];
             }
@@ -210,7 +221,8 @@ pub fn texture_failures<'a>(textures: impl IntoIterator<Item = &'a TextureRef>) 
     failures
 }
 
-/// The flat colour of `prim`: its diffuse colour, lit when lighting runs.
+/// The flat colour of `prim`: its diffuse colour, lit when lighting runs
+/// ([`flat_color`]).
 fn prim_shade(
     prims: &Prims<'_, '_>,
     prim: u32,
@@ -218,13 +230,12 @@ fn prim_shade(
     trace: &mut StageTrace,
 ) -> [f32; 3] {
     let info = prims.info(prim);
-    let color = prims.material(info.material).diffuse;
+    let material = prims.material(info.material);
     if !stages.lighting {
-        return color;
+        return material.diffuse;
     }
-    let lit = lambert_light_at(&info.camera, prims.lights());
     trace.lit_prims += 1;
-    std::array::from_fn(|k| (f64::from(color[k]) * lit[k]) as f32)
+    flat_color(material, &info.camera, prims.lights(), prims.perspective())
 }
 
 /// A warning when `hider` cannot apply the transparency stage the scene

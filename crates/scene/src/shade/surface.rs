@@ -26,7 +26,7 @@ use glam::{DMat4, DVec2, DVec3, DVec4};
 use hider_geom::{Projection, Viewport};
 
 use super::texture::{Filter, Texture};
-use crate::model::Material;
+use crate::model::{Illumination, Light, Material};
 use crate::prepare::{PrimInfo, ScreenScene};
 use crate::view::View;
 
@@ -66,9 +66,15 @@ impl TextureOptions {
     }
 }
 
-/// Samples the diffuse textures of a frame's primitives at window points:
-/// the camera rays of one view (the projection inverted once) and the
-/// sampling options. Cheap to build; build one per frame.
+/// Shades a frame's primitives at window points: the camera rays of one
+/// view (the projection inverted once), the texture sampling options, and
+/// which stages run. Cheap to build; build one per frame.
+///
+/// A primitive whose colour varies across it (a texture, vertex normals
+/// for smooth shading, highlights: [`Self::varies`]) is shaded per point
+/// with [`super::shade_point`], its attributes interpolated with the
+/// barycentrics of the camera-space point seen through the window point;
+/// the others keep their flat colour ([`super::flat_color`]).
 ///
 /// Textures are the materials' own ([`crate::TextureRef`], decoded on first
 /// use), so a sampler holds no texture and a scene needs no loading step.
@@ -76,10 +82,12 @@ impl TextureOptions {
 pub struct TextureSampler {
     rays: CameraRays,
     options: TextureOptions,
+    textures: bool,
+    lighting: bool,
 }
 
 impl TextureSampler {
-    /// A sampler for the frame `screen` was prepared for.
+    /// A sampler for the frame `screen` was prepared for, every stage on.
     pub fn new(screen: &ScreenScene, options: TextureOptions) -> Self {
         Self {
             rays: CameraRays::new(
@@ -88,6 +96,8 @@ impl TextureSampler {
                 screen.is_perspective(),
             ),
             options,
+            textures: true,
+            lighting: true,
         }
     }
 
@@ -102,7 +112,18 @@ impl TextureSampler {
                 matches!(camera.projection, Projection::Perspective { .. }),
             ),
             options,
+            textures: true,
+            lighting: true,
         }
+    }
+
+    /// This sampler with the texture and lighting stages on or off (off,
+    /// textures are not sampled, and an unlit primitive shows its diffuse
+    /// colour).
+    pub fn with_stages(mut self, textures: bool, lighting: bool) -> Self {
+        self.textures = textures;
+        self.lighting = lighting;
+        self
     }
 
     /// The sampling options.
@@ -111,12 +132,52 @@ impl TextureSampler {
     }
 
     /// The texture a primitive shows: its material's, when the primitive
-    /// has texture coordinates and the texture loads (decoded now if this
-    /// is its first use).
+    /// has texture coordinates, textures are on, and the texture loads
+    /// (decoded now if this is its first use).
     #[inline]
     pub fn texture<'m>(&self, info: &PrimInfo, material: &'m Material) -> Option<&'m Texture> {
+        if !self.textures {
+            return None;
+        }
         info.uvs?;
         material.diffuse_texture.as_ref()?.get()
+    }
+
+    /// Whether the primitive's colour varies across it with the stages on:
+    /// a texture to sample (with uvs), vertex normals to interpolate, or
+    /// highlights, which follow the view direction. Decides nothing by
+    /// decoding a texture.
+    pub fn varies(&self, info: &PrimInfo, material: &Material) -> bool {
+        let textured = self.textures
+            && info.uvs.is_some()
+            && (material.diffuse_texture.is_some()
+                || (self.lighting && material.specular_texture.is_some()));
+        let lit = self.lighting && material.illumination != Illumination::Color;
+        textured || (lit && (info.normals.is_some() || material.has_highlights()))
+    }
+
+    /// Barycentrics of the point of primitive `info` seen at window point
+    /// `(x, y)`, and that point in camera space; `None` when the ray runs
+    /// parallel to the primitive's plane or the primitive is degenerate.
+    fn barycentrics(&self, info: &PrimInfo, x: f64, y: f64) -> Option<([f64; 3], DVec3)> {
+        let c = info.camera;
+        match self.options.mapping {
+            Mapping::PerspectiveCorrect => {
+                let (o, d) = self.rays.ray(x, y);
+                let n = (c[1] - c[0]).cross(c[2] - c[0]);
+                let denom = n.dot(d);
+                if denom == 0.0 || n == DVec3::ZERO {
+                    return None;
+                }
+                let p = o + d * (n.dot(c[0] - o) / denom);
+                Some((barycentric3(c, n, p), p))
+            }
+            Mapping::Affine => {
+                let w = c.map(|q| self.rays.window_of(q));
+                let b = barycentric2(w, DVec2::new(x, y))?;
+                Some((b, c[0] * b[0] + c[1] * b[1] + c[2] * b[2]))
+            }
+        }
     }
 
     /// The texture coordinates of the primitive `info` seen at window point
@@ -124,55 +185,78 @@ impl TextureSampler {
     /// parallel to the primitive's plane.
     pub fn uv_at(&self, info: &PrimInfo, x: f64, y: f64) -> Option<DVec2> {
         let uv = info.uvs?.map(|t| t.as_dvec2());
-        let c = info.camera;
-        let b = match self.options.mapping {
-            Mapping::PerspectiveCorrect => {
-                let (o, d) = self.rays.ray(x, y);
-                let n = (c[1] - c[0]).cross(c[2] - c[0]);
-                let denom = n.dot(d);
-                if denom == 0.0 {
-                    return None;
-                }
-                let p = o + d * (n.dot(c[0] - o) / denom);
-                barycentric3(c, n, p)
-            }
-            Mapping::Affine => {
-                let w = c.map(|q| self.rays.window_of(q));
-                barycentric2(w, DVec2::new(x, y))?
-            }
-        };
+        let (b, _) = self.barycentrics(info, x, y)?;
         Some(uv[0] * b[0] + uv[1] * b[1] + uv[2] * b[2])
     }
 
-    /// `base` (a linear colour, usually the primitive's flat colour) times
-    /// the primitive's texture at window point `(x, y)`; `base` itself when
-    /// the primitive shows no texture.
-    #[inline]
-    pub fn rgb_at(
+    /// The colour of primitive `info` (of `material`, under camera-space
+    /// `lights`) at window point `(x, y)`, shaded at that point; `None`
+    /// when its colour does not vary across it ([`Self::varies`]: the
+    /// caller's flat colour is the answer) or the point cannot be found.
+    pub fn color_at(
         &self,
         info: &PrimInfo,
         material: &Material,
-        base: [f32; 3],
+        lights: &[Light],
         x: f64,
         y: f64,
-    ) -> [f32; 3] {
-        let Some(texture) = self.texture(info, material) else {
-            return base;
-        };
-        match self.uv_at(info, x, y) {
-            Some(uv) => {
-                let t = texture.sample(uv.x, uv.y, self.options.filter);
-                [base[0] * t[0], base[1] * t[1], base[2] * t[2]]
-            }
-            None => base,
+    ) -> Option<[f32; 3]> {
+        if !self.varies(info, material) {
+            return None;
         }
+        let (b, position) = self.barycentrics(info, x, y)?;
+        let uv = info.uvs.map(|t| {
+            let t = t.map(|t| t.as_dvec2());
+            t[0] * b[0] + t[1] * b[1] + t[2] * b[2]
+        });
+        let sample = |texture: &Option<crate::TextureRef>| {
+            let uv = uv.filter(|_| self.textures)?;
+            texture.as_ref()?.sample(uv.x, uv.y, self.options.filter)
+        };
+        let times = |c: [f32; 3], t: Option<[f32; 3]>| match t {
+            Some(t) => [c[0] * t[0], c[1] * t[1], c[2] * t[2]],
+            None => c,
+        };
+        let texel = sample(&material.diffuse_texture);
+        let diffuse = times(material.diffuse, texel);
+        if !self.lighting {
+            return Some(diffuse);
+        }
+        let face = (info.camera[1] - info.camera[0])
+            .cross(info.camera[2] - info.camera[0])
+            .normalize_or_zero();
+        let normal = match info.normals {
+            Some(n) if material.illumination != Illumination::Color => {
+                let n = n.map(|n| n.as_dvec3());
+                let smooth = (n[0] * b[0] + n[1] * b[1] + n[2] * b[2]).normalize_or_zero();
+                // A zero normal (opposite normals at the corners) falls back
+                // to the face's.
+                if smooth == DVec3::ZERO { face } else { smooth }
+            }
+            _ => face,
+        };
+        let specular = if material.has_highlights() {
+            times(material.specular, sample(&material.specular_texture))
+        } else {
+            [0.0; 3]
+        };
+        let point = super::SurfacePoint {
+            position,
+            normal,
+            diffuse,
+            ambient: material.ambient.map(|a| times(a, texel)),
+            specular,
+            perspective: self.rays.perspective,
+        };
+        Some(super::shade_point(material, lights, &point))
     }
 }
 
 impl ScreenScene {
-    /// `base` times primitive `prim`'s texture at window point `(x, y)`
-    /// ([`TextureSampler::rgb_at`]): the surface colour a colour-resolving
-    /// hider composites.
+    /// The colour of primitive `prim` at window point `(x, y)`
+    /// ([`TextureSampler::color_at`]), or `base`, its flat colour, when its
+    /// colour does not vary: the surface colour a colour-resolving hider
+    /// composites.
     #[inline]
     pub fn surface_rgb(
         &self,
@@ -183,7 +267,19 @@ impl ScreenScene {
         y: f64,
     ) -> [f32; 3] {
         let info = &self.prims[prim as usize];
-        sampler.rgb_at(info, &self.materials[info.material as usize], base, x, y)
+        let material = &self.materials[info.material as usize];
+        sampler
+            .color_at(info, material, &self.lights, x, y)
+            .unwrap_or(base)
+    }
+
+    /// Whether some primitive's colour varies across it under `sampler`'s
+    /// stages ([`TextureSampler::varies`]): a frame a colour-resolving hider
+    /// must shade per point.
+    pub fn varies(&self, sampler: &TextureSampler) -> bool {
+        self.prims
+            .iter()
+            .any(|p| sampler.varies(p, &self.materials[p.material as usize]))
     }
 }
 

@@ -151,33 +151,52 @@ impl Texture {
         self.texels.len() * std::mem::size_of::<[f32; 3]>()
     }
 
-    fn texel(&self, x: i64, y: i64) -> [f32; 3] {
-        let x = x.rem_euclid(i64::from(self.width)) as usize;
-        let y = y.rem_euclid(i64::from(self.height)) as usize;
+    fn texel(&self, x: i64, y: i64, clamp: bool) -> [f32; 3] {
+        let (w, h) = (i64::from(self.width), i64::from(self.height));
+        let (x, y) = if clamp {
+            (x.clamp(0, w - 1) as usize, y.clamp(0, h - 1) as usize)
+        } else {
+            (x.rem_euclid(w) as usize, y.rem_euclid(h) as usize)
+        };
         self.texels[y * self.width as usize + x]
     }
 
     /// The linear colour at texture coordinates `(u, v)` (OBJ convention,
     /// repeat wrapping). Non-finite coordinates give the first texel.
     pub fn sample(&self, u: f64, v: f64, filter: Filter) -> [f32; 3] {
+        self.sample_wrapped(u, v, filter, false)
+    }
+
+    /// [`Self::sample`], with coordinates outside [0, 1] clamped to the
+    /// image's edge texels when `clamp` (MTL's `-clamp on`) instead of
+    /// repeating.
+    pub fn sample_wrapped(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> [f32; 3] {
         if !(u.is_finite() && v.is_finite()) {
             return self.texels[0];
         }
         // Texel space: x right, y down from the top row; centres at +0.5.
-        let x = u.rem_euclid(1.0) * f64::from(self.width);
-        let y = (1.0 - v.rem_euclid(1.0)) * f64::from(self.height);
+        let (u, v) = if clamp {
+            (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))
+        } else {
+            (u.rem_euclid(1.0), v.rem_euclid(1.0))
+        };
+        let x = u * f64::from(self.width);
+        let y = (1.0 - v) * f64::from(self.height);
+        let texel = |x: i64, y: i64| self.texel(x, y, clamp);
         match filter {
-            Filter::Nearest => self.texel(x.floor() as i64, y.floor() as i64),
+            // Clamped, u = 1 is the last texel's far edge (the texel look-up
+            // clamps it); repeating, it is the next repeat's start.
+            Filter::Nearest => texel(x.floor() as i64, y.floor() as i64),
             Filter::Bilinear => {
                 let (fx, fy) = (x - 0.5, y - 0.5);
                 let (x0, y0) = (fx.floor(), fy.floor());
                 let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
                 let (x0, y0) = (x0 as i64, y0 as i64);
                 let [a, b, c, d] = [
-                    self.texel(x0, y0),
-                    self.texel(x0 + 1, y0),
-                    self.texel(x0, y0 + 1),
-                    self.texel(x0 + 1, y0 + 1),
+                    texel(x0, y0),
+                    texel(x0 + 1, y0),
+                    texel(x0, y0 + 1),
+                    texel(x0 + 1, y0 + 1),
                 ];
                 std::array::from_fn(|k| {
                     let top = a[k] + (b[k] - a[k]) * tx;
@@ -193,7 +212,7 @@ impl Texture {
 /// decoded the first time a sample needs it ([`Self::get`]).
 ///
 /// Clones share the decode. Two references are equal when they name the
-/// same path.
+/// same path with the same [`TextureTransform`].
 ///
 /// ```
 /// use hider_scene::TextureRef;
@@ -206,6 +225,44 @@ impl Texture {
 pub struct TextureRef {
     path: PathBuf,
     decoded: Arc<OnceLock<std::result::Result<Arc<Texture>, String>>>,
+    /// The statement's options that change where the image is sampled.
+    pub transform: TextureTransform,
+}
+
+/// Where a texture statement samples its image: the MTL options `-s`
+/// (scale), `-o` (offset) and `-clamp`, applied to the texture coordinates
+/// as the MTL specification says (`uv * s + o`, then repeat, or clamp to
+/// the image's edge with `-clamp on`). `Default` is the identity.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TextureTransform {
+    /// `-s u v`: the coordinates are multiplied by it (the image repeats
+    /// `s` times).
+    pub scale: [f64; 2],
+    /// `-o u v`: added after the scale.
+    pub offset: [f64; 2],
+    /// `-clamp on`: coordinates outside [0, 1] take the edge texel instead
+    /// of repeating.
+    pub clamp: bool,
+}
+
+impl Default for TextureTransform {
+    fn default() -> Self {
+        Self {
+            scale: [1.0, 1.0],
+            offset: [0.0, 0.0],
+            clamp: false,
+        }
+    }
+}
+
+impl TextureTransform {
+    /// `(u, v)` moved as the options say.
+    pub fn apply(&self, u: f64, v: f64) -> (f64, f64) {
+        (
+            u * self.scale[0] + self.offset[0],
+            v * self.scale[1] + self.offset[1],
+        )
+    }
 }
 
 impl TextureRef {
@@ -214,7 +271,23 @@ impl TextureRef {
         Self {
             path: path.into(),
             decoded: Arc::new(OnceLock::new()),
+            transform: TextureTransform::default(),
         }
+    }
+
+    /// This reference sampled through `transform`.
+    pub fn with_transform(mut self, transform: TextureTransform) -> Self {
+        self.transform = transform;
+        self
+    }
+
+    /// The linear colour at texture coordinates `(u, v)` through
+    /// [`Self::transform`], decoding the image on first use; `None` when it
+    /// does not load.
+    pub fn sample(&self, u: f64, v: f64, filter: Filter) -> Option<[f32; 3]> {
+        let texture = self.get()?;
+        let (u, v) = self.transform.apply(u, v);
+        Some(texture.sample_wrapped(u, v, filter, self.transform.clamp))
     }
 
     /// A reference to an already decoded texture (for scenes built in
@@ -286,7 +359,7 @@ impl TextureRef {
 
 impl PartialEq for TextureRef {
     fn eq(&self, other: &Self) -> bool {
-        self.path == other.path
+        self.path == other.path && self.transform == other.transform
     }
 }
 

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use crate::error::Result;
 use crate::model::{Light, Material, Scene};
 use crate::prepare::{FrontEnd, PrepareOptions, PrepareStats};
-use crate::shade::{ShadeMode, id_color, lambert_light_at};
+use crate::shade::{ShadeMode, flat_color, id_color};
 use crate::view::View;
 
 use super::triangles::triangles;
@@ -107,14 +107,8 @@ impl LeanScene {
                 let front = self.front.as_ref().expect("a prepared scene");
                 let idx = mesh.indices[k - self.mesh_starts[m]];
                 let camera: [DVec3; 3] = idx.map(|i| front.to_camera(mesh.positions[i as usize]));
-                let lit = lambert_light_at(&camera, &self.lights);
-                let kd = material.diffuse;
                 (
-                    [
-                        (f64::from(kd[0]) * lit[0]) as f32,
-                        (f64::from(kd[1]) * lit[1]) as f32,
-                        (f64::from(kd[2]) * lit[2]) as f32,
-                    ],
+                    flat_color(material, &camera, &self.lights, front.perspective),
                     material.opacity,
                 )
             }

@@ -1,0 +1,285 @@
+//! The effects an OBJ/MTL file calls for, through `hider render` as a user
+//! runs it, in a pixel-centre hider (the z-buffer, coloured by the colour
+//! pass over its ids) and a colour-resolving one (the A-buffer): smooth
+//! shading from `vn`, emission `Ke`, `illum 0`, highlights `Ks`/`Ns`,
+//! texture statement options, `d -halo`, and a warning with file and line
+//! for what is read but not simulated.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A fresh folder for one test's files.
+fn folder(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hider-effects-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A UV sphere of `n` x `n / 2` segments as OBJ text using material
+/// `material` of `model.mtl`, with vertex normals (the positions, outward)
+/// when `normals`.
+fn sphere_obj(n: usize, normals: bool, material: &str) -> String {
+    let rings = n / 2;
+    let mut obj = format!("mtllib model.mtl\nusemtl {material}\n");
+    let mut vertex = |theta: f64, phi: f64| {
+        let (x, y, z) = (
+            theta.sin() * phi.cos(),
+            theta.cos(),
+            theta.sin() * phi.sin(),
+        );
+        obj.push_str(&format!("v {x} {y} {z}\n"));
+        if normals {
+            obj.push_str(&format!("vn {x} {y} {z}\n"));
+        }
+    };
+    for i in 0..=rings {
+        for j in 0..n {
+            let theta = std::f64::consts::PI * i as f64 / rings as f64;
+            let phi = 2.0 * std::f64::consts::PI * j as f64 / n as f64;
+            vertex(theta, phi);
+        }
+    }
+    let at = |i: usize, j: usize| i * n + j % n + 1;
+    for i in 0..rings {
+        for j in 0..n {
+            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            for [p, q, r] in [[a, c, b], [a, d, c]] {
+                if normals {
+                    obj.push_str(&format!("f {p}//{p} {q}//{q} {r}//{r}\n"));
+                } else {
+                    obj.push_str(&format!("f {p} {q} {r}\n"));
+                }
+            }
+        }
+    }
+    obj
+}
+
+/// Renders `model` with `hider render` (`algo`, 64 x 64, extra flags),
+/// returning the RGBA pixels and stderr.
+fn render(model: &Path, algo: &str, extra: &[&str]) -> (Vec<[u8; 4]>, String) {
+    let out = model.with_extension(format!("{algo}.png"));
+    let run = Command::new(env!("CARGO_BIN_EXE_hider"))
+        .args([
+            "render",
+            model.to_str().unwrap(),
+            "--size",
+            "64",
+            "--algo",
+            algo,
+        ])
+        .args(extra)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr).into_owned();
+    assert!(run.status.success(), "{algo}: {stderr}");
+    let image = image::open(&out).unwrap().to_rgba8();
+    let pixels = image.pixels().map(|p| p.0).collect();
+    (pixels, stderr)
+}
+
+/// The covered pixels (not the black background).
+fn covered(pixels: &[[u8; 4]]) -> Vec<[u8; 4]> {
+    pixels
+        .iter()
+        .copied()
+        .filter(|p| p[..3] != [0, 0, 0])
+        .collect()
+}
+
+/// Distinct colours among `pixels`.
+fn distinct(pixels: &[[u8; 4]]) -> usize {
+    let mut v = pixels.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    v.len()
+}
+
+const HIDERS: [&str; 2] = ["zbuffer", "abuffer"];
+
+/// With vertex normals a sphere is shaded smoothly: its image differs from
+/// the faceted one, with many more distinct shades, and the shades of
+/// neighbouring pixels step far less at facet edges.
+#[test]
+fn vertex_normals_shade_smoothly() {
+    let dir = folder("smooth");
+    std::fs::write(dir.join("model.mtl"), "newmtl grey\nKd 0.8 0.8 0.8\n").unwrap();
+    let smooth = dir.join("smooth.obj");
+    let flat = dir.join("flat.obj");
+    std::fs::write(&smooth, sphere_obj(12, true, "grey")).unwrap();
+    std::fs::write(&flat, sphere_obj(12, false, "grey")).unwrap();
+    for algo in HIDERS {
+        let (s, _) = render(&smooth, algo, &[]);
+        let (f, _) = render(&flat, algo, &[]);
+        assert_ne!(s, f, "{algo}: vertex normals changed nothing");
+        let (ns, nf) = (distinct(&covered(&s)), distinct(&covered(&f)));
+        // Faceted, the A-buffer's anti-aliased facet edges add shades too.
+        assert!(
+            2 * ns > 3 * nf,
+            "{algo}: {ns} shades smooth against {nf} faceted"
+        );
+        // The largest step between horizontal neighbours inside the disc.
+        let step = |p: &[[u8; 4]]| {
+            (0..64 * 64 - 1)
+                .filter(|k| k % 64 != 63 && p[*k][0] > 0 && p[k + 1][0] > 0)
+                .map(|k| p[k][0].abs_diff(p[k + 1][0]))
+                .max()
+                .unwrap()
+        };
+        assert!(
+            step(&s) < step(&f),
+            "{algo}: smooth step {} against faceted {}",
+            step(&s),
+            step(&f)
+        );
+    }
+}
+
+/// `Ke` is added whatever the light: a black, emitting material shows its
+/// emission; `illum 0` shows the diffuse colour unlit, the same on every
+/// pixel whatever the facet's angle.
+#[test]
+fn emission_and_unlit_materials() {
+    let dir = folder("emission");
+    std::fs::write(
+        dir.join("model.mtl"),
+        "newmtl glow\nKd 0 0 0\nKe 1 0 0\n\nnewmtl flat\nKd 0.5 0.5 0.5\nillum 0\n",
+    )
+    .unwrap();
+    let glow = dir.join("glow.obj");
+    let flat = dir.join("flat.obj");
+    std::fs::write(&glow, sphere_obj(12, false, "glow")).unwrap();
+    std::fs::write(&flat, sphere_obj(12, false, "flat")).unwrap();
+    for algo in HIDERS {
+        let (g, _) = render(&glow, algo, &[]);
+        let lit = covered(&g);
+        assert!(lit.len() > 400, "{algo}: {} pixels", lit.len());
+        // Interior pixels (full coverage in the A-buffer) are pure red.
+        let red = lit.iter().filter(|p| p[..3] == [255, 0, 0]).count();
+        assert!(
+            red * 10 > lit.len() * 7,
+            "{algo}: {red} of {} red",
+            lit.len()
+        );
+        assert!(lit.iter().all(|p| p[1] == 0 && p[2] == 0), "{algo}");
+        let (f, _) = render(&flat, algo, &[]);
+        let grey = covered(&f);
+        let mid = grey.iter().filter(|p| p[..3] == [188, 188, 188]).count();
+        assert!(
+            mid * 10 > grey.len() * 7,
+            "{algo}: {mid} of {} unlit",
+            grey.len()
+        );
+    }
+}
+
+/// `illum 2` with `Ks` and `Ns` and vertex normals: a highlight where the
+/// normal is halfway between the head light and the eye (the middle of the
+/// sphere), brighter than the same material under `illum 1`.
+#[test]
+fn highlights_follow_ks_and_ns() {
+    let dir = folder("specular");
+    std::fs::write(
+        dir.join("model.mtl"),
+        "newmtl shiny\nKd 0.3 0.3 0.6\nKs 1 1 1\nNs 60\nillum 2\n\n\
+         newmtl matte\nKd 0.3 0.3 0.6\nKs 1 1 1\nNs 60\nillum 1\n",
+    )
+    .unwrap();
+    let shiny = dir.join("shiny.obj");
+    let matte = dir.join("matte.obj");
+    std::fs::write(&shiny, sphere_obj(24, true, "shiny")).unwrap();
+    std::fs::write(&matte, sphere_obj(24, true, "matte")).unwrap();
+    for algo in HIDERS {
+        let (s, _) = render(&shiny, algo, &[]);
+        let (m, _) = render(&matte, algo, &[]);
+        let centre = |p: &[[u8; 4]]| p[32 * 64 + 32];
+        assert!(
+            centre(&s)[0] > centre(&m)[0] + 60,
+            "{algo}: highlight {:?} against {:?}",
+            centre(&s),
+            centre(&m)
+        );
+        // Near the rim the highlight is gone: the same colour within a step.
+        let rim = |p: &[[u8; 4]]| (0..64).map(|x| p[32 * 64 + x]).find(|c| c[2] > 0).unwrap();
+        assert!(
+            rim(&s)[2].abs_diff(rim(&m)[2]) <= 2,
+            "{algo}: {:?} {:?}",
+            rim(&s),
+            rim(&m)
+        );
+    }
+}
+
+/// A checkered quad with texture statement options: `-s 2 2` repeats the
+/// image twice (twice the transitions along a row), `-o` shifts it, and
+/// none of them is taken for part of the file name.
+#[test]
+fn texture_statement_options_are_read_and_applied() {
+    let dir = folder("texopts");
+    std::fs::copy(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/checker.png"),
+        dir.join("checker.png"),
+    )
+    .unwrap();
+    let quad = "mtllib model.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n\
+                vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+    let model = dir.join("quad.obj");
+    std::fs::write(&model, quad).unwrap();
+    let run = |statement: &str| {
+        std::fs::write(
+            dir.join("model.mtl"),
+            format!("newmtl m\nKd 1 1 1\nillum 0\nmap_Kd {statement}\n"),
+        )
+        .unwrap();
+        render(&model, "zbuffer", &["--eye", "0,0,2.4"])
+    };
+    let transitions = |p: &[[u8; 4]]| {
+        (0..63)
+            .filter(|&x| (p[32 * 64 + x][0] > 128) != (p[32 * 64 + x + 1][0] > 128))
+            .count()
+    };
+    let (plain, e) = run("checker.png");
+    assert!(!e.contains("not found"), "{e}");
+    let (scaled, e) = run("-s 2 2 1 checker.png");
+    assert!(!e.contains("not found") && !e.contains("warning"), "{e}");
+    let (clamped, e) = run("-clamp on -o 0.0625 0 checker.png");
+    assert!(!e.contains("not found"), "{e}");
+    let (t1, t2) = (transitions(&plain), transitions(&scaled));
+    assert!(t1 >= 6, "{t1} transitions");
+    assert!(t2 >= 2 * t1 - 2, "-s 2: {t2} transitions against {t1}");
+    assert_ne!(clamped, plain, "-o moved nothing");
+    let (_, e) = run("-blendu off checker.png");
+    assert!(
+        e.contains("model.mtl:4: map_Kd option -blendu is read but not simulated"),
+        "{e}"
+    );
+}
+
+/// `d -halo 0.5` is read as the dissolve: the material keeps its `Kd` (it
+/// fell back to the default grey), and the halo is named in a warning.
+#[test]
+fn dissolve_halo_keeps_the_material() {
+    let dir = folder("halo");
+    std::fs::write(
+        dir.join("model.mtl"),
+        "newmtl red\nKd 1 0 0\nd -halo 1.0\nNi 1.5\n",
+    )
+    .unwrap();
+    let model = dir.join("red.obj");
+    std::fs::write(&model, sphere_obj(12, false, "red")).unwrap();
+    let (p, e) = render(&model, "zbuffer", &[]);
+    let lit = covered(&p);
+    assert!(
+        lit.iter().all(|c| c[1] == 0 && c[2] == 0 && c[0] > 0),
+        "not red"
+    );
+    assert!(e.contains("model.mtl:3: 'd -halo'"), "{e}");
+    assert!(
+        e.contains("model.mtl:4: 'Ni' is read but not simulated"),
+        "{e}"
+    );
+    assert!(!e.contains("default material"), "{e}");
+}
