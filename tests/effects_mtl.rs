@@ -283,3 +283,47 @@ fn dissolve_halo_keeps_the_material() {
     );
     assert!(!e.contains("default material"), "{e}");
 }
+
+/// Vertex colours (`v x y z r g b`) are the diffuse colour, interpolated:
+/// a quad with a red, a green, a blue and a white corner shows each near
+/// its corner, in both hiders (it rendered uniform grey).
+#[test]
+fn vertex_colours_show() {
+    let dir = folder("vcolors");
+    let model = dir.join("quad.obj");
+    std::fs::write(
+        &model,
+        "v -1 -1 0 1 0 0\nv 1 -1 0 0 1 0\nv 1 1 0 0 0 1\nv -1 1 0 1 1 1\nf 1 2 3\nf 1 3 4\n",
+    )
+    .unwrap();
+    for algo in HIDERS {
+        let (p, e) = render(&model, algo, &["--eye", "0,0,2.4"]);
+        assert!(!e.contains("colours"), "{e}");
+        // Near the bottom-left corner (window y down): red; bottom-right:
+        // green; top-right: blue.
+        let at = |x: usize, y: usize| p[y * 64 + x];
+        let (red, green, blue) = (at(13, 50), at(50, 50), at(50, 13));
+        assert!(red[0] > 2 * red[1].max(red[2]), "{algo}: {red:?}");
+        assert!(green[1] > 2 * green[0].max(green[2]), "{algo}: {green:?}");
+        assert!(blue[2] > 2 * blue[0].max(blue[1]), "{algo}: {blue:?}");
+    }
+}
+
+/// Faces of one object with and without `vt`: what cannot be kept is named
+/// in a warning, not dropped silently.
+#[test]
+fn partly_textured_objects_are_named() {
+    let dir = folder("mixedvt");
+    let model = dir.join("mixed.obj");
+    std::fs::write(
+        &model,
+        "o mixed\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 2 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
+         f 1/1 2/2 3/3\nf 2 5 3\n",
+    )
+    .unwrap();
+    let (_, e) = render(&model, "zbuffer", &[]);
+    assert!(
+        e.contains("object 'mixed': some faces have texture coordinates (vt) and some do not"),
+        "{e}"
+    );
+}

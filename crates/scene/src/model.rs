@@ -117,6 +117,10 @@ pub struct Mesh {
     /// Optional per-vertex texture coordinates (same length as `positions`
     /// when present).
     pub uvs: Vec<Vec2>,
+    /// Optional per-vertex colours, linear RGB in [0, 1] (OBJ's `v x y z r
+    /// g b`; same length as `positions` when present): the diffuse colour,
+    /// interpolated across each triangle, in place of the material's `Kd`.
+    pub colors: Vec<[f32; 3]>,
     /// Triangles as indices into `positions`.
     pub indices: Vec<[u32; 3]>,
     /// Index into [`Scene::materials`], or `None` for the default material.
@@ -173,12 +177,13 @@ impl Scene {
     }
 
     /// Whether some primitive's colour can vary across it under Lambert
-    /// shading: a texture ([`Self::is_textured`]), vertex normals on a lit
-    /// material (smooth shading), or highlights. A colour-resolving hider
+    /// shading: a texture ([`Self::is_textured`]), vertex colours, vertex
+    /// normals on a lit material (smooth shading), or highlights. A colour-resolving hider
     /// then shades per point, from the per-primitive data of the shared
     /// front end.
     pub fn varies_per_point(&self) -> bool {
         self.is_textured()
+            || self.meshes.iter().any(|mesh| !mesh.colors.is_empty())
             || self.materials.iter().any(Material::has_highlights)
             || self.meshes.iter().any(|mesh| {
                 !mesh.normals.is_empty()
@@ -281,7 +286,11 @@ impl Scene {
     /// Attribute lengths and the material reference of one mesh.
     fn check_structure(&self, m: usize, mesh: &Mesh) -> Result<()> {
         let n = mesh.positions.len();
-        for (what, len) in [("normals", mesh.normals.len()), ("uvs", mesh.uvs.len())] {
+        for (what, len) in [
+            ("normals", mesh.normals.len()),
+            ("uvs", mesh.uvs.len()),
+            ("colours", mesh.colors.len()),
+        ] {
             if len != 0 && len != n {
                 return Err(Error::InvalidScene(format!(
                     "mesh {m} ('{}') has {len} {what} for {n} vertices",

@@ -142,7 +142,7 @@ pub fn load_obj_bytes(
             .filter_map(|m| m.diffuse_texture.as_mut()),
     );
     for model in models {
-        let mesh = mesh_from_tobj(model, scene.materials.len());
+        let mesh = mesh_from_tobj(model, scene.materials.len(), &mut warnings);
         scene.meshes.push(mesh);
     }
     if triangles == 0 {
@@ -169,10 +169,11 @@ pub fn load_obj_bytes(
     Ok(scene)
 }
 
-/// One tobj model as a mesh; per-vertex normals and texture coordinates
-/// are kept only when every vertex has one, a material index only when it
-/// names one of the `material_count` materials.
-fn mesh_from_tobj(model: tobj::Model, material_count: usize) -> Mesh {
+/// One tobj model as a mesh; per-vertex normals, texture coordinates and
+/// colours are kept only when every vertex has one (a warning names what
+/// is dropped), a material index only when it names one of the
+/// `material_count` materials.
+fn mesh_from_tobj(model: tobj::Model, material_count: usize, warnings: &mut Vec<String>) -> Mesh {
     let m = model.mesh;
     let positions: Vec<DVec3> = m
         .positions
@@ -194,16 +195,47 @@ fn mesh_from_tobj(model: tobj::Model, material_count: usize) -> Mesh {
         .chunks_exact(3)
         .map(|t| [t[0], t[1], t[2]])
         .collect();
+    let colors: Vec<[f32; 3]> = m
+        .vertex_color
+        .chunks_exact(3)
+        .map(|c| {
+            // A colour that is not a number is black; out of range, clamped.
+            let channel = |x: f64| {
+                if x.is_finite() {
+                    x.clamp(0.0, 1.0) as f32
+                } else {
+                    0.0
+                }
+            };
+            [channel(c[0]), channel(c[1]), channel(c[2])]
+        })
+        .collect();
     let material = m.material_id.filter(|&k| k < material_count);
+    let n = positions.len();
+    let mut whole = |what: &str, len: usize| {
+        if len != 0 && len != n {
+            warnings.push(format!(
+                "object '{}': some faces have {what} and some do not; the {what} of the whole \
+                 object are dropped (split it into objects that have them and objects that do not)",
+                model.name
+            ));
+        }
+        len == n
+    };
     Mesh {
-        name: model.name,
-        normals: if normals.len() == positions.len() {
+        name: model.name.clone(),
+        normals: if whole("normals (vn)", normals.len()) {
             normals
         } else {
             Vec::new()
         },
-        uvs: if uvs.len() == positions.len() {
+        uvs: if whole("texture coordinates (vt)", uvs.len()) {
             uvs
+        } else {
+            Vec::new()
+        },
+        colors: if whole("vertex colours", colors.len()) {
+            colors
         } else {
             Vec::new()
         },

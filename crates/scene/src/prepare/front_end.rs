@@ -182,6 +182,7 @@ impl FrontEnd {
                 })
             }),
             uvs: (!mesh.uvs.is_empty()).then(|| idx.map(|i| mesh.uvs[i as usize])),
+            colors: (!mesh.colors.is_empty()).then(|| idx.map(|i| mesh.colors[i as usize])),
         }
     }
 

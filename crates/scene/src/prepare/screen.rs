@@ -76,6 +76,9 @@ pub struct PrimInfo {
     pub normals: Option<[Vec3; 3]>,
     /// Per-corner texture coordinates, when the mesh has them.
     pub uvs: Option<[Vec2; 3]>,
+    /// Per-corner colours (the diffuse colour in place of the material's),
+    /// when the mesh has them.
+    pub colors: Option<[[f32; 3]; 3]>,
 }
 
 /// What the front end did, for statistics and warnings.

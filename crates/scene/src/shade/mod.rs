@@ -304,10 +304,8 @@ mod tests {
                 DVec3::new(1.0, 0.4, -1.5),
                 DVec3::new(-1.0, 0.4, -1.5),
             ],
-            normals: Vec::new(),
-            uvs: Vec::new(),
             indices: vec![[0, 1, 2], [0, 2, 3]],
-            material: None,
+            ..Mesh::default()
         };
         let scene = Scene {
             meshes: vec![mesh],

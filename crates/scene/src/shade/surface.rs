@@ -144,8 +144,8 @@ impl TextureSampler {
     }
 
     /// Whether the primitive's colour varies across it with the stages on:
-    /// a texture to sample (with uvs), vertex normals to interpolate, or
-    /// highlights, which follow the view direction. Decides nothing by
+    /// a texture to sample (with uvs), vertex colours or normals to
+    /// interpolate, or highlights, which follow the view direction. Decides nothing by
     /// decoding a texture.
     pub fn varies(&self, info: &PrimInfo, material: &Material) -> bool {
         let textured = self.textures
@@ -153,7 +153,9 @@ impl TextureSampler {
             && (material.diffuse_texture.is_some()
                 || (self.lighting && material.specular_texture.is_some()));
         let lit = self.lighting && material.illumination != Illumination::Color;
-        textured || (lit && (info.normals.is_some() || material.has_highlights()))
+        textured
+            || info.colors.is_some()
+            || (lit && (info.normals.is_some() || material.has_highlights()))
     }
 
     /// Barycentrics of the point of primitive `info` seen at window point
@@ -218,7 +220,14 @@ impl TextureSampler {
             None => c,
         };
         let texel = sample(&material.diffuse_texture);
-        let diffuse = times(material.diffuse, texel);
+        let base = match info.colors {
+            Some(c) => std::array::from_fn(|k| {
+                (f64::from(c[0][k]) * b[0] + f64::from(c[1][k]) * b[1] + f64::from(c[2][k]) * b[2])
+                    as f32
+            }),
+            None => material.diffuse,
+        };
+        let diffuse = times(base, texel);
         if !self.lighting {
             return Some(diffuse);
         }
