@@ -12,7 +12,7 @@
 //!   not paths, and are skipped. A path with a
 //!   `/` must exist from the repository root, or from a crate's folder
 //!   (`crates/NAME/`, its `src/`, `tests/` or `examples/`: the algorithm
-//!   pages name their own sources that way, as in `coverage/avx2.rs`); a
+//!   pages name their own sources that way, as in `simd/coverage.rs`); a
 //!   bare file name (`raster.rs`) must be some file of the repository;
 //!   `../shared/...` is looked up beside the repository; a link is resolved
 //!   from the page that holds it, as a markdown viewer does.

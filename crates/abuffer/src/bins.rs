@@ -29,7 +29,7 @@ pub(crate) use runs::BinRun;
 /// Side of the square screen tiles, in pixels. Triangles are binned to
 /// tiles; each tile is rendered and resolved before the next, so its
 /// pixel entries and fragments stay in cache from insertion to resolve.
-pub const TILE: u32 = 64;
+pub(crate) const TILE: u32 = 64;
 
 /// The pixels of tile `(tx, ty)` of a `width x height` frame: top-left
 /// and bottom-right, inclusive (the last row and column of tiles may be

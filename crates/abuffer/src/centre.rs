@@ -15,21 +15,21 @@ use hider_scene::{Frame, NO_ID};
 /// with a lower primitive id. The one depth order of this crate; it does not
 /// depend on submission order.
 #[inline]
-pub fn in_front<Z: PartialOrd>(z: Z, prim: u32, z0: Z, prim0: u32) -> bool {
+pub(crate) fn in_front<Z: PartialOrd>(z: Z, prim: u32, z0: Z, prim0: u32) -> bool {
     // Non-short-circuit: no branch for callers to mispredict.
     (z < z0) | ((z == z0) & (prim < prim0))
 }
 
 /// A one-sample depth buffer at pixel centres.
 #[derive(Clone, Debug, Default)]
-pub struct CentreBuffer {
+pub(crate) struct CentreBuffer {
     depth: Vec<f64>,
     ids: Vec<u32>,
 }
 
 impl CentreBuffer {
     /// Clears to `pixels` background pixels, reusing memory.
-    pub fn reset(&mut self, pixels: usize) {
+    pub(crate) fn reset(&mut self, pixels: usize) {
         self.depth.clear();
         self.depth.resize(pixels, f64::INFINITY);
         self.ids.clear();
@@ -38,7 +38,7 @@ impl CentreBuffer {
 
     /// Keeps `(z, prim)` at pixel `p` if it is in front of what is there.
     #[inline]
-    pub fn test(&mut self, p: usize, z: f64, prim: u32) {
+    pub(crate) fn test(&mut self, p: usize, z: f64, prim: u32) {
         if in_front(z, prim, self.depth[p], self.ids[p]) {
             self.depth[p] = z;
             self.ids[p] = prim;
@@ -46,15 +46,10 @@ impl CentreBuffer {
     }
 
     /// Writes ids and depths (`f32`, 1.0 for background) into `frame`.
-    pub fn write(&self, frame: &mut Frame) {
+    pub(crate) fn write(&self, frame: &mut Frame) {
         for (k, (&z, &id)) in self.depth.iter().zip(&self.ids).enumerate() {
             frame.ids[k] = id;
             frame.depth[k] = if id == NO_ID { 1.0 } else { z as f32 };
         }
-    }
-
-    /// Bytes held.
-    pub fn bytes(&self) -> u64 {
-        self.depth.len() as u64 * 12
     }
 }

@@ -37,7 +37,7 @@ pub struct Coverage {
 
 impl Coverage {
     /// Whether nothing is covered.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.mask == 0 && !self.centre
     }
 }
@@ -70,7 +70,7 @@ impl TruncFast for f64 {
 
 /// How the sample hull of a pixel lies against a triangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Class {
+pub(crate) enum Class {
     /// Every sample and the centre are covered.
     Full,
     /// Nothing is covered.
@@ -124,7 +124,7 @@ impl TriCoverage {
     }
 
     /// [`Self::new`] from the triangle's snapped vertices alone.
-    pub fn from_vertices(v: &[FixedPt; 3], pattern: SamplePattern) -> Self {
+    pub(crate) fn from_vertices(v: &[FixedPt; 3], pattern: SamplePattern) -> Self {
         let mut setup = Self {
             edges: [EdgeFunction { a: 0, b: 0, c: 0 }; 3],
             noff: [[0; 32]; 3],
@@ -141,14 +141,16 @@ impl TriCoverage {
     }
 
     /// [`Self::new`] in place, reusing this set-up's memory.
+    #[cfg(test)]
     #[inline]
-    pub fn reset(&mut self, tri: &ScreenTri, pattern: SamplePattern) {
+    pub(crate) fn reset(&mut self, tri: &ScreenTri, pattern: SamplePattern) {
         self.reset_vertices(&tri.v, pattern);
     }
 
-    /// [`Self::reset`] from the triangle's vertices alone.
+    /// [`Self::new`] in place from the triangle's vertices alone, reusing
+    /// this set-up's memory.
     #[inline]
-    pub fn reset_vertices(&mut self, v: &[FixedPt; 3], pattern: SamplePattern) {
+    pub(crate) fn reset_vertices(&mut self, v: &[FixedPt; 3], pattern: SamplePattern) {
         let edges = triangle_edges(v);
         let (hx0, hy0, hx1, hy1) = pattern.hull();
         let narrow = edges
@@ -195,7 +197,7 @@ impl TriCoverage {
     /// The three biased edge values at the top-left corner of pixel
     /// `(i, j)` (fixed point `(i*256, j*256)`).
     #[inline]
-    pub fn corner_values(&self, i: u32, j: u32) -> [i64; 3] {
+    pub(crate) fn corner_values(&self, i: u32, j: u32) -> [i64; 3] {
         let (x, y) = (
             i64::from(i) * i64::from(SUBPIXEL_SCALE),
             i64::from(j) * i64::from(SUBPIXEL_SCALE),
@@ -205,7 +207,7 @@ impl TriCoverage {
 
     /// How much the corner values change from one pixel to the next in x.
     #[inline]
-    pub fn step_x(&self) -> [i64; 3] {
+    pub(crate) fn step_x(&self) -> [i64; 3] {
         self.edges.map(|e| e.a * i64::from(SUBPIXEL_SCALE))
     }
 
@@ -219,7 +221,7 @@ impl TriCoverage {
     /// and widened by two pixels, so it is conservative: the exact test
     /// still decides every pixel inside.
     #[inline]
-    pub fn span(&self, x0: u32, x1: u32, j: u32) -> (u32, u32) {
+    pub(crate) fn span(&self, x0: u32, x1: u32, j: u32) -> (u32, u32) {
         let base = self.corner_values(0, j);
         let (mut lo, mut hi) = (f64::from(x0), f64::from(x1));
         for (e, edge) in self.edges.iter().enumerate() {
@@ -244,7 +246,7 @@ impl TriCoverage {
 
     /// [`Self::span`] for rows long enough for it to pay, else `x0..=x1`.
     #[inline]
-    pub fn row_span(&self, x0: u32, x1: u32, j: u32) -> (u32, u32) {
+    pub(crate) fn row_span(&self, x0: u32, x1: u32, j: u32) -> (u32, u32) {
         if x1 >= x0 + SPAN_MIN {
             self.span(x0, x1, j)
         } else {
@@ -253,8 +255,8 @@ impl TriCoverage {
     }
 
     /// The pixels `x0..=x1` of row `j` that this triangle touches, with
-    /// their coverage, left to right. The row is first clipped to
-    /// [`Self::span`]; along it the edge values are stepped incrementally
+    /// their coverage, left to right. A long row is first clipped to the
+    /// pixels no edge rejects outright; along it the edge values are stepped incrementally
     /// (one add per edge and pixel); empty pixels are skipped.
     #[inline]
     pub fn row(&self, x0: u32, x1: u32, j: u32) -> impl Iterator<Item = (u32, Coverage)> + '_ {
@@ -271,7 +273,7 @@ impl TriCoverage {
 
     /// The coverage of the pixel whose corner values are `base`.
     #[inline]
-    pub fn at(&self, base: [i64; 3]) -> Coverage {
+    pub(crate) fn at(&self, base: [i64; 3]) -> Coverage {
         match self.classify(base) {
             Class::Full => Coverage {
                 mask: self.full,
@@ -287,7 +289,7 @@ impl TriCoverage {
     /// sample hull are inside all three edges (every sample and the centre
     /// covered), all outside one edge (nothing covered), or neither.
     #[inline]
-    pub fn classify(&self, base: [i64; 3]) -> Class {
+    pub(crate) fn classify(&self, base: [i64; 3]) -> Class {
         if (0..3).all(|e| base[e] + self.hull_min[e] > 0) {
             Class::Full
         } else if (0..3).any(|e| base[e] + self.hull_max[e] <= 0) {
@@ -301,7 +303,7 @@ impl TriCoverage {
     /// corner values are `base` on, as bits (bit `k` = pixel `k`): those
     /// [`Class::Full`], and those not [`Class::Empty`]. Branch-free.
     #[inline(always)]
-    pub fn classify_run(&self, base: [i64; 3]) -> (u32, u32) {
+    pub(crate) fn classify_run(&self, base: [i64; 3]) -> (u32, u32) {
         let step = self.step_x();
         #[cfg(target_arch = "x86_64")]
         if let Some(avx2) = self.avx2 {
@@ -328,7 +330,7 @@ impl TriCoverage {
     /// classify pixel by pixel). An edge value is affine in the pixel, so
     /// its extremes over the rectangle are at the corners its signs pick.
     #[inline]
-    pub fn classify_rect(&self, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> Class {
+    pub(crate) fn classify_rect(&self, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> Class {
         let s = i64::from(SUBPIXEL_SCALE);
         let mut full = true;
         for (e, edge) in self.edges.iter().enumerate() {
@@ -347,7 +349,7 @@ impl TriCoverage {
     /// The second step of [`Self::at`] for a [`Class::Partial`] pixel: its
     /// mask and centre, tested sample by sample (possibly empty).
     #[inline]
-    pub fn partial(&self, base: [i64; 3]) -> Coverage {
+    pub(crate) fn partial(&self, base: [i64; 3]) -> Coverage {
         // Non-short-circuit `&`: whether the centre is covered is a coin
         // toss on a partial pixel, and as branches the three tests
         // mispredicted.
@@ -435,7 +437,7 @@ pub fn pixel_range(
 }
 
 /// [`pixel_range`] of the triangle with snapped vertices `v`.
-pub fn pixel_range_of(
+pub(crate) fn pixel_range_of(
     v: &[FixedPt; 3],
     pattern: SamplePattern,
     width: u32,

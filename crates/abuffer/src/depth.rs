@@ -20,13 +20,13 @@ use crate::select::pick_f64;
 /// agree bit for bit; at the centre it is exactly
 /// `tri.depth.at_pixel(i, j)`.
 #[inline]
-pub fn sample_depth(tri: &ScreenTri, i: u32, j: u32, pos: (i32, i32)) -> f64 {
+pub(crate) fn sample_depth(tri: &ScreenTri, i: u32, j: u32, pos: (i32, i32)) -> f64 {
     plane_depth(&tri.depth, i, j, pos)
 }
 
 /// [`sample_depth`] for a depth plane alone.
 #[inline]
-pub fn plane_depth(plane: &PlaneEq, i: u32, j: u32, (sx, sy): (i32, i32)) -> f64 {
+pub(crate) fn plane_depth(plane: &PlaneEq, i: u32, j: u32, (sx, sy): (i32, i32)) -> f64 {
     let scale = f64::from(SUBPIXEL_SCALE);
     plane.eval(
         f64::from(i) + f64::from(sx) / scale,
@@ -94,7 +94,7 @@ pub(crate) fn depth_key(z: f32) -> i32 {
 /// minimum and maximum of the per-sample values, found with at most 4 (not
 /// 32) evaluations each.
 #[derive(Clone, Copy, Debug)]
-pub struct DepthBounds {
+pub(crate) struct DepthBounds {
     pattern: SamplePattern,
     /// Grid32 fast path applies (its rows are the grid's rows).
     grid: bool,
@@ -110,7 +110,7 @@ impl DepthBounds {
     /// a full mask is bounded by the plane at the corners of the pattern's
     /// hull (which for the 8 x 4 grid are samples).
     #[inline]
-    pub fn new(plane: &PlaneEq, pattern: SamplePattern, hull_for_full: bool) -> Self {
+    pub(crate) fn new(plane: &PlaneEq, pattern: SamplePattern, hull_for_full: bool) -> Self {
         Self {
             pattern,
             grid: pattern == SamplePattern::Grid32,
@@ -124,7 +124,7 @@ impl DepthBounds {
     /// samples of `c.mask` and, if covered, the centre (`centre_z`, which
     /// a full mask does not need: the centre lies inside the hull).
     #[inline(always)]
-    pub fn bound(
+    pub(crate) fn bound(
         &self,
         plane: &PlaneEq,
         (i, j): (u32, u32),
@@ -147,7 +147,7 @@ impl DepthBounds {
     /// Both bounds, `(nearest, farthest)`, in one pass: the same values as
     /// [`Self::bound`] with `far` false and true.
     #[inline(never)]
-    pub fn range(
+    pub(crate) fn range(
         &self,
         plane: &PlaneEq,
         (i, j): (u32, u32),

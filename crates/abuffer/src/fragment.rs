@@ -20,15 +20,15 @@
 //! The arena that holds them all is the fragment pool.
 
 /// The "no fragment" index.
-pub const NIL: u32 = u32::MAX;
+pub(crate) const NIL: u32 = u32::MAX;
 
 /// Shading indices from this value on name a [`Merged`] entry of the pool
 /// (`shade - MERGED_BASE`); below it, a primitive (its colour).
-pub const MERGED_BASE: u32 = 1 << 31;
+pub(crate) const MERGED_BASE: u32 = 1 << 31;
 
 /// One surface's share of one pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Fragment {
+pub(crate) struct Fragment {
     /// Next fragment of the pixel's list, or [`NIL`].
     pub next: u32,
     /// Covered samples.
@@ -77,20 +77,20 @@ impl Fragment {
 impl Fragment {
     /// Whether the fragment covers the pixel centre.
     #[inline]
-    pub fn covers_centre(&self) -> bool {
+    pub(crate) fn covers_centre(&self) -> bool {
         self.centre_z.is_finite()
     }
 
     /// Whether two or more triangles were merged into it.
     #[inline]
-    pub fn is_merged(&self) -> bool {
+    pub(crate) fn is_merged(&self) -> bool {
         self.shade >= MERGED_BASE
     }
 
     /// The resolve order: nearest `zmin` first, lower primitive id first on
     /// equal depths. Independent of submission order.
     #[inline]
-    pub fn order(&self, other: &Fragment) -> std::cmp::Ordering {
+    pub(crate) fn order(&self, other: &Fragment) -> std::cmp::Ordering {
         self.zmin
             .total_cmp(&other.zmin)
             .then(self.prim.cmp(&other.prim))
@@ -99,14 +99,14 @@ impl Fragment {
 
 /// The shading of a merged fragment.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Merged {
+pub(crate) struct Merged {
     /// Linear colour and opacity.
     pub rgba: [f32; 4],
 }
 
 /// One pixel's entry in the table.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct PixelEntry {
+pub(crate) struct PixelEntry {
     /// First fragment of the list, or [`NIL`].
     pub head: u32,
     /// Fragments in the list.
@@ -123,7 +123,7 @@ pub struct PixelEntry {
 
 impl PixelEntry {
     /// An empty pixel.
-    pub const EMPTY: PixelEntry = PixelEntry {
+    pub(crate) const EMPTY: PixelEntry = PixelEntry {
         head: NIL,
         len: 0,
         occluder: f32::INFINITY,
@@ -132,14 +132,14 @@ impl PixelEntry {
 }
 
 /// Bytes of the per-pixel table per pixel.
-pub const PIXEL_BYTES: u64 = std::mem::size_of::<PixelEntry>() as u64;
+pub(crate) const PIXEL_BYTES: u64 = std::mem::size_of::<PixelEntry>() as u64;
 
 /// Bytes of one fragment slot.
-pub const FRAGMENT_BYTES: u64 = std::mem::size_of::<Fragment>() as u64;
+pub(crate) const FRAGMENT_BYTES: u64 = std::mem::size_of::<Fragment>() as u64;
 
 /// A fragment with its colour and opacity looked up, and its pool index.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Shaded {
+pub(crate) struct Shaded {
     /// The fragment.
     pub frag: Fragment,
     /// Linear colour.
@@ -153,7 +153,7 @@ pub struct Shaded {
 impl Shaded {
     /// `f` (pool index `idx`) with colour and opacity `rgba`.
     #[inline]
-    pub fn new(f: Fragment, rgba: [f32; 4], idx: u32) -> Self {
+    pub(crate) fn new(f: Fragment, rgba: [f32; 4], idx: u32) -> Self {
         Self {
             frag: f,
             rgb: [rgba[0], rgba[1], rgba[2]],

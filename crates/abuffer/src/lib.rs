@@ -17,10 +17,10 @@
 //! stats:
 //! - [`ABuffer`] (`"abuffer"`, options [`ABufferOptions`], stats
 //!   [`ABufferStats`]): masks from the shared exact edge functions at 32
-//!   fixed-point sample positions ([`pattern`], [`coverage`]) with a
-//!   full-coverage fast path; exact depth bounds from a few plane
-//!   evaluations ([`depth`]); 40-byte fragments in a pooled arena with a
-//!   memory bound ([`fragment`], [`pool`]); 64 x 64 tiles taken front to
+//!   fixed-point sample positions ([`SamplePattern`], [`TriCoverage`])
+//!   with a full-coverage fast path; exact depth bounds from a few plane
+//!   evaluations; 40-byte fragments in a pooled arena with a memory bound
+//!   ([`ABufferOptions::max_bytes`]); 64 x 64 tiles taken front to
 //!   back and resolved in cache, exact occlusion culling per pixel and per
 //!   8 x 8 block, merging of neighbouring fragments of one surface, an
 //!   overflow policy; resolve with exact per-sample depth or the paper's
@@ -41,12 +41,17 @@
 //! data but the colours asked for) instead of `prepare`, with the same
 //! frame bit for bit.
 //!
+//! The mask set-up the three share, [`TriCoverage`] over the pixels of
+//! [`pixel_range`], is public too, for the profiling bin's mask-only
+//! mode (`abuffer_profile ... cov`).
+//!
 //! All three write `Frame::color` (composited in linear light, then sRGB),
 //! `Frame::coverage` (covered fraction of the samples), and, in
 //! `Frame::ids` / `Frame::depth`, the front-most surface covering the
 //! *pixel centre* (any opacity, exact `f64` centre depth, lower id on
 //! ties), exactly what a pixel-centre z-buffer reports, so ids and
-//! coverage compare one to one with the other hiders ([`centre`]).
+//! coverage compare one to one with the other hiders (see
+//! `docs/abuffer.md`).
 //!
 //! # Example
 //!
@@ -78,17 +83,17 @@
 
 mod abuffer;
 mod bins;
-pub mod centre;
+mod centre;
 mod composite;
-pub mod coverage;
+mod coverage;
 mod culling;
-pub mod depth;
-pub mod fragment;
+mod depth;
+mod fragment;
 mod lists;
-pub mod options;
-pub mod palette;
-pub mod pattern;
-pub mod pool;
+mod options;
+mod palette;
+mod pattern;
+mod pool;
 mod raster;
 mod resolve;
 mod samples;
@@ -98,18 +103,14 @@ mod simd;
 mod sorted;
 mod source;
 mod ssaa;
-pub mod stats;
+mod stats;
 #[cfg(test)]
 mod test_rng;
 mod worker;
 
 pub use abuffer::ABuffer;
-pub use bins::TILE;
-pub use lists::{MERGE_COLOR_TOLERANCE, MERGE_SEARCH};
-pub use options::{
-    ABufferOptions, DEFAULT_MAX_BYTES, DEFAULT_MAX_LIST_LEN, DepthMode, MergePolicy,
-    OverflowPolicy, SsaaOptions,
-};
+pub use coverage::{Coverage, TriCoverage, pixel_range};
+pub use options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy, SsaaOptions};
 pub use pattern::SamplePattern;
 pub use sorted::SortedTransparencyZBuffer;
 pub use ssaa::SupersampledZBuffer;

@@ -25,13 +25,13 @@ use crate::stats::ABufferStats;
 /// Two colour channels closer than this count as equal for
 /// [`MergePolicy::SameColor`]: far below one step of an 8-bit output
 /// (1/255), so a merge never changes the image.
-pub const MERGE_COLOR_TOLERANCE: f32 = 1e-5;
+pub(crate) const MERGE_COLOR_TOLERANCE: f32 = 1e-5;
 
 /// How many fragments at the front of a list are tried as merge partners.
 /// The partner is the fragment of the neighbouring triangle, inserted
 /// recently (a mesh's triangles arrive together), so a short search finds
 /// it without making insertion cost grow with the list.
-pub const MERGE_SEARCH: usize = 8;
+pub(crate) const MERGE_SEARCH: usize = 8;
 
 /// Where a fragment goes, besides the fragment.
 pub(crate) struct Ctx<'a> {

@@ -41,8 +41,8 @@ pub enum DepthMode {
 pub enum MergePolicy {
     /// Never merge.
     Off,
-    /// Merge only when the two colours and opacities agree (colour within
-    /// [`crate::MERGE_COLOR_TOLERANCE`]): the merged fragment then shades
+    /// Merge only when the two colours and opacities agree (each colour
+    /// channel within `1e-5`, far below one 8-bit step): the merged fragment then shades
     /// every sample as the separate ones would, so merging is exact (in
     /// [`DepthMode::PerSample`] the per-sample depths are kept). Typical
     /// hit: the two triangles of a planar quad. The default.
@@ -73,9 +73,9 @@ pub enum OverflowPolicy {
 }
 
 /// Default bound on one pixel's fragment list.
-pub const DEFAULT_MAX_LIST_LEN: u32 = 128;
+pub(crate) const DEFAULT_MAX_LIST_LEN: u32 = 128;
 /// Default bound on the A-buffer's working memory: 1 GiB.
-pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+pub(crate) const DEFAULT_MAX_BYTES: u64 = 1 << 30;
 
 /// Options of [`crate::ABuffer`]: every knob that changes what it does or
 /// how much work it takes. `Default` is the accurate choice; set fields
@@ -100,22 +100,27 @@ pub struct ABufferOptions {
     pub depth: DepthMode,
     /// Fragment merging (default: exact, same-colour merges only).
     pub merge: MergePolicy,
-    /// Longest fragment list a pixel may hold.
+    /// Longest fragment list a pixel may hold (default 128).
     pub max_list_len: u32,
     /// What to do when a list would be longer.
     pub overflow: OverflowPolicy,
-    /// Bound on working memory (pixel table plus fragment pool), in bytes.
-    /// The pixel table is checked before it is allocated; the pool stops
+    /// Bound on working memory (pixel table plus fragment pool), in bytes
+    /// (default 1 GiB). The pixel table is checked before it is allocated; the pool stops
     /// with [`hider_scene::Error::Budget`] when the next fragment would pass
     /// the bound.
     pub max_bytes: u64,
     /// How primitives are coloured before compositing.
     pub shade: ShadeMode,
     /// Exact occlusion culling (default on): per pixel, per 8 x 8 block,
-    /// and pruning of lists behind a pixel's opaque bound. Off, no pixel
-    /// gets an opaque bound, so nothing is culled on arrival, no block is
-    /// skipped and nothing is pruned behind a bound: every fragment reaches
-    /// its list (the overflow policy still applies). The image, coverage,
+    /// and pruning of lists behind a pixel's opaque bound.
+    ///
+    /// A tuning knob, set only by tests and the profiling bins: it trades
+    /// the bookkeeping of opaque bounds for fragments never inserted. The
+    /// output does not change (below), and the default, on, is the fast
+    /// exact choice. Off, no pixel gets an opaque bound, so nothing is
+    /// culled on arrival, no block is skipped and nothing is pruned behind
+    /// a bound: every fragment reaches its list (the overflow policy still
+    /// applies). The image, coverage,
     /// ids and sample ids are the same either way (culling only drops
     /// fragments that lose every sample and the centre; colours may differ
     /// in the last bit of rounding, within one 8-bit step); only the work
@@ -123,13 +128,17 @@ pub struct ABufferOptions {
     /// tested against, and measures what it saves.
     pub occlusion_culling: bool,
     /// Whether each tile takes its triangles front to back (the default:
-    /// sorted by nearest vertex depth) or in submission order. The exact
+    /// sorted by nearest vertex depth) or in submission order.
+    ///
+    /// A tuning knob, set only by tests and the profiling bins: it trades a
+    /// sort per tile for more culling. The output does not change: the exact
     /// answer (samples, coverage, ids) is the same either way, since lists
     /// are ordered by depth at resolve; front to back, the nearest surfaces
     /// set the opaque bounds first, so far more of what lies behind is
     /// culled (per pixel or per block) instead of inserted and pruned.
     /// Merging decisions, which look at the latest fragments of a list,
-    /// and colour rounding may differ.
+    /// and colour rounding may differ (within one 8-bit step). The default,
+    /// front to back, is the fast exact choice.
     pub front_to_back: bool,
     /// Threads rendering bands of tiles: `1` renders on the calling
     /// thread, `0` (the default) uses every core the machine reports. The
@@ -143,8 +152,12 @@ pub struct ABufferOptions {
     /// run when the bound does not hold two pixel tables per thread).
     pub threads: usize,
     /// Whether tiles whose triangles are all opaque are resolved from a
-    /// sample buffer instead of fragment lists (the default: on). The
-    /// lists of such a tile only decide which surface is in front at each
+    /// sample buffer instead of fragment lists (the default: on).
+    ///
+    /// A tuning knob, set only by tests and the profiling bins: it trades
+    /// a sample buffer's memory for a much cheaper pass than lists. The
+    /// output does not change (below), and the default, on, is the fast
+    /// exact choice. The lists of such a tile only decide which surface is in front at each
     /// sample and at the centre; a depth and a primitive per sample answer
     /// the same, so the image, coverage, ids and sample ids are those of
     /// the lists (property-tested, bit for bit with merging off; merging

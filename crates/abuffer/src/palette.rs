@@ -8,14 +8,14 @@ use hider_scene::{ScreenScene, ShadeMode, TextureOptions, TextureSampler};
 
 /// Fills `out` with `[r, g, b, opacity]` (linear) for every primitive of
 /// `scene`, reusing its memory.
-pub fn prim_colors(scene: &ScreenScene, mode: ShadeMode, out: &mut Vec<[f32; 4]>) {
+pub(crate) fn prim_colors(scene: &ScreenScene, mode: ShadeMode, out: &mut Vec<[f32; 4]>) {
     out.clear();
     out.extend((0..scene.prims.len() as u32).map(|prim| prim_rgba(scene, prim, mode)));
 }
 
 /// `[r, g, b, opacity]` (linear, opacity clamped to [0, 1]) of `prim`.
 #[inline]
-pub fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
+pub(crate) fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
     let (rgb, alpha) = prim_color(scene, prim, mode);
     [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
 }
@@ -24,7 +24,7 @@ pub fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
 /// primitive's colour varies across it (a texture, vertex normals,
 /// highlights: [`ScreenScene::varies`]) and the mode shows it (Lambert; id
 /// colours are flat).
-pub fn sampler(scene: &ScreenScene, mode: ShadeMode) -> Option<TextureSampler> {
+pub(crate) fn sampler(scene: &ScreenScene, mode: ShadeMode) -> Option<TextureSampler> {
     if mode != ShadeMode::Lambert {
         return None;
     }
@@ -36,7 +36,7 @@ pub fn sampler(scene: &ScreenScene, mode: ShadeMode) -> Option<TextureSampler> {
 /// varies and the frame is shaded per point (`sampler`, see [`sampler`]);
 /// `rgba`, its flat colour, otherwise. The opacity is the flat one.
 #[inline]
-pub fn at_point(
+pub(crate) fn at_point(
     scene: &ScreenScene,
     sampler: Option<&TextureSampler>,
     prim: u32,
@@ -56,7 +56,7 @@ pub fn at_point(
 /// multisample rasterisers shade (supersampling shades every sample, see
 /// [`at_sample`]).
 #[inline]
-pub fn at_pixel(
+pub(crate) fn at_pixel(
     scene: &ScreenScene,
     sampler: Option<&TextureSampler>,
     prim: u32,
@@ -76,7 +76,7 @@ pub fn at_pixel(
 /// [`at_point`] at the sample of pixel `(i, j)` at `pos` (1/256 pixel
 /// inside the pixel, as [`crate::SamplePattern::positions`] gives them).
 #[inline]
-pub fn at_sample(
+pub(crate) fn at_sample(
     scene: &ScreenScene,
     sampler: Option<&TextureSampler>,
     prim: u32,
@@ -99,7 +99,7 @@ pub fn at_sample(
 /// 1..=255`; `base[b >> 16]` is the value at the start of the bucket of
 /// bits `b` (a bucket of 2^16 consecutive floats spans at most a step or
 /// two, so a lookup is one load and a short scan of `steps` compares).
-pub struct Table {
+pub(crate) struct Table {
     /// The 255 thresholds, then `u32::MAX` (no value passes 255).
     thresholds: [u32; 256],
     base: Vec<u8>,
@@ -175,23 +175,23 @@ fn srgb8(table: &Table, x: f32) -> u8 {
 
 /// Converts a linear colour (already composited over the black background)
 /// to an opaque sRGB pixel: `to_srgb8` per channel.
-pub fn to_pixel(rgb: [f32; 3]) -> [u8; 4] {
+pub(crate) fn to_pixel(rgb: [f32; 3]) -> [u8; 4] {
     Srgb::new().pixel(rgb)
 }
 
 /// [`to_pixel`] with the table looked up once, for loops over pixels.
 #[derive(Clone, Copy)]
-pub struct Srgb(Option<&'static Table>);
+pub(crate) struct Srgb(Option<&'static Table>);
 
 impl Srgb {
     /// The converter (builds the table on first use).
-    pub fn new() -> Self {
+    pub(crate) fn new() -> Self {
         Srgb(table())
     }
 
     /// [`to_pixel`].
     #[inline]
-    pub fn pixel(self, rgb: [f32; 3]) -> [u8; 4] {
+    pub(crate) fn pixel(self, rgb: [f32; 3]) -> [u8; 4] {
         match self.0 {
             Some(t) => [srgb8(t, rgb[0]), srgb8(t, rgb[1]), srgb8(t, rgb[2]), 255],
             None => [to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]), 255],

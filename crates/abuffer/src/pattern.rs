@@ -31,18 +31,14 @@
 
 use hider_scene::{Error, Result};
 
-/// Columns of the mask grid.
-pub const GRID_COLUMNS: i32 = 8;
-/// Rows of the mask grid.
-pub const GRID_ROWS: i32 = 4;
 /// Most samples a mask holds (one `u32`).
-pub const MAX_SAMPLES: usize = 32;
+pub(crate) const MAX_SAMPLES: usize = 32;
 /// The pixel centre, in 1/256 pixel inside the pixel.
-pub const CENTRE: (i32, i32) = (128, 128);
+pub(crate) const CENTRE: (i32, i32) = (128, 128);
 
 /// The position of grid cell `(column, row)` in 1/256 pixel inside the
 /// pixel: the cell's centre.
-pub const fn cell_position(column: i32, row: i32) -> (i32, i32) {
+pub(crate) const fn cell_position(column: i32, row: i32) -> (i32, i32) {
     (column * 32 + 16, row * 64 + 32)
 }
 

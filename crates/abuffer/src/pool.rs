@@ -20,7 +20,7 @@ use crate::pattern::MAX_SAMPLES;
 
 /// The per-pixel lists and the fragment pool.
 #[derive(Clone, Debug, Default)]
-pub struct FragmentPool {
+pub(crate) struct FragmentPool {
     frags: Vec<Fragment>,
     merged: Vec<Merged>,
     merged_depths: Vec<[f32; MAX_SAMPLES]>,
@@ -37,7 +37,12 @@ impl FragmentPool {
     /// is only allocated (empty) when its size changes, which the result
     /// says; otherwise clearing its entries is left to
     /// [`Self::clear_pixels`], tile by tile.
-    pub fn reset(&mut self, pixels: usize, keep_depths: bool, max_bytes: u64) -> Result<bool> {
+    pub(crate) fn reset(
+        &mut self,
+        pixels: usize,
+        keep_depths: bool,
+        max_bytes: u64,
+    ) -> Result<bool> {
         let table = pixels as u64 * PIXEL_BYTES;
         if table > max_bytes {
             return Err(Error::Budget {
@@ -63,12 +68,12 @@ impl FragmentPool {
 
     /// Empties the entries of pixels `start..start + len` (one tile row).
     #[inline]
-    pub fn clear_pixels(&mut self, start: usize, len: usize) {
+    pub(crate) fn clear_pixels(&mut self, start: usize, len: usize) {
         self.pixels[start..start + len].fill(PixelEntry::EMPTY);
     }
 
     /// Bytes one merged entry costs.
-    pub fn merged_bytes(&self) -> u64 {
+    pub(crate) fn merged_bytes(&self) -> u64 {
         let depths = if self.keep_depths {
             std::mem::size_of::<[f32; MAX_SAMPLES]>()
         } else {
@@ -92,7 +97,7 @@ impl FragmentPool {
 
     /// Stores `f` in a free slot or a new one.
     #[inline]
-    pub fn alloc(&mut self, f: Fragment) -> Result<u32> {
+    pub(crate) fn alloc(&mut self, f: Fragment) -> Result<u32> {
         if self.free != NIL {
             let idx = self.free;
             self.free = self.frags[idx as usize].next;
@@ -128,7 +133,11 @@ impl FragmentPool {
 
     /// Adds a merged entry with colour `rgba` and (when depths are kept)
     /// sample depths `depths`; returns its shading index.
-    pub fn add_merged(&mut self, rgba: [f32; 4], depths: &[f32; MAX_SAMPLES]) -> Result<u32> {
+    pub(crate) fn add_merged(
+        &mut self,
+        rgba: [f32; 4],
+        depths: &[f32; MAX_SAMPLES],
+    ) -> Result<u32> {
         let n = self.merged.len();
         if self.used_bytes(self.frags.len(), n + 1) > self.max_bytes
             || n as u32 >= NIL - MERGED_BASE
@@ -144,74 +153,74 @@ impl FragmentPool {
 
     /// The merged entry of shading index `shade` (at least [`MERGED_BASE`]).
     #[inline]
-    pub fn merged(&self, shade: u32) -> &Merged {
+    pub(crate) fn merged(&self, shade: u32) -> &Merged {
         &self.merged[(shade - MERGED_BASE) as usize]
     }
 
     /// The merged entry of shading index `shade`, mutably.
     #[inline]
-    pub fn merged_mut(&mut self, shade: u32) -> &mut Merged {
+    pub(crate) fn merged_mut(&mut self, shade: u32) -> &mut Merged {
         &mut self.merged[(shade - MERGED_BASE) as usize]
     }
 
     /// The sample depths of merged entry `shade` (per-sample mode only).
     #[inline]
-    pub fn merged_depths(&self, shade: u32) -> &[f32; MAX_SAMPLES] {
+    pub(crate) fn merged_depths(&self, shade: u32) -> &[f32; MAX_SAMPLES] {
         &self.merged_depths[(shade - MERGED_BASE) as usize]
     }
 
     /// The sample depths of merged entry `shade`, mutably.
     #[inline]
-    pub fn merged_depths_mut(&mut self, shade: u32) -> &mut [f32; MAX_SAMPLES] {
+    pub(crate) fn merged_depths_mut(&mut self, shade: u32) -> &mut [f32; MAX_SAMPLES] {
         &mut self.merged_depths[(shade - MERGED_BASE) as usize]
     }
 
     /// Returns slot `idx` to the free list (the caller has unlinked it).
     #[inline]
-    pub fn release(&mut self, idx: u32) {
+    pub(crate) fn release(&mut self, idx: u32) {
         self.frags[idx as usize].next = self.free;
         self.free = idx;
     }
 
     /// The fragment at `idx`.
     #[inline]
-    pub fn get(&self, idx: u32) -> &Fragment {
+    pub(crate) fn get(&self, idx: u32) -> &Fragment {
         &self.frags[idx as usize]
     }
 
     /// The fragment at `idx`, mutably.
     #[inline]
-    pub fn get_mut(&mut self, idx: u32) -> &mut Fragment {
+    pub(crate) fn get_mut(&mut self, idx: u32) -> &mut Fragment {
         &mut self.frags[idx as usize]
     }
 
     /// First fragment of pixel `p`'s list.
     #[inline]
-    pub fn head(&self, p: usize) -> u32 {
+    pub(crate) fn head(&self, p: usize) -> u32 {
         self.pixels[p].head
     }
 
     /// Length of pixel `p`'s list.
     #[inline]
-    pub fn len(&self, p: usize) -> u32 {
+    pub(crate) fn len(&self, p: usize) -> u32 {
         self.pixels[p].len
     }
 
     /// Pixel `p`'s table entry.
     #[inline]
-    pub fn pixel(&self, p: usize) -> &PixelEntry {
+    pub(crate) fn pixel(&self, p: usize) -> &PixelEntry {
         &self.pixels[p]
     }
 
     /// Sets the opaque bound of pixel `p`.
     #[inline]
-    pub fn set_occluder(&mut self, p: usize, z: f32) {
+    pub(crate) fn set_occluder(&mut self, p: usize, z: f32) {
         self.pixels[p].occluder = z;
     }
 
     /// Puts fragment `idx` at the front of pixel `p`'s list.
     #[inline]
-    pub fn push_front(&mut self, p: usize, idx: u32) {
+    pub(crate) fn push_front(&mut self, p: usize, idx: u32) {
         let f = &mut self.frags[idx as usize];
         let e = &mut self.pixels[p];
         f.next = e.head;
@@ -222,7 +231,11 @@ impl FragmentPool {
 
     /// Unlinks and frees every fragment of pixel `p` for which `remove`
     /// says so; returns how many. Recomputes the pixel's `far`.
-    pub fn remove_where(&mut self, p: usize, mut remove: impl FnMut(&Fragment) -> bool) -> u64 {
+    pub(crate) fn remove_where(
+        &mut self,
+        p: usize,
+        mut remove: impl FnMut(&Fragment) -> bool,
+    ) -> u64 {
         let mut removed = 0;
         let mut prev = NIL;
         let mut cur = self.pixels[p].head;
@@ -249,23 +262,24 @@ impl FragmentPool {
     }
 
     /// Bytes of the pixel table.
-    pub fn table_bytes(&self) -> u64 {
+    pub(crate) fn table_bytes(&self) -> u64 {
         self.pixels.len() as u64 * PIXEL_BYTES
     }
 
     /// Most fragment slots in use at once this frame.
-    pub fn peak_fragments(&self) -> usize {
+    pub(crate) fn peak_fragments(&self) -> usize {
         self.peak
     }
 
     /// Merged entries this frame.
-    pub fn merged_entries(&self) -> usize {
+    #[cfg(test)]
+    pub(crate) fn merged_entries(&self) -> usize {
         self.merged.len()
     }
 
     /// Peak working memory this frame: pixel table plus the fragment slots
     /// and merged entries used.
-    pub fn peak_bytes(&self) -> u64 {
+    pub(crate) fn peak_bytes(&self) -> u64 {
         self.used_bytes(self.peak, self.merged.len())
     }
 
@@ -273,7 +287,7 @@ impl FragmentPool {
     /// mode): from its merged entry, or `plane`, its triangle's depth plane,
     /// with the expression the supersampled z-buffer uses.
     #[inline]
-    pub fn sample_depth(
+    pub(crate) fn sample_depth(
         &self,
         plane: &PlaneEq,
         f: &Fragment,

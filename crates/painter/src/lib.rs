@@ -11,10 +11,10 @@
 //!   show that.
 //! - [`Painter`] (`"painter"`): Newell, Newell & Sancha (1972). After the
 //!   sort, each candidate is checked against the polygons it overlaps in
-//!   depth with the six tests of [`newell`] (depth, x and y extents, the
-//!   two plane-side tests, exact projected overlap); polygons that must go
+//!   depth with Newell's six tests (depth, x and y extents, the two
+//!   plane-side tests, exact projected overlap); polygons that must go
 //!   first are moved ahead, and where no order exists one polygon is split
-//!   by the other's plane ([`split`]) and the pieces re-inserted. Pieces
+//!   by the other's plane and the pieces ([`Piece`]) re-inserted. Pieces
 //!   keep their primitive id, and a split budget bounds the work. Plane
 //!   sides are decided by Shewchuk's adaptive `orient3d` on the front
 //!   end's own coordinates, without a depth tolerance, so the order does
@@ -71,24 +71,21 @@
 mod bins;
 mod blocker;
 mod centres;
-pub mod naive;
-pub mod newell;
-pub mod options;
+mod naive;
+mod newell;
+mod options;
 mod order;
-pub mod painter;
-pub mod piece;
+mod painter;
+mod piece;
 mod raster;
 mod resolve;
 mod sides;
-pub mod split;
-pub mod stats;
+mod split;
+mod stats;
 mod svg;
 
 pub use naive::NaivePainter;
-pub use options::{
-    DEFAULT_MAX_BYTES, NaivePainterOptions, PainterOptions, SPLITS_BASE, SPLITS_PAIRS_UP_TO,
-    SPLITS_PER_PAIR, SPLITS_PER_TRIANGLE, SortKey, split_cap,
-};
+pub use options::{NaivePainterOptions, PainterOptions, SortKey};
 pub use painter::Painter;
 pub use piece::{Cut, Piece};
 pub use stats::PainterStats;

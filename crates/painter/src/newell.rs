@@ -52,11 +52,11 @@ use crate::sides::{Sides, sides};
 /// Overlap (pixels) under which bounding boxes and projections of cut
 /// pieces count as touching: many orders of magnitude above the rounding
 /// of their vertices (about 1e-14 pixel), far below pixel spacing.
-pub const TOUCH: f64 = 1e-9;
+pub(crate) const TOUCH: f64 = 1e-9;
 
 /// Margin (pixels) by which the rasteriser widens a cut piece's box, so
 /// that no centre it covers is skipped.
-pub const CUT_MARGIN: f64 = 1e-6;
+pub(crate) const CUT_MARGIN: f64 = 1e-6;
 
 /// Which test settled a pair.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,7 +103,7 @@ pub(crate) struct Blocked {
 impl Blocked {
     /// P is nearer than Q on the one pixel centre that matters (one of them
     /// covers no other): Q may go first, and no plane needs to cut.
-    pub fn by_centre() -> Self {
+    pub(crate) fn by_centre() -> Self {
         Self {
             p: Sides {
                 front: true,
@@ -120,17 +120,17 @@ impl Blocked {
     /// Whether Q may be painted before P instead (tests 4 and 5 with the
     /// roles swapped): Q behind P's plane, or P in front of Q's plane, or
     /// they only touch and Q is nearer where they do.
-    pub fn reverse_ok(&self) -> bool {
+    pub(crate) fn reverse_ok(&self) -> bool {
         !self.q.front || !self.p.behind || self.touch_reverse
     }
 
     /// Whether Q's plane really cuts P (vertices strictly on both sides).
-    pub fn q_plane_cuts_p(&self) -> bool {
+    pub(crate) fn q_plane_cuts_p(&self) -> bool {
         self.p.cut()
     }
 
     /// Whether P's plane really cuts Q.
-    pub fn p_plane_cuts_q(&self) -> bool {
+    pub(crate) fn p_plane_cuts_q(&self) -> bool {
         self.q.cut()
     }
 }
@@ -153,7 +153,7 @@ pub(crate) struct Extent {
 
 impl Extent {
     /// The extents of a piece.
-    pub fn of(p: &Piece) -> Self {
+    pub(crate) fn of(p: &Piece) -> Self {
         Self {
             zmin: p.zmin,
             zmax: p.zmax,

@@ -37,14 +37,14 @@ impl NaivePainterOptions {
 }
 
 /// Default of [`PainterOptions::max_splits`].
-pub const DEFAULT_MAX_SPLITS: u64 = 4_000_000;
+pub(crate) const DEFAULT_MAX_SPLITS: u64 = 4_000_000;
 
 /// Splits allowed per input triangle, whatever [`PainterOptions::max_splits`]
 /// says.
-pub const SPLITS_PER_TRIANGLE: u64 = 64;
+pub(crate) const SPLITS_PER_TRIANGLE: u64 = 64;
 
 /// Splits allowed on top of [`SPLITS_PER_TRIANGLE`] per triangle.
-pub const SPLITS_BASE: u64 = 4096;
+pub(crate) const SPLITS_BASE: u64 = 4096;
 
 /// Splits allowed per pair of input triangles, for scenes of up to
 /// [`SPLITS_PAIRS_UP_TO`] triangles. Triangles that all cut one another
@@ -55,24 +55,24 @@ pub const SPLITS_BASE: u64 = 4096;
 /// that need 6,587 splits, past the 6,400 that the per-triangle cap
 /// alone allowed; no runaway is involved (each split cuts a real
 /// intersection). Eight per pair gives them 16,768.
-pub const SPLITS_PER_PAIR: u64 = 8;
+pub(crate) const SPLITS_PER_PAIR: u64 = 8;
 
 /// The pair allowance counts pairs among at most this many triangles, so
 /// that it adds at most 131,072 splits: large scenes keep the per-triangle
 /// cap, which is what stops a degenerate cascade early.
-pub const SPLITS_PAIRS_UP_TO: u64 = 128;
+pub(crate) const SPLITS_PAIRS_UP_TO: u64 = 128;
 
 /// The split budget a scene of `triangles` input triangles gets at most,
 /// whatever [`PainterOptions::max_splits`] says: [`SPLITS_BASE`], plus
 /// [`SPLITS_PER_TRIANGLE`] per triangle, plus [`SPLITS_PER_PAIR`] per pair
 /// among up to [`SPLITS_PAIRS_UP_TO`] of them.
-pub fn split_cap(triangles: u64) -> u64 {
+pub(crate) fn split_cap(triangles: u64) -> u64 {
     let paired = triangles.min(SPLITS_PAIRS_UP_TO);
     SPLITS_BASE + SPLITS_PER_TRIANGLE * triangles + SPLITS_PER_PAIR * paired * paired
 }
 
 /// Default of [`PainterOptions::max_bytes`]: 1 GiB.
-pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
+pub(crate) const DEFAULT_MAX_BYTES: u64 = 1 << 30;
 
 /// Options of [`crate::Painter`] (Newell, Newell & Sancha with splitting).
 /// `Default` is the accurate choice: exact orders, a budget no real scene
@@ -90,18 +90,21 @@ pub const DEFAULT_MAX_BYTES: u64 = 1 << 30;
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct PainterOptions {
-    /// Most polygon splits allowed in one frame. Intersections and cyclic
-    /// overlaps each cost at least one split; when the budget runs out
-    /// `render` stops with a [`hider_scene::Error::Render`] naming it
-    /// rather than run (or allocate) without bound. The budget actually
-    /// used is also capped by [`split_cap`] (a base, an allowance per
-    /// input triangle and one per pair among small scenes): real scenes need one or two splits per
-    /// triangle (1.4 on a 10k random soup), so a frame past that cap is
-    /// degenerate input that would otherwise split until memory runs out
-    /// (found by fuzzing).
+    /// Most polygon splits allowed in one frame (default 4,000,000).
+    /// Intersections and cyclic overlaps each cost at least one split;
+    /// when the budget runs out `render` stops with a
+    /// [`hider_scene::Error::Render`] naming it rather than run (or
+    /// allocate) without bound. The budget actually used is also capped,
+    /// for a scene of `n` triangles, at `4096 + 64 n + 8 m^2` with
+    /// `m = min(n, 128)` (a base, an allowance per input triangle and one
+    /// per pair among small scenes; `split_cap` in `options.rs`): real
+    /// scenes need one or two splits per triangle (1.4 on a 10k random
+    /// soup), so a frame past that cap is degenerate input that would
+    /// otherwise split until memory runs out (found by fuzzing).
     pub max_splits: u64,
-    /// Most bytes the piece arena may hold; checked after every split, the
-    /// frame stops with [`hider_scene::Error::Limit`] beyond it.
+    /// Most bytes the piece arena may hold (default 1 GiB); checked after
+    /// every split, the frame stops with [`hider_scene::Error::Limit`]
+    /// beyond it.
     pub max_bytes: u64,
     /// SVG output only: leave out pieces that own no pixel centre in the
     /// raster. Smaller files, but sub-pixel slivers that would show in a

@@ -191,7 +191,7 @@ impl Piece {
 /// reference point: negative where plane `a` is nearer than plane `b`. Its
 /// zero line is where the two planes meet on screen — "the plane of b"
 /// seen inside a.
-pub fn depth_difference(a: &PlaneEq, b: &PlaneEq) -> PlaneEq {
+pub(crate) fn depth_difference(a: &PlaneEq, b: &PlaneEq) -> PlaneEq {
     PlaneEq {
         x0: a.x0,
         y0: a.y0,
@@ -217,7 +217,7 @@ pub fn depth_difference(a: &PlaneEq, b: &PlaneEq) -> PlaneEq {
 /// in pixels, positive on the interior side of a positively oriented
 /// polygon (same sign convention as [`hider_geom::EdgeFunction`], without
 /// the fill-rule bias). For fixed-point end points every product is exact.
-pub fn edge_line(a: DVec2, b: DVec2) -> PlaneEq {
+pub(crate) fn edge_line(a: DVec2, b: DVec2) -> PlaneEq {
     PlaneEq {
         x0: a.x,
         y0: a.y,

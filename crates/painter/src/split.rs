@@ -82,7 +82,8 @@ pub(crate) fn split_tagged(
 
 /// Twice the signed area of a polygon (positive for the orientation the
 /// screen triangles use: clockwise on the y-down screen).
-pub fn doubled_area(poly: &[DVec2]) -> f64 {
+#[cfg(test)]
+pub(crate) fn doubled_area(poly: &[DVec2]) -> f64 {
     let n = poly.len();
     (0..n)
         .map(|k| {
@@ -96,7 +97,7 @@ pub fn doubled_area(poly: &[DVec2]) -> f64 {
 
 /// The range `(min, max)` of `f` over a polygon's vertices: for an affine
 /// `f` and a convex polygon, its range over the whole polygon.
-pub fn range_over(poly: &[DVec2], f: &PlaneEq) -> (f64, f64) {
+pub(crate) fn range_over(poly: &[DVec2], f: &PlaneEq) -> (f64, f64) {
     poly.iter()
         .map(|p| f.eval(p.x, p.y))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {

@@ -36,7 +36,7 @@ use crate::grid::SampleRect;
 /// [`Setups::depth`].
 #[derive(Clone, Copy, Debug)]
 #[repr(C, align(32))]
-pub struct TriSetup {
+pub(crate) struct TriSetup {
     /// The vertices on the fixed-point screen lattice, positively oriented.
     pub v: [FixedPt; 3],
     /// Primitive id written to the frame.
@@ -48,7 +48,7 @@ impl TriSetup {
     /// lies beyond [`FIXED_LIMIT`], where the edge functions' `i64`
     /// products could overflow (the front end's guard band never lets one
     /// through).
-    pub fn new(t: &ScreenTri) -> Option<Self> {
+    pub(crate) fn new(t: &ScreenTri) -> Option<Self> {
         let inside = |p: &FixedPt| p.x.abs() <= FIXED_LIMIT && p.y.abs() <= FIXED_LIMIT;
         t.v.iter().all(inside).then_some(Self {
             v: t.v,
@@ -59,7 +59,7 @@ impl TriSetup {
     /// The three edge functions with the fill rule: the shared ones
     /// ([`ScreenTri::edges`]), recomputed from the vertices.
     #[inline]
-    pub fn edges(&self) -> [EdgeFunction; 3] {
+    pub(crate) fn edges(&self) -> [EdgeFunction; 3] {
         let v = &self.v;
         [
             EdgeFunction::new(v[0], v[1]),
@@ -72,13 +72,13 @@ impl TriSetup {
     /// edge functions under the fill rule, the one coverage decision
     /// every hider makes.
     #[inline]
-    pub fn covers(&self, x: i64, y: i64) -> bool {
+    pub(crate) fn covers(&self, x: i64, y: i64) -> bool {
         self.edges().iter().all(|e| e.eval(x, y) > 0)
     }
 
     /// The vertex bounding box.
     #[inline]
-    pub fn bounding_box(&self) -> BoundingBox {
+    pub(crate) fn bounding_box(&self) -> BoundingBox {
         let (min_x, max_x) = self.x_bounds();
         let (min_y, max_y) = self.y_bounds();
         BoundingBox {
@@ -91,14 +91,14 @@ impl TriSetup {
 
     /// The vertex bounds in x, fixed point.
     #[inline]
-    pub fn x_bounds(&self) -> (i64, i64) {
+    pub(crate) fn x_bounds(&self) -> (i64, i64) {
         let [a, b, c] = self.v.map(|p| p.x);
         (i64::from(a.min(b).min(c)), i64::from(a.max(b).max(c)))
     }
 
     /// The vertex bounds in y, fixed point.
     #[inline]
-    pub fn y_bounds(&self) -> (i64, i64) {
+    pub(crate) fn y_bounds(&self) -> (i64, i64) {
         let [a, b, c] = self.v.map(|p| p.y);
         (i64::from(a.min(b).min(c)), i64::from(a.max(b).max(c)))
     }
@@ -107,7 +107,7 @@ impl TriSetup {
 /// Window depth at the fixed-point sample `(x, y)` on `plane`, evaluated
 /// exactly as the z-buffer evaluates it at a pixel centre.
 #[inline]
-pub fn depth_at(plane: &PlaneEq, x: i64, y: i64) -> f64 {
+pub(crate) fn depth_at(plane: &PlaneEq, x: i64, y: i64) -> f64 {
     plane.eval(x as f64 / 256.0, y as f64 / 256.0)
 }
 
@@ -115,7 +115,7 @@ pub fn depth_at(plane: &PlaneEq, x: i64, y: i64) -> f64 {
 /// classification records ([`TriSetup`], read at every level) and, apart,
 /// the depth planes (read only for surrounders and samples).
 #[derive(Clone, Debug, Default)]
-pub struct Setups {
+pub(crate) struct Setups {
     /// Classification records, indexed by triangle.
     pub tris: Vec<TriSetup>,
     /// Window depth planes, indexed by triangle.
@@ -124,12 +124,12 @@ pub struct Setups {
 
 impl Setups {
     /// Bytes of set-up per triangle.
-    pub const BYTES_PER_TRIANGLE: usize =
+    pub(crate) const BYTES_PER_TRIANGLE: usize =
         std::mem::size_of::<TriSetup>() + std::mem::size_of::<PlaneEq>();
 
     /// Triangle `t`: its record and its depth plane.
     #[inline]
-    pub fn get(&self, t: u32) -> Tri<'_> {
+    pub(crate) fn get(&self, t: u32) -> Tri<'_> {
         Tri {
             setup: &self.tris[t as usize],
             depth: &self.depth[t as usize],
@@ -137,7 +137,7 @@ impl Setups {
     }
 
     /// Bytes held (capacity).
-    pub fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         self.tris.capacity() * std::mem::size_of::<TriSetup>()
             + self.depth.capacity() * std::mem::size_of::<PlaneEq>()
     }
@@ -145,7 +145,7 @@ impl Setups {
 
 /// One triangle's set-up: what the sinks draw with.
 #[derive(Clone, Copy, Debug)]
-pub struct Tri<'a> {
+pub(crate) struct Tri<'a> {
     /// The classification record.
     pub setup: &'a TriSetup,
     /// The window depth plane.
@@ -155,26 +155,26 @@ pub struct Tri<'a> {
 impl Tri<'_> {
     /// Primitive id written to the frame.
     #[inline]
-    pub fn prim(&self) -> u32 {
+    pub(crate) fn prim(&self) -> u32 {
         self.setup.prim
     }
 
     /// See [`TriSetup::covers`].
     #[inline]
-    pub fn covers(&self, x: i64, y: i64) -> bool {
+    pub(crate) fn covers(&self, x: i64, y: i64) -> bool {
         self.setup.covers(x, y)
     }
 
     /// Window depth at the fixed-point sample `(x, y)` ([`depth_at`]).
     #[inline]
-    pub fn depth_at(&self, x: i64, y: i64) -> f64 {
+    pub(crate) fn depth_at(&self, x: i64, y: i64) -> f64 {
         depth_at(self.depth, x, y)
     }
 }
 
 /// Warnock's relation of a polygon to a region, about the region's samples.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Class {
+pub(crate) enum Class {
     /// Covers none of the region's samples: dropped from the region's list.
     Disjoint,
     /// Covers every sample of the region.
@@ -185,20 +185,22 @@ pub enum Class {
     Intersecting,
 }
 
-/// Classifies triangle `t` against the region whose samples span `r`.
-#[inline]
-pub fn classify(t: &TriSetup, r: &SampleRect) -> Class {
+/// Classifies triangle `t` against the region whose samples span `r` (the
+/// tests' entry: the subdivision calls [`classify_in_box`]).
+#[cfg(test)]
+pub(crate) fn classify(t: &TriSetup, r: &SampleRect) -> Class {
     classify_in_box(t, &t.bounding_box(), r)
 }
 
-/// [`classify`], given `t`'s bounding box `b` (the subdivision unites the
-/// survivors' boxes, so it computes each box once).
+/// Classifies triangle `t`, whose bounding box is `b`, against the region
+/// whose samples span `r` (the subdivision unites the survivors' boxes, so
+/// it computes each box once).
 ///
 /// Each edge is evaluated relative to its first vertex, `a (x - fx) +
 /// b (y - fy) + bias`: the same integer as [`EdgeFunction::eval`] (whose
 /// constant term is `-a fx - b fy + bias`), without computing that term.
 #[inline]
-pub fn classify_in_box(t: &TriSetup, b: &BoundingBox, r: &SampleRect) -> Class {
+pub(crate) fn classify_in_box(t: &TriSetup, b: &BoundingBox, r: &SampleRect) -> Class {
     // Bounding boxes first: the cheap half of the 2-D separating-axis test.
     if b.misses(r) {
         return Class::Disjoint;
@@ -238,7 +240,7 @@ pub fn classify_in_box(t: &TriSetup, b: &BoundingBox, r: &SampleRect) -> Class {
 /// A vertex bounding box (or a union of them), fixed point, closed: a
 /// sample outside it is covered by none of the triangles it bounds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct BoundingBox {
+pub(crate) struct BoundingBox {
     /// Smallest x.
     pub min_x: i64,
     /// Largest x.
@@ -251,7 +253,7 @@ pub struct BoundingBox {
 
 impl BoundingBox {
     /// The box of nothing: [`Self::union`] with it is the identity.
-    pub const EMPTY: Self = Self {
+    pub(crate) const EMPTY: Self = Self {
         min_x: i64::MAX,
         max_x: i64::MIN,
         min_y: i64::MAX,
@@ -260,7 +262,7 @@ impl BoundingBox {
 
     /// The smallest box holding both.
     #[inline]
-    pub fn union(&self, o: &Self) -> Self {
+    pub(crate) fn union(&self, o: &Self) -> Self {
         Self {
             min_x: self.min_x.min(o.min_x),
             max_x: self.max_x.max(o.max_x),
@@ -272,13 +274,13 @@ impl BoundingBox {
     /// Whether every sample of the rectangle `r` lies in the box: what a
     /// triangle must satisfy to surround the region of `r`.
     #[inline]
-    pub fn holds(&self, r: &SampleRect) -> bool {
+    pub(crate) fn holds(&self, r: &SampleRect) -> bool {
         self.min_x <= r.x0 && self.max_x >= r.x1 && self.min_y <= r.y0 && self.max_y >= r.y1
     }
 
     /// Whether no sample of the rectangle `r` lies in the box.
     #[inline]
-    pub fn misses(&self, r: &SampleRect) -> bool {
+    pub(crate) fn misses(&self, r: &SampleRect) -> bool {
         self.max_x < r.x0 || self.min_x > r.x1 || self.max_y < r.y0 || self.min_y > r.y1
     }
 }
@@ -291,7 +293,7 @@ const DEPTH_GUARD: f64 = 1e-13;
 /// A depth plane evaluated at a region's four corner samples, with the
 /// magnitude that bounds the rounding error of any evaluation inside.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct CornerDepths {
+pub(crate) struct CornerDepths {
     /// Depth at the corners (top-left, top-right, bottom-left, bottom-right).
     pub depth: [f64; 4],
     /// The largest `|value| + |dx (x - x0)| + |dy (y - y0)|` over the
@@ -302,7 +304,7 @@ pub struct CornerDepths {
 
 impl CornerDepths {
     /// Evaluates `plane` at the corners of `r`.
-    pub fn new(plane: &PlaneEq, r: &SampleRect) -> Self {
+    pub(crate) fn new(plane: &PlaneEq, r: &SampleRect) -> Self {
         let mut depth = [0.0; 4];
         let mut magnitude: f64 = 0.0;
         for (d, (x, y)) in depth.iter_mut().zip(r.corners_in_pixels()) {
@@ -317,7 +319,7 @@ impl CornerDepths {
 
     /// The sum of the corner depths: four times the depth at the centre of
     /// the sample rectangle, the key for picking the front surrounder.
-    pub fn sum(&self) -> f64 {
+    pub(crate) fn sum(&self) -> f64 {
         self.depth.iter().sum()
     }
 }
@@ -333,7 +335,7 @@ impl CornerDepths {
 /// evaluation; when the planes cross inside the region, or come closer than
 /// the guard, the answer is `false` and the caller subdivides further.
 #[inline]
-pub fn certainly_behind(p: &CornerDepths, s: &CornerDepths) -> bool {
+pub(crate) fn certainly_behind(p: &CornerDepths, s: &CornerDepths) -> bool {
     let guard = DEPTH_GUARD * (p.magnitude + s.magnitude);
     p.depth
         .iter()

@@ -39,7 +39,7 @@ pub(crate) struct ColorCache {
 
 impl ColorCache {
     /// Forgets the colours and sizes the cache for `scene`.
-    pub fn reset(&mut self, scene: &ScreenScene) {
+    pub(crate) fn reset(&mut self, scene: &ScreenScene) {
         self.colors.clear();
         self.colors.resize(scene.prims.len(), None);
         let sampler = TextureSampler::new(scene, TextureOptions::default());
@@ -67,7 +67,7 @@ impl ColorCache {
         }
     }
 
-    pub fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         self.colors.capacity() * std::mem::size_of::<Option<[f32; 3]>>()
     }
 }
@@ -101,7 +101,7 @@ impl SampleBuffer {
         stats.samples_written += 1;
     }
 
-    pub fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         self.prims.capacity() * 4 + self.depth.capacity() * 8 + self.tally.capacity() * 16
     }
 }

@@ -50,7 +50,7 @@ impl LeafRegion {
 }
 
 /// The outline colour (sRGB) of regions decided by `rule`.
-pub fn rule_color(rule: Rule) -> [u8; 3] {
+pub(crate) fn rule_color(rule: Rule) -> [u8; 3] {
     match rule {
         Rule::Empty => [90, 90, 90],
         Rule::SinglePolygon => [40, 200, 80],

@@ -19,7 +19,7 @@ const HALF: i64 = HALF_PIXEL as i64;
 
 /// Cells of the subdivision in 1/256-pixel (fixed-point) units.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Grid {
+pub(crate) struct Grid {
     /// Fixed-point x of cell column 0's left side.
     pub origin_x: i64,
     /// Fixed-point y of cell row 0's top side.
@@ -35,7 +35,7 @@ pub struct Grid {
 impl Grid {
     /// Cells are pixels, each sampled at its centre
     /// ([`hider_geom::fixed::pixel_center`]).
-    pub fn pixel_centres() -> Self {
+    pub(crate) fn pixel_centres() -> Self {
         let centre = i64::from(pixel_center(0));
         Self {
             origin_x: 0,
@@ -49,7 +49,7 @@ impl Grid {
     /// Cells are pixels, each holding `n x n` samples at offsets
     /// `(2k + 1) * 128 / n` (fixed point, 256 to the pixel): the first at
     /// `128 / n`, the last at `256 - 128 / n`.
-    pub fn pixels_with_samples(n: u32) -> Self {
+    pub(crate) fn pixels_with_samples(n: u32) -> Self {
         let half = HALF / i64::from(n);
         Self {
             origin_x: 0,
@@ -61,7 +61,7 @@ impl Grid {
     }
 
     /// Cells are the `n x n` samples of pixel `(i, j)`, each one sample.
-    pub fn samples_of_pixel(i: u32, j: u32, n: u32) -> Self {
+    pub(crate) fn samples_of_pixel(i: u32, j: u32, n: u32) -> Self {
         let step = PIXEL / i64::from(n);
         Self {
             origin_x: i64::from(i) * PIXEL,
@@ -74,26 +74,26 @@ impl Grid {
 
     /// Whether each cell holds exactly one sample (pixel centres, or the
     /// samples inside a pixel), so that a one-cell region is one sample.
-    pub fn one_sample_per_cell(&self) -> bool {
+    pub(crate) fn one_sample_per_cell(&self) -> bool {
         self.first == self.last
     }
 
     /// The fixed-point x of the first sample of cell column `u`.
     #[inline]
-    pub fn sample_x(&self, u: u32) -> i64 {
+    pub(crate) fn sample_x(&self, u: u32) -> i64 {
         self.origin_x + i64::from(u) * self.cell + self.first
     }
 
     /// The fixed-point y of the first sample of cell row `v`.
     #[inline]
-    pub fn sample_y(&self, v: u32) -> i64 {
+    pub(crate) fn sample_y(&self, v: u32) -> i64 {
         self.origin_y + i64::from(v) * self.cell + self.first
     }
 
     /// The part of `r` whose cells hold samples inside the fixed-point box
     /// `[min_x, max_x] x [min_y, max_y]` (a triangle's vertex bounds), or
     /// `None` if no sample of `r` lies in it.
-    pub fn cells_touching(
+    pub(crate) fn cells_touching(
         &self,
         r: &Region,
         (min_x, max_x): (i64, i64),
@@ -114,7 +114,7 @@ impl Grid {
     }
 
     /// The extreme samples and the area of `region`.
-    pub fn sample_rect(&self, r: &Region) -> SampleRect {
+    pub(crate) fn sample_rect(&self, r: &Region) -> SampleRect {
         let lo = |origin: i64, c: u32| origin + i64::from(c) * self.cell;
         SampleRect {
             x0: lo(self.origin_x, r.u0) + self.first,
@@ -131,7 +131,7 @@ impl Grid {
 
 /// A half-open rectangle of grid cells `[u0, u1) x [v0, v1)`, never empty.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub struct Region {
+pub(crate) struct Region {
     /// First cell column.
     pub u0: u32,
     /// First cell row.
@@ -144,30 +144,30 @@ pub struct Region {
 
 impl Region {
     /// The region `[u0, u1) x [v0, v1)`.
-    pub const fn new(u0: u32, v0: u32, u1: u32, v1: u32) -> Self {
+    pub(crate) const fn new(u0: u32, v0: u32, u1: u32, v1: u32) -> Self {
         Self { u0, v0, u1, v1 }
     }
 
     /// Width in cells.
     #[inline]
-    pub fn width(&self) -> u32 {
+    pub(crate) fn width(&self) -> u32 {
         self.u1 - self.u0
     }
 
     /// Height in cells.
     #[inline]
-    pub fn height(&self) -> u32 {
+    pub(crate) fn height(&self) -> u32 {
         self.v1 - self.v0
     }
 
     /// Number of cells.
-    pub fn cells(&self) -> u64 {
+    pub(crate) fn cells(&self) -> u64 {
         u64::from(self.width()) * u64::from(self.height())
     }
 
     /// Whether the region is a single cell.
     #[inline]
-    pub fn is_single_cell(&self) -> bool {
+    pub(crate) fn is_single_cell(&self) -> bool {
         self.width() == 1 && self.height() == 1
     }
 
@@ -175,7 +175,7 @@ impl Region {
     /// is not split, so a 1-cell-wide strip splits in two. Returns the
     /// children in reading order (top-left first) and their count (0 for a
     /// single cell).
-    pub fn quadrants(&self) -> ([Region; 4], usize) {
+    pub(crate) fn quadrants(&self) -> ([Region; 4], usize) {
         let mut out = [*self; 4];
         let xs = split(self.u0, self.u1);
         let ys = split(self.v0, self.v1);
@@ -202,7 +202,7 @@ fn split(a0: u32, a1: u32) -> [Option<(u32, u32)>; 2] {
 /// The extreme sample positions of a region (inclusive, fixed point) and
 /// its area (half-open, fixed point).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct SampleRect {
+pub(crate) struct SampleRect {
     /// x of the leftmost samples.
     pub x0: i64,
     /// x of the rightmost samples.
@@ -225,7 +225,7 @@ impl SampleRect {
     /// The four corner samples in pixels (x, y): top-left, top-right,
     /// bottom-left, bottom-right. Fixed point divided by 256 is exact in
     /// `f64`.
-    pub fn corners_in_pixels(&self) -> [(f64, f64); 4] {
+    pub(crate) fn corners_in_pixels(&self) -> [(f64, f64); 4] {
         let p = |v: i64| v as f64 / PIXEL as f64;
         [
             (p(self.x0), p(self.y0)),

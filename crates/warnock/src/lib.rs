@@ -9,10 +9,9 @@
 //! four quadrants and look again. The lecture on image-space hidden-surface
 //! algorithms lists it with the z-buffer and the scanline algorithm.
 //!
-//! This crate runs that loop ([`subdivide`], iterative with an explicit
-//! stack) over the shared [`ScreenScene`](hider_scene::ScreenScene):
+//! This crate runs that loop (iterative, with an explicit stack) over the shared [`ScreenScene`](hider_scene::ScreenScene):
 //! - each polygon is classified against a region as surrounding,
-//!   intersecting, contained or disjoint ([`classify`]) with the shared
+//!   intersecting, contained or disjoint with the shared
 //!   exact integer edge functions, evaluated at the region's extreme
 //!   *samples* (a region is a rectangle of pixels, and what matters is which
 //!   of their centres a triangle covers);
@@ -30,10 +29,11 @@
 //!   triangles over one pixel costs `2N` classifications, not `N` per
 //!   level);
 //! - optionally ([`WarnockOptions::samples_per_side`]) the subdivision goes
-//!   on inside pixels to an `n x n` sample grid for anti-aliased coverage
-//!   ([`coverage`]);
-//! - a debug record of the final regions draws the picture in the docs
-//!   ([`debug`]).
+//!   on inside pixels to an `n x n` sample grid for anti-aliased coverage;
+//! - a debug record of the final regions
+//!   ([`WarnockOptions::record_regions`], [`Warnock::leaf_regions`],
+//!   [`LeafRegion`]) draws the picture in the docs
+//!   ([`draw_region_outlines`]).
 //!
 //! # Example
 //!
@@ -59,17 +59,17 @@
 //! # Ok::<(), hider_scene::Error>(())
 //! ```
 
-pub mod classify;
-pub mod coverage;
-pub mod debug;
-pub mod grid;
-pub mod options;
-pub mod pixel;
-pub mod stats;
-pub mod subdivide;
+mod classify;
+mod coverage;
+mod debug;
+mod grid;
+mod options;
+mod pixel;
+mod stats;
+mod subdivide;
 mod warnock;
 
 pub use debug::{LeafRegion, draw_region_outlines};
-pub use options::{MAX_SAMPLES_PER_SIDE, WarnockOptions};
+pub use options::WarnockOptions;
 pub use stats::{Rule, WarnockStats};
 pub use warnock::Warnock;

@@ -3,7 +3,7 @@
 use hider_scene::ShadeMode;
 
 /// Largest supported [`WarnockOptions::samples_per_side`].
-pub const MAX_SAMPLES_PER_SIDE: u32 = 16;
+pub(crate) const MAX_SAMPLES_PER_SIDE: u32 = 16;
 
 /// Options of [`crate::Warnock`]. `Default` is the accurate choice: stop at
 /// pixel size and resolve each pixel at its centre, exactly as the z-buffer
@@ -33,7 +33,7 @@ pub struct WarnockOptions {
     /// leaves colour to [`hider_scene::shade_frame`]).
     pub shade: ShadeMode,
     /// Record the final (leaf) regions of the subdivision, for the debug
-    /// picture ([`crate::debug::draw_region_outlines`]). Off by default:
+    /// picture ([`crate::draw_region_outlines`]). Off by default:
     /// the record can hold up to one entry per pixel.
     pub record_regions: bool,
     /// Budget for the working memory (triangle set-up records plus the

@@ -52,7 +52,7 @@ impl Rule {
 
 /// Deepest subdivision level the statistics name: a 16384-pixel window
 /// reaches pixels at level 14, and 16 x 16 samples add 4 more.
-pub const MAX_LEVEL: usize = 31;
+pub(crate) const MAX_LEVEL: usize = 31;
 
 /// Work counters of one Warnock frame.
 ///

@@ -130,17 +130,17 @@ pub(crate) struct Subdivider {
 impl Subdivider {
     /// Largest number of candidate indices held at once since the last
     /// [`Self::reset_peak`].
-    pub fn peak(&self) -> usize {
+    pub(crate) fn peak(&self) -> usize {
         self.peak
     }
 
     /// Starts a new peak measurement.
-    pub fn reset_peak(&mut self) {
+    pub(crate) fn reset_peak(&mut self) {
         self.peak = 0;
     }
 
     /// Bytes held by the arena and the stack.
-    pub fn bytes(&self) -> usize {
+    pub(crate) fn bytes(&self) -> usize {
         self.arena.capacity() * std::mem::size_of::<u32>()
             + self.stack.capacity() * std::mem::size_of::<Entry>()
     }
@@ -148,7 +148,7 @@ impl Subdivider {
     /// Subdivides each of the `roots`, starting from the candidate list
     /// `initial` (indices into `setups`, in drawing order), and hands every
     /// decision to `sink`.
-    pub fn run<S: Sink>(
+    pub(crate) fn run<S: Sink>(
         &mut self,
         roots: Roots<'_>,
         initial: impl IntoIterator<Item = u32>,

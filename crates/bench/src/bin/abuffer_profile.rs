@@ -20,9 +20,9 @@
 //! fastest of the renders (the workspace's shared timer, no warm-up: a
 //! profile sees the first frame too) and the work counters.
 
-use hider_abuffer::coverage::{TriCoverage, pixel_range};
 use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, SamplePattern, SsaaOptions, SupersampledZBuffer,
+    TriCoverage, pixel_range,
 };
 use hider_scene::prepare::lean::{LeanScene, prepare_lean_into};
 use hider_scene::{

@@ -31,7 +31,12 @@ pub struct TiledZBufferOptions {
     pub tile_size: u32,
     /// Whether to reject triangles and 8x8 blocks whose nearest possible
     /// depth is behind everything stored there (per-tile and per-block
-    /// maximum depth). Never changes the output, only the work.
+    /// maximum depth).
+    ///
+    /// A tuning knob, set only by tests: it trades keeping the tile and
+    /// block maximum depths up to date for depth tests skipped. The output
+    /// does not change (ids and depths are the same, pixel for pixel), only
+    /// the work; the default, on, is the fast exact choice.
     pub hierarchical_z: bool,
 }
 
