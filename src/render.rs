@@ -8,9 +8,7 @@
 
 use anyhow::{Context, Result};
 use hider::plan::{RenderOptions, planner, registry};
-use hider::scene::shade::{
-    Prims, ScenePrims, Shader, Stages, id_frame, texture_failures, transparency_warning,
-};
+use hider::scene::shade::{Prims, ScenePrims, Shader, Stages, id_frame, transparency_warning};
 use hider::scene::timing::{Summary, Timer};
 use hider::scene::{
     DynHider, Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, StatsTable, View,
@@ -150,6 +148,32 @@ fn shade(
     Ok(())
 }
 
+/// Textures a textured mesh names that cannot be used, once per file:
+/// those whose decode failed during the frame, and those never decoded
+/// whose header does not read (a texture is decoded only when a pixel
+/// samples it, so one off screen, or one the analysis found unreadable,
+/// was never tried).
+fn texture_warnings(scene: &Scene) -> Vec<String> {
+    let mut seen = Vec::new();
+    let mut warnings = Vec::new();
+    for mesh in scene.meshes.iter().filter(|m| !m.uvs.is_empty()) {
+        let Some(texture) = scene
+            .mesh_material(mesh)
+            .and_then(|m| m.diffuse_texture.as_ref())
+        else {
+            continue;
+        };
+        if seen.contains(&texture.path()) {
+            continue;
+        }
+        seen.push(texture.path());
+        if let Some(why) = texture.problem() {
+            warnings.push(format!("{why}; the material's colour is used"));
+        }
+    }
+    warnings
+}
+
 /// Runs `hider render`.
 pub fn run(args: &RenderArgs) -> Result<()> {
     let (width, height) = args.image_size()?;
@@ -199,16 +223,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
             .render_scene(&scene, &view, &chosen.prepare, &mut screen, &mut frame)?;
     progress.stage("shading");
     shade(args, &chosen, &scene, &view, &mut frame)?;
-    // Textures decode on first use: those that failed were tried by now.
-    if chosen.stages.texture {
-        let textures = scene
-            .materials
-            .iter()
-            .filter_map(|m| m.diffuse_texture.as_ref());
-        for failure in texture_failures(textures) {
-            progress.suspend(|| {
-                eprintln!("hider: warning: {failure}; the material's colour is used");
-            });
+    if args.shade_mode() == ShadeMode::Lambert {
+        for warning in texture_warnings(&scene) {
+            progress.suspend(|| eprintln!("hider: warning: {warning}"));
         }
     }
     progress.stage("writing");

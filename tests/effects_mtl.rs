@@ -327,3 +327,35 @@ fn partly_textured_objects_are_named() {
         "{e}"
     );
 }
+
+/// A texture that cannot be decoded (a text file named `.png`) is named in
+/// a warning by the default render too (only `analyze` named it), and the
+/// material's colour is used.
+#[test]
+fn an_undecodable_texture_is_named() {
+    let dir = folder("badtex");
+    std::fs::write(dir.join("fake.png"), "not an image at all").unwrap();
+    std::fs::write(
+        dir.join("model.mtl"),
+        "newmtl m\nKd 0 1 0\nmap_Kd fake.png\n",
+    )
+    .unwrap();
+    let model = dir.join("quad.obj");
+    std::fs::write(
+        &model,
+        "mtllib model.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
+         f 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    for algo in ["auto", "zbuffer", "abuffer"] {
+        let (p, e) = render(&model, algo, &[]);
+        assert!(
+            e.contains("fake.png") && e.contains("the material's colour is used"),
+            "{algo}: {e}"
+        );
+        assert!(
+            covered(&p).iter().all(|c| c[1] > 0 && c[0] == 0),
+            "{algo}: not green"
+        );
+    }
+}

@@ -335,6 +335,17 @@ impl TextureRef {
         self.decoded.get()?.as_ref().err().map(String::as_str)
     }
 
+    /// Why the texture cannot be used, without decoding it: the decode's
+    /// error if one was tried, else what reading the image's header finds
+    /// (a missing or undecodable file, a size over [`MAX_TEXTURE_SIDE`]).
+    pub fn problem(&self) -> Option<String> {
+        match self.decoded.get() {
+            Some(Ok(_)) => None,
+            Some(Err(why)) => Some(why.clone()),
+            None => probe(&self.path).err().map(|e| e.to_string()),
+        }
+    }
+
     /// Bytes held by the decoded texels (0 before decoding).
     pub fn bytes(&self) -> usize {
         match self.decoded.get() {
