@@ -111,10 +111,20 @@ fn vertex_normals_shade_smoothly() {
     let flat = dir.join("flat.obj");
     std::fs::write(&smooth, sphere_obj(12, true, "grey")).unwrap();
     std::fs::write(&flat, sphere_obj(12, false, "grey")).unwrap();
+    // Without vn, a smoothing group asks for the same smoothing.
+    let grouped = dir.join("grouped.obj");
+    std::fs::write(&grouped, format!("s 1\n{}", sphere_obj(12, false, "grey"))).unwrap();
     for algo in HIDERS {
         let (s, _) = render(&smooth, algo, &[]);
         let (f, _) = render(&flat, algo, &[]);
+        let (g, _) = render(&grouped, algo, &[]);
         assert_ne!(s, f, "{algo}: vertex normals changed nothing");
+        assert_ne!(g, f, "{algo}: the smoothing group changed nothing");
+        let (ng, nf) = (distinct(&covered(&g)), distinct(&covered(&f)));
+        assert!(
+            2 * ng > 3 * nf,
+            "{algo}: {ng} shades grouped against {nf} faceted"
+        );
         let (ns, nf) = (distinct(&covered(&s)), distinct(&covered(&f)));
         // Faceted, the A-buffer's anti-aliased facet edges add shades too.
         assert!(
@@ -358,4 +368,37 @@ fn an_undecodable_texture_is_named() {
             "{algo}: not green"
         );
     }
+}
+
+/// An RGBA texture with transparent texels (a leaf card's cut-out) is not
+/// drawn with its alpha yet: the render says so instead of showing a
+/// white square without a word.
+#[test]
+fn a_cut_out_texture_is_named() {
+    let dir = folder("cutout");
+    let mut leaf = image::RgbaImage::new(16, 16);
+    for (x, y, p) in leaf.enumerate_pixels_mut() {
+        let inside = (x as i32 - 8).pow(2) + (y as i32 - 8).pow(2) < 36;
+        *p = image::Rgba([40, 160, 40, if inside { 255 } else { 0 }]);
+    }
+    leaf.save(dir.join("leaf.png")).unwrap();
+    std::fs::write(
+        dir.join("model.mtl"),
+        "newmtl m\nKd 1 1 1\nmap_Kd leaf.png\n",
+    )
+    .unwrap();
+    let model = dir.join("quad.obj");
+    std::fs::write(
+        &model,
+        "mtllib model.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
+         f 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let (_, e) = render(&model, "auto", &[]);
+    assert!(
+        e.contains(
+            "leaf.png: the texture's alpha channel (a cut-out or translucency) is not simulated"
+        ),
+        "{e}"
+    );
 }

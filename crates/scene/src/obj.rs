@@ -94,6 +94,7 @@ pub fn load_obj_bytes(
 ) -> Result<Scene> {
     let text = text::decode(bytes, name)?;
     let checked = validate::validate_obj(&text, name)?;
+    let smoothing = smoothing_groups(&text);
     let triangles = checked.triangles;
     if triangles > options.max_triangles {
         return Err(Error::Limit {
@@ -142,8 +143,19 @@ pub fn load_obj_bytes(
             .filter_map(|m| m.diffuse_texture.as_mut()),
     );
     for model in models {
-        let mesh = mesh_from_tobj(model, scene.materials.len(), &mut warnings);
+        let mut mesh = mesh_from_tobj(model, scene.materials.len(), &mut warnings);
+        if smoothing.on && mesh.normals.is_empty() {
+            mesh.normals = smooth_normals(&mesh);
+        }
         scene.meshes.push(mesh);
+    }
+    if smoothing.groups > 1 {
+        warnings.push(format!(
+            "{}: {} smoothing groups ('s' statements): each object is smoothed as one group \
+             (give faces meant to meet at a hard edge their own object, or write vn)",
+            name.display(),
+            smoothing.groups
+        ));
     }
     if triangles == 0 {
         return Err(Error::Parse {
@@ -243,6 +255,60 @@ fn mesh_from_tobj(model: tobj::Model, material_count: usize, warnings: &mut Vec<
         indices,
         material,
     }
+}
+
+/// What an OBJ file's smoothing-group statements (`s N`, `s off`) ask for.
+struct Smoothing {
+    /// Whether some statement turns smoothing on.
+    on: bool,
+    /// How many distinct groups are named.
+    groups: usize,
+}
+
+/// The smoothing groups of OBJ text: `s 0` and `s off` turn smoothing off,
+/// any other value names a group.
+fn smoothing_groups(text: &str) -> Smoothing {
+    let mut groups: Vec<&str> = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        if words.next() != Some("s") {
+            continue;
+        }
+        match words.next() {
+            None | Some("off" | "0") => {}
+            Some(group) => {
+                if !groups.contains(&group) {
+                    groups.push(group);
+                }
+            }
+        }
+    }
+    Smoothing {
+        on: !groups.is_empty(),
+        groups: groups.len(),
+    }
+}
+
+/// Vertex normals for a mesh without them whose file asks for smoothing:
+/// at each vertex the sum of its triangles' normals weighted by their area
+/// (the cross product's length), normalised, as OBJ viewers smooth a
+/// smoothing group. Vertices the loader split (at a texture seam) are
+/// smoothed apart.
+fn smooth_normals(mesh: &Mesh) -> Vec<Vec3> {
+    let mut sums = vec![DVec3::ZERO; mesh.positions.len()];
+    for tri in &mesh.indices {
+        let [a, b, c] = tri.map(|i| mesh.positions[i as usize]);
+        let n = (b - a).cross(c - a);
+        if !n.is_finite() {
+            continue;
+        }
+        for &i in tri {
+            sums[i as usize] += n;
+        }
+    }
+    sums.into_iter()
+        .map(|n| n.normalize_or_zero().as_vec3())
+        .collect()
 }
 
 /// Warnings about what the file holds rather than how it is written:

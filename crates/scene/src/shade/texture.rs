@@ -40,6 +40,9 @@ pub struct Texture {
     width: u32,
     height: u32,
     texels: Vec<[f32; 3]>,
+    /// Whether the image had texels that are not fully opaque (an alpha
+    /// cut-out or a translucent texture): the alpha is not simulated.
+    alpha: bool,
 }
 
 /// Reads an image file's size from its header, checking the limit; this is
@@ -96,8 +99,11 @@ impl Texture {
             path: path.to_path_buf(),
             message: e.to_string(),
         })?;
+        let alpha = img.color().has_alpha() && img.to_rgba8().pixels().any(|p| p.0[3] < 255);
         let rgb = img.to_rgb8();
-        Self::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw())
+        let mut texture = Self::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw())?;
+        texture.alpha = alpha;
+        Ok(texture)
     }
 
     /// A texture from sRGB bytes, 3 per texel, top row first.
@@ -133,6 +139,7 @@ impl Texture {
             width,
             height,
             texels,
+            alpha: false,
         })
     }
 
@@ -144,6 +151,12 @@ impl Texture {
     /// Height in texels.
     pub fn height(&self) -> u32 {
         self.height
+    }
+
+    /// Whether the image had texels that are not fully opaque; their alpha
+    /// is not simulated (the texture is drawn opaque).
+    pub fn has_alpha(&self) -> bool {
+        self.alpha
     }
 
     /// Bytes held.
@@ -344,6 +357,12 @@ impl TextureRef {
             Some(Err(why)) => Some(why.clone()),
             None => probe(&self.path).err().map(|e| e.to_string()),
         }
+    }
+
+    /// Whether the texture was decoded and its image has texels that are
+    /// not fully opaque (never decodes).
+    pub fn decoded_with_alpha(&self) -> bool {
+        matches!(self.decoded.get(), Some(Ok(t)) if t.has_alpha())
     }
 
     /// Bytes held by the decoded texels (0 before decoding).
