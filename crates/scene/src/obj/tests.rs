@@ -345,3 +345,20 @@ fn short_colours_and_texture_coordinates_load_as_the_format_means_them() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// Statements read but not simulated are named once, with their line:
+/// free-form geometry, and several smoothing groups (smoothed as one).
+#[test]
+fn unsimulated_statements_are_named() {
+    let s = load(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvp 0.5\ncstype bezier\nvp 0.2\ns 1\nf 1 2 3\ns 2\nf 1 3 2\n",
+    )
+    .unwrap();
+    let named = |needle: &str| s.warnings.iter().filter(|w| w.contains(needle)).count();
+    assert_eq!(named(":4: 'vp'"), 1, "{:?}", s.warnings);
+    assert_eq!(named(":5: 'cstype'"), 1, "{:?}", s.warnings);
+    assert_eq!(named("'vp'"), 1, "once per keyword: {:?}", s.warnings);
+    assert_eq!(named("2 smoothing groups"), 1, "{:?}", s.warnings);
+    // Smoothing asked and no vn: the mesh gets vertex normals.
+    assert_eq!(s.meshes[0].normals.len(), s.meshes[0].positions.len());
+}

@@ -30,6 +30,9 @@ pub(super) struct Checked {
     pub(super) triangles: u64,
     /// The statements left out or rewritten, by 0-based line index.
     pub(super) skipped: Vec<(usize, Skipped)>,
+    /// Statements read but not simulated (free-form geometry, render
+    /// attributes): the first line of each keyword.
+    pub(super) unsimulated: Vec<(usize, String)>,
 }
 
 impl Checked {
@@ -76,6 +79,14 @@ impl Checked {
                 "{}: skipped {}: only faces are rendered",
                 name.display(),
                 elements.join(" and ")
+            ));
+        }
+        for (k, keyword) in &self.unsimulated {
+            warnings.push(format!(
+                "{}:{}: '{keyword}' (free-form geometry or a render attribute) is read but not \
+                 simulated",
+                name.display(),
+                k + 1
             ));
         }
         for &(k, what) in &self.skipped {
@@ -160,6 +171,15 @@ pub(super) fn validate_obj(text: &str, name: &Path) -> Result<Checked> {
             // tobj refuses a `usemtl` without a name; it selects no
             // material, as a name no MTL defines does.
             "usemtl" if values.is_empty() => checked.skip(k, Skipped::Usemtl),
+            // Free-form geometry and the display and render attributes of
+            // the OBJ specification: read by no loader here, so named.
+            "vp" | "cstype" | "deg" | "bmat" | "step" | "curv" | "curv2" | "surf" | "parm"
+            | "trim" | "hole" | "scrv" | "sp" | "end" | "con" | "bevel" | "c_interp"
+            | "d_interp" | "lod" | "shadow_obj" | "trace_obj" | "ctech" | "stech" => {
+                if !checked.unsimulated.iter().any(|(_, w)| *w == keyword) {
+                    checked.unsimulated.push((k, keyword.to_owned()));
+                }
+            }
             _ => {}
         }
     }
