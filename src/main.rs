@@ -6,6 +6,7 @@ mod args;
 mod bench;
 mod empty;
 mod model;
+mod outputs;
 mod progress;
 mod render;
 mod render_args;

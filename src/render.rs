@@ -8,6 +8,7 @@
 
 use anyhow::{Context, Result};
 use hider::plan::{RenderOptions, planner, registry};
+use hider::scene::atomic::OutputSet;
 use hider::scene::shade::{Prims, ScenePrims, Shader, Stages, id_frame, transparency_warning};
 use hider::scene::timing::{Summary, Timer};
 use hider::scene::{
@@ -200,8 +201,26 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         let entry = registry::find(&args.algo).map_err(crate::args::flag_error)?;
         Some(entry.build(&config).map_err(crate::args::flag_error)?)
     };
+    // The outputs are checked before any work: against each other, the
+    // model, and (once loaded) its textures.
+    let model_path: Vec<std::path::PathBuf> = if args.model.starts_with("gen:") {
+        Vec::new()
+    } else {
+        vec![args.model.clone().into()]
+    };
+    crate::outputs::check(&args.outputs(), &model_path)?;
     let progress = Progress::start("loading the model");
     let scene = crate::model::load(&args.model, &progress)?;
+    let mut inputs = model_path;
+    inputs.extend(
+        scene
+            .materials
+            .iter()
+            .flat_map(|m| [&m.diffuse_texture, &m.specular_texture])
+            .flatten()
+            .map(|t| t.path().to_path_buf()),
+    );
+    crate::outputs::check(&args.outputs(), &inputs)?;
     progress.stage(if args.planned() {
         "analysing the scene"
     } else {
@@ -247,8 +266,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
-/// Writes the PNG, the dumps asked for and the SVG, each atomically;
-/// nothing when the SVG cannot be had. The painter's ordered polygons
+/// Writes the PNG, the dumps asked for and the SVG, all or none: the SVG
+/// first (the likeliest to fail: its budgets), then the PNG and the dumps
+/// staged and moved into place together. The painter's ordered polygons
 /// (`--svg-mode painter`) are the painter's last frame, drawn from the
 /// shared front end's scene its pipeline left in `screen`; the regions and
 /// lines are computed from the scene prepared with the frame's options.
@@ -260,38 +280,36 @@ fn write_outputs(
     screen: &ScreenScene,
     frame: &Frame,
 ) -> Result<()> {
-    let ordered = match &args.svg {
-        Some(svg) if args.painter_svg() => {
-            let output = chosen.hider.ordered_polygons().with_context(|| {
-                format!("--svg: {} gave no ordered polygons", chosen.hider.name())
-            })?;
-            Some((svg, output))
-        }
-        _ => None,
-    };
     // The scene crate's errors name the file; the context says which
     // output it is.
+    let mut set = OutputSet::new();
     frame
-        .write_png(&args.output)
+        .write_png_into(&mut set, &args.output)
         .context("cannot write the PNG")?;
     if let Some(p) = &args.ids_out {
-        frame.write_ids(p).context("cannot write the id dump")?;
+        frame
+            .write_ids_into(&mut set, p)
+            .context("cannot write the id dump")?;
     }
     if let Some(p) = &args.depth_out {
         frame
-            .write_depth(p)
+            .write_depth_into(&mut set, p)
             .context("cannot write the depth dump")?;
     }
-    if let Some((svg, output)) = ordered {
-        output
+    match &args.svg {
+        Some(svg) if args.painter_svg() => chosen
+            .hider
+            .ordered_polygons()
+            .with_context(|| format!("--svg: {} gave no ordered polygons", chosen.hider.name()))?
             .write_svg(screen, svg, args.shade_mode())
-            .context("cannot write the SVG")?;
+            .context("cannot write the SVG")?,
+        Some(svg) => {
+            let prepared = hider::scene::prepare(scene, view, &chosen.prepare)?;
+            write_vector_svg(args, &prepared, svg)?;
+        }
+        None => {}
     }
-    if let Some(svg) = args.svg.as_ref().filter(|_| !args.painter_svg()) {
-        let prepared = hider::scene::prepare(scene, view, &chosen.prepare)?;
-        write_vector_svg(args, &prepared, svg)?;
-    }
-    Ok(())
+    set.commit().context("cannot write the outputs")
 }
 
 /// `--svg-mode regions` or `lines`: the exact visible regions or the

@@ -160,6 +160,21 @@ impl RenderArgs {
         Ok((width, height))
     }
 
+    /// Every output path with the flag that names it.
+    pub fn outputs(&self) -> Vec<(&'static str, &std::path::Path)> {
+        let mut outputs = vec![("-o", self.output.as_path())];
+        for (flag, path) in [
+            ("--ids-out", &self.ids_out),
+            ("--depth-out", &self.depth_out),
+            ("--svg", &self.svg),
+        ] {
+            if let Some(p) = path {
+                outputs.push((flag, p.as_path()));
+            }
+        }
+        outputs
+    }
+
     /// Whether `--svg` asks for a painter's polygon list (`--svg-mode
     /// painter`); the other modes work from any hider's scene.
     pub fn painter_svg(&self) -> bool {

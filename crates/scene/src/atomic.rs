@@ -8,8 +8,10 @@
 //! socket) is written through, as a shell redirection would: renaming over
 //! it would replace the device or pipe with a regular file. A symbolic link
 //! is followed: its target is written (atomically when the target is a
-//! regular file) and the link itself stays a link. Every write error,
-//! including one that only shows when the data is flushed, is returned.
+//! regular file) and the link itself stays a link. A regular file replaced
+//! keeps its permissions. Every write error, including one that only shows
+//! when the data is flushed, is returned. [`OutputSet`] writes several
+//! outputs all or none.
 
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
@@ -53,54 +55,165 @@ fn target(path: &Path) -> Target {
 /// `write` fills a buffered writer; for a regular file it is a temporary
 /// file in the same folder as `path` (so the rename cannot cross file
 /// systems), renamed to `path` only after `write` succeeded and the data
-/// was flushed and synced. On any error the temporary file is removed and
-/// `path` is left as it was. Errors name `path` as the caller gave it.
+/// was flushed and synced; a file replaced keeps its permissions. On any
+/// error the temporary file is removed and `path` is left as it was.
+/// Errors name `path` as the caller gave it.
 pub fn write_atomic<F>(path: &Path, write: F) -> Result<()>
 where
     F: FnOnce(&mut BufWriter<File>) -> Result<()>,
 {
-    let io_err = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let target = match target(path) {
-        Target::Through(p) => {
-            let file = OpenOptions::new()
-                .write(true)
-                .create(true)
-                .truncate(true)
-                .open(&p)
-                .map_err(io_err)?;
-            let mut writer = BufWriter::new(file);
-            // No sync: devices and pipes do not support it, and nothing is
-            // renamed afterwards that would rely on it.
-            return write(&mut writer).and_then(|()| writer.flush().map_err(io_err));
-        }
-        Target::Rename(p) => p,
-    };
-    let tmp = temp_path(&target);
-    let file = File::create(&tmp).map_err(io_err)?;
-    let mut writer = BufWriter::new(file);
-    let result = write(&mut writer).and_then(|()| {
+    let mut set = OutputSet::new();
+    set.stage(path, write)?;
+    set.commit()
+}
+
+/// One output staged in an [`OutputSet`].
+#[derive(Debug)]
+struct Staged {
+    /// The path as the caller gave it (for messages).
+    path: PathBuf,
+    /// The temporary file holding the data.
+    tmp: PathBuf,
+    /// Where the data goes.
+    target: Target,
+}
+
+/// Several outputs written all or none: each is staged to a temporary file
+/// as it is produced ([`Self::stage`]: beside its target for a regular
+/// file, in the temporary folder for a device or a pipe), and only
+/// [`Self::commit`], after every one was staged, moves them into place.
+/// An error while staging (a full disk, an encoder's failure) leaves every
+/// target as it was; a set dropped without commit removes its temporary
+/// files. A regular file replaced keeps its permissions.
+///
+/// ```
+/// use std::io::Write;
+/// use hider_scene::atomic::OutputSet;
+/// let dir = std::env::temp_dir().join(format!("hider-set-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir)?;
+/// let (a, b) = (dir.join("a.txt"), dir.join("b.txt"));
+/// let mut set = OutputSet::new();
+/// set.stage(&a, |w| w.write_all(b"one").map_err(|e| hider_scene::Error::Io { path: a.clone(), source: e }))?;
+/// assert!(!a.exists(), "nothing is in place before the commit");
+/// set.stage(&b, |w| w.write_all(b"two").map_err(|e| hider_scene::Error::Io { path: b.clone(), source: e }))?;
+/// set.commit()?;
+/// assert_eq!(std::fs::read(&a)?, b"one");
+/// # std::fs::remove_dir_all(&dir)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Default)]
+pub struct OutputSet {
+    staged: Vec<Staged>,
+}
+
+impl OutputSet {
+    /// An empty set.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Writes the data of `path` with `write` into a temporary file, to be
+    /// moved into place by [`Self::commit`].
+    pub fn stage<F>(&mut self, path: &Path, write: F) -> Result<()>
+    where
+        F: FnOnce(&mut BufWriter<File>) -> Result<()>,
+    {
+        let io_err = |source| Error::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let target = target(path);
+        let tmp = match &target {
+            Target::Rename(p) => temp_path(p, self.staged.len()),
+            Target::Through(_) => {
+                let name = std::env::temp_dir().join("hider-output");
+                temp_path(&name, self.staged.len())
+            }
+        };
+        let file = File::create(&tmp).map_err(io_err)?;
+        // Registered first, so that a failure below removes the file.
+        self.staged.push(Staged {
+            path: path.to_path_buf(),
+            tmp: tmp.clone(),
+            target,
+        });
+        let mut writer = BufWriter::new(file);
+        write(&mut writer)?;
         writer.flush().map_err(io_err)?;
         writer.get_ref().sync_all().map_err(io_err)
-    });
-    drop(writer);
-    match result.and_then(|()| std::fs::rename(&tmp, &target).map_err(io_err)) {
-        Ok(()) => Ok(()),
-        Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
-            Err(e)
+    }
+
+    /// Moves every staged output into place: regular files by rename
+    /// (keeping a replaced file's permissions), then devices and pipes by
+    /// copying into them.
+    pub fn commit(mut self) -> Result<()> {
+        let staged = std::mem::take(&mut self.staged);
+        let mut result = Ok(());
+        for s in &staged {
+            if let Target::Rename(target) = &s.target {
+                if let Ok(meta) = std::fs::metadata(target) {
+                    let _ = std::fs::set_permissions(&s.tmp, meta.permissions());
+                }
+                if let Err(source) = std::fs::rename(&s.tmp, target) {
+                    result = Err(Error::Io {
+                        path: s.path.clone(),
+                        source,
+                    });
+                    break;
+                }
+            }
+        }
+        if result.is_ok() {
+            for s in &staged {
+                if let Target::Through(target) = &s.target
+                    && let Err(source) = copy_through(&s.tmp, target)
+                {
+                    result = Err(Error::Io {
+                        path: s.path.clone(),
+                        source,
+                    });
+                    break;
+                }
+            }
+        }
+        for s in &staged {
+            let _ = std::fs::remove_file(&s.tmp);
+        }
+        result
+    }
+}
+
+impl Drop for OutputSet {
+    fn drop(&mut self) {
+        for s in &self.staged {
+            let _ = std::fs::remove_file(&s.tmp);
         }
     }
 }
 
-fn temp_path(path: &Path) -> PathBuf {
+/// Writes the data of `tmp` into `target` (a device, a pipe or a dangling
+/// link), reporting errors that only show when the data is flushed.
+fn copy_through(tmp: &Path, target: &Path) -> std::io::Result<()> {
+    let mut from = File::open(tmp)?;
+    let to = OpenOptions::new()
+        .write(true)
+        .create(true)
+        .truncate(true)
+        .open(target)?;
+    let mut writer = BufWriter::new(to);
+    std::io::copy(&mut from, &mut writer)?;
+    // No sync: devices and pipes do not support it.
+    writer.flush()
+}
+
+/// A temporary name beside `path`, unique to this process and to the
+/// `k`-th output of a set.
+fn temp_path(path: &Path, k: usize) -> PathBuf {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_else(|| "output".into());
-    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+    path.with_file_name(format!(".{name}.{}.{k}.tmp", std::process::id()))
 }
 
 #[cfg(test)]

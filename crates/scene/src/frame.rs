@@ -4,7 +4,7 @@
 use std::io::{Read, Write};
 use std::path::Path;
 
-use crate::atomic::write_atomic;
+use crate::atomic::OutputSet;
 use crate::error::{Error, Result};
 use crate::view::check_image_size;
 
@@ -113,8 +113,33 @@ impl Frame {
 
     /// Writes the colour buffer as an 8-bit RGBA PNG, atomically.
     pub fn write_png(&self, path: &Path) -> Result<()> {
+        let mut set = OutputSet::new();
+        self.write_png_into(&mut set, path)?;
+        set.commit()
+    }
+
+    /// Writes the ids as int32 little-endian, -1 for background, top row
+    /// first (the GL reference `.i32` format), atomically.
+    pub fn write_ids(&self, path: &Path) -> Result<()> {
+        let mut set = OutputSet::new();
+        self.write_ids_into(&mut set, path)?;
+        set.commit()
+    }
+
+    /// Writes the depth as float32 little-endian window depth, 1.0 for
+    /// background, top row first (the GL reference `.f32` format),
+    /// atomically.
+    pub fn write_depth(&self, path: &Path) -> Result<()> {
+        let mut set = OutputSet::new();
+        self.write_depth_into(&mut set, path)?;
+        set.commit()
+    }
+
+    /// [`Self::write_png`] staged in `set`: in place only when the set is
+    /// committed with the other outputs of the run.
+    pub fn write_png_into(&self, set: &mut OutputSet, path: &Path) -> Result<()> {
         let bytes: Vec<u8> = self.color.iter().flatten().copied().collect();
-        write_atomic(path, |w| {
+        set.stage(path, |w| {
             let encoder = image::codecs::png::PngEncoder::new(w);
             image::ImageEncoder::write_image(
                 encoder,
@@ -130,23 +155,20 @@ impl Frame {
         })
     }
 
-    /// Writes the ids as int32 little-endian, -1 for background, top row
-    /// first (the GL reference `.i32` format), atomically.
-    pub fn write_ids(&self, path: &Path) -> Result<()> {
+    /// [`Self::write_ids`] staged in `set`.
+    pub fn write_ids_into(&self, set: &mut OutputSet, path: &Path) -> Result<()> {
         let bytes: Vec<u8> = self
             .ids
             .iter()
             .flat_map(|&id| id_to_i32(id).to_le_bytes())
             .collect();
-        write_bytes(path, &bytes)
+        stage_bytes(set, path, &bytes)
     }
 
-    /// Writes the depth as float32 little-endian window depth, 1.0 for
-    /// background, top row first (the GL reference `.f32` format),
-    /// atomically.
-    pub fn write_depth(&self, path: &Path) -> Result<()> {
+    /// [`Self::write_depth`] staged in `set`.
+    pub fn write_depth_into(&self, set: &mut OutputSet, path: &Path) -> Result<()> {
         let bytes: Vec<u8> = self.depth.iter().flat_map(|d| d.to_le_bytes()).collect();
-        write_bytes(path, &bytes)
+        stage_bytes(set, path, &bytes)
     }
 }
 
@@ -155,8 +177,8 @@ pub fn id_to_i32(id: u32) -> i32 {
     if id == NO_ID { -1 } else { id as i32 }
 }
 
-fn write_bytes(path: &Path, bytes: &[u8]) -> Result<()> {
-    write_atomic(path, |w| {
+fn stage_bytes(set: &mut OutputSet, path: &Path, bytes: &[u8]) -> Result<()> {
+    set.stage(path, |w| {
         w.write_all(bytes).map_err(|source| Error::Io {
             path: path.to_path_buf(),
             source,

@@ -1,0 +1,102 @@
+//! Output files are never damaged: a replaced file keeps its permissions,
+//! an output that is an input or another output is refused before any
+//! work, and an output that cannot be written stops the run before any
+//! other output is written.
+
+use std::os::unix::fs::PermissionsExt;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn folder(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hider-outputs-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn hider(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hider"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn a_replaced_file_keeps_its_permissions() {
+    let dir = folder("perms");
+    let png = dir.join("out.png");
+    let ids = dir.join("out.i32");
+    for p in [&png, &ids] {
+        std::fs::write(p, "old").unwrap();
+        std::fs::set_permissions(p, std::fs::Permissions::from_mode(0o600)).unwrap();
+    }
+    let out = hider(&[
+        "render",
+        "gen:cube",
+        "--size",
+        "16",
+        "-o",
+        png.to_str().unwrap(),
+        "--ids-out",
+        ids.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    for p in [&png, &ids] {
+        let mode = std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        assert_eq!(mode, 0o600, "{}", p.display());
+        assert_ne!(std::fs::read(p).unwrap(), b"old");
+    }
+}
+
+#[test]
+fn an_output_that_is_an_input_or_another_output_is_refused() {
+    let dir = folder("clobber");
+    let model = dir.join("model.obj");
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::fs::write(&model, text).unwrap();
+    let m = model.to_str().unwrap();
+    let out = hider(&["render", m, "-o", m]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("is an input"), "{}", stderr(&out));
+    assert_eq!(
+        std::fs::read_to_string(&model).unwrap(),
+        text,
+        "the model was replaced"
+    );
+    let same = dir.join("same.bin");
+    let s = same.to_str().unwrap();
+    let out = hider(&["render", m, "-o", s, "--ids-out", s, "--depth-out", s]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("the same file as -o"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!same.exists());
+}
+
+#[test]
+fn an_unwritable_output_stops_the_run_before_any_output() {
+    let dir = folder("nodir");
+    let png = dir.join("a.png");
+    let ids = dir.join("nodir").join("a.i32");
+    let out = hider(&[
+        "render",
+        "gen:cube",
+        "--size",
+        "16",
+        "-o",
+        png.to_str().unwrap(),
+        "--ids-out",
+        ids.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(stderr(&out).contains("does not exist"), "{}", stderr(&out));
+    assert!(!png.exists(), "a.png was written");
+    let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+}
