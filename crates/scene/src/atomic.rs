@@ -16,6 +16,7 @@
 use std::fs::{File, OpenOptions};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::error::{Error, Result};
 
@@ -124,11 +125,8 @@ impl OutputSet {
         };
         let target = target(path);
         let tmp = match &target {
-            Target::Rename(p) => temp_path(p, self.staged.len()),
-            Target::Through(_) => {
-                let name = std::env::temp_dir().join("hider-output");
-                temp_path(&name, self.staged.len())
-            }
+            Target::Rename(p) => temp_path(p),
+            Target::Through(_) => temp_path(&std::env::temp_dir().join("hider-output")),
         };
         let file = File::create(&tmp).map_err(io_err)?;
         // Registered first, so that a failure below removes the file.
@@ -206,9 +204,11 @@ fn copy_through(tmp: &Path, target: &Path) -> std::io::Result<()> {
     writer.flush()
 }
 
-/// A temporary name beside `path`, unique to this process and to the
-/// `k`-th output of a set.
-fn temp_path(path: &Path, k: usize) -> PathBuf {
+/// A temporary name beside `path`, unique to this process and to this
+/// call (sets written from several threads at once never share one).
+fn temp_path(path: &Path) -> PathBuf {
+    static NEXT: AtomicU64 = AtomicU64::new(0);
+    let k = NEXT.fetch_add(1, Ordering::Relaxed);
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
