@@ -38,6 +38,7 @@
 pub mod agreement;
 pub mod coverage;
 mod depth;
+mod exact;
 mod nearest;
 pub mod options;
 pub mod polygon;

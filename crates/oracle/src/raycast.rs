@@ -19,13 +19,17 @@
 //! test can tell a genuine tie from an error; see [`crate::DEFAULT_TIE_TOLERANCE`].
 
 use glam::DVec3;
-use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ScreenTri, check_frame};
+use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
 
-use crate::depth::{DepthModel, ray_plane_depth, snapped_plane, source_plane};
-use crate::nearest::{EMPTY, Nearest};
+use std::cmp::Ordering;
+
+use hider_geom::fixed::pixel_center;
+
+use crate::depth::{DepthModel, ray_plane_depth, source_plane};
+use crate::exact::{DepthAt, compare, needs_exact};
+use crate::nearest::{Candidate, EMPTY, Nearest};
 use crate::options::{DepthPlane, OracleOptions};
 use crate::reference::Reference;
-use crate::tolerance::WINDOW_TIE_TOLERANCE;
 
 hider_scene::hider_stats! {
     /// The work one frame of the oracle did.
@@ -45,8 +49,11 @@ hider_scene::hider_stats! {
         /// centre is inside the snapped triangle but outside the true one)
         /// and was clamped into that range.
         pub clamped: u64 => "clamped",
-        /// Covered pixels whose two nearest distinct primitives are within
-        /// the tie tolerance.
+        /// Depth comparisons the `f64` filter could not decide, settled by
+        /// exact arithmetic ([`DepthPlane::Snapped`] only).
+        pub exact: u64 => "exact comparisons",
+        /// Covered pixels whose two nearest distinct primitives are at
+        /// exactly the same depth (the lower id is reported).
         pub ties: u64 => "ties",
         /// Bytes of the per-pixel working arrays (nearest surfaces and
         /// camera rays).
@@ -153,15 +160,20 @@ impl RayCastOracle {
         self.nearest.clear();
         self.nearest.resize(w * h, EMPTY);
         self.rays.clear();
-        self.rays.reserve(w * h);
-        for j in 0..vp.height {
-            for i in 0..vp.width {
-                self.rays
-                    .push(scene.camera_ray(f64::from(i) + 0.5, f64::from(j) + 0.5));
+        if self.options.depth_plane == DepthPlane::Source {
+            self.rays.reserve(w * h);
+            for j in 0..vp.height {
+                for i in 0..vp.width {
+                    self.rays
+                        .push(scene.camera_ray(f64::from(i) + 0.5, f64::from(j) + 0.5));
+                }
             }
         }
-        for tri in &scene.tris {
-            self.cast(scene, &model, tri, &mut stats);
+        for index in 0..scene.tris.len() {
+            match self.options.depth_plane {
+                DepthPlane::Snapped => self.offer_exact(scene, index, &mut stats),
+                DepthPlane::Source => self.cast(scene, &model, index, &mut stats),
+            }
         }
         let reference = self.resolve(scene, &model, &mut stats);
         stats.peak_bytes = (self.nearest.capacity() * std::mem::size_of::<Nearest>()
@@ -170,24 +182,52 @@ impl RayCastOracle {
         (reference, stats)
     }
 
-    /// Offers `tri`'s depth at every pixel centre it covers.
+    /// Offers triangle `index` at every pixel centre it covers, ordered by
+    /// the exact window depth of the snapped triangles.
+    fn offer_exact(&mut self, scene: &ScreenScene, index: usize, stats: &mut OracleStats) {
+        let vp = scene.viewport;
+        let w = vp.width as usize;
+        let tri = &scene.tris[index];
+        let c = Candidate {
+            tri: index as u32,
+            prim: tri.prim,
+            key: 0.0,
+        };
+        let nearest = &mut self.nearest;
+        let mut exact = 0;
+        tri.for_each_centre(vp, |i, j, covered| {
+            stats.pixel_tests += 1;
+            if !covered {
+                return;
+            }
+            stats.hits += 1;
+            let (x, y) = centre(i, j);
+            nearest[j as usize * w + i as usize].offer(c, |a, b| {
+                let (da, db) = (depth_at(scene, a, x, y), depth_at(scene, b, x, y));
+                exact += u64::from(needs_exact(&da, &db));
+                compare(&da, &db)
+            });
+        });
+        stats.exact += exact;
+    }
+
+    /// Offers triangle `index`'s source-plane view depth at every pixel
+    /// centre it covers ([`DepthPlane::Source`]).
     fn cast(
         &mut self,
         scene: &ScreenScene,
         model: &DepthModel,
-        tri: &ScreenTri,
+        index: usize,
         stats: &mut OracleStats,
     ) {
         let vp = scene.viewport;
         let w = vp.width as usize;
+        let tri = &scene.tris[index];
         let corners = model.corner_depths(tri);
-        let plane = match self.options.depth_plane {
-            DepthPlane::Snapped => Some(snapped_plane(scene, tri, corners, model.perspective)),
-            DepthPlane::Source => scene
-                .prims
-                .get(tri.prim as usize)
-                .map(|p| source_plane(p.camera)),
-        };
+        let plane = scene
+            .prims
+            .get(tri.prim as usize)
+            .map(|p| source_plane(p.camera));
         let lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = corners.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let (rays, nearest) = (&self.rays, &mut self.nearest);
@@ -215,12 +255,18 @@ impl RayCastOracle {
             if clamped != d {
                 stats.clamped += 1;
             }
-            nearest[k].offer(clamped, tri.prim);
+            let c = Candidate {
+                tri: index as u32,
+                prim: tri.prim,
+                key: clamped,
+            };
+            nearest[k].offer(c, |a, b| a.key.total_cmp(&b.key));
         });
     }
 
-    /// Turns the nearest surfaces per pixel into the reference: ids with
-    /// the tie rule, window depths and both gaps.
+    /// Turns the nearest surfaces per pixel into the reference: the nearest
+    /// id (the lower id at an exact tie), its window depth and both gaps
+    /// (zero exactly at a tie).
     fn resolve(
         &self,
         scene: &ScreenScene,
@@ -228,38 +274,53 @@ impl RayCastOracle {
         stats: &mut OracleStats,
     ) -> Reference {
         let vp = scene.viewport;
+        let w = vp.width.max(1) as usize;
         let n = self.nearest.len();
+        let snapped = self.options.depth_plane == DepthPlane::Snapped;
         let mut ids = vec![NO_ID; n];
         let mut depth = vec![1.0f32; n];
         let mut gap = vec![f64::INFINITY; n];
         let mut window_gap = vec![f64::INFINITY; n];
         for (k, n) in self.nearest.iter().enumerate() {
-            if n.first.1 == NO_ID {
+            if n.first.prim == NO_ID {
                 continue;
             }
-            let (g, wg) = if n.second.1 == NO_ID {
-                (f64::INFINITY, f64::INFINITY)
-            } else {
-                (
-                    (n.second.0 - n.first.0) / model.gap_scale(n.first.0),
-                    model.window_of_view_depth(n.second.0) - model.window_of_view_depth(n.first.0),
-                )
+            let (i, j) = ((k % w) as u32, (k / w) as u32);
+            let (x, y) = centre(i, j);
+            // Window depth and view depth of a candidate.
+            let depths = |c: &Candidate| {
+                if snapped {
+                    let zw = depth_at(scene, c, x, y).estimate;
+                    (zw, model.view_depth(&scene.tris[c.tri as usize], i, j, zw))
+                } else {
+                    (model.window_of_view_depth(c.key), c.key)
+                }
             };
-            if g < self.options.tie_tolerance || wg < WINDOW_TIE_TOLERANCE {
-                stats.ties += 1;
+            let (z1, d1) = depths(&n.first);
+            ids[k] = n.first.prim;
+            depth[k] = z1.clamp(0.0, 1.0) as f32;
+            if n.second.prim == NO_ID {
+                continue;
             }
-            // The id is the nearest surface's unless the relative gap is a
-            // tie; a window-depth tie keeps the nearest, so that the strict
-            // comparison (ties by relative gap only) can hold hiders with
-            // `f64` depth to it.
-            ids[k] = if g < self.options.tie_tolerance {
-                n.first.1.min(n.second.1)
+            let tie = if snapped {
+                compare(
+                    &depth_at(scene, &n.first, x, y),
+                    &depth_at(scene, &n.second, x, y),
+                ) == Ordering::Equal
             } else {
-                n.first.1
+                n.first.key == n.second.key
             };
-            gap[k] = g;
-            window_gap[k] = wg;
-            depth[k] = model.window_of_view_depth(n.first.0).clamp(0.0, 1.0) as f32;
+            if tie {
+                stats.ties += 1;
+                gap[k] = 0.0;
+                window_gap[k] = 0.0;
+            } else {
+                // The runner-up is strictly farther; rounding in the
+                // estimates must not make its gap zero (a tie) or negative.
+                let (z2, d2) = depths(&n.second);
+                gap[k] = ((d2 - d1) / model.gap_scale(d1)).max(f64::MIN_POSITIVE);
+                window_gap[k] = (z2 - z1).max(f64::MIN_POSITIVE);
+            }
         }
         Reference {
             width: vp.width,
@@ -270,6 +331,20 @@ impl RayCastOracle {
             window_gap,
         }
     }
+}
+
+/// The fixed-point position of the centre of pixel `(i, j)`.
+fn centre(i: u32, j: u32) -> (i64, i64) {
+    (
+        i64::from(pixel_center(i as i32)),
+        i64::from(pixel_center(j as i32)),
+    )
+}
+
+/// The window depth of candidate `c`'s screen triangle at the fixed-point
+/// centre `(x, y)`.
+fn depth_at(scene: &ScreenScene, c: &Candidate, x: i64, y: i64) -> DepthAt {
+    DepthAt::new(&scene.tris[c.tri as usize], x, y)
 }
 
 impl Hider for RayCastOracle {
