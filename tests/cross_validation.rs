@@ -86,17 +86,10 @@ fn pixel_centre_entries() -> Vec<registry::Entry> {
         .collect()
 }
 
-/// The exact hiders whose depth is `f32` window depth.
-const F32_DEPTH: [&str; 3] = ["zbuffer", "zbuffer-reversed", "zbuffer-tiled"];
-
 /// An exact hider's ids against the reference: every pixel, ties
 /// included, with the `f32` resolution allowance for the `f32` buffers.
 fn compare_exact(reference: &Reference, name: &str, ids: &[u32]) -> Agreement {
-    if F32_DEPTH.contains(&name) {
-        reference.compare_exact_f32(ids)
-    } else {
-        reference.compare_exact(ids)
-    }
+    reference::compare_exact(reference, name, ids)
 }
 
 /// Properties 1 and 2 on one scene; adds to the tally.
@@ -462,6 +455,14 @@ fn precision_limits_are_measured() {
             );
             if entry.name == "zbuffer-f64" {
                 assert!(strict.is_exact(), "{name}: {strict}");
+            }
+            // Every exact hider with f64 depth equals the oracle on every
+            // pixel, ties included, even here.
+            if registry::by_name(entry.name).is_some_and(|e| e.kind == Kind::ExactPixelCentre)
+                && !reference::F32_DEPTH.contains(&entry.name)
+            {
+                let exact = reference.compare_exact(&frame.ids);
+                assert!(exact.is_exact(), "{name}: {}: {exact}", entry.name);
             }
             // Depths that round to the clear value 1 still cover an empty
             // pixel, in every format (the default depth test).

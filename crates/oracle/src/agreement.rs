@@ -1,7 +1,9 @@
 //! Scoring a hider's ids against the oracle's [`Reference`].
 
-use hider_scene::NO_ID;
+use hider_geom::fixed::pixel_center;
+use hider_scene::{NO_ID, ScreenScene};
 
+use crate::exact::{DepthAt, plane_rounding_bound};
 use crate::reference::Reference;
 use crate::tolerance::WINDOW_TIE_TOLERANCE;
 
@@ -59,15 +61,45 @@ impl std::fmt::Display for Agreement {
     }
 }
 
+/// Whether primitives `a` and `b` are, at the centre of pixel `(i, j)`,
+/// closer in exact window depth than `f64` plane evaluation can tell
+/// apart: the nearest covering piece of each, the sum of their
+/// [`plane_rounding_bound`]s, plus the estimates' own error.
+pub(crate) fn within_rounding(scene: &ScreenScene, (i, j): (u32, u32), a: u32, b: u32) -> bool {
+    let (x, y) = (
+        i64::from(pixel_center(i as i32)),
+        i64::from(pixel_center(j as i32)),
+    );
+    let nearest = |prim: u32| {
+        scene
+            .tris
+            .iter()
+            .filter(|t| t.prim == prim && t.edges().iter().all(|e| e.contains(x, y)))
+            .map(|t| {
+                (
+                    DepthAt::new(t, x, y).estimate,
+                    plane_rounding_bound(t, i, j),
+                )
+            })
+            .min_by(|p, q| p.0.total_cmp(&q.0))
+    };
+    let (Some((za, ba)), Some((zb, bb))) = (nearest(a), nearest(b)) else {
+        return false;
+    };
+    let slack = 16.0 * f64::EPSILON * za.abs().max(zb.abs());
+    (za - zb).abs() <= ba + bb + slack
+}
+
 /// Which pixels a comparison excuses.
 #[derive(Clone, Copy)]
 enum Rule {
     /// Ties by relative gap below `.0` or window gap below `.1`; any id is
     /// accepted at a tie.
     Tolerant(f64, f64),
-    /// Exact ties (gap 0) need the reference's id; other pixels whose window
-    /// gap is below `.0` are excused.
-    Exact(f64),
+    /// Exact ties (gap 0) need the reference's id when `.1`, else any id
+    /// is accepted there; other pixels whose window gap is below `.0` are
+    /// excused.
+    Exact(f64, bool),
 }
 
 impl Reference {
@@ -77,14 +109,18 @@ impl Reference {
     /// gap is below [`crate::WINDOW_TIE_TOLERANCE`] (what an `f32` depth
     /// buffer, the format every [`hider_scene::Frame`] stores, cannot order).
     pub fn compare(&self, ids: &[u32], tie_tolerance: f64) -> Agreement {
-        self.compare_with(ids, Rule::Tolerant(tie_tolerance, WINDOW_TIE_TOLERANCE))
+        self.compare_with(
+            ids,
+            Rule::Tolerant(tie_tolerance, WINDOW_TIE_TOLERANCE),
+            &|_, _, _| false,
+        )
     }
 
     /// Like [`Self::compare`], but ties only by the relative gap: the
     /// stricter standard a hider with `f64` (or reversed) depth can meet even
     /// where window depth has no `f32` resolution left.
     pub fn compare_strict(&self, ids: &[u32], tie_tolerance: f64) -> Agreement {
-        self.compare_with(ids, Rule::Tolerant(tie_tolerance, 0.0))
+        self.compare_with(ids, Rule::Tolerant(tie_tolerance, 0.0), &|_, _, _| false)
     }
 
     /// The standard of an exact hider: its id equals the reference's on
@@ -92,7 +128,7 @@ impl Reference {
     /// primitive id wins, in the reference and in every exact hider). Ties
     /// are counted; a tie where the ids differ is a wrong id.
     pub fn compare_exact(&self, ids: &[u32]) -> Agreement {
-        self.compare_with(ids, Rule::Exact(0.0))
+        self.compare_with(ids, Rule::Exact(0.0, true), &|_, _, _| false)
     }
 
     /// Like [`Self::compare_exact`], for an exact algorithm that keeps
@@ -101,7 +137,43 @@ impl Reference {
     /// `f32` buffer cannot order) is excused and counted in
     /// [`Agreement::unresolved`]; ties must still give the lower id.
     pub fn compare_exact_f32(&self, ids: &[u32]) -> Agreement {
-        self.compare_with(ids, Rule::Exact(WINDOW_TIE_TOLERANCE))
+        self.compare_with(ids, Rule::Exact(WINDOW_TIE_TOLERANCE, true), &|_, _, _| {
+            false
+        })
+    }
+
+    /// Every pixel that is not an exact tie must match, with no tolerance
+    /// (except pixels whose two nearest surfaces are less than
+    /// `window_resolution` apart in window depth, counted in
+    /// [`Agreement::unresolved`]); at an exact tie any id is accepted and a
+    /// different one counted in [`Agreement::tie_differences`].
+    ///
+    /// For hostile inputs (symmetric lattices, huge offsets) where two
+    /// *different* planes meet exactly at a pixel centre: a hider that
+    /// evaluates each plane in `f64` sees two values that differ by
+    /// rounding, and orders them by it rather than by the tie rule.
+    pub fn compare_off_ties(&self, ids: &[u32], window_resolution: f64) -> Agreement {
+        self.compare_with(ids, Rule::Exact(window_resolution, false), &|_, _, _| false)
+    }
+
+    /// Like [`Self::compare_off_ties`] on the reference of `scene`, also
+    /// excusing (in [`Agreement::unresolved`]) a pixel where the hider's
+    /// primitive and the reference's are closer in exact window depth than
+    /// the error bound of evaluating their two planes in `f64`
+    /// ([`plane_rounding_bound`]): there a correct `f64` hider may order
+    /// them either way. Everywhere else the ids must be equal.
+    pub fn compare_within_rounding(
+        &self,
+        scene: &ScreenScene,
+        ids: &[u32],
+        window_resolution: f64,
+    ) -> Agreement {
+        let width = self.width.max(1) as usize;
+        let within = |k: usize, want: u32, got: u32| {
+            let (i, j) = ((k % width) as u32, (k / width) as u32);
+            within_rounding(scene, (i, j), want, got)
+        };
+        self.compare_with(ids, Rule::Exact(window_resolution, false), &within)
     }
 
     /// Whether pixel `k` is an exact tie: covered, and its two nearest
@@ -110,7 +182,12 @@ impl Reference {
         self.ids.get(k).is_some_and(|&id| id != NO_ID) && self.gap.get(k) == Some(&0.0)
     }
 
-    fn compare_with(&self, ids: &[u32], rule: Rule) -> Agreement {
+    fn compare_with(
+        &self,
+        ids: &[u32],
+        rule: Rule,
+        excuse: &dyn Fn(usize, u32, u32) -> bool,
+    ) -> Agreement {
         let mut a = Agreement {
             pixels: self.ids.len() as u64,
             ..Agreement::default()
@@ -124,7 +201,17 @@ impl Reference {
                     let tie = gap < tolerance || window_gap < window;
                     (tie, tie)
                 }
-                Rule::Exact(window) => (gap == 0.0, gap != 0.0 && window_gap < window),
+                Rule::Exact(window, ties_must_match) => {
+                    let tie = gap == 0.0;
+                    (
+                        tie,
+                        if tie {
+                            !ties_must_match
+                        } else {
+                            window_gap < window
+                        },
+                    )
+                }
             };
             let wrong = match got {
                 None => {
@@ -147,7 +234,7 @@ impl Reference {
                     a.wrong_ids += u64::from(wrong);
                     wrong
                 }
-                Some(got) if got != want && excused => {
+                Some(got) if got != want && (excused || excuse(k, want, got)) => {
                     a.unresolved += 1;
                     false
                 }
@@ -243,6 +330,10 @@ mod tests {
         assert_eq!((a.wrong_ids, a.ties, a.tie_differences), (1, 1, 1));
         assert!(!r.compare_exact_f32(&[NO_ID, 1, 9, 3]).is_exact());
         assert!(r.compare_exact(&r.ids).is_exact());
+        let a = r.compare_off_ties(&[NO_ID, 1, 9, 3], 0.0);
+        assert!(a.is_exact());
+        assert_eq!((a.ties, a.tie_differences), (1, 1));
+        assert_eq!(r.compare_off_ties(&[NO_ID, 1, 2, 9], 0.0).wrong_ids, 1);
     }
 
     #[test]

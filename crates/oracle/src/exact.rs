@@ -155,6 +155,41 @@ fn decompose(x: f64) -> (u64, u32) {
     }
 }
 
+/// A bound on the error of evaluating `tri`'s window-depth plane in `f64`
+/// at the centre of pixel `(i, j)` as the hiders do
+/// (`tri.depth.at_pixel(i, j)`, `PlaneEq::eval` on the coefficients
+/// `PlaneEq::from_points` rounded).
+///
+/// With `u = 2^-53`, `M_x = (|d_1 y_2| + |d_2 y_1|) / |det|` and `M_y`
+/// likewise (the sizes of the terms of `dx` and `dy`), the coefficients
+/// are off by at most `4 u M_x` and `4 u M_y` (one rounding each in
+/// `z_k - z_0`, the product, the difference and the division; `det` and
+/// the position differences are exact for 1/256-pixel positions), and the
+/// evaluation `value + dx Δx + dy Δy` adds at most `3 u` of
+/// `|value| + |dx Δx| + |dy Δy|`. The bound returned is twice the first-order
+/// sum, `8 u (|value| + (|dx| + M_x)|Δx| + (|dy| + M_y)|Δy|)`, which covers
+/// the second-order terms and the rounding of computing it.
+pub fn plane_rounding_bound(tri: &ScreenTri, i: u32, j: u32) -> f64 {
+    let p = tri.v.map(|q| q.to_pixels());
+    let (x1, y1) = (p[1].0 - p[0].0, p[1].1 - p[0].1);
+    let (x2, y2) = (p[2].0 - p[0].0, p[2].1 - p[0].1);
+    let det = (x1 * y2 - x2 * y1).abs();
+    let (d1, d2) = ((tri.z[1] - tri.z[0]).abs(), (tri.z[2] - tri.z[0]).abs());
+    let (mx, my) = if det > 0.0 {
+        (
+            (d1 * y2.abs() + d2 * y1.abs()) / det,
+            (x1.abs() * d2 + x2.abs() * d1) / det,
+        )
+    } else {
+        (0.0, 0.0)
+    };
+    let plane = &tri.depth;
+    let ex = (f64::from(i) + 0.5 - plane.x0).abs();
+    let ey = (f64::from(j) + 0.5 - plane.y0).abs();
+    let u = f64::EPSILON / 2.0;
+    8.0 * u * (plane.value.abs() + (plane.dx.abs() + mx) * ex + (plane.dy.abs() + my) * ey)
+}
+
 /// Limbs of [`Big`]: the largest term is below `2^128 * 2^53 * 2^2045`, six
 /// of them below `2^2229`.
 const LIMBS: usize = 36;

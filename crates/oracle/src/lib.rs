@@ -49,6 +49,7 @@ pub mod window_depth;
 
 pub use agreement::Agreement;
 pub use coverage::{CoverageReference, analytic_coverage};
+pub use exact::plane_rounding_bound;
 pub use options::{DEFAULT_MAX_BYTES, DepthPlane, OracleOptions};
 pub use raycast::{OracleStats, RayCastOracle};
 pub use reference::Reference;

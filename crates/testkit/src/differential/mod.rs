@@ -3,8 +3,10 @@
 //! axis, small integer and dyadic lattices, coincident and nearly
 //! coincident planes, tiny near planes and huge far/near ratios, extreme
 //! scales and offsets, dense pixels, repeated vertex lists, degenerate and
-//! sliver triangles), and the check that every exact hider equals the
-//! oracle off ties on them ([`check`](mod@check)).
+//! sliver triangles, parallel layers `1e-4` to `1e-9` apart under
+//! telephoto, ordinary and tight depth ranges), and the check that every
+//! exact hider equals the oracle on them off exact ties, with no tolerance
+//! ([`check`](mod@check)).
 //!
 //! One decoder serves the `cargo fuzz` target and the workspace's
 //! proptest, so a finding of either replays in the other. Built with the
