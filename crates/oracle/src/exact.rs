@@ -312,4 +312,35 @@ mod tests {
         assert!(!needs_exact(&a, &b));
         assert_eq!(compare(&a, &b), Ordering::Less);
     }
+
+    proptest::proptest! {
+        /// On depths that are multiples of 2^-20 the comparison is integer
+        /// arithmetic in i128: the filter and the big sum must agree with it.
+        #[test]
+        fn agrees_with_integer_arithmetic_on_dyadic_depths(
+            va in proptest::array::uniform3((0i32..2048, 0i32..2048)),
+            vb in proptest::array::uniform3((0i32..2048, 0i32..2048)),
+            za in proptest::array::uniform3(0u32..(1 << 20)),
+            zb in proptest::array::uniform3(0u32..(1 << 20)),
+            same in proptest::bool::ANY,
+            (x, y) in (0i64..2048, 0i64..2048),
+        ) {
+            let orient = |v: [(i32, i32); 3]| {
+                let p = v.map(|(x, y)| FixedPt::new(x, y));
+                hider_geom::orient2d(p[0], p[1], p[2])
+            };
+            let fix = |v: [(i32, i32); 3]| if orient(v) < 0 { [v[0], v[2], v[1]] } else { v };
+            let (va, vb) = (fix(va), fix(vb));
+            proptest::prop_assume!(orient(va) > 0 && orient(vb) > 0);
+            // Same depths (a possible exact tie on the same plane) or not.
+            let zb = if same { za } else { zb };
+            let scale = (1u64 << 20) as f64;
+            let a = tri(va, za.map(|z| f64::from(z) / scale));
+            let b = tri(if same { va } else { vb }, zb.map(|z| f64::from(z) / scale));
+            let (da, db) = (DepthAt::new(&a, x, y), DepthAt::new(&b, x, y));
+            let num = |d: &DepthAt, z: [u32; 3]| (0..3).map(|k| d.weights[k] * i128::from(z[k])).sum::<i128>();
+            let want = (num(&da, za) * db.area).cmp(&(num(&db, zb) * da.area));
+            proptest::prop_assert_eq!(compare(&da, &db), want);
+        }
+    }
 }

@@ -38,6 +38,8 @@
 pub mod agreement;
 pub mod coverage;
 mod depth;
+#[cfg(test)]
+mod dump_tests;
 mod exact;
 mod nearest;
 pub mod options;
