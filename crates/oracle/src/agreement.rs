@@ -1,9 +1,7 @@
 //! Scoring a hider's ids against the oracle's [`Reference`].
 
-use hider_geom::fixed::pixel_center;
-use hider_scene::{NO_ID, ScreenScene};
+use hider_scene::NO_ID;
 
-use crate::exact::{DepthAt, plane_rounding_bound};
 use crate::reference::Reference;
 use crate::tolerance::WINDOW_TIE_TOLERANCE;
 
@@ -61,35 +59,6 @@ impl std::fmt::Display for Agreement {
     }
 }
 
-/// Whether primitives `a` and `b` are, at the centre of pixel `(i, j)`,
-/// closer in exact window depth than `f64` plane evaluation can tell
-/// apart: the nearest covering piece of each, the sum of their
-/// [`plane_rounding_bound`]s, plus the estimates' own error.
-pub(crate) fn within_rounding(scene: &ScreenScene, (i, j): (u32, u32), a: u32, b: u32) -> bool {
-    let (x, y) = (
-        i64::from(pixel_center(i as i32)),
-        i64::from(pixel_center(j as i32)),
-    );
-    let nearest = |prim: u32| {
-        scene
-            .tris
-            .iter()
-            .filter(|t| t.prim == prim && t.edges().iter().all(|e| e.contains(x, y)))
-            .map(|t| {
-                (
-                    DepthAt::new(t, x, y).estimate,
-                    plane_rounding_bound(t, i, j),
-                )
-            })
-            .min_by(|p, q| p.0.total_cmp(&q.0))
-    };
-    let (Some((za, ba)), Some((zb, bb))) = (nearest(a), nearest(b)) else {
-        return false;
-    };
-    let slack = 16.0 * f64::EPSILON * za.abs().max(zb.abs());
-    (za - zb).abs() <= ba + bb + slack
-}
-
 /// Which pixels a comparison excuses.
 #[derive(Clone, Copy)]
 enum Rule {
@@ -109,26 +78,24 @@ impl Reference {
     /// gap is below [`crate::WINDOW_TIE_TOLERANCE`] (what an `f32` depth
     /// buffer, the format every [`hider_scene::Frame`] stores, cannot order).
     pub fn compare(&self, ids: &[u32], tie_tolerance: f64) -> Agreement {
-        self.compare_with(
-            ids,
-            Rule::Tolerant(tie_tolerance, WINDOW_TIE_TOLERANCE),
-            &|_, _, _| false,
-        )
+        self.compare_with(ids, Rule::Tolerant(tie_tolerance, WINDOW_TIE_TOLERANCE))
     }
 
     /// Like [`Self::compare`], but ties only by the relative gap: the
     /// stricter standard a hider with `f64` (or reversed) depth can meet even
     /// where window depth has no `f32` resolution left.
     pub fn compare_strict(&self, ids: &[u32], tie_tolerance: f64) -> Agreement {
-        self.compare_with(ids, Rule::Tolerant(tie_tolerance, 0.0), &|_, _, _| false)
+        self.compare_with(ids, Rule::Tolerant(tie_tolerance, 0.0))
     }
 
     /// The standard of an exact hider: its id equals the reference's on
-    /// every covered pixel, ties included (at an exact depth tie the lower
-    /// primitive id wins, in the reference and in every exact hider). Ties
-    /// are counted; a tie where the ids differ is a wrong id.
+    /// every covered pixel, exact ties included (at an exact depth tie the
+    /// lower primitive id wins, in the reference and in every exact hider).
+    /// Only a rounding tie ([`Self::is_tie`] but not
+    /// [`Self::is_exact_tie`]) accepts any id. Ties are counted; an exact
+    /// tie where the ids differ is a wrong id.
     pub fn compare_exact(&self, ids: &[u32]) -> Agreement {
-        self.compare_with(ids, Rule::Exact(0.0, true), &|_, _, _| false)
+        self.compare_with(ids, Rule::Exact(0.0, true))
     }
 
     /// Like [`Self::compare_exact`], for an exact algorithm that keeps
@@ -137,15 +104,13 @@ impl Reference {
     /// `f32` buffer cannot order) is excused and counted in
     /// [`Agreement::unresolved`]; ties must still give the lower id.
     pub fn compare_exact_f32(&self, ids: &[u32]) -> Agreement {
-        self.compare_with(ids, Rule::Exact(WINDOW_TIE_TOLERANCE, true), &|_, _, _| {
-            false
-        })
+        self.compare_with(ids, Rule::Exact(WINDOW_TIE_TOLERANCE, true))
     }
 
-    /// Every pixel that is not an exact tie must match, with no tolerance
-    /// (except pixels whose two nearest surfaces are less than
+    /// Every pixel that is not a tie (exact or rounding) must match, with
+    /// no tolerance (except pixels whose two nearest surfaces are less than
     /// `window_resolution` apart in window depth, counted in
-    /// [`Agreement::unresolved`]); at an exact tie any id is accepted and a
+    /// [`Agreement::unresolved`]); at a tie any id is accepted and a
     /// different one counted in [`Agreement::tie_differences`].
     ///
     /// For hostile inputs (symmetric lattices, huge offsets) where two
@@ -153,41 +118,24 @@ impl Reference {
     /// evaluates each plane in `f64` sees two values that differ by
     /// rounding, and orders them by it rather than by the tie rule.
     pub fn compare_off_ties(&self, ids: &[u32], window_resolution: f64) -> Agreement {
-        self.compare_with(ids, Rule::Exact(window_resolution, false), &|_, _, _| false)
-    }
-
-    /// Like [`Self::compare_off_ties`] on the reference of `scene`, also
-    /// excusing (in [`Agreement::unresolved`]) a pixel where the hider's
-    /// primitive and the reference's are closer in exact window depth than
-    /// the error bound of evaluating their two planes in `f64`
-    /// ([`plane_rounding_bound`]): there a correct `f64` hider may order
-    /// them either way. Everywhere else the ids must be equal.
-    pub fn compare_within_rounding(
-        &self,
-        scene: &ScreenScene,
-        ids: &[u32],
-        window_resolution: f64,
-    ) -> Agreement {
-        let width = self.width.max(1) as usize;
-        let within = |k: usize, want: u32, got: u32| {
-            let (i, j) = ((k % width) as u32, (k / width) as u32);
-            within_rounding(scene, (i, j), want, got)
-        };
-        self.compare_with(ids, Rule::Exact(window_resolution, false), &within)
+        self.compare_with(ids, Rule::Exact(window_resolution, false))
     }
 
     /// Whether pixel `k` is an exact tie: covered, and its two nearest
-    /// distinct primitives at exactly the same depth.
+    /// distinct primitives at exactly the same depth (`gap` and
+    /// `window_gap` both 0).
     pub fn is_exact_tie(&self, k: usize) -> bool {
+        self.is_tie(k) && self.window_gap.get(k) == Some(&0.0)
+    }
+
+    /// Whether pixel `k` is a tie: an exact tie, or a rounding tie (two
+    /// surfaces closer in exact window depth than `f64` evaluation of their
+    /// planes resolves, [`crate::plane_rounding_bound`]); `gap` is 0.
+    pub fn is_tie(&self, k: usize) -> bool {
         self.ids.get(k).is_some_and(|&id| id != NO_ID) && self.gap.get(k) == Some(&0.0)
     }
 
-    fn compare_with(
-        &self,
-        ids: &[u32],
-        rule: Rule,
-        excuse: &dyn Fn(usize, u32, u32) -> bool,
-    ) -> Agreement {
+    fn compare_with(&self, ids: &[u32], rule: Rule) -> Agreement {
         let mut a = Agreement {
             pixels: self.ids.len() as u64,
             ..Agreement::default()
@@ -202,15 +150,16 @@ impl Reference {
                     (tie, tie)
                 }
                 Rule::Exact(window, ties_must_match) => {
+                    // A rounding tie (gap 0, window gap not) never has to
+                    // match: `f64` plane evaluation decides it.
                     let tie = gap == 0.0;
-                    (
-                        tie,
-                        if tie {
-                            !ties_must_match
-                        } else {
-                            window_gap < window
-                        },
-                    )
+                    let exact_tie = tie && window_gap == 0.0;
+                    let excused = if tie {
+                        !(ties_must_match && exact_tie)
+                    } else {
+                        window_gap < window
+                    };
+                    (tie, excused)
                 }
             };
             let wrong = match got {
@@ -234,7 +183,7 @@ impl Reference {
                     a.wrong_ids += u64::from(wrong);
                     wrong
                 }
-                Some(got) if got != want && (excused || excuse(k, want, got)) => {
+                Some(got) if got != want && excused => {
                     a.unresolved += 1;
                     false
                 }
@@ -330,6 +279,11 @@ mod tests {
         assert_eq!((a.wrong_ids, a.ties, a.tie_differences), (1, 1, 1));
         assert!(!r.compare_exact_f32(&[NO_ID, 1, 9, 3]).is_exact());
         assert!(r.compare_exact(&r.ids).is_exact());
+        // A rounding tie (gap 0, window gap not) accepts any id.
+        r.window_gap[2] = 1e-17;
+        assert!(r.is_tie(2) && !r.is_exact_tie(2));
+        assert!(r.compare_exact(&[NO_ID, 1, 9, 3]).is_exact());
+        r.window_gap[2] = 0.0;
         let a = r.compare_off_ties(&[NO_ID, 1, 9, 3], 0.0);
         assert!(a.is_exact());
         assert_eq!((a.ties, a.tie_differences), (1, 1));

@@ -62,7 +62,10 @@ fn dumps_agree(s: &ScreenScene, r: &Reference) -> Result<(), TestCaseError> {
             // Nothing nearer in the dump either.
             prop_assert!(d.estimate.clamp(0.0, 1.0) as f32 >= r.depth[k] || tied);
         }
-        prop_assert_eq!(tied, r.gap[k] == 0.0, "pixel {}: tie flag", k);
+        prop_assert_eq!(tied, r.is_exact_tie(k), "pixel {}: tie flag", k);
+        if tied {
+            prop_assert!(r.is_tie(k));
+        }
         prop_assert!(r.gap[k] >= 0.0 && r.window_gap[k] >= 0.0);
     }
     Ok(())

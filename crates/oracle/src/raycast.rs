@@ -26,7 +26,7 @@ use std::cmp::Ordering;
 use hider_geom::fixed::pixel_center;
 
 use crate::depth::{DepthModel, ray_plane_depth, source_plane};
-use crate::exact::{DepthAt, compare, needs_exact};
+use crate::exact::{DepthAt, compare, needs_exact, plane_rounding_bound};
 use crate::nearest::{Candidate, EMPTY, Nearest};
 use crate::options::{DepthPlane, OracleOptions};
 use crate::reference::Reference;
@@ -55,6 +55,11 @@ hider_scene::hider_stats! {
         /// Covered pixels whose two nearest distinct primitives are at
         /// exactly the same depth (the lower id is reported).
         pub ties: u64 => "ties",
+        /// Covered pixels whose two nearest distinct primitives differ in
+        /// exact window depth by less than evaluating their planes in
+        /// `f64` can resolve (`plane_rounding_bound`; the nearer is
+        /// reported).
+        pub rounding_ties: u64 => "rounding ties",
         /// Bytes of the per-pixel working arrays (nearest surfaces and
         /// camera rays).
         pub peak_bytes: u64 => PEAK,
@@ -266,7 +271,7 @@ impl RayCastOracle {
 
     /// Turns the nearest surfaces per pixel into the reference: the nearest
     /// id (the lower id at an exact tie), its window depth and both gaps
-    /// (zero exactly at a tie).
+    /// (both zero at an exact tie, `gap` alone zero at a rounding tie).
     fn resolve(
         &self,
         scene: &ScreenScene,
@@ -314,12 +319,24 @@ impl RayCastOracle {
                 stats.ties += 1;
                 gap[k] = 0.0;
                 window_gap[k] = 0.0;
+                continue;
+            }
+            // The runner-up is strictly farther; rounding in the estimates
+            // must not make its window gap zero (an exact tie) or negative.
+            let (z2, d2) = depths(&n.second);
+            window_gap[k] = (z2 - z1).max(f64::MIN_POSITIVE);
+            // A rounding tie: closer than evaluating the two planes in
+            // `f64` (as the hiders do) can tell apart.
+            let rounding = snapped && {
+                let bound = |c: &Candidate| plane_rounding_bound(&scene.tris[c.tri as usize], i, j);
+                let slack = 16.0 * f64::EPSILON * z2.abs().max(z1.abs());
+                z2 - z1 <= bound(&n.first) + bound(&n.second) + slack
+            };
+            if rounding {
+                stats.rounding_ties += 1;
+                gap[k] = 0.0;
             } else {
-                // The runner-up is strictly farther; rounding in the
-                // estimates must not make its gap zero (a tie) or negative.
-                let (z2, d2) = depths(&n.second);
                 gap[k] = ((d2 - d1) / model.gap_scale(d1)).max(f64::MIN_POSITIVE);
-                window_gap[k] = (z2 - z1).max(f64::MIN_POSITIVE);
             }
         }
         Reference {

@@ -57,25 +57,18 @@ pub fn compare_exact(reference: &hider_oracle::Reference, name: &str, ids: &[u32
     compare(reference, name, ids)
 }
 
-/// Like [`compare_exact`], but excusing the pixels where the two
-/// primitives are closer in exact window depth than `f64` evaluation of
-/// their planes resolves
-/// ([`hider_oracle::Reference::compare_within_rounding`]), exact ties
-/// included: for hostile inputs (symmetric lattices, near planes at
-/// `1e-12`) where two different planes meet at pixel centres and `f64`
-/// plane evaluation orders them by rounding.
-pub fn compare_within_rounding(
-    reference: &hider_oracle::Reference,
-    screen: &ScreenScene,
-    name: &str,
-    ids: &[u32],
-) -> Agreement {
+/// Like [`compare_exact`], but accepting any id at every tie, exact ties
+/// included ([`hider_oracle::Reference::compare_off_ties`]): for hostile
+/// inputs (symmetric lattices, near planes at `1e-12`) where two different
+/// planes meet exactly at pixel centres and `f64` plane evaluation orders
+/// them by rounding rather than by the tie rule.
+pub fn compare_off_ties(reference: &hider_oracle::Reference, name: &str, ids: &[u32]) -> Agreement {
     let resolution = if F32_DEPTH.contains(&name) {
         hider_oracle::WINDOW_TIE_TOLERANCE
     } else {
         0.0
     };
-    reference.compare_within_rounding(screen, ids, resolution)
+    reference.compare_off_ties(ids, resolution)
 }
 
 fn compare(reference: &hider_oracle::Reference, name: &str, ids: &[u32]) -> Agreement {

@@ -2,12 +2,12 @@
 //! decoded case, against the ray-cast oracle.
 //!
 //! - every exact hider ([`Kind::ExactPixelCentre`]) gives the oracle's id
-//!   on every pixel except where the two primitives are closer in exact
-//!   window depth than `f64` evaluation of their planes can tell apart
-//!   ([`crate::reference::compare_within_rounding`], a bound proved from
-//!   the rounding, see `docs/oracle.md`; these symmetric inputs put exact
-//!   ties of different planes on pixel centres on purpose) or, for the
-//!   `f32` buffers, than `f32` resolves; and refuses only with a documented
+//!   on every pixel that is not a tie ([`crate::reference::compare_off_ties`]:
+//!   exactly equal depths, or closer than `f64` evaluation of the two planes
+//!   can tell apart, a bound proved from the rounding, see
+//!   `docs/oracle.md`; these symmetric inputs put exact ties of different
+//!   planes on pixel centres on purpose) nor, for the `f32` buffers, closer
+//!   than `f32` resolves; and refuses only with a documented
 //!   budget ([`is_budget`]); such refusals are listed in
 //!   [`Outcome::budget_refusals`] for campaigns to count;
 //! - coverage is identical across every pixel-centre hider (exact or
@@ -107,7 +107,7 @@ pub fn check_case(case: &DiffCase) -> Result<Outcome, String> {
             return fail(entry.name, format!("held {} bytes", stats.peak_bytes));
         }
         let a = if exact {
-            crate::reference::compare_within_rounding(&reference, &screen, entry.name, &frame.ids)
+            crate::reference::compare_off_ties(&reference, entry.name, &frame.ids)
         } else {
             // Approximate hiders: coverage only.
             reference.compare(&frame.ids, f64::INFINITY)
