@@ -88,27 +88,45 @@ impl DepthAt {
     fn filterable(&self) -> bool {
         self.area > 0 && self.weights.iter().all(|&w| w >= 0) && self.z.iter().all(|&z| z >= 0.0)
     }
+
+    /// The filter key: the estimate where the filter's bound holds, NaN
+    /// (never decided by [`filter`]) elsewhere.
+    pub(crate) fn key(&self) -> f64 {
+        if self.filterable() {
+            self.estimate
+        } else {
+            f64::NAN
+        }
+    }
+}
+
+/// The order of two filter keys when the filter can decide it: keys are
+/// [`DepthAt::key`]s (estimates, NaN where the filter's bound does not
+/// hold).
+pub(crate) fn filter(ka: f64, kb: f64) -> Option<Ordering> {
+    let m = ka.max(kb);
+    (m > FILTER_FLOOR && (ka - kb).abs() > FILTER * m).then(|| ka.total_cmp(&kb))
 }
 
 /// The exact order of the two window depths (`Less`: `a` is nearer).
 /// Non-finite depths (a hand-built scene) compare by their estimates.
 pub(crate) fn compare(a: &DepthAt, b: &DepthAt) -> Ordering {
-    let (ea, eb) = (a.estimate, b.estimate);
-    if a.filterable() && b.filterable() {
-        let m = ea.max(eb);
-        if m > FILTER_FLOOR && (ea - eb).abs() > FILTER * m {
-            return ea.total_cmp(&eb);
-        }
-    }
-    exact(a, b).unwrap_or_else(|| ea.partial_cmp(&eb).unwrap_or(Ordering::Equal))
+    filter(a.key(), b.key()).unwrap_or_else(|| compare_exactly(a, b))
 }
 
-/// Whether [`compare`] needs the exact sum for these two (counted in the
-/// statistics as the cost of exactness).
+/// [`compare`] without the filter.
+pub(crate) fn compare_exactly(a: &DepthAt, b: &DepthAt) -> Ordering {
+    exact(a, b).unwrap_or_else(|| {
+        a.estimate
+            .partial_cmp(&b.estimate)
+            .unwrap_or(Ordering::Equal)
+    })
+}
+
+/// Whether [`compare`] needs the exact sum for these two.
+#[cfg(test)]
 pub(crate) fn needs_exact(a: &DepthAt, b: &DepthAt) -> bool {
-    let (ea, eb) = (a.estimate, b.estimate);
-    let m = ea.max(eb);
-    !(a.filterable() && b.filterable() && m > FILTER_FLOOR && (ea - eb).abs() > FILTER * m)
+    filter(a.key(), b.key()).is_none()
 }
 
 /// The exact sign of `A_b * sum E^a z^a - A_a * sum E^b z^b` (see the

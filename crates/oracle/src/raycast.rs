@@ -26,7 +26,7 @@ use std::cmp::Ordering;
 use hider_geom::fixed::pixel_center;
 
 use crate::depth::{DepthModel, ray_plane_depth, source_plane};
-use crate::exact::{DepthAt, compare, needs_exact, plane_rounding_bound};
+use crate::exact::{DepthAt, compare, compare_exactly, filter, plane_rounding_bound};
 use crate::nearest::{Candidate, EMPTY, Nearest};
 use crate::options::{DepthPlane, OracleOptions};
 use crate::reference::Reference;
@@ -193,11 +193,6 @@ impl RayCastOracle {
         let vp = scene.viewport;
         let w = vp.width as usize;
         let tri = &scene.tris[index];
-        let c = Candidate {
-            tri: index as u32,
-            prim: tri.prim,
-            key: 0.0,
-        };
         let nearest = &mut self.nearest;
         let mut exact = 0;
         tri.for_each_centre(vp, |i, j, covered| {
@@ -207,10 +202,26 @@ impl RayCastOracle {
             }
             stats.hits += 1;
             let (x, y) = centre(i, j);
+            let mine = DepthAt::new(tri, x, y);
+            let c = Candidate {
+                tri: index as u32,
+                prim: tri.prim,
+                key: mine.key(),
+            };
+            // The filter on the stored keys first; the exact sum (from the
+            // triangles, recomputed) only where it cannot decide.
             nearest[j as usize * w + i as usize].offer(c, |a, b| {
-                let (da, db) = (depth_at(scene, a, x, y), depth_at(scene, b, x, y));
-                exact += u64::from(needs_exact(&da, &db));
-                compare(&da, &db)
+                filter(a.key, b.key).unwrap_or_else(|| {
+                    exact += 1;
+                    let at = |c: &Candidate| {
+                        if c.tri == index as u32 {
+                            mine
+                        } else {
+                            depth_at(scene, c, x, y)
+                        }
+                    };
+                    compare_exactly(&at(a), &at(b))
+                })
             });
         });
         stats.exact += exact;
