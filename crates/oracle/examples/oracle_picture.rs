@@ -110,11 +110,11 @@ fn coverage_picture(images: &Path) -> Result<()> {
 /// docs report: they are slow on purpose).
 fn timings() {
     let once = Timer::new(1).with_warmup(0);
-    for (count, size) in [(10_000u32, 128u32), (79_600, 128)] {
-        let scene = if count == 79_600 {
-            procedural::uv_sphere(200)
-        } else {
-            hard_cases::heavy_overdraw(count, 1)
+    for (count, size) in [(10_000u32, 128u32), (79_600, 128), (398, 128)] {
+        let scene = match count {
+            79_600 => procedural::uv_sphere(200),
+            398 => hard_cases::repeated_polygon(100),
+            _ => hard_cases::heavy_overdraw(count, 1),
         };
         let s = screen(&scene, size, size);
         let mut frame = Frame::new(size, size).expect("a valid size");
@@ -125,7 +125,7 @@ fn timings() {
                 .expect("within budget")
         });
         println!(
-            "oracle: {count} triangles (heavy overdraw / uv sphere) at {size}x{size}: {:.1} ms, {} pixel tests, {} hits, {} exact comparisons, {} exact ties, {} rounding ties",
+            "oracle: {count} triangles (heavy overdraw / uv sphere / repeated polygon) at {size}x{size}: {:.1} ms, {} pixel tests, {} hits, {} exact comparisons, {} exact ties, {} rounding ties",
             t.median_ms,
             stats.pixel_tests,
             stats.hits,
