@@ -50,8 +50,8 @@ pub struct OracleOptions {
     /// than run for hours.
     pub max_pixel_tests: u64,
     /// Budget for the per-pixel working arrays (nearest surfaces, camera
-    /// rays and the reference's ids, depths and gaps: about 100 bytes a
-    /// pixel, [`RayCastOracle::bytes_needed`](crate::RayCastOracle::bytes_needed)),
+    /// rays of the source-plane mode and the reference's ids, depths and
+    /// gaps: about 100 bytes a pixel, [`RayCastOracle::bytes_needed`](crate::RayCastOracle::bytes_needed)),
     /// checked before anything is allocated: an image that would need more
     /// is refused with [`hider_scene::Error::Limit`] instead of exhausting
     /// the machine's memory (16384 x 16384 pixels would need about 28 GB).

@@ -1,22 +1,26 @@
-//! The ray-cast oracle: the lecture's "one depth variable" z-buffer.
+//! The per-pixel oracle: the lecture's "one depth variable" z-buffer,
+//! with an exact comparison.
 //!
 //! The lecture on image-space hidden-surface algorithms describes a z-buffer
 //! variant that keeps a single depth variable instead of a depth array: for
-//! each pixel, loop over every polygon, compute the depth where the ray
-//! through the pixel meets it, keep the nearest. That is the oracle here,
-//! with two changes that make it a referee rather than a renderer:
+//! each pixel, loop over every polygon, compute its depth at the pixel, keep
+//! the nearest. That is the oracle here, with three changes that make it a
+//! referee rather than a renderer:
 //!
 //! - **coverage** is the shared exact decision (`ScreenTri::edges()`, the
 //!   top-left rule on snapped fixed-point vertices), so every hider and the
 //!   oracle agree on *which* triangles are candidates at a pixel centre;
-//! - **depth** is not interpolated at all: the camera-space ray through the
-//!   pixel centre is intersected in `f64` with a camera-space plane (see
-//!   [`DepthPlane`] for which one). Nothing about screen-space interpolation
-//!   (linear or 1/w, `f32` or fixed-point buffers) can leak in.
-//!
-//! Beside the winner it records the relative gap to the second-nearest
-//! *distinct primitive* (pieces of one clipped primitive share an id), so a
-//! test can tell a genuine tie from an error; see [`crate::DEFAULT_TIE_TOLERANCE`].
+//! - **depth** is what every exact hider compares, the window-depth plane of
+//!   the snapped triangle ([`DepthPlane::Snapped`]), and it is **compared
+//!   exactly** (`crate::exact`: an `f64` filter with a proved bound, then
+//!   exact integer arithmetic). A tie is an exactly equal depth, and the
+//!   lower primitive id wins it. [`DepthPlane::Source`] instead intersects
+//!   the camera ray through the centre with the source triangle's plane in
+//!   `f64`, to measure what snapping does;
+//! - beside the winner it records the gaps to the second-nearest *distinct
+//!   primitive* (pieces of one clipped primitive share an id): both 0 at an
+//!   exact tie, the relative one 0 at a rounding tie (closer than `f64`
+//!   evaluation of the two planes resolves, [`crate::plane_rounding_bound`]).
 
 use glam::DVec3;
 use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
@@ -66,7 +70,9 @@ hider_scene::hider_stats! {
     }
 }
 
-/// The exact per-pixel-centre reference. See the module documentation.
+/// The exact per-pixel-centre reference. See the module documentation
+/// (the name is historical: the default mode compares window-depth planes
+/// exactly, only [`DepthPlane::Source`] casts rays).
 ///
 /// As a [`Hider`] it writes the reference ids and depths into a frame;
 /// [`RayCastOracle::evaluate`] returns the whole [`Reference`], with the
@@ -105,8 +111,9 @@ impl RayCastOracle {
     }
 
     /// Bytes of the working arrays evaluating a `width x height` image
-    /// takes: per pixel the nearest two surfaces, the camera ray, and the
-    /// reference's id, depth and two gaps.
+    /// takes at most: per pixel the nearest two surfaces, the camera ray
+    /// (source-plane mode only), and the reference's id, depth and two
+    /// gaps.
     pub fn bytes_needed(width: u32, height: u32) -> u64 {
         let per_pixel = std::mem::size_of::<Nearest>()
             + std::mem::size_of::<(DVec3, DVec3)>()
@@ -125,7 +132,7 @@ impl RayCastOracle {
     }
 
     /// Evaluates every pixel centre of `scene`: the visible primitive, its
-    /// window depth and the gap to the runner-up. Never fails and never
+    /// window depth and the gaps to the runner-up. Never fails and never
     /// panics; a primitive id without [`hider_scene::PrimInfo`] (a
     /// hand-built scene) is depth-tested on its window-depth plane.
     pub fn evaluate(&mut self, scene: &ScreenScene) -> Reference {
