@@ -223,6 +223,29 @@ mod tests {
     }
 
     #[test]
+    fn parallel_layers_decode_and_every_exact_hider_orders_them() {
+        // 135 = 7 mod 8, in the upper half: the layers; then gap exponent
+        // 4 + 5 = 9, 2 + 1 = 3 layers, seed 7, and each of the cameras.
+        for camera in 0..3 {
+            let case = differential_case(&[135, 5, 1, 7, camera, 40]).unwrap();
+            assert!(
+                case.label.starts_with("parallel_layers 3 gap 1e-9"),
+                "{}",
+                case.label
+            );
+            let outcome = check_case(&case).unwrap_or_else(|e| panic!("{e}"));
+            assert!(
+                outcome.refused.is_none() && outcome.hiders > 0,
+                "{outcome:?}"
+            );
+        }
+        // Below 128 the byte still means heavy overdraw, as stored cases
+        // expect.
+        let case = differential_case(&[7]).unwrap();
+        assert!(case.label.starts_with("heavy_overdraw"), "{}", case.label);
+    }
+
+    #[test]
     fn reads_past_the_end_are_zero() {
         let mut b = Bytes::new(&[3]);
         assert_eq!(b.byte(), 3);
