@@ -1,11 +1,13 @@
 //! Makes the pictures and numbers of `docs/oracle.md` and
 //! `docs/hard-cases.md`:
 //! - `docs/images/oracle-hard-cases.png`: every hard case rendered by the
-//!   ray-cast oracle (flat shading), tie pixels in magenta;
+//!   ray-cast oracle (flat shading), exact ties in magenta, rounding ties
+//!   in orange;
 //! - `docs/images/oracle-coverage.png`: the exact box-filtered image of the
 //!   interpenetrating boxes from analytic coverage, next to the pixel-centre one;
-//! - timings of the oracle and of analytic coverage, and how often the
-//!   source-plane oracle disagrees with the snapped-plane one.
+//! - timings of the oracle (with how many comparisons needed exact
+//!   arithmetic) and of analytic coverage, and how often the source-plane
+//!   oracle disagrees with the snapped-plane one.
 //!
 //! `cargo run --release -p hider-oracle --example oracle_picture`
 
@@ -29,7 +31,8 @@ fn srgb(c: [f32; 3]) -> [u8; 4] {
     [to_srgb8(c[0]), to_srgb8(c[1]), to_srgb8(c[2]), 255]
 }
 
-/// Contact sheet of the hard cases, tie pixels in magenta.
+/// Contact sheet of the hard cases, exact ties in magenta, rounding ties in
+/// orange.
 fn hard_case_sheet(images: &Path) -> Result<()> {
     let (tile, cols) = (84u32, 6u32);
     let cases = hard_cases::all(1);
@@ -37,14 +40,17 @@ fn hard_case_sheet(images: &Path) -> Result<()> {
     let mut sheet = Frame::new(tile * cols, tile * rows)?;
     for (n, (name, scene)) in cases.iter().enumerate() {
         let s = screen(scene, tile, tile);
-        let r = RayCastOracle::default().evaluate(&s);
+        let mut oracle = RayCastOracle::default();
+        let r = oracle.evaluate(&s);
+        let stats = oracle.render(&s, &mut Frame::new(tile, tile)?)?;
         let (ox, oy) = ((n as u32 % cols) * tile, (n as u32 / cols) * tile);
         for y in 0..tile {
             for x in 0..tile {
                 let k = (y * tile + x) as usize;
                 let c = match r.ids[k] {
                     NO_ID => [24, 24, 32, 255],
-                    _ if r.gap[k] < DEFAULT_TIE_TOLERANCE => [255, 0, 255, 255],
+                    _ if r.is_exact_tie(k) => [255, 0, 255, 255],
+                    _ if r.is_tie(k) => [255, 150, 0, 255],
                     id => srgb(colour(&s, id)),
                 };
                 let i = sheet.index(ox + x, oy + y);
@@ -52,10 +58,13 @@ fn hard_case_sheet(images: &Path) -> Result<()> {
             }
         }
         println!(
-            "{name:<24} {:>6} tris, {:>5} covered, {:>4} ties",
+            "{name:<24} {:>6} tris, {:>5} covered, {:>4} exact ties, {:>3} rounding ties, {:>4} below 1e-5, {:>5} exact comparisons",
             s.tris.len(),
             r.covered_count(),
-            r.tie_count(DEFAULT_TIE_TOLERANCE)
+            stats.ties,
+            stats.rounding_ties,
+            r.tie_count(DEFAULT_TIE_TOLERANCE),
+            stats.exact,
         );
     }
     sheet.write_png(&images.join("oracle-hard-cases.png"))?;
@@ -101,23 +110,28 @@ fn coverage_picture(images: &Path) -> Result<()> {
 /// docs report: they are slow on purpose).
 fn timings() {
     let once = Timer::new(1).with_warmup(0);
-    for (count, size) in [(10_000u32, 128u32), (79_600, 128)] {
-        let scene = if count == 79_600 {
-            procedural::uv_sphere(200)
-        } else {
-            hard_cases::heavy_overdraw(count, 1)
+    for (count, size) in [(10_000u32, 128u32), (79_600, 128), (398, 128)] {
+        let scene = match count {
+            79_600 => procedural::uv_sphere(200),
+            398 => hard_cases::repeated_polygon(100),
+            _ => hard_cases::heavy_overdraw(count, 1),
         };
         let s = screen(&scene, size, size);
-        let mut ties = 0;
+        let mut frame = Frame::new(size, size).expect("a valid size");
+        let mut stats = Default::default();
         let t = once.time(|| {
-            ties = RayCastOracle::default()
-                .evaluate(&s)
-                .tie_count(DEFAULT_TIE_TOLERANCE)
+            stats = RayCastOracle::default()
+                .render(&s, &mut frame)
+                .expect("within budget")
         });
         println!(
-            "oracle: {count} triangles (heavy overdraw / uv sphere) at {size}x{size}: {:.1} ms, {} pixel tests, {ties} ties",
+            "oracle: {count} triangles (heavy overdraw / uv sphere / repeated polygon) at {size}x{size}: {:.1} ms, {} pixel tests, {} hits, {} exact comparisons, {} exact ties, {} rounding ties",
             t.median_ms,
-            RayCastOracle::pixel_tests(&s),
+            stats.pixel_tests,
+            stats.hits,
+            stats.exact,
+            stats.ties,
+            stats.rounding_ties,
         );
     }
     for (name, scene, size) in [
@@ -136,7 +150,7 @@ fn timings() {
 }
 
 /// What snapping does: the source-plane oracle against the snapped-plane
-/// one, off ties.
+/// one, off ties of the snapped one.
 fn snapping_effect() {
     let source = OracleOptions::default().with_depth_plane(DepthPlane::Source);
     for (name, scene) in hard_cases::all(1) {
@@ -146,7 +160,7 @@ fn snapping_effect() {
         let mut differ = 0;
         let mut worst: f64 = 0.0;
         for k in 0..snapped.ids.len() {
-            if snapped.ids[k] != source.ids[k] && snapped.gap[k] >= DEFAULT_TIE_TOLERANCE {
+            if snapped.ids[k] != source.ids[k] && !snapped.is_tie(k) {
                 differ += 1;
                 worst = worst.max(source.gap[k].min(snapped.gap[k]));
             }

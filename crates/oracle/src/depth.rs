@@ -14,7 +14,7 @@ pub(crate) struct DepthModel {
     inverse: DMat4,
     near: f64,
     far: f64,
-    pub(crate) perspective: bool,
+    perspective: bool,
 }
 
 impl DepthModel {
@@ -56,6 +56,18 @@ impl DepthModel {
         (c.z / c.w + 1.0) * 0.5
     }
 
+    /// View depth at the centre of pixel `(i, j)` of `tri`, whose window
+    /// depth there is `zw`: `1 / (1/w)` from the affine 1/w plane for a
+    /// perspective camera (well conditioned where window depth is all but
+    /// 1), linear in window depth for an orthographic one.
+    pub(crate) fn view_depth(&self, tri: &ScreenTri, i: u32, j: u32, zw: f64) -> f64 {
+        if self.perspective {
+            1.0 / tri.inv_w.at_pixel(i, j)
+        } else {
+            self.near + zw * (self.far - self.near)
+        }
+    }
+
     /// View depths of a piece's corners: clip w for a perspective camera,
     /// linear in window depth for an orthographic one.
     pub(crate) fn corner_depths(&self, tri: &ScreenTri) -> [f64; 3] {
@@ -70,33 +82,6 @@ impl DepthModel {
 /// The plane of a camera-space triangle.
 pub(crate) fn source_plane(c: [DVec3; 3]) -> Plane {
     (c[0], (c[1] - c[0]).cross(c[2] - c[0]))
-}
-
-/// The plane through a screen triangle's snapped corners lifted to camera
-/// space: each corner on the camera ray through its snapped window position,
-/// at its view depth (clip `w` for a perspective camera, which keeps full
-/// precision where window depth is all but 1; linear in window depth for an
-/// orthographic one).
-pub(crate) fn snapped_plane(
-    scene: &ScreenScene,
-    tri: &ScreenTri,
-    depths: [f64; 3],
-    perspective: bool,
-) -> Plane {
-    let lift = |k: usize| {
-        let (x, y) = tri.v[k].to_pixels();
-        let (origin, dir) = scene.camera_ray(x, y);
-        // Perspective: dir ends on the near plane (dir.z = -near), so the
-        // point at view depth d is dir * (d / near). Orthographic: dir spans
-        // near to far, window depth is the fraction along it.
-        let t = if perspective {
-            depths[k] / -dir.z
-        } else {
-            tri.z[k]
-        };
-        origin + dir * t
-    };
-    source_plane([lift(0), lift(1), lift(2)])
 }
 
 /// View depth where the ray `origin + t dir` meets the plane, or `None`

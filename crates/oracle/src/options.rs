@@ -1,18 +1,16 @@
-//! The oracle's options: which plane depth is taken from, the tie
-//! tolerance, and the work budget.
-
-use crate::tolerance::DEFAULT_TIE_TOLERANCE;
+//! The oracle's options: which plane depth is taken from and the work
+//! budget.
 
 /// Which camera-space plane the oracle intersects the pixel rays with.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum DepthPlane {
-    /// The plane through the screen triangle's *snapped* corners lifted back
-    /// to camera space (each corner on the ray through its snapped window
-    /// position, at its clip `w`). Projection maps planes to planes, so this
-    /// is exactly the surface every hider is asked to render; the oracle
-    /// differs from a hider only by arithmetic, and a tie tolerance of
-    /// [`crate::DEFAULT_TIE_TOLERANCE`] separates rounding from errors. The
-    /// referee for cross-validating hiders (the default).
+    /// The window-depth plane through the screen triangle's *snapped*
+    /// corners (the front end's fixed-point positions and `f64` window
+    /// depths), evaluated and compared *exactly* at each pixel centre.
+    /// Projection maps planes to planes, so this is exactly the surface
+    /// every hider is asked to render, and window depth orders surfaces as
+    /// view depth does. A tie is an exactly equal depth; the lower id wins
+    /// it. The referee for cross-validating hiders (the default).
     #[default]
     Snapped,
     /// The plane of the *source* triangle (`PrimInfo::camera`, before
@@ -21,7 +19,9 @@ pub enum DepthPlane {
     /// touch, moving corners by up to 1/512 pixel can flip the order.
     /// Near the near plane, where screen-space depth gradients are steep,
     /// such flips appear at relative gaps above `1e-5`, so hiders are not
-    /// scored against this plane.
+    /// scored against this plane. Depth is the `f64` intersection of the
+    /// pixel's camera ray with the plane; the nearest wins, a tie is an
+    /// equal `f64` depth.
     Source,
 }
 
@@ -43,10 +43,6 @@ pub enum DepthPlane {
 pub struct OracleOptions {
     /// The plane each triangle's depth is taken from.
     pub depth_plane: DepthPlane,
-    /// Relative gap under which the two nearest surfaces at a pixel count as
-    /// a tie; at a tie the reference id is the lower primitive id (what a
-    /// LESS z-buffer drawing in id order keeps).
-    pub tie_tolerance: f64,
     /// Most (triangle, pixel) candidate tests one frame may cost, checked
     /// before any work in
     /// [`RayCastOracle::try_evaluate`](crate::RayCastOracle::try_evaluate)
@@ -54,8 +50,8 @@ pub struct OracleOptions {
     /// than run for hours.
     pub max_pixel_tests: u64,
     /// Budget for the per-pixel working arrays (nearest surfaces, camera
-    /// rays and the reference's ids, depths and gaps: about 100 bytes a
-    /// pixel, [`RayCastOracle::bytes_needed`](crate::RayCastOracle::bytes_needed)),
+    /// rays of the source-plane mode and the reference's ids, depths and
+    /// gaps: about 100 bytes a pixel, [`RayCastOracle::bytes_needed`](crate::RayCastOracle::bytes_needed)),
     /// checked before anything is allocated: an image that would need more
     /// is refused with [`hider_scene::Error::Limit`] instead of exhausting
     /// the machine's memory (16384 x 16384 pixels would need about 28 GB).
@@ -70,7 +66,6 @@ impl Default for OracleOptions {
     fn default() -> Self {
         Self {
             depth_plane: DepthPlane::Snapped,
-            tie_tolerance: DEFAULT_TIE_TOLERANCE,
             max_pixel_tests: 1 << 34,
             max_bytes: DEFAULT_MAX_BYTES,
         }
@@ -81,12 +76,6 @@ impl OracleOptions {
     /// Sets [`Self::depth_plane`].
     pub fn with_depth_plane(mut self, plane: DepthPlane) -> Self {
         self.depth_plane = plane;
-        self
-    }
-
-    /// Sets [`Self::tie_tolerance`].
-    pub fn with_tie_tolerance(mut self, tolerance: f64) -> Self {
-        self.tie_tolerance = tolerance;
         self
     }
 

@@ -1,31 +1,39 @@
-//! The ray-cast oracle: the lecture's "one depth variable" z-buffer.
+//! The per-pixel oracle: the lecture's "one depth variable" z-buffer,
+//! with an exact comparison.
 //!
 //! The lecture on image-space hidden-surface algorithms describes a z-buffer
 //! variant that keeps a single depth variable instead of a depth array: for
-//! each pixel, loop over every polygon, compute the depth where the ray
-//! through the pixel meets it, keep the nearest. That is the oracle here,
-//! with two changes that make it a referee rather than a renderer:
+//! each pixel, loop over every polygon, compute its depth at the pixel, keep
+//! the nearest. That is the oracle here, with three changes that make it a
+//! referee rather than a renderer:
 //!
 //! - **coverage** is the shared exact decision (`ScreenTri::edges()`, the
 //!   top-left rule on snapped fixed-point vertices), so every hider and the
 //!   oracle agree on *which* triangles are candidates at a pixel centre;
-//! - **depth** is not interpolated at all: the camera-space ray through the
-//!   pixel centre is intersected in `f64` with a camera-space plane (see
-//!   [`DepthPlane`] for which one). Nothing about screen-space interpolation
-//!   (linear or 1/w, `f32` or fixed-point buffers) can leak in.
-//!
-//! Beside the winner it records the relative gap to the second-nearest
-//! *distinct primitive* (pieces of one clipped primitive share an id), so a
-//! test can tell a genuine tie from an error; see [`crate::DEFAULT_TIE_TOLERANCE`].
+//! - **depth** is what every exact hider compares, the window-depth plane of
+//!   the snapped triangle ([`DepthPlane::Snapped`]), and it is **compared
+//!   exactly** (`crate::exact`: an `f64` filter with a proved bound, then
+//!   exact integer arithmetic). A tie is an exactly equal depth, and the
+//!   lower primitive id wins it. [`DepthPlane::Source`] instead intersects
+//!   the camera ray through the centre with the source triangle's plane in
+//!   `f64`, to measure what snapping does;
+//! - beside the winner it records the gaps to the second-nearest *distinct
+//!   primitive* (pieces of one clipped primitive share an id): both 0 at an
+//!   exact tie, the relative one 0 at a rounding tie (closer than `f64`
+//!   evaluation of the two planes resolves, [`crate::plane_rounding_bound`]).
 
 use glam::DVec3;
-use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ScreenTri, check_frame};
+use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
 
-use crate::depth::{DepthModel, ray_plane_depth, snapped_plane, source_plane};
-use crate::nearest::{EMPTY, Nearest};
+use std::cmp::Ordering;
+
+use hider_geom::fixed::pixel_center;
+
+use crate::depth::{DepthModel, ray_plane_depth, source_plane};
+use crate::exact::{DepthAt, compare, compare_exactly, filter, plane_rounding_bound};
+use crate::nearest::{Candidate, EMPTY, Nearest};
 use crate::options::{DepthPlane, OracleOptions};
 use crate::reference::Reference;
-use crate::tolerance::WINDOW_TIE_TOLERANCE;
 
 hider_scene::hider_stats! {
     /// The work one frame of the oracle did.
@@ -45,16 +53,26 @@ hider_scene::hider_stats! {
         /// centre is inside the snapped triangle but outside the true one)
         /// and was clamped into that range.
         pub clamped: u64 => "clamped",
-        /// Covered pixels whose two nearest distinct primitives are within
-        /// the tie tolerance.
+        /// Depth comparisons the `f64` filter could not decide, settled by
+        /// exact arithmetic ([`DepthPlane::Snapped`] only).
+        pub exact: u64 => "exact comparisons",
+        /// Covered pixels whose two nearest distinct primitives are at
+        /// exactly the same depth (the lower id is reported).
         pub ties: u64 => "ties",
+        /// Covered pixels whose two nearest distinct primitives differ in
+        /// exact window depth by less than evaluating their planes in
+        /// `f64` can resolve (`plane_rounding_bound`; the nearer is
+        /// reported).
+        pub rounding_ties: u64 => "rounding ties",
         /// Bytes of the per-pixel working arrays (nearest surfaces and
         /// camera rays).
         pub peak_bytes: u64 => PEAK,
     }
 }
 
-/// The exact per-pixel-centre reference. See the module documentation.
+/// The exact per-pixel-centre reference. See the module documentation
+/// (the name is historical: the default mode compares window-depth planes
+/// exactly, only [`DepthPlane::Source`] casts rays).
 ///
 /// As a [`Hider`] it writes the reference ids and depths into a frame;
 /// [`RayCastOracle::evaluate`] returns the whole [`Reference`], with the
@@ -93,8 +111,9 @@ impl RayCastOracle {
     }
 
     /// Bytes of the working arrays evaluating a `width x height` image
-    /// takes: per pixel the nearest two surfaces, the camera ray, and the
-    /// reference's id, depth and two gaps.
+    /// takes at most: per pixel the nearest two surfaces, the camera ray
+    /// (source-plane mode only), and the reference's id, depth and two
+    /// gaps.
     pub fn bytes_needed(width: u32, height: u32) -> u64 {
         let per_pixel = std::mem::size_of::<Nearest>()
             + std::mem::size_of::<(DVec3, DVec3)>()
@@ -113,7 +132,7 @@ impl RayCastOracle {
     }
 
     /// Evaluates every pixel centre of `scene`: the visible primitive, its
-    /// window depth and the gap to the runner-up. Never fails and never
+    /// window depth and the gaps to the runner-up. Never fails and never
     /// panics; a primitive id without [`hider_scene::PrimInfo`] (a
     /// hand-built scene) is depth-tested on its window-depth plane.
     pub fn evaluate(&mut self, scene: &ScreenScene) -> Reference {
@@ -153,15 +172,20 @@ impl RayCastOracle {
         self.nearest.clear();
         self.nearest.resize(w * h, EMPTY);
         self.rays.clear();
-        self.rays.reserve(w * h);
-        for j in 0..vp.height {
-            for i in 0..vp.width {
-                self.rays
-                    .push(scene.camera_ray(f64::from(i) + 0.5, f64::from(j) + 0.5));
+        if self.options.depth_plane == DepthPlane::Source {
+            self.rays.reserve(w * h);
+            for j in 0..vp.height {
+                for i in 0..vp.width {
+                    self.rays
+                        .push(scene.camera_ray(f64::from(i) + 0.5, f64::from(j) + 0.5));
+                }
             }
         }
-        for tri in &scene.tris {
-            self.cast(scene, &model, tri, &mut stats);
+        for index in 0..scene.tris.len() {
+            match self.options.depth_plane {
+                DepthPlane::Snapped => self.offer_exact(scene, index, &mut stats),
+                DepthPlane::Source => self.cast(scene, &model, index, &mut stats),
+            }
         }
         let reference = self.resolve(scene, &model, &mut stats);
         stats.peak_bytes = (self.nearest.capacity() * std::mem::size_of::<Nearest>()
@@ -170,24 +194,63 @@ impl RayCastOracle {
         (reference, stats)
     }
 
-    /// Offers `tri`'s depth at every pixel centre it covers.
+    /// Offers triangle `index` at every pixel centre it covers, ordered by
+    /// the exact window depth of the snapped triangles.
+    fn offer_exact(&mut self, scene: &ScreenScene, index: usize, stats: &mut OracleStats) {
+        let vp = scene.viewport;
+        let w = vp.width as usize;
+        let tri = &scene.tris[index];
+        let nearest = &mut self.nearest;
+        let mut exact = 0;
+        tri.for_each_centre(vp, |i, j, covered| {
+            stats.pixel_tests += 1;
+            if !covered {
+                return;
+            }
+            stats.hits += 1;
+            let (x, y) = centre(i, j);
+            let mine = DepthAt::new(tri, x, y);
+            let c = Candidate {
+                tri: index as u32,
+                prim: tri.prim,
+                key: mine.key(),
+            };
+            // The filter on the stored keys first; the exact sum (from the
+            // triangles, recomputed) only where it cannot decide.
+            nearest[j as usize * w + i as usize].offer(c, |a, b| {
+                filter(a.key, b.key).unwrap_or_else(|| {
+                    exact += 1;
+                    let at = |c: &Candidate| {
+                        if c.tri == index as u32 {
+                            mine
+                        } else {
+                            depth_at(scene, c, x, y)
+                        }
+                    };
+                    compare_exactly(&at(a), &at(b))
+                })
+            });
+        });
+        stats.exact += exact;
+    }
+
+    /// Offers triangle `index`'s source-plane view depth at every pixel
+    /// centre it covers ([`DepthPlane::Source`]).
     fn cast(
         &mut self,
         scene: &ScreenScene,
         model: &DepthModel,
-        tri: &ScreenTri,
+        index: usize,
         stats: &mut OracleStats,
     ) {
         let vp = scene.viewport;
         let w = vp.width as usize;
+        let tri = &scene.tris[index];
         let corners = model.corner_depths(tri);
-        let plane = match self.options.depth_plane {
-            DepthPlane::Snapped => Some(snapped_plane(scene, tri, corners, model.perspective)),
-            DepthPlane::Source => scene
-                .prims
-                .get(tri.prim as usize)
-                .map(|p| source_plane(p.camera)),
-        };
+        let plane = scene
+            .prims
+            .get(tri.prim as usize)
+            .map(|p| source_plane(p.camera));
         let lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
         let hi = corners.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         let (rays, nearest) = (&self.rays, &mut self.nearest);
@@ -215,12 +278,18 @@ impl RayCastOracle {
             if clamped != d {
                 stats.clamped += 1;
             }
-            nearest[k].offer(clamped, tri.prim);
+            let c = Candidate {
+                tri: index as u32,
+                prim: tri.prim,
+                key: clamped,
+            };
+            nearest[k].offer(c, |a, b| a.key.total_cmp(&b.key));
         });
     }
 
-    /// Turns the nearest surfaces per pixel into the reference: ids with
-    /// the tie rule, window depths and both gaps.
+    /// Turns the nearest surfaces per pixel into the reference: the nearest
+    /// id (the lower id at an exact tie), its window depth and both gaps
+    /// (both zero at an exact tie, `gap` alone zero at a rounding tie).
     fn resolve(
         &self,
         scene: &ScreenScene,
@@ -228,38 +297,65 @@ impl RayCastOracle {
         stats: &mut OracleStats,
     ) -> Reference {
         let vp = scene.viewport;
+        let w = vp.width.max(1) as usize;
         let n = self.nearest.len();
+        let snapped = self.options.depth_plane == DepthPlane::Snapped;
         let mut ids = vec![NO_ID; n];
         let mut depth = vec![1.0f32; n];
         let mut gap = vec![f64::INFINITY; n];
         let mut window_gap = vec![f64::INFINITY; n];
         for (k, n) in self.nearest.iter().enumerate() {
-            if n.first.1 == NO_ID {
+            if n.first.prim == NO_ID {
                 continue;
             }
-            let (g, wg) = if n.second.1 == NO_ID {
-                (f64::INFINITY, f64::INFINITY)
-            } else {
-                (
-                    (n.second.0 - n.first.0) / model.gap_scale(n.first.0),
-                    model.window_of_view_depth(n.second.0) - model.window_of_view_depth(n.first.0),
-                )
+            let (i, j) = ((k % w) as u32, (k / w) as u32);
+            let (x, y) = centre(i, j);
+            // Window depth and view depth of a candidate.
+            let depths = |c: &Candidate| {
+                if snapped {
+                    let zw = depth_at(scene, c, x, y).estimate;
+                    (zw, model.view_depth(&scene.tris[c.tri as usize], i, j, zw))
+                } else {
+                    (model.window_of_view_depth(c.key), c.key)
+                }
             };
-            if g < self.options.tie_tolerance || wg < WINDOW_TIE_TOLERANCE {
-                stats.ties += 1;
+            let (z1, d1) = depths(&n.first);
+            ids[k] = n.first.prim;
+            depth[k] = z1.clamp(0.0, 1.0) as f32;
+            if n.second.prim == NO_ID {
+                continue;
             }
-            // The id is the nearest surface's unless the relative gap is a
-            // tie; a window-depth tie keeps the nearest, so that the strict
-            // comparison (ties by relative gap only) can hold hiders with
-            // `f64` depth to it.
-            ids[k] = if g < self.options.tie_tolerance {
-                n.first.1.min(n.second.1)
+            let tie = if snapped {
+                compare(
+                    &depth_at(scene, &n.first, x, y),
+                    &depth_at(scene, &n.second, x, y),
+                ) == Ordering::Equal
             } else {
-                n.first.1
+                n.first.key == n.second.key
             };
-            gap[k] = g;
-            window_gap[k] = wg;
-            depth[k] = model.window_of_view_depth(n.first.0).clamp(0.0, 1.0) as f32;
+            if tie {
+                stats.ties += 1;
+                gap[k] = 0.0;
+                window_gap[k] = 0.0;
+                continue;
+            }
+            // The runner-up is strictly farther; rounding in the estimates
+            // must not make its window gap zero (an exact tie) or negative.
+            let (z2, d2) = depths(&n.second);
+            window_gap[k] = (z2 - z1).max(f64::MIN_POSITIVE);
+            // A rounding tie: closer than evaluating the two planes in
+            // `f64` (as the hiders do) can tell apart.
+            let rounding = snapped && {
+                let bound = |c: &Candidate| plane_rounding_bound(&scene.tris[c.tri as usize], i, j);
+                let slack = 16.0 * f64::EPSILON * z2.abs().max(z1.abs());
+                z2 - z1 <= bound(&n.first) + bound(&n.second) + slack
+            };
+            if rounding {
+                stats.rounding_ties += 1;
+                gap[k] = 0.0;
+            } else {
+                gap[k] = ((d2 - d1) / model.gap_scale(d1)).max(f64::MIN_POSITIVE);
+            }
         }
         Reference {
             width: vp.width,
@@ -270,6 +366,20 @@ impl RayCastOracle {
             window_gap,
         }
     }
+}
+
+/// The fixed-point position of the centre of pixel `(i, j)`.
+fn centre(i: u32, j: u32) -> (i64, i64) {
+    (
+        i64::from(pixel_center(i as i32)),
+        i64::from(pixel_center(j as i32)),
+    )
+}
+
+/// The window depth of candidate `c`'s screen triangle at the fixed-point
+/// centre `(x, y)`.
+fn depth_at(scene: &ScreenScene, c: &Candidate, x: i64, y: i64) -> DepthAt {
+    DepthAt::new(&scene.tris[c.tri as usize], x, y)
 }
 
 impl Hider for RayCastOracle {

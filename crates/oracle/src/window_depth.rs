@@ -9,7 +9,7 @@
 
 use hider_scene::{NO_ID, ScreenScene};
 
-use crate::nearest::{EMPTY, Nearest};
+use crate::nearest::{Candidate, EMPTY, Nearest};
 
 /// Per pixel centre: the nearest primitive on the window-depth planes and
 /// how far behind the runner-up is. Built by [`window_depth_reference`].
@@ -72,22 +72,33 @@ pub fn window_depth_reference(scene: &ScreenScene) -> WindowDepthReference {
     for tri in &scene.tris {
         tri.for_each_centre(vp, |i, j, covered| {
             if covered {
-                nearest[j as usize * w + i as usize].offer(tri.depth.at_pixel(i, j), tri.prim);
+                let c = Candidate {
+                    tri: 0,
+                    prim: tri.prim,
+                    key: tri.depth.at_pixel(i, j),
+                };
+                nearest[j as usize * w + i as usize].offer(c, |a, b| a.key.total_cmp(&b.key));
             }
         });
     }
-    let ids = nearest.iter().map(|n| n.first.1).collect();
+    let ids = nearest.iter().map(|n| n.first.prim).collect();
     let depth = nearest
         .iter()
-        .map(|n| if n.first.1 == NO_ID { 1.0 } else { n.first.0 })
+        .map(|n| {
+            if n.first.prim == NO_ID {
+                1.0
+            } else {
+                n.first.key
+            }
+        })
         .collect();
     let gap = nearest
         .iter()
         .map(|n| {
-            if n.second.1 == NO_ID {
+            if n.second.prim == NO_ID {
                 f64::INFINITY
             } else {
-                n.second.0 - n.first.0
+                n.second.key - n.first.key
             }
         })
         .collect();

@@ -6,6 +6,13 @@
 //! that all of its cuts keep ([`Piece::covers`]). The depth written is the
 //! source triangle's window-depth plane at the centre, as the z-buffer
 //! writes it, so the two frames can be compared value for value.
+//!
+//! The tie rule of every exact hider: where a piece would overwrite a
+//! centre whose painted surface has exactly the same window depth there
+//! (`f64`, the value the z-buffer compares) and a lower primitive id, the
+//! lower id stays, as a LESS depth test drawing in id order keeps it. The
+//! depth order cannot express this itself: two coplanar overlapping
+//! pieces may be painted in either order.
 
 use hider_geom::fixed::pixel_center;
 use hider_scene::{Error, Frame, Result, ScreenScene};
@@ -39,12 +46,24 @@ pub(crate) fn paint(
     let vp = scene.viewport;
     let width = frame.width() as usize;
     let mut writes = 0;
+    // The f64 window depth painted at each centre, for the tie rule.
+    let mut painted = vec![f64::INFINITY; frame.len()];
+    let mut keeps = |frame: &Frame, k: usize, z: f64, prim: u32| {
+        let tie = z == painted[k] && frame.ids[k] < prim;
+        if !tie {
+            painted[k] = z;
+        }
+        !tie
+    };
     for (rank, &id) in order.iter().enumerate() {
         let piece = &pieces[id as usize];
         match centres.map(|c| c[id as usize]) {
             Some(Centres::None) => continue,
             Some(Centres::One(i, j, z)) => {
                 let k = j as usize * width + i as usize;
+                if !keeps(frame, k, z, piece.prim) {
+                    continue;
+                }
                 frame.ids[k] = piece.prim;
                 frame.depth[k] = z as f32;
                 if let Some(o) = owner.as_deref_mut() {
@@ -85,8 +104,12 @@ pub(crate) fn paint(
                     continue;
                 }
                 let k = j as usize * width + i as usize;
+                let z = tri.depth.eval(px, py);
+                if !keeps(frame, k, z, piece.prim) {
+                    continue;
+                }
                 frame.ids[k] = piece.prim;
-                frame.depth[k] = tri.depth.eval(px, py) as f32;
+                frame.depth[k] = z as f32;
                 if let Some(o) = owner.as_deref_mut() {
                     o[k] = rank as u32;
                 }

@@ -15,7 +15,12 @@ pub(super) type Family = (String, Scene, Option<(Camera, (u32, u32))>);
 
 /// Decodes one family.
 pub(super) fn family(b: &mut Bytes<'_>) -> Family {
-    match b.pick(8) {
+    // Eight families by the first byte modulo 8; the upper half of the
+    // last one's bytes chooses the parallel layers (added later, so that
+    // stored cases decode as before).
+    let first = b.byte();
+    match first % 8 {
+        7 if first >= 128 => layers(b),
         0 => {
             let (order, mirrored, bits) = (2 + b.pick(5), b.pick(2) == 1, b.pick(9));
             (
@@ -72,6 +77,31 @@ pub(super) fn family(b: &mut Bytes<'_>) -> Family {
             (format!("heavy_overdraw {n} seed {seed}"), s, None)
         }
     }
+}
+
+/// Parallel layers `10^-4` to `10^-9` apart (relative), 2 to 5 of them,
+/// under a telephoto camera (distance 1e4, near and far 10 away, fovy 30),
+/// an ordinary one (near 6.35, far 31.8, fovy 45) or a tight depth range
+/// (distance 100, near and far 0.1 away, fovy 20): surfaces whose window
+/// depths every `f64` hider resolves although they are relatively close.
+fn layers(b: &mut Bytes<'_>) -> Family {
+    let exponent = b.int(4, 9);
+    let count = 2 + b.pick(4);
+    let seed = u64::from(b.byte());
+    let (name, distance, range, fovy) = [
+        ("telephoto", 1e4, (9990.0, 10010.0), 30.0),
+        ("ordinary", 12.7, (6.35, 31.8), 45.0),
+        ("tight", 100.0, (99.9, 100.1), 20.0),
+    ][b.pick(3) as usize];
+    let gap = 10f64.powi(-exponent);
+    let s = hard_cases::parallel_layers(count, distance, gap, range, fovy, seed);
+    let camera = s.camera.expect("the layers come with their camera");
+    let size = 8 + b.pick(57);
+    (
+        format!("parallel_layers {count} gap 1e-{exponent} {name} seed {seed}"),
+        s,
+        Some((camera, (size, size))),
+    )
 }
 
 /// Adds one mesh of triangles `(3k, 3k+1, 3k+2)`.

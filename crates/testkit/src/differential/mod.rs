@@ -3,8 +3,10 @@
 //! axis, small integer and dyadic lattices, coincident and nearly
 //! coincident planes, tiny near planes and huge far/near ratios, extreme
 //! scales and offsets, dense pixels, repeated vertex lists, degenerate and
-//! sliver triangles), and the check that every exact hider equals the
-//! oracle off ties on them ([`check`](mod@check)).
+//! sliver triangles, parallel layers `1e-4` to `1e-9` apart under
+//! telephoto, ordinary and tight depth ranges), and the check that every
+//! exact hider equals the oracle on them off exact ties, with no tolerance
+//! ([`check`](mod@check)).
 //!
 //! One decoder serves the `cargo fuzz` target and the workspace's
 //! proptest, so a finding of either replays in the other. Built with the
@@ -218,6 +220,29 @@ mod tests {
             }
         }
         assert!(families.len() >= 6, "{families:?}");
+    }
+
+    #[test]
+    fn parallel_layers_decode_and_every_exact_hider_orders_them() {
+        // 135 = 7 mod 8, in the upper half: the layers; then gap exponent
+        // 4 + 5 = 9, 2 + 1 = 3 layers, seed 7, and each of the cameras.
+        for camera in 0..3 {
+            let case = differential_case(&[135, 5, 1, 7, camera, 40]).unwrap();
+            assert!(
+                case.label.starts_with("parallel_layers 3 gap 1e-9"),
+                "{}",
+                case.label
+            );
+            let outcome = check_case(&case).unwrap_or_else(|e| panic!("{e}"));
+            assert!(
+                outcome.refused.is_none() && outcome.hiders > 0,
+                "{outcome:?}"
+            );
+        }
+        // Below 128 the byte still means heavy overdraw, as stored cases
+        // expect.
+        let case = differential_case(&[7]).unwrap();
+        assert!(case.label.starts_with("heavy_overdraw"), "{}", case.label);
     }
 
     #[test]

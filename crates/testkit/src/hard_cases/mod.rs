@@ -12,6 +12,7 @@
 //! | [`intersecting_pairs`], [`interpenetrating_boxes`] | any per-triangle depth order (painter's without splitting) |
 //! | [`coplanar_overlaps`] | z-fighting: every overlap is a depth tie |
 //! | [`near_coplanar_far`] | depth-buffer precision far from the camera |
+//! | [`parallel_layers`] | layers `1e-4` to `1e-9` apart under telephoto, ordinary and tight depth ranges: ties that are not ties |
 //! | [`slivers`], [`near_degenerate_fan`] | area near zero, ill-conditioned planes |
 //! | [`fan`], [`bipyramid`], [`torus`] (and `procedural::{cube, uv_sphere}`) | cracks and double hits on shared edges and vertices |
 //! | [`near_plane_crossing`] | near-plane clipping, geometry behind the eye |
@@ -46,6 +47,7 @@ pub use extreme::{far_plane_triangle, offset_sphere, one_pixel_pile, repeated_po
 pub use ordering::{cyclic_overlap, heavy_overdraw, interpenetrating_boxes, intersecting_pairs};
 pub use precision::{
     coplanar_overlaps, huge_coordinates, huge_depth_range, near_coplanar_far, near_plane_crossing,
+    parallel_layers,
 };
 pub use shared_edges::{bipyramid, fan, torus};
 pub use symmetric::{bar_cycle, pinwheel};
@@ -85,6 +87,26 @@ pub fn all(seed: u64) -> Vec<(&'static str, Scene)> {
         ("one_pixel_pile", one_pixel_pile(200, s(14))),
         ("repeated_polygon", repeated_polygon(20)),
         ("offset_sphere", offset_sphere(12, 1e6)),
+        (
+            "telephoto_layers",
+            parallel_layers(4, 1e4, 5e-6, (9990.0, 10010.0), 30.0, s(15)),
+        ),
+        (
+            "tight_range_layers_1e-7",
+            parallel_layers(3, 100.0, 1e-7, (99.9, 100.1), 20.0, s(16)),
+        ),
+        (
+            "layers_1e-4",
+            parallel_layers(3, 12.7, 1e-4, (6.35, 31.8), 45.0, s(17)),
+        ),
+        (
+            "layers_1e-6",
+            parallel_layers(3, 12.7, 1e-6, (6.35, 31.8), 45.0, s(18)),
+        ),
+        (
+            "layers_1e-9",
+            parallel_layers(3, 12.7, 1e-9, (6.35, 31.8), 45.0, s(19)),
+        ),
     ]
 }
 

@@ -71,6 +71,65 @@ pub fn near_coplanar_far(layers: u32, distance: f64, relative_gap: f64, seed: u6
     s
 }
 
+/// `layers` parallel quads, slightly tilted, stacked `relative_gap *
+/// distance` apart along the view axis at `distance` in front of a camera
+/// at the origin looking down -Z with `fovy_degrees` and the depth range
+/// `near..far`, shifted sideways so they overlap partly and listed far to
+/// near (so a tie rule of "lower id wins" shows the farthest layer where
+/// a hider calls them tied). The tilt keeps every layer within the depth
+/// range over the visible part of it.
+///
+/// The families that exposed the oracle's old tolerance-based ties:
+/// telephoto views (`fovy` 30 at `distance` 1e4, near and far 10 away),
+/// ordinary cameras with layers `1e-4` to `1e-9` apart, and tight depth
+/// ranges. Window depth separates such layers by far more than `f64`
+/// rounding, so every `f64` hider must order them as the oracle does.
+///
+/// ```
+/// use hider_testkit::hard_cases::parallel_layers;
+///
+/// let s = parallel_layers(3, 1e4, 5e-6, (9990.0, 10010.0), 30.0, 1);
+/// assert_eq!(s.triangle_count(), 6);
+/// ```
+pub fn parallel_layers(
+    layers: u32,
+    distance: f64,
+    relative_gap: f64,
+    (near, far): (f64, f64),
+    fovy_degrees: f64,
+    seed: u64,
+) -> Scene {
+    let mut rng = SplitMix64::new(seed);
+    let mut s = Scene::default();
+    let half = distance * (0.5 * fovy_degrees).to_radians().tan();
+    let size = 1.2 * half;
+    // Depth varies by about `2 size tan(tilt)` across a layer: keep that
+    // within a quarter of the room between the layers and near or far.
+    let room = (distance - near).min(far - distance * (1.0 + relative_gap * f64::from(layers)));
+    let tilt_angle = (0.25 * room / (2.0 * size)).atan().min(0.3);
+    let tilt = DQuat::from_axis_angle(DVec3::new(1.0, 0.3, 0.0).normalize(), tilt_angle);
+    for k in 0..layers {
+        let z = -distance * (1.0 + relative_gap * f64::from(layers - 1 - k));
+        let shift = tilt * DVec3::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), 0.0) * size;
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        let positions = corners
+            .iter()
+            .map(|&(x, y)| {
+                tilt * DVec3::new(x * size, y * size, 0.0) + shift + DVec3::new(0.0, 0.0, z)
+            })
+            .collect();
+        push(
+            &mut s,
+            format!("layer_{k}"),
+            positions,
+            vec![[0, 1, 2], [0, 2, 3]],
+            colour(k),
+        );
+    }
+    s.camera = Some(look_at(DVec3::ZERO, DVec3::NEG_Z, near, far).with_fovy_degrees(fovy_degrees));
+    s
+}
+
 /// `count` triangles around a camera at the origin looking down -Z (near
 /// 0.1): corners anywhere in `z ∈ [-5, 2]`, so many cross the near plane,
 /// some lie partly or wholly behind the eye, and some straddle the eye
