@@ -46,6 +46,7 @@ pub mod atomic;
 pub mod error;
 pub mod frame;
 pub mod hider;
+pub mod input;
 pub mod load;
 pub mod model;
 pub mod obj;

@@ -27,13 +27,14 @@ pub(super) fn load_mtl(
     let path = base.join(normalize_separators(&mtl.to_string_lossy()));
     let warn = |message: String| warnings.borrow_mut().push(message);
     let none = || Ok((Vec::new(), HashMap::new()));
-    let bytes = match std::fs::read(&path) {
+    let bytes = match crate::input::read_regular(
+        &path,
+        "MTL file size in bytes",
+        crate::input::MAX_MTL_BYTES,
+    ) {
         Ok(bytes) => bytes,
         Err(e) => {
-            warn(format!(
-                "{}: cannot read MTL ({e}); using the default material",
-                path.display()
-            ));
+            warn(format!("cannot read MTL ({e}); using the default material"));
             return none();
         }
     };

@@ -119,6 +119,7 @@ fn unsimulated(key: &str) -> Option<&'static str> {
 pub(super) fn warnings(lines: &[&str], file: &str) -> Vec<String> {
     let mut seen: Vec<String> = Vec::new();
     let mut out = Vec::new();
+    let mut out_of_range = Vec::new();
     let mut once = |what: String, line: usize, message: String| {
         if !seen.contains(&what) {
             seen.push(what);
@@ -163,17 +164,54 @@ pub(super) fn warnings(lines: &[&str], file: &str) -> Vec<String> {
                     );
                 }
             }
-            "d" if words.next() == Some("-halo") => once(
-                "d -halo".to_owned(),
-                k,
-                "'d -halo': the halo (opacity growing towards the silhouette) is not \
-                 simulated; the plain dissolve is used"
-                    .to_owned(),
-            ),
+            "Kd" | "Ka" | "Ks" | "Ke" | "d" | "Tr" | "Ns" => {
+                let values: Vec<&str> = text.split_whitespace().skip(1).collect();
+                if let Some(problem) = value_problem(key, &values) {
+                    out_of_range.push(format!("{file}:{}: '{text}' {problem}", k + 1));
+                }
+                if key == "d" && values.first() == Some(&"-halo") {
+                    once(
+                        "d -halo".to_owned(),
+                        k,
+                        "'d -halo': the halo (opacity growing towards the silhouette) is not \
+                         simulated; the plain dissolve is used"
+                            .to_owned(),
+                    );
+                }
+            }
             _ => {}
         }
     }
+    out.extend(out_of_range);
     out
+}
+
+/// What is wrong with the values of a colour (`Kd`...), a dissolve (`d`,
+/// `Tr`) or an exponent (`Ns`), and what is used instead; `None` when they
+/// are fine (or missing: tobj's parse reports that).
+fn value_problem(key: &str, values: &[&str]) -> Option<String> {
+    let numbers: Vec<f64> = values
+        .iter()
+        .filter(|v| **v != "-halo")
+        .filter_map(|v| v.parse().ok())
+        .collect();
+    let (lo, hi) = match key {
+        "Ns" => (0.0, 1000.0),
+        _ => (0.0, 1.0),
+    };
+    if numbers.iter().any(|x| !x.is_finite()) {
+        let used = match key {
+            "d" => "opaque (1)",
+            "Tr" => "opaque (0)",
+            "Ns" => "0",
+            _ => "0 (black)",
+        };
+        return Some(format!("is not a number: {used} is used"));
+    }
+    numbers
+        .iter()
+        .any(|&x| x < lo || x > hi)
+        .then(|| format!("is out of range ({lo} to {hi}): clamped"))
 }
 
 /// `line` as tobj can parse it: `d -halo X` becomes `d X` (tobj refuses
@@ -234,6 +272,39 @@ mod tests {
         assert!(w[2].starts_with("m.mtl:5: 'illum 4'"), "{}", w[2]);
         assert!(w[3].starts_with("m.mtl:6: 'd -halo'"), "{}", w[3]);
         assert_eq!(without_halo("d -halo 0.5").as_deref(), Some("d 0.5"));
+        // Values that are not numbers or out of range are named.
+        let bad = warnings(
+            &[
+                "newmtl b",
+                "d nan",
+                "Kd nan 0 0",
+                "d -0.5",
+                "Ns 2000",
+                "Kd 0.5 0.5 0.5",
+            ],
+            "b.mtl",
+        );
+        assert_eq!(bad.len(), 4, "{bad:#?}");
+        assert!(
+            bad[0].starts_with("b.mtl:2: 'd nan' is not a number: opaque (1)"),
+            "{}",
+            bad[0]
+        );
+        assert!(
+            bad[1].contains("'Kd nan 0 0' is not a number: 0 (black)"),
+            "{}",
+            bad[1]
+        );
+        assert!(
+            bad[2].contains("'d -0.5' is out of range (0 to 1): clamped"),
+            "{}",
+            bad[2]
+        );
+        assert!(
+            bad[3].contains("'Ns 2000' is out of range (0 to 1000)"),
+            "{}",
+            bad[3]
+        );
         assert_eq!(without_halo("d 0.5"), None);
     }
 }

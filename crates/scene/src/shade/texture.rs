@@ -52,6 +52,11 @@ pub fn probe(path: &Path) -> Result<(u32, u32)> {
         path: path.to_path_buf(),
         message: e.to_string(),
     };
+    crate::input::check_regular(
+        path,
+        "texture file size in bytes",
+        crate::input::MAX_TEXTURE_FILE_BYTES,
+    )?;
     let reader = image::ImageReader::open(path)
         .map_err(|source| Error::Io {
             path: path.to_path_buf(),
