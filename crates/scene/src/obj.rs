@@ -142,14 +142,17 @@ pub fn load_obj_bytes(
             .iter_mut()
             .filter_map(|m| m.diffuse_texture.as_mut()),
     );
+    let mut smoothed = false;
     for model in models {
         let mut mesh = mesh_from_tobj(model, scene.materials.len(), &mut warnings);
         if smoothing.on && mesh.normals.is_empty() {
             mesh.normals = smooth_normals(&mesh);
+            smoothed = true;
         }
         scene.meshes.push(mesh);
     }
-    if smoothing.groups > 1 {
+    // With vn the groups change nothing: only smoothing done here is named.
+    if smoothed && smoothing.groups > 1 {
         warnings.push(format!(
             "{}: {} smoothing groups ('s' statements): each object is smoothed as one group \
              (give faces meant to meet at a hard edge their own object, or write vn)",
