@@ -132,34 +132,40 @@ pub(crate) fn lighting(scene: &Scene, shading: bool) -> Evidence {
 }
 
 pub(crate) fn back_faces(scene: &Scene, view: &View, screen: &ScreenScene, ex: usize) -> Evidence {
-    let hidden = backface::hidden_back_faces(scene, view);
-    // Mesh index of each primitive id.
-    let mut mesh_of = Vec::with_capacity(scene.triangle_count());
-    for (m, mesh) in scene.meshes.iter().enumerate() {
-        mesh_of.extend(std::iter::repeat_n(m, mesh.indices.len()));
-    }
     let back: Vec<u32> = screen
         .tris
         .iter()
         .filter(|t| !t.front_facing)
         .map(|t| t.prim)
         .collect();
+    if back.is_empty() {
+        // Nothing to cull: the closed-shell search would decide nothing.
+        return Evidence::found(
+            false,
+            0,
+            Vec::new(),
+            "no back-facing triangles on screen".to_owned(),
+        );
+    }
+    let shells = backface::hidden_back_faces(scene, view);
     let exposed: Vec<u32> = back
         .iter()
         .copied()
-        .filter(|&p| !hidden[mesh_of[p as usize]])
+        .filter(|&p| !shells.hidden.get(p as usize).copied().unwrap_or(false))
         .collect();
-    let closed = hidden.iter().filter(|h| **h).count();
     Evidence::found(
         !exposed.is_empty(),
         back.len() as u64,
         exposed.iter().take(ex).map(|&p| vec![p]).collect(),
         format!(
-            "{} back-facing triangles on screen, {} of them possibly visible; {} of {} meshes \
-             closed, outward and uncut (their back faces are hidden)",
+            "{} back-facing triangles on screen, {} of them possibly visible; {} of {} closed \
+             shells outward and uncut (their back faces are hidden); {} of {} meshes certainly \
+             open (edge hash)",
             back.len(),
             exposed.len(),
-            closed,
+            shells.hiding_shells,
+            shells.closed_shells,
+            shells.open_by_hash,
             scene.meshes.len()
         ),
     )
