@@ -244,7 +244,11 @@ fn the_plan_line_says_anti_aliased_when_the_hider_anti_aliases() {
     glass.materials[0].opacity = 0.5;
     let planned = auto(&glass, &options()).unwrap();
     assert_eq!(planned.plan.algo, "abuffer");
-    assert!(planned.plan.stages.multisample, "{}", planned.summary());
+    assert!(
+        planned.plan.stages_run().multisample,
+        "{}",
+        planned.summary()
+    );
     assert!(
         planned.summary().contains("multisample"),
         "{}",
@@ -257,7 +261,7 @@ fn the_plan_line_says_anti_aliased_when_the_hider_anti_aliases() {
     );
     // The one-sample z-buffer runs no multisample stage.
     let planned = auto(&procedural::cube(), &options()).unwrap();
-    assert!(!planned.plan.stages.multisample);
+    assert!(!planned.plan.stages_run().multisample);
     assert!(
         !planned.summary().contains("anti-aliased"),
         "{}",

@@ -5,7 +5,7 @@
 //!
 //! | effect | present when | evidence |
 //! |---|---|---|
-//! | transparency | a triangle on screen uses a material with opacity < 1 | triangles, materials |
+//! | transparency | a triangle on screen uses a material with opacity < 1 and, one sample per pixel, some pixel centre shows it in front of every opaque surface | triangles, materials |
 //! | textures | a triangle on screen has uvs and a `map_Kd` whose image loads | triangles, textures that fail |
 //! | lighting | shading is asked (the scene's lights, or the head light) | lights, meshes with normals |
 //! | anti-aliasing | asked | — |
@@ -80,7 +80,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         on_screen: screen.tris.len() as u64,
         ordered_polygons: options.ordered_polygons,
         depth_ratio: depth_ratio(&view, &screen, &in_view),
-        transparency: evidence::transparency(&screen, &in_view, ex),
+        transparency: evidence::transparency(&screen, &in_view, !options.antialiasing, ex),
         textures: evidence::textures(&screen, &in_view, ex),
         lighting: evidence::lighting(scene, options.shading),
         antialiasing: evidence::antialiasing(options.antialiasing),
