@@ -312,3 +312,27 @@ fn tilted_coplanar_and_near_coplanar_overlaps_are_found() {
     let fx = analyze(&tilted_pair(1e-2), &options()).unwrap();
     assert_eq!(fx.coplanar_overlaps.count, 0);
 }
+
+#[test]
+fn the_quick_raster_analysis_plans_as_the_full_one() {
+    let mut scenes = hider_testkit::hard_cases::all(36);
+    scenes.push(("soup", procedural::random_soup(3000, 5)));
+    let mut quick = 0;
+    for (name, scene) in scenes {
+        for opts in [options(), options().with_antialiasing(true)] {
+            let opts = opts.with_pair_searches(false);
+            let full = hider_plan::plan(&analyze(&scene, &opts).unwrap());
+            let planned = auto(&scene, &opts).unwrap();
+            assert_eq!(planned.plan.algo, full.algo, "{name}");
+            assert_eq!(planned.plan.cull_back_faces, full.cull_back_faces, "{name}");
+            assert_eq!(planned.plan.stages, full.stages, "{name}");
+            assert_eq!(
+                planned.prepare,
+                full.prepare_options(opts.prepare),
+                "{name}"
+            );
+            quick += usize::from(planned.effects.back_faces.detail.contains("edge hash"));
+        }
+    }
+    assert!(quick >= 10, "the quick path ran {quick} times");
+}

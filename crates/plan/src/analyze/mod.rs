@@ -32,6 +32,7 @@ pub mod intersect;
 mod options;
 pub mod overlap;
 pub mod predicates;
+mod quick;
 mod report;
 mod search;
 
@@ -111,6 +112,20 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         view,
         screen,
     })
+}
+
+/// The effects and view a plan needs: [`analyze_prepared`]'s, or, for a
+/// raster plan that reads nothing of the prepared scene, the quick
+/// analysis without the front end (see `quick.rs`: no translucent or
+/// textured material, and no mesh that the edge hash lets be closed).
+pub(crate) fn analyze_for_plan(scene: &Scene, options: &RenderOptions) -> Result<(Effects, View)> {
+    let started = Instant::now();
+    let view = options.view(scene)?;
+    if let Some(mut fx) = quick::effects(scene, &view, options) {
+        fx.times.total_ms = ms(started);
+        return Ok((fx, view));
+    }
+    analyze_prepared(scene, options).map(|a| (a.effects, a.view))
 }
 
 /// The two searches over pairs: intersections and coplanar overlaps in

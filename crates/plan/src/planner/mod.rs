@@ -37,7 +37,7 @@ use hider_scene::{DynHider, PrepareOptions, Scene, Stages, View};
 
 pub use rules::MAX_F32_DEPTH_RATIO;
 
-use crate::analyze::{Effects, RenderOptions, analyze_prepared};
+use crate::analyze::{Effects, RenderOptions, analyze_for_plan};
 use crate::config::HiderConfig;
 use crate::error::Result;
 use crate::registry::{self, Kind, Knobs};
@@ -150,13 +150,13 @@ impl Planned {
 /// # Ok::<(), hider_plan::PlanError>(())
 /// ```
 pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
-    let analysis = analyze_prepared(scene, options)?;
-    let plan = plan(&analysis.effects);
+    let (effects, view) = analyze_for_plan(scene, options)?;
+    let plan = plan(&effects);
     Ok(Planned {
-        effects: analysis.effects,
+        effects,
         prepare: plan.prepare_options(options.prepare),
         plan,
-        view: analysis.view,
+        view,
         requested: options.requested(),
     })
 }

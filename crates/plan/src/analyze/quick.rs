@@ -1,0 +1,133 @@
+//! The quick analysis a raster plan can use: no front end at all when
+//! nothing the planner reads needs the prepared scene.
+//!
+//! Preparing every triangle (transform, clip, snap, depth planes) is what
+//! the full analysis starts with, and on a soup of 10^6 triangles it costs
+//! more than the z-buffer's whole render. A raster plan (no ordered
+//! polygons, no pair searches) reads the prepared scene for four things
+//! only: translucent and textured triangles in view, whether every back
+//! face on screen is hidden (culling), and how deep the geometry in view
+//! goes (reversed-Z). When no material is translucent or textured, and no
+//! mesh can be closed (the cheap edge hash of [`super::backface`] turns
+//! every mesh down, so culling cannot be exact), the first three are
+//! settled without the front end, and the depth is read off a frustum test
+//! on the world-space corners, which keeps every triangle the front end
+//! would (and perhaps a few it clips away: the depth found is never less
+//! than the full analysis's, which only ever moves the plan toward the
+//! reversed-Z buffer, exact as well).
+
+use glam::{DVec3, DVec4};
+use hider_geom::Projection;
+use hider_scene::{Scene, View};
+
+use super::backface;
+use super::effects::{Effects, Evidence};
+use super::evidence;
+use super::options::RenderOptions;
+
+/// The effects of a raster plan without the front end, or `None` when the
+/// plan needs the prepared scene (see the module documentation).
+pub(crate) fn effects(scene: &Scene, view: &View, options: &RenderOptions) -> Option<Effects> {
+    if options.pair_searches || options.ordered_polygons {
+        return None;
+    }
+    let plain = scene
+        .materials
+        .iter()
+        .all(|m| m.opacity >= 1.0 && m.diffuse_texture.is_none());
+    if !plain
+        || scene
+            .meshes
+            .iter()
+            .any(|m| backface::maybe_closed(&m.positions, &m.indices))
+    {
+        return None;
+    }
+    let (in_view, deepest) = frustum(scene, view);
+    let skipped = Evidence {
+        present: true,
+        certain: false,
+        detail: "not searched: only ordered polygons needs it".to_owned(),
+        ..Evidence::default()
+    };
+    Some(Effects {
+        triangles: scene.triangle_count() as u64,
+        on_screen: in_view,
+        ordered_polygons: false,
+        depth_ratio: deepest,
+        transparency: Evidence::found(false, 0, Vec::new(), "every material is opaque".into()),
+        textures: Evidence::found(false, 0, Vec::new(), "no material has a map_Kd".into()),
+        lighting: evidence::lighting(scene, options.shading),
+        antialiasing: evidence::antialiasing(options.antialiasing),
+        back_faces: Evidence {
+            present: true,
+            certain: false,
+            detail: format!(
+                "not counted: none of the {} meshes can be closed (edge hash), so no back face \
+                 is certainly hidden",
+                scene.meshes.len()
+            ),
+            ..Evidence::default()
+        },
+        cull_back_faces_exact: false,
+        intersections: skipped.clone(),
+        coplanar_overlaps: skipped.clone(),
+        cyclic_overlap: skipped.clone(),
+        naive_order_violations: skipped,
+        ..Effects::default()
+    })
+}
+
+/// The triangles not wholly outside one plane of the view's frustum, and
+/// the depth ratio over them (deepest corner's distance, at most the far
+/// plane's, over the near distance; 1 for an orthographic camera).
+fn frustum(scene: &Scene, view: &View) -> (u64, f64) {
+    // Eye-relative, as the front end transforms (see `backface`).
+    let mut eye_to_camera = view.camera.view_matrix();
+    eye_to_camera.w_axis = DVec4::W;
+    let eye = view.camera.eye;
+    let aspect = f64::from(view.viewport.width) / f64::from(view.viewport.height);
+    let projection = view.camera.projection_matrix(aspect);
+    let (near, far, perspective) = match view.camera.projection {
+        Projection::Perspective { near, far, .. } => (near, far, true),
+        Projection::Orthographic { near, far, .. } => (near, far, false),
+    };
+    // A hair of slack on every plane: a triangle the front end keeps by
+    // rounding is kept here too.
+    let slack = 1.0 + 1e-9;
+    let mut count = 0u64;
+    let mut deepest = near;
+    for mesh in &scene.meshes {
+        let camera: Vec<DVec3> = mesh
+            .positions
+            .iter()
+            .map(|&p| eye_to_camera.transform_point3(p - eye))
+            .collect();
+        let clip: Vec<DVec4> = camera.iter().map(|&c| projection * c.extend(1.0)).collect();
+        for t in &mesh.indices {
+            let c = t.map(|i| clip[i as usize]);
+            let outside = |f: &dyn Fn(DVec4) -> bool| c.iter().all(|&v| f(v));
+            if outside(&|v| v.x > v.w.abs() * slack)
+                || outside(&|v| v.x < -v.w.abs() * slack)
+                || outside(&|v| v.y > v.w.abs() * slack)
+                || outside(&|v| v.y < -v.w.abs() * slack)
+                || outside(&|v| v.z > v.w.abs() * slack)
+                || outside(&|v| v.z < -v.w.abs() * slack)
+            {
+                continue;
+            }
+            count += 1;
+            if perspective {
+                for &i in t {
+                    deepest = deepest.max(-camera[i as usize].z);
+                }
+            }
+        }
+    }
+    let ratio = if perspective {
+        deepest.min(far) / near
+    } else {
+        1.0
+    };
+    (count, ratio)
+}
