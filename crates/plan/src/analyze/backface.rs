@@ -128,22 +128,21 @@ pub fn maybe_closed(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
     if indices.is_empty() {
         return false;
     }
-    let hash: Vec<u64> = positions
-        .iter()
-        .map(|p| {
-            let [x, y, z] = [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits());
-            mix(mix(mix(x) ^ y) ^ z)
-        })
-        .collect();
+    // Hashed per use rather than once per vertex: no allocation, and a
+    // soup's vertices are used once each anyway.
+    let hash = |p: DVec3| {
+        let [x, y, z] = [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits());
+        mix(mix(mix(x) ^ y) ^ z)
+    };
     let mut sum = 0u64;
     let mut with_area = 0u64;
     for t in indices {
-        let h = t.map(|i| hash.get(i as usize).copied().unwrap_or(0));
         let p = t.map(|i| positions.get(i as usize).copied().unwrap_or(DVec3::NAN));
         if p[0] == p[1] || p[1] == p[2] || p[0] == p[2] {
             continue; // no area, no edges (as the edge check skips it)
         }
         with_area += 1;
+        let h = p.map(hash);
         for k in 0..3 {
             let (a, b) = (h[k], h[(k + 1) % 3]);
             sum = sum

@@ -16,7 +16,7 @@
 //! than the full analysis's, which only ever moves the plan toward the
 //! reversed-Z buffer, exact as well).
 
-use glam::{DVec3, DVec4};
+use glam::DVec4;
 use hider_geom::Projection;
 use hider_scene::{Scene, View};
 
@@ -97,15 +97,16 @@ fn frustum(scene: &Scene, view: &View) -> (u64, f64) {
     let slack = 1.0 + 1e-9;
     let mut count = 0u64;
     let mut deepest = near;
+    // World (eye-relative) to clip space in one matrix, and the view
+    // distance from the camera matrix's third row; per corner use, no
+    // per-vertex arrays (on 3 * 10^6 corners they cost more in page faults
+    // than the arithmetic).
+    let to_clip = projection * eye_to_camera;
+    let depth_row = eye_to_camera.row(2);
     for mesh in &scene.meshes {
-        let camera: Vec<DVec3> = mesh
-            .positions
-            .iter()
-            .map(|&p| eye_to_camera.transform_point3(p - eye))
-            .collect();
-        let clip: Vec<DVec4> = camera.iter().map(|&c| projection * c.extend(1.0)).collect();
         for t in &mesh.indices {
-            let c = t.map(|i| clip[i as usize]);
+            let rel = t.map(|i| (mesh.positions[i as usize] - eye).extend(1.0));
+            let c = rel.map(|r| to_clip * r);
             let outside = |f: &dyn Fn(DVec4) -> bool| c.iter().all(|&v| f(v));
             if outside(&|v| v.x > v.w.abs() * slack)
                 || outside(&|v| v.x < -v.w.abs() * slack)
@@ -118,8 +119,8 @@ fn frustum(scene: &Scene, view: &View) -> (u64, f64) {
             }
             count += 1;
             if perspective {
-                for &i in t {
-                    deepest = deepest.max(-camera[i as usize].z);
+                for r in rel {
+                    deepest = deepest.max(-depth_row.dot(r));
                 }
             }
         }
