@@ -117,7 +117,8 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
 /// The effects and view a plan needs: [`analyze_prepared`]'s, or, for a
 /// raster plan that reads nothing of the prepared scene, the quick
 /// analysis without the front end (see `quick.rs`: no translucent or
-/// textured material, and no mesh that the edge hash lets be closed).
+/// textured material, and either no mesh that the edge hash lets be
+/// closed or every triangle in a shell that hides its back faces).
 pub(crate) fn analyze_for_plan(scene: &Scene, options: &RenderOptions) -> Result<(Effects, View)> {
     let started = Instant::now();
     let view = options.view(scene)?;

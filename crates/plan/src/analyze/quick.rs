@@ -7,10 +7,11 @@
 //! polygons, no pair searches) reads the prepared scene for four things
 //! only: translucent and textured triangles in view, whether every back
 //! face on screen is hidden (culling), and how deep the geometry in view
-//! goes (reversed-Z). When no material is translucent or textured, and no
-//! mesh can be closed (the cheap edge hash of [`super::backface`] turns
-//! every mesh down, so culling cannot be exact), the first three are
-//! settled without the front end, and the depth is read off a frustum test
+//! goes (reversed-Z). When no material is translucent or textured, and
+//! either no mesh can be closed (the cheap edge hash of [`super::backface`]
+//! turns every mesh down, so culling cannot be exact) or every triangle is
+//! in a closed, outward, uncut shell (culling is exact wherever the back
+//! faces fall), the first three are settled without the front end, and the depth is read off a frustum test
 //! on the world-space corners, which keeps every triangle the front end
 //! would (and perhaps a few it clips away: the depth found is never less
 //! than the full analysis's, which only ever moves the plan toward the
@@ -35,15 +36,53 @@ pub(crate) fn effects(scene: &Scene, view: &View, options: &RenderOptions) -> Op
         .materials
         .iter()
         .all(|m| m.opacity >= 1.0 && m.diffuse_texture.is_none());
-    if !plain
-        || scene
-            .meshes
-            .iter()
-            .any(|m| backface::maybe_closed(&m.positions, &m.indices))
-    {
+    if !plain {
         return None;
     }
+    let closed = scene
+        .meshes
+        .iter()
+        .filter(|m| backface::maybe_closed(&m.positions, &m.indices))
+        .count();
+    // Culling is settled without the screen when no mesh can be closed
+    // (never exact) or every triangle is in a shell that hides its back
+    // faces (exact wherever they are); anything between needs to know
+    // which back faces are on screen.
+    let all_hidden = if closed == 0 {
+        false
+    } else if closed == scene.meshes.len() {
+        let shells = backface::hidden_back_faces(scene, view);
+        if !shells.hidden.iter().all(|&h| h) {
+            return None;
+        }
+        true
+    } else {
+        return None;
+    };
     let (in_view, deepest) = frustum(scene, view);
+    let back_faces = if all_hidden {
+        Evidence::found(
+            false,
+            0,
+            Vec::new(),
+            format!(
+                "not counted: every triangle of the {} meshes is in a closed shell, outward and \
+                 uncut (its back faces are hidden)",
+                scene.meshes.len()
+            ),
+        )
+    } else {
+        Evidence {
+            present: true,
+            certain: false,
+            detail: format!(
+                "not counted: none of the {} meshes can be closed (edge hash), so no back face \
+                 is certainly hidden",
+                scene.meshes.len()
+            ),
+            ..Evidence::default()
+        }
+    };
     let skipped = Evidence {
         present: true,
         certain: false,
@@ -59,17 +98,9 @@ pub(crate) fn effects(scene: &Scene, view: &View, options: &RenderOptions) -> Op
         textures: Evidence::found(false, 0, Vec::new(), "no material has a map_Kd".into()),
         lighting: evidence::lighting(scene, options.shading),
         antialiasing: evidence::antialiasing(options.antialiasing),
-        back_faces: Evidence {
-            present: true,
-            certain: false,
-            detail: format!(
-                "not counted: none of the {} meshes can be closed (edge hash), so no back face \
-                 is certainly hidden",
-                scene.meshes.len()
-            ),
-            ..Evidence::default()
-        },
-        cull_back_faces_exact: false,
+        back_faces,
+        // A shell in view shows back faces; culling them saves work.
+        cull_back_faces_exact: all_hidden && in_view > 0,
         intersections: skipped.clone(),
         coplanar_overlaps: skipped.clone(),
         cyclic_overlap: skipped.clone(),
