@@ -128,12 +128,20 @@ pub fn maybe_closed(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
     if indices.is_empty() {
         return false;
     }
-    // Hashed per use rather than once per vertex: no allocation, and a
-    // soup's vertices are used once each anyway.
+    // Any hash keeps the test sound (a closed mesh's sum cancels exactly
+    // whatever the values), so a cheap one will do: two rotations and
+    // one mix per position. Meshes that share vertices
+    // hash each once; a soup, whose vertices are used once each anyway,
+    // hashes per use and allocates nothing.
     let hash = |p: DVec3| {
         let [x, y, z] = [p.x, p.y, p.z].map(|v| (v + 0.0).to_bits());
-        mix(mix(mix(x) ^ y) ^ z)
+        // Rotated apart so that the sign and exponent bits of the three
+        // coordinates land on different bits (a multiply alone never moves
+        // a bit down: +-1 coordinates then hashed alike).
+        mix(x ^ y.rotate_left(21) ^ z.rotate_left(42))
     };
+    let shared: Option<Vec<u64>> =
+        (positions.len() < indices.len()).then(|| positions.iter().map(|&p| hash(p)).collect());
     let mut sum = 0u64;
     let mut with_area = 0u64;
     for t in indices {
@@ -142,7 +150,10 @@ pub fn maybe_closed(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
             continue; // no area, no edges (as the edge check skips it)
         }
         with_area += 1;
-        let h = p.map(hash);
+        let h = match &shared {
+            Some(h) => t.map(|i| h[i as usize]),
+            None => p.map(hash),
+        };
         for k in 0..3 {
             let (a, b) = (h[k], h[(k + 1) % 3]);
             sum = sum
@@ -154,6 +165,9 @@ pub fn maybe_closed(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
 }
 
 /// A hash of the directed edge `a -> b` (not symmetric in its arguments).
+/// It must be far from linear: the unmatched edges of a hole form a cycle,
+/// and the linear part of any sum around a cycle cancels (XOR and a
+/// multiply alone left a cube with one face removed "closed").
 fn directed(a: u64, b: u64) -> u64 {
     mix(a.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ b.rotate_left(29))
 }
@@ -183,10 +197,27 @@ pub fn closed_outward(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
 /// beside each) costs less than millions of hash-map updates. The two
 /// uses of an edge, neighbours once sorted, join their triangles' shells.
 fn shells(positions: &[DVec3], indices: &[[u32; 3]]) -> Option<Shells> {
+    // The mesh's own vertex indices first: when its edges pair up by
+    // index, the surface is closed whatever welding would add (a shared
+    // index is a shared position), and the sort of every position that
+    // welding costs is saved. Split vertices (OBJ files with uvs or
+    // normals) need the welded ids.
+    if positions.len() < 1 << 31 {
+        let own: Vec<u32> = (0..positions.len() as u32).collect();
+        if let Some(shells) = shells_by(&own, positions, indices) {
+            return Some(shells);
+        }
+    }
     let (ids, welded) = weld(positions);
     if welded >= 1 << 31 {
         return None; // the keys below need ids below 2^31
     }
+    shells_by(&ids, positions, indices)
+}
+
+/// [`shells`] with the vertex ids `ids` (indexed like `positions`, below
+/// 2^31).
+fn shells_by(ids: &[u32], positions: &[DVec3], indices: &[[u32; 3]]) -> Option<Shells> {
     let mut edges: Vec<(u64, u32)> = Vec::with_capacity(indices.len() * 3);
     for (k, t) in indices.iter().enumerate() {
         let w = t.map(|i| ids[i as usize]);
