@@ -4,6 +4,7 @@
 mod analyze;
 mod args;
 mod bench;
+mod camera_args;
 mod empty;
 mod model;
 mod outputs;
@@ -55,7 +56,7 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(e) if e.use_stderr() => {
             // Usage errors: one line naming the flag and value, status 2.
-            eprintln!("hider: error: {}", args::usage_error_line(&e));
+            progress::eprint_line(&format!("hider: error: {}", args::usage_error_line(&e)));
             return ExitCode::from(2);
         }
         Err(e) => {
@@ -68,18 +69,25 @@ fn main() -> ExitCode {
         Command::Render(args) => render::run(&args),
         Command::Analyze(args) => analyze::run(&args),
         Command::Bench { args } => return bench::run(&args),
-        Command::List => {
-            for e in hider::registry::all() {
-                println!("{:<20} {:?}: {}", e.name, e.kind, e.description);
-            }
-            Ok(())
-        }
+        Command::List => list().map_err(Into::into),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("hider: error: {}", hider_plan::error_line(e.as_ref()));
+            progress::eprint_line(&format!(
+                "hider: error: {}",
+                hider_plan::error_line(e.as_ref())
+            ));
             ExitCode::from(2)
         }
     }
+}
+
+/// `hider list`: one line per registered hider (a closed pipe ends it
+/// quietly, see [`progress::print_line`]).
+fn list() -> std::io::Result<()> {
+    for e in hider::registry::all() {
+        progress::print_line(&format!("{:<20} {:?}: {}", e.name, e.kind, e.description))?;
+    }
+    Ok(())
 }

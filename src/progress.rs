@@ -4,7 +4,7 @@
 //! that ends within the second. The environment variable
 //! `HIDER_SPINNER_DELAY_MS` sets another delay (0 draws at once).
 
-use std::io::IsTerminal;
+use std::io::{ErrorKind, IsTerminal, Write};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -82,4 +82,22 @@ impl Drop for Progress {
             bar.finish_and_clear();
         }
     }
+}
+
+/// Writes `text` and a newline to stdout. A reader that has gone (a closed
+/// pipe: `hider analyze FILE | head -1`) is not an error, the rest of the
+/// output is simply not wanted; any other failure (a full disk) is.
+pub fn print_line(text: &str) -> std::io::Result<()> {
+    let mut out = std::io::stdout().lock();
+    match writeln!(out, "{text}").and_then(|()| out.flush()) {
+        Err(e) if e.kind() == ErrorKind::BrokenPipe => Ok(()),
+        other => other,
+    }
+}
+
+/// Writes `text` and a newline to stderr, ignoring failure: a closed
+/// stderr (`hider ... 2>&1 | head -1`) has nowhere to report to, and the
+/// run's outputs matter more than its messages. `eprintln!` panics there.
+pub fn eprint_line(text: &str) {
+    let _ = writeln!(std::io::stderr().lock(), "{text}");
 }

@@ -55,7 +55,9 @@ pub struct AnalysisTimes {
 pub struct Effects {
     /// Triangles in the scene.
     pub triangles: u64,
-    /// Screen triangles after the front end.
+    /// Screen triangles after the front end (for a raster plan that
+    /// needs no prepared scene, the triangles a frustum test keeps: an
+    /// upper bound).
     pub on_screen: u64,
     /// Translucent materials in view: needs compositing (A-buffer).
     pub transparency: Evidence,

@@ -37,7 +37,30 @@ impl InView {
     }
 }
 
-pub(crate) fn transparency(screen: &ScreenScene, in_view: &InView, ex: usize) -> Evidence {
+/// Window depth by which an opaque surface must be nearer than a
+/// translucent one at a pixel centre to hide it for certain: far above the
+/// rounding of any hider's depth (f32 window depth is spaced `2^-24` near
+/// 1), far below the depth steps between surfaces that are meant to be
+/// ordered. Closer than this counts as showing.
+const HIDDEN_MARGIN: f64 = 1e-6;
+
+/// Translucent triangles in view, and whether any pixel shows one.
+///
+/// With `one_sample` (no anti-aliasing asked, so the plan's hider samples
+/// pixel centres), a translucent triangle counts only if some pixel centre
+/// it covers (the fill rule every hider uses) has no opaque surface nearer
+/// by [`HIDDEN_MARGIN`]: the opaque depth is the nearest opaque triangle's
+/// depth plane at that centre, back faces included, what the one-sample
+/// z-buffer would keep. Transparency no pixel shows needs no compositing
+/// (and no A-buffer): drawn opaque, those triangles still lose every
+/// depth test. The opaque pass runs only when translucent triangles are in
+/// view.
+pub(crate) fn transparency(
+    screen: &ScreenScene,
+    in_view: &InView,
+    one_sample: bool,
+    ex: usize,
+) -> Evidence {
     let ids: Vec<u32> = in_view
         .ids
         .iter()
@@ -50,20 +73,83 @@ pub(crate) fn transparency(screen: &ScreenScene, in_view: &InView, ex: usize) ->
         .collect();
     names.sort_unstable();
     names.dedup();
-    Evidence::found(
-        !ids.is_empty(),
-        ids.len() as u64,
-        ids.iter().take(ex).map(|&p| vec![p]).collect(),
-        if ids.is_empty() {
-            "every material in view is opaque".into()
-        } else {
+    if ids.is_empty() {
+        return Evidence::found(
+            false,
+            0,
+            Vec::new(),
+            "every material in view is opaque".into(),
+        );
+    }
+    let listed = format!(
+        "{} translucent triangles in view (materials {})",
+        ids.len(),
+        names.join(", ")
+    );
+    if !one_sample {
+        return Evidence::found(
+            true,
+            ids.len() as u64,
+            ids.iter().take(ex).map(|&p| vec![p]).collect(),
+            listed,
+        );
+    }
+    let shown = shown_translucent(screen);
+    if shown.is_empty() {
+        return Evidence::found(
+            false,
+            0,
+            Vec::new(),
             format!(
-                "{} translucent triangles in view (materials {})",
-                ids.len(),
-                names.join(", ")
-            )
-        },
+                "{listed}, all hidden: an opaque surface is nearer at every pixel centre they \
+                 cover"
+            ),
+        );
+    }
+    Evidence::found(
+        true,
+        shown.len() as u64,
+        shown.iter().take(ex).map(|&p| vec![p]).collect(),
+        format!(
+            "{listed}, {} of them in front of every opaque surface at some pixel centre",
+            shown.len()
+        ),
     )
+}
+
+/// The translucent primitives (ascending, no repeats) that some pixel
+/// centre shows: covered, and no opaque triangle nearer there by
+/// [`HIDDEN_MARGIN`].
+fn shown_translucent(screen: &ScreenScene) -> Vec<u32> {
+    let vp = screen.viewport;
+    let width = vp.width as usize;
+    let translucent = |p: u32| screen.material(p).opacity < 1.0;
+    let mut opaque = vec![f64::INFINITY; width * vp.height as usize];
+    for t in screen.tris.iter().filter(|t| !translucent(t.prim)) {
+        t.for_each_centre(vp, |i, j, covered| {
+            if covered {
+                let d = &mut opaque[j as usize * width + i as usize];
+                *d = d.min(t.depth.at_pixel(i, j));
+            }
+        });
+    }
+    let mut shown: Vec<u32> = Vec::new();
+    for t in screen.tris.iter().filter(|t| translucent(t.prim)) {
+        if shown.last() == Some(&t.prim) {
+            continue;
+        }
+        let mut visible = false;
+        t.for_each_centre(vp, |i, j, covered| {
+            visible |= covered
+                && t.depth.at_pixel(i, j) < opaque[j as usize * width + i as usize] + HIDDEN_MARGIN;
+        });
+        if visible {
+            shown.push(t.prim);
+        }
+    }
+    shown.sort_unstable();
+    shown.dedup();
+    shown
 }
 
 pub(crate) fn textures(screen: &ScreenScene, in_view: &InView, ex: usize) -> Evidence {
@@ -132,34 +218,40 @@ pub(crate) fn lighting(scene: &Scene, shading: bool) -> Evidence {
 }
 
 pub(crate) fn back_faces(scene: &Scene, view: &View, screen: &ScreenScene, ex: usize) -> Evidence {
-    let hidden = backface::hidden_back_faces(scene, view);
-    // Mesh index of each primitive id.
-    let mut mesh_of = Vec::with_capacity(scene.triangle_count());
-    for (m, mesh) in scene.meshes.iter().enumerate() {
-        mesh_of.extend(std::iter::repeat_n(m, mesh.indices.len()));
-    }
     let back: Vec<u32> = screen
         .tris
         .iter()
         .filter(|t| !t.front_facing)
         .map(|t| t.prim)
         .collect();
+    if back.is_empty() {
+        // Nothing to cull: the closed-shell search would decide nothing.
+        return Evidence::found(
+            false,
+            0,
+            Vec::new(),
+            "no back-facing triangles on screen".to_owned(),
+        );
+    }
+    let shells = backface::hidden_back_faces(scene, view);
     let exposed: Vec<u32> = back
         .iter()
         .copied()
-        .filter(|&p| !hidden[mesh_of[p as usize]])
+        .filter(|&p| !shells.hidden.get(p as usize).copied().unwrap_or(false))
         .collect();
-    let closed = hidden.iter().filter(|h| **h).count();
     Evidence::found(
         !exposed.is_empty(),
         back.len() as u64,
         exposed.iter().take(ex).map(|&p| vec![p]).collect(),
         format!(
-            "{} back-facing triangles on screen, {} of them possibly visible; {} of {} meshes \
-             closed, outward and uncut (their back faces are hidden)",
+            "{} back-facing triangles on screen, {} of them possibly visible; {} of {} closed \
+             shells outward and uncut (their back faces are hidden); {} of {} meshes certainly \
+             open (edge hash)",
             back.len(),
             exposed.len(),
-            closed,
+            shells.hiding_shells,
+            shells.closed_shells,
+            shells.open_by_hash,
             scene.meshes.len()
         ),
     )

@@ -18,7 +18,14 @@
 //! must exceed [`OVERLAP_TOLERANCE`] times the intervals' extent, which
 //! separates a shared endpoint (overlap exactly 0) from a real crossing.
 //! Coplanar pairs whose interiors overlap are reported apart: they are
-//! depth ties (z-fighting), not interpenetrations.
+//! depth ties (z-fighting), not interpenetrations. "Coplanar" is not left
+//! to the exact predicate alone: two triangles in a tilted plane such as
+//! `x + 2y + 3z = 0` have corners that round off the plane, so `orient3d`
+//! sees them a hair apart (or straddling, a false crossing). A pair is
+//! *near-coplanar* when every corner of each lies within
+//! [`COPLANAR_TOLERANCE`] times the pair's longest edge of the other's
+//! plane, whatever the plane's orientation; its overlap is then a depth
+//! tie that a depth buffer resolves by rounding (stripes), not an order.
 //!
 //! Candidate pairs come from a uniform grid over the scene's bounds with
 //! about one cell per triangle; a pair is tested only in the first cell
@@ -32,6 +39,13 @@ use super::predicates::{orient2d, orient3d};
 /// Relative length below which the two crossing segments are taken to
 /// touch rather than overlap (see the module documentation).
 pub const OVERLAP_TOLERANCE: f64 = 1e-12;
+
+/// Relative distance below which two overlapping triangles are a depth
+/// tie: every corner of each within this times the pair's longest edge of
+/// the other's plane (see the module documentation). `1e-5` is the
+/// oracle's tie tolerance; a 2-unit pair 10^-6 apart ties, 10^-2 apart
+/// is ordered.
+pub const COPLANAR_TOLERANCE: f64 = 1e-5;
 
 /// How two triangles meet.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,7 +61,7 @@ pub enum Contact {
 /// Classifies a pair of triangles (see the module documentation).
 pub fn contact(a: &[DVec3; 3], b: &[DVec3; 3]) -> Contact {
     let sa = a.map(|p| orient3d(b[0], b[1], b[2], p));
-    if sa == [0, 0, 0] {
+    if sa == [0, 0, 0] || near_coplanar(a, b) {
         return if coplanar_overlap(a, b) {
             Contact::CoplanarOverlap
         } else {
@@ -73,6 +87,30 @@ pub fn contact(a: &[DVec3; 3], b: &[DVec3; 3]) -> Contact {
     } else {
         Contact::None
     }
+}
+
+/// Whether every corner of each triangle lies within
+/// [`COPLANAR_TOLERANCE`] times the pair's longest edge of the other's
+/// plane. Triangles without area have no plane and are never coplanar.
+pub fn near_coplanar(a: &[DVec3; 3], b: &[DVec3; 3]) -> bool {
+    let longest = |t: &[DVec3; 3]| {
+        (0..3)
+            .map(|i| (t[(i + 1) % 3] - t[i]).length())
+            .fold(0.0, f64::max)
+    };
+    let tolerance = COPLANAR_TOLERANCE * longest(a).max(longest(b));
+    let within = |t: &[DVec3; 3], other: &[DVec3; 3]| {
+        let n = (t[1] - t[0]).cross(t[2] - t[0]);
+        let len = n.length();
+        // Distances along the unit normal; the comparison is multiplied
+        // out so that no division by a tiny normal is needed.
+        len > 0.0
+            && len.is_finite()
+            && other
+                .iter()
+                .all(|&q| n.dot(q - t[0]).abs() <= tolerance * len)
+    };
+    tolerance > 0.0 && within(a, b) && within(b, a)
 }
 
 /// Whether the corners lie strictly on both sides.

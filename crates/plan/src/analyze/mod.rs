@@ -5,7 +5,7 @@
 //!
 //! | effect | present when | evidence |
 //! |---|---|---|
-//! | transparency | a triangle on screen uses a material with opacity < 1 | triangles, materials |
+//! | transparency | a triangle on screen uses a material with opacity < 1 and, one sample per pixel, some pixel centre shows it in front of every opaque surface | triangles, materials |
 //! | textures | a triangle on screen has uvs and a `map_Kd` whose image loads | triangles, textures that fail |
 //! | lighting | shading is asked (the scene's lights, or the head light) | lights, meshes with normals |
 //! | anti-aliasing | asked | — |
@@ -32,6 +32,7 @@ pub mod intersect;
 mod options;
 pub mod overlap;
 pub mod predicates;
+mod quick;
 mod report;
 mod search;
 
@@ -80,7 +81,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         on_screen: screen.tris.len() as u64,
         ordered_polygons: options.ordered_polygons,
         depth_ratio: depth_ratio(&view, &screen, &in_view),
-        transparency: evidence::transparency(&screen, &in_view, ex),
+        transparency: evidence::transparency(&screen, &in_view, !options.antialiasing, ex),
         textures: evidence::textures(&screen, &in_view, ex),
         lighting: evidence::lighting(scene, options.shading),
         antialiasing: evidence::antialiasing(options.antialiasing),
@@ -111,6 +112,21 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         view,
         screen,
     })
+}
+
+/// The effects and view a plan needs: [`analyze_prepared`]'s, or, for a
+/// raster plan that reads nothing of the prepared scene, the quick
+/// analysis without the front end (see `quick.rs`: no translucent or
+/// textured material, and either no mesh that the edge hash lets be
+/// closed or every triangle in a shell that hides its back faces).
+pub(crate) fn analyze_for_plan(scene: &Scene, options: &RenderOptions) -> Result<(Effects, View)> {
+    let started = Instant::now();
+    let view = options.view(scene)?;
+    if let Some(mut fx) = quick::effects(scene, &view, options) {
+        fx.times.total_ms = ms(started);
+        return Ok((fx, view));
+    }
+    analyze_prepared(scene, options).map(|a| (a.effects, a.view))
 }
 
 /// The two searches over pairs: intersections and coplanar overlaps in

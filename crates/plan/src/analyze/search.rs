@@ -61,8 +61,10 @@ pub(crate) fn intersections(scene: &Scene, in_view: &InView, budget: u64, ex: us
         count: pairs.coplanar.len() as u64,
         examples: pair_examples(&pairs.coplanar, ex),
         detail: format!(
-            "{} coplanar overlapping pairs (depth ties)",
-            pairs.coplanar.len()
+            "{} coplanar overlapping pairs (depth ties: corners within {:e} x the longest edge \
+             of the other's plane, any orientation)",
+            pairs.coplanar.len(),
+            intersect::COPLANAR_TOLERANCE
         ),
     };
     // A pair the search did not reach is ordered like any other.

@@ -37,10 +37,10 @@ use hider_scene::{DynHider, PrepareOptions, Scene, Stages, View};
 
 pub use rules::MAX_F32_DEPTH_RATIO;
 
-use crate::analyze::{Effects, RenderOptions, analyze_prepared};
+use crate::analyze::{Effects, RenderOptions, analyze_for_plan};
 use crate::config::HiderConfig;
 use crate::error::Result;
-use crate::registry::{self, Knobs};
+use crate::registry::{self, Kind, Knobs};
 
 /// What the planner chose.
 #[derive(Clone, Debug, PartialEq)]
@@ -49,7 +49,11 @@ pub struct Plan {
     pub algo: &'static str,
     /// Whether the front end should drop back faces (exact here).
     pub cull_back_faces: bool,
-    /// The effect stages that run.
+    /// The effect stages the scene calls for: the colour stages the colour
+    /// pass runs, transparency when some pixel shows a translucent surface,
+    /// multisample when anti-aliasing is asked. The stages that *run* add
+    /// multisample whenever the chosen hider samples coverage
+    /// ([`Plan::stages_run`]).
     pub stages: Stages,
     /// Why, in one sentence.
     pub reason: String,
@@ -69,13 +73,23 @@ impl Plan {
         base.with_cull_back_faces(base.cull_back_faces || self.cull_back_faces)
     }
 
-    /// One line: the choice and why.
+    /// The stages that run: [`Plan::stages`], with multisample exactly
+    /// when the chosen hider resolves several samples per pixel (the
+    /// A-buffer anti-aliases its edges whether or not that was asked).
+    pub fn stages_run(&self) -> Stages {
+        Stages {
+            multisample: anti_aliases(self.algo),
+            ..self.stages
+        }
+    }
+
+    /// One line: the choice and why, and the stages that run.
     pub fn summary(&self) -> String {
         let mut s = format!("auto: {} ({})", self.algo, self.reason);
         if self.cull_back_faces {
             s.push_str("; back faces culled (all hidden)");
         }
-        let stages = self.stages.names();
+        let stages = self.stages_run().names();
         s.push_str(&format!(
             "; stages: {}",
             if stages.is_empty() {
@@ -136,13 +150,13 @@ impl Planned {
 /// # Ok::<(), hider_plan::PlanError>(())
 /// ```
 pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
-    let analysis = analyze_prepared(scene, options)?;
-    let plan = plan(&analysis.effects);
+    let (effects, view) = analyze_for_plan(scene, options)?;
+    let plan = plan(&effects);
     Ok(Planned {
-        effects: analysis.effects,
+        effects,
         prepare: plan.prepare_options(options.prepare),
         plan,
-        view: analysis.view,
+        view,
         requested: options.requested(),
     })
 }
@@ -159,6 +173,12 @@ pub fn check_config(config: &HiderConfig) -> Result<()> {
         Some(error) => Err(error),
         None => Ok(()),
     }
+}
+
+/// Whether the registered hider `algo` resolves several samples per pixel
+/// (and so anti-aliases).
+fn anti_aliases(algo: &str) -> bool {
+    registry::find(algo).is_ok_and(|e| e.kind == Kind::MultiSample)
 }
 
 /// Plans with every hider in the registry.
@@ -182,6 +202,14 @@ pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
         .or_else(|| picker.transparency(effects))
         .or_else(|| picker.antialiasing(effects))
         .unwrap_or_else(|| picker.raster(effects));
+    // A multi-sample hider picked for transparency anti-aliases its edges
+    // too, asked or not: the plan line says so (`Plan::summary` names the
+    // multisample stage).
+    if anti_aliases(algo) && !effects.antialiasing.present {
+        picker.notes.push(format!(
+            "edges anti-aliased ({algo} samples coverage; not asked for)"
+        ));
+    }
     Plan {
         algo,
         cull_back_faces: effects.cull_back_faces_exact,
