@@ -27,17 +27,20 @@ pub fn run(args: &[OsString]) -> ExitCode {
         } else {
             format!(" {}", shown.join(" "))
         };
-        eprintln!(
+        crate::progress::eprint_line(&format!(
             "hider: the benchmark is its own program, not built here: run \
              `cargo run --release -p hider-bench --{tail}`"
-        );
+        ));
         return ExitCode::from(2);
     };
     match Command::new(&bench).args(args).status() {
         // A run ended by a signal has no code: report it as a failure.
         Ok(status) => ExitCode::from(status.code().map_or(1, |c| c.clamp(0, 255) as u8)),
         Err(e) => {
-            eprintln!("hider: error: cannot run {}: {e}", bench.display());
+            crate::progress::eprint_line(&format!(
+                "hider: error: cannot run {}: {e}",
+                bench.display()
+            ));
             ExitCode::from(2)
         }
     }

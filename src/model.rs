@@ -11,7 +11,7 @@ pub fn load(model: &str, progress: &Progress) -> Result<Scene> {
     let scene = hider::scene::load_model(model)?;
     progress.suspend(|| {
         for w in &scene.warnings {
-            eprintln!("hider: warning: {w}");
+            crate::progress::eprint_line(&format!("hider: warning: {w}"));
         }
     });
     Ok(scene)

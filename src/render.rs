@@ -15,7 +15,7 @@ use hider::scene::{
     DynHider, Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, StatsTable, View,
 };
 
-use crate::progress::Progress;
+use crate::progress::{Progress, eprint_line, print_line};
 pub use crate::render_args::RenderArgs;
 
 /// The hider to run and the options it runs with (the plan's, with
@@ -50,7 +50,7 @@ fn auto(
         .with_prepare(options);
     let planned = hider::plan::auto(scene, &analysis).context("scene analysis for --algo auto")?;
     let hider = planned.plan.build(&args.hider_config())?;
-    progress.suspend(|| eprintln!("{}", planned.summary()));
+    progress.suspend(|| eprint_line(&planned.summary()));
     Ok(Chosen {
         hider,
         prepare: planned.prepare,
@@ -111,17 +111,17 @@ fn report(
         // hider's own front end may keep none).
         let screen = hider::scene::prepare(scene, view, &chosen.prepare)?;
         if let Some(warning) = crate::empty::nothing_on_screen(scene, &screen, covered) {
-            eprintln!("hider: warning: {warning}");
+            eprint_line(&format!("hider: warning: {warning}"));
         }
     }
     for warning in &stats.warnings {
-        eprintln!("hider: warning: {warning}");
+        eprint_line(&format!("hider: warning: {warning}"));
     }
-    eprintln!(
+    eprint_line(&format!(
         "{}: {} triangles in, {covered} pixels covered; {stats}",
         chosen.hider.name(),
         scene.triangle_count(),
-    );
+    ));
     Ok(())
 }
 
@@ -237,7 +237,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         None => auto(args, &scene, &view, options, &progress)?,
     };
     if let Some(warning) = transparency_warning(chosen.hider.as_ref(), &chosen.stages) {
-        progress.suspend(|| eprintln!("hider: warning: {warning}"));
+        progress.suspend(|| eprint_line(&format!("hider: warning: {warning}")));
     }
     progress.stage(&format!("rendering with {}", chosen.hider.name()));
     let mut frame = Frame::new(width, height)?;
@@ -250,7 +250,7 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     shade(args, &chosen, &scene, &view, &mut frame)?;
     if args.shade_mode() == ShadeMode::Lambert {
         for warning in texture_warnings(&scene) {
-            progress.suspend(|| eprintln!("hider: warning: {warning}"));
+            progress.suspend(|| eprint_line(&format!("hider: warning: {warning}")));
         }
     }
     progress.stage("writing");
@@ -259,7 +259,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         progress.stage(&format!("timing {} renders", args.repeat));
         let summary = time_frames(args, &mut chosen, &scene, &view, &mut screen, &mut frame)?;
         let line = timing_line(args, chosen.hider.name(), &scene, &view, &summary);
-        progress.suspend(|| println!("{line}"));
+        // A closed stdout is no error: the outputs are written by now.
+        progress
+            .suspend(|| print_line(&line))
+            .context("cannot print the timing")?;
     }
     drop(progress);
     report(&scene, &view, &chosen, &frame, &stats)?;

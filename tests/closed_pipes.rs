@@ -59,8 +59,6 @@ fn an_error_with_stderr_closed_still_exits_2() {
 }
 
 #[test]
-#[ignore = "src/render.rs still prints with eprintln!, which panics on a closed stderr: it \
-            needs crate::progress::eprint_line (the lead's change)"]
 fn render_with_stderr_closed_still_writes_the_png() {
     let dir = temp_dir("closed-stderr");
     let png = dir.join("out.png");
