@@ -10,9 +10,37 @@ use crate::error::{Error, Result};
 /// Decodes a text file: a UTF-16 byte-order mark (little or big endian)
 /// selects UTF-16, a UTF-8 one is dropped, anything else is read as UTF-8
 /// with invalid bytes replaced by U+FFFD (old exporters write Latin-1
-/// comments and names). An odd number of UTF-16 bytes is an error naming
-/// `name`.
+/// comments and names). Line ends may be LF, CR LF, or a lone CR (classic
+/// Mac OS files, which assimp reads too): a lone CR becomes LF, so line
+/// numbers in messages count the lines an editor shows. An odd number of
+/// UTF-16 bytes is an error naming `name`.
 pub(super) fn decode<'a>(bytes: &'a [u8], name: &Path) -> Result<Cow<'a, str>> {
+    let text = decode_units(bytes, name)?;
+    Ok(lone_cr_to_lf(text))
+}
+
+/// `text` with every CR not followed by LF turned into LF (borrowed when
+/// there is none).
+fn lone_cr_to_lf(text: Cow<'_, str>) -> Cow<'_, str> {
+    let bytes = text.as_bytes();
+    let lone = |k: usize| bytes[k] == b'\r' && bytes.get(k + 1) != Some(&b'\n');
+    if !(0..bytes.len()).any(lone) {
+        return text;
+    }
+    let mut out = String::with_capacity(text.len());
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        if c == '\r' && chars.peek() != Some(&'\n') {
+            out.push('\n');
+        } else {
+            out.push(c);
+        }
+    }
+    Cow::Owned(out)
+}
+
+/// The text of a file's bytes (see [`decode`]), line ends as written.
+fn decode_units<'a>(bytes: &'a [u8], name: &Path) -> Result<Cow<'a, str>> {
     let big_endian = match bytes {
         [0xFF, 0xFE, ..] => false,
         [0xFE, 0xFF, ..] => true,
@@ -43,4 +71,20 @@ pub(super) fn decode<'a>(bytes: &'a [u8], name: &Path) -> Result<Cow<'a, str>> {
             .map(|c| c.unwrap_or(char::REPLACEMENT_CHARACTER))
             .collect(),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lone_carriage_returns_end_lines() {
+        let name = Path::new("m.obj");
+        assert_eq!(
+            decode(b"v 0 0 0\rv 1 0 0\r", name).unwrap(),
+            "v 0 0 0\nv 1 0 0\n"
+        );
+        assert_eq!(decode(b"a\r\nb\rc", name).unwrap(), "a\r\nb\nc");
+        assert!(matches!(decode(b"a\nb", name).unwrap(), Cow::Borrowed(_)));
+    }
 }
