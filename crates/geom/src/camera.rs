@@ -181,20 +181,23 @@ impl Camera {
         if !finite {
             return Err(CameraError(format!(
                 "camera has a non-finite value (eye {}, target {}, up {})",
-                self.eye, self.target, self.up
+                short3(self.eye),
+                short3(self.target),
+                short3(self.up)
             )));
         }
         let dir = self.target - self.eye;
         if !dir.is_finite() {
             return Err(CameraError(format!(
                 "camera eye {} and target {} are too far apart",
-                self.eye, self.target
+                short3(self.eye),
+                short3(self.target)
             )));
         }
         if dir == DVec3::ZERO {
             return Err(CameraError(format!(
                 "camera eye and target are the same point {}",
-                self.eye
+                short3(self.eye)
             )));
         }
         // Rescaled, so that a direction of any finite length (1e200 as well
@@ -203,7 +206,8 @@ impl Camera {
         if up == DVec3::ZERO || d.cross(up.normalize()).length_squared() <= 1e-24 {
             return Err(CameraError(format!(
                 "camera up {} is parallel to the view direction {}",
-                self.up, dir
+                short3(self.up),
+                short3(dir)
             )));
         }
         match self.projection {
@@ -214,15 +218,18 @@ impl Camera {
             } => {
                 if !(fovy_degrees > 0.0 && fovy_degrees < 180.0) {
                     return Err(CameraError(format!(
-                        "fovy {fovy_degrees} is not between 0 and 180 degrees"
+                        "fovy {} is not between 0 and 180 degrees",
+                        short(fovy_degrees)
                     )));
                 }
                 if !(near > 0.0 && near.is_finite()) {
-                    return Err(CameraError(format!("near {near} must be > 0")));
+                    return Err(CameraError(format!("near {} must be > 0", short(near))));
                 }
                 if !(far > near && far.is_finite()) {
                     return Err(CameraError(format!(
-                        "far {far} must be finite and > near {near}"
+                        "far {} must be finite and > near {}",
+                        short(far),
+                        short(near)
                     )));
                 }
             }
@@ -233,12 +240,15 @@ impl Camera {
             } => {
                 if !(half_height > 0.0 && half_height.is_finite()) {
                     return Err(CameraError(format!(
-                        "orthographic half height {half_height} must be > 0"
+                        "orthographic half height {} must be > 0",
+                        short(half_height)
                     )));
                 }
                 if !(far > near && far.is_finite() && near.is_finite()) {
                     return Err(CameraError(format!(
-                        "far {far} must be finite and > near {near}"
+                        "far {} must be finite and > near {}",
+                        short(far),
+                        short(near)
                     )));
                 }
             }
@@ -396,4 +406,45 @@ mod tests {
         c.eye.x = f64::NAN;
         assert!(c.validate().unwrap_err().0.contains("non-finite"));
     }
+}
+
+#[cfg(test)]
+mod short_tests {
+    use super::*;
+
+    #[test]
+    fn huge_numbers_print_short() {
+        assert_eq!(short(0.5), "0.5");
+        assert_eq!(short(1e308), "1e308");
+        assert_eq!(short(-1.2345678e200), "-1.23457e200");
+        assert_eq!(
+            short3(DVec3::new(5e307, 0.0, f64::INFINITY)),
+            "[5e307, 0, inf]"
+        );
+    }
+}
+
+/// A number for a message: as Rust prints it when that is short, else in
+/// scientific notation with 6 significant digits (`1e308` prints 309 digits
+/// in full).
+pub fn short(x: f64) -> String {
+    let plain = format!("{x}");
+    if plain.len() <= 16 {
+        plain
+    } else {
+        let sci = format!("{x:.5e}");
+        // Trailing zeros of the mantissa say nothing.
+        match sci.split_once('e') {
+            Some((mantissa, exponent)) if mantissa.contains('.') => {
+                let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+                format!("{mantissa}e{exponent}")
+            }
+            _ => sci,
+        }
+    }
+}
+
+/// A vector for a message, each coordinate [`short`].
+pub fn short3(v: DVec3) -> String {
+    format!("[{}, {}, {}]", short(v.x), short(v.y), short(v.z))
 }
