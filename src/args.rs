@@ -137,6 +137,7 @@ fn knob_flag(knob: Knob) -> &'static str {
 pub fn flag_error(error: PlanError) -> anyhow::Error {
     match error {
         PlanError::UnknownHider { name, known } => {
+            let known: Vec<&str> = known.iter().map(|a| a.as_str()).collect();
             anyhow::anyhow!("unknown --algo '{name}' (one of: {})", known.join(", "))
         }
         PlanError::KnobNotApplicable {
@@ -145,6 +146,7 @@ pub fn flag_error(error: PlanError) -> anyhow::Error {
             takers,
         } => {
             let flag = knob_flag(knob);
+            let takers: Vec<&str> = takers.iter().map(|a| a.as_str()).collect();
             let algos = match takers.split_last() {
                 None => "none".to_owned(),
                 Some((last, [])) => (*last).to_owned(),
@@ -152,7 +154,7 @@ pub fn flag_error(error: PlanError) -> anyhow::Error {
             };
             anyhow::anyhow!(
                 "{flag} applies to --algo {algos} only, not to --algo {hider} ({})",
-                knob.reason(hider)
+                knob.reason(hider.as_str())
             )
         }
         other => other.into(),

@@ -7,6 +7,8 @@
 //! `--depth-format`), the Python package its keywords (`algo=`), each from
 //! the fields.
 
+use crate::algo::AlgoName;
+
 /// A cross-cutting knob of [`HiderConfig`](crate::HiderConfig) that only
 /// some hiders take.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -51,28 +53,36 @@ impl std::fmt::Display for Knob {
 #[derive(Debug, thiserror::Error)]
 pub enum PlanError {
     /// No registered hider has this name.
-    #[error("no hider named '{name}' (registered: {})", known.join(", "))]
+    #[error("no hider named '{name}' (registered: {})", names(known))]
     UnknownHider {
         /// The name asked for.
         name: String,
         /// Every registered name, in registry order.
-        known: Vec<&'static str>,
+        known: Vec<AlgoName>,
     },
     /// A [`HiderConfig`](crate::HiderConfig) knob was set for a hider that
     /// does not take it.
-    #[error("the {knob} applies to {} only, not to {hider} ({})", takers.join(", "), knob.reason(hider))]
+    #[error("the {knob} applies to {} only, not to {hider} ({})", names(takers), knob.reason(hider.as_str()))]
     KnobNotApplicable {
-        /// The hider asked for (a registry name, or `auto` for the
-        /// planner).
-        hider: &'static str,
+        /// The hider asked for ([`AlgoName::Auto`] for the planner).
+        hider: AlgoName,
         /// The knob.
         knob: Knob,
-        /// The registry names of the hiders that take it, sorted.
-        takers: Vec<&'static str>,
+        /// The hiders that take it, sorted by name.
+        takers: Vec<AlgoName>,
     },
     /// The scene crate's error (loading, preparing, analysing, rendering).
     #[error(transparent)]
     Scene(#[from] hider_scene::Error),
+}
+
+/// Names joined by ", ".
+pub(crate) fn names(algos: &[AlgoName]) -> String {
+    algos
+        .iter()
+        .map(|a| a.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// `Result` with [`PlanError`].

@@ -45,12 +45,14 @@
 //! # Ok::<(), hider_plan::PlanError>(())
 //! ```
 
+mod algo;
 pub mod analyze;
 mod config;
 mod error;
 pub mod planner;
 pub mod registry;
 
+pub use algo::AlgoName;
 pub use analyze::{Analysis, Effects, Evidence, RenderOptions, analyze, analyze_prepared};
 pub use config::HiderConfig;
 pub use error::{Knob, PlanError, Result, error_line};

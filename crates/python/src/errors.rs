@@ -1,7 +1,7 @@
 //! Rust errors as Python exceptions, chosen by the errors' types (never by
 //! their text) and worded with the Python API's keywords.
 
-use hider_plan::{Knob, PlanError, error_line};
+use hider_plan::{AlgoName, Knob, PlanError, error_line};
 use pyo3::PyErr;
 use pyo3::exceptions::{PyMemoryError, PyValueError};
 
@@ -15,6 +15,15 @@ pub fn scene_error(error: hider_scene::Error) -> PyErr {
         hider_scene::Error::Budget { .. } => PyMemoryError::new_err(line),
         _ => PyValueError::new_err(line),
     }
+}
+
+/// Hider names joined by ", ".
+fn joined(algos: &[AlgoName]) -> String {
+    algos
+        .iter()
+        .map(|a| a.as_str())
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// The Python keyword that sets a knob.
@@ -33,7 +42,7 @@ pub fn plan_error(error: PlanError) -> PyErr {
         PlanError::Scene(e) => scene_error(e),
         PlanError::UnknownHider { name, known } => PyValueError::new_err(format!(
             "unknown algo '{name}' (one of: auto, {})",
-            known.join(", ")
+            joined(&known)
         )),
         PlanError::KnobNotApplicable {
             hider,
@@ -42,7 +51,7 @@ pub fn plan_error(error: PlanError) -> PyErr {
         } => PyValueError::new_err(format!(
             "the {} applies to algo {} only, not to '{hider}'",
             knob_keyword(knob),
-            takers.join(", ")
+            joined(&takers)
         )),
     }
 }

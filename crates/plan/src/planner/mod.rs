@@ -169,7 +169,7 @@ pub fn check_config(config: &HiderConfig) -> Result<()> {
         ordered_polygons: true,
         ..Knobs::NONE
     };
-    match registry::refusal("auto", auto, config) {
+    match registry::refusal(crate::AlgoName::Auto, auto, config) {
         Some(error) => Err(error),
         None => Ok(()),
     }

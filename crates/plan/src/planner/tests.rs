@@ -7,7 +7,7 @@ use hider_testkit::{hard_cases, reference};
 
 use super::*;
 use crate::analyze::analyze;
-use crate::{Knob, PlanError};
+use crate::{AlgoName, Knob, PlanError};
 
 const ALL: &[&str] = &[
     "zbuffer-tiled",
@@ -204,7 +204,7 @@ fn auto_refuses_depth_knobs_and_takes_threads_and_ordered_polygons() {
     ] {
         let e = check_config(&config).unwrap_err();
         assert!(
-            matches!(&e, PlanError::KnobNotApplicable { hider: "auto", knob, .. } if *knob == refused),
+            matches!(&e, PlanError::KnobNotApplicable { hider: AlgoName::Auto, knob, .. } if *knob == refused),
             "{e:?}"
         );
     }

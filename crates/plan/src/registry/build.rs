@@ -6,6 +6,7 @@ use hider_scene::DynHider;
 
 use super::entry::{Entry, Knobs};
 use super::table::all;
+use crate::algo::AlgoName;
 use crate::config::HiderConfig;
 use crate::error::{Knob, PlanError, Result};
 
@@ -14,7 +15,7 @@ impl Entry {
     /// `config` applied, or an error naming the first knob set in `config`
     /// that this entry does not take (see [`Entry::knobs`]).
     pub fn build(&self, config: &HiderConfig) -> Result<Box<dyn DynHider>> {
-        match refusal(self.name, self.knobs, config) {
+        match refusal(self.algo(), self.knobs, config) {
             Some(error) => Err(error),
             None => Ok((self.with_config)(config)),
         }
@@ -24,11 +25,7 @@ impl Entry {
 /// The error for the first knob set in `config` that a hider named `hider`
 /// taking `knobs` does not take (`hider` may be a pseudo-name such as
 /// `auto`).
-pub(crate) fn refusal(
-    hider: &'static str,
-    knobs: Knobs,
-    config: &HiderConfig,
-) -> Option<PlanError> {
+pub(crate) fn refusal(hider: AlgoName, knobs: Knobs, config: &HiderConfig) -> Option<PlanError> {
     let refused = [
         (
             Knob::DepthFormat,
@@ -56,13 +53,13 @@ pub(crate) fn refusal(
     })
 }
 
-/// The names of the entries taking `knob`, sorted.
-pub fn takers(knob: Knob) -> Vec<&'static str> {
-    let mut names: Vec<&'static str> = all()
+/// The hiders taking `knob`, sorted by name.
+pub fn takers(knob: Knob) -> Vec<AlgoName> {
+    let mut names: Vec<AlgoName> = all()
         .into_iter()
         .filter(|e| e.knobs.takes(knob))
-        .map(|e| e.name)
+        .map(|e| e.algo())
         .collect();
-    names.sort_unstable();
+    names.sort_unstable_by_key(|a| a.as_str());
     names
 }

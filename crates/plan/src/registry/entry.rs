@@ -3,6 +3,7 @@
 
 use hider_scene::DynHider;
 
+use crate::algo::AlgoName;
 use crate::config::HiderConfig;
 use crate::error::Knob;
 
@@ -79,6 +80,13 @@ pub struct Entry {
 }
 
 impl Entry {
+    /// The entry's name as a type.
+    pub fn algo(&self) -> AlgoName {
+        self.name
+            .parse()
+            .expect("every registry name is an AlgoName (checked by a test)")
+    }
+
     /// A fresh instance with the entry's own options.
     pub fn make(&self) -> Box<dyn DynHider> {
         (self.with_config)(&HiderConfig::default())

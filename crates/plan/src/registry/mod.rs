@@ -36,6 +36,7 @@ pub use build::takers;
 pub use entry::{Entry, Kind, Knobs};
 pub use table::all;
 
+use crate::algo::AlgoName;
 use crate::error::{PlanError, Result};
 
 /// The entry with this name.
@@ -43,12 +44,18 @@ pub fn by_name(name: &str) -> Option<Entry> {
     all().into_iter().find(|e| e.name == name)
 }
 
-/// The entry with this name, or an error listing every registered name.
+/// The entry with this name, or an error listing every registered name
+/// (`auto` names no entry: it is the planner's).
 pub fn find(name: &str) -> Result<Entry> {
     by_name(name).ok_or_else(|| PlanError::UnknownHider {
         name: name.to_owned(),
-        known: names(),
+        known: AlgoName::REGISTERED.to_vec(),
     })
+}
+
+/// The entry of `algo` (`None` for [`AlgoName::Auto`]).
+pub fn entry(algo: AlgoName) -> Option<Entry> {
+    by_name(algo.as_str())
 }
 
 /// Every registered name, in registry order.

@@ -4,7 +4,7 @@ use hider_zbuffer::{DepthFormat, DepthSource};
 
 use super::*;
 use crate::config::HiderConfig;
-use crate::{Knob, PlanError};
+use crate::{AlgoName, Knob, PlanError};
 
 #[test]
 fn names_are_unique_and_instances_carry_them() {
@@ -28,7 +28,8 @@ fn unknown_names_list_the_registered_ones() {
     match &e {
         PlanError::UnknownHider { name, known } => {
             assert_eq!(name, "nonesuch");
-            assert_eq!(known, &names());
+            let known: Vec<&str> = known.iter().map(|a| a.as_str()).collect();
+            assert_eq!(known, names());
         }
         other => panic!("{other:?}"),
     }
@@ -54,7 +55,7 @@ fn knobs_reach_the_hiders_that_have_them() {
     assert!(find("zbuffer").unwrap().build(&both).is_ok());
     let tiled = find("zbuffer-tiled").unwrap().build(&source).err().unwrap();
     assert!(
-        matches!(&tiled, PlanError::KnobNotApplicable { hider: "zbuffer-tiled", knob: Knob::DepthSource, takers } if takers == &["zbuffer"]),
+        matches!(&tiled, PlanError::KnobNotApplicable { hider: AlgoName::ZbufferTiled, knob: Knob::DepthSource, takers } if takers == &[AlgoName::Zbuffer]),
         "{tiled:?}"
     );
     assert_eq!(
@@ -65,7 +66,7 @@ fn knobs_reach_the_hiders_that_have_them() {
         let e = find(name).unwrap().build(&format).err().unwrap();
         assert!(
             matches!(&e, PlanError::KnobNotApplicable { hider, knob: Knob::DepthFormat, takers }
-                if *hider == name && takers == &["zbuffer", "zbuffer-tiled"]),
+                if hider.as_str() == name && takers == &[AlgoName::Zbuffer, AlgoName::ZbufferTiled]),
             "{name}: {e:?}"
         );
         assert!(!e.to_string().contains("--"), "{e}");
@@ -89,7 +90,7 @@ fn ordered_polygons_only_from_the_painters() {
             let e = built.err().unwrap();
             assert!(
                 matches!(&e, PlanError::KnobNotApplicable { knob: Knob::OrderedPolygons, takers, .. }
-                    if takers == &["painter", "painter-naive"]),
+                    if takers == &[AlgoName::Painter, AlgoName::PainterNaive]),
                 "{e:?}"
             );
         }
@@ -119,4 +120,18 @@ fn only_hiders_that_composite_are_silent_on_translucent_scenes() {
         line.contains("ssaa-8") && line.contains("abuffer"),
         "{line}"
     );
+}
+
+/// The registry and the names' type list the same hiders in the same
+/// order, so every entry has its `AlgoName` and every name its entry.
+#[test]
+fn every_entry_has_its_algo_name() {
+    let registered: Vec<&str> = AlgoName::REGISTERED.iter().map(|a| a.as_str()).collect();
+    assert_eq!(registered, names());
+    for e in all() {
+        assert_eq!(e.algo().as_str(), e.name);
+        assert_eq!(entry(e.algo()).unwrap().name, e.name);
+    }
+    assert!(entry(AlgoName::Auto).is_none());
+    assert_eq!("auto".parse::<AlgoName>().unwrap(), AlgoName::Auto);
 }
