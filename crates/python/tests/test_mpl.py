@@ -11,6 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
 
 import hider.mpl  # noqa: E402
 
@@ -159,13 +160,14 @@ def test_a_line_behind_a_surface_is_cut():
     ax.set_axis_off()
     resolved = hider.mpl.resolve(ax)
     img = pixels(fig)
-    segments = resolved._lines.get_segments()
+    segments = [s for a in resolved._overlay if isinstance(a, LineCollection)
+                for s in a.get_segments()]
     plt.close(fig)
     red = (img[..., 0] > 0.8) & (img[..., 1] < 0.3) & (img[..., 2] < 0.3)
     assert red.sum() > 20
     assert len(segments) >= 1
     # The visible part starts at the plane: the lower end is cut off.
-    lowest = min(min(s[0][1], s[1][1]) for s in segments)
+    lowest = min(s[:, 1].min() for s in segments)
     end, crossing = ax.transData.transform(
         hider.mpl._project(ax, np.array([[0.0, 0.0, -0.3], [0.0, 0.0, 0.0]]))[:, :2])[:, 1]
     assert crossing > end + 10
