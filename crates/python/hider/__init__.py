@@ -28,7 +28,18 @@ import numpy as np
 
 from . import _hider
 
-__all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "AUTO", "DEFAULT_ALGO"]
+__all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "AUTO", "DEFAULT_ALGO",
+           "KINDS"]
+
+#: The package's version (the Rust workspace's, as built into the
+#: extension).
+__version__ = _hider.__version__
+
+
+def __dir__():
+    """The public names only (``np``, ``NamedTuple`` and the private
+    helpers stay out of ``dir(hider)``)."""
+    return sorted([*__all__, "__version__", "mpl"])
 
 #: The hider ``render`` uses unless told: the binned, tiled z-buffer, the
 #: fastest exact one.
@@ -41,10 +52,32 @@ DEFAULT_ALGO = "zbuffer-tiled"
 AUTO = "auto"
 
 
-def algorithms():
-    """The names of every registered hider, for ``algo=`` (besides
-    ``"auto"``)."""
-    return list(_hider.algorithms())
+#: The kinds of hider the registry knows, as ``algorithms(kind=...)``
+#: takes them: ``"exact"`` (decides at pixel centres and equals the exact
+#: reference on every pixel that is not a depth tie), ``"approximate"``
+#: (decides at pixel centres but is wrong by design in documented cases:
+#: a plain sort, coarse or linearly interpolated depth), ``"multisample"``
+#: (resolves several samples per pixel: anti-aliasing, transparency) and
+#: ``"reference"`` (the exact ray-cast oracle, slow).
+KINDS = ("exact", "approximate", "multisample", "reference")
+
+
+def algorithms(kind=None):
+    """The names of the registered hiders, for ``algo=`` (besides
+    ``"auto"``), in the registry's order: all of them, or those of one
+    ``kind`` of ``KINDS``.
+
+    Example::
+
+        >>> import hider
+        >>> hider.algorithms(kind="approximate")
+        ['zbuffer-fixed24', 'zbuffer-fixed16', 'painter-naive', 'zbuffer-linear-z']
+    """
+    if kind is None:
+        return list(_hider.algorithms())
+    if kind not in KINDS:
+        raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    return [name for name, k, _ in _hider.algorithm_kinds() if k == kind]
 
 
 class Plan(NamedTuple):
@@ -125,8 +158,19 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
     near, far : float, optional
         Clip distances (default 0.1 and 10 times the half diagonal).
     algo : str
-        Any name of ``algorithms()``; all of them agree on every pixel that
-        is not a depth tie. ``"auto"`` lets the planner choose the cheapest
+        Any name of ``algorithms()``. The exact ones
+        (``algorithms(kind="exact")``, the default among them) and the
+        reference ``"oracle"`` agree on every pixel that is not a depth
+        tie. The others are not bound to: the approximate ones are wrong by
+        design in documented cases (``"painter-naive"`` sorts whole
+        triangles and is wrong where they intersect or overlap in a cycle,
+        ``"zbuffer-linear-z"`` interpolates depth linearly on the screen
+        and is wrong under perspective, ``"zbuffer-fixed16"`` and
+        ``"zbuffer-fixed24"`` round depth to 16 or 24 bits and are wrong
+        where surfaces come closer than that), and the multi-sample ones
+        resolve several samples per pixel, so that the id they report for
+        a pixel may be another than the one at its centre (``"warnock-4x4"``
+        along edges). ``"auto"`` lets the planner choose the cheapest
         exact one for this mesh and view, as ``hider render --algo auto``
         does (``plan`` with the same arguments says which, and why); the
         buffers are then those of the hider chosen. The analysis runs the

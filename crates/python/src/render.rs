@@ -339,6 +339,28 @@ pub fn algorithms() -> Vec<&'static str> {
     registry::names()
 }
 
+/// Every registered hider as `(name, kind, description)`, in the
+/// registry's order; the kind is how the registry checks it
+/// ([`registry::Kind`]): `"exact"` (equals the exact reference on every
+/// pixel that is not a depth tie), `"approximate"` (wrong by design in
+/// documented cases), `"multisample"` (several samples per pixel) or
+/// `"reference"` (the exact ray-cast oracle).
+#[pyfunction]
+pub fn algorithm_kinds() -> Vec<(&'static str, &'static str, &'static str)> {
+    registry::all()
+        .into_iter()
+        .map(|e| {
+            let kind = match e.kind {
+                registry::Kind::ExactPixelCentre => "exact",
+                registry::Kind::ApproximatePixelCentre => "approximate",
+                registry::Kind::MultiSample => "multisample",
+                registry::Kind::Reference => "reference",
+            };
+            (e.name, kind, e.description)
+        })
+        .collect()
+}
+
 /// The planner's choice for the mesh of `vertices` and `faces`, as
 /// `render` with `algo="auto"` makes it: `(algo, reason, summary)`, the
 /// registry name, why in one sentence, and the command line's one-line
