@@ -793,30 +793,31 @@ class Resolved(mcoll.PolyCollection):
     def _prepare_overlay(self, g):
         """The lines cut where surfaces hide them, and the markers whose
         centre no surface hides, as 2D artists in display pixels."""
+        polys, rgba, widths = _outline_polylines(g)
+        lines = [a for a in self.line_sources if a.get_visible()]
+        markers = [a for a in self.marker_sources if a.get_visible()]
+        self._overlay = []
+        if not (polys or lines or markers):
+            return
         opaque = g.faces[g.face_rgba[g.tri_poly, 3] >= _OPAQUE] if len(g.faces) else g.faces
         far = None
         if len(opaque):
             _, depth = _hider.screen_render(g.points, opaque, g.width, g.height, "zbuffer")
             far = _far_depth(depth)
         overlay = []
-        for src in self.line_sources:
-            if not src.get_visible():
-                continue
+        for src in lines:
             try:
                 overlay.extend(self._cut_line(src, g, far))
             except _Unsupported as e:
                 self._warn(("unsupported", id(src)), f"{e}; drawn by matplotlib as before")
                 self._fallback_overlay.append(src)
-        polys, rgba, widths = _outline_polylines(g)
         if polys:
             runs, which = _visible_runs(polys, g.window_depth, far, g.height)
             if runs:
                 overlay.append(mcoll.LineCollection(
                     runs, colors=rgba[which], linewidths=widths[which],
                     transform=IdentityTransform()))
-        for src in self.marker_sources:
-            if not src.get_visible():
-                continue
+        for src in markers:
             try:
                 overlay.extend(self._cut_scatter(src, g, far))
             except _Unsupported as e:
