@@ -209,11 +209,15 @@ def _scatter3d(col):
     return xyz, sizes, widths
 
 
-def _scatter_colours(col, n, z):
+def _scatter_colours(col, n, xyz_view):
     """A scatter's face and edge RGBA per point in the user's order, with
-    matplotlib's depth shading (``depthshade``, on by default: alpha falls
-    linearly from 1 for the nearest point to ``depthshade_minalpha``, 0.3
-    by default, for the farthest)."""
+    matplotlib's depth shading (``depthshade``, on by default), as the
+    version installed computes it: up to 3.10, alpha falls linearly from 1
+    for the nearest point to 0.3 for the farthest; from 3.11, by the depth
+    behind the nearest point over the data's projected extent (the
+    ``_data_scale`` its last draw computed), down to
+    ``depthshade_minalpha``. ``xyz_view`` holds the projected points
+    (x, y and view depth)."""
     col.update_scalarmappable()
     face = _rgba(mcoll.Collection.get_facecolor(col), n)
     raw_edge = getattr(col, "_edgecolors", None)
@@ -221,15 +225,20 @@ def _scatter_colours(col, n, z):
         edge = face.copy()
     else:
         edge = _rgba(mcoll.Collection.get_edgecolor(col), n)
-    if getattr(col, "_depthshade", False) and n > 1:
+    z = xyz_view[:, 2]
+    if getattr(col, "_depthshade", False) and n > 0 and np.isfinite(z).any():
         lo, hi = np.nanmin(z), np.nanmax(z)
-        if hi > lo:
-            floor = float(getattr(col, "_depthshade_minalpha", 0.3))
-            # mplot3d's view depth grows towards the viewer's back.
-            far = (z - lo) / (hi - lo)
-            alpha = np.clip(1 - far * (1 - floor), floor, 1)
-            face[:, 3] *= alpha
-            edge[:, 3] *= alpha
+        floor = float(getattr(col, "_depthshade_minalpha", 0.3))
+        if hasattr(col, "_data_scale"):
+            finite = np.isfinite(xyz_view).all(axis=1)
+            ptp = np.ptp(xyz_view[finite], axis=0) if finite.any() else np.zeros(3)
+            scale = float(np.sqrt((ptp ** 2).sum()))
+            alpha = (np.clip(1 - (z - lo) / scale, floor, 1) if scale > 0
+                     else np.ones(n))
+        else:
+            alpha = 1 - (z - lo) / (hi - lo) * 0.7 if hi > lo else np.ones(n)
+        face[:, 3] *= alpha
+        edge[:, 3] *= alpha
     return face, edge
 
 
@@ -881,7 +890,7 @@ class Resolved(mcoll.PolyCollection):
             return []
         p = _project(ax, xyz)
         d = np.column_stack([ax.transData.transform(p[:, :2]), p[:, 2]])
-        face, edge = _scatter_colours(src, n, p[:, 2])
+        face, edge = _scatter_colours(src, n, p)
         vis = _points_visible(d, g.window_depth, far, g.height)
         order = np.nonzero(vis)[0]
         order = order[np.argsort(-d[order, 2], kind="stable")]

@@ -84,9 +84,16 @@ def test_segments_and_scatter_read_back():
     x = np.linspace(0, 1, 4)
     X, Y = np.meshgrid(x, x)
     wire = ax.plot_wireframe(X, Y, X + Y)
-    pts = np.array([[0.1, 0.2, 0.3], [0.4, 0.5, 0.6], [0.7, 0.8, 0.9]])
+    # The depth order (middle, last, first) is not the user's order, and
+    # two draws sort them (matplotlib keeps sorted copies for its own
+    # draw).
+    pts = np.array([[0.9, 0.1, 0.3], [0.1, 0.9, 0.6], [0.5, 0.5, 0.9]])
     sc = ax.scatter(*pts.T, s=[10, 20, 30], c=[1.0, 2.0, 3.0], cmap="viridis")
     fig.canvas.draw()
+    ax.view_init(elev=10, azim=30)
+    fig.canvas.draw()
+    depth = hider.mpl._project(ax, pts)[:, 2]
+    assert list(np.argsort(depth)) not in ([0, 1, 2], [2, 1, 0])
     segs = hider.mpl._segments3d(wire)
     assert len(segs) == 8 and all(s.shape == (4, 3) for s in segs)
     np.testing.assert_array_equal(np.concatenate(segs)[:, 2],
@@ -94,8 +101,9 @@ def test_segments_and_scatter_read_back():
     xyz, sizes, _ = hider.mpl._scatter3d(sc)
     np.testing.assert_array_equal(xyz, pts)
     assert sizes.tolist() == [10, 20, 30]
-    # Colours in the user's order: the colour map's ends at the ends.
-    face, _ = hider.mpl._scatter_colours(sc, 3, np.zeros(3))
+    # Colours in the user's order: the colour map's ends at the ends (as
+    # given, with matplotlib's depth shading applied on top).
+    face, _ = hider.mpl._scatter_colours(sc, 3, np.zeros((3, 3)))
     cmap = matplotlib.colormaps["viridis"]
     np.testing.assert_allclose(face[0], cmap(0.0), atol=1e-6)
     np.testing.assert_allclose(face[2], cmap(1.0), atol=1e-6)
@@ -217,3 +225,22 @@ def test_an_unreadable_collection_is_left_to_matplotlib(monkeypatch):
     plt.close(fig)
     blue = np.array(matplotlib.colors.to_rgb("tab:blue"))
     assert (np.linalg.norm(image - blue, axis=2) < 0.3).sum() > 5000
+
+
+def test_a_scatter_nothing_hides_is_matplotlibs_picture():
+    """Colours, sizes, marker and depth shading (on by default, computed
+    differently before and from matplotlib 3.11) as matplotlib draws
+    them: with no surface, the resolved scatter is matplotlib's picture."""
+    images = []
+    for resolved in (False, True):
+        fig, ax = axes3d()
+        rng = np.random.default_rng(0)
+        ax.scatter(*rng.uniform(-1, 1, (3, 60)), s=rng.uniform(20, 80, 60),
+                   c=rng.uniform(0, 1, 60), cmap="plasma", marker="s")
+        ax.set_axis_off()
+        if resolved:
+            hider.mpl.resolve(ax)
+        images.append(pixels(fig))
+        plt.close(fig)
+    diff = np.abs(images[0] - images[1]).max(axis=2)
+    assert (diff > 0.02).sum() == 0, (diff > 0.02).sum()
