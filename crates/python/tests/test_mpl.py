@@ -329,13 +329,15 @@ def test_a_cut_line_is_one_path_per_visible_run():
 def test_an_uncut_line_draws_as_matplotlib_draws_it():
     """No ticks at data points: a translucent polyline that nothing hides
     is drawn as matplotlib draws it, one path (separate segments would
-    overlap at every data point and darken it)."""
+    overlap at every data point and darken it); so is a dashed line with
+    markers at every fifth point."""
     images = []
     for resolved in (False, True):
         fig = plt.figure(figsize=(4, 4), dpi=100)
         ax = fig.add_subplot(projection="3d")
         t = np.linspace(0, 1, 60)
         ax.plot(t, t, 0.5 * t, color="purple", alpha=0.4, linewidth=4)
+        ax.plot(t, 1 - t, 0.5 * t, "g--o", markevery=5, markersize=6)
         ax.set_axis_off()
         if resolved:
             hider.mpl.resolve(ax)
