@@ -423,12 +423,6 @@ def _sources(ax):
             if isinstance(c, art3d.Poly3DCollection) and c.get_visible()]
 
 
-def _is_source(artist):
-    """Whether ``resolve`` took this artist over (and has not given it
-    back)."""
-    return getattr(artist, "_hider_source", False)
-
-
 def _skip_draw(renderer):
     """The draw of an artist a ``Resolved`` draws instead."""
 
@@ -669,6 +663,7 @@ class Resolved(mcoll.PolyCollection):
         self._overlay = []
         self._stroke = np.zeros(0, bool)
         self._fallback_polygons = []
+        self._fallback_overlay = []
         flags = [_antialiased(c) for c in self.sources]
         self.set_antialiased(bool(np.all(np.concatenate(flags))) if flags else True)
 
