@@ -43,6 +43,12 @@ from . import _hider
 __all__ = ["resolve", "unresolve", "Resolved", "ResolveWarning", "Projected",
            "project", "zbuffer"]
 
+
+def __dir__():
+    """The public names only."""
+    return sorted(__all__)
+
+
 # Window depth of the orthographic screen camera for depth t in [0, 1]:
 # the eye is one unit before t = 0, the near plane at 0.5 and the far at
 # 2.5 (the constants of the extension's screen-space scenes).

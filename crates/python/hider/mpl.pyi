@@ -11,6 +11,8 @@ from matplotlib.axes import Axes
 __all__ = ["resolve", "unresolve", "Resolved", "ResolveWarning", "Projected",
            "project", "zbuffer"]
 
+def __dir__() -> list[str]: ...
+
 class ResolveWarning(UserWarning): ...
 
 class Projected(NamedTuple):

@@ -35,6 +35,11 @@ def test_dir_shows_the_public_names_only():
         assert hasattr(hider, name)
 
 
+def test_dir_of_mpl_shows_the_public_names_only():
+    mpl = pytest.importorskip("hider.mpl")
+    assert dir(mpl) == sorted(mpl.__all__)
+
+
 def test_the_typing_files_ship_with_the_package():
     folder = pathlib.Path(hider.__file__).parent
     for name in ("py.typed", "__init__.pyi", "mpl.pyi", "_hider.pyi"):
