@@ -22,6 +22,9 @@ Example::
     assert ids[32, 32] == 0 and ids[0, 0] == -1
 """
 
+import queue
+import threading
+from concurrent.futures import Future
 from typing import NamedTuple
 
 import numpy as np
@@ -91,6 +94,47 @@ class Plan(NamedTuple):
     #: The command line's line for ``--algo auto``: what was asked for,
     #: the choice, why, and the stages that would run.
     summary: str
+
+
+_worker_queue = None
+_worker_lock = threading.Lock()
+
+
+def _worker_loop(jobs):
+    """The main thread's render worker: runs each job it is given."""
+    while True:
+        future, fn, args = jobs.get()
+        if not future.set_running_or_notify_cancel():
+            continue
+        try:
+            future.set_result(fn(*args))
+        except BaseException as e:  # noqa: BLE001 - handed to the caller
+            future.set_exception(e)
+
+
+def _interruptible(fn, *args):
+    """``fn(*args)``, so that Ctrl-C stops the wait.
+
+    Python delivers SIGINT to the main thread only, between bytecodes,
+    and a hider runs in Rust with the GIL released, with no way to be
+    stopped. So a call from the main thread runs on one daemon worker
+    thread (the same each time, which keeps the per-thread hider and
+    frame cache) while the main thread waits on its result, a wait that
+    KeyboardInterrupt ends at once. The render already started then
+    finishes in the background, its result dropped; the next call waits
+    for it first. Calls from other threads run directly (no signal
+    reaches them)."""
+    global _worker_queue
+    if threading.current_thread() is not threading.main_thread():
+        return fn(*args)
+    with _worker_lock:
+        if _worker_queue is None:
+            _worker_queue = queue.SimpleQueue()
+            threading.Thread(target=_worker_loop, args=(_worker_queue,), daemon=True,
+                             name="hider-render").start()
+    future = Future()
+    _worker_queue.put((future, fn, args))
+    return future.result()
 
 
 def _as_vertices(vertices, name="vertices"):
@@ -197,12 +241,14 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
     MemoryError
         The hider's memory budget ran out.
 
-    The GIL is released while rendering.
+    The GIL is released while rendering. Ctrl-C (``KeyboardInterrupt``)
+    ends the call at once; the render already started finishes in the
+    background, and the next call from the main thread waits for it.
     """
     v = _as_vertices(vertices)
     f = _as_faces(faces)
-    return _hider.render(
-        v, f, _as_size(width, "width"), _as_size(height, "height"),
+    return _interruptible(
+        _hider.render, v, f, _as_size(width, "width"), _as_size(height, "height"),
         _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
         None if fovy is None else float(fovy),
         None if near is None else float(near),
@@ -230,8 +276,8 @@ def plan(vertices, faces, *, width, height, eye=None, target=None, up=None,
     """
     v = _as_vertices(vertices)
     f = _as_faces(faces)
-    algo, reason, summary = _hider.plan(
-        v, f, _as_size(width, "width"), _as_size(height, "height"),
+    algo, reason, summary = _interruptible(
+        _hider.plan, v, f, _as_size(width, "width"), _as_size(height, "height"),
         _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
         None if fovy is None else float(fovy),
         None if near is None else float(near),

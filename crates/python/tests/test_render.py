@@ -199,3 +199,44 @@ def test_kept_memory_does_not_leak_between_calls():
     again[0][:] = 7
     np.testing.assert_array_equal(hider.render(sphere, sphere_faces, width=50, height=40)[0],
                                   first[0])
+
+
+def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
+    """SIGINT during a painter run of minutes (8,000 random crossing
+    triangles) raises KeyboardInterrupt in the caller within a second."""
+    import signal
+    import subprocess
+    import sys
+    import textwrap
+    import time
+
+    script = tmp_path / "long.py"
+    script.write_text(textwrap.dedent("""
+        import sys, numpy as np, hider
+        rng = np.random.default_rng(0)
+        v = rng.uniform(-1, 1, (24000, 3))
+        f = np.arange(24000).reshape(8000, 3)
+        print("start", flush=True)
+        try:
+            hider.render(v, f, width=256, height=256, algo="painter")
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+            sys.exit(3)
+        print("finished", flush=True)
+    """))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "start"
+        time.sleep(1.0)
+        assert proc.poll() is None, "the render ended before the signal"
+        sent = time.perf_counter()
+        proc.send_signal(signal.SIGINT)
+        line = proc.stdout.readline().strip()
+        waited = time.perf_counter() - sent
+        proc.wait(timeout=10)
+    finally:
+        proc.kill()
+    assert line == "interrupted", (line, proc.stderr.read())
+    assert proc.returncode == 3
+    assert waited < 1.0, waited
