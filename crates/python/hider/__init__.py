@@ -22,6 +22,7 @@ Example::
     assert ids[32, 32] == 0 and ids[0, 0] == -1
 """
 
+import os
 import queue
 import threading
 from concurrent.futures import Future
@@ -98,6 +99,17 @@ class Plan(NamedTuple):
 
 _worker_queue = None
 _worker_lock = threading.Lock()
+
+
+def _forget_worker():
+    """In a forked child, the parent's worker thread does not exist."""
+    global _worker_queue, _worker_lock
+    _worker_queue = None
+    _worker_lock = threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_worker)
 
 
 def _worker_loop(jobs):

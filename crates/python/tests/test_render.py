@@ -240,3 +240,25 @@ def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
     assert line == "interrupted", (line, proc.stderr.read())
     assert proc.returncode == 3
     assert waited < 1.0, waited
+
+
+def test_render_in_a_forked_child_after_one_in_the_parent():
+    """The main thread's worker is started again in a forked child (the
+    parent's does not exist there)."""
+    import multiprocessing
+
+    import numpy as np
+
+    v = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
+    want, _ = hider.render(v, [[0, 1, 2]], width=16, height=16)
+    ctx = multiprocessing.get_context("fork")
+    with ctx.Pool(1) as pool:
+        got = pool.apply_async(_render_small).get(timeout=30)
+    assert (got == want).all()
+
+
+def _render_small():
+    import numpy as np
+
+    v = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
+    return hider.render(v, [[0, 1, 2]], width=16, height=16)[0]
