@@ -150,23 +150,31 @@ def _interruptible(fn, *args):
 
 
 def _as_vertices(vertices, name="vertices"):
-    """Any real (N, 3) array-like as C-contiguous float64."""
+    """Any real (N, 3) array-like as a C-contiguous array the extension
+    reads in place: float64 or float32 kept (no copy when already
+    contiguous), any other real dtype converted to float64."""
     a = np.asarray(vertices)
     if a.dtype.kind not in "biuf":
         raise ValueError(f"{name} must be a real numeric array, got dtype {a.dtype}")
     if a.ndim != 2 or a.shape[1] != 3:
         raise ValueError(f"{name} must have shape (N, 3), got {a.shape}")
+    if a.dtype == np.float64 or a.dtype == np.float32:
+        return np.ascontiguousarray(a)
     return np.ascontiguousarray(a, dtype=np.float64)
 
 
 def _as_faces(faces, name="faces"):
-    """Any integer (M, 3) array-like as C-contiguous int64 (unsigned values
-    beyond int64 become -1, which the range check refuses)."""
+    """Any integer (M, 3) array-like as a C-contiguous array the extension
+    reads in place: int64, int32 and uint32 kept (no copy when already
+    contiguous), any other integer dtype converted to int64 (unsigned
+    values beyond int64 become -1, which the range check refuses)."""
     a = np.asarray(faces)
     if a.dtype.kind not in "iu":
         raise ValueError(f"{name} must be an integer array, got dtype {a.dtype}")
     if a.ndim != 2 or a.shape[1] != 3:
         raise ValueError(f"{name} must have shape (M, 3), got {a.shape}")
+    if a.dtype == np.int64 or a.dtype == np.int32 or a.dtype == np.uint32:
+        return np.ascontiguousarray(a)
     if a.dtype.kind == "u" and a.size and a.max() > np.iinfo(np.int64).max:
         a = np.where(a > np.iinfo(np.int64).max, -1, a.astype(np.int64, copy=False))
     return np.ascontiguousarray(a, dtype=np.int64)

@@ -9,16 +9,18 @@ __all__ = ["render", "algorithms", "algorithm_kinds", "__version__", "plan", "sc
 __version__: str
 
 _Point = tuple[float, float, float] | None
+_Vertices = npt.NDArray[np.float64] | npt.NDArray[np.float32]
+_Faces = npt.NDArray[np.int64] | npt.NDArray[np.int32] | npt.NDArray[np.uint32]
 
 def render(
-    vertices: npt.NDArray[np.float64], faces: npt.NDArray[np.int64], width: int, height: int,
+    vertices: _Vertices, faces: _Faces, width: int, height: int,
     eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
     far: float | None, algo: str, threads: int,
 ) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.float32]]: ...
 def algorithms() -> list[str]: ...
 def algorithm_kinds() -> list[tuple[str, str, str]]: ...
 def plan(
-    vertices: npt.NDArray[np.float64], faces: npt.NDArray[np.int64], width: int, height: int,
+    vertices: _Vertices, faces: _Faces, width: int, height: int,
     eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
     far: float | None, threads: int,
 ) -> tuple[str, str, str]: ...

@@ -20,7 +20,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::errors::{plan_error, scene_error};
-use crate::mesh::scene_from_arrays;
+use crate::mesh::{Faces, Vertices, scene_from_arrays};
 use crate::render::{Buffers, render_buffers};
 
 /// Distance from the eye to depth `t = 0`; `t = 1` is one unit farther.
@@ -38,7 +38,7 @@ fn screen_view(
     width: u32,
     height: u32,
 ) -> PyResult<(Scene, View)> {
-    let mut scene = scene_from_arrays(points, faces)?;
+    let mut scene = scene_from_arrays(&Vertices::F64(points.clone()), &Faces::I64(faces.clone()))?;
     let h = f64::from(height);
     for mesh in &mut scene.meshes {
         for p in &mut mesh.positions {

@@ -56,7 +56,7 @@ def test_every_dtype_and_order_gives_the_same_buffers():
     assert want[0].dtype == np.int32 and want[1].dtype == np.float32
     assert want[0].shape == want[1].shape == (30, 40)
     for vdtype in [np.float32, np.float64, np.int16, np.int64, np.longdouble]:
-        for fdtype in [np.int32, np.uint16, np.int64, np.uint64]:
+        for fdtype in [np.int32, np.uint32, np.uint16, np.int64, np.uint64]:
             for order in "CF":
                 v = np.asarray(vertices, dtype=vdtype, order=order)
                 f = np.asarray(faces, dtype=fdtype, order=order)
@@ -65,6 +65,25 @@ def test_every_dtype_and_order_gives_the_same_buffers():
                 np.testing.assert_array_equal(depth, want[1])
     strided = hider.render(np.repeat(vertices, 2, axis=0)[::2], faces.tolist(), width=40, height=30)
     np.testing.assert_array_equal(strided[0], want[0])
+
+
+def test_float32_and_int32_arrays_are_read_in_place():
+    """float32 vertices and int32 or uint32 faces reach the extension as
+    they are (no conversion copy): the same buffers as their float64 and
+    int64 values, and the index checks hold for each type."""
+    vertices, faces = uv_sphere(16, 8)
+    v32 = (vertices * 1.1).astype(np.float32)  # not exact in float32
+    want = hider.render(v32.astype(np.float64), faces, width=48, height=40)
+    for f in (faces.astype(np.int32), faces.astype(np.uint32)):
+        assert np.shares_memory(hider._as_vertices(v32), v32)
+        assert np.shares_memory(hider._as_faces(f), f)
+        got = hider.render(v32, f, width=48, height=40)
+        np.testing.assert_array_equal(got[0], want[0])
+        np.testing.assert_array_equal(got[1], want[1])
+    with pytest.raises(ValueError, match="triangle 0 uses vertex -1"):
+        hider.render(v32, np.array([[-1, 0, 1]], dtype=np.int32), width=8, height=8)
+    with pytest.raises(ValueError, match="triangle 0 uses vertex 4294967295"):
+        hider.render(v32, np.array([[2**32 - 1, 0, 1]], dtype=np.uint32), width=8, height=8)
 
 
 def test_visible_faces_is_the_set_of_ids_seen():
