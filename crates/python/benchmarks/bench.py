@@ -4,12 +4,17 @@
    grids (39,204 triangles): the time spent ordering and splitting at
    draw time, against matplotlib's own ``savefig`` of the same figure to
    PNG without it, the two interleaved round by round.
-2. ``hider.render`` at 1024 x 1024 against the ``hider`` command line's
+2. ``resolve`` on 400 random crossing triangles, which need far more
+   polygon splits than the painter's budget: ``savefig`` with ``resolve``
+   (the painter giving up, matplotlib drawing) against ``savefig``
+   without it.
+3. ``hider.render`` at 1024 x 1024 against the ``hider`` command line's
    ``--repeat`` median on the same scene (a UV sphere of about 130,000
-   triangles written to OBJ), the same hider and thread count, alternated.
+   triangles written to OBJ), the same hider and thread count, alternated
+   (left out with ``--no-cli``).
 
 Run from the repository root with the package installed:
-``python crates/python/benchmarks/bench.py [path/to/hider]``.
+``python crates/python/benchmarks/bench.py [path/to/hider | --no-cli]``.
 """
 
 import io
@@ -20,6 +25,7 @@ import subprocess
 import sys
 import tempfile
 import time
+import warnings
 
 # numpy's OpenBLAS threads spin for a while after each matrix product
 # (matplotlib's projection makes many) and take a core from whatever runs
@@ -32,6 +38,7 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from mpl_toolkits.mplot3d import art3d  # noqa: E402
 
 import hider  # noqa: E402
 import hider.mpl  # noqa: E402
@@ -109,6 +116,35 @@ def bench_resolve(rounds=15):
         print(f"  {what} / savefig, median of per-round ratios: {ratio:.2f}")
 
 
+def bench_fallback(rounds=5):
+    """A scene the painter gives up on: savefig with and without resolve,
+    interleaved; each resolved figure is new, so that every round pays
+    for the painter's attempt (a Resolved does not retry once it gave
+    up)."""
+    def soup(resolved):
+        rng = np.random.default_rng(0)
+        fig = plt.figure(figsize=(4, 4), dpi=100)
+        ax = fig.add_subplot(projection="3d")
+        ax.add_collection3d(art3d.Poly3DCollection(rng.uniform(-1, 1, (400, 3, 3)),
+                                                   facecolors=rng.uniform(0, 1, (400, 3))))
+        if resolved:
+            hider.mpl.resolve(ax)
+        return fig
+
+    rows = {"plain": [], "resolved": []}
+    for _ in range(rounds):
+        for k in rows:
+            fig = soup(k == "resolved")
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", hider.mpl.ResolveWarning)
+                rows[k].append(timed(lambda: fig.savefig(io.BytesIO(), format="png")))
+            plt.close(fig)
+    print(f"fallback: 400 random crossing triangles, {rounds} interleaved rounds")
+    for k, what in (("plain", "matplotlib savefig PNG"),
+                    ("resolved", "savefig PNG with resolve (painter gives up at its budget)")):
+        print(f"  {what}: median {np.median(rows[k]):.0f} ms (max {np.max(rows[k]):.0f})")
+
+
 def bench_render(cli, repeat=10, algo="zbuffer-tiled", rounds=3):
     """The command line's ``--repeat`` median and ``hider.render``'s median
     over the same number of renders, alternated ``rounds`` times so that
@@ -137,4 +173,6 @@ def bench_render(cli, repeat=10, algo="zbuffer-tiled", rounds=3):
 if __name__ == "__main__":
     cli = sys.argv[1] if len(sys.argv) > 1 else "target/debug/hider"
     bench_resolve()
-    bench_render(cli)
+    bench_fallback()
+    if cli != "--no-cli":
+        bench_render(cli)

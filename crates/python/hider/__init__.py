@@ -22,13 +22,28 @@ Example::
     assert ids[32, 32] == 0 and ids[0, 0] == -1
 """
 
+import os
+import queue
+import threading
+from concurrent.futures import Future
 from typing import NamedTuple
 
 import numpy as np
 
 from . import _hider
 
-__all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "AUTO", "DEFAULT_ALGO"]
+__all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "AUTO", "DEFAULT_ALGO",
+           "KINDS"]
+
+#: The package's version (the Rust workspace's, as built into the
+#: extension).
+__version__ = _hider.__version__
+
+
+def __dir__():
+    """The public names only (``np``, ``NamedTuple`` and the private
+    helpers stay out of ``dir(hider)``)."""
+    return sorted([*__all__, "__version__", "mpl"])
 
 #: The hider ``render`` uses unless told: the binned, tiled z-buffer, the
 #: fastest exact one.
@@ -41,10 +56,32 @@ DEFAULT_ALGO = "zbuffer-tiled"
 AUTO = "auto"
 
 
-def algorithms():
-    """The names of every registered hider, for ``algo=`` (besides
-    ``"auto"``)."""
-    return list(_hider.algorithms())
+#: The kinds of hider the registry knows, as ``algorithms(kind=...)``
+#: takes them: ``"exact"`` (decides at pixel centres and equals the exact
+#: reference on every pixel that is not a depth tie), ``"approximate"``
+#: (decides at pixel centres but is wrong by design in documented cases:
+#: a plain sort, coarse or linearly interpolated depth), ``"multisample"``
+#: (resolves several samples per pixel: anti-aliasing, transparency) and
+#: ``"reference"`` (the exact ray-cast oracle, slow).
+KINDS = ("exact", "approximate", "multisample", "reference")
+
+
+def algorithms(kind=None):
+    """The names of the registered hiders, for ``algo=`` (besides
+    ``"auto"``), in the registry's order: all of them, or those of one
+    ``kind`` of ``KINDS``.
+
+    Example::
+
+        >>> import hider
+        >>> hider.algorithms(kind="approximate")
+        ['zbuffer-fixed24', 'zbuffer-fixed16', 'painter-naive', 'zbuffer-linear-z']
+    """
+    if kind is None:
+        return list(_hider.algorithms())
+    if kind not in KINDS:
+        raise ValueError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    return [name for name, k, _ in _hider.algorithm_kinds() if k == kind]
 
 
 class Plan(NamedTuple):
@@ -60,24 +97,84 @@ class Plan(NamedTuple):
     summary: str
 
 
+_worker_queue = None
+_worker_lock = threading.Lock()
+
+
+def _forget_worker():
+    """In a forked child, the parent's worker thread does not exist."""
+    global _worker_queue, _worker_lock
+    _worker_queue = None
+    _worker_lock = threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_worker)
+
+
+def _worker_loop(jobs):
+    """The main thread's render worker: runs each job it is given."""
+    while True:
+        future, fn, args = jobs.get()
+        if not future.set_running_or_notify_cancel():
+            continue
+        try:
+            future.set_result(fn(*args))
+        except BaseException as e:  # noqa: BLE001 - handed to the caller
+            future.set_exception(e)
+
+
+def _interruptible(fn, *args):
+    """``fn(*args)``, so that Ctrl-C stops the wait.
+
+    Python delivers SIGINT to the main thread only, between bytecodes,
+    and a hider runs in Rust with the GIL released, with no way to be
+    stopped. So a call from the main thread runs on one daemon worker
+    thread (the same each time, which keeps the per-thread hider and
+    frame cache) while the main thread waits on its result, a wait that
+    KeyboardInterrupt ends at once. The render already started then
+    finishes in the background, its result dropped; the next call waits
+    for it first. Calls from other threads run directly (no signal
+    reaches them)."""
+    global _worker_queue
+    if threading.current_thread() is not threading.main_thread():
+        return fn(*args)
+    with _worker_lock:
+        if _worker_queue is None:
+            _worker_queue = queue.SimpleQueue()
+            threading.Thread(target=_worker_loop, args=(_worker_queue,), daemon=True,
+                             name="hider-render").start()
+    future = Future()
+    _worker_queue.put((future, fn, args))
+    return future.result()
+
+
 def _as_vertices(vertices, name="vertices"):
-    """Any real (N, 3) array-like as C-contiguous float64."""
+    """Any real (N, 3) array-like as a C-contiguous array the extension
+    reads in place: float64 or float32 kept (no copy when already
+    contiguous), any other real dtype converted to float64."""
     a = np.asarray(vertices)
     if a.dtype.kind not in "biuf":
         raise ValueError(f"{name} must be a real numeric array, got dtype {a.dtype}")
     if a.ndim != 2 or a.shape[1] != 3:
         raise ValueError(f"{name} must have shape (N, 3), got {a.shape}")
+    if a.dtype == np.float64 or a.dtype == np.float32:
+        return np.ascontiguousarray(a)
     return np.ascontiguousarray(a, dtype=np.float64)
 
 
 def _as_faces(faces, name="faces"):
-    """Any integer (M, 3) array-like as C-contiguous int64 (unsigned values
-    beyond int64 become -1, which the range check refuses)."""
+    """Any integer (M, 3) array-like as a C-contiguous array the extension
+    reads in place: int64, int32 and uint32 kept (no copy when already
+    contiguous), any other integer dtype converted to int64 (unsigned
+    values beyond int64 become -1, which the range check refuses)."""
     a = np.asarray(faces)
     if a.dtype.kind not in "iu":
         raise ValueError(f"{name} must be an integer array, got dtype {a.dtype}")
     if a.ndim != 2 or a.shape[1] != 3:
         raise ValueError(f"{name} must have shape (M, 3), got {a.shape}")
+    if a.dtype == np.int64 or a.dtype == np.int32 or a.dtype == np.uint32:
+        return np.ascontiguousarray(a)
     if a.dtype.kind == "u" and a.size and a.max() > np.iinfo(np.int64).max:
         a = np.where(a > np.iinfo(np.int64).max, -1, a.astype(np.int64, copy=False))
     return np.ascontiguousarray(a, dtype=np.int64)
@@ -125,8 +222,19 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
     near, far : float, optional
         Clip distances (default 0.1 and 10 times the half diagonal).
     algo : str
-        Any name of ``algorithms()``; all of them agree on every pixel that
-        is not a depth tie. ``"auto"`` lets the planner choose the cheapest
+        Any name of ``algorithms()``. The exact ones
+        (``algorithms(kind="exact")``, the default among them) and the
+        reference ``"oracle"`` agree on every pixel that is not a depth
+        tie. The others are not bound to: the approximate ones are wrong by
+        design in documented cases (``"painter-naive"`` sorts whole
+        triangles and is wrong where they intersect or overlap in a cycle,
+        ``"zbuffer-linear-z"`` interpolates depth linearly on the screen
+        and is wrong under perspective, ``"zbuffer-fixed16"`` and
+        ``"zbuffer-fixed24"`` round depth to 16 or 24 bits and are wrong
+        where surfaces come closer than that), and the multi-sample ones
+        resolve several samples per pixel, so that the id they report for
+        a pixel may be another than the one at its centre (``"warnock-4x4"``
+        along edges). ``"auto"`` lets the planner choose the cheapest
         exact one for this mesh and view, as ``hider render --algo auto``
         does (``plan`` with the same arguments says which, and why); the
         buffers are then those of the hider chosen. The analysis runs the
@@ -153,12 +261,14 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
     MemoryError
         The hider's memory budget ran out.
 
-    The GIL is released while rendering.
+    The GIL is released while rendering. Ctrl-C (``KeyboardInterrupt``)
+    ends the call at once; the render already started finishes in the
+    background, and the next call from the main thread waits for it.
     """
     v = _as_vertices(vertices)
     f = _as_faces(faces)
-    return _hider.render(
-        v, f, _as_size(width, "width"), _as_size(height, "height"),
+    return _interruptible(
+        _hider.render, v, f, _as_size(width, "width"), _as_size(height, "height"),
         _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
         None if fovy is None else float(fovy),
         None if near is None else float(near),
@@ -186,8 +296,8 @@ def plan(vertices, faces, *, width, height, eye=None, target=None, up=None,
     """
     v = _as_vertices(vertices)
     f = _as_faces(faces)
-    algo, reason, summary = _hider.plan(
-        v, f, _as_size(width, "width"), _as_size(height, "height"),
+    algo, reason, summary = _interruptible(
+        _hider.plan, v, f, _as_size(width, "width"), _as_size(height, "height"),
         _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
         None if fovy is None else float(fovy),
         None if near is None else float(near),

@@ -21,12 +21,15 @@ mod screen;
 
 use pyo3::prelude::*;
 
-/// The extension module: `render`, `algorithms`, `plan`, and the screen-space
-/// functions of `hider.mpl`.
+/// The extension module: `render`, `algorithms`, `algorithm_kinds`, `plan`,
+/// the screen-space functions of `hider.mpl`, and `__version__` (the
+/// workspace's version, which maturin also gives the Python package).
 #[pymodule]
 fn _hider(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render::render, m)?)?;
     m.add_function(wrap_pyfunction!(render::algorithms, m)?)?;
+    m.add_function(wrap_pyfunction!(render::algorithm_kinds, m)?)?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(render::plan, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_render, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_pieces, m)?)?;

@@ -3,8 +3,51 @@
 use glam::DVec3;
 use hider_scene::{Mesh, Scene};
 use numpy::{PyReadonlyArray2, PyUntypedArrayMethods};
-use pyo3::PyResult;
 use pyo3::exceptions::PyValueError;
+use pyo3::{FromPyObject, PyResult};
+
+/// A vertex array as numpy holds it: float64 or float32, read in place
+/// (float32 coordinates widen exactly to the scene's f64).
+#[derive(FromPyObject)]
+pub enum Vertices<'py> {
+    /// `float64`.
+    F64(PyReadonlyArray2<'py, f64>),
+    /// `float32`.
+    F32(PyReadonlyArray2<'py, f32>),
+}
+
+/// A face array as numpy holds it: int64, int32 or uint32, read in place.
+#[derive(FromPyObject)]
+pub enum Faces<'py> {
+    /// `int64`.
+    I64(PyReadonlyArray2<'py, i64>),
+    /// `int32`.
+    I32(PyReadonlyArray2<'py, i32>),
+    /// `uint32`.
+    U32(PyReadonlyArray2<'py, u32>),
+}
+
+impl Vertices<'_> {
+    /// The positions, one `DVec3` per row.
+    fn positions(&self) -> PyResult<Vec<DVec3>> {
+        match self {
+            Vertices::F64(a) => rows("vertices", a, DVec3::from_array),
+            Vertices::F32(a) => rows("vertices", a, |r| DVec3::from_array(r.map(f64::from))),
+        }
+    }
+}
+
+impl Faces<'_> {
+    /// Each row as `i64` indices, through `f`.
+    fn map<U>(&self, f: impl FnMut([i64; 3]) -> U) -> PyResult<Vec<U>> {
+        let mut f = f;
+        match self {
+            Faces::I64(a) => rows("faces", a, f),
+            Faces::I32(a) => rows("faces", a, |r| f(r.map(i64::from))),
+            Faces::U32(a) => rows("faces", a, |r| f(r.map(i64::from))),
+        }
+    }
+}
 
 /// The mesh name that error messages about the arrays show.
 pub const MESH_NAME: &str = "array";
@@ -44,16 +87,13 @@ fn rows<T: numpy::Element + Copy, U>(
 /// (`(M, 3)` vertex indices), with every position and index checked: the
 /// same messages as the front end's validation, naming the triangle or
 /// vertex at fault.
-pub fn scene_from_arrays(
-    vertices: &PyReadonlyArray2<'_, f64>,
-    faces: &PyReadonlyArray2<'_, i64>,
-) -> PyResult<Scene> {
-    let positions = rows("vertices", vertices, DVec3::from_array)?;
+pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult<Scene> {
+    let positions = vertices.positions()?;
     let n = positions.len();
     // The first index out of range, with its triangle.
     let mut bad = None;
     let mut t = 0;
-    let indices = rows("faces", faces, |tri| {
+    let indices = faces.map(|tri| {
         if bad.is_none()
             && let Some(&i) = tri.iter().find(|&&i| i < 0 || i as u64 >= n as u64)
         {

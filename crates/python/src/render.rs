@@ -8,13 +8,13 @@ use glam::DVec3;
 use hider_geom::{Camera, Projection};
 use hider_plan::{HiderConfig, Planned, RenderOptions, auto, registry};
 use hider_scene::{DynHider, Frame, PrepareOptions, Scene, ScreenScene, View, fit_camera};
-use numpy::{PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray2};
+use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::ThreadPool;
 
 use crate::errors::{plan_error, scene_error};
-use crate::mesh::scene_from_arrays;
+use crate::mesh::{Faces, Vertices, scene_from_arrays};
 
 /// The ids (`-1` for background) and window depths (`1.0` for background)
 /// of a frame, as two `(height, width)` arrays.
@@ -288,8 +288,8 @@ fn copy_workspace_frame() -> Option<Rendered> {
 /// The one-mesh scene of the arrays and the view of `size` pixels through
 /// its camera with the caller's overrides.
 fn scene_and_view(
-    vertices: &PyReadonlyArray2<'_, f64>,
-    faces: &PyReadonlyArray2<'_, i64>,
+    vertices: &Vertices<'_>,
+    faces: &Faces<'_>,
     (width, height): (u32, u32),
     camera: &CameraArgs,
 ) -> PyResult<(Scene, View)> {
@@ -308,8 +308,8 @@ fn scene_and_view(
 )]
 pub fn render<'py>(
     py: Python<'py>,
-    vertices: PyReadonlyArray2<'py, f64>,
-    faces: PyReadonlyArray2<'py, i64>,
+    vertices: Vertices<'py>,
+    faces: Faces<'py>,
     width: u32,
     height: u32,
     eye: Option<[f64; 3]>,
@@ -339,6 +339,28 @@ pub fn algorithms() -> Vec<&'static str> {
     registry::names()
 }
 
+/// Every registered hider as `(name, kind, description)`, in the
+/// registry's order; the kind is how the registry checks it
+/// ([`registry::Kind`]): `"exact"` (equals the exact reference on every
+/// pixel that is not a depth tie), `"approximate"` (wrong by design in
+/// documented cases), `"multisample"` (several samples per pixel) or
+/// `"reference"` (the exact ray-cast oracle).
+#[pyfunction]
+pub fn algorithm_kinds() -> Vec<(&'static str, &'static str, &'static str)> {
+    registry::all()
+        .into_iter()
+        .map(|e| {
+            let kind = match e.kind {
+                registry::Kind::ExactPixelCentre => "exact",
+                registry::Kind::ApproximatePixelCentre => "approximate",
+                registry::Kind::MultiSample => "multisample",
+                registry::Kind::Reference => "reference",
+            };
+            (e.name, kind, e.description)
+        })
+        .collect()
+}
+
 /// The planner's choice for the mesh of `vertices` and `faces`, as
 /// `render` with `algo="auto"` makes it: `(algo, reason, summary)`, the
 /// registry name, why in one sentence, and the command line's one-line
@@ -351,8 +373,8 @@ pub fn algorithms() -> Vec<&'static str> {
 )]
 pub fn plan<'py>(
     py: Python<'py>,
-    vertices: PyReadonlyArray2<'py, f64>,
-    faces: PyReadonlyArray2<'py, i64>,
+    vertices: Vertices<'py>,
+    faces: Faces<'py>,
     width: u32,
     height: u32,
     eye: Option<[f64; 3]>,

@@ -20,7 +20,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::errors::{plan_error, scene_error};
-use crate::mesh::scene_from_arrays;
+use crate::mesh::{Faces, Vertices, scene_from_arrays};
 use crate::render::{Buffers, render_buffers};
 
 /// Distance from the eye to depth `t = 0`; `t = 1` is one unit farther.
@@ -38,7 +38,7 @@ fn screen_view(
     width: u32,
     height: u32,
 ) -> PyResult<(Scene, View)> {
-    let mut scene = scene_from_arrays(points, faces)?;
+    let mut scene = scene_from_arrays(&Vertices::F64(points.clone()), &Faces::I64(faces.clone()))?;
     let h = f64::from(height);
     for mesh in &mut scene.meshes {
         for p in &mut mesh.positions {
@@ -87,19 +87,30 @@ type PieceLists = (Vec<i64>, Vec<i64>, Vec<f64>, Vec<bool>);
 /// whole face.
 /// Drawn in that order, each over the ones before, they show every face
 /// exactly where it is the nearest.
+///
+/// `max_splits` bounds the painter's splits (its
+/// [`PainterOptions::max_splits`], itself capped by the painter's
+/// per-scene cap); `None` keeps the painter's default. A frame that needs
+/// more stops with a `ValueError` (a [`hider_scene::Error::Render`]), which
+/// `hider.mpl` turns into a warning and matplotlib's own drawing.
 #[pyfunction]
-#[pyo3(signature = (points, faces, width, height))]
+#[pyo3(signature = (points, faces, width, height, max_splits=None))]
 pub fn screen_pieces<'py>(
     py: Python<'py>,
     points: PyReadonlyArray2<'py, f64>,
     faces: PyReadonlyArray2<'py, i64>,
     width: u32,
     height: u32,
+    max_splits: Option<u64>,
 ) -> PyResult<Pieces<'py>> {
     let (scene, view) = screen_view(&points, &faces, width, height)?;
     let run = || -> hider_plan::Result<PieceLists> {
         let screen: ScreenScene = prepare(&scene, &view, &PrepareOptions::default())?;
-        let mut painter = Painter::new(PainterOptions::default());
+        let mut options = PainterOptions::default();
+        if let Some(max_splits) = max_splits {
+            options = options.with_max_splits(max_splits);
+        }
+        let mut painter = Painter::new(options);
         // The pieces are drawn by the caller: no raster pass, no frame.
         painter.order(&screen)?;
         let pieces = painter.ordered_pieces();

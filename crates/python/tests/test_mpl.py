@@ -11,6 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
 
 import hider.mpl  # noqa: E402
 
@@ -95,10 +96,11 @@ def agreement(image, owner, palettes, margin=2):
             interior &= pad[dy:dy + h, dx:dx + w] == owner
     interior &= owner >= 0
     assert interior.sum() > 1000
-    rgb = image[interior]
+    # The distances of each distinct colour (far fewer than pixels).
+    rgb, inverse = np.unique(image[interior], axis=0, return_inverse=True)
     dist = np.stack([np.min(np.linalg.norm(rgb[:, None, :] - pal[None, :, :], axis=2), axis=1)
                      for pal in palettes], axis=1)
-    seen = np.argmin(dist, axis=1)
+    seen = np.argmin(dist, axis=1)[inverse.ravel()]
     return float(np.mean(seen == owner[interior])), seen, owner[interior]
 
 
@@ -159,13 +161,14 @@ def test_a_line_behind_a_surface_is_cut():
     ax.set_axis_off()
     resolved = hider.mpl.resolve(ax)
     img = pixels(fig)
-    segments = resolved._lines.get_segments()
+    segments = [s for a in resolved._overlay if isinstance(a, LineCollection)
+                for s in a.get_segments()]
     plt.close(fig)
     red = (img[..., 0] > 0.8) & (img[..., 1] < 0.3) & (img[..., 2] < 0.3)
     assert red.sum() > 20
     assert len(segments) >= 1
     # The visible part starts at the plane: the lower end is cut off.
-    lowest = min(min(s[0][1], s[1][1]) for s in segments)
+    lowest = min(s[:, 1].min() for s in segments)
     end, crossing = ax.transData.transform(
         hider.mpl._project(ax, np.array([[0.0, 0.0, -0.3], [0.0, 0.0, 0.0]]))[:, :2])[:, 1]
     assert crossing > end + 10
@@ -216,3 +219,166 @@ def test_a_quads_triangles_are_drawn_as_one_path():
     # The fan's apex is each polygon's farthest corner.
     far = p.points[p.faces, 2].max(axis=1)
     assert np.all(p.points[p.faces[:, 0], 2] == far)
+
+
+def test_intersections_have_no_fringe_at_high_dpi():
+    """Pieces are stroked one device pixel wide, not one point: at 300 dpi
+    a point is over 4 pixels, and a piece's stroke would reach 2 pixels
+    over the surface in front of it along every intersection curve."""
+    fig = plt.figure(figsize=(4, 4), dpi=300)
+    ax = fig.add_subplot(projection="3d")
+    crossing_planes(ax)
+    ax.view_init(elev=30, azim=-60)
+    ax.set_axis_off()
+    hider.mpl.resolve(ax)
+    fig.canvas.draw()
+    owner, palettes = nearer_surface(ax)
+    image = pixels(fig)
+    plt.close(fig)
+    assert image.shape[:2] == owner.shape == (1200, 1200)
+    # Pixels one away from a boundary: 1.0 with the hairline; 0.9967 with
+    # the one-point stroke hider drew before.
+    share, _, _ = agreement(image, owner, palettes, margin=1)
+    assert share >= 0.999, share
+
+
+def plane_with_points(ax, resolved, scatter=True, line=True, plane=True):
+    """A grey plane at z = 0.3; a red scatter point above it (z = 0.6) and
+    a blue one below (z = -0.2, seen through the plane); a green line with
+    markers from above the plane to below it."""
+    if plane:
+        X, Y = np.meshgrid(np.linspace(-1, 1, 5), np.linspace(-1, 1, 5))
+        ax.plot_surface(X, Y, np.full_like(X, 0.3), color="0.75", shade=False)
+    if scatter:
+        ax.scatter([0.3], [0.3], [0.6], color="red", s=300, depthshade=False)
+        ax.scatter([-0.3], [0.6], [-0.2], color="blue", s=300, depthshade=False)
+    if line:
+        ax.plot([-0.4, -0.2], [0.4, 0.7], [0.7, -0.1], "g-o", markersize=14, label="g-o")
+    ax.set_xlim(-1, 1), ax.set_ylim(-1, 1), ax.set_zlim(-1, 1)
+    ax.view_init(elev=30, azim=-60)
+    ax.set_axis_off()
+    if resolved:
+        hider.mpl.resolve(ax)
+
+
+def colour_mask(image, name, tol=0.2):
+    rgb = np.array(matplotlib.colors.to_rgb(name))
+    return np.linalg.norm(image - rgb, axis=2) < tol
+
+
+def disc(ax, fig, xyz, radius):
+    """The image pixels within radius of a 3D point's projection."""
+    x, y = ax.transData.transform(hider.mpl._project(ax, np.array([xyz]))[:, :2])[0]
+    h = int(fig.bbox.height)
+    yy, xx = np.mgrid[0:h, 0:int(fig.bbox.width)]
+    return np.hypot(xx + 0.5 - x, yy + 0.5 - (h - y)) < radius
+
+
+def test_markers_are_depth_tested_per_marker():
+    # The markers alone, for the reference counts.
+    fig = plt.figure(figsize=(4, 4), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    plane_with_points(ax, resolved=False, plane=False)
+    alone = pixels(fig)
+    plt.close(fig)
+    # matplotlib alone paints the plane over the point above it (its
+    # nearest corner is nearer than the point).
+    fig = plt.figure(figsize=(4, 4), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    plane_with_points(ax, resolved=False)
+    assert colour_mask(pixels(fig), "red").sum() < 0.5 * colour_mask(alone, "red").sum()
+    plt.close(fig)
+    fig = plt.figure(figsize=(4, 4), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    plane_with_points(ax, resolved=True)
+    image = pixels(fig)
+    above_g = disc(ax, fig, (-0.4, 0.4, 0.7), 5)
+    below_g = disc(ax, fig, (-0.2, 0.7, -0.1), 5)
+    plt.close(fig)
+    red, blue = colour_mask(image, "red"), colour_mask(image, "blue")
+    # The scatter point above the plane is whole, the one below is gone.
+    assert colour_mask(alone, "red").sum() > 200
+    assert red.sum() >= 0.97 * colour_mask(alone, "red").sum(), (red.sum(),)
+    assert colour_mask(alone, "blue").sum() > 200 and blue.sum() == 0
+    # The line's marker above the plane shows, the one below does not.
+    green = colour_mask(image, "green", tol=0.3)
+    assert green[above_g].mean() > 0.9
+    assert colour_mask(alone, "green", tol=0.3)[below_g].mean() > 0.6
+    assert green[below_g].sum() == 0
+
+
+def test_a_cut_line_is_one_path_per_visible_run():
+    fig = plt.figure(figsize=(4, 4), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    plane_with_points(ax, resolved=False, scatter=False, line=False)
+    x = np.linspace(-0.9, 0.9, 181)
+    # Above the plane for x in (-0.9, -0.5) and (0, 0.5), below (and seen
+    # through the plane) elsewhere.
+    line, = ax.plot(x, np.zeros_like(x), 0.3 + 0.2 * np.sin(2 * np.pi * x), color="red")
+    resolved = hider.mpl.resolve(ax)
+    pixels(fig)
+    plt.close(fig)
+    runs = [s for a in resolved._overlay if isinstance(a, LineCollection)
+            for s in a.get_segments()]
+    assert len(runs) == 2, [len(r) for r in runs]
+    # Each run keeps the data points it passes (about 40 and 50), not two
+    # ends per segment.
+    assert sorted(len(r) for r in runs)[0] >= 38, [len(r) for r in runs]
+
+
+def test_an_uncut_line_draws_as_matplotlib_draws_it():
+    """No ticks at data points: a translucent polyline that nothing hides
+    is drawn as matplotlib draws it, one path (separate segments would
+    overlap at every data point and darken it); so is a dashed line with
+    markers at every fifth point."""
+    images = []
+    for resolved in (False, True):
+        fig = plt.figure(figsize=(4, 4), dpi=100)
+        ax = fig.add_subplot(projection="3d")
+        t = np.linspace(0, 1, 60)
+        ax.plot(t, t, 0.5 * t, color="purple", alpha=0.4, linewidth=4)
+        ax.plot(t, 1 - t, 0.5 * t, "g--o", markevery=5, markersize=6)
+        ax.set_axis_off()
+        if resolved:
+            hider.mpl.resolve(ax)
+        images.append(pixels(fig))
+        plt.close(fig)
+    diff = np.abs(images[0] - images[1]).max(axis=2)
+    assert (diff > 0.02).sum() < 20, (diff > 0.02).sum()
+
+
+def test_legend_keeps_resolved_handles():
+    counts = []
+    for resolved in (False, True):
+        fig = plt.figure(figsize=(4, 4), dpi=100)
+        ax = fig.add_subplot(projection="3d")
+        plane_with_points(ax, resolved=False, scatter=False)
+        ax.plot([0.5, 0.6], [0.5, 0.6], [0.5, 0.6], color="red", linewidth=3, label="red line")
+        if resolved:
+            hider.mpl.resolve(ax)
+        legend = ax.legend(loc="upper left")
+        image = pixels(fig)
+        box = legend.get_window_extent()
+        h = image.shape[0]
+        region = image[int(h - box.y1):int(h - box.y0), int(box.x0):int(box.x1)]
+        counts.append((colour_mask(region, "red").sum(),
+                       colour_mask(region, "green", tol=0.3).sum()))
+        plt.close(fig)
+    (red0, green0), (red1, green1) = counts
+    assert red0 > 30 and green0 > 30
+    assert red1 >= 0.9 * red0 and green1 >= 0.9 * green0, counts
+
+
+def test_unresolve_gives_the_artists_back():
+    fig = plt.figure(figsize=(4, 4), dpi=100)
+    ax = fig.add_subplot(projection="3d")
+    plane_with_points(ax, resolved=False)
+    plain = pixels(fig)
+    hider.mpl.resolve(ax)
+    pixels(fig)
+    hider.mpl.unresolve(ax)
+    for a in list(ax.collections) + list(ax.lines):
+        assert "draw" not in a.__dict__ and "do_3d_projection" not in a.__dict__
+    again = pixels(fig)
+    plt.close(fig)
+    np.testing.assert_array_equal(plain, again)

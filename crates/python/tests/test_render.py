@@ -56,7 +56,7 @@ def test_every_dtype_and_order_gives_the_same_buffers():
     assert want[0].dtype == np.int32 and want[1].dtype == np.float32
     assert want[0].shape == want[1].shape == (30, 40)
     for vdtype in [np.float32, np.float64, np.int16, np.int64, np.longdouble]:
-        for fdtype in [np.int32, np.uint16, np.int64, np.uint64]:
+        for fdtype in [np.int32, np.uint32, np.uint16, np.int64, np.uint64]:
             for order in "CF":
                 v = np.asarray(vertices, dtype=vdtype, order=order)
                 f = np.asarray(faces, dtype=fdtype, order=order)
@@ -65,6 +65,25 @@ def test_every_dtype_and_order_gives_the_same_buffers():
                 np.testing.assert_array_equal(depth, want[1])
     strided = hider.render(np.repeat(vertices, 2, axis=0)[::2], faces.tolist(), width=40, height=30)
     np.testing.assert_array_equal(strided[0], want[0])
+
+
+def test_float32_and_int32_arrays_are_read_in_place():
+    """float32 vertices and int32 or uint32 faces reach the extension as
+    they are (no conversion copy): the same buffers as their float64 and
+    int64 values, and the index checks hold for each type."""
+    vertices, faces = uv_sphere(16, 8)
+    v32 = (vertices * 1.1).astype(np.float32)  # not exact in float32
+    want = hider.render(v32.astype(np.float64), faces, width=48, height=40)
+    for f in (faces.astype(np.int32), faces.astype(np.uint32)):
+        assert np.shares_memory(hider._as_vertices(v32), v32)
+        assert np.shares_memory(hider._as_faces(f), f)
+        got = hider.render(v32, f, width=48, height=40)
+        np.testing.assert_array_equal(got[0], want[0])
+        np.testing.assert_array_equal(got[1], want[1])
+    with pytest.raises(ValueError, match="triangle 0 uses vertex -1"):
+        hider.render(v32, np.array([[-1, 0, 1]], dtype=np.int32), width=8, height=8)
+    with pytest.raises(ValueError, match="triangle 0 uses vertex 4294967295"):
+        hider.render(v32, np.array([[2**32 - 1, 0, 1]], dtype=np.uint32), width=8, height=8)
 
 
 def test_visible_faces_is_the_set_of_ids_seen():
@@ -199,3 +218,66 @@ def test_kept_memory_does_not_leak_between_calls():
     again[0][:] = 7
     np.testing.assert_array_equal(hider.render(sphere, sphere_faces, width=50, height=40)[0],
                                   first[0])
+
+
+def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
+    """SIGINT during a painter run of minutes (8,000 random crossing
+    triangles) raises KeyboardInterrupt in the caller within a second."""
+    import signal
+    import subprocess
+    import sys
+    import textwrap
+    import time
+
+    script = tmp_path / "long.py"
+    script.write_text(textwrap.dedent("""
+        import sys, numpy as np, hider
+        rng = np.random.default_rng(0)
+        v = rng.uniform(-1, 1, (24000, 3))
+        f = np.arange(24000).reshape(8000, 3)
+        print("start", flush=True)
+        try:
+            hider.render(v, f, width=256, height=256, algo="painter")
+        except KeyboardInterrupt:
+            print("interrupted", flush=True)
+            sys.exit(3)
+        print("finished", flush=True)
+    """))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+    try:
+        assert proc.stdout.readline().strip() == "start"
+        time.sleep(1.0)
+        assert proc.poll() is None, "the render ended before the signal"
+        sent = time.perf_counter()
+        proc.send_signal(signal.SIGINT)
+        line = proc.stdout.readline().strip()
+        waited = time.perf_counter() - sent
+        proc.wait(timeout=10)
+    finally:
+        proc.kill()
+    assert line == "interrupted", (line, proc.stderr.read())
+    assert proc.returncode == 3
+    assert waited < 1.0, waited
+
+
+def test_render_in_a_forked_child_after_one_in_the_parent():
+    """The main thread's worker is started again in a forked child (the
+    parent's does not exist there)."""
+    import multiprocessing
+
+    import numpy as np
+
+    v = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
+    want, _ = hider.render(v, [[0, 1, 2]], width=16, height=16)
+    ctx = multiprocessing.get_context("fork")
+    with ctx.Pool(1) as pool:
+        got = pool.apply_async(_render_small).get(timeout=30)
+    assert (got == want).all()
+
+
+def _render_small():
+    import numpy as np
+
+    v = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
+    return hider.render(v, [[0, 1, 2]], width=16, height=16)[0]

@@ -1,0 +1,43 @@
+"""Type stubs of ``hider`` (checked against the package by mypy's stubtest
+in CI)."""
+
+from typing import Literal, NamedTuple
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "AUTO", "DEFAULT_ALGO",
+           "KINDS"]
+
+__version__: str
+
+DEFAULT_ALGO: str
+AUTO: str
+KINDS: tuple[str, ...]
+
+_Kind = Literal["exact", "approximate", "multisample", "reference"]
+_Point = npt.ArrayLike | None
+
+def __dir__() -> list[str]: ...
+def algorithms(kind: _Kind | None = None) -> list[str]: ...
+
+class Plan(NamedTuple):
+    algo: str
+    reason: str
+    summary: str
+
+def render(
+    vertices: npt.ArrayLike, faces: npt.ArrayLike, *, width: int, height: int,
+    eye: _Point = None, target: _Point = None, up: _Point = None, fovy: float | None = 60.0,
+    near: float | None = None, far: float | None = None, algo: str = ..., threads: int = 1,
+) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.float32]]: ...
+def plan(
+    vertices: npt.ArrayLike, faces: npt.ArrayLike, *, width: int, height: int,
+    eye: _Point = None, target: _Point = None, up: _Point = None, fovy: float | None = 60.0,
+    near: float | None = None, far: float | None = None, threads: int = 1,
+) -> Plan: ...
+def visible_faces(
+    vertices: npt.ArrayLike, faces: npt.ArrayLike, *, width: int, height: int,
+    eye: _Point = None, target: _Point = None, up: _Point = None, fovy: float | None = 60.0,
+    near: float | None = None, far: float | None = None, algo: str = ..., threads: int = 1,
+) -> npt.NDArray[np.bool_]: ...

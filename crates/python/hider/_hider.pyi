@@ -1,0 +1,35 @@
+"""Stubs of the compiled extension (see src/*.rs); the public API is the
+``hider`` package's."""
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = ["render", "algorithms", "algorithm_kinds", "__version__", "plan", "screen_render",
+           "screen_pieces"]
+__version__: str
+
+_Point = tuple[float, float, float] | None
+_Vertices = npt.NDArray[np.float64] | npt.NDArray[np.float32]
+_Faces = npt.NDArray[np.int64] | npt.NDArray[np.int32] | npt.NDArray[np.uint32]
+
+def render(
+    vertices: _Vertices, faces: _Faces, width: int, height: int,
+    eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
+    far: float | None, algo: str, threads: int,
+) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.float32]]: ...
+def algorithms() -> list[str]: ...
+def algorithm_kinds() -> list[tuple[str, str, str]]: ...
+def plan(
+    vertices: _Vertices, faces: _Faces, width: int, height: int,
+    eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
+    far: float | None, threads: int,
+) -> tuple[str, str, str]: ...
+def screen_render(
+    points: npt.NDArray[np.float64], faces: npt.NDArray[np.int64], width: int, height: int,
+    algo: str,
+) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.float32]]: ...
+def screen_pieces(
+    points: npt.NDArray[np.float64], faces: npt.NDArray[np.int64], width: int, height: int,
+    max_splits: int | None = None,
+) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.float64],
+           npt.NDArray[np.bool_]]: ...
