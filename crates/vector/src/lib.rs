@@ -46,7 +46,10 @@ mod snap;
 mod svg;
 
 pub use grid::Grid;
-pub use lines::{LineDrawing, LineKind, LineStats, Polyline, hidden_lines};
+pub use lines::{
+    Feature, LineDrawing, LineKind, LineStats, Polyline, Visibility, feature_visibility,
+    hidden_lines, line_features,
+};
 pub use options::VectorOptions;
 pub use regions::{FaceGroup, PrimRegion, RegionMap, RegionStats, visible_regions};
 pub use svg::{lines_svg, regions_svg, write_lines_svg, write_regions_svg};

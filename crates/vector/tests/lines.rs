@@ -102,11 +102,14 @@ fn drawn_edge_points_are_on_the_nearest_surface_and_hidden_ones_are_not() {
             .into_iter()
             .filter(|&(p, _)| inside_image(&s, p))
         {
-            // Some surface at the point is nearer (by the hider's own
-            // tolerance, the default of VectorOptions).
+            // Some surface at the point is nearer, or as near to within
+            // the check's tolerance: the lines decide in camera space
+            // against the unsnapped triangles, these depths are the
+            // snapped ones (tests/reference.rs checks the hidden parts
+            // exactly, against a ray cast in camera space).
             let front = nearest(&s, p, -ON_EDGE);
             assert!(
-                front < z - 1e-9,
+                front < z + DEPTH_TOLERANCE,
                 "{name}: hidden point {p:?} at depth {z} is in front ({front})"
             );
             hidden += 1;
