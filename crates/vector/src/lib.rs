@@ -27,7 +27,7 @@
 //! let options = VectorOptions::default();
 //! let map = visible_regions(&screen, &options, ShadeMode::Lambert)?;
 //! let svg = regions_svg(&screen, &map, &options);
-//! assert_eq!(svg.matches("<path").count(), map.groups.len());
+//! assert_eq!(svg.matches("<path data-prim").count(), map.groups.len());
 //! let lines = hidden_lines(&screen, &map, &options)?;
 //! assert!(!lines.visible.is_empty());
 //! # Ok::<(), hider_scene::Error>(())
@@ -37,6 +37,7 @@ mod chain;
 mod close;
 mod closed;
 mod cover;
+mod document;
 mod grid;
 mod lines;
 mod options;
@@ -45,14 +46,18 @@ mod regions;
 mod snap;
 mod svg;
 
+pub use document::{ObjectGroups, SvgInfo};
 pub use grid::Grid;
 pub use lines::{
     Feature, LineDrawing, LineKind, LineStats, Polyline, Visibility, feature_visibility,
-    hidden_lines, line_features,
+    hidden_lines, hidden_lines_in, line_features, pen_up_travel,
 };
 pub use options::VectorOptions;
 pub use regions::{FaceGroup, PrimRegion, RegionMap, RegionStats, visible_regions};
-pub use svg::{lines_svg, regions_svg, write_lines_svg, write_regions_svg};
+pub use svg::{
+    kind_name, lines_document, lines_svg, regions_document, regions_svg, write_document,
+    write_lines_svg, write_regions_svg,
+};
 
 /// The error every failure of this crate is reported as.
 pub(crate) fn render_error(message: String) -> hider_scene::Error {

@@ -19,6 +19,7 @@ use hider_geom::fixed::SUBPIXEL_SCALE;
 
 use crate::VectorOptions;
 use crate::chain::join_segments;
+use crate::document::ObjectGroups;
 use crate::grid::{Bins, ClippedTris, Grid};
 use crate::pairs::intersection_segment;
 use crate::regions::RegionMap;
@@ -43,6 +44,9 @@ pub enum LineKind {
 pub struct Polyline {
     /// Why it is drawn.
     pub kind: LineKind,
+    /// Its object group ([`crate::ObjectGroups`]; 0 when drawn without
+    /// groups): the group of the first primitive it lies on.
+    pub group: u32,
     /// The points, joined end to end; collinear interior points removed.
     pub points: Vec<(f64, f64)>,
     /// Window depth at each point (for depth cueing, and for checking).
@@ -75,7 +79,27 @@ pub struct LineDrawing {
     pub stats: LineStats,
 }
 
+impl Polyline {
+    fn empty() -> Self {
+        Self {
+            kind: LineKind::Boundary,
+            group: 0,
+            points: Vec::new(),
+            depths: Vec::new(),
+        }
+    }
+}
+
 impl LineDrawing {
+    /// The distance in pixels the pen travels lifted when a plotter draws
+    /// the polylines in the order given (the visible ones, then the
+    /// hidden ones, as the SVG holds them): the sum of the gaps from each
+    /// polyline's last point to the next one's first, the move to the
+    /// first left out.
+    pub fn pen_up_travel(&self) -> f64 {
+        pen_up_travel(self.visible.iter().chain(&self.hidden))
+    }
+
     /// The number of straight segments over all visible polylines.
     pub fn visible_segments(&self) -> usize {
         self.visible
@@ -83,6 +107,23 @@ impl LineDrawing {
             .map(|p| p.points.len().saturating_sub(1))
             .sum()
     }
+}
+
+/// The pen-up travel of polylines drawn in the given order: see
+/// [`LineDrawing::pen_up_travel`].
+pub fn pen_up_travel<'a>(lines: impl IntoIterator<Item = &'a Polyline>) -> f64 {
+    let mut total = 0.0;
+    let mut pen: Option<(f64, f64)> = None;
+    for l in lines {
+        let (Some(&first), Some(&last)) = (l.points.first(), l.points.last()) else {
+            continue;
+        };
+        if let Some(p) = pen {
+            total += (first.0 - p.0).hypot(first.1 - p.1);
+        }
+        pen = Some(last);
+    }
+    total
 }
 
 /// A segment that is a line of the drawing, before visibility: in window
@@ -182,11 +223,27 @@ fn split_all(
 }
 
 /// The line drawing of `scene`; `map` supplies the intersection pairs
-/// found while computing the visible regions.
+/// found while computing the visible regions. All lines are in object
+/// group 0; [`hidden_lines_in`] layers them by object.
 pub fn hidden_lines(
     scene: &ScreenScene,
     map: &RegionMap,
     options: &VectorOptions,
+) -> Result<LineDrawing> {
+    hidden_lines_in(scene, map, options, &ObjectGroups::default())
+}
+
+/// [`hidden_lines`] with every polyline in the object group of the first
+/// primitive it lies on (lines of different groups or kinds are never
+/// joined), fragments shorter than [`VectorOptions::min_fragment`]
+/// dropped, and the polylines of each layer ordered for a pen plotter
+/// (greedy nearest neighbour, reversing a polyline when its far end is
+/// nearer; see [`LineDrawing::pen_up_travel`]).
+pub fn hidden_lines_in(
+    scene: &ScreenScene,
+    map: &RegionMap,
+    options: &VectorOptions,
+    groups: &ObjectGroups,
 ) -> Result<LineDrawing> {
     let features = line_features(scene, map, options)?;
     let mut stats = LineStats {
@@ -197,24 +254,87 @@ pub fn hidden_lines(
     let mut visible = Vec::new();
     let mut hidden = Vec::new();
     for (f, parts) in features.iter().zip(&split) {
+        let group = groups.group_of(f.own[0]);
         for &(a, b) in &parts.visible {
-            visible.push((point_at(f, a), point_at(f, b), f.kind));
+            visible.push((point_at(f, a), point_at(f, b), f.kind, group));
         }
         if options.dashed_hidden {
             for &(a, b) in &parts.hidden {
-                hidden.push((point_at(f, a), point_at(f, b), f.kind));
+                hidden.push((point_at(f, a), point_at(f, b), f.kind, group));
             }
         }
     }
     stats.visible_pieces = visible.len() as u64;
-    let visible = join_segments(&visible);
-    let hidden = join_segments(&hidden);
+    let visible = plot_order(join_segments(&visible), options.min_fragment, (0.0, 0.0));
+    let pen = visible
+        .last()
+        .and_then(|l| l.points.last().copied())
+        .unwrap_or((0.0, 0.0));
+    let hidden = plot_order(join_segments(&hidden), options.min_fragment, pen);
     stats.polylines = visible.len() as u64;
     Ok(LineDrawing {
         visible,
         hidden,
         stats,
     })
+}
+
+/// The length of a polyline in pixels.
+fn length(line: &Polyline) -> f64 {
+    line.points
+        .windows(2)
+        .map(|w| (w[1].0 - w[0].0).hypot(w[1].1 - w[0].1))
+        .sum()
+}
+
+/// Drops polylines shorter than `min_length` and orders the rest for a
+/// pen plotter, keeping each object group contiguous (the SVG's layers):
+/// from the pen's position, greedily the object holding the nearest
+/// polyline end, in it the nearest polyline (of any kind), reversed when
+/// its last point is the nearer end. Objects are compact on the page, so
+/// finishing one before the next travels less than sweeping the page once
+/// per kind: on the spider at 1024 pixels, 2,733 pixels of pen-up travel
+/// this way, 3,661 with each kind contiguous within its object, 5,343 with
+/// each kind contiguous over the page (and 1,455 with no grouping at all).
+/// `O(n^2)` in the polylines, small next to the visibility work.
+fn plot_order(lines: Vec<Polyline>, min_length: f64, start: (f64, f64)) -> Vec<Polyline> {
+    let mut left: Vec<Option<Polyline>> = lines
+        .into_iter()
+        .filter(|l| length(l) >= min_length)
+        .map(Some)
+        .collect();
+    let mut out = Vec::with_capacity(left.len());
+    let mut pen = start;
+    let mut object: Option<u32> = None;
+    let dist = |a: (f64, f64), b: (f64, f64)| (a.0 - b.0).hypot(a.1 - b.1);
+    for _ in 0..left.len() {
+        // The nearest end in the current object, else anywhere.
+        let mut best = [(f64::INFINITY, 0, false); 2];
+        for (k, l) in left.iter().enumerate() {
+            let Some(l) = l else { continue };
+            let (Some(&first), Some(&last)) = (l.points.first(), l.points.last()) else {
+                continue;
+            };
+            let level = usize::from(object != Some(l.group));
+            for (d, reversed) in [(dist(pen, first), false), (dist(pen, last), true)] {
+                if d < best[level].0 {
+                    best[level] = (d, k, reversed);
+                }
+            }
+        }
+        let Some(&(_, k, reversed)) = best.iter().find(|b| b.0.is_finite()) else {
+            break;
+        };
+        let Some(mut l) = left[k].take() else { break };
+        if reversed {
+            l.points.reverse();
+            l.depths.reverse();
+        }
+        pen = *l.points.last().unwrap_or(&pen);
+        object = Some(l.group);
+        out.push(l);
+    }
+    out
 }
 
 fn point_at(f: &Feature, t: f64) -> [f64; 3] {
