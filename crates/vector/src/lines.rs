@@ -79,17 +79,6 @@ pub struct LineDrawing {
     pub stats: LineStats,
 }
 
-impl Polyline {
-    fn empty() -> Self {
-        Self {
-            kind: LineKind::Boundary,
-            group: 0,
-            points: Vec::new(),
-            depths: Vec::new(),
-        }
-    }
-}
-
 impl LineDrawing {
     /// The distance in pixels the pen travels lifted when a plotter draws
     /// the polylines in the order given (the visible ones, then the
