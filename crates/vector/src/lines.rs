@@ -172,7 +172,7 @@ pub struct Visibility {
 /// Splits every feature into its visible and hidden parts (what
 /// [`hidden_lines`] draws, before joining): the part one triangle hides
 /// is one interval, decided in camera space against the unsnapped
-/// triangle (see [`Occluder`]).
+/// triangle (its shadow volume from the eye; see `docs/vector.md`).
 pub fn feature_visibility(
     scene: &ScreenScene,
     map: &RegionMap,
@@ -397,7 +397,8 @@ impl Occluder {
             // det = c0 . (c1 x c2) = n . c0; (ci x cj) . ck = det.
             let det = n.dot(c[0]);
             let scale = c[0].length() * c[1].length() * c[2].length();
-            if !(det.abs() > EDGE_ON * scale) {
+            // NaN corners fail the test too.
+            if det.abs() <= EDGE_ON * scale || det.is_nan() {
                 return Self::Nothing;
             }
             let side = |i: usize, j: usize| form(c[i].cross(c[j]) / det, 0.0);
@@ -407,7 +408,7 @@ impl Occluder {
         } else {
             let d = DVec3::NEG_Z;
             let nd = n.dot(d);
-            if !(nd.abs() > EDGE_ON * n.length()) {
+            if nd.abs() <= EDGE_ON * n.length() || nd.is_nan() {
                 return Self::Nothing;
             }
             let side = |i: usize, j: usize, k: usize| {
