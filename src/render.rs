@@ -274,20 +274,21 @@ fn write_outputs(
 /// `--svg-mode regions` or `lines`: the exact visible regions or the
 /// hidden-line drawing of the prepared scene, from hider-vector, with the
 /// vector flags' options, titled with the model and layered by its
-/// objects. The lines reuse the map's grid and intersection pairs.
+/// objects. The lines need only the intersection pairs, not the regions
+/// ([`hider_vector::line_pairs`]).
 fn write_vector_svg(
     args: &RenderArgs,
     scene: &Scene,
     screen: &ScreenScene,
     svg: &std::path::Path,
 ) -> Result<()> {
-    use hider_vector::{SvgInfo, hidden_lines_in, visible_regions};
+    use hider_vector::{SvgInfo, hidden_lines_in, line_pairs, visible_regions};
     let (width, height) = (screen.viewport.width, screen.viewport.height);
     let options = args.vector_options(width, height);
     let mut info = SvgInfo::for_scene(scene, &args.model, screen);
-    let map = visible_regions(screen, &options, args.shade_mode())
-        .context("cannot compute the visible regions")?;
     let document = if args.svg_mode == crate::render_args::SvgMode::Lines {
+        // The lines need only the map's intersection pairs: no regions.
+        let map = line_pairs(screen, &options).context("cannot find the intersection lines")?;
         let drawing = hidden_lines_in(screen, &map, &options, &info.groups)
             .context("cannot compute the hidden lines")?;
         hider_vector::lines_document(screen, &drawing, &options, &info)
@@ -300,6 +301,8 @@ fn write_vector_svg(
             eprintln!("hider: warning: --svg: {note}");
             info = info.with_note(note);
         }
+        let map = visible_regions(screen, &options, args.shade_mode())
+            .context("cannot compute the visible regions")?;
         hider_vector::regions_document(screen, &map, &options, &info)
     };
     hider_vector::write_document(svg, &document).context("cannot write the SVG")

@@ -53,7 +53,7 @@ pub use lines::{
     hidden_lines, hidden_lines_in, line_features, pen_up_travel,
 };
 pub use options::VectorOptions;
-pub use regions::{FaceGroup, PrimRegion, RegionMap, RegionStats, visible_regions};
+pub use regions::{FaceGroup, PrimRegion, RegionMap, RegionStats, line_pairs, visible_regions};
 pub use svg::{
     kind_name, lines_document, lines_svg, regions_document, regions_svg, write_document,
     write_lines_svg, write_regions_svg,

@@ -258,3 +258,19 @@ fn every_hard_case_gives_finite_lines() {
         }
     }
 }
+
+#[test]
+fn lines_from_the_pairs_alone_equal_lines_from_the_regions() {
+    // `line_pairs` skips the regions' booleans; the drawing must not
+    // change.
+    let options = VectorOptions::default().with_dashed_hidden(true);
+    for (name, scene) in hard_cases::all(3) {
+        let s = hider_testkit::screen(&scene, 64, 64);
+        let full = drawing(&s, &options);
+        let map = hider_vector::line_pairs(&s, &options).unwrap();
+        assert!(map.prims.is_empty() && map.groups.is_empty());
+        let alone = hidden_lines(&s, &map, &options).unwrap();
+        assert_eq!(full.visible, alone.visible, "{name}");
+        assert_eq!(full.hidden, alone.hidden, "{name}");
+    }
+}
