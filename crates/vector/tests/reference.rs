@@ -284,3 +284,28 @@ fn silhouettes_of_smooth_closed_meshes_close() {
         eprintln!("size {size}: torus silhouette in {n} polylines, all ends joined");
     }
 }
+
+#[test]
+fn hidden_lines_match_the_reference_from_random_cameras() {
+    // A quarter of these cameras are orthographic: the shadow volumes'
+    // side planes then contain the view direction.
+    let mut rng = procedural::SplitMix64::new(38);
+    let mut orthographic = 0;
+    for k in 0..8 {
+        let scene = if k % 2 == 0 {
+            hard_cases::torus(32, 16, 1.0, 0.4)
+        } else {
+            hard_cases::interpenetrating_boxes(3, k)
+        };
+        let camera = hider_testkit::cameras::random_camera(&scene, &mut rng);
+        if matches!(
+            camera.projection,
+            hider_geom::Projection::Orthographic { .. }
+        ) {
+            orthographic += 1;
+        }
+        let s = hider_testkit::screen_with(&scene, camera, 96, 96);
+        check_against_reference(&format!("random camera {k}"), &s);
+    }
+    assert!(orthographic > 0, "no orthographic camera drawn");
+}
