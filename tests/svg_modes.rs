@@ -179,3 +179,33 @@ fn the_vector_flags_reach_the_svg() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn textured_scenes_are_told_their_region_fills_are_flat() {
+    let dir = temp_dir("textured");
+    let spider = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/spider/spider.obj");
+    let png = dir.join("s.png");
+    let svg = dir.join("s.svg");
+    let out = hider(&[
+        "render",
+        spider,
+        "-o",
+        png.to_str().unwrap(),
+        "--size",
+        "64",
+        "--svg",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("region fills are flat colours"), "{stderr}");
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.contains("textures are not written</desc>"), "{text}");
+    // One layer per OBJ group.
+    assert!(text.contains(r#"inkscape:label="Bein1Li""#), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
