@@ -7,16 +7,21 @@
 //!   where it is the nearest surface, as integer polygons on the front
 //!   end's 1/256-pixel grid (refined), regions of one flat face merged
 //!   into one path ([`regions_svg`]);
-//! - [`hidden_lines`]: the visible parts of silhouettes, open boundaries,
-//!   creases, material boundaries and surface intersections as polylines
-//!   joined end to end ([`lines_svg`]), optionally with the hidden parts
-//!   dashed.
+//! - [`hidden_lines`] / [`hidden_lines_in`]: the visible parts of
+//!   silhouettes, open boundaries, creases, material boundaries and
+//!   surface intersections as polylines joined end to end and ordered for
+//!   a pen plotter ([`lines_svg`] / [`lines_document`]), optionally with
+//!   the hidden parts dashed.
 //!
 //! Both work in object space on the [`hider_scene::ScreenScene`] every
-//! hider consumes, so they agree with the pixel-centre hiders at every
+//! hider consumes. The regions agree with the pixel-centre hiders at every
 //! pixel centre that is not a depth tie (the tests check it against the
-//! z-buffer on every hard case). The method and its cost are described in
-//! `docs/vector.md`.
+//! z-buffer on every hard case); the lines are decided against the
+//! unsnapped camera-space triangles and match a ray-cast reference. The
+//! SVG documents are in pixel coordinates, layered by object (Inkscape
+//! layers, [`SvgInfo`]), with a title and description, and the regions
+//! are stroked against the seams anti-aliasing viewers draw. The method
+//! and its cost are described in `docs/vector.md`.
 //!
 //! ```
 //! use hider_scene::{prepare, procedural, PrepareOptions, ShadeMode, View};
