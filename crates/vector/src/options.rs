@@ -30,8 +30,9 @@ pub struct VectorOptions {
     /// finely meshed smooth surface a visibly darker picture. The stroke
     /// spills into the neighbours and covers the seam; the clip keeps the
     /// outline of the picture exact. The paths' geometry is the same
-    /// either way. Default 1 (see `docs/vector.md` for the measured
-    /// coverage); 0 writes the bare regions.
+    /// either way; translucent paths are not stroked (the stroke would
+    /// blend twice over their own fill). Default 1 (see `docs/vector.md`
+    /// for the measured coverage); 0 writes the bare regions.
     pub seam_stroke: f64,
     /// Decimals of the pixel coordinates written (both SVGs). Default 4:
     /// a point moves by at most 1/20000 pixel; shared corners round the

@@ -140,11 +140,10 @@ pub fn regions_document(
             if group.opacity < 1.0 {
                 let _ = write!(s, r#" fill-opacity="{}""#, group.opacity);
             }
-            if seams {
+            // A translucent path is not stroked: its stroke would lie
+            // over its own fill and its neighbour's, blending twice there.
+            if seams && group.opacity >= 1.0 {
                 let _ = write!(s, r#" stroke="{}""#, group.fill);
-                if group.opacity < 1.0 {
-                    let _ = write!(s, r#" stroke-opacity="{}""#, group.opacity);
-                }
             }
             s.push_str("/>\n");
         }
