@@ -242,46 +242,75 @@ fn a_cube_seen_head_on_draws_no_hidden_edge() {
     assert!((total - 4.0 * 133.1484375).abs() < 0.01, "{total}");
 }
 
-/// Every end point of the silhouette polylines (visible and hidden
-/// together) is the end point of another one, or the polyline is closed:
-/// the silhouette of a closed mesh is a set of closed curves.
+/// The silhouette of a closed mesh is a set of closed curves: every end
+/// point of a silhouette feature is the end of an even number of them
+/// (ends are snapped to the front end's grid, so they compare exactly),
+/// and the visible and hidden parts of each feature together cover all of
+/// it inside the image, but for dropped pieces under 1/1000 pixel.
+/// Returns the number of silhouette features.
 fn assert_silhouette_closed(name: &str, s: &ScreenScene) -> usize {
-    let options = VectorOptions::default().with_dashed_hidden(true);
+    let options = VectorOptions::default();
+    let map = visible_regions(s, &options, ShadeMode::Lambert).unwrap();
+    let features: Vec<Feature> = line_features(s, &map, &options)
+        .unwrap()
+        .into_iter()
+        .filter(|f| f.kind == LineKind::Silhouette)
+        .collect();
+    assert!(!features.is_empty(), "{name}: no silhouette");
+    let key = |p: DVec3| (p.x.to_bits(), p.y.to_bits());
+    let mut degree = std::collections::HashMap::new();
+    for f in &features {
+        if key(f.ends[0]) != key(f.ends[1]) {
+            *degree.entry(key(f.ends[0])).or_insert(0) += 1;
+            *degree.entry(key(f.ends[1])).or_insert(0) += 1;
+        }
+    }
+    let odd = degree.values().filter(|&&d| d % 2 == 1).count();
+    assert_eq!(odd, 0, "{name}: {odd} silhouette ends of odd degree");
+    let split = feature_visibility(s, &map, &features, &options).unwrap();
+    let (w, h) = (f64::from(s.viewport.width), f64::from(s.viewport.height));
+    for (f, v) in features.iter().zip(&split) {
+        let inside = |p: DVec3| p.x >= 0.0 && p.y >= 0.0 && p.x <= w && p.y <= h;
+        if !(inside(f.ends[0]) && inside(f.ends[1])) {
+            continue;
+        }
+        let length = (f.ends[1].x - f.ends[0].x).hypot(f.ends[1].y - f.ends[0].y);
+        let covered: f64 = v.visible.iter().chain(&v.hidden).map(|(a, b)| b - a).sum();
+        assert!(
+            (1.0 - covered) * length < 2e-3,
+            "{name}: {f:?} is {covered} covered: {v:?}"
+        );
+    }
+    features.len()
+}
+
+/// The drawn silhouette polylines (visible only).
+fn drawn_silhouette(s: &ScreenScene) -> Vec<hider_vector::Polyline> {
+    let options = VectorOptions::default();
     let map = visible_regions(s, &options, ShadeMode::Lambert).unwrap();
     let d = hidden_lines(s, &map, &options).unwrap();
-    let lines: Vec<_> = d
-        .visible
-        .iter()
-        .chain(&d.hidden)
+    d.visible
+        .into_iter()
         .filter(|l| l.kind == LineKind::Silhouette)
-        .collect();
-    assert!(!lines.is_empty(), "{name}: no silhouette");
-    let same = |p: (f64, f64), q: (f64, f64)| (p.0 - q.0).hypot(p.1 - q.1) <= 1e-4;
-    let ends: Vec<(usize, (f64, f64))> = lines
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| !same(l.points[0], *l.points.last().unwrap()))
-        .flat_map(|(k, l)| [(k, l.points[0]), (k, *l.points.last().unwrap())])
-        .collect();
-    for &(k, p) in &ends {
-        let joined = ends.iter().any(|&(j, q)| j != k && same(p, q));
-        assert!(joined, "{name}: silhouette end {p:?} is joined to nothing");
-    }
-    lines.len()
+        .collect()
 }
 
 #[test]
 fn silhouettes_of_smooth_closed_meshes_close() {
     for size in [512, 1024] {
         let sphere = screen_of(&procedural::uv_sphere(200), size);
-        let n = assert_silhouette_closed("uv_sphere(200)", &sphere);
-        // Seen from outside, the whole outline is visible: one loop.
-        assert_eq!(n, 1, "sphere at {size}: {n} silhouette polylines");
+        assert_silhouette_closed("uv_sphere(200)", &sphere);
+        // Seen from outside, the whole outline is visible: one closed
+        // polyline (before: 12 pieces at 512, with gaps of 0.9 to 2.2 px).
+        let drawn = drawn_silhouette(&sphere);
+        assert_eq!(drawn.len(), 1, "sphere at {size}: {drawn:?}");
+        let (first, last) = (drawn[0].points[0], *drawn[0].points.last().unwrap());
+        assert_eq!(first, last, "sphere at {size}: the outline is open");
         let camera = look_at(DVec3::new(0.0, 2.2, 2.6), DVec3::ZERO, 0.5, 50.0);
         let torus =
             hider_testkit::screen_with(&hard_cases::torus(96, 48, 1.0, 0.4), camera, size, size);
         let n = assert_silhouette_closed("torus(96, 48)", &torus);
-        eprintln!("size {size}: torus silhouette in {n} polylines, all ends joined");
+        eprintln!("size {size}: torus silhouette of {n} edges, closed and fully split");
     }
 }
 
