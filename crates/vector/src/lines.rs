@@ -389,7 +389,7 @@ fn length(line: &Polyline) -> f64 {
 /// polyline end, in it the nearest polyline (of any kind), reversed when
 /// its last point is the nearer end. Objects are compact on the page, so
 /// finishing one before the next travels less than sweeping the page once
-/// per kind: on the spider at 1024 pixels, 2,733 pixels of pen-up travel
+/// per kind: on the spider at 1024 pixels, 2,727 pixels of pen-up travel
 /// this way, 3,661 with each kind contiguous within its object, 5,343 with
 /// each kind contiguous over the page (and 1,455 with no grouping at all).
 /// `O(n^2)` in the polylines, small next to the visibility work.
