@@ -308,7 +308,7 @@ fn write_outputs(
             .context("cannot write the SVG")?,
         Some(svg) => {
             let prepared = hider::scene::prepare(scene, view, &chosen.prepare)?;
-            write_vector_svg(args, &prepared, svg)?;
+            write_vector_svg(args, scene, &prepared, svg)?;
         }
         None => {}
     }
@@ -316,18 +316,38 @@ fn write_outputs(
 }
 
 /// `--svg-mode regions` or `lines`: the exact visible regions or the
-/// hidden-line drawing of the prepared scene, from hider-vector.
-fn write_vector_svg(args: &RenderArgs, screen: &ScreenScene, svg: &std::path::Path) -> Result<()> {
-    use hider_vector::{VectorOptions, hidden_lines, visible_regions};
-    let options = VectorOptions::default();
-    let map = visible_regions(screen, &options, args.shade_mode())
-        .context("cannot compute the visible regions")?;
-    let written = if args.svg_mode == crate::render_args::SvgMode::Lines {
-        let drawing =
-            hidden_lines(screen, &map, &options).context("cannot compute the hidden lines")?;
-        hider_vector::write_lines_svg(screen, &drawing, &options, svg)
+/// hidden-line drawing of the prepared scene, from hider-vector, with the
+/// vector flags' options, titled with the model and layered by its
+/// objects. The lines need only the intersection pairs, not the regions
+/// ([`hider_vector::line_pairs`]).
+fn write_vector_svg(
+    args: &RenderArgs,
+    scene: &Scene,
+    screen: &ScreenScene,
+    svg: &std::path::Path,
+) -> Result<()> {
+    use hider_vector::{SvgInfo, hidden_lines_in, line_pairs, visible_regions};
+    let (width, height) = (screen.viewport.width, screen.viewport.height);
+    let options = args.vector_options(width, height);
+    let mut info = SvgInfo::for_scene(scene, &args.model, screen);
+    let document = if args.svg_mode == crate::render_args::SvgMode::Lines {
+        // The lines need only the map's intersection pairs: no regions.
+        let map = line_pairs(screen, &options).context("cannot find the intersection lines")?;
+        let drawing = hidden_lines_in(screen, &map, &options, &info.groups)
+            .context("cannot compute the hidden lines")?;
+        hider_vector::lines_document(screen, &drawing, &options, &info)
     } else {
-        hider_vector::write_regions_svg(screen, &map, &options, svg)
+        // Region fills are one colour per face group: a texture is not
+        // written, and the reader should know.
+        let textured = scene.materials.iter().any(|m| m.diffuse_texture.is_some());
+        if textured && args.shade_mode() == ShadeMode::Lambert {
+            let note = "region fills are flat colours: textures are not written";
+            eprintln!("hider: warning: --svg: {note}");
+            info = info.with_note(note);
+        }
+        let map = visible_regions(screen, &options, args.shade_mode())
+            .context("cannot compute the visible regions")?;
+        hider_vector::regions_document(screen, &map, &options, &info)
     };
-    written.context("cannot write the SVG")
+    hider_vector::write_document(svg, &document).context("cannot write the SVG")
 }

@@ -62,6 +62,32 @@ pub struct RenderArgs {
     /// list: --algo painter or painter-naive; --algo auto then picks one).
     #[arg(long, value_enum, default_value = "regions")]
     pub svg_mode: SvgMode,
+    /// --svg-mode lines: dihedral angle in degrees (0 to 180) above which
+    /// a shared edge is drawn as a crease.
+    #[arg(long, value_parser = vector_flags::degrees, default_value_t = 30.0)]
+    pub crease_angle: f64,
+    /// --svg-mode lines: line width, in pixels (`1`, `1px`) or millimetres
+    /// (`0.3mm`: on the --page-size page, else at 96 pixels per inch).
+    #[arg(long, value_parser = vector_flags::length, default_value = "1")]
+    pub stroke_width: vector_flags::Length,
+    /// --svg-mode regions and lines: the page the drawing is fitted to,
+    /// centred: A3, A4, A5, Letter, or WIDTHxHEIGHT in millimetres
+    /// (`200x150`); the SVG's width and height are then in mm.
+    #[arg(long, value_parser = vector_flags::page)]
+    pub page_size: Option<(f64, f64)>,
+    /// --svg-mode lines: `none` leaves hidden lines out, `dashed` draws
+    /// them dashed and grey, in layers of their own.
+    #[arg(long, value_enum, default_value = "none")]
+    pub hidden: HiddenArg,
+    /// --svg-mode regions and lines: `none` (nothing behind the drawing)
+    /// or an SVG colour (`white`, `#203040`) for a background rectangle.
+    #[arg(long, default_value = "none", value_parser = vector_flags::colour)]
+    pub background: String,
+    /// --svg-mode regions: `on` strokes each region in its own colour
+    /// (clipped to the covered set) so anti-aliasing viewers show no
+    /// seams between regions; `off` writes the bare exact regions.
+    #[arg(long, value_enum, default_value = "on")]
+    pub seams: SeamsArg,
     /// Write the visible primitive ids (int32 LE, -1 background).
     #[arg(long)]
     pub ids_out: Option<PathBuf>,
@@ -134,6 +160,90 @@ pub enum SvgMode {
     Lines,
 }
 
+/// `--hidden`: what the lines SVG does with hidden lines.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum HiddenArg {
+    /// Leave them out.
+    None,
+    /// Draw them dashed and grey.
+    Dashed,
+}
+
+/// `--seams`: the regions' seam stroke.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SeamsArg {
+    /// Stroke each region in its colour, clipped to the covered set.
+    On,
+    /// The bare regions.
+    Off,
+}
+
+/// The parsers of the vector output's flags.
+pub mod vector_flags {
+    /// A length in pixels or millimetres.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub enum Length {
+        /// Pixels of the image.
+        Pixels(f64),
+        /// Millimetres on the page.
+        Millimetres(f64),
+    }
+
+    fn positive(s: &str) -> Result<f64, String> {
+        match s.trim().parse::<f64>() {
+            Ok(x) if x.is_finite() && x > 0.0 => Ok(x),
+            _ => Err(format!("'{s}' is not a positive number")),
+        }
+    }
+
+    /// `--stroke-width`: `1`, `1px` or `0.3mm`.
+    pub fn length(s: &str) -> Result<Length, String> {
+        if let Some(mm) = s.strip_suffix("mm") {
+            positive(mm).map(Length::Millimetres)
+        } else {
+            positive(s.strip_suffix("px").unwrap_or(s)).map(Length::Pixels)
+        }
+    }
+
+    /// `--crease-angle`: 0 to 180 degrees.
+    pub fn degrees(s: &str) -> Result<f64, String> {
+        match s.trim().parse::<f64>() {
+            Ok(x) if (0.0..=180.0).contains(&x) => Ok(x),
+            _ => Err(format!("'{s}' is not an angle from 0 to 180 degrees")),
+        }
+    }
+
+    /// `--page-size`: a paper name or `WIDTHxHEIGHT` in millimetres.
+    pub fn page(s: &str) -> Result<(f64, f64), String> {
+        let named = match s.to_ascii_lowercase().as_str() {
+            "a3" => Some((297.0, 420.0)),
+            "a4" => Some((210.0, 297.0)),
+            "a5" => Some((148.0, 210.0)),
+            "letter" => Some((215.9, 279.4)),
+            _ => None,
+        };
+        if let Some(size) = named {
+            return Ok(size);
+        }
+        let body = s.strip_suffix("mm").unwrap_or(s);
+        let (w, h) = body
+            .split_once(['x', 'X'])
+            .ok_or_else(|| format!("'{s}' is not A3, A4, A5, Letter or WIDTHxHEIGHT (mm)"))?;
+        Ok((positive(w)?, positive(h)?))
+    }
+
+    /// `--background`: `none` or a colour name or `#rgb`/`#rrggbb`
+    /// (letters, digits and `#` only: it is written into the SVG).
+    pub fn colour(s: &str) -> Result<String, String> {
+        let ok = !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '#');
+        if ok {
+            Ok(s.to_owned())
+        } else {
+            Err(format!("'{s}' is not none, a colour name or #rrggbb"))
+        }
+    }
+}
+
 /// `--shade`.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 enum ShadeArg {
@@ -179,6 +289,27 @@ impl RenderArgs {
     /// painter`); the other modes work from any hider's scene.
     pub fn painter_svg(&self) -> bool {
         self.svg.is_some() && self.svg_mode == SvgMode::Painter
+    }
+
+    /// The vector output's options from the flags (`--crease-angle`,
+    /// `--stroke-width`, `--page-size`, `--hidden`, `--background`,
+    /// `--seams`) for an image `width` x `height`.
+    pub fn vector_options(&self, width: u32, height: u32) -> hider::vector::VectorOptions {
+        let options = hider::vector::VectorOptions::default()
+            .with_crease_degrees(self.crease_angle)
+            .with_page_mm(self.page_size)
+            .with_dashed_hidden(self.hidden == HiddenArg::Dashed)
+            .with_background((self.background != "none").then(|| self.background.clone()));
+        let options = if self.seams == SeamsArg::Off {
+            options.with_seam_stroke(0.0)
+        } else {
+            options
+        };
+        let stroke = match self.stroke_width {
+            vector_flags::Length::Pixels(px) => px,
+            vector_flags::Length::Millimetres(mm) => mm * options.pixels_per_mm(width, height),
+        };
+        options.with_stroke_width(stroke)
     }
 
     /// Whether `--algo auto` asks the planner to choose.

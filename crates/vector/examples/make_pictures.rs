@@ -16,7 +16,8 @@ use hider_scene::{
 };
 use hider_testkit::hard_cases;
 use hider_vector::{
-    VectorOptions, hidden_lines, visible_regions, write_lines_svg, write_regions_svg,
+    SvgInfo, VectorOptions, hidden_lines_in, lines_document, regions_document, visible_regions,
+    write_document, write_regions_svg,
 };
 
 /// Two unit squares crossing at right angles.
@@ -77,12 +78,15 @@ fn draw(
 ) -> Result<(), hider_scene::Error> {
     let view = View::for_scene(scene, size, size)?;
     let s = prepare(scene, &view, &PrepareOptions::default())?;
+    let info = SvgInfo::for_scene(scene, name, &s);
     let map = visible_regions(&s, options, ShadeMode::Lambert)?;
-    let drawing = hidden_lines(&s, &map, options)?;
+    let drawing = hidden_lines_in(&s, &map, options, &info.groups)?;
     let regions = dir.join(format!("vector-{name}-regions.svg"));
     let lines = dir.join(format!("vector-{name}-lines.svg"));
-    write_regions_svg(&s, &map, options, &regions)?;
-    write_lines_svg(&s, &drawing, options, &lines)?;
+    write_document(&regions, &regions_document(&s, &map, options, &info))?;
+    // Lines on paper: white behind them, so they show on a dark page too.
+    let paper = options.clone().with_background(Some("white".into()));
+    write_document(&lines, &lines_document(&s, &drawing, &paper, &info))?;
     println!(
         "{name}: {} paths ({}), {} polylines ({})",
         map.groups.len(),
@@ -130,13 +134,18 @@ fn main() -> Result<(), hider_scene::Error> {
             .expect("the painter writes SVG")
             .write_svg(&s, &path, ShadeMode::Lambert)?;
         println!("spider painter: {}", path.display());
-        // The regions again with a 0.5-pixel seam stroke, for the seams
-        // picture.
-        let stroked = options.clone().with_seam_stroke(0.5);
-        let map = visible_regions(&s, &stroked, ShadeMode::Lambert)?;
-        let path = dir.join("vector-spider-regions-stroked.svg");
-        write_regions_svg(&s, &map, &stroked, &path)?;
-        println!("spider regions, stroked: {}", path.display());
+        // The regions bare and with a 0.5-pixel seam stroke, for the
+        // seams picture.
+        for (width, file) in [
+            (0.0, "vector-spider-regions-bare.svg"),
+            (0.5, "vector-spider-regions-stroked.svg"),
+        ] {
+            let stroked = options.clone().with_seam_stroke(width);
+            let map = visible_regions(&s, &stroked, ShadeMode::Lambert)?;
+            let path = dir.join(file);
+            write_regions_svg(&s, &map, &stroked, &path)?;
+            println!("spider regions, seam stroke {width}: {}", path.display());
+        }
     } else {
         println!("no spider at {}, skipped", spider.display());
     }

@@ -15,11 +15,12 @@ const JOIN: f64 = 1e-4;
 /// from different triangle pairs' snapped planes.
 const STRAIGHT: f64 = 1e-3;
 
-/// A piece: `(x, y, depth)` at both ends, and its kind.
-pub type Piece = ([f64; 3], [f64; 3], LineKind);
+/// A piece: `(x, y, depth)` at both ends, its kind and object group.
+pub type Piece = ([f64; 3], [f64; 3], LineKind, u32);
 
-/// A cell of the joining hash: its coordinates and the kind of line.
-type Cell = (i64, i64, LineKind);
+/// A cell of the joining hash: its coordinates, the kind of line and the
+/// object group (lines of different layers are never joined).
+type Cell = (i64, i64, LineKind, u32);
 
 /// Gives end points node ids, points within [`JOIN`] of an earlier one
 /// (searched in the neighbouring cells too) taking its id.
@@ -30,11 +31,11 @@ struct Nodes {
 }
 
 impl Nodes {
-    fn id(&mut self, p: [f64; 3], kind: LineKind) -> usize {
+    fn id(&mut self, p: [f64; 3], kind: LineKind, group: u32) -> usize {
         let (cx, cy) = ((p[0] / JOIN).floor() as i64, (p[1] / JOIN).floor() as i64);
         for dx in -1..=1 {
             for dy in -1..=1 {
-                if let Some(list) = self.cells.get(&(cx + dx, cy + dy, kind)) {
+                if let Some(list) = self.cells.get(&(cx + dx, cy + dy, kind, group)) {
                     for &(id, q) in list {
                         if (p[0] - q[0]).hypot(p[1] - q[1]) <= JOIN {
                             return id;
@@ -45,7 +46,10 @@ impl Nodes {
         }
         let id = self.count;
         self.count += 1;
-        self.cells.entry((cx, cy, kind)).or_default().push((id, p));
+        self.cells
+            .entry((cx, cy, kind, group))
+            .or_default()
+            .push((id, p));
         id
     }
 }
@@ -57,7 +61,7 @@ pub fn join_segments(pieces: &[Piece]) -> Vec<Polyline> {
     let mut nodes = Nodes::default();
     let ends: Vec<(usize, usize)> = pieces
         .iter()
-        .map(|&(a, b, kind)| (nodes.id(a, kind), nodes.id(b, kind)))
+        .map(|&(a, b, kind, group)| (nodes.id(a, kind, group), nodes.id(b, kind, group)))
         .collect();
     let mut at: Vec<Vec<usize>> = vec![Vec::new(); nodes.count];
     for (k, &(a, b)) in ends.iter().enumerate() {
@@ -74,7 +78,7 @@ pub fn join_segments(pieces: &[Piece]) -> Vec<Polyline> {
             continue;
         }
         used[start] = true;
-        let (a, b, kind) = pieces[start];
+        let (a, b, kind, group) = pieces[start];
         let forward = at[ends[start].0].len() == 1 || at[ends[start].1].len() != 1;
         let (first, mut end, mut node) = if forward {
             (a, b, ends[start].1)
@@ -84,7 +88,7 @@ pub fn join_segments(pieces: &[Piece]) -> Vec<Polyline> {
         let mut points = vec![first, end];
         while let Some(&next) = at[node].iter().find(|&&k| !used[k]) {
             used[next] = true;
-            let (p, q, _) = pieces[next];
+            let (p, q, _, _) = pieces[next];
             (end, node) = if ends[next].0 == node {
                 (q, ends[next].1)
             } else {
@@ -95,6 +99,7 @@ pub fn join_segments(pieces: &[Piece]) -> Vec<Polyline> {
         let points = straighten(points);
         out.push(Polyline {
             kind,
+            group,
             points: points.iter().map(|p| (p[0], p[1])).collect(),
             depths: points.iter().map(|p| p[2]).collect(),
         });

@@ -7,16 +7,21 @@
 //!   where it is the nearest surface, as integer polygons on the front
 //!   end's 1/256-pixel grid (refined), regions of one flat face merged
 //!   into one path ([`regions_svg`]);
-//! - [`hidden_lines`]: the visible parts of silhouettes, open boundaries,
-//!   creases, material boundaries and surface intersections as polylines
-//!   joined end to end ([`lines_svg`]), optionally with the hidden parts
-//!   dashed.
+//! - [`hidden_lines`] / [`hidden_lines_in`]: the visible parts of
+//!   silhouettes, open boundaries, creases, material boundaries and
+//!   surface intersections as polylines joined end to end and ordered for
+//!   a pen plotter ([`lines_svg`] / [`lines_document`]), optionally with
+//!   the hidden parts dashed.
 //!
 //! Both work in object space on the [`hider_scene::ScreenScene`] every
-//! hider consumes, so they agree with the pixel-centre hiders at every
+//! hider consumes. The regions agree with the pixel-centre hiders at every
 //! pixel centre that is not a depth tie (the tests check it against the
-//! z-buffer on every hard case). The method and its cost are described in
-//! `docs/vector.md`.
+//! z-buffer on every hard case); the lines are decided against the
+//! unsnapped camera-space triangles and match a ray-cast reference. The
+//! SVG documents are in pixel coordinates, layered by object (Inkscape
+//! layers, [`SvgInfo`]), with a title and description, and the regions
+//! are stroked against the seams anti-aliasing viewers draw. The method
+//! and its cost are described in `docs/vector.md`.
 //!
 //! ```
 //! use hider_scene::{prepare, procedural, PrepareOptions, ShadeMode, View};
@@ -27,7 +32,7 @@
 //! let options = VectorOptions::default();
 //! let map = visible_regions(&screen, &options, ShadeMode::Lambert)?;
 //! let svg = regions_svg(&screen, &map, &options);
-//! assert_eq!(svg.matches("<path").count(), map.groups.len());
+//! assert_eq!(svg.matches("<path data-prim").count(), map.groups.len());
 //! let lines = hidden_lines(&screen, &map, &options)?;
 //! assert!(!lines.visible.is_empty());
 //! # Ok::<(), hider_scene::Error>(())
@@ -37,6 +42,7 @@ mod chain;
 mod close;
 mod closed;
 mod cover;
+mod document;
 mod grid;
 mod lines;
 mod options;
@@ -45,11 +51,18 @@ mod regions;
 mod snap;
 mod svg;
 
+pub use document::{ObjectGroups, SvgInfo};
 pub use grid::Grid;
-pub use lines::{LineDrawing, LineKind, LineStats, Polyline, hidden_lines};
+pub use lines::{
+    Feature, LineDrawing, LineKind, LineStats, Polyline, Visibility, feature_visibility,
+    hidden_lines, hidden_lines_in, line_features, pen_up_travel,
+};
 pub use options::VectorOptions;
-pub use regions::{FaceGroup, PrimRegion, RegionMap, RegionStats, visible_regions};
-pub use svg::{lines_svg, regions_svg, write_lines_svg, write_regions_svg};
+pub use regions::{FaceGroup, PrimRegion, RegionMap, RegionStats, line_pairs, visible_regions};
+pub use svg::{
+    kind_name, lines_document, lines_svg, regions_document, regions_svg, write_document,
+    write_lines_svg, write_regions_svg,
+};
 
 /// The error every failure of this crate is reported as.
 pub(crate) fn render_error(message: String) -> hider_scene::Error {

@@ -128,6 +128,25 @@ pub fn visible_regions(
     options: &VectorOptions,
     mode: ShadeMode,
 ) -> Result<RegionMap> {
+    build(scene, options, mode, true)
+}
+
+/// What [`crate::hidden_lines`] needs of a [`RegionMap`], without the
+/// regions: the grid and the intersection pairs, exactly those
+/// [`visible_regions`] finds, but no boolean, snap rounding or grouping
+/// (`prims`, `groups` and `covered` are empty). For a line drawing alone;
+/// when the regions are wanted too, compute them once and pass that map.
+pub fn line_pairs(scene: &ScreenScene, options: &VectorOptions) -> Result<RegionMap> {
+    build(scene, options, ShadeMode::Ids, false)
+}
+
+/// [`visible_regions`], or only its pair phase when `regions` is false.
+fn build(
+    scene: &ScreenScene,
+    options: &VectorOptions,
+    mode: ShadeMode,
+    regions: bool,
+) -> Result<RegionMap> {
     options.validate()?;
     let grid = Grid::for_scene(scene, options.refine_bits)?;
 
@@ -190,6 +209,9 @@ pub fn visible_regions(
                 }
             }
         });
+        if !regions {
+            continue;
+        }
         let shapes = if buried {
             Vec::new()
         } else if occluders.is_empty() {
@@ -204,6 +226,16 @@ pub fn visible_regions(
     cut_pairs.sort_unstable();
     cut_pairs.dedup();
     stats.cut_pairs = cut_pairs.len() as u64;
+    if !regions {
+        return Ok(RegionMap {
+            grid,
+            prims: Vec::new(),
+            groups: Vec::new(),
+            stats,
+            cut_pairs,
+            covered: Vec::new(),
+        });
+    }
     let outline = outline(&polys, &hidden);
     let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats);
 

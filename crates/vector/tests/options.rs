@@ -49,10 +49,13 @@ fn one_path_per_group_and_one_polyline_per_line() {
     let options = VectorOptions::default();
     let map = visible_regions(&s, &options, ShadeMode::Lambert).unwrap();
     let svg = regions_svg(&s, &map, &options);
-    assert_eq!(svg.matches("<path").count(), map.groups.len());
-    assert!(svg.contains("<rect"));
-    let bare = regions_svg(&s, &map, &options.clone().with_background(false));
-    assert!(!bare.contains("<rect"));
+    assert_eq!(svg.matches("<path data-prim").count(), map.groups.len());
+    // No background unless asked for.
+    assert!(!svg.contains("<rect"));
+    let white = options.clone().with_background(Some("white".into()));
+    assert!(regions_svg(&s, &map, &white).contains(r#"<rect id="background""#));
+    // Pixel coordinates, no scale transform.
+    assert!(!svg.contains("transform"), "{svg}");
     // Two triangles of one cube face are one group, one path.
     assert!(
         map.groups.iter().all(|g| g.prims.len() == 2),
