@@ -175,10 +175,10 @@ pub(super) fn validate_obj(text: &str, name: &Path) -> Result<Checked> {
             // the OBJ specification: read by no loader here, so named.
             "vp" | "cstype" | "deg" | "bmat" | "step" | "curv" | "curv2" | "surf" | "parm"
             | "trim" | "hole" | "scrv" | "sp" | "end" | "con" | "bevel" | "c_interp"
-            | "d_interp" | "lod" | "shadow_obj" | "trace_obj" | "ctech" | "stech" => {
-                if !checked.unsimulated.iter().any(|(_, w)| *w == keyword) {
-                    checked.unsimulated.push((k, keyword.to_owned()));
-                }
+            | "d_interp" | "lod" | "shadow_obj" | "trace_obj" | "ctech" | "stech"
+                if !checked.unsimulated.iter().any(|(_, w)| *w == keyword) =>
+            {
+                checked.unsimulated.push((k, keyword.to_owned()));
             }
             _ => {}
         }
