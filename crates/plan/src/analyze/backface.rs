@@ -122,7 +122,7 @@ struct Shells {
 /// number (three edge uses each, two per edge), and an antisymmetric hash
 /// `F(a, b) - F(b, a)` of every directed edge sums to zero (each edge's two
 /// opposite uses cancel). Positions are hashed by their bits (-0.0 as
-/// 0.0), as [`weld`] identifies them. False means certainly open or
+/// 0.0), as the welding of vertices identifies them. False means certainly open or
 /// inconsistently oriented; true means "sort and see".
 pub fn maybe_closed(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
     if indices.is_empty() {

@@ -12,7 +12,7 @@
 //!   triangle, and the uvs are interpolated with the barycentrics of that
 //!   point: exact perspective (scratchapixel's depth-buffer lesson and the
 //!   perspective-correct interpolation blog post: attributes are affine in
-//!   camera space, not on the screen). [`Mapping::Affine`] interpolates on
+//!   camera space, not on the screen). [`Mapping::Affine`](super::Mapping::Affine) interpolates on
 //!   the screen instead, labelled as the error those texts warn about, to
 //!   show it.
 //! - **lighting**: flat two-sided Lambert
