@@ -1,10 +1,8 @@
-//! The image-size and camera flags, shared so that `hider analyze` plans
-//! for the view `hider render` renders: `--size` or `--width`/`--height`,
-//! `--eye`, `--target`, `--up`, `--fovy`, `--near`, `--far`.
-//!
-//! `hider render` can take them the same way (`#[command(flatten)] view:
-//! ViewArgs`, then [`ViewArgs::image_size`] and [`ViewArgs::camera`]); the
-//! flags, their checks and their meaning are those of `render_args.rs`.
+//! The image-size and camera flags, one definition that `hider render` and
+//! `hider analyze` both flatten in, so that analyze plans for the view
+//! render renders: `--size` or `--width`/`--height`, `--eye`, `--target`,
+//! `--up`, `--fovy`, `--near`, `--far`; and the `--precision` and
+//! `--shade` values.
 
 use anyhow::{Context, Result, bail};
 use clap::Args;

@@ -4,16 +4,16 @@
 
 use std::path::PathBuf;
 
-use anyhow::{Context, Result, bail};
+use anyhow::{Result, bail};
 
 use clap::{Args, ValueEnum};
-use glam::DVec3;
-use hider::geom::{Camera, Projection};
+use hider::geom::Camera;
 use hider::plan::HiderConfig;
-use hider::scene::{PrepareOptions, Scene, ShadeMode, fit_camera};
+use hider::scene::{PrepareOptions, Scene, ShadeMode};
 use hider::zbuffer::{DepthFormat, DepthSource};
 
 use crate::args;
+use crate::camera_args::{PrecisionArg, ShadeArg, ViewArgs};
 
 /// Arguments of `hider render`.
 #[derive(Args, Debug)]
@@ -24,15 +24,9 @@ pub struct RenderArgs {
     /// Output PNG.
     #[arg(short, long)]
     pub output: PathBuf,
-    /// Square image size in pixels (1 to 16384).
-    #[arg(long, value_parser = args::side, conflicts_with_all = ["width", "height"])]
-    size: Option<u32>,
-    /// Image width in pixels (with --height).
-    #[arg(long, value_parser = args::side)]
-    width: Option<u32>,
-    /// Image height in pixels (with --width).
-    #[arg(long, value_parser = args::side)]
-    height: Option<u32>,
+    /// The image size and the camera (shared with `hider analyze`).
+    #[command(flatten)]
+    view: ViewArgs,
     /// Hidden-surface algorithm (see `hider list`), or `auto`: the planner
     /// picks the cheapest one exact for what the scene calls for (and for
     /// --aa and --svg-mode painter) and says why.
@@ -97,24 +91,6 @@ pub struct RenderArgs {
     /// How to colour the image.
     #[arg(long, value_enum, default_value = "lambert")]
     shade: ShadeArg,
-    /// Eye position x,y,z (default: the fit camera).
-    #[arg(long, value_parser = args::vec3, allow_hyphen_values = true)]
-    eye: Option<DVec3>,
-    /// Point looked at x,y,z.
-    #[arg(long, value_parser = args::vec3, allow_hyphen_values = true)]
-    target: Option<DVec3>,
-    /// Up direction x,y,z.
-    #[arg(long, value_parser = args::vec3, allow_hyphen_values = true)]
-    up: Option<DVec3>,
-    /// Vertical field of view in degrees.
-    #[arg(long, value_parser = args::fovy)]
-    fovy: Option<f64>,
-    /// Near plane distance.
-    #[arg(long, value_parser = args::distance)]
-    near: Option<f64>,
-    /// Far plane distance.
-    #[arg(long, value_parser = args::distance)]
-    far: Option<f64>,
     /// Worker threads: the tiled z-buffer renders tiles in parallel, and
     /// above 1 the front end prepares large scenes in parallel too.
     #[arg(long, default_value_t = 1, value_parser = args::threads)]
@@ -140,13 +116,6 @@ enum DepthFormatArg {
 enum DepthSourceArg {
     WindowZ,
     LinearViewZ,
-}
-
-/// `--precision`.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum PrecisionArg {
-    F32,
-    F64,
 }
 
 /// `--svg-mode`: what the SVG holds.
@@ -244,30 +213,11 @@ pub mod vector_flags {
     }
 }
 
-/// `--shade`.
-#[derive(Clone, Copy, Debug, ValueEnum)]
-enum ShadeArg {
-    Lambert,
-    Ids,
-}
-
 impl RenderArgs {
     /// The image size, `--size` or `--width` and `--height` (512 x 512 by
     /// default), checked.
     pub fn image_size(&self) -> Result<(u32, u32)> {
-        let (width, height) = match (self.size, self.width, self.height) {
-            (Some(n), _, _) => (n, n),
-            (None, Some(w), Some(h)) => (w, h),
-            (None, Some(w), None) => {
-                bail!("--width {w} needs --height too (or --size for a square)")
-            }
-            (None, None, Some(h)) => {
-                bail!("--height {h} needs --width too (or --size for a square)")
-            }
-            (None, None, None) => (512, 512),
-        };
-        hider::scene::view::check_image_size(width, height).context("bad image size")?;
-        Ok((width, height))
+        self.view.image_size()
     }
 
     /// Every output path with the flag that names it.
@@ -362,38 +312,17 @@ impl RenderArgs {
     /// front end, which also clips at the viewport's sides as llvmpipe
     /// does), and parallel above one thread.
     pub fn prepare_options(&self) -> PrepareOptions {
-        match self.precision {
-            PrecisionArg::F32 => PrepareOptions::gl_compatible(),
-            PrecisionArg::F64 => PrepareOptions::default(),
-        }
-        .with_parallel(self.threads > 1)
+        self.precision.prepare_options(self.threads)
     }
 
     /// How to colour the image (`--shade`).
     pub fn shade_mode(&self) -> ShadeMode {
-        match self.shade {
-            ShadeArg::Lambert => ShadeMode::Lambert,
-            ShadeArg::Ids => ShadeMode::Ids,
-        }
+        self.shade.mode()
     }
 
     /// The camera: the scene's (or the fit camera) with the flags given
     /// applied.
     pub fn camera(&self, scene: &Scene) -> Camera {
-        let mut c = scene.camera.unwrap_or_else(|| fit_camera(scene));
-        c.eye = self.eye.unwrap_or(c.eye);
-        c.target = self.target.unwrap_or(c.target);
-        c.up = self.up.unwrap_or(c.up);
-        if let Projection::Perspective {
-            fovy_degrees,
-            near,
-            far,
-        } = &mut c.projection
-        {
-            *fovy_degrees = self.fovy.unwrap_or(*fovy_degrees);
-            *near = self.near.unwrap_or(*near);
-            *far = self.far.unwrap_or(*far);
-        }
-        c
+        self.view.camera(scene)
     }
 }
