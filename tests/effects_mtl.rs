@@ -319,23 +319,54 @@ fn vertex_colours_show() {
     }
 }
 
-/// Faces of one object with and without `vt`: what cannot be kept is named
-/// in a warning, not dropped silently.
+/// Faces of one object with and without `vt` each keep what they have:
+/// the faces with uvs are textured (all uvs were dropped and nothing was
+/// textured), the others take the material's colour, and the primitive
+/// ids stay in file order.
 #[test]
-fn partly_textured_objects_are_named() {
+fn partly_textured_objects_keep_their_uvs() {
     let dir = folder("mixedvt");
-    let model = dir.join("mixed.obj");
-    std::fs::write(
-        &model,
-        "o mixed\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 2 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
-         f 1/1 2/2 3/3\nf 2 5 3\n",
+    std::fs::copy(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("assets/checker.png"),
+        dir.join("checker.png"),
     )
     .unwrap();
-    let (_, e) = render(&model, "zbuffer", &[]);
-    assert!(
-        e.contains("object 'mixed': some faces have texture coordinates (vt) and some do not"),
-        "{e}"
+    std::fs::write(
+        dir.join("model.mtl"),
+        "newmtl m\nKd 1 0.5 0.5\nillum 0\nmap_Kd checker.png\n",
+    )
+    .unwrap();
+    let model = dir.join("mixed.obj");
+    // Left half textured (two faces with vt), right half not (one face
+    // without), in one object.
+    std::fs::write(
+        &model,
+        "mtllib model.mtl\no mixed\nusemtl m\nv -1 -1 0\nv 0 -1 0\nv 0 1 0\nv -1 1 0\nv 1 -1 0\n\
+         v 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\nf 2 5 6\n",
+    )
+    .unwrap();
+    let ids = dir.join("mixed.i32");
+    let (p, e) = render(
+        &model,
+        "zbuffer",
+        &["--eye", "0,0,2.4", "--ids-out", ids.to_str().unwrap()],
     );
+    assert!(!e.contains("some faces have"), "{e}");
+    let row = |y: usize| -> Vec<[u8; 4]> { (0..64).map(|x| p[y * 64 + x]).collect() };
+    // The textured left half shows the checker's light and dark squares
+    // (times Kd); the right half's one face is flat.
+    let left: Vec<[u8; 4]> = row(20)[12..30].to_vec();
+    assert!(distinct(&left) >= 2, "left half not textured: {left:?}");
+    let right = [p[40 * 64 + 50]];
+    assert!(right[0][0] > right[0][1], "{right:?}");
+    // Ids in file order: 0 and 1 on the left, 2 on the right.
+    let dump = std::fs::read(&ids).unwrap();
+    let id = |x: usize, y: usize| {
+        let k = 4 * (y * 64 + x);
+        i32::from_le_bytes([dump[k], dump[k + 1], dump[k + 2], dump[k + 3]])
+    };
+    assert!([0, 1].contains(&id(20, 32)), "{}", id(20, 32));
+    assert_eq!(id(50, 40), 2);
 }
 
 /// A texture that cannot be decoded (a text file named `.png`) is named in

@@ -33,6 +33,12 @@ pub(super) struct Checked {
     /// Statements read but not simulated (free-form geometry, render
     /// attributes): the first line of each keyword.
     pub(super) unsimulated: Vec<(usize, String)>,
+    /// Faces (by 0-based line) where an object's faces change between
+    /// having texture coordinates or normals and not, with the object's
+    /// name: tobj is told a new object of the same name starts there, so
+    /// that each part keeps what its faces have (one mesh holds an
+    /// attribute for every vertex or for none).
+    pub(super) splits: Vec<(usize, String)>,
 }
 
 impl Checked {
@@ -43,10 +49,15 @@ impl Checked {
     /// The text tobj parses: `text` with the skipped statements replaced
     /// (line numbers kept), borrowed when nothing is skipped.
     pub(super) fn text_for_tobj<'a>(&self, text: &'a str) -> Cow<'a, str> {
-        if self.skipped.is_empty() {
+        if self.skipped.is_empty() && self.splits.is_empty() {
             return Cow::Borrowed(text);
         }
         let mut lines: Vec<Cow<'_, str>> = text.split('\n').map(Cow::Borrowed).collect();
+        for (k, object) in &self.splits {
+            // The object statement shares the face's line, so every later
+            // line keeps its number.
+            lines[*k] = Cow::Owned(format!("o {object}\n{}", lines[*k]));
+        }
         for &(k, what) in &self.skipped {
             lines[k] = match what {
                 Skipped::Line | Skipped::Point => Cow::Borrowed(""),
@@ -108,6 +119,10 @@ impl Checked {
 pub(super) fn validate_obj(text: &str, name: &Path) -> Result<Checked> {
     let (mut nv, mut nvt, mut nvn) = (0i64, 0i64, 0i64);
     let mut checked = Checked::default();
+    // The current object's name (tobj's default before any `o` or `g`) and
+    // the layout (has vt, has vn) of its last face.
+    let mut object = String::from("unnamed_object");
+    let mut layout: Option<(bool, bool)> = None;
     for (k, raw) in text.split('\n').enumerate() {
         let line_no = k + 1;
         let err = |message: String| Error::Parse {
@@ -163,6 +178,25 @@ pub(super) fn validate_obj(text: &str, name: &Path) -> Result<Checked> {
             "f" => {
                 check_face(&values, [nv, nvt, nvn], &err)?;
                 checked.triangles += values.len() as u64 - 2;
+                let mut parts = values[0].split('/');
+                parts.next();
+                let face = (
+                    parts.next().is_some_and(|t| !t.is_empty()),
+                    parts.next().is_some_and(|n| !n.is_empty()),
+                );
+                if layout.is_some_and(|l| l != face) {
+                    checked.splits.push((k, object.clone()));
+                }
+                layout = Some(face);
+            }
+            "o" | "g" => {
+                let name = line.trim_start()[1..].trim();
+                object = if name.is_empty() {
+                    "unnamed_object".to_owned()
+                } else {
+                    name.to_owned()
+                };
+                layout = None;
             }
             // tobj reads a polyline of three or more vertices as a face;
             // lines and points are not surfaces, so they are skipped.
