@@ -17,7 +17,9 @@ fn pixels(png: &Path) -> Vec<[u8; 4]> {
 
 fn render(algo: &str, shade: &str, out: &Path) -> Vec<[u8; 4]> {
     let run = Command::new(env!("CARGO_BIN_EXE_hider"))
-        .args(["render", "gen:cube", "--size", "32", "--algo", algo, "--shade", shade])
+        .args([
+            "render", "gen:cube", "--size", "32", "--algo", algo, "--shade", shade,
+        ])
         .arg("-o")
         .arg(out)
         .output()

@@ -39,9 +39,10 @@ pub enum Filter {
 pub struct Texture {
     width: u32,
     height: u32,
-    /// sRGB bytes, converted to linear light as they are sampled: a
-    /// quarter of the memory of linear `f32` texels, the same values.
-    texels: Vec<[u8; 3]>,
+    /// sRGB bytes, 3 per texel, top row first, converted to linear light
+    /// as they are sampled: a quarter of the memory of linear `f32`
+    /// texels, the same values.
+    texels: Vec<u8>,
     /// Whether the image had texels that are not fully opaque (an alpha
     /// cut-out or a translucent texture): the alpha is not simulated.
     alpha: bool,
@@ -116,15 +117,27 @@ impl Texture {
             path: path.to_path_buf(),
             message: e.to_string(),
         })?;
-        let alpha = img.color().has_alpha() && img.to_rgba8().pixels().any(|p| p.0[3] < 255);
-        let rgb = img.to_rgb8();
-        let mut texture = Self::from_srgb8(rgb.width(), rgb.height(), rgb.as_raw())?;
+        // The alpha is read where it is (8-bit RGBA, the common case)
+        // rather than from a converted copy of the image.
+        let alpha = match &img {
+            image::DynamicImage::ImageRgba8(rgba) => rgba.pixels().any(|p| p.0[3] < 255),
+            other => other.color().has_alpha() && other.to_rgba8().pixels().any(|p| p.0[3] < 255),
+        };
+        // An RGB image's buffer becomes the texels without a copy.
+        let rgb = img.into_rgb8();
+        let (width, height) = (rgb.width(), rgb.height());
+        let mut texture = Self::from_srgb8_vec(width, height, rgb.into_raw())?;
         texture.alpha = alpha;
         Ok(texture)
     }
 
     /// A texture from sRGB bytes, 3 per texel, top row first.
     pub fn from_srgb8(width: u32, height: u32, bytes: &[u8]) -> Result<Self> {
+        Self::from_srgb8_vec(width, height, bytes.to_vec())
+    }
+
+    /// [`Self::from_srgb8`], taking the bytes without copying them.
+    pub fn from_srgb8_vec(width: u32, height: u32, bytes: Vec<u8>) -> Result<Self> {
         for (what, v) in [("texture width", width), ("texture height", height)] {
             if v == 0 || v > MAX_TEXTURE_SIDE {
                 return Err(Error::OutOfRange {
@@ -142,11 +155,10 @@ impl Texture {
                 value: format!("{} bytes for {width}x{height}", bytes.len()),
             });
         }
-        let texels = bytes.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
         Ok(Self {
             width,
             height,
-            texels,
+            texels: bytes,
             alpha: false,
         })
     }
@@ -169,7 +181,7 @@ impl Texture {
 
     /// Bytes held.
     pub fn bytes(&self) -> usize {
-        self.texels.len() * std::mem::size_of::<[u8; 3]>()
+        self.texels.len()
     }
 
     fn texel(&self, x: i64, y: i64, clamp: bool) -> [f32; 3] {
@@ -179,7 +191,8 @@ impl Texture {
         } else {
             (x.rem_euclid(w) as usize, y.rem_euclid(h) as usize)
         };
-        linear(self.texels[y * self.width as usize + x])
+        let k = 3 * (y * self.width as usize + x);
+        linear([self.texels[k], self.texels[k + 1], self.texels[k + 2]])
     }
 
     /// The linear colour at texture coordinates `(u, v)` (OBJ convention,
@@ -193,7 +206,7 @@ impl Texture {
     /// repeating.
     pub fn sample_wrapped(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> [f32; 3] {
         if !(u.is_finite() && v.is_finite()) {
-            return linear(self.texels[0]);
+            return linear([self.texels[0], self.texels[1], self.texels[2]]);
         }
         // Texel space: x right, y down from the top row; centres at +0.5.
         let (u, v) = if clamp {
