@@ -130,7 +130,7 @@ pub fn compose(
     let mut oracle = Frame::new(w, h)?;
     oracle.ids.clone_from(&reference.ids);
     oracle.depth.clone_from(&reference.depth);
-    shade_frame(screen, &mut oracle, ShadeMode::Lambert);
+    shade_frame(screen, &mut oracle, ShadeMode::Lambert)?;
     let mut tiles: Vec<(String, Vec<[u8; 4]>)> = vec![("oracle".into(), oracle.color)];
     for (name, frame) in &sheet.tiles {
         let mut color = frame.color.clone();
@@ -212,7 +212,7 @@ mod tests {
             let mut z = registry::by_name(name).unwrap().make();
             let mut f = Frame::new(32, 32).unwrap();
             z.render(&screen, &mut f).unwrap();
-            shade_frame(&screen, &mut f, ShadeMode::Lambert);
+            shade_frame(&screen, &mut f, ShadeMode::Lambert).unwrap();
             sheet.tiles.push((z.name().to_owned(), f));
         }
         let img = compose(&screen, &reference, &sheet, 1e-5).unwrap();

@@ -211,8 +211,11 @@ fn run_job(
         .map(|(n, v)| format!("{n}={v}"))
         .collect::<Vec<_>>()
         .join(";");
-    if !hider.resolves_color() {
-        shade_frame(&p.screen, frame, ShadeMode::Lambert);
+    if !hider.resolves_color()
+        && let Err(e) = shade_frame(&p.screen, frame, ShadeMode::Lambert)
+    {
+        row.status = format!("error: {e}");
+        return;
     }
     score(entry.kind, p, options, row, frame);
     if study == Study::DepthPrecision {

@@ -33,7 +33,7 @@ fn main() -> Result<(), hider_scene::Error> {
             let mut f = Frame::new(TILE, TILE)?;
             let stats = h.render(&s, &mut f)?;
             println!("{} on scene {col}: {stats}", h.name());
-            shade_frame(&s, &mut f, ShadeMode::Lambert);
+            shade_frame(&s, &mut f, ShadeMode::Lambert)?;
             for j in 0..TILE {
                 for i in 0..TILE {
                     let to = sheet.index(col as u32 * TILE + i, row as u32 * TILE + j);

@@ -75,7 +75,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut frame = Frame::new(size, size)?;
     let mut hider = Scanline::new(ScanlineOptions::default().with_record_spans(true));
     let stats = hider.render(&screen, &mut frame)?;
-    shade_frame(&screen, &mut frame, ShadeMode::Lambert);
+    shade_frame(&screen, &mut frame, ShadeMode::Lambert)?;
 
     let mut sheet = Frame::new(2 * size, size)?;
     for y in 0..size {

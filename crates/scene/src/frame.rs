@@ -111,6 +111,43 @@ impl Frame {
         self.ids.len() * 4 + self.depth.len() * 4 + self.color.len() * 4 + self.coverage.len() * 4
     }
 
+    /// The colour of pixel `(x, y)` (sRGB RGBA), `None` outside the frame.
+    pub fn pixel(&self, x: u32, y: u32) -> Option<[u8; 4]> {
+        (x < self.width && y < self.height).then(|| self.color[self.index(x, y)])
+    }
+
+    /// The colour buffer as RGBA bytes, top row first: what an image
+    /// library or a GPU upload takes.
+    pub fn rgba_bytes(&self) -> &[u8] {
+        self.color.as_flattened()
+    }
+
+    /// The colour buffer as an `image` crate picture; an error when the
+    /// buffer (a public field) no longer holds width x height pixels.
+    ///
+    /// ```
+    /// let mut frame = hider_scene::Frame::new(4, 2)?;
+    /// frame.color[5] = [255, 0, 0, 255];
+    /// let image = frame.to_rgba_image()?;
+    /// assert_eq!(image.get_pixel(1, 1).0, [255, 0, 0, 255]);
+    /// assert_eq!(frame.pixel(1, 1), Some([255, 0, 0, 255]));
+    /// assert_eq!(frame.pixel(4, 0), None);
+    /// assert_eq!(frame.rgba_bytes().len(), 4 * 2 * 4);
+    /// # Ok::<(), hider_scene::Error>(())
+    /// ```
+    pub fn to_rgba_image(&self) -> Result<image::RgbaImage> {
+        image::RgbaImage::from_raw(self.width, self.height, self.rgba_bytes().to_vec()).ok_or_else(
+            || {
+                Error::InvalidScene(format!(
+                    "the frame's colour buffer holds {} pixels, not {} x {}",
+                    self.color.len(),
+                    self.width,
+                    self.height
+                ))
+            },
+        )
+    }
+
     /// Writes the colour buffer as an 8-bit RGBA PNG, atomically.
     pub fn write_png(&self, path: &Path) -> Result<()> {
         let mut set = OutputSet::new();

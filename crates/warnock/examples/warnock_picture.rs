@@ -50,7 +50,7 @@ fn main() -> Result<(), hider_scene::Error> {
     let mut frame = Frame::new(size, size)?;
     let mut warnock = Warnock::new(WarnockOptions::default().with_record_regions(true));
     let stats = warnock.render(&screen, &mut frame)?;
-    shade_frame(&screen, &mut frame, ShadeMode::Lambert);
+    shade_frame(&screen, &mut frame, ShadeMode::Lambert)?;
     draw_region_outlines(&mut frame, warnock.leaf_regions());
     let path = out.join("warnock-regions.png");
     frame.write_png(&path)?;

@@ -23,7 +23,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let screen = prepare(&scene, &view, &PrepareOptions::default())?;
         let mut frame = Frame::new(384, 384)?;
         ZBuffer::default().render(&screen, &mut frame)?;
-        shade_frame(&screen, &mut frame, ShadeMode::Lambert);
+        shade_frame(&screen, &mut frame, ShadeMode::Lambert)?;
         frame.write_png(&images.join("zbuffer-spider.png"))?;
     } else {
         eprintln!("skipped the spider: {} not found", spider.display());
@@ -38,7 +38,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .render(&screen, &mut good)?;
     ZBuffer::new(ZBufferOptions::default().with_depth_source(DepthSource::LinearViewZ))
         .render(&screen, &mut bad)?;
-    shade_frame(&screen, &mut bad, ShadeMode::Lambert);
+    shade_frame(&screen, &mut bad, ShadeMode::Lambert)?;
     let mut wrong = 0;
     for i in 0..bad.len() {
         if good.ids[i] != bad.ids[i] {

@@ -38,7 +38,7 @@
 //! let mut frame = Frame::new(64, 64)?;
 //! let mut zbuffer = ZBuffer::new(ZBufferOptions::default());
 //! let stats = zbuffer.render(&screen, &mut frame)?;
-//! shade_frame(&screen, &mut frame, ShadeMode::Lambert);
+//! shade_frame(&screen, &mut frame, ShadeMode::Lambert)?;
 //! frame.write_png(&dir.join("quad.png"))?;
 //! assert!(frame.covered_count() > 0);
 //! assert_eq!(stats.depth_passes, frame.covered_count() as u64);

@@ -31,6 +31,7 @@ pub use stages::{
 pub use surface::{Mapping, TextureOptions, TextureSampler};
 pub use texture::{Filter, MAX_TEXTURE_SIDE, Texture, TextureRef, TextureTransform};
 
+use crate::error::{Error, Result};
 use crate::frame::{BACKGROUND, Frame, NO_ID};
 use crate::model::{Illumination, Light, Material};
 use crate::prepare::ScreenScene;
@@ -238,13 +239,45 @@ pub fn to_srgb8(linear: f32) -> u8 {
     (s * 255.0 + 0.5) as u8
 }
 
-/// Fills `frame.color` from `frame.ids`: each covered pixel gets its
-/// primitive's colour, background pixels [`BACKGROUND`]. Colours are
-/// computed once per visible primitive.
-pub fn shade_frame(scene: &ScreenScene, frame: &mut Frame, mode: ShadeMode) {
+/// Fills `frame.color` from `frame.ids` with the flat colours of the
+/// primitives of `scene` (the prepared scene the ids came from): each
+/// covered pixel gets its primitive's colour, background pixels
+/// [`BACKGROUND`]. Colours are computed once per visible primitive.
+///
+/// An id the scene does not hold is an error, never a background pixel:
+/// it means the ids came from another scene, typically a hider with a
+/// front end of its own (the tiled z-buffer, the A-buffer) that left
+/// `scene` as it was; colour such a frame with [`Shader`] reading
+/// [`Prims::Scene`] (the world-space scene), which needs no prepared one.
+///
+/// ```
+/// use hider_scene::{Frame, PrepareOptions, ScreenScene, ShadeMode, View, prepare, procedural, shade_frame};
+/// let scene = procedural::cube();
+/// let view = View::for_scene(&scene, 16, 16)?;
+/// let mut frame = Frame::new(16, 16)?;
+/// frame.ids[0] = 3;
+/// let empty = ScreenScene::empty(&view);
+/// assert!(shade_frame(&empty, &mut frame, ShadeMode::Lambert).is_err());
+/// let screen = prepare(&scene, &view, &PrepareOptions::default())?;
+/// shade_frame(&screen, &mut frame, ShadeMode::Lambert)?;
+/// # Ok::<(), hider_scene::Error>(())
+/// ```
+pub fn shade_frame(scene: &ScreenScene, frame: &mut Frame, mode: ShadeMode) -> Result<()> {
+    if let Some(&id) = frame
+        .ids
+        .iter()
+        .find(|&&id| id != NO_ID && id as usize >= scene.prims.len())
+    {
+        return Err(Error::InvalidScene(format!(
+            "the frame shows primitive {id}, but the prepared scene holds {} primitives: \
+             a hider with its own front end leaves the prepared scene as it was; colour its \
+             frame with shade::Shader and Prims::Scene",
+            scene.prims.len()
+        )));
+    }
     let mut cache: Vec<Option<[u8; 4]>> = vec![None; scene.prims.len()];
     for (id, out) in frame.ids.iter().zip(frame.color.iter_mut()) {
-        if *id == NO_ID || *id as usize >= cache.len() {
+        if *id == NO_ID {
             *out = BACKGROUND;
             continue;
         }
@@ -253,6 +286,7 @@ pub fn shade_frame(scene: &ScreenScene, frame: &mut Frame, mode: ShadeMode) {
             [to_srgb8(rgb[0]), to_srgb8(rgb[1]), to_srgb8(rgb[2]), 255]
         });
     }
+    Ok(())
 }
 
 /// Fills `frame.color` with each id's false colour ([`id_color`]) and the
@@ -334,7 +368,7 @@ mod tests {
             };
         }
         let mut expected = frame.clone();
-        shade_frame(&screen, &mut expected, ShadeMode::Ids);
+        shade_frame(&screen, &mut expected, ShadeMode::Ids).unwrap();
         id_frame(&mut frame);
         assert_eq!(frame.color, expected.color);
     }

@@ -288,7 +288,7 @@ mod tests {
         assert!(lit.lit_prims > 0);
         // The lit pass is flat Lambert: what shade_frame gives.
         let mut flat = frame.clone();
-        shade_frame(&screen, &mut flat, ShadeMode::Lambert);
+        shade_frame(&screen, &mut flat, ShadeMode::Lambert).unwrap();
         assert_eq!(flat.color, frame.color);
         // Read from the world-space scene, the pass gives the same colours.
         let on_demand = ScenePrims::new(&scene, &view).unwrap();
