@@ -115,3 +115,8 @@ pub use pattern::SamplePattern;
 pub use sorted::SortedTransparencyZBuffer;
 pub use ssaa::SupersampledZBuffer;
 pub use stats::{ABufferStats, SsaaStats};
+
+/// The scene crate this one renders from (scene model, OBJ loading, the
+/// front end, frames, the camera, `glam`), so that one dependency is
+/// enough to render.
+pub use hider_scene as scene;

@@ -75,3 +75,8 @@ pub use raycast::{OracleStats, RayCastOracle};
 pub use reference::Reference;
 pub use tolerance::{DEFAULT_TIE_TOLERANCE, WINDOW_TIE_TOLERANCE};
 pub use window_depth::{WindowDepthReference, window_depth_reference};
+
+/// The scene crate this one renders from (scene model, OBJ loading, the
+/// front end, frames, the camera, `glam`), so that one dependency is
+/// enough to render.
+pub use hider_scene as scene;

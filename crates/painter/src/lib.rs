@@ -89,3 +89,8 @@ pub use options::{NaivePainterOptions, PainterOptions, SortKey};
 pub use painter::Painter;
 pub use piece::{Cut, Piece};
 pub use stats::PainterStats;
+
+/// The scene crate this one renders from (scene model, OBJ loading, the
+/// front end, frames, the camera, `glam`), so that one dependency is
+/// enough to render.
+pub use hider_scene as scene;

@@ -63,3 +63,8 @@ pub use options::ScanlineOptions;
 pub use scanline::Scanline;
 pub use stats::ScanlineStats;
 pub use trace::{Resolution, SpanRecord};
+
+/// The scene crate this one renders from (scene model, OBJ loading, the
+/// front end, frames, the camera, `glam`), so that one dependency is
+/// enough to render.
+pub use hider_scene as scene;

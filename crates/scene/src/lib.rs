@@ -78,5 +78,9 @@ pub use shade::{
 };
 pub use view::{View, fit_camera};
 
+/// The vector maths the scene is written in (`glam::DVec3` for positions).
+pub use glam;
 /// The geometry crate this one builds on.
 pub use hider_geom as geom;
+/// The camera, one re-export away (it lives in [`geom`]).
+pub use hider_geom::{Camera, Projection, Viewport};

@@ -64,6 +64,11 @@ pub use svg::{
     write_lines_svg, write_regions_svg,
 };
 
+/// The scene crate this one renders from (scene model, OBJ loading, the
+/// front end, frames, the camera, `glam`), so that one dependency is
+/// enough to render.
+pub use hider_scene as scene;
+
 /// The error every failure of this crate is reported as.
 pub(crate) fn render_error(message: String) -> hider_scene::Error {
     hider_scene::Error::Render {

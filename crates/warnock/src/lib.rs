@@ -73,3 +73,8 @@ pub use debug::{LeafRegion, draw_region_outlines};
 pub use options::WarnockOptions;
 pub use stats::{Rule, WarnockStats};
 pub use warnock::Warnock;
+
+/// The scene crate this one renders from (scene model, OBJ loading, the
+/// front end, frames, the camera, `glam`), so that one dependency is
+/// enough to render.
+pub use hider_scene as scene;

@@ -22,10 +22,11 @@
 //!
 //! # Example
 //!
-//! Load an OBJ, render it with the fit camera, write a PNG:
+//! Load an OBJ, render it with the fit camera, write a PNG (the scene crate
+//! is re-exported as [`scene`], so this crate alone is enough):
 //!
 //! ```
-//! use hider_scene::{load_obj, prepare, shade_frame, Frame, Hider, PrepareOptions, ShadeMode, View};
+//! use hider_zbuffer::scene::{load_obj, prepare, shade_frame, Frame, Hider, PrepareOptions, ShadeMode, View};
 //! use hider_zbuffer::{ZBuffer, ZBufferOptions};
 //!
 //! # let dir = std::env::temp_dir().join(format!("hider-zdoc-{}", std::process::id()));
@@ -76,6 +77,11 @@ pub use depth_scene::{DepthFragment, DepthScene, DepthTri, prepare_depth_into};
 pub use options::{DepthFormat, DepthSource, DepthTest, ZBufferOptions};
 pub use raster::{ZBuffer, ZBufferStats};
 pub use tiled::{TiledZBuffer, TiledZBufferOptions, TiledZBufferStats};
+
+/// The scene crate this one renders from (scene model, OBJ loading, the
+/// front end, frames, the camera, `glam`), so that one dependency is
+/// enough to render.
+pub use hider_scene as scene;
 
 #[cfg(test)]
 mod tests;
