@@ -342,7 +342,7 @@ fn write_vector_svg(
         let textured = scene.materials.iter().any(|m| m.diffuse_texture.is_some());
         if textured && args.shade_mode() == ShadeMode::Lambert {
             let note = "region fills are flat colours: textures are not written";
-            eprintln!("hider: warning: --svg: {note}");
+            eprint_line(&format!("hider: warning: --svg: {note}"));
             info = info.with_note(note);
         }
         let map = visible_regions(screen, &options, args.shade_mode())

@@ -1,13 +1,14 @@
 """Type stubs of ``hider`` (checked against the package by mypy's stubtest
 in CI)."""
 
+import os
 from typing import Literal, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "AUTO", "DEFAULT_ALGO",
-           "KINDS"]
+__all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "svg", "AUTO",
+           "DEFAULT_ALGO", "KINDS"]
 
 __version__: str
 
@@ -41,3 +42,12 @@ def visible_faces(
     eye: _Point = None, target: _Point = None, up: _Point = None, fovy: float | None = 60.0,
     near: float | None = None, far: float | None = None, algo: str = ..., threads: int = 1,
 ) -> npt.NDArray[np.bool_]: ...
+def svg(
+    vertices: npt.ArrayLike, faces: npt.ArrayLike, path: str | os.PathLike[str], *, width: int,
+    height: int, eye: _Point = None, target: _Point = None, up: _Point = None,
+    fovy: float | None = 60.0, near: float | None = None, far: float | None = None,
+    mode: Literal["regions", "lines"] = "regions", crease_angle: float = 30.0,
+    stroke_width: float = 1.0, stroke_mm: float | None = None,
+    page_mm: tuple[float, float] | None = None, hidden: Literal["none", "dashed"] = "none",
+    background: str | None = None, seams: bool = True,
+) -> None: ...

@@ -5,7 +5,7 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = ["render", "algorithms", "algorithm_kinds", "__version__", "plan", "screen_render",
-           "screen_pieces"]
+           "screen_pieces", "svg"]
 __version__: str
 
 _Point = tuple[float, float, float] | None
@@ -33,3 +33,10 @@ def screen_pieces(
     max_splits: int | None = None,
 ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.float64],
            npt.NDArray[np.bool_]]: ...
+def svg(
+    vertices: _Vertices, faces: _Faces, path: str, width: int, height: int,
+    eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
+    far: float | None, mode: str, crease_angle: float, stroke_width: float,
+    stroke_mm: float | None, page_mm: tuple[float, float] | None, hidden: str,
+    background: str | None, seams: bool,
+) -> None: ...

@@ -18,6 +18,7 @@ mod errors;
 mod mesh;
 mod render;
 mod screen;
+mod vector;
 
 use pyo3::prelude::*;
 
@@ -33,5 +34,6 @@ fn _hider(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render::plan, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_render, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_pieces, m)?)?;
+    m.add_function(wrap_pyfunction!(vector::svg, m)?)?;
     Ok(())
 }

@@ -23,12 +23,12 @@ pub type Buffers<'py> = (Bound<'py, PyArray2<i32>>, Bound<'py, PyArray2<f32>>);
 /// The camera overrides a caller gives; `None` keeps the fit camera's.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct CameraArgs {
-    eye: Option<[f64; 3]>,
-    target: Option<[f64; 3]>,
-    up: Option<[f64; 3]>,
-    fovy: Option<f64>,
-    near: Option<f64>,
-    far: Option<f64>,
+    pub(crate) eye: Option<[f64; 3]>,
+    pub(crate) target: Option<[f64; 3]>,
+    pub(crate) up: Option<[f64; 3]>,
+    pub(crate) fovy: Option<f64>,
+    pub(crate) near: Option<f64>,
+    pub(crate) far: Option<f64>,
 }
 
 impl CameraArgs {
@@ -287,7 +287,7 @@ fn copy_workspace_frame() -> Option<Rendered> {
 
 /// The one-mesh scene of the arrays and the view of `size` pixels through
 /// its camera with the caller's overrides.
-fn scene_and_view(
+pub(crate) fn scene_and_view(
     vertices: &Vertices<'_>,
     faces: &Faces<'_>,
     (width, height): (u32, u32),
