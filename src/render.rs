@@ -9,7 +9,7 @@
 use anyhow::{Context, Result};
 use hider::plan::{RenderOptions, planner, registry};
 use hider::scene::atomic::OutputSet;
-use hider::scene::shade::{Prims, ScenePrims, Shader, Stages, id_frame, transparency_warning};
+use hider::scene::shade::{Stages, render_frame, transparency_warning};
 use hider::scene::timing::{Summary, Timer};
 use hider::scene::{
     DynHider, Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, StatsTable, View,
@@ -125,30 +125,6 @@ fn report(
     Ok(())
 }
 
-/// Colours the frame unless the hider did: from the ids, with only the
-/// stages the scene calls for under Lambert shading, reading the
-/// primitives from the world-space scene (whatever front end the hider
-/// ran).
-fn shade(
-    args: &RenderArgs,
-    chosen: &Chosen,
-    scene: &Scene,
-    view: &View,
-    frame: &mut Frame,
-) -> Result<()> {
-    if chosen.hider.resolves_color() {
-        return Ok(());
-    }
-    match args.shade_mode() {
-        ShadeMode::Lambert => {
-            let prims = ScenePrims::new(scene, view)?;
-            Shader::default().shade(Prims::Scene(&prims), frame, &chosen.stages);
-        }
-        ShadeMode::Ids => id_frame(frame),
-    }
-    Ok(())
-}
-
 /// Textures a textured mesh names that cannot be used, once per file:
 /// those whose decode failed during the frame, and those never decoded
 /// whose header does not read (a texture is decoded only when a pixel
@@ -242,12 +218,18 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     progress.stage(&format!("rendering with {}", chosen.hider.name()));
     let mut frame = Frame::new(width, height)?;
     let mut screen = ScreenScene::empty(&view);
-    let stats =
-        chosen
-            .hider
-            .render_scene(&scene, &view, &chosen.prepare, &mut screen, &mut frame)?;
-    progress.stage("shading");
-    shade(args, &chosen, &scene, &view, &mut frame)?;
+    // The hider's pipeline, then the colour pass unless the hider
+    // resolved colour itself: what a library user gets from one call.
+    let stats = render_frame(
+        chosen.hider.as_mut(),
+        &scene,
+        &view,
+        &chosen.prepare,
+        &chosen.stages,
+        args.shade_mode(),
+        &mut screen,
+        &mut frame,
+    )?;
     if args.shade_mode() == ShadeMode::Lambert {
         for warning in texture_warnings(&scene) {
             progress.suspend(|| eprint_line(&format!("hider: warning: {warning}")));

@@ -1,7 +1,7 @@
 //! What a library user writes gives what the command line gives: for every
-//! registered hider, `render_scene` (the one path every frame takes) and,
-//! unless the hider resolved colour itself, the colour pass reading the
-//! world-space scene (`Shader` with `Prims::Scene`), equal the PNG of
+//! registered hider, `render_frame` (`render_scene`, the one path every
+//! frame takes, then, unless the hider resolved colour itself, the colour
+//! pass reading the world-space scene) equals the PNG of
 //! `hider render --algo NAME`, pixel for pixel, on the textured spider and
 //! on a translucent scene. No hider leaves the colour pass a black frame.
 
@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use hider::plan::{HiderConfig, registry};
-use hider::scene::shade::{Prims, ScenePrims, Shader, Stages};
+use hider::scene::shade::{Stages, render_frame};
 use hider::scene::{Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, View, load_obj};
 
 const SIZE: u32 = 48;
@@ -26,23 +26,17 @@ fn library_frame(name: &str, scene: &Scene) -> Frame {
         .unwrap();
     let mut screen = ScreenScene::empty(&view);
     let mut frame = Frame::new(SIZE, SIZE).unwrap();
-    hider
-        .render_scene(
-            scene,
-            &view,
-            &PrepareOptions::default(),
-            &mut screen,
-            &mut frame,
-        )
-        .unwrap();
-    if !hider.resolves_color() {
-        let prims = ScenePrims::new(scene, &view).unwrap();
-        Shader::default().shade(
-            Prims::Scene(&prims),
-            &mut frame,
-            &Stages::for_scene(scene, true),
-        );
-    }
+    render_frame(
+        hider.as_mut(),
+        scene,
+        &view,
+        &PrepareOptions::default(),
+        &Stages::for_scene(scene, true),
+        ShadeMode::Lambert,
+        &mut screen,
+        &mut frame,
+    )
+    .unwrap();
     frame
 }
 

@@ -20,11 +20,13 @@
 use glam::DVec3;
 
 pub mod prims;
+mod render;
 pub mod stages;
 pub mod surface;
 pub mod texture;
 
 pub use prims::{Prims, ScenePrims};
+pub use render::render_frame;
 pub use stages::{
     Shader, ShaderOptions, StageTrace, Stages, texture_failures, transparency_warning,
 };
