@@ -135,6 +135,7 @@ impl Frame {
     /// assert_eq!(frame.rgba_bytes().len(), 4 * 2 * 4);
     /// # Ok::<(), hider_scene::Error>(())
     /// ```
+    #[cfg(feature = "image")]
     pub fn to_rgba_image(&self) -> Result<image::RgbaImage> {
         image::RgbaImage::from_raw(self.width, self.height, self.rgba_bytes().to_vec()).ok_or_else(
             || {
@@ -149,6 +150,7 @@ impl Frame {
     }
 
     /// Writes the colour buffer as an 8-bit RGBA PNG, atomically.
+    #[cfg(feature = "image")]
     pub fn write_png(&self, path: &Path) -> Result<()> {
         let mut set = OutputSet::new();
         self.write_png_into(&mut set, path)?;
@@ -174,6 +176,7 @@ impl Frame {
 
     /// [`Self::write_png`] staged in `set`: in place only when the set is
     /// committed with the other outputs of the run.
+    #[cfg(feature = "image")]
     pub fn write_png_into(&self, set: &mut OutputSet, path: &Path) -> Result<()> {
         let bytes: Vec<u8> = self.color.iter().flatten().copied().collect();
         set.stage(path, |w| {
@@ -287,6 +290,7 @@ mod tests {
         f.depth[1] = 0.25;
         f.write_ids(&dir.join("a.i32")).unwrap();
         f.write_depth(&dir.join("a.f32")).unwrap();
+        #[cfg(feature = "image")]
         f.write_png(&dir.join("a.png")).unwrap();
         let raw = std::fs::read(dir.join("a.i32")).unwrap();
         assert_eq!(&raw[..8], &[255, 255, 255, 255, 7, 0, 0, 0]);

@@ -21,6 +21,24 @@
 //! 1/256 pixel; coverage by exact integer edge functions under GL's fill
 //! rule (top-left in GL's bottom-up rows); window depth `z/w` in [0, 1].
 //!
+//! # Features
+//!
+//! All three are on by default; a crate that wants the front end alone
+//! (a depth buffer) can take `default-features = false`:
+//! - `obj`: OBJ/MTL loading through `tobj` (the [`obj`] module,
+//!   `load_obj`, `load_obj_with`, and files in [`load_model`]; without it
+//!   a file given to [`load_model`] is an error saying so, `gen:` scenes
+//!   still load);
+//! - `image`: PNG output (`Frame::write_png`, `Frame::write_png_into`,
+//!   `Frame::to_rgba_image`) and texture decoding through `image`; without
+//!   it every texture file is not loaded, with an error naming the file and
+//!   the feature (the id and depth dumps need no `image`);
+//! - `parallel`: the parallel front end and the hiders' thread pools
+//!   ([`pool`]) through `rayon`; without it everything runs on the calling
+//!   thread.
+//!
+//! See `docs/conventions.md`, "Features".
+//!
 //! # Example
 //!
 //! Prepare a procedural cube with the fit camera and look at what the front
@@ -49,6 +67,7 @@ pub mod hider;
 pub mod input;
 pub mod load;
 pub mod model;
+#[cfg(feature = "obj")]
 pub mod obj;
 pub mod obj_write;
 pub mod pool;
@@ -66,6 +85,7 @@ pub use hider::{
 };
 pub use load::{MAX_SOUP_TRIANGLES, MAX_SPHERE_SEGMENTS, generated, load_model};
 pub use model::{Illumination, Light, Material, Mesh, Scene};
+#[cfg(feature = "obj")]
 pub use obj::{load_obj, load_obj_with};
 pub use obj_write::save_obj;
 pub use prepare::{

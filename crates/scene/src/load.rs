@@ -3,7 +3,6 @@
 
 use crate::error::{Error, Result};
 use crate::model::Scene;
-use crate::obj::load_obj;
 use crate::procedural;
 
 /// Most segments of `gen:sphere:N`.
@@ -18,21 +17,42 @@ pub const MAX_SOUP_TRIANGLES: u64 = 10_000_000;
 /// The loader's warnings (a missing texture, a skipped statement) are in
 /// the scene's `warnings` for the caller to show.
 ///
-/// The errors of [`load_obj`] name the file (and the line); those of a
+/// The errors of [`load_obj`](crate::obj::load_obj) name the file (and the line); those of a
 /// `gen:` spec quote it.
 ///
+/// Without the `obj` feature a file is refused with an error saying so
+/// (a `gen:` spec still loads).
+///
 /// ```
+/// # #[cfg(feature = "obj")] {
 /// let cube = hider_scene::load_model("gen:cube")?;
 /// assert_eq!(cube.triangle_count(), 12);
 /// let missing = hider_scene::load_model("no/such/model.obj").unwrap_err();
 /// assert!(missing.to_string().starts_with("no/such/model.obj: "), "{missing}");
+/// # }
 /// # Ok::<(), hider_scene::Error>(())
 /// ```
 pub fn load_model(model: &str) -> Result<Scene> {
     if let Some(spec) = model.strip_prefix("gen:") {
         return generated(spec);
     }
-    load_obj(model)
+    load_file(model)
+}
+
+/// An OBJ file, through [`crate::obj::load_obj`].
+#[cfg(feature = "obj")]
+fn load_file(model: &str) -> Result<Scene> {
+    crate::obj::load_obj(model)
+}
+
+/// No OBJ loader in this build: an error naming the file and the feature.
+#[cfg(not(feature = "obj"))]
+fn load_file(model: &str) -> Result<Scene> {
+    Err(Error::Parse {
+        path: model.into(),
+        line: 0,
+        message: "cannot load an OBJ file: hider-scene was built without its `obj` feature".into(),
+    })
 }
 
 /// The generated scene of a spec (the text after `gen:`): `cube`,

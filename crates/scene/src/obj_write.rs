@@ -79,7 +79,7 @@ pub fn save_obj(scene: &Scene, path: &Path) -> Result<()> {
     put(path, &obj)
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "obj"))]
 mod tests {
     use super::*;
     use crate::procedural;

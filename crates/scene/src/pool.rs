@@ -17,8 +17,12 @@
 //!
 //! The choice changes no pixel: the hiders split their work the same way
 //! whichever threads run it.
+//!
+//! Without the crate's `parallel` feature (no rayon) every frame runs on
+//! the calling thread: [`OwnPool::workers`] is always [`Workers::Here`],
+//! [`OwnPool::start`] starts nothing, and [`current_threads`] is 1.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 
 /// The number of threads a hider's `threads` option asks for: the number
 /// itself, or the machine's core count for 0 (1 when it cannot tell).
@@ -29,6 +33,25 @@ pub fn thread_count(threads: usize) -> usize {
     }
 }
 
+/// The number of threads of the caller's pool (the one `par_iter` would
+/// use here); 1 without the `parallel` feature.
+pub fn current_threads() -> usize {
+    #[cfg(feature = "parallel")]
+    return rayon::current_num_threads();
+    #[cfg(not(feature = "parallel"))]
+    return 1;
+}
+
+/// A rayon thread pool: [`rayon::ThreadPool`].
+#[cfg(feature = "parallel")]
+pub type ThreadPool = rayon::ThreadPool;
+
+/// No thread pool can exist without the `parallel` feature: a type without
+/// values, so that [`Workers::Own`] is never made.
+#[cfg(not(feature = "parallel"))]
+#[derive(Debug)]
+pub enum ThreadPool {}
+
 /// The threads that run a frame's parallel work (see the module
 /// documentation).
 #[derive(Clone, Copy, Debug)]
@@ -38,7 +61,7 @@ pub enum Workers<'a> {
     /// The caller's rayon pool, which has the threads asked for.
     Ambient,
     /// The hider's own pool.
-    Own(&'a rayon::ThreadPool),
+    Own(&'a ThreadPool),
 }
 
 impl Workers<'_> {
@@ -52,7 +75,10 @@ impl Workers<'_> {
     /// caller's pool.
     pub fn install<R: Send>(self, f: impl FnOnce() -> R + Send) -> R {
         match self {
+            #[cfg(feature = "parallel")]
             Self::Own(pool) => pool.install(f),
+            #[cfg(not(feature = "parallel"))]
+            Self::Own(pool) => match *pool {},
             Self::Here | Self::Ambient => f(),
         }
     }
@@ -65,8 +91,14 @@ impl Workers<'_> {
     /// while. Nothing to do for [`Workers::Here`].
     pub fn wake(self) {
         match self {
+            #[cfg(feature = "parallel")]
             Self::Own(pool) => pool.spawn(|| {}),
+            #[cfg(feature = "parallel")]
             Self::Ambient => rayon::spawn(|| {}),
+            #[cfg(not(feature = "parallel"))]
+            Self::Own(pool) => match *pool {},
+            #[cfg(not(feature = "parallel"))]
+            Self::Ambient => {}
             Self::Here => {}
         }
     }
@@ -76,6 +108,7 @@ impl Workers<'_> {
 /// between frames (see the module documentation).
 #[derive(Debug, Default)]
 pub struct OwnPool {
+    #[cfg(feature = "parallel")]
     pool: Option<rayon::ThreadPool>,
 }
 
@@ -87,8 +120,20 @@ impl OwnPool {
     ///
     /// # Errors
     ///
-    /// [`Error::Render`] naming `hider` when the threads cannot be started.
+    /// [`Error::Render`](crate::Error::Render) naming `hider` when the
+    /// threads cannot be started.
     pub fn start(&mut self, threads: usize, hider: &str) -> Result<()> {
+        #[cfg(not(feature = "parallel"))]
+        {
+            let _ = (threads, hider);
+            Ok(())
+        }
+        #[cfg(feature = "parallel")]
+        self.start_pool(threads, hider)
+    }
+
+    #[cfg(feature = "parallel")]
+    fn start_pool(&mut self, threads: usize, hider: &str) -> Result<()> {
         if threads <= 1 || rayon::current_num_threads() == threads {
             return Ok(());
         }
@@ -100,7 +145,7 @@ impl OwnPool {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()
-                .map_err(|e| Error::Render {
+                .map_err(|e| crate::error::Error::Render {
                     hider: hider.to_owned(),
                     message: format!("cannot start {threads} threads: {e}"),
                 })?;
@@ -114,6 +159,12 @@ impl OwnPool {
     /// hider's own pool otherwise ([`Workers::Here`] when none was
     /// started: [`Self::start`] comes first).
     pub fn workers(&self, threads: usize) -> Workers<'_> {
+        #[cfg(not(feature = "parallel"))]
+        {
+            let _ = threads;
+            Workers::Here
+        }
+        #[cfg(feature = "parallel")]
         if threads <= 1 {
             Workers::Here
         } else if rayon::current_num_threads() == threads {
@@ -133,9 +184,11 @@ mod tests {
         let mut own = OwnPool::default();
         own.start(1, "test").unwrap();
         assert!(matches!(own.workers(1), Workers::Here));
+        #[cfg(feature = "parallel")]
         assert!(own.pool.is_none());
     }
 
+    #[cfg(feature = "parallel")]
     #[test]
     fn the_callers_pool_of_the_right_size_is_used() {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -150,6 +203,7 @@ mod tests {
         });
     }
 
+    #[cfg(feature = "parallel")]
     #[test]
     fn an_own_pool_is_started_again_when_the_size_changes() {
         let pool = rayon::ThreadPoolBuilder::new()

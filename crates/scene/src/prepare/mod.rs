@@ -6,6 +6,7 @@
 //! consumes the result and none re-projects, which is what makes
 //! cross-validation between hiders exact rather than approximate.
 
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::error::Result;
@@ -59,32 +60,7 @@ pub fn prepare_into(
         input: scene.triangle_count() as u64,
         ..PrepareStats::default()
     };
-    // Below this many triangles the fork-join overhead is not worth it.
-    const PARALLEL_CHUNK: usize = 16 * 1024;
-    if options.parallel
-        && rayon::current_num_threads() > 1
-        && scene.triangle_count() > 2 * PARALLEL_CHUNK
-    {
-        let mut segments = Vec::new();
-        let mut first_prim = 0u32;
-        for (m, mesh) in scene.meshes.iter().enumerate() {
-            for start in (0..mesh.indices.len()).step_by(PARALLEL_CHUNK) {
-                let end = (start + PARALLEL_CHUNK).min(mesh.indices.len());
-                segments.push((m, start..end, first_prim));
-                first_prim += (end - start) as u32;
-            }
-        }
-        let parts: Vec<Part> = segments
-            .into_par_iter()
-            .map(|(m, range, first)| {
-                let mut part = Part::default();
-                let mut scratch = ClipScratch::default();
-                for (k, t) in range.enumerate() {
-                    front.triangle(scene, (m, t, first + k as u32), &mut part, &mut scratch);
-                }
-                part
-            })
-            .collect();
+    if let Some(parts) = parallel_parts(scene, &front, options) {
         for part in parts {
             prims.extend_from_slice(&part.prims);
             tris.extend_from_slice(&part.tris);
@@ -116,4 +92,46 @@ pub fn prepare_into(
         stats,
     };
     Ok(())
+}
+
+/// The parallel front end's parts, in primitive order: `None` when the
+/// scene is prepared on this thread (not asked for by `options`, one
+/// thread, or too small a scene to pay for the fork-join).
+#[cfg(feature = "parallel")]
+fn parallel_parts(scene: &Scene, front: &FrontEnd, options: &PrepareOptions) -> Option<Vec<Part>> {
+    // Below this many triangles the fork-join overhead is not worth it.
+    const PARALLEL_CHUNK: usize = 16 * 1024;
+    if !(options.parallel
+        && rayon::current_num_threads() > 1
+        && scene.triangle_count() > 2 * PARALLEL_CHUNK)
+    {
+        return None;
+    }
+    let mut segments = Vec::new();
+    let mut first_prim = 0u32;
+    for (m, mesh) in scene.meshes.iter().enumerate() {
+        for start in (0..mesh.indices.len()).step_by(PARALLEL_CHUNK) {
+            let end = (start + PARALLEL_CHUNK).min(mesh.indices.len());
+            segments.push((m, start..end, first_prim));
+            first_prim += (end - start) as u32;
+        }
+    }
+    let parts: Vec<Part> = segments
+        .into_par_iter()
+        .map(|(m, range, first)| {
+            let mut part = Part::default();
+            let mut scratch = ClipScratch::default();
+            for (k, t) in range.enumerate() {
+                front.triangle(scene, (m, t, first + k as u32), &mut part, &mut scratch);
+            }
+            part
+        })
+        .collect();
+    Some(parts)
+}
+
+/// Without the `parallel` feature the front end runs on this thread.
+#[cfg(not(feature = "parallel"))]
+fn parallel_parts(_: &Scene, _: &FrontEnd, _: &PrepareOptions) -> Option<Vec<Part>> {
+    None
 }

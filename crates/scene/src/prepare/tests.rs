@@ -100,6 +100,7 @@ fn camera_ray_hits_the_pixel_it_came_from() {
     assert!((win.x - 40.5).abs() < 1e-9 && (win.y - 20.5).abs() < 1e-9);
 }
 
+#[cfg(feature = "parallel")]
 #[test]
 fn parallel_front_end_equals_sequential() {
     // Enough triangles (in two meshes) to take the parallel path.

@@ -1,6 +1,11 @@
 //! Diffuse textures (`map_Kd`): loading with the `image` crate and
 //! sampling, nearest or bilinear, with repeat wrapping.
 //!
+//! Without the crate's `image` feature no image file is read: every
+//! texture file is not loaded, with an error saying so ([`probe`],
+//! [`Texture::load`], [`TextureRef::problem`]); textures built from bytes
+//! ([`Texture::from_srgb8`]) still sample.
+//!
 //! Texels are kept in linear light so that bilinear filtering averages
 //! light, not sRGB codes. Texture coordinates follow OBJ: `(0, 0)` is the
 //! *bottom*-left of the image, `v` grows upward (tinyrenderer's z-buffer
@@ -48,8 +53,27 @@ pub struct Texture {
     alpha: bool,
 }
 
+/// The error of every texture file in a build without the `image` feature.
+#[cfg(not(feature = "image"))]
+fn without_image(path: &Path) -> Error {
+    Error::Image {
+        path: path.to_path_buf(),
+        message: "texture not loaded: hider-scene was built without its `image` feature".into(),
+    }
+}
+
 /// Reads an image file's size from its header, checking the limit; this is
 /// what "the texture loads" means to the analysis, without decoding it.
+///
+/// Without the `image` feature: an error naming the file and the feature.
+#[cfg(not(feature = "image"))]
+pub fn probe(path: &Path) -> Result<(u32, u32)> {
+    Err(without_image(path))
+}
+
+/// Reads an image file's size from its header, checking the limit; this is
+/// what "the texture loads" means to the analysis, without decoding it.
+#[cfg(feature = "image")]
 pub fn probe(path: &Path) -> Result<(u32, u32)> {
     let image_error = |e: image::ImageError| Error::Image {
         path: path.to_path_buf(),
@@ -111,6 +135,16 @@ pub fn srgb_to_linear(c: u8) -> f32 {
 
 impl Texture {
     /// Loads an image file (PNG or JPEG), size checked first.
+    ///
+    /// Without the `image` feature: an error naming the file and the
+    /// feature.
+    #[cfg(not(feature = "image"))]
+    pub fn load(path: &Path) -> Result<Self> {
+        Err(without_image(path))
+    }
+
+    /// Loads an image file (PNG or JPEG), size checked first.
+    #[cfg(feature = "image")]
     pub fn load(path: &Path) -> Result<Self> {
         probe(path)?;
         let img = image::open(path).map_err(|e| Error::Image {

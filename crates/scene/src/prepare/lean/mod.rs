@@ -33,6 +33,7 @@ pub use clipped::ClipFallback;
 pub use scene::{LeanScene, LeanSink, LeanTri, prepare_lean_into, prepare_lean_sinks};
 pub use vertices::{CachedVertex, NO_WINDOW, NOT_FINITE, vertices};
 
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::error::Error;
@@ -141,17 +142,12 @@ pub fn lean_passes<R: Default + Send>(
 /// How a lean front end splits a scene of `count` triangles: whether it
 /// works on the current rayon pool (asked for by `options`, more than one
 /// thread, and a scene large enough to pay for it), and into how many
-/// contiguous runs of primitive ids.
+/// contiguous runs of primitive ids (never parallel without the
+/// `parallel` feature: see [`crate::pool::current_threads`]).
 fn run_split(options: &PrepareOptions, count: usize) -> (bool, usize) {
-    let parallel = options.parallel && rayon::current_num_threads() > 1 && count >= PARALLEL_MIN;
-    (
-        parallel,
-        if parallel {
-            rayon::current_num_threads()
-        } else {
-            1
-        },
-    )
+    let threads = crate::pool::current_threads();
+    let parallel = options.parallel && threads > 1 && count >= PARALLEL_MIN;
+    (parallel, if parallel { threads } else { 1 })
 }
 
 /// Runs a triangle pass over primitive ids `0..count` cut into contiguous
@@ -178,9 +174,16 @@ fn in_runs<R: Default + Send>(
         *run = local;
         outcome
     };
+    #[cfg(feature = "parallel")]
     let outcomes: Vec<RunOutcome> = if parallel {
         runs.par_iter_mut().enumerate().map(work).collect()
     } else {
+        runs.iter_mut().enumerate().map(work).collect()
+    };
+    // One thread without the `parallel` feature (`parallel` is false).
+    #[cfg(not(feature = "parallel"))]
+    let outcomes: Vec<RunOutcome> = {
+        let _ = parallel;
         runs.iter_mut().enumerate().map(work).collect()
     };
     if outcomes.iter().any(|o| o.bad_index) {
@@ -198,7 +201,8 @@ fn in_runs<R: Default + Send>(
 
 /// Runs the vertex pass ([`vertices`]) over every mesh of `scene`, meshes
 /// one after the other, into `out` (resized to the scene's vertex count),
-/// on the current rayon pool when `parallel`. Returns whether every world
+/// on the current rayon pool when `parallel` (ignored without the
+/// `parallel` feature: on this thread). Returns whether every world
 /// position is finite (a non-finite one is an invalid scene: report it
 /// with [`invalid_scene`]).
 pub fn fill_vertices(
@@ -207,6 +211,8 @@ pub fn fill_vertices(
     parallel: bool,
     out: &mut Vec<CachedVertex>,
 ) -> bool {
+    #[cfg(not(feature = "parallel"))]
+    let _ = parallel;
     let total: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
     out.resize(total, CachedVertex::default());
     let mut rest = &mut out[..];
@@ -219,16 +225,19 @@ pub fn fill_vertices(
             let positions = &mesh.positions[first..first + chunk.len()];
             vertices(front, positions, chunk)
         };
-        finite &= if parallel {
-            mine.par_chunks_mut(VERTEX_CHUNK)
+        #[cfg(feature = "parallel")]
+        if parallel {
+            finite &= mine
+                .par_chunks_mut(VERTEX_CHUNK)
                 .enumerate()
                 .map(work)
-                .reduce(|| true, |a, b| a & b)
-        } else {
-            mine.chunks_mut(VERTEX_CHUNK)
-                .enumerate()
-                .fold(true, |ok, c| ok & work(c))
-        };
+                .reduce(|| true, |a, b| a & b);
+            continue;
+        }
+        finite &= mine
+            .chunks_mut(VERTEX_CHUNK)
+            .enumerate()
+            .fold(true, |ok, c| ok & work(c));
     }
     finite
 }

@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport};
+#[cfg(feature = "parallel")]
 use rayon::prelude::*;
 
 use crate::error::Result;
@@ -165,7 +166,10 @@ pub fn prepare_lean_into(
     // of the second half of the 500 sphere took 1.3 ms at 2 threads, this
     // 0.7.
     for r in &out.runs[1..] {
+        #[cfg(feature = "parallel")]
         out.tris.par_extend(r.par_iter().copied());
+        #[cfg(not(feature = "parallel"))]
+        out.tris.extend_from_slice(r);
     }
     stats.output = out.tris.len() as u64;
     out.finish(scene, front, stats);

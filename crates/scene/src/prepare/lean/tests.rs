@@ -104,6 +104,7 @@ fn lean_front_end_is_prepare_bit_for_bit() {
     }
 }
 
+#[cfg(feature = "parallel")]
 #[test]
 fn lean_front_end_in_parallel_is_prepare() {
     // Above the size where both front ends split the work.
@@ -127,12 +128,14 @@ fn lean_front_end_in_parallel_is_prepare() {
 /// a run of sinks takes `prepare`'s triangles in order, one contiguous
 /// run of primitive ids per sink, each sink told the frame's viewport
 /// first; the lean scene keeps the counters and colours and no triangle.
+#[cfg(feature = "parallel")]
 #[derive(Default)]
 struct Counted {
     tris: Vec<LeanTri>,
     begun: Option<(u32, u32)>,
 }
 
+#[cfg(feature = "parallel")]
 impl LeanSink for Counted {
     fn clear(&mut self) {
         self.tris.clear();
@@ -148,6 +151,7 @@ impl LeanSink for Counted {
     }
 }
 
+#[cfg(feature = "parallel")]
 #[test]
 fn sinks_take_prepares_triangles_in_runs() {
     let scene = procedural::random_soup(40_000, 8);
@@ -193,6 +197,7 @@ fn sinks_take_prepares_triangles_in_runs() {
 /// (serial, 2 and 3 runs, a small scene that does not split), with a
 /// failed frame between them, gives `prepare`'s triangles every time: the
 /// output trades buffers with the first run, and the runs change in number.
+#[cfg(feature = "parallel")]
 #[test]
 fn a_reused_lean_scene_follows_every_split() {
     let big = procedural::random_soup(40_000, 5);
