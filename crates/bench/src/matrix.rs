@@ -10,7 +10,7 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 
-use crate::scenes::{self, Group, Source};
+use crate::scenes::{self, Group, ObjCamera, Source};
 use hider_plan::registry::{self, Entry};
 
 /// The study a case belongs to.
@@ -126,8 +126,12 @@ pub struct MatrixOptions {
     pub precision_ratios: Vec<f64>,
     /// Square size of the depth-precision study.
     pub precision_size: u32,
-    /// Square sizes of the accuracy study.
-    pub sizes: Vec<u32>,
+    /// Image sizes `(width, height)` of the accuracy study.
+    pub sizes: Vec<(u32, u32)>,
+    /// The camera of the user's scenes ([`Group::Obj`]: `--obj` files and
+    /// [`Self::extra_scenes`]) in every study; unset keeps each scene's
+    /// own camera or the fit camera.
+    pub obj_camera: ObjCamera,
     /// UV sphere segment counts of the polygon study (`2n(n-1)` triangles).
     pub polygon_steps: Vec<u32>,
     /// Square sizes of the resolution study.
@@ -155,7 +159,8 @@ impl Default for MatrixOptions {
             precision_gaps: vec![1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
             precision_ratios: vec![1e-2, 1e-3, 1e-4, 1e-5],
             precision_size: 128,
-            sizes: vec![64, 256],
+            sizes: vec![(64, 64), (256, 256)],
+            obj_camera: ObjCamera::default(),
             polygon_steps: vec![8, 16, 32, 64, 128, 256],
             resolution_steps: vec![64, 128, 256, 512, 1024],
             resolution_sphere: 32,
@@ -184,10 +189,31 @@ impl MatrixOptions {
         self
     }
 
-    /// Sets [`Self::sizes`].
+    /// Sets [`Self::sizes`] to squares of these sides.
     pub fn with_sizes(mut self, sizes: Vec<u32>) -> Self {
+        self.sizes = sizes.into_iter().map(|s| (s, s)).collect();
+        self
+    }
+
+    /// Sets [`Self::sizes`] to these `(width, height)` pairs.
+    pub fn with_image_sizes(mut self, sizes: Vec<(u32, u32)>) -> Self {
         self.sizes = sizes;
         self
+    }
+
+    /// Sets [`Self::obj_camera`].
+    pub fn with_obj_camera(mut self, camera: ObjCamera) -> Self {
+        self.obj_camera = camera;
+        self
+    }
+
+    /// The smallest accuracy size (by pixel count), where the hard cases'
+    /// contact sheets are drawn.
+    pub fn smallest_size(&self) -> Option<(u32, u32)> {
+        self.sizes
+            .iter()
+            .copied()
+            .min_by_key(|&(w, h)| u64::from(w) * u64::from(h))
     }
 
     /// Adds a scene built in memory (see [`Self::extra_scenes`]).
@@ -283,8 +309,15 @@ pub fn build_cases(options: &MatrixOptions) -> Result<Vec<Case>> {
             }
             Study::Accuracy => {
                 for (name, group, source) in accuracy_scenes(options) {
-                    for &s in &options.sizes {
-                        all.push(square(study, name.clone(), group, source.clone(), s));
+                    for &(width, height) in &options.sizes {
+                        all.push(Case {
+                            study,
+                            scene: name.clone(),
+                            group,
+                            source: source.clone(),
+                            width,
+                            height,
+                        });
                     }
                 }
             }
