@@ -88,9 +88,10 @@ pub struct RunArgs {
     /// Image height of the accuracy study (with --width).
     #[arg(long, requires = "width", conflicts_with = "sizes")]
     pub height: Option<u32>,
-    /// Square size of the real-size study (default 1024).
-    #[arg(long)]
-    pub real_size: Option<u32>,
+    /// Image size of the real-size study: `N` (N x N) or `WxH` (default
+    /// 1024).
+    #[arg(long, value_parser = parse_size)]
+    pub real_size: Option<(u32, u32)>,
     /// Extra OBJ files to benchmark (accuracy and real-size studies);
     /// repeatable. Each gets a contact sheet. --eye, --target, --up and
     /// --fovy set the camera of every --obj scene.
@@ -238,7 +239,7 @@ impl RunArgs {
             .with_max_seconds(self.max_seconds);
         if self.quick {
             m.sizes = vec![(32, 32)];
-            m.real_size = 128;
+            m.real_size = (128, 128);
             m.real_spheres = vec![32];
             m.real_layers = vec![2];
             m.precision_gaps = vec![1e-2, 1e-4, 1e-6];
@@ -527,6 +528,22 @@ mod tests {
             parse(&[]).unwrap().options().matrix.sizes,
             vec![(64, 64), (256, 256)]
         );
+    }
+
+    #[test]
+    fn the_real_size_takes_width_by_height() {
+        let a = parse(&["--real-size", "800x600"]).unwrap();
+        assert_eq!(a.options().matrix.real_size, (800, 600));
+        assert_eq!(
+            parse(&["--real-size", "512"])
+                .unwrap()
+                .options()
+                .matrix
+                .real_size,
+            (512, 512)
+        );
+        assert_eq!(parse(&[]).unwrap().options().matrix.real_size, (1024, 1024));
+        assert!(parse(&["--real-size", "0x5"]).is_err());
     }
 
     #[test]

@@ -111,8 +111,8 @@ pub struct MatrixOptions {
     pub algos: Vec<String>,
     /// Studies to run.
     pub studies: Vec<Study>,
-    /// Square size of the real-size study.
-    pub real_size: u32,
+    /// Image size `(width, height)` of the real-size study.
+    pub real_size: (u32, u32),
     /// UV sphere segment counts of the real-size study's generated spheres
     /// (`2n(n-1)` triangles: 64 gives 8,064; 200 is the 79,600-triangle
     /// sphere of the fast z-buffer's comparison with llvmpipe).
@@ -153,7 +153,7 @@ impl Default for MatrixOptions {
             scenes: Vec::new(),
             algos: Vec::new(),
             studies: Study::ALL.to_vec(),
-            real_size: 1024,
+            real_size: (1024, 1024),
             real_spheres: vec![64, 200],
             real_layers: vec![8],
             precision_gaps: vec![1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
@@ -309,15 +309,8 @@ pub fn build_cases(options: &MatrixOptions) -> Result<Vec<Case>> {
             }
             Study::Accuracy => {
                 for (name, group, source) in accuracy_scenes(options) {
-                    for &(width, height) in &options.sizes {
-                        all.push(Case {
-                            study,
-                            scene: name.clone(),
-                            group,
-                            source: source.clone(),
-                            width,
-                            height,
-                        });
+                    for &size in &options.sizes {
+                        all.push(sized(study, name.clone(), group, source.clone(), size));
                     }
                 }
             }
@@ -388,28 +381,33 @@ fn real_size_cases(options: &MatrixOptions, all: &mut Vec<Case>) {
             Group::Obj | Group::Scaling => true,
         };
         if keep {
-            all.push(square(study, name, group, source, s));
+            all.push(sized(study, name, group, source, s));
         }
     }
     for &n in &options.real_spheres {
         let scene = format!("sphere_{n}");
-        all.push(square(study, scene, Group::Scaling, Source::Sphere(n), s));
+        all.push(sized(study, scene, Group::Scaling, Source::Sphere(n), s));
     }
     for &k in &options.real_layers {
         let scene = format!("layers_{k}");
-        all.push(square(study, scene, Group::Scaling, Source::Layers(k), s));
+        all.push(sized(study, scene, Group::Scaling, Source::Layers(k), s));
     }
 }
 
 /// A case of `size` x `size` pixels.
 fn square(study: Study, scene: String, group: Group, source: Source, size: u32) -> Case {
+    sized(study, scene, group, source, (size, size))
+}
+
+/// A case of `width` x `height` pixels.
+fn sized(study: Study, scene: String, group: Group, source: Source, size: (u32, u32)) -> Case {
     Case {
         study,
         scene,
         group,
         source,
-        width: size,
-        height: size,
+        width: size.0,
+        height: size.1,
     }
 }
 

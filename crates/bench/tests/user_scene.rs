@@ -107,9 +107,14 @@ fn a_real_size_only_run_still_draws_the_users_scene() {
     let dir = temp_dir("real");
     let mut o = options(dir.clone(), ObjCamera::default(), None);
     o.matrix.studies = vec![Study::RealSize];
-    o.matrix.real_size = 20;
+    o.matrix.real_size = (20, 14);
     let out = run(&o, &AtomicBool::new(false), "test").unwrap();
-    assert!(out.results.rows.iter().all(|r| r.study == "real-size"));
+    assert!(
+        out.results
+            .rows
+            .iter()
+            .all(|r| (r.study.as_str(), r.width, r.height) == ("real-size", 20, 14))
+    );
     assert_eq!(
         out.contact_sheets,
         vec![dir.join("images/bench-contact-cube.obj.png")]
