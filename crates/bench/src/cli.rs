@@ -147,10 +147,10 @@ pub struct RunArgs {
     /// larger cases are timed but not scored.
     #[arg(long, default_value_t = RunOptions::default().oracle_budget)]
     pub oracle_budget: u64,
-    /// Worker threads: the run happens in a pool of N threads and the
-    /// hiders that render in parallel use N (default: RAYON_NUM_THREADS,
-    /// else one per core).
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    /// Worker threads, 1 to 256: the run happens in a pool of N threads
+    /// and the hiders that render in parallel use N (default:
+    /// RAYON_NUM_THREADS, else one per core).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
     pub threads: Option<u32>,
     /// A small matrix for a smoke test (32 px, 2 repeats, short sweeps).
     #[arg(long)]
@@ -588,6 +588,9 @@ mod tests {
         );
         assert_eq!(parse(&[]).unwrap().options().threads, None);
         assert!(parse(&["--threads", "0"]).is_err());
+        // The most the parallel hiders take.
+        assert!(parse(&["--threads", "256"]).is_ok());
+        assert!(parse(&["--threads", "257"]).is_err());
     }
 
     #[test]

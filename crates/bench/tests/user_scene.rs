@@ -103,6 +103,28 @@ fn the_users_camera_size_threads_and_contact_sheet() {
 }
 
 #[test]
+fn the_thread_count_reaches_the_hiders() {
+    // One more than the A-buffer takes: refused by it, by name, so the
+    // count got there; the z-buffer, which takes no thread count, runs.
+    let dir = temp_dir("threads");
+    let mut o = options(dir.clone(), ObjCamera::default(), Some(257));
+    o.matrix.algos = vec!["abuffer".into(), "zbuffer".into()];
+    let out = run(&o, &AtomicBool::new(false), "test").unwrap();
+    let status = |name: &str| {
+        let row = out.results.rows.iter().find(|r| r.hider == name).unwrap();
+        row.status.clone()
+    };
+    assert_eq!(status("zbuffer"), "ok");
+    let refused = status("abuffer");
+    assert!(
+        refused.starts_with("error") && refused.contains("threads"),
+        "{refused}"
+    );
+    assert_eq!(out.results.machines[0].threads, 257);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn a_real_size_only_run_still_draws_the_users_scene() {
     let dir = temp_dir("real");
     let mut o = options(dir.clone(), ObjCamera::default(), None);
