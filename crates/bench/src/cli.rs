@@ -23,6 +23,8 @@ use crate::matrix::{MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{Results, SCHEMA_VERSION, read_results, write_results};
 use crate::report::{conclusions, terminal_table, write_report};
 use crate::run::{RunOptions, run};
+use crate::scenes::ObjCamera;
+use hider_geom::glam::DVec3;
 
 /// Arguments of `hider bench`.
 #[derive(Args, Debug, Clone, PartialEq)]
@@ -75,15 +77,42 @@ pub struct RunArgs {
     /// depth-complexity.
     #[arg(long, value_delimiter = ',', value_parser = parse_study)]
     pub studies: Vec<Study>,
-    /// Square image sizes of the accuracy study (default 64,256).
-    #[arg(long, value_delimiter = ',')]
-    pub sizes: Vec<u32>,
-    /// Square size of the real-size study (default 1024).
-    #[arg(long)]
-    pub real_size: Option<u32>,
-    /// Extra OBJ files to benchmark (accuracy study); repeatable.
+    /// Image sizes of the accuracy study: `N` (N x N) or `WxH`;
+    /// comma-separated (default 64,256). Example: --sizes 64,800x600.
+    #[arg(long, value_delimiter = ',', value_parser = parse_size)]
+    pub sizes: Vec<(u32, u32)>,
+    /// Image width of the accuracy study (with --height; the same as
+    /// --sizes WxH).
+    #[arg(long, requires = "height", conflicts_with = "sizes")]
+    pub width: Option<u32>,
+    /// Image height of the accuracy study (with --width).
+    #[arg(long, requires = "width", conflicts_with = "sizes")]
+    pub height: Option<u32>,
+    /// Image size of the real-size study: `N` (N x N) or `WxH` (default
+    /// 1024).
+    #[arg(long, value_parser = parse_size)]
+    pub real_size: Option<(u32, u32)>,
+    /// Extra OBJ files to benchmark (accuracy and real-size studies);
+    /// repeatable. Each gets a contact sheet. --eye, --target, --up and
+    /// --fovy set the camera of every --obj scene.
     #[arg(long = "obj")]
     pub objs: Vec<PathBuf>,
+    /// Eye position `X,Y,Z` of every --obj scene's camera (default: the
+    /// fit camera's, on +Z of the scene's centre). Near and far planes
+    /// are fitted around the scene.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub eye: Option<DVec3>,
+    /// Point `X,Y,Z` every --obj scene's camera looks at (default: the
+    /// centre of the scene's bounding box).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub target: Option<DVec3>,
+    /// Up direction `X,Y,Z` of every --obj scene's camera (default 0,1,0).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub up: Option<DVec3>,
+    /// Vertical field of view in degrees of every --obj scene's camera
+    /// (default 60).
+    #[arg(long, value_parser = parse_fovy)]
+    pub fovy: Option<f64>,
     /// Folder of the bundled scenes (default: ./assets).
     #[arg(long)]
     pub assets: Option<PathBuf>,
@@ -102,7 +131,9 @@ pub struct RunArgs {
     /// Unmeasured warm-up renders per job.
     #[arg(long, default_value_t = RunOptions::default().timing.warmup)]
     pub warmup: u32,
-    /// Measured renders per job (at least 1).
+    /// Measured renders per job (at least 1). Real-size jobs take at most
+    /// 3 and stop repeating after 1 s (or --max-seconds if less);
+    /// depth-precision jobs render once.
     #[arg(long, default_value_t = RunOptions::default().timing.runs)]
     pub repeats: u32,
     /// Stop repeating a job after this many seconds of measured renders.
@@ -116,6 +147,11 @@ pub struct RunArgs {
     /// larger cases are timed but not scored.
     #[arg(long, default_value_t = RunOptions::default().oracle_budget)]
     pub oracle_budget: u64,
+    /// Worker threads, 1 to 256: the run happens in a pool of N threads
+    /// and the hiders that render in parallel use N (default:
+    /// RAYON_NUM_THREADS, else one per core).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=256))]
+    pub threads: Option<u32>,
     /// A small matrix for a smoke test (32 px, 2 repeats, short sweeps).
     #[arg(long)]
     pub quick: bool,
@@ -150,6 +186,43 @@ pub struct ReportArgs {
     pub output: OutputArgs,
 }
 
+/// `N` (a square) or `WxH`.
+fn parse_size(s: &str) -> std::result::Result<(u32, u32), String> {
+    let side = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .ok()
+            .filter(|&n| n > 0)
+            .ok_or_else(|| format!("bad image size '{s}' (expected N or WxH, e.g. 256 or 800x600)"))
+    };
+    match s.split_once(['x', 'X']) {
+        Some((w, h)) => Ok((side(w)?, side(h)?)),
+        None => side(s).map(|n| (n, n)),
+    }
+}
+
+/// `X,Y,Z`, three finite numbers.
+fn parse_vec3(s: &str) -> std::result::Result<DVec3, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|c| c.trim().parse::<f64>())
+        .collect::<std::result::Result<_, _>>()
+        .map_err(|_| format!("bad vector '{s}' (expected X,Y,Z, e.g. 0,5,10)"))?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok(DVec3::new(x, y, z)),
+        _ => Err(format!("bad vector '{s}' (expected X,Y,Z, e.g. 0,5,10)")),
+    }
+}
+
+/// A field of view strictly between 0 and 180 degrees.
+fn parse_fovy(s: &str) -> std::result::Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|f| *f > 0.0 && *f < 180.0)
+        .ok_or_else(|| format!("bad field of view '{s}' (expected degrees, 0 < fovy < 180)"))
+}
+
 fn parse_study(s: &str) -> std::result::Result<Study, String> {
     Study::parse(s).ok_or_else(|| {
         let names: Vec<&str> = Study::ALL.iter().map(|s| s.as_str()).collect();
@@ -165,8 +238,8 @@ impl RunArgs {
             .with_warmup(self.warmup)
             .with_max_seconds(self.max_seconds);
         if self.quick {
-            m.sizes = vec![32];
-            m.real_size = 128;
+            m.sizes = vec![(32, 32)];
+            m.real_size = (128, 128);
             m.real_spheres = vec![32];
             m.real_layers = vec![2];
             m.precision_gaps = vec![1e-2, 1e-4, 1e-6];
@@ -184,7 +257,18 @@ impl RunArgs {
                 dst.clone_from(v);
             }
         };
-        set(&self.sizes, &mut m.sizes);
+        if !self.sizes.is_empty() {
+            m.sizes.clone_from(&self.sizes);
+        }
+        if let (Some(w), Some(h)) = (self.width, self.height) {
+            m.sizes = vec![(w, h)];
+        }
+        m.obj_camera = ObjCamera {
+            eye: self.eye,
+            target: self.target,
+            up: self.up,
+            fovy_degrees: self.fovy,
+        };
         set(&self.polygon_steps, &mut m.polygon_steps);
         set(&self.resolution_steps, &mut m.resolution_steps);
         set(&self.depth_steps, &mut m.depth_steps);
@@ -211,6 +295,7 @@ impl RunArgs {
             contact_dir: Some(image_dir(&self.output)),
             oracle_budget: self.oracle_budget,
             progress: !self.no_progress,
+            threads: self.threads.map(|n| n as usize),
             ..RunOptions::default()
         }
     }
@@ -360,8 +445,11 @@ pub fn merge(inputs: &[PathBuf]) -> Result<Results> {
     Ok(merged)
 }
 
+/// What identifies a run: case, study, scene, (width, height), hider.
+type RunKey<'a> = (u32, &'a str, &'a str, (u32, u32), &'a str);
+
 fn check_unique(results: &Results, inputs: &[PathBuf]) -> Result<()> {
-    let mut keys: Vec<(u32, &str, &str, u32, &str)> = results
+    let mut keys: Vec<RunKey<'_>> = results
         .rows
         .iter()
         .map(|r| {
@@ -369,7 +457,7 @@ fn check_unique(results: &Results, inputs: &[PathBuf]) -> Result<()> {
                 r.case,
                 r.study.as_str(),
                 r.scene.as_str(),
-                r.width,
+                (r.width, r.height),
                 r.hider.as_str(),
             )
         })
@@ -378,10 +466,11 @@ fn check_unique(results: &Results, inputs: &[PathBuf]) -> Result<()> {
     if let Some(w) = keys.windows(2).find(|w| w[0] == w[1]) {
         let dirs: Vec<String> = inputs.iter().map(|p| p.display().to_string()).collect();
         bail!(
-            "run {} {}@{} {} appears twice in {} (a shard given twice?)",
+            "run {} {}@{}x{} {} appears twice in {} (a shard given twice?)",
             w[0].1,
             w[0].2,
-            w[0].3,
+            w[0].3.0,
+            w[0].3.1,
             w[0].4,
             dirs.join(", ")
         );
@@ -389,16 +478,137 @@ fn check_unique(results: &Results, inputs: &[PathBuf]) -> Result<()> {
     for w in keys.windows(2) {
         if w[0].0 == w[1].0 && (w[0].1, w[0].2, w[0].3) != (w[1].1, w[1].2, w[1].3) {
             bail!(
-                "case {} is {} {}@{} in one input and {} {}@{} in another: shards of different matrices",
+                "case {} is {} {}@{}x{} in one input and {} {}@{}x{} in another: shards of different matrices",
                 w[0].0,
                 w[0].1,
                 w[0].2,
-                w[0].3,
+                w[0].3.0,
+                w[0].3.1,
                 w[1].1,
                 w[1].2,
-                w[1].3
+                w[1].3.0,
+                w[1].3.1
             );
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run::study_timing;
+    use clap::{CommandFactory, Parser};
+
+    /// The arguments as the binary parses them.
+    #[derive(Parser, Debug)]
+    #[command(name = "hider-bench", allow_negative_numbers = true)]
+    struct Cli {
+        #[command(flatten)]
+        args: BenchArgs,
+    }
+
+    fn parse(args: &[&str]) -> std::result::Result<RunArgs, clap::Error> {
+        Cli::try_parse_from(std::iter::once("hider-bench").chain(args.iter().copied()))
+            .map(|c| c.args.run)
+    }
+
+    #[test]
+    fn sizes_take_squares_and_width_by_height() {
+        let a = parse(&["--sizes", "64,800x600,3X2"]).unwrap();
+        assert_eq!(a.sizes, vec![(64, 64), (800, 600), (3, 2)]);
+        assert_eq!(a.options().matrix.sizes, vec![(64, 64), (800, 600), (3, 2)]);
+        for bad in ["0", "8x", "x8", "-5", "big", "8x0", "1x2x3"] {
+            assert!(parse(&["--sizes", bad]).is_err(), "{bad}");
+        }
+        // --quick's 32 px gives way to the sizes asked for.
+        let q = parse(&["--quick", "--sizes", "40x30"]).unwrap();
+        assert_eq!(q.options().matrix.sizes, vec![(40, 30)]);
+        assert_eq!(
+            parse(&[]).unwrap().options().matrix.sizes,
+            vec![(64, 64), (256, 256)]
+        );
+    }
+
+    #[test]
+    fn the_real_size_takes_width_by_height() {
+        let a = parse(&["--real-size", "800x600"]).unwrap();
+        assert_eq!(a.options().matrix.real_size, (800, 600));
+        assert_eq!(
+            parse(&["--real-size", "512"])
+                .unwrap()
+                .options()
+                .matrix
+                .real_size,
+            (512, 512)
+        );
+        assert_eq!(parse(&[]).unwrap().options().matrix.real_size, (1024, 1024));
+        assert!(parse(&["--real-size", "0x5"]).is_err());
+    }
+
+    #[test]
+    fn width_and_height_come_together_and_not_with_sizes() {
+        let a = parse(&["--width", "80", "--height", "60"]).unwrap();
+        assert_eq!(a.options().matrix.sizes, vec![(80, 60)]);
+        assert!(parse(&["--width", "80"]).is_err());
+        assert!(parse(&["--height", "60"]).is_err());
+        assert!(parse(&["--width", "8", "--height", "6", "--sizes", "4"]).is_err());
+    }
+
+    #[test]
+    fn the_obj_camera_is_parsed_and_checked() {
+        let a = parse(&[
+            "--eye", "-3,2.5,5", "--target", "0,-1,0", "--up", "0,0,1", "--fovy", "40",
+        ])
+        .unwrap();
+        let c = a.options().matrix.obj_camera;
+        assert_eq!(c.eye, Some(DVec3::new(-3.0, 2.5, 5.0)));
+        assert_eq!(c.target, Some(DVec3::new(0.0, -1.0, 0.0)));
+        assert_eq!(c.up, Some(DVec3::Z));
+        assert_eq!(c.fovy_degrees, Some(40.0));
+        assert!(!parse(&[]).unwrap().options().matrix.obj_camera.is_set());
+        for (flag, bad) in [
+            ("--eye", "1,2"),
+            ("--eye", "1,2,3,4"),
+            ("--eye", "a,b,c"),
+            ("--target", "1,inf,0"),
+            ("--fovy", "0"),
+            ("--fovy", "180"),
+            ("--fovy", "wide"),
+        ] {
+            assert!(parse(&[flag, bad]).is_err(), "{flag} {bad}");
+        }
+    }
+
+    #[test]
+    fn threads_reach_the_run() {
+        assert_eq!(
+            parse(&["--threads", "2"]).unwrap().options().threads,
+            Some(2)
+        );
+        assert_eq!(parse(&[]).unwrap().options().threads, None);
+        assert!(parse(&["--threads", "0"]).is_err());
+        // The most the parallel hiders take.
+        assert!(parse(&["--threads", "256"]).is_ok());
+        assert!(parse(&["--threads", "257"]).is_err());
+    }
+
+    #[test]
+    fn help_states_the_real_size_cap_and_what_the_camera_applies_to() {
+        let help = Cli::command().render_long_help().to_string();
+        let flat = help.split_whitespace().collect::<Vec<_>>().join(" ");
+        for needle in [
+            "Real-size jobs take at most 3",
+            "set the camera of every --obj scene",
+            "--threads",
+            "WxH",
+            "--eye",
+            "--fovy",
+        ] {
+            assert!(flat.contains(needle), "{needle} in\n{help}");
+        }
+        // The cap stated is the cap applied.
+        let t = study_timing(&Timer::new(10), Study::RealSize);
+        assert_eq!(t.runs, 3);
+    }
 }

@@ -10,7 +10,7 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 
-use crate::scenes::{self, Group, Source};
+use crate::scenes::{self, Group, ObjCamera, Source};
 use hider_plan::registry::{self, Entry};
 
 /// The study a case belongs to.
@@ -111,8 +111,8 @@ pub struct MatrixOptions {
     pub algos: Vec<String>,
     /// Studies to run.
     pub studies: Vec<Study>,
-    /// Square size of the real-size study.
-    pub real_size: u32,
+    /// Image size `(width, height)` of the real-size study.
+    pub real_size: (u32, u32),
     /// UV sphere segment counts of the real-size study's generated spheres
     /// (`2n(n-1)` triangles: 64 gives 8,064; 200 is the 79,600-triangle
     /// sphere of the fast z-buffer's comparison with llvmpipe).
@@ -126,8 +126,12 @@ pub struct MatrixOptions {
     pub precision_ratios: Vec<f64>,
     /// Square size of the depth-precision study.
     pub precision_size: u32,
-    /// Square sizes of the accuracy study.
-    pub sizes: Vec<u32>,
+    /// Image sizes `(width, height)` of the accuracy study.
+    pub sizes: Vec<(u32, u32)>,
+    /// The camera of the user's scenes ([`Group::Obj`]: `--obj` files and
+    /// [`Self::extra_scenes`]) in every study; unset keeps each scene's
+    /// own camera or the fit camera.
+    pub obj_camera: ObjCamera,
     /// UV sphere segment counts of the polygon study (`2n(n-1)` triangles).
     pub polygon_steps: Vec<u32>,
     /// Square sizes of the resolution study.
@@ -149,13 +153,14 @@ impl Default for MatrixOptions {
             scenes: Vec::new(),
             algos: Vec::new(),
             studies: Study::ALL.to_vec(),
-            real_size: 1024,
+            real_size: (1024, 1024),
             real_spheres: vec![64, 200],
             real_layers: vec![8],
             precision_gaps: vec![1e-2, 1e-3, 1e-4, 1e-5, 1e-6],
             precision_ratios: vec![1e-2, 1e-3, 1e-4, 1e-5],
             precision_size: 128,
-            sizes: vec![64, 256],
+            sizes: vec![(64, 64), (256, 256)],
+            obj_camera: ObjCamera::default(),
             polygon_steps: vec![8, 16, 32, 64, 128, 256],
             resolution_steps: vec![64, 128, 256, 512, 1024],
             resolution_sphere: 32,
@@ -184,10 +189,31 @@ impl MatrixOptions {
         self
     }
 
-    /// Sets [`Self::sizes`].
+    /// Sets [`Self::sizes`] to squares of these sides.
     pub fn with_sizes(mut self, sizes: Vec<u32>) -> Self {
+        self.sizes = sizes.into_iter().map(|s| (s, s)).collect();
+        self
+    }
+
+    /// Sets [`Self::sizes`] to these `(width, height)` pairs.
+    pub fn with_image_sizes(mut self, sizes: Vec<(u32, u32)>) -> Self {
         self.sizes = sizes;
         self
+    }
+
+    /// Sets [`Self::obj_camera`].
+    pub fn with_obj_camera(mut self, camera: ObjCamera) -> Self {
+        self.obj_camera = camera;
+        self
+    }
+
+    /// The smallest accuracy size (by pixel count), where the hard cases'
+    /// contact sheets are drawn.
+    pub fn smallest_size(&self) -> Option<(u32, u32)> {
+        self.sizes
+            .iter()
+            .copied()
+            .min_by_key(|&(w, h)| u64::from(w) * u64::from(h))
     }
 
     /// Adds a scene built in memory (see [`Self::extra_scenes`]).
@@ -283,8 +309,8 @@ pub fn build_cases(options: &MatrixOptions) -> Result<Vec<Case>> {
             }
             Study::Accuracy => {
                 for (name, group, source) in accuracy_scenes(options) {
-                    for &s in &options.sizes {
-                        all.push(square(study, name.clone(), group, source.clone(), s));
+                    for &size in &options.sizes {
+                        all.push(sized(study, name.clone(), group, source.clone(), size));
                     }
                 }
             }
@@ -355,28 +381,33 @@ fn real_size_cases(options: &MatrixOptions, all: &mut Vec<Case>) {
             Group::Obj | Group::Scaling => true,
         };
         if keep {
-            all.push(square(study, name, group, source, s));
+            all.push(sized(study, name, group, source, s));
         }
     }
     for &n in &options.real_spheres {
         let scene = format!("sphere_{n}");
-        all.push(square(study, scene, Group::Scaling, Source::Sphere(n), s));
+        all.push(sized(study, scene, Group::Scaling, Source::Sphere(n), s));
     }
     for &k in &options.real_layers {
         let scene = format!("layers_{k}");
-        all.push(square(study, scene, Group::Scaling, Source::Layers(k), s));
+        all.push(sized(study, scene, Group::Scaling, Source::Layers(k), s));
     }
 }
 
 /// A case of `size` x `size` pixels.
 fn square(study: Study, scene: String, group: Group, source: Source, size: u32) -> Case {
+    sized(study, scene, group, source, (size, size))
+}
+
+/// A case of `width` x `height` pixels.
+fn sized(study: Study, scene: String, group: Group, source: Source, size: (u32, u32)) -> Case {
     Case {
         study,
         scene,
         group,
         source,
-        width: size,
-        height: size,
+        width: size.0,
+        height: size.1,
     }
 }
 

@@ -10,6 +10,7 @@ use anyhow::{Context, Result};
 use hider_oracle::{
     CoverageReference, DEFAULT_TIE_TOLERANCE, RayCastOracle, Reference, analytic_coverage,
 };
+use hider_plan::HiderConfig;
 use hider_plan::registry::{Entry, Kind};
 use hider_scene::timing::{Summary, Timer};
 use hider_scene::{
@@ -57,6 +58,12 @@ pub struct RunOptions {
     pub coverage_budget: u64,
     /// Draw a progress bar on the terminal.
     pub progress: bool,
+    /// Worker threads of the run: a rayon pool of this many threads runs
+    /// the matrix, and the hiders that take a thread count get it
+    /// ([`HiderConfig::with_threads`]); `None` keeps rayon's default
+    /// (`RAYON_NUM_THREADS`, else one per core) and every hider's own
+    /// options.
+    pub threads: Option<usize>,
 }
 
 impl Default for RunOptions {
@@ -71,6 +78,7 @@ impl Default for RunOptions {
             oracle_budget: 200_000_000,
             coverage_budget: 200_000_000,
             progress: false,
+            threads: None,
         }
     }
 }
@@ -98,7 +106,11 @@ fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Resul
         scene = Some(case.source.load()?);
         Ok::<(), anyhow::Error>(())
     })?;
-    let scene = scene.context("load never ran")?;
+    let mut scene = scene.context("load never ran")?;
+    // The user's camera applies to the user's scenes, in every study.
+    if case.group == Group::Obj && options.matrix.obj_camera.is_set() {
+        scene.camera = Some(options.matrix.obj_camera.camera(&scene));
+    }
     let view = View::for_scene(&scene, case.width, case.height)?;
     let prepare_options = PrepareOptions::default();
     let mut screen = None;
@@ -186,7 +198,16 @@ fn run_job(
             return;
         }
     }
-    let mut hider = entry.make();
+    let mut hider = match options.threads {
+        None => entry.make(),
+        Some(n) => match entry.build(&HiderConfig::default().with_threads(n)) {
+            Ok(h) => h,
+            Err(e) => {
+                row.status = format!("error: {e}");
+                return;
+            }
+        },
+    };
     // The real-size study times what a frame loop waits for: the front
     // end too (the tiled z-buffer brings a lean one of its own).
     let whole = study == Study::RealSize;
@@ -337,6 +358,20 @@ fn progress_bar(len: u64, visible: bool) -> ProgressBar {
     bar
 }
 
+/// Whether the case gets a contact sheet: every hard case and every user
+/// scene ([`Group::Obj`]) at the smallest accuracy size (tiles are scaled
+/// up; larger sizes would only make larger files), and a user scene at the
+/// real size when the run has no accuracy study.
+fn wants_sheet(case: &Case, options: &RunOptions) -> bool {
+    let m = &options.matrix;
+    let smallest = Some((case.width, case.height)) == m.smallest_size();
+    match (case.group, case.study) {
+        (Group::HardCase | Group::Obj, Study::Accuracy) => smallest,
+        (Group::Obj, Study::RealSize) => !m.studies.contains(&Study::Accuracy),
+        _ => false,
+    }
+}
+
 /// What a run produced.
 #[derive(Debug)]
 pub struct RunOutput {
@@ -351,7 +386,23 @@ pub struct RunOutput {
 /// runs: when set, finishes the run in progress and returns what is done
 /// with `complete = false`. Writing `results.json` and the report is the
 /// caller's ([`crate::record::write_results`], [`crate::report`]).
+///
+/// With [`RunOptions::threads`] the whole run happens in a rayon pool of
+/// that many threads.
 pub fn run(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<RunOutput> {
+    match options.threads {
+        None => run_here(options, stop, command),
+        Some(n) => {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .with_context(|| format!("starting a pool of {n} threads"))?;
+            pool.install(|| run_here(options, stop, command))
+        }
+    }
+}
+
+fn run_here(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<RunOutput> {
     let hiders = select_hiders(&options.matrix)?;
     let cases = options.shard.select(&build_cases(&options.matrix)?);
     std::fs::create_dir_all(&options.out_dir)
@@ -360,7 +411,10 @@ pub fn run(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<Run
         std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     }
     let mut sink = CsvSink::create(&options.out_dir.join("results.csv"))?;
-    let machine = Machine::detect();
+    let mut machine = Machine::detect();
+    if let Some(n) = options.threads {
+        machine.threads = u32::try_from(n).unwrap_or(u32::MAX);
+    }
     let need_coverage = hiders.iter().any(|e| e.kind == Kind::MultiSample);
     let bar = progress_bar((cases.len() * hiders.len()) as u64, options.progress);
     let mut rows = Vec::new();
@@ -369,13 +423,8 @@ pub fn run(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<Run
     'cases: for (index, case) in &cases {
         bar.set_message(format!("{} preparing", case.label()));
         let p = prepare_case(case, options, need_coverage)?;
-        // One sheet per hard case, at the smallest accuracy size (tiles
-        // are scaled up; larger sizes would only make larger files).
-        let sheet_wanted = options.contact_dir.is_some()
-            && Some(&case.width) == options.matrix.sizes.iter().min()
-            && case.study == Study::Accuracy
-            && case.group == Group::HardCase
-            && p.oracle.is_ok();
+        let sheet_wanted =
+            options.contact_dir.is_some() && p.oracle.is_ok() && wants_sheet(case, options);
         let mut sheet = ContactSheet::default();
         let mut frame = Frame::new(case.width, case.height)?;
         for entry in &hiders {

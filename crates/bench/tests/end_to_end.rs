@@ -136,7 +136,7 @@ fn shards_merge_into_the_full_run() {
             depth_steps: vec![1, 2],
             resolution_steps: vec![16],
             scaling_size: 16,
-            real_size: 16,
+            real_size: (16, 16),
             real_spheres: vec![4],
             real_layers: vec![1],
             precision_gaps: vec![1e-2],
@@ -272,7 +272,7 @@ fn the_reports_numbers_are_the_results_files_numbers() {
     let options = RunOptions {
         matrix: MatrixOptions {
             assets_dir: "/nonexistent".into(),
-            real_size: 40,
+            real_size: (40, 40),
             real_spheres: vec![6],
             real_layers: vec![2],
             precision_gaps: vec![1e-2, 1e-6],

@@ -93,7 +93,8 @@ fn header(s: &mut String, results: &Results, options: &ReportOptions) {
     );
 }
 
-/// One contact sheet per hard case that has one in the image folder.
+/// One contact sheet per hard case and user scene that has one in the
+/// image folder.
 fn contact_sheets(s: &mut String, cases: &[(String, u32)], options: &ReportOptions) {
     let mut sheets: Vec<(String, String)> = Vec::new();
     for (scene, _) in cases {
@@ -109,7 +110,7 @@ fn contact_sheets(s: &mut String, cases: &[(String, u32)], options: &ReportOptio
     let _ = writeln!(s, "## Contact sheets\n");
     let _ = writeln!(
         s,
-        "Each hard case: the oracle first, then every hider's render; wrong pixels in magenta, ties decided differently from the oracle (accepted) in yellow.\n"
+        "Each hard case and each `--obj` scene: the oracle first, then every hider's render; wrong pixels in magenta, ties decided differently from the oracle (accepted) in yellow.\n"
     );
     for (scene, p) in sheets {
         let _ = writeln!(s, "### {scene}\n\n![{scene}]({p})\n");
