@@ -280,6 +280,28 @@ impl RenderArgs {
         if self.svg_mode == SvgMode::Painter && self.svg.is_none() {
             bail!("--svg-mode painter needs --svg FILE to write the ordered polygons to");
         }
+        // The vector flags shape the regions and lines drawings; the
+        // painter's polygons are written as the painter orders them, so a
+        // flag set for them would do nothing without a word.
+        if self.svg_mode == SvgMode::Painter {
+            let set = [
+                ("--crease-angle", self.crease_angle != 30.0),
+                (
+                    "--stroke-width",
+                    self.stroke_width != vector_flags::Length::Pixels(1.0),
+                ),
+                ("--page-size", self.page_size.is_some()),
+                ("--hidden", self.hidden != HiddenArg::None),
+                ("--background", self.background != "none"),
+                ("--seams", self.seams != SeamsArg::On),
+            ];
+            if let Some((flag, _)) = set.iter().find(|(_, given)| *given) {
+                bail!(
+                    "{flag} applies to --svg-mode regions or lines; the painter's ordered \
+                     polygons (--svg-mode painter) are written as they are"
+                );
+            }
+        }
         Ok(())
     }
 

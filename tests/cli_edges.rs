@@ -58,6 +58,17 @@ fn every_bad_flag_value_is_one_line_naming_flag_and_value() {
         (&["--frobnicate"], &["--frobnicate"]),
         (&["--aa", "--algo", "zbuffer"], &["--aa", "--algo zbuffer"]),
         (&["--svg-mode", "painter"], &["--svg-mode painter", "--svg"]),
+        (
+            &[
+                "--svg",
+                "/tmp/unwritten.svg",
+                "--svg-mode",
+                "painter",
+                "--stroke-width",
+                "2",
+            ],
+            &["--stroke-width applies to --svg-mode regions or lines"],
+        ),
     ];
     for (extra, needles) in cases {
         let out = render("gen:cube", &png, extra);
