@@ -93,6 +93,9 @@ struct Package {
     bins: BTreeSet<String>,
     examples: BTreeSet<String>,
     tests: BTreeSet<String>,
+    /// The manifest's `default-run`: which binary a plain `cargo run`
+    /// runs when the package has several.
+    default_run: Option<String>,
 }
 
 /// What the checks compare against.
@@ -235,6 +238,16 @@ fn package(dir: &Path, manifest: &str) -> (Option<String>, Package) {
             section = line.to_string();
             continue;
         }
+        if section == "[package]"
+            && let Some(run) = line
+                .strip_prefix("default-run")
+                .map(str::trim_start)
+                .and_then(|l| l.strip_prefix('='))
+                .and_then(|l| quoted(l).into_iter().next())
+        {
+            targets.default_run = Some(run);
+            continue;
+        }
         let Some(value) = line
             .strip_prefix("name")
             .map(str::trim_start)
@@ -257,8 +270,12 @@ fn package(dir: &Path, manifest: &str) -> (Option<String>, Package) {
             _ => {}
         }
     }
+    // src/main.rs is the package's own binary, unless a [[bin]] section
+    // already names it (the root package's binary is `hider`).
+    let main_named = manifest.contains("path = \"src/main.rs\"");
     if let Some(name) = &name
         && dir.join("src/main.rs").is_file()
+        && !main_named
     {
         targets.bins.insert(name.clone());
     }
@@ -414,6 +431,25 @@ impl Repo {
             } else {
                 packages.iter().map(String::as_str).collect()
             };
+            // A plain `cargo run` must know which binary: one, or the
+            // package's default-run (the README's main command broke when
+            // the timing programs joined the benchmark's package).
+            let target_named = wanted
+                .iter()
+                .any(|(f, _)| *f == "--bin" || *f == "--example");
+            if *sub == "run" && !target_named {
+                for p in &in_packages {
+                    if let Some(pkg) = self.packages.get(*p)
+                        && pkg.bins.len() > 1
+                        && pkg.default_run.is_none()
+                    {
+                        problems.push(format!(
+                            "`cargo run -p {p}`: {p} has {} binaries and no default-run",
+                            pkg.bins.len()
+                        ));
+                    }
+                }
+            }
             for (flag, name) in &wanted {
                 let exists = in_packages.iter().any(|p| {
                     self.packages.get(*p).is_some_and(|pkg| match *flag {
