@@ -255,11 +255,10 @@ impl RenderArgs {
         } else {
             options
         };
-        let stroke = match self.stroke_width {
-            vector_flags::Length::Pixels(px) => px,
-            vector_flags::Length::Millimetres(mm) => mm * options.pixels_per_mm(width, height),
-        };
-        options.with_stroke_width(stroke)
+        match self.stroke_width {
+            vector_flags::Length::Pixels(px) => options.with_stroke_width(px),
+            vector_flags::Length::Millimetres(mm) => options.with_stroke_mm(mm, width, height),
+        }
     }
 
     /// Whether `--algo auto` asks the planner to choose.

@@ -82,11 +82,10 @@ pub fn svg(
     if !seams {
         options = options.with_seam_stroke(0.0);
     }
-    let stroke = match stroke_mm {
-        Some(mm) => mm * options.pixels_per_mm(width, height),
-        None => stroke_width,
+    let options = match stroke_mm {
+        Some(mm) => options.with_stroke_mm(mm, width, height),
+        None => options.with_stroke_width(stroke_width),
     };
-    let options = options.with_stroke_width(stroke);
     py.detach(|| {
         let screen = prepare(&scene, &view, &PrepareOptions::default())?;
         let info = SvgInfo::for_scene(&scene, "numpy arrays", &screen);

@@ -142,6 +142,21 @@ impl VectorOptions {
         self
     }
 
+    /// Sets [`Self::stroke_width`] from millimetres on the written drawing
+    /// of a `width` x `height` image ([`Self::pixels_per_mm`]: set the page
+    /// first).
+    ///
+    /// ```
+    /// use hider_vector::VectorOptions;
+    /// let a4 = VectorOptions::default().with_page_mm(Some((210.0, 297.0)));
+    /// let o = a4.with_stroke_mm(0.5, 840, 1188);
+    /// assert_eq!(o.stroke_width, 2.0);
+    /// ```
+    pub fn with_stroke_mm(self, mm: f64, width: u32, height: u32) -> Self {
+        let pixels = mm * self.pixels_per_mm(width, height);
+        self.with_stroke_width(pixels)
+    }
+
     /// Sets [`Self::dashed_hidden`].
     pub fn with_dashed_hidden(mut self, dashed: bool) -> Self {
         self.dashed_hidden = dashed;
