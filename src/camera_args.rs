@@ -7,8 +7,8 @@
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use glam::DVec3;
-use hider::geom::{Camera, Projection};
-use hider::scene::{Scene, fit_camera};
+use hider::geom::Camera;
+use hider::scene::{CameraOverrides, Scene};
 
 use crate::args;
 
@@ -67,21 +67,15 @@ impl ViewArgs {
     /// applied; `--fovy`, `--near` and `--far` apply to a perspective
     /// camera.
     pub fn camera(&self, scene: &Scene) -> Camera {
-        let mut c = scene.camera.unwrap_or_else(|| fit_camera(scene));
-        c.eye = self.eye.unwrap_or(c.eye);
-        c.target = self.target.unwrap_or(c.target);
-        c.up = self.up.unwrap_or(c.up);
-        if let Projection::Perspective {
-            fovy_degrees,
-            near,
-            far,
-        } = &mut c.projection
-        {
-            *fovy_degrees = self.fovy.unwrap_or(*fovy_degrees);
-            *near = self.near.unwrap_or(*near);
-            *far = self.far.unwrap_or(*far);
+        CameraOverrides {
+            eye: self.eye,
+            target: self.target,
+            up: self.up,
+            fovy: self.fovy,
+            near: self.near,
+            far: self.far,
         }
-        c
+        .apply(scene)
     }
 }
 

@@ -5,9 +5,9 @@ use std::cell::RefCell;
 use std::sync::Arc;
 
 use glam::DVec3;
-use hider_geom::{Camera, Projection};
+use hider_geom::Camera;
 use hider_plan::{HiderConfig, Planned, RenderOptions, auto, registry};
-use hider_scene::{DynHider, Frame, PrepareOptions, Scene, ScreenScene, View, fit_camera};
+use hider_scene::{CameraOverrides, DynHider, Frame, PrepareOptions, Scene, ScreenScene, View};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -35,21 +35,15 @@ impl CameraArgs {
     /// The scene's camera (the fit camera for arrays) with the overrides
     /// applied: the command line's rule for `--eye`, `--fovy` and the rest.
     fn camera(&self, scene: &Scene) -> Camera {
-        let mut c = scene.camera.unwrap_or_else(|| fit_camera(scene));
-        c.eye = self.eye.map_or(c.eye, DVec3::from_array);
-        c.target = self.target.map_or(c.target, DVec3::from_array);
-        c.up = self.up.map_or(c.up, DVec3::from_array);
-        if let Projection::Perspective {
-            fovy_degrees,
-            near,
-            far,
-        } = &mut c.projection
-        {
-            *fovy_degrees = self.fovy.unwrap_or(*fovy_degrees);
-            *near = self.near.unwrap_or(*near);
-            *far = self.far.unwrap_or(*far);
+        CameraOverrides {
+            eye: self.eye.map(DVec3::from_array),
+            target: self.target.map(DVec3::from_array),
+            up: self.up.map(DVec3::from_array),
+            fovy: self.fovy,
+            near: self.near,
+            far: self.far,
         }
-        c
+        .apply(scene)
     }
 }
 

@@ -96,7 +96,7 @@ pub use shade::{
     Filter, Mapping, ShadeMode, Shader, Stages, Texture, TextureOptions, TextureRef,
     TextureSampler, shade_frame,
 };
-pub use view::{View, fit_camera};
+pub use view::{CameraOverrides, View, fit_camera};
 
 /// The vector maths the scene is written in (`glam::DVec3` for positions).
 pub use glam;

@@ -36,6 +36,56 @@ impl View {
     }
 }
 
+/// The camera values a caller sets over a scene's own camera (or the
+/// [`fit_camera`]): what the command line's `--eye`, `--target`, `--up`,
+/// `--fovy`, `--near` and `--far` and the Python keywords of the same
+/// names mean. `None` keeps the scene's value; the field of view and clip
+/// distances apply to a perspective camera.
+///
+/// ```
+/// use hider_scene::{CameraOverrides, glam::DVec3, procedural};
+/// let scene = procedural::cube();
+/// let camera = CameraOverrides { eye: Some(DVec3::new(3.0, 2.0, 4.0)), ..Default::default() }
+///     .apply(&scene);
+/// assert_eq!(camera.eye, DVec3::new(3.0, 2.0, 4.0));
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CameraOverrides {
+    /// The eye position.
+    pub eye: Option<DVec3>,
+    /// The point looked at.
+    pub target: Option<DVec3>,
+    /// The up direction.
+    pub up: Option<DVec3>,
+    /// The vertical field of view, degrees.
+    pub fovy: Option<f64>,
+    /// The near clip distance.
+    pub near: Option<f64>,
+    /// The far clip distance.
+    pub far: Option<f64>,
+}
+
+impl CameraOverrides {
+    /// `scene`'s camera (its own, or the fit camera) with these values set.
+    pub fn apply(&self, scene: &Scene) -> Camera {
+        let mut c = scene.camera.unwrap_or_else(|| fit_camera(scene));
+        c.eye = self.eye.unwrap_or(c.eye);
+        c.target = self.target.unwrap_or(c.target);
+        c.up = self.up.unwrap_or(c.up);
+        if let hider_geom::Projection::Perspective {
+            fovy_degrees,
+            near,
+            far,
+        } = &mut c.projection
+        {
+            *fovy_degrees = self.fovy.unwrap_or(*fovy_degrees);
+            *near = self.near.unwrap_or(*near);
+            *far = self.far.unwrap_or(*far);
+        }
+        c
+    }
+}
+
 /// Checks an image size against the limits, before anything is allocated.
 pub fn check_image_size(width: u32, height: u32) -> Result<()> {
     for (what, v) in [("image width", width), ("image height", height)] {
