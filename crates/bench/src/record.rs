@@ -15,7 +15,7 @@ use serde_json::{Map, Value};
 use crate::machine::Machine;
 
 /// Version of the result schema, stored in `results.json`.
-pub const SCHEMA_VERSION: u32 = 2;
+pub const SCHEMA_VERSION: u32 = 3;
 
 /// One run: one hider on one scene at one resolution.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -47,6 +47,11 @@ pub struct Row {
     /// `ok`, `error: MESSAGE` (the hider refused, e.g. a budget), or
     /// `skipped: REASON`.
     pub status: String,
+    /// The effects the scene calls for that this hider does not simulate,
+    /// joined by `;` (`transparency`: it draws translucent surfaces
+    /// opaque); empty when it simulates them all. A run with an ignored
+    /// effect is not exact for its scene, whatever its ids score.
+    pub ignored_effects: String,
     /// Building or loading the scene, milliseconds (once per case).
     pub load_ms: f64,
     /// The shared front end `prepare()`, median milliseconds (once per case).
@@ -100,7 +105,7 @@ pub struct Row {
 }
 
 /// The CSV columns, in order: every field of [`Row`].
-pub const COLUMNS: [&str; 33] = [
+pub const COLUMNS: [&str; 34] = [
     "case",
     "study",
     "scene",
@@ -113,6 +118,7 @@ pub const COLUMNS: [&str; 33] = [
     "hider",
     "kind",
     "status",
+    "ignored_effects",
     "load_ms",
     "prepare_ms",
     "render_ms",
@@ -137,14 +143,29 @@ pub const COLUMNS: [&str; 33] = [
 ];
 
 /// Columns holding text (the others hold numbers or are empty).
-const TEXT_COLUMNS: [&str; 9] = [
-    "study", "scene", "group", "hider", "kind", "status", "cpu", "accuracy", "counters",
+const TEXT_COLUMNS: [&str; 10] = [
+    "study",
+    "scene",
+    "group",
+    "hider",
+    "kind",
+    "status",
+    "ignored_effects",
+    "cpu",
+    "accuracy",
+    "counters",
 ];
 
 impl Row {
     /// Whether the run finished.
     pub fn is_ok(&self) -> bool {
         self.status == "ok"
+    }
+
+    /// Whether the hider simulates every effect the scene calls for (see
+    /// [`Self::ignored_effects`]).
+    pub fn simulates_all_effects(&self) -> bool {
+        self.ignored_effects.is_empty()
     }
 
     /// The one error number the plots put against time: for multi-sample

@@ -12,10 +12,11 @@ use hider_oracle::{
 };
 use hider_plan::HiderConfig;
 use hider_plan::registry::{Entry, Kind};
+use hider_scene::shade::transparency_warning;
 use hider_scene::timing::{Summary, Timer};
 use hider_scene::{
-    DynHider, Frame, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, StatsTable, View,
-    prepare, shade_frame,
+    DynHider, Frame, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, Stages, StatsTable,
+    View, prepare, shade_frame,
 };
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -91,6 +92,9 @@ struct Prepared {
     view: View,
     screen: ScreenScene,
     analysis: SceneAnalysis,
+    /// The effects the scene calls for (what a hider that ignores one is
+    /// not exact for).
+    stages: Stages,
     load: Summary,
     prepare: Summary,
     oracle: std::result::Result<Reference, String>,
@@ -147,6 +151,7 @@ fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Resul
         Ok(analytic_coverage(&screen))
     };
     Ok(Prepared {
+        stages: Stages::for_scene(&scene, true),
         scene,
         view,
         screen,
@@ -208,6 +213,7 @@ fn run_job(
             }
         },
     };
+    row.ignored_effects = ignored_effects(hider.as_ref(), &p.stages);
     // The real-size study times what a frame loop waits for: the front
     // end too (the tiled z-buffer brings a lean one of its own).
     let whole = study == Study::RealSize;
@@ -241,6 +247,17 @@ fn run_job(
     score(entry.kind, p, options, row, frame);
     if study == Study::DepthPrecision {
         row.farther_pixels = Some(crate::precision::farther_pixels(frame));
+    }
+}
+
+/// The effects `stages` calls for that `hider` does not simulate, as the
+/// row's `ignored_effects` (the same rule as the render's warning:
+/// [`transparency_warning`]).
+fn ignored_effects(hider: &dyn DynHider, stages: &Stages) -> String {
+    if transparency_warning(hider, stages).is_some() {
+        "transparency".into()
+    } else {
+        String::new()
     }
 }
 

@@ -447,3 +447,133 @@ fn check_summary(report: &str, rows: &[Row], scenes: &[String]) {
         "x slower on the same scenes"
     }));
 }
+
+/// A quad of glass in front of an opaque quad.
+fn glass_scene() -> hider_scene::Scene {
+    use hider_scene::glam::DVec3;
+    use hider_scene::{Material, Mesh, Scene};
+    let quad = |z: f64, half: f64| Mesh {
+        positions: vec![
+            DVec3::new(-half, -half, z),
+            DVec3::new(half, -half, z),
+            DVec3::new(half, half, z),
+            DVec3::new(-half, half, z),
+        ],
+        indices: vec![[0, 1, 2], [0, 2, 3]],
+        ..Mesh::default()
+    };
+    let mut scene = Scene::default();
+    scene.push_mesh(quad(0.0, 1.0), None);
+    let glass = Material {
+        name: "glass".into(),
+        opacity: 0.4,
+        ..Material::default()
+    };
+    scene.push_mesh(quad(0.5, 0.6), Some(glass));
+    scene
+}
+
+/// The check: on a scene with glass the z-buffers are marked as
+/// ignoring transparency (not exact there), the A-buffer is not, the
+/// conclusions leave the marked hiders out of "the fastest exact hider",
+/// and an anti-aliasing recommendation is always given (here from the
+/// measured A-buffer and supersampling; without any anti-aliasing hider,
+/// the reason there is none).
+#[test]
+fn a_scene_with_glass_marks_the_hiders_that_draw_it_opaque() {
+    let dir = temp_dir("glass");
+    let options = |algos: Vec<String>| RunOptions {
+        matrix: MatrixOptions {
+            assets_dir: "/nonexistent".into(),
+            real_size: (32, 24),
+            real_spheres: vec![],
+            real_layers: vec![],
+            ..MatrixOptions::default()
+        }
+        .with_studies(vec![Study::RealSize, Study::Accuracy])
+        .with_scenes(vec!["glass".into()])
+        .with_scene("glass", glass_scene())
+        .with_algos(algos)
+        .with_sizes(vec![24]),
+        timing: quick_timing(),
+        out_dir: dir.clone(),
+        ..RunOptions::default()
+    };
+    let algos = ["zbuffer", "zbuffer-tiled", "painter", "abuffer", "ssaa-4"];
+    let out = run(
+        &options(algos.iter().map(|s| (*s).to_owned()).collect()),
+        &AtomicBool::new(false),
+        "test",
+    )
+    .unwrap();
+    let rows = &out.results.rows;
+    for r in rows {
+        assert!(r.is_ok(), "{} {}: {}", r.study, r.hider, r.status);
+        let opaque_only = !matches!(r.hider.as_str(), "abuffer");
+        assert_eq!(
+            r.ignored_effects,
+            if opaque_only { "transparency" } else { "" },
+            "{} {}",
+            r.study,
+            r.hider
+        );
+    }
+    write_results(&dir, &out.results).unwrap();
+    write_report(
+        &out.results,
+        &dir.join("report.md"),
+        &dir.join("images"),
+        "test",
+    )
+    .unwrap();
+    let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    let exact = table_after(&report, "### Exact visibility at pixel centres");
+    let glass_line = exact.iter().find(|l| l[0].starts_with("glass")).unwrap();
+    assert!(
+        glass_line[1..]
+            .iter()
+            .all(|c| c.contains("*ignores transparency*")),
+        "{glass_line:?}"
+    );
+    assert!(report.contains("Left out as not exact on these scenes"));
+    assert!(!report.contains("the fastest exact hider is"));
+    let accuracy = table_after(&report, "## Accuracy: wrong pixels per scene");
+    let z = accuracy[0].iter().position(|c| c == "zbuffer").unwrap();
+    let a = accuracy[0].iter().position(|c| c == "abuffer").unwrap();
+    assert!(
+        accuracy[2][z].contains("*ignores transparency*"),
+        "{:?}",
+        accuracy[2]
+    );
+    assert!(!accuracy[2][a].contains("ignores"), "{:?}", accuracy[2]);
+    // Only the A-buffer composites the glass, so it is the one recommended.
+    assert!(
+        report.contains("Anti-aliasing recommendation: `abuffer`"),
+        "{report}"
+    );
+    let summary = table_after(&report, "## Summary per hider");
+    let line = |h: &str| summary.iter().find(|l| l[0] == h).unwrap().clone();
+    assert_eq!(line("zbuffer")[4], "0/1 (ignores an effect on 1)");
+    assert_eq!(line("abuffer")[4], "1/1");
+
+    // Without an anti-aliasing hider the report says why it recommends none.
+    let out = run(
+        &options(vec!["zbuffer".into()]),
+        &AtomicBool::new(false),
+        "test",
+    )
+    .unwrap();
+    write_report(
+        &out.results,
+        &dir.join("report.md"),
+        &dir.join("images"),
+        "test",
+    )
+    .unwrap();
+    let report = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    assert!(
+        report.contains("Anti-aliasing recommendation: none from this run"),
+        "{report}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -62,6 +62,9 @@ pub(super) struct Aggregate {
     pub wrong_cases: usize,
     /// Mean coverage error over the cases (when every case has one).
     pub coverage_error: Option<f64>,
+    /// Cases whose scene calls for an effect the hider does not simulate
+    /// (it is not exact there, whatever its ids score).
+    pub ignored_cases: usize,
     /// Cases aggregated.
     pub cases: usize,
 }
@@ -105,6 +108,7 @@ pub(super) fn aggregate(rows: &[Row], hider: &str, cases: &[(String, u32)]) -> O
         coverage_error: errors
             .filter(|e| !e.is_empty())
             .map(|e| e.iter().sum::<f64>() / e.len() as f64),
+        ignored_cases: got.iter().filter(|r| !r.simulates_all_effects()).count(),
         cases: got.len(),
     })
 }
@@ -185,7 +189,7 @@ fn exact_table(s: &mut String, rows: &[Row], hiders: &[String], cases: &[(String
     let _ = writeln!(s, "### Exact visibility at pixel centres\n");
     let _ = writeln!(
         s,
-        "Every hider here gives the oracle's surface at every pixel centre (a run that did not is marked with its wrong pixels).\n"
+        "Every hider here gives the oracle's surface at every pixel centre (a run that did not is marked with its wrong pixels; a run on a scene with an effect the hider does not simulate, such as translucent surfaces it draws opaque, is marked *ignores EFFECT*: not exact for that scene).\n"
     );
     let _ = write!(s, "| scene (triangles) |");
     for h in &exact {
@@ -202,11 +206,14 @@ fn exact_table(s: &mut String, rows: &[Row], hiders: &[String], cases: &[(String
             let text = match cell(rows, REAL, c, h) {
                 Some(r) if r.is_ok() => {
                     let wrong = r.wrong_ids.unwrap_or(0) + r.coverage_mismatches.unwrap_or(0);
+                    let mut text = fmt_ms(r.render_ms);
                     if wrong > 0 {
-                        format!("{} (**{} wrong**)", fmt_ms(r.render_ms), fmt_count(wrong))
-                    } else {
-                        fmt_ms(r.render_ms)
+                        text += &format!(" (**{} wrong**)", fmt_count(wrong));
                     }
+                    if !r.simulates_all_effects() {
+                        text += &format!(" (*ignores {}*)", r.ignored_effects);
+                    }
+                    text
                 }
                 Some(_) => "err".into(),
                 None => "-".into(),

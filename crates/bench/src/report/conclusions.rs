@@ -14,6 +14,7 @@ pub(super) fn sentences(rows: &[Row], hiders: &[String]) -> Vec<String> {
     let mut v = Vec::new();
     v.extend(exact_sentences(rows, hiders));
     v.extend(aa_sentence(rows, hiders));
+    v.push(aa_recommendation(rows, hiders));
     v.extend(shortcut_sentence(rows));
     v.extend(precision_sentence(rows));
     v
@@ -28,16 +29,30 @@ fn exact_sentences(rows: &[Row], hiders: &[String]) -> Vec<String> {
         .map(String::as_str)
         .collect();
     let cases = common_cases(rows, REAL, &exact, false);
-    let mut aggs: Vec<_> = exact
+    let (mut aggs, ignoring): (Vec<_>, Vec<_>) = exact
         .iter()
         .filter_map(|h| aggregate(rows, h, &cases))
-        .collect();
+        .partition(|a| a.ignored_cases == 0);
     aggs.sort_by(|a, b| a.time_ms.total_cmp(&b.time_ms));
+    // A hider that draws a scene's glass opaque is not exact for it,
+    // however fast: it is left out of "the fastest exact hider", and said so.
+    let left_out = if ignoring.is_empty() {
+        String::new()
+    } else {
+        let names: Vec<String> = ignoring.iter().map(|a| format!("`{}`", a.hider)).collect();
+        format!(
+            " Left out as not exact on these scenes (they ignore an effect a scene calls for, such as translucency): {}.",
+            names.join(", ")
+        )
+    };
     let (Some(first), Some(last)) = (aggs.first(), aggs.last()) else {
-        return Vec::new();
+        return (!ignoring.is_empty())
+            .then(|| format!("Exact visibility at real size: no pixel-centre hider simulates every effect of these scenes.{left_out}"))
+            .into_iter()
+            .collect();
     };
     let mut v = vec![format!(
-        "Exact visibility at real size: the fastest exact hider is `{}` at {} ms per frame (geometric mean over {} scenes); the slowest, `{}`, takes {} as long ({} ms).",
+        "Exact visibility at real size: the fastest exact hider is `{}` at {} ms per frame (geometric mean over {} scenes); the slowest, `{}`, takes {} as long ({} ms).{left_out}",
         first.hider,
         fmt_ms(first.time_ms),
         cases.len(),
@@ -91,6 +106,56 @@ fn aa_sentence(rows: &[Row], hiders: &[String]) -> Option<String> {
         fmt_ms(full.time_ms),
         parts.join("; ")
     ))
+}
+
+/// How much worse than the smallest measured coverage error a hider may be
+/// and still be recommended for anti-aliasing: 25%, a difference a viewer
+/// does not see at these error levels (a few 1e-5 of a pixel's coverage),
+/// while the time differences between the candidates are several-fold.
+const AA_ERROR_SLACK: f64 = 1.25;
+
+/// The anti-aliasing recommendation, always given: the fastest hider whose
+/// mean coverage error is within [`AA_ERROR_SLACK`] of the smallest
+/// measured, among those that simulate every effect of the scenes; or why
+/// this run cannot recommend one.
+fn aa_recommendation(rows: &[Row], hiders: &[String]) -> String {
+    let aggs = aa_aggregates(rows, hiders);
+    let scored: Vec<_> = aggs
+        .iter()
+        .filter(|a| a.ignored_cases == 0)
+        .filter_map(|a| Some((a, a.coverage_error?)))
+        .collect();
+    let Some(best) = scored.iter().map(|(_, e)| *e).min_by(f64::total_cmp) else {
+        return "Anti-aliasing recommendation: none from this run: no anti-aliasing hider was measured at real size with analytic coverage (run the real-size study with an A-buffer, `ssaa-N` or `warnock-4x4` among the hiders).".into();
+    };
+    let Some((pick, error)) = scored
+        .iter()
+        .filter(|(_, e)| *e <= best * AA_ERROR_SLACK)
+        .min_by(|a, b| a.0.time_ms.total_cmp(&b.0.time_ms))
+    else {
+        unreachable!("the hider with the smallest error is within the slack");
+    };
+    let slowest = scored
+        .iter()
+        .filter(|(_, e)| *e <= best * AA_ERROR_SLACK)
+        .max_by(|a, b| a.0.time_ms.total_cmp(&b.0.time_ms))
+        .map(|(a, _)| *a);
+    let against = match slowest {
+        Some(s) if s.hider != pick.hider => format!(
+            ", {} of the time of `{}` at that accuracy",
+            fmt_pct(pick.time_ms / s.time_ms),
+            s.hider
+        ),
+        _ => String::new(),
+    };
+    format!(
+        "Anti-aliasing recommendation: `{}`, the fastest hider whose mean coverage error ({}) is within {} of the smallest measured ({}): {} ms per frame{against}.",
+        pick.hider,
+        fmt_error(*error),
+        fmt_pct(AA_ERROR_SLACK - 1.0),
+        fmt_error(best),
+        fmt_ms(pick.time_ms)
+    )
 }
 
 /// What the naive painter and linear z cost against what they save.

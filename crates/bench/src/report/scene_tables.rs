@@ -58,7 +58,7 @@ fn accuracy_table(s: &mut String, rows: &[Row], hiders: &[String], cases: &[(Str
     let _ = writeln!(s, "## Accuracy: wrong pixels per scene\n");
     let _ = writeln!(
         s,
-        "Pixel-centre hiders: wrong ids on non-tie pixels, then `+ N cov.` for coverage mismatches (pixel centres covered in one image and not the other), `0` when both are none; `ties` is the oracle's tie count for the scene (any surface accepted there). Anti-aliasing hiders: `c` and their mean coverage error against exact analytic coverage.\n"
+        "Pixel-centre hiders: wrong ids on non-tie pixels, then `+ N cov.` for coverage mismatches (pixel centres covered in one image and not the other), `0` when both are none; `ties` is the oracle's tie count for the scene. Anti-aliasing hiders: `c` and their mean coverage error against exact analytic coverage. *ignores EFFECT*: the scene calls for an effect the hider does not simulate (translucent surfaces drawn opaque): not exact for that scene, whatever its ids score.\n"
     );
     header(s, "scene (triangles, ties)", hiders);
     for (scene, w) in cases {
@@ -86,6 +86,17 @@ fn accuracy_table(s: &mut String, rows: &[Row], hiders: &[String], cases: &[(Str
 /// and the coverage mismatches, the coverage error of a multi-sample
 /// hider, `ref`, `err` or `-`.
 fn accuracy_text(row: Option<&Row>) -> String {
+    let text = ids_text(row);
+    match row {
+        Some(r) if r.is_ok() && !r.simulates_all_effects() => {
+            format!("{text} (*ignores {}*)", r.ignored_effects)
+        }
+        _ => text,
+    }
+}
+
+/// [`accuracy_text`] without the mark of an ignored effect.
+fn ids_text(row: Option<&Row>) -> String {
     match row {
         None => "".into(),
         Some(r) if !r.is_ok() => "err".into(),

@@ -39,7 +39,7 @@ pub(super) fn summary_section(
     };
     let _ = writeln!(
         s,
-        "Time: {time_what}. The other columns are the accuracy study's (small sizes): scenes whose every non-tie pixel centre has the oracle's surface (no wrong id), scenes whose covered pixel centres are the oracle's (no coverage mismatch; anti-aliasing hiders may differ here by design), their sums, and the mean coverage error against exact analytic coverage.\n"
+        "Time: {time_what}. The other columns are the accuracy study's (small sizes): scenes whose every pixel centre has the oracle's surface (no wrong id) and whose every effect the hider simulates (a scene with translucent surfaces is not exact for a hider that draws them opaque: the count says on how many scenes it ignored an effect), scenes whose covered pixel centres are the oracle's (no coverage mismatch; anti-aliasing hiders may differ here by design), their sums, and the mean coverage error against exact analytic coverage.\n"
     );
     let _ = writeln!(
         s,
@@ -75,7 +75,14 @@ fn accuracy_cells(s: &mut String, rows: &[Row], h: &str) {
         .copied()
         .filter(|r| r.wrong_ids.is_some())
         .collect();
-    let no_wrong = with_ids.iter().filter(|r| r.wrong_ids == Some(0)).count();
+    let no_wrong = with_ids
+        .iter()
+        .filter(|r| r.wrong_ids == Some(0) && r.simulates_all_effects())
+        .count();
+    let ignored = with_ids
+        .iter()
+        .filter(|r| !r.simulates_all_effects())
+        .count();
     let no_mismatch = with_ids
         .iter()
         .filter(|r| r.coverage_mismatches == Some(0))
@@ -106,7 +113,11 @@ fn accuracy_cells(s: &mut String, rows: &[Row], h: &str) {
         ("-".into(), "-".into(), "-".into(), "-".into())
     } else {
         (
-            format!("{no_wrong}/{n}"),
+            if ignored > 0 {
+                format!("{no_wrong}/{n} (ignores an effect on {ignored})")
+            } else {
+                format!("{no_wrong}/{n}")
+            },
             format!("{no_mismatch}/{n}"),
             fmt_count(wrong),
             fmt_count(mismatches),
