@@ -78,6 +78,7 @@ pub mod precision;
 pub mod programs;
 pub mod record;
 pub mod report;
+mod rounds;
 pub mod run;
 pub mod scaling;
 pub mod scenes;

@@ -1,8 +1,8 @@
 //! Running the matrix: per case, load and prepare once, evaluate the
 //! oracle once (and analytic coverage once, when a multi-sample hider is
-//! selected), then time and score every selected hider on it.
+//! selected), then render and score every selected hider on it once and
+//! time them in rounds that alternate the hiders (see docs/bench.md).
 
-use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -15,8 +15,8 @@ use hider_plan::registry::{Entry, Kind};
 use hider_scene::shade::transparency_warning;
 use hider_scene::timing::{Summary, Timer};
 use hider_scene::{
-    DynHider, Frame, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, Stages, StatsTable,
-    View, prepare, shade_frame,
+    DynHider, Frame, NO_ID, PrepareOptions, Scene, ScreenScene, ShadeMode, Stages, View, prepare,
+    shade_frame,
 };
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -26,6 +26,7 @@ use crate::contact::{ContactSheet, write_contact_sheet};
 use crate::machine::Machine;
 use crate::matrix::{Case, MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{CsvSink, Results, Row, SCHEMA_VERSION};
+use crate::rounds::{Contender, RenderInput, first_render, time_in_rounds};
 use crate::scenes::Group;
 
 /// The default time budget of one job's measured renders, in seconds: at
@@ -186,21 +187,35 @@ fn base_row(index: usize, case: &Case, p: &Prepared, entry: &Entry, machine: &Ma
     }
 }
 
-/// Times and scores one hider on one prepared case; the frame keeps the
-/// last render for the contact sheet.
-fn run_job(
+/// What a study's renders start from: the real-size study times what a
+/// frame loop waits for, the front end too (the tiled z-buffer brings a
+/// lean one of its own); the others time the render of the prepared scene.
+fn render_input(p: &Prepared, study: Study) -> RenderInput<'_> {
+    RenderInput {
+        scene: &p.scene,
+        view: &p.view,
+        screen: &p.screen,
+        whole: study == Study::RealSize,
+    }
+}
+
+/// Builds one hider for a prepared case, renders it once (the warm-up, or
+/// the first measured render when the timer asks for no warm-up) and
+/// scores that frame, which stays in `frame` for the contact sheet. The
+/// contender for the timed rounds, or `None` with the row saying why.
+fn first_job(
     entry: &Entry,
     study: Study,
     p: &Prepared,
     options: &RunOptions,
-    stop: &AtomicBool,
     row: &mut Row,
+    row_index: usize,
     frame: &mut Frame,
-) {
+) -> Option<Contender> {
     if entry.kind == Kind::Reference {
         if let Err(reason) = &p.oracle {
             row.status = reason.clone();
-            return;
+            return None;
         }
     }
     let mut hider = match options.threads {
@@ -209,28 +224,22 @@ fn run_job(
             Ok(h) => h,
             Err(e) => {
                 row.status = format!("error: {e}");
-                return;
+                return None;
             }
         },
     };
     row.ignored_effects = ignored_effects(hider.as_ref(), &p.stages);
-    // The real-size study times what a frame loop waits for: the front
-    // end too (the tiled z-buffer brings a lean one of its own).
-    let whole = study == Study::RealSize;
     let timing = study_timing(&options.timing, study);
-    let (summary, stats) = match time_render(hider.as_mut(), p, whole, &timing, stop, frame) {
+    let input = render_input(p, study);
+    let (took, stats) = match first_render(hider.as_mut(), &input, frame) {
         Ok(done) => done,
         Err(status) => {
             row.status = status;
-            return;
+            return None;
         }
     };
     row.status = "ok".into();
-    row.render_ms = summary.median_ms;
-    row.render_min_ms = summary.min_ms;
-    row.render_max_ms = summary.max_ms;
     row.warmup = timing.warmup;
-    row.runs = summary.runs;
     row.peak_bytes = stats.peak_bytes;
     row.counters = stats
         .counters
@@ -242,11 +251,46 @@ fn run_job(
         && let Err(e) = shade_frame(&p.screen, frame, ShadeMode::Lambert)
     {
         row.status = format!("error: {e}");
-        return;
+        return None;
     }
     score(entry.kind, p, options, row, frame);
     if study == Study::DepthPrecision {
         row.farther_pixels = Some(crate::precision::farther_pixels(frame));
+    }
+    Some(Contender::new(
+        hider,
+        row_index,
+        &input,
+        took,
+        timing.warmup == 0,
+    ))
+}
+
+/// Times the case's contenders in alternating rounds and writes each one's
+/// times (or why it stopped) into its row.
+fn time_contenders(
+    contenders: &mut [Contender],
+    study: Study,
+    p: &Prepared,
+    options: &RunOptions,
+    stop: &AtomicBool,
+    rows: &mut [Row],
+    frame: &mut Frame,
+) {
+    let timing = study_timing(&options.timing, study);
+    time_in_rounds(contenders, &render_input(p, study), &timing, stop, frame);
+    for c in contenders.iter() {
+        let row = &mut rows[c.row];
+        let summary = c.summary();
+        if let Some(failure) = &c.failure {
+            row.status = failure.clone();
+        } else if summary.runs == 0 {
+            row.status = "skipped: interrupted".into();
+        }
+        row.render_ms = summary.median_ms;
+        row.render_min_ms = summary.min_ms;
+        row.render_max_ms = summary.max_ms;
+        row.runs = summary.runs;
     }
 }
 
@@ -273,48 +317,6 @@ pub fn study_timing(timing: &Timer, study: Study) -> Timer {
             .with_max_seconds(timing.max_seconds.min(1.0)),
         Study::DepthPrecision => (*timing).with_runs(1).with_warmup(0),
         _ => *timing,
-    }
-}
-
-/// Renders with warm-up and repeats (from the world-space scene, front end
-/// included, when `whole`; else from the prepared scene), catching errors
-/// and panics: the timing and the stats of the last render, or the row's
-/// status saying why there are none.
-fn time_render(
-    hider: &mut dyn DynHider,
-    p: &Prepared,
-    whole: bool,
-    timing: &Timer,
-    stop: &AtomicBool,
-    frame: &mut Frame,
-) -> std::result::Result<(Summary, StatsTable), String> {
-    let timed = catch_unwind(AssertUnwindSafe(|| {
-        let mut last = None;
-        let mut screen = whole.then(|| p.screen.clone());
-        let prepare_options = PrepareOptions::default();
-        let summary = timing.try_time(&|| stop.load(Ordering::Relaxed), || {
-            last = Some(match &mut screen {
-                Some(screen) => {
-                    hider.render_scene(&p.scene, &p.view, &prepare_options, screen, frame)?
-                }
-                None => hider.render(&p.screen, frame)?,
-            });
-            Ok::<(), hider_scene::Error>(())
-        });
-        summary.map(|s| (s, last))
-    }));
-    match timed {
-        Ok(Ok((s, Some(stats)))) => Ok((s, stats)),
-        Ok(Ok((_, None))) => Err("skipped: interrupted".into()),
-        Ok(Err(e)) => Err(format!("error: {e}")),
-        Err(panic) => {
-            let msg = panic
-                .downcast_ref::<String>()
-                .cloned()
-                .or_else(|| panic.downcast_ref::<&str>().map(|s| (*s).to_owned()))
-                .unwrap_or_else(|| "unknown".into());
-            Err(format!("error: panicked: {msg}"))
-        }
     }
 }
 
@@ -437,17 +439,19 @@ fn run_here(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<Ru
     let mut rows = Vec::new();
     let mut contact_sheets = Vec::new();
     let mut complete = true;
-    'cases: for (index, case) in &cases {
+    for (index, case) in &cases {
         bar.set_message(format!("{} preparing", case.label()));
         let p = prepare_case(case, options, need_coverage)?;
         let sheet_wanted =
             options.contact_dir.is_some() && p.oracle.is_ok() && wants_sheet(case, options);
         let mut sheet = ContactSheet::default();
         let mut frame = Frame::new(case.width, case.height)?;
+        let mut case_rows = Vec::new();
+        let mut contenders = Vec::new();
         for entry in &hiders {
             if stop.load(Ordering::Relaxed) {
                 complete = false;
-                break 'cases;
+                break;
             }
             // The oracle's time is the accuracy study's business: in the
             // studies that only use it as a reference, it is not timed.
@@ -460,18 +464,47 @@ fn run_here(options: &RunOptions, stop: &AtomicBool, command: &str) -> Result<Ru
             bar.set_message(format!("{} {}", case.label(), entry.name));
             let mut row = base_row(*index, case, &p, entry, &machine);
             frame.clear();
-            run_job(entry, case.study, &p, options, stop, &mut row, &mut frame);
+            let contender = first_job(
+                entry,
+                case.study,
+                &p,
+                options,
+                &mut row,
+                case_rows.len(),
+                &mut frame,
+            );
             if sheet_wanted && row.is_ok() && entry.kind != Kind::Reference {
                 sheet.tiles.push((entry.name.to_owned(), frame.clone()));
             }
+            contenders.extend(contender);
+            case_rows.push(row);
+            bar.inc(1);
+        }
+        bar.set_message(format!("{} timing in rounds", case.label()));
+        time_contenders(
+            &mut contenders,
+            case.study,
+            &p,
+            options,
+            stop,
+            &mut case_rows,
+            &mut frame,
+        );
+        drop(contenders);
+        for row in case_rows {
             sink.push(&row)?;
             rows.push(row);
-            bar.inc(1);
+        }
+        if stop.load(Ordering::Relaxed) {
+            complete = false;
         }
         if let (true, Some(dir), Ok(reference)) = (sheet_wanted, &options.contact_dir, &p.oracle) {
             let path = dir.join(format!("bench-contact-{}.png", case.scene));
             write_contact_sheet(&path, &p.screen, reference, &sheet, options.tie_tolerance)?;
             contact_sheets.push(path);
+        }
+        if !complete {
+            break;
         }
     }
     bar.finish_and_clear();

@@ -6,6 +6,7 @@ use super::answer::{
     precision_axes, precision_row,
 };
 use super::format::{fmt_count, fmt_error, fmt_ms, fmt_pct, fmt_ratio};
+use super::noise::{TIME_TIE, same_speed};
 use super::rows::kind_of;
 use crate::record::Row;
 
@@ -63,12 +64,22 @@ fn exact_sentences(rows: &[Row], hiders: &[String]) -> Vec<String> {
     let find = |h: &str| aggs.iter().find(|a| a.hider == h);
     if let (Some(t), Some(z)) = (find("zbuffer-tiled"), find("zbuffer")) {
         let ratio = z.time_ms / t.time_ms;
+        let verdict = if same_speed(t.time_ms, z.time_ms) {
+            format!(
+                "the same speed (within the {:.0}% the report treats as noise)",
+                TIME_TIE * 100.0
+            )
+        } else {
+            format!(
+                "{} {}",
+                fmt_ratio(ratio.max(1.0 / ratio)),
+                if ratio >= 1.0 { "faster" } else { "slower" }
+            )
+        };
         v.push(format!(
-            "The tiled z-buffer takes {} ms against the plain z-buffer's {} ms: {} {} on the same scenes, with the same pixels.",
+            "The tiled z-buffer takes {} ms against the plain z-buffer's {} ms: {verdict} on the same scenes, with the same pixels.",
             fmt_ms(t.time_ms),
             fmt_ms(z.time_ms),
-            fmt_ratio(ratio.max(1.0 / ratio)),
-            if ratio >= 1.0 { "faster" } else { "slower" }
         ));
     }
     v

@@ -83,10 +83,11 @@ fn header(s: &mut String, results: &Results, options: &ReportOptions) {
     };
     let _ = writeln!(
         s,
-        "- each run: {} unmeasured warm-up render(s), then {} measured renders (fewer when one job passes its time budget; real-size runs at most 3 within a second); times are the median with the min-max range, of the render only (loading and `prepare()` timed apart) except in the real-size study, which times the whole pipeline from the world-space scene",
+        "- each run: {} unmeasured warm-up render(s) (the frame that is scored), then {} measured renders taken in rounds that alternate the hiders of a case, so that a slow moment of the machine touches them alike (fewer when one job passes its time budget; real-size runs at most 3 within a second); times are the median over the rounds, of the render only (loading and `prepare()` timed apart) except in the real-size study, which times the whole pipeline from the world-space scene",
         set(|r| r.warmup),
         set(|r| r.runs)
     );
+    let _ = writeln!(s, "- {}", super::noise::noise_sentence(rows));
     let _ = writeln!(
         s,
         "- accuracy: ids against the exact ray-cast oracle at pixel centres (a pixel whose two nearest surfaces are within the tie tolerance is a *tie*: counted, any id accepted); the plots' error of a pixel-centre hider = (wrong ids on non-tie pixels + coverage mismatches) / covered pixels, of an anti-aliasing hider its mean |coverage - exact analytic coverage|\n"

@@ -12,6 +12,7 @@ mod conclusions;
 mod figures;
 mod format;
 mod markdown;
+mod noise;
 mod options;
 mod rows;
 mod scaling_tables;
