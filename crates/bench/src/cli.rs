@@ -23,8 +23,8 @@ use crate::matrix::{MatrixOptions, Shard, Study, build_cases, select_hiders};
 use crate::record::{Results, SCHEMA_VERSION, read_results, write_results};
 use crate::report::{conclusions, terminal_table, write_report};
 use crate::run::{RunOptions, run};
-use crate::scenes::ObjCamera;
 use hider_geom::glam::DVec3;
+use hider_scene::CameraOverrides;
 
 /// Arguments of `hider bench`.
 #[derive(Args, Debug, Clone, PartialEq)]
@@ -98,8 +98,8 @@ pub struct RunArgs {
     #[arg(long = "obj")]
     pub objs: Vec<PathBuf>,
     /// Eye position `X,Y,Z` of every --obj scene's camera (default: the
-    /// fit camera's, on +Z of the scene's centre). Near and far planes
-    /// are fitted around the scene.
+    /// fit camera's, on +Z of the scene's centre). Near and far planes not
+    /// given are fitted around the scene as seen from there.
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
     pub eye: Option<DVec3>,
     /// Point `X,Y,Z` every --obj scene's camera looks at (default: the
@@ -113,6 +113,14 @@ pub struct RunArgs {
     /// (default 60).
     #[arg(long, value_parser = parse_fovy)]
     pub fovy: Option<f64>,
+    /// Near clip distance of every --obj scene's camera (default: fitted
+    /// around the scene).
+    #[arg(long, value_parser = parse_distance)]
+    pub near: Option<f64>,
+    /// Far clip distance of every --obj scene's camera (default: fitted
+    /// around the scene).
+    #[arg(long, value_parser = parse_distance)]
+    pub far: Option<f64>,
     /// Folder of the bundled scenes (default: ./assets).
     #[arg(long)]
     pub assets: Option<PathBuf>,
@@ -223,6 +231,15 @@ fn parse_fovy(s: &str) -> std::result::Result<f64, String> {
         .ok_or_else(|| format!("bad field of view '{s}' (expected degrees, 0 < fovy < 180)"))
 }
 
+/// A clip distance: finite and positive.
+fn parse_distance(s: &str) -> std::result::Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|d| *d > 0.0 && d.is_finite())
+        .ok_or_else(|| format!("bad clip distance '{s}' (expected a positive number)"))
+}
+
 fn parse_study(s: &str) -> std::result::Result<Study, String> {
     Study::parse(s).ok_or_else(|| {
         let names: Vec<&str> = Study::ALL.iter().map(|s| s.as_str()).collect();
@@ -263,11 +280,13 @@ impl RunArgs {
         if let (Some(w), Some(h)) = (self.width, self.height) {
             m.sizes = vec![(w, h)];
         }
-        m.obj_camera = ObjCamera {
+        m.obj_camera = CameraOverrides {
             eye: self.eye,
             target: self.target,
             up: self.up,
-            fovy_degrees: self.fovy,
+            fovy: self.fovy,
+            near: self.near,
+            far: self.far,
         };
         set(&self.polygon_steps, &mut m.polygon_steps);
         set(&self.resolution_steps, &mut m.resolution_steps);
@@ -558,21 +577,28 @@ mod tests {
     #[test]
     fn the_obj_camera_is_parsed_and_checked() {
         let a = parse(&[
-            "--eye", "-3,2.5,5", "--target", "0,-1,0", "--up", "0,0,1", "--fovy", "40",
+            "--eye", "-3,2.5,5", "--target", "0,-1,0", "--up", "0,0,1", "--fovy", "40", "--near",
+            "0.5", "--far", "90",
         ])
         .unwrap();
         let c = a.options().matrix.obj_camera;
         assert_eq!(c.eye, Some(DVec3::new(-3.0, 2.5, 5.0)));
         assert_eq!(c.target, Some(DVec3::new(0.0, -1.0, 0.0)));
         assert_eq!(c.up, Some(DVec3::Z));
-        assert_eq!(c.fovy_degrees, Some(40.0));
-        assert!(!parse(&[]).unwrap().options().matrix.obj_camera.is_set());
+        assert_eq!(c.fovy, Some(40.0));
+        assert_eq!((c.near, c.far), (Some(0.5), Some(90.0)));
+        assert_eq!(
+            parse(&[]).unwrap().options().matrix.obj_camera,
+            CameraOverrides::default()
+        );
         for (flag, bad) in [
             ("--eye", "1,2"),
             ("--eye", "1,2,3,4"),
             ("--eye", "a,b,c"),
             ("--target", "1,inf,0"),
             ("--fovy", "0"),
+            ("--near", "0"),
+            ("--far", "-1"),
             ("--fovy", "180"),
             ("--fovy", "wide"),
         ] {

@@ -10,8 +10,9 @@ use std::path::PathBuf;
 
 use anyhow::{Result, bail};
 
-use crate::scenes::{self, Group, ObjCamera, Source};
+use crate::scenes::{self, Group, Source};
 use hider_plan::registry::{self, Entry};
+use hider_scene::CameraOverrides;
 
 /// The study a case belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -131,7 +132,7 @@ pub struct MatrixOptions {
     /// The camera of the user's scenes ([`Group::Obj`]: `--obj` files and
     /// [`Self::extra_scenes`]) in every study; unset keeps each scene's
     /// own camera or the fit camera.
-    pub obj_camera: ObjCamera,
+    pub obj_camera: CameraOverrides,
     /// UV sphere segment counts of the polygon study (`2n(n-1)` triangles).
     pub polygon_steps: Vec<u32>,
     /// Square sizes of the resolution study.
@@ -160,7 +161,7 @@ impl Default for MatrixOptions {
             precision_ratios: vec![1e-2, 1e-3, 1e-4, 1e-5],
             precision_size: 128,
             sizes: vec![(64, 64), (256, 256)],
-            obj_camera: ObjCamera::default(),
+            obj_camera: CameraOverrides::default(),
             polygon_steps: vec![8, 16, 32, 64, 128, 256],
             resolution_steps: vec![64, 128, 256, 512, 1024],
             resolution_sphere: 32,
@@ -202,7 +203,7 @@ impl MatrixOptions {
     }
 
     /// Sets [`Self::obj_camera`].
-    pub fn with_obj_camera(mut self, camera: ObjCamera) -> Self {
+    pub fn with_obj_camera(mut self, camera: CameraOverrides) -> Self {
         self.obj_camera = camera;
         self
     }

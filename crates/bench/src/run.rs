@@ -12,6 +12,7 @@ use hider_oracle::{
 };
 use hider_plan::HiderConfig;
 use hider_plan::registry::{Entry, Kind};
+use hider_scene::CameraOverrides;
 use hider_scene::shade::transparency_warning;
 use hider_scene::timing::{Summary, Timer};
 use hider_scene::{
@@ -113,8 +114,8 @@ fn prepare_case(case: &Case, options: &RunOptions, need_coverage: bool) -> Resul
     })?;
     let mut scene = scene.context("load never ran")?;
     // The user's camera applies to the user's scenes, in every study.
-    if case.group == Group::Obj && options.matrix.obj_camera.is_set() {
-        scene.camera = Some(options.matrix.obj_camera.camera(&scene));
+    if case.group == Group::Obj && options.matrix.obj_camera != CameraOverrides::default() {
+        scene.camera = Some(options.matrix.obj_camera.apply(&scene));
     }
     let view = View::for_scene(&scene, case.width, case.height)?;
     let prepare_options = PrepareOptions::default();

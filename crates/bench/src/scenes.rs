@@ -92,58 +92,6 @@ impl Source {
     }
 }
 
-/// The camera the user gives for the `--obj` scenes (`--eye`, `--target`,
-/// `--up`, `--fovy`): every field left out keeps the fit camera's
-/// ([`hider_scene::view::fit_camera`]: the eye on +Z of the bounding box's
-/// centre at 2.5 times its half diagonal, looking at the centre, +Y up,
-/// 60 degrees). The clip planes always enclose the scene's bounding sphere
-/// as seen from the eye.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct ObjCamera {
-    /// Position of the eye.
-    pub eye: Option<DVec3>,
-    /// Point looked at.
-    pub target: Option<DVec3>,
-    /// Up direction.
-    pub up: Option<DVec3>,
-    /// Vertical field of view in degrees.
-    pub fovy_degrees: Option<f64>,
-}
-
-impl ObjCamera {
-    /// Whether any field is set (else the scene keeps its own camera, or
-    /// the fit camera).
-    pub fn is_set(&self) -> bool {
-        *self != Self::default()
-    }
-
-    /// The camera for `scene`: the fit camera with the given fields
-    /// replaced, near and far planes around the bounding sphere (near at
-    /// least 1/10000 of far, for an eye inside the scene).
-    pub fn camera(&self, scene: &Scene) -> Camera {
-        let fit = hider_scene::view::fit_camera(scene);
-        let eye = self.eye.unwrap_or(fit.eye);
-        let target = self.target.unwrap_or(fit.target);
-        let up = self.up.unwrap_or(fit.up);
-        let (lo, hi) = scene.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
-        let centre = lo * 0.5 + hi * 0.5;
-        let r = (hi * 0.5 - lo * 0.5).length();
-        let r = if r > 0.0 && r.is_finite() { r } else { 1.0 };
-        let d = (centre - eye).length();
-        let far = (d + r) * 1.01;
-        let near = ((d - r) * 0.99).max(far * 1e-4);
-        let mut camera = Camera::perspective(eye, target, near, far).with_up(up);
-        camera = match (self.fovy_degrees, fit.projection) {
-            (Some(f), _) => camera.with_fovy_degrees(f),
-            (None, hider_geom::Projection::Perspective { fovy_degrees, .. }) => {
-                camera.with_fovy_degrees(fovy_degrees)
-            }
-            (None, _) => camera,
-        };
-        camera
-    }
-}
-
 /// Quads per side of each layer of [`layers`] (8 x 8 quads, 128 triangles).
 pub const LAYER_GRID: u32 = 8;
 
@@ -315,39 +263,5 @@ mod tests {
             2 * 8 * 7
         );
         assert!(!hard_case_names().is_empty());
-    }
-
-    #[test]
-    fn the_obj_camera_replaces_what_is_given_and_encloses_the_scene() {
-        let scene = procedural::uv_sphere(8);
-        let fit = hider_scene::view::fit_camera(&scene);
-        assert!(!ObjCamera::default().is_set());
-        let only_fovy = ObjCamera {
-            fovy_degrees: Some(30.0),
-            ..ObjCamera::default()
-        };
-        let c = only_fovy.camera(&scene);
-        assert_eq!((c.eye, c.target, c.up), (fit.eye, fit.target, fit.up));
-        assert!(matches!(
-            c.projection,
-            hider_geom::Projection::Perspective { fovy_degrees, .. } if fovy_degrees == 30.0
-        ));
-        // From above, looking down with +Z up: the whole sphere between
-        // near and far, and a valid camera.
-        let above = ObjCamera {
-            eye: Some(DVec3::new(0.0, 10.0, 0.0)),
-            target: Some(DVec3::ZERO),
-            up: Some(DVec3::Z),
-            fovy_degrees: None,
-        };
-        let c = above.camera(&scene);
-        assert!(c.validate().is_ok());
-        let hider_geom::Projection::Perspective { near, far, .. } = c.projection else {
-            panic!("perspective expected");
-        };
-        assert!(near > 0.0 && near < 9.0 && far > 11.0, "{near} {far}");
-        assert_eq!(c.up, DVec3::Z);
-        let view = hider_scene::View::new(c, 40, 30).unwrap();
-        assert_eq!((view.viewport.width, view.viewport.height), (40, 30));
     }
 }

@@ -9,8 +9,8 @@ use std::sync::atomic::AtomicBool;
 
 use hider_bench::matrix::{MatrixOptions, Study};
 use hider_bench::run::{RunOptions, run};
-use hider_bench::scenes::ObjCamera;
 use hider_geom::glam::DVec3;
+use hider_scene::CameraOverrides;
 use hider_scene::timing::Timer;
 
 fn cube() -> PathBuf {
@@ -27,7 +27,7 @@ fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
-fn options(out: PathBuf, camera: ObjCamera, threads: Option<usize>) -> RunOptions {
+fn options(out: PathBuf, camera: CameraOverrides, threads: Option<usize>) -> RunOptions {
     RunOptions {
         matrix: MatrixOptions {
             assets_dir: "/nonexistent".into(),
@@ -55,17 +55,18 @@ fn options(out: PathBuf, camera: ObjCamera, threads: Option<usize>) -> RunOption
 fn the_users_camera_size_threads_and_contact_sheet() {
     let dir = temp_dir("lib");
     let fit = run(
-        &options(dir.join("fit"), ObjCamera::default(), None),
+        &options(dir.join("fit"), CameraOverrides::default(), None),
         &AtomicBool::new(false),
         "test",
     )
     .unwrap();
     // On the diagonal through a corner, narrow: the cube fills the frame.
-    let close = ObjCamera {
+    let close = CameraOverrides {
         eye: Some(DVec3::new(2.5, 2.5, 2.5)),
         target: Some(DVec3::ZERO),
         up: None,
-        fovy_degrees: Some(30.0),
+        fovy: Some(30.0),
+        ..CameraOverrides::default()
     };
     let out = run(
         &options(dir.join("close"), close, Some(1)),
@@ -107,7 +108,7 @@ fn the_thread_count_reaches_the_hiders() {
     // One more than the A-buffer takes: refused by it, by name, so the
     // count got there; the z-buffer, which takes no thread count, runs.
     let dir = temp_dir("threads");
-    let mut o = options(dir.clone(), ObjCamera::default(), Some(257));
+    let mut o = options(dir.clone(), CameraOverrides::default(), Some(257));
     o.matrix.algos = vec!["abuffer".into(), "zbuffer".into()];
     let out = run(&o, &AtomicBool::new(false), "test").unwrap();
     let status = |name: &str| {
@@ -127,7 +128,7 @@ fn the_thread_count_reaches_the_hiders() {
 #[test]
 fn a_real_size_only_run_still_draws_the_users_scene() {
     let dir = temp_dir("real");
-    let mut o = options(dir.clone(), ObjCamera::default(), None);
+    let mut o = options(dir.clone(), CameraOverrides::default(), None);
     o.matrix.studies = vec![Study::RealSize];
     o.matrix.real_size = (20, 14);
     let out = run(&o, &AtomicBool::new(false), "test").unwrap();

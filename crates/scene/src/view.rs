@@ -40,7 +40,11 @@ impl View {
 /// [`fit_camera`]): what the command line's `--eye`, `--target`, `--up`,
 /// `--fovy`, `--near` and `--far` and the Python keywords of the same
 /// names mean. `None` keeps the scene's value; the field of view and clip
-/// distances apply to a perspective camera.
+/// distances apply to a perspective camera. When the eye or the target is
+/// moved, a clip distance left out is fitted to the new position instead
+/// (the scene's bounding sphere between near and far, near at least
+/// 1/10000 of far): the scene's own planes were chosen for its own eye, and
+/// kept for another they cut the scene or show nothing.
 ///
 /// ```
 /// use hider_scene::{CameraOverrides, glam::DVec3, procedural};
@@ -69,9 +73,12 @@ impl CameraOverrides {
     /// `scene`'s camera (its own, or the fit camera) with these values set.
     pub fn apply(&self, scene: &Scene) -> Camera {
         let mut c = scene.camera.unwrap_or_else(|| fit_camera(scene));
+        let moved =
+            self.eye.is_some_and(|e| e != c.eye) || self.target.is_some_and(|t| t != c.target);
         c.eye = self.eye.unwrap_or(c.eye);
         c.target = self.target.unwrap_or(c.target);
         c.up = self.up.unwrap_or(c.up);
+        let fitted = moved.then(|| clip_around_scene(scene, c.eye));
         if let hider_geom::Projection::Perspective {
             fovy_degrees,
             near,
@@ -79,10 +86,36 @@ impl CameraOverrides {
         } = &mut c.projection
         {
             *fovy_degrees = self.fovy.unwrap_or(*fovy_degrees);
-            *near = self.near.unwrap_or(*near);
-            *far = self.far.unwrap_or(*far);
+            let (fit_near, fit_far) = fitted.unwrap_or((*near, *far));
+            *near = self.near.unwrap_or(fit_near);
+            *far = self.far.unwrap_or(fit_far);
         }
         c
+    }
+}
+
+/// Near and far distances from `eye` that enclose `scene`'s bounding
+/// sphere with 1% to spare, near at least 1/10000 of far (for an eye
+/// inside the scene).
+fn clip_around_scene(scene: &Scene, eye: DVec3) -> (f64, f64) {
+    let (lo, hi) = scene.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
+    let centre = lo * 0.5 + hi * 0.5;
+    let r = scaled_length(hi * 0.5 - lo * 0.5);
+    let r = if r > 0.0 && r.is_finite() { r } else { 1.0 };
+    let d = scaled_length(centre - eye);
+    let far = (d + r) * 1.01;
+    let near = ((d - r) * 0.99).max(far * 1e-4);
+    (near, far)
+}
+
+/// The length of `v` without squaring its components: coordinates near
+/// 1e200 (which `fit_camera` accepts) overflow a plain `length`.
+fn scaled_length(v: DVec3) -> f64 {
+    let m = v.abs().max_element();
+    if m > 0.0 && m.is_finite() {
+        m * (v / m).length()
+    } else {
+        m
     }
 }
 
@@ -209,6 +242,58 @@ mod tests {
         let far_away = fit_camera(&sphere(1.0, 1e17));
         assert!(far_away.validate().is_ok(), "{:?}", far_away.validate());
         assert!(View::for_scene(&sphere(1.0, 1e17), 64, 64).is_ok());
+    }
+
+    #[test]
+    fn a_moved_eye_gets_clip_planes_around_the_scene_unless_given() {
+        let cube = crate::procedural::cube();
+        let own = fit_camera(&cube);
+        let planes = |c: Camera| match c.projection {
+            Projection::Perspective { near, far, .. } => (near, far),
+            Projection::Orthographic { .. } => unreachable!(),
+        };
+        // Far away: the fit camera's far plane (for its own eye) would
+        // cut the whole cube off.
+        let eye = DVec3::new(0.0, 0.0, 100.0);
+        let far_off = CameraOverrides {
+            eye: Some(eye),
+            ..Default::default()
+        }
+        .apply(&cube);
+        let (near, far) = planes(far_off);
+        let (lo, hi) = cube.bounds().unwrap();
+        let r = (hi - lo).length() / 2.0;
+        assert!(
+            near < 100.0 - r && far > 100.0 + r && near > 0.0,
+            "{near} {far}"
+        );
+        assert!(
+            planes(own).1 < 100.0 - r,
+            "the old planes would show nothing"
+        );
+        // Given planes are kept; an unmoved eye keeps the scene's planes.
+        let given = CameraOverrides {
+            eye: Some(eye),
+            near: Some(0.5),
+            ..Default::default()
+        }
+        .apply(&cube);
+        assert_eq!(planes(given), (0.5, far));
+        let unmoved = CameraOverrides {
+            fovy: Some(30.0),
+            eye: Some(own.eye),
+            ..Default::default()
+        }
+        .apply(&cube);
+        assert_eq!(planes(unmoved), planes(own));
+        // Huge coordinates: the sphere's radius does not overflow.
+        let big = sphere(2f64.powi(664), 0.0);
+        let moved = CameraOverrides {
+            eye: Some(fit_camera(&big).eye * 2.0),
+            ..Default::default()
+        }
+        .apply(&big);
+        assert!(moved.validate().is_ok(), "{:?}", moved.validate());
     }
 
     #[test]
