@@ -36,10 +36,12 @@ pub struct ViewArgs {
     /// Vertical field of view in degrees.
     #[arg(long, value_parser = args::fovy)]
     fovy: Option<f64>,
-    /// Near plane distance.
+    /// Near plane distance (default: the scene's; fitted around the scene
+    /// when --eye or --target moves the camera).
     #[arg(long, value_parser = args::distance)]
     near: Option<f64>,
-    /// Far plane distance.
+    /// Far plane distance (default: the scene's; fitted around the scene
+    /// when --eye or --target moves the camera).
     #[arg(long, value_parser = args::distance)]
     far: Option<f64>,
 }
