@@ -133,13 +133,13 @@ fn report(
 fn texture_warnings(scene: &Scene) -> Vec<String> {
     let mut seen = Vec::new();
     let mut warnings = Vec::new();
-    for mesh in scene.meshes.iter().filter(|m| !m.uvs.is_empty()) {
-        let Some(texture) = scene
-            .mesh_material(mesh)
-            .and_then(|m| m.diffuse_texture.as_ref())
-        else {
-            continue;
-        };
+    let textures = scene
+        .meshes
+        .iter()
+        .filter(|m| !m.uvs.is_empty())
+        .flat_map(|mesh| scene.mesh_materials(mesh))
+        .filter_map(|m| m?.diffuse_texture.as_ref());
+    for texture in textures {
         if seen.contains(&texture.path()) {
             continue;
         }

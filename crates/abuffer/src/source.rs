@@ -189,16 +189,20 @@ pub(crate) fn scene_opacity_runs(scene: &Scene, out: &mut Vec<(u32, f32)>) {
     out.clear();
     let default = Material::default().opacity;
     let mut end = 0u32;
-    for mesh in &scene.meshes {
+    let opacity = |m: Option<&Material>| m.map_or(default, |m| m.opacity).clamp(0.0, 1.0);
+    for (m, mesh) in scene.meshes.iter().enumerate() {
         if mesh.indices.is_empty() {
             continue;
         }
-        end += mesh.indices.len() as u32;
-        let alpha = scene
-            .mesh_material(mesh)
-            .map_or(default, |m| m.opacity)
-            .clamp(0.0, 1.0);
-        push_opacity(out, end, alpha);
+        if mesh.triangle_materials.is_empty() {
+            end += mesh.indices.len() as u32;
+            push_opacity(out, end, opacity(scene.mesh_material(mesh)));
+            continue;
+        }
+        for t in 0..mesh.indices.len() {
+            end += 1;
+            push_opacity(out, end, opacity(scene.triangle_material(m, t)));
+        }
     }
 }
 

@@ -104,7 +104,7 @@ pub enum Light {
     },
 }
 
-/// A triangle mesh with one material.
+/// A triangle mesh: one material, or one per triangle.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     /// Name (OBJ object or group, or generator name).
@@ -125,6 +125,26 @@ pub struct Mesh {
     pub indices: Vec<[u32; 3]>,
     /// Index into [`Scene::materials`], or `None` for the default material.
     pub material: Option<usize>,
+    /// Optional per-triangle materials (same length as `indices` when
+    /// present): the index into [`Scene::materials`] of each triangle, in
+    /// place of [`Self::material`], so that one mesh can hold faces of
+    /// several materials (a material per face, as a CAD export or a
+    /// per-face colour array gives). For the default look on some faces,
+    /// push [`Material::default`] and name it. Empty: every triangle has
+    /// [`Self::material`].
+    pub triangle_materials: Vec<u32>,
+}
+
+impl Mesh {
+    /// The material index of triangle `t`: its entry of
+    /// [`Self::triangle_materials`] when there are any, else
+    /// [`Self::material`] (`None` for the default material).
+    pub fn triangle_material(&self, t: usize) -> Option<usize> {
+        match self.triangle_materials.get(t) {
+            Some(&k) => Some(k as usize),
+            None => self.material,
+        }
+    }
 }
 
 /// A whole scene: what the front end turns into a [`crate::ScreenScene`].
@@ -171,8 +191,8 @@ impl Scene {
         self.meshes.iter().any(|mesh| {
             !mesh.uvs.is_empty()
                 && self
-                    .mesh_material(mesh)
-                    .is_some_and(|m| m.diffuse_texture.is_some())
+                    .mesh_materials(mesh)
+                    .any(|m| m.is_some_and(|m| m.diffuse_texture.is_some()))
         })
     }
 
@@ -188,8 +208,8 @@ impl Scene {
             || self.meshes.iter().any(|mesh| {
                 !mesh.normals.is_empty()
                     && self
-                        .mesh_material(mesh)
-                        .is_none_or(|m| m.illumination != Illumination::Color)
+                        .mesh_materials(mesh)
+                        .any(|m| m.is_none_or(|m| m.illumination != Illumination::Color))
             })
     }
 
@@ -198,6 +218,38 @@ impl Scene {
     /// [`Self::validate`] refuses, also gives `None`).
     pub fn mesh_material(&self, mesh: &Mesh) -> Option<&Material> {
         mesh.material.and_then(|i| self.materials.get(i))
+    }
+
+    /// Every material `mesh`'s triangles use, each once, in index order
+    /// (`None` for the default material): [`Self::mesh_material`] alone,
+    /// or those of [`Mesh::triangle_materials`].
+    pub fn mesh_materials<'a>(
+        &'a self,
+        mesh: &Mesh,
+    ) -> impl Iterator<Item = Option<&'a Material>> + 'a {
+        let indices: Vec<Option<usize>> = if mesh.triangle_materials.is_empty() {
+            vec![mesh.material]
+        } else {
+            let mut used: Vec<usize> = mesh
+                .triangle_materials
+                .iter()
+                .map(|&k| k as usize)
+                .collect();
+            used.sort_unstable();
+            used.dedup();
+            used.into_iter().map(Some).collect()
+        };
+        indices
+            .into_iter()
+            .map(|k| k.and_then(|i| self.materials.get(i)))
+    }
+
+    /// The material of triangle `t` of mesh `m` ([`Mesh::triangle_material`]),
+    /// `None` for the default material.
+    pub fn triangle_material(&self, m: usize, t: usize) -> Option<&Material> {
+        self.meshes[m]
+            .triangle_material(t)
+            .and_then(|i| self.materials.get(i))
     }
 
     /// The world-space corners of triangle `t` of mesh `m`.
@@ -303,6 +355,26 @@ impl Scene {
         {
             return Err(Error::InvalidScene(format!(
                 "mesh {m} ('{}') uses material {k}, but there are {}",
+                mesh.name,
+                self.materials.len()
+            )));
+        }
+        let per_triangle = mesh.triangle_materials.len();
+        if per_triangle != 0 && per_triangle != mesh.indices.len() {
+            return Err(Error::InvalidScene(format!(
+                "mesh {m} ('{}') has {per_triangle} triangle materials for {} triangles",
+                mesh.name,
+                mesh.indices.len()
+            )));
+        }
+        if let Some((t, k)) = mesh
+            .triangle_materials
+            .iter()
+            .enumerate()
+            .find(|&(_, &k)| k as usize >= self.materials.len())
+        {
+            return Err(Error::InvalidScene(format!(
+                "mesh {m} ('{}') triangle {t} uses material {k}, but there are {}",
                 mesh.name,
                 self.materials.len()
             )));

@@ -257,6 +257,7 @@ fn mesh_from_tobj(model: tobj::Model, material_count: usize, warnings: &mut Vec<
         positions,
         indices,
         material,
+        ..Mesh::default()
     }
 }
 

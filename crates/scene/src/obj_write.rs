@@ -10,7 +10,8 @@ use crate::error::{Error, Result};
 use crate::model::Scene;
 
 /// The OBJ and MTL text of a scene. The OBJ refers to the MTL as
-/// `mtl_name`; every mesh becomes an `o` block with its material. Numbers
+/// `mtl_name`; every mesh becomes an `o` block, its faces under `usemtl`
+/// statements wherever their material changes. Numbers
 /// are written in Rust's shortest round-trip form, so loading the text
 /// gives back the same `f64` positions.
 pub fn to_obj_text(scene: &Scene, mtl_name: &str) -> (String, String) {
@@ -36,13 +37,19 @@ pub fn to_obj_text(scene: &Scene, mtl_name: &str) -> (String, String) {
             &mesh.name
         };
         let _ = writeln!(obj, "o {name}");
-        if let Some(k) = mesh.material {
-            let _ = writeln!(obj, "usemtl {}", scene.materials[k].name);
-        }
         for p in &mesh.positions {
             let _ = writeln!(obj, "v {:?} {:?} {:?}", p.x, p.y, p.z);
         }
-        for t in &mesh.indices {
+        // A `usemtl` wherever the material changes: once for a mesh of one
+        // material, at each change for per-triangle materials.
+        let mut current = None;
+        for (k, t) in mesh.indices.iter().enumerate() {
+            let material = mesh.triangle_material(k);
+            if material.is_some() && material != current {
+                let name = &scene.materials[material.unwrap_or_default()].name;
+                let _ = writeln!(obj, "usemtl {name}");
+                current = material;
+            }
             let _ = writeln!(
                 obj,
                 "f {} {} {}",

@@ -173,7 +173,9 @@ impl FrontEnd {
         let idx = mesh.indices[t];
         PrimInfo {
             camera: idx.map(|i| self.to_camera(mesh.positions[i as usize])),
-            material: mesh.material.map_or(self.default_material, |k| k as u32),
+            material: mesh
+                .triangle_material(t)
+                .map_or(self.default_material, |k| k as u32),
             normals: (!mesh.normals.is_empty()).then(|| {
                 idx.map(|i| {
                     self.normal_matrix

@@ -101,7 +101,9 @@ impl LeanScene {
         let k = prim as usize;
         let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
         let mesh = &scene.meshes[m];
-        let material = scene.mesh_material(mesh).unwrap_or(&self.default_material);
+        let material = scene
+            .triangle_material(m, k - self.mesh_starts[m])
+            .unwrap_or(&self.default_material);
         match mode {
             ShadeMode::Ids => (id_color(prim), material.opacity),
             ShadeMode::Lambert => {
@@ -122,7 +124,7 @@ impl LeanScene {
         let k = prim as usize;
         let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
         scene.meshes[m]
-            .material
+            .triangle_material(k - self.mesh_starts[m])
             .map_or(scene.materials.len() as u32, |i| i as u32)
     }
 }
