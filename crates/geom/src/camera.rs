@@ -4,8 +4,14 @@
 //! where it imitates a GL pipeline on purpose (see `hider-scene`'s
 //! `TransformPrecision`). The conventions are OpenGL's: a right-handed world,
 //! the camera looking down -Z, clip space with `-w <= z <= w`.
+//!
+//! A camera's [`Lens`] makes its frustum off-axis (`glFrustum` with
+//! `left != -right`): the principal point of pinhole [`Intrinsics`] off the
+//! image centre, or pixels taller than wide. It moves and stretches the
+//! image in NDC only; the depth rows of the projection, and with them every
+//! depth a hider computes, are those of the symmetric frustum.
 
-use glam::{DMat4, DVec3};
+use glam::{DMat4, DVec2, DVec3};
 
 /// The projection a camera uses.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,6 +48,112 @@ pub struct Camera {
     pub up: DVec3,
     /// The projection.
     pub projection: Projection,
+    /// Where the view axis meets the image, and the pixels' shape:
+    /// [`Lens::CENTRED`] for the symmetric frustum of `gluPerspective` and
+    /// `glOrtho`.
+    pub lens: Lens,
+}
+
+/// An off-axis frustum: the image moved and stretched in NDC after the
+/// symmetric projection. NDC `x' = x_scale * x + centre.x` and
+/// `y' = y + centre.y`, so the view axis lands at `centre` (NDC, y up:
+/// `(0, 0)` is the image centre, `(1, 1)` its top-right corner). A
+/// perspective camera with a lens projects exactly as `glFrustum` does
+/// (see [`Camera::projection_matrix`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lens {
+    /// NDC position of the view axis (the principal point).
+    pub centre: DVec2,
+    /// Horizontal scale against the symmetric frustum's, whose pixels
+    /// are square: `fx / fy` of pinhole intrinsics.
+    pub x_scale: f64,
+}
+
+impl Lens {
+    /// The symmetric frustum: the view axis through the image centre,
+    /// square pixels.
+    pub const CENTRED: Self = Self {
+        centre: DVec2::ZERO,
+        x_scale: 1.0,
+    };
+}
+
+impl Default for Lens {
+    fn default() -> Self {
+        Self::CENTRED
+    }
+}
+
+/// Pinhole camera intrinsics as OpenCV's and open3d's camera matrix
+/// `K = [[fx, 0, cx], [0, fy, cy], [0, 0, 1]]` holds them, in pixels of an
+/// image `width x height` whose x runs right and y down from the top-left
+/// corner of the top-left pixel. Pixel `(i, j)` is sampled at
+/// `(i + 0.5, j + 0.5)`, as open3d's `create_rays_pinhole` samples it
+/// (OpenCV puts pixel centres at integers: its `cx` is this one's
+/// `cx - 0.5`). A camera-space point `(X, Y, Z)` with +Z forward and +Y
+/// down projects to `(fx X / Z + cx, fy Y / Z + cy)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Intrinsics {
+    /// Horizontal focal length, pixels.
+    pub fx: f64,
+    /// Vertical focal length, pixels.
+    pub fy: f64,
+    /// Principal point x, pixels from the left edge.
+    pub cx: f64,
+    /// Principal point y, pixels from the top edge.
+    pub cy: f64,
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+}
+
+impl Intrinsics {
+    /// The vertical field of view of these intrinsics, degrees:
+    /// `2 atan(height / (2 fy))`.
+    pub fn fovy_degrees(&self) -> f64 {
+        (2.0 * (f64::from(self.height) / (2.0 * self.fy)).atan()).to_degrees()
+    }
+
+    /// The lens that puts the principal point at `(cx, cy)` and stretches
+    /// x by `fx / fy`: NDC centre `(2 cx / width - 1, 1 - 2 cy / height)`.
+    pub fn lens(&self) -> Lens {
+        Lens {
+            centre: DVec2::new(
+                2.0 * self.cx / f64::from(self.width) - 1.0,
+                1.0 - 2.0 * self.cy / f64::from(self.height),
+            ),
+            x_scale: self.fx / self.fy,
+        }
+    }
+
+    /// Checks that the intrinsics describe a camera: finite, positive
+    /// focal lengths, a finite principal point, a non-empty image.
+    pub fn validate(&self) -> Result<(), CameraError> {
+        for (name, v) in [("fx", self.fx), ("fy", self.fy)] {
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(CameraError(format!(
+                    "intrinsics {name} {} must be a finite focal length > 0 (pixels)",
+                    short(v)
+                )));
+            }
+        }
+        for (name, v) in [("cx", self.cx), ("cy", self.cy)] {
+            if !v.is_finite() {
+                return Err(CameraError(format!(
+                    "intrinsics {name} {} must be finite",
+                    short(v)
+                )));
+            }
+        }
+        if self.width == 0 || self.height == 0 {
+            return Err(CameraError(format!(
+                "intrinsics image size {} x {} must be at least 1 x 1",
+                self.width, self.height
+            )));
+        }
+        Ok(())
+    }
 }
 
 /// Why a camera cannot be used.
@@ -86,6 +198,7 @@ impl Camera {
                 near,
                 far,
             },
+            lens: Lens::CENTRED,
         }
     }
 
@@ -113,6 +226,7 @@ impl Camera {
                 near,
                 far,
             },
+            lens: Lens::CENTRED,
         }
     }
 
@@ -152,14 +266,66 @@ impl Camera {
         self
     }
 
+    /// The same camera with `lens`.
+    ///
+    /// ```
+    /// use hider_geom::{Camera, Lens};
+    /// use glam::{DVec2, DVec3};
+    ///
+    /// let lens = Lens { centre: DVec2::new(0.25, 0.0), x_scale: 1.0 };
+    /// let camera = Camera::perspective(DVec3::Z * 3.0, DVec3::ZERO, 0.5, 20.0).with_lens(lens);
+    /// // The view axis (the target) lands a quarter of the way right of centre.
+    /// let clip = camera.projection_matrix(1.0) * camera.view_matrix() * DVec3::ZERO.extend(1.0);
+    /// assert!((clip.x / clip.w - 0.25).abs() < 1e-15);
+    /// ```
+    pub fn with_lens(mut self, lens: Lens) -> Self {
+        self.lens = lens;
+        self
+    }
+
+    /// The same camera with the field of view and lens of pinhole
+    /// `intrinsics` (a perspective camera; an orthographic one gets the
+    /// lens only). Rendered at the intrinsics' image size, a world point
+    /// lands at the pixel position `K` gives it (see [`Intrinsics`]).
+    pub fn with_intrinsics(self, intrinsics: &Intrinsics) -> Self {
+        self.with_fovy_degrees(intrinsics.fovy_degrees())
+            .with_lens(intrinsics.lens())
+    }
+
     /// The view matrix (world to camera space).
     pub fn view_matrix(&self) -> DMat4 {
         look_at(self.eye, self.target, self.up)
     }
 
     /// The projection matrix for an image of the given aspect ratio
-    /// (width / height).
+    /// (width / height): the symmetric frustum's, then the [`Lens`]. With
+    /// a lens a perspective camera's matrix is `glFrustum`'s, for
+    /// `right - left = 2 near tan(fovy / 2) aspect / x_scale` and
+    /// `(right + left) / (right - left) = -centre.x` (and the same in y
+    /// with a scale of 1): the lens's entries go where `glFrustum` has
+    /// them, and the depth rows are untouched.
     pub fn projection_matrix(&self, aspect: f64) -> DMat4 {
+        let mut m = self.symmetric_projection_matrix(aspect);
+        if self.lens != Lens::CENTRED {
+            let Lens { centre, x_scale } = self.lens;
+            // Premultiplying by the NDC map [[sx, 0, 0, cx], [0, 1, 0, cy],
+            // [0, 0, 1, 0], [0, 0, 0, 1]]: row x scales and gains cx times
+            // row w, row y gains cy times row w. Row w of either projection
+            // is a unit vector (-z or the constant 1), so every entry is
+            // one rounding from glFrustum's or glOrtho's.
+            m.x_axis.x *= x_scale;
+            let w_row = m.row(3);
+            for c in 0..4 {
+                let col = m.col_mut(c);
+                col.x += centre.x * w_row[c];
+                col.y += centre.y * w_row[c];
+            }
+        }
+        m
+    }
+
+    /// The projection of the symmetric frustum, without the lens.
+    fn symmetric_projection_matrix(&self, aspect: f64) -> DMat4 {
         match self.projection {
             Projection::Perspective {
                 fovy_degrees,
@@ -208,6 +374,15 @@ impl Camera {
                 "camera up {} is parallel to the view direction {}",
                 short3(self.up),
                 short3(dir)
+            )));
+        }
+        let Lens { centre, x_scale } = self.lens;
+        if !(centre.is_finite() && x_scale > 0.0 && x_scale.is_finite()) {
+            return Err(CameraError(format!(
+                "camera lens centre [{}, {}] must be finite and its x scale {} finite and > 0",
+                short(centre.x),
+                short(centre.y),
+                short(x_scale)
             )));
         }
         match self.projection {

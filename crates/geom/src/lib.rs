@@ -48,7 +48,7 @@ pub mod plane;
 pub mod polygon;
 pub mod viewport;
 
-pub use camera::{Camera, Projection};
+pub use camera::{Camera, Intrinsics, Lens, Projection};
 pub use edge::{EdgeFunction, orient2d, triangle_covers};
 pub use fixed::FixedPt;
 pub use plane::PlaneEq;
