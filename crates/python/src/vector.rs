@@ -12,9 +12,10 @@ use hider_vector::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use crate::camera::CameraArgs;
 use crate::errors::scene_error;
 use crate::mesh::{Faces, Vertices};
-use crate::render::{CameraArgs, scene_and_view};
+use crate::render::scene_and_view;
 
 /// Writes the SVG of the mesh of `vertices` and `faces`; see the Python
 /// wrapper `hider.svg` for the arguments.
@@ -72,6 +73,7 @@ pub fn svg(
         fovy,
         near,
         far,
+        ..CameraArgs::default()
     };
     let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
     let mut options = VectorOptions::default()
