@@ -242,6 +242,25 @@ def test_outputs_come_in_the_order_asked_and_the_default_is_unchanged():
     assert z.dtype == np.float32 and z.shape == (24, 32)
     b, nrm = hider.render(v, f, width=32, height=24, outputs=("barycentrics", "normals"))
     assert b.shape == (24, 32, 2) and nrm.shape == (24, 32, 3)
+    # A pool of threads renders on another thread: the same outputs.
+    many = hider.render(v, f, width=32, height=24, outputs=ALL, threads=2)
+    for a, b in zip(hider.render(v, f, width=32, height=24, outputs=ALL), many):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_plan_and_auto_take_the_new_cameras():
+    V, F = scene()
+    kw = dict(width=W, height=H, pose=look_pose_cv(np.array([1.0, 1.5, 3.0]), [0, 0, 0],
+                                                   [0, 1, 0]),
+              convention="opencv", intrinsics=K_CASES[1])
+    chosen = hider.plan(V, F, **kw)
+    assert chosen.algo in hider.algorithms(kind="exact")
+    auto = hider.render(V, F, algo="auto", outputs=ALL, **kw)
+    named = hider.render(V, F, algo=chosen.algo, outputs=ALL, **kw)
+    for a, b in zip(auto, named):
+        np.testing.assert_array_equal(a, b)
+    ortho = hider.plan(V, F, width=W, height=H, orthographic=2.0)
+    assert ortho.algo in hider.algorithms()
 
 
 def test_window_depth_converts_to_z_and_distance_by_the_documented_formulas():
