@@ -181,6 +181,7 @@ pub fn surface_at_pixels(
     }
     let camera = view.camera;
     let view_matrix = camera.view_matrix();
+    let eye = camera.eye;
     let rays = Rays {
         projection: camera.projection_matrix(view.viewport.aspect()),
         width: f64::from(width),
@@ -227,7 +228,10 @@ pub fn surface_at_pixels(
             let mesh = starts.partition_point(|&s| s <= id as usize) - 1;
             let corners = scene.meshes[mesh].indices[id as usize - starts[mesh]];
             let world = corners.map(|c| scene.meshes[mesh].positions[c as usize]);
-            let camera = world.map(|p| view_matrix.transform_point3(p));
+            // Eye-relative, then rotated: a scene far from the origin
+            // keeps the bits a translation after the rotation would
+            // cancel (the front end's eye-relative transform).
+            let camera = world.map(|p| view_matrix.transform_vector3(p - eye));
             last = Some((
                 id,
                 Triangle {
