@@ -502,7 +502,8 @@ def visible_faces(vertices, faces, **kwargs):
 
 
 def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
-        fovy=60.0, near=None, far=None, mode="regions", crease_angle=30.0,
+        fovy=None, near=None, far=None, pose=None, convention=None, intrinsics=None,
+        orthographic=None, mode="regions", crease_angle=30.0,
         stroke_width=1.0, stroke_mm=None, page_mm=None, hidden="none", background=None,
         seams=True):
     """Write an exact vector drawing of a triangle mesh as SVG.
@@ -532,14 +533,12 @@ def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
     v = _as_vertices(vertices)
     f = _as_faces(faces)
     page = None if page_mm is None else (float(page_mm[0]), float(page_mm[1]))
+    look, extra = _camera_args(eye, target, up, fovy, near, far, pose, convention, intrinsics,
+                               orthographic)
     _interruptible(
         _hider.svg, v, f, os.fspath(path), _as_size(width, "width"),
-        _as_size(height, "height"),
-        _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
-        None if fovy is None else float(fovy),
-        None if near is None else float(near),
-        None if far is None else float(far),
+        _as_size(height, "height"), *look,
         str(mode), float(crease_angle), float(stroke_width),
         None if stroke_mm is None else float(stroke_mm), page, str(hidden),
-        None if background is None else str(background), bool(seams),
+        None if background is None else str(background), bool(seams), *extra,
     )

@@ -67,7 +67,9 @@ def visible_faces(
 def svg(
     vertices: npt.ArrayLike, faces: npt.ArrayLike, path: str | os.PathLike[str], *, width: int,
     height: int, eye: _Point = None, target: _Point = None, up: _Point = None,
-    fovy: float | None = 60.0, near: float | None = None, far: float | None = None,
+    fovy: float | None = None, near: float | None = None, far: float | None = None,
+    pose: npt.ArrayLike | None = None, convention: _Convention | None = None,
+    intrinsics: npt.ArrayLike | None = None, orthographic: float | None = None,
     mode: Literal["regions", "lines"] = "regions", crease_angle: float = 30.0,
     stroke_width: float = 1.0, stroke_mm: float | None = None,
     page_mm: tuple[float, float] | None = None, hidden: Literal["none", "dashed"] = "none",

@@ -48,5 +48,6 @@ def svg(
     eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
     far: float | None, mode: str, crease_angle: float, stroke_width: float,
     stroke_mm: float | None, page_mm: tuple[float, float] | None, hidden: str,
-    background: str | None, seams: bool,
+    background: str | None, seams: bool, pose: _Pose = None, intrinsics: _Intrinsics = None,
+    orthographic: float | None = None,
 ) -> None: ...
