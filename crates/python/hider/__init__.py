@@ -436,10 +436,11 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
 
         >>> import numpy as np, hider
         >>> v = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
-        >>> ids, t = hider.render(v, [[0, 1, 2]], width=64, height=64,
-        ...                       outputs=("ids", "distance"))
-        >>> round(float(t[32, 32]), 3)  # the fit camera's eye is 2.5 R away
-        2.5
+        >>> ids, z = hider.render(v, [[0, 1, 2]], width=64, height=64,
+        ...                       outputs=("ids", "z"))
+        >>> # The fit camera's eye is 2.5 half diagonals (sqrt 2) away.
+        >>> round(float(z[32, 32]), 4), round(2.5 * 2 ** 0.5, 4)
+        (3.5355, 3.5355)
     """
     v = _as_vertices(vertices)
     f = _as_faces(faces)
