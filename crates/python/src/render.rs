@@ -256,11 +256,18 @@ pub fn render_surface<'py>(
 ) -> PyResult<(Buffers<'py>, Surface<'py>)> {
     let (rendered, surface) = py.detach(|| {
         let rendered = render_scene(scene, view, algo, threads)?;
-        let surface = if wanted == SurfaceOutputs::default() {
+        let surface = if !wanted.any() {
             PixelSurface::default()
         } else {
-            with_ids(&rendered, |ids| surface_at_pixels(scene, view, ids, wanted))
-                .map_err(scene_error)?
+            let solve = || with_ids(&rendered, |ids| surface_at_pixels(scene, view, ids, wanted));
+            // Above one thread the bands of rows run in the caller's pool of
+            // `threads` (`wanted.parallel`), never in rayon's global one.
+            if threads > 1 {
+                pool(threads)?.install(solve)
+            } else {
+                solve()
+            }
+            .map_err(scene_error)?
         };
         PyResult::Ok((rendered, surface))
     })?;
@@ -360,6 +367,7 @@ pub fn render<'py>(
         barycentrics,
         normals,
         vertex_normals,
+        parallel: threads > 1,
     };
     render_surface(py, &scene, &view, algo, threads, wanted)
 }

@@ -58,6 +58,18 @@ pub struct SurfaceOutputs {
     pub normals: bool,
     /// Interpolated unit vertex normals, world space.
     pub vertex_normals: bool,
+    /// Whether bands of rows are solved in parallel, in the caller's rayon
+    /// pool (as `par_iter` would run them: wrap the call in a pool's
+    /// `install` to choose the threads). The values do not change. Without
+    /// the crate's `parallel` feature the calling thread solves them all.
+    pub parallel: bool,
+}
+
+impl SurfaceOutputs {
+    /// Whether any attribute is asked for.
+    pub fn any(&self) -> bool {
+        self.distance || self.view_z || self.barycentrics || self.normals || self.vertex_normals
+    }
 }
 
 /// The attributes of a frame's visible surface, row-major with row 0 at
@@ -133,6 +145,35 @@ struct Triangle {
     corners: [u32; 3],
 }
 
+/// What every band of rows reads: the scene, where its meshes' ids start,
+/// the camera's rays and view matrix.
+struct FrameRays<'a> {
+    scene: &'a Scene,
+    starts: Vec<usize>,
+    count: usize,
+    view_matrix: DMat4,
+    eye: DVec3,
+    rays: Rays,
+    width: usize,
+    wanted: SurfaceOutputs,
+}
+
+/// One band's share of the outputs (empty slices for those not asked).
+struct Band<'a> {
+    /// The band's first pixel.
+    start: usize,
+    ids: &'a [u32],
+    distance: &'a mut [f32],
+    view_z: &'a mut [f32],
+    barycentrics: &'a mut [[f32; 2]],
+    normals: &'a mut [[f32; 3]],
+    vertex_normals: &'a mut [[f32; 3]],
+}
+
+/// Rows per band: enough for a band to cost far more than handing it to a
+/// thread, few enough for two threads to share a small frame.
+const BAND_ROWS: usize = 16;
+
 /// The attributes `wanted` of the surface seen at each pixel centre of
 /// `ids` (a frame's id buffer: row-major, `view`'s size, [`NO_ID`] for
 /// none), for `scene` rendered through `view`.
@@ -171,7 +212,6 @@ pub fn surface_at_pixels(
             ids.len()
         )));
     }
-    let count = scene.triangle_count();
     // The first primitive id of each mesh, for the id's mesh.
     let mut starts = Vec::with_capacity(scene.meshes.len());
     let mut next = 0usize;
@@ -180,51 +220,113 @@ pub fn surface_at_pixels(
         next += mesh.indices.len();
     }
     let camera = view.camera;
-    let view_matrix = camera.view_matrix();
-    let eye = camera.eye;
-    let rays = Rays {
-        projection: camera.projection_matrix(view.viewport.aspect()),
-        width: f64::from(width),
-        height: f64::from(height),
-        perspective: matches!(
-            camera.projection,
-            hider_geom::Projection::Perspective { .. }
-        ),
+    let frame = FrameRays {
+        scene,
+        starts,
+        count: next,
+        view_matrix: camera.view_matrix(),
+        eye: camera.eye,
+        rays: Rays {
+            projection: camera.projection_matrix(view.viewport.aspect()),
+            width: f64::from(width),
+            height: f64::from(height),
+            perspective: matches!(
+                camera.projection,
+                hider_geom::Projection::Perspective { .. }
+            ),
+        },
+        width: width as usize,
+        wanted,
     };
-    let fill = |on: bool, value| if on { vec![value; pixels] } else { Vec::new() };
     let mut out = PixelSurface {
-        distance: fill(wanted.distance, f32::INFINITY),
-        view_z: fill(wanted.view_z, f32::INFINITY),
-        barycentrics: if wanted.barycentrics {
-            vec![[0.0; 2]; pixels]
-        } else {
-            Vec::new()
-        },
-        normals: if wanted.normals {
-            vec![[0.0; 3]; pixels]
-        } else {
-            Vec::new()
-        },
-        vertex_normals: if wanted.vertex_normals {
-            vec![[0.0; 3]; pixels]
-        } else {
-            Vec::new()
-        },
+        distance: filled(wanted.distance, pixels, f32::INFINITY),
+        view_z: filled(wanted.view_z, pixels, f32::INFINITY),
+        barycentrics: filled(wanted.barycentrics, pixels, [0.0; 2]),
+        normals: filled(wanted.normals, pixels, [0.0; 3]),
+        vertex_normals: filled(wanted.vertex_normals, pixels, [0.0; 3]),
         stats: SurfaceStats::default(),
     };
+    // Outputs not asked for are empty: no chunks, and their bands take
+    // empty slices.
+    let band = (BAND_ROWS * frame.width).max(1);
+    let mut distance = out.distance.chunks_mut(band);
+    let mut view_z = out.view_z.chunks_mut(band);
+    let mut barycentrics = out.barycentrics.chunks_mut(band);
+    let mut normals = out.normals.chunks_mut(band);
+    let mut vertex_normals = out.vertex_normals.chunks_mut(band);
+    let jobs: Vec<Band<'_>> = ids
+        .chunks(band)
+        .enumerate()
+        .map(|(b, ids)| Band {
+            start: b * band,
+            ids,
+            distance: distance.next().unwrap_or_default(),
+            view_z: view_z.next().unwrap_or_default(),
+            barycentrics: barycentrics.next().unwrap_or_default(),
+            normals: normals.next().unwrap_or_default(),
+            vertex_normals: vertex_normals.next().unwrap_or_default(),
+        })
+        .collect();
+    let add = |a: Result<SurfaceStats>, b: Result<SurfaceStats>| {
+        let (a, b) = (a?, b?);
+        Ok(SurfaceStats {
+            covered: a.covered + b.covered,
+            triangle_fetches: a.triangle_fetches + b.triangle_fetches,
+            parallel: a.parallel + b.parallel,
+        })
+    };
+    #[cfg(feature = "parallel")]
+    let stats = if wanted.parallel {
+        use rayon::prelude::*;
+        jobs.into_par_iter()
+            .map(|b| solve_band(&frame, b))
+            .reduce(|| Ok(SurfaceStats::default()), add)
+    } else {
+        jobs.into_iter()
+            .map(|b| solve_band(&frame, b))
+            .fold(Ok(SurfaceStats::default()), add)
+    };
+    #[cfg(not(feature = "parallel"))]
+    let stats = jobs
+        .into_iter()
+        .map(|b| solve_band(&frame, b))
+        .fold(Ok(SurfaceStats::default()), add);
+    out.stats = stats?;
+    Ok(out)
+}
+
+/// `n` copies of `value` when asked for, else nothing.
+fn filled<T: Clone>(on: bool, n: usize, value: T) -> Vec<T> {
+    if on { vec![value; n] } else { Vec::new() }
+}
+
+/// Solves the rays of one band of pixels.
+fn solve_band(frame: &FrameRays<'_>, out: Band<'_>) -> Result<SurfaceStats> {
+    let FrameRays {
+        scene,
+        ref starts,
+        count,
+        view_matrix,
+        eye,
+        rays,
+        width,
+        wanted,
+    } = *frame;
+    let mut stats = SurfaceStats::default();
     let mut last: Option<(u32, Triangle)> = None;
-    for (k, &id) in ids.iter().enumerate() {
+    for (offset, &id) in out.ids.iter().enumerate() {
         if id == NO_ID {
             continue;
         }
+        let k = out.start + offset;
         if id as usize >= count {
             return Err(Error::InvalidScene(format!(
                 "pixel {k} shows primitive {id}, but the scene has {count} triangles"
             )));
         }
-        out.stats.covered += 1;
+        stats.covered += 1;
         if last.as_ref().is_none_or(|(l, _)| *l != id) {
-            out.stats.triangle_fetches += 1;
+            stats.triangle_fetches += 1;
             let mesh = starts.partition_point(|&s| s <= id as usize) - 1;
             let corners = scene.meshes[mesh].indices[id as usize - starts[mesh]];
             let world = corners.map(|c| scene.meshes[mesh].positions[c as usize]);
@@ -243,45 +345,42 @@ pub fn surface_at_pixels(
             ));
         }
         let tri = &last.as_ref().expect("fetched above").1;
-        let (x, y) = (
-            (k % width as usize) as f64 + 0.5,
-            (k / width as usize) as f64 + 0.5,
-        );
+        let (x, y) = ((k % width) as f64 + 0.5, (k / width) as f64 + 0.5);
         let (origin, dir) = rays.ray(x, y);
         let Some((t, u, v)) = intersect(origin, dir, tri.camera) else {
-            out.stats.parallel += 1;
+            stats.parallel += 1;
             let nan = f32::NAN;
-            set(&mut out.distance, k, nan);
-            set(&mut out.view_z, k, nan);
-            set(&mut out.barycentrics, k, [nan; 2]);
-            set(&mut out.normals, k, [nan; 3]);
-            set(&mut out.vertex_normals, k, [nan; 3]);
+            set(out.distance, offset, nan);
+            set(out.view_z, offset, nan);
+            set(out.barycentrics, offset, [nan; 2]);
+            set(out.normals, offset, [nan; 3]);
+            set(out.vertex_normals, offset, [nan; 3]);
             continue;
         };
         // The direction's z is -1: t is the view depth.
-        set(&mut out.view_z, k, t as f32);
+        set(out.view_z, offset, t as f32);
         let distance = if rays.perspective {
             t * dir.length()
         } else {
             t
         };
-        set(&mut out.distance, k, distance as f32);
-        set(&mut out.barycentrics, k, [u as f32, v as f32]);
+        set(out.distance, offset, distance as f32);
+        set(out.barycentrics, offset, [u as f32, v as f32]);
         if wanted.normals {
             let [p0, p1, p2] = tri.world;
             let n = (p1 - p0).cross(p2 - p0).normalize_or_zero();
-            out.normals[k] = n.as_vec3().to_array();
+            out.normals[offset] = n.as_vec3().to_array();
         }
         if wanted.vertex_normals {
             let normals = &scene.meshes[tri.mesh].normals;
             if !normals.is_empty() {
                 let [n0, n1, n2] = tri.corners.map(|c| normals[c as usize].as_dvec3());
                 let n = (n0 * (1.0 - u - v) + n1 * u + n2 * v).normalize_or_zero();
-                out.vertex_normals[k] = n.as_vec3().to_array();
+                out.vertex_normals[offset] = n.as_vec3().to_array();
             }
         }
     }
-    Ok(out)
+    Ok(stats)
 }
 
 /// `buffer[k] = value` when the buffer was asked for (is not empty).
@@ -348,6 +447,7 @@ mod tests {
             barycentrics: on,
             normals: on,
             vertex_normals: on,
+            parallel: false,
         }
     }
 
@@ -401,6 +501,42 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn bands_in_parallel_give_the_same_values() {
+        let scene = crate::procedural::cube();
+        let view = View::new(
+            Camera::perspective(DVec3::new(2.0, 1.5, 3.0), DVec3::ZERO, 0.5, 20.0),
+            37,
+            53,
+        )
+        .unwrap();
+        // Every pixel shows the face its column picks: a made-up frame
+        // whose rays still all meet their planes.
+        let ids: Vec<u32> = (0..37 * 53).map(|k| (k % 37 / 4) as u32 % 12).collect();
+        let one = surface_at_pixels(&scene, &view, &ids, all(true)).unwrap();
+        let many = surface_at_pixels(
+            &scene,
+            &view,
+            &ids,
+            SurfaceOutputs {
+                parallel: true,
+                ..all(true)
+            },
+        )
+        .unwrap();
+        assert_eq!(one.stats.covered, 37 * 53);
+        assert_eq!(one.stats, many.stats);
+        for (a, b) in [(&one.distance, &many.distance), (&one.view_z, &many.view_z)] {
+            assert!(a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits()));
+        }
+        assert!(
+            one.normals
+                .iter()
+                .zip(&many.normals)
+                .all(|(x, y)| x.map(f32::to_bits) == y.map(f32::to_bits))
+        );
     }
 
     #[test]
