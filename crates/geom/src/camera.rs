@@ -211,8 +211,8 @@ impl Camera {
             // Premultiplying by the NDC map [[sx, 0, 0, cx], [0, 1, 0, cy],
             // [0, 0, 1, 0], [0, 0, 0, 1]]: row x scales and gains cx times
             // row w, row y gains cy times row w. Row w of either projection
-            // is a unit vector (-z or the constant 1), so every entry is
-            // one rounding from glFrustum's or glOrtho's.
+            // is a unit vector (-z or the constant 1), so the lens's entries
+            // are exact and the x scale adds one rounding.
             m.x_axis.x *= x_scale;
             let w_row = m.row(3);
             for c in 0..4 {
