@@ -4,8 +4,16 @@
 //! where it imitates a GL pipeline on purpose (see `hider-scene`'s
 //! `TransformPrecision`). The conventions are OpenGL's: a right-handed world,
 //! the camera looking down -Z, clip space with `-w <= z <= w`.
+//!
+//! A camera's [`Lens`] makes its frustum off-axis (`glFrustum` with
+//! `left != -right`): the principal point of pinhole [`Intrinsics`] off the
+//! image centre, or pixels taller than wide. It moves and stretches the
+//! image in NDC only; the depth rows of the projection, and with them every
+//! depth a hider computes, are those of the symmetric frustum.
 
 use glam::{DMat4, DVec3};
+
+pub use crate::lens::{Intrinsics, Lens};
 
 /// The projection a camera uses.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,6 +50,10 @@ pub struct Camera {
     pub up: DVec3,
     /// The projection.
     pub projection: Projection,
+    /// Where the view axis meets the image, and the pixels' shape:
+    /// [`Lens::CENTRED`] for the symmetric frustum of `gluPerspective` and
+    /// `glOrtho`.
+    pub lens: Lens,
 }
 
 /// Why a camera cannot be used.
@@ -86,6 +98,7 @@ impl Camera {
                 near,
                 far,
             },
+            lens: Lens::CENTRED,
         }
     }
 
@@ -113,6 +126,7 @@ impl Camera {
                 near,
                 far,
             },
+            lens: Lens::CENTRED,
         }
     }
 
@@ -152,14 +166,66 @@ impl Camera {
         self
     }
 
+    /// The same camera with `lens`.
+    ///
+    /// ```
+    /// use hider_geom::{Camera, Lens};
+    /// use glam::{DVec2, DVec3};
+    ///
+    /// let lens = Lens { centre: DVec2::new(0.25, 0.0), x_scale: 1.0 };
+    /// let camera = Camera::perspective(DVec3::Z * 3.0, DVec3::ZERO, 0.5, 20.0).with_lens(lens);
+    /// // The view axis (the target) lands a quarter of the way right of centre.
+    /// let clip = camera.projection_matrix(1.0) * camera.view_matrix() * DVec3::ZERO.extend(1.0);
+    /// assert!((clip.x / clip.w - 0.25).abs() < 1e-15);
+    /// ```
+    pub fn with_lens(mut self, lens: Lens) -> Self {
+        self.lens = lens;
+        self
+    }
+
+    /// The same camera with the field of view and lens of pinhole
+    /// `intrinsics` (a perspective camera; an orthographic one gets the
+    /// lens only). Rendered at the intrinsics' image size, a world point
+    /// lands at the pixel position `K` gives it (see [`Intrinsics`]).
+    pub fn with_intrinsics(self, intrinsics: &Intrinsics) -> Self {
+        self.with_fovy_degrees(intrinsics.fovy_degrees())
+            .with_lens(intrinsics.lens())
+    }
+
     /// The view matrix (world to camera space).
     pub fn view_matrix(&self) -> DMat4 {
         look_at(self.eye, self.target, self.up)
     }
 
     /// The projection matrix for an image of the given aspect ratio
-    /// (width / height).
+    /// (width / height): the symmetric frustum's, then the [`Lens`]. With
+    /// a lens a perspective camera's matrix is `glFrustum`'s, for
+    /// `right - left = 2 near tan(fovy / 2) aspect / x_scale` and
+    /// `(right + left) / (right - left) = -centre.x` (and the same in y
+    /// with a scale of 1): the lens's entries go where `glFrustum` has
+    /// them, and the depth rows are untouched.
     pub fn projection_matrix(&self, aspect: f64) -> DMat4 {
+        let mut m = self.symmetric_projection_matrix(aspect);
+        if self.lens != Lens::CENTRED {
+            let Lens { centre, x_scale } = self.lens;
+            // Premultiplying by the NDC map [[sx, 0, 0, cx], [0, 1, 0, cy],
+            // [0, 0, 1, 0], [0, 0, 0, 1]]: row x scales and gains cx times
+            // row w, row y gains cy times row w. Row w of either projection
+            // is a unit vector (-z or the constant 1), so the lens's entries
+            // are exact and the x scale adds one rounding.
+            m.x_axis.x *= x_scale;
+            let w_row = m.row(3);
+            for c in 0..4 {
+                let col = m.col_mut(c);
+                col.x += centre.x * w_row[c];
+                col.y += centre.y * w_row[c];
+            }
+        }
+        m
+    }
+
+    /// The projection of the symmetric frustum, without the lens.
+    fn symmetric_projection_matrix(&self, aspect: f64) -> DMat4 {
         match self.projection {
             Projection::Perspective {
                 fovy_degrees,
@@ -208,6 +274,15 @@ impl Camera {
                 "camera up {} is parallel to the view direction {}",
                 short3(self.up),
                 short3(dir)
+            )));
+        }
+        let Lens { centre, x_scale } = self.lens;
+        if !(centre.is_finite() && x_scale > 0.0 && x_scale.is_finite()) {
+            return Err(CameraError(format!(
+                "camera lens centre [{}, {}] must be finite and its x scale {} finite and > 0",
+                short(centre.x),
+                short(centre.y),
+                short(x_scale)
             )));
         }
         match self.projection {

@@ -44,6 +44,7 @@ pub mod clip;
 pub mod edge;
 pub mod fixed;
 pub mod isa;
+pub mod lens;
 pub mod plane;
 pub mod polygon;
 pub mod viewport;
@@ -51,6 +52,7 @@ pub mod viewport;
 pub use camera::{Camera, Projection};
 pub use edge::{EdgeFunction, orient2d, triangle_covers};
 pub use fixed::FixedPt;
+pub use lens::{Intrinsics, Lens};
 pub use plane::PlaneEq;
 pub use viewport::{Centres, FEW_CENTRES, Viewport};
 

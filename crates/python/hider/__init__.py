@@ -33,7 +33,7 @@ import numpy as np
 from . import _hider
 
 __all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "svg", "AUTO",
-           "DEFAULT_ALGO", "KINDS"]
+           "DEFAULT_ALGO", "KINDS", "OUTPUTS", "CONVENTIONS"]
 
 #: The package's version (the Rust workspace's, as built into the
 #: extension).
@@ -64,6 +64,25 @@ AUTO = "auto"
 #: (resolves several samples per pixel: anti-aliasing, transparency) and
 #: ``"reference"`` (the exact ray-cast oracle, slow).
 KINDS = ("exact", "approximate", "multisample", "reference")
+
+
+#: The names ``render(..., outputs=...)`` takes, in the order ``render``
+#: computes them: ``"ids"`` (int32 face id, -1 for none), ``"depth"``
+#: (float32 window depth, 1.0 for none), ``"distance"`` (float32 distance
+#: from the eye along the pixel-centre ray, open3d's ``t_hit`` for unit
+#: rays, inf for none), ``"z"`` (float32 view depth along the view axis,
+#: positive in front, inf for none), ``"barycentrics"`` (float32
+#: ``(..., 2)``: open3d's ``primitive_uvs``), ``"normals"`` (float32
+#: ``(..., 3)`` unit geometric normals, open3d's ``primitive_normals``) and
+#: ``"vertex_normals"`` (float32 ``(..., 3)``, the ``normals=`` keyword's
+#: vertex normals interpolated).
+OUTPUTS = ("ids", "depth", "distance", "z", "barycentrics", "normals", "vertex_normals")
+
+#: The axis conventions a ``pose`` can be given in: ``"opengl"`` (the
+#: camera looks down its -z axis with +y up: OpenGL, pyrender, Blender)
+#: and ``"opencv"`` (it looks down +z with +y down: OpenCV, open3d,
+#: COLMAP).
+CONVENTIONS = ("opengl", "opencv")
 
 
 def algorithms(kind=None):
@@ -201,26 +220,162 @@ def _as_size(value, name):
     return int(value)
 
 
+def _as_pose(pose, convention):
+    """A 4x4 camera-to-world pose as OpenGL-convention rows of floats, its
+    rotation checked."""
+    if pose is None:
+        if convention is not None:
+            raise ValueError("convention applies to pose; it was given without one")
+        return None
+    if convention not in CONVENTIONS:
+        raise ValueError("pose needs convention='opengl' (the camera looks down -z, +y up: "
+                         "pyrender) or convention='opencv' (down +z, +y down: open3d), "
+                         f"got {convention!r}")
+    try:
+        a = np.array(pose, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"pose must be a 4x4 array of numbers, got {type(pose).__name__}") from None
+    if a.shape != (4, 4):
+        raise ValueError(f"pose must be a 4x4 camera-to-world matrix, got shape {a.shape}")
+    if not np.isfinite(a).all():
+        raise ValueError("pose has a non-finite value")
+    if not np.allclose(a[3], [0, 0, 0, 1], rtol=0, atol=1e-9):
+        raise ValueError(f"pose's last row must be 0, 0, 0, 1, got {a[3].tolist()}")
+    r = a[:3, :3]
+    if np.abs(r.T @ r - np.eye(3)).max() > 1e-6 or np.linalg.det(r) <= 0:
+        raise ValueError("pose's upper 3x3 must be a rotation (orthonormal, determinant +1; "
+                         "no scale or mirror)")
+    if convention == "opencv":
+        a = a @ np.diag([1.0, -1.0, -1.0, 1.0])
+    return tuple(tuple(float(x) for x in row) for row in a)
+
+
+def _as_intrinsics(intrinsics):
+    """Pinhole intrinsics, a 3x3 camera matrix or (fx, fy, cx, cy), as
+    four floats."""
+    if intrinsics is None:
+        return None
+    try:
+        a = np.array(intrinsics, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError("intrinsics must be a 3x3 camera matrix or 4 numbers fx, fy, cx, cy, "
+                        f"got {type(intrinsics).__name__}") from None
+    if a.shape == (3, 3):
+        if a[0, 1] != 0 or a[1, 0] != 0 or a[2, 0] != 0 or a[2, 1] != 0 or a[2, 2] != 1:
+            raise ValueError("intrinsics must be [[fx, 0, cx], [0, fy, cy], [0, 0, 1]] "
+                             f"(no skew), got {a.tolist()}")
+        a = np.array([a[0, 0], a[1, 1], a[0, 2], a[1, 2]])
+    if a.shape != (4,):
+        raise ValueError("intrinsics must be a 3x3 camera matrix or 4 numbers fx, fy, cx, cy, "
+                         f"got shape {a.shape}")
+    return tuple(float(x) for x in a)
+
+
+def _camera_args(eye, target, up, fovy, near, far, pose, convention, intrinsics, orthographic):
+    """The camera keywords, checked against each other, as the extension
+    takes them: (eye, target, up, fovy, near, far) and
+    (pose, intrinsics, orthographic)."""
+    pose = _as_pose(pose, convention)
+    if pose is not None:
+        given = [n for n, v in (("eye", eye), ("target", target), ("up", up)) if v is not None]
+        if given:
+            raise ValueError(f"pose places the camera; leave {', '.join(given)} unset")
+    k = _as_intrinsics(intrinsics)
+    if orthographic is not None:
+        if isinstance(orthographic, (bool, np.bool_)) or not isinstance(
+                orthographic, (int, float, np.integer, np.floating)):
+            raise TypeError(f"orthographic must be a number (the view's half height), "
+                            f"got {orthographic!r}")
+        orthographic = float(orthographic)
+        if not (orthographic > 0 and np.isfinite(orthographic)):
+            raise ValueError(f"orthographic half height must be > 0, got {orthographic}")
+    for name, value in (("intrinsics", k), ("orthographic", orthographic)):
+        if value is not None and fovy is not None:
+            raise ValueError(f"fovy and {name} both set the field of view; give one")
+    if k is not None and orthographic is not None:
+        raise ValueError("intrinsics are a perspective camera's; orthographic cannot take them")
+    look = (_as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
+            None if fovy is None else float(fovy),
+            None if near is None else float(near),
+            None if far is None else float(far))
+    return look, (pose, k, orthographic)
+
+
+def _as_outputs(outputs, normals):
+    """The names of ``outputs`` checked, and the extension's flags for the
+    surface attributes."""
+    if outputs is None:
+        return ("ids", "depth"), (False,) * 5
+    if isinstance(outputs, str):
+        raise TypeError(f"outputs must be a sequence of names such as ('ids', 'distance'), "
+                        f"got the string {outputs!r}")
+    names = tuple(outputs)
+    if not names:
+        raise ValueError(f"outputs must name at least one of {', '.join(OUTPUTS)}")
+    for name in names:
+        if name not in OUTPUTS:
+            raise ValueError(f"unknown output {name!r} (one of {', '.join(OUTPUTS)})")
+    if len(set(names)) != len(names):
+        raise ValueError(f"outputs names one twice: {names}")
+    if "vertex_normals" in names and normals is None:
+        raise ValueError("the vertex_normals output needs the normals= keyword "
+                         "(one normal per vertex)")
+    return names, tuple(n in names for n in OUTPUTS[2:])
+
+
 def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
-           fovy=60.0, near=None, far=None, algo=DEFAULT_ALGO, threads=1):
-    """Render a triangle mesh into a face-id buffer and a depth buffer.
+           fovy=None, near=None, far=None, pose=None, convention=None, intrinsics=None,
+           orthographic=None, normals=None, outputs=None, algo=DEFAULT_ALGO, threads=1):
+    """Render a triangle mesh into a face-id buffer and a depth buffer, and
+    on request what a ray caster reports per pixel.
 
     Parameters
     ----------
     vertices : (N, 3) array-like of any real dtype, C or Fortran order
-        World-space positions (right-handed, the camera looks down -Z).
+        World-space positions (right-handed). float64 and float32 arrays
+        are read in place, without a converted copy.
     faces : (M, 3) array-like of any integer dtype
         Vertex indices of each triangle; triangle ``k`` has id ``k``.
+        int64, int32 and uint32 arrays are read in place.
     width, height : int
         Image size in pixels (1 to 16384 each).
     eye, target, up : 3 numbers, optional
-        The camera. Unset values come from the *fit camera* of the ``hider``
-        command line: centred on the bounding box, at 2.5 times its half
-        diagonal along +Z, looking down -Z with +Y up.
-    fovy : float
-        Vertical field of view in degrees.
+        A look-at camera. Unset values come from the *fit camera* of the
+        ``hider`` command line: centred on the bounding box, at 2.5 times
+        its half diagonal along +Z, looking down -Z with +Y up.
+    fovy : float, optional
+        Vertical field of view in degrees (60 when unset).
     near, far : float, optional
-        Clip distances (default 0.1 and 10 times the half diagonal).
+        Clip distances along the view axis (default 0.1 and 10 times the
+        half diagonal; with ``pose``, the view depths of the bounding box's
+        corners widened by 1%).
+    pose : (4, 4) array-like, optional
+        Camera-to-world matrix (the camera's axes and position as columns),
+        in place of ``eye``/``target``/``up``; needs ``convention``.
+    convention : {"opengl", "opencv"}
+        The axes of ``pose``: ``"opengl"`` (the camera looks down its -z
+        axis, +y up: OpenGL, pyrender) or ``"opencv"`` (down +z, +y down:
+        OpenCV, open3d). open3d's ``extrinsic`` is world-to-camera: pass
+        its inverse.
+    intrinsics : (3, 3) or 4 numbers, optional
+        Pinhole intrinsics in pixels, the camera matrix
+        ``[[fx, 0, cx], [0, fy, cy], [0, 0, 1]]`` or ``(fx, fy, cx, cy)``,
+        in place of ``fovy``; the principal point may lie anywhere (an
+        off-axis frustum). Pixel ``(i, j)`` is the ray through
+        ``(i + 0.5, j + 0.5)``, as in open3d's ``create_rays_pinhole``
+        (OpenCV puts pixel centres at integers: add 0.5 to its cx, cy).
+    orthographic : float, optional
+        An orthographic camera showing this half height in world units
+        (pyrender's ``ymag``); the half width follows the image's aspect.
+    normals : (N, 3) array-like, optional
+        Vertex normals, for the ``"vertex_normals"`` output.
+    outputs : sequence of str, optional
+        What to return, in this order, from ``OUTPUTS``: ``"ids"``,
+        ``"depth"``, ``"distance"``, ``"z"``, ``"barycentrics"``,
+        ``"normals"``, ``"vertex_normals"``. Unset: ``("ids", "depth")``.
+        The surface attributes are computed after the render from the id
+        buffer, by intersecting each pixel-centre ray with its face in
+        float64, and cost nothing when not asked for.
     algo : str
         Any name of ``algorithms()``. The exact ones
         (``algorithms(kind="exact")``, the default among them) and the
@@ -245,40 +400,67 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
 
     Returns
     -------
-    ids : (height, width) int32
-        The visible triangle at each pixel centre, ``-1`` for background.
-        Row 0 is the top of the image.
-    depth : (height, width) float32
-        Window depth ``z/w`` in [0, 1] of the visible triangle, ``1.0`` for
-        background.
+    ids, depth : (height, width) int32, (height, width) float32
+        Without ``outputs``: the visible triangle at each pixel centre
+        (``-1`` for background; row 0 is the top of the image) and its
+        window depth ``z/w`` in [0, 1] (``1.0`` for background).
+    tuple of arrays
+        With ``outputs``: one array per name, in its order. ``distance``
+        and ``z`` are (height, width) float32, ``inf`` for background;
+        ``barycentrics`` (height, width, 2) float32 ``(u, v)`` with the hit
+        at ``(1 - u - v) p0 + u p1 + v p2`` (open3d's ``primitive_uvs``),
+        ``normals`` and ``vertex_normals`` (height, width, 3) float32 unit
+        vectors in world space, the geometric one
+        ``(p1 - p0) x (p2 - p0)`` not turned toward the camera; all 0 for
+        background. For an orthographic camera ``distance`` is measured
+        from the plane through the eye, and equals ``z``.
 
     Raises
     ------
     ValueError
         Bad arrays (wrong shape or dtype, a NaN or infinite coordinate, an
-        index out of range), a bad camera or size, an unknown ``algo``;
-        the message is the ``hider`` command line's.
+        index out of range), a bad camera or size, an unknown ``algo`` or
+        output, camera keywords that contradict each other; the message
+        names the argument.
+    TypeError
+        An argument of the wrong type (a pose or intrinsics that are not
+        numbers, outputs given as one string).
     MemoryError
         The hider's memory budget ran out.
 
     The GIL is released while rendering. Ctrl-C (``KeyboardInterrupt``)
     ends the call at once; the render already started finishes in the
     background, and the next call from the main thread waits for it.
+
+    Example::
+
+        >>> import numpy as np, hider
+        >>> v = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
+        >>> ids, z = hider.render(v, [[0, 1, 2]], width=64, height=64,
+        ...                       outputs=("ids", "z"))
+        >>> # The fit camera's eye is 2.5 half diagonals (sqrt 2) away.
+        >>> round(float(z[32, 32]), 4), round(2.5 * 2 ** 0.5, 4)
+        (3.5355, 3.5355)
     """
     v = _as_vertices(vertices)
     f = _as_faces(faces)
-    return _interruptible(
+    names, want = _as_outputs(outputs, normals)
+    n = None if normals is None else _as_vertices(normals, "normals")
+    look, extra = _camera_args(eye, target, up, fovy, near, far, pose, convention, intrinsics,
+                               orthographic)
+    (ids, depth), surface = _interruptible(
         _hider.render, v, f, _as_size(width, "width"), _as_size(height, "height"),
-        _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
-        None if fovy is None else float(fovy),
-        None if near is None else float(near),
-        None if far is None else float(far),
-        str(algo), int(threads),
+        *look, str(algo), int(threads), *extra, n, want,
     )
+    if outputs is None:
+        return ids, depth
+    arrays = dict(zip(OUTPUTS, (ids, depth, *surface)))
+    return tuple(arrays[name] for name in names)
 
 
 def plan(vertices, faces, *, width, height, eye=None, target=None, up=None,
-         fovy=60.0, near=None, far=None, threads=1):
+         fovy=None, near=None, far=None, pose=None, convention=None, intrinsics=None,
+         orthographic=None, threads=1):
     """The hider ``render(..., algo="auto")`` chooses for these arguments.
 
     The scene is analysed as the command line's ``--algo auto`` analyses it
@@ -296,13 +478,11 @@ def plan(vertices, faces, *, width, height, eye=None, target=None, up=None,
     """
     v = _as_vertices(vertices)
     f = _as_faces(faces)
+    look, extra = _camera_args(eye, target, up, fovy, near, far, pose, convention, intrinsics,
+                               orthographic)
     algo, reason, summary = _interruptible(
         _hider.plan, v, f, _as_size(width, "width"), _as_size(height, "height"),
-        _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
-        None if fovy is None else float(fovy),
-        None if near is None else float(near),
-        None if far is None else float(far),
-        int(threads),
+        *look, int(threads), *extra,
     )
     return Plan(algo, reason, summary)
 
@@ -323,7 +503,8 @@ def visible_faces(vertices, faces, **kwargs):
 
 
 def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
-        fovy=60.0, near=None, far=None, mode="regions", crease_angle=30.0,
+        fovy=None, near=None, far=None, pose=None, convention=None, intrinsics=None,
+        orthographic=None, mode="regions", crease_angle=30.0,
         stroke_width=1.0, stroke_mm=None, page_mm=None, hidden="none", background=None,
         seams=True):
     """Write an exact vector drawing of a triangle mesh as SVG.
@@ -353,14 +534,12 @@ def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
     v = _as_vertices(vertices)
     f = _as_faces(faces)
     page = None if page_mm is None else (float(page_mm[0]), float(page_mm[1]))
+    look, extra = _camera_args(eye, target, up, fovy, near, far, pose, convention, intrinsics,
+                               orthographic)
     _interruptible(
         _hider.svg, v, f, os.fspath(path), _as_size(width, "width"),
-        _as_size(height, "height"),
-        _as_point(eye, "eye"), _as_point(target, "target"), _as_point(up, "up"),
-        None if fovy is None else float(fovy),
-        None if near is None else float(near),
-        None if far is None else float(far),
+        _as_size(height, "height"), *look,
         str(mode), float(crease_angle), float(stroke_width),
         None if stroke_mm is None else float(stroke_mm), page, str(hidden),
-        None if background is None else str(background), bool(seams),
+        None if background is None else str(background), bool(seams), *extra,
     )

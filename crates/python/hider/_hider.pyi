@@ -12,17 +12,27 @@ _Point = tuple[float, float, float] | None
 _Vertices = npt.NDArray[np.float64] | npt.NDArray[np.float32]
 _Faces = npt.NDArray[np.int64] | npt.NDArray[np.int32] | npt.NDArray[np.uint32]
 
+_Pose = tuple[tuple[float, float, float, float], tuple[float, float, float, float],
+              tuple[float, float, float, float], tuple[float, float, float, float]] | None
+_Intrinsics = tuple[float, float, float, float] | None
+_F32 = npt.NDArray[np.float32]
+
 def render(
     vertices: _Vertices, faces: _Faces, width: int, height: int,
     eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
-    far: float | None, algo: str, threads: int,
-) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.float32]]: ...
+    far: float | None, algo: str, threads: int, pose: _Pose = None,
+    intrinsics: _Intrinsics = None, orthographic: float | None = None,
+    normals: _Vertices | None = None,
+    want: tuple[bool, bool, bool, bool, bool] = ...,
+) -> tuple[tuple[npt.NDArray[np.int32], _F32],
+           tuple[_F32 | None, _F32 | None, _F32 | None, _F32 | None, _F32 | None]]: ...
 def algorithms() -> list[str]: ...
 def algorithm_kinds() -> list[tuple[str, str, str]]: ...
 def plan(
     vertices: _Vertices, faces: _Faces, width: int, height: int,
     eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
-    far: float | None, threads: int,
+    far: float | None, threads: int, pose: _Pose = None, intrinsics: _Intrinsics = None,
+    orthographic: float | None = None,
 ) -> tuple[str, str, str]: ...
 def screen_render(
     points: npt.NDArray[np.float64], faces: npt.NDArray[np.int64], width: int, height: int,
@@ -38,5 +48,6 @@ def svg(
     eye: _Point, target: _Point, up: _Point, fovy: float | None, near: float | None,
     far: float | None, mode: str, crease_angle: float, stroke_width: float,
     stroke_mm: float | None, page_mm: tuple[float, float] | None, hidden: str,
-    background: str | None, seams: bool,
+    background: str | None, seams: bool, pose: _Pose = None, intrinsics: _Intrinsics = None,
+    orthographic: float | None = None,
 ) -> None: ...

@@ -14,10 +14,12 @@
 //! line's one-line message: `MemoryError` when a hider's memory budget
 //! runs out, `ValueError` for everything else the caller can fix.
 
+mod camera;
 mod errors;
 mod mesh;
 mod render;
 mod screen;
+mod surface;
 mod vector;
 
 use pyo3::prelude::*;

@@ -30,9 +30,14 @@ pub enum Faces<'py> {
 impl Vertices<'_> {
     /// The positions, one `DVec3` per row.
     fn positions(&self) -> PyResult<Vec<DVec3>> {
+        self.rows_as("vertices")
+    }
+
+    /// One `DVec3` per row, the array named `what` in messages.
+    pub(crate) fn rows_as(&self, what: &str) -> PyResult<Vec<DVec3>> {
         match self {
-            Vertices::F64(a) => rows("vertices", a, DVec3::from_array),
-            Vertices::F32(a) => rows("vertices", a, |r| DVec3::from_array(r.map(f64::from))),
+            Vertices::F64(a) => rows(what, a, DVec3::from_array),
+            Vertices::F32(a) => rows(what, a, |r| DVec3::from_array(r.map(f64::from))),
         }
     }
 }

@@ -4,48 +4,24 @@
 use std::cell::RefCell;
 use std::sync::Arc;
 
-use glam::DVec3;
-use hider_geom::Camera;
 use hider_plan::{HiderConfig, Planned, RenderOptions, auto, registry};
-use hider_scene::{CameraOverrides, DynHider, Frame, PrepareOptions, Scene, ScreenScene, View};
+use hider_scene::{
+    DynHider, Frame, PixelSurface, PrepareOptions, Scene, ScreenScene, SurfaceOutputs, View,
+    surface_at_pixels,
+};
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::ThreadPool;
 
+use crate::camera::CameraArgs;
 use crate::errors::{plan_error, scene_error};
 use crate::mesh::{Faces, Vertices, scene_from_arrays};
+use crate::surface::{Surface, surface_arrays};
 
 /// The ids (`-1` for background) and window depths (`1.0` for background)
 /// of a frame, as two `(height, width)` arrays.
 pub type Buffers<'py> = (Bound<'py, PyArray2<i32>>, Bound<'py, PyArray2<f32>>);
-
-/// The camera overrides a caller gives; `None` keeps the fit camera's.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct CameraArgs {
-    pub(crate) eye: Option<[f64; 3]>,
-    pub(crate) target: Option<[f64; 3]>,
-    pub(crate) up: Option<[f64; 3]>,
-    pub(crate) fovy: Option<f64>,
-    pub(crate) near: Option<f64>,
-    pub(crate) far: Option<f64>,
-}
-
-impl CameraArgs {
-    /// The scene's camera (the fit camera for arrays) with the overrides
-    /// applied: the command line's rule for `--eye`, `--fovy` and the rest.
-    fn camera(&self, scene: &Scene) -> Camera {
-        CameraOverrides {
-            eye: self.eye.map(DVec3::from_array),
-            target: self.target.map(DVec3::from_array),
-            up: self.up.map(DVec3::from_array),
-            fovy: self.fovy,
-            near: self.near,
-            far: self.far,
-        }
-        .apply(scene)
-    }
-}
 
 /// Checks the thread count as the command line does.
 fn check_threads(threads: usize) -> PyResult<()> {
@@ -267,6 +243,52 @@ pub fn render_buffers<'py>(
     buffers(py, rendered)
 }
 
+/// Renders `scene` as [`render_buffers`] does and computes the surface
+/// attributes `wanted` at the pixel centres from the ids
+/// ([`surface_at_pixels`]), all with the GIL released.
+pub fn render_surface<'py>(
+    py: Python<'py>,
+    scene: &Scene,
+    view: &View,
+    algo: &str,
+    threads: usize,
+    wanted: SurfaceOutputs,
+) -> PyResult<(Buffers<'py>, Surface<'py>)> {
+    let (rendered, surface) = py.detach(|| {
+        let rendered = render_scene(scene, view, algo, threads)?;
+        let surface = if !wanted.any() {
+            PixelSurface::default()
+        } else {
+            let solve = || with_ids(&rendered, |ids| surface_at_pixels(scene, view, ids, wanted));
+            // Above one thread the bands of rows run in the caller's pool of
+            // `threads` (`wanted.parallel`), never in rayon's global one.
+            if threads > 1 {
+                pool(threads)?.install(solve)
+            } else {
+                solve()
+            }
+            .map_err(scene_error)?
+        };
+        PyResult::Ok((rendered, surface))
+    })?;
+    let shape = [view.viewport.height as usize, view.viewport.width as usize];
+    Ok((buffers(py, rendered)?, surface_arrays(py, surface, shape)?))
+}
+
+/// `f` of the ids of a rendered frame, wherever the frame is.
+fn with_ids<T>(
+    rendered: &Rendered,
+    f: impl FnOnce(&[u32]) -> hider_scene::Result<T>,
+) -> hider_scene::Result<T> {
+    match rendered {
+        Rendered::Copied { ids, .. } => f(ids),
+        Rendered::InWorkspace => WORKSPACE.with_borrow(|slot| match slot {
+            Some(ws) => f(&ws.frame.ids),
+            None => f(&[]),
+        }),
+    }
+}
+
 /// A copy of the frame this thread's workspace rendered last, if any.
 fn copy_workspace_frame() -> Option<Rendered> {
     WORKSPACE.with_borrow(|slot| {
@@ -288,14 +310,17 @@ pub(crate) fn scene_and_view(
     camera: &CameraArgs,
 ) -> PyResult<(Scene, View)> {
     let scene = scene_from_arrays(vertices, faces)?;
-    let view = View::new(camera.camera(&scene), width, height).map_err(scene_error)?;
+    let view =
+        View::new(camera.camera(&scene, width, height)?, width, height).map_err(scene_error)?;
     Ok((scene, view))
 }
 
 /// Renders the mesh of `vertices` and `faces`; see the Python wrapper
-/// `hider.render` for the arguments.
+/// `hider.render` for the arguments. Returns the ids and window depths,
+/// then the surface attributes asked for by `want` (distance, view z,
+/// barycentrics, normals, vertex normals), each `None` when not asked.
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, algo, threads))]
+#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, algo, threads, pose=None, intrinsics=None, orthographic=None, normals=None, want=(false, false, false, false, false)))]
 #[expect(
     clippy::too_many_arguments,
     reason = "the keyword arguments of the Python function, one for one"
@@ -314,7 +339,12 @@ pub fn render<'py>(
     far: Option<f64>,
     algo: &str,
     threads: usize,
-) -> PyResult<Buffers<'py>> {
+    pose: Option<[[f64; 4]; 4]>,
+    intrinsics: Option<[f64; 4]>,
+    orthographic: Option<f64>,
+    normals: Option<Vertices<'py>>,
+    want: (bool, bool, bool, bool, bool),
+) -> PyResult<(Buffers<'py>, Surface<'py>)> {
     let camera = CameraArgs {
         eye,
         target,
@@ -322,9 +352,46 @@ pub fn render<'py>(
         fovy,
         near,
         far,
+        pose,
+        intrinsics,
+        orthographic,
     };
-    let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
-    render_buffers(py, &scene, &view, algo, threads)
+    let (mut scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
+    if let Some(normals) = normals {
+        set_vertex_normals(&mut scene, &normals)?;
+    }
+    let (distance, view_z, barycentrics, normals, vertex_normals) = want;
+    let wanted = SurfaceOutputs {
+        distance,
+        view_z,
+        barycentrics,
+        normals,
+        vertex_normals,
+        parallel: threads > 1,
+    };
+    render_surface(py, &scene, &view, algo, threads, wanted)
+}
+
+/// Gives the one mesh of `scene` the per-vertex `normals` (`(N, 3)`, one
+/// per vertex), for the interpolated vertex normals.
+fn set_vertex_normals(scene: &mut Scene, normals: &Vertices<'_>) -> PyResult<()> {
+    let normals = normals.rows_as("normals")?;
+    let mesh = &mut scene.meshes[0];
+    if normals.len() != mesh.positions.len() {
+        return Err(PyValueError::new_err(format!(
+            "normals must have one row per vertex: {} rows for {} vertices",
+            normals.len(),
+            mesh.positions.len()
+        )));
+    }
+    if let Some(k) = normals.iter().position(|n| !n.is_finite()) {
+        return Err(PyValueError::new_err(format!(
+            "normals row {k} is not finite: {}",
+            normals[k]
+        )));
+    }
+    mesh.normals = normals.into_iter().map(|n| n.as_vec3()).collect();
+    Ok(())
 }
 
 /// The names of the registered hiders, in the registry's order.
@@ -360,7 +427,7 @@ pub fn algorithm_kinds() -> Vec<(&'static str, &'static str, &'static str)> {
 /// registry name, why in one sentence, and the command line's one-line
 /// summary. See the Python wrapper `hider.plan` for the arguments.
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, threads))]
+#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, threads, pose=None, intrinsics=None, orthographic=None))]
 #[expect(
     clippy::too_many_arguments,
     reason = "the keyword arguments of the Python function, one for one"
@@ -378,6 +445,9 @@ pub fn plan<'py>(
     near: Option<f64>,
     far: Option<f64>,
     threads: usize,
+    pose: Option<[[f64; 4]; 4]>,
+    intrinsics: Option<[f64; 4]>,
+    orthographic: Option<f64>,
 ) -> PyResult<(&'static str, String, String)> {
     check_threads(threads)?;
     let camera = CameraArgs {
@@ -387,6 +457,9 @@ pub fn plan<'py>(
         fovy,
         near,
         far,
+        pose,
+        intrinsics,
+        orthographic,
     };
     let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
     let planned = py

@@ -12,15 +12,17 @@ use hider_vector::{
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use crate::camera::CameraArgs;
 use crate::errors::scene_error;
 use crate::mesh::{Faces, Vertices};
-use crate::render::{CameraArgs, scene_and_view};
+use crate::render::scene_and_view;
 
 /// Writes the SVG of the mesh of `vertices` and `faces`; see the Python
 /// wrapper `hider.svg` for the arguments.
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, path, width, height, eye, target, up, fovy, near, far,
-    mode, crease_angle, stroke_width, stroke_mm, page_mm, hidden, background, seams))]
+    mode, crease_angle, stroke_width, stroke_mm, page_mm, hidden, background, seams,
+    pose=None, intrinsics=None, orthographic=None))]
 #[expect(
     clippy::too_many_arguments,
     reason = "the keyword arguments of the Python function, one for one"
@@ -46,6 +48,9 @@ pub fn svg(
     hidden: &str,
     background: Option<String>,
     seams: bool,
+    pose: Option<[[f64; 4]; 4]>,
+    intrinsics: Option<[f64; 4]>,
+    orthographic: Option<f64>,
 ) -> PyResult<()> {
     let lines = match mode {
         "regions" => false,
@@ -72,6 +77,9 @@ pub fn svg(
         fovy,
         near,
         far,
+        pose,
+        intrinsics,
+        orthographic,
     };
     let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
     let mut options = VectorOptions::default()

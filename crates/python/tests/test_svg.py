@@ -47,3 +47,34 @@ def test_bad_keywords_are_value_errors(tmp_path):
     with pytest.raises(ValueError, match="crease"):
         hider.svg(v, f, tmp_path / "x.svg", width=32, height=32, crease_angle=500)
     assert not (tmp_path / "x.svg").exists()
+
+
+def polyline_points(path):
+    """Every polyline corner of an SVG file, (n, 2) pixels."""
+    corners = [c.split(",") for points in re.findall(r'points="([^"]*)"', path.read_text())
+               for c in points.split()]
+    assert corners, path.read_text()[:400]
+    return np.array(corners, dtype=float)
+
+
+def test_the_pose_intrinsics_and_orthographic_cameras_reach_the_drawing(tmp_path):
+    """The cube seen straight down its +z face: orthographic, the face is a
+    square centred in the picture; with intrinsics whose principal point
+    is off centre, the drawing moves with it."""
+    v, f = cube()
+    pose = np.eye(4)
+    pose[2, 3] = 5.0  # OpenGL: at z = 5 looking down -z
+    ortho = tmp_path / "o.svg"
+    hider.svg(v, f, ortho, width=100, height=100, pose=pose, convention="opengl",
+              orthographic=2.0, mode="lines")
+    pts = polyline_points(ortho)
+    # Half height 2 over 50 pixels: the unit square spans pixels 25 to 75.
+    assert pts.min() == pytest.approx(25, abs=0.01) and pts.max() == pytest.approx(75, abs=0.01)
+    shifted = tmp_path / "s.svg"
+    hider.svg(v, f, shifted, width=100, height=100, pose=pose, convention="opengl",
+              intrinsics=(100, 100, 30, 50), mode="lines")
+    pts = polyline_points(shifted)
+    # The near face (z = 1, 4 units away) spans 100 / 4 = 25 pixels each
+    # side of the principal point (30, 50).
+    assert pts[:, 0].min() == pytest.approx(5, abs=0.01)
+    assert pts[:, 0].max() == pytest.approx(55, abs=0.01)

@@ -69,6 +69,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             near: 0.5,
             far: 20.0,
         },
+        lens: hider_scene::geom::Lens::CENTRED,
     };
     let view = View::new(camera, size, size)?;
     let screen = prepare(&scene, &view, &PrepareOptions::default())?;

@@ -70,6 +70,7 @@ pub mod model;
 #[cfg(feature = "obj")]
 pub mod obj;
 pub mod obj_write;
+pub mod pixel_rays;
 pub mod pool;
 pub mod prepare;
 pub mod procedural;
@@ -88,6 +89,7 @@ pub use model::{Illumination, Light, Material, Mesh, Scene};
 #[cfg(feature = "obj")]
 pub use obj::{load_obj, load_obj_with};
 pub use obj_write::save_obj;
+pub use pixel_rays::{PixelSurface, SurfaceOutputs, surface_at_pixels};
 pub use prepare::{
     PrepareOptions, PrepareStats, PrimInfo, ScreenScene, ScreenTri, TransformPrecision, prepare,
     prepare_into,

@@ -63,6 +63,7 @@ pub fn random_camera(scene: &Scene, rng: &mut SplitMix64) -> Camera {
         target,
         up,
         projection,
+        lens: hider_geom::Lens::CENTRED,
     }
 }
 

@@ -56,6 +56,7 @@ pub fn camera_from_floats(c: &[f32; 13]) -> Camera {
         target: v3(3),
         up: v3(6),
         projection,
+        lens: hider_geom::Lens::CENTRED,
     }
 }
 

@@ -150,6 +150,7 @@ fn view_axis_camera(b: &mut Bytes<'_>, near_exp: i32, far_exp: i32) -> Camera {
             near,
             far,
         },
+        lens: hider_geom::Lens::CENTRED,
     }
 }
 
@@ -192,6 +193,7 @@ fn transform_camera(camera: Camera, scale: f64, offset: DVec3) -> Camera {
         target: camera.target * scale + offset,
         up: camera.up,
         projection,
+        lens: camera.lens,
     }
 }
 

@@ -34,6 +34,7 @@ fn inside_camera(yaw: f64) -> Camera {
             near: 0.01,
             far: 10.0,
         },
+        lens: hider_geom::Lens::CENTRED,
     }
 }
 
