@@ -25,7 +25,7 @@
 //! to the chain; within it the sample is filtered as asked (bilinear by
 //! default). A footprint of a texel or less reads level 0.
 
-use super::texture::{linear, srgb_to_linear};
+use super::texture::{linear_table, srgb_to_linear};
 
 /// One level of a texture: sRGB bytes (3 per texel, top row first) and,
 /// when the image has an alpha channel, one alpha byte per texel.
@@ -96,36 +96,45 @@ pub(crate) fn level_for(rho: f64, levels: u32) -> u32 {
     }
 }
 
-/// A linear value's nearest sRGB byte (nearest in linear light): the
+/// Encodes a linear value as its nearest sRGB byte (nearest in linear light): the
 /// first code whose midpoint with the next code is at or above the value.
 /// A table of 4096 buckets gives the first candidate, a short walk (sRGB is
 /// steep only near black) the answer: the same byte as a search of the
 /// midpoints, several times faster.
-fn encode(value: f32) -> u8 {
+struct Encoder {
+    mid: [f32; 255],
+    start: [u8; Encoder::BUCKETS],
+}
+
+impl Encoder {
     const BUCKETS: usize = 4096;
-    struct Tables {
-        mid: [f32; 255],
-        start: [u8; BUCKETS],
+
+    #[inline]
+    fn encode(&self, value: f32) -> u8 {
+        if value.is_nan() || value <= 0.0 {
+            return 0;
+        }
+        let bucket = ((value * Self::BUCKETS as f32) as usize).min(Self::BUCKETS - 1);
+        let mut c = usize::from(self.start[bucket]);
+        while c < 255 && self.mid[c] < value {
+            c += 1;
+        }
+        c as u8
     }
-    static TABLES: std::sync::OnceLock<Tables> = std::sync::OnceLock::new();
-    let t = TABLES.get_or_init(|| {
+}
+
+/// The encoder's tables, built once.
+fn encoder() -> &'static Encoder {
+    static TABLES: std::sync::OnceLock<Encoder> = std::sync::OnceLock::new();
+    TABLES.get_or_init(|| {
         let mid: [f32; 255] =
             std::array::from_fn(|k| 0.5 * (srgb_to_linear(k as u8) + srgb_to_linear(k as u8 + 1)));
         let start = std::array::from_fn(|b| {
-            let low = b as f32 / BUCKETS as f32;
+            let low = b as f32 / Encoder::BUCKETS as f32;
             mid.partition_point(|&m| m < low) as u8
         });
-        Tables { mid, start }
-    });
-    if value.is_nan() || value <= 0.0 {
-        return 0;
-    }
-    let bucket = ((value * BUCKETS as f32) as usize).min(BUCKETS - 1);
-    let mut c = usize::from(t.start[bucket]);
-    while c < 255 && t.mid[c] < value {
-        c += 1;
-    }
-    c as u8
+        Encoder { mid, start }
+    })
 }
 
 /// A level-k row being halved: the pending row of each level.
@@ -200,17 +209,15 @@ impl Cascade {
     fn halve_rows(&self, k: usize, top: &Pending, bottom: &Pending) -> (Vec<u8>, Option<Vec<u8>>) {
         let w = self.widths[k] as usize;
         let half = self.widths[k + 1] as usize;
+        let (lut, enc) = (linear_table(), encoder());
         let mut rgb = Vec::with_capacity(3 * half);
         for x in 0..half {
-            let (x0, x1) = (2 * x, (2 * x + 1).min(w - 1));
-            let texel = |row: &[u8], x: usize| linear([row[3 * x], row[3 * x + 1], row[3 * x + 2]]);
-            let t = [
-                texel(&top.rgb, x0),
-                texel(&top.rgb, x1),
-                texel(&bottom.rgb, x0),
-                texel(&bottom.rgb, x1),
-            ];
-            rgb.extend((0..3).map(|c| encode(0.25 * (t[0][c] + t[1][c] + t[2][c] + t[3][c]))));
+            let (x0, x1) = (3 * (2 * x), 3 * (2 * x + 1).min(w - 1));
+            for c in 0..3 {
+                let at = |row: &[u8], k: usize| lut[usize::from(row[k + c])];
+                let sum = at(&top.rgb, x0) + at(&top.rgb, x1) + at(&bottom.rgb, x0);
+                rgb.push(enc.encode(0.25 * (sum + at(&bottom.rgb, x1))));
+            }
         }
         let alpha = match (&top.alpha, &bottom.alpha) {
             (Some(a), Some(b)) => Some(
@@ -272,17 +279,21 @@ mod tests {
     #[test]
     fn encode_inverts_the_decode_table() {
         for c in 0..=255u8 {
-            assert_eq!(encode(srgb_to_linear(c)), c);
+            assert_eq!(encoder().encode(srgb_to_linear(c)), c);
         }
-        assert_eq!(encode(-1.0), 0);
-        assert_eq!(encode(2.0), 255);
+        assert_eq!(encoder().encode(-1.0), 0);
+        assert_eq!(encoder().encode(2.0), 255);
         // The table's answer is the search's, across the range.
         let mid: Vec<f32> = (0..255u8)
             .map(|k| 0.5 * (srgb_to_linear(k) + srgb_to_linear(k + 1)))
             .collect();
         for k in 0..=100_000 {
             let v = k as f32 / 100_000.0;
-            assert_eq!(encode(v), mid.partition_point(|&m| m < v) as u8, "{v}");
+            assert_eq!(
+                encoder().encode(v),
+                mid.partition_point(|&m| m < v) as u8,
+                "{v}"
+            );
         }
     }
 
@@ -320,7 +331,7 @@ mod tests {
         let mean = (0..3)
             .map(|c| {
                 let at = |x: usize, y: usize| srgb_to_linear(rgb[3 * (y * 7 + x) + c]);
-                encode(0.25 * (at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1)))
+                encoder().encode(0.25 * (at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1)))
             })
             .collect::<Vec<_>>();
         assert_eq!(full[1].rgb[..3], mean[..]);

@@ -14,6 +14,8 @@
 //! - [`texture`]: decoding and sampling `map_Kd` images, decoded on first
 //!   use ([`TextureRef`]), from the mip level that fits the pixel
 //!   ([`mip`]), within the texture memory budget ([`budget`]);
+//! - [`cutout`]: the alpha test of cut-out textures at pixel centres, for
+//!   every single-sample hider;
 //! - [`surface`]: perspective-correct texture coordinates at window points;
 //! - [`prims`]: the per-primitive data shading reads, from a prepared scene
 //!   or on demand from the world-space one.
@@ -21,6 +23,7 @@
 use glam::DVec3;
 
 pub mod budget;
+pub mod cutout;
 pub mod mip;
 pub mod prims;
 mod render;

@@ -1,20 +1,23 @@
 //! One coloured frame in one call: what the command line does with a
 //! hider, for library users.
 
+use super::cutout::{AlphaTest, resolve_cutouts, scene_has_cutouts};
 use super::prims::{Prims, ScenePrims};
 use super::stages::{Shader, Stages};
+use super::surface::TextureOptions;
 use super::{ShadeMode, id_frame};
 use crate::error::Result;
 use crate::frame::Frame;
 use crate::hider::{DynHider, StatsTable};
 use crate::model::Scene;
-use crate::prepare::{PrepareOptions, ScreenScene};
+use crate::prepare::{PrepareOptions, ScreenScene, prepare};
 use crate::view::View;
 
 /// Renders `scene` through `view` with `hider` and colours the frame, as
 /// `hider render` does: the hider's own pipeline
 /// ([`DynHider::render_scene`], the one path every frame takes), then,
-/// unless the hider resolved colour itself, the colour pass over its ids
+/// unless the hider resolved colour itself, the alpha test of cut-outs
+/// when the scene has them ([`super::cutout`]) and the colour pass over its ids
 /// with `stages` under Lambert shading (reading the primitives from the
 /// world-space scene, so it works after any front end) or the id colours.
 /// `screen` is the hider's scratch (reused across frames); `mode` must be
@@ -62,7 +65,38 @@ pub fn render_frame(
     screen: &mut ScreenScene,
     frame: &mut Frame,
 ) -> Result<StatsTable> {
-    let stats = hider.render_scene(scene, view, options, screen, frame)?;
+    let mut stats = hider.render_scene(scene, view, options, screen, frame)?;
+    if scene_has_cutouts(scene) {
+        if hider.resolves_color() {
+            stats.warnings.push(format!(
+                "the scene has alpha cut-outs (a map_Kd with an alpha channel), but {} \
+                 resolves colour from several samples per pixel and draws them opaque; a \
+                 single-sample hider (zbuffer, zbuffer-tiled, painter, warnock, scanline) \
+                 alpha-tests them at pixel centres",
+                hider.name()
+            ));
+        } else {
+            // The ids came from the shared front end's triangles with these
+            // options (lean front ends give the same ids): prepare them once
+            // more, only for a scene with cut-outs.
+            let prepared = prepare(scene, view, options)?;
+            if let Some(test) = AlphaTest::new(&prepared, TextureOptions::default()) {
+                let cut = resolve_cutouts(&prepared, frame, &test);
+                stats.counters.extend([
+                    ("cut-out pixels tested", cut.pixels_tested),
+                    ("cut-out pixels replaced", cut.pixels_replaced),
+                    ("cut-out candidates", cut.candidates),
+                ]);
+                for file in test.partial_alpha() {
+                    stats.warnings.push(format!(
+                        "{file}: partial alpha (translucency) is drawn as a cut-out at alpha \
+                         one half by {}; the A-buffer (abuffer) composites it",
+                        hider.name()
+                    ));
+                }
+            }
+        }
+    }
     if !hider.resolves_color() {
         match mode {
             ShadeMode::Lambert => {

@@ -21,7 +21,7 @@
 //!
 //! An image's alpha channel is kept and classified once ([`AlphaClass`]):
 //! opaque, a cut-out (alpha only 0 or 255) or partial. The cut-out stage
-//! (`shade::cutout`) tests it at pixel centres.
+//! ([`super::cutout`]) tests it at pixel centres.
 //!
 //! A material names its texture with a [`TextureRef`]: the path, and the
 //! texture decoded on first use, down to the mip level the first sample
@@ -90,9 +90,15 @@ pub struct Texture {
 /// per channel).
 #[inline]
 pub(crate) fn linear(texel: [u8; 3]) -> [f32; 3] {
-    static TABLE: std::sync::OnceLock<[f32; 256]> = std::sync::OnceLock::new();
-    let table = TABLE.get_or_init(|| std::array::from_fn(|c| srgb_to_linear(c as u8)));
+    let table = linear_table();
     texel.map(|c| table[usize::from(c)])
+}
+
+/// [`srgb_to_linear`] of every byte.
+#[inline]
+pub(crate) fn linear_table() -> &'static [f32; 256] {
+    static TABLE: std::sync::OnceLock<[f32; 256]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|c| srgb_to_linear(c as u8)))
 }
 
 /// sRGB byte to linear light.

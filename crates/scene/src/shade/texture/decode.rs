@@ -165,13 +165,21 @@ pub(crate) fn load_level(path: &Path, base: u32) -> Result<Texture> {
 fn split_row(row: &[u8], channels: usize, rgb: &mut Vec<u8>, alpha: &mut Vec<u8>) {
     rgb.clear();
     alpha.clear();
-    for p in row.chunks_exact(channels) {
-        match channels {
-            1 | 2 => rgb.extend_from_slice(&[p[0], p[0], p[0]]),
-            _ => rgb.extend_from_slice(&p[..3]),
+    match channels {
+        3 => rgb.extend_from_slice(row),
+        4 => {
+            for p in row.chunks_exact(4) {
+                rgb.extend_from_slice(&p[..3]);
+                alpha.push(p[3]);
+            }
         }
-        if channels == 2 || channels == 4 {
-            alpha.push(p[channels - 1]);
+        _ => {
+            for p in row.chunks_exact(channels) {
+                rgb.extend_from_slice(&[p[0], p[0], p[0]]);
+                if channels == 2 {
+                    alpha.push(p[1]);
+                }
+            }
         }
     }
 }
