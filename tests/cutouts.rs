@@ -11,7 +11,7 @@ use std::process::Command;
 use hider::scene::shade::cutout::AlphaTest;
 use hider::scene::{NO_ID, PrepareOptions, TextureOptions, View, load_obj, prepare};
 
-const SIZE: u32 = 48;
+const SIZE: u32 = 96;
 
 /// The leaf card's texture: 64 x 64, an opaque green disc of radius 20 in
 /// texels, white with alpha 0 elsewhere (white, so that a card drawn
@@ -29,7 +29,7 @@ fn leaf_png(path: &Path) {
 }
 
 /// The card (2 x 2 at z = 0, tilted a little so its depth varies) in front
-/// of a red wall (6 x 6 at z = -1), written to `dir`.
+/// of a red wall (4 x 4 at z = -1), written to `dir`.
 fn scene(dir: &Path) -> PathBuf {
     std::fs::create_dir_all(dir).unwrap();
     leaf_png(&dir.join("leaf.png"));
@@ -47,7 +47,7 @@ fn scene(dir: &Path) -> PathBuf {
          vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
          f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n\
          o wall\nusemtl wall\n\
-         v -3 -3 -1\nv 3 -3 -1\nv 3 3 -1\nv -3 3 -1\n\
+         v -2 -2 -1\nv 2 -2 -1\nv 2 2 -1\nv -2 2 -1\n\
          f 5 6 7\nf 5 7 8\n",
     )
     .unwrap();
@@ -85,7 +85,7 @@ fn render(obj: &Path, algo: &str, dir: &Path) -> (Vec<[u8; 4]>, Vec<u32>, String
 /// whose primitive passes the alpha test, the nearest by window depth in
 /// `f64`, the lower id at an exact tie.
 fn reference(obj: &Path) -> (Vec<u32>, Vec<bool>) {
-    let (scene, _) = load_obj(obj).unwrap();
+    let scene = load_obj(obj).unwrap();
     let view = View::for_scene(&scene, SIZE, SIZE).unwrap();
     let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
     let test = AlphaTest::new(&screen, TextureOptions::default()).expect("a cut-out");

@@ -438,7 +438,7 @@ fn a_cut_out_texture_shows_what_is_behind_it() {
     let (whole, _) = render(&plain, "auto", &[]);
     let covered = |p: &[[u8; 4]]| {
         p.iter()
-            .filter(|c| c[..3] != hider::scene::BACKGROUND[..3])
+            .filter(|c| c[..3] != hider::scene::frame::BACKGROUND[..3])
             .count() as f64
     };
     let ratio = covered(&cut) / covered(&whole);

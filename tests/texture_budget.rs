@@ -19,14 +19,14 @@ const SIZE: u32 = 64;
 
 /// Six 256 x 256 RGB textures on six quads side by side, each seen at
 /// about 8 pixels across (so their level 5 is what a pixel needs), and one
-/// more quad filling the lower half of the view with a fifth of a seventh
-/// texture, about 1 texel per pixel (level 0).
+/// more quad filling the lower half of the view with a fiftieth of a seventh
+/// texture, under a texel per pixel (level 0).
 fn scene(dir: &Path) -> Scene {
     std::fs::create_dir_all(dir).unwrap();
-    // uvs 1-4 span a texture once; 5-8 a fifth of it, so the large quad
-    // samples about one texel per pixel.
+    // uvs 1-4 span a texture once; 5-8 a fiftieth of it, so the large quad
+    // samples under a texel per pixel.
     let mut obj = String::from(
-        "mtllib m.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0 0\nvt 0.2 0\nvt 0.2 0.2\nvt 0 0.2\n",
+        "mtllib m.mtl\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0 0\nvt 0.02 0\nvt 0.02 0.02\nvt 0 0.02\n",
     );
     let mut mtl = String::new();
     for k in 0..7 {
@@ -62,7 +62,7 @@ fn scene(dir: &Path) -> Scene {
     }
     std::fs::write(dir.join("m.mtl"), mtl).unwrap();
     std::fs::write(dir.join("m.obj"), obj).unwrap();
-    load_obj(&dir.join("m.obj")).unwrap().0
+    load_obj(&dir.join("m.obj")).unwrap()
 }
 
 fn render(scene: &Scene) -> Frame {

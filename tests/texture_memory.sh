@@ -54,13 +54,14 @@ printf 'mtllib one.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\n
 for k in 0 1 2 3 4 5; do printf 'newmtl m%d\nKd 1 1 1\nmap_Kd t%d.png\n' "$k" "$k"; done > six.mtl
 measure() {
     /usr/bin/time -v "$@" 2>time.txt >/dev/null || { tail -5 time.txt; return 1; }
-    local wall rss
+    local wall cpu rss
     wall=$(grep 'Elapsed (wall clock)' time.txt | awk '{print $NF}')
+    cpu=$(awk '/User time|System time/ {s += $NF} END {printf "%.2f", s}' time.txt)
     rss=$(grep 'Maximum resident' time.txt | awk '{print $NF}')
-    echo "| $wall | $((rss / 1024)) MB |"
+    echo "| $wall | $cpu s | $((rss / 1024)) MB |"
 }
-echo "| case | wall | max RSS |"
-echo "|---|---|---|"
+echo "| case | wall | CPU (user + sys) | max RSS |"
+echo "|---|---|---|---|"
 echo "| one 8000^2 RGBA texture, 1 triangle, 64 px $(measure "$HIDER" render one.obj --size 64 -o out.png)"
 echo "| the same at 1024 px $(measure "$HIDER" render one.obj --size 1024 -o out.png)"
 echo "| six 8000^2 textures, 64 px, ulimit -v 4 GB $(ulimit -v 4194304; measure "$HIDER" render six.obj --size 64 -o out.png)"
