@@ -62,7 +62,7 @@ fn scene(dir: &Path) -> Scene {
     }
     std::fs::write(dir.join("m.mtl"), mtl).unwrap();
     std::fs::write(dir.join("m.obj"), obj).unwrap();
-    load_obj(&dir.join("m.obj")).unwrap()
+    load_obj(dir.join("m.obj")).unwrap()
 }
 
 fn render(scene: &Scene) -> Frame {
