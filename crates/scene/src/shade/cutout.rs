@@ -29,9 +29,12 @@
 
 use super::surface::{TextureOptions, TextureSampler};
 use super::texture::AlphaClass;
+use crate::error::Result;
 use crate::frame::{Frame, NO_ID};
+use crate::hider::{DynHider, StatsTable};
 use crate::model::{Material, Scene};
-use crate::prepare::ScreenScene;
+use crate::prepare::{PrepareOptions, ScreenScene, prepare};
+use crate::view::View;
 
 /// Whether `scene` calls for the alpha test: a mesh with texture
 /// coordinates whose material's diffuse texture declares an alpha channel
@@ -109,6 +112,57 @@ impl<'a> AlphaTest<'a> {
         }
         files
     }
+}
+
+/// The cut-out stage as [`super::render_frame`] runs it after `hider`'s
+/// pipeline rendered `scene` through `view` with `options` into `frame`:
+/// nothing when the scene has no cut-outs ([`scene_has_cutouts`]); a
+/// warning naming the hider when it resolves colour itself (it drew the
+/// cut-outs opaque); else the alpha test over its ids ([`resolve_cutouts`]
+/// on the scene prepared once more with `options`: the ids of every front
+/// end are the shared one's), its counters added to `stats`, and a warning
+/// per texture with partial alpha. For callers that run
+/// [`DynHider::render_scene`] themselves and want the ids `render_frame`
+/// gives.
+pub fn cutout_stage(
+    hider: &dyn DynHider,
+    scene: &Scene,
+    view: &View,
+    options: &PrepareOptions,
+    frame: &mut Frame,
+    stats: &mut StatsTable,
+) -> Result<()> {
+    if !scene_has_cutouts(scene) {
+        return Ok(());
+    }
+    if hider.resolves_color() {
+        stats.warnings.push(format!(
+            "the scene has alpha cut-outs (a map_Kd with an alpha channel), but {} \
+             resolves colour from several samples per pixel and draws them opaque; a \
+             single-sample hider (zbuffer, zbuffer-tiled, painter, warnock, scanline) \
+             alpha-tests them at pixel centres",
+            hider.name()
+        ));
+        return Ok(());
+    }
+    let prepared = prepare(scene, view, options)?;
+    let Some(test) = AlphaTest::new(&prepared, TextureOptions::default()) else {
+        return Ok(());
+    };
+    let cut = resolve_cutouts(&prepared, frame, &test);
+    stats.counters.extend([
+        ("cut-out pixels tested", cut.pixels_tested),
+        ("cut-out pixels replaced", cut.pixels_replaced),
+        ("cut-out candidates", cut.candidates),
+    ]);
+    for file in test.partial_alpha() {
+        stats.warnings.push(format!(
+            "{file}: partial alpha (translucency) is drawn as a cut-out at alpha one half \
+             by {}; the A-buffer (abuffer) composites translucent materials",
+            hider.name()
+        ));
+    }
+    Ok(())
 }
 
 /// What the cut-out stage did.

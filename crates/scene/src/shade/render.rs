@@ -1,16 +1,15 @@
 //! One coloured frame in one call: what the command line does with a
 //! hider, for library users.
 
-use super::cutout::{AlphaTest, resolve_cutouts, scene_has_cutouts};
+use super::cutout::cutout_stage;
 use super::prims::{Prims, ScenePrims};
 use super::stages::{Shader, Stages};
-use super::surface::TextureOptions;
 use super::{ShadeMode, id_frame};
 use crate::error::Result;
 use crate::frame::Frame;
 use crate::hider::{DynHider, StatsTable};
 use crate::model::Scene;
-use crate::prepare::{PrepareOptions, ScreenScene, prepare};
+use crate::prepare::{PrepareOptions, ScreenScene};
 use crate::view::View;
 
 /// Renders `scene` through `view` with `hider` and colours the frame, as
@@ -66,37 +65,7 @@ pub fn render_frame(
     frame: &mut Frame,
 ) -> Result<StatsTable> {
     let mut stats = hider.render_scene(scene, view, options, screen, frame)?;
-    if scene_has_cutouts(scene) {
-        if hider.resolves_color() {
-            stats.warnings.push(format!(
-                "the scene has alpha cut-outs (a map_Kd with an alpha channel), but {} \
-                 resolves colour from several samples per pixel and draws them opaque; a \
-                 single-sample hider (zbuffer, zbuffer-tiled, painter, warnock, scanline) \
-                 alpha-tests them at pixel centres",
-                hider.name()
-            ));
-        } else {
-            // The ids came from the shared front end's triangles with these
-            // options (lean front ends give the same ids): prepare them once
-            // more, only for a scene with cut-outs.
-            let prepared = prepare(scene, view, options)?;
-            if let Some(test) = AlphaTest::new(&prepared, TextureOptions::default()) {
-                let cut = resolve_cutouts(&prepared, frame, &test);
-                stats.counters.extend([
-                    ("cut-out pixels tested", cut.pixels_tested),
-                    ("cut-out pixels replaced", cut.pixels_replaced),
-                    ("cut-out candidates", cut.candidates),
-                ]);
-                for file in test.partial_alpha() {
-                    stats.warnings.push(format!(
-                        "{file}: partial alpha (translucency) is drawn as a cut-out at alpha \
-                         one half by {}; the A-buffer (abuffer) composites it",
-                        hider.name()
-                    ));
-                }
-            }
-        }
-    }
+    cutout_stage(hider, scene, view, options, frame, &mut stats)?;
     if !hider.resolves_color() {
         match mode {
             ShadeMode::Lambert => {
