@@ -116,6 +116,25 @@ fn reserve(path: &Path, header: &Header, base: u32) -> Result<Reservation> {
     })
 }
 
+/// Counts the image held whole by a decode that cannot stream (JPEG,
+/// interlaced PNG), 4 bytes per texel, against the budget.
+#[cfg(feature = "image")]
+fn reserve_whole(path: &Path, header: &Header) -> Result<Reservation> {
+    let bytes = u64::from(header.width) * u64::from(header.height) * 4;
+    Reservation::try_new(bytes).map_err(|over| Error::Image {
+        path: path.to_path_buf(),
+        message: format!(
+            "{}x{} texture is decoded whole (not a streamable PNG): {} while decoding, over \
+             the texture budget of {} ({} in use); raise it with --texture-budget",
+            header.width,
+            header.height,
+            budget::human_bytes(bytes),
+            budget::human_bytes(over.limit),
+            budget::human_bytes(over.used),
+        ),
+    })
+}
+
 /// Decodes `path` down to mip level `base` (levels `base` and coarser
 /// kept), header and budget checked first.
 #[cfg(not(feature = "image"))]
@@ -140,7 +159,12 @@ pub(crate) fn load_level(path: &Path, base: u32) -> Result<Texture> {
     let streamed = stream_png(path, &header, base).map_err(image_error)?;
     let (levels, class) = match streamed {
         Some(done) => done,
-        None => whole(path, &header, base)?,
+        None => {
+            // The whole image is held while it is halved: counted too,
+            // for as long as the decode runs.
+            let _whole = reserve_whole(path, &header)?;
+            whole(path, &header, base)?
+        }
     };
     let (count, kept) = (
         mip::level_count(header.width, header.height),
@@ -274,4 +298,42 @@ fn whole(path: &Path, header: &Header, base: u32) -> Result<(Vec<mip::Level>, Al
         }
     }
     Ok((cascade.finish(), class))
+}
+
+#[cfg(all(test, feature = "image"))]
+mod tests {
+    use super::*;
+
+    /// A PNG streamed row by row gives the levels of the same image built
+    /// in memory, whichever level the decode stops at; grey expands to
+    /// RGB; the alpha is classified from every texel.
+    #[test]
+    fn streamed_png_equals_the_in_memory_chain() {
+        let dir = std::env::temp_dir().join(format!("hider-decode-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let (w, h) = (13, 7);
+        let rgba = image::RgbaImage::from_fn(w, h, |x, y| {
+            let a = if (x + y) % 3 == 0 { 0 } else { 255 };
+            image::Rgba([(x * 19) as u8, (y * 31) as u8, ((x * y) % 256) as u8, a])
+        });
+        let path = dir.join("cut.png");
+        rgba.save(&path).unwrap();
+        let memory = Texture::from_srgba8(w, h, rgba.as_raw()).unwrap();
+        assert_eq!(memory.alpha_class(), AlphaClass::Cutout);
+        for base in [0, 1, 3] {
+            let t = load_level(&path, base).unwrap();
+            assert_eq!(t.base_level(), base);
+            assert_eq!(t.levels[..], memory.levels[base as usize..], "base {base}");
+            assert_eq!(t.alpha_class(), AlphaClass::Cutout);
+        }
+        let grey = dir.join("grey.png");
+        image::GrayImage::from_fn(4, 4, |x, _| image::Luma([x as u8 * 60]))
+            .save(&grey)
+            .unwrap();
+        let t = load_level(&grey, 0).unwrap();
+        assert_eq!(t.levels[0].rgb[3..6], [60, 60, 60]);
+        assert_eq!(t.alpha_class(), AlphaClass::Opaque);
+        assert!(t.levels[0].alpha.is_none());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

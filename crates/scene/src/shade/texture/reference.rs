@@ -334,3 +334,42 @@ impl From<&Path> for TextureRef {
         Self::new(path)
     }
 }
+
+#[cfg(all(test, feature = "image"))]
+mod tests {
+    use super::*;
+
+    /// A far sample decodes only the coarse levels; a near one decodes the
+    /// file again down to level 0; the far sample reads the mean colour.
+    #[test]
+    fn decodes_down_to_the_level_a_sample_needs() {
+        let dir = std::env::temp_dir().join(format!("hider-texref-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("checker.png");
+        // 64 x 64 checkerboard of 1-texel squares, black and white.
+        image::RgbImage::from_fn(64, 64, |x, y| {
+            image::Rgb([if (x + y) % 2 == 0 { 0 } else { 255 }; 3])
+        })
+        .save(&path)
+        .unwrap();
+        let r = TextureRef::new(&path);
+        assert!(!r.is_decoded());
+        // One pixel spans the whole texture: level 6 (1 x 1), mid grey in
+        // linear light.
+        let (far, alpha) = r
+            .sample_footprint([0.5, 0.5], [1.0, 0.0], [0.0, 1.0], Filter::Bilinear)
+            .unwrap();
+        assert_eq!(alpha, 1.0);
+        assert!((far[0] - 0.5).abs() < 0.01, "{far:?}");
+        assert_eq!(r.get_level(u32::MAX).unwrap().base_level(), 6);
+        assert_eq!(r.bytes(), 3);
+        // A pixel a quarter of a texel wide: level 0, a black or white texel.
+        let (near, _) = r
+            .sample_footprint([0.3, 0.3], [0.004, 0.0], [0.0, 0.004], Filter::Nearest)
+            .unwrap();
+        assert!(near[0] == 0.0 || near[0] == 1.0, "{near:?}");
+        assert_eq!(r.get_level(u32::MAX).unwrap().base_level(), 0);
+        assert!(r.coarser().is_none());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
