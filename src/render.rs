@@ -146,12 +146,6 @@ fn texture_warnings(scene: &Scene) -> Vec<String> {
         seen.push(texture.path());
         if let Some(why) = texture.problem() {
             warnings.push(format!("{why}; the material's colour is used"));
-        } else if texture.decoded_with_alpha() {
-            warnings.push(format!(
-                "{}: the texture's alpha channel (a cut-out or translucency) is not simulated; \
-                 it is drawn opaque",
-                texture.path().display()
-            ));
         }
     }
     warnings

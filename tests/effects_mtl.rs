@@ -405,7 +405,7 @@ fn an_undecodable_texture_is_named() {
 /// drawn with its alpha yet: the render says so instead of showing a
 /// white square without a word.
 #[test]
-fn a_cut_out_texture_is_named() {
+fn a_cut_out_texture_shows_what_is_behind_it() {
     let dir = folder("cutout");
     let mut leaf = image::RgbaImage::new(16, 16);
     for (x, y, p) in leaf.enumerate_pixels_mut() {
@@ -425,11 +425,22 @@ fn a_cut_out_texture_is_named() {
          f 1/1 2/2 3/3\n",
     )
     .unwrap();
-    let (_, e) = render(&model, "auto", &[]);
-    assert!(
-        e.contains(
-            "leaf.png: the texture's alpha channel (a cut-out or translucency) is not simulated"
-        ),
-        "{e}"
-    );
+    let (cut, e) = render(&model, "auto", &[]);
+    // No more "drawn opaque": the texels outside the disc (alpha 0, the
+    // same green) are cut out and show the background; the triangle holds
+    // half the disc, 0.44 of its area.
+    assert!(!e.contains("not simulated"), "{e}");
+    assert!(e.contains("cut-out pixels replaced"), "{e}");
+    std::fs::write(dir.join("plain.mtl"), "newmtl m\nKd 1 1 1\n").unwrap();
+    let plain = dir.join("plain.obj");
+    let text = std::fs::read_to_string(&model).unwrap();
+    std::fs::write(&plain, text.replace("model.mtl", "plain.mtl")).unwrap();
+    let (whole, _) = render(&plain, "auto", &[]);
+    let covered = |p: &[[u8; 4]]| {
+        p.iter()
+            .filter(|c| c[..3] != hider::scene::frame::BACKGROUND[..3])
+            .count() as f64
+    };
+    let ratio = covered(&cut) / covered(&whole);
+    assert!((0.3..0.6).contains(&ratio), "{ratio}");
 }

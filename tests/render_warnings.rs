@@ -92,3 +92,40 @@ fn dropped_fragments_are_a_warning() {
     assert!(line.contains("fragments"), "{line}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A texture over the size limit is dropped with a warning naming the
+/// file and its size (issue 37: a 30000-texel texture was dropped by
+/// `render` without a word naming it). The header is read, never the
+/// texels.
+#[test]
+fn an_oversized_texture_is_named() {
+    let dir = std::env::temp_dir().join(format!("hider-huge-texture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    image::RgbImage::new(30_000, 1)
+        .save(dir.join("huge.png"))
+        .unwrap();
+    std::fs::write(dir.join("m.mtl"), "newmtl m\nKd 1 1 1\nmap_Kd huge.png\n").unwrap();
+    let obj = dir.join("m.obj");
+    std::fs::write(
+        &obj,
+        "mtllib m.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0.5 1\n\
+         f 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    for algo in ["auto", "zbuffer", "abuffer"] {
+        let run = Command::new(env!("CARGO_BIN_EXE_hider"))
+            .args(["render", "--size", "16", "--algo", algo])
+            .arg(&obj)
+            .arg("-o")
+            .arg(dir.join("out.png"))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success(), "{algo}: {stderr}");
+        assert!(
+            stderr.contains("huge.png") && stderr.contains("30000") && stderr.contains("8192"),
+            "{algo}: {stderr}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -4,7 +4,7 @@
 //! The lecture on image-space hidden-surface algorithms describes a z-buffer
 //! variant that keeps a single depth variable instead of a depth array: for
 //! each pixel, loop over every polygon, compute its depth at the pixel, keep
-//! the nearest. That is the oracle here, with three changes that make it a
+//! the nearest. That is the oracle here, with these changes that make it a
 //! referee rather than a renderer:
 //!
 //! - **coverage** is the shared exact decision (`ScreenTri::edges()`, the
@@ -20,10 +20,16 @@
 //! - beside the winner it records the gaps to the second-nearest *distinct
 //!   primitive* (pieces of one clipped primitive share an id): both 0 at an
 //!   exact tie, the relative one 0 at a rounding tie (closer than `f64`
-//!   evaluation of the two planes resolves, [`crate::plane_rounding_bound`]).
+//!   evaluation of the two planes resolves, [`crate::plane_rounding_bound`]);
+//! - **alpha cut-outs** are tested natively: a pixel centre where a
+//!   primitive's texture alpha (sampled as the colour pass samples it) is
+//!   below one half is not covered by it, the rule of the colour pass's
+//!   cut-out stage (`hider_scene::shade::cutout`), so the cross-validation
+//!   holds on scenes with cut-outs.
 
 use glam::DVec3;
-use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
+use hider_scene::shade::cutout::AlphaTest;
+use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, TextureOptions, check_frame};
 
 use std::cmp::Ordering;
 
@@ -181,10 +187,15 @@ impl RayCastOracle {
                 }
             }
         }
+        // Cut-outs are tested natively: a centre where the texture's alpha
+        // is below one half is not covered (the rule of the colour pass's
+        // cut-out stage, `hider_scene::shade::cutout`).
+        let alpha = AlphaTest::new(scene, TextureOptions::default());
         for index in 0..scene.tris.len() {
+            let test = alpha.as_ref().filter(|a| a.may_cut(scene.tris[index].prim));
             match self.options.depth_plane {
-                DepthPlane::Snapped => self.offer_exact(scene, index, &mut stats),
-                DepthPlane::Source => self.cast(scene, &model, index, &mut stats),
+                DepthPlane::Snapped => self.offer_exact(scene, index, test, &mut stats),
+                DepthPlane::Source => self.cast(scene, &model, index, test, &mut stats),
             }
         }
         let reference = self.resolve(scene, &model, &mut stats);
@@ -196,7 +207,13 @@ impl RayCastOracle {
 
     /// Offers triangle `index` at every pixel centre it covers, ordered by
     /// the exact window depth of the snapped triangles.
-    fn offer_exact(&mut self, scene: &ScreenScene, index: usize, stats: &mut OracleStats) {
+    fn offer_exact(
+        &mut self,
+        scene: &ScreenScene,
+        index: usize,
+        alpha: Option<&AlphaTest>,
+        stats: &mut OracleStats,
+    ) {
         let vp = scene.viewport;
         let w = vp.width as usize;
         let tri = &scene.tris[index];
@@ -205,6 +222,9 @@ impl RayCastOracle {
         tri.for_each_centre(vp, |i, j, covered| {
             stats.pixel_tests += 1;
             if !covered {
+                return;
+            }
+            if alpha.is_some_and(|a| !a.passes(tri.prim, i, j)) {
                 return;
             }
             stats.hits += 1;
@@ -241,6 +261,7 @@ impl RayCastOracle {
         scene: &ScreenScene,
         model: &DepthModel,
         index: usize,
+        alpha: Option<&AlphaTest>,
         stats: &mut OracleStats,
     ) {
         let vp = scene.viewport;
@@ -257,6 +278,9 @@ impl RayCastOracle {
         tri.for_each_centre(vp, |i, j, covered| {
             stats.pixel_tests += 1;
             if !covered {
+                return;
+            }
+            if alpha.is_some_and(|a| !a.passes(tri.prim, i, j)) {
                 return;
             }
             stats.hits += 1;

@@ -12,26 +12,35 @@
 //! - [`stages`]: which effect stages run ([`Stages`]) and the colour pass
 //!   over an id buffer ([`Shader`]);
 //! - [`texture`]: decoding and sampling `map_Kd` images, decoded on first
-//!   use ([`TextureRef`]);
+//!   use ([`TextureRef`]), from the mip level that fits the pixel
+//!   ([`mip`]), within the texture memory budget ([`budget`]);
+//! - [`cutout`]: the alpha test of cut-out textures at pixel centres, for
+//!   every single-sample hider;
 //! - [`surface`]: perspective-correct texture coordinates at window points;
 //! - [`prims`]: the per-primitive data shading reads, from a prepared scene
 //!   or on demand from the world-space one.
 
 use glam::DVec3;
 
+pub mod budget;
+pub mod cutout;
+pub mod mip;
 pub mod prims;
 mod render;
 pub mod stages;
 pub mod surface;
 pub mod texture;
 
+pub use budget::{
+    DEFAULT_TEXTURE_BUDGET, set_texture_budget, texture_budget, texture_bytes_in_use,
+};
 pub use prims::{Prims, ScenePrims};
 pub use render::render_frame;
 pub use stages::{
     Shader, ShaderOptions, StageTrace, Stages, texture_failures, transparency_warning,
 };
 pub use surface::{Mapping, TextureOptions, TextureSampler};
-pub use texture::{Filter, MAX_TEXTURE_SIDE, Texture, TextureRef, TextureTransform};
+pub use texture::{AlphaClass, Filter, MAX_TEXTURE_SIDE, Texture, TextureRef, TextureTransform};
 
 use crate::error::{Error, Result};
 use crate::frame::{BACKGROUND, Frame, NO_ID};

@@ -1,6 +1,7 @@
 //! One coloured frame in one call: what the command line does with a
 //! hider, for library users.
 
+use super::cutout::cutout_stage;
 use super::prims::{Prims, ScenePrims};
 use super::stages::{Shader, Stages};
 use super::{ShadeMode, id_frame};
@@ -14,7 +15,8 @@ use crate::view::View;
 /// Renders `scene` through `view` with `hider` and colours the frame, as
 /// `hider render` does: the hider's own pipeline
 /// ([`DynHider::render_scene`], the one path every frame takes), then,
-/// unless the hider resolved colour itself, the colour pass over its ids
+/// unless the hider resolved colour itself, the alpha test of cut-outs
+/// when the scene has them ([`super::cutout`]) and the colour pass over its ids
 /// with `stages` under Lambert shading (reading the primitives from the
 /// world-space scene, so it works after any front end) or the id colours.
 /// `screen` is the hider's scratch (reused across frames); `mode` must be
@@ -62,7 +64,8 @@ pub fn render_frame(
     screen: &mut ScreenScene,
     frame: &mut Frame,
 ) -> Result<StatsTable> {
-    let stats = hider.render_scene(scene, view, options, screen, frame)?;
+    let mut stats = hider.render_scene(scene, view, options, screen, frame)?;
+    cutout_stage(hider, scene, view, options, frame, &mut stats)?;
     if !hider.resolves_color() {
         match mode {
             ShadeMode::Lambert => {

@@ -213,9 +213,9 @@ pub fn texture_failures<'a>(textures: impl IntoIterator<Item = &'a TextureRef>) 
     let mut failures: Vec<String> = Vec::new();
     for t in textures {
         if let Some(why) = t.failure()
-            && !failures.iter().any(|f| f == why)
+            && !failures.contains(&why)
         {
-            failures.push(why.to_owned());
+            failures.push(why);
         }
     }
     failures

@@ -25,7 +25,7 @@
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use hider_geom::{Projection, Viewport};
 
-use super::texture::{Filter, Texture};
+use super::texture::{Filter, TextureRef};
 use crate::model::{Illumination, Light, Material};
 use crate::prepare::{PrimInfo, ScreenScene};
 use crate::view::View;
@@ -131,16 +131,16 @@ impl TextureSampler {
         &self.options
     }
 
-    /// The texture a primitive shows: its material's, when the primitive
-    /// has texture coordinates, textures are on, and the texture loads
-    /// (decoded now if this is its first use).
+    /// The diffuse texture a primitive shows: its material's, when the
+    /// primitive has texture coordinates and textures are on (not decoded
+    /// here).
     #[inline]
-    pub fn texture<'m>(&self, info: &PrimInfo, material: &'m Material) -> Option<&'m Texture> {
+    pub fn texture<'m>(&self, info: &PrimInfo, material: &'m Material) -> Option<&'m TextureRef> {
         if !self.textures {
             return None;
         }
         info.uvs?;
-        material.diffuse_texture.as_ref()?.get()
+        material.diffuse_texture.as_ref()
     }
 
     /// Whether the primitive's colour varies across it with the stages on:
@@ -191,6 +191,53 @@ impl TextureSampler {
         Some(uv[0] * b[0] + uv[1] * b[1] + uv[2] * b[2])
     }
 
+    /// The texture coordinates of `info` at window point `(x, y)` and their
+    /// change one pixel right and one pixel down (the footprint the mip
+    /// level is chosen from, [`super::mip`]), from barycentrics `b` at the
+    /// point; the derivatives are zero where they cannot be found.
+    fn uv_footprint(&self, info: &PrimInfo, b: [f64; 3], x: f64, y: f64) -> Option<UvFootprint> {
+        let t = info.uvs?.map(|t| t.as_dvec2());
+        let at = |b: [f64; 3]| t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
+        let uv = at(b);
+        let step = |bx: Option<([f64; 3], DVec3)>| bx.map_or(DVec2::ZERO, |(b, _)| at(b) - uv);
+        let dx = step(self.barycentrics(info, x + 1.0, y));
+        let dy = step(self.barycentrics(info, x, y + 1.0));
+        Some(UvFootprint { uv, dx, dy })
+    }
+
+    /// The colour and alpha of `texture` at the point of `info` with
+    /// barycentrics `b` seen at `(x, y)`: sampled from the mip level that
+    /// fits the pixel. `None` without uvs or when the texture does not
+    /// load.
+    fn texel(
+        &self,
+        texture: &TextureRef,
+        info: &PrimInfo,
+        b: [f64; 3],
+        x: f64,
+        y: f64,
+    ) -> Option<([f32; 3], f32)> {
+        let f = self.uv_footprint(info, b, x, y)?;
+        texture.sample_footprint(f.uv.into(), f.dx.into(), f.dy.into(), self.options.filter)
+    }
+
+    /// The alpha of primitive `info`'s diffuse texture at window point
+    /// `(x, y)` (1 without a texture, uvs or an alpha channel, or when the
+    /// texture does not load): the value the alpha test compares with one
+    /// half, sampled exactly as the colour is (same point, level and
+    /// filter).
+    pub fn alpha_at(&self, info: &PrimInfo, material: &Material, x: f64, y: f64) -> f32 {
+        let Some(texture) = self.texture(info, material) else {
+            return 1.0;
+        };
+        if !texture.may_have_alpha() {
+            return 1.0;
+        }
+        self.barycentrics(info, x, y)
+            .and_then(|(b, _)| self.texel(texture, info, b, x, y))
+            .map_or(1.0, |(_, a)| a)
+    }
+
     /// The colour of primitive `info` (of `material`, under camera-space
     /// `lights`) at window point `(x, y)`, shaded at that point; `None`
     /// when its colour does not vary across it ([`Self::varies`]: the
@@ -207,13 +254,11 @@ impl TextureSampler {
             return None;
         }
         let (b, position) = self.barycentrics(info, x, y)?;
-        let uv = info.uvs.map(|t| {
-            let t = t.map(|t| t.as_dvec2());
-            t[0] * b[0] + t[1] * b[1] + t[2] * b[2]
-        });
-        let sample = |texture: &Option<crate::TextureRef>| {
-            let uv = uv.filter(|_| self.textures)?;
-            texture.as_ref()?.sample(uv.x, uv.y, self.options.filter)
+        let sample = |texture: &Option<TextureRef>| {
+            if !self.textures {
+                return None;
+            }
+            Some(self.texel(texture.as_ref()?, info, b, x, y)?.0)
         };
         let times = |c: [f32; 3], t: Option<[f32; 3]>| match t {
             Some(t) => [c[0] * t[0], c[1] * t[1], c[2] * t[2]],
@@ -290,6 +335,14 @@ impl ScreenScene {
             .iter()
             .any(|p| sampler.varies(p, &self.materials[p.material as usize]))
     }
+}
+
+/// Texture coordinates at a point and their change one pixel right (`dx`)
+/// and down (`dy`).
+struct UvFootprint {
+    uv: DVec2,
+    dx: DVec2,
+    dy: DVec2,
 }
 
 /// Barycentrics of `p` (on the plane of `c` with normal `n`).

@@ -1,29 +1,43 @@
-//! Diffuse textures (`map_Kd`): loading with the `image` crate and
-//! sampling, nearest or bilinear, with repeat wrapping.
+//! Diffuse textures (`map_Kd`): decoding (PNG files row by row with the
+//! `png` crate, other formats with the `image` crate) and sampling,
+//! nearest or bilinear, with repeat wrapping, from the mip level that fits
+//! the pixel's footprint ([`super::mip`]), within the texture memory
+//! budget ([`super::budget`]).
 //!
 //! Without the crate's `image` feature no image file is read: every
 //! texture file is not loaded, with an error saying so ([`probe`],
 //! [`Texture::load`], [`TextureRef::problem`]); textures built from bytes
 //! ([`Texture::from_srgb8`]) still sample.
 //!
-//! Texels are kept in linear light so that bilinear filtering averages
-//! light, not sRGB codes. Texture coordinates follow OBJ: `(0, 0)` is the
-//! *bottom*-left of the image, `v` grows upward (tinyrenderer's z-buffer
-//! lesson, lesson 3, reads `vt` the same way).
+//! Texels are kept as sRGB bytes and sampled in linear light, so that
+//! bilinear filtering averages light, not sRGB codes. Texture coordinates
+//! follow OBJ: `(0, 0)` is the *bottom*-left of the image, `v` grows
+//! upward (tinyrenderer's z-buffer lesson, lesson 3, reads `vt` the same
+//! way).
 //!
 //! The size is read from the file header and checked against
-//! [`MAX_TEXTURE_SIDE`] before any pixel is decoded.
+//! [`MAX_TEXTURE_SIDE`] and the texture budget before any texel is
+//! decoded.
+//!
+//! An image's alpha channel is kept and classified once ([`AlphaClass`]):
+//! opaque, a cut-out (alpha only 0 or 255) or partial. The cut-out stage
+//! ([`super::cutout`]) tests it at pixel centres.
 //!
 //! A material names its texture with a [`TextureRef`]: the path, and the
-//! texture decoded on first use. Decoding is lazy so that a texture that
-//! no visible pixel samples costs nothing, and it is shared: clones of a
-//! material (every front end copies the scene's materials) and materials
-//! naming the same file share one decode.
+//! texture decoded on first use, down to the mip level the first sample
+//! needs (again, finer, when a later sample needs a finer level). Decoding
+//! is lazy so that a texture that no visible pixel samples costs nothing,
+//! and it is shared: clones of a material (every front end copies the
+//! scene's materials) and materials naming the same file share one decode.
 
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, OnceLock};
+mod decode;
+mod reference;
 
+pub use decode::probe;
+pub use reference::{TextureRef, TextureTransform};
+
+use super::budget::Reservation;
+use super::mip::{self, Level};
 use crate::{Error, Result};
 
 /// Largest texture side accepted, in texels (checked before decoding).
@@ -39,88 +53,52 @@ pub enum Filter {
     Bilinear,
 }
 
-/// An RGB texture in linear light.
+/// What a texture's alpha channel holds, classified once from the image's
+/// own texels (level 0).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord)]
+pub enum AlphaClass {
+    /// No alpha channel, or every texel fully opaque.
+    #[default]
+    Opaque,
+    /// Alpha only 0 or 255: a cut-out (a leaf card, a fence). Drawn opaque
+    /// where alpha is at least one half and not at all elsewhere, by the
+    /// alpha test at each pixel centre; the surface stays opaque for the
+    /// planner.
+    Cutout,
+    /// Some texel between 0 and 255: translucency, which only compositing
+    /// hiders can show; single-sample hiders alpha-test it at one half.
+    Partial,
+}
+
+/// A texture: sRGB bytes sampled in linear light, with an optional alpha
+/// channel, held as its mip levels from [`Self::base_level`] down to 1 x 1.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Texture {
+    /// Level 0's size (the image's).
     width: u32,
     height: u32,
-    /// sRGB bytes, 3 per texel, top row first, converted to linear light
-    /// as they are sampled: a quarter of the memory of linear `f32`
-    /// texels, the same values.
-    texels: Vec<u8>,
-    /// Whether the image had texels that are not fully opaque (an alpha
-    /// cut-out or a translucent texture): the alpha is not simulated.
-    alpha: bool,
-}
-
-/// The error of every texture file in a build without the `image` feature.
-#[cfg(not(feature = "image"))]
-fn without_image(path: &Path) -> Error {
-    Error::Image {
-        path: path.to_path_buf(),
-        message: "texture not loaded: hider-scene was built without its `image` feature".into(),
-    }
-}
-
-/// Reads an image file's size from its header, checking the limit; this is
-/// what "the texture loads" means to the analysis, without decoding it.
-///
-/// Without the `image` feature: an error naming the file and the feature.
-#[cfg(not(feature = "image"))]
-pub fn probe(path: &Path) -> Result<(u32, u32)> {
-    Err(without_image(path))
-}
-
-/// Reads an image file's size from its header, checking the limit; this is
-/// what "the texture loads" means to the analysis, without decoding it.
-#[cfg(feature = "image")]
-pub fn probe(path: &Path) -> Result<(u32, u32)> {
-    let image_error = |e: image::ImageError| Error::Image {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    };
-    crate::input::check_regular(
-        path,
-        "texture file size in bytes",
-        crate::input::MAX_TEXTURE_FILE_BYTES,
-    )?;
-    let reader = image::ImageReader::open(path)
-        .map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })?
-        .with_guessed_format()
-        .map_err(|source| Error::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-    let (w, h) = reader.into_dimensions().map_err(image_error)?;
-    for (what, v) in [("texture width", w), ("texture height", h)] {
-        if v > MAX_TEXTURE_SIDE {
-            return Err(Error::Limit {
-                what,
-                value: v.into(),
-                limit: MAX_TEXTURE_SIDE.into(),
-            });
-        }
-    }
-    if w == 0 || h == 0 {
-        return Err(Error::Image {
-            path: path.to_path_buf(),
-            message: "image has no pixels".into(),
-        });
-    }
-    Ok((w, h))
+    /// The first level held.
+    base: u32,
+    /// Levels `base..`.
+    levels: Vec<Level>,
+    alpha: AlphaClass,
+    reservation: Reservation,
 }
 
 /// An sRGB texel in linear light, through a table of
 /// [`srgb_to_linear`]'s 256 values (the same numbers, without a `powf`
 /// per channel).
 #[inline]
-fn linear(texel: [u8; 3]) -> [f32; 3] {
-    static TABLE: std::sync::OnceLock<[f32; 256]> = std::sync::OnceLock::new();
-    let table = TABLE.get_or_init(|| std::array::from_fn(|c| srgb_to_linear(c as u8)));
+pub(crate) fn linear(texel: [u8; 3]) -> [f32; 3] {
+    let table = linear_table();
     texel.map(|c| table[usize::from(c)])
+}
+
+/// [`srgb_to_linear`] of every byte.
+#[inline]
+pub(crate) fn linear_table() -> &'static [f32; 256] {
+    static TABLE: std::sync::OnceLock<[f32; 256]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| std::array::from_fn(|c| srgb_to_linear(c as u8)))
 }
 
 /// sRGB byte to linear light.
@@ -133,36 +111,41 @@ pub fn srgb_to_linear(c: u8) -> f32 {
     }
 }
 
+/// Checks a texture's size against [`MAX_TEXTURE_SIDE`].
+fn check_size(width: u32, height: u32) -> Result<()> {
+    for (what, v) in [("texture width", width), ("texture height", height)] {
+        if v == 0 || v > MAX_TEXTURE_SIDE {
+            return Err(Error::OutOfRange {
+                what,
+                expected: "1 to 8192 texels",
+                value: v.to_string(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The class of level-0 alpha bytes.
+fn classify(alpha: &[u8]) -> AlphaClass {
+    let mut class = AlphaClass::Opaque;
+    for &a in alpha {
+        match a {
+            255 => {}
+            0 => class = class.max(AlphaClass::Cutout),
+            _ => return AlphaClass::Partial,
+        }
+    }
+    class
+}
+
 impl Texture {
-    /// Loads an image file (PNG or JPEG), size checked first.
+    /// Loads an image file (PNG or JPEG) at full resolution with its mip
+    /// levels, size and budget checked first.
     ///
     /// Without the `image` feature: an error naming the file and the
     /// feature.
-    #[cfg(not(feature = "image"))]
-    pub fn load(path: &Path) -> Result<Self> {
-        Err(without_image(path))
-    }
-
-    /// Loads an image file (PNG or JPEG), size checked first.
-    #[cfg(feature = "image")]
-    pub fn load(path: &Path) -> Result<Self> {
-        probe(path)?;
-        let img = image::open(path).map_err(|e| Error::Image {
-            path: path.to_path_buf(),
-            message: e.to_string(),
-        })?;
-        // The alpha is read where it is (8-bit RGBA, the common case)
-        // rather than from a converted copy of the image.
-        let alpha = match &img {
-            image::DynamicImage::ImageRgba8(rgba) => rgba.pixels().any(|p| p.0[3] < 255),
-            other => other.color().has_alpha() && other.to_rgba8().pixels().any(|p| p.0[3] < 255),
-        };
-        // An RGB image's buffer becomes the texels without a copy.
-        let rgb = img.into_rgb8();
-        let (width, height) = (rgb.width(), rgb.height());
-        let mut texture = Self::from_srgb8_vec(width, height, rgb.into_raw())?;
-        texture.alpha = alpha;
-        Ok(texture)
+    pub fn load(path: &std::path::Path) -> Result<Self> {
+        decode::load_level(path, 0)
     }
 
     /// A texture from sRGB bytes, 3 per texel, top row first.
@@ -172,15 +155,7 @@ impl Texture {
 
     /// [`Self::from_srgb8`], taking the bytes without copying them.
     pub fn from_srgb8_vec(width: u32, height: u32, bytes: Vec<u8>) -> Result<Self> {
-        for (what, v) in [("texture width", width), ("texture height", height)] {
-            if v == 0 || v > MAX_TEXTURE_SIDE {
-                return Err(Error::OutOfRange {
-                    what,
-                    expected: "1 to 8192 texels",
-                    value: v.to_string(),
-                });
-            }
-        }
+        check_size(width, height)?;
         let n = width as usize * height as usize;
         if bytes.len() != 3 * n {
             return Err(Error::OutOfRange {
@@ -189,48 +164,105 @@ impl Texture {
                 value: format!("{} bytes for {width}x{height}", bytes.len()),
             });
         }
-        Ok(Self {
+        Ok(Self::from_levels(
             width,
             height,
-            texels: bytes,
-            alpha: false,
-        })
+            mip::chain(width, height, &bytes, None, 0),
+            AlphaClass::Opaque,
+            None,
+        ))
     }
 
-    /// Width in texels.
+    /// A texture from sRGB bytes with alpha, 4 per texel (RGBA, straight
+    /// alpha), top row first.
+    pub fn from_srgba8(width: u32, height: u32, bytes: &[u8]) -> Result<Self> {
+        check_size(width, height)?;
+        let n = width as usize * height as usize;
+        if bytes.len() != 4 * n {
+            return Err(Error::OutOfRange {
+                what: "texture data",
+                expected: "4 bytes per texel",
+                value: format!("{} bytes for {width}x{height}", bytes.len()),
+            });
+        }
+        let rgb: Vec<u8> = bytes
+            .chunks_exact(4)
+            .flat_map(|p| [p[0], p[1], p[2]])
+            .collect();
+        let alpha: Vec<u8> = bytes.chunks_exact(4).map(|p| p[3]).collect();
+        let class = classify(&alpha);
+        let levels = mip::chain(width, height, &rgb, Some(&alpha), 0);
+        Ok(Self::from_levels(width, height, levels, class, None))
+    }
+
+    /// A texture holding `levels` (from level `levels[0]`'s place in the
+    /// chain), counted against the budget by `reservation` (or now, for
+    /// bytes the caller built in memory).
+    fn from_levels(
+        width: u32,
+        height: u32,
+        levels: Vec<Level>,
+        alpha: AlphaClass,
+        reservation: Option<Reservation>,
+    ) -> Self {
+        let count = mip::level_count(width, height);
+        let base = count - levels.len() as u32;
+        let bytes: usize = levels.iter().map(Level::bytes).sum();
+        Self {
+            width,
+            height,
+            base,
+            levels,
+            alpha,
+            reservation: reservation.unwrap_or_else(|| Reservation::force(bytes as u64)),
+        }
+    }
+
+    /// Width in texels (of the image, level 0).
     pub fn width(&self) -> u32 {
         self.width
     }
 
-    /// Height in texels.
+    /// Height in texels (of the image, level 0).
     pub fn height(&self) -> u32 {
         self.height
     }
 
-    /// Whether the image had texels that are not fully opaque; their alpha
-    /// is not simulated (the texture is drawn opaque).
+    /// The finest mip level held (0: the full image).
+    pub fn base_level(&self) -> u32 {
+        self.base
+    }
+
+    /// Number of levels of the whole chain, level 0 to 1 x 1.
+    pub fn level_count(&self) -> u32 {
+        self.base + self.levels.len() as u32
+    }
+
+    /// Whether the image has texels that are not fully opaque.
     pub fn has_alpha(&self) -> bool {
+        self.alpha != AlphaClass::Opaque
+    }
+
+    /// What the alpha channel holds.
+    pub fn alpha_class(&self) -> AlphaClass {
         self.alpha
     }
 
-    /// Bytes held.
+    /// Bytes held (every level kept, alpha included).
     pub fn bytes(&self) -> usize {
-        self.texels.len()
+        self.levels.iter().map(Level::bytes).sum()
     }
 
-    fn texel(&self, x: i64, y: i64, clamp: bool) -> [f32; 3] {
-        let (w, h) = (i64::from(self.width), i64::from(self.height));
-        let (x, y) = if clamp {
-            (x.clamp(0, w - 1) as usize, y.clamp(0, h - 1) as usize)
-        } else {
-            (x.rem_euclid(w) as usize, y.rem_euclid(h) as usize)
-        };
-        let k = 3 * (y * self.width as usize + x);
-        linear([self.texels[k], self.texels[k + 1], self.texels[k + 2]])
+    /// The level held that is nearest to `level` (the base when it asks
+    /// for a finer one).
+    fn level(&self, level: u32) -> &Level {
+        let k = level.saturating_sub(self.base) as usize;
+        &self.levels[k.min(self.levels.len() - 1)]
     }
 
     /// The linear colour at texture coordinates `(u, v)` (OBJ convention,
-    /// repeat wrapping). Non-finite coordinates give the first texel.
+    /// repeat wrapping), from the finest level held. Non-finite
+    /// coordinates give the first texel.
     pub fn sample(&self, u: f64, v: f64, filter: Filter) -> [f32; 3] {
         self.sample_wrapped(u, v, filter, false)
     }
@@ -239,8 +271,23 @@ impl Texture {
     /// image's edge texels when `clamp` (MTL's `-clamp on`) instead of
     /// repeating.
     pub fn sample_wrapped(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> [f32; 3] {
+        self.sample_level(u, v, filter, clamp, 0).0
+    }
+
+    /// The linear colour and the alpha (in [0, 1], 1 without an alpha
+    /// channel) at `(u, v)` in mip level `level` (or the nearest level
+    /// held), filtered with `filter`, repeating or clamped.
+    pub fn sample_level(
+        &self,
+        u: f64,
+        v: f64,
+        filter: Filter,
+        clamp: bool,
+        level: u32,
+    ) -> ([f32; 3], f32) {
+        let l = self.level(level);
         if !(u.is_finite() && v.is_finite()) {
-            return linear([self.texels[0], self.texels[1], self.texels[2]]);
+            return (fetch(l, 0, 0, true), fetch_alpha(l, 0, 0, true));
         }
         // Texel space: x right, y down from the top row; centres at +0.5.
         let (u, v) = if clamp {
@@ -248,215 +295,61 @@ impl Texture {
         } else {
             (u.rem_euclid(1.0), v.rem_euclid(1.0))
         };
-        let x = u * f64::from(self.width);
-        let y = (1.0 - v) * f64::from(self.height);
-        let texel = |x: i64, y: i64| self.texel(x, y, clamp);
+        let x = u * f64::from(l.width);
+        let y = (1.0 - v) * f64::from(l.height);
         match filter {
             // Clamped, u = 1 is the last texel's far edge (the texel look-up
             // clamps it); repeating, it is the next repeat's start.
-            Filter::Nearest => texel(x.floor() as i64, y.floor() as i64),
+            Filter::Nearest => {
+                let (x, y) = (x.floor() as i64, y.floor() as i64);
+                (fetch(l, x, y, clamp), fetch_alpha(l, x, y, clamp))
+            }
             Filter::Bilinear => {
                 let (fx, fy) = (x - 0.5, y - 0.5);
                 let (x0, y0) = (fx.floor(), fy.floor());
                 let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
                 let (x0, y0) = (x0 as i64, y0 as i64);
-                let [a, b, c, d] = [
-                    texel(x0, y0),
-                    texel(x0 + 1, y0),
-                    texel(x0, y0 + 1),
-                    texel(x0 + 1, y0 + 1),
-                ];
-                std::array::from_fn(|k| {
-                    let top = a[k] + (b[k] - a[k]) * tx;
-                    let bottom = c[k] + (d[k] - c[k]) * tx;
+                let corners = [(x0, y0), (x0 + 1, y0), (x0, y0 + 1), (x0 + 1, y0 + 1)];
+                let lerp = |q: [f32; 4]| {
+                    let top = q[0] + (q[1] - q[0]) * tx;
+                    let bottom = q[2] + (q[3] - q[2]) * tx;
                     top + (bottom - top) * ty
-                })
+                };
+                let rgb = corners.map(|(x, y)| fetch(l, x, y, clamp));
+                let alpha = if l.alpha.is_some() {
+                    lerp(corners.map(|(x, y)| fetch_alpha(l, x, y, clamp)))
+                } else {
+                    1.0
+                };
+                (std::array::from_fn(|k| lerp(rgb.map(|c| c[k]))), alpha)
             }
         }
     }
 }
 
-/// A material's diffuse texture (`map_Kd`): its path, and the texture
-/// decoded the first time a sample needs it ([`Self::get`]).
-///
-/// Clones share the decode. Two references are equal when they name the
-/// same path with the same [`TextureTransform`].
-///
-/// ```
-/// use hider_scene::TextureRef;
-/// let missing = TextureRef::new("/no/such/texture.png");
-/// assert!(!missing.is_decoded());
-/// assert!(missing.get().is_none());
-/// assert!(missing.error().unwrap().contains("/no/such/texture.png"));
-/// ```
-#[derive(Clone, Debug)]
-pub struct TextureRef {
-    path: PathBuf,
-    decoded: Arc<OnceLock<std::result::Result<Arc<Texture>, String>>>,
-    /// The statement's options that change where the image is sampled.
-    pub transform: TextureTransform,
+/// The texel index of `(x, y)` in `l`, clamped to its edge or repeated.
+#[inline]
+fn index(l: &Level, x: i64, y: i64, clamp: bool) -> usize {
+    let (w, h) = (i64::from(l.width), i64::from(l.height));
+    let (x, y) = if clamp {
+        (x.clamp(0, w - 1) as usize, y.clamp(0, h - 1) as usize)
+    } else {
+        (x.rem_euclid(w) as usize, y.rem_euclid(h) as usize)
+    };
+    y * l.width as usize + x
 }
 
-/// Where a texture statement samples its image: the MTL options `-s`
-/// (scale), `-o` (offset) and `-clamp`, applied to the texture coordinates
-/// as the MTL specification says (`uv * s + o`, then repeat, or clamp to
-/// the image's edge with `-clamp on`). `Default` is the identity.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TextureTransform {
-    /// `-s u v`: the coordinates are multiplied by it (the image repeats
-    /// `s` times).
-    pub scale: [f64; 2],
-    /// `-o u v`: added after the scale.
-    pub offset: [f64; 2],
-    /// `-clamp on`: coordinates outside [0, 1] take the edge texel instead
-    /// of repeating.
-    pub clamp: bool,
+#[inline]
+fn fetch(l: &Level, x: i64, y: i64, clamp: bool) -> [f32; 3] {
+    let k = 3 * index(l, x, y, clamp);
+    linear([l.rgb[k], l.rgb[k + 1], l.rgb[k + 2]])
 }
 
-impl Default for TextureTransform {
-    fn default() -> Self {
-        Self {
-            scale: [1.0, 1.0],
-            offset: [0.0, 0.0],
-            clamp: false,
-        }
-    }
-}
-
-impl TextureTransform {
-    /// `(u, v)` moved as the options say.
-    pub fn apply(&self, u: f64, v: f64) -> (f64, f64) {
-        (
-            u * self.scale[0] + self.offset[0],
-            v * self.scale[1] + self.offset[1],
-        )
-    }
-}
-
-impl TextureRef {
-    /// A reference to the image at `path`, not decoded yet.
-    pub fn new(path: impl Into<PathBuf>) -> Self {
-        Self {
-            path: path.into(),
-            decoded: Arc::new(OnceLock::new()),
-            transform: TextureTransform::default(),
-        }
-    }
-
-    /// This reference sampled through `transform`.
-    pub fn with_transform(mut self, transform: TextureTransform) -> Self {
-        self.transform = transform;
-        self
-    }
-
-    /// The linear colour at texture coordinates `(u, v)` through
-    /// [`Self::transform`], decoding the image on first use; `None` when it
-    /// does not load.
-    pub fn sample(&self, u: f64, v: f64, filter: Filter) -> Option<[f32; 3]> {
-        let texture = self.get()?;
-        let (u, v) = self.transform.apply(u, v);
-        Some(texture.sample_wrapped(u, v, filter, self.transform.clamp))
-    }
-
-    /// A reference to an already decoded texture (for scenes built in
-    /// memory); `path` names it in messages.
-    pub fn from_texture(path: impl Into<PathBuf>, texture: Texture) -> Self {
-        let r = Self::new(path);
-        let _ = r.decoded.set(Ok(Arc::new(texture)));
-        r
-    }
-
-    /// The image file.
-    pub fn path(&self) -> &Path {
-        &self.path
-    }
-
-    /// The texture, decoded now if this is the first use; `None` when it
-    /// cannot be loaded ([`Self::error`] says why).
-    pub fn get(&self) -> Option<&Texture> {
-        self.decoded
-            .get_or_init(|| {
-                Texture::load(&self.path)
-                    .map(Arc::new)
-                    .map_err(|e| e.to_string())
-            })
-            .as_ref()
-            .ok()
-            .map(Arc::as_ref)
-    }
-
-    /// Whether a decode was attempted (successful or not).
-    pub fn is_decoded(&self) -> bool {
-        self.decoded.get().is_some()
-    }
-
-    /// Why the texture could not be loaded, decoding it if that was not
-    /// tried yet; `None` when it loads.
-    pub fn error(&self) -> Option<&str> {
-        self.get();
-        self.decoded.get()?.as_ref().err().map(String::as_str)
-    }
-
-    /// Why the texture could not be loaded, only if a decode was already
-    /// attempted (never decodes).
-    pub fn failure(&self) -> Option<&str> {
-        self.decoded.get()?.as_ref().err().map(String::as_str)
-    }
-
-    /// Why the texture cannot be used, without decoding it: the decode's
-    /// error if one was tried, else what reading the image's header finds
-    /// (a missing or undecodable file, a size over [`MAX_TEXTURE_SIDE`]).
-    pub fn problem(&self) -> Option<String> {
-        match self.decoded.get() {
-            Some(Ok(_)) => None,
-            Some(Err(why)) => Some(why.clone()),
-            None => probe(&self.path).err().map(|e| e.to_string()),
-        }
-    }
-
-    /// Whether the texture was decoded and its image has texels that are
-    /// not fully opaque (never decodes).
-    pub fn decoded_with_alpha(&self) -> bool {
-        matches!(self.decoded.get(), Some(Ok(t)) if t.has_alpha())
-    }
-
-    /// Bytes held by the decoded texels (0 before decoding).
-    pub fn bytes(&self) -> usize {
-        match self.decoded.get() {
-            Some(Ok(t)) => t.bytes(),
-            _ => 0,
-        }
-    }
-
-    /// Makes references to the same path share one decode: the second and
-    /// later references of a path in `refs` take the first one's.
-    pub fn share<'a>(refs: impl IntoIterator<Item = &'a mut TextureRef>) {
-        type Slot = Arc<OnceLock<std::result::Result<Arc<Texture>, String>>>;
-        let mut seen: HashMap<PathBuf, Slot> = HashMap::new();
-        for r in refs {
-            let shared = seen
-                .entry(r.path.clone())
-                .or_insert_with(|| r.decoded.clone());
-            r.decoded = shared.clone();
-        }
-    }
-}
-
-impl PartialEq for TextureRef {
-    fn eq(&self, other: &Self) -> bool {
-        self.path == other.path && self.transform == other.transform
-    }
-}
-
-impl From<PathBuf> for TextureRef {
-    fn from(path: PathBuf) -> Self {
-        Self::new(path)
-    }
-}
-
-impl From<&Path> for TextureRef {
-    fn from(path: &Path) -> Self {
-        Self::new(path)
+#[inline]
+fn fetch_alpha(l: &Level, x: i64, y: i64, clamp: bool) -> f32 {
+    match &l.alpha {
+        Some(a) => f32::from(a[index(l, x, y, clamp)]) / 255.0,
+        None => 1.0,
     }
 }
 
@@ -529,7 +422,7 @@ mod tests {
     fn bad_sizes_and_files_are_errors() {
         assert!(Texture::from_srgb8(0, 1, &[]).is_err());
         assert!(Texture::from_srgb8(2, 2, &[0; 11]).is_err());
-        let e = probe(Path::new("/no/such/texture.png"))
+        let e = probe(std::path::Path::new("/no/such/texture.png"))
             .unwrap_err()
             .to_string();
         assert!(e.contains("/no/such/texture.png"), "{e}");
