@@ -110,12 +110,12 @@ pub(super) fn load(
                 uvs: th,
                 normals: nh,
             };
-            jobs.push((*chunk, before, slots));
+            jobs.push((*chunk, before, c.triangles, slots));
             before = before.then(c);
         }
     }
-    let parsed = map_owned(jobs, |(chunk, before, slots)| {
-        scan::parse(chunk, before, slots)
+    let parsed = map_owned(jobs, |(chunk, before, triangles, slots)| {
+        scan::parse(chunk, before, triangles, slots)
     });
     let mut chunks_parsed = Vec::with_capacity(parsed.len());
     for (k, p) in parsed.into_iter().enumerate() {
@@ -127,9 +127,9 @@ pub(super) fn load(
         groups.extend(std::mem::take(&mut p.groups));
     }
     let (meshes, materials) = build(
-        &chunks_parsed,
+        chunks_parsed,
         Arrays {
-            positions: &positions,
+            positions,
             uvs: &uvs,
             normals: &normals,
         },
@@ -189,9 +189,8 @@ fn map_owned<J: Send, T: Send>(jobs: Vec<J>, f: impl Fn(J) -> T + Sync + Send) -
 }
 
 /// The file-wide arrays the corners index.
-#[derive(Clone, Copy)]
 struct Arrays<'a> {
-    positions: &'a [DVec3],
+    positions: Vec<DVec3>,
     uvs: &'a [Vec2],
     normals: &'a [Vec3],
 }
@@ -199,13 +198,13 @@ struct Arrays<'a> {
 /// The meshes and materials of the parsed chunks, as tobj builds them
 /// from the same statements.
 fn build(
-    chunks: &[Parsed],
+    chunks: Vec<Parsed>,
     arrays: Arrays<'_>,
     base_dir: &Path,
     warnings: &RefCell<Vec<String>>,
 ) -> (Vec<Mesh>, Result<Vec<tobj::Material>, tobj::LoadError>) {
     let mut meshes = Vec::new();
-    let mut builder = Builder::new(arrays);
+    let mut builder = Builder::new(arrays.positions, arrays.uvs, arrays.normals);
     let mut materials = Materials::default();
     // tobj's current object and material; the validation pass's layout of
     // the object's last face.
@@ -247,7 +246,7 @@ fn build(
         }
         builder.triangles(&chunk.corners[3 * next..]);
     }
-    meshes.push(builder.take(&name, material));
+    meshes.push(builder.take_last(&name, material));
     let materials = materials.into_materials();
     let count = materials.as_ref().map_or(0, Vec::len);
     for mesh in &mut meshes {
@@ -311,39 +310,44 @@ impl Hasher for CornerHasher {
 /// The mesh being built: its vertices are the distinct corners of its
 /// triangles in order of first use (tobj's `single_index` meshes).
 struct Builder<'a> {
-    arrays: Arrays<'a>,
-    /// Per file-wide position, the mesh vertex of the first corner using
-    /// it ([`NONE`] when none does yet).
+    positions: Vec<DVec3>,
+    uvs: &'a [Vec2],
+    normals: &'a [Vec3],
+    /// Per file-wide position, 1 + the mesh vertex of the first corner
+    /// using it (0 when none does yet: the array starts as zeroed pages).
     first: Vec<u32>,
     /// The mesh vertices of the other corners sharing a position with an
     /// earlier one (texture seams, hard edges).
     others: HashMap<[u32; 3], u32, BuildHasherDefault<CornerHasher>>,
-    /// Each mesh vertex's corner.
+    /// Each mesh vertex's corner; the mesh's attributes are gathered from
+    /// them when it is taken, into arrays of their final size.
     corners: Vec<[u32; 3]>,
-    mesh: Mesh,
+    indices: Vec<[u32; 3]>,
 }
 
 impl<'a> Builder<'a> {
-    fn new(arrays: Arrays<'a>) -> Self {
+    fn new(positions: Vec<DVec3>, uvs: &'a [Vec2], normals: &'a [Vec3]) -> Self {
         Self {
-            arrays,
-            first: vec![NONE; arrays.positions.len()],
+            first: vec![0; positions.len()],
+            positions,
+            uvs,
+            normals,
             others: HashMap::default(),
             corners: Vec::new(),
-            mesh: Mesh::default(),
+            indices: Vec::new(),
         }
     }
 
     fn has_faces(&self) -> bool {
-        !self.mesh.indices.is_empty()
+        !self.indices.is_empty()
     }
 
     /// Adds the triangles of `corners` (three per triangle).
     fn triangles(&mut self, corners: &[[u32; 3]]) {
-        self.mesh.indices.reserve(corners.len() / 3);
+        self.indices.reserve(corners.len() / 3);
         for t in corners.chunks_exact(3) {
             let tri = [self.vertex(t[0]), self.vertex(t[1]), self.vertex(t[2])];
-            self.mesh.indices.push(tri);
+            self.indices.push(tri);
         }
     }
 
@@ -352,41 +356,75 @@ impl<'a> Builder<'a> {
     fn vertex(&mut self, corner: [u32; 3]) -> u32 {
         let v = corner[0] as usize;
         let first = self.first[v];
-        if first != NONE {
-            if self.corners[first as usize] == corner {
-                return first;
+        if first != 0 {
+            if self.corners[first as usize - 1] == corner {
+                return first - 1;
             }
             if let Some(&k) = self.others.get(&corner) {
                 return k;
             }
         }
         let k = self.corners.len() as u32;
-        if first == NONE {
-            self.first[v] = k;
+        if first == 0 {
+            self.first[v] = k + 1;
         } else {
             self.others.insert(corner, k);
         }
         self.corners.push(corner);
-        self.mesh.positions.push(self.arrays.positions[v]);
-        if corner[1] != NONE {
-            self.mesh.uvs.push(self.arrays.uvs[corner[1] as usize]);
-        }
-        if corner[2] != NONE {
-            self.mesh.normals.push(self.arrays.normals[corner[2] as usize]);
-        }
         k
     }
 
     /// The mesh built so far, named `name` with `material`; the builder
     /// starts the next one.
     fn take(&mut self, name: &str, material: Option<usize>) -> Mesh {
-        for c in self.corners.drain(..) {
-            self.first[c[0] as usize] = NONE;
+        self.take_with(name, material, None)
+    }
+
+    /// [`Self::take`], with `positions` as the mesh's positions when given.
+    fn take_with(
+        &mut self,
+        name: &str,
+        material: Option<usize>,
+        positions: Option<Vec<DVec3>>,
+    ) -> Mesh {
+        let corners = std::mem::take(&mut self.corners);
+        for c in &corners {
+            self.first[c[0] as usize] = 0;
         }
         self.others.clear();
-        let mut mesh = std::mem::take(&mut self.mesh);
-        mesh.name = name.to_owned();
-        mesh.material = material;
-        mesh
+        let with = |slot: usize| corners.first().is_some_and(|c| c[slot] != NONE);
+        Mesh {
+            name: name.to_owned(),
+            positions: positions.unwrap_or_else(|| {
+                corners
+                    .iter()
+                    .map(|c| self.positions[c[0] as usize])
+                    .collect()
+            }),
+            normals: match with(2) {
+                true => corners.iter().map(|c| self.normals[c[2] as usize]).collect(),
+                false => Vec::new(),
+            },
+            uvs: match with(1) {
+                true => corners.iter().map(|c| self.uvs[c[1] as usize]).collect(),
+                false => Vec::new(),
+            },
+            colors: Vec::new(),
+            indices: std::mem::take(&mut self.indices),
+            material,
+        }
+    }
+
+    /// The last mesh ([`Self::take`]), given the file-wide positions
+    /// themselves when it uses each once, in file order (a single-object
+    /// file written vertex by vertex, as scanners and converters write).
+    fn take_last(mut self, name: &str, material: Option<usize>) -> Mesh {
+        let in_order = self.corners.len() == self.positions.len()
+            && self.corners.iter().enumerate().all(|(k, c)| c[0] as usize == k);
+        if !in_order {
+            return self.take(name, material);
+        }
+        let positions = std::mem::take(&mut self.positions);
+        self.take_with(name, material, Some(positions))
     }
 }

@@ -200,11 +200,16 @@ pub(super) fn count(chunk: &[u8]) -> Result<Counts, Refusal> {
 }
 
 /// The second pass: the chunk's statements into `slots` (sized by
-/// [`count`]) and its faces' corners, resolved against `before`, the
-/// counts of the chunks before it.
-pub(super) fn parse(chunk: &[u8], before: Counts, slots: Slots<'_>) -> Result<Parsed, Refusal> {
+/// [`count`]) and the corners of its `triangles`, resolved against
+/// `before`, the counts of the chunks before it.
+pub(super) fn parse(
+    chunk: &[u8],
+    before: Counts,
+    triangles: u64,
+    slots: Slots<'_>,
+) -> Result<Parsed, Refusal> {
     let mut out = Parsed {
-        corners: Vec::with_capacity(3 * slots.positions.len().min(1 << 20)),
+        corners: Vec::with_capacity(3 * triangles as usize),
         ..Parsed::default()
     };
     let (mut nv, mut nvt, mut nvn) = (0, 0, 0);
