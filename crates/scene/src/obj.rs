@@ -232,13 +232,7 @@ fn load_with_tobj(
         .map(|model| mesh_from_tobj(model, materials.len(), &mut warnings))
         .collect();
     finish(
-        materials,
-        meshes,
-        warnings,
-        &smoothing,
-        triangles,
-        name,
-        base_dir,
+        materials, meshes, warnings, &smoothing, triangles, name, base_dir,
     )
 }
 
@@ -410,6 +404,10 @@ struct Smoothing {
 fn smoothing_groups(text: &str) -> Smoothing {
     let mut groups: Vec<&str> = Vec::new();
     for line in text.lines() {
+        // Most lines are not `s` statements: the first character says so.
+        if !line.trim_start().starts_with('s') {
+            continue;
+        }
         let mut words = line.split_whitespace();
         if words.next() != Some("s") {
             continue;

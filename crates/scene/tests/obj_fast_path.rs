@@ -128,8 +128,12 @@ impl Gen {
     /// that is not a number at all.
     fn number(&mut self) -> String {
         match self.below(200) {
-            0 => self.pick(&["nan", "inf", "1e400", "abc", "1,5", "-", "0x1"]).into(),
-            1..=5 => self.pick(&["+2.", ".25", "-.5e1", "1.5E+2", "00012", "-0"]).into(),
+            0 => self
+                .pick(&["nan", "inf", "1e400", "abc", "1,5", "-", "0x1"])
+                .into(),
+            1..=5 => self
+                .pick(&["+2.", ".25", "-.5e1", "1.5E+2", "00012", "-0"])
+                .into(),
             6..=10 => "0.30000000000000004".into(),
             11 => "123456789012345678901234".into(),
             _ => format!("{}", (self.below(2001) as f64 - 1000.0) / 256.0),
@@ -203,7 +207,11 @@ impl Gen {
                 let mixed = self.below(80) == 0;
                 let mut words = Vec::new();
                 for k in 0..n {
-                    let layout = if mixed && k == 1 { (layout + 1) % 5 } else { layout };
+                    let layout = if mixed && k == 1 {
+                        (layout + 1) % 5
+                    } else {
+                        layout
+                    };
                     let v = self.index(counts[0]);
                     let word = match layout {
                         0 => v,
@@ -306,7 +314,11 @@ fn folder(name: &str) -> PathBuf {
         "newmtl red\nKd 1 0 0\nnewmtl blue\nKd 0 0 1\nmap_Kd nothere.png\n",
     )
     .unwrap();
-    std::fs::write(dir.join("sub dir/n.mtl"), "newmtl red\nKd 0.5 0 0\nNi 1.5\n").unwrap();
+    std::fs::write(
+        dir.join("sub dir/n.mtl"),
+        "newmtl red\nKd 0.5 0 0\nNi 1.5\n",
+    )
+    .unwrap();
     dir
 }
 

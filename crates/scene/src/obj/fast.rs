@@ -71,9 +71,13 @@ pub(super) fn load(
     };
     let chunks = split(bytes, chunk_bytes.max(1));
     let at = |lines: &[usize], k: usize, r: Refusal| {
-        format!("line {}: {}", lines[..k].iter().sum::<usize>() + r.line + 1, r.why)
+        format!(
+            "line {}: {}",
+            lines[..k].iter().sum::<usize>() + r.line + 1,
+            r.why
+        )
     };
-    let counted = map(&chunks, |c| scan::count(c));
+    let counted = map(&chunks, scan::count);
     let mut counts = Vec::with_capacity(chunks.len());
     let mut lines = Vec::with_capacity(chunks.len());
     for (k, c) in counted.into_iter().enumerate() {
@@ -155,7 +159,10 @@ fn split(bytes: &[u8], size: usize) -> Vec<&[u8]> {
     let mut out = Vec::with_capacity(bytes.len() / size + 1);
     let mut rest = bytes;
     while !rest.is_empty() {
-        let end = match rest.get(size..).and_then(|tail| memchr::memchr(b'\n', tail)) {
+        let end = match rest
+            .get(size..)
+            .and_then(|tail| memchr::memchr(b'\n', tail))
+        {
             Some(k) => size + k + 1,
             None => rest.len(),
         };
@@ -402,7 +409,10 @@ impl<'a> Builder<'a> {
                     .collect()
             }),
             normals: match with(2) {
-                true => corners.iter().map(|c| self.normals[c[2] as usize]).collect(),
+                true => corners
+                    .iter()
+                    .map(|c| self.normals[c[2] as usize])
+                    .collect(),
                 false => Vec::new(),
             },
             uvs: match with(1) {
@@ -420,7 +430,11 @@ impl<'a> Builder<'a> {
     /// file written vertex by vertex, as scanners and converters write).
     fn take_last(mut self, name: &str, material: Option<usize>) -> Mesh {
         let in_order = self.corners.len() == self.positions.len()
-            && self.corners.iter().enumerate().all(|(k, c)| c[0] as usize == k);
+            && self
+                .corners
+                .iter()
+                .enumerate()
+                .all(|(k, c)| c[0] as usize == k);
         if !in_order {
             return self.take(name, material);
         }

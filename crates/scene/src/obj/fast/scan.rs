@@ -296,7 +296,8 @@ pub(super) fn parse(
                 } else {
                     name
                 };
-                out.events.push((out.corners.len() / 3, Event::Object(name)));
+                out.events
+                    .push((out.corners.len() / 3, Event::Object(name)));
                 layout = None;
             }
             keyword @ (Keyword::Usemtl | Keyword::Mtllib) => {
@@ -508,16 +509,37 @@ mod tests {
     #[test]
     fn numbers_read_as_the_standard_library_reads_them() {
         for text in [
-            "0", "-0", "1", "+1", "1.", ".5", "-.5", "1e5", "1.e5", "1.5E-3", "+.5e-3", "00012",
-            "0.000123", "123456789012345678901234", "0.30000000000000004", "1e22", "1e23",
-            "9007199254740993", "-1.7976931348623157e308", "4.9e-324", "1e-400",
-            "0.1000000000000000000000001", "12345678901234567890.5",
+            "0",
+            "-0",
+            "1",
+            "+1",
+            "1.",
+            ".5",
+            "-.5",
+            "1e5",
+            "1.e5",
+            "1.5E-3",
+            "+.5e-3",
+            "00012",
+            "0.000123",
+            "123456789012345678901234",
+            "0.30000000000000004",
+            "1e22",
+            "1e23",
+            "9007199254740993",
+            "-1.7976931348623157e308",
+            "4.9e-324",
+            "1e-400",
+            "0.1000000000000000000000001",
+            "12345678901234567890.5",
         ] {
             let want = text.parse::<f64>().unwrap();
             let got = parse_f64(text.as_bytes()).unwrap_or_else(|| panic!("{text}"));
             assert_eq!(got.to_bits(), want.to_bits(), "{text}");
         }
-        for text in ["", ".", "-", "e5", "1e", "1e+", "inf", "nan", "1x", "0x1", "1e400", "1,5"] {
+        for text in [
+            "", ".", "-", "e5", "1e", "1e+", "inf", "nan", "1x", "0x1", "1e400", "1,5",
+        ] {
             assert_eq!(parse_f64(text.as_bytes()), None, "{text}");
         }
     }
@@ -531,7 +553,10 @@ mod tests {
         for bad in [&b"0"[..], b"-0", b"4", b"-4", b"+1", b"1x", b""] {
             assert_eq!(index(bad, 3), None, "{}", String::from_utf8_lossy(bad));
         }
-        assert_eq!(corner(b"2//1", [3, 0, 1]), Some(([1, NONE, 0], (3, false, true))));
+        assert_eq!(
+            corner(b"2//1", [3, 0, 1]),
+            Some(([1, NONE, 0], (3, false, true)))
+        );
         assert_eq!(corner(b"1/1/1/1", [3, 3, 3]), None);
         assert_eq!(corner(b"/1", [3, 3, 3]), None);
     }
