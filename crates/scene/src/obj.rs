@@ -13,7 +13,13 @@
 //!
 //! A missing MTL file, or a broken material in one, is a warning, not an
 //! error: the faces get the default material, as GL viewers do.
+//!
+//! Plain files (`v`, `vt`, `vn`, `f`, `o`, `g`, `s`, `usemtl`, `mtllib`
+//! and comments, numbers in the usual form) are read by a fast reader, in
+//! parallel chunks, which builds the very scene tobj builds; anything else
+//! goes to tobj, the loader of record ([`ObjParser`], `docs/loading.md`).
 
+mod fast;
 mod mtl;
 mod statements;
 mod text;
@@ -42,6 +48,9 @@ pub struct ObjOptions {
     pub max_triangles: u64,
     /// Largest file accepted, in bytes. Defaults to [`MAX_FILE_BYTES`].
     pub max_file_bytes: u64,
+    /// Which reader parses the file. Both give the same scene (and the same
+    /// errors); the default, [`ObjParser::Fast`], is the quicker.
+    pub parser: ObjParser,
 }
 
 impl Default for ObjOptions {
@@ -49,8 +58,37 @@ impl Default for ObjOptions {
         Self {
             max_triangles: MAX_TRIANGLES,
             max_file_bytes: MAX_FILE_BYTES,
+            parser: ObjParser::default(),
         }
     }
+}
+
+/// The reader of an OBJ file's statements.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ObjParser {
+    /// The fast reader, in parallel chunks (with the crate's `parallel`
+    /// feature), for files made of `v`, `vt`, `vn`, `f`, `o`, `g`, `s`,
+    /// `usemtl`, `mtllib` and comments; tobj for any other file (the
+    /// reason is in [`ObjStats::fallback`]). The scene is the one tobj
+    /// builds.
+    #[default]
+    Fast,
+    /// tobj alone: the loader of record, kept to compare against.
+    Tobj,
+}
+
+/// How an OBJ file was read.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ObjStats {
+    /// Bytes of OBJ text read.
+    pub bytes: u64,
+    /// Whether the fast reader built the scene (otherwise tobj did).
+    pub fast: bool,
+    /// Why tobj read a file the fast reader was asked to read, naming the
+    /// line (`"line 12: a 'l' statement ..."`).
+    pub fallback: Option<String>,
+    /// Chunks the fast reader cut the file into (read in parallel).
+    pub chunks: usize,
 }
 
 /// Loads an OBJ file (and the MTL files it names) with default options.
@@ -60,6 +98,11 @@ pub fn load_obj(path: impl AsRef<Path>) -> Result<Scene> {
 
 /// Loads an OBJ file with the given options.
 pub fn load_obj_with(path: &Path, options: &ObjOptions) -> Result<Scene> {
+    load_obj_stats(path, options).map(|(scene, _)| scene)
+}
+
+/// Loads an OBJ file with the given options, saying how it was read.
+pub fn load_obj_stats(path: &Path, options: &ObjOptions) -> Result<(Scene, ObjStats)> {
     let io = |source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -81,12 +124,73 @@ pub fn load_obj_with(path: &Path, options: &ObjOptions) -> Result<Scene> {
     }
     let bytes = std::fs::read(path).map_err(io)?;
     let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
-    load_obj_bytes(&bytes, path, &base, options)
+    load_obj_bytes_stats(&bytes, path, &base, options)
 }
 
 /// Loads OBJ text held in memory. `name` is used in error messages; MTL
 /// files and textures are looked up relative to `base_dir`.
 pub fn load_obj_bytes(
+    bytes: &[u8],
+    name: &Path,
+    base_dir: &Path,
+    options: &ObjOptions,
+) -> Result<Scene> {
+    load_obj_bytes_stats(bytes, name, base_dir, options).map(|(scene, _)| scene)
+}
+
+/// [`load_obj_bytes`], saying how the text was read.
+pub fn load_obj_bytes_stats(
+    bytes: &[u8],
+    name: &Path,
+    base_dir: &Path,
+    options: &ObjOptions,
+) -> Result<(Scene, ObjStats)> {
+    let mut stats = ObjStats {
+        bytes: bytes.len() as u64,
+        ..ObjStats::default()
+    };
+    if options.parser == ObjParser::Fast {
+        match load_fast(bytes, name, base_dir, options, fast::CHUNK_BYTES)? {
+            Ok((scene, chunks)) => {
+                stats.fast = true;
+                stats.chunks = chunks;
+                return Ok((scene, stats));
+            }
+            Err(reason) => stats.fallback = Some(reason),
+        }
+    }
+    Ok((load_with_tobj(bytes, name, base_dir, options)?, stats))
+}
+
+/// The fast reader with chunks of about `chunk_bytes`: the scene and the
+/// chunk count, or why tobj must read the file.
+fn load_fast(
+    bytes: &[u8],
+    name: &Path,
+    base_dir: &Path,
+    options: &ObjOptions,
+    chunk_bytes: usize,
+) -> Result<std::result::Result<(Scene, usize), String>> {
+    let loaded = match fast::load(bytes, base_dir, options, chunk_bytes) {
+        Ok(loaded) => loaded,
+        Err(reason) => return Ok(Err(reason)),
+    };
+    let mut warnings = loaded.warnings;
+    let materials = materials_or_default(loaded.materials, &mut warnings);
+    let scene = finish(
+        materials,
+        loaded.meshes,
+        warnings,
+        &loaded.smoothing,
+        loaded.triangles,
+        name,
+        base_dir,
+    )?;
+    Ok(Ok((scene, loaded.chunks)))
+}
+
+/// The loader of record: the validation pass, then tobj.
+fn load_with_tobj(
     bytes: &[u8],
     name: &Path,
     base_dir: &Path,
@@ -122,12 +226,40 @@ pub fn load_obj_bytes(
         message: format!("OBJ parser: {e}"),
     })?;
     let mut warnings = warnings.into_inner();
-    let materials = materials.unwrap_or_else(|e| {
+    let materials = materials_or_default(materials, &mut warnings);
+    let meshes = models
+        .into_iter()
+        .map(|model| mesh_from_tobj(model, materials.len(), &mut warnings))
+        .collect();
+    finish(
+        materials, meshes, warnings, &smoothing, triangles, name, base_dir,
+    )
+}
+
+/// The materials of the MTL files, or none with a warning.
+fn materials_or_default(
+    materials: std::result::Result<Vec<tobj::Material>, tobj::LoadError>,
+    warnings: &mut Vec<String>,
+) -> Vec<tobj::Material> {
+    materials.unwrap_or_else(|e| {
         warnings.push(format!(
             "materials unavailable ({e}); using the default material"
         ));
         Vec::new()
-    });
+    })
+}
+
+/// The scene of the meshes and materials either reader produced: smoothing
+/// where asked, the warnings about the file's content, the checks.
+fn finish(
+    materials: Vec<tobj::Material>,
+    meshes: Vec<Mesh>,
+    mut warnings: Vec<String>,
+    smoothing: &Smoothing,
+    triangles: u64,
+    name: &Path,
+    base_dir: &Path,
+) -> Result<Scene> {
     let mut scene = Scene {
         materials: materials
             .iter()
@@ -143,8 +275,7 @@ pub fn load_obj_bytes(
             .filter_map(|m| m.diffuse_texture.as_mut()),
     );
     let mut smoothed = false;
-    for model in models {
-        let mut mesh = mesh_from_tobj(model, scene.materials.len(), &mut warnings);
+    for mut mesh in meshes {
         if smoothing.on && mesh.normals.is_empty() {
             mesh.normals = smooth_normals(&mesh);
             smoothed = true;
@@ -274,6 +405,10 @@ struct Smoothing {
 fn smoothing_groups(text: &str) -> Smoothing {
     let mut groups: Vec<&str> = Vec::new();
     for line in text.lines() {
+        // Most lines are not `s` statements: the first character says so.
+        if !line.trim_start().starts_with('s') {
+            continue;
+        }
         let mut words = line.split_whitespace();
         if words.next() != Some("s") {
             continue;

@@ -362,3 +362,36 @@ fn unsimulated_statements_are_named() {
     // Smoothing asked and no vn: the mesh gets vertex normals.
     assert_eq!(s.meshes[0].normals.len(), s.meshes[0].positions.len());
 }
+
+/// The fast reader cut into chunks of every size, down to one line each:
+/// objects, materials, smoothing groups, layouts and negative indices
+/// across chunk boundaries give the scene of tobj.
+#[test]
+fn the_fast_reader_gives_the_scene_of_tobj_whatever_the_chunks() {
+    let text = "# head\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvn 0 0 1\n\
+                o a\nf 1 2 3\nf -1 -2 -3\ns 1\nusemtl x\nf 1/1 2/2 3/1\nf 2/2 3/1 4/2\n\
+                g b\r\nf 1//1 2//1 4//1 3//1\nusemtl y\nf 4 3 2\nf 1/1/1 2/1/1 3/2/1\n\
+                o\nv 2 2 2\nf -1 -2 -3\n";
+    let options = ObjOptions::default();
+    let want = load_with_tobj(
+        text.as_bytes(),
+        Path::new("c.obj"),
+        Path::new("/nonexistent"),
+        &options,
+    )
+    .unwrap();
+    assert_eq!(want.meshes.len(), 6, "{:#?}", want.meshes);
+    for chunk in [1, 5, 13, 64, 1 << 20] {
+        let (scene, chunks) = load_fast(
+            text.as_bytes(),
+            Path::new("c.obj"),
+            Path::new("/nonexistent"),
+            &options,
+            chunk,
+        )
+        .unwrap()
+        .unwrap_or_else(|why| panic!("{chunk}: {why}"));
+        assert_eq!(scene, want, "chunks of {chunk} bytes");
+        assert!(chunk >= 64 || chunks > 4, "{chunk}: {chunks} chunks");
+    }
+}

@@ -23,8 +23,7 @@ pub(super) fn decode<'a>(bytes: &'a [u8], name: &Path) -> Result<Cow<'a, str>> {
 /// there is none).
 fn lone_cr_to_lf(text: Cow<'_, str>) -> Cow<'_, str> {
     let bytes = text.as_bytes();
-    let lone = |k: usize| bytes[k] == b'\r' && bytes.get(k + 1) != Some(&b'\n');
-    if !(0..bytes.len()).any(lone) {
+    if !memchr::memchr_iter(b'\r', bytes).any(|k| bytes.get(k + 1) != Some(&b'\n')) {
         return text;
     }
     let mut out = String::with_capacity(text.len());

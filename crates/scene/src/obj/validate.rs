@@ -123,6 +123,8 @@ pub(super) fn validate_obj(text: &str, name: &Path) -> Result<Checked> {
     // the layout (has vt, has vn) of its last face.
     let mut object = String::from("unnamed_object");
     let mut layout: Option<(bool, bool)> = None;
+    // One buffer for every line's words (a file has millions of lines).
+    let mut values: Vec<&str> = Vec::new();
     for (k, raw) in text.split('\n').enumerate() {
         let line_no = k + 1;
         let err = |message: String| Error::Parse {
@@ -135,7 +137,9 @@ pub(super) fn validate_obj(text: &str, name: &Path) -> Result<Checked> {
         let Some(keyword) = words.next() else {
             continue;
         };
-        let values: Vec<&str> = words.collect();
+        values.clear();
+        values.extend(words);
+        let values = &values;
         let floats = |want: usize, what: &str| -> Result<()> {
             if values.len() < want {
                 return Err(err(format!(
@@ -176,7 +180,7 @@ pub(super) fn validate_obj(text: &str, name: &Path) -> Result<Checked> {
                 nvn += 1;
             }
             "f" => {
-                check_face(&values, [nv, nvt, nvn], &err)?;
+                check_face(values, [nv, nvt, nvn], &err)?;
                 checked.triangles += values.len() as u64 - 2;
                 let mut parts = values[0].split('/');
                 parts.next();
