@@ -71,6 +71,7 @@
 mod bins;
 mod blocker;
 mod centres;
+mod cull;
 mod naive;
 mod newell;
 mod options;

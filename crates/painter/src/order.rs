@@ -41,6 +41,7 @@ use hider_scene::{Error, Result, ScreenScene};
 
 use crate::bins::{Grid, Key, depth_bits};
 use crate::centres::{CentreIndex, Centres};
+use crate::cull::HiZ;
 use crate::newell::Extent;
 use crate::options::{PainterOptions, split_cap};
 use crate::piece::Piece;
@@ -86,6 +87,10 @@ pub(crate) struct Orderer {
     pub front: Vec<u32>,
     /// Scratch for the bin query.
     pub near: Vec<(Key, u32)>,
+    /// The occluder depths of the frame's triangles.
+    pub hiz: HiZ,
+    /// Per piece index, whether it was culled (hidden everywhere).
+    pub hidden: Vec<bool>,
     /// Entries compared one by one before the grid takes over (tests
     /// only; `None` is the default prefix of the blocker search).
     pub linear_scan: Option<usize>,
@@ -200,6 +205,11 @@ impl Orderer {
             self.pieces.push(Piece::from_tri(tri, k as u32));
         }
         self.extents.extend(self.pieces.iter().map(Extent::of));
+        self.hiz.build(scene);
+        self.hidden.clear();
+        self.hidden
+            .extend(self.pieces.iter().map(|p| self.hiz.hides(p)));
+        stats.culled = self.hidden.iter().filter(|&&h| h).count() as u64;
         self.index_all(scene);
         stats.triangles = scene.tris.len() as u64;
         let bytes: u64 = self.pieces.iter().map(|p| p.bytes() as u64).sum();
@@ -234,6 +244,7 @@ impl Orderer {
             .keys
             .iter()
             .zip(0..)
+            .filter(|&(_, k)| !self.hidden[k as usize])
             .map(|(&key, k)| (key, k))
             .collect();
         self.next_tie = -(self.pieces.len() as i64) - 1;
