@@ -86,7 +86,7 @@ mod stats;
 mod svg;
 
 pub use naive::NaivePainter;
-pub use options::{NaivePainterOptions, PainterOptions, SortKey};
+pub use options::{NaivePainterOptions, PainterOptions, SPLIT_BUDGET, SortKey};
 pub use painter::Painter;
 pub use piece::{Cut, Piece};
 pub use stats::PainterStats;

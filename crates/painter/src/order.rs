@@ -43,7 +43,7 @@ use crate::bins::{Grid, Key, depth_bits};
 use crate::centres::{CentreIndex, Centres};
 use crate::cull::HiZ;
 use crate::newell::Extent;
-use crate::options::{PainterOptions, split_cap};
+use crate::options::{PainterOptions, SPLIT_BUDGET, split_cap};
 use crate::piece::Piece;
 use crate::stats::PainterStats;
 
@@ -121,7 +121,9 @@ impl Orderer {
         options: &PainterOptions,
         stats: &mut PainterStats,
     ) -> Result<()> {
-        let max_splits = options.max_splits.min(split_cap(scene.tris.len() as u64));
+        let max_splits = options
+            .max_splits
+            .unwrap_or_else(|| split_cap(scene.tris.len() as u64));
         let mut arena = self.start(scene, stats)?;
         loop {
             let (cslot, p) = match (self.front.last(), self.sorted.last_key_value()) {
@@ -143,14 +145,10 @@ impl Orderer {
                 continue;
             }
             if stats.plane_splits + stats.line_splits >= max_splits {
-                return Err(Error::Render {
-                    hider: "painter".into(),
-                    message: format!(
-                        "split budget of {max_splits} used up with {} pieces still \
-                         unordered (intersecting or cyclic polygons need more \
-                         splits; raise PainterOptions::max_splits)",
-                        self.front.len() + self.sorted.len()
-                    ),
+                return Err(Error::Limit {
+                    what: SPLIT_BUDGET,
+                    value: max_splits.saturating_add(1),
+                    limit: max_splits,
                 });
             }
             let before = self.pieces.len();
