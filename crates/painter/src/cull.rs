@@ -106,7 +106,7 @@ const MAX_SQUARES: f64 = (1u64 << 20) as f64;
 /// on their bounding boxes: the grid gets coarser (squares of 2, 4, ...
 /// pixels) until the build costs at most this, which keeps it a small part
 /// of a frame whatever the overdraw.
-const MAX_VISITS: f64 = (1u64 << 26) as f64;
+const MAX_VISITS: f64 = (1u64 << 28) as f64;
 
 /// The depth plane's value at the centre of the square of side `side`
 /// at `(i, j)`, and a bound on how far it moves over the square plus the
@@ -244,7 +244,7 @@ impl HiZ {
 #[cfg(test)]
 mod tests {
     use glam::DVec3;
-    use hider_scene::{Hider, Scene, procedural};
+    use hider_scene::{Scene, procedural};
     use hider_testkit::{reference, render, screen};
 
     use crate::{Painter, PainterStats};

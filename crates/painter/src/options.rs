@@ -141,6 +141,9 @@ pub struct PainterOptions {
     /// (pixels) to hide the hairline seams vector renderers draw between
     /// abutting polygons. 0 (the exact geometry) by default.
     pub svg_seam_stroke: f64,
+    /// Record every step of the ordering as a [`crate::PainterTrace`]
+    /// ([`crate::Painter::trace`]): off by default, and free when off.
+    pub trace: bool,
 }
 
 impl Default for PainterOptions {
@@ -150,6 +153,7 @@ impl Default for PainterOptions {
             max_bytes: DEFAULT_MAX_BYTES,
             svg_drop_hidden: false,
             svg_seam_stroke: 0.0,
+            trace: false,
         }
     }
 }
@@ -171,6 +175,12 @@ impl PainterOptions {
     /// Sets [`Self::svg_drop_hidden`].
     pub fn with_svg_drop_hidden(mut self, drop: bool) -> Self {
         self.svg_drop_hidden = drop;
+        self
+    }
+
+    /// Sets [`Self::trace`].
+    pub fn with_trace(mut self, trace: bool) -> Self {
+        self.trace = trace;
         self
     }
 

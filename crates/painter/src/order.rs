@@ -35,6 +35,7 @@
 //! full scan. Splitting a pair is in `resolve.rs`; this file holds the list
 //! and the loop.
 
+use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 use hider_scene::{Error, Result, ScreenScene};
@@ -46,6 +47,7 @@ use crate::newell::Extent;
 use crate::options::{PainterOptions, SPLIT_BUDGET, split_cap};
 use crate::piece::Piece;
 use crate::stats::PainterStats;
+use crate::trace::{PainterTrace, TraceEvent};
 
 /// Where a piece sits in the list.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,6 +93,10 @@ pub(crate) struct Orderer {
     pub hiz: HiZ,
     /// Per piece index, whether it was culled (hidden everywhere).
     pub hidden: Vec<bool>,
+    /// The trace being recorded (only with [`PainterOptions::trace`]).
+    pub tracer: Option<RefCell<PainterTrace>>,
+    /// The trace of the last frame ordered with [`PainterOptions::trace`].
+    pub traced: Option<PainterTrace>,
     /// Entries compared one by one before the grid takes over (tests
     /// only; `None` is the default prefix of the blocker search).
     pub linear_scan: Option<usize>,
@@ -124,6 +130,12 @@ impl Orderer {
         let max_splits = options
             .max_splits
             .unwrap_or_else(|| split_cap(scene.tris.len() as u64));
+        self.tracer = options.trace.then(|| {
+            let mut t = self.traced.take().unwrap_or_default();
+            t.clear();
+            RefCell::new(t)
+        });
+        self.traced = None;
         let mut arena = self.start(scene, stats)?;
         loop {
             let (cslot, p) = match (self.front.last(), self.sorted.last_key_value()) {
@@ -135,6 +147,7 @@ impl Orderer {
                 self.remove(cslot);
                 self.unindex(p);
                 self.order.push(p);
+                self.note(|| TraceEvent::Painted { piece: p });
                 continue;
             };
             if blocked.reverse_ok() && !self.pieces[q as usize].moved {
@@ -142,7 +155,11 @@ impl Orderer {
                 self.pieces[q as usize].moved = true;
                 self.front.push(q);
                 stats.moves += 1;
+                self.note(|| TraceEvent::Move { piece: q });
                 continue;
+            }
+            if self.pieces[q as usize].moved {
+                self.note(|| TraceEvent::CycleBroken { p, q });
             }
             if stats.plane_splits + stats.line_splits >= max_splits {
                 return Err(Error::Limit {
@@ -177,7 +194,21 @@ impl Orderer {
             + self.grid.bytes()
             + (self.front.capacity() + self.order.capacity()) * 4;
         stats.peak_bytes = arena.peak + lists as u64;
+        if let Some(t) = self.tracer.take() {
+            let mut t = t.into_inner();
+            t.order.clone_from(&self.order);
+            t.prims.extend(self.pieces.iter().map(|p| p.prim));
+            self.traced = Some(t);
+        }
         Ok(())
+    }
+
+    /// Records an event when tracing (the closure runs only then).
+    #[inline]
+    pub(crate) fn note(&self, event: impl FnOnce() -> TraceEvent) {
+        if let Some(t) = &self.tracer {
+            t.borrow_mut().events.push(event());
+        }
     }
 
     /// Fills the arena with the scene's triangles, sorted and binned, and
@@ -208,6 +239,9 @@ impl Orderer {
         self.hidden
             .extend(self.pieces.iter().map(|p| self.hiz.hides(p)));
         stats.culled = self.hidden.iter().filter(|&&h| h).count() as u64;
+        for (k, _) in self.hidden.iter().enumerate().filter(|(_, h)| **h) {
+            self.note(|| TraceEvent::Culled { piece: k as u32 });
+        }
         self.index_all(scene);
         stats.triangles = scene.tris.len() as u64;
         let bytes: u64 = self.pieces.iter().map(|p| p.bytes() as u64).sum();

@@ -21,6 +21,7 @@ use crate::piece::{Piece, depth_difference, edge_line};
 use crate::sides::sides;
 use crate::split::range_over;
 use crate::stats::PainterStats;
+use crate::trace::TraceEvent;
 
 /// One way to split: which piece, along which line, and the triangle whose
 /// plane meets the piece's along that line (counted in
@@ -43,6 +44,12 @@ impl Orderer {
         let attempts = self.attempts((pslot, p), (qslot, q), blocked, &scene.tris);
         for (slot, id, line, plane) in attempts {
             if let Some((a, b)) = self.pieces[id as usize].split_on(line, plane) {
+                let base = self.pieces.len() as u32;
+                self.note(|| TraceEvent::Split {
+                    piece: id,
+                    halves: [base, base + 1],
+                    plane,
+                });
                 let freed = self.replace((slot, id), p, (a, b), scene, stats);
                 if plane.is_some() {
                     stats.plane_splits += 1;
@@ -142,6 +149,7 @@ impl Orderer {
             if hidden {
                 // Never ordered nor painted: only its slot stays.
                 stats.culled += 1;
+                self.note(|| TraceEvent::Culled { piece: half });
                 if self.centres.len() <= half as usize {
                     self.centres.resize(half as usize + 1, Centres::None);
                 }

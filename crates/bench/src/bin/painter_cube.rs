@@ -6,7 +6,7 @@
 //! prints the counters and the growth exponent of the CPU time.
 //!
 //! `cargo run --release -p hider-bench --bin painter_cube -- [first [last]]`
-//! (default: 125 up to 64000).
+//! (default: 125, doubling until a run fails or takes over a minute).
 
 use glam::DVec3;
 use hider_bench::programs::thread_cpu_seconds;
@@ -36,7 +36,7 @@ fn main() -> Result<(), hider_scene::Error> {
         .filter_map(|a| a.parse().ok())
         .collect();
     let first = args.first().copied().unwrap_or(125);
-    let last = args.get(1).copied().unwrap_or(64_000);
+    let last = args.get(1).copied().unwrap_or(1_024_000);
     let size = 512;
     println!(
         "| triangles | CPU s | comparisons | blocked | moves | splits | culled | pieces out | peak MiB | wrong px | exponent (CPU) |"
