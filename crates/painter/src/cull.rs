@@ -15,6 +15,11 @@
 //! raster, since a nearer surface covers every centre of the piece, and
 //! the vector drawing, which it could only have been painted over.
 //!
+//! Only triangles whose material is opaque are occluders, since the SVG
+//! composites translucent ones over what lies behind
+//! ([`crate::PainterOptions::cull_hidden`] turns culling off for callers
+//! that draw the pieces in colours of their own).
+//!
 //! Both bounds are conservative: a depth plane's extremes over a square
 //! are at its corners, each evaluation is widened by a bound on its
 //! rounding, outlines are widened (pieces) or narrowed (occluders) by
@@ -124,9 +129,15 @@ fn over_square(plane: &PlaneEq, side: f64, i: usize, j: usize) -> (f64, f64) {
 }
 
 impl HiZ {
-    /// Builds the occluder depths of `scene`'s triangles, on squares as
-    /// small as [`MAX_SQUARES`] and [`MAX_VISITS`] allow.
-    pub fn build(&mut self, scene: &ScreenScene) {
+    /// Builds the occluder depths of `scene`'s opaque triangles, on
+    /// squares as small as [`MAX_SQUARES`] and [`MAX_VISITS`] allow; with
+    /// `enabled` false, an empty grid that culls nothing.
+    pub fn build(&mut self, scene: &ScreenScene, enabled: bool) {
+        self.any = false;
+        self.occluder.clear();
+        if !enabled {
+            return;
+        }
         self.width = f64::from(scene.viewport.width);
         self.height = f64::from(scene.viewport.height);
         let visits: f64 = scene
@@ -156,7 +167,13 @@ impl HiZ {
         self.occluder.clear();
         self.occluder.resize(self.cols * self.rows, f64::INFINITY);
         self.any = false;
-        for tri in &scene.tris {
+        // A translucent triangle (its material's opacity below 1, or not
+        // a number) shows what lies behind it: it hides nothing.
+        for tri in scene
+            .tris
+            .iter()
+            .filter(|t| scene.material(t.prim).opacity >= 1.0)
+        {
             self.add(tri);
         }
     }
@@ -292,6 +309,37 @@ mod tests {
             0
         );
         assert_eq!(run(&procedural::coplanar_pair(), 48).culled, 0);
+    }
+
+    /// A translucent triangle hides nothing (the SVG composites it over
+    /// what lies behind), and culling can be turned off.
+    #[test]
+    fn translucent_triangles_and_the_option_cull_nothing() {
+        use hider_scene::{Material, Mesh};
+        let mut s = Scene::default();
+        for (t, opacity) in [
+            (tri([0.0, 0.0], 2.0, 0.0), 0.5),
+            (tri([0.0, 0.0], 0.5, -1.0), 1.0),
+        ] {
+            let mesh = Mesh {
+                positions: t.to_vec(),
+                indices: vec![[0, 1, 2]],
+                ..Mesh::default()
+            };
+            let material = Material {
+                opacity,
+                ..Material::default()
+            };
+            s.push_mesh(mesh, Some(material));
+        }
+        assert_eq!(run(&s, 64).culled, 0);
+        let hidden = scene(&[tri([0.0, 0.0], 2.0, 0.0), tri([0.0, 0.0], 0.5, -1.0)]);
+        assert_eq!(run(&hidden, 64).culled, 1);
+        let options = crate::PainterOptions::default().with_cull_hidden(false);
+        let s = screen(&hidden, 64, 64);
+        let (frame, stats) = render(&mut <Painter as hider_scene::Hider>::new(options), &s);
+        assert_eq!(stats.culled, 0);
+        assert_eq!(reference::pixel_centre(&s).ids, frame.ids);
     }
 
     /// B pierces A along x = 0.5; C, nearer than both, covers x < 0.9.

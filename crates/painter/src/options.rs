@@ -141,6 +141,14 @@ pub struct PainterOptions {
     /// (pixels) to hide the hairline seams vector renderers draw between
     /// abutting polygons. 0 (the exact geometry) by default.
     pub svg_seam_stroke: f64,
+    /// Drop pieces hidden at every point of their polygon before ordering
+    /// them (`cull.rs`): behind opaque triangles (material opacity 1)
+    /// that cover every pixel square they meet. On (the default), which
+    /// keeps the raster and the SVG exact and makes deep overlapping
+    /// scenes cost what they show. Turn it off only when drawing the
+    /// pieces in colours of one's own that may be translucent (the scene's
+    /// materials say opaque, but what is behind would show through).
+    pub cull_hidden: bool,
     /// Record every step of the ordering as a [`crate::PainterTrace`]
     /// ([`crate::Painter::trace`]): off by default, and free when off.
     pub trace: bool,
@@ -153,6 +161,7 @@ impl Default for PainterOptions {
             max_bytes: DEFAULT_MAX_BYTES,
             svg_drop_hidden: false,
             svg_seam_stroke: 0.0,
+            cull_hidden: true,
             trace: false,
         }
     }
@@ -175,6 +184,12 @@ impl PainterOptions {
     /// Sets [`Self::svg_drop_hidden`].
     pub fn with_svg_drop_hidden(mut self, drop: bool) -> Self {
         self.svg_drop_hidden = drop;
+        self
+    }
+
+    /// Sets [`Self::cull_hidden`].
+    pub fn with_cull_hidden(mut self, cull: bool) -> Self {
+        self.cull_hidden = cull;
         self
     }
 

@@ -136,7 +136,7 @@ impl Orderer {
             RefCell::new(t)
         });
         self.traced = None;
-        let mut arena = self.start(scene, stats)?;
+        let mut arena = self.start(scene, options, stats)?;
         loop {
             let (cslot, p) = match (self.front.last(), self.sorted.last_key_value()) {
                 (Some(&c), _) => (Slot::Front(self.front.len() - 1), c),
@@ -213,7 +213,12 @@ impl Orderer {
 
     /// Fills the arena with the scene's triangles, sorted and binned, and
     /// returns its size.
-    fn start(&mut self, scene: &ScreenScene, stats: &mut PainterStats) -> Result<Arena> {
+    fn start(
+        &mut self,
+        scene: &ScreenScene,
+        options: &PainterOptions,
+        stats: &mut PainterStats,
+    ) -> Result<Arena> {
         self.pieces.clear();
         self.order.clear();
         self.extents.clear();
@@ -234,7 +239,7 @@ impl Orderer {
             self.pieces.push(Piece::from_tri(tri, k as u32));
         }
         self.extents.extend(self.pieces.iter().map(Extent::of));
-        self.hiz.build(scene);
+        self.hiz.build(scene, options.cull_hidden);
         self.hidden.clear();
         self.hidden
             .extend(self.pieces.iter().map(|p| self.hiz.hides(p)));
