@@ -15,6 +15,7 @@ use crate::centres::{Centres, centre_test};
 use crate::newell::{Blocked, Decided, Extent, Outcome, extents_decide, may_precede_by_planes};
 use crate::order::{At, Orderer, Slot};
 use crate::stats::PainterStats;
+use crate::trace::{TraceEvent, TraceTest};
 
 /// How many entries of the depth-overlapping run are compared one by one
 /// before the bin grid is used for the rest. Closed meshes rarely get
@@ -81,6 +82,11 @@ impl Orderer {
         let q = self.centre_blocker(p, scene)?;
         stats.comparisons += 1;
         stats.blocked += 1;
+        self.note(|| TraceEvent::Test {
+            p,
+            q,
+            test: TraceTest::Blocked,
+        });
         let slot = if self.pieces[q as usize].moved {
             let k = self.front.iter().position(|&f| f == q)?;
             Slot::Front(k)
@@ -165,6 +171,11 @@ impl Orderer {
                     match extents_decide(&pe, qe) {
                         Some(d) => {
                             stats.comparisons += 1;
+                            self.note(|| TraceEvent::Test {
+                                p,
+                                q: b.id,
+                                test: d.into(),
+                            });
                             match d {
                                 Decided::Depth => stats.decided_depth += 1,
                                 Decided::X => stats.decided_x += 1,
@@ -226,6 +237,14 @@ impl Orderer {
                 }
             }
         };
+        self.note(|| TraceEvent::Test {
+            p,
+            q,
+            test: match &outcome {
+                Outcome::Ok(d) => (*d).into(),
+                Outcome::Blocked(_) => TraceTest::Blocked,
+            },
+        });
         match outcome {
             Outcome::Ok(d) => {
                 *match d {

@@ -200,6 +200,10 @@ impl crate::order::Orderer {
         self.centres.clear();
         let mut entries = Vec::new();
         for (k, piece) in self.pieces.iter().enumerate() {
+            if self.hidden[k] {
+                self.centres.push(Centres::None);
+                continue;
+            }
             let c = classify(piece, &scene.tris[piece.source as usize], scene.viewport);
             self.centres.push(c);
             if let Centres::One(i, j, z) = c {

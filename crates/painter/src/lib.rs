@@ -71,6 +71,7 @@
 mod bins;
 mod blocker;
 mod centres;
+mod cull;
 mod naive;
 mod newell;
 mod options;
@@ -83,12 +84,14 @@ mod sides;
 mod split;
 mod stats;
 mod svg;
+mod trace;
 
 pub use naive::NaivePainter;
-pub use options::{NaivePainterOptions, PainterOptions, SortKey};
+pub use options::{NaivePainterOptions, PainterOptions, SPLIT_BUDGET, SortKey};
 pub use painter::Painter;
 pub use piece::{Cut, Piece};
 pub use stats::PainterStats;
+pub use trace::{PainterTrace, TraceEvent, TraceTest};
 
 /// The scene crate this one renders from (scene model, OBJ loading, the
 /// front end, frames, the camera, `glam`), so that one dependency is

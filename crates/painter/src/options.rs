@@ -36,8 +36,29 @@ impl NaivePainterOptions {
     }
 }
 
-/// Default of [`PainterOptions::max_splits`].
+/// Most splits the automatic budget ever allows (a scene of about 62,000
+/// triangles reaches it).
 pub(crate) const DEFAULT_MAX_SPLITS: u64 = 4_000_000;
+
+/// What a refusal of the split budget names ([`hider_scene::Error::Limit`]'s
+/// `what`): the option that sets it, so that a caller can tell this limit
+/// from others by comparing with this constant and word it in its own
+/// terms (a command-line flag, a keyword).
+///
+/// ```
+/// use hider_painter::{Painter, PainterOptions, SPLIT_BUDGET};
+/// use hider_scene::{prepare, procedural, Error, Frame, Hider, PrepareOptions, View};
+///
+/// let scene = procedural::intersecting_pair();
+/// let screen = prepare(&scene, &View::for_scene(&scene, 32, 32)?, &PrepareOptions::default())?;
+/// let mut painter = Painter::new(PainterOptions::default().with_max_splits(0));
+/// match painter.render(&screen, &mut Frame::new(32, 32)?) {
+///     Err(Error::Limit { what, limit, .. }) if what == SPLIT_BUDGET => assert_eq!(limit, 0),
+///     other => panic!("expected the split budget's refusal, got {other:?}"),
+/// }
+/// # Ok::<(), hider_scene::Error>(())
+/// ```
+pub const SPLIT_BUDGET: &str = "painter splits (the split budget, PainterOptions::max_splits)";
 
 /// Splits allowed per input triangle, whatever [`PainterOptions::max_splits`]
 /// says.
@@ -62,13 +83,15 @@ pub(crate) const SPLITS_PER_PAIR: u64 = 8;
 /// cap, which is what stops a degenerate cascade early.
 pub(crate) const SPLITS_PAIRS_UP_TO: u64 = 128;
 
-/// The split budget a scene of `triangles` input triangles gets at most,
-/// whatever [`PainterOptions::max_splits`] says: [`SPLITS_BASE`], plus
+/// The automatic split budget of a scene of `triangles` input triangles
+/// (when [`PainterOptions::max_splits`] is `None`): [`SPLITS_BASE`], plus
 /// [`SPLITS_PER_TRIANGLE`] per triangle, plus [`SPLITS_PER_PAIR`] per pair
-/// among up to [`SPLITS_PAIRS_UP_TO`] of them.
+/// among up to [`SPLITS_PAIRS_UP_TO`] of them, at most
+/// [`DEFAULT_MAX_SPLITS`].
 pub(crate) fn split_cap(triangles: u64) -> u64 {
     let paired = triangles.min(SPLITS_PAIRS_UP_TO);
-    SPLITS_BASE + SPLITS_PER_TRIANGLE * triangles + SPLITS_PER_PAIR * paired * paired
+    (SPLITS_BASE + SPLITS_PER_TRIANGLE * triangles + SPLITS_PER_PAIR * paired * paired)
+        .min(DEFAULT_MAX_SPLITS)
 }
 
 /// Default of [`PainterOptions::max_bytes`]: 1 GiB.
@@ -84,24 +107,27 @@ pub(crate) const DEFAULT_MAX_BYTES: u64 = 1 << 30;
 /// let options = PainterOptions::default()
 ///     .with_max_splits(10_000)
 ///     .with_svg_drop_hidden(true);
-/// assert_eq!(options.max_splits, 10_000);
+/// assert_eq!(options.max_splits, Some(10_000));
 /// assert!(options.svg_drop_hidden);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct PainterOptions {
-    /// Most polygon splits allowed in one frame (default 4,000,000).
-    /// Intersections and cyclic overlaps each cost at least one split;
-    /// when the budget runs out `render` stops with a
-    /// [`hider_scene::Error::Render`] naming it rather than run (or
-    /// allocate) without bound. The budget actually used is also capped,
-    /// for a scene of `n` triangles, at `4096 + 64 n + 8 m^2` with
-    /// `m = min(n, 128)` (a base, an allowance per input triangle and one
-    /// per pair among small scenes; `split_cap` in `options.rs`): real
-    /// scenes need one or two splits per triangle (1.4 on a 10k random
-    /// soup), so a frame past that cap is degenerate input that would
-    /// otherwise split until memory runs out (found by fuzzing).
-    pub max_splits: u64,
+    /// Most polygon splits allowed in one frame. Intersections and cyclic
+    /// overlaps each cost at least one split; when the budget runs out
+    /// `render` stops with a [`hider_scene::Error::Limit`] whose `what` is
+    /// [`SPLIT_BUDGET`] rather than run (or allocate) without bound.
+    ///
+    /// `None` (the default) is an automatic budget for a scene of `n`
+    /// triangles: `4096 + 64 n + 8 m^2` with `m = min(n, 128)`, at most
+    /// 4,000,000 (a base, an allowance per input triangle and one per pair
+    /// among small scenes; `split_cap` in `options.rs`). Real scenes need a
+    /// few splits per triangle once hidden pieces are culled (10 on 500
+    /// random triangles overlapping in a cube, 4.3 on 8,000, 1.4 on a 10k
+    /// random soup), so a frame past that budget is degenerate input that
+    /// would otherwise split until memory runs out (found by fuzzing).
+    /// `Some(k)` allows exactly `k` splits, more or fewer than that.
+    pub max_splits: Option<u64>,
     /// Most bytes the piece arena may hold (default 1 GiB); checked after
     /// every split, the frame stops with [`hider_scene::Error::Limit`]
     /// beyond it.
@@ -115,15 +141,28 @@ pub struct PainterOptions {
     /// (pixels) to hide the hairline seams vector renderers draw between
     /// abutting polygons. 0 (the exact geometry) by default.
     pub svg_seam_stroke: f64,
+    /// Drop pieces hidden at every point of their polygon before ordering
+    /// them (`cull.rs`): behind opaque triangles (material opacity 1)
+    /// that cover every pixel square they meet. On (the default), which
+    /// keeps the raster and the SVG exact and makes deep overlapping
+    /// scenes cost what they show. Turn it off only when drawing the
+    /// pieces in colours of one's own that may be translucent (the scene's
+    /// materials say opaque, but what is behind would show through).
+    pub cull_hidden: bool,
+    /// Record every step of the ordering as a [`crate::PainterTrace`]
+    /// ([`crate::Painter::trace`]): off by default, and free when off.
+    pub trace: bool,
 }
 
 impl Default for PainterOptions {
     fn default() -> Self {
         Self {
-            max_splits: DEFAULT_MAX_SPLITS,
+            max_splits: None,
             max_bytes: DEFAULT_MAX_BYTES,
             svg_drop_hidden: false,
             svg_seam_stroke: 0.0,
+            cull_hidden: true,
+            trace: false,
         }
     }
 }
@@ -135,15 +174,28 @@ impl PainterOptions {
         self
     }
 
-    /// Sets [`Self::max_splits`].
+    /// Sets [`Self::max_splits`] to exactly `max_splits` (no automatic
+    /// budget).
     pub fn with_max_splits(mut self, max_splits: u64) -> Self {
-        self.max_splits = max_splits;
+        self.max_splits = Some(max_splits);
         self
     }
 
     /// Sets [`Self::svg_drop_hidden`].
     pub fn with_svg_drop_hidden(mut self, drop: bool) -> Self {
         self.svg_drop_hidden = drop;
+        self
+    }
+
+    /// Sets [`Self::cull_hidden`].
+    pub fn with_cull_hidden(mut self, cull: bool) -> Self {
+        self.cull_hidden = cull;
+        self
+    }
+
+    /// Sets [`Self::trace`].
+    pub fn with_trace(mut self, trace: bool) -> Self {
+        self.trace = trace;
         self
     }
 

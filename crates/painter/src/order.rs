@@ -35,16 +35,19 @@
 //! full scan. Splitting a pair is in `resolve.rs`; this file holds the list
 //! and the loop.
 
+use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 use hider_scene::{Error, Result, ScreenScene};
 
 use crate::bins::{Grid, Key, depth_bits};
 use crate::centres::{CentreIndex, Centres};
+use crate::cull::HiZ;
 use crate::newell::Extent;
-use crate::options::{PainterOptions, split_cap};
+use crate::options::{PainterOptions, SPLIT_BUDGET, split_cap};
 use crate::piece::Piece;
 use crate::stats::PainterStats;
+use crate::trace::{PainterTrace, TraceEvent};
 
 /// Where a piece sits in the list.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,6 +89,14 @@ pub(crate) struct Orderer {
     pub front: Vec<u32>,
     /// Scratch for the bin query.
     pub near: Vec<(Key, u32)>,
+    /// The occluder depths of the frame's triangles.
+    pub hiz: HiZ,
+    /// Per piece index, whether it was culled (hidden everywhere).
+    pub hidden: Vec<bool>,
+    /// The trace being recorded (only with [`PainterOptions::trace`]).
+    pub tracer: Option<RefCell<PainterTrace>>,
+    /// The trace of the last frame ordered with [`PainterOptions::trace`].
+    pub traced: Option<PainterTrace>,
     /// Entries compared one by one before the grid takes over (tests
     /// only; `None` is the default prefix of the blocker search).
     pub linear_scan: Option<usize>,
@@ -116,8 +127,16 @@ impl Orderer {
         options: &PainterOptions,
         stats: &mut PainterStats,
     ) -> Result<()> {
-        let max_splits = options.max_splits.min(split_cap(scene.tris.len() as u64));
-        let mut arena = self.start(scene, stats)?;
+        let max_splits = options
+            .max_splits
+            .unwrap_or_else(|| split_cap(scene.tris.len() as u64));
+        self.tracer = options.trace.then(|| {
+            let mut t = self.traced.take().unwrap_or_default();
+            t.clear();
+            RefCell::new(t)
+        });
+        self.traced = None;
+        let mut arena = self.start(scene, options, stats)?;
         loop {
             let (cslot, p) = match (self.front.last(), self.sorted.last_key_value()) {
                 (Some(&c), _) => (Slot::Front(self.front.len() - 1), c),
@@ -128,6 +147,7 @@ impl Orderer {
                 self.remove(cslot);
                 self.unindex(p);
                 self.order.push(p);
+                self.note(|| TraceEvent::Painted { piece: p });
                 continue;
             };
             if blocked.reverse_ok() && !self.pieces[q as usize].moved {
@@ -135,17 +155,17 @@ impl Orderer {
                 self.pieces[q as usize].moved = true;
                 self.front.push(q);
                 stats.moves += 1;
+                self.note(|| TraceEvent::Move { piece: q });
                 continue;
             }
+            if self.pieces[q as usize].moved {
+                self.note(|| TraceEvent::CycleBroken { p, q });
+            }
             if stats.plane_splits + stats.line_splits >= max_splits {
-                return Err(Error::Render {
-                    hider: "painter".into(),
-                    message: format!(
-                        "split budget of {max_splits} used up with {} pieces still \
-                         unordered (intersecting or cyclic polygons need more \
-                         splits; raise PainterOptions::max_splits)",
-                        self.front.len() + self.sorted.len()
-                    ),
+                return Err(Error::Limit {
+                    what: SPLIT_BUDGET,
+                    value: max_splits.saturating_add(1),
+                    limit: max_splits,
                 });
             }
             let before = self.pieces.len();
@@ -174,12 +194,31 @@ impl Orderer {
             + self.grid.bytes()
             + (self.front.capacity() + self.order.capacity()) * 4;
         stats.peak_bytes = arena.peak + lists as u64;
+        if let Some(t) = self.tracer.take() {
+            let mut t = t.into_inner();
+            t.order.clone_from(&self.order);
+            t.prims.extend(self.pieces.iter().map(|p| p.prim));
+            self.traced = Some(t);
+        }
         Ok(())
+    }
+
+    /// Records an event when tracing (the closure runs only then).
+    #[inline]
+    pub(crate) fn note(&self, event: impl FnOnce() -> TraceEvent) {
+        if let Some(t) = &self.tracer {
+            t.borrow_mut().events.push(event());
+        }
     }
 
     /// Fills the arena with the scene's triangles, sorted and binned, and
     /// returns its size.
-    fn start(&mut self, scene: &ScreenScene, stats: &mut PainterStats) -> Result<Arena> {
+    fn start(
+        &mut self,
+        scene: &ScreenScene,
+        options: &PainterOptions,
+        stats: &mut PainterStats,
+    ) -> Result<Arena> {
         self.pieces.clear();
         self.order.clear();
         self.extents.clear();
@@ -200,6 +239,14 @@ impl Orderer {
             self.pieces.push(Piece::from_tri(tri, k as u32));
         }
         self.extents.extend(self.pieces.iter().map(Extent::of));
+        self.hiz.build(scene, options.cull_hidden);
+        self.hidden.clear();
+        self.hidden
+            .extend(self.pieces.iter().map(|p| self.hiz.hides(p)));
+        stats.culled = self.hidden.iter().filter(|&&h| h).count() as u64;
+        for (k, _) in self.hidden.iter().enumerate().filter(|(_, h)| **h) {
+            self.note(|| TraceEvent::Culled { piece: k as u32 });
+        }
         self.index_all(scene);
         stats.triangles = scene.tris.len() as u64;
         let bytes: u64 = self.pieces.iter().map(|p| p.bytes() as u64).sum();
@@ -234,6 +281,7 @@ impl Orderer {
             .keys
             .iter()
             .zip(0..)
+            .filter(|&(_, k)| !self.hidden[k as usize])
             .map(|(&key, k)| (key, k))
             .collect();
         self.next_tie = -(self.pieces.len() as i64) - 1;

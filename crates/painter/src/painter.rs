@@ -11,6 +11,7 @@ use crate::piece::Piece;
 use crate::raster::{NO_OWNER, paint, validate};
 use crate::stats::PainterStats;
 use crate::svg::{LastFrame, write_svg};
+use crate::trace::PainterTrace;
 
 /// The painter's algorithm done right: Newell, Newell & Sancha's ordering
 /// tests, moving polygons that must go first, and splitting polygons by
@@ -50,6 +51,15 @@ impl Painter {
         self.orderer.order[..n]
             .iter()
             .map(|&id| &self.orderer.pieces[id as usize])
+    }
+
+    /// What the ordering of the last successful render (or
+    /// [`Self::order`]) did, step by step, when
+    /// [`PainterOptions::trace`] was on; `None` otherwise. Its
+    /// [`PainterTrace::order`] is the drawing order of
+    /// [`Self::ordered_pieces`].
+    pub fn trace(&self) -> Option<&PainterTrace> {
+        self.last.as_ref().and(self.orderer.traced.as_ref())
     }
 
     /// Orders the scene's triangles back to front, splitting where needed,

@@ -14,12 +14,14 @@ use hider_scene::{Error, Result};
 
 use hider_scene::{ScreenScene, ScreenTri};
 
+use crate::centres::Centres;
 use crate::newell::{Blocked, CUT_MARGIN, Extent};
 use crate::order::{At, Orderer, Slot};
 use crate::piece::{Piece, depth_difference, edge_line};
 use crate::sides::sides;
 use crate::split::range_over;
 use crate::stats::PainterStats;
+use crate::trace::TraceEvent;
 
 /// One way to split: which piece, along which line, and the triangle whose
 /// plane meets the piece's along that line (counted in
@@ -42,7 +44,13 @@ impl Orderer {
         let attempts = self.attempts((pslot, p), (qslot, q), blocked, &scene.tris);
         for (slot, id, line, plane) in attempts {
             if let Some((a, b)) = self.pieces[id as usize].split_on(line, plane) {
-                let freed = self.replace((slot, id), p, (a, b), scene);
+                let base = self.pieces.len() as u32;
+                self.note(|| TraceEvent::Split {
+                    piece: id,
+                    halves: [base, base + 1],
+                    plane,
+                });
+                let freed = self.replace((slot, id), p, (a, b), scene, stats);
                 if plane.is_some() {
                     stats.plane_splits += 1;
                 } else {
@@ -114,6 +122,7 @@ impl Orderer {
         p: u32,
         (a, b): (Piece, Piece),
         scene: &ScreenScene,
+        stats: &mut PainterStats,
     ) -> u64 {
         self.remove(slot);
         self.unindex(id);
@@ -134,8 +143,25 @@ impl Orderer {
         self.extents.push(Extent::of(&b));
         self.pieces.push(a);
         self.pieces.push(b);
-        self.index_piece(base, scene);
-        self.index_piece(base + 1, scene);
+        for half in [base, base + 1] {
+            let hidden = self.hiz.hides(&self.pieces[half as usize]);
+            self.hidden.push(hidden);
+            if hidden {
+                // Never ordered nor painted: only its slot stays.
+                stats.culled += 1;
+                self.note(|| TraceEvent::Culled { piece: half });
+                if self.centres.len() <= half as usize {
+                    self.centres.resize(half as usize + 1, Centres::None);
+                }
+                self.centres[half as usize] = Centres::None;
+                let piece = &mut self.pieces[half as usize];
+                piece.polygon = Vec::new();
+                piece.cuts = Vec::new();
+                piece.tags = Vec::new();
+            } else {
+                self.index_piece(half, scene);
+            }
+        }
         // The parent is never painted: free its outline and cuts (its
         // index stays valid, so ids need no remapping).
         let parent = &mut self.pieces[id as usize];
@@ -144,8 +170,11 @@ impl Orderer {
         parent.cuts = Vec::new();
         parent.tags = Vec::new();
         let freed = freed - parent.bytes() as u64;
-        self.insert_sorted(base);
-        self.insert_sorted(base + 1);
+        for half in [base, base + 1] {
+            if !self.hidden[half as usize] {
+                self.insert_sorted(half);
+            }
+        }
         freed
     }
 

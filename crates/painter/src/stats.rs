@@ -44,6 +44,10 @@ hider_scene::hider_stats! {
         /// All splits: [`Self::plane_splits`] plus [`Self::line_splits`],
         /// filled when the ordering ends.
         pub splits: u64 => "splits",
+        /// Pieces dropped before ordering because no point of them can
+        /// show: every pixel square they meet is covered entirely by a
+        /// triangle nearer everywhere on it (`cull.rs`).
+        pub culled: u64 => "culled",
         /// Pieces in the painted list.
         pub pieces_out: u64 => "pieces out",
         /// Pixel writes (painted pixels, overdraw included).
@@ -87,6 +91,7 @@ mod tests {
                 "plane splits",
                 "line splits",
                 "splits",
+                "culled",
                 "pieces out",
                 "pixels painted",
             ]

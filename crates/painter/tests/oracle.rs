@@ -9,7 +9,9 @@
 
 use glam::DVec3;
 use hider_oracle::{DEFAULT_TIE_TOLERANCE, Reference};
-use hider_painter::{NaivePainter, NaivePainterOptions, Painter, PainterOptions, SortKey};
+use hider_painter::{
+    NaivePainter, NaivePainterOptions, Painter, PainterOptions, SPLIT_BUDGET, SortKey,
+};
 use hider_scene::{Error, Frame, Hider, Mesh, Scene, ScreenScene, procedural};
 use hider_testkit::reference;
 use hider_testkit::score::Score;
@@ -160,10 +162,15 @@ fn exhausted_split_budget_is_a_clear_error() {
     let mut p = Painter::new(PainterOptions::default().with_max_splits(0));
     let mut f = Frame::new(32, 32).unwrap();
     let err = p.render(&s, &mut f).unwrap_err();
-    assert!(matches!(err, Error::Render { .. }));
+    // Typed: the limit, its value and the option that sets it, so that
+    // the CLI and Python can word it with their own flag and keyword.
+    assert!(
+        matches!(err, Error::Limit { what, value: 1, limit: 0 } if what == SPLIT_BUDGET),
+        "{err:?}"
+    );
     let msg = err.to_string();
     assert!(
-        msg.contains("split budget of 0") && msg.contains("max_splits"),
+        msg.contains("split budget") && msg.contains("PainterOptions::max_splits"),
         "{msg}"
     );
     // Scenes that need no split still render with no budget at all.
