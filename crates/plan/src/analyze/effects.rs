@@ -49,6 +49,31 @@ pub struct AnalysisTimes {
     pub total_ms: f64,
 }
 
+/// The work of the two searches over pairs, in pairs: what grows with the
+/// scene's overlaps (the pairs the bins list) and what the exact tests
+/// cost. Tests that guard against quadratic growth read these, not times.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AnalysisWork {
+    /// Pairs the intersection grid listed (two triangles in one cell).
+    pub intersection_candidates: u64,
+    /// Exact triangle–triangle tests run (pairs whose boxes meet).
+    pub intersection_tests: u64,
+    /// Pairs the screen tiles listed (two triangles in one tile).
+    pub overlap_candidates: u64,
+    /// Pairs whose screen boxes meet, tested for overlap exactly.
+    pub overlap_tests: u64,
+}
+
+impl AnalysisWork {
+    /// Every pair listed or tested, both searches.
+    pub fn total(&self) -> u64 {
+        self.intersection_candidates
+            + self.intersection_tests
+            + self.overlap_candidates
+            + self.overlap_tests
+    }
+}
+
 /// The effects a scene calls for under given
 /// [`RenderOptions`](super::RenderOptions).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -92,6 +117,9 @@ pub struct Effects {
     pub depth_ratio: f64,
     /// Time spent.
     pub times: AnalysisTimes,
+    /// Pairs listed and tested by the searches over pairs (zero when they
+    /// did not run).
+    pub work: AnalysisWork,
 }
 
 impl Effects {

@@ -41,7 +41,7 @@ use std::time::Instant;
 use hider_geom::Projection;
 use hider_scene::{Scene, ScreenScene, ScreenTri, View, prepare};
 
-pub use effects::{AnalysisTimes, Effects, Evidence};
+pub use effects::{AnalysisTimes, AnalysisWork, Effects, Evidence};
 pub use options::{DEFAULT_PAIR_BUDGET, RenderOptions};
 
 use crate::error::Result;
@@ -144,6 +144,8 @@ fn pair_searches(
     let t0 = Instant::now();
     let crossings = search::intersections(scene, in_view, options.pair_budget, ex);
     fx.times.intersections_ms = ms(t0);
+    fx.work.intersection_candidates = crossings.candidates;
+    fx.work.intersection_tests = crossings.tests;
     fx.intersections = crossings.intersections;
     fx.coplanar_overlaps = crossings.coplanar;
 
@@ -168,6 +170,8 @@ fn pair_searches(
         ex,
     );
     fx.times.overlaps_ms = ms(t1);
+    fx.work.overlap_candidates = order.candidates;
+    fx.work.overlap_tests = order.tests;
     fx.cyclic_overlap = order.cyclic;
     fx.naive_order_violations = order.naive_violations;
 }
