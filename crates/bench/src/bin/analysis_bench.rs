@@ -133,9 +133,10 @@ fn planner_cost() {
         let config = HiderConfig::default().with_threads(1);
         let render = |prepare: &PrepareOptions| {
             let mut hider = planned.plan.build(&config).unwrap();
-            let mut screen = ScreenScene::empty(&planned.view);
             let mut frame = Frame::new(size, size).unwrap();
             cpu_ms(3, || {
+                // A fresh screen scene each time: a prepared one is reused.
+                let mut screen = ScreenScene::empty(&planned.view);
                 hider
                     .render_scene(&scene, &planned.view, prepare, &mut screen, &mut frame)
                     .unwrap();

@@ -80,6 +80,8 @@ impl AnalysisWork {
 pub struct Effects {
     /// Triangles in the scene.
     pub triangles: u64,
+    /// Pixels of the image asked for (width x height).
+    pub pixels: u64,
     /// Screen triangles after the front end (for a raster plan that
     /// needs no prepared scene, the triangles a frustum test keeps: an
     /// upper bound).

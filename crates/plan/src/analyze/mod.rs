@@ -78,6 +78,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
     let in_view = evidence::InView::of(&screen);
     let mut fx = Effects {
         triangles: scene.triangle_count() as u64,
+        pixels: u64::from(options.width) * u64::from(options.height),
         on_screen: screen.tris.len() as u64,
         ordered_polygons: options.ordered_polygons,
         depth_ratio: depth_ratio(&view, &screen, &in_view),
@@ -88,9 +89,15 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         ..Effects::default()
     };
 
-    fx.back_faces = evidence::back_faces(scene, &view, &screen, ex);
-    fx.cull_back_faces_exact =
-        !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
+    if raster_only(options) && !crate::planner::culling_pays(fx.triangles, fx.pixels) {
+        // The plan will not cull (see `culling_pays`): the proof would be
+        // paid for nothing.
+        fx.back_faces = back_faces_not_examined(fx.triangles, fx.pixels);
+    } else {
+        fx.back_faces = evidence::back_faces(scene, &view, &screen, ex);
+        fx.cull_back_faces_exact =
+            !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
+    }
     if options.pair_searches || options.ordered_polygons {
         pair_searches(scene, &screen, &in_view, options, &mut fx);
     } else {
@@ -112,6 +119,27 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         view,
         screen,
     })
+}
+
+/// Whether only a raster plan is asked and nothing reads the pair
+/// searches (what `hider render` asks without the painter's SVG).
+fn raster_only(options: &RenderOptions) -> bool {
+    !options.pair_searches && !options.ordered_polygons
+}
+
+/// The back-face evidence of a raster plan whose triangles are too small
+/// on screen for culling to pay: not examined, so not ruled out.
+fn back_faces_not_examined(triangles: u64, pixels: u64) -> Evidence {
+    Evidence {
+        present: true,
+        certain: false,
+        detail: format!(
+            "not counted: {triangles} triangles over {pixels} pixels, fewer than {} pixels \
+             each, so culling would save less than proving back faces hidden costs",
+            crate::planner::MIN_PIXELS_PER_TRIANGLE_TO_CULL
+        ),
+        ..Evidence::default()
+    }
 }
 
 /// The effects and view a plan needs: [`analyze_prepared`]'s, or, for a

@@ -19,7 +19,8 @@
 //!
 //! On top of the hider, back faces are culled in the front end when the
 //! analysis proved them hidden (closed, outward, uncut meshes and no
-//! transparency), and only the colour stages the scene needs run
+//! transparency) and, for a raster image, the triangles are large enough
+//! on screen for the proof to pay ([`culling_pays`]), and only the colour stages the scene needs run
 //! ([`Effects::stages`]).
 //!
 //! A plan is options, nothing else: the caller builds the hider
@@ -35,7 +36,7 @@ mod tests;
 
 use hider_scene::{DynHider, PrepareOptions, Scene, Stages, View};
 
-pub use rules::MAX_F32_DEPTH_RATIO;
+pub use rules::{MAX_F32_DEPTH_RATIO, MIN_PIXELS_PER_TRIANGLE_TO_CULL, culling_pays};
 
 use crate::analyze::{Effects, RenderOptions, analyze_for_plan};
 use crate::config::HiderConfig;
@@ -190,6 +191,7 @@ pub fn plan(effects: &Effects) -> Plan {
 pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
     let mut picker = rules::Picker::new(available);
     let vector = picker.vector(effects);
+    let ordered = vector.is_some();
     if vector.is_some() && effects.antialiasing.present {
         // The ordered-polygons rule wins; the painters draw the raster image one
         // sample per pixel.
@@ -210,9 +212,13 @@ pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
             "edges anti-aliased ({algo} samples coverage; not asked for)"
         ));
     }
+    // A raster render culls only where the proof pays (the analysis for
+    // a render skips it otherwise; `hider analyze` still reports it).
+    let cull = effects.cull_back_faces_exact
+        && (ordered || culling_pays(effects.triangles, effects.pixels));
     Plan {
         algo,
-        cull_back_faces: effects.cull_back_faces_exact,
+        cull_back_faces: cull,
         stages: effects.stages(),
         reason,
         notes: picker.notes,

@@ -41,7 +41,16 @@ fn opaque_scene_without_aa_gets_the_one_sample_zbuffer() {
     );
     let p = plan_among(&effects, ALL);
     assert_eq!(p.algo, "zbuffer-tiled");
-    assert!(p.cull_back_faces, "a closed sphere hides its back faces");
+    // 480 triangles on 48 x 48 pixels: too small for culling to pay.
+    assert!(!p.cull_back_faces);
+    let coarse = plan_among(
+        &fx(&procedural::uv_sphere(4), RenderOptions::default()),
+        ALL,
+    );
+    assert!(
+        coarse.cull_back_faces,
+        "a closed sphere hides its back faces"
+    );
     assert_eq!(
         p.stages,
         Stages {
@@ -289,4 +298,42 @@ fn the_pair_searches_decide_only_vector_plans() {
     .unwrap();
     assert!(fx.cyclic_overlap.present && !fx.cyclic_overlap.certain);
     assert!(fx.cyclic_overlap.detail.contains("not searched"), "{fx}");
+}
+
+#[test]
+fn a_raster_plan_culls_only_where_the_proof_pays() {
+    // uv_sphere(16): 480 triangles, closed and outward. At 512 x 512 each
+    // has 546 pixels: culled. At 128 x 128, 34: proving it would cost
+    // more than culling saves, so the render analysis does not even look,
+    // while `hider analyze` (pair searches on) still reports the proof.
+    let sphere = procedural::uv_sphere(16);
+    let at = |side: u32| RenderOptions::default().with_size(side, side);
+    assert!(culling_pays(480, 512 * 512) && !culling_pays(480, 128 * 128));
+    assert!(
+        auto(&sphere, &at(512).with_pair_searches(false))
+            .unwrap()
+            .plan
+            .cull_back_faces
+    );
+    let small = auto(&sphere, &at(128).with_pair_searches(false)).unwrap();
+    assert!(!small.plan.cull_back_faces);
+    assert!(
+        small
+            .effects
+            .back_faces
+            .detail
+            .contains("culling would save less"),
+        "{}",
+        small.effects.back_faces.detail
+    );
+    let reported = analyze(&sphere, &at(128)).unwrap();
+    assert!(
+        reported.cull_back_faces_exact,
+        "{}",
+        reported.back_faces.detail
+    );
+    assert!(!plan(&reported).cull_back_faces);
+    // The painter's ordered polygons cull whenever it is exact.
+    let vector = analyze(&sphere, &at(128).with_ordered_polygons(true)).unwrap();
+    assert!(plan(&vector).cull_back_faces);
 }
