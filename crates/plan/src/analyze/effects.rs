@@ -117,6 +117,11 @@ pub struct Effects {
     /// buffer resolves relative view distances of about `2^-24` times
     /// this at that corner.
     pub depth_ratio: f64,
+    /// Splits the painter's ordered polygons need at least for the
+    /// interpenetrating pairs found (0 when the search did not run):
+    /// a conservative bound ([`super::splits`]) the planner compares with
+    /// the painter's split budget.
+    pub painter_splits_at_least: u64,
     /// Time spent.
     pub times: AnalysisTimes,
     /// Pairs listed and tested by the searches over pairs (zero when they

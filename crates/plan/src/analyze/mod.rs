@@ -35,6 +35,7 @@ pub mod predicates;
 mod quick;
 mod report;
 mod search;
+pub mod splits;
 
 use std::time::Instant;
 
@@ -174,6 +175,7 @@ fn pair_searches(
     fx.times.intersections_ms = ms(t0);
     fx.work.intersection_candidates = crossings.candidates;
     fx.work.intersection_tests = crossings.tests;
+    fx.painter_splits_at_least = crossings.painter_splits_at_least;
     fx.intersections = crossings.intersections;
     fx.coplanar_overlaps = crossings.coplanar;
 

@@ -8,7 +8,7 @@ use hider_scene::{Scene, ScreenTri};
 
 use super::effects::Evidence;
 use super::evidence::InView;
-use super::{intersect, overlap};
+use super::{intersect, overlap, splits};
 
 /// What the intersection search found.
 pub(crate) struct Crossings {
@@ -23,6 +23,9 @@ pub(crate) struct Crossings {
     pub(crate) candidates: u64,
     /// Exact tests run.
     pub(crate) tests: u64,
+    /// Splits the painter needs at least for the pairs found
+    /// ([`splits::painter_splits_at_least`]).
+    pub(crate) painter_splits_at_least: u64,
 }
 
 /// A symmetric set of primitive pairs as sorted partner lists per
@@ -130,6 +133,7 @@ pub(crate) fn intersections(scene: &Scene, in_view: &InView, budget: u64, ex: us
         crossing,
         candidates: pairs.candidates,
         tests: pairs.tests,
+        painter_splits_at_least: splits::painter_splits_at_least(&world, &pairs.interpenetrating),
     }
 }
 

@@ -153,6 +153,7 @@ impl Planned {
 pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
     let (effects, view) = analyze_for_plan(scene, options)?;
     let plan = plan(&effects);
+    check_painter_budget(&plan, &effects)?;
     Ok(Planned {
         effects,
         prepare: plan.prepare_options(options.prepare),
@@ -160,6 +161,36 @@ pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
         view,
         requested: options.requested(),
     })
+}
+
+/// The split budget the painter (`hider_painter::Painter`, default
+/// options) has for a scene of `triangles` triangles: its
+/// [`max_splits`](hider_painter::PainterOptions::max_splits), capped as
+/// that field's documentation states at `4096 + 64 n + 8 m^2`,
+/// `m = min(n, 128)`.
+pub fn painter_split_budget(triangles: u64) -> u64 {
+    let paired = triangles.min(128);
+    let cap = 4096 + 64 * triangles + 8 * paired * paired;
+    hider_painter::PainterOptions::default().max_splits.min(cap)
+}
+
+/// Refuses a plan that picks the painter when the analysis predicts it
+/// will exceed its split budget ([`PlanError::PainterBudget`]): better at
+/// once than after minutes of splitting.
+pub fn check_painter_budget(plan: &Plan, effects: &Effects) -> Result<()> {
+    if plan.algo != "painter" {
+        return Ok(());
+    }
+    let budget = painter_split_budget(effects.on_screen);
+    if effects.painter_splits_at_least > budget {
+        return Err(crate::PlanError::PainterBudget {
+            needed: effects.painter_splits_at_least,
+            pairs: effects.intersections.count,
+            budget,
+            triangles: effects.on_screen,
+        });
+    }
+    Ok(())
 }
 
 /// Checks the knobs of `config` that `--algo auto` can honour: threads and

@@ -337,3 +337,24 @@ fn a_raster_plan_culls_only_where_the_proof_pays() {
     let vector = analyze(&sphere, &at(128).with_ordered_polygons(true)).unwrap();
     assert!(plan(&vector).cull_back_faces);
 }
+
+#[test]
+fn the_painter_is_refused_up_front_when_its_budget_cannot_hold() {
+    let vector = RenderOptions::default().with_ordered_polygons(true);
+    // One crossing pair: a split or two, far within the budget.
+    let one = auto(&procedural::intersecting_pair(), &vector.with_size(48, 48)).unwrap();
+    assert_eq!(one.plan.algo, "painter");
+    assert_eq!(one.effects.painter_splits_at_least, 1);
+    // The prediction against the budget, in one place.
+    let mut effects = one.effects.clone();
+    effects.on_screen = 2000;
+    effects.painter_splits_at_least = painter_split_budget(2000) + 1;
+    let refused = check_painter_budget(&one.plan, &effects).unwrap_err();
+    let line = refused.to_string();
+    assert!(matches!(refused, PlanError::PainterBudget { .. }), "{line}");
+    assert!(line.contains("PainterOptions::max_splits"), "{line}");
+    effects.painter_splits_at_least -= 1;
+    assert!(check_painter_budget(&one.plan, &effects).is_ok());
+    assert_eq!(painter_split_budget(0), 4096);
+    assert_eq!(painter_split_budget(2000), 4096 + 128_000 + 131_072);
+}
