@@ -60,6 +60,7 @@ fn planner_overhead() {
         ("gen:soup:100000", 1024),
         ("gen:sphere:300", 1024),
         ("gen:sphere:1000", 2048),
+        ("gen:sphere:708", 1024),
     ] {
         let (mut auto, mut tiled) = (Vec::new(), Vec::new());
         for _ in 0..runs {

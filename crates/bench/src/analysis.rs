@@ -2,7 +2,46 @@
 //! pixels it covers and how many surfaces lie over each (depth complexity),
 //! the quantities Sutherland, Sproull & Schumacker (1974) express costs in.
 
-use hider_scene::ScreenScene;
+use glam::DVec3;
+use hider_scene::procedural::SplitMix64;
+use hider_scene::{Mesh, Scene, ScreenScene};
+
+/// `count` random triangles overlapping in the cube `[-1, 1]^3`: each has
+/// a centre uniform in the cube and corners `centre + reach (q - centre)`
+/// for points `q` uniform in the cube. With `reach = 1` the corners are
+/// uniform in the cube (the second outside tester's "random triangles in
+/// a cube", where most pairs overlap on screen and a good share cross);
+/// with `reach = k / sqrt(count)` the triangles shrink as they multiply,
+/// so the pairs that overlap on screen grow linearly with `count` (the
+/// family on which the analysis's work must grow linearly too).
+pub fn overlapping_triangles(count: u32, reach: f64, seed: u64) -> Scene {
+    let mut rng = SplitMix64::new(seed);
+    let mut point = || {
+        DVec3::new(
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+            rng.range(-1.0, 1.0),
+        )
+    };
+    let mut positions = Vec::with_capacity(count as usize * 3);
+    for _ in 0..count {
+        let centre = point();
+        for _ in 0..3 {
+            positions.push(centre + (point() - centre) * reach);
+        }
+    }
+    let mut scene = Scene::default();
+    scene.push_mesh(
+        Mesh {
+            name: format!("overlapping_{count}_{reach}"),
+            positions,
+            indices: (0..count).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect(),
+            ..Mesh::default()
+        },
+        None,
+    );
+    scene
+}
 
 /// The size of the visibility problem a [`ScreenScene`] poses.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -58,8 +97,58 @@ pub fn analyse(scene: &ScreenScene) -> SceneAnalysis {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use hider_plan::{AnalysisWork, RenderOptions, analyze};
     use hider_scene::procedural;
     use hider_testkit::screen;
+
+    /// The analysis's pair work on `overlapping_triangles(count, reach)`
+    /// at 256 x 256.
+    fn work(count: u32, reach: f64) -> AnalysisWork {
+        let scene = overlapping_triangles(count, reach, 7);
+        let options = RenderOptions::default().with_size(256, 256);
+        let fx = analyze(&scene, &options).unwrap();
+        assert!(fx.intersections.certain && fx.cyclic_overlap.certain);
+        fx.work
+    }
+
+    #[test]
+    fn analysis_work_grows_linearly_when_the_overlaps_do() {
+        // Triangles shrinking as 1/sqrt(N): overlapping pairs grow as N,
+        // and so must the pairs the searches list and test (a return to
+        // all pairs, or to bins each listing most of the scene, at least
+        // quadruples per doubling).
+        let w: Vec<AnalysisWork> = [500, 1000, 2000, 4000]
+            .iter()
+            .map(|&n| work(n, 3.0 / f64::from(n).sqrt()))
+            .collect();
+        for pair in w.windows(2) {
+            let growth = pair[1].total() as f64 / pair[0].total() as f64;
+            assert!(
+                growth < 3.0,
+                "doubling N multiplied the pair work by {growth:.2}: {:?} -> {:?}",
+                pair[0],
+                pair[1]
+            );
+        }
+        assert!(w[0].overlap_tests > 500, "the family overlaps: {:?}", w[0]);
+    }
+
+    #[test]
+    fn bins_list_few_pairs_beyond_those_whose_boxes_meet() {
+        // Corners uniform in the cube: nearly every pair's boxes meet.
+        // Bins of about one triangle each made every large triangle sit in
+        // hundreds of them, listing each pair hundreds of times (work
+        // growing as N^3: 2,000 such triangles took 5 s); coarser bins
+        // list each pair a few times at most.
+        for n in [200, 400] {
+            let w = work(n, 1.0);
+            let all = u64::from(n) * u64::from(n - 1) / 2;
+            assert!(
+                w.intersection_candidates <= 8 * all && w.overlap_candidates <= 8 * all,
+                "{n} triangles, {all} pairs: {w:?}"
+            );
+        }
+    }
 
     #[test]
     fn a_convex_closed_mesh_has_depth_complexity_two() {

@@ -71,6 +71,29 @@ pub enum PlanError {
         /// The hiders that take it, sorted by name.
         takers: Vec<AlgoName>,
     },
+    /// Ordered polygons were asked, and the analysis predicts that the
+    /// painter would run out of its split budget
+    /// ([`hider_painter::PainterOptions::max_splits`], capped per triangle)
+    /// before ordering them: refused before it runs.
+    #[error(
+        "ordered polygons refused: the painter needs at least {needed} splits for the \
+         {pairs} interpenetrating pairs in view, over its split budget of {budget} for \
+         {triangles} triangles (PainterOptions::max_splits, capped at 4096 + 64 per \
+         triangle); ask for the exact visible regions or a raster image instead, which need \
+         no splits"
+    )]
+    PainterBudget {
+        /// The conservative prediction
+        /// ([`Effects::painter_splits_at_least`](crate::Effects::painter_splits_at_least)).
+        needed: u64,
+        /// The interpenetrating pairs found.
+        pairs: u64,
+        /// The split budget the painter would have
+        /// ([`painter_split_budget`](crate::planner::painter_split_budget)).
+        budget: u64,
+        /// Triangles in view.
+        triangles: u64,
+    },
     /// The scene crate's error (loading, preparing, analysing, rendering).
     #[error(transparent)]
     Scene(#[from] hider_scene::Error),

@@ -53,7 +53,9 @@ pub mod planner;
 pub mod registry;
 
 pub use algo::AlgoName;
-pub use analyze::{Analysis, Effects, Evidence, RenderOptions, analyze, analyze_prepared};
+pub use analyze::{
+    Analysis, AnalysisWork, Effects, Evidence, RenderOptions, analyze, analyze_prepared,
+};
 pub use config::HiderConfig;
 pub use error::{Knob, PlanError, Result, error_line};
 pub use planner::{Plan, Planned, auto, plan};

@@ -49,12 +49,39 @@ pub struct AnalysisTimes {
     pub total_ms: f64,
 }
 
+/// The work of the two searches over pairs, in pairs: what grows with the
+/// scene's overlaps (the pairs the bins list) and what the exact tests
+/// cost. Tests that guard against quadratic growth read these, not times.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct AnalysisWork {
+    /// Pairs the intersection grid listed (two triangles in one cell).
+    pub intersection_candidates: u64,
+    /// Exact triangle–triangle tests run (pairs whose boxes meet).
+    pub intersection_tests: u64,
+    /// Pairs the screen tiles listed (two triangles in one tile).
+    pub overlap_candidates: u64,
+    /// Pairs whose screen boxes meet, tested for overlap exactly.
+    pub overlap_tests: u64,
+}
+
+impl AnalysisWork {
+    /// Every pair listed or tested, both searches.
+    pub fn total(&self) -> u64 {
+        self.intersection_candidates
+            + self.intersection_tests
+            + self.overlap_candidates
+            + self.overlap_tests
+    }
+}
+
 /// The effects a scene calls for under given
 /// [`RenderOptions`](super::RenderOptions).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Effects {
     /// Triangles in the scene.
     pub triangles: u64,
+    /// Pixels of the image asked for (width x height).
+    pub pixels: u64,
     /// Screen triangles after the front end (for a raster plan that
     /// needs no prepared scene, the triangles a frustum test keeps: an
     /// upper bound).
@@ -90,8 +117,16 @@ pub struct Effects {
     /// buffer resolves relative view distances of about `2^-24` times
     /// this at that corner.
     pub depth_ratio: f64,
+    /// Splits the painter's ordered polygons need at least for the
+    /// interpenetrating pairs found (0 when the search did not run):
+    /// a conservative bound ([`super::splits`]) the planner compares with
+    /// the painter's split budget.
+    pub painter_splits_at_least: u64,
     /// Time spent.
     pub times: AnalysisTimes,
+    /// Pairs listed and tested by the searches over pairs (zero when they
+    /// did not run).
+    pub work: AnalysisWork,
 }
 
 impl Effects {

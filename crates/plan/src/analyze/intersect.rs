@@ -30,7 +30,13 @@
 //! Candidate pairs come from a uniform grid over the scene's bounds with
 //! about one cell per triangle; a pair is tested only in the first cell
 //! its bounding boxes share, so no pair is tested twice and no set of
-//! tested pairs is kept.
+//! tested pairs is kept. Large triangles would each fill a great many such
+//! cells, and every cell would list most of the scene again, which made
+//! the pairs enumerated grow as the cube of the triangles (1,000 random
+//! triangles across a cube: 0.5 s, 2,000: 3 s); so the cells grow until
+//! the triangles cover at most [`MAX_CELLS_PER_TRIANGLE`] cells each on
+//! average, and the enumeration stays within a small factor of the pairs
+//! whose boxes meet.
 
 use glam::DVec3;
 
@@ -46,6 +52,12 @@ pub const OVERLAP_TOLERANCE: f64 = 1e-12;
 /// oracle's tie tolerance; a 2-unit pair 10^-6 apart ties, 10^-2 apart
 /// is ordered.
 pub const COPLANAR_TOLERANCE: f64 = 1e-5;
+
+/// Most grid cells (or screen tiles) a triangle covers on average: the
+/// bins grow until the triangles' bounding boxes cover no more, so a pair
+/// of large triangles is listed together in a few bins, not in thousands
+/// (see the module documentation).
+pub const MAX_CELLS_PER_TRIANGLE: u64 = 8;
 
 /// How two triangles meet.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -187,6 +199,9 @@ pub struct PairSearch {
     pub coplanar: Vec<(u32, u32)>,
     /// Exact triangle–triangle tests run (after the bounding-box check).
     pub tests: u64,
+    /// Candidate pairs listed by the grid (two triangles in one cell),
+    /// before the bounding-box check: the enumeration's work.
+    pub candidates: u64,
     /// Whether every candidate pair was tested (false when the budget ran
     /// out).
     pub complete: bool,
@@ -209,7 +224,7 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64) -> PairSearch {
         .collect();
     let lo = boxes.iter().fold(DVec3::INFINITY, |m, b| m.min(b.0));
     let hi = boxes.iter().fold(DVec3::NEG_INFINITY, |m, b| m.max(b.1));
-    let grid = Grid::new(lo, hi, tris.len());
+    let grid = Grid::new(lo, hi, &boxes);
     // Cell lists in one flat array (counting sort): cell c holds
     // items[start[c]..start[c + 1]].
     let cells = grid.cell_count();
@@ -234,6 +249,7 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64) -> PairSearch {
             let ba = boxes[ka as usize];
             for &kb in &list[i + 1..] {
                 let bb = boxes[kb as usize];
+                out.candidates += 1;
                 let both = (ba.0.max(bb.0), ba.1.min(bb.1));
                 if both.0.cmpgt(both.1).any() || grid.cell_of(both.0) != c {
                     continue;
@@ -264,9 +280,11 @@ struct Grid {
 }
 
 impl Grid {
-    /// About `n` cells over `[lo, hi]`, cube-ish cells (flat boxes get one
-    /// layer along their thin axis).
-    fn new(lo: DVec3, hi: DVec3, n: usize) -> Self {
+    /// About one cell per box over `[lo, hi]`, cube-ish cells (flat boxes
+    /// get one layer along their thin axis), coarser until `boxes` cover
+    /// at most [`MAX_CELLS_PER_TRIANGLE`] cells each on average.
+    fn new(lo: DVec3, hi: DVec3, boxes: &[(DVec3, DVec3)]) -> Self {
+        let n = boxes.len();
         let size = (hi - lo).max(DVec3::splat(1e-300));
         let volume_side = (size.x * size.y * size.z / n.max(1) as f64).cbrt();
         // Flat scenes (a plane, a single layer) have zero volume: fall back
@@ -278,14 +296,25 @@ impl Grid {
         // At most ~4 cells per triangle and 2^22 in all, so the cell table
         // stays small next to the triangles themselves.
         let cap = (4 * n.max(1)).min(1 << 22) as f64;
-        let dims = loop {
-            let dims =
-                [size.x, size.y, size.z].map(|s| ((s / cell).ceil() as usize).clamp(1, 1024));
+        let dims_for = |cell: f64| {
+            [size.x, size.y, size.z].map(|s| ((s / cell).ceil() as usize).clamp(1, 1024))
+        };
+        let mut grid = loop {
+            let dims = dims_for(cell);
             if (dims[0] * dims[1] * dims[2]) as f64 <= cap {
-                break dims;
+                break Self::with_dims(lo, size, dims);
             }
             cell *= 1.25;
         };
+        let most = MAX_CELLS_PER_TRIANGLE.saturating_mul(n as u64);
+        while grid.cell_count() > 1 && grid.covered(boxes) > most {
+            cell *= 1.25;
+            grid = Self::with_dims(lo, size, dims_for(cell));
+        }
+        grid
+    }
+
+    fn with_dims(lo: DVec3, size: DVec3, dims: [usize; 3]) -> Self {
         Self {
             lo,
             inv_cell: DVec3::new(
@@ -295,6 +324,17 @@ impl Grid {
             ),
             dims,
         }
+    }
+
+    /// The cells `boxes` cover, summed (without listing them).
+    fn covered(&self, boxes: &[(DVec3, DVec3)]) -> u64 {
+        boxes
+            .iter()
+            .map(|b| {
+                let (a, c) = (self.coords(b.0), self.coords(b.1));
+                (0..3).map(|k| (c[k] - a[k] + 1) as u64).product::<u64>()
+            })
+            .sum()
     }
 
     fn cell_count(&self) -> usize {

@@ -35,13 +35,14 @@ pub mod predicates;
 mod quick;
 mod report;
 mod search;
+pub mod splits;
 
 use std::time::Instant;
 
 use hider_geom::Projection;
 use hider_scene::{Scene, ScreenScene, ScreenTri, View, prepare};
 
-pub use effects::{AnalysisTimes, Effects, Evidence};
+pub use effects::{AnalysisTimes, AnalysisWork, Effects, Evidence};
 pub use options::{DEFAULT_PAIR_BUDGET, RenderOptions};
 
 use crate::error::Result;
@@ -78,6 +79,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
     let in_view = evidence::InView::of(&screen);
     let mut fx = Effects {
         triangles: scene.triangle_count() as u64,
+        pixels: u64::from(options.width) * u64::from(options.height),
         on_screen: screen.tris.len() as u64,
         ordered_polygons: options.ordered_polygons,
         depth_ratio: depth_ratio(&view, &screen, &in_view),
@@ -88,9 +90,15 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         ..Effects::default()
     };
 
-    fx.back_faces = evidence::back_faces(scene, &view, &screen, ex);
-    fx.cull_back_faces_exact =
-        !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
+    if raster_only(options) && !crate::planner::culling_pays(fx.triangles, fx.pixels) {
+        // The plan will not cull (see `culling_pays`): the proof would be
+        // paid for nothing.
+        fx.back_faces = back_faces_not_examined(fx.triangles, fx.pixels);
+    } else {
+        fx.back_faces = evidence::back_faces(scene, &view, &screen, ex);
+        fx.cull_back_faces_exact =
+            !fx.back_faces.present && fx.back_faces.count > 0 && !fx.transparency.present;
+    }
     if options.pair_searches || options.ordered_polygons {
         pair_searches(scene, &screen, &in_view, options, &mut fx);
     } else {
@@ -112,6 +120,27 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         view,
         screen,
     })
+}
+
+/// Whether only a raster plan is asked and nothing reads the pair
+/// searches (what `hider render` asks without the painter's SVG).
+fn raster_only(options: &RenderOptions) -> bool {
+    !options.pair_searches && !options.ordered_polygons
+}
+
+/// The back-face evidence of a raster plan whose triangles are too small
+/// on screen for culling to pay: not examined, so not ruled out.
+fn back_faces_not_examined(triangles: u64, pixels: u64) -> Evidence {
+    Evidence {
+        present: true,
+        certain: false,
+        detail: format!(
+            "not counted: {triangles} triangles over {pixels} pixels, fewer than {} pixels \
+             each, so culling would save less than proving back faces hidden costs",
+            crate::planner::MIN_PIXELS_PER_TRIANGLE_TO_CULL
+        ),
+        ..Evidence::default()
+    }
 }
 
 /// The effects and view a plan needs: [`analyze_prepared`]'s, or, for a
@@ -144,6 +173,9 @@ fn pair_searches(
     let t0 = Instant::now();
     let crossings = search::intersections(scene, in_view, options.pair_budget, ex);
     fx.times.intersections_ms = ms(t0);
+    fx.work.intersection_candidates = crossings.candidates;
+    fx.work.intersection_tests = crossings.tests;
+    fx.painter_splits_at_least = crossings.painter_splits_at_least;
     fx.intersections = crossings.intersections;
     fx.coplanar_overlaps = crossings.coplanar;
 
@@ -168,6 +200,8 @@ fn pair_searches(
         ex,
     );
     fx.times.overlaps_ms = ms(t1);
+    fx.work.overlap_candidates = order.candidates;
+    fx.work.overlap_tests = order.tests;
     fx.cyclic_overlap = order.cyclic;
     fx.naive_order_violations = order.naive_violations;
 }

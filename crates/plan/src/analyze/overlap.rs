@@ -25,6 +25,8 @@ use hider_geom::{FixedPt, Viewport, orient2d};
 
 use hider_scene::ScreenTri;
 
+use super::intersect::MAX_CELLS_PER_TRIANGLE;
+
 /// Window depths closer than this at the test point are a tie, not an
 /// order.
 const DEPTH_TIE: f64 = 1e-12;
@@ -50,6 +52,12 @@ pub struct OverlapGraph {
     pub naive_violations: u64,
     /// One wrongly ordered pair `(behind, in front)`, if any.
     pub naive_example: Option<(u32, u32)>,
+    /// Candidate pairs listed by the tiles (two triangles in one tile),
+    /// before the bounding-box check: the enumeration's work.
+    pub candidates: u64,
+    /// Candidate pairs examined exactly (after the box check; what the
+    /// budget counts).
+    pub examined: u64,
     /// Whether every candidate pair was examined (false when the budget
     /// ran out).
     pub complete: bool,
@@ -89,6 +97,7 @@ pub fn overlap_graph(
             let (a, ba) = (&tris[ka as usize], bounds[ka as usize].unwrap_or_default());
             for &kb in &list[i + 1..] {
                 let (b, bb) = (&tris[kb as usize], bounds[kb as usize].unwrap_or_default());
+                out.candidates += 1;
                 let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
                 if a.prim == b.prim
                     || first[0] > ba[2].min(bb[2])
@@ -128,6 +137,7 @@ pub fn overlap_graph(
             }
         }
     }
+    out.examined = examined;
     out.edges = edges.len() as u64;
     let prim_edges: Vec<(u32, u32)> = edges
         .iter()
@@ -141,7 +151,10 @@ pub fn overlap_graph(
 }
 
 /// The screen triangles binned into square tiles of about one triangle
-/// each: the candidate pairs for overlap are those sharing a tile.
+/// each, larger when the triangles are (at most
+/// [`MAX_CELLS_PER_TRIANGLE`] tiles per triangle on average, as the
+/// intersection grid): the candidate pairs for overlap are those sharing a
+/// tile.
 struct TileBins {
     /// Number of tiles.
     tiles: usize,
@@ -159,16 +172,36 @@ struct TileBins {
 impl TileBins {
     fn new(tris: &[ScreenTri], vp: Viewport) -> Self {
         let n = tris.len();
-        // Tiles of about one triangle each, 4 to 256 pixels wide.
-        let side =
+        // Tiles of about one triangle each, 4 to 256 pixels wide, then
+        // wider while the triangles cover too many: a window full of large
+        // triangles otherwise lists most pairs in hundreds of tiles each.
+        let mut side =
             ((f64::from(vp.width) * f64::from(vp.height) / n as f64).sqrt() as u32).clamp(4, 256);
+        let pixel_boxes: Vec<Option<(u32, u32, u32, u32)>> = tris
+            .iter()
+            .map(|t| pixel_box(t, vp.width, vp.height))
+            .collect();
+        let most = MAX_CELLS_PER_TRIANGLE.saturating_mul(n as u64);
+        let covered = |side: u32| -> u64 {
+            pixel_boxes
+                .iter()
+                .flatten()
+                .map(|&(x0, y0, x1, y1)| {
+                    u64::from(x1 / side - x0 / side + 1) * u64::from(y1 / side - y0 / side + 1)
+                })
+                .sum()
+        };
+        let widest = vp.width.max(vp.height);
+        while side < widest && covered(side) > most {
+            side = (side + side / 4).min(widest);
+        }
         let tiles_x = vp.width.div_ceil(side) as usize;
         let tiles_y = vp.height.div_ceil(side) as usize;
         let tiles = tiles_x * tiles_y;
-        let bounds: Vec<Option<[usize; 4]>> = tris
+        let bounds: Vec<Option<[usize; 4]>> = pixel_boxes
             .iter()
-            .map(|t| {
-                let (x0, y0, x1, y1) = pixel_box(t, vp.width, vp.height)?;
+            .map(|b| {
+                let (x0, y0, x1, y1) = (*b)?;
                 Some([x0, y0, x1, y1].map(|v| (v / side) as usize))
             })
             .collect();
@@ -236,31 +269,42 @@ pub fn interiors_overlap(a: &[FixedPt; 3], b: &[FixedPt; 3]) -> bool {
 /// A point strictly inside the overlap of two triangles (in pixels): the
 /// vertex average of `a` clipped by `b`'s three half-planes.
 fn overlap_point(a: &[FixedPt; 3], b: &[FixedPt; 3]) -> Option<(f64, f64)> {
-    let mut poly: Vec<(f64, f64)> = a.iter().map(|p| p.to_pixels()).collect();
-    let bp: Vec<(f64, f64)> = b.iter().map(|p| p.to_pixels()).collect();
+    // A triangle clipped by three half-planes keeps at most six corners;
+    // fixed arrays, since this runs once per overlapping pair.
+    let mut poly = [(0.0, 0.0); 6];
+    let mut len = 3;
+    for (k, p) in a.iter().enumerate() {
+        poly[k] = p.to_pixels();
+    }
+    let bp = b.map(|p| p.to_pixels());
     for i in 0..3 {
         let (u, v) = (bp[i], bp[(i + 1) % 3]);
         // Positive inside, as orient2d of the y-down fixed-point frame.
         let side = |p: (f64, f64)| (v.0 - u.0) * (p.1 - u.1) - (v.1 - u.1) * (p.0 - u.0);
-        let mut next = Vec::with_capacity(poly.len() + 1);
-        for k in 0..poly.len() {
-            let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+        let mut next = [(0.0, 0.0); 6];
+        let mut n = 0;
+        for k in 0..len {
+            let (p, q) = (poly[k], poly[(k + 1) % len]);
             let (sp, sq) = (side(p), side(q));
-            if sp >= 0.0 {
-                next.push(p);
+            if sp >= 0.0 && n < 6 {
+                next[n] = p;
+                n += 1;
             }
-            if (sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0) {
+            if ((sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0)) && n < 6 {
                 let t = sp / (sp - sq);
-                next.push((p.0 + (q.0 - p.0) * t, p.1 + (q.1 - p.1) * t));
+                next[n] = (p.0 + (q.0 - p.0) * t, p.1 + (q.1 - p.1) * t);
+                n += 1;
             }
         }
-        poly = next;
-        if poly.len() < 3 {
+        (poly, len) = (next, n);
+        if len < 3 {
             return None;
         }
     }
-    let k = poly.len() as f64;
-    let (sx, sy) = poly.iter().fold((0.0, 0.0), |s, p| (s.0 + p.0, s.1 + p.1));
+    let k = len as f64;
+    let (sx, sy) = poly[..len]
+        .iter()
+        .fold((0.0, 0.0), |s, p| (s.0 + p.0, s.1 + p.1));
     Some((sx / k, sy / k))
 }
 

@@ -39,11 +39,20 @@ pub(crate) fn effects(scene: &Scene, view: &View, options: &RenderOptions) -> Op
     if !plain {
         return None;
     }
-    let closed = scene
-        .meshes
-        .iter()
-        .filter(|m| backface::maybe_closed(&m.positions, &m.indices))
-        .count();
+    let triangles = scene.triangle_count() as u64;
+    let pixels = u64::from(options.width) * u64::from(options.height);
+    // Culling small triangles costs more to prove than it saves: not
+    // examined at all (no pass over the meshes).
+    let examine = crate::planner::culling_pays(triangles, pixels);
+    let closed = if examine {
+        scene
+            .meshes
+            .iter()
+            .filter(|m| backface::maybe_closed(&m.positions, &m.indices))
+            .count()
+    } else {
+        0
+    };
     // Culling is settled without the screen when no mesh can be closed
     // (never exact) or every triangle is in a shell that hides its back
     // faces (exact wherever they are); anything between needs to know
@@ -60,7 +69,9 @@ pub(crate) fn effects(scene: &Scene, view: &View, options: &RenderOptions) -> Op
         return None;
     };
     let (in_view, deepest) = frustum(scene, view);
-    let back_faces = if all_hidden {
+    let back_faces = if !examine {
+        super::back_faces_not_examined(triangles, pixels)
+    } else if all_hidden {
         Evidence::found(
             false,
             0,
@@ -90,7 +101,8 @@ pub(crate) fn effects(scene: &Scene, view: &View, options: &RenderOptions) -> Op
         ..Evidence::default()
     };
     Some(Effects {
-        triangles: scene.triangle_count() as u64,
+        triangles,
+        pixels,
         on_screen: in_view,
         ordered_polygons: false,
         depth_ratio: deepest,

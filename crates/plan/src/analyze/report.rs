@@ -40,14 +40,19 @@ impl fmt::Display for Effects {
         writeln!(
             f,
             "{} triangles, {} on screen; deepest/near {:.3e}; analysed in {:.1} ms \
-             (prepare {:.1}, intersections {:.1}, overlaps {:.1})",
+             (prepare {:.1}, intersections {:.1}, overlaps {:.1}); pairs listed {} / tested {} \
+             (intersections), {} / {} (overlaps)",
             self.triangles,
             self.on_screen,
             self.depth_ratio,
             self.times.total_ms,
             self.times.prepare_ms,
             self.times.intersections_ms,
-            self.times.overlaps_ms
+            self.times.overlaps_ms,
+            self.work.intersection_candidates,
+            self.work.intersection_tests,
+            self.work.overlap_candidates,
+            self.work.overlap_tests
         )?;
         line(f, "transparency", &self.transparency)?;
         line(f, "textures", &self.textures)?;

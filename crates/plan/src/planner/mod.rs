@@ -19,7 +19,8 @@
 //!
 //! On top of the hider, back faces are culled in the front end when the
 //! analysis proved them hidden (closed, outward, uncut meshes and no
-//! transparency), and only the colour stages the scene needs run
+//! transparency) and, for a raster image, the triangles are large enough
+//! on screen for the proof to pay ([`culling_pays`]), and only the colour stages the scene needs run
 //! ([`Effects::stages`]).
 //!
 //! A plan is options, nothing else: the caller builds the hider
@@ -35,7 +36,7 @@ mod tests;
 
 use hider_scene::{DynHider, PrepareOptions, Scene, Stages, View};
 
-pub use rules::MAX_F32_DEPTH_RATIO;
+pub use rules::{MAX_F32_DEPTH_RATIO, MIN_PIXELS_PER_TRIANGLE_TO_CULL, culling_pays};
 
 use crate::analyze::{Effects, RenderOptions, analyze_for_plan};
 use crate::config::HiderConfig;
@@ -152,6 +153,7 @@ impl Planned {
 pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
     let (effects, view) = analyze_for_plan(scene, options)?;
     let plan = plan(&effects);
+    check_painter_budget(&plan, &effects)?;
     Ok(Planned {
         effects,
         prepare: plan.prepare_options(options.prepare),
@@ -159,6 +161,36 @@ pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
         view,
         requested: options.requested(),
     })
+}
+
+/// The split budget the painter (`hider_painter::Painter`, default
+/// options) has for a scene of `triangles` triangles: its
+/// [`max_splits`](hider_painter::PainterOptions::max_splits), capped as
+/// that field's documentation states at `4096 + 64 n + 8 m^2`,
+/// `m = min(n, 128)`.
+pub fn painter_split_budget(triangles: u64) -> u64 {
+    let paired = triangles.min(128);
+    let cap = 4096 + 64 * triangles + 8 * paired * paired;
+    hider_painter::PainterOptions::default().max_splits.min(cap)
+}
+
+/// Refuses a plan that picks the painter when the analysis predicts it
+/// will exceed its split budget ([`PlanError::PainterBudget`]): better at
+/// once than after minutes of splitting.
+pub fn check_painter_budget(plan: &Plan, effects: &Effects) -> Result<()> {
+    if plan.algo != "painter" {
+        return Ok(());
+    }
+    let budget = painter_split_budget(effects.on_screen);
+    if effects.painter_splits_at_least > budget {
+        return Err(crate::PlanError::PainterBudget {
+            needed: effects.painter_splits_at_least,
+            pairs: effects.intersections.count,
+            budget,
+            triangles: effects.on_screen,
+        });
+    }
+    Ok(())
 }
 
 /// Checks the knobs of `config` that `--algo auto` can honour: threads and
@@ -190,6 +222,7 @@ pub fn plan(effects: &Effects) -> Plan {
 pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
     let mut picker = rules::Picker::new(available);
     let vector = picker.vector(effects);
+    let ordered = vector.is_some();
     if vector.is_some() && effects.antialiasing.present {
         // The ordered-polygons rule wins; the painters draw the raster image one
         // sample per pixel.
@@ -210,9 +243,13 @@ pub fn plan_among(effects: &Effects, available: &[&'static str]) -> Plan {
             "edges anti-aliased ({algo} samples coverage; not asked for)"
         ));
     }
+    // A raster render culls only where the proof pays (the analysis for
+    // a render skips it otherwise; `hider analyze` still reports it).
+    let cull = effects.cull_back_faces_exact
+        && (ordered || culling_pays(effects.triangles, effects.pixels));
     Plan {
         algo,
-        cull_back_faces: effects.cull_back_faces_exact,
+        cull_back_faces: cull,
         stages: effects.stages(),
         reason,
         notes: picker.notes,

@@ -11,6 +11,26 @@ use crate::analyze::{Effects, Evidence};
 /// `1e-5`. The fit camera stays below 35.
 pub const MAX_F32_DEPTH_RATIO: f64 = 100.0;
 
+/// Fewest pixels per triangle for which a raster plan proves back faces
+/// hidden (and culls them). The proof (closed, consistently oriented,
+/// outward shells) costs about 50-60 ns per triangle on this project's
+/// machine, more than the tiled z-buffer's whole work per triangle
+/// (10-20 ns); culling saves the back faces' triangle work and their fill
+/// (a nanosecond or so per fragment with hierarchical depth). So it pays
+/// only when the triangles are large on screen: a 2-million-triangle
+/// sphere at 2048 x 2048 spent 116 ms proving what saved 8 ms of render.
+/// Culling is an optimisation, never needed for a right image, so below
+/// this the proof is skipped. Ordered polygons (the painter, hundreds of
+/// nanoseconds per triangle) always cull when exact.
+pub const MIN_PIXELS_PER_TRIANGLE_TO_CULL: u64 = 64;
+
+/// Whether proving back faces hidden can pay for itself in a raster
+/// render of `triangles` triangles on `pixels` pixels (see
+/// [`MIN_PIXELS_PER_TRIANGLE_TO_CULL`]).
+pub fn culling_pays(triangles: u64, pixels: u64) -> bool {
+    triangles.saturating_mul(MIN_PIXELS_PER_TRIANGLE_TO_CULL) <= pixels
+}
+
 /// Picks the first available entry of a chain, noting a fallback.
 pub(crate) struct Picker<'a> {
     /// Registry names that may be chosen.

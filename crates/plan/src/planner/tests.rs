@@ -41,7 +41,16 @@ fn opaque_scene_without_aa_gets_the_one_sample_zbuffer() {
     );
     let p = plan_among(&effects, ALL);
     assert_eq!(p.algo, "zbuffer-tiled");
-    assert!(p.cull_back_faces, "a closed sphere hides its back faces");
+    // 480 triangles on 48 x 48 pixels: too small for culling to pay.
+    assert!(!p.cull_back_faces);
+    let coarse = plan_among(
+        &fx(&procedural::uv_sphere(4), RenderOptions::default()),
+        ALL,
+    );
+    assert!(
+        coarse.cull_back_faces,
+        "a closed sphere hides its back faces"
+    );
     assert_eq!(
         p.stages,
         Stages {
@@ -289,4 +298,63 @@ fn the_pair_searches_decide_only_vector_plans() {
     .unwrap();
     assert!(fx.cyclic_overlap.present && !fx.cyclic_overlap.certain);
     assert!(fx.cyclic_overlap.detail.contains("not searched"), "{fx}");
+}
+
+#[test]
+fn a_raster_plan_culls_only_where_the_proof_pays() {
+    // uv_sphere(16): 480 triangles, closed and outward. At 512 x 512 each
+    // has 546 pixels: culled. At 128 x 128, 34: proving it would cost
+    // more than culling saves, so the render analysis does not even look,
+    // while `hider analyze` (pair searches on) still reports the proof.
+    let sphere = procedural::uv_sphere(16);
+    let at = |side: u32| RenderOptions::default().with_size(side, side);
+    assert!(culling_pays(480, 512 * 512) && !culling_pays(480, 128 * 128));
+    assert!(
+        auto(&sphere, &at(512).with_pair_searches(false))
+            .unwrap()
+            .plan
+            .cull_back_faces
+    );
+    let small = auto(&sphere, &at(128).with_pair_searches(false)).unwrap();
+    assert!(!small.plan.cull_back_faces);
+    assert!(
+        small
+            .effects
+            .back_faces
+            .detail
+            .contains("culling would save less"),
+        "{}",
+        small.effects.back_faces.detail
+    );
+    let reported = analyze(&sphere, &at(128)).unwrap();
+    assert!(
+        reported.cull_back_faces_exact,
+        "{}",
+        reported.back_faces.detail
+    );
+    assert!(!plan(&reported).cull_back_faces);
+    // The painter's ordered polygons cull whenever it is exact.
+    let vector = analyze(&sphere, &at(128).with_ordered_polygons(true)).unwrap();
+    assert!(plan(&vector).cull_back_faces);
+}
+
+#[test]
+fn the_painter_is_refused_up_front_when_its_budget_cannot_hold() {
+    let vector = RenderOptions::default().with_ordered_polygons(true);
+    // One crossing pair: a split or two, far within the budget.
+    let one = auto(&procedural::intersecting_pair(), &vector.with_size(48, 48)).unwrap();
+    assert_eq!(one.plan.algo, "painter");
+    assert_eq!(one.effects.painter_splits_at_least, 1);
+    // The prediction against the budget, in one place.
+    let mut effects = one.effects.clone();
+    effects.on_screen = 2000;
+    effects.painter_splits_at_least = painter_split_budget(2000) + 1;
+    let refused = check_painter_budget(&one.plan, &effects).unwrap_err();
+    let line = refused.to_string();
+    assert!(matches!(refused, PlanError::PainterBudget { .. }), "{line}");
+    assert!(line.contains("PainterOptions::max_splits"), "{line}");
+    effects.painter_splits_at_least -= 1;
+    assert!(check_painter_budget(&one.plan, &effects).is_ok());
+    assert_eq!(painter_split_budget(0), 4096);
+    assert_eq!(painter_split_budget(2000), 4096 + 128_000 + 131_072);
 }
