@@ -174,6 +174,13 @@ impl PainterOptions {
         self
     }
 
+    /// The split budget a frame of `triangles` input triangles gets:
+    /// [`Self::max_splits`] when set, else the automatic budget that
+    /// field's documentation gives.
+    pub fn split_budget(&self, triangles: u64) -> u64 {
+        self.max_splits.unwrap_or_else(|| split_cap(triangles))
+    }
+
     /// Sets [`Self::max_splits`] to exactly `max_splits` (no automatic
     /// budget).
     pub fn with_max_splits(mut self, max_splits: u64) -> Self {

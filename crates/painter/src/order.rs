@@ -44,7 +44,7 @@ use crate::bins::{Grid, Key, depth_bits};
 use crate::centres::{CentreIndex, Centres};
 use crate::cull::HiZ;
 use crate::newell::Extent;
-use crate::options::{PainterOptions, SPLIT_BUDGET, split_cap};
+use crate::options::{PainterOptions, SPLIT_BUDGET};
 use crate::piece::Piece;
 use crate::stats::PainterStats;
 use crate::trace::{PainterTrace, TraceEvent};
@@ -127,9 +127,7 @@ impl Orderer {
         options: &PainterOptions,
         stats: &mut PainterStats,
     ) -> Result<()> {
-        let max_splits = options
-            .max_splits
-            .unwrap_or_else(|| split_cap(scene.tris.len() as u64));
+        let max_splits = options.split_budget(scene.tris.len() as u64);
         self.tracer = options.trace.then(|| {
             let mut t = self.traced.take().unwrap_or_default();
             t.clear();

@@ -53,6 +53,16 @@ pub fn plan_error(error: PlanError) -> PyErr {
             knob_keyword(knob),
             joined(&takers)
         )),
+        PlanError::PainterBudget {
+            needed,
+            pairs,
+            budget,
+            triangles,
+        } => PyMemoryError::new_err(format!(
+            "the painter needs at least {needed} splits for the {pairs} interpenetrating pairs \
+             in view, over its split budget of {budget} for {triangles} triangles; raise \
+             max_splits= or use the regions or a raster image, which need no splits"
+        )),
     }
 }
 

@@ -164,14 +164,10 @@ pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
 }
 
 /// The split budget the painter (`hider_painter::Painter`, default
-/// options) has for a scene of `triangles` triangles: its
-/// [`max_splits`](hider_painter::PainterOptions::max_splits), capped as
-/// that field's documentation states at `4096 + 64 n + 8 m^2`,
-/// `m = min(n, 128)`.
+/// options) has for a scene of `triangles` triangles
+/// ([`PainterOptions::split_budget`](hider_painter::PainterOptions::split_budget)).
 pub fn painter_split_budget(triangles: u64) -> u64 {
-    let paired = triangles.min(128);
-    let cap = 4096 + 64 * triangles + 8 * paired * paired;
-    hider_painter::PainterOptions::default().max_splits.min(cap)
+    hider_painter::PainterOptions::default().split_budget(triangles)
 }
 
 /// Refuses a plan that picks the painter when the analysis predicts it

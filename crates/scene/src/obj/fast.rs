@@ -422,6 +422,7 @@ impl<'a> Builder<'a> {
             colors: Vec::new(),
             indices: std::mem::take(&mut self.indices),
             material,
+            triangle_materials: Vec::new(),
         }
     }
 
