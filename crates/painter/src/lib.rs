@@ -20,7 +20,11 @@
 //!   end's own coordinates, without a depth tolerance, so the order does
 //!   not depend on scale, near plane or symmetry; a pair where one piece
 //!   covers at most one pixel centre is decided by the depths on that
-//!   centre, which keeps a pile of sub-pixel triangles at O(n log n).
+//!   centre, which keeps a pile of sub-pixel triangles at O(n log n). Pieces
+//!   hidden at every point of their polygon behind opaque triangles are
+//!   culled before they are ordered ([`PainterOptions::cull_hidden`]), so
+//!   deep overlapping scenes cost what they show; an opt-in
+//!   [`PainterTrace`] records every step.
 //!
 //! Both paint through the shared coverage rules: a piece covers a pixel
 //! centre iff its source triangle does under the exact edge
