@@ -41,6 +41,10 @@ pub(super) struct Counts {
     pub vn: usize,
     /// Triangles of the `f` statements after fan-splitting.
     pub triangles: u64,
+    /// `l` statements (skipped: not surfaces).
+    pub l: usize,
+    /// `p` statements (skipped: not surfaces).
+    pub p: usize,
 }
 
 impl Counts {
@@ -52,6 +56,8 @@ impl Counts {
             vt: self.vt + other.vt,
             vn: self.vn + other.vn,
             triangles: self.triangles + other.triangles,
+            l: self.l + other.l,
+            p: self.p + other.p,
         }
     }
 }
@@ -136,6 +142,11 @@ enum Keyword {
     Usemtl,
     Mtllib,
     S,
+    /// `l`: a polyline, skipped (with a count in a warning) unread, as the
+    /// validation pass skips it.
+    L,
+    /// `p`: points, skipped likewise.
+    P,
     Comment,
 }
 
@@ -149,6 +160,8 @@ fn keyword(word: &[u8]) -> Option<Keyword> {
         b"usemtl" => Keyword::Usemtl,
         b"mtllib" => Keyword::Mtllib,
         b"s" => Keyword::S,
+        b"l" => Keyword::L,
+        b"p" => Keyword::P,
         [b'#', ..] => Keyword::Comment,
         _ => return None,
     })
@@ -165,7 +178,7 @@ fn unknown(line: usize, word: &[u8]) -> Refusal {
     refuse(
         line,
         format!(
-            "a '{}' statement (the fast reader reads v, vt, vn, f, o, g, s, usemtl and mtllib)",
+            "a '{}' statement (the fast reader reads v, vt, vn, f, o, g, s, usemtl, mtllib, l and p)",
             String::from_utf8_lossy(word)
         ),
     )
@@ -185,6 +198,8 @@ pub(super) fn count(chunk: &[u8]) -> Result<Counts, Refusal> {
             Some(Keyword::V) => c.v += 1,
             Some(Keyword::Vt) => c.vt += 1,
             Some(Keyword::Vn) => c.vn += 1,
+            Some(Keyword::L) => c.l += 1,
+            Some(Keyword::P) => c.p += 1,
             Some(Keyword::F) => {
                 let n = words.count() as u64;
                 if n < 3 {
@@ -326,7 +341,7 @@ pub(super) fn parse(
                     }
                 }
             }
-            Keyword::Comment => {
+            Keyword::Comment | Keyword::L | Keyword::P => {
                 lone_cr_free(line, k)?;
             }
         }
