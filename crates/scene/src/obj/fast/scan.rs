@@ -190,25 +190,37 @@ pub(super) fn count(chunk: &[u8]) -> Result<Counts, Refusal> {
     let mut c = Counts::default();
     for (k, line) in lines(chunk).enumerate() {
         c.lines += 1;
-        let mut words = words(line);
-        let Some(first) = words.next() else {
-            continue;
-        };
-        match keyword(first) {
+        // Only the keyword is read here (and the words of a face): the
+        // bytes of the other statements are left to the second pass.
+        let start = line
+            .iter()
+            .position(|&b| !is_space(b))
+            .unwrap_or(line.len());
+        let line = &line[start..];
+        let end = line.iter().position(|&b| is_space(b)).unwrap_or(line.len());
+        match keyword(&line[..end]) {
             Some(Keyword::V) => c.v += 1,
             Some(Keyword::Vt) => c.vt += 1,
             Some(Keyword::Vn) => c.vn += 1,
             Some(Keyword::L) => c.l += 1,
             Some(Keyword::P) => c.p += 1,
             Some(Keyword::F) => {
-                let n = words.count() as u64;
+                // Word starts: a byte that is not a blank after one that is.
+                let mut n = 0u64;
+                let mut blank = true;
+                for &b in &line[end..] {
+                    let space = is_space(b);
+                    n += u64::from(blank && !space);
+                    blank = space;
+                }
                 if n < 3 {
                     return Err(refuse(k, "a face of fewer than 3 vertices"));
                 }
                 c.triangles += n - 2;
             }
             Some(_) => {}
-            None => return Err(unknown(k, first)),
+            None if line.is_empty() => {}
+            None => return Err(unknown(k, &line[..end])),
         }
     }
     Ok(c)
