@@ -14,8 +14,8 @@
 //! A missing MTL file, or a broken material in one, is a warning, not an
 //! error: the faces get the default material, as GL viewers do.
 //!
-//! Plain files (`v`, `vt`, `vn`, `f`, `o`, `g`, `s`, `usemtl`, `mtllib`
-//! and comments, numbers in the usual form) are read by a fast reader, in
+//! Plain files (`v`, `vt`, `vn`, `f`, `o`, `g`, `s`, `usemtl`, `mtllib`,
+//! `l`, `p` and comments, numbers in the usual form) are read by a fast reader, in
 //! parallel chunks, which builds the very scene tobj builds; anything else
 //! goes to tobj, the loader of record ([`ObjParser`], `docs/loading.md`).
 
@@ -68,7 +68,7 @@ impl Default for ObjOptions {
 pub enum ObjParser {
     /// The fast reader, in parallel chunks (with the crate's `parallel`
     /// feature), for files made of `v`, `vt`, `vn`, `f`, `o`, `g`, `s`,
-    /// `usemtl`, `mtllib` and comments; tobj for any other file (the
+    /// `usemtl`, `mtllib`, `l`, `p` and comments; tobj for any other file (the
     /// reason is in [`ObjStats::fallback`]). The scene is the one tobj
     /// builds.
     #[default]
@@ -175,7 +175,12 @@ fn load_fast(
         Ok(loaded) => loaded,
         Err(reason) => return Ok(Err(reason)),
     };
-    let mut warnings = loaded.warnings;
+    // The validation pass's warnings come before those of the MTL files.
+    let (lines, points) = loaded.skipped;
+    let mut warnings: Vec<String> = validate::skipped_elements(lines, points, name)
+        .into_iter()
+        .chain(loaded.warnings)
+        .collect();
     let materials = materials_or_default(loaded.materials, &mut warnings);
     let scene = finish(
         materials,

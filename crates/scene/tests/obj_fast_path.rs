@@ -430,6 +430,24 @@ fn tricky_lines_load_the_same_both_ways() {
 }
 
 #[test]
+fn lines_and_points_are_skipped_by_both_readers_alike() {
+    let dir = folder("elements");
+    let path = dir.join("elements.obj");
+    std::fs::write(
+        &path,
+        "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\nf 1 2 3\np 1 2\nl 1 x\nf 1 1 2\n",
+    )
+    .unwrap();
+    same_both_ways(&path).unwrap_or_else(|why| panic!("not read fast: {why}"));
+    let (scene, _) = outcome(&path, ObjParser::Fast).unwrap();
+    assert!(
+        scene.contains("skipped 2 line elements ('l') and 1 point element ('p')"),
+        "{scene}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn malformed_files_fail_with_the_same_error_both_ways() {
     let dir = folder("bad");
     let good = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";

@@ -1,5 +1,6 @@
 //! The fast reader: plain OBJ files (`v`, `vt`, `vn`, `f`, `o`, `g`, `s`,
-//! `usemtl`, `mtllib` and comments) read in parallel chunks, producing
+//! `usemtl`, `mtllib`, comments, and the `l` and `p` elements the loader
+//! of record skips) read in parallel chunks, producing
 //! the meshes tobj produces for them, vertex for vertex.
 //!
 //! The file is cut into chunks at line ends. A first pass counts each
@@ -54,6 +55,8 @@ pub(super) struct Loaded {
     pub triangles: u64,
     /// The chunks read.
     pub chunks: usize,
+    /// The `l` and `p` statements skipped.
+    pub skipped: (usize, usize),
 }
 
 /// Reads `bytes` (an OBJ file) in chunks of about `chunk_bytes`, or says
@@ -150,6 +153,7 @@ pub(super) fn load(
         },
         triangles: total.triangles,
         chunks: chunks.len(),
+        skipped: (total.l, total.p),
     })
 }
 

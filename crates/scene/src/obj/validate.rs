@@ -74,24 +74,11 @@ impl Checked {
     pub(super) fn warnings(&self, name: &Path) -> Vec<String> {
         let count = |what: Skipped| self.skipped.iter().filter(|s| s.1 == what).count();
         let mut warnings = Vec::new();
-        let elements = [
-            (count(Skipped::Line), "line", 'l'),
-            (count(Skipped::Point), "point", 'p'),
-        ]
-        .iter()
-        .filter(|e| e.0 > 0)
-        .map(|&(n, what, key)| {
-            let s = if n == 1 { "" } else { "s" };
-            format!("{n} {what} element{s} ('{key}')")
-        })
-        .collect::<Vec<_>>();
-        if !elements.is_empty() {
-            warnings.push(format!(
-                "{}: skipped {}: only faces are rendered",
-                name.display(),
-                elements.join(" and ")
-            ));
-        }
+        warnings.extend(skipped_elements(
+            count(Skipped::Line),
+            count(Skipped::Point),
+            name,
+        ));
         for (k, keyword) in &self.unsimulated {
             warnings.push(format!(
                 "{}:{}: '{keyword}' (free-form geometry or a render attribute) is read but not \
@@ -112,6 +99,26 @@ impl Checked {
         }
         warnings
     }
+}
+
+/// The warning for `lines` line elements (`l`) and `points` point
+/// elements (`p`) skipped in the file `name`, when there are any.
+pub(super) fn skipped_elements(lines: usize, points: usize, name: &Path) -> Option<String> {
+    let elements = [(lines, "line", 'l'), (points, "point", 'p')]
+        .iter()
+        .filter(|e| e.0 > 0)
+        .map(|&(n, what, key)| {
+            let s = if n == 1 { "" } else { "s" };
+            format!("{n} {what} element{s} ('{key}')")
+        })
+        .collect::<Vec<_>>();
+    (!elements.is_empty()).then(|| {
+        format!(
+            "{}: skipped {}: only faces are rendered",
+            name.display(),
+            elements.join(" and ")
+        )
+    })
 }
 
 /// Checks the lines tobj will parse, reporting the first problem with its

@@ -41,6 +41,10 @@ pub(super) struct Counts {
     pub vn: usize,
     /// Triangles of the `f` statements after fan-splitting.
     pub triangles: u64,
+    /// `l` statements (skipped: not surfaces).
+    pub l: usize,
+    /// `p` statements (skipped: not surfaces).
+    pub p: usize,
 }
 
 impl Counts {
@@ -52,6 +56,8 @@ impl Counts {
             vt: self.vt + other.vt,
             vn: self.vn + other.vn,
             triangles: self.triangles + other.triangles,
+            l: self.l + other.l,
+            p: self.p + other.p,
         }
     }
 }
@@ -136,6 +142,11 @@ enum Keyword {
     Usemtl,
     Mtllib,
     S,
+    /// `l`: a polyline, skipped (with a count in a warning) unread, as the
+    /// validation pass skips it.
+    L,
+    /// `p`: points, skipped likewise.
+    P,
     Comment,
 }
 
@@ -149,6 +160,8 @@ fn keyword(word: &[u8]) -> Option<Keyword> {
         b"usemtl" => Keyword::Usemtl,
         b"mtllib" => Keyword::Mtllib,
         b"s" => Keyword::S,
+        b"l" => Keyword::L,
+        b"p" => Keyword::P,
         [b'#', ..] => Keyword::Comment,
         _ => return None,
     })
@@ -165,7 +178,7 @@ fn unknown(line: usize, word: &[u8]) -> Refusal {
     refuse(
         line,
         format!(
-            "a '{}' statement (the fast reader reads v, vt, vn, f, o, g, s, usemtl and mtllib)",
+            "a '{}' statement (the fast reader reads v, vt, vn, f, o, g, s, usemtl, mtllib, l and p)",
             String::from_utf8_lossy(word)
         ),
     )
@@ -177,23 +190,37 @@ pub(super) fn count(chunk: &[u8]) -> Result<Counts, Refusal> {
     let mut c = Counts::default();
     for (k, line) in lines(chunk).enumerate() {
         c.lines += 1;
-        let mut words = words(line);
-        let Some(first) = words.next() else {
-            continue;
-        };
-        match keyword(first) {
+        // Only the keyword is read here (and the words of a face): the
+        // bytes of the other statements are left to the second pass.
+        let start = line
+            .iter()
+            .position(|&b| !is_space(b))
+            .unwrap_or(line.len());
+        let line = &line[start..];
+        let end = line.iter().position(|&b| is_space(b)).unwrap_or(line.len());
+        match keyword(&line[..end]) {
             Some(Keyword::V) => c.v += 1,
             Some(Keyword::Vt) => c.vt += 1,
             Some(Keyword::Vn) => c.vn += 1,
+            Some(Keyword::L) => c.l += 1,
+            Some(Keyword::P) => c.p += 1,
             Some(Keyword::F) => {
-                let n = words.count() as u64;
+                // Word starts: a byte that is not a blank after one that is.
+                let mut n = 0u64;
+                let mut blank = true;
+                for &b in &line[end..] {
+                    let space = is_space(b);
+                    n += u64::from(blank && !space);
+                    blank = space;
+                }
                 if n < 3 {
                     return Err(refuse(k, "a face of fewer than 3 vertices"));
                 }
                 c.triangles += n - 2;
             }
             Some(_) => {}
-            None => return Err(unknown(k, first)),
+            None if line.is_empty() => {}
+            None => return Err(unknown(k, &line[..end])),
         }
     }
     Ok(c)
@@ -326,7 +353,7 @@ pub(super) fn parse(
                     }
                 }
             }
-            Keyword::Comment => {
+            Keyword::Comment | Keyword::L | Keyword::P => {
                 lone_cr_free(line, k)?;
             }
         }
