@@ -25,7 +25,8 @@
 //!
 //! All three are on by default; a crate that wants the front end alone
 //! (a depth buffer) can take `default-features = false`:
-//! - `obj`: OBJ/MTL loading through `tobj` (the [`obj`] module,
+//! - `obj`: OBJ/MTL loading (the [`obj`] module: a parallel reader for
+//!   plain files, `tobj` for everything else and as the reference;
 //!   `load_obj`, `load_obj_with`, and files in [`load_model`]; without it
 //!   a file given to [`load_model`] is an error saying so, `gen:` scenes
 //!   still load);
