@@ -71,6 +71,26 @@ pub fn distance(s: &str) -> Result<f64, String> {
     }
 }
 
+/// Parses a byte count with an optional binary suffix: `1000`, `512K`,
+/// `64M`, `2G` (`KiB`, `MiB`, `GiB` too).
+pub fn bytes(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let split = t.find(|c: char| !c.is_ascii_digit()).unwrap_or(t.len());
+    let (digits, suffix) = t.split_at(split);
+    let shift = match suffix.trim().to_ascii_uppercase().as_str() {
+        "" | "B" => 0,
+        "K" | "KIB" => 10,
+        "M" | "MIB" => 20,
+        "G" | "GIB" => 30,
+        _ => return Err(format!("'{s}' is not a byte count (e.g. 1000, 512M, 2G)")),
+    };
+    digits
+        .parse::<u64>()
+        .ok()
+        .and_then(|n| n.checked_mul(1 << shift))
+        .ok_or_else(|| format!("'{s}' is not a byte count (e.g. 1000, 512M, 2G)"))
+}
+
 /// Parses `x,y,z` of finite numbers (`--eye`, `--target`, `--up`).
 pub fn vec3(s: &str) -> Result<glam::DVec3, String> {
     let parts: Vec<&str> = s.split(',').collect();
@@ -109,6 +129,11 @@ mod tests {
         assert_eq!(side("512"), Ok(512));
         assert!(side("-5").unwrap_err().contains("from 1 to 16384"));
         assert!(side("0").is_err() && side("16385").is_err() && side("x").is_err());
+        assert_eq!(bytes("1000"), Ok(1000));
+        assert_eq!(bytes("512M"), Ok(512 << 20));
+        assert_eq!(bytes("2GiB"), Ok(2 << 30));
+        assert!(bytes("-1").is_err() && bytes("1.5G").is_err() && bytes("9T").is_err());
+        assert!(bytes("99999999999999999999G").is_err());
         assert_eq!(threads("2"), Ok(2));
         assert!(threads("-1").is_err() && threads("0").is_err());
         assert_eq!(fovy("45"), Ok(45.0));

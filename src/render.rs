@@ -179,6 +179,9 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         vec![args.model.clone().into()]
     };
     crate::outputs::check(&args.outputs(), &model_path)?;
+    if let Some(bytes) = args.texture_budget {
+        hider::scene::shade::set_texture_budget(bytes);
+    }
     let progress = Progress::start("loading the model");
     let scene = crate::model::load(&args.model, &progress)?;
     let mut inputs = model_path;

@@ -95,6 +95,11 @@ pub struct RenderArgs {
     /// above 1 the front end prepares large scenes in parallel too.
     #[arg(long, default_value_t = 1, value_parser = args::threads)]
     pub threads: usize,
+    /// Most bytes of decoded texture the process may hold (default 1G,
+    /// suffixes K, M, G): a texture that would pass it is drawn in its
+    /// material's colour, with a warning naming file, size and limit.
+    #[arg(long, value_parser = args::bytes)]
+    pub texture_budget: Option<u64>,
     /// Render K times after a warm-up and print the median and minimum
     /// milliseconds of prepare + clear + rasterise.
     #[arg(long, default_value_t = 0, value_parser = args::repeat)]

@@ -146,3 +146,36 @@ fn textures_stay_within_the_budget() {
     set_texture_budget(default);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The command line's `--texture-budget`: a budget under one texture's
+/// size draws it in the material's colour and says so, naming the file,
+/// its size and the limit; a bad value is refused naming the flag.
+#[test]
+fn the_command_line_sets_the_budget() {
+    let dir = std::env::temp_dir().join(format!("hider-texture-flag-{}", std::process::id()));
+    let _ = scene(&dir);
+    let run = |budget: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_hider"))
+            .args(["render", "--size", "32", "--texture-budget", budget])
+            .arg(dir.join("m.obj"))
+            .arg("-o")
+            .arg(dir.join("out.png"))
+            .output()
+            .unwrap()
+    };
+    let tight = run("1K");
+    let stderr = String::from_utf8_lossy(&tight.stderr);
+    assert!(tight.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("over the texture budget of 1.0 KiB"),
+        "{stderr}"
+    );
+    assert!(stderr.contains("t6.png: 256x256 texture needs"), "{stderr}");
+    let roomy = run("1G");
+    assert!(roomy.status.success());
+    assert!(!String::from_utf8_lossy(&roomy.stderr).contains("texture budget"));
+    let bad = run("lots");
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--texture-budget"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
