@@ -40,7 +40,7 @@ def screen_render(
 ) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.float32]]: ...
 def screen_pieces(
     points: npt.NDArray[np.float64], faces: npt.NDArray[np.int64], width: int, height: int,
-    max_splits: int | None = None,
+    max_splits: int | None = None, translucent: npt.NDArray[np.bool_] | None = None,
 ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.int64], npt.NDArray[np.float64],
            npt.NDArray[np.bool_]]: ...
 def svg(

@@ -712,8 +712,11 @@ class Resolved(mcoll.PolyCollection):
             if budget is None:
                 budget = _SPLITS_BASE + _SPLITS_PER_TRIANGLE * len(g.faces)
             try:
+                # Faces drawn see-through hide nothing: the painter must
+                # keep what lies behind them.
+                translucent = g.face_rgba[g.tri_poly, 3] < _OPAQUE
                 prims, offsets, xy, uncut = _hider.screen_pieces(
-                    g.points, g.faces, width, height, int(budget))
+                    g.points, g.faces, width, height, int(budget), translucent)
             except (ValueError, MemoryError) as e:
                 self._painter_failed = str(e)
             else:

@@ -13,9 +13,9 @@
 use glam::DVec3;
 use hider_geom::Camera;
 use hider_painter::{Painter, PainterOptions};
-use hider_scene::{Hider, PrepareOptions, Scene, ScreenScene, View, prepare};
+use hider_scene::{Hider, Material, PrepareOptions, Scene, ScreenScene, View, prepare};
 use numpy::ndarray::{Array1, Array2};
-use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray2};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -49,6 +49,34 @@ fn screen_view(
     let camera = Camera::orthographic(centre + DVec3::Z * EYE_TO_FRONT, centre, h * 0.5, NEAR, FAR);
     let view = View::new(camera, width, height).map_err(scene_error)?;
     Ok((scene, view))
+}
+
+/// Gives each face of the one-mesh `scene` an opaque or a translucent
+/// material (per-triangle materials), so that the painter's culling treats
+/// translucent faces as hiding nothing.
+fn mark_translucent(scene: &mut Scene, translucent: &[bool]) -> PyResult<()> {
+    let faces = scene.triangle_count();
+    if translucent.len() != faces {
+        return Err(PyValueError::new_err(format!(
+            "translucent: {} flags for {faces} faces",
+            translucent.len()
+        )));
+    }
+    if !translucent.contains(&true) {
+        return Ok(());
+    }
+    scene.materials = vec![
+        Material::default(),
+        Material {
+            name: "translucent".into(),
+            opacity: 0.5,
+            ..Material::default()
+        },
+    ];
+    if let Some(mesh) = scene.meshes.first_mut() {
+        mesh.triangle_materials = translucent.iter().map(|&t| u32::from(t)).collect();
+    }
+    Ok(())
 }
 
 /// Renders screen-space points and faces (see the module docs) with the
@@ -88,13 +116,18 @@ type PieceLists = (Vec<i64>, Vec<i64>, Vec<f64>, Vec<bool>);
 /// Drawn in that order, each over the ones before, they show every face
 /// exactly where it is the nearest.
 ///
-/// `max_splits` bounds the painter's splits (its
-/// [`PainterOptions::max_splits`], itself capped by the painter's
-/// per-scene cap); `None` keeps the painter's default. A frame that needs
-/// more stops with a `ValueError` (a [`hider_scene::Error::Render`]), which
-/// `hider.mpl` turns into a warning and matplotlib's own drawing.
+/// `max_splits` bounds the painter's splits (exactly that many: its
+/// [`PainterOptions::max_splits`]); `None` keeps the painter's automatic
+/// budget. A frame that needs more stops with a `ValueError` (the
+/// painter's split-budget error), which `hider.mpl` turns into a warning
+/// and matplotlib's own drawing.
+///
+/// `translucent` (one flag per face, default none) marks the faces the
+/// caller will draw see-through: the painter drops pieces hidden behind
+/// opaque faces before ordering (what makes overlapping scenes cheap), and
+/// a translucent face hides nothing, so what lies behind it is kept.
 #[pyfunction]
-#[pyo3(signature = (points, faces, width, height, max_splits=None))]
+#[pyo3(signature = (points, faces, width, height, max_splits=None, translucent=None))]
 pub fn screen_pieces<'py>(
     py: Python<'py>,
     points: PyReadonlyArray2<'py, f64>,
@@ -102,8 +135,12 @@ pub fn screen_pieces<'py>(
     width: u32,
     height: u32,
     max_splits: Option<u64>,
+    translucent: Option<PyReadonlyArray1<'py, bool>>,
 ) -> PyResult<Pieces<'py>> {
-    let (scene, view) = screen_view(&points, &faces, width, height)?;
+    let (mut scene, view) = screen_view(&points, &faces, width, height)?;
+    if let Some(translucent) = translucent {
+        mark_translucent(&mut scene, translucent.as_slice()?)?;
+    }
     let run = || -> hider_plan::Result<PieceLists> {
         let screen: ScreenScene = prepare(&scene, &view, &PrepareOptions::default())?;
         let mut options = PainterOptions::default();

@@ -382,3 +382,26 @@ def test_unresolve_gives_the_artists_back():
     again = pixels(fig)
     plt.close(fig)
     np.testing.assert_array_equal(plain, again)
+
+
+def test_faces_behind_translucent_faces_are_kept():
+    """The painter drops pieces hidden behind opaque faces; a face drawn
+    see-through hides nothing, so what is behind it must still be painted
+    (it shows through). Without the translucent flags the back face, fully
+    covered, is culled."""
+    from hider import _hider
+
+    # Window pixels, y down, depth t in [0, 1] growing away: a small
+    # triangle at t = 0.8 wholly behind a large one at t = 0.2.
+    points = np.array([
+        [10, 10, 0.8], [30, 10, 0.8], [20, 30, 0.8],
+        [0, 0, 0.2], [40, 0, 0.2], [20, 40, 0.2],
+    ], dtype=float)
+    faces = np.array([[0, 1, 2], [3, 4, 5]], dtype=np.int64)
+    opaque, *_ = _hider.screen_pieces(points, faces, 40, 40)
+    assert list(opaque) == [1]
+    seen, *_ = _hider.screen_pieces(points, faces, 40, 40, None,
+                                    np.array([False, True]))
+    assert list(seen) == [0, 1]
+    with pytest.raises(ValueError, match="translucent: 1 flags for 2 faces"):
+        _hider.screen_pieces(points, faces, 40, 40, None, np.array([True]))

@@ -106,7 +106,7 @@ fn reserve(path: &Path, header: &Header, base: u32) -> Result<Reservation> {
         path: path.to_path_buf(),
         message: format!(
             "{}x{} texture needs {} decoded (mip level {base} and coarser), over the texture \
-             budget of {} ({} in use by other textures); raise it (hider render --texture-budget, Python texture_budget=, \
+             budget of {} ({} in use by other textures); raise it (hider render --texture-budget, or \
              hider_scene::shade::set_texture_budget)",
             header.width,
             header.height,
@@ -126,7 +126,7 @@ fn reserve_whole(path: &Path, header: &Header) -> Result<Reservation> {
         path: path.to_path_buf(),
         message: format!(
             "{}x{} texture is decoded whole (not a streamable PNG): {} while decoding, over \
-             the texture budget of {} ({} in use); raise it (hider render --texture-budget, Python texture_budget=, \
+             the texture budget of {} ({} in use); raise it (hider render --texture-budget, or \
              hider_scene::shade::set_texture_budget)",
             header.width,
             header.height,
