@@ -53,6 +53,7 @@ pub fn plan_error(error: PlanError) -> PyErr {
             knob_keyword(knob),
             joined(&takers)
         )),
+        budget @ PlanError::PainterBudget { .. } => PyValueError::new_err(budget.to_string()),
     }
 }
 
