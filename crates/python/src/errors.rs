@@ -60,8 +60,8 @@ pub fn plan_error(error: PlanError) -> PyErr {
             triangles,
         } => PyMemoryError::new_err(format!(
             "the painter needs at least {needed} splits for the {pairs} interpenetrating pairs \
-             in view, over its split budget of {budget} for {triangles} triangles; raise \
-             max_splits= or use the regions or a raster image, which need no splits"
+             in view, over its split budget of {budget} for {triangles} triangles; use the \
+             regions (mode=\"regions\") or a raster image, which need no splits"
         )),
     }
 }

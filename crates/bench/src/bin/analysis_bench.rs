@@ -152,6 +152,10 @@ fn planner_cost() {
     }
 }
 
+/// A family of scenes: its name, the reach of its triangles for a count,
+/// and the counts measured.
+type Family = (&'static str, fn(u32) -> f64, &'static [u32]);
+
 /// Section 4: the pair searches on overlapping random triangles, N
 /// doubling.
 fn analysis_scaling() {
@@ -160,7 +164,7 @@ fn analysis_scaling() {
         "| family | N | pairs listed | pairs tested | crossing pairs | overlapping pairs in the graph | analysis ms (thread CPU) |"
     );
     println!("|---|---|---|---|---|---|---|");
-    let families: [(&str, fn(u32) -> f64, &[u32]); 2] = [
+    let families: [Family; 2] = [
         (
             "corners uniform in the cube",
             |_| 1.0,

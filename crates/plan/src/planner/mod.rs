@@ -171,7 +171,7 @@ pub fn painter_split_budget(triangles: u64) -> u64 {
 }
 
 /// Refuses a plan that picks the painter when the analysis predicts it
-/// will exceed its split budget ([`PlanError::PainterBudget`]): better at
+/// will exceed its split budget ([`PlanError::PainterBudget`](crate::PlanError::PainterBudget)): better at
 /// once than after minutes of splitting.
 pub fn check_painter_budget(plan: &Plan, effects: &Effects) -> Result<()> {
     if plan.algo != "painter" {
