@@ -26,7 +26,8 @@ use crate::VectorOptions;
 use crate::close::{close_to_cover, outline};
 use crate::closed::hidden_back_faces;
 use crate::cover::{Cover, decide, loops, unmatched_edges};
-use crate::grid::{Bins, ClippedTris, Grid, bounds};
+use crate::cull::{Culled, cull};
+use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
 
@@ -45,6 +46,10 @@ hider_scene::hider_stats! {
         /// Back faces of closed solids seen from outside, skipped (see
         /// the method in `docs/vector.md`).
         pub hidden_back_faces: u64 => "hidden back faces",
+        /// Triangles culled before the pair phase: nearer triangles that
+        /// contain whole screen tiles hide them at every point (see the
+        /// method in `docs/vector.md`).
+        pub culled: u64 => "culled",
         /// Triangles with occluders decided without a boolean: buried
         /// under, or clear of, their occluders' union.
         pub decided: u64 => "decided without boolean",
@@ -150,23 +155,49 @@ fn build(
     options.validate()?;
     let grid = Grid::for_scene(scene, options.refine_bits)?;
 
-    let ClippedTris { polys, boxes, bins } = ClippedTris::new(scene, &grid);
+    let (polys, boxes) = clip_all(scene, &grid);
     let mut stats = RegionStats {
         triangles: boxes.iter().flatten().count() as u64,
         ..RegionStats::default()
     };
+    let hidden = hidden_back_faces(scene);
+    let culled = if options.dashed_hidden {
+        // Hidden lines are drawn: the intersection lines of buried
+        // triangles are wanted too.
+        Culled::none(scene.tris.len())
+    } else {
+        cull(scene, &grid, &boxes, &hidden, options.depth_tolerance)
+    };
+    stats.culled = culled.count;
+    // Culled triangles are neither regions nor occluders: the tiles'
+    // nearer triangles hide whatever they would.
+    let live: Vec<_> = boxes
+        .iter()
+        .zip(&culled.hidden)
+        .map(|(b, &c)| if c { None } else { *b })
+        .collect();
+    let bins = Bins::new(&grid, &live);
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
     let mut cut_pairs = Vec::new();
     let mut seen = vec![u32::MAX; scene.tris.len()];
     let mut occluders: Vec<Vec<IntPoint>> = Vec::new();
     // One overlay for all differences: its buffers are kept between uses.
     let mut overlay = Overlay::new(64);
-    let hidden = hidden_back_faces(scene);
     for (ti, t) in scene.tris.iter().enumerate() {
         let Some((lo, hi)) = boxes[ti] else { continue };
         if hidden[ti] {
             stats.hidden_back_faces += 1;
             continue;
+        }
+        if culled.hidden[ti] {
+            continue;
+        }
+        if stats.overlapping_pairs > options.max_pairs {
+            return Err(hider_scene::Error::Limit {
+                what: crate::options::PAIRS_LIMIT,
+                value: stats.overlapping_pairs,
+                limit: options.max_pairs,
+            });
         }
         occluders.clear();
         // Set when one nearer triangle covers all of `t`: nothing of `t`
@@ -236,7 +267,14 @@ fn build(
             covered: Vec::new(),
         });
     }
-    let outline = outline(&polys, &hidden);
+    // The culled triangles lie inside their tiles' covering triangles:
+    // leaving them out changes no point of the union.
+    let skip: Vec<bool> = hidden
+        .iter()
+        .zip(&culled.hidden)
+        .map(|(&h, &c)| h || c)
+        .collect();
+    let outline = outline(&polys, &skip);
     let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats);
 
     let groups = group_regions(scene, &mut prims, mode, options.merge_groups);

@@ -25,7 +25,7 @@ use crate::pairs::intersection_segment;
 use crate::regions::RegionMap;
 use edges::{edge_features, unproject};
 use order::{drop_doubles, plot_order};
-use visibility::split_all;
+use visibility::{Occlusion, split_all};
 
 /// Why an edge is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -62,6 +62,9 @@ hider_scene::hider_stats! {
     pub struct LineStats {
         /// Edges (and intersection segments) that are lines.
         pub feature_edges: u64 => "feature edges",
+        /// Feature edges left out before visibility: they lie on culled
+        /// triangles only (see the method in `docs/vector.md`).
+        pub culled_features: u64 => "culled feature edges",
         /// Occluder intervals tested.
         pub occluder_tests: u64 => "occluder tests",
         /// Visible pieces before joining.
@@ -184,7 +187,10 @@ pub fn feature_visibility(
 ) -> Result<Vec<Visibility>> {
     options.validate()?;
     let mut stats = LineStats::default();
-    Ok(split_all(scene, map, features, options, &mut stats))
+    let occlusion = Occlusion::new(scene, &map.grid, options);
+    Ok(split_all(
+        scene, map, &occlusion, features, options, &mut stats,
+    ))
 }
 
 /// The line drawing of `scene`; `map` supplies the intersection pairs
@@ -210,12 +216,17 @@ pub fn hidden_lines_in(
     options: &VectorOptions,
     groups: &ObjectGroups,
 ) -> Result<LineDrawing> {
-    let features = line_features(scene, map, options)?;
+    let mut features = line_features(scene, map, options)?;
     let mut stats = LineStats {
         feature_edges: features.len() as u64,
         ..LineStats::default()
     };
-    let split = split_all(scene, map, &features, options, &mut stats);
+    let occlusion = Occlusion::new(scene, &map.grid, options);
+    // A line on culled primitives only is hidden all along (see
+    // `crate::cull`): nothing of it would be drawn.
+    features.retain(|f| !f.own.iter().all(|&p| occlusion.prim_culled[p as usize]));
+    stats.culled_features = stats.feature_edges - features.len() as u64;
+    let split = split_all(scene, map, &occlusion, &features, options, &mut stats);
     let mut visible = Vec::new();
     let mut hidden = Vec::new();
     for (f, parts) in features.iter().zip(&split) {

@@ -8,29 +8,83 @@ use i_overlay::i_float::int::point::IntPoint;
 
 use super::{Feature, LineStats, Visibility};
 use crate::VectorOptions;
-use crate::grid::{Bins, ClippedTris, Grid};
+use crate::cull::{Culled, cull};
+use crate::grid::{Bins, Grid, clip_all};
 use crate::regions::RegionMap;
 
-/// Every feature's visible and hidden parts (see [`super::feature_visibility`]).
+/// What hides line points: the occluders of every primitive, binned by
+/// their screen triangles, the culled ones left out.
+pub(super) struct Occlusion {
+    bins: Bins,
+    occluders: Vec<Occluder>,
+    /// Per primitive: all its screen triangles culled (see
+    /// [`crate::cull`]), so every line on it alone is hidden.
+    pub prim_culled: Vec<bool>,
+}
+
+impl Occlusion {
+    /// The occlusion of `scene` on `grid`; nothing culled when hidden
+    /// lines are drawn.
+    pub fn new(scene: &ScreenScene, grid: &Grid, options: &VectorOptions) -> Self {
+        let (_, boxes) = clip_all(scene, grid);
+        let n = scene.tris.len();
+        let culled = if options.dashed_hidden {
+            Culled::none(n)
+        } else {
+            cull(
+                scene,
+                grid,
+                &boxes,
+                &vec![false; n],
+                options.depth_tolerance,
+            )
+        };
+        let mut prim_culled = vec![false; scene.prims.len()];
+        let mut prim_live = vec![false; scene.prims.len()];
+        let live: Vec<_> = boxes
+            .iter()
+            .enumerate()
+            .map(|(k, b)| {
+                let prim = scene.tris[k].prim as usize;
+                if culled.hidden[k] {
+                    prim_culled[prim] = true;
+                    None
+                } else {
+                    prim_live[prim] = true;
+                    *b
+                }
+            })
+            .collect();
+        for (c, &l) in prim_culled.iter_mut().zip(&prim_live) {
+            *c &= !l;
+        }
+        Self {
+            bins: Bins::new(grid, &live),
+            occluders: scene
+                .prims
+                .iter()
+                .map(|p| Occluder::new(scene, p.camera))
+                .collect(),
+            prim_culled,
+        }
+    }
+}
+
+/// Every feature's visible and hidden parts (see
+/// [`super::feature_visibility`]).
 pub(super) fn split_all(
     scene: &ScreenScene,
     map: &RegionMap,
+    occlusion: &Occlusion,
     features: &[Feature],
     options: &VectorOptions,
     stats: &mut LineStats,
 ) -> Vec<Visibility> {
-    let grid = map.grid;
-    let bins = ClippedTris::new(scene, &grid).bins;
-    let occluders: Vec<Occluder> = scene
-        .prims
-        .iter()
-        .map(|p| Occluder::new(scene, p.camera))
-        .collect();
     let context = Context {
         scene,
-        grid: &grid,
-        bins: &bins,
-        occluders: &occluders,
+        grid: &map.grid,
+        bins: &occlusion.bins,
+        occluders: &occlusion.occluders,
         tolerance: options.depth_tolerance,
     };
     features
