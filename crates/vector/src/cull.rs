@@ -35,6 +35,7 @@
 //! image, not by the input. The cull is off when hidden lines are drawn
 //! (`VectorOptions::dashed_hidden`): they want every hidden edge.
 
+use glam::DVec3;
 use hider_scene::ScreenScene;
 use i_overlay::i_float::int::point::IntPoint;
 
@@ -54,13 +55,14 @@ const SLACK: i64 = 2;
 /// evaluations (window depths lie in [0, 1]).
 const MARGIN: f64 = 1e-7;
 
-/// Which triangles the cull removed, and what it cost.
-#[derive(Clone, Debug, Default)]
+/// Which triangles the cull removed, and the tiles' bounds it used.
 pub(crate) struct Culled {
     /// Per screen triangle: nearer triangles hide it at every point.
     pub hidden: Vec<bool>,
     /// How many are hidden.
     pub count: u64,
+    /// The occluder depths, and the margin over them that hides.
+    bounds: Option<(Pyramid, f64)>,
 }
 
 impl Culled {
@@ -69,8 +71,54 @@ impl Culled {
         Self {
             hidden: vec![false; n],
             count: 0,
+            bounds: None,
         }
     }
+
+    /// Whether the window-space segment `p -> q` (`(x, y, depth)`,
+    /// pixels; window depth is affine along it) is hidden at every point
+    /// by the tiles' occluders, so that no part of a line on it is
+    /// drawn. The same bounds as for triangles: its least depth over each
+    /// widened tile it meets is at an end of its part in that tile.
+    pub fn buries_segment(&self, grid: &Grid, p: DVec3, q: DVec3) -> bool {
+        let Some((pyramid, margin)) = &self.bounds else {
+            return false;
+        };
+        let unit = grid.units_per_pixel();
+        let (p, q) = (
+            DVec3::new(p.x * unit, p.y * unit, p.z),
+            DVec3::new(q.x * unit, q.y * unit, q.z),
+        );
+        if !(p.is_finite() && q.is_finite()) {
+            return false;
+        }
+        let l = &pyramid.levels[0];
+        let cell = |v: f64, n: i64| ((v / l.side as f64).floor() as i64).clamp(0, n - 1);
+        let (c0, c1) = (cell(p.x.min(q.x), l.cols), cell(p.x.max(q.x), l.cols));
+        let (r0, r1) = (cell(p.y.min(q.y), l.rows), cell(p.y.max(q.y), l.rows));
+        (r0..=r1).all(|r| (c0..=c1).all(|c| pyramid.buries_segment(p, q, *margin, (0, c, r))))
+    }
+}
+
+/// The part of `p -> q` inside the closed rectangle (Liang-Barsky), as
+/// parameters; `None` when it misses.
+fn clip_segment(p: DVec3, q: DVec3, (x0, y0, x1, y1): Rect) -> Option<(f64, f64)> {
+    let (mut a, mut b) = (0.0f64, 1.0f64);
+    for (g0, g1) in [
+        (p.x - x0 as f64, q.x - x0 as f64),
+        (x1 as f64 - p.x, x1 as f64 - q.x),
+        (p.y - y0 as f64, q.y - y0 as f64),
+        (y1 as f64 - p.y, y1 as f64 - q.y),
+    ] {
+        if g0 < 0.0 && g1 < 0.0 {
+            return None;
+        } else if g0 < 0.0 {
+            a = a.max(g0 / (g0 - g1));
+        } else if g1 < 0.0 {
+            b = b.min(g0 / (g0 - g1));
+        }
+    }
+    (a <= b).then_some((a, b))
 }
 
 /// One level of the tile pyramid: square tiles of `side` grid units and
@@ -255,6 +303,40 @@ impl Pyramid {
     }
 }
 
+impl Pyramid {
+    /// [`Self::buries`] for a segment in grid units (depth in window
+    /// units): where it meets tile `(c, r)` of level `k`, its least depth
+    /// over the widened tile is beyond the tile's bound by `margin`.
+    fn buries_segment(
+        &self,
+        p: DVec3,
+        q: DVec3,
+        margin: f64,
+        (k, c, r): (usize, i64, i64),
+    ) -> bool {
+        // Rounding of the clip: a segment touching the tile counts.
+        if clip_segment(p, q, self.rect(k, c, r, false)).is_none() {
+            return true;
+        }
+        let level = &self.levels[k];
+        let front = level.front[(r * level.cols + c) as usize];
+        if front.is_finite()
+            && let Some((a, b)) = clip_segment(p, q, self.rect(k, c, r, true))
+        {
+            // Widened a little more against the rounding of the clip.
+            let (a, b) = ((a - 1e-9).max(0.0), (b + 1e-9).min(1.0));
+            let near = (p.z + a * (q.z - p.z)).min(p.z + b * (q.z - p.z));
+            if near > front + margin {
+                return true;
+            }
+        }
+        k + 1 < self.levels.len()
+            && self
+                .children(k, c, r)
+                .all(|(x, y)| self.buries_segment(p, q, margin, (k + 1, x, y)))
+    }
+}
+
 /// Whether one edge of the positively oriented triangle `v` has all of
 /// `pts` strictly outside (exact).
 fn separated(v: &[(i64, i64); 3], pts: &[(i64, i64); 4]) -> bool {
@@ -360,5 +442,9 @@ pub(crate) fn cull(
             count += 1;
         }
     }
-    Culled { hidden, count }
+    Culled {
+        hidden,
+        count,
+        bounds: Some((pyramid, margin)),
+    }
 }

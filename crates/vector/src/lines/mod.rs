@@ -63,7 +63,8 @@ hider_scene::hider_stats! {
         /// Edges (and intersection segments) that are lines.
         pub feature_edges: u64 => "feature edges",
         /// Feature edges left out before visibility: they lie on culled
-        /// triangles only (see the method in `docs/vector.md`).
+        /// triangles only, or the cull's tiles hide them all along (see
+        /// the method in `docs/vector.md`).
         pub culled_features: u64 => "culled feature edges",
         /// Occluder intervals tested.
         pub occluder_tests: u64 => "occluder tests",
@@ -222,9 +223,9 @@ pub fn hidden_lines_in(
         ..LineStats::default()
     };
     let occlusion = Occlusion::new(scene, &map.grid, options);
-    // A line on culled primitives only is hidden all along (see
-    // `crate::cull`): nothing of it would be drawn.
-    features.retain(|f| !f.own.iter().all(|&p| occlusion.prim_culled[p as usize]));
+    // A line on culled primitives only, or under the cull's tiles all
+    // along, is hidden (see `crate::cull`): nothing of it would be drawn.
+    features.retain(|f| !occlusion.buries(&map.grid, f));
     stats.culled_features = stats.feature_edges - features.len() as u64;
     let split = split_all(scene, map, &occlusion, &features, options, &mut stats);
     let mut visible = Vec::new();

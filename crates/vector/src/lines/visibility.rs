@@ -20,6 +20,8 @@ pub(super) struct Occlusion {
     /// Per primitive: all its screen triangles culled (see
     /// [`crate::cull`]), so every line on it alone is hidden.
     pub prim_culled: Vec<bool>,
+    /// The cull, for lines hidden all along by its tiles' bounds.
+    culled: Culled,
 }
 
 impl Occlusion {
@@ -66,7 +68,15 @@ impl Occlusion {
                 .map(|p| Occluder::new(scene, p.camera))
                 .collect(),
             prim_culled,
+            culled,
         }
+    }
+
+    /// Whether nothing of `f` can be drawn: it lies on culled primitives
+    /// only, or the cull's tiles hide its whole window segment.
+    pub fn buries(&self, grid: &Grid, f: &Feature) -> bool {
+        f.own.iter().all(|&p| self.prim_culled[p as usize])
+            || self.culled.buries_segment(grid, f.ends[0], f.ends[1])
     }
 }
 
