@@ -412,7 +412,7 @@ pub(crate) fn cull(
     // Pass 2: a triangle is culled when buried in every tile it meets.
     let mut hidden = vec![false; n];
     let mut count = 0;
-    for k in 0..n {
+    for (k, culled) in hidden.iter_mut().enumerate() {
         let Some((lo, hi)) = live(k) else { continue };
         let t = &scene.tris[k];
         let v = grid.tri_points(t);
@@ -438,7 +438,7 @@ pub(crate) fn cull(
         let buried =
             (r0..=r1).all(|r| (c0..=c1).all(|c| pyramid.buries(&v, &near, margin, (0, c, r))));
         if buried {
-            hidden[k] = true;
+            *culled = true;
             count += 1;
         }
     }

@@ -45,6 +45,7 @@ mod cover;
 mod cull;
 mod document;
 mod grid;
+mod group;
 mod lines;
 mod options;
 mod pairs;

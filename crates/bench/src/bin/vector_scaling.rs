@@ -8,8 +8,8 @@
 //! `hidden_lines_in` + `lines_svg` (what `hider render --svg` runs), and
 //! the growth exponent of each time between successive sizes.
 //!
-//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N]`
-//! (defaults: 20 s, 1,024,000 triangles).
+//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile]`
+//! (defaults: 20 s, 1,024,000 triangles, both families).
 
 use std::time::Instant;
 
@@ -48,6 +48,7 @@ fn main() -> Result<(), hider_scene::Error> {
         .collect();
     let cap = args.first().copied().unwrap_or(20.0);
     let largest = args.get(1).copied().unwrap_or(1_024_000.0) as u32;
+    let only = std::env::args().nth(3);
     let options = VectorOptions::default();
     println!(
         "| scene | N | culled | overlapping pairs | differences | regions s | exponent | line features | culled features | occluder tests | lines s | exponent |"
@@ -59,6 +60,14 @@ fn main() -> Result<(), hider_scene::Error> {
         ("`heavy_overdraw(N, 1)`", 250, |n| heavy_overdraw(n, 1)),
     ];
     for (name, start, make) in families {
+        let key = if name.contains("soup") {
+            "soup"
+        } else {
+            "pile"
+        };
+        if only.as_deref().is_some_and(|o| o != key) {
+            continue;
+        }
         let mut n = start;
         let (mut last_r, mut last_l) = (None, None);
         while n <= largest {
