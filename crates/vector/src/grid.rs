@@ -162,30 +162,21 @@ pub fn div_round(num: i128, den: i128) -> i128 {
     }
 }
 
-/// The triangles of a scene clipped to the image on the grid, indexed by
-/// their boxes: what both the regions and the line drawing search for the
-/// triangles that may cover a place.
-pub struct ClippedTris {
-    /// Triangle `k` clipped to the image; empty when nothing is left.
-    pub polys: Vec<Vec<IntPoint>>,
-    /// The inclusive box of `polys[k]`; `None` when it is empty.
-    pub boxes: Vec<Option<(IntPoint, IntPoint)>>,
-    /// The bins over `boxes`.
-    pub bins: Bins,
-}
+/// Every triangle of `scene` clipped to the image on `grid` (empty when
+/// nothing is left), and the inclusive box of each (`None` when empty):
+/// what both the regions and the line drawing bin to find the triangles
+/// that may cover a place.
+pub type Clipped = (Vec<Vec<IntPoint>>, Vec<Option<(IntPoint, IntPoint)>>);
 
-impl ClippedTris {
-    /// Clips and bins every triangle of `scene`, in the scene's order.
-    pub fn new(scene: &ScreenScene, grid: &Grid) -> Self {
-        let polys: Vec<Vec<IntPoint>> = scene
-            .tris
-            .iter()
-            .map(|t| grid.clip_to_image(&grid.tri_points(t)))
-            .collect();
-        let boxes: Vec<_> = polys.iter().map(|p| bounds(p)).collect();
-        let bins = Bins::new(grid, &boxes);
-        Self { polys, boxes, bins }
-    }
+/// See [`Clipped`].
+pub fn clip_all(scene: &ScreenScene, grid: &Grid) -> Clipped {
+    let polys: Vec<Vec<IntPoint>> = scene
+        .tris
+        .iter()
+        .map(|t| grid.clip_to_image(&grid.tri_points(t)))
+        .collect();
+    let boxes = polys.iter().map(|p| bounds(p)).collect();
+    (polys, boxes)
 }
 
 /// A uniform grid of bins over the image, each listing the triangles whose

@@ -57,7 +57,19 @@ pub struct VectorOptions {
     /// rather than one hiding the other (shared edges and vertices, the
     /// edges of a line's own faces). Default 1e-9.
     pub depth_tolerance: f64,
+    /// Most overlapping triangle pairs the regions (and the intersection
+    /// lines) may test, after culling: past it the drawing is refused
+    /// (an [`hider_scene::Error::Limit`] whose `what` is [`PAIRS_LIMIT`])
+    /// before its booleans allocate. Default 50,000,000 (the exactly
+    /// edge-on grids of `vector_bench` need 5.3 million; the 32,000-triangle
+    /// pile of `vector_scaling` 1.2 million).
+    pub max_pairs: u64,
 }
+
+/// The `what` of the [`hider_scene::Error::Limit`] refusing a drawing
+/// over [`VectorOptions::max_pairs`], so that a caller can name its own
+/// flag for it.
+pub const PAIRS_LIMIT: &str = "overlapping triangle pairs (VectorOptions::max_pairs)";
 
 impl Default for VectorOptions {
     fn default() -> Self {
@@ -73,6 +85,7 @@ impl Default for VectorOptions {
             stroke_width: 1.0,
             dashed_hidden: false,
             depth_tolerance: 1e-9,
+            max_pairs: 50_000_000,
         }
     }
 }
@@ -160,6 +173,12 @@ impl VectorOptions {
     /// Sets [`Self::dashed_hidden`].
     pub fn with_dashed_hidden(mut self, dashed: bool) -> Self {
         self.dashed_hidden = dashed;
+        self
+    }
+
+    /// Sets [`Self::max_pairs`].
+    pub fn with_max_pairs(mut self, pairs: u64) -> Self {
+        self.max_pairs = pairs;
         self
     }
 

@@ -14,7 +14,6 @@
 use std::collections::HashMap;
 
 use hider_geom::edge::orient2d;
-use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{Result, ScreenScene, ScreenTri, ShadeMode};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::{Overlay, ShapeType};
@@ -26,7 +25,9 @@ use crate::VectorOptions;
 use crate::close::{close_to_cover, outline};
 use crate::closed::hidden_back_faces;
 use crate::cover::{Cover, decide, loops, unmatched_edges};
-use crate::grid::{Bins, ClippedTris, Grid, bounds};
+use crate::cull::{Culled, cull};
+use crate::grid::{Bins, Grid, bounds, clip_all};
+use crate::group::group_regions;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
 
@@ -45,6 +46,10 @@ hider_scene::hider_stats! {
         /// Back faces of closed solids seen from outside, skipped (see
         /// the method in `docs/vector.md`).
         pub hidden_back_faces: u64 => "hidden back faces",
+        /// Triangles culled before the pair phase: nearer triangles that
+        /// contain whole screen tiles hide them at every point (see the
+        /// method in `docs/vector.md`).
+        pub culled: u64 => "culled",
         /// Triangles with occluders decided without a boolean: buried
         /// under, or clear of, their occluders' union.
         pub decided: u64 => "decided without boolean",
@@ -150,23 +155,49 @@ fn build(
     options.validate()?;
     let grid = Grid::for_scene(scene, options.refine_bits)?;
 
-    let ClippedTris { polys, boxes, bins } = ClippedTris::new(scene, &grid);
+    let (polys, boxes) = clip_all(scene, &grid);
     let mut stats = RegionStats {
         triangles: boxes.iter().flatten().count() as u64,
         ..RegionStats::default()
     };
+    let hidden = hidden_back_faces(scene);
+    let culled = if options.dashed_hidden {
+        // Hidden lines are drawn: the intersection lines of buried
+        // triangles are wanted too.
+        Culled::none(scene.tris.len())
+    } else {
+        cull(scene, &grid, &boxes, &hidden, options.depth_tolerance)
+    };
+    stats.culled = culled.count;
+    // Culled triangles are neither regions nor occluders: the tiles'
+    // nearer triangles hide whatever they would.
+    let live: Vec<_> = boxes
+        .iter()
+        .zip(&culled.hidden)
+        .map(|(b, &c)| if c { None } else { *b })
+        .collect();
+    let bins = Bins::new(&grid, &live);
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
     let mut cut_pairs = Vec::new();
     let mut seen = vec![u32::MAX; scene.tris.len()];
     let mut occluders: Vec<Vec<IntPoint>> = Vec::new();
     // One overlay for all differences: its buffers are kept between uses.
     let mut overlay = Overlay::new(64);
-    let hidden = hidden_back_faces(scene);
     for (ti, t) in scene.tris.iter().enumerate() {
         let Some((lo, hi)) = boxes[ti] else { continue };
         if hidden[ti] {
             stats.hidden_back_faces += 1;
             continue;
+        }
+        if culled.hidden[ti] {
+            continue;
+        }
+        if stats.overlapping_pairs > options.max_pairs {
+            return Err(hider_scene::Error::Limit {
+                what: crate::options::PAIRS_LIMIT,
+                value: stats.overlapping_pairs,
+                limit: options.max_pairs,
+            });
         }
         occluders.clear();
         // Set when one nearer triangle covers all of `t`: nothing of `t`
@@ -236,7 +267,14 @@ fn build(
             covered: Vec::new(),
         });
     }
-    let outline = outline(&polys, &hidden);
+    // The culled triangles lie inside their tiles' covering triangles:
+    // leaving them out changes no point of the union.
+    let skip: Vec<bool> = hidden
+        .iter()
+        .zip(&culled.hidden)
+        .map(|(&h, &c)| h || c)
+        .collect();
+    let outline = outline(&polys, &skip);
     let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats);
 
     let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
@@ -507,78 +545,4 @@ fn area2(poly: &[IntPoint]) -> i64 {
         })
         .sum::<i64>()
         .abs()
-}
-
-/// The key that puts coplanar primitives of one colour together: the fill
-/// colour and opacity as written, and the camera-space plane quantised.
-fn group_key(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> (String, u32, [i64; 4]) {
-    let (rgb, a) = prim_color(scene, prim, mode);
-    let fill = format!(
-        "#{:02x}{:02x}{:02x}",
-        to_srgb8(rgb[0]),
-        to_srgb8(rgb[1]),
-        to_srgb8(rgb[2])
-    );
-    let c = scene.prims[prim as usize].camera;
-    let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
-    let scale = c
-        .iter()
-        .map(|p| p.abs().max_element())
-        .fold(1e-300, f64::max);
-    // About six significant digits: triangles of one flat face agree far
-    // closer than that, distinct faces differ far more.
-    let q = |v: f64| (v * 1e6).round() as i64;
-    let key = [q(n.x), q(n.y), q(n.z), q(n.dot(c[0]) / scale)];
-    (fill, a.to_bits(), key)
-}
-
-/// Assigns every region a face group and builds the groups' paths.
-fn group_regions(
-    scene: &ScreenScene,
-    prims: &mut [PrimRegion],
-    mode: ShadeMode,
-    merge: bool,
-) -> Vec<FaceGroup> {
-    let mut index: HashMap<(String, u32, [i64; 4]), u32> = HashMap::new();
-    let mut groups: Vec<FaceGroup> = Vec::new();
-    for (k, region) in prims.iter_mut().enumerate() {
-        let key = if merge {
-            group_key(scene, region.prim, mode)
-        } else {
-            (String::new(), k as u32, [0; 4])
-        };
-        let next = groups.len() as u32;
-        let g = *index.entry(key).or_insert(next);
-        if g == next {
-            let (rgb, a) = prim_color(scene, region.prim, mode);
-            let fill = format!(
-                "#{:02x}{:02x}{:02x}",
-                to_srgb8(rgb[0]),
-                to_srgb8(rgb[1]),
-                to_srgb8(rgb[2])
-            );
-            groups.push(FaceGroup {
-                prims: Vec::new(),
-                fill,
-                opacity: a,
-                shapes: Vec::new(),
-            });
-        }
-        region.group = g;
-        groups[g as usize].prims.push(region.prim);
-        groups[g as usize]
-            .shapes
-            .extend(region.shapes.iter().cloned());
-    }
-    for group in &mut groups {
-        if group.prims.len() > 1 || group.shapes.len() > 1 {
-            let points = group.shapes.iter().flatten().map(Vec::len).sum();
-            let mut overlay = Overlay::new(points);
-            for shape in &group.shapes {
-                overlay.add_contours(shape, ShapeType::Subject);
-            }
-            group.shapes = overlay.overlay(OverlayRule::Subject, FillRule::NonZero);
-        }
-    }
-    groups
 }

@@ -1,0 +1,139 @@
+//! Work counters, not times: on scenes whose drawing the image bounds
+//! (more triangles piled on the same pixels), doubling the input must
+//! less than triple the work of the regions and of the lines, where
+//! testing every overlapping pair quadruples it. The cull that makes it so
+//! must change no region, and the pair budget refuses a drawing naming
+//! its option.
+
+mod common;
+
+use common::area2;
+use hider_scene::{Error, Scene, ShadeMode};
+use hider_testkit::hard_cases::heavy_overdraw;
+use hider_testkit::screen;
+use hider_vector::{
+    LineStats, ObjectGroups, PAIRS_LIMIT, RegionStats, VectorOptions, hidden_lines_in, line_pairs,
+    visible_regions,
+};
+use i_overlay::i_shape::int::shape::IntShapes;
+
+/// Image side: small, so that the piles are deep at CI sizes.
+const SIZE: u32 = 64;
+
+fn work(scene: &Scene) -> (RegionStats, LineStats) {
+    let s = screen(scene, SIZE, SIZE);
+    let options = VectorOptions::default();
+    let map = visible_regions(&s, &options, ShadeMode::Lambert).unwrap();
+    let pairs = line_pairs(&s, &options).unwrap();
+    let lines = hidden_lines_in(&s, &pairs, &options, &ObjectGroups::default()).unwrap();
+    (map.stats, lines.stats)
+}
+
+/// Asserts that every counter grows less than threefold from each size
+/// to the next.
+fn less_than_triples(family: &str, make: impl Fn(u32) -> Scene, sizes: &[u32]) {
+    let runs: Vec<_> = sizes.iter().map(|&n| (n, work(&make(n)))).collect();
+    for w in runs.windows(2) {
+        let ((n0, (r0, l0)), (n1, (r1, l1))) = (&w[0], &w[1]);
+        let counters = [
+            (
+                "overlapping pairs",
+                r0.overlapping_pairs,
+                r1.overlapping_pairs,
+            ),
+            ("cut pairs", r0.cut_pairs, r1.cut_pairs),
+            ("differences", r0.differences, r1.differences),
+            ("path points", r0.path_points, r1.path_points),
+            (
+                "line features tested",
+                l0.feature_edges - l0.culled_features,
+                l1.feature_edges - l1.culled_features,
+            ),
+            ("occluder tests", l0.occluder_tests, l1.occluder_tests),
+        ];
+        for (what, a, b) in counters {
+            assert!(
+                b < 3 * a.max(1),
+                "{family}: {what} {a} at {n0} triangles, {b} at {n1}\n{r1:?}\n{l1:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn doubling_a_pile_of_large_triangles_less_than_triples_the_work() {
+    less_than_triples(
+        "heavy overdraw",
+        |n| heavy_overdraw(n, 1),
+        &[500, 1_000, 2_000],
+    );
+}
+
+#[test]
+fn culling_changes_no_region() {
+    for (name, scene) in [
+        ("pile", heavy_overdraw(300, 5)),
+        ("deeper pile", heavy_overdraw(600, 7)),
+    ] {
+        let s = screen(&scene, SIZE, SIZE);
+        let culled = visible_regions(&s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
+        // Drawing hidden lines turns the cull off.
+        let all = VectorOptions::default().with_dashed_hidden(true);
+        let full = visible_regions(&s, &all, ShadeMode::Ids).unwrap();
+        assert!(culled.stats.culled > 0, "{name}: {:?}", culled.stats);
+        assert_eq!(full.stats.culled, 0);
+        // The same primitives are seen, and each region's area and the
+        // covered set's agree to within a band one grid unit wide along
+        // their outlines: the whole map is snap rounded together (every
+        // region's vertex is a hot pixel), so boundaries move by a unit
+        // when the buried triangles are no longer in it.
+        let prims =
+            |map: &hider_vector::RegionMap| map.prims.iter().map(|r| r.prim).collect::<Vec<_>>();
+        assert_eq!(prims(&culled), prims(&full), "{name}");
+        let within_a_unit = |what: String, a: &IntShapes, b: &IntShapes| {
+            let perimeter: f64 = b
+                .iter()
+                .flatten()
+                .map(|c| {
+                    (0..c.len())
+                        .map(|k| {
+                            let (p, q) = (c[k], c[(k + 1) % c.len()]);
+                            f64::from(q.x - p.x).hypot(f64::from(q.y - p.y))
+                        })
+                        .sum::<f64>()
+                })
+                .sum();
+            let gap = (area2(a) - area2(b)).abs() as f64;
+            assert!(
+                gap <= 2.0 * perimeter,
+                "{name}: {what}: twice the area differs by {gap}, outline {perimeter}"
+            );
+        };
+        within_a_unit("covered".into(), &culled.covered, &full.covered);
+        for (a, b) in culled.prims.iter().zip(&full.prims) {
+            within_a_unit(format!("prim {}", a.prim), &a.shapes, &b.shapes);
+        }
+    }
+}
+
+#[test]
+fn the_pair_budget_is_refused_naming_its_option() {
+    let s = screen(&heavy_overdraw(200, 1), SIZE, SIZE);
+    let options = VectorOptions::default().with_max_pairs(100);
+    for result in [
+        visible_regions(&s, &options, ShadeMode::Lambert).map(|_| ()),
+        line_pairs(&s, &options).map(|_| ()),
+    ] {
+        match result {
+            Err(Error::Limit { what, limit, .. }) => {
+                assert_eq!(what, PAIRS_LIMIT);
+                assert_eq!(limit, 100);
+            }
+            other => panic!("not refused: {other:?}"),
+        }
+    }
+    let line = visible_regions(&s, &options, ShadeMode::Lambert)
+        .unwrap_err()
+        .to_string();
+    assert!(line.contains("max_pairs") && !line.contains('\n'), "{line}");
+}
