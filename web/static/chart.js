@@ -35,7 +35,11 @@ export function drawChart(svg, results, highlight) {
     g.append(el("title", {}, `${p.name}: ${p.ms.toFixed(1)} ms, ${p.wrong} wrong`));
     const mine = p.name === highlight;
     g.append(el("circle", { cx: x(p.ms), cy: y(p.wrong), r: mine ? 6 : 4, fill: p.wrong > 0 ? "#d22" : "#2b6cb0", opacity: 0.8 }));
-    g.append(el("text", { x: x(p.ms) + 6, y: y(p.wrong) - 4, "font-size": 9, fill: "#444" }, p.name));
+    // Only the shown hider and the wrong ones are labelled (the others
+    // crowd the zero line); every point names itself on hover.
+    if (mine || p.wrong > 0) {
+      g.append(el("text", { x: x(p.ms) + 6, y: y(p.wrong) - 4, "font-size": 10, fill: "#222" }, p.name));
+    }
     svg.append(g);
   }
 }

@@ -142,9 +142,7 @@ mod tests {
             let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
             let options = ZBufferOptions::default().with_depth_format(format);
             let mut plain = Frame::new(40, 32).unwrap();
-            ZBuffer::new(options.clone())
-                .render(&screen, &mut plain)
-                .unwrap();
+            ZBuffer::new(options).render(&screen, &mut plain).unwrap();
             let mut traced = Frame::new(40, 32).unwrap();
             let mut trace = ZBufferTrace::default();
             ZBuffer::new(options)
