@@ -32,4 +32,4 @@ fi
 cp web/static/* "$dist/"
 cp assets/*.obj assets/*.mtl assets/*.png "$dist/assets/"
 cp assets/spider/* "$dist/assets/spider/"
-echo "== built $dist ($(du -sh "$dist" | cut -f1)); serve it with: python3 -m http.server -d $dist 8000"
+echo "== built $dist ($(du -sh "$dist" | cut -f1)); serve it with web/serve.sh"

@@ -131,10 +131,17 @@ impl Page {
         self.session.render(name).map(Frame).map_err(js)
     }
 
+    /// Renders the current view with hider `name` without the colour pass
+    /// or any copy (what `hider render --repeat` times), for timing;
+    /// returns the covered pixel count.
+    pub fn render_bare(&mut self, name: &str) -> JsResult<usize> {
+        self.session.render_bare(name).map_err(js)
+    }
+
     /// Scores `frame` against the oracle's ids for the current view (the
     /// oracle runs once per view).
     pub fn score(&mut self, frame: &Frame) -> JsResult<Score> {
-        self.session.score(&frame.0.ids).map(Score).map_err(js)
+        self.session.score(&frame.0.ids()).map(Score).map_err(js)
     }
 }
 
@@ -150,15 +157,15 @@ impl Frame {
     }
     /// Visible primitive per pixel, -1 for background.
     pub fn ids(&self) -> Vec<i32> {
-        self.0.ids.clone()
+        self.0.ids()
     }
     /// Window depth per pixel, 1.0 for background.
     pub fn depth(&self) -> Vec<f32> {
-        self.0.depth.clone()
+        self.0.frame.depth.clone()
     }
     /// RGBA bytes, top row first.
     pub fn rgba(&self) -> Vec<u8> {
-        self.0.rgba.clone()
+        self.0.rgba().to_vec()
     }
     /// The hider's counters, one `name value` a line.
     pub fn stats(&self) -> String {

@@ -18,19 +18,27 @@ use crate::orbit::Orbit;
 pub const MAX_SIDE: u32 = 1024;
 
 /// One hider's frame as the page shows it.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct Rendered {
     /// The hider's registry name.
     pub name: String,
-    /// Visible primitive per pixel, row-major, -1 for background (the
-    /// command line's `--ids-out` values).
-    pub ids: Vec<i32>,
-    /// Window depth per pixel, 1.0 for background.
-    pub depth: Vec<f32>,
-    /// The coloured image, RGBA 8 bits per channel.
-    pub rgba: Vec<u8>,
+    /// The frame: ids, depth and colour.
+    pub frame: Frame,
     /// The hider's counters, one `name value` line each.
     pub stats: String,
+}
+
+impl Rendered {
+    /// Visible primitive per pixel, row-major, -1 for background (the
+    /// command line's `--ids-out` values).
+    pub fn ids(&self) -> Vec<i32> {
+        self.frame.ids.iter().map(|&id| id_to_i32(id)).collect()
+    }
+
+    /// The coloured image, RGBA 8 bits per channel, top row first.
+    pub fn rgba(&self) -> &[u8] {
+        self.frame.rgba_bytes()
+    }
 }
 
 /// How a frame's ids agree with the oracle's.
@@ -54,6 +62,8 @@ pub struct Session {
     height: u32,
     hiders: Vec<Box<dyn DynHider>>,
     reference: Option<Reference>,
+    /// The frame and prepared scene [`Session::render_bare`] reuses.
+    bare: Option<(Frame, ScreenScene)>,
 }
 
 impl Default for Session {
@@ -72,6 +82,7 @@ impl Session {
             height: 256,
             hiders: Vec::new(),
             reference: None,
+            bare: None,
         }
     }
 
@@ -132,14 +143,7 @@ impl Session {
     /// colour pass unless it resolves colour itself.
     pub fn render(&mut self, name: &str) -> Result<Rendered, String> {
         let view = self.view()?;
-        let k = match self.hiders.iter().position(|h| h.name() == name) {
-            Some(k) => k,
-            None => {
-                let entry = registry::find(name).map_err(|e| e.to_string())?;
-                self.hiders.push(entry.make());
-                self.hiders.len() - 1
-            }
-        };
+        let k = self.hider_index(name)?;
         let hider = self.hiders[k].as_mut();
         let mut frame = Frame::new(self.width, self.height).map_err(|e| e.to_string())?;
         let mut screen = ScreenScene::empty(&view);
@@ -164,11 +168,48 @@ impl Session {
         lines.extend(stats.warnings.iter().map(|w| format!("warning: {w}")));
         Ok(Rendered {
             name: name.to_owned(),
-            ids: frame.ids.iter().map(|&id| id_to_i32(id)).collect(),
-            depth: frame.depth.clone(),
-            rgba: frame.rgba_bytes().to_vec(),
+            frame,
             stats: lines.join("\n"),
         })
+    }
+
+    /// Renders the current view with hider `name` without the colour pass
+    /// and without copying anything out: the call `hider render --repeat`
+    /// times (the hider's front end and its render), for timing in the
+    /// page. Returns the covered pixel count.
+    pub fn render_bare(&mut self, name: &str) -> Result<usize, String> {
+        let view = self.view()?;
+        let k = self.hider_index(name)?;
+        let (width, height) = (self.width, self.height);
+        let frame = self.bare.get_or_insert_with(|| {
+            (
+                Frame::new(width, height).expect("checked size"),
+                ScreenScene::empty(&view),
+            )
+        });
+        if frame.0.width() != width || frame.0.height() != height {
+            frame.0.resize(width, height).map_err(|e| e.to_string())?;
+        }
+        self.hiders[k]
+            .render_scene(
+                &self.scene,
+                &view,
+                &PrepareOptions::default(),
+                &mut frame.1,
+                &mut frame.0,
+            )
+            .map_err(|e| e.to_string())?;
+        Ok(frame.0.covered_count())
+    }
+
+    /// The index of hider `name` among those built, built now if not yet.
+    fn hider_index(&mut self, name: &str) -> Result<usize, String> {
+        if let Some(k) = self.hiders.iter().position(|h| h.name() == name) {
+            return Ok(k);
+        }
+        let entry = registry::find(name).map_err(|e| e.to_string())?;
+        self.hiders.push(entry.make());
+        Ok(self.hiders.len() - 1)
     }
 
     /// The oracle's answer for the current view (computed on first use
@@ -219,9 +260,12 @@ mod tests {
         session.set_size(48, 48).unwrap();
         for entry in registry::all() {
             let r = session.render(entry.name).unwrap();
-            assert_eq!(r.ids.len(), 48 * 48);
-            assert_eq!(r.rgba.len(), 48 * 48 * 4);
-            let s = session.score(&r.ids).unwrap();
+            let ids = r.ids();
+            assert_eq!(ids.len(), 48 * 48);
+            assert_eq!(r.rgba().len(), 48 * 48 * 4);
+            let covered = ids.iter().filter(|&&id| id >= 0).count();
+            assert_eq!(session.render_bare(entry.name).unwrap(), covered);
+            let s = session.score(&ids).unwrap();
             if entry.kind == registry::Kind::ExactPixelCentre {
                 assert_eq!(s.wrong, 0, "{}", entry.name);
             }
