@@ -3,6 +3,7 @@
 // draws buffers, handles input and times calls.
 import init, { Page } from "./pkg/hider_web.js";
 import { drawChart } from "./chart.js";
+import { buildSteps } from "./steps.js";
 
 const $ = (id) => document.getElementById(id);
 const status = (text, error = false) => {
@@ -78,6 +79,7 @@ function renderMain() {
 // The grid: every hider, one per task so the page stays responsive; the
 // oracle's ids are computed once per view by the first score.
 let gridTimer = null;
+let steps = null;
 function scheduleGrid() {
   clearTimeout(gridTimer);
   state.generation++;
@@ -320,6 +322,10 @@ function bindControls() {
     tab.addEventListener("click", () => {
       for (const t of document.querySelectorAll(".tab")) t.classList.toggle("active", t === tab);
       for (const v of document.querySelectorAll(".view")) v.classList.toggle("active", v.id === tab.dataset.view);
+      // The step-through records the view the Compare tab shows.
+      if (tab.dataset.view === "steps") {
+        try { steps.record(); } catch (e) { reportError(e.message || String(e)); }
+      }
     });
   }
 }
@@ -339,11 +345,12 @@ async function main() {
   buildGrid();
   bindInput();
   bindControls();
+  steps = buildSteps({ state, reportError });
   $("scene").value = "bundled|spider";
   await loadScene("bundled|spider");
   document.body.dataset.ready = "1";
 }
 
 // For the browser tests and the curious: the module's handle and state.
-window.hiderApp = { state, loadScene, renderMain, Page };
+window.hiderApp = { state, loadScene, renderMain, Page, steps: () => steps };
 main().catch((e) => reportError(`the page did not start: ${e.message || e}`));

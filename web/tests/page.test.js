@@ -173,6 +173,34 @@ test("orbiting with the mouse and keys changes the view", async () => {
   await page.screenshot({ path: join(out, "compare-cube-orbited.png") });
 });
 
+test("the z-buffer step-through ends on the z-buffer's frame", async () => {
+  await pick("spec|gen:cyclic");
+  await page.click('.tab[data-view="steps"]');
+  await page.selectOption("#z-size", "64");
+  const result = await page.evaluate(() => {
+    const { state } = window.hiderApp;
+    const body = document.getElementById("steps-body");
+    const steps = Number(body.dataset.steps);
+    const last = state.page.zbuffer_step(steps);
+    const first = state.page.zbuffer_step(0);
+    state.page.set_size(64, 64);
+    const frame = state.page.render("zbuffer");
+    const same = Array.from(last.ids()).every((id, k) => id === frame.ids()[k]);
+    const empty = Array.from(first.ids()).every((id) => id === -1);
+    state.page.set_size(state.size, state.size);
+    return { steps, same, empty, shown: Number(body.dataset.step) };
+  });
+  assert.ok(result.steps >= 3, `${result.steps} steps`);
+  assert.equal(result.shown, result.steps, "the view opens on the last step");
+  assert.ok(result.same, "the last step differs from the z-buffer's frame");
+  assert.ok(result.empty, "step 0 is not empty");
+  await page.screenshot({ path: join(out, "steps-zbuffer-last.png") });
+  await page.click("#z-back");
+  await page.screenshot({ path: join(out, "steps-zbuffer-back.png") });
+  assert.equal(await page.evaluate(() => document.getElementById("steps-body").dataset.step), String(result.steps - 1));
+  await page.click('.tab[data-view="compare"]');
+});
+
 test("frame time of the spider at 512 x 512 with the z-buffer (measured, reported)", async () => {
   await pick("bundled|spider");
   const ms = await page.evaluate(() => {

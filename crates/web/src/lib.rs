@@ -16,6 +16,7 @@
 pub mod orbit;
 pub mod scenes;
 pub mod session;
+pub mod steps;
 
 use wasm_bindgen::prelude::*;
 
@@ -36,6 +37,7 @@ fn js(message: String) -> JsError {
 pub struct Page {
     session: Session,
     files: Vec<(String, Vec<u8>)>,
+    ztrace: hider_zbuffer::ZBufferTrace,
 }
 
 #[wasm_bindgen]
@@ -138,6 +140,21 @@ impl Page {
         self.session.render_bare(name).map_err(js)
     }
 
+    /// Records the plain z-buffer's trace of the current scene and camera
+    /// at `side` x `side` (1 to 128); returns its number of steps (one per
+    /// triangle drawn).
+    pub fn zbuffer_trace(&mut self, side: u32) -> JsResult<usize> {
+        let (trace, _) = steps::zbuffer_trace(&self.session, side).map_err(js)?;
+        self.ztrace = trace;
+        Ok(self.ztrace.steps.len())
+    }
+
+    /// Step `k` of the recorded z-buffer trace (0: before the first
+    /// triangle).
+    pub fn zbuffer_step(&self, k: usize) -> ZStep {
+        ZStep(steps::zbuffer_step(&self.ztrace, k))
+    }
+
     /// Scores `frame` against the oracle's ids for the current view (the
     /// oracle runs once per view).
     pub fn score(&mut self, frame: &Frame) -> JsResult<Score> {
@@ -190,5 +207,29 @@ impl Score {
     /// 1 where the id differs from the oracle's, row-major.
     pub fn map(&self) -> Vec<u8> {
         self.0.map.clone()
+    }
+}
+
+/// One step of the z-buffer's trace.
+#[wasm_bindgen]
+pub struct ZStep(steps::ZStep);
+
+#[wasm_bindgen]
+impl ZStep {
+    /// Ids after the step, -1 for background.
+    pub fn ids(&self) -> Vec<i32> {
+        self.0.ids.clone()
+    }
+    /// Depth after the step, 1.0 for background.
+    pub fn depth(&self) -> Vec<f32> {
+        self.0.depth.clone()
+    }
+    /// The step's depth tests per pixel: 0 none, 1 passed, 2 failed.
+    pub fn outcome(&self) -> Vec<u8> {
+        self.0.outcome.clone()
+    }
+    /// The step's primitive id (-1 before the first).
+    pub fn prim(&self) -> i32 {
+        self.0.prim
     }
 }
