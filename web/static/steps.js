@@ -32,7 +32,7 @@ export function buildSteps(app) {
       <figure><canvas id="z-colour" width="64" height="64" style="width:384px;height:384px"></canvas>
         <figcaption>ids (false colour) with the step's depth tests</figcaption></figure>
       <figure><canvas id="z-depth" width="64" height="64" style="width:384px;height:384px"></canvas>
-        <figcaption>depth buffer (near dark, far and clear value white)</figcaption></figure>
+        <figcaption>depth buffer (nearest dark, farthest light, stretched over the drawn range; clear value white)</figcaption></figure>
     </div>
     <p id="z-painter" class="hint">The painter's step-through (its order, each Newell test and which one
     decided, the splits) will replay the painter crate's trace once it records one; until then the
@@ -44,12 +44,17 @@ export function buildSteps(app) {
     step.free();
     const colour = new Uint8ClampedArray(side * side * 4);
     const grey = new Uint8ClampedArray(side * side * 4);
+    // Depth stretched over the covered pixels' range: window depth
+    // crowds near 1 under perspective.
+    let lo = 1, hi = 0;
+    for (let p = 0; p < ids.length; p++) if (ids[p] >= 0) { lo = Math.min(lo, depth[p]); hi = Math.max(hi, depth[p]); }
+    const span = hi > lo ? hi - lo : 1;
     for (let p = 0; p < ids.length; p++) {
       let [r, g, b] = idColour(ids[p]);
       if (outcome[p] === 1) [r, g, b] = [40, 200, 60];
       if (outcome[p] === 2) [r, g, b] = [220, 40, 40];
       colour.set([r, g, b, 255], 4 * p);
-      const d = Math.round(255 * Math.min(1, Math.max(0, depth[p])));
+      const d = ids[p] < 0 ? 255 : Math.round(40 + 180 * (depth[p] - lo) / span);
       grey.set([d, d, d, 255], 4 * p);
     }
     for (const [id, data] of [["z-colour", colour], ["z-depth", grey]]) {
