@@ -6,8 +6,12 @@ const $ = (id) => document.getElementById(id);
 // A distinct colour per primitive id (a drawing aid, like --shade ids).
 function idColour(id) {
   if (id < 0) return [0, 0, 0];
-  const h = Math.imul(id + 1, 2654435761) >>> 0;
-  return [64 + (h & 127), 64 + ((h >> 8) & 127), 64 + ((h >> 16) & 127)];
+  // Hues a golden angle apart: neighbouring ids differ clearly.
+  const h = (id * 137.508) % 360, f = (n) => {
+    const k = (n + h / 30) % 12;
+    return Math.round(255 * (0.6 - 0.3 * Math.max(-1, Math.min(k - 3, 9 - k, 1))));
+  };
+  return [f(0), f(8), f(4)];
 }
 
 export function buildSteps(app) {
@@ -33,6 +37,24 @@ export function buildSteps(app) {
         <figcaption>ids (false colour) with the step's depth tests</figcaption></figure>
       <figure><canvas id="z-depth" width="64" height="64" style="width:384px;height:384px"></canvas>
         <figcaption>depth buffer (nearest dark, farthest light, stretched over the drawn range; clear value white)</figcaption></figure>
+    </div>
+    <h2>The scanline sweep, row by row</h2>
+    <p>Each step resolves one row: the runs of pixels the scanline (Watkins) wrote on it, each with its
+    visible triangle, recorded by the scanline itself (<code>ScanlineOptions::record_spans</code>). On the
+    current row, <span style="color:#2b6cb0">blue</span> runs were decided once for the whole span,
+    <span style="color:#e80">orange</span> ones are pieces of a span split where two depths cross,
+    <span style="color:#a3a">purple</span> ones came from the one-row depth buffer fallback. The edge table
+    and active edge list are not shown yet.</p>
+    <div class="controls">
+      <button id="s-back" title="row back">◀</button>
+      <button id="s-next" title="row forward">▶</button>
+      <input id="s-scrub" type="range" min="0" max="0" value="0" style="width: 20rem">
+      <span id="s-label">—</span>
+    </div>
+    <div class="stage">
+      <figure><canvas id="s-ids" width="64" height="64" style="width:384px;height:384px"></canvas>
+        <figcaption>ids of the rows swept so far (false colour), the current row's runs by how they were decided</figcaption></figure>
+      <pre id="s-row" style="max-height:384px;overflow:auto;font-size:12px"></pre>
     </div>
     <p id="z-painter" class="hint">The painter's step-through (its order, each Newell test and which one
     decided, the splits) will replay the painter crate's trace once it records one; until then the
@@ -69,6 +91,24 @@ export function buildSteps(app) {
     body.dataset.step = String(k);
     body.dataset.steps = String(steps);
   };
+  let rows = 0, row = 0;
+  const drawRows = () => {
+    const ids = app.state.page.scanline_ids(row), how = app.state.page.scanline_how(row);
+    const data = new Uint8ClampedArray(rows * rows * 4);
+    const tint = [null, [43, 108, 176], [238, 136, 0], [170, 51, 170]];
+    for (let p = 0; p < ids.length; p++) data.set([...(tint[how[p]] || idColour(ids[p])), 255], 4 * p);
+    const c = $("s-ids");
+    c.width = rows; c.height = rows;
+    c.getContext("2d").putImageData(new ImageData(data, rows, rows), 0, 0);
+    $("s-label").textContent = `row ${row} of ${rows}`;
+    $("s-row").textContent = row > 0 ? `row ${row - 1}:\n` + app.state.page.scanline_row(row - 1) : "";
+    $("s-scrub").value = String(row);
+    body.dataset.row = String(row);
+  };
+  const goRow = (next) => { row = Math.max(0, Math.min(rows, next)); drawRows(); };
+  $("s-back").addEventListener("click", () => goRow(row - 1));
+  $("s-next").addEventListener("click", () => goRow(row + 1));
+  $("s-scrub").addEventListener("input", () => goRow(Number($("s-scrub").value)));
   const go = (next) => { k = Math.max(0, Math.min(steps, next)); draw(); };
   const stop = () => { clearInterval(timer); timer = null; $("z-play").textContent = "play"; };
   const record = () => {
@@ -77,6 +117,9 @@ export function buildSteps(app) {
     steps = app.state.page.zbuffer_trace(side);
     $("z-scrub").max = String(steps);
     go(steps);
+    rows = app.state.page.scanline_trace(side);
+    $("s-scrub").max = String(rows);
+    goRow(Math.floor(rows / 2));
   };
   $("z-record").addEventListener("click", () => { try { record(); } catch (e) { app.reportError(e.message || String(e)); } });
   $("z-size").addEventListener("change", record);
@@ -90,5 +133,5 @@ export function buildSteps(app) {
     const every = Math.max(15, Math.min(300, 6000 / Math.max(1, steps)));
     timer = setInterval(() => { if (k >= steps) stop(); else go(k + 1); }, every);
   });
-  return { record, go };
+  return { record, go, goRow };
 }

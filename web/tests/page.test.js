@@ -198,6 +198,20 @@ test("the z-buffer step-through ends on the z-buffer's frame", async () => {
   await page.click("#z-back");
   await page.screenshot({ path: join(out, "steps-zbuffer-back.png") });
   assert.equal(await page.evaluate(() => document.getElementById("steps-body").dataset.step), String(result.steps - 1));
+  // The scanline sweep: all rows give the scanline's frame.
+  const sweep = await page.evaluate(() => {
+    const { state } = window.hiderApp;
+    const all = state.page.scanline_ids(64);
+    state.page.set_size(64, 64);
+    const frame = state.page.render("scanline");
+    const same = Array.from(all).every((id, k) => id === frame.ids()[k]);
+    state.page.set_size(state.size, state.size);
+    return { same, row: Number(document.getElementById("steps-body").dataset.row) };
+  });
+  assert.ok(sweep.same, "the full sweep differs from the scanline's frame");
+  assert.equal(sweep.row, 32, "the sweep view opens half-way");
+  await page.locator("#s-ids").scrollIntoViewIfNeeded();
+  await page.screenshot({ path: join(out, "steps-scanline.png"), fullPage: true });
   await page.click('.tab[data-view="compare"]');
 });
 
