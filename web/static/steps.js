@@ -6,10 +6,11 @@ const $ = (id) => document.getElementById(id);
 // A distinct colour per primitive id (a drawing aid, like --shade ids).
 function idColour(id) {
   if (id < 0) return [0, 0, 0];
-  // Hues a golden angle apart: neighbouring ids differ clearly.
+  // Muted hues a golden angle apart: neighbouring ids differ, and none
+  // is as bright as the outcome colours drawn over them.
   const h = (id * 137.508) % 360, f = (n) => {
     const k = (n + h / 30) % 12;
-    return Math.round(255 * (0.6 - 0.3 * Math.max(-1, Math.min(k - 3, 9 - k, 1))));
+    return Math.round(255 * (0.55 - 0.15 * Math.max(-1, Math.min(k - 3, 9 - k, 1))));
   };
   return [f(0), f(8), f(4)];
 }
