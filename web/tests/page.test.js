@@ -169,7 +169,11 @@ test("orbiting with the mouse and keys changes the view", async () => {
   await page.keyboard.press("-");
   const orbit = await page.evaluate(() => window.hiderApp.state.orbit);
   assert.notEqual(orbit.yaw, yaw0);
+  assert.ok(orbit.pitch > 0);
   assert.ok(orbit.zoom > 0);
+  await page.mouse.move(box.x + 100, box.y + 100);
+  await page.mouse.wheel(0, -300);
+  await page.waitForFunction((z) => window.hiderApp.state.orbit.zoom < z, orbit.zoom);
   await page.screenshot({ path: join(out, "compare-cube-orbited.png") });
 });
 
