@@ -214,6 +214,8 @@ test("the z-buffer step-through ends on the z-buffer's frame", async () => {
   });
   assert.ok(sweep.same, "the full sweep differs from the scanline's frame");
   assert.equal(sweep.row, 32, "the sweep view opens half-way");
+  const pieces = await page.evaluate(() => Number(document.getElementById("steps-body").dataset.pieces));
+  assert.ok(pieces > 3, `the painter's order of the cyclic triple has ${pieces} pieces (it needs splits)`);
   await page.locator("#s-ids").scrollIntoViewIfNeeded();
   await page.screenshot({ path: join(out, "steps-scanline.png"), fullPage: true });
   await page.click('.tab[data-view="compare"]');

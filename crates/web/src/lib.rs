@@ -187,6 +187,12 @@ impl Page {
             .join("\n")
     }
 
+    /// The painter's final order at `side` x `side`: one piece a line,
+    /// `prim x0 y0 x1 y1 ...` in window pixels, farthest first.
+    pub fn painter_order(&self, side: u32) -> JsResult<String> {
+        steps::painter_order(&self.session, side).map_err(js)
+    }
+
     /// Scores `frame` against the oracle's ids for the current view (the
     /// oracle runs once per view).
     pub fn score(&mut self, frame: &Frame) -> JsResult<Score> {
