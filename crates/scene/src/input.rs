@@ -45,6 +45,9 @@ pub fn check_regular(path: &Path, what: &'static str, max_bytes: u64) -> Result<
 /// The bytes of the regular file `path`, at most `max_bytes` (checked
 /// before reading, and while reading should the file grow).
 pub fn read_regular(path: &Path, what: &'static str, max_bytes: u64) -> Result<Vec<u8>> {
+    if let Some(held) = crate::memory_files::read(path, what, max_bytes) {
+        return held;
+    }
     let len = check_regular(path, what, max_bytes)?;
     let io = |source| Error::Io {
         path: path.to_path_buf(),

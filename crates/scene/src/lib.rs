@@ -67,6 +67,7 @@ pub mod frame;
 pub mod hider;
 pub mod input;
 pub mod load;
+pub mod memory_files;
 pub mod model;
 #[cfg(feature = "obj")]
 pub mod obj;

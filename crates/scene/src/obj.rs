@@ -461,6 +461,7 @@ fn content_warnings(scene: &Scene, warnings: &mut Vec<String>) {
     for m in &scene.materials {
         if let Some(t) = &m.diffuse_texture
             && !t.path().is_file()
+            && !crate::memory_files::holds(t.path())
         {
             warnings.push(format!(
                 "material '{}': texture {} not found; the material's diffuse colour is used",

@@ -72,11 +72,13 @@ mod options;
 mod raster;
 mod simd;
 mod tiled;
+pub mod trace;
 
 pub use depth_scene::{DepthFragment, DepthScene, DepthTri, prepare_depth_into};
 pub use options::{DepthFormat, DepthSource, DepthTest, ZBufferOptions};
 pub use raster::{ZBuffer, ZBufferStats};
 pub use tiled::{TiledZBuffer, TiledZBufferOptions, TiledZBufferStats};
+pub use trace::ZBufferTrace;
 
 /// The scene crate this one renders from (scene model, OBJ loading, the
 /// front end, frames, the camera, `glam`), so that one dependency is

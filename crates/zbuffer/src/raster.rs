@@ -8,6 +8,7 @@ use hider_scene::{Error, Frame, Hider, NO_ID, Result, ScreenScene, ScreenTri, ch
 
 use crate::depth::DepthBuffer;
 use crate::options::{DepthFormat, DepthSource, DepthTest, ZBufferOptions};
+use crate::trace::{DepthTestSink, NoTrace};
 
 hider_scene::hider_stats! {
     /// Work counters of one z-buffer frame.
@@ -73,11 +74,13 @@ impl ZBuffer {
         linear: Option<&LinearDepth>,
         frame: &mut Frame,
         stats: &mut ZBufferStats,
+        sink: &mut impl DepthTestSink,
     ) {
         let Some((x0, y0, x1, y1)) = tri.pixel_bounds(scene.viewport) else {
             return;
         };
         stats.triangles_set_up += 1;
+        sink.triangle(tri.prim);
         let edges = tri.edges();
         // Which plane the test compares: window depth, or (demonstration
         // only) camera depth interpolated linearly in screen space.
@@ -116,6 +119,9 @@ impl ZBuffer {
                             None => stored as f32,
                             Some(l) => l.to_window(l.denormalise(stored)) as f32,
                         };
+                        sink.test(i, frame.depth[i], true);
+                    } else {
+                        sink.test(i, value as f32, false);
                     }
                 }
                 for k in 0..3 {
@@ -198,13 +204,26 @@ impl Hider for ZBuffer {
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<ZBufferStats> {
+        self.render_with(scene, frame, &mut NoTrace)
+    }
+}
+
+impl ZBuffer {
+    /// [`Hider::render`] with every depth test reported to `sink`
+    /// ([`crate::trace`]).
+    pub(crate) fn render_with(
+        &mut self,
+        scene: &ScreenScene,
+        frame: &mut Frame,
+        sink: &mut impl DepthTestSink,
+    ) -> Result<ZBufferStats> {
         check_frame(&self.name, scene, frame)?;
         frame.clear();
         self.depth.clear(self.options.depth_format, frame.len());
         let mut stats = ZBufferStats::default();
         let linear = LinearDepth::for_scene(scene, self.options.depth_source)?;
         for tri in &scene.tris {
-            self.draw(scene, tri, linear.as_ref(), frame, &mut stats);
+            self.draw(scene, tri, linear.as_ref(), frame, &mut stats, sink);
         }
         stats.depth_bytes = self.depth.bytes() as u64;
         Ok(stats)

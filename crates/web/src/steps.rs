@@ -1,0 +1,163 @@
+//! The step-through views' traces, recorded by the algorithm crates
+//! themselves: the page only replays them.
+
+use hider_painter::{Painter, PainterOptions};
+use hider_scanline::{Resolution, Scanline, ScanlineOptions, SpanRecord};
+use hider_scene::frame::id_to_i32;
+use hider_scene::{Frame, Hider, PrepareOptions, View, prepare};
+use hider_zbuffer::{ZBuffer, ZBufferOptions, ZBufferTrace};
+
+use crate::session::Session;
+
+/// Largest side of a step-through image: every depth test is recorded.
+pub const MAX_STEP_SIDE: u32 = 128;
+
+/// Refuses a step-through size outside 1 to [`MAX_STEP_SIDE`].
+fn check_side(side: u32) -> Result<(), String> {
+    if side == 0 || side > MAX_STEP_SIDE {
+        return Err(format!(
+            "step-through size {side}: 1 to {MAX_STEP_SIDE} pixels a side"
+        ));
+    }
+    Ok(())
+}
+
+/// The plain z-buffer's trace of the session's scene and camera at
+/// `side` x `side` ([`ZBuffer::render_traced`]), with the frame it drew.
+pub fn zbuffer_trace(session: &Session, side: u32) -> Result<(ZBufferTrace, Frame), String> {
+    check_side(side)?;
+    let camera = session.camera().apply(session.scene());
+    let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
+    let screen =
+        prepare(session.scene(), &view, &PrepareOptions::default()).map_err(|e| e.to_string())?;
+    let mut frame = Frame::new(side, side).map_err(|e| e.to_string())?;
+    let mut trace = ZBufferTrace::default();
+    ZBuffer::new(ZBufferOptions::default())
+        .render_traced(&screen, &mut frame, &mut trace)
+        .map_err(|e| e.to_string())?;
+    Ok((trace, frame))
+}
+
+/// What the page draws for step `k` of a z-buffer trace (0: nothing drawn
+/// yet; `k` triangles drawn).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ZStep {
+    /// Ids after `k` steps, -1 for background.
+    pub ids: Vec<i32>,
+    /// Depth after `k` steps, 1.0 for background.
+    pub depth: Vec<f32>,
+    /// Step `k`'s depth tests: 0 none, 1 passed, 2 failed, per pixel.
+    pub outcome: Vec<u8>,
+    /// Step `k`'s primitive id (-1 at step 0).
+    pub prim: i32,
+}
+
+/// Step `k` of `trace`.
+pub fn zbuffer_step(trace: &ZBufferTrace, k: usize) -> ZStep {
+    let (ids, depth) = trace.replay(k);
+    let mut outcome = vec![0u8; ids.len()];
+    let mut prim = -1;
+    if let Some(step) = k.checked_sub(1).and_then(|i| trace.steps.get(i)) {
+        prim = id_to_i32(step.prim);
+        for t in &step.tests {
+            outcome[t.pixel as usize] = if t.passed { 1 } else { 2 };
+        }
+    }
+    ZStep {
+        ids: ids.into_iter().map(id_to_i32).collect(),
+        depth,
+        outcome,
+        prim,
+    }
+}
+
+/// The scanline's recorded runs of the session's scene and camera at
+/// `side` x `side` ([`ScanlineOptions::record_spans`]), row by row.
+pub fn scanline_spans(session: &Session, side: u32) -> Result<Vec<SpanRecord>, String> {
+    check_side(side)?;
+    let camera = session.camera().apply(session.scene());
+    let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
+    let screen =
+        prepare(session.scene(), &view, &PrepareOptions::default()).map_err(|e| e.to_string())?;
+    let mut frame = Frame::new(side, side).map_err(|e| e.to_string())?;
+    let mut scanline = Scanline::new(ScanlineOptions::default().with_record_spans(true));
+    scanline
+        .render(&screen, &mut frame)
+        .map_err(|e| e.to_string())?;
+    Ok(scanline.spans().to_vec())
+}
+
+/// The sweep after `rows` rows of a `side` x `side` frame: the ids the
+/// runs of those rows wrote (-1 elsewhere), and per pixel of the last of
+/// them how its run was decided (0 none, 1 whole span, 2 split where
+/// depths cross, 3 the one-row depth buffer fallback).
+pub fn scanline_step(spans: &[SpanRecord], side: u32, rows: u32) -> (Vec<i32>, Vec<u8>) {
+    let w = side as usize;
+    let mut ids = vec![-1; w * w];
+    let mut how = vec![0u8; w * w];
+    for s in spans.iter().filter(|s| s.row < rows) {
+        let base = s.row as usize * w;
+        for x in s.x0..=s.x1 {
+            ids[base + x as usize] = id_to_i32(s.prim);
+            if s.row + 1 == rows {
+                how[base + x as usize] = match s.how {
+                    Resolution::Whole => 1,
+                    Resolution::Split => 2,
+                    Resolution::Fallback => 3,
+                };
+            }
+        }
+    }
+    (ids, how)
+}
+
+/// The painter's final order of the session's scene and camera at
+/// `side` x `side` ([`Painter::order`]): per piece in paint order (farthest
+/// first), its primitive id, then its outline's window coordinates, one
+/// line a piece (`prim x0 y0 x1 y1 ...`). Its Newell tests and splits as
+/// they happen wait for the painter's trace.
+pub fn painter_order(session: &Session, side: u32) -> Result<String, String> {
+    check_side(side)?;
+    let camera = session.camera().apply(session.scene());
+    let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
+    let screen =
+        prepare(session.scene(), &view, &PrepareOptions::default()).map_err(|e| e.to_string())?;
+    let mut painter = Painter::new(PainterOptions::default());
+    painter.order(&screen).map_err(|e| e.to_string())?;
+    Ok(painter
+        .ordered_pieces()
+        .map(|piece| {
+            let mut line = piece.prim.to_string();
+            for p in &piece.polygon {
+                line.push_str(&format!(" {} {}", p.x, p.y));
+            }
+            line
+        })
+        .collect::<Vec<_>>()
+        .join("\n"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_last_steps_are_the_registry_hiders_frames() {
+        let mut session = Session::new();
+        session.set_scene(crate::scenes::from_spec("gen:cyclic").unwrap());
+        session.set_size(40, 40).unwrap();
+        let (trace, _) = zbuffer_trace(&session, 40).unwrap();
+        let last = zbuffer_step(&trace, trace.steps.len());
+        assert_eq!(last.ids, session.render("zbuffer").unwrap().ids());
+        assert_eq!(zbuffer_step(&trace, 0).prim, -1);
+        assert!(zbuffer_trace(&session, 1000).is_err());
+        let spans = scanline_spans(&session, 40).unwrap();
+        let (ids, _) = scanline_step(&spans, 40, 40);
+        assert_eq!(ids, session.render("scanline").unwrap().ids());
+        assert!(scanline_step(&spans, 40, 0).0.iter().all(|&id| id == -1));
+        // The cyclic triple has no order without a split.
+        let order = painter_order(&session, 40).unwrap();
+        assert!(order.lines().count() > 3, "{order}");
+        assert!(painter_order(&session, 0).is_err());
+    }
+}

@@ -1,0 +1,175 @@
+// The step-through view: the z-buffer triangle by triangle, replayed from
+// the trace hider-zbuffer records (ZBuffer::render_traced). Nothing here
+// computes coverage or depth: it draws what the trace holds.
+const $ = (id) => document.getElementById(id);
+
+// A distinct colour per primitive id (a drawing aid, like --shade ids).
+function idColour(id) {
+  if (id < 0) return [0, 0, 0];
+  // Muted hues a golden angle apart: neighbouring ids differ, and none
+  // is as bright as the outcome colours drawn over them.
+  const h = (id * 137.508) % 360, f = (n) => {
+    const k = (n + h / 30) % 12;
+    return Math.round(255 * (0.55 - 0.15 * Math.max(-1, Math.min(k - 3, 9 - k, 1))));
+  };
+  return [f(0), f(8), f(4)];
+}
+
+export function buildSteps(app) {
+  const body = $("steps-body");
+  body.innerHTML = `
+    <h2>The z-buffer, triangle by triangle</h2>
+    <p>Each step draws one triangle in submission order. At every pixel centre it covers, the depth
+    test compares its depth with the stored one: <span style="color:#0a0">green</span> pixels passed
+    (id and depth written), <span style="color:#d22">red</span> ones failed (something nearer was
+    there). The trace is recorded by <code>hider_zbuffer::ZBuffer::render_traced</code>; its last step
+    is the z-buffer's frame.</p>
+    <div class="controls">
+      <label>Size <select id="z-size"><option>32</option><option selected>64</option><option>128</option></select></label>
+      <button id="z-record">record the current view</button>
+      <button id="z-back" title="step back">◀</button>
+      <button id="z-play">play</button>
+      <button id="z-next" title="step forward">▶</button>
+      <input id="z-scrub" type="range" min="0" max="0" value="0" style="width: 20rem">
+      <span id="z-label">—</span>
+    </div>
+    <div class="stage">
+      <figure><canvas id="z-colour" width="64" height="64" style="width:384px;height:384px"></canvas>
+        <figcaption>ids (false colour) with the step's depth tests</figcaption></figure>
+      <figure><canvas id="z-depth" width="64" height="64" style="width:384px;height:384px"></canvas>
+        <figcaption>depth buffer (nearest dark, farthest light, stretched over the drawn range; clear value white)</figcaption></figure>
+    </div>
+    <h2>The scanline sweep, row by row</h2>
+    <p>Each step resolves one row: the runs of pixels the scanline (Watkins) wrote on it, each with its
+    visible triangle, recorded by the scanline itself (<code>ScanlineOptions::record_spans</code>). On the
+    current row, <span style="color:#2b6cb0">blue</span> runs were decided once for the whole span,
+    <span style="color:#e80">orange</span> ones are pieces of a span split where two depths cross,
+    <span style="color:#a3a">purple</span> ones came from the one-row depth buffer fallback. The edge table
+    and active edge list are not shown yet.</p>
+    <div class="controls">
+      <button id="s-back" title="row back">◀</button>
+      <button id="s-next" title="row forward">▶</button>
+      <input id="s-scrub" type="range" min="0" max="0" value="0" style="width: 20rem">
+      <span id="s-label">—</span>
+    </div>
+    <div class="stage">
+      <figure><canvas id="s-ids" width="64" height="64" style="width:384px;height:384px"></canvas>
+        <figcaption>ids of the rows swept so far (false colour), the current row's runs by how they were decided</figcaption></figure>
+      <pre id="s-row" style="max-height:384px;overflow:auto;font-size:12px"></pre>
+    </div>
+    <h2 id="z-painter">The painter's order</h2>
+    <p>The pieces in the order the painter (Newell–Newell–Sancha with splitting) paints them, farthest
+    first, each over the ones before, from <code>Painter::order</code>; the current piece is outlined.
+    Pieces cut from one triangle share its colour. Each Newell test and which one decided, and the splits
+    as they happen, will replay the painter crate's trace once it records one.</p>
+    <div class="controls">
+      <button id="p-back" title="piece back">◀</button>
+      <button id="p-next" title="piece forward">▶</button>
+      <input id="p-scrub" type="range" min="0" max="0" value="0" style="width: 20rem">
+      <span id="p-label">—</span>
+    </div>
+    <canvas id="p-canvas" width="384" height="384" style="width:384px;height:384px"></canvas>`;
+  let steps = 0, k = 0, side = 64, timer = null;
+  const draw = () => {
+    const step = app.state.page.zbuffer_step(k);
+    const ids = step.ids(), depth = step.depth(), outcome = step.outcome(), prim = step.prim();
+    step.free();
+    const colour = new Uint8ClampedArray(side * side * 4);
+    const grey = new Uint8ClampedArray(side * side * 4);
+    // Depth stretched over the covered pixels' range: window depth
+    // crowds near 1 under perspective.
+    let lo = 1, hi = 0;
+    for (let p = 0; p < ids.length; p++) if (ids[p] >= 0) { lo = Math.min(lo, depth[p]); hi = Math.max(hi, depth[p]); }
+    const span = hi > lo ? hi - lo : 1;
+    for (let p = 0; p < ids.length; p++) {
+      let [r, g, b] = idColour(ids[p]);
+      if (outcome[p] === 1) [r, g, b] = [40, 200, 60];
+      if (outcome[p] === 2) [r, g, b] = [220, 40, 40];
+      colour.set([r, g, b, 255], 4 * p);
+      const d = ids[p] < 0 ? 255 : Math.round(40 + 180 * (depth[p] - lo) / span);
+      grey.set([d, d, d, 255], 4 * p);
+    }
+    for (const [id, data] of [["z-colour", colour], ["z-depth", grey]]) {
+      const c = $(id);
+      c.width = side; c.height = side;
+      c.getContext("2d").putImageData(new ImageData(data, side, side), 0, 0);
+    }
+    const passed = outcome.filter((o) => o === 1).length, failed = outcome.filter((o) => o === 2).length;
+    $("z-label").textContent = k === 0 ? `step 0 of ${steps}: nothing drawn`
+      : `step ${k} of ${steps}: triangle ${prim}, ${passed} passed, ${failed} failed`;
+    $("z-scrub").value = String(k);
+    body.dataset.step = String(k);
+    body.dataset.steps = String(steps);
+  };
+  let rows = 0, row = 0;
+  const drawRows = () => {
+    const ids = app.state.page.scanline_ids(row), how = app.state.page.scanline_how(row);
+    const data = new Uint8ClampedArray(rows * rows * 4);
+    const tint = [null, [43, 108, 176], [238, 136, 0], [170, 51, 170]];
+    for (let p = 0; p < ids.length; p++) data.set([...(tint[how[p]] || idColour(ids[p])), 255], 4 * p);
+    const c = $("s-ids");
+    c.width = rows; c.height = rows;
+    c.getContext("2d").putImageData(new ImageData(data, rows, rows), 0, 0);
+    $("s-label").textContent = `row ${row} of ${rows}`;
+    $("s-row").textContent = row > 0 ? `row ${row - 1}:\n` + app.state.page.scanline_row(row - 1) : "";
+    $("s-scrub").value = String(row);
+    body.dataset.row = String(row);
+  };
+  const goRow = (next) => { row = Math.max(0, Math.min(rows, next)); drawRows(); };
+  $("s-back").addEventListener("click", () => goRow(row - 1));
+  $("s-next").addEventListener("click", () => goRow(row + 1));
+  $("s-scrub").addEventListener("input", () => goRow(Number($("s-scrub").value)));
+  let pieces = [], shown = 0;
+  const drawPieces = () => {
+    const c = $("p-canvas"), g = c.getContext("2d"), scale = c.width / side;
+    g.fillStyle = "#000";
+    g.fillRect(0, 0, c.width, c.height);
+    pieces.slice(0, shown).forEach((piece, i) => {
+      g.beginPath();
+      for (let v = 0; v < piece.points.length; v += 2) g.lineTo(piece.points[v] * scale, piece.points[v + 1] * scale);
+      g.closePath();
+      g.fillStyle = `rgb(${idColour(piece.prim).join(",")})`;
+      g.fill();
+      if (i === shown - 1) { g.strokeStyle = "#fff"; g.lineWidth = 2; g.stroke(); }
+    });
+    $("p-label").textContent = shown === 0 ? `0 of ${pieces.length} pieces painted`
+      : `${shown} of ${pieces.length} pieces painted; the last from triangle ${pieces[shown - 1].prim}`;
+    $("p-scrub").value = String(shown);
+    body.dataset.pieces = String(pieces.length);
+  };
+  const goPiece = (next) => { shown = Math.max(0, Math.min(pieces.length, next)); drawPieces(); };
+  $("p-back").addEventListener("click", () => goPiece(shown - 1));
+  $("p-next").addEventListener("click", () => goPiece(shown + 1));
+  $("p-scrub").addEventListener("input", () => goPiece(Number($("p-scrub").value)));
+  const go = (next) => { k = Math.max(0, Math.min(steps, next)); draw(); };
+  const stop = () => { clearInterval(timer); timer = null; $("z-play").textContent = "play"; };
+  const record = () => {
+    stop();
+    side = Number($("z-size").value);
+    steps = app.state.page.zbuffer_trace(side);
+    $("z-scrub").max = String(steps);
+    go(steps);
+    rows = app.state.page.scanline_trace(side);
+    $("s-scrub").max = String(rows);
+    goRow(Math.floor(rows / 2));
+    pieces = app.state.page.painter_order(side).split("\n").filter((l) => l).map((line) => {
+      const [prim, ...points] = line.split(" ").map(Number);
+      return { prim, points };
+    });
+    $("p-scrub").max = String(pieces.length);
+    goPiece(pieces.length);
+  };
+  $("z-record").addEventListener("click", () => { try { record(); } catch (e) { app.reportError(e.message || String(e)); } });
+  $("z-size").addEventListener("change", record);
+  $("z-back").addEventListener("click", () => { stop(); go(k - 1); });
+  $("z-next").addEventListener("click", () => { stop(); go(k + 1); });
+  $("z-scrub").addEventListener("input", () => { stop(); go(Number($("z-scrub").value)); });
+  $("z-play").addEventListener("click", () => {
+    if (timer) { stop(); return; }
+    if (k >= steps) go(0);
+    $("z-play").textContent = "pause";
+    const every = Math.max(15, Math.min(300, 6000 / Math.max(1, steps)));
+    timer = setInterval(() => { if (k >= steps) stop(); else go(k + 1); }, every);
+  });
+  return { record, go, goRow };
+}
