@@ -4,15 +4,16 @@
 //! the CPU has, and the resolve of a band into the frame.
 
 use hider_geom::Viewport;
-use hider_scene::Frame;
-use hider_scene::frame::BACKGROUND;
+use hider_scene::frame::{BACKGROUND, BACKGROUND_DEPTH};
 use hider_scene::pool::Workers;
+use hider_scene::{Frame, FrameBuffers, NO_ID};
 
 use super::bins::{self, ChunkBins, FragmentBins, Grid};
 use super::raster_tri::RasterTri;
 use super::scratch::TileKey;
 use super::tile::TileBuf;
 use super::wide::{Avx2, Isa, Portable};
+use crate::simd::stream;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::{self, Kernel};
 
@@ -66,9 +67,10 @@ impl<T: RasterTri> Jobs<'_, T> {
             self.grid.cols as usize,
             self.grid.tile,
         );
+        let how = ReadBack::of(frame);
         for_each_band(frame, bufs, self.grid, pool, |b, out, band| {
             self.dispatch(b * cols, band);
-            resolve_band(band, out, width, b as u32 * tile);
+            resolve_band(band, out, width, b as u32 * tile, how);
         });
     }
 
@@ -190,8 +192,9 @@ pub(super) fn resolve<K: TileKey>(
     pool: Workers<'_>,
 ) {
     let width = frame.width() as usize;
+    let how = ReadBack::of(frame);
     for_each_band(frame, bufs, grid, pool, |b, out, band| {
-        resolve_band(band, out, width, b as u32 * grid.tile);
+        resolve_band(band, out, width, b as u32 * grid.tile, how);
     });
 }
 
@@ -233,15 +236,81 @@ fn for_each_band<K: TileKey>(
     }
 }
 
-/// Writes a band's tiles into the frame's rows of that band.
+/// Frames of at least this many pixels are cleared with streaming stores
+/// where nothing was drawn. Below, the frame (12 bytes a pixel) fits in
+/// the last-level cache of current CPUs, where the caller reads it next,
+/// and plain stores that leave it there are faster.
+pub(crate) const STREAM_PIXELS: usize = 1 << 21;
+
+/// How a read-back writes the frame: which buffers, and whether the
+/// background is cleared with streaming stores.
+#[derive(Clone, Copy, Debug)]
+struct ReadBack {
+    wanted: FrameBuffers,
+    stream: bool,
+}
+
+impl ReadBack {
+    fn of(frame: &Frame) -> Self {
+        Self {
+            wanted: frame.buffers(),
+            stream: frame.len() >= STREAM_PIXELS,
+        }
+    }
+}
+
+/// Writes a band's tiles into the frame's rows of that band: only the
+/// buffers the frame asks for ([`Frame::buffers`]); the tiles no triangle
+/// met, and the colour (a z-buffer resolves none), as background in runs
+/// as long as the frame allows.
 fn resolve_band<K: TileKey>(
     band: &[TileBuf<K>],
     ((ids, depth), color): FrameBand<'_>,
     width: usize,
     band_y0: u32,
+    how: ReadBack,
 ) {
-    for buf in band {
-        buf.resolve(ids, depth, width, band_y0);
+    let ReadBack { wanted, stream } = how;
+    for buf in band.iter().filter(|b| b.is_active()) {
+        match (wanted.ids, wanted.depth) {
+            (true, true) => buf.resolve::<true, true>(ids, depth, width, band_y0),
+            (true, false) => buf.resolve::<true, false>(ids, depth, width, band_y0),
+            (false, true) => buf.resolve::<false, true>(ids, depth, width, band_y0),
+            (false, false) => {}
+        }
     }
-    color.fill(BACKGROUND);
+    // Runs of untouched tiles, in columns; a band no triangle met is one
+    // contiguous run of rows.
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for buf in band.iter().filter(|b| !b.is_active()) {
+        let (x0, w) = buf.columns();
+        match runs.last_mut() {
+            Some((_, end)) if *end == x0 => *end = x0 + w,
+            _ => runs.push((x0, x0 + w)),
+        }
+    }
+    let clear = |ids: &mut [u32], depth: &mut [f32]| {
+        if wanted.ids {
+            stream::fill(ids, NO_ID, stream);
+        }
+        if wanted.depth {
+            stream::fill(depth, BACKGROUND_DEPTH, stream);
+        }
+    };
+    if runs == [(0, width)] {
+        clear(ids, depth);
+    } else if !runs.is_empty() && (wanted.ids || wanted.depth) {
+        for row in 0..ids.len() / width {
+            for &(x0, x1) in &runs {
+                let at = row * width;
+                clear(&mut ids[at + x0..at + x1], &mut depth[at + x0..at + x1]);
+            }
+        }
+    }
+    if wanted.color {
+        stream::fill(color, BACKGROUND, stream);
+    }
+    if stream {
+        stream::fence();
+    }
 }
