@@ -22,7 +22,6 @@
 
 pub(crate) mod block;
 pub(crate) mod classify;
-pub(crate) mod stream;
 
 #[cfg(target_arch = "x86_64")]
 use hider_geom::isa::{Avx2, Isa};

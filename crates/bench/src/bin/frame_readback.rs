@@ -16,7 +16,14 @@
 //! milliseconds to run at full speed), then [`TIMED`] frames, timed. The
 //! table gives the median ms over all rounds.
 //!
-//! `cargo run --release -p hider-bench --bin frame_readback -- [K] [SIZES...]`
+//! With `--peers-bin PATH` (the `peers` package's binary) every round
+//! first runs llvmpipe on the same scenes, and the table adds the
+//! same-run ratios of its medians to hider's: render only (its clear +
+//! draw + `glFinish` over `draw`) and the frame in client memory (its
+//! clear + draw + `glReadPixels` of colour and depth over `all`, which
+//! delivers ids besides). All times are then wall time, as the peers'.
+//!
+//! `cargo run --release -p hider-bench --bin frame_readback -- [K] [SIZES...] [--peers-bin PATH]`
 //! (default K = 5 rounds, size 1024).
 
 use std::time::{Duration, Instant};
@@ -77,7 +84,8 @@ struct Row<'a> {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    let peers_bin = programs::take_flag(&mut args, "--peers-bin")?;
     let rounds: usize = args.first().and_then(|a| a.parse().ok()).unwrap_or(5);
     let mut sizes: Vec<u32> = args.iter().skip(1).filter_map(|a| a.parse().ok()).collect();
     if sizes.is_empty() {
@@ -88,13 +96,26 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let serial = PrepareOptions::gl_compatible();
     let parallel = serial.with_parallel(true);
     println!(
-        "median ms of {} frames ({rounds} interleaved rounds): 1 thread in the thread's CPU time, 2 threads in wall time; floor = the frame's 12 bytes a pixel\n",
-        rounds * TIMED
+        "median ms of {} frames ({rounds} interleaved rounds): {}; floor = the frame's 12 bytes a pixel\n",
+        rounds * TIMED,
+        if peers_bin.is_some() {
+            "wall time"
+        } else {
+            "1 thread in the thread's CPU time, 2 threads in wall time"
+        }
     );
     println!(
-        "| scene | size | threads | draw | all | ids+depth | ids | read (all) | memset | memcpy | read / memset |"
+        "| scene | size | threads | draw | all | ids+depth | ids | read (all) | memset | memcpy | read / memset |{}",
+        if peers_bin.is_some() {
+            " vs llvmpipe render only | vs llvmpipe + read-back |"
+        } else {
+            ""
+        }
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!(
+        "|---|---|---|---|---|---|---|---|---|---|---|{}",
+        if peers_bin.is_some() { "---|---|" } else { "" }
+    );
     for &size in &sizes {
         let mut rows = Vec::new();
         for (name, scene) in &scenes {
@@ -115,13 +136,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         let bytes = size as usize * size as usize * 12;
         let (mut dst, src) = (vec![0_u8; bytes], vec![1_u8; bytes]);
+        let mut peers = Vec::new();
         for _ in 0..rounds {
+            if let Some(bin) = &peers_bin {
+                peers.extend(programs::run_peers(bin, &["--peers", "llvmpipe"], size)?);
+            }
             for row in &mut rows {
                 let options = if row.threads == 1 { &serial } else { &parallel };
                 let mut t = std::mem::take(&mut row.times);
                 // One thread runs here (its CPU time is the measure), two
                 // on the pool (wall time).
-                let cpu = row.threads == 1;
+                let cpu = row.threads == 1 && peers_bin.is_none();
                 let on = |f: &mut (dyn FnMut() + Send)| if cpu { f() } else { pool.install(f) };
                 time(&mut t[0], cpu, || {
                     on(&mut || {
@@ -179,8 +204,30 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .map(median)
                 .collect();
             let cells: Vec<String> = m.iter().map(|v| format!("{v:.2}")).collect();
+            // The median over this run's measurements of a peer.
+            let peer = |name: &str| {
+                let v: Vec<f64> = peers
+                    .iter()
+                    .filter(|p| p.scene == row.name && p.size == size && p.peer == name)
+                    .filter(|p| p.threads as usize == row.threads)
+                    .map(|p| p.median_ms)
+                    .collect();
+                (!v.is_empty()).then(|| median(v))
+            };
+            let ratio = |p: Option<f64>, ours: f64| {
+                p.map_or("-".to_owned(), |p| format!("{:.2}x ({p:.2})", p / ours))
+            };
+            let vs = if peers_bin.is_some() {
+                format!(
+                    " {} | {} |",
+                    ratio(peer("llvmpipe"), m[0]),
+                    ratio(peer("llvmpipe+read"), m[1])
+                )
+            } else {
+                String::new()
+            };
             println!(
-                "| {} | {size} | {} | {} | {:.2}x |",
+                "| {} | {size} | {} | {} | {:.2}x |{vs}",
                 row.name,
                 row.threads,
                 cells.join(" | "),

@@ -13,7 +13,6 @@ use super::raster_tri::RasterTri;
 use super::scratch::TileKey;
 use super::tile::TileBuf;
 use super::wide::{Avx2, Isa, Portable};
-use crate::simd::stream;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::{self, Kernel};
 
@@ -67,10 +66,10 @@ impl<T: RasterTri> Jobs<'_, T> {
             self.grid.cols as usize,
             self.grid.tile,
         );
-        let how = ReadBack::of(frame);
+        let wanted = frame.buffers();
         for_each_band(frame, bufs, self.grid, pool, |b, out, band| {
             self.dispatch(b * cols, band);
-            resolve_band(band, out, width, b as u32 * tile, how);
+            resolve_band(band, out, width, b as u32 * tile, wanted);
         });
     }
 
@@ -192,9 +191,9 @@ pub(super) fn resolve<K: TileKey>(
     pool: Workers<'_>,
 ) {
     let width = frame.width() as usize;
-    let how = ReadBack::of(frame);
+    let wanted = frame.buffers();
     for_each_band(frame, bufs, grid, pool, |b, out, band| {
-        resolve_band(band, out, width, b as u32 * grid.tile, how);
+        resolve_band(band, out, width, b as u32 * grid.tile, wanted);
     });
 }
 
@@ -236,29 +235,6 @@ fn for_each_band<K: TileKey>(
     }
 }
 
-/// Frames of at least this many pixels are cleared with streaming stores
-/// where nothing was drawn. Below, the frame (12 bytes a pixel) fits in
-/// the last-level cache of current CPUs, where the caller reads it next,
-/// and plain stores that leave it there are faster.
-pub(crate) const STREAM_PIXELS: usize = 1 << 21;
-
-/// How a read-back writes the frame: which buffers, and whether the
-/// background is cleared with streaming stores.
-#[derive(Clone, Copy, Debug)]
-struct ReadBack {
-    wanted: FrameBuffers,
-    stream: bool,
-}
-
-impl ReadBack {
-    fn of(frame: &Frame) -> Self {
-        Self {
-            wanted: frame.buffers(),
-            stream: frame.len() >= STREAM_PIXELS,
-        }
-    }
-}
-
 /// Writes a band's tiles into the frame's rows of that band: only the
 /// buffers the frame asks for ([`Frame::buffers`]); the tiles no triangle
 /// met, and the colour (a z-buffer resolves none), as background in runs
@@ -268,9 +244,8 @@ fn resolve_band<K: TileKey>(
     ((ids, depth), color): FrameBand<'_>,
     width: usize,
     band_y0: u32,
-    how: ReadBack,
+    wanted: FrameBuffers,
 ) {
-    let ReadBack { wanted, stream } = how;
     for buf in band.iter().filter(|b| b.is_active()) {
         match (wanted.ids, wanted.depth) {
             (true, true) => buf.resolve::<true, true>(ids, depth, width, band_y0),
@@ -291,10 +266,10 @@ fn resolve_band<K: TileKey>(
     }
     let clear = |ids: &mut [u32], depth: &mut [f32]| {
         if wanted.ids {
-            stream::fill(ids, NO_ID, stream);
+            ids.fill(NO_ID);
         }
         if wanted.depth {
-            stream::fill(depth, BACKGROUND_DEPTH, stream);
+            depth.fill(BACKGROUND_DEPTH);
         }
     };
     if runs == [(0, width)] {
@@ -307,10 +282,11 @@ fn resolve_band<K: TileKey>(
             }
         }
     }
+    // Plain stores, not streaming ones: `movntdq` for these fills was
+    // measured slower on this machine at 1024 (the frame stays in the
+    // last-level cache, where the caller reads it next) and at 2048 alike
+    // (docs/zbuffer.md, "Frame delivery").
     if wanted.color {
-        stream::fill(color, BACKGROUND, stream);
-    }
-    if stream {
-        stream::fence();
+        color.fill(BACKGROUND);
     }
 }

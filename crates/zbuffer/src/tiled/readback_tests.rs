@@ -1,10 +1,9 @@
 //! The read-back writes what the frame asks for ([`FrameBuffers`]) and
-//! nothing else, through `render`, `render_scene` and `read_into`, with
-//! and without the streaming clear.
+//! nothing else, through `render`, `render_scene` and `read_into`,
+//! for every combination, thread count and tile size.
 
 use hider_scene::{Frame, FrameBuffers, Hider, PrepareOptions, ScreenScene, View, procedural};
 
-use super::band::STREAM_PIXELS;
 use crate::{TiledZBuffer, TiledZBufferOptions, ZBuffer};
 
 /// Every combination of the three buffers.
@@ -81,21 +80,5 @@ fn only_the_requested_buffers_are_written() {
                 assert_request(&got, &want, wanted, &format!("read_into, {what}"));
             }
         }
-    }
-}
-
-#[test]
-fn frames_cleared_with_streaming_stores_match() {
-    // The smallest frame the streaming clear serves, with an odd width
-    // so that rows start at every alignment.
-    let (w, h) = (2047, (STREAM_PIXELS as u32).div_ceil(2047));
-    let (_, _, screen) = corner_sphere(w, h);
-    let mut want = Frame::new(w, h).unwrap();
-    ZBuffer::default().render(&screen, &mut want).unwrap();
-    let mut hider = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(2));
-    for wanted in [FrameBuffers::ALL, FrameBuffers::IDS] {
-        let mut got = dirty(w, h, wanted);
-        hider.render(&screen, &mut got).unwrap();
-        assert_request(&got, &want, wanted, "streamed");
     }
 }
