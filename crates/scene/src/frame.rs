@@ -256,12 +256,14 @@ impl Frame {
     /// committed with the other outputs of the run.
     #[cfg(feature = "image")]
     pub fn write_png_into(&self, set: &mut OutputSet, path: &Path) -> Result<()> {
-        let bytes: Vec<u8> = self.color.iter().flatten().copied().collect();
+        // The colour buffer is already RGBA bytes: borrowed, not copied (a
+        // copy was a second full frame, 1 GB at 16384 x 16384).
+        let bytes = self.rgba_bytes();
         set.stage(path, |w| {
             let encoder = image::codecs::png::PngEncoder::new(w);
             image::ImageEncoder::write_image(
                 encoder,
-                &bytes,
+                bytes,
                 self.width,
                 self.height,
                 image::ExtendedColorType::Rgba8,
