@@ -82,6 +82,7 @@ const GL_FRAMEBUFFER: GLenum = 0x8D40;
 const GL_RENDERBUFFER: GLenum = 0x8D41;
 const GL_RGBA8: GLenum = 0x8058;
 const GL_DEPTH_COMPONENT24: GLenum = 0x81A6;
+const GL_DEPTH_COMPONENT: GLenum = 0x1902;
 const GL_COLOR_ATTACHMENT0: GLenum = 0x8CE0;
 const GL_DEPTH_ATTACHMENT: GLenum = 0x8D00;
 const GL_FRAMEBUFFER_COMPLETE: GLenum = 0x8CD5;
@@ -232,6 +233,11 @@ pub struct Llvmpipe {
 pub struct GlRun {
     /// Milliseconds of each timed run (warm-ups excluded).
     pub ms: Vec<f64>,
+    /// Milliseconds of each timed run of the frame delivered in client
+    /// memory: clear + draw + `glReadPixels` of the colour (RGBA8) and of
+    /// the depth (`GL_FLOAT`), which waits for the draw as `glFinish`
+    /// does: what a caller of hider's `render` gets (a `Frame`).
+    pub read_ms: Vec<f64>,
     /// Pixels covered in the last frame (alpha not 0 on read-back).
     pub covered: u64,
     /// Samples covered in the last frame: a pixel's alpha is the covered
@@ -427,6 +433,39 @@ impl Llvmpipe {
             t.elapsed().as_secs_f64() * 1e3
         });
         self.check("drawing")?;
+        let n = side as usize * side as usize;
+        let (mut color, mut depth) = (vec![0_u32; n], vec![0_f32; n]);
+        let read_ms = crate::timed_runs(warmups, runs, || {
+            let t = Instant::now();
+            // SAFETY: the context is current; the bound VBO holds
+            // `vertices` vertices; `color` and `depth` hold side x side
+            // 4-byte values.
+            unsafe {
+                (gl.glClear)(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+                (gl.glDrawArrays)(GL_TRIANGLES, 0, vertices);
+                (gl.glReadPixels)(
+                    0,
+                    0,
+                    side,
+                    side,
+                    GL_RGBA,
+                    GL_UNSIGNED_BYTE,
+                    color.as_mut_ptr().cast(),
+                );
+                (gl.glReadPixels)(
+                    0,
+                    0,
+                    side,
+                    side,
+                    GL_DEPTH_COMPONENT,
+                    GL_FLOAT,
+                    depth.as_mut_ptr().cast(),
+                );
+            }
+            t.elapsed().as_secs_f64() * 1e3
+        });
+        std::hint::black_box((&color, &depth));
+        self.check("drawing and reading back")?;
 
         let (covered, samples);
         // SAFETY: the context is current; the names deleted are the ones
@@ -443,6 +482,7 @@ impl Llvmpipe {
         self.check("read-back")?;
         Ok(GlRun {
             ms,
+            read_ms,
             covered,
             samples,
         })

@@ -63,6 +63,9 @@ const NO_LIBRARY: i32 = 3;
 const GL_TOLERANCE: f64 = 0.005;
 /// The peer name of llvmpipe with 4x MSAA in the table and the JSON.
 const MSAA_PEER: &str = "llvmpipe-msaa4";
+/// The peer name of llvmpipe's frame delivered in client memory (draw
+/// plus `glReadPixels` of colour and depth).
+const READ_PEER: &str = "llvmpipe+read";
 /// The same for llvmpipe with 4x MSAA, on covered *samples* against the
 /// samples hider's front end covers at llvmpipe's 4 positions (0.5 %):
 /// the same snapping, fill rule and sample points.
@@ -170,6 +173,9 @@ struct RawResult {
     /// Samples covered (pixels when single-sampled).
     #[serde(default)]
     samples: u64,
+    /// The runs of the frame read back into client memory (llvmpipe).
+    #[serde(default)]
+    read_ms: Vec<f64>,
 }
 
 /// What an llvmpipe child prints on standard output.
@@ -265,6 +271,7 @@ fn run_child(args: &Args) -> ExitCode {
                     ms: run.ms,
                     covered: run.covered,
                     samples: run.samples,
+                    read_ms: Vec::new(),
                 }),
                 Err(e) => {
                     eprintln!("llvmpipe 4x MSAA on {} at {}: {e}", w.name, w.size);
@@ -279,6 +286,7 @@ fn run_child(args: &Args) -> ExitCode {
                 ms: run.ms,
                 covered: run.covered,
                 samples: run.samples,
+                read_ms: run.read_ms,
             }),
             Err(e) => {
                 eprintln!("llvmpipe on {} at {}: {e}", w.name, w.size);
@@ -468,12 +476,18 @@ fn print_table(
             header += &format!(" llvmpipe {t}T |");
             columns.push(("llvmpipe", t));
         }
+        for &t in &args.threads {
+            header += &format!(" llvmpipe + read-back {t}T |");
+            columns.push((READ_PEER, t));
+        }
         for &t in args.threads.iter().filter(|_| args.msaa) {
             header += &format!(" llvmpipe 4x MSAA {t}T |");
             columns.push((MSAA_PEER, t));
         }
     }
-    println!("median (min) ms at size x size, fit camera; clear + draw (+ glFinish)\n");
+    println!(
+        "median (min) ms at size x size, fit camera; clear + draw (+ glFinish); + read-back: clear + draw + glReadPixels of colour (RGBA8) and depth (float)\n"
+    );
     println!("{header}");
     println!("|---|---|---|{}", "---|".repeat(columns.len()));
     for w in work {
@@ -547,6 +561,12 @@ fn main() -> ExitCode {
                         );
                     }
                     for r in report.results {
+                        if !r.read_ms.is_empty() {
+                            results
+                                .entry((r.size, r.scene.clone(), READ_PEER, threads))
+                                .or_default()
+                                .add(&r.read_ms, (r.covered, r.samples));
+                        }
                         results
                             .entry((r.size, r.scene, "llvmpipe", threads))
                             .or_default()

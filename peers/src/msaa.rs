@@ -112,6 +112,7 @@ impl Llvmpipe {
         self.check("multisample read-back")?;
         Ok(GlRun {
             ms,
+            read_ms: Vec::new(),
             covered,
             samples,
         })

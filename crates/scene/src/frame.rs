@@ -16,10 +16,16 @@ pub const NO_ID: u32 = u32::MAX;
 ///
 /// All buffers are row-major, top row first; pixel `(x, y)` is at index
 /// `y * width + x`.
+///
+/// [`Frame::buffers`] says which buffers the caller wants written
+/// ([`FrameBuffers`], default all three); a hider may skip the others and
+/// leave them as they were.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
     width: u32,
     height: u32,
+    /// The buffers a render must write.
+    wanted: FrameBuffers,
     /// Visible primitive id per pixel, [`NO_ID`] for background.
     pub ids: Vec<u32>,
     /// Window depth in [0, 1] per pixel, 1.0 for background.
@@ -29,6 +35,61 @@ pub struct Frame {
     /// Fraction of each pixel covered by any surface, written by
     /// anti-aliasing hiders; empty otherwise.
     pub coverage: Vec<f32>,
+}
+
+/// Which buffers of a [`Frame`] a render must write: the frame request.
+///
+/// `Default` is all three, every hider's full frame. A caller that needs
+/// fewer (an id pass, a depth pre-pass, a picker) says so and a hider that
+/// honours the request (the tiled z-buffer's read-back) writes only those:
+/// a 1024 x 1024 frame is 4 MB per buffer, and writing it costs about as
+/// much as drawing a simple scene. Buffers not asked for keep whatever
+/// they held before the render. Hiders that do not look at the request
+/// write everything, which is always allowed.
+///
+/// ```
+/// use hider_scene::{Frame, FrameBuffers};
+///
+/// let frame = Frame::new(4, 4)?.with_buffers(FrameBuffers::IDS);
+/// assert!(frame.buffers().ids && !frame.buffers().depth && !frame.buffers().color);
+/// assert_eq!(Frame::new(4, 4)?.buffers(), FrameBuffers::default());
+/// # Ok::<(), hider_scene::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FrameBuffers {
+    /// The visible primitive per pixel ([`Frame::ids`]).
+    pub ids: bool,
+    /// The window depth per pixel ([`Frame::depth`]).
+    pub depth: bool,
+    /// The colour per pixel ([`Frame::color`]).
+    pub color: bool,
+}
+
+impl FrameBuffers {
+    /// Every buffer: the default.
+    pub const ALL: Self = Self {
+        ids: true,
+        depth: true,
+        color: true,
+    };
+    /// The ids only.
+    pub const IDS: Self = Self {
+        ids: true,
+        depth: false,
+        color: false,
+    };
+    /// Ids and depth, no colour (what a z-buffer computes).
+    pub const IDS_DEPTH: Self = Self {
+        ids: true,
+        depth: true,
+        color: false,
+    };
+}
+
+impl Default for FrameBuffers {
+    fn default() -> Self {
+        Self::ALL
+    }
 }
 
 /// The colour of background pixels.
@@ -46,6 +107,7 @@ impl Frame {
         Ok(Self {
             width,
             height,
+            wanted: FrameBuffers::ALL,
             ids: vec![NO_ID; n],
             depth: vec![BACKGROUND_DEPTH; n],
             color: vec![BACKGROUND; n],
@@ -61,6 +123,22 @@ impl Frame {
     /// Height in pixels.
     pub fn height(&self) -> u32 {
         self.height
+    }
+
+    /// The buffers a render must write (default all).
+    pub fn buffers(&self) -> FrameBuffers {
+        self.wanted
+    }
+
+    /// Sets the buffers a render must write ([`FrameBuffers`]).
+    pub fn set_buffers(&mut self, wanted: FrameBuffers) {
+        self.wanted = wanted;
+    }
+
+    /// The frame with [`Self::set_buffers`] applied.
+    pub fn with_buffers(mut self, wanted: FrameBuffers) -> Self {
+        self.wanted = wanted;
+        self
     }
 
     /// Number of pixels.
@@ -178,12 +256,14 @@ impl Frame {
     /// committed with the other outputs of the run.
     #[cfg(feature = "image")]
     pub fn write_png_into(&self, set: &mut OutputSet, path: &Path) -> Result<()> {
-        let bytes: Vec<u8> = self.color.iter().flatten().copied().collect();
+        // The colour buffer is already RGBA bytes: borrowed, not copied (a
+        // copy was a second full frame, 1 GB at 16384 x 16384).
+        let bytes = self.rgba_bytes();
         set.stage(path, |w| {
             let encoder = image::codecs::png::PngEncoder::new(w);
             image::ImageEncoder::write_image(
                 encoder,
-                &bytes,
+                bytes,
                 self.width,
                 self.height,
                 image::ExtendedColorType::Rgba8,

@@ -81,7 +81,7 @@ pub mod timing;
 pub mod view;
 
 pub use error::{Error, Result};
-pub use frame::{Frame, NO_ID};
+pub use frame::{Frame, FrameBuffers, NO_ID};
 pub use hider::{
     Counter, DynHider, Hider, HiderStats, OrderedPolygons, StatsTable, check_frame,
     check_frame_size,

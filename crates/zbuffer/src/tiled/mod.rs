@@ -45,6 +45,8 @@ mod tile;
 pub(crate) mod wide;
 
 #[cfg(test)]
+mod readback_tests;
+#[cfg(test)]
 mod tests;
 
 use hider_geom::Viewport;

@@ -208,40 +208,48 @@ impl<K: DepthKey> TileBuf<K> {
         self.stats.depth_passes += u64::from(wins);
     }
 
-    /// Writes the tile into the band's rows of the frame (`band_y0` is the
-    /// band's first image row): ids, and the window depth the reference
-    /// z-buffer would have written; background where nothing was drawn.
-    pub(crate) fn resolve(&self, ids: &mut [u32], depth: &mut [f32], width: usize, band_y0: u32) {
+    /// The tile's first column and width in pixels.
+    pub(crate) fn columns(&self) -> (usize, usize) {
+        (self.x0 as usize, self.w as usize)
+    }
+
+    /// Writes an active tile into the band's rows of the frame
+    /// (`band_y0` is the band's first image row): the ids if `IDS`, the
+    /// window depth the reference z-buffer would have written if `DEPTH`;
+    /// background where nothing was drawn. Only what the caller asked for
+    /// is written (a frame request of ids alone halves the traffic).
+    pub(crate) fn resolve<const IDS: bool, const DEPTH: bool>(
+        &self,
+        ids: &mut [u32],
+        depth: &mut [f32],
+        width: usize,
+        band_y0: u32,
+    ) {
+        debug_assert!(self.active);
         let w = self.w as usize;
         for r in 0..self.h as usize {
             let at = (self.y0 - band_y0) as usize * width + r * width + self.x0 as usize;
-            let (ids_out, depth_out) = (&mut ids[at..at + w], &mut depth[at..at + w]);
-            if self.active {
-                // Blocks are stored one after the other (64 pixels each):
-                // a tile row is a run of 8 pixels from each block of the row.
-                let y = self.y0 + r as u32;
-                for c in (0..w).step_by(BLOCK as usize) {
-                    let n = (w - c).min(BLOCK as usize);
-                    let from = self.at(self.x0 + c as u32, y);
-                    for ((id, d), (&i, k)) in ids_out[c..c + n]
-                        .iter_mut()
-                        .zip(&mut depth_out[c..c + n])
-                        .zip(
-                            self.ids[from..from + n]
-                                .iter()
-                                .zip(&self.keys[from..from + n]),
-                        )
-                    {
-                        // See `activate`: the clear key is background,
-                        // at depth 1 whichever key the test clears to.
-                        let background = *k == self.clear;
-                        *id = if background { NO_ID } else { i };
-                        *d = if background { 1.0 } else { k.decode() };
+            // Blocks are stored one after the other (64 pixels each): a
+            // tile row is a run of 8 pixels from each block of the row.
+            let y = self.y0 + r as u32;
+            for c in (0..w).step_by(BLOCK as usize) {
+                let n = (w - c).min(BLOCK as usize);
+                let from = self.at(self.x0 + c as u32, y);
+                let keys = &self.keys[from..from + n];
+                // See `activate`: the clear key is background, at depth 1
+                // whichever key the test clears to.
+                if IDS {
+                    let out = &mut ids[at + c..at + c + n];
+                    for ((o, &i), k) in out.iter_mut().zip(&self.ids[from..from + n]).zip(keys) {
+                        *o = if *k == self.clear { NO_ID } else { i };
                     }
                 }
-            } else {
-                ids_out.fill(NO_ID);
-                depth_out.fill(1.0);
+                if DEPTH {
+                    let out = &mut depth[at + c..at + c + n];
+                    for (o, k) in out.iter_mut().zip(keys) {
+                        *o = if *k == self.clear { 1.0 } else { k.decode() };
+                    }
+                }
             }
         }
     }
