@@ -154,6 +154,9 @@ fn knob_flag(knob: Knob) -> &'static str {
         Knob::DepthFormat => "--depth-format",
         Knob::DepthSource => "--depth-source",
         Knob::OrderedPolygons => "--svg-mode painter",
+        Knob::MaxSplits => "--max-splits",
+        Knob::MaxListLen => "--max-list-len",
+        Knob::Overflow => "--overflow",
     }
 }
 
@@ -182,7 +185,44 @@ pub fn flag_error(error: PlanError) -> anyhow::Error {
                 knob.reason(hider.as_str())
             )
         }
+        PlanError::PainterBudget {
+            needed,
+            pairs,
+            budget,
+            triangles,
+        } => anyhow::anyhow!(
+            "--svg-mode painter refused: the painter needs at least {needed} splits for the \
+             {pairs} interpenetrating pairs in view, over its split budget of {budget} for \
+             {triangles} triangles; raise it with --max-splits, or use --svg-mode regions or \
+             lines, which need no splits"
+        ),
         other => other.into(),
+    }
+}
+
+/// A render's error in the command line's words: a budget the flags can
+/// raise names its flag (the libraries name their option fields).
+pub fn budget_error(error: anyhow::Error) -> anyhow::Error {
+    let flag =
+        error
+            .chain()
+            .find_map(|cause| match cause.downcast_ref::<hider::scene::Error>()? {
+                hider::scene::Error::Limit { what, .. }
+                    if *what == hider::painter::SPLIT_BUDGET =>
+                {
+                    Some("--max-splits")
+                }
+                hider::scene::Error::Limit { what, .. } if *what == hider::vector::PAIRS_LIMIT => {
+                    Some("--max-pairs")
+                }
+                _ => None,
+            });
+    match flag {
+        Some(flag) => anyhow::anyhow!(
+            "{}; raise it with {flag}",
+            hider_plan::error_line(error.as_ref())
+        ),
+        None => error,
     }
 }
 

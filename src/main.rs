@@ -66,7 +66,7 @@ fn main() -> ExitCode {
         }
     };
     let result = match cli.command {
-        Command::Render(args) => render::run(&args),
+        Command::Render(args) => render::run(&args).map_err(args::budget_error),
         Command::Analyze(args) => analyze::run(&args),
         Command::Bench { args } => return bench::run(&args),
         Command::List => list().map_err(Into::into),

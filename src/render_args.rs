@@ -7,6 +7,7 @@ use std::path::PathBuf;
 use anyhow::{Result, bail};
 
 use clap::{Args, ValueEnum};
+use hider::abuffer::OverflowPolicy;
 use hider::geom::Camera;
 use hider::plan::HiderConfig;
 use hider::scene::{PrepareOptions, Scene, ShadeMode};
@@ -100,6 +101,22 @@ pub struct RenderArgs {
     /// material's colour, with a warning naming file, size and limit.
     #[arg(long, value_parser = args::bytes)]
     pub texture_budget: Option<u64>,
+    /// The painter's split budget: exactly this many splits (default: an
+    /// automatic budget that grows with the triangles).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(0..))]
+    pub max_splits: Option<u64>,
+    /// The A-buffers' bound on one pixel's fragment list (default 128).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    pub max_list_len: Option<u32>,
+    /// What the A-buffers do with a full fragment list: `drop-farthest`
+    /// (the default: drop the farthest fragment, counted in a warning) or
+    /// `error` (fail the frame naming the pixel).
+    #[arg(long, value_enum)]
+    pub overflow: Option<OverflowArg>,
+    /// --svg-mode regions and lines: most overlapping triangle pairs the
+    /// exact geometry may examine (default 50,000,000).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_pairs: Option<u64>,
     /// Render K times after a warm-up and print the median and minimum
     /// milliseconds of prepare + clear + rasterise.
     #[arg(long, default_value_t = 0, value_parser = args::repeat)]
@@ -121,6 +138,15 @@ enum DepthFormatArg {
 enum DepthSourceArg {
     WindowZ,
     LinearViewZ,
+}
+
+/// `--overflow`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum OverflowArg {
+    /// Drop the farthest fragment of a full list (counted in a warning).
+    DropFarthest,
+    /// Fail the frame, naming the pixel.
+    Error,
 }
 
 /// `--svg-mode`: what the SVG holds.
@@ -260,6 +286,10 @@ impl RenderArgs {
         } else {
             options
         };
+        let options = match self.max_pairs {
+            Some(pairs) => options.with_max_pairs(pairs),
+            None => options,
+        };
         match self.stroke_width {
             vector_flags::Length::Pixels(px) => options.with_stroke_width(px),
             vector_flags::Length::Millimetres(mm) => options.with_stroke_mm(mm, width, height),
@@ -298,6 +328,7 @@ impl RenderArgs {
                 ("--hidden", self.hidden != HiddenArg::None),
                 ("--background", self.background != "none"),
                 ("--seams", self.seams != SeamsArg::On),
+                ("--max-pairs", self.max_pairs.is_some()),
             ];
             if let Some((flag, _)) = set.iter().find(|(_, given)| *given) {
                 bail!(
@@ -323,6 +354,18 @@ impl RenderArgs {
                 DepthFormatArg::Fixed24 => DepthFormat::Fixed24,
                 DepthFormatArg::Fixed16 => DepthFormat::Fixed16,
                 DepthFormatArg::ReversedF32 => DepthFormat::ReversedF32,
+            });
+        }
+        if let Some(splits) = self.max_splits {
+            config = config.with_max_splits(splits);
+        }
+        if let Some(len) = self.max_list_len {
+            config = config.with_max_list_len(len);
+        }
+        if let Some(overflow) = self.overflow {
+            config = config.with_overflow(match overflow {
+                OverflowArg::DropFarthest => OverflowPolicy::DropFarthest,
+                OverflowArg::Error => OverflowPolicy::Error,
             });
         }
         if let Some(source) = self.depth_source {

@@ -1,6 +1,7 @@
 //! The knobs a caller (the `hider` command line, the Python package, the
 //! benchmark) sets across hiders.
 
+use hider_abuffer::OverflowPolicy;
 use hider_scene::ShadeMode;
 use hider_zbuffer::{DepthFormat, DepthSource};
 
@@ -40,6 +41,16 @@ pub struct HiderConfig {
     /// (their options' `shade`); never refused: for the others the colour
     /// pass over the ids applies it.
     pub shade: Option<ShadeMode>,
+    /// The painter's split budget, exactly this many splits
+    /// (`PainterOptions::max_splits`; `None` keeps its automatic budget).
+    /// A budget: under `auto` it applies when the plan picks the painter.
+    pub max_splits: Option<u64>,
+    /// The A-buffers' bound on one pixel's fragment list
+    /// (`ABufferOptions::max_list_len`). A budget, as `max_splits`.
+    pub max_list_len: Option<u32>,
+    /// What the A-buffers do with a full fragment list
+    /// (`ABufferOptions::overflow`). A budget, as `max_splits`.
+    pub overflow: Option<OverflowPolicy>,
 }
 
 impl HiderConfig {
@@ -64,6 +75,38 @@ impl HiderConfig {
     /// Sets [`Self::shade`].
     pub fn with_shade(mut self, shade: ShadeMode) -> Self {
         self.shade = Some(shade);
+        self
+    }
+
+    /// Sets [`Self::max_splits`].
+    pub fn with_max_splits(mut self, splits: u64) -> Self {
+        self.max_splits = Some(splits);
+        self
+    }
+
+    /// Sets [`Self::max_list_len`].
+    pub fn with_max_list_len(mut self, len: u32) -> Self {
+        self.max_list_len = Some(len);
+        self
+    }
+
+    /// Sets [`Self::overflow`].
+    pub fn with_overflow(mut self, overflow: OverflowPolicy) -> Self {
+        self.overflow = Some(overflow);
+        self
+    }
+
+    /// This config without the budgets a hider taking `knobs` does not
+    /// have: under `auto`, a budget is a limit for the hider the plan
+    /// picks, if it has one, not a request that only some hiders accept.
+    pub(crate) fn budgets_for(mut self, knobs: crate::registry::Knobs) -> Self {
+        if !knobs.max_splits {
+            self.max_splits = None;
+        }
+        if !knobs.fragment_lists {
+            self.max_list_len = None;
+            self.overflow = None;
+        }
         self
     }
 

@@ -19,6 +19,12 @@ pub enum Knob {
     DepthSource,
     /// [`HiderConfig::ordered_polygons`](crate::HiderConfig::ordered_polygons).
     OrderedPolygons,
+    /// [`HiderConfig::max_splits`](crate::HiderConfig::max_splits).
+    MaxSplits,
+    /// [`HiderConfig::max_list_len`](crate::HiderConfig::max_list_len).
+    MaxListLen,
+    /// [`HiderConfig::overflow`](crate::HiderConfig::overflow).
+    Overflow,
 }
 
 impl Knob {
@@ -28,6 +34,9 @@ impl Knob {
             Knob::DepthFormat => "depth format",
             Knob::DepthSource => "depth source",
             Knob::OrderedPolygons => "ordered polygons",
+            Knob::MaxSplits => "split budget",
+            Knob::MaxListLen => "fragment list length",
+            Knob::Overflow => "fragment list overflow policy",
         }
     }
 
@@ -39,6 +48,8 @@ impl Knob {
             Knob::OrderedPolygons => {
                 "the ordered polygons come from a painter's depth order".into()
             }
+            Knob::MaxSplits => format!("{hider} splits no polygons"),
+            Knob::MaxListLen | Knob::Overflow => format!("{hider} keeps no fragment lists"),
         }
     }
 }
@@ -78,9 +89,9 @@ pub enum PlanError {
     #[error(
         "ordered polygons refused: the painter needs at least {needed} splits for the \
          {pairs} interpenetrating pairs in view, over its split budget of {budget} for \
-         {triangles} triangles (PainterOptions::max_splits, capped at 4096 + 64 per \
-         triangle); ask for the exact visible regions or a raster image instead, which need \
-         no splits"
+         {triangles} triangles (PainterOptions::max_splits, HiderConfig::max_splits); raise \
+         it, or ask for the exact visible regions or a raster image instead, which need no \
+         splits"
     )]
     PainterBudget {
         /// The conservative prediction

@@ -32,6 +32,9 @@ fn knob_keyword(knob: Knob) -> &'static str {
         Knob::DepthFormat => "depth format",
         Knob::DepthSource => "depth source",
         Knob::OrderedPolygons => "ordered polygons",
+        Knob::MaxSplits => "split budget (max_splits)",
+        Knob::MaxListLen => "fragment list length",
+        Knob::Overflow => "fragment list overflow policy",
     }
 }
 

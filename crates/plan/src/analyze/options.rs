@@ -42,6 +42,11 @@ pub struct RenderOptions {
     pub pair_searches: bool,
     /// Most examples kept per effect.
     pub max_examples: usize,
+    /// The painter's split budget the caller will build it with
+    /// ([`HiderConfig::max_splits`](crate::HiderConfig::max_splits)), which
+    /// the planner's up-front refusal of ordered polygons compares its
+    /// prediction with; `None` for the painter's automatic budget.
+    pub max_splits: Option<u64>,
 }
 
 impl Default for RenderOptions {
@@ -57,6 +62,7 @@ impl Default for RenderOptions {
             pair_budget: DEFAULT_PAIR_BUDGET,
             pair_searches: true,
             max_examples: 5,
+            max_splits: None,
         }
     }
 }
@@ -100,6 +106,11 @@ impl RenderOptions {
     /// Sets [`Self::pair_searches`].
     pub fn with_pair_searches(mut self, pair_searches: bool) -> Self {
         self.pair_searches = pair_searches;
+        self
+    }
+    /// Sets [`Self::max_splits`].
+    pub fn with_max_splits(mut self, max_splits: Option<u64>) -> Self {
+        self.max_splits = max_splits;
         self
     }
     /// Sets [`Self::max_examples`].

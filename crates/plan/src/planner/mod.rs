@@ -66,7 +66,8 @@ impl Plan {
     /// The chosen hider, built with `config` (see
     /// [`Entry::build`](crate::registry::Entry::build)).
     pub fn build(&self, config: &HiderConfig) -> Result<Box<dyn DynHider>> {
-        registry::find(self.algo)?.build(config)
+        let entry = registry::find(self.algo)?;
+        entry.build(&config.budgets_for(entry.knobs))
     }
 
     /// `base` with the plan's front-end choices applied.
@@ -153,7 +154,7 @@ impl Planned {
 pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
     let (effects, view) = analyze_for_plan(scene, options)?;
     let plan = plan(&effects);
-    check_painter_budget(&plan, &effects)?;
+    check_painter_budget(&plan, &effects, options.max_splits)?;
     Ok(Planned {
         effects,
         prepare: plan.prepare_options(options.prepare),
@@ -163,21 +164,24 @@ pub fn auto(scene: &Scene, options: &RenderOptions) -> Result<Planned> {
     })
 }
 
-/// The split budget the painter (`hider_painter::Painter`, default
-/// options) has for a scene of `triangles` triangles
-/// ([`PainterOptions::split_budget`](hider_painter::PainterOptions::split_budget)).
-pub fn painter_split_budget(triangles: u64) -> u64 {
-    hider_painter::PainterOptions::default().split_budget(triangles)
+/// The split budget the painter (`hider_painter::Painter`) has for a
+/// scene of `triangles` triangles with `max_splits` (`None`: its automatic
+/// budget; [`PainterOptions::split_budget`](hider_painter::PainterOptions::split_budget)).
+pub fn painter_split_budget(triangles: u64, max_splits: Option<u64>) -> u64 {
+    let options = hider_painter::PainterOptions::default();
+    max_splits
+        .map_or(options, |n| options.with_max_splits(n))
+        .split_budget(triangles)
 }
 
 /// Refuses a plan that picks the painter when the analysis predicts it
 /// will exceed its split budget ([`PlanError::PainterBudget`](crate::PlanError::PainterBudget)): better at
 /// once than after minutes of splitting.
-pub fn check_painter_budget(plan: &Plan, effects: &Effects) -> Result<()> {
+pub fn check_painter_budget(plan: &Plan, effects: &Effects, max_splits: Option<u64>) -> Result<()> {
     if plan.algo != "painter" {
         return Ok(());
     }
-    let budget = painter_split_budget(effects.on_screen);
+    let budget = painter_split_budget(effects.on_screen, max_splits);
     if effects.painter_splits_at_least > budget {
         return Err(crate::PlanError::PainterBudget {
             needed: effects.painter_splits_at_least,
@@ -189,12 +193,16 @@ pub fn check_painter_budget(plan: &Plan, effects: &Effects) -> Result<()> {
     Ok(())
 }
 
-/// Checks the knobs of `config` that `--algo auto` can honour: threads and
-/// ordered polygons; a depth format or source belongs to a named z-buffer.
+/// Checks the knobs of `config` that `--algo auto` can honour: threads,
+/// ordered polygons and the budgets (applied to the hider the plan picks
+/// when it has them, see [`Plan::build`]); a depth format or source belongs
+/// to a named z-buffer.
 pub fn check_config(config: &HiderConfig) -> Result<()> {
     let auto = Knobs {
         threads: true,
         ordered_polygons: true,
+        max_splits: true,
+        fragment_lists: true,
         ..Knobs::NONE
     };
     match registry::refusal(crate::AlgoName::Auto, auto, config) {

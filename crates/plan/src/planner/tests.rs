@@ -348,13 +348,18 @@ fn the_painter_is_refused_up_front_when_its_budget_cannot_hold() {
     // The prediction against the budget, in one place.
     let mut effects = one.effects.clone();
     effects.on_screen = 2000;
-    effects.painter_splits_at_least = painter_split_budget(2000) + 1;
-    let refused = check_painter_budget(&one.plan, &effects).unwrap_err();
+    effects.painter_splits_at_least = painter_split_budget(2000, None) + 1;
+    let refused = check_painter_budget(&one.plan, &effects, None).unwrap_err();
     let line = refused.to_string();
     assert!(matches!(refused, PlanError::PainterBudget { .. }), "{line}");
     assert!(line.contains("PainterOptions::max_splits"), "{line}");
     effects.painter_splits_at_least -= 1;
-    assert!(check_painter_budget(&one.plan, &effects).is_ok());
-    assert_eq!(painter_split_budget(0), 4096);
-    assert_eq!(painter_split_budget(2000), 4096 + 128_000 + 131_072);
+    assert!(check_painter_budget(&one.plan, &effects, None).is_ok());
+    assert_eq!(painter_split_budget(0, None), 4096);
+    assert_eq!(painter_split_budget(2000, None), 4096 + 128_000 + 131_072);
+    // A budget the caller raised is the one compared.
+    assert_eq!(painter_split_budget(2000, Some(10_000_000)), 10_000_000);
+    effects.painter_splits_at_least = 9_000_000;
+    assert!(check_painter_budget(&one.plan, &effects, Some(10_000_000)).is_ok());
+    assert!(check_painter_budget(&one.plan, &effects, None).is_err());
 }

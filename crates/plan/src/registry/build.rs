@@ -42,6 +42,21 @@ pub(crate) fn refusal(hider: AlgoName, knobs: Knobs, config: &HiderConfig) -> Op
             config.ordered_polygons,
             knobs.ordered_polygons,
         ),
+        (
+            Knob::MaxSplits,
+            config.max_splits.is_some(),
+            knobs.max_splits,
+        ),
+        (
+            Knob::MaxListLen,
+            config.max_list_len.is_some(),
+            knobs.fragment_lists,
+        ),
+        (
+            Knob::Overflow,
+            config.overflow.is_some(),
+            knobs.fragment_lists,
+        ),
     ]
     .into_iter()
     .find(|&(_, set, taken)| set && !taken)?;

@@ -37,6 +37,10 @@ pub struct Knobs {
     pub threads: bool,
     /// [`HiderConfig::ordered_polygons`].
     pub ordered_polygons: bool,
+    /// [`HiderConfig::max_splits`].
+    pub max_splits: bool,
+    /// [`HiderConfig::max_list_len`] and [`HiderConfig::overflow`].
+    pub fragment_lists: bool,
 }
 
 impl Knobs {
@@ -46,6 +50,8 @@ impl Knobs {
         depth_source: false,
         threads: false,
         ordered_polygons: false,
+        max_splits: false,
+        fragment_lists: false,
     };
 
     /// Whether a depth knob (format or source) is taken.
@@ -59,6 +65,8 @@ impl Knobs {
             Knob::DepthFormat => self.depth_format,
             Knob::DepthSource => self.depth_source,
             Knob::OrderedPolygons => self.ordered_polygons,
+            Knob::MaxSplits => self.max_splits,
+            Knob::MaxListLen | Knob::Overflow => self.fragment_lists,
         }
     }
 }

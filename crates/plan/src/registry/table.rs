@@ -53,12 +53,19 @@ fn configured_tiled(config: &HiderConfig) -> Box<dyn DynHider> {
 fn abuffer(options: ABufferOptions, config: &HiderConfig) -> Box<dyn DynHider> {
     let options = config.threads.map_or(options, |t| options.with_threads(t));
     let options = config.shade.map_or(options, |s| options.with_shade(s));
+    let options = config
+        .max_list_len
+        .map_or(options, |n| options.with_max_list_len(n));
+    let options = config
+        .overflow
+        .map_or(options, |o| options.with_overflow(o));
     Box::new(ABuffer::new(options))
 }
 
 /// Knobs of the A-buffer entries.
-const THREADS_KNOB: Knobs = Knobs {
+const ABUFFER_KNOBS: Knobs = Knobs {
     threads: true,
+    fragment_lists: true,
     ..Knobs::NONE
 };
 
@@ -92,6 +99,21 @@ const PAINTER_KNOBS: Knobs = Knobs {
     ordered_polygons: true,
     ..Knobs::NONE
 };
+
+/// Knobs of the splitting painter.
+const SPLITTING_PAINTER_KNOBS: Knobs = Knobs {
+    max_splits: true,
+    ..PAINTER_KNOBS
+};
+
+/// The `painter` entry: its defaults, with the config's split budget.
+fn painter(config: &HiderConfig) -> Box<dyn DynHider> {
+    let options = PainterOptions::default();
+    let options = config
+        .max_splits
+        .map_or(options, |n| options.with_max_splits(n));
+    Box::new(Painter::new(options))
+}
 
 /// An entry without knobs.
 const fn plain(
@@ -179,12 +201,12 @@ fn pixel_centre() -> [Entry; 11] {
             |_| Box::new(Scanline::new(ScanlineOptions::default())),
         ),
         Entry {
-            knobs: PAINTER_KNOBS,
+            knobs: SPLITTING_PAINTER_KNOBS,
             ..plain(
                 "painter",
                 "painter's algorithm, Newell-Newell-Sancha tests with splitting",
                 Exact,
-                |_| Box::new(Painter::new(PainterOptions::default())),
+                painter,
             )
         },
         plain(
@@ -211,7 +233,7 @@ fn multisample() -> [Entry; 8] {
             },
         ),
         Entry {
-            knobs: THREADS_KNOB,
+            knobs: ABUFFER_KNOBS,
             ..plain(
                 "abuffer",
                 "A-buffer, 8x4 coverage masks, per-sample depth (exact), order-independent transparency",
@@ -220,7 +242,7 @@ fn multisample() -> [Entry; 8] {
             )
         },
         Entry {
-            knobs: THREADS_KNOB,
+            knobs: ABUFFER_KNOBS,
             ..plain(
                 "abuffer-carpenter",
                 "A-buffer as in Carpenter 1984: zmin/zmax per fragment, same-surface merging",
