@@ -13,6 +13,7 @@ use hider_oracle::{
 use hider_plan::HiderConfig;
 use hider_plan::registry::{Entry, Kind};
 use hider_scene::CameraOverrides;
+use hider_scene::shade::cutout::cutout_stage;
 use hider_scene::shade::transparency_warning;
 use hider_scene::timing::{Summary, Timer};
 use hider_scene::{
@@ -232,13 +233,28 @@ fn first_job(
     row.ignored_effects = ignored_effects(hider.as_ref(), &p.stages);
     let timing = study_timing(&options.timing, study);
     let input = render_input(p, study);
-    let (took, stats) = match first_render(hider.as_mut(), &input, frame) {
+    let (took, mut stats) = match first_render(hider.as_mut(), &input, frame) {
         Ok(done) => done,
         Err(status) => {
             row.status = status;
             return None;
         }
     };
+    // The alpha test of cut-outs belongs to the frame that is scored (the
+    // oracle applies it too); the timed renders are the hider's alone.
+    if p.stages.cutout
+        && let Err(e) = cutout_stage(
+            hider.as_ref(),
+            &p.scene,
+            &p.view,
+            &PrepareOptions::default(),
+            frame,
+            &mut stats,
+        )
+    {
+        row.status = format!("error: {e}");
+        return None;
+    }
     row.status = "ok".into();
     row.warmup = timing.warmup;
     row.peak_bytes = stats.peak_bytes;
@@ -297,13 +313,18 @@ fn time_contenders(
 
 /// The effects `stages` calls for that `hider` does not simulate, as the
 /// row's `ignored_effects` (the same rule as the render's warning:
-/// [`transparency_warning`]).
+/// [`transparency_warning`], and the cut-out stage's).
 fn ignored_effects(hider: &dyn DynHider, stages: &Stages) -> String {
+    let mut ignored = Vec::new();
     if transparency_warning(hider, stages).is_some() {
-        "transparency".into()
-    } else {
-        String::new()
+        ignored.push("transparency");
     }
+    // A hider that resolves colour from its own samples draws cut-outs
+    // opaque (the cut-out stage warns so).
+    if stages.cutout && hider.resolves_color() {
+        ignored.push("cutout");
+    }
+    ignored.join(";")
 }
 
 /// How a study's jobs are timed: as asked, except that a real-size job

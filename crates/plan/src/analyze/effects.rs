@@ -90,6 +90,10 @@ pub struct Effects {
     pub transparency: Evidence,
     /// Textured triangles in view: needs the texture stage.
     pub textures: Evidence,
+    /// A `map_Kd` with an alpha channel on a textured mesh: needs the
+    /// alpha test of cut-outs after visibility
+    /// ([`hider_scene::Stages::cutout`]).
+    pub cutouts: bool,
     /// Lights or normals with shading asked: needs the Lambert stage.
     pub lighting: Evidence,
     /// Anti-aliasing asked: needs multi-sample coverage.
@@ -139,6 +143,7 @@ impl Effects {
             lighting: self.lighting.present,
             transparency: self.transparency.present,
             multisample: self.antialiasing.present,
+            cutout: self.cutouts,
         }
     }
 }

@@ -85,6 +85,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         depth_ratio: depth_ratio(&view, &screen, &in_view),
         transparency: evidence::transparency(&screen, &in_view, !options.antialiasing, ex),
         textures: evidence::textures(&screen, &in_view, ex),
+        cutouts: hider_scene::shade::cutout::scene_has_cutouts(scene),
         lighting: evidence::lighting(scene, options.shading),
         antialiasing: evidence::antialiasing(options.antialiasing),
         ..Effects::default()

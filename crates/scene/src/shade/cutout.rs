@@ -41,7 +41,10 @@ use crate::view::View;
 /// in its header (read, never decoded).
 pub fn scene_has_cutouts(scene: &Scene) -> bool {
     scene.meshes.iter().any(|mesh| {
-        !mesh.uvs.is_empty() && scene.mesh_material(mesh).is_some_and(material_may_cut_out)
+        !mesh.uvs.is_empty()
+            && scene
+                .mesh_materials(mesh)
+                .any(|m| m.is_some_and(material_may_cut_out))
     })
 }
 

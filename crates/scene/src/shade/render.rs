@@ -15,8 +15,9 @@ use crate::view::View;
 /// Renders `scene` through `view` with `hider` and colours the frame, as
 /// `hider render` does: the hider's own pipeline
 /// ([`DynHider::render_scene`], the one path every frame takes), then,
-/// unless the hider resolved colour itself, the alpha test of cut-outs
-/// when the scene has them ([`super::cutout`]) and the colour pass over its ids
+/// the alpha test of cut-outs when `stages` has it ([`Stages::cutout`],
+/// [`super::cutout`]), and, unless the hider resolved colour itself, the
+/// colour pass over its ids
 /// with `stages` under Lambert shading (reading the primitives from the
 /// world-space scene, so it works after any front end) or the id colours.
 /// `screen` is the hider's scratch (reused across frames); `mode` must be
@@ -65,7 +66,9 @@ pub fn render_frame(
     frame: &mut Frame,
 ) -> Result<StatsTable> {
     let mut stats = hider.render_scene(scene, view, options, screen, frame)?;
-    cutout_stage(hider, scene, view, options, frame, &mut stats)?;
+    if stages.cutout {
+        cutout_stage(hider, scene, view, options, frame, &mut stats)?;
+    }
     if !hider.resolves_color() {
         match mode {
             ShadeMode::Lambert => {

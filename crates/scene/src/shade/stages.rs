@@ -46,6 +46,10 @@ pub struct Stages {
     pub transparency: bool,
     /// Several coverage samples per pixel (a hider's job).
     pub multisample: bool,
+    /// The alpha test of cut-out textures at pixel centres, after the
+    /// hider's visibility ([`super::cutout`]): the scene has a `map_Kd`
+    /// with an alpha channel on a mesh with texture coordinates.
+    pub cutout: bool,
 }
 
 impl Stages {
@@ -55,6 +59,7 @@ impl Stages {
         lighting: true,
         transparency: true,
         multisample: true,
+        cutout: true,
     };
 
     /// The colour stages `scene` calls for, found without the full
@@ -67,6 +72,7 @@ impl Stages {
             lighting: shading,
             transparency: scene.materials.iter().any(|m| m.opacity < 1.0),
             multisample: false,
+            cutout: super::cutout::scene_has_cutouts(scene),
         }
     }
 
@@ -77,6 +83,7 @@ impl Stages {
             (self.lighting, "lighting"),
             (self.transparency, "transparency"),
             (self.multisample, "multisample"),
+            (self.cutout, "cutout"),
         ]
         .into_iter()
         .filter_map(|(on, name)| on.then_some(name))
