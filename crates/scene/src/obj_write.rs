@@ -37,12 +37,19 @@ pub fn to_obj_text(scene: &Scene, mtl_name: &str) -> (String, String) {
             &mesh.name
         };
         let _ = writeln!(obj, "o {name}");
+        // A mesh of one material names it once, before its vertices; one
+        // with per-triangle materials gets a `usemtl` at each change.
+        let mut current = mesh
+            .triangle_materials
+            .is_empty()
+            .then_some(mesh.material)
+            .flatten();
+        if let Some(k) = current {
+            let _ = writeln!(obj, "usemtl {}", scene.materials[k].name);
+        }
         for p in &mesh.positions {
             let _ = writeln!(obj, "v {:?} {:?} {:?}", p.x, p.y, p.z);
         }
-        // A `usemtl` wherever the material changes: once for a mesh of one
-        // material, at each change for per-triangle materials.
-        let mut current = None;
         for (k, t) in mesh.indices.iter().enumerate() {
             let material = mesh.triangle_material(k);
             if material.is_some() && material != current {
