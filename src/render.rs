@@ -47,8 +47,11 @@ fn auto(
         // The searches over pairs decide only the painter's plans and cost
         // seconds on large scenes: a raster render leaves them out.
         .with_pair_searches(false)
+        .with_max_splits(args.max_splits)
         .with_prepare(options);
-    let planned = hider::plan::auto(scene, &analysis).context("scene analysis for --algo auto")?;
+    let planned = hider::plan::auto(scene, &analysis)
+        .map_err(crate::args::flag_error)
+        .context("scene analysis for --algo auto")?;
     let hider = planned.plan.build(&args.hider_config())?;
     progress.suspend(|| eprint_line(&planned.summary()));
     Ok(Chosen {

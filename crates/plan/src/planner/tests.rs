@@ -348,6 +348,12 @@ fn the_painter_is_refused_up_front_when_its_budget_cannot_hold() {
     // The prediction against the budget, in one place.
     let mut effects = one.effects.clone();
     effects.on_screen = 2000;
+    // With an opaque triangle in view, culling may remove any crossing:
+    // the prediction is no bound, nothing is refused.
+    effects.painter_splits_at_least = 100 * painter_split_budget(2000, None);
+    assert!(check_painter_budget(&one.plan, &effects, None).is_ok());
+    // Everything translucent: nothing is culled, the bound holds.
+    effects.transparency.count = 2000;
     effects.painter_splits_at_least = painter_split_budget(2000, None) + 1;
     let refused = check_painter_budget(&one.plan, &effects, None).unwrap_err();
     let line = refused.to_string();
