@@ -6,7 +6,7 @@
 //! Each measurement is a child process (this program re-executed with
 //! `--child HIDER SCENE SIZE`), so its peak resident memory (`VmHWM` of
 //! `/proc/self/status`) is its own: scene, front end, hider and frame.
-//! The child renders one frame ([`DynHider::render_scene`], as `hider
+//! The child renders one frame ([`DynHider::render_scene`](hider_scene::DynHider::render_scene), as `hider
 //! render` does, colour stages left out) and reports its wall time; a
 //! child still running after the budget is stopped and the hider skips
 //! the larger sizes of that scene. The exponent is the slope of
