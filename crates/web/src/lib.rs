@@ -14,6 +14,7 @@
 //! score a frame against the oracle ([`Page::score`]).
 
 pub mod orbit;
+pub mod painter_steps;
 pub mod scenes;
 pub mod session;
 pub mod steps;
@@ -21,6 +22,7 @@ pub mod steps;
 use wasm_bindgen::prelude::*;
 
 use crate::orbit::{Orbit, cli_flags};
+use crate::painter_steps::PainterSteps;
 use crate::session::{Rendered, Scored, Session};
 
 /// A `Result` whose error reaches JavaScript as an `Error` with the
@@ -40,6 +42,7 @@ pub struct Page {
     ztrace: hider_zbuffer::ZBufferTrace,
     spans: Vec<hider_scanline::SpanRecord>,
     span_side: u32,
+    painter: PainterSteps,
 }
 
 #[wasm_bindgen]
@@ -187,10 +190,58 @@ impl Page {
             .join("\n")
     }
 
-    /// The painter's final order at `side` x `side`: one piece a line,
-    /// `prim x0 y0 x1 y1 ...` in window pixels, farthest first.
-    pub fn painter_order(&self, side: u32) -> JsResult<String> {
-        steps::painter_order(&self.session, side).map_err(js)
+    /// Records the painter's trace of the current scene and camera at
+    /// `side` x `side` (1 to 128); returns its number of steps (events).
+    pub fn painter_trace(&mut self, side: u32) -> JsResult<usize> {
+        self.painter = PainterSteps::record(&self.session, side).map_err(js)?;
+        Ok(self.painter.len())
+    }
+
+    /// The ids after the first `k` events of the painter's trace, -1 for
+    /// background.
+    pub fn painter_ids(&self, k: usize) -> Vec<i32> {
+        self.painter.ids(k)
+    }
+
+    /// Event `k - 1` of the painter's trace: its kind (`test`, `blocked`,
+    /// `move`, `cycle`, `split`, `culled`, `painted`, or `none` at step 0).
+    pub fn painter_event_kind(&self, k: usize) -> String {
+        self.painter.event(k).0
+    }
+
+    /// The pieces event `k - 1` names (-1 where none): P and Q for a test
+    /// or a cycle, the piece and its halves for a split.
+    pub fn painter_event_pieces(&self, k: usize) -> Vec<f64> {
+        self.painter.event(k).1.iter().map(|&p| p as f64).collect()
+    }
+
+    /// Event `k - 1` in words.
+    pub fn painter_event_text(&self, k: usize) -> String {
+        self.painter.event(k).2
+    }
+
+    /// Piece `id`'s outline in window pixels, `x0 y0 x1 y1 ...`.
+    pub fn painter_outline(&self, id: u32) -> Vec<f64> {
+        self.painter.outline(id)
+    }
+
+    /// How often each Newell test settled a pair in the trace, one
+    /// `test<TAB>count` a line.
+    pub fn painter_test_counts(&self) -> String {
+        self.painter.test_counts()
+    }
+
+    /// The painter's own frame ids of the recorded view.
+    pub fn painter_frame_ids(&self) -> Vec<i32> {
+        self.painter
+            .frame()
+            .map(|f| {
+                f.ids
+                    .iter()
+                    .map(|&id| hider_scene::frame::id_to_i32(id))
+                    .collect()
+            })
+            .unwrap_or_default()
     }
 
     /// Scores `frame` against the oracle's ids for the current view (the
