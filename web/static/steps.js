@@ -2,6 +2,7 @@
 // the trace hider-zbuffer records (ZBuffer::render_traced). Nothing here
 // computes coverage or depth: it draws what the trace holds.
 import { buildPainterSteps } from "./painter-steps.js";
+import { buildWarnockSteps } from "./warnock-steps.js";
 
 const $ = (id) => document.getElementById(id);
 
@@ -60,6 +61,7 @@ export function buildSteps(app) {
       <pre id="s-row" style="max-height:384px;overflow:auto;font-size:12px"></pre>
     </div>`;
   const painter = buildPainterSteps(app, idColour);
+  const warnock = buildWarnockSteps(app, idColour);
   let steps = 0, k = 0, side = 64, timer = null;
   const draw = () => {
     const step = app.state.page.zbuffer_step(k);
@@ -122,6 +124,7 @@ export function buildSteps(app) {
     $("s-scrub").max = String(rows);
     goRow(Math.floor(rows / 2));
     painter.record(side);
+    warnock.record(side);
   };
   $("z-record").addEventListener("click", () => { try { record(); } catch (e) { app.reportError(e.message || String(e)); } });
   $("z-size").addEventListener("change", record);
@@ -135,5 +138,5 @@ export function buildSteps(app) {
     const every = Math.max(15, Math.min(300, 6000 / Math.max(1, steps)));
     timer = setInterval(() => { if (k >= steps) stop(); else go(k + 1); }, every);
   });
-  return { record, go, goRow, painter };
+  return { record, go, goRow, painter, warnock };
 }

@@ -254,6 +254,27 @@ test("the z-buffer step-through ends on the z-buffer's frame", async () => {
   await page.click("#p-paint");
   assert.equal(await page.evaluate(() => document.getElementById("painter-steps").dataset.kind), "painted");
   await page.screenshot({ path: join(out, "steps-painter-painted.png") });
+  // Warnock's windows: at the last level they tile the frame, and the ids
+  // are the page's warnock frame; level 0 decides nothing on this scene.
+  const warnock = await page.evaluate(() => {
+    const { state } = window.hiderApp;
+    const steps = Number(document.getElementById("warnock-steps").dataset.steps);
+    const cls = state.page.warnock_classes(steps), ids = state.page.warnock_ids(steps);
+    state.page.set_size(64, 64);
+    const frame = state.page.render("warnock").ids();
+    state.page.set_size(state.size, state.size);
+    return {
+      steps,
+      tiled: Array.from(cls).every((c) => (c & 15) > 0),
+      same: Array.from(ids).every((id, k) => id === frame[k]),
+      none: Array.from(state.page.warnock_classes(0)).every((c) => c === 0),
+    };
+  });
+  assert.ok(warnock.steps > 2, `${warnock.steps} levels`);
+  assert.ok(warnock.tiled, "Warnock's windows at the last level leave pixels undecided");
+  assert.ok(warnock.same, "Warnock's last level differs from the page's warnock frame");
+  assert.ok(warnock.none, "level 0 shows decided windows");
+  await page.locator("#warnock-steps").screenshot({ path: join(out, "steps-warnock.png") });
   await page.click('.tab[data-view="compare"]');
 });
 

@@ -18,12 +18,14 @@ pub mod painter_steps;
 pub mod scenes;
 pub mod session;
 pub mod steps;
+pub mod warnock_steps;
 
 use wasm_bindgen::prelude::*;
 
 use crate::orbit::{Orbit, cli_flags};
 use crate::painter_steps::PainterSteps;
 use crate::session::{Rendered, Scored, Session};
+use crate::warnock_steps::WarnockSteps;
 
 /// A `Result` whose error reaches JavaScript as an `Error` with the
 /// message.
@@ -43,6 +45,7 @@ pub struct Page {
     spans: Vec<hider_scanline::SpanRecord>,
     span_side: u32,
     painter: PainterSteps,
+    warnock: WarnockSteps,
 }
 
 #[wasm_bindgen]
@@ -242,6 +245,36 @@ impl Page {
                     .collect()
             })
             .unwrap_or_default()
+    }
+
+    /// Records Warnock's final windows for the current scene and camera
+    /// at `side` x `side` (1 to 128); returns the number of steps (levels).
+    pub fn warnock_trace(&mut self, side: u32) -> JsResult<usize> {
+        self.warnock = WarnockSteps::record(&self.session, side).map_err(js)?;
+        Ok(self.warnock.len())
+    }
+
+    /// After step `k`, per pixel: the code of the rule that decided its
+    /// window (1 + its index in `Rule::ALL`, 0 not decided yet), plus 16
+    /// when decided at this step.
+    pub fn warnock_classes(&self, k: usize) -> Vec<u8> {
+        self.warnock.step(k).0
+    }
+
+    /// After step `k`, the ids of the decided pixels (-1 elsewhere).
+    pub fn warnock_ids(&self, k: usize) -> Vec<i32> {
+        self.warnock.step(k).1
+    }
+
+    /// The windows decided by step `k`, `x0 y0 x1 y1` each.
+    pub fn warnock_windows(&self, k: usize) -> Vec<u32> {
+        self.warnock.windows(k)
+    }
+
+    /// Per rule, the windows it decided by step `k` and their pixels, one
+    /// `rule<TAB>windows<TAB>pixels` a line.
+    pub fn warnock_counts(&self, k: usize) -> String {
+        self.warnock.counts(k)
     }
 
     /// Scores `frame` against the oracle's ids for the current view (the
