@@ -25,8 +25,9 @@ export function buildWarnockSteps(app, idColour) {
     and decides the window when that is simple — nothing there, one polygon, or a surrounding polygon in
     front of everything — or cuts it in four. Step <i>k</i> shows the windows decided at the first
     <i>k</i> levels, each coloured by how it was decided (brighter: decided at this step), with the
-    frame's ids under them; black pixels are in windows still being cut. ${legend}. The windows are
-    recorded by Warnock itself (<code>WarnockOptions::record_regions</code>); at the last step they tile
+    frame's ids under them; black pixels are in the windows this step cut (outlined in
+    <span style="color:#e80">orange</span>: several polygons reach them and none settles them). ${legend}. The windows are
+    recorded by Warnock itself (<code>WarnockOptions::record_regions</code>, decided and cut); at the last step they tile
     the picture and the ids are Warnock's frame.</p>
     <div class="controls">
       <button id="w-back" title="level back">◀</button>
@@ -66,6 +67,15 @@ export function buildWarnockSteps(app, idColour) {
       g.strokeRect(win[i] * scale + 0.5, win[i + 1] * scale + 0.5,
         (win[i + 2] - win[i]) * scale - 1, (win[i + 3] - win[i + 1]) * scale - 1);
     }
+    // The windows this step cut: several polygons reach them, none settles them.
+    const cuts = page().warnock_cuts(k);
+    g.strokeStyle = "#e80";
+    g.lineWidth = 2;
+    for (let i = 0; i < cuts.length; i += 4) {
+      g.strokeRect(cuts[i] * scale + 1, cuts[i + 1] * scale + 1,
+        (cuts[i + 2] - cuts[i]) * scale - 2, (cuts[i + 3] - cuts[i + 1]) * scale - 2);
+    }
+    host.dataset.cuts = String(cuts.length / 4);
     const rows = page().warnock_counts(k).split("\n").map((l) => l.split("\t"))
       .map(([r, n, px]) => `<tr><td>${r}</td><td style="text-align:right">${n}</td><td style="text-align:right">${px}</td></tr>`);
     $("w-counts").innerHTML = `<tr><th>decided by</th><th>windows</th><th>pixels</th></tr>${rows.join("")}`;

@@ -268,12 +268,16 @@ test("the z-buffer step-through ends on the z-buffer's frame", async () => {
       tiled: Array.from(cls).every((c) => (c & 15) > 0),
       same: Array.from(ids).every((id, k) => id === frame[k]),
       none: Array.from(state.page.warnock_classes(0)).every((c) => c === 0),
+      rootCut: state.page.warnock_cuts(1).length === 4,
+      lastCuts: state.page.warnock_cuts(steps).length,
     };
   });
   assert.ok(warnock.steps > 2, `${warnock.steps} levels`);
   assert.ok(warnock.tiled, "Warnock's windows at the last level leave pixels undecided");
   assert.ok(warnock.same, "Warnock's last level differs from the page's warnock frame");
   assert.ok(warnock.none, "level 0 shows decided windows");
+  assert.ok(warnock.rootCut, "the whole window is not the one cut at step 1");
+  assert.equal(warnock.lastCuts, 0, "windows are cut at the last level");
   await page.locator("#warnock-steps").screenshot({ path: join(out, "steps-warnock.png") });
   await page.click('.tab[data-view="compare"]');
 });

@@ -271,6 +271,12 @@ impl Page {
         self.warnock.windows(k)
     }
 
+    /// The windows cut at step `k` (several polygons reach them, no rule
+    /// settles them), `x0 y0 x1 y1` each.
+    pub fn warnock_cuts(&self, k: usize) -> Vec<u32> {
+        self.warnock.cuts(k)
+    }
+
     /// Per rule, the windows it decided by step `k` and their pixels, one
     /// `rule<TAB>windows<TAB>pixels` a line.
     pub fn warnock_counts(&self, k: usize) -> String {

@@ -4,7 +4,7 @@
 
 use hider_scene::frame::id_to_i32;
 use hider_scene::{Frame, Hider, PrepareOptions, View, prepare};
-use hider_warnock::{LeafRegion, Rule, Warnock, WarnockOptions};
+use hider_warnock::{CutRegion, LeafRegion, Rule, Warnock, WarnockOptions};
 
 use crate::session::Session;
 use crate::steps::check_side;
@@ -14,6 +14,7 @@ use crate::steps::check_side;
 pub struct WarnockSteps {
     side: u32,
     leaves: Vec<LeafRegion>,
+    cuts: Vec<CutRegion>,
     ids: Vec<i32>,
     levels: usize,
 }
@@ -39,6 +40,7 @@ impl WarnockSteps {
             .render(&screen, &mut frame)
             .map_err(|e| e.to_string())?;
         let leaves = warnock.leaf_regions().to_vec();
+        let cuts = warnock.cut_regions().to_vec();
         let levels = leaves
             .iter()
             .map(|l| usize::from(l.level) + 1)
@@ -47,6 +49,7 @@ impl WarnockSteps {
         Ok(Self {
             side,
             leaves,
+            cuts,
             ids: frame.ids.iter().map(|&id| id_to_i32(id)).collect(),
             levels,
         })
@@ -91,6 +94,16 @@ impl WarnockSteps {
             .iter()
             .filter(|l| usize::from(l.level) < k)
             .flat_map(|l| [l.x0, l.y0, l.x1, l.y1])
+            .collect()
+    }
+
+    /// The windows cut at step `k` (level `k - 1`): several polygons reach
+    /// them and no rule settles them whole; `x0 y0 x1 y1` each.
+    pub fn cuts(&self, k: usize) -> Vec<u32> {
+        self.cuts
+            .iter()
+            .filter(|c| usize::from(c.level) + 1 == k)
+            .flat_map(|c| [c.x0, c.y0, c.x1, c.y1])
             .collect()
     }
 
@@ -145,6 +158,23 @@ mod tests {
             assert_eq!(ids, steps.ids, "{spec}");
             assert!(steps.step(0).0.iter().all(|&c| c == 0));
             assert!(steps.len() > 1, "{spec}: one level");
+            // Step k's undecided pixels are exactly those of the windows
+            // cut at level k - 1.
+            for k in 1..steps.len() {
+                let mut cut = vec![false; 48 * 48];
+                for c in steps.cuts(k).chunks(4) {
+                    for y in c[1]..c[3] {
+                        for x in c[0]..c[2] {
+                            cut[(y * 48 + x) as usize] = true;
+                        }
+                    }
+                }
+                let (class, _) = steps.step(k);
+                assert!(
+                    class.iter().zip(&cut).all(|(&c, &u)| (c == 0) == u),
+                    "{spec} {k}"
+                );
+            }
         }
         assert!(WarnockSteps::record(&Session::new(), 500).is_err());
     }
