@@ -265,6 +265,8 @@ mod tests {
             "gen:intersecting",
             "gen:soup:80",
             "hard:cyclic_overlap",
+            // Exact depth ties: the painter's tie rule decides.
+            "gen:coplanar",
         ] {
             let mut session = Session::new();
             session.set_scene(crate::scenes::from_spec(spec).unwrap());
