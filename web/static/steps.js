@@ -1,6 +1,9 @@
 // The step-through view: the z-buffer triangle by triangle, replayed from
 // the trace hider-zbuffer records (ZBuffer::render_traced). Nothing here
 // computes coverage or depth: it draws what the trace holds.
+import { buildPainterSteps } from "./painter-steps.js";
+import { buildWarnockSteps } from "./warnock-steps.js";
+
 const $ = (id) => document.getElementById(id);
 
 // A distinct colour per primitive id (a drawing aid, like --shade ids).
@@ -56,19 +59,9 @@ export function buildSteps(app) {
       <figure><canvas id="s-ids" width="64" height="64" style="width:384px;height:384px"></canvas>
         <figcaption>ids of the rows swept so far (false colour), the current row's runs by how they were decided</figcaption></figure>
       <pre id="s-row" style="max-height:384px;overflow:auto;font-size:12px"></pre>
-    </div>
-    <h2 id="z-painter">The painter's order</h2>
-    <p>The pieces in the order the painter (Newell–Newell–Sancha with splitting) paints them, farthest
-    first, each over the ones before, from <code>Painter::order</code>; the current piece is outlined.
-    Pieces cut from one triangle share its colour. Each Newell test and which one decided, and the splits
-    as they happen, will replay the painter crate's trace once it records one.</p>
-    <div class="controls">
-      <button id="p-back" title="piece back">◀</button>
-      <button id="p-next" title="piece forward">▶</button>
-      <input id="p-scrub" type="range" min="0" max="0" value="0" style="width: 20rem">
-      <span id="p-label">—</span>
-    </div>
-    <canvas id="p-canvas" width="384" height="384" style="width:384px;height:384px"></canvas>`;
+    </div>`;
+  const painter = buildPainterSteps(app, idColour);
+  const warnock = buildWarnockSteps(app, idColour);
   let steps = 0, k = 0, side = 64, timer = null;
   const draw = () => {
     const step = app.state.page.zbuffer_step(k);
@@ -119,28 +112,6 @@ export function buildSteps(app) {
   $("s-back").addEventListener("click", () => goRow(row - 1));
   $("s-next").addEventListener("click", () => goRow(row + 1));
   $("s-scrub").addEventListener("input", () => goRow(Number($("s-scrub").value)));
-  let pieces = [], shown = 0;
-  const drawPieces = () => {
-    const c = $("p-canvas"), g = c.getContext("2d"), scale = c.width / side;
-    g.fillStyle = "#000";
-    g.fillRect(0, 0, c.width, c.height);
-    pieces.slice(0, shown).forEach((piece, i) => {
-      g.beginPath();
-      for (let v = 0; v < piece.points.length; v += 2) g.lineTo(piece.points[v] * scale, piece.points[v + 1] * scale);
-      g.closePath();
-      g.fillStyle = `rgb(${idColour(piece.prim).join(",")})`;
-      g.fill();
-      if (i === shown - 1) { g.strokeStyle = "#fff"; g.lineWidth = 2; g.stroke(); }
-    });
-    $("p-label").textContent = shown === 0 ? `0 of ${pieces.length} pieces painted`
-      : `${shown} of ${pieces.length} pieces painted; the last from triangle ${pieces[shown - 1].prim}`;
-    $("p-scrub").value = String(shown);
-    body.dataset.pieces = String(pieces.length);
-  };
-  const goPiece = (next) => { shown = Math.max(0, Math.min(pieces.length, next)); drawPieces(); };
-  $("p-back").addEventListener("click", () => goPiece(shown - 1));
-  $("p-next").addEventListener("click", () => goPiece(shown + 1));
-  $("p-scrub").addEventListener("input", () => goPiece(Number($("p-scrub").value)));
   const go = (next) => { k = Math.max(0, Math.min(steps, next)); draw(); };
   const stop = () => { clearInterval(timer); timer = null; $("z-play").textContent = "play"; };
   const record = () => {
@@ -152,12 +123,8 @@ export function buildSteps(app) {
     rows = app.state.page.scanline_trace(side);
     $("s-scrub").max = String(rows);
     goRow(Math.floor(rows / 2));
-    pieces = app.state.page.painter_order(side).split("\n").filter((l) => l).map((line) => {
-      const [prim, ...points] = line.split(" ").map(Number);
-      return { prim, points };
-    });
-    $("p-scrub").max = String(pieces.length);
-    goPiece(pieces.length);
+    painter.record(side);
+    warnock.record(side);
   };
   $("z-record").addEventListener("click", () => { try { record(); } catch (e) { app.reportError(e.message || String(e)); } });
   $("z-size").addEventListener("change", record);
@@ -171,5 +138,5 @@ export function buildSteps(app) {
     const every = Math.max(15, Math.min(300, 6000 / Math.max(1, steps)));
     timer = setInterval(() => { if (k >= steps) stop(); else go(k + 1); }, every);
   });
-  return { record, go, goRow };
+  return { record, go, goRow, painter, warnock };
 }

@@ -214,10 +214,71 @@ test("the z-buffer step-through ends on the z-buffer's frame", async () => {
   });
   assert.ok(sweep.same, "the full sweep differs from the scanline's frame");
   assert.equal(sweep.row, 32, "the sweep view opens half-way");
-  const pieces = await page.evaluate(() => Number(document.getElementById("steps-body").dataset.pieces));
-  assert.ok(pieces > 3, `the painter's order of the cyclic triple has ${pieces} pieces (it needs splits)`);
   await page.locator("#s-ids").scrollIntoViewIfNeeded();
   await page.screenshot({ path: join(out, "steps-scanline.png"), fullPage: true });
+  // The painter's trace: its last step is the page's painter frame, the
+  // cyclic triple is blocked and split, step 0 is empty.
+  const painter = await page.evaluate(() => {
+    const { state } = window.hiderApp;
+    const host = document.getElementById("painter-steps");
+    const steps = Number(host.dataset.steps);
+    const last = state.page.painter_ids(steps);
+    state.page.set_size(64, 64);
+    const frame = state.page.render("painter").ids();
+    state.page.set_size(state.size, state.size);
+    const kinds = [];
+    for (let k = 1; k <= steps; k++) kinds.push(state.page.painter_event_kind(k));
+    return {
+      steps, kinds, shown: Number(host.dataset.step),
+      same: Array.from(last).every((id, k) => id === frame[k]),
+      covered: Array.from(frame).filter((id) => id >= 0).length,
+      empty: Array.from(state.page.painter_ids(0)).every((id) => id === -1),
+      counts: state.page.painter_test_counts(),
+    };
+  });
+  assert.equal(painter.shown, painter.steps, "the painter view opens on its last step");
+  assert.ok(painter.covered > 0, "the painter's frame is empty");
+  assert.ok(painter.same, "the painter trace's last step differs from the page's painter frame");
+  assert.ok(painter.empty, "the painter's step 0 is not empty");
+  for (const kind of ["test", "blocked", "split", "painted"]) {
+    assert.ok(painter.kinds.includes(kind), `no ${kind} event in ${painter.kinds.join(" ")}`);
+  }
+  assert.match(painter.counts, /test \d/, "the table of deciding tests is empty");
+  // Step to the first split: the view shows it in words.
+  const split = painter.kinds.indexOf("split") + 1;
+  await page.evaluate((k) => window.hiderApp.steps().painter.go(k), split);
+  assert.equal(await page.evaluate(() => document.getElementById("painter-steps").dataset.kind), "split");
+  assert.match(await page.textContent("#p-event"), /split into pieces \d+ and \d+/);
+  await page.locator("#painter-steps").screenshot({ path: join(out, "steps-painter-split.png") });
+  // "next painted" lands on a painted event.
+  await page.click("#p-paint");
+  assert.equal(await page.evaluate(() => document.getElementById("painter-steps").dataset.kind), "painted");
+  await page.screenshot({ path: join(out, "steps-painter-painted.png") });
+  // Warnock's windows: at the last level they tile the frame, and the ids
+  // are the page's warnock frame; level 0 decides nothing on this scene.
+  const warnock = await page.evaluate(() => {
+    const { state } = window.hiderApp;
+    const steps = Number(document.getElementById("warnock-steps").dataset.steps);
+    const cls = state.page.warnock_classes(steps), ids = state.page.warnock_ids(steps);
+    state.page.set_size(64, 64);
+    const frame = state.page.render("warnock").ids();
+    state.page.set_size(state.size, state.size);
+    return {
+      steps,
+      tiled: Array.from(cls).every((c) => (c & 15) > 0),
+      same: Array.from(ids).every((id, k) => id === frame[k]),
+      none: Array.from(state.page.warnock_classes(0)).every((c) => c === 0),
+      rootCut: state.page.warnock_cuts(1).length === 4,
+      lastCuts: state.page.warnock_cuts(steps).length,
+    };
+  });
+  assert.ok(warnock.steps > 2, `${warnock.steps} levels`);
+  assert.ok(warnock.tiled, "Warnock's windows at the last level leave pixels undecided");
+  assert.ok(warnock.same, "Warnock's last level differs from the page's warnock frame");
+  assert.ok(warnock.none, "level 0 shows decided windows");
+  assert.ok(warnock.rootCut, "the whole window is not the one cut at step 1");
+  assert.equal(warnock.lastCuts, 0, "windows are cut at the last level");
+  await page.locator("#warnock-steps").screenshot({ path: join(out, "steps-warnock.png") });
   await page.click('.tab[data-view="compare"]');
 });
 

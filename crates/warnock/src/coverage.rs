@@ -22,7 +22,7 @@ use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{Frame, NO_ID, ScreenScene, ShadeMode, TextureOptions, TextureSampler};
 
 use crate::classify::{Setups, Tri};
-use crate::debug::LeafRegion;
+use crate::debug::{CutRegion, LeafRegion};
 use crate::grid::{Grid, Region};
 use crate::stats::{Rule, WarnockStats};
 use crate::subdivide::{Roots, Sink, Subdivider};
@@ -150,6 +150,7 @@ pub(crate) struct CoverageSink<'a> {
     pub inner: &'a mut Subdivider,
     pub samples: &'a mut SampleBuffer,
     pub leaves: Option<&'a mut Vec<LeafRegion>>,
+    pub cuts: Option<&'a mut Vec<CutRegion>>,
 }
 
 impl CoverageSink<'_> {
@@ -305,6 +306,12 @@ impl Sink for CoverageSink<'_> {
     fn leaf(&mut self, r: &Region, rule: Rule, level: usize) {
         if let Some(leaves) = self.leaves.as_deref_mut() {
             leaves.push(LeafRegion::new(r, rule, level));
+        }
+    }
+
+    fn cut(&mut self, r: &Region, level: usize) {
+        if let Some(cuts) = self.cuts.as_deref_mut() {
+            cuts.push(CutRegion::new(r, level));
         }
     }
 }

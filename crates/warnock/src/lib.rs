@@ -69,7 +69,7 @@ mod stats;
 mod subdivide;
 mod warnock;
 
-pub use debug::{LeafRegion, draw_region_outlines};
+pub use debug::{CutRegion, LeafRegion, draw_region_outlines};
 pub use options::WarnockOptions;
 pub use stats::{Rule, WarnockStats};
 pub use warnock::Warnock;

@@ -11,7 +11,7 @@
 use hider_scene::Frame;
 
 use crate::classify::Tri;
-use crate::debug::LeafRegion;
+use crate::debug::{CutRegion, LeafRegion};
 use crate::grid::{Grid, Region};
 use crate::stats::{Rule, WarnockStats};
 use crate::subdivide::Sink;
@@ -20,6 +20,7 @@ use crate::subdivide::Sink;
 pub(crate) struct PixelSink<'a> {
     pub frame: &'a mut Frame,
     pub leaves: Option<&'a mut Vec<LeafRegion>>,
+    pub cuts: Option<&'a mut Vec<CutRegion>>,
 }
 
 impl PixelSink<'_> {
@@ -67,6 +68,12 @@ impl Sink for PixelSink<'_> {
     fn leaf(&mut self, r: &Region, rule: Rule, level: usize) {
         if let Some(leaves) = self.leaves.as_deref_mut() {
             leaves.push(LeafRegion::new(r, rule, level));
+        }
+    }
+
+    fn cut(&mut self, r: &Region, level: usize) {
+        if let Some(cuts) = self.cuts.as_deref_mut() {
+            cuts.push(CutRegion::new(r, level));
         }
     }
 }

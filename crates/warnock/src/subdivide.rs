@@ -69,6 +69,9 @@ pub(crate) trait Sink {
 
     /// `r` was decided by `rule` at `level` (for the region record).
     fn leaf(&mut self, _r: &Region, _rule: Rule, _level: usize) {}
+
+    /// `r`, at `level`, was cut: no rule settled it (for the region record).
+    fn cut(&mut self, _r: &Region, _level: usize) {}
 }
 
 /// A candidate list: a run of the arena.
@@ -358,6 +361,7 @@ impl Subdivider {
                 if e.region.quadrants().1 == 0 {
                     sink.resolve_cell(grid, &e.region, candidates, setups, e.level, stats)
                 } else {
+                    sink.cut(&e.region, e.level);
                     self.split(grid, e.region, e.level, list, &bounds, sink, stats);
                     return None;
                 }
@@ -414,6 +418,7 @@ impl Subdivider {
                 if child.quadrants().1 > 0 && !bounds.holds(&grid.sample_rect(&child)) {
                     stats.visit(level);
                     stats.passed_through += 1;
+                    sink.cut(&child, level);
                     region = child;
                     continue;
                 }

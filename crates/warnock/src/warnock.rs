@@ -5,7 +5,7 @@ use hider_scene::{Error, Frame, Hider, Result, ScreenScene, check_frame};
 
 use crate::classify::{Setups, TriSetup};
 use crate::coverage::{ColorCache, CoverageSink, SampleBuffer};
-use crate::debug::LeafRegion;
+use crate::debug::{CutRegion, LeafRegion};
 use crate::grid::{Grid, Region};
 use crate::options::WarnockOptions;
 use crate::pixel::PixelSink;
@@ -28,6 +28,7 @@ pub struct Warnock {
     samples: SampleBuffer,
     colors: ColorCache,
     leaves: Vec<LeafRegion>,
+    cuts: Vec<CutRegion>,
 }
 
 impl Warnock {
@@ -36,6 +37,16 @@ impl Warnock {
     /// the window: every pixel lies in exactly one.
     pub fn leaf_regions(&self) -> &[LeafRegion] {
         &self.leaves
+    }
+
+    /// The regions of the pixel pass of the last frame that were cut (no
+    /// rule settled them whole), in the order they were cut, when
+    /// [`WarnockOptions::record_regions`] is on (empty otherwise). With
+    /// [`Self::leaf_regions`] they are every region the subdivision
+    /// reached: each pixel lies in one cut region per level above its
+    /// leaf.
+    pub fn cut_regions(&self) -> &[CutRegion] {
+        &self.cuts
     }
 
     /// Worst-case working memory for `scene`, in bytes: the set-up records,
@@ -61,7 +72,10 @@ impl Warnock {
         }
         if self.options.record_regions {
             let pixels = u64::from(vp.width) * u64::from(vp.height);
-            bytes += pixels * std::mem::size_of::<LeafRegion>() as u64;
+            // The cut regions are internal nodes of a tree whose leaves
+            // are at most one a pixel: fewer than the leaves.
+            bytes += pixels
+                * (std::mem::size_of::<LeafRegion>() + std::mem::size_of::<CutRegion>()) as u64;
         }
         bytes
     }
@@ -112,7 +126,9 @@ impl Warnock {
     ) {
         let vp = scene.viewport;
         let root = [Region::new(0, 0, vp.width, vp.height)];
-        let leaves = self.options.record_regions.then_some(&mut self.leaves);
+        let record = self.options.record_regions;
+        let leaves = record.then_some(&mut self.leaves);
+        let cuts = record.then_some(&mut self.cuts);
         let n = self.options.samples_per_side;
         if n > 1 {
             frame.coverage.clear();
@@ -127,6 +143,7 @@ impl Warnock {
                 inner: &mut self.inner,
                 samples: &mut self.samples,
                 leaves,
+                cuts,
             };
             let grid = Grid::pixels_with_samples(n);
             let roots = Roots {
@@ -137,7 +154,11 @@ impl Warnock {
             self.outer
                 .run(roots, 0..count, &self.setups, &mut sink, stats);
         } else {
-            let mut sink = PixelSink { frame, leaves };
+            let mut sink = PixelSink {
+                frame,
+                leaves,
+                cuts,
+            };
             let grid = Grid::pixel_centres();
             let roots = Roots {
                 grid: &grid,
@@ -156,7 +177,8 @@ impl Warnock {
             + self.inner.bytes()
             + self.samples.bytes()
             + self.colors.bytes()
-            + self.leaves.capacity() * std::mem::size_of::<LeafRegion>()) as u64
+            + self.leaves.capacity() * std::mem::size_of::<LeafRegion>()
+            + self.cuts.capacity() * std::mem::size_of::<CutRegion>()) as u64
     }
 }
 
@@ -186,6 +208,7 @@ impl Hider for Warnock {
             samples: SampleBuffer::default(),
             colors: ColorCache::default(),
             leaves: Vec::new(),
+            cuts: Vec::new(),
         }
     }
 
@@ -209,6 +232,7 @@ impl Hider for Warnock {
         self.set_up(scene)?;
         frame.clear();
         self.leaves.clear();
+        self.cuts.clear();
         self.outer.reset_peak();
         self.inner.reset_peak();
         let mut stats = WarnockStats::default();

@@ -14,14 +14,18 @@
 //! score a frame against the oracle ([`Page::score`]).
 
 pub mod orbit;
+pub mod painter_steps;
 pub mod scenes;
 pub mod session;
 pub mod steps;
+pub mod warnock_steps;
 
 use wasm_bindgen::prelude::*;
 
 use crate::orbit::{Orbit, cli_flags};
+use crate::painter_steps::PainterSteps;
 use crate::session::{Rendered, Scored, Session};
+use crate::warnock_steps::WarnockSteps;
 
 /// A `Result` whose error reaches JavaScript as an `Error` with the
 /// message.
@@ -40,6 +44,8 @@ pub struct Page {
     ztrace: hider_zbuffer::ZBufferTrace,
     spans: Vec<hider_scanline::SpanRecord>,
     span_side: u32,
+    painter: PainterSteps,
+    warnock: WarnockSteps,
 }
 
 #[wasm_bindgen]
@@ -187,10 +193,94 @@ impl Page {
             .join("\n")
     }
 
-    /// The painter's final order at `side` x `side`: one piece a line,
-    /// `prim x0 y0 x1 y1 ...` in window pixels, farthest first.
-    pub fn painter_order(&self, side: u32) -> JsResult<String> {
-        steps::painter_order(&self.session, side).map_err(js)
+    /// Records the painter's trace of the current scene and camera at
+    /// `side` x `side` (1 to 128); returns its number of steps (events).
+    pub fn painter_trace(&mut self, side: u32) -> JsResult<usize> {
+        self.painter = PainterSteps::record(&self.session, side).map_err(js)?;
+        Ok(self.painter.len())
+    }
+
+    /// The ids after the first `k` events of the painter's trace, -1 for
+    /// background.
+    pub fn painter_ids(&self, k: usize) -> Vec<i32> {
+        self.painter.ids(k)
+    }
+
+    /// Event `k - 1` of the painter's trace: its kind (`test`, `blocked`,
+    /// `move`, `cycle`, `split`, `culled`, `painted`, or `none` at step 0).
+    pub fn painter_event_kind(&self, k: usize) -> String {
+        self.painter.event(k).0
+    }
+
+    /// The pieces event `k - 1` names (-1 where none): P and Q for a test
+    /// or a cycle, the piece and its halves for a split.
+    pub fn painter_event_pieces(&self, k: usize) -> Vec<f64> {
+        self.painter.event(k).1.iter().map(|&p| p as f64).collect()
+    }
+
+    /// Event `k - 1` in words.
+    pub fn painter_event_text(&self, k: usize) -> String {
+        self.painter.event(k).2
+    }
+
+    /// Piece `id`'s outline in window pixels, `x0 y0 x1 y1 ...`.
+    pub fn painter_outline(&self, id: u32) -> Vec<f64> {
+        self.painter.outline(id)
+    }
+
+    /// How often each Newell test settled a pair in the trace, one
+    /// `test<TAB>count` a line.
+    pub fn painter_test_counts(&self) -> String {
+        self.painter.test_counts()
+    }
+
+    /// The painter's own frame ids of the recorded view.
+    pub fn painter_frame_ids(&self) -> Vec<i32> {
+        self.painter
+            .frame()
+            .map(|f| {
+                f.ids
+                    .iter()
+                    .map(|&id| hider_scene::frame::id_to_i32(id))
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
+    /// Records Warnock's final windows for the current scene and camera
+    /// at `side` x `side` (1 to 128); returns the number of steps (levels).
+    pub fn warnock_trace(&mut self, side: u32) -> JsResult<usize> {
+        self.warnock = WarnockSteps::record(&self.session, side).map_err(js)?;
+        Ok(self.warnock.len())
+    }
+
+    /// After step `k`, per pixel: the code of the rule that decided its
+    /// window (1 + its index in `Rule::ALL`, 0 not decided yet), plus 16
+    /// when decided at this step.
+    pub fn warnock_classes(&self, k: usize) -> Vec<u8> {
+        self.warnock.step(k).0
+    }
+
+    /// After step `k`, the ids of the decided pixels (-1 elsewhere).
+    pub fn warnock_ids(&self, k: usize) -> Vec<i32> {
+        self.warnock.step(k).1
+    }
+
+    /// The windows decided by step `k`, `x0 y0 x1 y1` each.
+    pub fn warnock_windows(&self, k: usize) -> Vec<u32> {
+        self.warnock.windows(k)
+    }
+
+    /// The windows cut at step `k` (several polygons reach them, no rule
+    /// settles them), `x0 y0 x1 y1` each.
+    pub fn warnock_cuts(&self, k: usize) -> Vec<u32> {
+        self.warnock.cuts(k)
+    }
+
+    /// Per rule, the windows it decided by step `k` and their pixels, one
+    /// `rule<TAB>windows<TAB>pixels` a line.
+    pub fn warnock_counts(&self, k: usize) -> String {
+        self.warnock.counts(k)
     }
 
     /// Scores `frame` against the oracle's ids for the current view (the

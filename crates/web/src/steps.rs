@@ -1,7 +1,6 @@
 //! The step-through views' traces, recorded by the algorithm crates
 //! themselves: the page only replays them.
 
-use hider_painter::{Painter, PainterOptions};
 use hider_scanline::{Resolution, Scanline, ScanlineOptions, SpanRecord};
 use hider_scene::frame::id_to_i32;
 use hider_scene::{Frame, Hider, PrepareOptions, View, prepare};
@@ -13,7 +12,7 @@ use crate::session::Session;
 pub const MAX_STEP_SIDE: u32 = 128;
 
 /// Refuses a step-through size outside 1 to [`MAX_STEP_SIDE`].
-fn check_side(side: u32) -> Result<(), String> {
+pub(crate) fn check_side(side: u32) -> Result<(), String> {
     if side == 0 || side > MAX_STEP_SIDE {
         return Err(format!(
             "step-through size {side}: 1 to {MAX_STEP_SIDE} pixels a side"
@@ -111,32 +110,6 @@ pub fn scanline_step(spans: &[SpanRecord], side: u32, rows: u32) -> (Vec<i32>, V
     (ids, how)
 }
 
-/// The painter's final order of the session's scene and camera at
-/// `side` x `side` ([`Painter::order`]): per piece in paint order (farthest
-/// first), its primitive id, then its outline's window coordinates, one
-/// line a piece (`prim x0 y0 x1 y1 ...`). Its Newell tests and splits as
-/// they happen wait for the painter's trace.
-pub fn painter_order(session: &Session, side: u32) -> Result<String, String> {
-    check_side(side)?;
-    let camera = session.camera().apply(session.scene());
-    let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
-    let screen =
-        prepare(session.scene(), &view, &PrepareOptions::default()).map_err(|e| e.to_string())?;
-    let mut painter = Painter::new(PainterOptions::default());
-    painter.order(&screen).map_err(|e| e.to_string())?;
-    Ok(painter
-        .ordered_pieces()
-        .map(|piece| {
-            let mut line = piece.prim.to_string();
-            for p in &piece.polygon {
-                line.push_str(&format!(" {} {}", p.x, p.y));
-            }
-            line
-        })
-        .collect::<Vec<_>>()
-        .join("\n"))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -155,9 +128,5 @@ mod tests {
         let (ids, _) = scanline_step(&spans, 40, 40);
         assert_eq!(ids, session.render("scanline").unwrap().ids());
         assert!(scanline_step(&spans, 40, 0).0.iter().all(|&id| id == -1));
-        // The cyclic triple has no order without a split.
-        let order = painter_order(&session, 40).unwrap();
-        assert!(order.lines().count() > 3, "{order}");
-        assert!(painter_order(&session, 0).is_err());
     }
 }
