@@ -5,40 +5,16 @@
 //! `hider render --algo NAME`, pixel for pixel, on the textured spider and
 //! on a translucent scene. No hider leaves the colour pass a black frame.
 
+mod library_support;
+use library_support::library_frame;
+
 use std::path::PathBuf;
 use std::process::Command;
 
-use hider::plan::{HiderConfig, registry};
-use hider::scene::shade::{Stages, render_frame};
-use hider::scene::{Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, View, load_obj};
+use hider::plan::registry;
+use hider::scene::load_obj;
 
 const SIZE: u32 = 48;
-
-fn library_frame(name: &str, scene: &Scene) -> Frame {
-    let view = View::for_scene(scene, SIZE, SIZE).unwrap();
-    let mut hider = registry::find(name)
-        .unwrap()
-        .build(
-            &HiderConfig::default()
-                .with_threads(1)
-                .with_shade(ShadeMode::Lambert),
-        )
-        .unwrap();
-    let mut screen = ScreenScene::empty(&view);
-    let mut frame = Frame::new(SIZE, SIZE).unwrap();
-    render_frame(
-        hider.as_mut(),
-        scene,
-        &view,
-        &PrepareOptions::default(),
-        &Stages::for_scene(scene, true),
-        ShadeMode::Lambert,
-        &mut screen,
-        &mut frame,
-    )
-    .unwrap();
-    frame
-}
 
 fn cli_pixels(name: &str, model: &str, out: &std::path::Path) -> Vec<[u8; 4]> {
     let run = Command::new(env!("CARGO_BIN_EXE_hider"))
@@ -82,7 +58,7 @@ fn every_hider_through_the_library_equals_the_cli() {
     for model in [spider, glass] {
         let scene = load_obj(&model).unwrap();
         for name in registry::names() {
-            let library = library_frame(name, &scene);
+            let library = library_frame(name, &scene, SIZE);
             assert!(library.covered_count() > 0, "{name}");
             let lit = library.color.iter().filter(|c| c[..3] != [0, 0, 0]).count();
             assert!(lit > 0, "{name}: a black frame");

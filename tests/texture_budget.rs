@@ -7,13 +7,13 @@
 //!
 //! One test in this binary: the budget is the process's.
 
+mod library_support;
+use library_support::library_frame;
+
 use std::path::Path;
 
-use hider::plan::{HiderConfig, registry};
-use hider::scene::shade::{
-    Stages, render_frame, set_texture_budget, texture_budget, texture_bytes_in_use,
-};
-use hider::scene::{Frame, PrepareOptions, Scene, ScreenScene, ShadeMode, View, load_obj};
+use hider::scene::shade::{set_texture_budget, texture_budget, texture_bytes_in_use};
+use hider::scene::{Scene, load_obj};
 
 const SIZE: u32 = 64;
 
@@ -65,28 +65,6 @@ fn scene(dir: &Path) -> Scene {
     load_obj(dir.join("m.obj")).unwrap()
 }
 
-fn render(scene: &Scene) -> Frame {
-    let view = View::for_scene(scene, SIZE, SIZE).unwrap();
-    let mut hider = registry::find("zbuffer")
-        .unwrap()
-        .build(&HiderConfig::default().with_threads(1))
-        .unwrap();
-    let mut screen = ScreenScene::empty(&view);
-    let mut frame = Frame::new(SIZE, SIZE).unwrap();
-    render_frame(
-        hider.as_mut(),
-        scene,
-        &view,
-        &PrepareOptions::default(),
-        &Stages::for_scene(scene, true),
-        ShadeMode::Lambert,
-        &mut screen,
-        &mut frame,
-    )
-    .unwrap();
-    frame
-}
-
 #[test]
 fn textures_stay_within_the_budget() {
     let dir = std::env::temp_dir().join(format!("hider-texture-budget-{}", std::process::id()));
@@ -96,7 +74,7 @@ fn textures_stay_within_the_budget() {
     // Unbounded: each small quad holds only the coarse levels it needs,
     // far less than its full chain (256^2 x 3 x 4/3 = 262,144 bytes).
     let scene_a = scene(&dir.join("a"));
-    render(&scene_a);
+    library_frame("zbuffer", &scene_a, SIZE);
     let small: Vec<usize> = scene_a.materials[..6]
         .iter()
         .map(|m| m.diffuse_texture.as_ref().unwrap().bytes())
@@ -121,7 +99,7 @@ fn textures_stay_within_the_budget() {
     let limit = (needed as u64) / 2;
     set_texture_budget(limit);
     let scene_b = scene(&dir.join("b"));
-    let frame = render(&scene_b);
+    let frame = library_frame("zbuffer", &scene_b, SIZE);
     assert!(texture_bytes_in_use() <= limit);
     let refused: Vec<String> = scene_b
         .materials

@@ -4,12 +4,12 @@
 //! colour, translucency included), and the per-triangle materials survive
 //! an OBJ round trip.
 
-use hider::plan::{HiderConfig, registry};
+mod library_support;
+use library_support::library_frame;
+
+use hider::plan::registry;
 use hider::scene::glam::DVec3;
-use hider::scene::shade::{Stages, render_frame};
-use hider::scene::{
-    Frame, Material, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, View, load_obj, save_obj,
-};
+use hider::scene::{Material, Mesh, Scene, load_obj, save_obj};
 
 const SIZE: u32 = 40;
 
@@ -94,34 +94,16 @@ fn split() -> Scene {
     scene
 }
 
-fn frame(name: &str, scene: &Scene) -> Frame {
-    scene.validate().unwrap();
-    let view = View::for_scene(scene, SIZE, SIZE).unwrap();
-    let mut hider = registry::find(name)
-        .unwrap()
-        .build(&HiderConfig::default().with_threads(1))
-        .unwrap();
-    let mut screen = ScreenScene::empty(&view);
-    let mut frame = Frame::new(SIZE, SIZE).unwrap();
-    render_frame(
-        hider.as_mut(),
-        scene,
-        &view,
-        &PrepareOptions::default(),
-        &Stages::for_scene(scene, true),
-        ShadeMode::Lambert,
-        &mut screen,
-        &mut frame,
-    )
-    .unwrap();
-    frame
-}
-
 #[test]
 fn per_triangle_materials_render_as_one_mesh_per_material_in_every_hider() {
     let (one, many) = (per_triangle(), split());
     for entry in registry::all() {
-        let (a, b) = (frame(entry.name, &one), frame(entry.name, &many));
+        one.validate().unwrap();
+        many.validate().unwrap();
+        let (a, b) = (
+            library_frame(entry.name, &one, SIZE),
+            library_frame(entry.name, &many, SIZE),
+        );
         assert_eq!(a.ids, b.ids, "{}: ids", entry.name);
         assert_eq!(a.depth, b.depth, "{}: depth", entry.name);
         assert_eq!(a.color, b.color, "{}: colour", entry.name);

@@ -13,27 +13,10 @@
 //! here: doubling N less than triples each counter (growth below
 //! N^1.58; quadratic growth quadruples it). Counters, never seconds.
 
-use glam::DVec3;
 use hider_painter::{Painter, PainterOptions, PainterStats};
-use hider_scene::procedural::SplitMix64;
-use hider_scene::{Hider, Scene};
+use hider_scene::Hider;
+use hider_testkit::crossing::cube_triangles;
 use hider_testkit::{render, screen};
-
-/// `count` triangles with corners uniform in [-1, 1]^3: nearly every pair
-/// overlaps on screen and many pierce each other.
-fn cube_triangles(count: u32, seed: u64) -> Scene {
-    let mut rng = SplitMix64::new(seed);
-    let positions = (0..count * 3)
-        .map(|_| {
-            DVec3::new(
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-            )
-        })
-        .collect();
-    Scene::from_triangles(positions)
-}
 
 /// The painter's counters on `n` cube triangles at `size` x `size`, with
 /// the raster checked against the z-buffer on the same planes.

@@ -41,6 +41,7 @@
 //! ```
 
 pub mod cameras;
+pub mod crossing;
 #[cfg(feature = "hostile")]
 pub mod differential;
 pub mod front_end_input;

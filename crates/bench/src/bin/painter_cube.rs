@@ -8,27 +8,11 @@
 //! `cargo run --release -p hider-bench --bin painter_cube -- [first [last]]`
 //! (default: 125, doubling until a run fails or takes over a minute).
 
-use glam::DVec3;
 use hider_bench::programs::thread_cpu_seconds;
 use hider_painter::{Painter, PainterOptions};
-use hider_scene::procedural::SplitMix64;
-use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, prepare};
+use hider_scene::{Frame, Hider, PrepareOptions, View, prepare};
+use hider_testkit::crossing::cube_triangles;
 use hider_testkit::reference;
-
-/// `count` triangles with corners uniform in [-1, 1]^3.
-fn cube_triangles(count: u32, seed: u64) -> Scene {
-    let mut rng = SplitMix64::new(seed);
-    let positions = (0..count * 3)
-        .map(|_| {
-            DVec3::new(
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-                rng.range(-1.0, 1.0),
-            )
-        })
-        .collect();
-    Scene::from_triangles(positions)
-}
 
 fn main() -> Result<(), hider_scene::Error> {
     let args: Vec<u32> = std::env::args()
