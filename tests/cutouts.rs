@@ -201,3 +201,26 @@ fn the_stage_runs_only_for_cut_outs() {
     assert!(!stderr.contains("cut-out"), "{stderr}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The plan line names the cut-out stage when the scene has cut-outs (it
+/// lists the stages that run), and the planner's frame alpha-tests them.
+#[test]
+fn the_plan_line_names_the_cut_out_stage() {
+    let dir = std::env::temp_dir().join(format!("hider-cutout-plan-{}", std::process::id()));
+    let obj = scene(&dir);
+    let run = Command::new(env!("CARGO_BIN_EXE_hider"))
+        .args(["render", "--size", "32", "-o"])
+        .arg(dir.join("auto.png"))
+        .arg(&obj)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    let plan = stderr.lines().next().unwrap_or_default();
+    assert!(
+        plan.starts_with("auto") && plan.contains("cutout"),
+        "{plan}"
+    );
+    assert!(stderr.contains("cut-out pixels replaced"), "{stderr}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
