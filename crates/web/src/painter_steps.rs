@@ -5,10 +5,10 @@
 use hider_painter::{Painter, PainterOptions, Piece, TraceEvent, TraceTest};
 use hider_scene::frame::id_to_i32;
 use hider_scene::geom::fixed::{SUBPIXEL_SCALE, pixel_center};
-use hider_scene::{Frame, Hider, PrepareOptions, ScreenScene, View, prepare};
+use hider_scene::{Frame, Hider, ScreenScene};
 
 use crate::session::Session;
-use crate::steps::check_side;
+use crate::steps::step_scene;
 
 /// A recorded painter run: its events, the pieces it painted and the
 /// screen scene they came from.
@@ -33,12 +33,7 @@ impl PainterSteps {
     /// Renders the session's scene and camera at `side` x `side` with the
     /// painter tracing ([`PainterOptions::with_trace`]).
     pub fn record(session: &Session, side: u32) -> Result<Self, String> {
-        check_side(side)?;
-        let camera = session.camera().apply(session.scene());
-        let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
-        let screen = prepare(session.scene(), &view, &PrepareOptions::default())
-            .map_err(|e| e.to_string())?;
-        let mut frame = Frame::new(side, side).map_err(|e| e.to_string())?;
+        let (screen, mut frame) = step_scene(session, side)?;
         let mut painter = Painter::new(PainterOptions::default().with_trace(true));
         painter
             .render(&screen, &mut frame)

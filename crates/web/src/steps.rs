@@ -3,7 +3,7 @@
 
 use hider_scanline::{Resolution, Scanline, ScanlineOptions, SpanRecord};
 use hider_scene::frame::id_to_i32;
-use hider_scene::{Frame, Hider, PrepareOptions, View, prepare};
+use hider_scene::{Frame, Hider, PrepareOptions, ScreenScene, View, prepare};
 use hider_zbuffer::{ZBuffer, ZBufferOptions, ZBufferTrace};
 
 use crate::session::Session;
@@ -11,25 +11,27 @@ use crate::session::Session;
 /// Largest side of a step-through image: every depth test is recorded.
 pub const MAX_STEP_SIDE: u32 = 128;
 
-/// Refuses a step-through size outside 1 to [`MAX_STEP_SIDE`].
-pub(crate) fn check_side(side: u32) -> Result<(), String> {
+/// The session's scene prepared through its camera at `side` x `side`
+/// and a frame of that size: what every step-through records from.
+/// Refuses a size outside 1 to [`MAX_STEP_SIDE`].
+pub(crate) fn step_scene(session: &Session, side: u32) -> Result<(ScreenScene, Frame), String> {
     if side == 0 || side > MAX_STEP_SIDE {
         return Err(format!(
             "step-through size {side}: 1 to {MAX_STEP_SIDE} pixels a side"
         ));
     }
-    Ok(())
+    let camera = session.camera().apply(session.scene());
+    let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
+    let screen =
+        prepare(session.scene(), &view, &PrepareOptions::default()).map_err(|e| e.to_string())?;
+    let frame = Frame::new(side, side).map_err(|e| e.to_string())?;
+    Ok((screen, frame))
 }
 
 /// The plain z-buffer's trace of the session's scene and camera at
 /// `side` x `side` ([`ZBuffer::render_traced`]), with the frame it drew.
 pub fn zbuffer_trace(session: &Session, side: u32) -> Result<(ZBufferTrace, Frame), String> {
-    check_side(side)?;
-    let camera = session.camera().apply(session.scene());
-    let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
-    let screen =
-        prepare(session.scene(), &view, &PrepareOptions::default()).map_err(|e| e.to_string())?;
-    let mut frame = Frame::new(side, side).map_err(|e| e.to_string())?;
+    let (screen, mut frame) = step_scene(session, side)?;
     let mut trace = ZBufferTrace::default();
     ZBuffer::new(ZBufferOptions::default())
         .render_traced(&screen, &mut frame, &mut trace)
@@ -73,12 +75,7 @@ pub fn zbuffer_step(trace: &ZBufferTrace, k: usize) -> ZStep {
 /// The scanline's recorded runs of the session's scene and camera at
 /// `side` x `side` ([`ScanlineOptions::record_spans`]), row by row.
 pub fn scanline_spans(session: &Session, side: u32) -> Result<Vec<SpanRecord>, String> {
-    check_side(side)?;
-    let camera = session.camera().apply(session.scene());
-    let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
-    let screen =
-        prepare(session.scene(), &view, &PrepareOptions::default()).map_err(|e| e.to_string())?;
-    let mut frame = Frame::new(side, side).map_err(|e| e.to_string())?;
+    let (screen, mut frame) = step_scene(session, side)?;
     let mut scanline = Scanline::new(ScanlineOptions::default().with_record_spans(true));
     scanline
         .render(&screen, &mut frame)

@@ -2,12 +2,12 @@
 //! regions Warnock itself records ([`WarnockOptions::record_regions`]):
 //! every final window with its level and the rule that decided it.
 
+use hider_scene::Hider;
 use hider_scene::frame::id_to_i32;
-use hider_scene::{Frame, Hider, PrepareOptions, View, prepare};
 use hider_warnock::{CutRegion, LeafRegion, Rule, Warnock, WarnockOptions};
 
 use crate::session::Session;
-use crate::steps::check_side;
+use crate::steps::step_scene;
 
 /// A recorded Warnock frame: its final windows and its ids.
 #[derive(Clone, Debug, Default)]
@@ -29,12 +29,7 @@ impl WarnockSteps {
     /// Renders the session's scene and camera at `side` x `side` with
     /// Warnock recording its regions.
     pub fn record(session: &Session, side: u32) -> Result<Self, String> {
-        check_side(side)?;
-        let camera = session.camera().apply(session.scene());
-        let view = View::new(camera, side, side).map_err(|e| e.to_string())?;
-        let screen = prepare(session.scene(), &view, &PrepareOptions::default())
-            .map_err(|e| e.to_string())?;
-        let mut frame = Frame::new(side, side).map_err(|e| e.to_string())?;
+        let (screen, mut frame) = step_scene(session, side)?;
         let mut warnock = Warnock::new(WarnockOptions::default().with_record_regions(true));
         warnock
             .render(&screen, &mut frame)
