@@ -42,31 +42,8 @@ pub fn coplanar_overlaps(count: u32, seed: u64) -> Scene {
 /// `near = 1`, `far = 10 * distance`: far from the camera, window depth has
 /// little resolution left.
 pub fn near_coplanar_far(layers: u32, distance: f64, relative_gap: f64, seed: u64) -> Scene {
-    let mut rng = SplitMix64::new(seed);
-    let mut s = Scene::default();
-    let size = 0.35 * distance;
     let tilt = DQuat::from_axis_angle(DVec3::new(1.0, 0.3, 0.0).normalize(), 0.3);
-    for k in 0..layers {
-        let z = -distance * (1.0 + relative_gap * f64::from(layers - 1 - k));
-        // Shifted within the (tilted) layer plane, so the layers stay
-        // exactly `relative_gap * distance` apart along the view axis.
-        let shift = tilt * DVec3::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), 0.0) * size;
-        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-        let positions = corners
-            .iter()
-            .map(|&(x, y)| {
-                tilt * DVec3::new(x * size, y * size, 0.0) + shift + DVec3::new(0.0, 0.0, z)
-                // (the shift above keeps every layer parallel to the first)
-            })
-            .collect();
-        push(
-            &mut s,
-            format!("layer_{k}"),
-            positions,
-            vec![[0, 1, 2], [0, 2, 3]],
-            colour(k),
-        );
-    }
+    let mut s = tilted_layers(layers, distance, relative_gap, 0.35 * distance, tilt, seed);
     s.camera = Some(look_at(DVec3::ZERO, DVec3::NEG_Z, 1.0, 10.0 * distance));
     s
 }
@@ -99,8 +76,6 @@ pub fn parallel_layers(
     fovy_degrees: f64,
     seed: u64,
 ) -> Scene {
-    let mut rng = SplitMix64::new(seed);
-    let mut s = Scene::default();
     let half = distance * (0.5 * fovy_degrees).to_radians().tan();
     let size = 1.2 * half;
     // Depth varies by about `2 size tan(tilt)` across a layer: keep that
@@ -108,24 +83,7 @@ pub fn parallel_layers(
     let room = (distance - near).min(far - distance * (1.0 + relative_gap * f64::from(layers)));
     let tilt_angle = (0.25 * room / (2.0 * size)).atan().min(0.3);
     let tilt = DQuat::from_axis_angle(DVec3::new(1.0, 0.3, 0.0).normalize(), tilt_angle);
-    for k in 0..layers {
-        let z = -distance * (1.0 + relative_gap * f64::from(layers - 1 - k));
-        let shift = tilt * DVec3::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), 0.0) * size;
-        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-        let positions = corners
-            .iter()
-            .map(|&(x, y)| {
-                tilt * DVec3::new(x * size, y * size, 0.0) + shift + DVec3::new(0.0, 0.0, z)
-            })
-            .collect();
-        push(
-            &mut s,
-            format!("layer_{k}"),
-            positions,
-            vec![[0, 1, 2], [0, 2, 3]],
-            colour(k),
-        );
-    }
+    let mut s = tilted_layers(layers, distance, relative_gap, size, tilt, seed);
     s.camera = Some(look_at(DVec3::ZERO, DVec3::NEG_Z, near, far).with_fovy_degrees(fovy_degrees));
     s
 }
@@ -213,6 +171,42 @@ pub fn huge_coordinates(count: u32, seed: u64, offset: f64) -> Scene {
             format!("far_{k}"),
             t.to_vec(),
             vec![[0, 1, 2]],
+            colour(k),
+        );
+    }
+    s
+}
+
+/// `layers` quads of half side `size`, turned by `tilt`, stacked
+/// `relative_gap * distance` apart along -Z from `distance`, far to near,
+/// each shifted within its (tilted) plane by a random fraction of `size`
+/// (from `seed`), so they stay exactly that far apart along the view axis
+/// and overlap partly.
+fn tilted_layers(
+    layers: u32,
+    distance: f64,
+    relative_gap: f64,
+    size: f64,
+    tilt: DQuat,
+    seed: u64,
+) -> Scene {
+    let mut rng = SplitMix64::new(seed);
+    let mut s = Scene::default();
+    for k in 0..layers {
+        let z = -distance * (1.0 + relative_gap * f64::from(layers - 1 - k));
+        let shift = tilt * DVec3::new(rng.range(-0.3, 0.3), rng.range(-0.3, 0.3), 0.0) * size;
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+        let positions = corners
+            .iter()
+            .map(|&(x, y)| {
+                tilt * DVec3::new(x * size, y * size, 0.0) + shift + DVec3::new(0.0, 0.0, z)
+            })
+            .collect();
+        push(
+            &mut s,
+            format!("layer_{k}"),
+            positions,
+            vec![[0, 1, 2], [0, 2, 3]],
             colour(k),
         );
     }
