@@ -17,7 +17,8 @@ pub const MAX_MTL_BYTES: u64 = 64 << 20;
 pub const MAX_TEXTURE_FILE_BYTES: u64 = 512 << 20;
 
 /// Checks that `path` names a regular file (symbolic links followed) of
-/// at most `max_bytes`, without opening it; `what` names it in errors.
+/// at most `max_bytes`, without opening it; `what` names the limit in
+/// errors ("MTL file size in bytes").
 pub fn check_regular(path: &Path, what: &'static str, max_bytes: u64) -> Result<u64> {
     let meta = std::fs::metadata(path).map_err(|source| Error::Io {
         path: path.to_path_buf(),
@@ -27,9 +28,10 @@ pub fn check_regular(path: &Path, what: &'static str, max_bytes: u64) -> Result<
         return Err(Error::Parse {
             path: path.to_path_buf(),
             line: 0,
-            message: format!(
-                "is not a regular file (a folder, a device or a pipe): not read as {what}"
-            ),
+            // `what` names the size limit, not the kind of file, so it
+            // stays out of this message.
+            message: "is not a regular file (a folder, a device or a pipe), so it is not read"
+                .to_string(),
         });
     }
     if meta.len() > max_bytes {
@@ -99,6 +101,9 @@ mod tests {
         );
         let e = read_regular(&dir, "MTL file size in bytes", 100).unwrap_err();
         assert!(e.to_string().contains("not a regular file"), "{e}");
+        // The limit's name is not a kind of file: it once read "not read
+        // as MTL file size in bytes".
+        assert!(!e.to_string().contains("size in bytes"), "{e}");
         // A device is refused without opening it (reading /dev/zero never
         // ends).
         let e = read_regular(Path::new("/dev/zero"), "MTL file size in bytes", 100).unwrap_err();
