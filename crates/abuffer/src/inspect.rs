@@ -219,13 +219,21 @@ mod tests {
     /// fragments lists them in resolve order.
     #[test]
     fn the_inspected_resolve_is_the_frame() {
-        let mut scenes = vec![procedural::intersecting_pair(), procedural::uv_sphere(12)];
+        // Half the sphere's and one of the pair's materials translucent:
+        // lists that composite several fragments per sample.
+        let mut glass = procedural::intersecting_pair();
+        glass.materials[0].opacity = 0.5;
+        let mut sphere = procedural::uv_sphere(12);
+        for m in sphere.materials.iter_mut().step_by(2) {
+            m.opacity = 0.4;
+        }
+        let mut scenes = vec![procedural::intersecting_pair(), glass, sphere];
         scenes.extend(
             hider_testkit::hard_cases::all(3)
                 .into_iter()
                 .map(|(_, s)| s),
         );
-        let mut listed = 0;
+        let (mut listed, mut translucent) = (0, 0);
         for scene in &scenes {
             let view = View::for_scene(scene, 40, 40).unwrap();
             let screen = prepare(scene, &view, &PrepareOptions::default()).unwrap();
@@ -253,10 +261,12 @@ mod tests {
                         assert!(pair[0].zmin <= pair[1].zmin);
                     }
                     listed += got.fragments.len();
+                    translucent += got.fragments.iter().filter(|f| f.rgba[3] < 1.0).count();
                 }
             }
         }
         assert!(listed > 1000, "{listed} fragments inspected");
+        assert!(translucent > 100, "{translucent} translucent fragments");
     }
 
     #[test]
