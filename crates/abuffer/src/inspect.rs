@@ -214,9 +214,10 @@ mod tests {
     use hider_scene::{Frame, Hider, PrepareOptions, View, prepare, procedural};
 
     /// Every pixel's inspected resolve is the frame's pixel (colour, id,
-    /// depth and coverage), in every depth mode, on scenes with
-    /// intersections, transparency and merged fragments; a pixel with
-    /// fragments lists them in resolve order.
+    /// depth and coverage), in every depth mode, on the hard cases and
+    /// scenes with intersections and translucent materials; every pixel
+    /// lists its fragments in resolve order, their masks' union its
+    /// coverage.
     #[test]
     fn the_inspected_resolve_is_the_frame() {
         // Half the sphere's and one of the pair's materials translucent:
