@@ -4,6 +4,9 @@
 import init, { Page } from "./pkg/hider_web.js";
 import { drawChart } from "./chart.js";
 import { buildSteps } from "./steps.js";
+import { buildInspect } from "./inspect.js";
+import { buildPrecision } from "./precision.js";
+import { buildYBuffer } from "./ybuffer.js";
 
 const $ = (id) => document.getElementById(id);
 const status = (text, error = false) => {
@@ -80,6 +83,7 @@ function renderMain() {
 // oracle's ids are computed once per view by the first score.
 let gridTimer = null;
 let steps = null;
+let extras = null; // the inspector, depth-precision and Y-buffer views
 function scheduleGrid() {
   clearTimeout(gridTimer);
   state.generation++;
@@ -237,6 +241,9 @@ function bindInput() {
   canvas.addEventListener("pointerdown", (e) => {
     canvas.setPointerCapture(e.pointerId);
     pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, pan: e.shiftKey || e.button === 2 });
+    // The pinch's reference distance is the two fingers' as the second lands.
+    const [a, b] = [...pointers.values()];
+    pinch = b ? Math.hypot(a.x - b.x, a.y - b.y) : null;
     canvas.focus();
   });
   canvas.addEventListener("pointermove", (e) => {
@@ -249,6 +256,9 @@ function bindInput() {
       const d = Math.hypot(a.x - b.x, a.y - b.y);
       if (pinch !== null && d > 0) state.orbit.zoom += Math.log2(pinch / d);
       pinch = d;
+      // Two fingers moving together pan: the midpoint moves half this finger's move.
+      state.orbit.panX -= dx / 2 / canvas.clientWidth;
+      state.orbit.panY += dy / 2 / canvas.clientHeight;
     } else if (p.pan) {
       state.orbit.panX -= dx / canvas.clientWidth;
       state.orbit.panY += dy / canvas.clientHeight;
@@ -346,11 +356,12 @@ async function main() {
   bindInput();
   bindControls();
   steps = buildSteps({ state, reportError });
+  extras = { inspect: buildInspect({ state, reportError }), precision: buildPrecision({ reportError }), ybuffer: buildYBuffer({ reportError }) };
   $("scene").value = "bundled|spider";
   await loadScene("bundled|spider");
   document.body.dataset.ready = "1";
 }
 
 // For the browser tests and the curious: the module's handle and state.
-window.hiderApp = { state, loadScene, renderMain, Page, steps: () => steps };
+window.hiderApp = { state, loadScene, renderMain, Page, steps: () => steps, extras: () => extras };
 main().catch((e) => reportError(`the page did not start: ${e.message || e}`));

@@ -42,11 +42,12 @@ use std::sync::{Mutex, PoisonError};
 
 use rayon::prelude::*;
 
-use crate::bins::{BinRun, Bins, Grid, TILE, tile_rect};
+use crate::bins::{BinItem, BinRun, Bins, Grid, TILE, tile_rect};
 use crate::centre::in_front;
 use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy};
 use crate::palette;
+use crate::pool::FragmentPool;
 use crate::resolve::Band;
 use crate::samples::{SAMPLE_BUFFER_BYTES, SampleBuffer, passes};
 use crate::source::Source;
@@ -175,6 +176,20 @@ impl ABuffer {
             }
         }
         out
+    }
+
+    /// The last frame's size, its binned triangles, and the pool that
+    /// holds the lists of band (tile row) `band` ([`crate::inspect`]).
+    pub(crate) fn last_lists(
+        &self,
+        band: usize,
+    ) -> ((u32, u32), &[BinItem], Option<&FragmentPool>) {
+        let worker = self
+            .owner
+            .get(band)
+            .and_then(|&k| self.workers.get(k as usize));
+        let pool = worker.map(|w| &w.raster.lists.pool);
+        ((self.width, self.height), self.bins.items(), pool)
     }
 
     /// Refuses a frame that is not `viewport`'s size and options out of

@@ -89,6 +89,7 @@ mod coverage;
 mod culling;
 mod depth;
 mod fragment;
+mod inspect;
 mod lists;
 mod options;
 mod palette;
@@ -110,6 +111,7 @@ mod worker;
 
 pub use abuffer::ABuffer;
 pub use coverage::{Coverage, TriCoverage, pixel_range};
+pub use inspect::{InspectedFragment, PixelInspection};
 pub use options::{ABufferOptions, DepthMode, MergePolicy, OverflowPolicy, SsaaOptions};
 pub use pattern::SamplePattern;
 pub use sorted::SortedTransparencyZBuffer;

@@ -70,7 +70,7 @@ impl Input<'_> {
     /// The colour and opacity of fragment `f` in pixel `ij` (textured at
     /// the pixel centre).
     #[inline]
-    fn rgba(&mut self, f: &Fragment, ij: (u32, u32)) -> [f32; 4] {
+    pub(crate) fn rgba(&mut self, f: &Fragment, ij: (u32, u32)) -> [f32; 4] {
         if f.is_merged() {
             self.pool.merged(f.shade).rgba
         } else {

@@ -13,12 +13,15 @@
 //! orbit camera, render with any registered hider ([`Page::render`]), and
 //! score a frame against the oracle ([`Page::score`]).
 
+pub mod inspect;
 pub mod orbit;
 pub mod painter_steps;
+pub mod precision;
 pub mod scenes;
 pub mod session;
 pub mod steps;
 pub mod warnock_steps;
+pub mod ybuffer;
 
 use wasm_bindgen::prelude::*;
 
