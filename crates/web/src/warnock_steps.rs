@@ -222,6 +222,9 @@ impl WarnockSteps {
             Look::PassedThrough => "not looked at: the parent's survivors' bounding box reaches only this quadrant and cannot hold it whole, so nothing can surround it".to_owned(),
         };
         let why = match r.outcome {
+            Outcome::Cut if r.look == Look::PassedThrough => {
+                "cut in four at once, its list handed down unread".to_owned()
+            }
             Outcome::Cut => format!(
                 "subdivided: {live} polygons still reach it and no rule settles it"
             ),
