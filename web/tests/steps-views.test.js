@@ -6,7 +6,8 @@
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { spawn } from "node:child_process";
-import { mkdirSync } from "node:fs";
+import { mkdirSync, readFileSync, readdirSync } from "node:fs";
+import { gzipSync } from "node:zlib";
 import { join, dirname } from "node:path";
 import { fileURLToPath } from "node:url";
 import { chromium } from "playwright-core";
@@ -233,6 +234,15 @@ test("on two piercing triangles the sweep shows a split span and Warnock a surro
   assert.match(await page.textContent("#w-window-text"), /surrounding polygon in front/);
   assert.match(await page.textContent("#w-classes"), /culled/);
   await page.locator("#warnock-steps").screenshot({ path: join(out, "steps-warnock-front.png") });
+});
+
+test("the compressed download (wasm, bindings, HTML, scripts, CSS) is under 2 MB", () => {
+  const dist = join(web, "dist");
+  const files = [join(dist, "pkg", "hider_web_bg.wasm"), join(dist, "pkg", "hider_web.js"),
+    ...readdirSync(dist).filter((f) => /\.(html|js|css)$/.test(f)).map((f) => join(dist, f))];
+  const bytes = files.reduce((sum, f) => sum + gzipSync(readFileSync(f), { level: 9 }).length, 0);
+  console.log(`download: ${files.length} files, ${bytes} bytes gzipped`);
+  assert.ok(bytes < 2 * 1024 * 1024, `${bytes} bytes gzipped`);
 });
 
 test("no console error appeared", () => {
