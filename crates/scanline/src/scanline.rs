@@ -93,7 +93,7 @@ impl Scanline {
 
     /// Steps the active edge list to `row`, turning each active polygon's
     /// edges into its run's two crossings, and retires what ends here.
-    fn walk_edges(&mut self, row: u32, last_column: i64, mut trace: Option<&mut ScanlineTrace>) {
+    fn walk_edges(&mut self, row: u32, last_column: i64, trace: Option<&mut ScanlineTrace>) {
         // Each polygon's run on this row: the tightest of its active left
         // and right edges (every row of a polygon has at least one of each).
         let polys = &mut self.table.polys;
@@ -102,10 +102,13 @@ impl Scanline {
             p.l = i64::MIN;
             p.r = i64::MAX;
         }
-        self.ael.retain_mut(|e| {
-            if let Some(t) = trace.as_deref_mut() {
+        // Recorded in a pass of its own, keeping the walk's loop as it is.
+        if let Some(t) = trace {
+            for e in &self.ael {
                 t.active_edge(e.id, row, e.bound());
             }
+        }
+        self.ael.retain_mut(|e| {
             let p = &mut polys[e.poly as usize];
             match e.side {
                 Side::Left => p.l = p.l.max(e.bound()),

@@ -225,7 +225,7 @@ impl Subdivider {
     /// returned as it is when every candidate is kept, and copied from the
     /// first one dropped (the kept ones before it in one block).
     fn filter(
-        &mut self,
+        arena: &mut Vec<u32>,
         e: &Entry,
         list: List,
         stats: &mut WarnockStats,
@@ -234,31 +234,30 @@ impl Subdivider {
         if list != e.list {
             let mut kept = list.start;
             for k in list.start..list.end() {
-                let t = self.arena[k];
+                let t = arena[k];
                 if keep(t, stats) {
-                    self.arena[kept] = t;
+                    arena[kept] = t;
                     kept += 1;
                 }
             }
-            self.arena.truncate(kept);
+            arena.truncate(kept);
             return List {
                 start: list.start,
                 len: kept - list.start,
             };
         }
-        let Some(first_out) = (list.start..list.end()).find(|&k| !keep(self.arena[k], stats))
-        else {
+        let Some(first_out) = (list.start..list.end()).find(|&k| !keep(arena[k], stats)) else {
             return list;
         };
-        let out = self.arena.len();
-        self.arena.extend_from_within(list.start..first_out);
+        let out = arena.len();
+        arena.extend_from_within(list.start..first_out);
         for k in first_out + 1..list.end() {
-            let t = self.arena[k];
+            let t = arena[k];
             if keep(t, stats) {
-                self.arena.push(t);
+                arena.push(t);
             }
         }
-        let len = self.arena.len() - out;
+        let len = arena.len() - out;
         stats.candidates_copied += len as u64;
         List { start: out, len }
     }
@@ -277,13 +276,12 @@ impl Subdivider {
         let mut front: Option<(u32, CornerDepths)> = None;
         let mut bounds = BoundingBox::EMPTY;
         stats.examined(e.level, e.list.len);
-        let mut record = std::mem::take(&mut self.record);
-        let list = self.filter(e, e.list, stats, |t, stats| {
+        let list = Self::filter(&mut self.arena, e, e.list, stats, |t, stats| {
             let setup = &setups.tris[t as usize];
             let b = setup.bounding_box();
             let class = classify_in_box(setup, &b, rect);
             stats.classified(class);
-            record.class(t, class);
+            self.record.class(t, class);
             match class {
                 Class::Disjoint => return false,
                 Class::Surrounding => {
@@ -299,9 +297,8 @@ impl Subdivider {
             true
         });
         if let Some((s, _)) = front {
-            record.front(s);
+            self.record.front(s);
         }
-        self.record = record;
         (list, front, bounds)
     }
 
@@ -323,8 +320,7 @@ impl Subdivider {
         stats: &mut WarnockStats,
     ) -> (List, u64) {
         let mut culled = 0;
-        let mut record = std::mem::take(&mut self.record);
-        let list = self.filter(e, list, stats, |t, stats| {
+        let list = Self::filter(&mut self.arena, e, list, stats, |t, stats| {
             if t == s {
                 return true;
             }
@@ -332,12 +328,11 @@ impl Subdivider {
             stats.depth_evaluations += 4;
             let behind = certainly_behind(&d, sd);
             if behind {
-                record.hidden(t);
+                self.record.hidden(t);
             }
             culled += u64::from(behind);
             !behind
         });
-        self.record = record;
         stats.culled_behind_surrounder += culled;
         (list, culled)
     }

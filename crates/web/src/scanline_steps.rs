@@ -57,7 +57,7 @@ impl ScanlineSteps {
 
     /// The sweep after `rows` rows: the ids the runs of those rows wrote
     /// (-1 elsewhere), and per pixel of the last of them how its run was
-    /// decided ([`how_code`], 0 none).
+    /// decided (0 none, 1 whole span, 2 split, 3 the one-row fallback).
     pub fn step(&self, rows: u32) -> (Vec<i32>, Vec<u8>) {
         let w = self.side as usize;
         let mut ids = vec![-1; w * w];
@@ -110,7 +110,7 @@ impl ScanlineSteps {
     }
 
     /// Row `row`'s runs, [`SPAN_STRIDE`] numbers a run: first and last
-    /// column, primitive, how ([`how_code`]), depth at both ends, the
+    /// column, primitive, how (1 whole, 2 split, 3 fallback), depth at both ends, the
     /// span's first and last column, the polygons covering the span.
     pub fn spans(&self, row: u32) -> Vec<f64> {
         (self.trace.row_spans(row).iter())
