@@ -188,8 +188,8 @@ impl Subdivider {
                 stats.sample_resolves += 1;
                 stats.examined(e.level, list.len());
                 let w = self.record.open(&e.region, e.level, Look::Sample);
-                let record = &mut self.record;
-                let rule = resolve_sample(grid, &e.region, list, setups, sink, stats, record);
+                let rule =
+                    resolve_sample(grid, &e.region, list, setups, sink, stats, &mut self.record);
                 self.record.close(w, Outcome::Decided(rule));
                 stats.decided[rule as usize] += 1;
                 sink.leaf(&e.region, rule, e.level);
