@@ -2,6 +2,7 @@
 // the trace hider-zbuffer records (ZBuffer::render_traced). Nothing here
 // computes coverage or depth: it draws what the trace holds.
 import { buildPainterSteps } from "./painter-steps.js";
+import { buildScanlineSteps } from "./scanline-steps.js";
 import { buildWarnockSteps } from "./warnock-steps.js";
 
 const $ = (id) => document.getElementById(id);
@@ -41,25 +42,8 @@ export function buildSteps(app) {
         <figcaption>ids (false colour) with the step's depth tests</figcaption></figure>
       <figure><canvas id="z-depth" width="64" height="64" style="width:384px;height:384px"></canvas>
         <figcaption>depth buffer (nearest dark, farthest light, stretched over the drawn range; clear value white)</figcaption></figure>
-    </div>
-    <h2>The scanline sweep, row by row</h2>
-    <p>Each step resolves one row: the runs of pixels the scanline (Watkins) wrote on it, each with its
-    visible triangle, recorded by the scanline itself (<code>ScanlineOptions::record_spans</code>). On the
-    current row, <span style="color:#2b6cb0">blue</span> runs were decided once for the whole span,
-    <span style="color:#e80">orange</span> ones are pieces of a span split where two depths cross,
-    <span style="color:#a3a">purple</span> ones came from the one-row depth buffer fallback. The edge table
-    and active edge list are not shown yet.</p>
-    <div class="controls">
-      <button id="s-back" title="row back">◀</button>
-      <button id="s-next" title="row forward">▶</button>
-      <input id="s-scrub" type="range" min="0" max="0" value="0" style="width: 20rem">
-      <span id="s-label">—</span>
-    </div>
-    <div class="stage">
-      <figure><canvas id="s-ids" width="64" height="64" style="width:384px;height:384px"></canvas>
-        <figcaption>ids of the rows swept so far (false colour), the current row's runs by how they were decided</figcaption></figure>
-      <pre id="s-row" style="max-height:384px;overflow:auto;font-size:12px"></pre>
     </div>`;
+  const scanline = buildScanlineSteps(app, idColour);
   const painter = buildPainterSteps(app, idColour);
   const warnock = buildWarnockSteps(app, idColour);
   let steps = 0, k = 0, side = 64, timer = null;
@@ -94,24 +78,6 @@ export function buildSteps(app) {
     body.dataset.step = String(k);
     body.dataset.steps = String(steps);
   };
-  let rows = 0, row = 0;
-  const drawRows = () => {
-    const ids = app.state.page.scanline_ids(row), how = app.state.page.scanline_how(row);
-    const data = new Uint8ClampedArray(rows * rows * 4);
-    const tint = [null, [43, 108, 176], [238, 136, 0], [170, 51, 170]];
-    for (let p = 0; p < ids.length; p++) data.set([...(tint[how[p]] || idColour(ids[p])), 255], 4 * p);
-    const c = $("s-ids");
-    c.width = rows; c.height = rows;
-    c.getContext("2d").putImageData(new ImageData(data, rows, rows), 0, 0);
-    $("s-label").textContent = `row ${row} of ${rows}`;
-    $("s-row").textContent = row > 0 ? `row ${row - 1}:\n` + app.state.page.scanline_row(row - 1) : "";
-    $("s-scrub").value = String(row);
-    body.dataset.row = String(row);
-  };
-  const goRow = (next) => { row = Math.max(0, Math.min(rows, next)); drawRows(); };
-  $("s-back").addEventListener("click", () => goRow(row - 1));
-  $("s-next").addEventListener("click", () => goRow(row + 1));
-  $("s-scrub").addEventListener("input", () => goRow(Number($("s-scrub").value)));
   const go = (next) => { k = Math.max(0, Math.min(steps, next)); draw(); };
   const stop = () => { clearInterval(timer); timer = null; $("z-play").textContent = "play"; };
   const record = () => {
@@ -120,9 +86,7 @@ export function buildSteps(app) {
     steps = app.state.page.zbuffer_trace(side);
     $("z-scrub").max = String(steps);
     go(steps);
-    rows = app.state.page.scanline_trace(side);
-    $("s-scrub").max = String(rows);
-    goRow(Math.floor(rows / 2));
+    scanline.record(side);
     painter.record(side);
     warnock.record(side);
   };
@@ -138,5 +102,5 @@ export function buildSteps(app) {
     const every = Math.max(15, Math.min(300, 6000 / Math.max(1, steps)));
     timer = setInterval(() => { if (k >= steps) stop(); else go(k + 1); }, every);
   });
-  return { record, go, goRow, painter, warnock };
+  return { record, go, scanline, painter, warnock };
 }

@@ -14,6 +14,15 @@ const RULES = [
   ["pixel handed to the sub-pixel subdivision", [230, 60, 220]],
 ];
 
+// Colours per polygon class (index in hider_warnock::Class::ALL).
+const CLASSES = [
+  ["disjoint", [150, 150, 150]],
+  ["surrounding", [70, 150, 255]],
+  ["contained", [40, 200, 80]],
+  ["intersecting", [255, 150, 30]],
+];
+const WINDOW = 11, CLASS = 5, MAX_ROWS = 200;
+
 export function buildWarnockSteps(app, idColour) {
   const host = document.createElement("div");
   host.id = "warnock-steps";
@@ -29,6 +38,11 @@ export function buildWarnockSteps(app, idColour) {
     <span style="color:#e80">orange</span>: several polygons reach them and none settles them). ${legend}. The windows are
     recorded by Warnock itself (<code>WarnockOptions::record_regions</code>, decided and cut); at the last step they tile
     the picture and the ids are Warnock's frame.</p>
+    <p>Click a window to see each polygon's class against it, as Warnock computed it
+    (<code>WarnockOptions::record_classes</code>), and what decided the window: the polygons are drawn in
+    their class's colour — ${CLASSES.map(([n, c]) => `<span style="color:rgb(${c.join(",")})">■</span> ${n}`).join(", ")};
+    dashed red: culled, hidden behind the surrounding polygon in front at every sample; thick: that
+    surrounder.</p>
     <div class="controls">
       <button id="w-back" title="level back">◀</button>
       <button id="w-next" title="level forward">▶</button>
@@ -38,11 +52,81 @@ export function buildWarnockSteps(app, idColour) {
     <div class="stage">
       <figure><canvas id="w-canvas" width="384" height="384" style="width:384px;height:384px"></canvas>
         <figcaption>windows decided so far, by rule, over the ids</figcaption></figure>
-      <table id="w-counts" style="font-size:12px"></table>
+      <table id="w-counts" class="data"></table>
+    </div>
+    <div class="stage">
+      <div class="s-tables" style="max-width:760px">
+        <h3 id="w-window-title">Window</h3>
+        <p id="w-window-text"></p>
+        <table id="w-class-counts" class="data"></table>
+        <div style="max-height:320px;overflow:auto;margin-top:.4rem"><table id="w-classes" class="data"></table></div>
+      </div>
     </div>`;
   $("steps-body").appendChild(host);
   const page = () => app.state.page;
-  let side = 64, steps = 0, k = 0;
+  let side = 64, steps = 0, k = 0, pick = [0, 0];
+  // The window shown for the picked pixel at this step, its polygons drawn
+  // in class colours and listed.
+  const drawWindow = (g, scale) => {
+    const w = page().warnock_window_at(k, pick[0], pick[1]);
+    host.dataset.window = String(w);
+    if (w < 0) {
+      $("w-window-title").textContent = "Window: step 0 shows none; step forward and click one";
+      $("w-window-text").textContent = "";
+      $("w-class-counts").innerHTML = $("w-classes").innerHTML = "";
+      host.dataset.classes = "0";
+      return;
+    }
+    const win = page().warnock_window(w), cls = page().warnock_window_classes(w);
+    const outl = page().warnock_window_outlines(w), n = cls.length / CLASS;
+    g.save();
+    g.beginPath();
+    g.rect(win[0] * scale, win[1] * scale, (win[2] - win[0]) * scale, (win[3] - win[1]) * scale);
+    g.clip();
+    for (let i = 0; i < n; i++) {
+      const c = cls[i * CLASS + 2], hidden = cls[i * CLASS + 3], front = cls[i * CLASS + 4];
+      if (c === 0 && n > 300) continue;
+      const col = CLASSES[c][1], v = outl.subarray(i * 6, i * 6 + 6);
+      g.beginPath();
+      g.moveTo(v[0] * scale, v[1] * scale);
+      g.lineTo(v[2] * scale, v[3] * scale);
+      g.lineTo(v[4] * scale, v[5] * scale);
+      g.closePath();
+      if (c > 0 && !hidden) { g.fillStyle = `rgba(${col.join(",")},0.25)`; g.fill(); }
+      g.setLineDash(hidden ? [4, 3] : []);
+      g.strokeStyle = hidden ? "#f44" : `rgb(${col.join(",")})`;
+      g.lineWidth = front ? 3 : 1.5;
+      g.stroke();
+    }
+    g.restore();
+    g.setLineDash([]);
+    g.strokeStyle = "#fff";
+    g.lineWidth = 3;
+    g.strokeRect(win[0] * scale + 1.5, win[1] * scale + 1.5, (win[2] - win[0]) * scale - 3, (win[3] - win[1]) * scale - 3);
+    g.strokeStyle = "#000";
+    g.lineWidth = 1;
+    g.strokeRect(win[0] * scale + 0.5, win[1] * scale + 0.5, (win[2] - win[0]) * scale - 1, (win[3] - win[1]) * scale - 1);
+    $("w-window-title").textContent = `Window ${win[0]}–${win[2]} × ${win[1]}–${win[3]} (level ${win[4]}): ${n} polygons`;
+    $("w-window-text").textContent = page().warnock_window_text(w);
+    const counts = CLASSES.map(() => 0);
+    let hiddenCount = 0;
+    const rows = [];
+    for (let i = 0; i < n; i++) {
+      const [t, prim, c, hidden, front] = cls.subarray(i * CLASS, (i + 1) * CLASS);
+      counts[c]++;
+      hiddenCount += hidden;
+      if (rows.length < MAX_ROWS && (c > 0 || n <= MAX_ROWS)) {
+        const col = CLASSES[c][1];
+        const note = front ? "the surrounder in front (nearest at the centre)" : hidden ? "culled: hidden behind it at every sample" : "";
+        rows.push(`<tr><td>${t}</td><td>${prim}</td><td style="color:rgb(${col.join(",")});text-align:left">${CLASSES[c][0]}</td><td style="text-align:left">${note}</td></tr>`);
+      }
+    }
+    $("w-class-counts").innerHTML = `<tr>${CLASSES.map(([name]) => `<th>${name}</th>`).join("")}<th>culled</th></tr>`
+      + `<tr>${counts.map((c) => `<td>${c}</td>`).join("")}<td>${hiddenCount}</td></tr>`;
+    const more = n > rows.length ? `<tr><td colspan="4" style="text-align:left">… ${n - rows.length} more (disjoint ones listed only in small windows)</td></tr>` : "";
+    $("w-classes").innerHTML = `<tr><th>triangle</th><th>primitive</th><th>class</th><th>note</th></tr>${rows.join("")}${more}`;
+    host.dataset.classes = String(n);
+  };
   const draw = () => {
     const cls = page().warnock_classes(k), ids = page().warnock_ids(k);
     const data = new Uint8ClampedArray(side * side * 4);
@@ -76,6 +160,7 @@ export function buildWarnockSteps(app, idColour) {
         (cuts[i + 2] - cuts[i]) * scale - 2, (cuts[i + 3] - cuts[i + 1]) * scale - 2);
     }
     host.dataset.cuts = String(cuts.length / 4);
+    drawWindow(g, scale);
     const rows = page().warnock_counts(k).split("\n").map((l) => l.split("\t"))
       .map(([r, n, px]) => `<tr><td>${r}</td><td style="text-align:right">${n}</td><td style="text-align:right">${px}</td></tr>`);
     $("w-counts").innerHTML = `<tr><th>decided by</th><th>windows</th><th>pixels</th></tr>${rows.join("")}`;
@@ -88,11 +173,18 @@ export function buildWarnockSteps(app, idColour) {
   $("w-back").addEventListener("click", () => go(k - 1));
   $("w-next").addEventListener("click", () => go(k + 1));
   $("w-scrub").addEventListener("input", () => go(Number($("w-scrub").value)));
+  const choose = (x, y) => { pick = [x, y]; draw(); };
+  $("w-canvas").addEventListener("click", (e) => {
+    const c = $("w-canvas"), r = c.getBoundingClientRect();
+    const x = Math.floor((e.clientX - r.left) / r.width * side), y = Math.floor((e.clientY - r.top) / r.height * side);
+    choose(Math.max(0, Math.min(side - 1, x)), Math.max(0, Math.min(side - 1, y)));
+  });
   const record = (size) => {
     side = size;
+    pick = [Math.floor(side / 2), Math.floor(side / 2)];
     steps = page().warnock_trace(side);
     $("w-scrub").max = String(steps);
     go(Math.min(steps, 4));
   };
-  return { record, go };
+  return { record, go, choose };
 }

@@ -13,6 +13,7 @@ use hider_geom::orient2d;
 use hider_scene::{Error, Result, ScreenTri};
 
 use crate::span::{Active, Surface};
+use crate::trace::EdgeRecord;
 use crate::walker::Edge;
 
 /// The hider's name, used in its error messages.
@@ -151,8 +152,17 @@ pub(crate) fn table_bytes(tris: usize, width: u32, height: u32) -> u64 {
 
 impl EdgeTable {
     /// Rebuilds the tables for `tris` on a `width x height` image, after
-    /// checking the budget and every triangle.
-    pub fn build(&mut self, tris: &[ScreenTri], height: u32, budget: u64, need: u64) -> Result<()> {
+    /// checking the budget and every triangle; fills `record` with the edge
+    /// table when tracing. Returns the number of (edge, row) pairs the
+    /// sweep will walk.
+    pub fn build(
+        &mut self,
+        tris: &[ScreenTri],
+        height: u32,
+        budget: u64,
+        need: u64,
+        record: Option<&mut Vec<EdgeRecord>>,
+    ) -> Result<u64> {
         if tris.len() > MAX_POLYGONS {
             return Err(Error::Limit {
                 what: "scanline triangles",
@@ -173,7 +183,7 @@ impl EdgeTable {
         self.poly_start.resize(rows + 1, 0);
         self.edge_start.clear();
         self.edge_start.resize(rows + 1, 0);
-        let (mut polys, mut edges) = (0usize, 0usize);
+        let (mut polys, mut edges, mut walked) = (0usize, 0usize, 0u64);
         for (k, t) in tris.iter().enumerate() {
             check_triangle(k, t)?;
             let Some(pr) = polygon_rows(t, height) else {
@@ -186,6 +196,7 @@ impl EdgeTable {
                 if let Some(er) = edge_rows(from.y, to.y, pr) {
                     self.edge_start[er.0 as usize + 1] += 1;
                     edges += 1;
+                    walked += u64::from(er.1 - er.0 + 1);
                 }
             }
         }
@@ -202,7 +213,12 @@ impl EdgeTable {
         self.poly_order.resize(polys, 0);
         self.edges.clear();
         self.edges.resize(edges, Edge::default());
-        for t in tris {
+        let mut record = record;
+        if let Some(r) = record.as_deref_mut() {
+            r.clear();
+            r.resize(edges, EdgeRecord::default());
+        }
+        for (k, t) in tris.iter().enumerate() {
             let Some(pr) = polygon_rows(t, height) else {
                 continue;
             };
@@ -224,7 +240,20 @@ impl EdgeTable {
                 let (from, to) = (t.v[e], t.v[(e + 1) % 3]);
                 if let Some(er) = edge_rows(from.y, to.y, pr) {
                     let cursor = &mut self.edge_start[er.0 as usize];
-                    self.edges[*cursor as usize] = Edge::start(f, slot, er.0, er.1);
+                    let mut edge = Edge::start(f, slot, er.0, er.1);
+                    edge.id = *cursor;
+                    if let Some(r) = record.as_deref_mut() {
+                        r[*cursor as usize] = EdgeRecord {
+                            first_row: er.0,
+                            last_row: er.1,
+                            prim: t.prim,
+                            triangle: k as u32,
+                            side: edge.side,
+                            from,
+                            to,
+                        };
+                    }
+                    self.edges[*cursor as usize] = edge;
                     *cursor += 1;
                 }
             }
@@ -236,7 +265,7 @@ impl EdgeTable {
         }
         self.poly_start[0] = 0;
         self.edge_start[0] = 0;
-        Ok(())
+        Ok(walked)
     }
 
     /// The polygons and edges starting on `row`.

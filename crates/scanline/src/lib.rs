@@ -62,7 +62,7 @@ mod walker;
 pub use options::ScanlineOptions;
 pub use scanline::Scanline;
 pub use stats::ScanlineStats;
-pub use trace::{Resolution, SpanRecord};
+pub use trace::{ActiveEdge, EdgeRecord, Resolution, ScanlineTrace, Side, SpanRecord};
 
 /// The scene crate this one renders from (scene model, OBJ loading, the
 /// front end, frames, the camera, `glam`), so that one dependency is

@@ -32,10 +32,12 @@ pub struct ScanlineOptions {
     /// anything is allocated; a scene that would need more is refused with
     /// [`hider_scene::Error::Budget`]. Default 1 GiB.
     pub max_bytes: u64,
-    /// Record every run of pixels and how it was resolved
-    /// ([`crate::Scanline::spans`]), for pictures and debugging. Off by
-    /// default: the record grows with the number of runs (at most one per
-    /// covered pixel) and is outside [`Self::max_bytes`].
+    /// Record the sweep ([`crate::Scanline::trace`]): the edge table, each
+    /// row's active edge list, and every run of pixels with its visible
+    /// primitive, its depths at both ends and how it was resolved
+    /// ([`crate::Scanline::spans`]), for pictures, teaching and debugging.
+    /// Off by default: the record grows with the edges' rows and the runs
+    /// (at most one per pixel); its worst case counts in [`Self::max_bytes`].
     pub record_spans: bool,
 }
 

@@ -7,7 +7,7 @@ use crate::edge_table::{EdgeTable, NAME, table_bytes};
 use crate::options::ScanlineOptions;
 use crate::span::{Active, RowOut, SpanResolver};
 use crate::stats::ScanlineStats;
-use crate::trace::SpanRecord;
+use crate::trace::{ScanlineTrace, SpanRecord, trace_bytes};
 use crate::walker::{Edge, Side};
 
 /// Crossing key bit marking a polygon entering (its first covered column);
@@ -34,8 +34,8 @@ pub struct Scanline {
     /// The active polygon list of the current span.
     apl: Vec<Active>,
     resolver: SpanResolver,
-    /// The runs of the last frame, when recording.
-    trace: Vec<SpanRecord>,
+    /// The sweep of the last frame, when recording.
+    trace: ScanlineTrace,
 }
 
 impl Scanline {
@@ -58,8 +58,15 @@ impl Scanline {
                 depth,
                 surfaces: &surfaces,
                 trace: self.options.record_spans.then_some(&mut trace),
+                span: (0, 0, 0),
             };
+            if let Some(t) = out.trace.as_deref_mut() {
+                t.start_row();
+            }
             self.scan_row(&mut out, stats);
+            if let Some(t) = out.trace.as_deref_mut() {
+                t.end_row();
+            }
         }
         self.trace = trace;
         self.table.surfaces = surfaces;
@@ -78,7 +85,7 @@ impl Scanline {
         let active = self.active_polys.len() as u64;
         stats.active_polygons_max = stats.active_polygons_max.max(active);
         stats.active_polygon_rows += active;
-        self.walk_edges(row, out.ids.len() as i64 - 1);
+        self.walk_edges(row, out.ids.len() as i64 - 1, out.trace.as_deref_mut());
         self.crossings.sort_unstable();
         stats.crossings += self.crossings.len() as u64;
         self.sweep(out, stats);
@@ -86,7 +93,7 @@ impl Scanline {
 
     /// Steps the active edge list to `row`, turning each active polygon's
     /// edges into its run's two crossings, and retires what ends here.
-    fn walk_edges(&mut self, row: u32, last_column: i64) {
+    fn walk_edges(&mut self, row: u32, last_column: i64, trace: Option<&mut ScanlineTrace>) {
         // Each polygon's run on this row: the tightest of its active left
         // and right edges (every row of a polygon has at least one of each).
         let polys = &mut self.table.polys;
@@ -94,6 +101,12 @@ impl Scanline {
             let p = &mut polys[s as usize];
             p.l = i64::MIN;
             p.r = i64::MAX;
+        }
+        // Recorded in a pass of its own, keeping the walk's loop as it is.
+        if let Some(t) = trace {
+            for e in &self.ael {
+                t.active_edge(e.id, row, e.bound());
+            }
         }
         self.ael.retain_mut(|e| {
             let p = &mut polys[e.poly as usize];
@@ -173,6 +186,13 @@ impl Scanline {
     /// visible primitive and how it was decided; empty unless
     /// [`ScanlineOptions::record_spans`] is on.
     pub fn spans(&self) -> &[SpanRecord] {
+        &self.trace.spans
+    }
+
+    /// The whole record of the last frame's sweep: the edge table, each
+    /// row's active edge list and runs; empty unless
+    /// [`ScanlineOptions::record_spans`] is on.
+    pub fn trace(&self) -> &ScanlineTrace {
         &self.trace
     }
 
@@ -185,7 +205,7 @@ impl Scanline {
                 + self.crossings.capacity() * 8
                 + self.apl.capacity() * size_of::<Active>()) as u64
             + self.resolver.bytes()
-            + (self.trace.capacity() * size_of::<SpanRecord>()) as u64
+            + self.trace.bytes()
     }
 }
 
@@ -220,14 +240,32 @@ impl Hider for Scanline {
         check_frame(NAME, scene, frame)?;
         let (width, height) = (scene.viewport.width, scene.viewport.height);
         let need = table_bytes(scene.tris.len(), width, height);
-        self.table
-            .build(&scene.tris, height, self.options.max_bytes, need)?;
+        let record = self.options.record_spans;
+        self.trace.clear();
+        let edge_rows = self.table.build(
+            &scene.tris,
+            height,
+            self.options.max_bytes,
+            need,
+            record.then_some(&mut self.trace.edges),
+        )?;
+        if record {
+            let pixels = u64::from(width) * u64::from(height);
+            let edges = self.table.edge_count() as u64;
+            let with_trace = need + trace_bytes(edges, edge_rows, pixels, height);
+            if with_trace > self.options.max_bytes {
+                return Err(hider_scene::Error::Budget {
+                    what: "scanline table and trace bytes (record_spans)",
+                    value: with_trace,
+                    limit: self.options.max_bytes,
+                });
+            }
+        }
         self.resolver.prepare(width);
         frame.clear();
         self.ael.clear();
         self.active_polys.clear();
         self.apl.clear();
-        self.trace.clear();
         let mut stats = ScanlineStats {
             polygons: self.table.polygon_count() as u64,
             edges: self.table.edge_count() as u64,

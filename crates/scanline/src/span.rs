@@ -27,7 +27,7 @@
 use hider_geom::PlaneEq;
 
 use crate::stats::ScanlineStats;
-use crate::trace::{Resolution, SpanRecord};
+use crate::trace::{Resolution, ScanlineTrace, SpanRecord};
 
 /// What the span step needs of a polygon: its depth plane and its id.
 /// Kept in a table by polygon slot, so that the active polygon list moves
@@ -68,19 +68,28 @@ pub(crate) struct RowOut<'a> {
     /// The surfaces, by polygon slot.
     pub surfaces: &'a [Surface],
     /// Where to record the runs, when recording.
-    pub trace: Option<&'a mut Vec<SpanRecord>>,
+    pub trace: Option<&'a mut ScanlineTrace>,
+    /// The span being resolved (first, last column) and how many polygons
+    /// cover it, for the record.
+    pub span: (u32, u32, u32),
 }
 
 impl RowOut<'_> {
-    /// Records a run when tracing.
-    fn record(&mut self, x0: u32, x1: u32, prim: u32, how: Resolution) {
+    /// Records a run when tracing: columns `x0..=x1`, primitive `prim`
+    /// at depths `depth` at its two ends.
+    fn record(&mut self, x0: u32, x1: u32, prim: u32, how: Resolution, depth: (f64, f64)) {
+        let (span0, span1, polygons) = self.span;
         if let Some(t) = self.trace.as_deref_mut() {
-            t.push(SpanRecord {
+            t.spans.push(SpanRecord {
                 row: self.row,
                 x0,
                 x1,
                 prim,
                 how,
+                depth0: depth.0,
+                depth1: depth.1,
+                span: (span0, span1),
+                polygons,
             });
         }
     }
@@ -88,8 +97,14 @@ impl RowOut<'_> {
     /// Writes polygon `a` over columns `x0..=x1`.
     fn fill(&mut self, a: &Active, x0: u32, x1: u32, how: Resolution) {
         let surface = self.surfaces[a.slot as usize];
-        self.record(x0, x1, surface.prim, how);
         let row = self.row;
+        if self.trace.is_some() {
+            let ends = (
+                surface.plane.at_pixel(x0, row),
+                surface.plane.at_pixel(x1, row),
+            );
+            self.record(x0, x1, surface.prim, how, ends);
+        }
         let (ids, depth) = (
             &mut self.ids[x0 as usize..=x1 as usize],
             &mut self.depth[x0 as usize..=x1 as usize],
@@ -204,6 +219,7 @@ impl SpanResolver {
     ) {
         stats.spans += 1;
         stats.span_polygons_max = stats.span_polygons_max.max(apl.len() as u64);
+        out.span = (x0, x1, apl.len() as u32);
         if let [only] = apl {
             out.fill(only, x0, x1, Resolution::Whole);
             return;
@@ -296,7 +312,8 @@ impl SpanResolver {
             out.ids[x as usize] = prim;
             out.depth[x as usize] = d as f32;
             if x == x1 || prim_of(who[(x + 1 - x0) as usize]) != prim {
-                out.record(run_start, x, prim, Resolution::Fallback);
+                let start = depth[(run_start - x0) as usize];
+                out.record(run_start, x, prim, Resolution::Fallback, (start, d));
                 run_start = x + 1;
             }
         }
@@ -346,6 +363,7 @@ mod tests {
             depth: &mut depth,
             surfaces: &surfaces,
             trace: None,
+            span: (0, 0, 0),
         };
         let mut r = SpanResolver::default();
         r.prepare(width);

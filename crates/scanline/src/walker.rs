@@ -19,8 +19,8 @@ use hider_geom::EdgeFunction;
 use hider_geom::fixed::{SUBPIXEL_SCALE, pixel_center};
 
 /// Which end of a polygon's run on a row an edge bounds.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) enum Side {
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Side {
     /// The edge gives the first covered pixel (`a > 0`).
     #[default]
     Left,
@@ -33,6 +33,8 @@ pub(crate) enum Side {
 pub(crate) struct Edge {
     /// Slot of its polygon in the polygon table.
     pub poly: u32,
+    /// Its index in the edge table (bucket order), for the trace.
+    pub id: u32,
     /// Which bound it gives.
     pub side: Side,
     /// Last row on which it is active.
@@ -72,6 +74,7 @@ impl Edge {
         };
         Self {
             poly,
+            id: 0,
             side,
             last_row,
             q: q + offset,

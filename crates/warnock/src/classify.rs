@@ -173,8 +173,8 @@ impl Tri<'_> {
 }
 
 /// Warnock's relation of a polygon to a region, about the region's samples.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Class {
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Class {
     /// Covers none of the region's samples: dropped from the region's list.
     Disjoint,
     /// Covers every sample of the region.

@@ -67,11 +67,14 @@ mod options;
 mod pixel;
 mod stats;
 mod subdivide;
+mod trace;
 mod warnock;
 
+pub use classify::Class;
 pub use debug::{CutRegion, LeafRegion, draw_region_outlines};
 pub use options::WarnockOptions;
 pub use stats::{Rule, WarnockStats};
+pub use trace::{Look, MAX_CLASS_RECORDS, Outcome, PolygonClass, WindowClasses, WindowRecord};
 pub use warnock::Warnock;
 
 /// The scene crate this one renders from (scene model, OBJ loading, the

@@ -36,6 +36,13 @@ pub struct WarnockOptions {
     /// picture ([`crate::draw_region_outlines`]). Off by default:
     /// the record can hold up to one entry per pixel.
     pub record_regions: bool,
+    /// Record every window of the pixel pass with each polygon's class
+    /// against it and what decided it ([`crate::Warnock::window_classes`]),
+    /// for teaching and debugging. Off by default: the record holds one
+    /// entry per polygon per window looked at (capped at
+    /// [`crate::MAX_CLASS_RECORDS`], whose worst case counts in
+    /// [`Self::max_bytes`]).
+    pub record_classes: bool,
     /// Budget for the working memory (triangle set-up records plus the
     /// worst-case candidate arena), in bytes; checked before anything is
     /// allocated, a larger frame is refused with
@@ -49,6 +56,7 @@ impl Default for WarnockOptions {
             samples_per_side: 1,
             shade: ShadeMode::Lambert,
             record_regions: false,
+            record_classes: false,
             max_bytes: 1 << 30,
         }
     }
@@ -70,6 +78,12 @@ impl WarnockOptions {
     /// Sets [`Self::record_regions`].
     pub fn with_record_regions(mut self, record: bool) -> Self {
         self.record_regions = record;
+        self
+    }
+
+    /// Sets [`Self::record_classes`].
+    pub fn with_record_classes(mut self, record: bool) -> Self {
+        self.record_classes = record;
         self
     }
 

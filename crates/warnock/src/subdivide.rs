@@ -35,6 +35,7 @@ use crate::classify::{
 };
 use crate::grid::{Grid, Region, SampleRect};
 use crate::stats::{Rule, WarnockStats};
+use crate::trace::{Look, Outcome, WindowClasses};
 
 /// Receives the decisions of the subdivision loop.
 pub(crate) trait Sink {
@@ -128,6 +129,8 @@ pub(crate) struct Subdivider {
     arena: Vec<u32>,
     stack: Vec<Entry>,
     peak: usize,
+    /// The windows and classes, when recording (the pixel pass only).
+    pub(crate) record: WindowClasses,
 }
 
 impl Subdivider {
@@ -146,6 +149,7 @@ impl Subdivider {
     pub(crate) fn bytes(&self) -> usize {
         self.arena.capacity() * std::mem::size_of::<u32>()
             + self.stack.capacity() * std::mem::size_of::<Entry>()
+            + self.record.bytes()
     }
 
     /// Subdivides each of the `roots`, starting from the candidate list
@@ -183,11 +187,15 @@ impl Subdivider {
                 let list = &self.arena[e.list.start..];
                 stats.sample_resolves += 1;
                 stats.examined(e.level, list.len());
-                let rule = resolve_sample(grid, &e.region, list, setups, sink, stats);
+                let w = self.record.open(&e.region, e.level, Look::Sample);
+                let rule =
+                    resolve_sample(grid, &e.region, list, setups, sink, stats, &mut self.record);
+                self.record.close(w, Outcome::Decided(rule));
                 stats.decided[rule as usize] += 1;
                 sink.leaf(&e.region, rule, e.level);
                 continue;
             }
+            let w = self.record.open(&e.region, e.level, Look::Classified);
             let rect = grid.sample_rect(&e.region);
             let (list, front, bounds) = self.classify(&e, &rect, setups, stats);
             let (list, culled) = match front {
@@ -201,7 +209,10 @@ impl Subdivider {
                 culled,
                 bounds,
             };
-            if let Some(rule) = self.decide(grid, &e, survivors, setups, sink, stats) {
+            let decided = self.decide(grid, &e, survivors, setups, sink, stats);
+            self.record
+                .close(w, decided.map_or(Outcome::Cut, Outcome::Decided));
+            if let Some(rule) = decided {
                 stats.decided[rule as usize] += 1;
                 sink.leaf(&e.region, rule, e.level);
             }
@@ -214,7 +225,7 @@ impl Subdivider {
     /// returned as it is when every candidate is kept, and copied from the
     /// first one dropped (the kept ones before it in one block).
     fn filter(
-        &mut self,
+        arena: &mut Vec<u32>,
         e: &Entry,
         list: List,
         stats: &mut WarnockStats,
@@ -223,31 +234,30 @@ impl Subdivider {
         if list != e.list {
             let mut kept = list.start;
             for k in list.start..list.end() {
-                let t = self.arena[k];
+                let t = arena[k];
                 if keep(t, stats) {
-                    self.arena[kept] = t;
+                    arena[kept] = t;
                     kept += 1;
                 }
             }
-            self.arena.truncate(kept);
+            arena.truncate(kept);
             return List {
                 start: list.start,
                 len: kept - list.start,
             };
         }
-        let Some(first_out) = (list.start..list.end()).find(|&k| !keep(self.arena[k], stats))
-        else {
+        let Some(first_out) = (list.start..list.end()).find(|&k| !keep(arena[k], stats)) else {
             return list;
         };
-        let out = self.arena.len();
-        self.arena.extend_from_within(list.start..first_out);
+        let out = arena.len();
+        arena.extend_from_within(list.start..first_out);
         for k in first_out + 1..list.end() {
-            let t = self.arena[k];
+            let t = arena[k];
             if keep(t, stats) {
-                self.arena.push(t);
+                arena.push(t);
             }
         }
-        let len = self.arena.len() - out;
+        let len = arena.len() - out;
         stats.candidates_copied += len as u64;
         List { start: out, len }
     }
@@ -266,11 +276,12 @@ impl Subdivider {
         let mut front: Option<(u32, CornerDepths)> = None;
         let mut bounds = BoundingBox::EMPTY;
         stats.examined(e.level, e.list.len);
-        let list = self.filter(e, e.list, stats, |t, stats| {
+        let list = Self::filter(&mut self.arena, e, e.list, stats, |t, stats| {
             let setup = &setups.tris[t as usize];
             let b = setup.bounding_box();
             let class = classify_in_box(setup, &b, rect);
             stats.classified(class);
+            self.record.class(t, class);
             match class {
                 Class::Disjoint => return false,
                 Class::Surrounding => {
@@ -285,6 +296,9 @@ impl Subdivider {
             bounds = bounds.union(&b);
             true
         });
+        if let Some((s, _)) = front {
+            self.record.front(s);
+        }
         (list, front, bounds)
     }
 
@@ -306,13 +320,16 @@ impl Subdivider {
         stats: &mut WarnockStats,
     ) -> (List, u64) {
         let mut culled = 0;
-        let list = self.filter(e, list, stats, |t, stats| {
+        let list = Self::filter(&mut self.arena, e, list, stats, |t, stats| {
             if t == s {
                 return true;
             }
             let d = CornerDepths::new(&setups.depth[t as usize], rect);
             stats.depth_evaluations += 4;
             let behind = certainly_behind(&d, sd);
+            if behind {
+                self.record.hidden(t);
+            }
             culled += u64::from(behind);
             !behind
         });
@@ -406,6 +423,8 @@ impl Subdivider {
             for (k, child) in children[..n].iter().enumerate() {
                 reached[k] = !bounds.misses(&grid.sample_rect(child));
                 if !reached[k] {
+                    let handed = &self.arena[list.start..list.end()];
+                    self.record.unseen(child, level, Look::ParentBox, handed);
                     stats.visit(level);
                     stats.empty_by_bounds += 1;
                     stats.decided[Rule::Empty as usize] += 1;
@@ -418,6 +437,7 @@ impl Subdivider {
                 if child.quadrants().1 > 0 && !bounds.holds(&grid.sample_rect(&child)) {
                     stats.visit(level);
                     stats.passed_through += 1;
+                    self.record.unseen(&child, level, Look::PassedThrough, &[]);
                     sink.cut(&child, level);
                     region = child;
                     continue;
@@ -447,6 +467,7 @@ fn resolve_sample<S: Sink>(
     setups: &Setups,
     sink: &mut S,
     stats: &mut WarnockStats,
+    record: &mut WindowClasses,
 ) -> Rule {
     let (x, y) = (grid.sample_x(r.u0), grid.sample_y(r.v0));
     let mut best: Option<(u32, f64)> = None;
@@ -455,6 +476,7 @@ fn resolve_sample<S: Sink>(
         let s = setups.get(t);
         if s.covers(x, y) {
             stats.classified(Class::Surrounding);
+            record.class(t, Class::Surrounding);
             covering += 1;
             let d = s.depth_at(x, y);
             if best.is_none_or(|(_, b)| d < b) {
@@ -462,6 +484,7 @@ fn resolve_sample<S: Sink>(
             }
         } else {
             stats.classified(Class::Disjoint);
+            record.class(t, Class::Disjoint);
         }
     }
     stats.depth_evaluations += covering;

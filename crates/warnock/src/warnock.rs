@@ -11,6 +11,7 @@ use crate::options::WarnockOptions;
 use crate::pixel::PixelSink;
 use crate::stats::WarnockStats;
 use crate::subdivide::{Roots, Subdivider};
+use crate::trace::{MAX_CLASS_RECORDS, PolygonClass, WindowClasses, WindowRecord};
 
 /// The Warnock hider. Keeps its set-up records, candidate arena, stacks and
 /// sample buffer between frames.
@@ -49,6 +50,13 @@ impl Warnock {
         &self.cuts
     }
 
+    /// Every window the pixel pass of the last frame looked at or settled,
+    /// with each polygon's class against it and what decided it, when
+    /// [`WarnockOptions::record_classes`] is on (empty otherwise).
+    pub fn window_classes(&self) -> &WindowClasses {
+        &self.outer.record
+    }
+
     /// Worst-case working memory for `scene`, in bytes: the set-up records,
     /// one candidate list per subdivision level plus the root list (what the
     /// arena can hold at most), the colour cache and the region record.
@@ -76,6 +84,12 @@ impl Warnock {
             // are at most one a pixel: fewer than the leaves.
             bytes += pixels
                 * (std::mem::size_of::<LeafRegion>() + std::mem::size_of::<CutRegion>()) as u64;
+        }
+        if self.options.record_classes {
+            // Windows: the leaves and the cut ones, fewer than two a pixel.
+            let pixels = u64::from(vp.width) * u64::from(vp.height);
+            bytes += 2 * pixels * std::mem::size_of::<WindowRecord>() as u64
+                + (MAX_CLASS_RECORDS * std::mem::size_of::<PolygonClass>()) as u64;
         }
         bytes
     }
@@ -233,6 +247,7 @@ impl Hider for Warnock {
         frame.clear();
         self.leaves.clear();
         self.cuts.clear();
+        self.outer.record.reset(self.options.record_classes);
         self.outer.reset_peak();
         self.inner.reset_peak();
         let mut stats = WarnockStats::default();

@@ -16,7 +16,11 @@
 pub mod inspect;
 pub mod orbit;
 pub mod painter_steps;
+<<<<<<< HEAD
 pub mod precision;
+=======
+pub mod scanline_steps;
+>>>>>>> wt/websteps
 pub mod scenes;
 pub mod session;
 pub mod steps;
@@ -45,8 +49,7 @@ pub struct Page {
     session: Session,
     files: Vec<(String, Vec<u8>)>,
     ztrace: hider_zbuffer::ZBufferTrace,
-    spans: Vec<hider_scanline::SpanRecord>,
-    span_side: u32,
+    scanline: scanline_steps::ScanlineSteps,
     painter: PainterSteps,
     warnock: WarnockSteps,
 }
@@ -164,36 +167,6 @@ impl Page {
     /// triangle).
     pub fn zbuffer_step(&self, k: usize) -> ZStep {
         ZStep(steps::zbuffer_step(&self.ztrace, k))
-    }
-
-    /// Records the scanline's runs of the current scene and camera at
-    /// `side` x `side` (1 to 128); returns the number of rows (steps).
-    pub fn scanline_trace(&mut self, side: u32) -> JsResult<u32> {
-        self.spans = steps::scanline_spans(&self.session, side).map_err(js)?;
-        self.span_side = side;
-        Ok(side)
-    }
-
-    /// The ids after the first `rows` rows of the recorded sweep, -1
-    /// elsewhere.
-    pub fn scanline_ids(&self, rows: u32) -> Vec<i32> {
-        steps::scanline_step(&self.spans, self.span_side, rows).0
-    }
-
-    /// How each run of row `rows - 1` was decided, per pixel: 0 none, 1
-    /// whole span, 2 split where depths cross, 3 the one-row depth buffer.
-    pub fn scanline_how(&self, rows: u32) -> Vec<u8> {
-        steps::scanline_step(&self.spans, self.span_side, rows).1
-    }
-
-    /// The runs of row `row`, one `x0-x1: primitive (how)` a line.
-    pub fn scanline_row(&self, row: u32) -> String {
-        self.spans
-            .iter()
-            .filter(|s| s.row == row)
-            .map(|s| format!("{}-{}: triangle {} ({:?})", s.x0, s.x1, s.prim, s.how))
-            .collect::<Vec<_>>()
-            .join("\n")
     }
 
     /// Records the painter's trace of the current scene and camera at

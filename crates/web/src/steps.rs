@@ -1,7 +1,6 @@
 //! The step-through views' traces, recorded by the algorithm crates
 //! themselves: the page only replays them.
 
-use hider_scanline::{Resolution, Scanline, ScanlineOptions, SpanRecord};
 use hider_scene::frame::id_to_i32;
 use hider_scene::{Frame, Hider, PrepareOptions, ScreenScene, View, prepare};
 use hider_zbuffer::{ZBuffer, ZBufferOptions, ZBufferTrace};
@@ -72,47 +71,12 @@ pub fn zbuffer_step(trace: &ZBufferTrace, k: usize) -> ZStep {
     }
 }
 
-/// The scanline's recorded runs of the session's scene and camera at
-/// `side` x `side` ([`ScanlineOptions::record_spans`]), row by row.
-pub fn scanline_spans(session: &Session, side: u32) -> Result<Vec<SpanRecord>, String> {
-    let (screen, mut frame) = step_scene(session, side)?;
-    let mut scanline = Scanline::new(ScanlineOptions::default().with_record_spans(true));
-    scanline
-        .render(&screen, &mut frame)
-        .map_err(|e| e.to_string())?;
-    Ok(scanline.spans().to_vec())
-}
-
-/// The sweep after `rows` rows of a `side` x `side` frame: the ids the
-/// runs of those rows wrote (-1 elsewhere), and per pixel of the last of
-/// them how its run was decided (0 none, 1 whole span, 2 split where
-/// depths cross, 3 the one-row depth buffer fallback).
-pub fn scanline_step(spans: &[SpanRecord], side: u32, rows: u32) -> (Vec<i32>, Vec<u8>) {
-    let w = side as usize;
-    let mut ids = vec![-1; w * w];
-    let mut how = vec![0u8; w * w];
-    for s in spans.iter().filter(|s| s.row < rows) {
-        let base = s.row as usize * w;
-        for x in s.x0..=s.x1 {
-            ids[base + x as usize] = id_to_i32(s.prim);
-            if s.row + 1 == rows {
-                how[base + x as usize] = match s.how {
-                    Resolution::Whole => 1,
-                    Resolution::Split => 2,
-                    Resolution::Fallback => 3,
-                };
-            }
-        }
-    }
-    (ids, how)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
-    fn the_last_steps_are_the_registry_hiders_frames() {
+    fn the_last_step_is_the_zbuffer_frame() {
         let mut session = Session::new();
         session.set_scene(crate::scenes::from_spec("gen:cyclic").unwrap());
         session.set_size(40, 40).unwrap();
@@ -121,9 +85,5 @@ mod tests {
         assert_eq!(last.ids, session.render("zbuffer").unwrap().ids());
         assert_eq!(zbuffer_step(&trace, 0).prim, -1);
         assert!(zbuffer_trace(&session, 1000).is_err());
-        let spans = scanline_spans(&session, 40).unwrap();
-        let (ids, _) = scanline_step(&spans, 40, 40);
-        assert_eq!(ids, session.render("scanline").unwrap().ids());
-        assert!(scanline_step(&spans, 40, 0).0.iter().all(|&id| id == -1));
     }
 }
