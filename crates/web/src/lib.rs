@@ -16,11 +16,8 @@
 pub mod inspect;
 pub mod orbit;
 pub mod painter_steps;
-<<<<<<< HEAD
 pub mod precision;
-=======
 pub mod scanline_steps;
->>>>>>> wt/websteps
 pub mod scenes;
 pub mod session;
 pub mod steps;
