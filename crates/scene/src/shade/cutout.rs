@@ -22,13 +22,23 @@
 //! the screen triangles, built only when some pixel fails the test. The
 //! oracle applies the same test natively ([`AlphaTest`]).
 //!
+//! A texture's alpha is the product of the diffuse texture's alpha
+//! channel and the dissolve texture's value (`map_d`, read as a mask:
+//! [`crate::TextureRef::as_mask`]); the material's `d` multiplies it where
+//! the surface is composited.
+//!
 //! Hiders that resolve colour from several samples per pixel (the
-//! A-buffer, supersampling) would need the test per sample inside their
-//! resolve; they draw cut-outs opaque, and `render_frame` says so in a
-//! warning naming the hider.
+//! A-buffer, supersampling, anti-aliased Warnock) test each of their own
+//! samples ([`AlphaTest::passes_at`]) and skip this stage. A texture with
+//! partial alpha ([`AlphaClass::Partial`]) is translucency: the A-buffer
+//! composites it with opacity `d` times the texture alpha at the
+//! fragment's pixel centre ([`AlphaTest::opacity`]); the others
+//! alpha-test it at one half, with a warning.
+
+use std::sync::OnceLock;
 
 use super::surface::{TextureOptions, TextureSampler};
-use super::texture::AlphaClass;
+use super::texture::{AlphaClass, TextureRef};
 use crate::error::Result;
 use crate::frame::{Frame, NO_ID};
 use crate::hider::{DynHider, StatsTable};
@@ -48,13 +58,42 @@ pub fn scene_has_cutouts(scene: &Scene) -> bool {
     })
 }
 
-/// Whether `material`'s diffuse texture declares an alpha channel (reads
-/// its header).
+/// Whether `material`'s textures may make it cut out: a diffuse texture
+/// whose header declares an alpha channel, or a readable dissolve texture
+/// (`map_d`) (reads headers, never decodes).
 pub fn material_may_cut_out(material: &Material) -> bool {
-    material
-        .diffuse_texture
-        .as_ref()
-        .is_some_and(|t| t.may_have_alpha())
+    alpha_textures(material).any(TextureRef::may_have_alpha)
+}
+
+/// The textures whose alpha make up `material`'s: `map_Kd` and `map_d`.
+fn alpha_textures(material: &Material) -> impl Iterator<Item = &TextureRef> {
+    [&material.diffuse_texture, &material.alpha_texture]
+        .into_iter()
+        .flatten()
+}
+
+/// What `material`'s texture alpha holds, from every texel of its alpha
+/// textures (decoding them at their coarsest level if they were not
+/// decoded: [`TextureRef::alpha_class`]): the most translucent class of
+/// the two; a texture that does not load counts as opaque.
+pub fn material_alpha_class(material: &Material) -> AlphaClass {
+    alpha_textures(material)
+        .filter_map(TextureRef::alpha_class)
+        .max()
+        .unwrap_or_default()
+}
+
+/// The alpha textures of `material` with partial alpha, and the share of
+/// their texels that is partial (decoding as [`material_alpha_class`]):
+/// the planner's evidence of translucency.
+pub fn material_partial_alpha(material: &Material) -> Vec<(String, f64)> {
+    alpha_textures(material)
+        .filter(|t| t.alpha_class() == Some(AlphaClass::Partial))
+        .map(|t| {
+            let share = t.get_level(u32::MAX).map_or(0.0, |d| d.partial_share());
+            (t.path().display().to_string(), share)
+        })
+        .collect()
 }
 
 /// The alpha test of a prepared scene's primitives at pixel centres.
@@ -64,6 +103,8 @@ pub struct AlphaTest<'a> {
     sampler: TextureSampler,
     /// Per material: whether it may cut out.
     cuts: Vec<bool>,
+    /// Per material that may cut out: its alpha class, on first use.
+    classes: Vec<OnceLock<AlphaClass>>,
 }
 
 impl<'a> AlphaTest<'a> {
@@ -75,6 +116,7 @@ impl<'a> AlphaTest<'a> {
         cuts.iter().any(|&c| c).then(|| Self {
             scene,
             sampler: TextureSampler::new(scene, options).with_stages(true, false),
+            classes: vec![OnceLock::new(); cuts.len()],
             cuts,
         })
     }
@@ -89,13 +131,53 @@ impl<'a> AlphaTest<'a> {
     /// Whether primitive `prim` is there at the centre of pixel `(i, j)`:
     /// its texture's alpha there is at least one half.
     pub fn passes(&self, prim: u32, i: u32, j: u32) -> bool {
+        self.passes_at(prim, f64::from(i) + 0.5, f64::from(j) + 0.5)
+    }
+
+    /// Whether primitive `prim` is there at window point `(x, y)` (pixels,
+    /// y down: a hider's own sample): its texture's alpha there
+    /// ([`Self::alpha`]) is at least one half.
+    pub fn passes_at(&self, prim: u32, x: f64, y: f64) -> bool {
+        !self.may_cut(prim) || self.alpha(prim, x, y) >= 0.5
+    }
+
+    /// The texture alpha of primitive `prim` at window point `(x, y)`: the
+    /// diffuse texture's alpha times the dissolve texture's value, sampled
+    /// as the colour is (perspective-correct coordinates at the point, the
+    /// mip level of the pixel's footprint, the filter); 1 when it may not
+    /// cut. The material's `d` is not in it.
+    pub fn alpha(&self, prim: u32, x: f64, y: f64) -> f32 {
         if !self.may_cut(prim) {
-            return true;
+            return 1.0;
         }
         let info = &self.scene.prims[prim as usize];
         let material = &self.scene.materials[info.material as usize];
-        let (x, y) = (f64::from(i) + 0.5, f64::from(j) + 0.5);
-        self.sampler.alpha_at(info, material, x, y) >= 0.5
+        self.sampler.alpha_at(info, material, x, y)
+    }
+
+    /// The alpha class of primitive `prim`'s material
+    /// ([`material_alpha_class`], found once per material, decoding its
+    /// textures at their coarsest level if needed);
+    /// [`AlphaClass::Opaque`] when it may not cut.
+    pub fn class(&self, prim: u32) -> AlphaClass {
+        if !self.may_cut(prim) {
+            return AlphaClass::Opaque;
+        }
+        let m = self.scene.prims[prim as usize].material as usize;
+        *self.classes[m].get_or_init(|| material_alpha_class(&self.scene.materials[m]))
+    }
+
+    /// For a primitive whose material has partial alpha (translucency,
+    /// [`Self::class`]): `d` times its texture alpha at the centre of pixel
+    /// `(i, j)`, the opacity a compositing hider gives its fragment there;
+    /// `None` for the others (opaque, or cut-outs alpha-tested per
+    /// sample).
+    pub fn opacity(&self, prim: u32, (i, j): (u32, u32)) -> Option<f32> {
+        if self.class(prim) != AlphaClass::Partial {
+            return None;
+        }
+        let d = self.scene.material(prim).opacity.clamp(0.0, 1.0);
+        Some(d * self.alpha(prim, f64::from(i) + 0.5, f64::from(j) + 0.5))
     }
 
     /// The materials' classes that the test met, decoded by now: whether
@@ -104,12 +186,12 @@ impl<'a> AlphaTest<'a> {
     pub fn partial_alpha(&self) -> Vec<String> {
         let mut files = Vec::new();
         for (m, &cuts) in self.scene.materials.iter().zip(&self.cuts) {
-            if let Some(t) = m.diffuse_texture.as_ref().filter(|_| cuts)
-                && t.decoded_alpha_class() == Some(AlphaClass::Partial)
-            {
-                let name = t.path().display().to_string();
-                if !files.contains(&name) {
-                    files.push(name);
+            for t in alpha_textures(m).filter(|_| cuts) {
+                if t.decoded_alpha_class() == Some(AlphaClass::Partial) {
+                    let name = t.path().display().to_string();
+                    if !files.contains(&name) {
+                        files.push(name);
+                    }
                 }
             }
         }
