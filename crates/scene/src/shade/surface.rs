@@ -320,6 +320,31 @@ impl TextureSampler {
 }
 
 impl ScreenScene {
+    /// The texture alpha of primitive `prim` at window point `(x, y)`
+    /// ([`TextureSampler::alpha_at`]) when its material's alpha textures
+    /// were decoded and hold partial alpha ([`super::AlphaClass::Partial`]:
+    /// translucency, which compositing hiders multiply the opacity by);
+    /// `None` otherwise (never decodes: the hider's alpha test decoded them
+    /// when it met the primitive).
+    pub fn partial_alpha_at(
+        &self,
+        sampler: &TextureSampler,
+        prim: u32,
+        x: f64,
+        y: f64,
+    ) -> Option<f32> {
+        let info = &self.prims[prim as usize];
+        let material = &self.materials[info.material as usize];
+        info.uvs?;
+        let partial = [&material.diffuse_texture, &material.alpha_texture]
+            .into_iter()
+            .flatten()
+            .any(|t| {
+                t.may_have_alpha() && t.decoded_alpha_class() == Some(super::AlphaClass::Partial)
+            });
+        partial.then(|| sampler.alpha_at(info, material, x, y))
+    }
+
     /// The colour of primitive `prim` at window point `(x, y)`
     /// ([`TextureSampler::color_at`]), or `base`, its flat colour, when its
     /// colour does not vary: the surface colour a colour-resolving hider
