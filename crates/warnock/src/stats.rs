@@ -117,6 +117,12 @@ pub struct WarnockStats {
     pub depth_evaluations: u64,
     /// Samples written into the frame or a pixel's sample buffer.
     pub samples_written: u64,
+    /// Pixels resolved again sample by sample because a primitive that
+    /// may cut out (an alpha cut-out) was found visible there (the
+    /// anti-aliased mode; 0 in scenes without cut-outs).
+    pub cutout_pixels: u64,
+    /// Triangles looked at by those pixels' searches.
+    pub cutout_candidates: u64,
     /// Largest number of candidate indices held at once in the arena.
     pub peak_candidates: u64,
     /// Bytes of working memory at the peak (set-up records, arena, stack,
@@ -278,6 +284,8 @@ impl HiderStats for WarnockStats {
             ("passed through", self.passed_through),
             ("depth evaluations", self.depth_evaluations),
             ("samples written", self.samples_written),
+            ("cut-out pixels", self.cutout_pixels),
+            ("cut-out candidates", self.cutout_candidates),
             ("peak candidates", self.peak_candidates),
         ]);
         counters.extend(

@@ -37,6 +37,8 @@
 
 use std::sync::OnceLock;
 
+use hider_geom::fixed::{SUBPIXEL_BITS, SUBPIXEL_SCALE};
+
 use super::surface::{TextureOptions, TextureSampler};
 use super::texture::{AlphaClass, TextureRef};
 use crate::error::Result;
@@ -301,7 +303,7 @@ impl Bins {
 /// shared front end with the hider's options); colour the frame after.
 pub fn resolve_cutouts(scene: &ScreenScene, frame: &mut Frame, test: &AlphaTest) -> CutoutStats {
     let mut stats = CutoutStats::default();
-    let mut bins: Option<Bins> = None;
+    let mut bins: Option<CutoutSearch> = None;
     let (w, h) = (frame.width(), frame.height());
     for j in 0..h {
         for i in 0..w {
@@ -315,8 +317,14 @@ pub fn resolve_cutouts(scene: &ScreenScene, frame: &mut Frame, test: &AlphaTest)
                 continue;
             }
             stats.pixels_replaced += 1;
-            let bins = bins.get_or_insert_with(|| Bins::new(scene));
-            let (id, depth) = nearest_passing(scene, bins.at(i, j), test, i, j, &mut stats);
+            let search = bins.get_or_insert_with(|| CutoutSearch::new(scene));
+            let (px, py) = (
+                i64::from(hider_geom::fixed::pixel_center(i as i32)),
+                i64::from(hider_geom::fixed::pixel_center(j as i32)),
+            );
+            let (id, depth) = search
+                .nearest_at(test, px, py, &mut stats.candidates)
+                .map_or((NO_ID, 1.0), |(id, z)| (id, z as f32));
             frame.ids[k] = id;
             frame.depth[k] = depth;
         }
@@ -324,32 +332,58 @@ pub fn resolve_cutouts(scene: &ScreenScene, frame: &mut Frame, test: &AlphaTest)
     stats
 }
 
-/// The nearest of `candidates` covering the centre of `(i, j)` and passing
-/// the test: its id and window depth, or the background's.
-fn nearest_passing(
-    scene: &ScreenScene,
-    candidates: &[u32],
-    test: &AlphaTest,
-    i: u32,
-    j: u32,
-    stats: &mut CutoutStats,
-) -> (u32, f32) {
-    let (px, py) = (
-        i64::from(hider_geom::fixed::pixel_center(i as i32)),
-        i64::from(hider_geom::fixed::pixel_center(j as i32)),
-    );
-    let mut best: Option<(f64, u32)> = None;
-    for &t in candidates {
-        stats.candidates += 1;
-        let tri = &scene.tris[t as usize];
-        if !tri.edges().iter().all(|e| e.contains(px, py)) {
-            continue;
-        }
-        let z = tri.depth.at_pixel(i, j);
-        let nearer = best.is_none_or(|(bz, bid)| z < bz || (z == bz && tri.prim < bid));
-        if nearer && test.passes(tri.prim, i, j) {
-            best = Some((z, tri.prim));
+/// The nearest primitive passing the alpha test at any window point: the
+/// reference a hider's own samples are resolved by where a cut-out is
+/// visible (the anti-aliased Warnock's sub-samples), and the search of
+/// [`resolve_cutouts`] at pixel centres. Candidates come from a
+/// screen-space bin grid over the screen triangles.
+pub struct CutoutSearch<'a> {
+    scene: &'a ScreenScene,
+    bins: Bins,
+}
+
+impl<'a> CutoutSearch<'a> {
+    /// The search over `scene`'s screen triangles (bins them).
+    pub fn new(scene: &'a ScreenScene) -> Self {
+        Self {
+            scene,
+            bins: Bins::new(scene),
         }
     }
-    best.map_or((NO_ID, 1.0), |(z, id)| (id, z as f32))
+
+    /// The nearest primitive of the scene covering the fixed-point window
+    /// point `(px, py)` (1/256 pixel, the shared exact edge functions and
+    /// fill rule) and passing `test` there, with its window depth there:
+    /// nearest by depth in `f64`, the lower id winning an exact tie;
+    /// `None` for the background. Adds the triangles looked at to
+    /// `candidates`.
+    pub fn nearest_at(
+        &self,
+        test: &AlphaTest,
+        px: i64,
+        py: i64,
+        candidates: &mut u64,
+    ) -> Option<(u32, f64)> {
+        let vp = self.scene.viewport;
+        let (i, j) = (px >> SUBPIXEL_BITS, py >> SUBPIXEL_BITS);
+        if i < 0 || j < 0 || i >= i64::from(vp.width) || j >= i64::from(vp.height) {
+            return None;
+        }
+        let scale = f64::from(SUBPIXEL_SCALE);
+        let (x, y) = (px as f64 / scale, py as f64 / scale);
+        let mut best: Option<(f64, u32)> = None;
+        for &t in self.bins.at(i as u32, j as u32) {
+            *candidates += 1;
+            let tri = &self.scene.tris[t as usize];
+            if !tri.edges().iter().all(|e| e.contains(px, py)) {
+                continue;
+            }
+            let z = tri.depth.eval(x, y);
+            let nearer = best.is_none_or(|(bz, bid)| z < bz || (z == bz && tri.prim < bid));
+            if nearer && test.passes_at(tri.prim, x, y) {
+                best = Some((z, tri.prim));
+            }
+        }
+        best.map(|(z, id)| (id, z))
+    }
 }
