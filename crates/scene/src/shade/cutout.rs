@@ -186,31 +186,21 @@ impl<'a> AlphaTest<'a> {
     /// some texture has partial alpha (translucency, which the test draws
     /// as a cut-out at one half).
     pub fn partial_alpha(&self) -> Vec<String> {
-        let mut files = Vec::new();
-        for (m, &cuts) in self.scene.materials.iter().zip(&self.cuts) {
-            for t in alpha_textures(m).filter(|_| cuts) {
-                if t.decoded_alpha_class() == Some(AlphaClass::Partial) {
-                    let name = t.path().display().to_string();
-                    if !files.contains(&name) {
-                        files.push(name);
-                    }
-                }
-            }
-        }
-        files
+        partial_alpha_files(&self.scene.materials)
     }
 }
 
 /// The cut-out stage as [`super::render_frame`] runs it after `hider`'s
 /// pipeline rendered `scene` through `view` with `options` into `frame`:
-/// nothing when the scene has no cut-outs ([`scene_has_cutouts`]); a
-/// warning naming the hider when it resolves colour itself (it drew the
-/// cut-outs opaque); else the alpha test over its ids ([`resolve_cutouts`]
-/// on the scene prepared once more with `options`: the ids of every front
-/// end are the shared one's), its counters added to `stats`, and a warning
-/// per texture with partial alpha. For callers that run
-/// [`DynHider::render_scene`] themselves and want the ids `render_frame`
-/// gives.
+/// nothing when the scene has no cut-outs ([`scene_has_cutouts`]); when
+/// the hider resolves colour itself, nothing but the warning below (it
+/// alpha-tested its own samples); else the alpha test over its ids
+/// ([`resolve_cutouts`] on the scene prepared once more with `options`:
+/// the ids of every front end are the shared one's), its counters added
+/// to `stats`. Unless the hider composites transparency, a warning per
+/// texture with partial alpha (drawn as a cut-out at one half). For
+/// callers that run [`DynHider::render_scene`] themselves and want the ids
+/// `render_frame` gives.
 pub fn cutout_stage(
     hider: &dyn DynHider,
     scene: &Scene,
@@ -222,34 +212,45 @@ pub fn cutout_stage(
     if !scene_has_cutouts(scene) {
         return Ok(());
     }
-    if hider.resolves_color() {
-        stats.warnings.push(format!(
-            "the scene has alpha cut-outs (a map_Kd with an alpha channel), but {} \
-             resolves colour from several samples per pixel and draws them opaque; a \
-             single-sample hider (zbuffer, zbuffer-tiled, painter, warnock, scanline) \
-             alpha-tests them at pixel centres",
-            hider.name()
-        ));
-        return Ok(());
+    if !hider.resolves_color() {
+        let prepared = prepare(scene, view, options)?;
+        let Some(test) = AlphaTest::new(&prepared, TextureOptions::default()) else {
+            return Ok(());
+        };
+        let cut = resolve_cutouts(&prepared, frame, &test);
+        stats.counters.extend([
+            ("cut-out pixels tested", cut.pixels_tested),
+            ("cut-out pixels replaced", cut.pixels_replaced),
+            ("cut-out candidates", cut.candidates),
+        ]);
     }
-    let prepared = prepare(scene, view, options)?;
-    let Some(test) = AlphaTest::new(&prepared, TextureOptions::default()) else {
-        return Ok(());
-    };
-    let cut = resolve_cutouts(&prepared, frame, &test);
-    stats.counters.extend([
-        ("cut-out pixels tested", cut.pixels_tested),
-        ("cut-out pixels replaced", cut.pixels_replaced),
-        ("cut-out candidates", cut.candidates),
-    ]);
-    for file in test.partial_alpha() {
-        stats.warnings.push(format!(
-            "{file}: partial alpha (translucency) is drawn as a cut-out at alpha one half \
-             by {}; the A-buffer (abuffer) composites translucent materials",
-            hider.name()
-        ));
+    if !hider.composites_transparency() {
+        for file in partial_alpha_files(&scene.materials) {
+            stats.warnings.push(format!(
+                "{file}: partial alpha (translucency) is drawn as a cut-out at alpha one half \
+                 by {}; the A-buffer (abuffer) composites translucent materials",
+                hider.name()
+            ));
+        }
     }
     Ok(())
+}
+
+/// The alpha textures of `materials` (that may cut out) found to hold
+/// partial alpha, by now decoded (never decodes), each file once.
+fn partial_alpha_files(materials: &[Material]) -> Vec<String> {
+    let mut files = Vec::new();
+    for m in materials.iter().filter(|m| material_may_cut_out(m)) {
+        for t in alpha_textures(m) {
+            if t.decoded_alpha_class() == Some(AlphaClass::Partial) {
+                let name = t.path().display().to_string();
+                if !files.contains(&name) {
+                    files.push(name);
+                }
+            }
+        }
+    }
+    files
 }
 
 /// What the cut-out stage did.
