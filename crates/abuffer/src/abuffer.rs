@@ -43,8 +43,8 @@ use std::sync::{Mutex, PoisonError};
 use rayon::prelude::*;
 
 use crate::bins::{BinRun, Bins, Grid, TILE, tile_rect};
-use crate::cutout::Cutouts;
 use crate::centre::in_front;
+use crate::cutout::Cutouts;
 use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy};
 use crate::palette;

@@ -58,7 +58,11 @@ impl<'a> Cutouts<'a> {
     pub(crate) fn coverage(&self, prim: u32, ij: (u32, u32), c: Coverage) -> Coverage {
         let mut out = c;
         for (k, &pos) in self.pattern.positions().iter().enumerate() {
-            if c.mask >> k & 1 == 1 && !self.test.passes_at(prim, window(ij.0, pos.0), window(ij.1, pos.1)) {
+            if c.mask >> k & 1 == 1
+                && !self
+                    .test
+                    .passes_at(prim, window(ij.0, pos.0), window(ij.1, pos.1))
+            {
                 out.mask &= !(1 << k);
             }
         }

@@ -375,7 +375,12 @@ impl Sink for CoverageSink<'_> {
         };
         self.inner
             .run(roots, candidates.iter().copied(), setups, &mut sink, stats);
-        if self.samples.prims.iter().any(|&p| p != NO_ID && self.may_cut(p)) {
+        if self
+            .samples
+            .prims
+            .iter()
+            .any(|&p| p != NO_ID && self.may_cut(p))
+        {
             self.cut_pixel(u, v, stats);
         } else {
             self.resolve_samples(u, v);

@@ -143,7 +143,12 @@ impl Effects {
     /// and stay opaque ([`Self::cutouts`]). Reads headers, and decodes (at
     /// the coarsest mip level) only the alpha textures of materials in
     /// view that may cut out.
-    pub(crate) fn add_partial_alpha(&mut self, screen: &hider_scene::ScreenScene, in_view: &[u32], ex: usize) {
+    pub(crate) fn add_partial_alpha(
+        &mut self,
+        screen: &hider_scene::ScreenScene,
+        in_view: &[u32],
+        ex: usize,
+    ) {
         use hider_scene::shade::cutout::{material_may_cut_out, material_partial_alpha};
         let mut found: Vec<Option<Vec<(String, f64)>>> = vec![None; screen.materials.len()];
         let mut ids = Vec::new();

@@ -372,7 +372,10 @@ mod tests {
         assert!(t.levels[0].alpha.is_none());
         // As a mask (map_d), the grey is the alpha plane, as plain numbers.
         let m = load_level(&grey, 0, true).unwrap();
-        assert_eq!(m.levels[0].alpha.as_deref().unwrap()[..4], [0, 60, 120, 180]);
+        assert_eq!(
+            m.levels[0].alpha.as_deref().unwrap()[..4],
+            [0, 60, 120, 180]
+        );
         assert_eq!(m.alpha_class(), AlphaClass::Partial);
         assert_eq!(m.partial_share(), 0.75);
         std::fs::remove_dir_all(&dir).unwrap();
