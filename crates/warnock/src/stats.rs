@@ -284,8 +284,6 @@ impl HiderStats for WarnockStats {
             ("passed through", self.passed_through),
             ("depth evaluations", self.depth_evaluations),
             ("samples written", self.samples_written),
-            ("cut-out pixels", self.cutout_pixels),
-            ("cut-out candidates", self.cutout_candidates),
             ("peak candidates", self.peak_candidates),
         ]);
         counters.extend(
@@ -300,6 +298,14 @@ impl HiderStats for WarnockStats {
                 .copied()
                 .zip(self.candidates_per_level.iter().copied()),
         );
+        // Last, and only for frames with cut-outs: the table of every other
+        // frame is the one it was.
+        if self.cutout_pixels > 0 {
+            counters.extend([
+                ("cut-out pixels", self.cutout_pixels),
+                ("cut-out candidates", self.cutout_candidates),
+            ]);
+        }
         StatsTable {
             counters,
             peak_bytes: self.peak_bytes,
