@@ -304,8 +304,17 @@ fn map_d_cuts_as_an_rgba_map_kd() {
         let (a, _) = render(&rgba, name);
         let (b, stats) = render(&map_d, name);
         let ids = a.ids.iter().zip(&b.ids).filter(|(x, y)| x != y).count();
-        let coverage = a.coverage.iter().zip(&b.coverage).filter(|(x, y)| x != y).count();
-        assert_eq!((ids, coverage), (0, 0), "{name}: pixels whose id, coverage differ");
+        let coverage = a
+            .coverage
+            .iter()
+            .zip(&b.coverage)
+            .filter(|(x, y)| x != y)
+            .count();
+        assert_eq!(
+            (ids, coverage),
+            (0, 0),
+            "{name}: pixels whose id, coverage differ"
+        );
         assert!(
             !stats.warnings.iter().any(|w| w.contains("map_d")),
             "{name}: {:?}",
