@@ -270,7 +270,13 @@ impl TextureRef {
     /// Whether the image's header declares an alpha channel (reads the
     /// header, never decodes): the texture may be a cut-out.
     pub fn may_have_alpha(&self) -> bool {
-        self.header().is_ok_and(|h| h.alpha)
+        // Without the clone `header` makes: colour-resolving hiders ask
+        // this per fragment.
+        self.slot
+            .header
+            .get_or_init(|| header(&self.path).map_err(|e| e.to_string()))
+            .as_ref()
+            .is_ok_and(|h| h.alpha || self.mask)
     }
 
     /// What the alpha channel holds, if the texture was decoded (never
