@@ -44,6 +44,7 @@ use rayon::prelude::*;
 
 use crate::bins::{BinItem, BinRun, Bins, Grid, TILE, tile_rect};
 use crate::centre::in_front;
+use crate::cutout::Cutouts;
 use crate::fragment::{NIL, PIXEL_BYTES};
 use crate::options::{ABufferOptions, DepthMode, MergePolicy};
 use crate::palette;
@@ -288,6 +289,7 @@ impl ABuffer {
                 && options.depth == DepthMode::PerSample
                 && options.merge != MergePolicy::SameSurface
                 && options.max_bytes >= table + SAMPLE_BUFFER_BYTES,
+            cutouts: Cutouts::new(scene.screen_scene(), options.pattern),
         };
         let run = |worker: &mut Worker| -> Result<Vec<u32>> {
             let mut done = Vec::new();
@@ -424,7 +426,11 @@ impl Hider for ABuffer {
         screen: &mut ScreenScene,
         frame: &mut Frame,
     ) -> Result<ABufferStats> {
-        if self.options.shade == ShadeMode::Lambert && scene.varies_per_point() {
+        // Cut-outs are alpha-tested per sample from the prepared scene's
+        // primitives (texture coordinates), in any shade mode.
+        if (self.options.shade == ShadeMode::Lambert && scene.varies_per_point())
+            || hider_scene::shade::cutout::scene_has_cutouts(scene)
+        {
             hider_scene::prepare_into(scene, view, options, screen)?;
             return self.render(screen, frame);
         }

@@ -87,6 +87,7 @@ mod centre;
 mod composite;
 mod coverage;
 mod culling;
+mod cutout;
 mod depth;
 mod fragment;
 mod inspect;

@@ -34,7 +34,9 @@ pub(crate) fn sampler(scene: &ScreenScene, mode: ShadeMode) -> Option<TextureSam
 
 /// The colour of primitive `prim` at window point `(x, y)` when its colour
 /// varies and the frame is shaded per point (`sampler`, see [`sampler`]);
-/// `rgba`, its flat colour, otherwise. The opacity is the flat one.
+/// `rgba`, its flat colour, otherwise. The opacity is the flat one (`d`),
+/// times the texture alpha at the point for a material with partial alpha
+/// ([`ScreenScene::partial_alpha_at`]).
 #[inline]
 pub(crate) fn at_point(
     scene: &ScreenScene,
@@ -48,7 +50,10 @@ pub(crate) fn at_point(
         return rgba;
     };
     let [r, g, b] = scene.surface_rgb(sampler, prim, [rgba[0], rgba[1], rgba[2]], x, y);
-    [r, g, b, rgba[3]]
+    let a = scene
+        .partial_alpha_at(sampler, prim, x, y)
+        .map_or(rgba[3], |a| rgba[3] * a);
+    [r, g, b, a]
 }
 
 /// [`at_point`] at the centre of pixel `(i, j)`: the A-buffer shades a

@@ -14,6 +14,7 @@ use hider_scene::{NO_ID, Result};
 use crate::bins::{BinItem, TILE};
 use crate::coverage::{Class, Coverage, TriCoverage};
 use crate::culling::{BLOCK, BLOCKS, block_part};
+use crate::cutout::Cutouts;
 use crate::depth::{DepthBounds, near_corner, nearest_over, plane_depth};
 use crate::fragment::{Fragment, NIL};
 use crate::lists::{Ctx, Lists};
@@ -37,6 +38,8 @@ struct TriRaster<'a> {
     near_corner: (i32, i32),
     /// Top-left pixel of the tile.
     tile: (u32, u32),
+    /// The alpha test, when the primitive may cut out.
+    cutouts: Option<&'a Cutouts<'a>>,
 }
 
 /// Turns triangles into fragments of the lists of a frame.
@@ -62,7 +65,9 @@ impl Rasterizer {
     }
 
     /// Renders the fragments of `item`'s triangle inside the pixel
-    /// rectangle `(x0, y0, x1, y1)` of the tile at `tile`.
+    /// rectangle `(x0, y0, x1, y1)` of the tile at `tile`, alpha-tested
+    /// per sample by `cutouts` when it is given (the primitive may cut
+    /// out: [`Cutouts::coverage`]).
     ///
     /// First the hierarchical test: for each 8 x 8 block of the tile that
     /// the rectangle meets, the plane's nearest value over the block's part
@@ -76,7 +81,7 @@ impl Rasterizer {
     pub(crate) fn triangle(
         &mut self,
         scene: &Source<'_>,
-        (item, index): (&BinItem, u32),
+        (item, index, cutouts): (&BinItem, u32, Option<&Cutouts<'_>>),
         rect: (u32, u32, u32, u32),
         tile: (u32, u32),
         stats: &mut ABufferStats,
@@ -104,6 +109,7 @@ impl Rasterizer {
             full_mask: pattern.full_mask(),
             near_corner: near_corner(&plane, pattern.hull()),
             tile,
+            cutouts,
         };
         let result = self.live_pixels(&tri, &setup, live, rect, stats);
         self.setup = Some(setup);
@@ -251,6 +257,25 @@ impl Rasterizer {
             }
             c
         };
+        let mut alpha = tri.alpha;
+        let c = match tri.cutouts {
+            None => c,
+            Some(cut) => match cut.opacity(tri.prim, (i, j)) {
+                // Partial alpha: composited, with the fragment's own
+                // opacity (the colour's, at the same centre).
+                Some(a) => {
+                    alpha = a;
+                    c
+                }
+                None => {
+                    let c = cut.coverage(tri.prim, (i, j), c);
+                    if c.is_empty() {
+                        return Ok(());
+                    }
+                    c
+                }
+            },
+        };
         stats.fragments += 1;
         stats.full_coverage += u64::from(c.full);
         let Some((zmin, zmax, centre_z)) = depth_range(tri, (i, j), c, occluder) else {
@@ -274,7 +299,7 @@ impl Rasterizer {
             p,
             ij: (i, j),
             g: (j - ty0) as usize * TILE as usize + (i - tx0) as usize,
-            alpha: tri.alpha,
+            alpha,
         };
         self.lists.insert(&ctx, f, c, stats)
     }

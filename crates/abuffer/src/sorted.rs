@@ -14,6 +14,11 @@
 //! blend order is wrong for some samples; the A-buffer orders every sample
 //! (or at least every fragment) instead.
 //!
+//! Cut-outs are alpha-tested at every sample and at the centre
+//! ([`crate::cutout`]); a texture with partial alpha makes its triangles
+//! translucent, blended at each sample with opacity `d` times the texture
+//! alpha there.
+//!
 //! Same samples, masks and depths as [`crate::SupersampledZBuffer`]; ids
 //! and depth from the pixel-centre test of [`crate::centre`], over all
 //! triangles whatever their opacity, as the A-buffer reports them.
@@ -22,6 +27,7 @@ use hider_scene::{Frame, Hider, Result, ScreenScene, ScreenTri, TextureSampler, 
 
 use crate::centre::{CentreBuffer, in_front};
 use crate::coverage::{TriCoverage, pixel_range};
+use crate::cutout::Cutouts;
 use crate::depth::sample_depth;
 use crate::options::SsaaOptions;
 use crate::palette::{at_sample, prim_colors, to_pixel};
@@ -50,7 +56,7 @@ impl SortedTransparencyZBuffer {
         scene: &ScreenScene,
         sampler: Option<&TextureSampler>,
         tri: &ScreenTri,
-        translucent: bool,
+        (translucent, cutouts): (bool, Option<&Cutouts<'_>>),
         stats: &mut SsaaStats,
     ) {
         let (w, h) = (scene.viewport.width, scene.viewport.height);
@@ -60,10 +66,13 @@ impl SortedTransparencyZBuffer {
             return;
         };
         let flat = self.colors[tri.prim as usize];
-        let alpha = flat[3];
         let setup = TriCoverage::new(tri, pattern);
+        // Partial alpha is blended (its opacity comes with the sample's
+        // colour), cut-outs are tested.
+        let cut = cutouts.filter(|c| c.may_cut(tri.prim) && !c.is_partial(tri.prim));
         for j in y0..=y1 {
             for (i, c) in setup.row(x0, x1, j) {
+                let c = cut.map_or(c, |cut| cut.coverage(tri.prim, (i, j), c));
                 stats.pixel_hits += 1;
                 stats.full_coverage += u64::from(c.full);
                 let p = j as usize * w as usize + i as usize;
@@ -83,7 +92,7 @@ impl SortedTransparencyZBuffer {
                     }
                     stats.depth_writes += 1;
                     self.hit[s] = true;
-                    let [r, g, b, _] = at_sample(scene, sampler, tri.prim, flat, (i, j), pos);
+                    let [r, g, b, alpha] = at_sample(scene, sampler, tri.prim, flat, (i, j), pos);
                     if translucent {
                         let dst = self.color[s];
                         self.color[s] =
@@ -163,11 +172,14 @@ impl Hider for SortedTransparencyZBuffer {
         prim_colors(scene, self.options.shade, &mut self.colors);
         let sampler = crate::palette::sampler(scene, self.options.shade);
         let sampler = sampler.as_ref();
+        let cutouts = Cutouts::new(Some(scene), self.options.pattern);
+        let cutouts = cutouts.as_ref();
+        let partial = |prim: u32| cutouts.is_some_and(|c| c.is_partial(prim));
 
         self.order.clear();
         for (t, tri) in scene.tris.iter().enumerate() {
-            if self.colors[tri.prim as usize][3] >= 1.0 {
-                self.draw(scene, sampler, tri, false, &mut stats);
+            if self.colors[tri.prim as usize][3] >= 1.0 && !partial(tri.prim) {
+                self.draw(scene, sampler, tri, (false, cutouts), &mut stats);
             } else {
                 let mean = (tri.z[0] + tri.z[1] + tri.z[2]) / 3.0;
                 self.order.push((mean, t as u32));
@@ -178,7 +190,8 @@ impl Hider for SortedTransparencyZBuffer {
             .sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         let order = std::mem::take(&mut self.order);
         for &(_, t) in &order {
-            self.draw(scene, sampler, &scene.tris[t as usize], true, &mut stats);
+            let tri = &scene.tris[t as usize];
+            self.draw(scene, sampler, tri, (true, cutouts), &mut stats);
         }
         self.order = order;
         self.resolve(frame);

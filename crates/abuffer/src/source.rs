@@ -70,6 +70,15 @@ impl<'a> Source<'a> {
         Self { items, ..self }
     }
 
+    /// The prepared scene, when the frame is rendered from one (the alpha
+    /// test of cut-outs reads its primitives).
+    pub(crate) fn screen_scene(&self) -> Option<&'a ScreenScene> {
+        match self.kind {
+            Kind::Screen(s, _) => Some(s),
+            Kind::Lean(..) => None,
+        }
+    }
+
     /// The number of primitives (ids are below it).
     pub(crate) fn prims(&self) -> usize {
         match self.kind {

@@ -8,7 +8,9 @@
 //! holds `samples` depths and ids for every pixel of the image whether it
 //! needs them or not. Opacity is ignored (every surface is opaque): this is
 //! the plain z-buffer; see [`crate::SortedTransparencyZBuffer`] for the
-//! usual transparency work-around.
+//! usual transparency work-around. Cut-outs are alpha-tested at every
+//! sample and at the centre ([`crate::cutout`]); partial alpha is tested
+//! at one half.
 //!
 //! Resolve: each pixel's colour is the mean of its samples' primitive
 //! colours (background black), its coverage the fraction of covered
@@ -19,6 +21,7 @@ use hider_scene::{Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
 
 use crate::centre::{CentreBuffer, in_front};
 use crate::coverage::{TriCoverage, pixel_range};
+use crate::cutout::Cutouts;
 use crate::depth::sample_depth;
 use crate::options::SsaaOptions;
 use crate::palette::{at_sample, prim_colors, to_pixel};
@@ -127,14 +130,19 @@ impl Hider for SupersampledZBuffer {
         self.centre.reset(pixels);
         prim_colors(scene, self.options.shade, &mut self.colors);
         let positions = pattern.positions();
+        // Partial alpha is tested at one half too: this z-buffer draws
+        // every surface opaque.
+        let cutouts = Cutouts::new(Some(scene), pattern);
 
         for tri in &scene.tris {
+            let cut = cutouts.as_ref().filter(|c| c.may_cut(tri.prim));
             let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, w, h) else {
                 continue;
             };
             let setup = TriCoverage::new(tri, pattern);
             for j in y0..=y1 {
                 for (i, c) in setup.row(x0, x1, j) {
+                    let c = cut.map_or(c, |cut| cut.coverage(tri.prim, (i, j), c));
                     stats.pixel_hits += 1;
                     stats.full_coverage += u64::from(c.full);
                     let p = j as usize * w as usize + i as usize;

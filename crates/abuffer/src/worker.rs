@@ -14,6 +14,7 @@ use hider_scene::{NO_ID, Result};
 use crate::source::Source;
 
 use crate::bins::{Bins, LEADER, SOLE, TileQueue, tile_rect};
+use crate::cutout::Cutouts;
 use crate::options::ABufferOptions;
 use crate::raster::Rasterizer;
 use crate::resolve::{Band, Input, Resolver, Samples};
@@ -50,6 +51,8 @@ pub(crate) struct Shared<'a> {
     pub(crate) tiles_x: u32,
     /// Whether opaque tiles take the sample buffer this frame.
     pub(crate) sample_tiles: bool,
+    /// The alpha test of cut-outs, when some material may cut out.
+    pub(crate) cutouts: Option<Cutouts<'a>>,
 }
 
 impl Worker {
@@ -104,8 +107,12 @@ impl Worker {
         } else {
             0
         };
-        let sampled =
-            has_items && shared.sample_tiles && (0..n).all(|k| self.queue.item(k).alpha >= 1.0);
+        // Items that may cut out take the lists, where their masks are
+        // alpha-tested.
+        let cut = |prim: u32| shared.cutouts.as_ref().is_some_and(|c| c.may_cut(prim));
+        let sampled = has_items
+            && shared.sample_tiles
+            && (0..n).all(|k| self.queue.item(k).alpha >= 1.0 && !cut(self.queue.item(k).prim));
         let w = scene.viewport.width as usize;
         let lists = &mut self.raster.lists;
         if dirty || !sampled {
@@ -135,8 +142,9 @@ impl Worker {
             let (rx0, ry0, rx1, ry1) = item.range;
             let rect = (rx0.max(x0), ry0.max(y0), rx1.min(x1), ry1.min(y1));
             let index = self.queue.index(k);
+            let cutouts = shared.cutouts.as_ref().filter(|c| c.may_cut(item.prim));
             self.raster
-                .triangle(scene, (item, index), rect, (x0, y0), stats)?;
+                .triangle(scene, (item, index, cutouts), rect, (x0, y0), stats)?;
         }
         let lists = &mut self.raster.lists;
         let mut input = Input {

@@ -313,16 +313,13 @@ fn time_contenders(
 
 /// The effects `stages` calls for that `hider` does not simulate, as the
 /// row's `ignored_effects` (the same rule as the render's warning:
-/// [`transparency_warning`], and the cut-out stage's).
+/// [`transparency_warning`]). Cut-outs are simulated by every hider: the
+/// single-sample ones through the cut-out stage, the ones that resolve
+/// colour at their own samples.
 fn ignored_effects(hider: &dyn DynHider, stages: &Stages) -> String {
     let mut ignored = Vec::new();
     if transparency_warning(hider, stages).is_some() {
         ignored.push("transparency");
-    }
-    // A hider that resolves colour from its own samples draws cut-outs
-    // opaque (the cut-out stage warns so).
-    if stages.cutout && hider.resolves_color() {
-        ignored.push("cutout");
     }
     ignored.join(";")
 }

@@ -41,6 +41,10 @@ pub struct Material {
     pub diffuse_texture: Option<TextureRef>,
     /// Specular texture `map_Ks`, multiplying `Ks`.
     pub specular_texture: Option<TextureRef>,
+    /// Dissolve texture `map_d`, read as a mask ([`TextureRef::as_mask`]):
+    /// its value multiplies the alpha of `map_Kd` (cut-outs and partial
+    /// alpha, [`crate::shade::cutout`]).
+    pub alpha_texture: Option<TextureRef>,
 }
 
 /// The MTL illumination model (`illum`), as far as the hiders simulate it.
@@ -72,6 +76,7 @@ impl Default for Material {
             opacity: 1.0,
             diffuse_texture: None,
             specular_texture: None,
+            alpha_texture: None,
         }
     }
 }

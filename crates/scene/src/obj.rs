@@ -277,7 +277,8 @@ fn finish(
         scene
             .materials
             .iter_mut()
-            .filter_map(|m| m.diffuse_texture.as_mut()),
+            .flat_map(|m| [m.diffuse_texture.as_mut(), m.alpha_texture.as_mut()])
+            .flatten(),
     );
     let mut smoothed = false;
     for mut mesh in meshes {

@@ -17,7 +17,16 @@
 //!   black;
 //! - id: the primitive holding the most samples (ties to the earlier one),
 //!   depth: its nearest sample depth.
+//!
+//! Alpha cut-outs: the subdivision decides visibility without textures,
+//! so a pixel where it finds a primitive that may cut out visible (filled,
+//! the single polygon, or at a sample of the inner subdivision) is
+//! resolved again sample by sample: at each of its `n x n` samples, the
+//! nearest primitive that covers it and passes the alpha test there
+//! ([`CutoutSearch::nearest_at`], the texture alpha at the sample's own
+//! position). Scenes without cut-outs never build the search.
 
+use hider_scene::shade::cutout::{AlphaTest, CutoutSearch};
 use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{Frame, NO_ID, ScreenScene, ShadeMode, TextureOptions, TextureSampler};
 
@@ -151,9 +160,63 @@ pub(crate) struct CoverageSink<'a> {
     pub samples: &'a mut SampleBuffer,
     pub leaves: Option<&'a mut Vec<LeafRegion>>,
     pub cuts: Option<&'a mut Vec<CutRegion>>,
+    /// The alpha test of cut-outs, when some material may cut out
+    /// ([`SampleCutouts::new`]).
+    pub cutouts: Option<SampleCutouts<'a>>,
+}
+
+/// The alpha test of a frame's cut-outs at the sub-samples, and the search
+/// that resolves a pixel where one is visible (binned on first use).
+pub(crate) struct SampleCutouts<'a> {
+    test: AlphaTest<'a>,
+    search: Option<CutoutSearch<'a>>,
+    scene: &'a ScreenScene,
+}
+
+impl<'a> SampleCutouts<'a> {
+    /// `None` when no material of `scene` may cut out.
+    pub(crate) fn new(scene: &'a ScreenScene) -> Option<Self> {
+        let test = AlphaTest::new(scene, TextureOptions::default())?;
+        Some(Self {
+            test,
+            search: None,
+            scene,
+        })
+    }
 }
 
 impl CoverageSink<'_> {
+    /// Whether `prim` may cut out (its samples then need the alpha test).
+    fn may_cut(&self, prim: u32) -> bool {
+        self.cutouts.as_ref().is_some_and(|c| c.test.may_cut(prim))
+    }
+
+    /// Resolves pixel `(u, v)` sample by sample: at each sample the nearest
+    /// primitive covering it that passes the alpha test there.
+    fn cut_pixel(&mut self, u: u32, v: u32, stats: &mut WarnockStats) {
+        let Some(cut) = self.cutouts.as_mut() else {
+            return;
+        };
+        let search = cut
+            .search
+            .get_or_insert_with(|| CutoutSearch::new(cut.scene));
+        self.samples.reset(self.side);
+        let grid = Grid::samples_of_pixel(u, v, self.side);
+        let mut looked = 0;
+        for sv in 0..self.side {
+            for su in 0..self.side {
+                let (x, y) = (grid.sample_x(su), grid.sample_y(sv));
+                if let Some((prim, depth)) = search.nearest_at(&cut.test, x, y, &mut looked) {
+                    stats.depth_evaluations += 1;
+                    self.samples.set(su, sv, prim, depth, stats);
+                }
+            }
+        }
+        stats.cutout_candidates += looked;
+        stats.cutout_pixels += 1;
+        self.resolve_samples(u, v);
+    }
+
     /// Writes pixel `(u, v)`: `covered` of its samples show something, the
     /// most of them `prim`, nearest at `depth`; `rgb_sum` is the sum of the
     /// covered samples' linear colours.
@@ -213,6 +276,14 @@ impl CoverageSink<'_> {
 
 impl Sink for CoverageSink<'_> {
     fn fill(&mut self, grid: &Grid, r: &Region, t: Tri<'_>, stats: &mut WarnockStats) {
+        if self.may_cut(t.prim()) {
+            for v in r.v0..r.v1 {
+                for u in r.u0..r.u1 {
+                    self.cut_pixel(u, v, stats);
+                }
+            }
+            return;
+        }
         let n = self.side * self.side;
         for v in r.v0..r.v1 {
             for u in r.u0..r.u1 {
@@ -239,8 +310,13 @@ impl Sink for CoverageSink<'_> {
         let Some(b) = grid.cells_touching(r, t.setup.x_bounds(), t.setup.y_bounds()) else {
             return;
         };
+        let cuts = self.may_cut(t.prim());
         for v in b.v0..b.v1 {
             for u in b.u0..b.u1 {
+                if cuts {
+                    self.cut_pixel(u, v, stats);
+                    continue;
+                }
                 let color = self.colors.at(self.scene, self.shade, t.prim(), u, v);
                 let g = Grid::samples_of_pixel(u, v, self.side);
                 let mut covered = 0;
@@ -299,7 +375,16 @@ impl Sink for CoverageSink<'_> {
         };
         self.inner
             .run(roots, candidates.iter().copied(), setups, &mut sink, stats);
-        self.resolve_samples(u, v);
+        if self
+            .samples
+            .prims
+            .iter()
+            .any(|&p| p != NO_ID && self.may_cut(p))
+        {
+            self.cut_pixel(u, v, stats);
+        } else {
+            self.resolve_samples(u, v);
+        }
         Rule::PixelSubdivided
     }
 

@@ -117,6 +117,12 @@ pub struct WarnockStats {
     pub depth_evaluations: u64,
     /// Samples written into the frame or a pixel's sample buffer.
     pub samples_written: u64,
+    /// Pixels resolved again sample by sample because a primitive that
+    /// may cut out (an alpha cut-out) was found visible there (the
+    /// anti-aliased mode; 0 in scenes without cut-outs).
+    pub cutout_pixels: u64,
+    /// Triangles looked at by those pixels' searches.
+    pub cutout_candidates: u64,
     /// Largest number of candidate indices held at once in the arena.
     pub peak_candidates: u64,
     /// Bytes of working memory at the peak (set-up records, arena, stack,
@@ -292,6 +298,14 @@ impl HiderStats for WarnockStats {
                 .copied()
                 .zip(self.candidates_per_level.iter().copied()),
         );
+        // Last, and only for frames with cut-outs: the table of every other
+        // frame is the one it was.
+        if self.cutout_pixels > 0 {
+            counters.extend([
+                ("cut-out pixels", self.cutout_pixels),
+                ("cut-out candidates", self.cutout_candidates),
+            ]);
+        }
         StatsTable {
             counters,
             peak_bytes: self.peak_bytes,

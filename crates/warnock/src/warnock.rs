@@ -158,6 +158,7 @@ impl Warnock {
                 samples: &mut self.samples,
                 leaves,
                 cuts,
+                cutouts: crate::coverage::SampleCutouts::new(scene),
             };
             let grid = Grid::pixels_with_samples(n);
             let roots = Roots {

@@ -134,6 +134,70 @@ pub struct Effects {
 }
 
 impl Effects {
+    /// Adds to [`Self::transparency`] the triangles among `in_view` (with
+    /// texture coordinates) whose material's alpha textures (`map_Kd`'s
+    /// alpha channel, `map_d`) hold partial alpha, a texel strictly
+    /// between 0 and 1: translucency, which a compositing hider must
+    /// draw. The evidence names each texture and the share of its texels
+    /// that is partial. Textures whose alpha is only 0 or 1 are cut-outs
+    /// and stay opaque ([`Self::cutouts`]). Reads headers, and decodes (at
+    /// the coarsest mip level) only the alpha textures of materials in
+    /// view that may cut out.
+    pub(crate) fn add_partial_alpha(
+        &mut self,
+        screen: &hider_scene::ScreenScene,
+        in_view: &[u32],
+        ex: usize,
+    ) {
+        use hider_scene::shade::cutout::{material_may_cut_out, material_partial_alpha};
+        let mut found: Vec<Option<Vec<(String, f64)>>> = vec![None; screen.materials.len()];
+        let mut ids = Vec::new();
+        for &p in in_view {
+            let info = &screen.prims[p as usize];
+            if info.uvs.is_none() {
+                continue;
+            }
+            let m = info.material as usize;
+            let partial = found[m].get_or_insert_with(|| {
+                let material = &screen.materials[m];
+                if material_may_cut_out(material) {
+                    material_partial_alpha(material)
+                } else {
+                    Vec::new()
+                }
+            });
+            if !partial.is_empty() {
+                ids.push(p);
+            }
+        }
+        if ids.is_empty() {
+            return;
+        }
+        let mut textures: Vec<String> = found
+            .into_iter()
+            .flatten()
+            .flatten()
+            .map(|(file, share)| format!("{file}: {:.1}% of texels", 100.0 * share))
+            .collect();
+        textures.sort_unstable();
+        textures.dedup();
+        let detail = format!(
+            "{} triangles in view with partial texture alpha (translucency; {})",
+            ids.len(),
+            textures.join(", ")
+        );
+        let t = &mut self.transparency;
+        t.detail = if t.present {
+            format!("{}; {detail}", t.detail)
+        } else {
+            detail
+        };
+        t.present = true;
+        t.count += ids.len() as u64;
+        let room = ex.saturating_sub(t.examples.len());
+        t.examples.extend(ids.iter().take(room).map(|&p| vec![p]));
+    }
+
     /// The effect stages these effects call for: the colour stages
     /// (texture, lighting) the colour pass runs, and the hider's
     /// (transparency, multisample) the planner picks a hider for.

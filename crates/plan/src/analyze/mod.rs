@@ -90,6 +90,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
         antialiasing: evidence::antialiasing(options.antialiasing),
         ..Effects::default()
     };
+    fx.add_partial_alpha(&screen, &in_view.ids, ex);
 
     if raster_only(options) && !crate::planner::culling_pays(fx.triangles, fx.pixels) {
         // The plan will not cull (see `culling_pays`): the proof would be

@@ -35,7 +35,7 @@ pub(crate) fn effects(scene: &Scene, view: &View, options: &RenderOptions) -> Op
     let plain = scene
         .materials
         .iter()
-        .all(|m| m.opacity >= 1.0 && m.diffuse_texture.is_none());
+        .all(|m| m.opacity >= 1.0 && m.diffuse_texture.is_none() && m.alpha_texture.is_none());
     if !plain {
         return None;
     }

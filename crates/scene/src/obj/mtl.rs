@@ -195,6 +195,7 @@ pub(super) fn convert_material(m: &tobj::Material, base: &Path) -> Material {
         opacity,
         diffuse_texture: texture(&m.diffuse_texture),
         specular_texture: texture(&m.specular_texture),
+        alpha_texture: texture(&m.dissolve_texture).map(crate::shade::TextureRef::as_mask),
     }
 }
 

@@ -101,7 +101,6 @@ fn unsimulated(key: &str) -> Option<&'static str> {
         "sharpness" => "the reflection sharpness (no reflection is simulated)",
         "map_Ka" => "the ambient texture (the diffuse texture lights the ambient term)",
         "map_Ns" | "map_ns" | "map_NS" => "the specular exponent texture",
-        "map_d" => "the alpha texture (cut-outs are not simulated: drawn opaque)",
         "map_Bump" | "map_bump" | "bump" | "norm" | "map_Kn" => "the bump map",
         "disp" => "the displacement map",
         "decal" => "the decal texture",
@@ -140,7 +139,7 @@ pub(super) fn warnings(lines: &[&str], file: &str) -> Vec<String> {
             );
         }
         match key {
-            "map_Kd" | "map_Ks" => {
+            "map_Kd" | "map_Ks" | "map_d" => {
                 let statement = texture_statement(text[key.len()..].trim());
                 for option in statement.ignored {
                     once(

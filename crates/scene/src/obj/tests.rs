@@ -395,3 +395,43 @@ fn the_fast_reader_gives_the_scene_of_tobj_whatever_the_chunks() {
         assert!(chunk >= 64 || chunks > 4, "{chunk}: {chunks} chunks");
     }
 }
+
+/// `map_d` is read as `map_Kd` is (its options parsed, `-s` applied, the
+/// others named with file and line), as a mask; before, it was named as
+/// not simulated and dropped.
+#[test]
+fn map_d_is_read_as_a_mask_with_its_options() {
+    let dir = std::env::temp_dir().join(format!("hider-obj-map-d-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("m.mtl"),
+        "newmtl leaf\nKd 1 1 1\nmap_d -s 2 2 -imfchan r disc.png\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("m.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl leaf\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let s = load_obj(dir.join("m.obj")).unwrap();
+    let leaf = &s.materials[s.meshes[0].material.unwrap()];
+    let map_d = leaf.alpha_texture.as_ref().expect("map_d read");
+    assert_eq!(map_d.path(), dir.join("disc.png"));
+    assert!(map_d.is_mask());
+    assert_eq!(map_d.transform.scale, [2.0, 2.0]);
+    assert!(
+        s.warnings
+            .iter()
+            .any(|w| w.contains("m.mtl:3: map_d option -imfchan")),
+        "{:?}",
+        s.warnings
+    );
+    assert!(
+        !s.warnings
+            .iter()
+            .any(|w| w.contains("'map_d' is read but not")),
+        "{:?}",
+        s.warnings
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

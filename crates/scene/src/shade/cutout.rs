@@ -22,13 +22,25 @@
 //! the screen triangles, built only when some pixel fails the test. The
 //! oracle applies the same test natively ([`AlphaTest`]).
 //!
+//! A texture's alpha is the product of the diffuse texture's alpha
+//! channel and the dissolve texture's value (`map_d`, read as a mask:
+//! [`crate::TextureRef::as_mask`]); the material's `d` multiplies it where
+//! the surface is composited.
+//!
 //! Hiders that resolve colour from several samples per pixel (the
-//! A-buffer, supersampling) would need the test per sample inside their
-//! resolve; they draw cut-outs opaque, and `render_frame` says so in a
-//! warning naming the hider.
+//! A-buffer, supersampling, anti-aliased Warnock) test each of their own
+//! samples ([`AlphaTest::passes_at`]) and skip this stage. A texture with
+//! partial alpha ([`AlphaClass::Partial`]) is translucency: the A-buffer
+//! composites it with opacity `d` times the texture alpha at the
+//! fragment's pixel centre ([`AlphaTest::opacity`]); the others
+//! alpha-test it at one half, with a warning.
+
+use std::sync::OnceLock;
+
+use hider_geom::fixed::{SUBPIXEL_BITS, SUBPIXEL_SCALE};
 
 use super::surface::{TextureOptions, TextureSampler};
-use super::texture::AlphaClass;
+use super::texture::{AlphaClass, TextureRef};
 use crate::error::Result;
 use crate::frame::{Frame, NO_ID};
 use crate::hider::{DynHider, StatsTable};
@@ -48,13 +60,42 @@ pub fn scene_has_cutouts(scene: &Scene) -> bool {
     })
 }
 
-/// Whether `material`'s diffuse texture declares an alpha channel (reads
-/// its header).
+/// Whether `material`'s textures may make it cut out: a diffuse texture
+/// whose header declares an alpha channel, or a readable dissolve texture
+/// (`map_d`) (reads headers, never decodes).
 pub fn material_may_cut_out(material: &Material) -> bool {
-    material
-        .diffuse_texture
-        .as_ref()
-        .is_some_and(|t| t.may_have_alpha())
+    alpha_textures(material).any(TextureRef::may_have_alpha)
+}
+
+/// The textures whose alpha make up `material`'s: `map_Kd` and `map_d`.
+fn alpha_textures(material: &Material) -> impl Iterator<Item = &TextureRef> {
+    [&material.diffuse_texture, &material.alpha_texture]
+        .into_iter()
+        .flatten()
+}
+
+/// What `material`'s texture alpha holds, from every texel of its alpha
+/// textures (decoding them at their coarsest level if they were not
+/// decoded: [`TextureRef::alpha_class`]): the most translucent class of
+/// the two; a texture that does not load counts as opaque.
+pub fn material_alpha_class(material: &Material) -> AlphaClass {
+    alpha_textures(material)
+        .filter_map(TextureRef::alpha_class)
+        .max()
+        .unwrap_or_default()
+}
+
+/// The alpha textures of `material` with partial alpha, and the share of
+/// their texels that is partial (decoding as [`material_alpha_class`]):
+/// the planner's evidence of translucency.
+pub fn material_partial_alpha(material: &Material) -> Vec<(String, f64)> {
+    alpha_textures(material)
+        .filter(|t| t.alpha_class() == Some(AlphaClass::Partial))
+        .map(|t| {
+            let share = t.get_level(u32::MAX).map_or(0.0, |d| d.partial_share());
+            (t.path().display().to_string(), share)
+        })
+        .collect()
 }
 
 /// The alpha test of a prepared scene's primitives at pixel centres.
@@ -64,6 +105,8 @@ pub struct AlphaTest<'a> {
     sampler: TextureSampler,
     /// Per material: whether it may cut out.
     cuts: Vec<bool>,
+    /// Per material that may cut out: its alpha class, on first use.
+    classes: Vec<OnceLock<AlphaClass>>,
 }
 
 impl<'a> AlphaTest<'a> {
@@ -75,6 +118,7 @@ impl<'a> AlphaTest<'a> {
         cuts.iter().any(|&c| c).then(|| Self {
             scene,
             sampler: TextureSampler::new(scene, options).with_stages(true, false),
+            classes: vec![OnceLock::new(); cuts.len()],
             cuts,
         })
     }
@@ -89,44 +133,74 @@ impl<'a> AlphaTest<'a> {
     /// Whether primitive `prim` is there at the centre of pixel `(i, j)`:
     /// its texture's alpha there is at least one half.
     pub fn passes(&self, prim: u32, i: u32, j: u32) -> bool {
+        self.passes_at(prim, f64::from(i) + 0.5, f64::from(j) + 0.5)
+    }
+
+    /// Whether primitive `prim` is there at window point `(x, y)` (pixels,
+    /// y down: a hider's own sample): its texture's alpha there
+    /// ([`Self::alpha`]) is at least one half.
+    pub fn passes_at(&self, prim: u32, x: f64, y: f64) -> bool {
+        !self.may_cut(prim) || self.alpha(prim, x, y) >= 0.5
+    }
+
+    /// The texture alpha of primitive `prim` at window point `(x, y)`: the
+    /// diffuse texture's alpha times the dissolve texture's value, sampled
+    /// as the colour is (perspective-correct coordinates at the point, the
+    /// mip level of the pixel's footprint, the filter); 1 when it may not
+    /// cut. The material's `d` is not in it.
+    pub fn alpha(&self, prim: u32, x: f64, y: f64) -> f32 {
         if !self.may_cut(prim) {
-            return true;
+            return 1.0;
         }
         let info = &self.scene.prims[prim as usize];
         let material = &self.scene.materials[info.material as usize];
-        let (x, y) = (f64::from(i) + 0.5, f64::from(j) + 0.5);
-        self.sampler.alpha_at(info, material, x, y) >= 0.5
+        self.sampler.alpha_at(info, material, x, y)
+    }
+
+    /// The alpha class of primitive `prim`'s material
+    /// ([`material_alpha_class`], found once per material, decoding its
+    /// textures at their coarsest level if needed);
+    /// [`AlphaClass::Opaque`] when it may not cut.
+    pub fn class(&self, prim: u32) -> AlphaClass {
+        if !self.may_cut(prim) {
+            return AlphaClass::Opaque;
+        }
+        let m = self.scene.prims[prim as usize].material as usize;
+        *self.classes[m].get_or_init(|| material_alpha_class(&self.scene.materials[m]))
+    }
+
+    /// For a primitive whose material has partial alpha (translucency,
+    /// [`Self::class`]): `d` times its texture alpha at the centre of pixel
+    /// `(i, j)`, the opacity a compositing hider gives its fragment there;
+    /// `None` for the others (opaque, or cut-outs alpha-tested per
+    /// sample).
+    pub fn opacity(&self, prim: u32, (i, j): (u32, u32)) -> Option<f32> {
+        if self.class(prim) != AlphaClass::Partial {
+            return None;
+        }
+        let d = self.scene.material(prim).opacity.clamp(0.0, 1.0);
+        Some(d * self.alpha(prim, f64::from(i) + 0.5, f64::from(j) + 0.5))
     }
 
     /// The materials' classes that the test met, decoded by now: whether
     /// some texture has partial alpha (translucency, which the test draws
     /// as a cut-out at one half).
     pub fn partial_alpha(&self) -> Vec<String> {
-        let mut files = Vec::new();
-        for (m, &cuts) in self.scene.materials.iter().zip(&self.cuts) {
-            if let Some(t) = m.diffuse_texture.as_ref().filter(|_| cuts)
-                && t.decoded_alpha_class() == Some(AlphaClass::Partial)
-            {
-                let name = t.path().display().to_string();
-                if !files.contains(&name) {
-                    files.push(name);
-                }
-            }
-        }
-        files
+        partial_alpha_files(&self.scene.materials)
     }
 }
 
 /// The cut-out stage as [`super::render_frame`] runs it after `hider`'s
 /// pipeline rendered `scene` through `view` with `options` into `frame`:
-/// nothing when the scene has no cut-outs ([`scene_has_cutouts`]); a
-/// warning naming the hider when it resolves colour itself (it drew the
-/// cut-outs opaque); else the alpha test over its ids ([`resolve_cutouts`]
-/// on the scene prepared once more with `options`: the ids of every front
-/// end are the shared one's), its counters added to `stats`, and a warning
-/// per texture with partial alpha. For callers that run
-/// [`DynHider::render_scene`] themselves and want the ids `render_frame`
-/// gives.
+/// nothing when the scene has no cut-outs ([`scene_has_cutouts`]); when
+/// the hider resolves colour itself, nothing but the warning below (it
+/// alpha-tested its own samples); else the alpha test over its ids
+/// ([`resolve_cutouts`] on the scene prepared once more with `options`:
+/// the ids of every front end are the shared one's), its counters added
+/// to `stats`. Unless the hider composites transparency, a warning per
+/// texture with partial alpha (drawn as a cut-out at one half). For
+/// callers that run [`DynHider::render_scene`] themselves and want the ids
+/// `render_frame` gives.
 pub fn cutout_stage(
     hider: &dyn DynHider,
     scene: &Scene,
@@ -138,34 +212,45 @@ pub fn cutout_stage(
     if !scene_has_cutouts(scene) {
         return Ok(());
     }
-    if hider.resolves_color() {
-        stats.warnings.push(format!(
-            "the scene has alpha cut-outs (a map_Kd with an alpha channel), but {} \
-             resolves colour from several samples per pixel and draws them opaque; a \
-             single-sample hider (zbuffer, zbuffer-tiled, painter, warnock, scanline) \
-             alpha-tests them at pixel centres",
-            hider.name()
-        ));
-        return Ok(());
+    if !hider.resolves_color() {
+        let prepared = prepare(scene, view, options)?;
+        let Some(test) = AlphaTest::new(&prepared, TextureOptions::default()) else {
+            return Ok(());
+        };
+        let cut = resolve_cutouts(&prepared, frame, &test);
+        stats.counters.extend([
+            ("cut-out pixels tested", cut.pixels_tested),
+            ("cut-out pixels replaced", cut.pixels_replaced),
+            ("cut-out candidates", cut.candidates),
+        ]);
     }
-    let prepared = prepare(scene, view, options)?;
-    let Some(test) = AlphaTest::new(&prepared, TextureOptions::default()) else {
-        return Ok(());
-    };
-    let cut = resolve_cutouts(&prepared, frame, &test);
-    stats.counters.extend([
-        ("cut-out pixels tested", cut.pixels_tested),
-        ("cut-out pixels replaced", cut.pixels_replaced),
-        ("cut-out candidates", cut.candidates),
-    ]);
-    for file in test.partial_alpha() {
-        stats.warnings.push(format!(
-            "{file}: partial alpha (translucency) is drawn as a cut-out at alpha one half \
-             by {}; the A-buffer (abuffer) composites translucent materials",
-            hider.name()
-        ));
+    if !hider.composites_transparency() {
+        for file in partial_alpha_files(&scene.materials) {
+            stats.warnings.push(format!(
+                "{file}: partial alpha (translucency) is drawn as a cut-out at alpha one half \
+                 by {}; the A-buffer (abuffer) composites translucent materials",
+                hider.name()
+            ));
+        }
     }
     Ok(())
+}
+
+/// The alpha textures of `materials` (that may cut out) found to hold
+/// partial alpha, by now decoded (never decodes), each file once.
+fn partial_alpha_files(materials: &[Material]) -> Vec<String> {
+    let mut files = Vec::new();
+    for m in materials.iter().filter(|m| material_may_cut_out(m)) {
+        for t in alpha_textures(m) {
+            if t.decoded_alpha_class() == Some(AlphaClass::Partial) {
+                let name = t.path().display().to_string();
+                if !files.contains(&name) {
+                    files.push(name);
+                }
+            }
+        }
+    }
+    files
 }
 
 /// What the cut-out stage did.
@@ -219,7 +304,7 @@ impl Bins {
 /// shared front end with the hider's options); colour the frame after.
 pub fn resolve_cutouts(scene: &ScreenScene, frame: &mut Frame, test: &AlphaTest) -> CutoutStats {
     let mut stats = CutoutStats::default();
-    let mut bins: Option<Bins> = None;
+    let mut bins: Option<CutoutSearch> = None;
     let (w, h) = (frame.width(), frame.height());
     for j in 0..h {
         for i in 0..w {
@@ -233,8 +318,14 @@ pub fn resolve_cutouts(scene: &ScreenScene, frame: &mut Frame, test: &AlphaTest)
                 continue;
             }
             stats.pixels_replaced += 1;
-            let bins = bins.get_or_insert_with(|| Bins::new(scene));
-            let (id, depth) = nearest_passing(scene, bins.at(i, j), test, i, j, &mut stats);
+            let search = bins.get_or_insert_with(|| CutoutSearch::new(scene));
+            let (px, py) = (
+                i64::from(hider_geom::fixed::pixel_center(i as i32)),
+                i64::from(hider_geom::fixed::pixel_center(j as i32)),
+            );
+            let (id, depth) = search
+                .nearest_at(test, px, py, &mut stats.candidates)
+                .map_or((NO_ID, 1.0), |(id, z)| (id, z as f32));
             frame.ids[k] = id;
             frame.depth[k] = depth;
         }
@@ -242,32 +333,58 @@ pub fn resolve_cutouts(scene: &ScreenScene, frame: &mut Frame, test: &AlphaTest)
     stats
 }
 
-/// The nearest of `candidates` covering the centre of `(i, j)` and passing
-/// the test: its id and window depth, or the background's.
-fn nearest_passing(
-    scene: &ScreenScene,
-    candidates: &[u32],
-    test: &AlphaTest,
-    i: u32,
-    j: u32,
-    stats: &mut CutoutStats,
-) -> (u32, f32) {
-    let (px, py) = (
-        i64::from(hider_geom::fixed::pixel_center(i as i32)),
-        i64::from(hider_geom::fixed::pixel_center(j as i32)),
-    );
-    let mut best: Option<(f64, u32)> = None;
-    for &t in candidates {
-        stats.candidates += 1;
-        let tri = &scene.tris[t as usize];
-        if !tri.edges().iter().all(|e| e.contains(px, py)) {
-            continue;
-        }
-        let z = tri.depth.at_pixel(i, j);
-        let nearer = best.is_none_or(|(bz, bid)| z < bz || (z == bz && tri.prim < bid));
-        if nearer && test.passes(tri.prim, i, j) {
-            best = Some((z, tri.prim));
+/// The nearest primitive passing the alpha test at any window point: the
+/// reference a hider's own samples are resolved by where a cut-out is
+/// visible (the anti-aliased Warnock's sub-samples), and the search of
+/// [`resolve_cutouts`] at pixel centres. Candidates come from a
+/// screen-space bin grid over the screen triangles.
+pub struct CutoutSearch<'a> {
+    scene: &'a ScreenScene,
+    bins: Bins,
+}
+
+impl<'a> CutoutSearch<'a> {
+    /// The search over `scene`'s screen triangles (bins them).
+    pub fn new(scene: &'a ScreenScene) -> Self {
+        Self {
+            scene,
+            bins: Bins::new(scene),
         }
     }
-    best.map_or((NO_ID, 1.0), |(z, id)| (id, z as f32))
+
+    /// The nearest primitive of the scene covering the fixed-point window
+    /// point `(px, py)` (1/256 pixel, the shared exact edge functions and
+    /// fill rule) and passing `test` there, with its window depth there:
+    /// nearest by depth in `f64`, the lower id winning an exact tie;
+    /// `None` for the background. Adds the triangles looked at to
+    /// `candidates`.
+    pub fn nearest_at(
+        &self,
+        test: &AlphaTest,
+        px: i64,
+        py: i64,
+        candidates: &mut u64,
+    ) -> Option<(u32, f64)> {
+        let vp = self.scene.viewport;
+        let (i, j) = (px >> SUBPIXEL_BITS, py >> SUBPIXEL_BITS);
+        if i < 0 || j < 0 || i >= i64::from(vp.width) || j >= i64::from(vp.height) {
+            return None;
+        }
+        let scale = f64::from(SUBPIXEL_SCALE);
+        let (x, y) = (px as f64 / scale, py as f64 / scale);
+        let mut best: Option<(f64, u32)> = None;
+        for &t in self.bins.at(i as u32, j as u32) {
+            *candidates += 1;
+            let tri = &self.scene.tris[t as usize];
+            if !tri.edges().iter().all(|e| e.contains(px, py)) {
+                continue;
+            }
+            let z = tri.depth.eval(x, y);
+            let nearer = best.is_none_or(|(bz, bid)| z < bz || (z == bz && tri.prim < bid));
+            if nearer && test.passes_at(tri.prim, x, y) {
+                best = Some((z, tri.prim));
+            }
+        }
+        best.map(|(z, id)| (id, z))
+    }
 }

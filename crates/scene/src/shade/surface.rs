@@ -221,21 +221,34 @@ impl TextureSampler {
         texture.sample_footprint(f.uv.into(), f.dx.into(), f.dy.into(), self.options.filter)
     }
 
-    /// The alpha of primitive `info`'s diffuse texture at window point
-    /// `(x, y)` (1 without a texture, uvs or an alpha channel, or when the
-    /// texture does not load): the value the alpha test compares with one
-    /// half, sampled exactly as the colour is (same point, level and
-    /// filter).
+    /// The texture alpha of primitive `info` at window point `(x, y)`: its
+    /// diffuse texture's alpha times its dissolve texture's value (`map_d`,
+    /// a mask); 1 for a texture that is missing, has no alpha channel or
+    /// does not load, and without uvs: the value the alpha test compares
+    /// with one half, sampled exactly as the colour is (same point, level
+    /// and filter).
     pub fn alpha_at(&self, info: &PrimInfo, material: &Material, x: f64, y: f64) -> f32 {
-        let Some(texture) = self.texture(info, material) else {
-            return 1.0;
-        };
-        if !texture.may_have_alpha() {
+        if !self.textures || info.uvs.is_none() {
             return 1.0;
         }
-        self.barycentrics(info, x, y)
-            .and_then(|(b, _)| self.texel(texture, info, b, x, y))
-            .map_or(1.0, |(_, a)| a)
+        fn with_alpha(t: &Option<TextureRef>) -> Option<&TextureRef> {
+            t.as_ref().filter(|t| t.may_have_alpha())
+        }
+        let (kd, d) = (
+            with_alpha(&material.diffuse_texture),
+            with_alpha(&material.alpha_texture),
+        );
+        if kd.is_none() && d.is_none() {
+            return 1.0;
+        }
+        let Some((b, _)) = self.barycentrics(info, x, y) else {
+            return 1.0;
+        };
+        let alpha = |t: Option<&TextureRef>| {
+            t.and_then(|t| self.texel(t, info, b, x, y))
+                .map_or(1.0, |(_, a)| a)
+        };
+        alpha(kd) * alpha(d)
     }
 
     /// The colour of primitive `info` (of `material`, under camera-space
@@ -307,6 +320,31 @@ impl TextureSampler {
 }
 
 impl ScreenScene {
+    /// The texture alpha of primitive `prim` at window point `(x, y)`
+    /// ([`TextureSampler::alpha_at`]) when its material's alpha textures
+    /// were decoded and hold partial alpha ([`super::AlphaClass::Partial`]:
+    /// translucency, which compositing hiders multiply the opacity by);
+    /// `None` otherwise (never decodes: the hider's alpha test decoded them
+    /// when it met the primitive).
+    pub fn partial_alpha_at(
+        &self,
+        sampler: &TextureSampler,
+        prim: u32,
+        x: f64,
+        y: f64,
+    ) -> Option<f32> {
+        let info = &self.prims[prim as usize];
+        let material = &self.materials[info.material as usize];
+        info.uvs?;
+        let partial = [&material.diffuse_texture, &material.alpha_texture]
+            .into_iter()
+            .flatten()
+            .any(|t| {
+                t.may_have_alpha() && t.decoded_alpha_class() == Some(super::AlphaClass::Partial)
+            });
+        partial.then(|| sampler.alpha_at(info, material, x, y))
+    }
+
     /// The colour of primitive `prim` at window point `(x, y)`
     /// ([`TextureSampler::color_at`]), or `base`, its flat colour, when its
     /// colour does not vary: the surface colour a colour-resolving hider

@@ -82,6 +82,8 @@ pub struct Texture {
     /// Levels `base..`.
     levels: Vec<Level>,
     alpha: AlphaClass,
+    /// Level-0 texels whose alpha is strictly between 0 and 1.
+    partial: u64,
     reservation: Reservation,
 }
 
@@ -125,17 +127,34 @@ fn check_size(width: u32, height: u32) -> Result<()> {
     Ok(())
 }
 
-/// The class of level-0 alpha bytes.
-fn classify(alpha: &[u8]) -> AlphaClass {
-    let mut class = AlphaClass::Opaque;
-    for &a in alpha {
-        match a {
-            255 => {}
-            0 => class = class.max(AlphaClass::Cutout),
-            _ => return AlphaClass::Partial,
+/// What level 0's alpha bytes hold: their class and how many are
+/// partial (strictly between 0 and 255), added up row by row.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct AlphaCount {
+    pub(crate) class: AlphaClass,
+    pub(crate) partial: u64,
+}
+
+impl AlphaCount {
+    /// Adds `alpha`'s bytes.
+    pub(crate) fn add(&mut self, alpha: &[u8]) {
+        let mut cut = false;
+        for &a in alpha {
+            cut |= a == 0;
+            self.partial += u64::from(a != 0 && a != 255);
+        }
+        if self.partial > 0 {
+            self.class = AlphaClass::Partial;
+        } else if cut {
+            self.class = self.class.max(AlphaClass::Cutout);
         }
     }
-    class
+
+    fn of(alpha: &[u8]) -> Self {
+        let mut count = Self::default();
+        count.add(alpha);
+        count
+    }
 }
 
 impl Texture {
@@ -145,7 +164,7 @@ impl Texture {
     /// Without the `image` feature: an error naming the file and the
     /// feature.
     pub fn load(path: &std::path::Path) -> Result<Self> {
-        decode::load_level(path, 0)
+        decode::load_level(path, 0, false)
     }
 
     /// A texture from sRGB bytes, 3 per texel, top row first.
@@ -168,7 +187,7 @@ impl Texture {
             width,
             height,
             mip::chain(width, height, &bytes, None, 0),
-            AlphaClass::Opaque,
+            AlphaCount::default(),
             None,
         ))
     }
@@ -190,9 +209,9 @@ impl Texture {
             .flat_map(|p| [p[0], p[1], p[2]])
             .collect();
         let alpha: Vec<u8> = bytes.chunks_exact(4).map(|p| p[3]).collect();
-        let class = classify(&alpha);
+        let count = AlphaCount::of(&alpha);
         let levels = mip::chain(width, height, &rgb, Some(&alpha), 0);
-        Ok(Self::from_levels(width, height, levels, class, None))
+        Ok(Self::from_levels(width, height, levels, count, None))
     }
 
     /// A texture holding `levels` (from level `levels[0]`'s place in the
@@ -202,7 +221,7 @@ impl Texture {
         width: u32,
         height: u32,
         levels: Vec<Level>,
-        alpha: AlphaClass,
+        alpha: AlphaCount,
         reservation: Option<Reservation>,
     ) -> Self {
         let count = mip::level_count(width, height);
@@ -213,7 +232,8 @@ impl Texture {
             height,
             base,
             levels,
-            alpha,
+            alpha: alpha.class,
+            partial: alpha.partial,
             reservation: reservation.unwrap_or_else(|| Reservation::force(bytes as u64)),
         }
     }
@@ -246,6 +266,13 @@ impl Texture {
     /// What the alpha channel holds.
     pub fn alpha_class(&self) -> AlphaClass {
         self.alpha
+    }
+
+    /// The share of the image's texels (level 0) whose alpha is strictly
+    /// between 0 and 1: the translucent part of a [`AlphaClass::Partial`]
+    /// texture (0 for the others).
+    pub fn partial_share(&self) -> f64 {
+        self.partial as f64 / (f64::from(self.width) * f64::from(self.height))
     }
 
     /// Bytes held (every level kept, alpha included).

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::super::budget::{self, Reservation};
 use super::super::mip::{self, Cascade};
-use super::{AlphaClass, MAX_TEXTURE_SIDE, Texture};
+use super::{AlphaCount, MAX_TEXTURE_SIDE, Texture};
 use crate::{Error, Result};
 
 /// What a texture file's header says.
@@ -138,9 +138,10 @@ fn reserve_whole(path: &Path, header: &Header) -> Result<Reservation> {
 }
 
 /// Decodes `path` down to mip level `base` (levels `base` and coarser
-/// kept), header and budget checked first.
+/// kept), header and budget checked first; as a mask (`map_d`: the alpha
+/// plane is the image's first channel) when `mask`.
 #[cfg(not(feature = "image"))]
-pub(crate) fn load_level(path: &Path, _base: u32) -> Result<Texture> {
+pub(crate) fn load_level(path: &Path, _base: u32, _mask: bool) -> Result<Texture> {
     Err(without_image(path))
 }
 
@@ -149,23 +150,33 @@ pub(crate) fn load_level(path: &Path, _base: u32) -> Result<Texture> {
 /// interlaced stream row by row through the mip cascade, so the full image
 /// is never held unless level 0 is asked for; other files are decoded
 /// whole, then halved.
+///
+/// With `mask` (a `map_d` texture, scalar alpha) the alpha plane holds the
+/// image's first channel (grey for a greyscale image, red for a colour
+/// one), as bytes read as plain numbers (not sRGB-decoded), and is
+/// classified as an alpha channel; the image's own alpha channel, if any,
+/// is not read.
 #[cfg(feature = "image")]
-pub(crate) fn load_level(path: &Path, base: u32) -> Result<Texture> {
+pub(crate) fn load_level(path: &Path, base: u32, mask: bool) -> Result<Texture> {
     let header = header(path)?;
     let base = base.min(mip::level_count(header.width, header.height) - 1);
-    let reservation = reserve(path, &header, base)?;
+    let held = Header {
+        alpha: header.alpha || mask,
+        ..header
+    };
+    let reservation = reserve(path, &held, base)?;
     let image_error = |message: String| Error::Image {
         path: path.to_path_buf(),
         message,
     };
-    let streamed = stream_png(path, &header, base).map_err(image_error)?;
+    let streamed = stream_png(path, &header, base, mask).map_err(image_error)?;
     let (levels, class) = match streamed {
         Some(done) => done,
         None => {
             // The whole image is held while it is halved: counted too,
             // for as long as the decode runs.
             let _whole = reserve_whole(path, &header)?;
-            whole(path, &header, base)?
+            whole(path, &header, base, mask)?
         }
     };
     let (count, kept) = (
@@ -210,11 +221,16 @@ fn split_row(row: &[u8], channels: usize, rgb: &mut Vec<u8>, alpha: &mut Vec<u8>
     }
 }
 
+/// The first channel of `rgb` (3 bytes per texel) as the alpha plane: a
+/// mask's.
+fn first_channel(rgb: &[u8], alpha: &mut Vec<u8>) {
+    alpha.clear();
+    alpha.extend(rgb.chunks_exact(3).map(|p| p[0]));
+}
+
 /// Running alpha class of level-0 rows.
-fn classify_into(class: &mut AlphaClass, alpha: &[u8]) {
-    if *class != AlphaClass::Partial {
-        *class = (*class).max(super::classify(alpha));
-    }
+fn classify_into(class: &mut AlphaCount, alpha: &[u8]) {
+    class.add(alpha);
 }
 
 /// Streams a non-interlaced 8-bit (after expansion) PNG through the
@@ -224,7 +240,8 @@ fn stream_png(
     path: &Path,
     header: &Header,
     base: u32,
-) -> std::result::Result<Option<(Vec<mip::Level>, AlphaClass)>, String> {
+    mask: bool,
+) -> std::result::Result<Option<(Vec<mip::Level>, AlphaCount)>, String> {
     let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
     let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
     decoder.set_transformations(png::Transformations::EXPAND | png::Transformations::STRIP_16);
@@ -247,17 +264,21 @@ fn stream_png(
     {
         return Ok(None);
     }
-    let mut cascade = Cascade::new(header.width, header.height, base, header.alpha);
+    let keeps_alpha = header.alpha || mask;
+    let mut cascade = Cascade::new(header.width, header.height, base, keeps_alpha);
     let (mut rgb, mut alpha) = (Vec::new(), Vec::new());
-    let mut class = AlphaClass::Opaque;
+    let mut class = AlphaCount::default();
     let mut rows = 0;
     while let Some(row) = reader.next_row().map_err(|e| e.to_string())? {
         split_row(row.data(), channels, &mut rgb, &mut alpha);
         if rgb.len() != 3 * header.width as usize {
             return Err(format!("row {rows} holds {} bytes", row.data().len()));
         }
+        if mask {
+            first_channel(&rgb, &mut alpha);
+        }
         classify_into(&mut class, &alpha);
-        cascade.push(&rgb, header.alpha.then_some(&alpha[..]));
+        cascade.push(&rgb, keeps_alpha.then_some(&alpha[..]));
         rows += 1;
     }
     if rows != header.height {
@@ -268,7 +289,12 @@ fn stream_png(
 
 /// Decodes the whole image with the `image` crate, then halves it.
 #[cfg(feature = "image")]
-fn whole(path: &Path, header: &Header, base: u32) -> Result<(Vec<mip::Level>, AlphaClass)> {
+fn whole(
+    path: &Path,
+    header: &Header,
+    base: u32,
+    mask: bool,
+) -> Result<(Vec<mip::Level>, AlphaCount)> {
     let img = image::open(path).map_err(|e| Error::Image {
         path: path.to_path_buf(),
         message: e.to_string(),
@@ -283,10 +309,17 @@ fn whole(path: &Path, header: &Header, base: u32) -> Result<(Vec<mip::Level>, Al
             ),
         });
     }
-    let mut cascade = Cascade::new(w, h, base, header.alpha);
-    let mut class = AlphaClass::Opaque;
+    let mut cascade = Cascade::new(w, h, base, header.alpha || mask);
+    let mut class = AlphaCount::default();
     let (mut rgb, mut alpha) = (Vec::new(), Vec::new());
-    if header.alpha {
+    if mask {
+        let all = img.into_rgb8();
+        for row in all.as_raw().chunks_exact(3 * w as usize) {
+            first_channel(row, &mut alpha);
+            classify_into(&mut class, &alpha);
+            cascade.push(row, Some(&alpha));
+        }
+    } else if header.alpha {
         let rgba = img.into_rgba8();
         for row in rgba.as_raw().chunks_exact(4 * w as usize) {
             split_row(row, 4, &mut rgb, &mut alpha);
@@ -305,6 +338,7 @@ fn whole(path: &Path, header: &Header, base: u32) -> Result<(Vec<mip::Level>, Al
 #[cfg(all(test, feature = "image"))]
 mod tests {
     use super::*;
+    use crate::shade::AlphaClass;
 
     /// A PNG streamed row by row gives the levels of the same image built
     /// in memory, whichever level the decode stops at; grey expands to
@@ -323,7 +357,7 @@ mod tests {
         let memory = Texture::from_srgba8(w, h, rgba.as_raw()).unwrap();
         assert_eq!(memory.alpha_class(), AlphaClass::Cutout);
         for base in [0, 1, 3] {
-            let t = load_level(&path, base).unwrap();
+            let t = load_level(&path, base, false).unwrap();
             assert_eq!(t.base_level(), base);
             assert_eq!(t.levels[..], memory.levels[base as usize..], "base {base}");
             assert_eq!(t.alpha_class(), AlphaClass::Cutout);
@@ -332,10 +366,18 @@ mod tests {
         image::GrayImage::from_fn(4, 4, |x, _| image::Luma([x as u8 * 60]))
             .save(&grey)
             .unwrap();
-        let t = load_level(&grey, 0).unwrap();
+        let t = load_level(&grey, 0, false).unwrap();
         assert_eq!(t.levels[0].rgb[3..6], [60, 60, 60]);
         assert_eq!(t.alpha_class(), AlphaClass::Opaque);
         assert!(t.levels[0].alpha.is_none());
+        // As a mask (map_d), the grey is the alpha plane, as plain numbers.
+        let m = load_level(&grey, 0, true).unwrap();
+        assert_eq!(
+            m.levels[0].alpha.as_deref().unwrap()[..4],
+            [0, 60, 120, 180]
+        );
+        assert_eq!(m.alpha_class(), AlphaClass::Partial);
+        assert_eq!(m.partial_share(), 0.75);
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

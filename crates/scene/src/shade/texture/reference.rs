@@ -43,6 +43,9 @@ pub struct TextureRef {
     slot: Arc<Slot>,
     /// The statement's options that change where the image is sampled.
     pub transform: TextureTransform,
+    /// Whether the image is a mask (`map_d`): its first channel is the
+    /// alpha ([`Self::as_mask`]).
+    mask: bool,
 }
 
 /// Where a texture statement samples its image: the MTL options `-s`
@@ -88,7 +91,24 @@ impl TextureRef {
             path: path.into(),
             slot: Arc::default(),
             transform: TextureTransform::default(),
+            mask: false,
         }
+    }
+
+    /// This reference read as a mask, as MTL's `map_d` (the dissolve
+    /// texture, a scalar) is: the alpha is the image's first channel (the
+    /// grey of a greyscale image, the red of a colour one, as assimp and
+    /// Blender's importer read it), a plain number in [0, 1] (not
+    /// sRGB-decoded); the image's own alpha channel is not read. Samples'
+    /// alpha ([`Self::sample_footprint`]) is that value.
+    pub fn as_mask(mut self) -> Self {
+        self.mask = true;
+        self
+    }
+
+    /// Whether this reference reads its image as a mask ([`Self::as_mask`]).
+    pub fn is_mask(&self) -> bool {
+        self.mask
     }
 
     /// This reference sampled through `transform`.
@@ -122,6 +142,10 @@ impl TextureRef {
             .header
             .get_or_init(|| header(&self.path).map_err(|e| e.to_string()))
             .clone()
+            .map(|h| Header {
+                alpha: h.alpha || self.mask,
+                ..h
+            })
     }
 
     /// The texture holding mip level `level` or a finer one, decoded now
@@ -146,7 +170,7 @@ impl TextureRef {
         if held.is_some() && lock(&self.slot.coarser).is_some() {
             return held;
         }
-        match load_level(&self.path, level) {
+        match load_level(&self.path, level, self.mask) {
             Ok(t) => {
                 let t = Arc::new(t);
                 *decoded = Some(Ok(t.clone()));
@@ -246,7 +270,13 @@ impl TextureRef {
     /// Whether the image's header declares an alpha channel (reads the
     /// header, never decodes): the texture may be a cut-out.
     pub fn may_have_alpha(&self) -> bool {
-        self.header().is_ok_and(|h| h.alpha)
+        // Without the clone `header` makes: colour-resolving hiders ask
+        // this per fragment.
+        self.slot
+            .header
+            .get_or_init(|| header(&self.path).map_err(|e| e.to_string()))
+            .as_ref()
+            .is_ok_and(|h| h.alpha || self.mask)
     }
 
     /// What the alpha channel holds, if the texture was decoded (never
@@ -292,9 +322,13 @@ impl TextureRef {
     /// Makes references to the same path share one decode: the second and
     /// later references of a path in `refs` take the first one's.
     pub fn share<'a>(refs: impl IntoIterator<Item = &'a mut TextureRef>) {
-        let mut seen: HashMap<PathBuf, Arc<Slot>> = HashMap::new();
+        // A file read as a mask decodes to other texels: not shared with
+        // the same file read as colour.
+        let mut seen: HashMap<(PathBuf, bool), Arc<Slot>> = HashMap::new();
         for r in refs {
-            let shared = seen.entry(r.path.clone()).or_insert_with(|| r.slot.clone());
+            let shared = seen
+                .entry((r.path.clone(), r.mask))
+                .or_insert_with(|| r.slot.clone());
             r.slot = shared.clone();
         }
     }
@@ -319,7 +353,7 @@ fn lock<T>(m: &Mutex<T>) -> std::sync::MutexGuard<'_, T> {
 
 impl PartialEq for TextureRef {
     fn eq(&self, other: &Self) -> bool {
-        self.path == other.path && self.transform == other.transform
+        self.path == other.path && self.transform == other.transform && self.mask == other.mask
     }
 }
 
