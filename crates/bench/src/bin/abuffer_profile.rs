@@ -5,7 +5,8 @@
 //!
 //! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)),
 //! `sphere500`, `spider` (the bundled
-//! `assets/spider`, the GL reference's model), `cube` (12 large
+//! `assets/spider`, the GL reference's model, textured), `spider-flat`
+//! (the spider without its textures), `cube` (12 large
 //! triangles: whole pixels), `one`
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
@@ -42,6 +43,17 @@ fn main() {
         "one" => procedural::random_soup(1, 1),
         "cube" => procedural::cube(),
         "spider" => hider_bench::programs::spider().expect("the bundled spider"),
+        "spider-flat" => {
+            // The spider with its texture statements removed: the same
+            // triangles, coloured flat (what a textured frame is compared
+            // with).
+            let mut s = hider_bench::programs::spider().expect("the bundled spider");
+            for m in &mut s.materials {
+                m.diffuse_texture = None;
+                m.specular_texture = None;
+            }
+            s
+        }
         other => panic!("unknown scene {other}"),
     };
     let mut hider: Box<dyn DynHider> = match args.get(1).map_or("ps", String::as_str) {

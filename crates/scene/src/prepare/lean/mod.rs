@@ -24,6 +24,7 @@
 //! [`LeanSink`] of the hider's as they are set up (the A-buffer bins them
 //! there, instead of storing them and reading them back).
 
+mod attributes;
 mod clipped;
 mod scene;
 mod triangles;
