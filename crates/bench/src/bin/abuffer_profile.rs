@@ -4,7 +4,7 @@
 //! `cargo run --release -p hider-bench --bin abuffer_profile -- SCENE HIDER [RUNS] [SIZE]`
 //!
 //! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)),
-//! `sphere500`, `spider` (the bundled
+//! `sphere500`, `sphere500-smooth` (with vertex normals), `spider` (the bundled
 //! `assets/spider`, the GL reference's model, textured), `spider-flat`
 //! (the spider without its textures), `cube` (12 large
 //! triangles: whole pixels), `one`
@@ -40,6 +40,14 @@ fn main() {
         "soup100k" => procedural::random_soup(100_000, 1),
         "sphere" => procedural::uv_sphere(200),
         "sphere500" => procedural::uv_sphere(500),
+        "sphere500-smooth" => {
+            // Smooth shading: a normal per vertex, from the centre.
+            let mut s = procedural::uv_sphere(500);
+            for mesh in &mut s.meshes {
+                mesh.normals = mesh.positions.iter().map(|p| p.normalize().as_vec3()).collect();
+            }
+            s
+        }
         "one" => procedural::random_soup(1, 1),
         "cube" => procedural::cube(),
         "spider" => hider_bench::programs::spider().expect("the bundled spider"),

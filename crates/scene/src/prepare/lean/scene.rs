@@ -138,33 +138,28 @@ impl LeanScene {
         }
     }
 
-    /// The colour of primitive `prim` of `scene` at window point `(x, y)`
-    /// under `sampler` (built for the frame's view,
-    /// [`TextureSampler::for_view`]), or `base`, its flat colour, when its
-    /// colour does not vary: bit for bit
+    /// The colour at window point `(x, y)` under `sampler` (built for the
+    /// frame's view, [`TextureSampler::for_view`]) of the primitive of
+    /// `scene` whose data is `info` ([`Self::prim_info`], which a caller
+    /// shading a run of pixels of one primitive looks up once), or `base`,
+    /// its flat colour, when its colour does not vary: bit for bit
     /// [`ScreenScene::surface_rgb`](crate::ScreenScene::surface_rgb) on
     /// `prepare`'s output.
-    ///
-    /// # Panics
-    ///
-    /// If `prim` is not a primitive id of the scene prepared last.
     #[inline]
     pub fn surface_rgb(
         &self,
         scene: &Scene,
         sampler: &TextureSampler,
-        prim: u32,
+        info: &PrimInfo,
         base: [f32; 3],
-        x: f64,
-        y: f64,
+        (x, y): (f64, f64),
     ) -> [f32; 3] {
-        let info = self.prim_info(scene, prim);
         let material = scene
             .materials
             .get(info.material as usize)
             .unwrap_or(&self.default_material);
         sampler
-            .color_at(&info, material, &self.lights, x, y)
+            .color_at(info, material, &self.lights, x, y)
             .unwrap_or(base)
     }
 
