@@ -44,7 +44,11 @@ fn main() {
             // Smooth shading: a normal per vertex, from the centre.
             let mut s = procedural::uv_sphere(500);
             for mesh in &mut s.meshes {
-                mesh.normals = mesh.positions.iter().map(|p| p.normalize().as_vec3()).collect();
+                mesh.normals = mesh
+                    .positions
+                    .iter()
+                    .map(|p| p.normalize().as_vec3())
+                    .collect();
             }
             s
         }
