@@ -27,7 +27,7 @@ use crate::common::{
 const SIZES: [(u32, u32); 3] = [(200, 330), (150, 90), (70, 20)];
 
 /// Renders `scene` at `w x h` through the lean front end with `hider`.
-fn render_lean(hider: &mut ABuffer, scene: &Scene, w: u32, h: u32) -> (Frame, ABufferStats) {
+pub fn render_lean(hider: &mut ABuffer, scene: &Scene, w: u32, h: u32) -> (Frame, ABufferStats) {
     let view = View::for_scene(scene, w, h).unwrap();
     let mut unused = ScreenScene::empty(&view);
     let mut frame = Frame::new(w, h).unwrap();

@@ -5,17 +5,19 @@
 //! frame, the sample ids and the counters of rendering `prepare`'s output,
 //! bit for bit, in every configuration, at 1 and 3 threads. Each render
 //! through `render_scene` also checks that the caller's prepared scene
-//! was left empty: the lean front end ran, not `prepare`.
+//! was left empty: the lean front end ran, not `prepare`. One hider
+//! alternating between such scenes keeps nothing of a frame's primitive
+//! data for the next.
 
 use std::path::PathBuf;
 
 use glam::DVec3;
-use hider_abuffer::{ABufferOptions, DepthMode};
+use hider_abuffer::{ABuffer, ABufferOptions, DepthMode};
 use hider_scene::prepare::lean::{LeanScene, prepare_lean_into};
-use hider_scene::{PrepareOptions, Scene, View, load_obj, prepare, procedural};
+use hider_scene::{Hider, PrepareOptions, Scene, View, load_obj, prepare, procedural};
 
 use crate::common::{lists, with_opacity};
-use crate::lean::lean_is_prepared;
+use crate::lean::{lean_is_prepared, render_lean};
 
 /// A scene from the repository's `assets/`.
 fn asset(path: &str) -> Scene {
@@ -136,4 +138,23 @@ fn lean_primitive_data_is_prepares() {
     let view = View::for_scene(&flat, 32, 32).unwrap();
     prepare_lean_into(&flat, &view, &PrepareOptions::default(), &mut lean).unwrap();
     assert!(!flat.varies_per_point() && !lean.shades_per_point());
+}
+
+/// One hider alternating between per-point scenes (their primitive ids
+/// overlap) gives each frame as a fresh hider does: nothing of one
+/// frame's primitive data is read in the next.
+#[test]
+fn alternating_shaded_scenes_on_one_hider_changes_nothing() {
+    let scenes = [
+        asset("spider/spider.obj"),
+        smooth_sphere(20),
+        coloured_sphere(14),
+    ];
+    let (w, h) = (120, 90);
+    let mut mixed = ABuffer::new(ABufferOptions::default().with_threads(2));
+    for k in [0, 1, 2, 0, 2, 1] {
+        let scene = &scenes[k];
+        let (want, _) = render_lean(&mut ABuffer::new(ABufferOptions::default()), scene, w, h);
+        assert!(render_lean(&mut mixed, scene, w, h).0 == want, "scene {k}");
+    }
 }
