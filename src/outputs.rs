@@ -1,11 +1,29 @@
 //! The output paths of `hider render`, checked before any work: an output
 //! that clobbers an input or another output, or that cannot be written
 //! because its folder does not exist, is refused at once, not after a
-//! render of minutes.
+//! render of minutes. And the buffers the outputs need: the hider is
+//! asked for those alone ([`frame_buffers`]).
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Result, bail};
+use hider::scene::FrameBuffers;
+
+/// The buffers `hider render` asks its hider to write
+/// ([`hider::scene::Frame::set_buffers`]): the ids always (the colour pass
+/// colours the PNG from them, the cut-out stage tests them, the closing
+/// line counts the covered pixels, and `--ids-out` writes them), the depth
+/// only for `--depth-out`, and the colour only from a hider that resolves
+/// colour itself (otherwise the PNG's colours are the colour pass's,
+/// which writes every pixel). A hider that ignores the request writes
+/// everything, which changes no output.
+pub fn frame_buffers(depth_out: bool, resolves_color: bool) -> FrameBuffers {
+    FrameBuffers {
+        ids: true,
+        depth: depth_out,
+        color: resolves_color,
+    }
+}
 
 /// What a path names, for comparing two paths: the file it resolves to
 /// when it exists, else its folder resolved and its name. `None` for a
@@ -71,6 +89,18 @@ pub fn check(outputs: &[(&str, &Path)], inputs: &[PathBuf]) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `--ids-out` alone (the PNG coloured by the colour pass) asks a
+    /// pixel-centre hider for the ids only; the depth comes with
+    /// `--depth-out`, the colour from a hider that resolves it.
+    #[test]
+    fn the_hider_is_asked_for_what_the_outputs_need() {
+        assert_eq!(frame_buffers(false, false), FrameBuffers::IDS);
+        assert_eq!(frame_buffers(true, false), FrameBuffers::IDS_DEPTH);
+        let colour = frame_buffers(false, true);
+        assert!(colour.ids && colour.color && !colour.depth);
+        assert_eq!(frame_buffers(true, true), FrameBuffers::ALL);
+    }
 
     #[test]
     fn clobbering_and_missing_folders_are_refused() {

@@ -216,7 +216,10 @@ pub fn run(args: &RenderArgs) -> Result<()> {
         progress.suspend(|| eprint_line(&format!("hider: warning: {warning}")));
     }
     progress.stage(&format!("rendering with {}", chosen.hider.name()));
-    let mut frame = Frame::new(width, height)?;
+    let mut frame = Frame::new(width, height)?.with_buffers(crate::outputs::frame_buffers(
+        args.depth_out.is_some(),
+        chosen.hider.resolves_color(),
+    ));
     let mut screen = ScreenScene::empty(&view);
     // The hider's pipeline, then the colour pass unless the hider
     // resolved colour itself: what a library user gets from one call.

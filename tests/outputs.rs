@@ -100,3 +100,47 @@ fn an_unwritable_output_stops_the_run_before_any_output() {
     let leftovers: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert!(leftovers.is_empty(), "{leftovers:?}");
 }
+
+/// The hider is asked only for the buffers the outputs need (the ids
+/// for `--ids-out` and the colour pass, the depth for `--depth-out`), and
+/// the files do not change: the tiled z-buffer, which writes only what is
+/// asked, gives the PNG and ids of the plain z-buffer, which writes
+/// everything, with and without `--depth-out`, on a textured model and a
+/// generated one; the depth files agree too.
+#[test]
+fn outputs_do_not_depend_on_the_buffers_asked_for() {
+    let dir = folder("buffers");
+    let checker = concat!(env!("CARGO_MANIFEST_DIR"), "/assets/checker_plane.obj");
+    for model in [checker, "gen:sphere:12"] {
+        let mut runs = Vec::new();
+        for algo in ["zbuffer-tiled", "zbuffer"] {
+            for depth in [false, true] {
+                let tag = format!("{algo}-{depth}");
+                let png = dir.join(format!("{tag}.png"));
+                let ids = dir.join(format!("{tag}.i32"));
+                let z = dir.join(format!("{tag}.f32"));
+                let (png_s, ids_s, z_s) = (
+                    png.to_str().unwrap(),
+                    ids.to_str().unwrap(),
+                    z.to_str().unwrap(),
+                );
+                let mut args = vec!["render", model, "--size", "48", "--algo", algo];
+                args.extend(["-o", png_s, "--ids-out", ids_s]);
+                if depth {
+                    args.extend(["--depth-out", z_s]);
+                }
+                let out = hider(&args);
+                assert!(out.status.success(), "{args:?}: {}", stderr(&out));
+                let read = |p: &PathBuf| std::fs::read(p).unwrap();
+                runs.push((tag, read(&png), read(&ids), depth.then(|| read(&z))));
+            }
+        }
+        let (first, png, ids, _) = &runs[0];
+        for (tag, p, i, _) in &runs[1..] {
+            assert!(p == png, "{model}: the PNG of {tag} differs from {first}'s");
+            assert!(i == ids, "{model}: the ids of {tag} differ from {first}'s");
+        }
+        assert!(runs[1].3 == runs[3].3, "{model}: the depth files differ");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -414,10 +414,10 @@ impl Hider for ABuffer {
     /// its triangle pass binning its triangles as it sets them up), then
     /// the same rendering as [`Hider::render`]: the same frame, bit for
     /// bit. A scene whose colours vary across primitives (textures, vertex
-    /// normals, highlights: [`Scene::varies_per_point`]) drawn in Lambert
-    /// mode takes the shared front end into `screen` (shading per point
-    /// reads the per-primitive data only it keeps); the decision is the
-    /// scene's, known before anything runs.
+    /// normals or colours, highlights: [`Scene::varies_per_point`]) drawn
+    /// in Lambert mode is shaded per point from the camera-space positions
+    /// and normals the lean front end then keeps per vertex
+    /// ([`LeanScene::set_point_shading`]). `screen` is left as it was.
     fn render_scene(
         &mut self,
         scene: &Scene,
@@ -427,10 +427,10 @@ impl Hider for ABuffer {
         frame: &mut Frame,
     ) -> Result<ABufferStats> {
         // Cut-outs are alpha-tested per sample from the prepared scene's
-        // primitives (texture coordinates), in any shade mode.
-        if (self.options.shade == ShadeMode::Lambert && scene.varies_per_point())
-            || hider_scene::shade::cutout::scene_has_cutouts(scene)
-        {
+        // primitives (texture coordinates), in any shade mode; every other
+        // scene, textured and smooth-shaded ones included, takes the lean
+        // front end.
+        if hider_scene::shade::cutout::scene_has_cutouts(scene) {
             hider_scene::prepare_into(scene, view, options, screen)?;
             return self.render(screen, frame);
         }
@@ -438,6 +438,7 @@ impl Hider for ABuffer {
         self.check(view.viewport, frame)?;
         let grid = Grid::new(self.options.pattern, (frame.width(), frame.height()));
         let mut lean = std::mem::take(&mut self.lean);
+        lean.set_point_shading(self.options.shade == ShadeMode::Lambert);
         let mut runs = std::mem::take(&mut self.bin_runs);
         self.bins.lend(&mut runs);
         let opacity = self.bins.scene_opacity(scene);
@@ -447,7 +448,8 @@ impl Hider for ABuffer {
         let result = match prepared {
             Ok(()) => {
                 self.bins.adopt(&mut runs, grid);
-                self.run(&Source::lean(&lean, scene), true, frame)
+                let sampler = crate::source::lean_sampler(&lean, view);
+                self.run(&Source::lean(&lean, scene, sampler.as_ref()), true, frame)
             }
             Err(e) => {
                 // The runs stopped part way: no bins of this frame.

@@ -373,7 +373,7 @@ mod tests {
         prepare_lean_into(&scene, &view, &options, &mut lean).expect("prepared");
         for source in [
             Source::screen(&screen, &tris, None),
-            Source::lean(&lean, &scene),
+            Source::lean(&lean, &scene, None),
         ] {
             let mut bins = Bins::default();
             bins.bin(&source, Grid::new(SamplePattern::Grid32, (w, h)), 1);
@@ -402,7 +402,7 @@ mod tests {
         let mut lean = LeanScene::new();
         prepare_lean_into(&scene, &view, &options, &mut lean).expect("prepared");
         // A frame smaller than the view: many triangles fall off it.
-        let mut source = Source::lean(&lean, &scene);
+        let mut source = Source::lean(&lean, &scene, None);
         source.viewport.width = 150;
         source.viewport.height = 90;
         let (w, h) = (150u32, 90u32);

@@ -99,8 +99,7 @@ impl Lists {
         if shade >= MERGED_BASE {
             self.pool.merged(shade).rgba
         } else {
-            let flat = self.colors.get(scene, self.options.shade, shade);
-            scene.at_pixel(shade, flat, ij)
+            self.colors.at_pixel(scene, self.options.shade, shade, ij)
         }
     }
 

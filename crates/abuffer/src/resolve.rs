@@ -63,8 +63,8 @@ impl Input<'_> {
     /// on first use, textured at the pixel centre).
     #[inline]
     pub(crate) fn prim_rgba(&mut self, prim: u32, ij: (u32, u32)) -> [f32; 4] {
-        let flat = self.colors.get(self.scene, self.options.shade, prim);
-        self.scene.at_pixel(prim, flat, ij)
+        self.colors
+            .at_pixel(self.scene, self.options.shade, prim, ij)
     }
 
     /// The colour and opacity of fragment `f` in pixel `ij` (textured at

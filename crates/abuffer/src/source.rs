@@ -8,7 +8,9 @@
 
 use hider_geom::Viewport;
 use hider_scene::prepare::lean::{LeanScene, LeanTri};
-use hider_scene::{Material, Scene, ScreenScene, ShadeMode, TextureSampler};
+use hider_scene::{
+    Material, PrimInfo, Scene, ScreenScene, ShadeMode, TextureOptions, TextureSampler, View,
+};
 
 use crate::bins::BinItem;
 
@@ -20,8 +22,9 @@ enum Kind<'a> {
     /// `prepare`'s output, and the frame's texture sampler when it is
     /// textured.
     Screen(&'a ScreenScene, Option<&'a TextureSampler>),
-    /// The lean front end's output, and the scene it was prepared from.
-    Lean(&'a LeanScene, &'a Scene),
+    /// The lean front end's output, the scene it was prepared from, and
+    /// the frame's texture sampler when it is shaded per point.
+    Lean(&'a LeanScene, &'a Scene, Option<&'a TextureSampler>),
 }
 
 /// The triangles of a frame and their colours.
@@ -55,13 +58,18 @@ impl<'a> Source<'a> {
         }
     }
 
-    /// The lean front end's `lean`, prepared from `scene`.
-    pub(crate) fn lean(lean: &'a LeanScene, scene: &'a Scene) -> Self {
+    /// The lean front end's `lean`, prepared from `scene`, shaded per
+    /// point through `sampler` when it is given ([`lean_sampler`]).
+    pub(crate) fn lean(
+        lean: &'a LeanScene,
+        scene: &'a Scene,
+        sampler: Option<&'a TextureSampler>,
+    ) -> Self {
         Self {
             viewport: lean.viewport,
             tris: lean.tris(),
             items: &[],
-            kind: Kind::Lean(lean, scene),
+            kind: Kind::Lean(lean, scene, sampler),
         }
     }
 
@@ -83,7 +91,7 @@ impl<'a> Source<'a> {
     pub(crate) fn prims(&self) -> usize {
         match self.kind {
             Kind::Screen(s, _) => s.prims.len(),
-            Kind::Lean(_, scene) => scene.triangle_count(),
+            Kind::Lean(_, scene, _) => scene.triangle_count(),
         }
     }
 
@@ -91,7 +99,7 @@ impl<'a> Source<'a> {
     pub(crate) fn prim_rgba(&self, prim: u32, mode: ShadeMode) -> [f32; 4] {
         match self.kind {
             Kind::Screen(s, _) => palette::prim_rgba(s, prim, mode),
-            Kind::Lean(lean, scene) => {
+            Kind::Lean(lean, scene, _) => {
                 let (rgb, alpha) = lean.prim_color(scene, prim, mode);
                 [rgb[0], rgb[1], rgb[2], alpha.clamp(0.0, 1.0)]
             }
@@ -113,7 +121,7 @@ impl<'a> Source<'a> {
                     push_opacity(out, prim + 1, s.material(prim).opacity.clamp(0.0, 1.0));
                 }
             }
-            Kind::Lean(_, scene) => scene_opacity_runs(scene, out),
+            Kind::Lean(_, scene, _) => scene_opacity_runs(scene, out),
         }
     }
 
@@ -121,7 +129,7 @@ impl<'a> Source<'a> {
     pub(crate) fn material(&self, prim: u32) -> u32 {
         match self.kind {
             Kind::Screen(s, _) => s.prims[prim as usize].material,
-            Kind::Lean(lean, scene) => lean.material_index(scene, prim),
+            Kind::Lean(lean, scene, _) => lean.material_index(scene, prim),
         }
     }
 
@@ -129,21 +137,51 @@ impl<'a> Source<'a> {
     /// is not textured): [`Self::at_pixel`] gives back its `rgba`.
     pub(crate) fn flat_colors(&self) -> bool {
         match self.kind {
-            Kind::Screen(_, sampler) => sampler.is_none(),
-            Kind::Lean(..) => true,
+            Kind::Screen(_, sampler) | Kind::Lean(_, _, sampler) => sampler.is_none(),
         }
     }
 
-    /// [`palette::at_pixel`]: `rgba` textured at the centre of pixel `ij`
-    /// when the frame is textured (the lean front end is used only when it
-    /// is not).
+    /// [`palette::at_pixel`]: `rgba` shaded at the centre of pixel `ij`
+    /// when the frame is shaded per point (textures, vertex normals or
+    /// colours), from `prepare`'s per-primitive data or, for the lean
+    /// front end, the same data assembled from its vertices
+    /// ([`LeanScene::surface_rgb`]): the same colour, bit for bit.
     #[inline]
     pub(crate) fn at_pixel(&self, prim: u32, rgba: [f32; 4], ij: (u32, u32)) -> [f32; 4] {
         match &self.kind {
             Kind::Screen(s, sampler) => palette::at_pixel(s, *sampler, prim, rgba, ij),
-            Kind::Lean(..) => rgba,
+            Kind::Lean(_, _, None) => rgba,
+            Kind::Lean(lean, scene, Some(sampler)) => {
+                lean_at_pixel(lean, scene, sampler, &lean.prim_info(scene, prim), rgba, ij)
+            }
         }
     }
+}
+
+/// [`Source::at_pixel`] of the lean front end's primitive with data
+/// `info`, shaded per point through `sampler`.
+#[inline]
+fn lean_at_pixel(
+    lean: &LeanScene,
+    scene: &Scene,
+    sampler: &TextureSampler,
+    info: &PrimInfo,
+    rgba: [f32; 4],
+    (i, j): (u32, u32),
+) -> [f32; 4] {
+    let centre = (f64::from(i) + 0.5, f64::from(j) + 0.5);
+    let [r, g, b] = lean.surface_rgb(scene, sampler, info, [rgba[0], rgba[1], rgba[2]], centre);
+    [r, g, b, rgba[3]]
+}
+
+/// The sampler of a frame the lean front end prepared into `lean` for
+/// `view`: `Some` when it kept what shading per point reads
+/// ([`LeanScene::shades_per_point`], asked for in Lambert mode only, as
+/// [`palette::sampler`] decides for `prepare`'s output), with the same
+/// options and rays as [`palette::sampler`]'s.
+pub(crate) fn lean_sampler(lean: &LeanScene, view: &View) -> Option<TextureSampler> {
+    lean.shades_per_point()
+        .then(|| TextureSampler::for_view(view, TextureOptions::default()))
 }
 
 /// The flat colour and opacity of each primitive of a frame, computed on
@@ -160,11 +198,22 @@ pub(crate) struct ColorCache {
     stamps: Vec<u32>,
     /// The current frame's stamp (never 0, the stamp of a new entry).
     frame: u32,
+    /// The data of primitives shaded per point from the lean front end's
+    /// vertices this frame, direct-mapped by primitive id
+    /// ([`INFO_SLOTS`] entries once used): assembling the data for every
+    /// pixel cost 11 % of the smooth-shaded spider's frame at 1024, and a
+    /// single last entry still missed on 4 of 10 pixels (a pixel's
+    /// fragments alternate between primitives).
+    infos: Vec<Option<(u32, PrimInfo)>>,
 }
+
+/// Entries of [`ColorCache::infos`].
+const INFO_SLOTS: usize = 64;
 
 impl ColorCache {
     /// Starts a frame of `prims` primitives: every entry stale.
     pub(crate) fn begin(&mut self, prims: usize) {
+        self.infos.fill(None);
         self.frame = self.frame.wrapping_add(1);
         if self.frame == 0 {
             // After 2^32 - 1 frames, stamps repeat: forget them all.
@@ -187,6 +236,33 @@ impl ColorCache {
             self.stamps[k] = self.frame;
         }
         self.colors[k]
+    }
+
+    /// The colour and opacity of `prim` in `scene` under `mode` at pixel
+    /// `ij`: [`Self::get`], then [`Source::at_pixel`] (the lean front
+    /// end's primitive data looked up once per run of pixels). Inlined
+    /// into the resolve loops, as `prepare`'s path is (a call cost 2 % of
+    /// the smooth-shaded spider's frame).
+    #[inline(always)]
+    pub(crate) fn at_pixel(
+        &mut self,
+        scene: &Source<'_>,
+        mode: ShadeMode,
+        prim: u32,
+        ij: (u32, u32),
+    ) -> [f32; 4] {
+        let flat = self.get(scene, mode, prim);
+        let Kind::Lean(lean, world, Some(sampler)) = scene.kind else {
+            return scene.at_pixel(prim, flat, ij);
+        };
+        if self.infos.is_empty() {
+            self.infos.resize(INFO_SLOTS, None);
+        }
+        let info = match &mut self.infos[prim as usize % INFO_SLOTS] {
+            Some((p, info)) if *p == prim => info,
+            slot => &mut slot.insert((prim, lean.prim_info(world, prim))).1,
+        };
+        lean_at_pixel(lean, world, sampler, info, flat, ij)
     }
 }
 

@@ -27,7 +27,7 @@ use crate::common::{
 const SIZES: [(u32, u32); 3] = [(200, 330), (150, 90), (70, 20)];
 
 /// Renders `scene` at `w x h` through the lean front end with `hider`.
-fn render_lean(hider: &mut ABuffer, scene: &Scene, w: u32, h: u32) -> (Frame, ABufferStats) {
+pub fn render_lean(hider: &mut ABuffer, scene: &Scene, w: u32, h: u32) -> (Frame, ABufferStats) {
     let view = View::for_scene(scene, w, h).unwrap();
     let mut unused = ScreenScene::empty(&view);
     let mut frame = Frame::new(w, h).unwrap();
@@ -48,7 +48,7 @@ fn render_lean(hider: &mut ABuffer, scene: &Scene, w: u32, h: u32) -> (Frame, AB
 /// Asserts that the lean front end and `prepare` give the same frames,
 /// sample ids and counters for `scene` at every size, with 1 and 3
 /// threads, twice on the same hider.
-fn lean_is_prepared(scene: &Scene, options: ABufferOptions, what: &str) {
+pub fn lean_is_prepared(scene: &Scene, options: ABufferOptions, what: &str) {
     for (w, h) in SIZES {
         let s = screen(scene, w, h);
         for threads in [1, 3] {

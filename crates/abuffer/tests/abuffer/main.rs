@@ -9,6 +9,7 @@ mod culling;
 mod depth_modes;
 mod exactness;
 mod lean;
+mod lean_shaded;
 mod memory;
 mod sample_tiles;
 mod threads;

@@ -4,8 +4,9 @@
 //! `cargo run --release -p hider-bench --bin abuffer_profile -- SCENE HIDER [RUNS] [SIZE]`
 //!
 //! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)),
-//! `sphere500`, `spider` (the bundled
-//! `assets/spider`, the GL reference's model), `cube` (12 large
+//! `sphere500`, `sphere500-smooth` (with vertex normals), `spider` (the bundled
+//! `assets/spider`, the GL reference's model, textured), `spider-flat`
+//! (the spider without its textures), `cube` (12 large
 //! triangles: whole pixels), `one`
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
@@ -39,9 +40,32 @@ fn main() {
         "soup100k" => procedural::random_soup(100_000, 1),
         "sphere" => procedural::uv_sphere(200),
         "sphere500" => procedural::uv_sphere(500),
+        "sphere500-smooth" => {
+            // Smooth shading: a normal per vertex, from the centre.
+            let mut s = procedural::uv_sphere(500);
+            for mesh in &mut s.meshes {
+                mesh.normals = mesh
+                    .positions
+                    .iter()
+                    .map(|p| p.normalize().as_vec3())
+                    .collect();
+            }
+            s
+        }
         "one" => procedural::random_soup(1, 1),
         "cube" => procedural::cube(),
         "spider" => hider_bench::programs::spider().expect("the bundled spider"),
+        "spider-flat" => {
+            // The spider with its texture statements removed: the same
+            // triangles, coloured flat (what a textured frame is compared
+            // with).
+            let mut s = hider_bench::programs::spider().expect("the bundled spider");
+            for m in &mut s.materials {
+                m.diffuse_texture = None;
+                m.specular_texture = None;
+            }
+            s
+        }
         other => panic!("unknown scene {other}"),
     };
     let mut hider: Box<dyn DynHider> = match args.get(1).map_or("ps", String::as_str) {

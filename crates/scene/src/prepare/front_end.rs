@@ -1,7 +1,7 @@
 //! The per-triangle path of the front end: transform, clip, divide, map to
 //! the window, snap and set up; shared with the z-buffer's lean front end.
 
-use glam::{DMat4, DVec3, DVec4, Vec4};
+use glam::{DMat4, DVec3, DVec4, Vec3, Vec4};
 use hider_geom::clip::{ClipOutcome, ClipVertex, ClipVolume, clip_triangle};
 use hider_geom::fixed::{FixedPt, GUARD_BAND_PIXELS};
 use hider_geom::{PlaneEq, Viewport, orient2d};
@@ -170,22 +170,45 @@ impl FrontEnd {
     /// reads (camera-space corners, material, normals, uvs).
     pub fn prim_info(&self, scene: &Scene, m: usize, t: usize) -> PrimInfo {
         let mesh = &scene.meshes[m];
+        self.prim_info_from(
+            scene,
+            (m, t),
+            |i| self.to_camera(mesh.positions[i]),
+            |i| self.normal_to_camera(mesh.normals[i]),
+        )
+    }
+
+    /// [`Self::prim_info`] with the camera-space position and normal of
+    /// vertex `i` of the mesh given by `camera` and `normal` (which must
+    /// give [`Self::to_camera`] and [`Self::normal_to_camera`] of the
+    /// mesh's: a front end that transformed each vertex once reads them
+    /// from its cache, and the data is the same, bit for bit).
+    #[inline]
+    pub fn prim_info_from(
+        &self,
+        scene: &Scene,
+        (m, t): (usize, usize),
+        camera: impl Fn(usize) -> DVec3,
+        normal: impl Fn(usize) -> Vec3,
+    ) -> PrimInfo {
+        let mesh = &scene.meshes[m];
         let idx = mesh.indices[t];
         PrimInfo {
-            camera: idx.map(|i| self.to_camera(mesh.positions[i as usize])),
+            camera: idx.map(|i| camera(i as usize)),
             material: mesh
                 .triangle_material(t)
                 .map_or(self.default_material, |k| k as u32),
-            normals: (!mesh.normals.is_empty()).then(|| {
-                idx.map(|i| {
-                    self.normal_matrix
-                        .transform_vector3(mesh.normals[i as usize].as_dvec3())
-                        .as_vec3()
-                })
-            }),
+            normals: (!mesh.normals.is_empty()).then(|| idx.map(|i| normal(i as usize))),
             uvs: (!mesh.uvs.is_empty()).then(|| idx.map(|i| mesh.uvs[i as usize])),
             colors: (!mesh.colors.is_empty()).then(|| idx.map(|i| mesh.colors[i as usize])),
         }
+    }
+
+    /// A world-space vertex normal in camera space, as shading reads it
+    /// (transformed in `f64`, kept as `f32`).
+    #[inline]
+    pub fn normal_to_camera(&self, n: Vec3) -> Vec3 {
+        self.normal_matrix.transform_vector3(n.as_dvec3()).as_vec3()
     }
 
     /// Transforms, clips, projects, snaps and sets up triangle `t` of mesh

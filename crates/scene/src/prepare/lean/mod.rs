@@ -19,11 +19,16 @@
 //! [`LeanTri`]s (snapped corners, their depths, depth plane, primitive id, facing) for
 //! hiders that sample inside pixels (the A-buffer), and colours a
 //! primitive on demand ([`LeanScene::prim_color`]) from the world-space
-//! scene, as `prepare`'s [`PrimInfo`](super::PrimInfo) would have; or,
+//! scene, as `prepare`'s [`PrimInfo`](super::PrimInfo) would have, and,
+//! when the frame is shaded per point ([`LeanScene::set_point_shading`]:
+//! textures, vertex normals or colours), assembles a primitive's
+//! `PrimInfo` from camera-space positions and normals transformed once
+//! per vertex ([`LeanScene::prim_info`], [`LeanScene::surface_rgb`]); or,
 //! through [`prepare_lean_sinks`], hands each run's triangles to a
 //! [`LeanSink`] of the hider's as they are set up (the A-buffer bins them
 //! there, instead of storing them and reading them back).
 
+mod attributes;
 mod clipped;
 mod scene;
 mod triangles;

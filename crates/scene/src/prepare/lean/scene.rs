@@ -8,10 +8,11 @@ use rayon::prelude::*;
 
 use crate::error::Result;
 use crate::model::{Light, Material, Scene};
-use crate::prepare::{FrontEnd, PrepareOptions, PrepareStats};
-use crate::shade::{ShadeMode, flat_color, id_color};
+use crate::prepare::{FrontEnd, PrepareOptions, PrepareStats, PrimInfo};
+use crate::shade::{ShadeMode, TextureSampler, flat_color, id_color};
 use crate::view::View;
 
+use super::attributes::PointAttributes;
 use super::triangles::triangles;
 use super::{CachedVertex, lean_passes};
 
@@ -68,6 +69,11 @@ pub struct LeanScene {
     front: Option<FrontEnd>,
     /// The material of meshes without one (made once, not per colour).
     default_material: Material,
+    /// Whether the caller shades per point ([`Self::set_point_shading`]).
+    point_shading: bool,
+    /// What shading per point reads of the vertices, when it is on and
+    /// the scene needs it.
+    attributes: PointAttributes,
 }
 
 impl LeanScene {
@@ -87,6 +93,74 @@ impl LeanScene {
         (self.tris.capacity() + self.runs.iter().map(Vec::capacity).sum::<usize>())
             * std::mem::size_of::<LeanTri>()
             + self.vertices.capacity() * std::mem::size_of::<CachedVertex>()
+            + self.attributes.bytes()
+    }
+
+    /// Asks the next frames to keep what shading per point reads (the
+    /// camera-space position and normal of each vertex) when the scene's
+    /// colours vary per point ([`Scene::varies_per_point`]: textures,
+    /// vertex normals or colours, highlights), for
+    /// [`Self::surface_rgb`]. Off by default: a hider that shades flat,
+    /// or a scene that does not vary, pays nothing.
+    pub fn set_point_shading(&mut self, on: bool) {
+        self.point_shading = on;
+    }
+
+    /// Whether the last frame kept what shading per point reads (asked
+    /// for, and the scene varies per point).
+    pub fn shades_per_point(&self) -> bool {
+        self.attributes.filled()
+    }
+
+    /// The mesh of primitive `prim` and the triangle's index in it.
+    #[inline]
+    fn locate(&self, prim: u32) -> (usize, usize) {
+        let k = prim as usize;
+        let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
+        (m, k - self.mesh_starts[m])
+    }
+
+    /// The per-primitive data `prepare` keeps for `prim` of `scene` (the
+    /// scene this was prepared from), bit for bit: from the vertices'
+    /// attributes when [`Self::shades_per_point`], transformed per corner
+    /// otherwise.
+    ///
+    /// # Panics
+    ///
+    /// If `prim` is not a primitive id of the scene prepared last.
+    pub fn prim_info(&self, scene: &Scene, prim: u32) -> PrimInfo {
+        let (m, t) = self.locate(prim);
+        let front = self.front.as_ref().expect("a prepared scene");
+        if self.attributes.filled() {
+            self.attributes.prim_info(scene, front, m, t)
+        } else {
+            front.prim_info(scene, m, t)
+        }
+    }
+
+    /// The colour at window point `(x, y)` under `sampler` (built for the
+    /// frame's view, [`TextureSampler::for_view`]) of the primitive of
+    /// `scene` whose data is `info` ([`Self::prim_info`], which a caller
+    /// shading a run of pixels of one primitive looks up once), or `base`,
+    /// its flat colour, when its colour does not vary: bit for bit
+    /// [`ScreenScene::surface_rgb`](crate::ScreenScene::surface_rgb) on
+    /// `prepare`'s output.
+    #[inline]
+    pub fn surface_rgb(
+        &self,
+        scene: &Scene,
+        sampler: &TextureSampler,
+        info: &PrimInfo,
+        base: [f32; 3],
+        (x, y): (f64, f64),
+    ) -> [f32; 3] {
+        let material = scene
+            .materials
+            .get(info.material as usize)
+            .unwrap_or(&self.default_material);
+        sampler
+            .color_at(info, material, &self.lights, x, y)
+            .unwrap_or(base)
     }
 
     /// The linear RGB colour of primitive `prim` of `scene` (the scene
@@ -98,17 +172,16 @@ impl LeanScene {
     ///
     /// If `prim` is not a primitive id of the scene prepared last.
     pub fn prim_color(&self, scene: &Scene, prim: u32, mode: ShadeMode) -> ([f32; 3], f32) {
-        let k = prim as usize;
-        let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
+        let (m, t) = self.locate(prim);
         let mesh = &scene.meshes[m];
         let material = scene
-            .triangle_material(m, k - self.mesh_starts[m])
+            .triangle_material(m, t)
             .unwrap_or(&self.default_material);
         match mode {
             ShadeMode::Ids => (id_color(prim), material.opacity),
             ShadeMode::Lambert => {
                 let front = self.front.as_ref().expect("a prepared scene");
-                let idx = mesh.indices[k - self.mesh_starts[m]];
+                let idx = mesh.indices[t];
                 let camera: [DVec3; 3] = idx.map(|i| front.to_camera(mesh.positions[i as usize]));
                 (
                     flat_color(material, &camera, &self.lights, front.perspective),
@@ -121,10 +194,9 @@ impl LeanScene {
     /// The material index `prepare` gives primitive `prim` (an index into
     /// the scene's materials, or their count for the default material).
     pub fn material_index(&self, scene: &Scene, prim: u32) -> u32 {
-        let k = prim as usize;
-        let m = self.mesh_starts.partition_point(|&s| s <= k) - 1;
+        let (m, t) = self.locate(prim);
         scene.meshes[m]
-            .triangle_material(k - self.mesh_starts[m])
+            .triangle_material(t)
             .map_or(scene.materials.len() as u32, |i| i as u32)
     }
 }
@@ -174,7 +246,7 @@ pub fn prepare_lean_into(
         out.tris.extend_from_slice(r);
     }
     stats.output = out.tris.len() as u64;
-    out.finish(scene, front, stats);
+    out.finish(scene, front, options, stats);
     Ok(())
 }
 
@@ -239,14 +311,20 @@ pub fn prepare_lean_sinks<S: LeanSink>(
         },
     )?;
     stats.output = runs.iter().map(|r| r.len() as u64).sum();
-    out.finish(scene, front, stats);
+    out.finish(scene, front, options, stats);
     Ok(())
 }
 
 impl LeanScene {
     /// What both front ends keep after the passes: the counters, the
     /// image size, and what colouring a primitive needs.
-    fn finish(&mut self, scene: &Scene, front: FrontEnd, stats: PrepareStats) {
+    fn finish(
+        &mut self,
+        scene: &Scene,
+        front: FrontEnd,
+        options: &PrepareOptions,
+        stats: PrepareStats,
+    ) {
         self.stats = stats;
         self.viewport = front.viewport;
         self.mesh_starts.clear();
@@ -259,6 +337,8 @@ impl LeanScene {
         self.lights.clear();
         self.lights
             .extend(scene.lights.iter().map(|l| front.light_to_camera(l)));
+        self.attributes
+            .fill(scene, &front, self.point_shading, options.parallel);
         self.front = Some(front);
     }
 }
