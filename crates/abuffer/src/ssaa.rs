@@ -128,7 +128,8 @@ impl Hider for SupersampledZBuffer {
         prim_colors(scene, self.options.shade, &mut self.colors);
         let positions = pattern.positions();
 
-        for tri in &scene.tris {
+        for (k, tri) in scene.tris.iter().enumerate() {
+            self.options.cancel.poll_every(k)?;
             let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, w, h) else {
                 continue;
             };

@@ -136,6 +136,9 @@ impl Orderer {
         self.traced = None;
         let mut arena = self.start(scene, options, stats)?;
         loop {
+            // Every step (a blocker search, a move, a split) costs far more
+            // than the poll.
+            options.cancel.poll()?;
             let (cslot, p) = match (self.front.last(), self.sorted.last_key_value()) {
                 (Some(&c), _) => (Slot::Front(self.front.len() - 1), c),
                 (None, Some((&key, &id))) => (Slot::Sorted(key), id),
