@@ -131,8 +131,9 @@ fn over_square(plane: &PlaneEq, side: f64, i: usize, j: usize) -> (f64, f64) {
 impl HiZ {
     /// Builds the occluder depths of `scene`'s opaque triangles, on
     /// squares as small as [`MAX_SQUARES`] and [`MAX_VISITS`] allow; with
-    /// `enabled` false, an empty grid that culls nothing.
-    pub fn build(&mut self, scene: &ScreenScene, enabled: bool) {
+    /// `enabled` false, an empty grid that culls nothing. A stopped
+    /// `cancel` leaves the rest out (the caller returns its error).
+    pub fn build(&mut self, scene: &ScreenScene, enabled: bool, cancel: hider_scene::Cancel) {
         self.any = false;
         self.occluder.clear();
         if !enabled {
@@ -174,6 +175,11 @@ impl HiZ {
             .iter()
             .filter(|t| scene.material(t.prim).opacity >= 1.0)
         {
+            // Up to `MAX_VISITS` squares in all: seconds on large
+            // crossing triangles.
+            if cancel.check().is_err() {
+                return;
+            }
             self.add(tri);
         }
     }

@@ -240,10 +240,13 @@ impl Orderer {
             self.pieces.push(Piece::from_tri(tri, k as u32));
         }
         self.extents.extend(self.pieces.iter().map(Extent::of));
-        self.hiz.build(scene, options.cull_hidden);
+        self.hiz.build(scene, options.cull_hidden, options.cancel);
+        options.cancel.poll()?;
         self.hidden.clear();
-        self.hidden
-            .extend(self.pieces.iter().map(|p| self.hiz.hides(p)));
+        for (k, p) in self.pieces.iter().enumerate() {
+            options.cancel.poll_every(k)?;
+            self.hidden.push(self.hiz.hides(p));
+        }
         stats.culled = self.hidden.iter().filter(|&&h| h).count() as u64;
         for (k, _) in self.hidden.iter().enumerate().filter(|(_, h)| **h) {
             self.note(|| TraceEvent::Culled { piece: k as u32 });

@@ -116,14 +116,15 @@ class Plan(NamedTuple):
     summary: str
 
 
-_worker_queue = None
+_worker = None
 _worker_lock = threading.Lock()
+_tokens = threading.local()
 
 
 def _forget_worker():
     """In a forked child, the parent's worker thread does not exist."""
-    global _worker_queue, _worker_lock
-    _worker_queue = None
+    global _worker, _worker_lock
+    _worker = None
     _worker_lock = threading.Lock()
 
 
@@ -131,41 +132,78 @@ if hasattr(os, "register_at_fork"):
     os.register_at_fork(after_in_child=_forget_worker)
 
 
-def _worker_loop(jobs):
-    """The main thread's render worker: runs each job it is given."""
+def _worker_loop(jobs, token):
+    """The main thread's render worker: runs each job it is given with its
+    cancel token re-armed for the job's timeout."""
     while True:
-        future, fn, args = jobs.get()
+        future, fn, args, timeout = jobs.get()
+        # Re-armed before the job counts as running: a Ctrl-C from then on
+        # cancels this job, never the one before.
+        token.reset()
+        token.set_timeout(timeout)
         if not future.set_running_or_notify_cancel():
             continue
         try:
-            future.set_result(fn(*args))
+            future.set_result(fn(*args, cancel=token))
         except BaseException as e:  # noqa: BLE001 - handed to the caller
             future.set_exception(e)
 
 
-def _interruptible(fn, *args):
-    """``fn(*args)``, so that Ctrl-C stops the wait.
+def _as_timeout(timeout):
+    """``timeout=`` as seconds (a float), or None for none."""
+    if timeout is None:
+        return None
+    if isinstance(timeout, (bool, np.bool_)) or not isinstance(
+            timeout, (int, float, np.integer, np.floating)):
+        raise TypeError(f"timeout must be a number of seconds, got {timeout!r}")
+    timeout = float(timeout)
+    if not (timeout >= 0 and np.isfinite(timeout)):
+        raise ValueError(f"timeout must be a finite number of seconds >= 0, got {timeout}")
+    return timeout
 
-    Python delivers SIGINT to the main thread only, between bytecodes,
-    and a hider runs in Rust with the GIL released, with no way to be
-    stopped. So a call from the main thread runs on one daemon worker
+
+def _interruptible(fn, *args, timeout=None):
+    """``fn(*args, cancel=token)``, stopped by Ctrl-C and after ``timeout``
+    seconds.
+
+    Every hider polls a cancel token (``hider_scene::Cancel``) at the
+    heads of its long loops; each thread that renders keeps one,
+    re-armed at every call with the call's ``timeout`` (a hider past it
+    raises ``TimeoutError``). Python delivers SIGINT to the main thread
+    only, between bytecodes, while a hider runs in Rust with the GIL
+    released. So a call from the main thread runs on one daemon worker
     thread (the same each time, which keeps the per-thread hider and
-    frame cache) while the main thread waits on its result, a wait that
-    KeyboardInterrupt ends at once. The render already started then
-    finishes in the background, its result dropped; the next call waits
-    for it first. Calls from other threads run directly (no signal
-    reaches them)."""
-    global _worker_queue
+    frame cache) while the main thread waits on its result: Ctrl-C ends
+    the wait at once with KeyboardInterrupt and cancels the worker's
+    token, so the render stops too, within milliseconds, and the next
+    call finds the worker free. Calls from other threads run directly,
+    with their own token (no signal reaches them; the timeout does)."""
+    global _worker
+    timeout = _as_timeout(timeout)
     if threading.current_thread() is not threading.main_thread():
-        return fn(*args)
+        token = getattr(_tokens, "token", None)
+        if token is None:
+            token = _tokens.token = _hider.Cancel()
+        token.reset()
+        token.set_timeout(timeout)
+        return fn(*args, cancel=token)
     with _worker_lock:
-        if _worker_queue is None:
-            _worker_queue = queue.SimpleQueue()
-            threading.Thread(target=_worker_loop, args=(_worker_queue,), daemon=True,
+        if _worker is None:
+            jobs, token = queue.SimpleQueue(), _hider.Cancel()
+            threading.Thread(target=_worker_loop, args=(jobs, token), daemon=True,
                              name="hider-render").start()
+            _worker = (jobs, token)
+    jobs, token = _worker
     future = Future()
-    _worker_queue.put((future, fn, args))
-    return future.result()
+    jobs.put((future, fn, args, timeout))
+    try:
+        return future.result()
+    except KeyboardInterrupt:
+        # Not started: it never will be; running: its hider stops at its
+        # next poll.
+        if not future.cancel():
+            token.cancel()
+        raise
 
 
 def _as_vertices(vertices, name="vertices"):
@@ -325,7 +363,8 @@ def _as_outputs(outputs, normals):
 
 def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
            fovy=None, near=None, far=None, pose=None, convention=None, intrinsics=None,
-           orthographic=None, normals=None, outputs=None, algo=DEFAULT_ALGO, threads=1):
+           orthographic=None, normals=None, outputs=None, algo=DEFAULT_ALGO, threads=1,
+           timeout=None):
     """Render a triangle mesh into a face-id buffer and a depth buffer, and
     on request what a ray caster reports per pixel.
 
@@ -397,6 +436,10 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
         times, call ``plan`` once and pass its ``algo``.
     threads : int
         Worker threads for the hiders that render in parallel (1 to 1024).
+    timeout : float, optional
+        Seconds the call may take: past them the hider stops (within
+        milliseconds; every hider polls its cancel token at the heads of
+        its long loops) and ``TimeoutError`` is raised. Unset: no limit.
 
     Returns
     -------
@@ -427,10 +470,12 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
         numbers, outputs given as one string).
     MemoryError
         The hider's memory budget ran out.
+    TimeoutError
+        The render took longer than ``timeout`` seconds.
 
     The GIL is released while rendering. Ctrl-C (``KeyboardInterrupt``)
-    ends the call at once; the render already started finishes in the
-    background, and the next call from the main thread waits for it.
+    ends the call at once and stops the render (it stops within
+    milliseconds, so the next call does not wait for it).
 
     Example::
 
@@ -450,7 +495,7 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
                                orthographic)
     (ids, depth), surface = _interruptible(
         _hider.render, v, f, _as_size(width, "width"), _as_size(height, "height"),
-        *look, str(algo), int(threads), *extra, n, want,
+        *look, str(algo), int(threads), *extra, n, want, timeout=timeout,
     )
     if outputs is None:
         return ids, depth
@@ -506,7 +551,7 @@ def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
         fovy=None, near=None, far=None, pose=None, convention=None, intrinsics=None,
         orthographic=None, mode="regions", crease_angle=30.0,
         stroke_width=1.0, stroke_mm=None, page_mm=None, hidden="none", background=None,
-        seams=True):
+        seams=True, timeout=None):
     """Write an exact vector drawing of a triangle mesh as SVG.
 
     ``mode="regions"`` writes every surface's exact visible region (one
@@ -519,8 +564,9 @@ def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
     (millimetres on the ``page_mm=(width, height)`` page, else at 96 dots
     per inch), ``hidden`` (``"none"`` or ``"dashed"``: hidden lines drawn
     dashed), ``background`` (an SVG colour, or ``None`` for none), and
-    ``seams``. The camera and size arguments are ``render``'s; the file is
-    written atomically.
+    ``seams``. The camera and size arguments are ``render``'s, and so is
+    ``timeout`` (seconds; past them ``TimeoutError``, no file written);
+    the file is written atomically. Ctrl-C stops the drawing.
 
     Example::
 
@@ -542,4 +588,5 @@ def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
         str(mode), float(crease_angle), float(stroke_width),
         None if stroke_mm is None else float(stroke_mm), page, str(hidden),
         None if background is None else str(background), bool(seams), *extra,
+        timeout=timeout,
     )

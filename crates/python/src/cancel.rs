@@ -9,7 +9,7 @@ use pyo3::prelude::*;
 
 /// `hider._hider.Cancel`: a [`hider_scene::Cancel`] that Python can hold.
 /// The package's private machinery (`hider._interruptible`), not API.
-#[pyclass(name = "Cancel", module = "hider._hider", frozen)]
+#[pyclass(name = "Cancel", module = "hider._hider", frozen, from_py_object)]
 #[derive(Clone, Copy)]
 pub struct PyCancel(pub hider_scene::Cancel);
 
