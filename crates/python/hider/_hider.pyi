@@ -1,6 +1,8 @@
 """Stubs of the compiled extension (see src/*.rs); the public API is the
 ``hider`` package's."""
 
+from typing import final
+
 import numpy as np
 import numpy.typing as npt
 
@@ -17,6 +19,7 @@ _Pose = tuple[tuple[float, float, float, float], tuple[float, float, float, floa
 _Intrinsics = tuple[float, float, float, float] | None
 _F32 = npt.NDArray[np.float32]
 
+@final
 class Cancel:
     def __init__(self) -> None: ...
     def cancel(self) -> None: ...
