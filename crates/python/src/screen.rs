@@ -133,6 +133,10 @@ type PieceLists = (Vec<i64>, Vec<i64>, Vec<f64>, Vec<bool>);
 /// past its deadline, which `hider.mpl` also turns into a warning).
 #[pyfunction]
 #[pyo3(signature = (points, faces, width, height, max_splits=None, translucent=None, cancel=None))]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the arguments of the Python function, one for one"
+)]
 pub fn screen_pieces<'py>(
     py: Python<'py>,
     points: PyReadonlyArray2<'py, f64>,
