@@ -170,14 +170,15 @@ impl HiZ {
         self.any = false;
         // A translucent triangle (its material's opacity below 1, or not
         // a number) shows what lies behind it: it hides nothing.
-        for tri in scene
+        for (k, tri) in scene
             .tris
             .iter()
             .filter(|t| scene.material(t.prim).opacity >= 1.0)
+            .enumerate()
         {
             // Up to `MAX_VISITS` squares in all: seconds on large
-            // crossing triangles.
-            if cancel.check().is_err() {
+            // crossing triangles; every 16, the clock costs nothing.
+            if k % 16 == 0 && cancel.check().is_err() {
                 return;
             }
             self.add(tri);
