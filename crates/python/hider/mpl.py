@@ -38,7 +38,8 @@ from matplotlib import path as mpath
 from matplotlib.transforms import IdentityTransform
 from mpl_toolkits.mplot3d import art3d, proj3d
 
-from . import _as_timeout, _hider, _interruptible
+from . import _hider
+from ._worker import _as_timeout, _interruptible
 
 __all__ = ["resolve", "unresolve", "Resolved", "ResolveWarning", "Projected",
            "project", "zbuffer"]
