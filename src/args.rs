@@ -51,6 +51,16 @@ fn finite(s: &str) -> Result<f64, String> {
         .ok_or_else(|| "must be a finite number".to_owned())
 }
 
+/// `--timeout`: a number of seconds, 0 or more (up to a year).
+pub fn seconds(s: &str) -> Result<f64, String> {
+    let x = finite(s)?;
+    if (0.0..=365.0 * 86_400.0).contains(&x) {
+        Ok(x)
+    } else {
+        Err("must be a number of seconds from 0 to 31536000".to_owned())
+    }
+}
+
 /// `--fovy`: strictly between 0 and 180 degrees.
 pub fn fovy(s: &str) -> Result<f64, String> {
     let x = finite(s)?;
@@ -196,6 +206,9 @@ pub fn flag_error(error: PlanError) -> anyhow::Error {
              {triangles} triangles; raise it with --max-splits, or use --svg-mode regions or \
              lines, which need no splits"
         ),
+        PlanError::Scene(e @ hider::scene::Error::Cancelled(_)) => {
+            anyhow::anyhow!("{e}; raise it with --timeout")
+        }
         other => other.into(),
     }
 }
@@ -214,6 +227,9 @@ pub fn budget_error(error: anyhow::Error) -> anyhow::Error {
                 }
                 hider::scene::Error::Limit { what, .. } if *what == hider::vector::PAIRS_LIMIT => {
                     Some("--max-pairs")
+                }
+                hider::scene::Error::Cancelled(hider::scene::Cancelled::TimedOut { .. }) => {
+                    Some("--timeout")
                 }
                 _ => None,
             });

@@ -48,6 +48,7 @@ fn auto(
         // seconds on large scenes: a raster render leaves them out.
         .with_pair_searches(false)
         .with_max_splits(args.max_splits)
+        .with_cancel(args.cancel())
         .with_prepare(options);
     let planned = hider::plan::auto(scene, &analysis)
         .map_err(crate::args::flag_error)

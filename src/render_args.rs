@@ -3,6 +3,8 @@
 //! hider and the shading.
 
 use std::path::PathBuf;
+use std::sync::OnceLock;
+use std::time::Duration;
 
 use anyhow::{Result, bail};
 
@@ -10,7 +12,7 @@ use clap::{Args, ValueEnum};
 use hider::abuffer::OverflowPolicy;
 use hider::geom::Camera;
 use hider::plan::HiderConfig;
-use hider::scene::{PrepareOptions, Scene, ShadeMode};
+use hider::scene::{Cancel, PrepareOptions, Scene, ShadeMode};
 use hider::zbuffer::{DepthFormat, DepthSource};
 
 use crate::args;
@@ -117,10 +119,29 @@ pub struct RenderArgs {
     /// exact geometry may examine (default 50,000,000).
     #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
     pub max_pairs: Option<u64>,
+    /// Stop after this many seconds (the analysis, the front end, the
+    /// hider and the vector output; counted from the first of them), with
+    /// a one-line error.
+    #[arg(long, value_parser = args::seconds)]
+    pub timeout: Option<f64>,
     /// Render K times after a warm-up and print the median and minimum
     /// milliseconds of prepare + clear + rasterise.
     #[arg(long, default_value_t = 0, value_parser = args::repeat)]
     pub repeat: u32,
+}
+
+impl RenderArgs {
+    /// The token `--timeout` sets: one for the process, its deadline
+    /// counted from the first call (never cancelled without the flag).
+    pub fn cancel(&self) -> Cancel {
+        static TOKEN: OnceLock<Cancel> = OnceLock::new();
+        match self.timeout {
+            Some(seconds) => {
+                *TOKEN.get_or_init(|| Cancel::new().with_timeout(Duration::from_secs_f64(seconds)))
+            }
+            None => Cancel::default(),
+        }
+    }
 }
 
 /// `--depth-format`.
@@ -277,6 +298,7 @@ impl RenderArgs {
     /// `--seams`) for an image `width` x `height`.
     pub fn vector_options(&self, width: u32, height: u32) -> hider::vector::VectorOptions {
         let options = hider::vector::VectorOptions::default()
+            .with_cancel(self.cancel())
             .with_crease_degrees(self.crease_angle)
             .with_page_mm(self.page_size)
             .with_dashed_hidden(self.hidden == HiddenArg::Dashed)
@@ -344,6 +366,7 @@ impl RenderArgs {
     /// polygons, shade mode.
     pub fn hider_config(&self) -> HiderConfig {
         let mut config = HiderConfig::default()
+            .with_cancel(self.cancel())
             .with_threads(self.threads)
             .with_ordered_polygons(self.painter_svg())
             .with_shade(self.shade_mode());

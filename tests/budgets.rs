@@ -144,3 +144,61 @@ fn a_budget_flag_goes_to_the_hiders_that_have_that_budget() {
     .concat()));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_timeout_stops_the_render_with_one_line_naming_the_flag() {
+    let dir = temp_dir("timeout");
+    let png = dir.join("out.png");
+    let png = png.to_str().unwrap();
+    let svg = dir.join("out.svg");
+    let svg = svg.to_str().unwrap();
+    // 0 seconds: every hider stops at its first poll, whatever the machine.
+    for algo in ["zbuffer-tiled", "painter", "abuffer", "warnock"] {
+        let args = [
+            "gen:intersecting",
+            "--size",
+            "32",
+            "-o",
+            png,
+            "--algo",
+            algo,
+        ];
+        let out = run(&[&args[..], &["--timeout", "0"]].concat());
+        let line = error_line(&out);
+        assert!(
+            line.contains("render timed out after 0ns; raise it with --timeout"),
+            "{algo}: {line}"
+        );
+        assert!(!dir.join("out.png").exists(), "no output of a failed run");
+        assert_success(&run(&[&args[..], &["--timeout", "60"]].concat()));
+        std::fs::remove_file(dir.join("out.png")).unwrap();
+    }
+    // `auto` prints its plan first, then the same line.
+    let auto = [
+        "gen:intersecting",
+        "--size",
+        "32",
+        "-o",
+        png,
+        "--algo",
+        "auto",
+    ];
+    let out = run(&[&auto[..], &["--timeout", "0"]].concat());
+    assert!(!out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr
+            .trim_end()
+            .ends_with("hider: error: render timed out after 0ns; raise it with --timeout"),
+        "{stderr}"
+    );
+    // With --svg as well.
+    let args = ["gen:cyclic", "--algo", "zbuffer", "--size", "32", "-o", png];
+    let out = run(&[&args[..], &["--svg", svg, "--timeout", "0"]].concat());
+    assert!(error_line(&out).contains("--timeout"));
+    for bad in ["-1", "nan", "x"] {
+        let line = error_line(&run(&["gen:cube", "-o", png, "--timeout", bad]));
+        assert!(line.contains("--timeout"), "{line}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -168,6 +168,10 @@ pub struct ABufferOptions {
     /// beside the pixel table. Off, every tile keeps lists: the reference
     /// the sample buffer is tested against.
     pub sample_tiles: bool,
+    /// Stops the work from outside or at a deadline: polled per tile and every few thousand triangles,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl Default for ABufferOptions {
@@ -184,11 +188,18 @@ impl Default for ABufferOptions {
             front_to_back: true,
             threads: 0,
             sample_tiles: true,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl ABufferOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Carpenter's own configuration: 8 x 4 masks, `zmin`/`zmax` fragments
     /// with the interpenetration approximation, same-surface merging.
     pub fn carpenter() -> Self {
@@ -292,6 +303,10 @@ pub struct SsaaOptions {
     pub shade: ShadeMode,
     /// Bound on the sample buffers, in bytes, checked before allocating.
     pub max_bytes: u64,
+    /// Stops the work from outside or at a deadline: polled every few thousand triangles,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl Default for SsaaOptions {
@@ -300,11 +315,18 @@ impl Default for SsaaOptions {
             pattern: SamplePattern::Grid32,
             shade: ShadeMode::Lambert,
             max_bytes: DEFAULT_MAX_BYTES,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl SsaaOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets [`Self::pattern`].
     pub fn with_pattern(mut self, pattern: SamplePattern) -> Self {
         self.pattern = pattern;

@@ -178,6 +178,7 @@ impl Hider for SortedTransparencyZBuffer {
 
         self.order.clear();
         for (t, tri) in scene.tris.iter().enumerate() {
+            self.options.cancel.poll_every(t)?;
             if self.colors[tri.prim as usize][3] >= 1.0 && !partial(tri.prim) {
                 self.draw(scene, sampler, tri, (false, cutouts), &mut stats);
             } else {
@@ -189,7 +190,8 @@ impl Hider for SortedTransparencyZBuffer {
         self.order
             .sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
         let order = std::mem::take(&mut self.order);
-        for &(_, t) in &order {
+        for (k, &(_, t)) in order.iter().enumerate() {
+            self.options.cancel.poll_every(k)?;
             let tri = &scene.tris[t as usize];
             self.draw(scene, sampler, tri, (true, cutouts), &mut stats);
         }

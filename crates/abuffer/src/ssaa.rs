@@ -134,7 +134,8 @@ impl Hider for SupersampledZBuffer {
         // every surface opaque.
         let cutouts = Cutouts::new(Some(scene), pattern);
 
-        for tri in &scene.tris {
+        for (k, tri) in scene.tris.iter().enumerate() {
+            self.options.cancel.poll_every(k)?;
             let cut = cutouts.as_ref().filter(|c| c.may_cut(tri.prim));
             let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, w, h) else {
                 continue;

@@ -77,6 +77,7 @@ impl Worker {
         let dims = (shared.scene.viewport.width, shared.scene.viewport.height);
         band.clear();
         for tx in 0..shared.tiles_x {
+            shared.options.cancel.poll()?;
             let t = (ty * shared.tiles_x + tx) as usize;
             self.tile(shared, t, tile_rect(tx, ty, dims), band)?;
         }

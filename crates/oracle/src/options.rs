@@ -57,6 +57,10 @@ pub struct OracleOptions {
     /// the machine's memory (16384 x 16384 pixels would need about 28 GB).
     /// Default 2 GiB, enough for 4096 x 4096.
     pub max_bytes: u64,
+    /// Stops the work from outside or at a deadline: polled per row of pixels,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 /// The default [`OracleOptions::max_bytes`]: 2 GiB.
@@ -68,11 +72,18 @@ impl Default for OracleOptions {
             depth_plane: DepthPlane::Snapped,
             max_pixel_tests: 1 << 34,
             max_bytes: DEFAULT_MAX_BYTES,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl OracleOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets [`Self::depth_plane`].
     pub fn with_depth_plane(mut self, plane: DepthPlane) -> Self {
         self.depth_plane = plane;

@@ -134,12 +134,15 @@ impl RayCastOracle {
     /// memory than [`OracleOptions::max_bytes`].
     pub fn try_evaluate(&mut self, scene: &ScreenScene) -> Result<Reference> {
         self.check_budget(scene)?;
-        Ok(self.evaluate(scene))
+        let reference = self.evaluate(scene);
+        self.options.cancel.poll()?;
+        Ok(reference)
     }
 
     /// Evaluates every pixel centre of `scene`: the visible primitive, its
     /// window depth and the gaps to the runner-up. Never fails and never
-    /// panics; a primitive id without [`hider_scene::PrimInfo`] (a
+    /// panics (a stopped [`OracleOptions::cancel`] leaves the triangles
+    /// after it untested: [`Self::try_evaluate`] says so); a primitive id without [`hider_scene::PrimInfo`] (a
     /// hand-built scene) is depth-tested on its window-depth plane.
     pub fn evaluate(&mut self, scene: &ScreenScene) -> Reference {
         self.run(scene).0
@@ -192,6 +195,11 @@ impl RayCastOracle {
         // cut-out stage, `hider_scene::shade::cutout`).
         let alpha = AlphaTest::new(scene, TextureOptions::default());
         for index in 0..scene.tris.len() {
+            // A stopped token leaves the rest untested; `render` and
+            // `try_evaluate` return its error.
+            if self.options.cancel.check().is_err() {
+                break;
+            }
             let test = alpha.as_ref().filter(|a| a.may_cut(scene.tris[index].prim));
             match self.options.depth_plane {
                 DepthPlane::Snapped => self.offer_exact(scene, index, test, &mut stats),
@@ -434,6 +442,7 @@ impl Hider for RayCastOracle {
         check_frame("oracle", scene, frame)?;
         self.check_budget(scene)?;
         let (reference, stats) = self.run(scene);
+        self.options.cancel.poll()?;
         frame.clear();
         frame.ids.copy_from_slice(&reference.ids);
         frame.depth.copy_from_slice(&reference.depth);

@@ -131,8 +131,9 @@ fn over_square(plane: &PlaneEq, side: f64, i: usize, j: usize) -> (f64, f64) {
 impl HiZ {
     /// Builds the occluder depths of `scene`'s opaque triangles, on
     /// squares as small as [`MAX_SQUARES`] and [`MAX_VISITS`] allow; with
-    /// `enabled` false, an empty grid that culls nothing.
-    pub fn build(&mut self, scene: &ScreenScene, enabled: bool) {
+    /// `enabled` false, an empty grid that culls nothing. A stopped
+    /// `cancel` leaves the rest out (the caller returns its error).
+    pub fn build(&mut self, scene: &ScreenScene, enabled: bool, cancel: hider_scene::Cancel) {
         self.any = false;
         self.occluder.clear();
         if !enabled {
@@ -169,11 +170,17 @@ impl HiZ {
         self.any = false;
         // A translucent triangle (its material's opacity below 1, or not
         // a number) shows what lies behind it: it hides nothing.
-        for tri in scene
+        for (k, tri) in scene
             .tris
             .iter()
             .filter(|t| scene.material(t.prim).opacity >= 1.0)
+            .enumerate()
         {
+            // Up to `MAX_VISITS` squares in all: seconds on large
+            // crossing triangles; every 16, the clock costs nothing.
+            if k % 16 == 0 && cancel.check().is_err() {
+                return;
+            }
             self.add(tri);
         }
     }

@@ -45,6 +45,7 @@ impl NaivePainter {
         self.keys.clear();
         self.order.clear();
         for (k, tri) in scene.tris.iter().enumerate() {
+            self.options.cancel.poll_every(k)?;
             let key = match self.options.sort_key {
                 SortKey::FarthestVertex => tri.z.iter().copied().fold(f64::MIN, f64::max),
                 SortKey::Centroid => (tri.z[0] + tri.z[1] + tri.z[2]) / 3.0,
@@ -55,6 +56,7 @@ impl NaivePainter {
         // Farthest (largest window depth) first; the sort is stable and the
         // triangles are in primitive order, so ties keep the lower id first.
         self.keys.sort_by(|a, b| b.0.total_cmp(&a.0));
+        self.options.cancel.poll()?;
         self.order.extend(self.keys.iter().map(|&(_, k)| k));
         let bytes = self.pieces.iter().map(Piece::bytes).sum::<usize>()
             + self.keys.capacity() * std::mem::size_of::<(f64, u32)>()

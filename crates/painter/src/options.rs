@@ -26,9 +26,19 @@ pub enum SortKey {
 pub struct NaivePainterOptions {
     /// The depth each triangle is sorted by.
     pub sort_key: SortKey,
+    /// Stops the work from outside or at a deadline: polled while sorting and drawing,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl NaivePainterOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets [`Self::sort_key`].
     pub fn with_sort_key(mut self, sort_key: SortKey) -> Self {
         self.sort_key = sort_key;
@@ -152,6 +162,10 @@ pub struct PainterOptions {
     /// Record every step of the ordering as a [`crate::PainterTrace`]
     /// ([`crate::Painter::trace`]): off by default, and free when off.
     pub trace: bool,
+    /// Stops the work from outside or at a deadline: polled in the ordering loop (every few hundred polygons placed or split),
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl Default for PainterOptions {
@@ -163,11 +177,18 @@ impl Default for PainterOptions {
             svg_seam_stroke: 0.0,
             cull_hidden: true,
             trace: false,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl PainterOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets [`Self::max_bytes`].
     pub fn with_max_bytes(mut self, max_bytes: u64) -> Self {
         self.max_bytes = max_bytes;

@@ -2,7 +2,7 @@
 //! benchmark) sets across hiders.
 
 use hider_abuffer::OverflowPolicy;
-use hider_scene::ShadeMode;
+use hider_scene::{Cancel, ShadeMode};
 use hider_zbuffer::{DepthFormat, DepthSource};
 
 /// Cross-cutting knobs for building a registered hider: each
@@ -51,6 +51,9 @@ pub struct HiderConfig {
     /// What the A-buffers do with a full fragment list
     /// (`ABufferOptions::overflow`). A budget, as `max_splits`.
     pub overflow: Option<OverflowPolicy>,
+    /// The token that stops the hider (every entry's options' `cancel`);
+    /// never refused. Default: never cancelled.
+    pub cancel: Cancel,
 }
 
 impl HiderConfig {
@@ -107,6 +110,12 @@ impl HiderConfig {
             self.max_list_len = None;
             self.overflow = None;
         }
+        self
+    }
+
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: Cancel) -> Self {
+        self.cancel = cancel;
         self
     }
 

@@ -23,14 +23,12 @@ Example::
 """
 
 import os
-import queue
-import threading
-from concurrent.futures import Future
 from typing import NamedTuple
 
 import numpy as np
 
 from . import _hider
+from ._worker import _interruptible
 
 __all__ = ["render", "visible_faces", "plan", "Plan", "algorithms", "svg", "AUTO",
            "DEFAULT_ALGO", "KINDS", "OUTPUTS", "CONVENTIONS"]
@@ -114,58 +112,6 @@ class Plan(NamedTuple):
     #: The command line's line for ``--algo auto``: what was asked for,
     #: the choice, why, and the stages that would run.
     summary: str
-
-
-_worker_queue = None
-_worker_lock = threading.Lock()
-
-
-def _forget_worker():
-    """In a forked child, the parent's worker thread does not exist."""
-    global _worker_queue, _worker_lock
-    _worker_queue = None
-    _worker_lock = threading.Lock()
-
-
-if hasattr(os, "register_at_fork"):
-    os.register_at_fork(after_in_child=_forget_worker)
-
-
-def _worker_loop(jobs):
-    """The main thread's render worker: runs each job it is given."""
-    while True:
-        future, fn, args = jobs.get()
-        if not future.set_running_or_notify_cancel():
-            continue
-        try:
-            future.set_result(fn(*args))
-        except BaseException as e:  # noqa: BLE001 - handed to the caller
-            future.set_exception(e)
-
-
-def _interruptible(fn, *args):
-    """``fn(*args)``, so that Ctrl-C stops the wait.
-
-    Python delivers SIGINT to the main thread only, between bytecodes,
-    and a hider runs in Rust with the GIL released, with no way to be
-    stopped. So a call from the main thread runs on one daemon worker
-    thread (the same each time, which keeps the per-thread hider and
-    frame cache) while the main thread waits on its result, a wait that
-    KeyboardInterrupt ends at once. The render already started then
-    finishes in the background, its result dropped; the next call waits
-    for it first. Calls from other threads run directly (no signal
-    reaches them)."""
-    global _worker_queue
-    if threading.current_thread() is not threading.main_thread():
-        return fn(*args)
-    with _worker_lock:
-        if _worker_queue is None:
-            _worker_queue = queue.SimpleQueue()
-            threading.Thread(target=_worker_loop, args=(_worker_queue,), daemon=True,
-                             name="hider-render").start()
-    future = Future()
-    _worker_queue.put((future, fn, args))
-    return future.result()
 
 
 def _as_vertices(vertices, name="vertices"):
@@ -325,7 +271,8 @@ def _as_outputs(outputs, normals):
 
 def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
            fovy=None, near=None, far=None, pose=None, convention=None, intrinsics=None,
-           orthographic=None, normals=None, outputs=None, algo=DEFAULT_ALGO, threads=1):
+           orthographic=None, normals=None, outputs=None, algo=DEFAULT_ALGO, threads=1,
+           timeout=None):
     """Render a triangle mesh into a face-id buffer and a depth buffer, and
     on request what a ray caster reports per pixel.
 
@@ -397,6 +344,10 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
         times, call ``plan`` once and pass its ``algo``.
     threads : int
         Worker threads for the hiders that render in parallel (1 to 1024).
+    timeout : float, optional
+        Seconds the call may take: past them the hider stops (within
+        milliseconds; every hider polls its cancel token at the heads of
+        its long loops) and ``TimeoutError`` is raised. Unset: no limit.
 
     Returns
     -------
@@ -427,10 +378,12 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
         numbers, outputs given as one string).
     MemoryError
         The hider's memory budget ran out.
+    TimeoutError
+        The render took longer than ``timeout`` seconds.
 
     The GIL is released while rendering. Ctrl-C (``KeyboardInterrupt``)
-    ends the call at once; the render already started finishes in the
-    background, and the next call from the main thread waits for it.
+    ends the call at once and stops the render (it stops within
+    milliseconds, so the next call does not wait for it).
 
     Example::
 
@@ -450,7 +403,7 @@ def render(vertices, faces, *, width, height, eye=None, target=None, up=None,
                                orthographic)
     (ids, depth), surface = _interruptible(
         _hider.render, v, f, _as_size(width, "width"), _as_size(height, "height"),
-        *look, str(algo), int(threads), *extra, n, want,
+        *look, str(algo), int(threads), *extra, n, want, timeout=timeout,
     )
     if outputs is None:
         return ids, depth
@@ -506,7 +459,7 @@ def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
         fovy=None, near=None, far=None, pose=None, convention=None, intrinsics=None,
         orthographic=None, mode="regions", crease_angle=30.0,
         stroke_width=1.0, stroke_mm=None, page_mm=None, hidden="none", background=None,
-        seams=True):
+        seams=True, timeout=None):
     """Write an exact vector drawing of a triangle mesh as SVG.
 
     ``mode="regions"`` writes every surface's exact visible region (one
@@ -519,8 +472,9 @@ def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
     (millimetres on the ``page_mm=(width, height)`` page, else at 96 dots
     per inch), ``hidden`` (``"none"`` or ``"dashed"``: hidden lines drawn
     dashed), ``background`` (an SVG colour, or ``None`` for none), and
-    ``seams``. The camera and size arguments are ``render``'s; the file is
-    written atomically.
+    ``seams``. The camera and size arguments are ``render``'s, and so is
+    ``timeout`` (seconds; past them ``TimeoutError``, no file written);
+    the file is written atomically. Ctrl-C stops the drawing.
 
     Example::
 
@@ -542,4 +496,5 @@ def svg(vertices, faces, path, *, width, height, eye=None, target=None, up=None,
         str(mode), float(crease_angle), float(stroke_width),
         None if stroke_mm is None else float(stroke_mm), page, str(hidden),
         None if background is None else str(background), bool(seams), *extra,
+        timeout=timeout,
     )

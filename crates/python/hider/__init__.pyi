@@ -39,7 +39,7 @@ def render(
     near: float | None = None, far: float | None = None, pose: npt.ArrayLike | None = None,
     convention: _Convention | None = None, intrinsics: npt.ArrayLike | None = None,
     orthographic: float | None = None, normals: npt.ArrayLike | None = None,
-    outputs: None = None, algo: str = ..., threads: int = 1,
+    outputs: None = None, algo: str = ..., threads: int = 1, timeout: float | None = None,
 ) -> tuple[npt.NDArray[np.int32], npt.NDArray[np.float32]]: ...
 @overload
 def render(
@@ -49,6 +49,7 @@ def render(
     convention: _Convention | None = None, intrinsics: npt.ArrayLike | None = None,
     orthographic: float | None = None, normals: npt.ArrayLike | None = None,
     outputs: Sequence[_Output], algo: str = ..., threads: int = 1,
+    timeout: float | None = None,
 ) -> tuple[npt.NDArray[Any], ...]: ...
 def plan(
     vertices: npt.ArrayLike, faces: npt.ArrayLike, *, width: int, height: int,
@@ -63,6 +64,7 @@ def visible_faces(
     near: float | None = None, far: float | None = None, pose: npt.ArrayLike | None = None,
     convention: _Convention | None = None, intrinsics: npt.ArrayLike | None = None,
     orthographic: float | None = None, algo: str = ..., threads: int = 1,
+    timeout: float | None = None,
 ) -> npt.NDArray[np.bool_]: ...
 def svg(
     vertices: npt.ArrayLike, faces: npt.ArrayLike, path: str | os.PathLike[str], *, width: int,
@@ -73,5 +75,5 @@ def svg(
     mode: Literal["regions", "lines"] = "regions", crease_angle: float = 30.0,
     stroke_width: float = 1.0, stroke_mm: float | None = None,
     page_mm: tuple[float, float] | None = None, hidden: Literal["none", "dashed"] = "none",
-    background: str | None = None, seams: bool = True,
+    background: str | None = None, seams: bool = True, timeout: float | None = None,
 ) -> None: ...

@@ -39,6 +39,7 @@ from matplotlib.transforms import IdentityTransform
 from mpl_toolkits.mplot3d import art3d, proj3d
 
 from . import _hider
+from ._worker import _as_timeout, _interruptible
 
 __all__ = ["resolve", "unresolve", "Resolved", "ResolveWarning", "Projected",
            "project", "zbuffer"]
@@ -655,13 +656,14 @@ class Resolved(mcoll.PolyCollection):
     ``fallback``, the reason the polygons were last left to matplotlib's
     own sort (``None`` when they were resolved)."""
 
-    def __init__(self, ax, sources, lines, markers, max_splits=None):
+    def __init__(self, ax, sources, lines, markers, max_splits=None, timeout=None):
         super().__init__([], transform=IdentityTransform())
         self._ax = ax
         self.sources = list(sources)
         self.line_sources = list(lines)
         self.marker_sources = list(markers)
         self.max_splits = max_splits
+        self.timeout = timeout
         self.pieces = 0
         self.fallback = None
         self._painter_failed = None
@@ -715,10 +717,13 @@ class Resolved(mcoll.PolyCollection):
                 # Faces drawn see-through hide nothing: the painter must
                 # keep what lies behind them.
                 translucent = g.face_rgba[g.tri_poly, 3] < _OPAQUE
-                prims, offsets, xy, uncut = _hider.screen_pieces(
-                    g.points, g.faces, width, height, int(budget), translucent)
+                prims, offsets, xy, uncut = _interruptible(
+                    _hider.screen_pieces, g.points, g.faces, width, height, int(budget),
+                    translucent, timeout=self.timeout)
             except (ValueError, MemoryError) as e:
                 self._painter_failed = str(e)
+            except TimeoutError as e:
+                self._painter_failed = f"{e}; resolve(ax, timeout=...) allows more time"
             else:
                 resolved_faces = True
                 self.pieces = len(prims)
@@ -961,7 +966,7 @@ def _markevery(every, n):
     return keep
 
 
-def resolve(ax, *, max_splits=None):
+def resolve(ax, *, max_splits=None, timeout=None):
     """Draw the polygons, lines and markers of a 3D axes with correct
     occlusion.
 
@@ -982,11 +987,16 @@ def resolve(ax, *, max_splits=None):
     4096 plus 2 per triangle; surfaces need far fewer). A scene that needs
     more is drawn in matplotlib's own order, with one ``ResolveWarning``,
     instead of taking many seconds; lines and markers are still cut.
-    Artists this matplotlib does not let hider read are left to matplotlib,
+    ``timeout`` (seconds, default none) bounds the painter's time per draw
+    the same way: past it the painter stops and the polygons are drawn in
+    matplotlib's own order, with one ``ResolveWarning``; ``savefig`` never
+    fails because of hider. Ctrl-C stops the painter
+    (``KeyboardInterrupt``). Artists this matplotlib does not let hider read are left to matplotlib,
     with a ``ResolveWarning``.
     """
     if max_splits is not None and (isinstance(max_splits, bool) or int(max_splits) < 0):
         raise ValueError(f"max_splits must be a count of splits, got {max_splits!r}")
+    timeout = _as_timeout(timeout)
     for r in [c for c in ax.collections if isinstance(c, Resolved)]:
         _release(r)
         r.remove()
@@ -1009,7 +1019,7 @@ def resolve(ax, *, max_splits=None):
         if isinstance(line, art3d.Line3D) and line.get_visible():
             lines.append(line)
     resolved = Resolved(ax, sources, lines, markers,
-                        None if max_splits is None else int(max_splits))
+                        None if max_splits is None else int(max_splits), timeout)
     for s in skipped:
         resolved._warn(("unsupported", s), f"{s}; drawn by matplotlib as before")
     for artist in sources:

@@ -2,17 +2,24 @@
 //! their text) and worded with the Python API's keywords.
 
 use hider_plan::{AlgoName, Knob, PlanError, error_line};
+use hider_scene::Cancelled;
 use pyo3::PyErr;
-use pyo3::exceptions::{PyMemoryError, PyValueError};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyMemoryError, PyTimeoutError, PyValueError};
 
 /// A scene crate error as a Python exception: a memory budget that ran out
 /// ([`hider_scene::Error::Budget`], a hider's `max_bytes`) is a
-/// `MemoryError`; every other error (a bad value, a size over a limit, a
-/// camera that cannot be used) is a `ValueError`.
+/// `MemoryError`; a render past its `timeout=` a `TimeoutError`, one
+/// cancelled (Ctrl-C) a `KeyboardInterrupt`; every other error (a bad
+/// value, a size over a limit, a camera that cannot be used) is a
+/// `ValueError`.
 pub fn scene_error(error: hider_scene::Error) -> PyErr {
     let line = error_line(&error);
     match error {
         hider_scene::Error::Budget { .. } => PyMemoryError::new_err(line),
+        hider_scene::Error::Cancelled(Cancelled::TimedOut { .. }) => {
+            PyTimeoutError::new_err(format!("{line} (the timeout= keyword, in seconds)"))
+        }
+        hider_scene::Error::Cancelled(Cancelled::Requested) => PyKeyboardInterrupt::new_err(line),
         _ => PyValueError::new_err(line),
     }
 }
@@ -99,6 +106,16 @@ mod tests {
                 "{text}"
             );
             assert!(!text.contains("--"), "{text}");
+            let late = scene_error(hider_scene::Error::Cancelled(Cancelled::TimedOut {
+                timeout: std::time::Duration::from_millis(1500),
+            }));
+            assert!(late.is_instance_of::<PyTimeoutError>(py));
+            assert_eq!(
+                late.value(py).to_string(),
+                "render timed out after 1.5s (the timeout= keyword, in seconds)"
+            );
+            let stopped = scene_error(hider_scene::Error::Cancelled(Cancelled::Requested));
+            assert!(stopped.is_instance_of::<PyKeyboardInterrupt>(py));
         });
     }
 }

@@ -15,6 +15,7 @@
 //! runs out, `ValueError` for everything else the caller can fix.
 
 mod camera;
+mod cancel;
 mod errors;
 mod mesh;
 mod render;
@@ -25,7 +26,8 @@ mod vector;
 use pyo3::prelude::*;
 
 /// The extension module: `render`, `algorithms`, `algorithm_kinds`, `plan`,
-/// the screen-space functions of `hider.mpl`, and `__version__` (the
+/// the screen-space functions of `hider.mpl`, the `Cancel` token the
+/// package stops them with, and `__version__` (the
 /// workspace's version, which maturin also gives the Python package).
 #[pymodule]
 fn _hider(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -37,5 +39,6 @@ fn _hider(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(screen::screen_render, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_pieces, m)?)?;
     m.add_function(wrap_pyfunction!(vector::svg, m)?)?;
+    m.add_class::<cancel::PyCancel>()?;
     Ok(())
 }

@@ -6,8 +6,8 @@ use std::sync::Arc;
 
 use hider_plan::{HiderConfig, Planned, RenderOptions, auto, registry};
 use hider_scene::{
-    DynHider, Frame, PixelSurface, PrepareOptions, Scene, ScreenScene, SurfaceOutputs, View,
-    surface_at_pixels,
+    Cancel, DynHider, Frame, PixelSurface, PrepareOptions, Scene, ScreenScene, SurfaceOutputs,
+    View, surface_at_pixels,
 };
 use numpy::{PyArray1, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -15,6 +15,7 @@ use pyo3::prelude::*;
 use rayon::ThreadPool;
 
 use crate::camera::CameraArgs;
+use crate::cancel::{PyCancel, token};
 use crate::errors::{plan_error, scene_error};
 use crate::mesh::{Faces, Vertices, scene_from_arrays};
 use crate::surface::{Surface, surface_arrays};
@@ -57,6 +58,9 @@ pub enum Rendered {
 struct Workspace {
     algo: String,
     threads: usize,
+    /// The token the hider polls: the calling thread's, the same at every
+    /// call (the package re-arms it), so the workspace is kept.
+    cancel: Cancel,
     hider: Box<dyn DynHider>,
     frame: Frame,
 }
@@ -68,26 +72,29 @@ thread_local! {
     static POOL: RefCell<Option<(usize, Arc<ThreadPool>)>> = const { RefCell::new(None) };
 }
 
-/// Renders with this thread's workspace, made anew when the hider or
-/// thread count differs from the last call's.
+/// Renders with this thread's workspace, made anew when the hider, the
+/// thread count or the cancel token differs from the last call's.
 fn render_with_workspace(
     scene: &Scene,
     view: &View,
     entry: &registry::Entry,
-    threads: usize,
+    (threads, cancel): (usize, Cancel),
 ) -> hider_plan::Result<Rendered> {
     WORKSPACE.with_borrow_mut(|slot| {
         let (width, height) = (view.viewport.width, view.viewport.height);
         let reuse = slot
             .as_ref()
-            .is_some_and(|w| w.algo == entry.name && w.threads == threads);
+            .is_some_and(|w| w.algo == entry.name && w.threads == threads && w.cancel == cancel);
         if !reuse {
             // Drop the old workspace first: its memory is reused.
             *slot = None;
-            let config = HiderConfig::default().with_threads(threads);
+            let config = HiderConfig::default()
+                .with_threads(threads)
+                .with_cancel(cancel);
             *slot = Some(Workspace {
                 algo: entry.name.to_owned(),
                 threads,
+                cancel,
                 hider: entry.build(&config)?,
                 frame: Frame::new(width, height)?,
             });
@@ -142,8 +149,14 @@ pub const AUTO: &str = "auto";
 /// output), as `hider render --algo auto` would for that request. The
 /// pair searches, which decide only the painter plans and take seconds on
 /// large scenes, are left out as the command line leaves them out.
-pub fn plan_scene(scene: &Scene, view: &View, threads: usize) -> hider_plan::Result<Planned> {
+pub fn plan_scene(
+    scene: &Scene,
+    view: &View,
+    threads: usize,
+    cancel: Cancel,
+) -> hider_plan::Result<Planned> {
     let options = RenderOptions::default()
+        .with_cancel(cancel)
         .with_size(view.viewport.width, view.viewport.height)
         .with_camera(Some(view.camera))
         .with_shading(false)
@@ -156,12 +169,18 @@ pub fn plan_scene(scene: &Scene, view: &View, threads: usize) -> hider_plan::Res
 /// `threads` threads: the command line's path from the model to its dumps
 /// (the registry's hider, the f64 front end, parallel above one thread).
 /// `algo` [`AUTO`] renders with the planner's choice ([`plan_scene`]),
-/// which gives the same buffers as naming that hider.
-pub fn render_scene(scene: &Scene, view: &View, algo: &str, threads: usize) -> PyResult<Rendered> {
+/// which gives the same buffers as naming that hider. `cancel` stops it
+/// (`KeyboardInterrupt`, or `TimeoutError` past its deadline).
+pub fn render_scene(
+    scene: &Scene,
+    view: &View,
+    algo: &str,
+    (threads, cancel): (usize, Cancel),
+) -> PyResult<Rendered> {
     check_threads(threads)?;
     let planned;
     let algo = if algo == AUTO {
-        planned = plan_scene(scene, view, threads).map_err(plan_error)?;
+        planned = plan_scene(scene, view, threads, cancel).map_err(plan_error)?;
         planned.plan.algo
     } else {
         algo
@@ -169,7 +188,7 @@ pub fn render_scene(scene: &Scene, view: &View, algo: &str, threads: usize) -> P
     let entry = registry::find(algo).map_err(plan_error)?;
     let result = if threads > 1 {
         pool(threads)?.install(|| {
-            render_with_workspace(scene, view, &entry, threads)?;
+            render_with_workspace(scene, view, &entry, (threads, cancel))?;
             copy_workspace_frame().ok_or_else(|| {
                 hider_plan::PlanError::Scene(hider_scene::Error::Render {
                     hider: entry.name.to_owned(),
@@ -178,7 +197,7 @@ pub fn render_scene(scene: &Scene, view: &View, algo: &str, threads: usize) -> P
             })
         })
     } else {
-        render_with_workspace(scene, view, &entry, threads)
+        render_with_workspace(scene, view, &entry, (threads, cancel))
     };
     result.map_err(plan_error)
 }
@@ -237,9 +256,9 @@ pub fn render_buffers<'py>(
     scene: &Scene,
     view: &View,
     algo: &str,
-    threads: usize,
+    (threads, cancel): (usize, Cancel),
 ) -> PyResult<Buffers<'py>> {
-    let rendered = py.detach(|| render_scene(scene, view, algo, threads))?;
+    let rendered = py.detach(|| render_scene(scene, view, algo, (threads, cancel)))?;
     buffers(py, rendered)
 }
 
@@ -251,11 +270,11 @@ pub fn render_surface<'py>(
     scene: &Scene,
     view: &View,
     algo: &str,
-    threads: usize,
+    (threads, cancel): (usize, Cancel),
     wanted: SurfaceOutputs,
 ) -> PyResult<(Buffers<'py>, Surface<'py>)> {
     let (rendered, surface) = py.detach(|| {
-        let rendered = render_scene(scene, view, algo, threads)?;
+        let rendered = render_scene(scene, view, algo, (threads, cancel))?;
         let surface = if !wanted.any() {
             PixelSurface::default()
         } else {
@@ -319,8 +338,9 @@ pub(crate) fn scene_and_view(
 /// `hider.render` for the arguments. Returns the ids and window depths,
 /// then the surface attributes asked for by `want` (distance, view z,
 /// barycentrics, normals, vertex normals), each `None` when not asked.
+/// `cancel` (the package's per-thread token) stops the render.
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, algo, threads, pose=None, intrinsics=None, orthographic=None, normals=None, want=(false, false, false, false, false)))]
+#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, algo, threads, pose=None, intrinsics=None, orthographic=None, normals=None, want=(false, false, false, false, false), cancel=None))]
 #[expect(
     clippy::too_many_arguments,
     reason = "the keyword arguments of the Python function, one for one"
@@ -344,6 +364,7 @@ pub fn render<'py>(
     orthographic: Option<f64>,
     normals: Option<Vertices<'py>>,
     want: (bool, bool, bool, bool, bool),
+    cancel: Option<PyCancel>,
 ) -> PyResult<(Buffers<'py>, Surface<'py>)> {
     let camera = CameraArgs {
         eye,
@@ -369,7 +390,7 @@ pub fn render<'py>(
         vertex_normals,
         parallel: threads > 1,
     };
-    render_surface(py, &scene, &view, algo, threads, wanted)
+    render_surface(py, &scene, &view, algo, (threads, token(cancel)), wanted)
 }
 
 /// Gives the one mesh of `scene` the per-vertex `normals` (`(N, 3)`, one
@@ -427,7 +448,7 @@ pub fn algorithm_kinds() -> Vec<(&'static str, &'static str, &'static str)> {
 /// registry name, why in one sentence, and the command line's one-line
 /// summary. See the Python wrapper `hider.plan` for the arguments.
 #[pyfunction]
-#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, threads, pose=None, intrinsics=None, orthographic=None))]
+#[pyo3(signature = (vertices, faces, width, height, eye, target, up, fovy, near, far, threads, pose=None, intrinsics=None, orthographic=None, cancel=None))]
 #[expect(
     clippy::too_many_arguments,
     reason = "the keyword arguments of the Python function, one for one"
@@ -448,6 +469,7 @@ pub fn plan<'py>(
     pose: Option<[[f64; 4]; 4]>,
     intrinsics: Option<[f64; 4]>,
     orthographic: Option<f64>,
+    cancel: Option<PyCancel>,
 ) -> PyResult<(&'static str, String, String)> {
     check_threads(threads)?;
     let camera = CameraArgs {
@@ -463,7 +485,7 @@ pub fn plan<'py>(
     };
     let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
     let planned = py
-        .detach(|| plan_scene(&scene, &view, threads))
+        .detach(|| plan_scene(&scene, &view, threads, token(cancel)))
         .map_err(plan_error)?;
     let summary = planned.summary();
     Ok((planned.plan.algo, planned.plan.reason, summary))

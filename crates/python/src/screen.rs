@@ -19,6 +19,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2}
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
+use crate::cancel::{PyCancel, token};
 use crate::errors::{plan_error, scene_error};
 use crate::mesh::{Faces, Vertices, scene_from_arrays};
 use crate::render::{Buffers, render_buffers};
@@ -82,7 +83,7 @@ fn mark_translucent(scene: &mut Scene, translucent: &[bool]) -> PyResult<()> {
 /// Renders screen-space points and faces (see the module docs) with the
 /// registered hider `algo`: the ids and window depths, `(height, width)`.
 #[pyfunction]
-#[pyo3(signature = (points, faces, width, height, algo))]
+#[pyo3(signature = (points, faces, width, height, algo, cancel=None))]
 pub fn screen_render<'py>(
     py: Python<'py>,
     points: PyReadonlyArray2<'py, f64>,
@@ -90,9 +91,10 @@ pub fn screen_render<'py>(
     width: u32,
     height: u32,
     algo: &str,
+    cancel: Option<PyCancel>,
 ) -> PyResult<Buffers<'py>> {
     let (scene, view) = screen_view(&points, &faces, width, height)?;
-    render_buffers(py, &scene, &view, algo, 1)
+    render_buffers(py, &scene, &view, algo, (1, token(cancel)))
 }
 
 /// The painter's pieces in paint order (farthest first).
@@ -126,8 +128,15 @@ type PieceLists = (Vec<i64>, Vec<i64>, Vec<f64>, Vec<bool>);
 /// caller will draw see-through: the painter drops pieces hidden behind
 /// opaque faces before ordering (what makes overlapping scenes cheap), and
 /// a translucent face hides nothing, so what lies behind it is kept.
+///
+/// `cancel` stops the ordering (`KeyboardInterrupt`, or `TimeoutError`
+/// past its deadline, which `hider.mpl` also turns into a warning).
 #[pyfunction]
-#[pyo3(signature = (points, faces, width, height, max_splits=None, translucent=None))]
+#[pyo3(signature = (points, faces, width, height, max_splits=None, translucent=None, cancel=None))]
+#[expect(
+    clippy::too_many_arguments,
+    reason = "the arguments of the Python function, one for one"
+)]
 pub fn screen_pieces<'py>(
     py: Python<'py>,
     points: PyReadonlyArray2<'py, f64>,
@@ -136,6 +145,7 @@ pub fn screen_pieces<'py>(
     height: u32,
     max_splits: Option<u64>,
     translucent: Option<PyReadonlyArray1<'py, bool>>,
+    cancel: Option<PyCancel>,
 ) -> PyResult<Pieces<'py>> {
     let (mut scene, view) = screen_view(&points, &faces, width, height)?;
     if let Some(translucent) = translucent {
@@ -143,7 +153,7 @@ pub fn screen_pieces<'py>(
     }
     let run = || -> hider_plan::Result<PieceLists> {
         let screen: ScreenScene = prepare(&scene, &view, &PrepareOptions::default())?;
-        let mut options = PainterOptions::default();
+        let mut options = PainterOptions::default().with_cancel(token(cancel));
         if let Some(max_splits) = max_splits {
             options = options.with_max_splits(max_splits);
         }

@@ -13,16 +13,17 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
 use crate::camera::CameraArgs;
+use crate::cancel::{PyCancel, token};
 use crate::errors::scene_error;
 use crate::mesh::{Faces, Vertices};
 use crate::render::scene_and_view;
 
 /// Writes the SVG of the mesh of `vertices` and `faces`; see the Python
-/// wrapper `hider.svg` for the arguments.
+/// wrapper `hider.svg` for the arguments. `cancel` stops the drawing.
 #[pyfunction]
 #[pyo3(signature = (vertices, faces, path, width, height, eye, target, up, fovy, near, far,
     mode, crease_angle, stroke_width, stroke_mm, page_mm, hidden, background, seams,
-    pose=None, intrinsics=None, orthographic=None))]
+    pose=None, intrinsics=None, orthographic=None, cancel=None))]
 #[expect(
     clippy::too_many_arguments,
     reason = "the keyword arguments of the Python function, one for one"
@@ -51,6 +52,7 @@ pub fn svg(
     pose: Option<[[f64; 4]; 4]>,
     intrinsics: Option<[f64; 4]>,
     orthographic: Option<f64>,
+    cancel: Option<PyCancel>,
 ) -> PyResult<()> {
     let lines = match mode {
         "regions" => false,
@@ -86,7 +88,8 @@ pub fn svg(
         .with_crease_degrees(crease_angle)
         .with_page_mm(page_mm)
         .with_dashed_hidden(dashed)
-        .with_background(background);
+        .with_background(background)
+        .with_cancel(token(cancel));
     if !seams {
         options = options.with_seam_stroke(0.0);
     }

@@ -207,6 +207,26 @@ def test_max_splits_is_a_keyword():
     plt.close(fig)
 
 
+def test_a_painter_past_its_timeout_is_drawn_by_matplotlib_with_a_warning():
+    """resolve(ax, timeout=0) stops the painter at once: savefig succeeds,
+    warns once naming the timeout, and shows matplotlib's own picture."""
+    fig, ax = axes3d()
+    crossing_soup(ax, n=60, seed=1)
+    plain = pixels(fig)
+    with pytest.raises(ValueError, match="timeout"):
+        hider.mpl.resolve(ax, timeout=-1)
+    resolved = hider.mpl.resolve(ax, timeout=0)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        image = pixels(fig)
+    plt.close(fig)
+    ours = [w for w in caught if issubclass(w.category, hider.mpl.ResolveWarning)]
+    assert len(ours) == 1, [str(w.message) for w in caught]
+    assert "timed out" in str(ours[0].message) and "timeout=" in str(ours[0].message)
+    assert resolved.fallback is not None and resolved.pieces == 0
+    np.testing.assert_array_equal(image, plain)
+
+
 def test_an_unreadable_collection_is_left_to_matplotlib(monkeypatch):
     """A Poly3DCollection whose 3D data this matplotlib hides from hider
     stays matplotlib's, with a warning; savefig draws it."""

@@ -223,7 +223,9 @@ def test_kept_memory_does_not_leak_between_calls():
 def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
     """SIGINT during a painter run of many seconds (64,000 random crossing
     triangles: about 16 s of CPU on the 2-core machine, once hidden pieces
-    are culled) raises KeyboardInterrupt in the caller within a second."""
+    are culled) raises KeyboardInterrupt in the caller within a second, and
+    stops the render itself: the next small render finds the worker free
+    (before the cancel token it waited for the abandoned painter, ~15 s)."""
     import signal
     import subprocess
     import sys
@@ -241,6 +243,10 @@ def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
             hider.render(v, f, width=256, height=256, algo="painter")
         except KeyboardInterrupt:
             print("interrupted", flush=True)
+            import time
+            start = time.perf_counter()
+            small = hider.render(v[:3], f[:1], width=16, height=16)
+            print(f"next {time.perf_counter() - start:.3f}", flush=True)
             sys.exit(3)
         print("finished", flush=True)
     """))
@@ -254,12 +260,63 @@ def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
         proc.send_signal(signal.SIGINT)
         line = proc.stdout.readline().strip()
         waited = time.perf_counter() - sent
-        proc.wait(timeout=10)
+        next_line = proc.stdout.readline().strip()
+        proc.wait(timeout=30)
     finally:
         proc.kill()
     assert line == "interrupted", (line, proc.stderr.read())
     assert proc.returncode == 3
     assert waited < 1.0, waited
+    assert next_line.startswith("next "), (next_line, proc.stderr.read())
+    # The painter polls its token at every ordering step: it stops within
+    # milliseconds, so the next call waits for nothing.
+    assert float(next_line.split()[1]) < 1.0, next_line
+
+
+def soup(n, seed=0):
+    """`n` random crossing triangles in [-1, 1]^3."""
+    rng = np.random.default_rng(seed)
+    return rng.uniform(-1, 1, (3 * n, 3)), np.arange(3 * n).reshape(n, 3)
+
+
+def test_timeout_raises_timeout_error_naming_the_keyword():
+    """A render past its ``timeout=`` stops with ``TimeoutError``; a
+    timeout of 0 stops every hider at its first poll (the same for every
+    call, no clock involved), and the next call without one renders."""
+    v, f = soup(200)
+    for algo in ("zbuffer-tiled", "zbuffer", "abuffer", "painter", "warnock", "scanline",
+                 "oracle", "auto"):
+        with pytest.raises(TimeoutError, match=r"timed out after 0ns \(the timeout= keyword"):
+            hider.render(v, f, width=32, height=32, algo=algo, timeout=0)
+    ids, _ = hider.render(v, f, width=32, height=32, algo="painter", timeout=60)
+    want, _ = hider.render(v, f, width=32, height=32, algo="painter")
+    np.testing.assert_array_equal(ids, want)
+
+
+def test_timeout_stops_a_long_painter():
+    """The painter on 8,000 random crossing triangles runs for minutes;
+    with ``timeout=0.2`` it stops with TimeoutError."""
+    v, f = soup(8000)
+    with pytest.raises(TimeoutError, match="timed out after 200ms"):
+        hider.render(v, f, width=128, height=128, algo="painter", timeout=0.2)
+
+
+def test_timeout_is_checked():
+    v, f = soup(2)
+    for bad, error in ((-1, ValueError), (float("nan"), ValueError), ("1", TypeError),
+                       (True, TypeError)):
+        with pytest.raises(error, match="timeout"):
+            hider.render(v, f, width=8, height=8, timeout=bad)
+
+
+def test_svg_timeout(tmp_path):
+    v, f = soup(50)
+    out = tmp_path / "t.svg"
+    with pytest.raises(TimeoutError):
+        hider.svg(v, f, out, width=32, height=32, timeout=0)
+    assert not out.exists()
+    hider.svg(v, f, out, width=32, height=32, mode="lines", timeout=60)
+    assert out.exists()
 
 
 def test_render_in_a_forked_child_after_one_in_the_parent():

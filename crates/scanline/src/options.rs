@@ -39,6 +39,10 @@ pub struct ScanlineOptions {
     /// Off by default: the record grows with the edges' rows and the runs
     /// (at most one per pixel); its worst case counts in [`Self::max_bytes`].
     pub record_spans: bool,
+    /// Stops the work from outside or at a deadline: polled per band of rows,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl Default for ScanlineOptions {
@@ -47,11 +51,18 @@ impl Default for ScanlineOptions {
             max_splits_per_span: 16,
             max_bytes: 1 << 30,
             record_spans: false,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl ScanlineOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets [`Self::max_splits_per_span`].
     pub fn with_max_splits_per_span(mut self, splits: u32) -> Self {
         self.max_splits_per_span = splits;

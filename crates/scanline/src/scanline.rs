@@ -52,6 +52,10 @@ impl Scanline {
                 .chunks_exact_mut(w)
                 .zip(frame.depth.chunks_exact_mut(w)),
         ) {
+            // A row costs far more than the poll; `render` returns the error.
+            if self.options.cancel.check().is_err() {
+                break;
+            }
             let mut out = RowOut {
                 row,
                 ids,
@@ -273,6 +277,7 @@ impl Hider for Scanline {
             ..ScanlineStats::default()
         };
         self.scan(frame, &mut stats);
+        self.options.cancel.poll()?;
         stats.pixels_written = frame.covered_count() as u64;
         stats.peak_bytes = self.bytes();
         stats.finish();

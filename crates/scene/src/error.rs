@@ -80,6 +80,14 @@ pub enum Error {
         /// The codec's message.
         message: String,
     },
+    /// The render was stopped through its [`Cancel`](crate::Cancel)
+    /// token: cancelled, or out of time. Front ends name their own
+    /// timeout (`--timeout`, `timeout=`); Python raises a timeout as
+    /// `TimeoutError`.
+    /// (No `From` conversion: it would make `?` in closures ambiguous;
+    /// hiders poll with [`Cancel::poll`](crate::Cancel::poll).)
+    #[error(transparent)]
+    Cancelled(crate::cancel::Cancelled),
     /// A hider could not finish (a budget it documents ran out, ...).
     #[error("{hider}: {message}")]
     Render {

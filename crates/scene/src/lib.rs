@@ -6,6 +6,8 @@
 //! - the front end [`prepare()`], which turns a scene and a [`View`] into a
 //!   [`ScreenScene`] of snapped, set-up [`ScreenTri`]s — no hider re-projects;
 //! - the parallel hiders' one policy for their threads ([`pool`]);
+//! - the [`Cancel`] token every hider polls, to stop a render from
+//!   outside or after a timeout;
 //! - the [`Frame`] buffers with PNG output and the GL reference id/depth
 //!   dumps, written atomically;
 //! - the [`Hider`] trait (options, typed stats, one `new`, one `render`)
@@ -62,6 +64,7 @@
 //! ```
 
 pub mod atomic;
+pub mod cancel;
 pub mod error;
 pub mod frame;
 pub mod hider;
@@ -80,6 +83,7 @@ pub mod shade;
 pub mod timing;
 pub mod view;
 
+pub use cancel::{Cancel, Cancelled};
 pub use error::{Error, Result};
 pub use frame::{Frame, FrameBuffers, NO_ID};
 pub use hider::{

@@ -64,6 +64,11 @@ pub struct VectorOptions {
     /// edge-on grids of `vector_bench` need 5.3 million; the 32,000-triangle
     /// pile of `vector_scaling` 1.2 million).
     pub max_pairs: u64,
+    /// Stops the drawing from outside or at a deadline: polled per batch
+    /// of triangle pairs and per group of regions, it then returns
+    /// [`hider_scene::Error::Cancelled`]. Default: never cancelled, and
+    /// free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 /// The `what` of the [`hider_scene::Error::Limit`] refusing a drawing
@@ -86,11 +91,18 @@ impl Default for VectorOptions {
             dashed_hidden: false,
             depth_tolerance: 1e-9,
             max_pairs: 50_000_000,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl VectorOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets [`Self::refine_bits`].
     pub fn with_refine_bits(mut self, bits: u32) -> Self {
         self.refine_bits = bits;

@@ -184,6 +184,9 @@ fn build(
     // One overlay for all differences: its buffers are kept between uses.
     let mut overlay = Overlay::new(64);
     for (ti, t) in scene.tris.iter().enumerate() {
+        // A triangle's pairs (a bin query, booleans) cost far more than
+        // the poll.
+        options.cancel.poll()?;
         let Some((lo, hi)) = boxes[ti] else { continue };
         if hidden[ti] {
             stats.hidden_back_faces += 1;

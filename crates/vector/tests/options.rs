@@ -70,3 +70,26 @@ fn one_path_per_group_and_one_polyline_per_line() {
         "hidden parts only when asked for"
     );
 }
+
+#[test]
+fn a_stopped_token_stops_the_regions_and_the_lines() {
+    use hider_scene::{Cancel, Cancelled, Error};
+    let s = screen(&procedural::cube(), 32, 32);
+    let map = visible_regions(&s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
+    let token = Cancel::new();
+    token.cancel();
+    let stopped = VectorOptions::default().with_cancel(token);
+    assert!(matches!(
+        visible_regions(&s, &stopped, ShadeMode::Ids),
+        Err(Error::Cancelled(Cancelled::Requested))
+    ));
+    assert!(matches!(
+        hidden_lines(&s, &map, &stopped),
+        Err(Error::Cancelled(Cancelled::Requested))
+    ));
+    let late = VectorOptions::default().with_cancel(Cancel::new().with_timeout(Default::default()));
+    assert!(matches!(
+        visible_regions(&s, &late, ShadeMode::Ids),
+        Err(Error::Cancelled(Cancelled::TimedOut { .. }))
+    ));
+}

@@ -48,6 +48,10 @@ pub struct WarnockOptions {
     /// allocated, a larger frame is refused with
     /// [`hider_scene::Error::Limit`]. Default 1 GiB.
     pub max_bytes: u64,
+    /// Stops the work from outside or at a deadline: polled per region subdivided,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl Default for WarnockOptions {
@@ -58,11 +62,18 @@ impl Default for WarnockOptions {
             record_regions: false,
             record_classes: false,
             max_bytes: 1 << 30,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl WarnockOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets [`Self::samples_per_side`] (checked when rendering).
     pub fn with_samples_per_side(mut self, samples: u32) -> Self {
         self.samples_per_side = samples;

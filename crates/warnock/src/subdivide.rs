@@ -131,6 +131,10 @@ pub(crate) struct Subdivider {
     peak: usize,
     /// The windows and classes, when recording (the pixel pass only).
     pub(crate) record: WindowClasses,
+    /// Polled every [`POLL_EVERY`](hider_scene::cancel::POLL_EVERY)
+    /// regions: a stopped run leaves its regions undecided (the caller
+    /// returns the error).
+    pub(crate) cancel: hider_scene::Cancel,
 }
 
 impl Subdivider {
@@ -180,7 +184,13 @@ impl Subdivider {
         }
         let grid = roots.grid;
         let one_sample = grid.one_sample_per_cell();
+        let mut regions = 0usize;
         while let Some(e) = self.stack.pop() {
+            regions += 1;
+            if self.cancel.poll_every(regions).is_err() {
+                self.stack.clear();
+                break;
+            }
             self.arena.truncate(e.list.end());
             stats.visit(e.level);
             if one_sample && e.region.is_single_cell() {

@@ -252,7 +252,9 @@ impl Hider for Warnock {
         self.outer.reset_peak();
         self.inner.reset_peak();
         let mut stats = WarnockStats::default();
+        self.outer.cancel = self.options.cancel;
         self.subdivide(scene, frame, count, &mut stats);
+        self.options.cancel.poll()?;
         stats.peak_candidates = (self.outer.peak() + self.inner.peak()) as u64;
         stats.peak_bytes = self.bytes();
         Ok(stats)

@@ -153,9 +153,19 @@ pub struct ZBufferOptions {
     pub depth_source: DepthSource,
     /// Which fragments pass on a pixel nothing has written yet.
     pub depth_test: DepthTest,
+    /// Stops the work from outside or at a deadline: polled every few thousand triangles,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl ZBufferOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets [`Self::depth_format`].
     pub fn with_depth_format(mut self, format: DepthFormat) -> Self {
         self.depth_format = format;

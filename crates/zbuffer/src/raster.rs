@@ -222,7 +222,8 @@ impl ZBuffer {
         self.depth.clear(self.options.depth_format, frame.len());
         let mut stats = ZBufferStats::default();
         let linear = LinearDepth::for_scene(scene, self.options.depth_source)?;
-        for tri in &scene.tris {
+        for (k, tri) in scene.tris.iter().enumerate() {
+            self.options.cancel.poll_every(k)?;
             self.draw(scene, tri, linear.as_ref(), frame, &mut stats, sink);
         }
         stats.depth_bytes = self.depth.bytes() as u64;

@@ -39,6 +39,7 @@
 //! whose boxes meet.
 
 use glam::DVec3;
+use hider_scene::Cancel;
 
 use super::predicates::{orient2d, orient3d};
 
@@ -210,7 +211,7 @@ pub struct PairSearch {
 /// Finds interpenetrating and coplanar-overlapping pairs among `tris`
 /// (primitive id and world-space corners), testing at most `budget` pairs
 /// exactly.
-pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64) -> PairSearch {
+pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> PairSearch {
     let mut out = PairSearch {
         complete: true,
         ..PairSearch::default()
@@ -244,6 +245,11 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64) -> PairSearch {
         });
     }
     for c in 0..cells {
+        // Stopped like an exhausted budget; the analysis returns the error.
+        if cancel.poll_every(c).is_err() {
+            out.complete = false;
+            return out;
+        }
         let list = &items[start[c]..start[c + 1]];
         for (i, &ka) in list.iter().enumerate() {
             let ba = boxes[ka as usize];
@@ -431,7 +437,7 @@ mod tests {
             let z = 10.0 + k as f64;
             tris.push((100 + k, t([[0.0, 0.0, z], [1.0, 0.0, z], [0.0, 1.0, z]])));
         }
-        let found = find_pairs(&tris, u64::MAX);
+        let found = find_pairs(&tris, u64::MAX, Cancel::default());
         assert!(found.complete);
         let mut pairs = found.interpenetrating.clone();
         pairs.sort_unstable();
@@ -440,7 +446,7 @@ mod tests {
             (0..10).map(|k| (2 * k, 2 * k + 1)).collect::<Vec<_>>()
         );
         // A budget of one test stops early and says so.
-        let partial = find_pairs(&tris, 1);
+        let partial = find_pairs(&tris, 1, Cancel::default());
         assert!(!partial.complete);
         assert_eq!(partial.tests, 1);
     }

@@ -103,6 +103,7 @@ pub fn analyze_prepared(scene: &Scene, options: &RenderOptions) -> Result<Analys
     }
     if options.pair_searches || options.ordered_polygons {
         pair_searches(scene, &screen, &in_view, options, &mut fx);
+        options.cancel.poll()?;
     } else {
         let skipped = Evidence {
             present: true,
@@ -173,7 +174,7 @@ fn pair_searches(
 ) {
     let ex = options.max_examples;
     let t0 = Instant::now();
-    let crossings = search::intersections(scene, in_view, options.pair_budget, ex);
+    let crossings = search::intersections(scene, in_view, options.pair_budget, ex, options.cancel);
     fx.times.intersections_ms = ms(t0);
     fx.work.intersection_candidates = crossings.candidates;
     fx.work.intersection_tests = crossings.tests;
@@ -200,6 +201,7 @@ fn pair_searches(
         &crossings.crossing,
         options.pair_budget,
         ex,
+        options.cancel,
     );
     fx.times.overlaps_ms = ms(t1);
     fx.work.overlap_candidates = order.candidates;

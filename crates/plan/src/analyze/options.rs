@@ -47,6 +47,10 @@ pub struct RenderOptions {
     /// the planner's up-front refusal of ordered polygons compares its
     /// prediction with; `None` for the painter's automatic budget.
     pub max_splits: Option<u64>,
+    /// Stops the work from outside or at a deadline: polled in the analysis's pair searches,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl Default for RenderOptions {
@@ -63,11 +67,18 @@ impl Default for RenderOptions {
             pair_searches: true,
             max_examples: 5,
             max_splits: None,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl RenderOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Sets the image size.
     pub fn with_size(mut self, width: u32, height: u32) -> Self {
         (self.width, self.height) = (width, height);

@@ -23,7 +23,7 @@
 
 use hider_geom::{FixedPt, Viewport, orient2d};
 
-use hider_scene::ScreenTri;
+use hider_scene::{Cancel, ScreenTri};
 
 use super::intersect::MAX_CELLS_PER_TRIANGLE;
 
@@ -74,6 +74,7 @@ pub fn overlap_graph(
     interpenetrate: impl Fn(u32, u32) -> bool,
     budget: u64,
     max_examples: usize,
+    cancel: Cancel,
 ) -> OverlapGraph {
     let mut out = OverlapGraph {
         complete: true,
@@ -92,6 +93,11 @@ pub fn overlap_graph(
     let mut edges: Vec<(u32, u32)> = Vec::new();
     let mut examined = 0u64;
     'tiles: for c in 0..tiles {
+        // Stopped like an exhausted budget; the analysis returns the error.
+        if cancel.check().is_err() {
+            out.complete = false;
+            break 'tiles;
+        }
         let list = &items[start[c]..start[c + 1]];
         for (i, &ka) in list.iter().enumerate() {
             let (a, ba) = (&tris[ka as usize], bounds[ka as usize].unwrap_or_default());

@@ -93,13 +93,19 @@ fn budget_note(complete: bool) -> &'static str {
 
 /// Searches the triangles of `scene` whose primitives are `in_view` for
 /// interpenetrating and coplanar overlapping pairs, in world space.
-pub(crate) fn intersections(scene: &Scene, in_view: &InView, budget: u64, ex: usize) -> Crossings {
+pub(crate) fn intersections(
+    scene: &Scene,
+    in_view: &InView,
+    budget: u64,
+    ex: usize,
+    cancel: hider_scene::Cancel,
+) -> Crossings {
     let world: Vec<(u32, [DVec3; 3])> = scene
         .triangles()
         .filter(|&(id, _, _)| in_view.contains(id))
         .map(|(id, m, t)| (id, scene.triangle_positions(m, t)))
         .collect();
-    let pairs = intersect::find_pairs(&world, budget);
+    let pairs = intersect::find_pairs(&world, budget, cancel);
     let intersections = Evidence {
         present: !pairs.interpenetrating.is_empty() || !pairs.complete,
         certain: pairs.complete,
@@ -157,8 +163,16 @@ pub(crate) fn order(
     crossing: &Partners,
     budget: u64,
     ex: usize,
+    cancel: hider_scene::Cancel,
 ) -> Order {
-    let graph = overlap::overlap_graph(tris, viewport, |a, b| crossing.contains(a, b), budget, ex);
+    let graph = overlap::overlap_graph(
+        tris,
+        viewport,
+        |a, b| crossing.contains(a, b),
+        budget,
+        ex,
+        cancel,
+    );
     let cyclic = Evidence {
         present: graph.cycles > 0 || !graph.complete,
         certain: graph.complete,

@@ -17,12 +17,14 @@ use hider_zbuffer::{
 use super::entry::{Entry, Kind, Knobs};
 use crate::config::HiderConfig;
 
-/// A z-buffer with this format and source.
-fn zbuffer(format: DepthFormat, source: DepthSource) -> Box<dyn DynHider> {
+/// A z-buffer with this format and source, stopped by the config's
+/// cancel token.
+fn zbuffer(format: DepthFormat, source: DepthSource, config: &HiderConfig) -> Box<dyn DynHider> {
     Box::new(ZBuffer::new(
         ZBufferOptions::default()
             .with_depth_format(format)
-            .with_depth_source(source),
+            .with_depth_source(source)
+            .with_cancel(config.cancel),
     ))
 }
 
@@ -32,13 +34,14 @@ fn configured_zbuffer(config: &HiderConfig) -> Box<dyn DynHider> {
     zbuffer(
         config.depth_format.unwrap_or(DepthFormat::F32),
         config.depth_source.unwrap_or(DepthSource::WindowZ),
+        config,
     )
 }
 
 /// The `zbuffer-tiled` entry: its defaults (f32, every core) unless the
 /// config says otherwise.
 fn configured_tiled(config: &HiderConfig) -> Box<dyn DynHider> {
-    let mut options = TiledZBufferOptions::default();
+    let mut options = TiledZBufferOptions::default().with_cancel(config.cancel);
     if let Some(format) = config.depth_format {
         options = options.with_depth_format(format);
     }
@@ -51,6 +54,7 @@ fn configured_tiled(config: &HiderConfig) -> Box<dyn DynHider> {
 /// An A-buffer with these options, on the config's threads when it
 /// names a count (every core otherwise, its default).
 fn abuffer(options: ABufferOptions, config: &HiderConfig) -> Box<dyn DynHider> {
+    let options = options.with_cancel(config.cancel);
     let options = config.threads.map_or(options, |t| options.with_threads(t));
     let options = config.shade.map_or(options, |s| options.with_shade(s));
     let options = config
@@ -71,7 +75,9 @@ const ABUFFER_KNOBS: Knobs = Knobs {
 
 /// The supersampling options of `pattern` with the config's shade mode.
 fn ssaa_options(pattern: SamplePattern, config: &HiderConfig) -> SsaaOptions {
-    let options = SsaaOptions::default().with_pattern(pattern);
+    let options = SsaaOptions::default()
+        .with_pattern(pattern)
+        .with_cancel(config.cancel);
     config.shade.map_or(options, |s| options.with_shade(s))
 }
 
@@ -108,7 +114,7 @@ const SPLITTING_PAINTER_KNOBS: Knobs = Knobs {
 
 /// The `painter` entry: its defaults, with the config's split budget.
 fn painter(config: &HiderConfig) -> Box<dyn DynHider> {
-    let options = PainterOptions::default();
+    let options = PainterOptions::default().with_cancel(config.cancel);
     let options = config
         .max_splits
         .map_or(options, |n| options.with_max_splits(n));
@@ -150,13 +156,13 @@ fn pixel_centre() -> [Entry; 11] {
             "zbuffer-f64",
             "depth buffer, f64 window depth",
             Exact,
-            |_| zbuffer(F64, WindowZ),
+            |c| zbuffer(F64, WindowZ, c),
         ),
         plain(
             "zbuffer-reversed",
             "depth buffer, reversed-Z f32",
             Exact,
-            |_| zbuffer(ReversedF32, WindowZ),
+            |c| zbuffer(ReversedF32, WindowZ, c),
         ),
         Entry {
             knobs: TILED_KNOBS,
@@ -171,13 +177,13 @@ fn pixel_centre() -> [Entry; 11] {
             "zbuffer-fixed24",
             "depth buffer, 24-bit fixed point (GL-like)",
             Approximate,
-            |_| zbuffer(Fixed24, WindowZ),
+            |c| zbuffer(Fixed24, WindowZ, c),
         ),
         plain(
             "zbuffer-fixed16",
             "depth buffer, 16-bit fixed point",
             Approximate,
-            |_| zbuffer(Fixed16, WindowZ),
+            |c| zbuffer(Fixed16, WindowZ, c),
         ),
         Entry {
             knobs: PAINTER_KNOBS,
@@ -185,20 +191,28 @@ fn pixel_centre() -> [Entry; 11] {
                 "painter-naive",
                 "painter's algorithm, plain sort by farthest vertex (wrong on intersections and cycles)",
                 Approximate,
-                |_| Box::new(NaivePainter::new(NaivePainterOptions::default())),
+                |c| {
+                    Box::new(NaivePainter::new(
+                        NaivePainterOptions::default().with_cancel(c.cancel),
+                    ))
+                },
             )
         },
         plain(
             "zbuffer-linear-z",
             "depth buffer comparing camera z interpolated linearly on the screen (wrong under perspective)",
             Approximate,
-            |_| zbuffer(F32, LinearViewZ),
+            |c| zbuffer(F32, LinearViewZ, c),
         ),
         plain(
             "scanline",
             "scanline (Watkins): edge table, active edge list, depth-ordered spans",
             Exact,
-            |_| Box::new(Scanline::new(ScanlineOptions::default())),
+            |c| {
+                Box::new(Scanline::new(
+                    ScanlineOptions::default().with_cancel(c.cancel),
+                ))
+            },
         ),
         Entry {
             knobs: SPLITTING_PAINTER_KNOBS,
@@ -213,7 +227,11 @@ fn pixel_centre() -> [Entry; 11] {
             "warnock",
             "Warnock area subdivision to pixel size",
             Exact,
-            |_| Box::new(Warnock::new(WarnockOptions::default())),
+            |c| {
+                Box::new(Warnock::new(
+                    WarnockOptions::default().with_cancel(c.cancel),
+                ))
+            },
         ),
     ]
 }
@@ -227,7 +245,9 @@ fn multisample() -> [Entry; 8] {
             "Warnock subdividing to 4x4 samples per pixel (anti-aliased)",
             MultiSample,
             |c| {
-                let options = WarnockOptions::default().with_samples_per_side(4);
+                let options = WarnockOptions::default()
+                    .with_samples_per_side(4)
+                    .with_cancel(c.cancel);
                 let options = c.shade.map_or(options, |s| options.with_shade(s));
                 Box::new(Warnock::new(options))
             },
@@ -297,7 +317,11 @@ pub fn all() -> Vec<Entry> {
         "oracle",
         "exact reference: per-pixel ray cast in f64 over every triangle (slow)",
         Kind::Reference,
-        |_| Box::new(RayCastOracle::new(OracleOptions::default())),
+        |c| {
+            Box::new(RayCastOracle::new(
+                OracleOptions::default().with_cancel(c.cancel),
+            ))
+        },
     ));
     entries
 }

@@ -189,9 +189,7 @@ pub fn feature_visibility(
     options.validate()?;
     let mut stats = LineStats::default();
     let occlusion = Occlusion::new(scene, &map.grid, options);
-    Ok(split_all(
-        scene, map, &occlusion, features, options, &mut stats,
-    ))
+    split_all(scene, map, &occlusion, features, options, &mut stats)
 }
 
 /// The line drawing of `scene`; `map` supplies the intersection pairs
@@ -227,7 +225,7 @@ pub fn hidden_lines_in(
     // along, is hidden (see `crate::cull`): nothing of it would be drawn.
     features.retain(|f| !occlusion.buries(&map.grid, f));
     stats.culled_features = stats.feature_edges - features.len() as u64;
-    let split = split_all(scene, map, &occlusion, &features, options, &mut stats);
+    let split = split_all(scene, map, &occlusion, &features, options, &mut stats)?;
     let mut visible = Vec::new();
     let mut hidden = Vec::new();
     for (f, parts) in features.iter().zip(&split) {

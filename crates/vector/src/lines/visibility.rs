@@ -89,7 +89,7 @@ pub(super) fn split_all(
     features: &[Feature],
     options: &VectorOptions,
     stats: &mut LineStats,
-) -> Vec<Visibility> {
+) -> hider_scene::Result<Vec<Visibility>> {
     let context = Context {
         scene,
         grid: &map.grid,
@@ -99,7 +99,10 @@ pub(super) fn split_all(
     };
     features
         .iter()
-        .map(|f| split_visibility(&context, f, stats))
+        .map(|f| {
+            options.cancel.poll()?;
+            Ok(split_visibility(&context, f, stats))
+        })
         .collect()
 }
 

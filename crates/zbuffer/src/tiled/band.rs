@@ -31,6 +31,8 @@ pub(super) struct Jobs<'a, T> {
     /// Each run's fragments by tile, applied after the tile's triangles.
     pub(super) fragments: &'a [FragmentBins],
     pub(super) hiz: bool,
+    /// Polled per tile: a stopped render draws no more triangles.
+    pub(super) cancel: hider_scene::Cancel,
 }
 
 /// [`Jobs::draw`] of a run of tiles as a [`Kernel`], for
@@ -146,7 +148,7 @@ impl<T: RasterTri> Jobs<'_, T> {
                 grid.tile.min(vp.width - x0),
                 grid.tile.min(vp.height - y0),
             );
-            if bins::tile_has_work(self.chunks, self.fragments, t) {
+            if bins::tile_has_work(self.chunks, self.fragments, t) && self.cancel.check().is_ok() {
                 let mut draw = Drawer {
                     isa,
                     buf: &mut *buf,

@@ -35,6 +35,8 @@ impl TiledZBuffer {
             DepthFormat::Fixed16 => self.draw_with::<T, Fixed16>(input, vp, frame, threads),
             DepthFormat::ReversedF32 => self.draw_with::<T, Reversed>(input, vp, frame, threads),
         };
+        // The tiles skip their triangles once the token stops them.
+        self.options.cancel.poll()?;
         let grid = Grid::new(vp.width, vp.height, self.options.tile_size);
         self.drawn = Some((vp, grid, self.options.depth_format));
         Ok(stats)
@@ -65,6 +67,7 @@ impl TiledZBuffer {
             chunks: &self.bins.chunks,
             fragments: &self.bins.fragments,
             hiz,
+            cancel: self.options.cancel,
         };
         match frame {
             Some(frame) => jobs.draw_and_resolve(frame, bufs, pool),

@@ -38,6 +38,10 @@ pub struct TiledZBufferOptions {
     /// does not change (ids and depths are the same, pixel for pixel), only
     /// the work; the default, on, is the fast exact choice.
     pub hierarchical_z: bool,
+    /// Stops the work from outside or at a deadline: polled per bin of triangles and per tile,
+    /// it then returns [`hider_scene::Error::Cancelled`]. Default: never
+    /// cancelled, and free to poll.
+    pub cancel: hider_scene::Cancel,
 }
 
 impl Default for TiledZBufferOptions {
@@ -48,11 +52,18 @@ impl Default for TiledZBufferOptions {
             threads: 0,
             tile_size: 64,
             hierarchical_z: true,
+            cancel: hider_scene::Cancel::default(),
         }
     }
 }
 
 impl TiledZBufferOptions {
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: hider_scene::Cancel) -> Self {
+        self.cancel = cancel;
+        self
+    }
+
     /// Smallest accepted [`Self::tile_size`].
     pub const MIN_TILE: u32 = 8;
     /// Largest accepted [`Self::tile_size`].
