@@ -16,6 +16,7 @@ use std::collections::{HashMap, HashSet};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::{Overlay, ShapeType};
 use i_overlay::core::overlay_rule::OverlayRule;
+use i_overlay::core::solver::Solver;
 use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
@@ -38,7 +39,7 @@ pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
 /// Makes the union of `regions` equal `covered`, the outline snap rounded
 /// in one arrangement with the regions (so every boolean here is exact).
 pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
-    let mut overlay = Overlay::new(64);
+    let mut overlay = closing_overlay();
     for region in regions.iter() {
         overlay.add_shapes(region, ShapeType::Subject);
     }
@@ -56,7 +57,7 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
             }
         }
     }
-    let mut overlay = Overlay::new(64);
+    let mut overlay = closing_overlay();
     overlay.add_shapes(covered, ShapeType::Subject);
     for region in regions.iter() {
         overlay.add_shapes(region, ShapeType::Clip);
@@ -92,6 +93,19 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
             regions[k] = boolean(&regions[k], &vec![piece], OverlayRule::Union);
         }
     }
+}
+
+/// An overlay with `i_overlay`'s sweep-list splitter. Past 4,000 segments
+/// its default (`Solver::AUTO`) switches to the tree or fragment splitter,
+/// and on the snapped regions of `gen:soup:64000` at 256 px (17,717
+/// contours, 173,694 points, crossing-free) those build a graph whose
+/// contour walk never returns to its start: 4.5.2 then grows one contour
+/// until memory runs out (7.6 GB asked for). The list splitter gives the
+/// answer on the same input at once. Everything here is already snap
+/// rounded, so the splitter only has to merge coincident edges and split
+/// at T-junctions, one sweep over the x-sorted segments.
+fn closing_overlay() -> Overlay {
+    Overlay::new_custom(64, Default::default(), Solver::LIST)
 }
 
 /// The bounding box of a polygon set.
@@ -137,7 +151,7 @@ fn nearest(regions: &[IntShapes], piece: &[Vec<IntPoint>]) -> Option<usize> {
 
 /// One boolean of two polygon sets.
 fn boolean(a: &IntShapes, b: &IntShapes, rule: OverlayRule) -> IntShapes {
-    let mut overlay = Overlay::new(64);
+    let mut overlay = closing_overlay();
     overlay.add_shapes(a, ShapeType::Subject);
     overlay.add_shapes(b, ShapeType::Clip);
     overlay.overlay(rule, FillRule::NonZero)
