@@ -24,16 +24,67 @@ use crate::grid::bounds;
 
 /// The covered set's outline: the union of `polys` (the triangles on the
 /// grid) that are not `hidden`, before snap rounding.
+///
+/// One boolean over all triangles would split every edge at every
+/// crossing, and on a pile of large triangles nearly every pair crosses:
+/// the arrangement is quadratic while the outline is small. So the union
+/// is built up a tree instead, the triangles in Morton order of their
+/// boxes' centres, `FAN_IN` sets at a time: each merge sees only the
+/// outlines of its inputs, whose inner crossings earlier merges removed.
+/// The crossings still on an outline are rounded to the grid as the
+/// one-shot boolean rounds them.
 pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
-    let mut overlay = Overlay::new(64);
-    for (poly, _) in polys
+    let mut order: Vec<(u64, usize)> = polys
         .iter()
         .zip(hidden)
-        .filter(|(p, h)| p.len() >= 3 && !**h)
-    {
-        overlay.add_contour(poly, ShapeType::Subject);
+        .enumerate()
+        .filter(|(_, (p, h))| p.len() >= 3 && !**h)
+        .filter_map(|(k, (p, _))| bounds(p).map(|(lo, hi)| (morton(lo, hi), k)))
+        .collect();
+    order.sort_unstable();
+    let mut parts: Vec<IntShapes> = order
+        .chunks(FAN_IN)
+        .map(|chunk| {
+            let mut overlay = Overlay::new(4 * chunk.len());
+            for &(_, k) in chunk {
+                overlay.add_contour(&polys[k], ShapeType::Subject);
+            }
+            overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+        })
+        .collect();
+    while parts.len() > 1 {
+        parts = parts
+            .chunks(FAN_IN)
+            .map(|chunk| {
+                let mut overlay = Overlay::new(64);
+                for shapes in chunk {
+                    overlay.add_shapes(shapes, ShapeType::Subject);
+                }
+                overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+            })
+            .collect();
     }
-    overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+    parts.pop().unwrap_or_default()
+}
+
+/// Sets merged by one boolean of [`outline`].
+const FAN_IN: usize = 8;
+
+/// The Morton code of a box's centre (grid units; the grid stays within
+/// 2^29, so the centre's coordinates shifted to non-negative fit 31 bits).
+fn morton(lo: IntPoint, hi: IntPoint) -> u64 {
+    let spread = |v: i32| {
+        let mut x = u64::from((v as u32) ^ 0x8000_0000) >> 1;
+        x &= 0xffff_ffff;
+        x = (x | (x << 16)) & 0x0000_ffff_0000_ffff;
+        x = (x | (x << 8)) & 0x00ff_00ff_00ff_00ff;
+        x = (x | (x << 4)) & 0x0f0f_0f0f_0f0f_0f0f;
+        x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+        (x | (x << 1)) & 0x5555_5555_5555_5555
+    };
+    let cx = ((i64::from(lo.x) + i64::from(hi.x)) / 2) as i32;
+    let cy = ((i64::from(lo.y) + i64::from(hi.y)) / 2) as i32;
+    spread(cx) | (spread(cy) << 1)
 }
 
 /// Makes the union of `regions` equal `covered`, the outline snap rounded

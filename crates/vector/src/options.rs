@@ -64,12 +64,25 @@ pub struct VectorOptions {
     /// edge-on grids of `vector_bench` need 5.3 million; the 32,000-triangle
     /// pile of `vector_scaling` 1.2 million).
     pub max_pairs: u64,
+    /// Most polygon vertices the regions may send into the map-wide
+    /// passes (the per-primitive regions, counted as each is found, and
+    /// the covered set's outline): past it the drawing is refused (an
+    /// [`hider_scene::Error::Limit`] whose `what` is
+    /// [`REGION_POINTS_LIMIT`]) before the snap rounding and the closing
+    /// booleans allocate, about 1 KB per vertex at their peak. Default
+    /// 4,000,000 (`gen:soup:64000` at 256 px sends 0.2 million).
+    pub max_region_points: u64,
 }
 
 /// The `what` of the [`hider_scene::Error::Limit`] refusing a drawing
 /// over [`VectorOptions::max_pairs`], so that a caller can name its own
 /// flag for it.
 pub const PAIRS_LIMIT: &str = "overlapping triangle pairs (VectorOptions::max_pairs)";
+
+/// The `what` of the [`hider_scene::Error::Limit`] refusing a region map
+/// over [`VectorOptions::max_region_points`], so that a caller can name
+/// its own flag for it.
+pub const REGION_POINTS_LIMIT: &str = "region polygon vertices (VectorOptions::max_region_points)";
 
 impl Default for VectorOptions {
     fn default() -> Self {
@@ -86,6 +99,7 @@ impl Default for VectorOptions {
             dashed_hidden: false,
             depth_tolerance: 1e-9,
             max_pairs: 50_000_000,
+            max_region_points: 4_000_000,
         }
     }
 }
@@ -179,6 +193,12 @@ impl VectorOptions {
     /// Sets [`Self::max_pairs`].
     pub fn with_max_pairs(mut self, pairs: u64) -> Self {
         self.max_pairs = pairs;
+        self
+    }
+
+    /// Sets [`Self::max_region_points`].
+    pub fn with_max_region_points(mut self, points: u64) -> Self {
+        self.max_region_points = points;
         self
     }
 

@@ -58,6 +58,16 @@ hider_scene::hider_stats! {
         pub snapped: u64 => "snapped regions",
         /// Boolean differences of the ownership pass.
         pub ownership_differences: u64 => "ownership differences",
+        /// On-screen triangles sent into the union that outlines the
+        /// covered set: those neither culled, skipped as back faces, nor
+        /// proven inside one nearer triangle or inside the union of whole
+        /// nearer triangles (see [`visible_regions`]).
+        pub outline_triangles: u64 => "outline triangles",
+        /// Polygon vertices of the per-primitive regions and the covered
+        /// set's outline sent into the map-wide passes (snap rounding,
+        /// ownership, closing); compared with
+        /// [`VectorOptions::max_region_points`](crate::VectorOptions::max_region_points).
+        pub region_points: u64 => "region points",
         /// Primitives with a visible region.
         pub visible_prims: u64 => "visible prims",
         /// Face groups (paths of the regions SVG).
@@ -178,9 +188,13 @@ fn build(
         .collect();
     let bins = Bins::new(&grid, &live);
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
+    let mut region_points = 0u64;
     let mut cut_pairs = Vec::new();
     let mut seen = vec![u32::MAX; scene.tris.len()];
     let mut occluders: Vec<Vec<IntPoint>> = Vec::new();
+    // Triangles proven inside the union of other whole triangles: they
+    // add nothing to the covered set's outline (see below).
+    let mut inside = vec![false; scene.tris.len()];
     // One overlay for all differences: its buffers are kept between uses.
     let mut overlay = Overlay::new(64);
     for (ti, t) in scene.tris.iter().enumerate() {
@@ -203,6 +217,9 @@ fn build(
         // Set when one nearer triangle covers all of `t`: nothing of `t`
         // is visible, and the remaining candidates need no test.
         let mut buried = false;
+        // Whether some occluder is only the part of a triangle beyond a
+        // cut line, whose ends are rounded to the grid.
+        let mut cut = false;
         bins.query(lo, hi, |ui| {
             let u_idx = ui as usize;
             // A skipped back face hides nothing its solid's nearer front
@@ -234,6 +251,7 @@ fn build(
                     occluders.push(polys[u_idx].clone());
                 }
                 Relation::Cut(part) => {
+                    cut = true;
                     occluders.push(part);
                     // From either side: a buried triangle stops early.
                     cut_pairs.push((ti.min(u_idx) as u32, ti.max(u_idx) as u32));
@@ -244,12 +262,22 @@ fn build(
             continue;
         }
         let shapes = if buried {
+            inside[ti] = true;
             Vec::new()
         } else if occluders.is_empty() {
             vec![vec![polys[ti].clone()]]
         } else {
-            visible_part(&mut overlay, &polys[ti], &mut occluders, &mut stats)
+            let decided = stats.decided;
+            let shapes = visible_part(&mut overlay, &polys[ti], &mut occluders, &mut stats);
+            // The cover test is exact on the occluders' polygons: with
+            // whole triangles only, `t` lies in their union.
+            inside[ti] = shapes.is_empty() && stats.decided > decided && !cut;
+            shapes
         };
+        region_points += shapes.iter().flatten().map(|c| c.len() as u64).sum::<u64>();
+        if region_points > options.max_region_points {
+            return Err(region_points_error(region_points, options));
+        }
         if !shapes.is_empty() {
             per_prim.entry(t.prim).or_default().extend(shapes);
         }
@@ -269,11 +297,32 @@ fn build(
     }
     // The culled triangles lie inside their tiles' covering triangles:
     // leaving them out changes no point of the union.
+    // A triangle inside one nearer triangle, or inside the union of
+    // whole nearer triangles (decided exactly by the cover test), adds no
+    // point either. On piles of large triangles the union's cost is the
+    // arrangement of every triangle sent, so this keeps it to the ones
+    // that can reach the outline.
     let skip: Vec<bool> = hidden
         .iter()
         .zip(&culled.hidden)
-        .map(|(&h, &c)| h || c)
+        .zip(&inside)
+        .map(|((&h, &c), &i)| h || c || i)
         .collect();
+    stats.outline_triangles = boxes
+        .iter()
+        .zip(&skip)
+        .filter(|(b, s)| b.is_some() && !**s)
+        .count() as u64;
+    let outline_points: u64 = polys
+        .iter()
+        .zip(&skip)
+        .filter(|(_, s)| !**s)
+        .map(|(p, _)| p.len() as u64)
+        .sum();
+    stats.region_points = region_points + outline_points;
+    if stats.region_points > options.max_region_points {
+        return Err(region_points_error(stats.region_points, options));
+    }
     let outline = outline(&polys, &skip);
     let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats);
 
@@ -293,6 +342,15 @@ fn build(
         cut_pairs,
         covered,
     })
+}
+
+/// The refusal of a region map past [`VectorOptions::max_region_points`].
+fn region_points_error(points: u64, options: &VectorOptions) -> hider_scene::Error {
+    hider_scene::Error::Limit {
+        what: crate::options::REGION_POINTS_LIMIT,
+        value: points,
+        limit: options.max_region_points,
+    }
 }
 
 /// What is left of `polygon` under `occluders` (reordered): decided by
