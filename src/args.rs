@@ -215,6 +215,11 @@ pub fn budget_error(error: anyhow::Error) -> anyhow::Error {
                 hider::scene::Error::Limit { what, .. } if *what == hider::vector::PAIRS_LIMIT => {
                     Some("--max-pairs")
                 }
+                hider::scene::Error::Limit { what, .. }
+                    if *what == hider::vector::REGION_POINTS_LIMIT =>
+                {
+                    Some("--max-region-points")
+                }
                 _ => None,
             });
     match flag {
