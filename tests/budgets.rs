@@ -91,6 +91,7 @@ fn a_used_up_budget_names_the_flag_that_raises_it() {
     ));
     // The same regions, ten region vertices allowed: refused in one
     // line naming the flag, before the map-wide booleans.
+    std::fs::remove_file(dir.join("out.png")).unwrap();
     let out = run(&[&base[..], &["--svg", svg, "--max-region-points", "10"]].concat());
     let line = error_line(&out);
     assert!(line.contains("raise it with --max-region-points"), "{line}");
