@@ -207,3 +207,18 @@ fn the_region_point_budget_is_refused_naming_its_option() {
     let enough = VectorOptions::default().with_max_region_points(needed);
     assert!(visible_regions(&s, &enough, ShadeMode::Lambert).is_ok());
 }
+
+#[test]
+fn the_64000_triangle_soup_has_its_regions() {
+    // This scene's closing pass aborted the process (a 7.6 GB allocation
+    // in `i_overlay`'s contour walk, from its tree splitter; see
+    // docs/vector.md, step 6). Its regions must come out, and partition
+    // the covered set: disjoint, so their areas sum to its area exactly.
+    let s = screen(&procedural::random_soup(64_000, 1), 256, 256);
+    let map = visible_regions(&s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
+    assert!(map.stats.culled > 50_000, "{:?}", map.stats);
+    assert!(map.stats.visible_prims > 5_000, "{:?}", map.stats);
+    let regions: i128 = map.prims.iter().map(|r| area2(&r.shapes)).sum();
+    assert_eq!(regions, area2(&map.covered));
+    assert!(regions > 0);
+}
