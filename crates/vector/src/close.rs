@@ -56,7 +56,7 @@ pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
         parts = parts
             .chunks(FAN_IN)
             .map(|chunk| {
-                let mut overlay = Overlay::new(64);
+                let mut overlay = closing_overlay();
                 for shapes in chunk {
                     overlay.add_shapes(shapes, ShapeType::Subject);
                 }
@@ -152,9 +152,12 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
 /// contours, 173,694 points, crossing-free) those build a graph whose
 /// contour walk never returns to its start: 4.5.2 then grows one contour
 /// until memory runs out (7.6 GB asked for). The list splitter gives the
-/// answer on the same input at once. Everything here is already snap
-/// rounded, so the splitter only has to merge coincident edges and split
-/// at T-junctions, one sweep over the x-sorted segments.
+/// answer on the same input at once. In the closing pass everything is
+/// already snap rounded, so the splitter only has to merge coincident
+/// edges and split at T-junctions, one sweep over the x-sorted segments.
+/// The outline's merges (past the first level) use it too, to keep away
+/// from the tree splitter: on the scaling table's scenes they take the
+/// same time either way.
 fn closing_overlay() -> Overlay {
     Overlay::new_custom(64, Default::default(), Solver::LIST)
 }
