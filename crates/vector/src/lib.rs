@@ -51,6 +51,7 @@ mod options;
 mod pairs;
 mod regions;
 mod snap;
+mod subtract;
 mod svg;
 
 pub use document::{ObjectGroups, SvgInfo};
