@@ -231,6 +231,11 @@ pub fn budget_error(error: anyhow::Error) -> anyhow::Error {
                 hider::scene::Error::Cancelled(hider::scene::Cancelled::TimedOut { .. }) => {
                     Some("--timeout")
                 }
+                hider::scene::Error::Limit { what, .. }
+                    if *what == hider::vector::REGION_POINTS_LIMIT =>
+                {
+                    Some("--max-region-points")
+                }
                 _ => None,
             });
     match flag {

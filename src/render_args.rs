@@ -124,6 +124,10 @@ pub struct RenderArgs {
     /// a one-line error.
     #[arg(long, value_parser = args::seconds)]
     pub timeout: Option<f64>,
+    /// --svg-mode regions: most polygon vertices the exact regions may
+    /// send into their map-wide passes (default 4,000,000).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(1..))]
+    pub max_region_points: Option<u64>,
     /// Render K times after a warm-up and print the median and minimum
     /// milliseconds of prepare + clear + rasterise.
     #[arg(long, default_value_t = 0, value_parser = args::repeat)]
@@ -312,6 +316,10 @@ impl RenderArgs {
             Some(pairs) => options.with_max_pairs(pairs),
             None => options,
         };
+        let options = match self.max_region_points {
+            Some(points) => options.with_max_region_points(points),
+            None => options,
+        };
         match self.stroke_width {
             vector_flags::Length::Pixels(px) => options.with_stroke_width(px),
             vector_flags::Length::Millimetres(mm) => options.with_stroke_mm(mm, width, height),
@@ -351,6 +359,7 @@ impl RenderArgs {
                 ("--background", self.background != "none"),
                 ("--seams", self.seams != SeamsArg::On),
                 ("--max-pairs", self.max_pairs.is_some()),
+                ("--max-region-points", self.max_region_points.is_some()),
             ];
             if let Some((flag, _)) = set.iter().find(|(_, given)| *given) {
                 bail!(

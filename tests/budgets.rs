@@ -89,6 +89,13 @@ fn a_used_up_budget_names_the_flag_that_raises_it() {
     assert_success(&run(
         &[&base[..], &["--svg", svg, "--max-pairs", "1000"]].concat()
     ));
+    // The same regions, ten region vertices allowed: refused in one
+    // line naming the flag, before the map-wide booleans.
+    std::fs::remove_file(dir.join("out.png")).unwrap();
+    let out = run(&[&base[..], &["--svg", svg, "--max-region-points", "10"]].concat());
+    let line = error_line(&out);
+    assert!(line.contains("raise it with --max-region-points"), "{line}");
+    assert!(!dir.join("out.png").exists(), "no output of a failed run");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

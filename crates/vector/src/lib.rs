@@ -51,6 +51,7 @@ mod options;
 mod pairs;
 mod regions;
 mod snap;
+mod subtract;
 mod svg;
 
 pub use document::{ObjectGroups, SvgInfo};
@@ -59,7 +60,7 @@ pub use lines::{
     Feature, LineDrawing, LineKind, LineStats, Polyline, Visibility, feature_visibility,
     hidden_lines, hidden_lines_in, line_features, pen_up_travel,
 };
-pub use options::{PAIRS_LIMIT, VectorOptions};
+pub use options::{PAIRS_LIMIT, REGION_POINTS_LIMIT, VectorOptions};
 pub use regions::{FaceGroup, PrimRegion, RegionMap, RegionStats, line_pairs, visible_regions};
 pub use svg::{
     kind_name, lines_document, lines_svg, regions_document, regions_svg, write_document,

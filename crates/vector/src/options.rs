@@ -69,12 +69,25 @@ pub struct VectorOptions {
     /// [`hider_scene::Error::Cancelled`]. Default: never cancelled, and
     /// free to poll.
     pub cancel: hider_scene::Cancel,
+    /// Most polygon vertices the regions may send into the map-wide
+    /// passes (the per-primitive regions, counted as each is found, and
+    /// the covered set's outline): past it the drawing is refused (an
+    /// [`hider_scene::Error::Limit`] whose `what` is
+    /// [`REGION_POINTS_LIMIT`]) before the snap rounding and the closing
+    /// booleans allocate. Default 4,000,000 (`gen:soup:64000` at 256 px
+    /// sends 121,198, `gen:soup:256000` at 2048 px under 300,000).
+    pub max_region_points: u64,
 }
 
 /// The `what` of the [`hider_scene::Error::Limit`] refusing a drawing
 /// over [`VectorOptions::max_pairs`], so that a caller can name its own
 /// flag for it.
 pub const PAIRS_LIMIT: &str = "overlapping triangle pairs (VectorOptions::max_pairs)";
+
+/// The `what` of the [`hider_scene::Error::Limit`] refusing a region map
+/// over [`VectorOptions::max_region_points`], so that a caller can name
+/// its own flag for it.
+pub const REGION_POINTS_LIMIT: &str = "region polygon vertices (VectorOptions::max_region_points)";
 
 impl Default for VectorOptions {
     fn default() -> Self {
@@ -92,6 +105,7 @@ impl Default for VectorOptions {
             depth_tolerance: 1e-9,
             max_pairs: 50_000_000,
             cancel: hider_scene::Cancel::default(),
+            max_region_points: 4_000_000,
         }
     }
 }
@@ -191,6 +205,12 @@ impl VectorOptions {
     /// Sets [`Self::max_pairs`].
     pub fn with_max_pairs(mut self, pairs: u64) -> Self {
         self.max_pairs = pairs;
+        self
+    }
+
+    /// Sets [`Self::max_region_points`].
+    pub fn with_max_region_points(mut self, points: u64) -> Self {
+        self.max_region_points = points;
         self
     }
 

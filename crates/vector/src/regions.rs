@@ -30,6 +30,7 @@ use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
+use crate::subtract::{BATCH, is_sliver, subtract};
 
 hider_scene::hider_stats! {
     /// What [`visible_regions`] did.
@@ -58,6 +59,16 @@ hider_scene::hider_stats! {
         pub snapped: u64 => "snapped regions",
         /// Boolean differences of the ownership pass.
         pub ownership_differences: u64 => "ownership differences",
+        /// On-screen triangles sent into the union that outlines the
+        /// covered set: those neither culled, skipped as back faces, nor
+        /// proven inside one nearer triangle or inside the union of whole
+        /// nearer triangles (see [`visible_regions`]).
+        pub outline_triangles: u64 => "outline triangles",
+        /// Polygon vertices of the per-primitive regions and the covered
+        /// set's outline sent into the map-wide passes (snap rounding,
+        /// ownership, closing); compared with
+        /// [`VectorOptions::max_region_points`](crate::VectorOptions::max_region_points).
+        pub region_points: u64 => "region points",
         /// Primitives with a visible region.
         pub visible_prims: u64 => "visible prims",
         /// Face groups (paths of the regions SVG).
@@ -178,9 +189,13 @@ fn build(
         .collect();
     let bins = Bins::new(&grid, &live);
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
+    let mut region_points = 0u64;
     let mut cut_pairs = Vec::new();
     let mut seen = vec![u32::MAX; scene.tris.len()];
     let mut occluders: Vec<Vec<IntPoint>> = Vec::new();
+    // Triangles proven inside the union of other whole triangles: they
+    // add nothing to the covered set's outline (see below).
+    let mut inside = vec![false; scene.tris.len()];
     // One overlay for all differences: its buffers are kept between uses.
     let mut overlay = Overlay::new(64);
     for (ti, t) in scene.tris.iter().enumerate() {
@@ -206,6 +221,9 @@ fn build(
         // Set when one nearer triangle covers all of `t`: nothing of `t`
         // is visible, and the remaining candidates need no test.
         let mut buried = false;
+        // Whether some occluder is only the part of a triangle beyond a
+        // cut line, whose ends are rounded to the grid.
+        let mut cut = false;
         bins.query(lo, hi, |ui| {
             let u_idx = ui as usize;
             // A skipped back face hides nothing its solid's nearer front
@@ -237,6 +255,7 @@ fn build(
                     occluders.push(polys[u_idx].clone());
                 }
                 Relation::Cut(part) => {
+                    cut = true;
                     occluders.push(part);
                     // From either side: a buried triangle stops early.
                     cut_pairs.push((ti.min(u_idx) as u32, ti.max(u_idx) as u32));
@@ -247,12 +266,22 @@ fn build(
             continue;
         }
         let shapes = if buried {
+            inside[ti] = true;
             Vec::new()
         } else if occluders.is_empty() {
             vec![vec![polys[ti].clone()]]
         } else {
-            visible_part(&mut overlay, &polys[ti], &mut occluders, &mut stats)
+            let decided = stats.decided;
+            let shapes = visible_part(&mut overlay, &polys[ti], &mut occluders, &mut stats);
+            // The cover test is exact on the occluders' polygons: with
+            // whole triangles only, `t` lies in their union.
+            inside[ti] = shapes.is_empty() && stats.decided > decided && !cut;
+            shapes
         };
+        region_points += shapes.iter().flatten().map(|c| c.len() as u64).sum::<u64>();
+        if region_points > options.max_region_points {
+            return Err(region_points_error(region_points, options));
+        }
         if !shapes.is_empty() {
             per_prim.entry(t.prim).or_default().extend(shapes);
         }
@@ -272,11 +301,32 @@ fn build(
     }
     // The culled triangles lie inside their tiles' covering triangles:
     // leaving them out changes no point of the union.
+    // A triangle inside one nearer triangle, or inside the union of
+    // whole nearer triangles (decided exactly by the cover test), adds no
+    // point either. On piles of large triangles the union's cost is the
+    // arrangement of every triangle sent, so this keeps it to the ones
+    // that can reach the outline.
     let skip: Vec<bool> = hidden
         .iter()
         .zip(&culled.hidden)
-        .map(|(&h, &c)| h || c)
+        .zip(&inside)
+        .map(|((&h, &c), &i)| h || c || i)
         .collect();
+    stats.outline_triangles = boxes
+        .iter()
+        .zip(&skip)
+        .filter(|(b, s)| b.is_some() && !**s)
+        .count() as u64;
+    let outline_points: u64 = polys
+        .iter()
+        .zip(&skip)
+        .filter(|(_, s)| !**s)
+        .map(|(p, _)| p.len() as u64)
+        .sum();
+    stats.region_points = region_points + outline_points;
+    if stats.region_points > options.max_region_points {
+        return Err(region_points_error(stats.region_points, options));
+    }
     let outline = outline(&polys, &skip);
     let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats);
 
@@ -296,6 +346,15 @@ fn build(
         cut_pairs,
         covered,
     })
+}
+
+/// The refusal of a region map past [`VectorOptions::max_region_points`].
+fn region_points_error(points: u64, options: &VectorOptions) -> hider_scene::Error {
+    hider_scene::Error::Limit {
+        what: crate::options::REGION_POINTS_LIMIT,
+        value: points,
+        limit: options.max_region_points,
+    }
 }
 
 /// What is left of `polygon` under `occluders` (reordered): decided by
@@ -443,109 +502,4 @@ fn covers(outer: &ScreenTri, inner: &ScreenTri) -> bool {
         let (a, b) = (outer.v[k], outer.v[(k + 1) % 3]);
         inner.v.iter().all(|&c| orient2d(a, b, c) >= 0)
     })
-}
-
-/// Occluders subtracted in one boolean: past this, a triangle under a
-/// deep pile of occluders (depth complexity `N` at one spot) is cut down
-/// batch by batch, largest occluders first, and stops as soon as nothing
-/// is left, instead of intersecting all `N` occluders with each other for
-/// every one of the `N` triangles.
-const BATCH: usize = 16;
-
-/// `triangle` minus the union of `occluders` (reordered), by non-zero
-/// fill: all occluders are positively oriented.
-fn subtract(
-    overlay: &mut Overlay,
-    triangle: &[IntPoint],
-    occluders: &mut [Vec<IntPoint>],
-) -> IntShapes {
-    if occluders.len() > BATCH {
-        occluders.sort_by_key(|o| std::cmp::Reverse(area2(o)));
-    }
-    let mut rest: IntShapes = vec![vec![triangle.to_vec()]];
-    let mut next = 0;
-    let mut batch: Vec<IntShapes> = Vec::with_capacity(BATCH + 1);
-    while next < occluders.len() {
-        // Only occluders that still meet what is left can take anything.
-        batch.clear();
-        while next < occluders.len() && batch.len() < BATCH {
-            let o = &occluders[next];
-            next += 1;
-            if next <= BATCH || rest.iter().any(|shape| meets(o, &shape[0])) {
-                batch.push(vec![vec![o.clone()]]);
-            }
-        }
-        if batch.is_empty() {
-            break;
-        }
-        // Slivers crossing at tiny angles make the polygon library round
-        // crossing after crossing, each making new ones; rounded once and
-        // together beforehand, they have no crossings left to round.
-        let thin = batch.iter().any(|o| is_sliver(&o[0][0]));
-        batch.push(std::mem::take(&mut rest));
-        if thin {
-            snap_round(&mut batch);
-        }
-        overlay.clear();
-        let (subject, clips) = batch.split_last().expect("the rest was pushed");
-        overlay.add_shapes(subject, ShapeType::Subject);
-        for o in clips {
-            overlay.add_shapes(o, ShapeType::Clip);
-        }
-        rest = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
-        if rest.is_empty() {
-            break;
-        }
-    }
-    rest
-}
-
-/// Whether a polygon is a sliver: narrower than 1/1024 of its longest
-/// edge, as triangles seen nearly edge-on are.
-fn is_sliver(poly: &[IntPoint]) -> bool {
-    let n = poly.len();
-    let longest = (0..n)
-        .map(|k| {
-            let (a, b) = (poly[k], poly[(k + 1) % n]);
-            let (dx, dy) = (i128::from(b.x - a.x), i128::from(b.y - a.y));
-            dx * dx + dy * dy
-        })
-        .max()
-        .unwrap_or(0);
-    // Width = 2 area / longest edge; compare squares to stay in integers.
-    let a2 = i128::from(area2(poly));
-    a2 * a2 * 1024 * 1024 < longest * longest
-}
-
-/// Whether a convex, positively oriented polygon may meet the inside of a
-/// contour: false when one of its edges has the whole contour on its
-/// closed outer side (a separating line), decided exactly.
-fn meets(convex: &[IntPoint], contour: &[IntPoint]) -> bool {
-    let n = convex.len();
-    !(0..n).any(|k| {
-        let (a, b) = (convex[k], convex[(k + 1) % n]);
-        let (abx, aby) = (
-            i64::from(b.x) - i64::from(a.x),
-            i64::from(b.y) - i64::from(a.y),
-        );
-        contour.iter().all(|&c| {
-            let (acx, acy) = (
-                i64::from(c.x) - i64::from(a.x),
-                i64::from(c.y) - i64::from(a.y),
-            );
-            i128::from(abx) * i128::from(acy) - i128::from(aby) * i128::from(acx) <= 0
-        })
-    })
-}
-
-/// Twice the area of a simple polygon, unsigned.
-fn area2(poly: &[IntPoint]) -> i64 {
-    let n = poly.len();
-    (0..n)
-        .map(|k| {
-            let (a, b) = (poly[k], poly[(k + 1) % n]);
-            i64::from(a.x) * i64::from(b.y) - i64::from(b.x) * i64::from(a.y)
-        })
-        .sum::<i64>()
-        .abs()
 }

@@ -8,12 +8,12 @@
 mod common;
 
 use common::area2;
-use hider_scene::{Error, Scene, ShadeMode};
+use hider_scene::{Error, Scene, ShadeMode, procedural};
 use hider_testkit::hard_cases::heavy_overdraw;
 use hider_testkit::screen;
 use hider_vector::{
-    LineStats, ObjectGroups, PAIRS_LIMIT, RegionStats, VectorOptions, hidden_lines_in, line_pairs,
-    visible_regions,
+    LineStats, ObjectGroups, PAIRS_LIMIT, REGION_POINTS_LIMIT, RegionStats, VectorOptions,
+    hidden_lines_in, line_pairs, visible_regions,
 };
 use i_overlay::i_shape::int::shape::IntShapes;
 
@@ -45,6 +45,12 @@ fn less_than_triples(family: &str, make: impl Fn(u32) -> Scene, sizes: &[u32]) {
             ("differences", r0.differences, r1.differences),
             ("path points", r0.path_points, r1.path_points),
             (
+                "outline triangles",
+                r0.outline_triangles,
+                r1.outline_triangles,
+            ),
+            ("region points", r0.region_points, r1.region_points),
+            (
                 "line features tested",
                 l0.feature_edges - l0.culled_features,
                 l1.feature_edges - l1.culled_features,
@@ -67,6 +73,40 @@ fn doubling_a_pile_of_large_triangles_less_than_triples_the_work() {
         |n| heavy_overdraw(n, 1),
         &[500, 1_000, 2_000],
     );
+}
+
+#[test]
+fn doubling_a_random_soup_less_than_triples_the_map_wide_work() {
+    // The soup is sparse up to about 8,000 triangles (see docs/vector.md),
+    // so its pairs grow with the density as well as with N; what the
+    // regions send to the map-wide passes (the snap rounding, the
+    // closing and the covered set's union tree) must grow with N only.
+    let runs: Vec<_> = [1_000, 2_000, 4_000]
+        .iter()
+        .map(|&n| {
+            let s = screen(&procedural::random_soup(n, 1), SIZE, SIZE);
+            let map = visible_regions(&s, &VectorOptions::default(), ShadeMode::Lambert).unwrap();
+            (n, map.stats)
+        })
+        .collect();
+    for w in runs.windows(2) {
+        let ((n0, r0), (n1, r1)) = (&w[0], &w[1]);
+        for (what, a, b) in [
+            ("region points", r0.region_points, r1.region_points),
+            (
+                "outline triangles",
+                r0.outline_triangles,
+                r1.outline_triangles,
+            ),
+            ("path points", r0.path_points, r1.path_points),
+            ("differences", r0.differences, r1.differences),
+        ] {
+            assert!(
+                b < 3 * a.max(1),
+                "soup: {what} {a} at {n0} triangles, {b} at {n1}\n{r1:?}"
+            );
+        }
+    }
 }
 
 #[test]
@@ -136,4 +176,49 @@ fn the_pair_budget_is_refused_naming_its_option() {
         .unwrap_err()
         .to_string();
     assert!(line.contains("max_pairs") && !line.contains('\n'), "{line}");
+}
+
+#[test]
+fn the_region_point_budget_is_refused_naming_its_option() {
+    let s = screen(&heavy_overdraw(200, 1), SIZE, SIZE);
+    let needed = visible_regions(&s, &VectorOptions::default(), ShadeMode::Lambert)
+        .unwrap()
+        .stats
+        .region_points;
+    assert!(needed > 100, "{needed}");
+    let options = VectorOptions::default().with_max_region_points(100);
+    let error = visible_regions(&s, &options, ShadeMode::Lambert).unwrap_err();
+    match &error {
+        Error::Limit { what, value, limit } => {
+            assert_eq!(*what, REGION_POINTS_LIMIT);
+            assert_eq!(*limit, 100);
+            assert!(*value > 100);
+        }
+        other => panic!("not refused: {other:?}"),
+    }
+    let line = error.to_string();
+    assert!(
+        line.contains("max_region_points") && !line.contains('\n'),
+        "{line}"
+    );
+    // The budget is the regions': the pair phase alone ignores it, and
+    // exactly the points needed pass.
+    assert!(line_pairs(&s, &options).is_ok());
+    let enough = VectorOptions::default().with_max_region_points(needed);
+    assert!(visible_regions(&s, &enough, ShadeMode::Lambert).is_ok());
+}
+
+#[test]
+fn the_64000_triangle_soup_has_its_regions() {
+    // This scene's closing pass aborted the process (a 7.6 GB allocation
+    // in `i_overlay`'s contour walk, from its tree splitter; see
+    // docs/vector.md, step 6). Its regions must come out, and partition
+    // the covered set: disjoint, so their areas sum to its area exactly.
+    let s = screen(&procedural::random_soup(64_000, 1), 256, 256);
+    let map = visible_regions(&s, &VectorOptions::default(), ShadeMode::Ids).unwrap();
+    assert!(map.stats.culled > 50_000, "{:?}", map.stats);
+    assert!(map.stats.visible_prims > 5_000, "{:?}", map.stats);
+    let regions: i128 = map.prims.iter().map(|r| area2(&r.shapes)).sum();
+    assert_eq!(regions, area2(&map.covered));
+    assert!(regions > 0);
 }

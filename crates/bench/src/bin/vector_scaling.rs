@@ -51,9 +51,9 @@ fn main() -> Result<(), hider_scene::Error> {
     let only = std::env::args().nth(3);
     let options = VectorOptions::default();
     println!(
-        "| scene | N | culled | overlapping pairs | differences | regions s | exponent | line features | culled features | occluder tests | lines s | exponent |"
+        "| scene | N | culled | overlapping pairs | differences | outline triangles | region points | regions s | exponent | line features | culled features | occluder tests | lines s | exponent |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     type Family = (&'static str, u32, fn(u32) -> Scene);
     let families: [Family; 2] = [
         ("`gen:soup:N`", 2_000, |n| procedural::random_soup(n, 1)),
@@ -90,10 +90,12 @@ fn main() -> Result<(), hider_scene::Error> {
             let (r, l) = (map.stats, lines.stats);
             let x = f64::from(n);
             println!(
-                "| {name} | {n} | {} | {} | {} | {tr:.2} | {} | {} | {} | {} | {tl:.2} | {} |",
+                "| {name} | {n} | {} | {} | {} | {} | {} | {tr:.2} | {} | {} | {} | {} | {tl:.2} | {} |",
                 r.culled,
                 r.overlapping_pairs,
                 r.differences,
+                r.outline_triangles,
+                r.region_points,
                 exponent(last_r, x, tr),
                 l.feature_edges,
                 l.culled_features,
