@@ -22,6 +22,7 @@
 
 pub(crate) mod block;
 pub(crate) mod classify;
+pub(crate) mod small;
 
 #[cfg(target_arch = "x86_64")]
 use hider_geom::isa::{Avx2, Isa};

@@ -298,7 +298,7 @@ impl<K: WideBlock> TileBuf<K> {
             None
         };
         if small {
-            self.small(tri, x0, y0, x1, y1);
+            self.small(isa, tri, (x0, y0, x1, y1));
             return;
         }
         self.large(isa, tri, (x0, y0, x1, y1), bounds.as_ref());
