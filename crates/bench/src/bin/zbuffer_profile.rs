@@ -37,7 +37,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let mut frame = Frame::new(size, size)?;
         for _ in 0..runs {
             let t = Instant::now();
-            let stats = tiled.render_scene(&scene, &view, &options, &mut screen, &mut frame)?;
+            let stats =
+                Hider::render_scene(&mut tiled, &scene, &view, &options, &mut screen, &mut frame)?;
             println!("{:.2} ms  {stats:?}", t.elapsed().as_secs_f64() * 1e3);
         }
         return Ok(());
