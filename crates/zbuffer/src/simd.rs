@@ -6,7 +6,8 @@
 //! pass are each compiled twice, for baseline x86-64 and for AVX2 and FMA:
 //! [`with_avx2`] runs a [`Kernel`] in the second copy, the crate's one call
 //! into a `target_feature` function. The intrinsics ([`block`]: a full 8x8
-//! block of the tile kernel; [`classify`]: the classification of eight
+//! block of the tile kernel; [`small`]: a small triangle's box, row by
+//! row; [`classify`]: the classification of eight
 //! triangles) are `#[inline(always)]` into that copy (a `target_feature`
 //! function of their own would be a call per block, and the call spills
 //! the kernel's registers), so their soundness is carried by a type: an
@@ -22,6 +23,7 @@
 
 pub(crate) mod block;
 pub(crate) mod classify;
+pub(crate) mod small;
 
 #[cfg(target_arch = "x86_64")]
 use hider_geom::isa::{Avx2, Isa};

@@ -5,12 +5,15 @@
 //! with SCENE one of `spider`, `sphere200`, `sphere500`, `soup`, and HIDER
 //! `zbuffer`, `tiled` (both on the full front end's scene, render only) or
 //! `lean` (the tiled hider's own pipeline: lean front end, then a draw
-//! into its tiles; prints both times).
+//! into its tiles; prints both times) or `frame` (that pipeline with the
+//! read-back: `render_scene` into a frame of every buffer, one thread).
 
 use std::time::Instant;
 
 use hider_bench::programs;
-use hider_scene::{DynHider, Frame, Hider, PrepareOptions, Scene, View, prepare, procedural};
+use hider_scene::{
+    DynHider, Frame, Hider, PrepareOptions, Scene, ScreenScene, View, prepare, procedural,
+};
 use hider_zbuffer::{DepthScene, TiledZBuffer, TiledZBufferOptions, ZBuffer, prepare_depth_into};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -27,6 +30,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         other => return Err(format!("unknown scene {other}").into()),
     };
     let view = View::for_scene(&scene, size, size)?;
+    if arg(1, "tiled") == "frame" {
+        let options = PrepareOptions::gl_compatible();
+        let mut tiled = TiledZBuffer::new(TiledZBufferOptions::default().with_threads(1));
+        let mut screen = ScreenScene::empty(&view);
+        let mut frame = Frame::new(size, size)?;
+        for _ in 0..runs {
+            let t = Instant::now();
+            let stats =
+                Hider::render_scene(&mut tiled, &scene, &view, &options, &mut screen, &mut frame)?;
+            println!("{:.2} ms  {stats:?}", t.elapsed().as_secs_f64() * 1e3);
+        }
+        return Ok(());
+    }
     if arg(1, "tiled") == "lean" {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)

@@ -43,7 +43,7 @@ pub(crate) fn block8<K: WideKey, const EDGES: bool>(
     unsafe_code,
     reason = "AVX2 intrinsics, reached only with the Avx2 token that proves the CPU has them"
 )]
-mod avx2 {
+pub(super) mod avx2 {
     use std::arch::x86_64::*;
 
     use super::{Block8, WideKey};
@@ -51,7 +51,7 @@ mod avx2 {
 
     /// The eight depths `col + ty` (exact f64 additions), encoded.
     #[inline(always)]
-    fn encode<K: WideKey>(col: (__m256d, __m256d), ty: __m256d) -> __m256i {
+    pub(in crate::simd) fn encode<K: WideKey>(col: (__m256d, __m256d), ty: __m256d) -> __m256i {
         // SAFETY: see `super::block8`: reached only with an `Avx2` proof.
         unsafe {
             let (lo, hi) = (_mm256_add_pd(col.0, ty), _mm256_add_pd(col.1, ty));
@@ -91,7 +91,7 @@ mod avx2 {
 
     /// `new < old` per lane, as the key's LESS: all ones where true.
     #[inline(always)]
-    fn less<K: WideKey>(new: __m256i, old: __m256i) -> __m256i {
+    pub(in crate::simd) fn less<K: WideKey>(new: __m256i, old: __m256i) -> __m256i {
         // SAFETY: see `super::block8`.
         unsafe {
             match K::ENCODING {
@@ -125,7 +125,7 @@ mod avx2 {
 
     /// Sum of the eight i32 lanes.
     #[inline(always)]
-    fn sum(v: __m256i) -> u32 {
+    pub(in crate::simd) fn sum(v: __m256i) -> u32 {
         let a: [i32; 8] = bytemuck::cast(v);
         a.iter().sum::<i32>() as u32
     }

@@ -35,6 +35,16 @@ pub(super) struct Jobs<'a, T> {
     pub(super) cancel: hider_scene::Cancel,
 }
 
+/// Where a band drawn by [`Jobs::dispatch`] is then resolved: its rows of
+/// the frame, the frame's width, the band's first row and the buffers
+/// asked for.
+struct Resolve<'a> {
+    out: FrameBand<'a>,
+    width: usize,
+    band_y0: u32,
+    wanted: FrameBuffers,
+}
+
 /// [`Jobs::draw`] of a run of tiles as a [`Kernel`], for
 /// [`simd::with_avx2`].
 #[cfg(target_arch = "x86_64")]
@@ -42,6 +52,7 @@ struct DrawBand<'a, 'b, T, K> {
     jobs: &'a Jobs<'b, T>,
     first: usize,
     band: &'a mut [TileBuf<K>],
+    resolve: Option<Resolve<'a>>,
 }
 
 #[cfg(target_arch = "x86_64")]
@@ -51,6 +62,9 @@ impl<T: RasterTri, K: TileKey> Kernel for DrawBand<'_, '_, T, K> {
     #[inline(always)]
     fn run<I: Isa>(self, isa: I) {
         self.jobs.draw(self.first, self.band, isa);
+        if let Some(r) = self.resolve {
+            resolve_band(self.band, r.out, r.width, r.band_y0, r.wanted);
+        }
     }
 }
 
@@ -70,8 +84,14 @@ impl<T: RasterTri> Jobs<'_, T> {
         );
         let wanted = frame.buffers();
         for_each_band(frame, bufs, self.grid, pool, |b, out, band| {
-            self.dispatch(b * cols, band);
-            resolve_band(band, out, width, b as u32 * tile, wanted);
+            let band_y0 = b as u32 * tile;
+            let resolve = Resolve {
+                out,
+                width,
+                band_y0,
+                wanted,
+            };
+            self.dispatch(b * cols, band, Some(resolve));
         });
     }
 
@@ -82,7 +102,7 @@ impl<T: RasterTri> Jobs<'_, T> {
         if !pool.is_parallel() {
             let cols = self.grid.cols as usize;
             for (b, band) in bufs.chunks_mut(cols).enumerate() {
-                self.dispatch(b * cols, band);
+                self.dispatch(b * cols, band, None);
             }
             return;
         }
@@ -95,7 +115,7 @@ impl<T: RasterTri> Jobs<'_, T> {
             if bins::tile_has_work(self.chunks, self.fragments, t) {
                 busy.push((bins::tile_load(self.chunks, self.fragments, t), t, tile));
             } else {
-                self.dispatch(t, std::slice::from_mut(tile));
+                self.dispatch(t, std::slice::from_mut(tile), None);
             }
         }
         // Heaviest first: the last tasks, which decide when the threads
@@ -104,7 +124,7 @@ impl<T: RasterTri> Jobs<'_, T> {
         pool.install(|| {
             busy.par_iter_mut()
                 .with_max_len(1)
-                .for_each(|(_, t, tile)| self.dispatch(*t, std::slice::from_mut(*tile)));
+                .for_each(|(_, t, tile)| self.dispatch(*t, std::slice::from_mut(*tile), None));
         });
     }
 
@@ -120,14 +140,30 @@ impl<T: RasterTri> Jobs<'_, T> {
     /// `a * b + c` into an FMA, so both copies give the same bits (the
     /// property tests run whichever this machine picks; CI's machine has
     /// AVX2, and `tests::both_kernels_agree` runs both).
-    fn dispatch<K: TileKey>(&self, first: usize, band: &mut [TileBuf<K>]) {
+    fn dispatch<K: TileKey>(
+        &self,
+        first: usize,
+        band: &mut [TileBuf<K>],
+        resolve: Option<Resolve<'_>>,
+    ) {
         #[cfg(target_arch = "x86_64")]
         if let Some(avx2) = Avx2::detect().filter(|_| self.wide) {
             let jobs = self;
-            simd::with_avx2(DrawBand { jobs, first, band }, avx2);
+            simd::with_avx2(
+                DrawBand {
+                    jobs,
+                    first,
+                    band,
+                    resolve,
+                },
+                avx2,
+            );
             return;
         }
         self.draw(first, band, Portable);
+        if let Some(r) = resolve {
+            resolve_band(band, r.out, r.width, r.band_y0, r.wanted);
+        }
     }
 
     /// Draws the run of tiles `band` (tiles `first..`, row-major) from
@@ -240,7 +276,9 @@ fn for_each_band<K: TileKey>(
 /// Writes a band's tiles into the frame's rows of that band: only the
 /// buffers the frame asks for ([`Frame::buffers`]); the tiles no triangle
 /// met, and the colour (a z-buffer resolves none), as background in runs
-/// as long as the frame allows.
+/// as long as the frame allows. Inlined into the drawing kernel's copies
+/// (the AVX2 one resolves 8 lanes at a time).
+#[inline(always)]
 fn resolve_band<K: TileKey>(
     band: &[TileBuf<K>],
     ((ids, depth), color): FrameBand<'_>,

@@ -24,6 +24,7 @@ pub(super) use hider_geom::isa::{Avx2, Isa, Portable};
 
 use super::key::{DepthKey, Fixed16, Fixed24, Reversed};
 use crate::simd::block::block8;
+use crate::simd::small::small_box;
 
 /// One full block's inputs.
 pub(crate) struct Block8<'a> {
@@ -40,6 +41,32 @@ pub(crate) struct Block8<'a> {
     pub(crate) e: [i32; 3],
     pub(crate) lanes: [[i32; 8]; 3],
     pub(crate) down: [i32; 3],
+    pub(crate) prim: u32,
+}
+
+/// A small triangle's box in a tile (see [`super::tile`]'s `small`), as
+/// the AVX2 small kernel reads it: tile-local pixel coordinates, edge
+/// functions at the box's first block column and first row.
+pub(crate) struct SmallBox<'a> {
+    /// Blocks per row of the tile's block-linear storage.
+    pub(crate) per_row: usize,
+    /// The tile's origin in the image.
+    pub(crate) tile_x0: u32,
+    pub(crate) tile_y0: u32,
+    /// The box, inclusive, in tile-local pixels.
+    pub(crate) lx0: u32,
+    pub(crate) ly0: u32,
+    pub(crate) lx1: u32,
+    pub(crate) ly1: u32,
+    /// The window-depth plane.
+    pub(crate) plane: &'a hider_geom::PlaneEq,
+    /// Edge functions at the centre of (the box's first block column's
+    /// first pixel, the box's first row), biased by -1 (inside iff the OR
+    /// of the three is non-negative), and their steps per pixel in x and
+    /// y, all as wrapping i32 (every value over the box fits i32).
+    pub(crate) e: [i32; 3],
+    pub(crate) sx: [i32; 3],
+    pub(crate) sy: [i32; 3],
     pub(crate) prim: u32,
 }
 
@@ -77,6 +104,20 @@ pub(super) trait WideBlock: DepthKey {
         let _ = (proof, keys, ids, b);
         None
     }
+
+    /// Draws a small triangle's box with the AVX2 small kernel when the
+    /// format has one: `Some((inside, passes))`, or `None` to leave it to
+    /// the scalar scan.
+    #[inline(always)]
+    fn wide_small(
+        proof: Avx2,
+        keys: &mut [Self],
+        ids: &mut [u32],
+        s: &SmallBox<'_>,
+    ) -> Option<(u32, u32)> {
+        let _ = (proof, keys, ids, s);
+        None
+    }
 }
 
 impl WideBlock for f64 {}
@@ -110,6 +151,16 @@ macro_rules! wide_key {
                 b: &Block8<'_>,
             ) -> Option<(u32, u32, Self)> {
                 Some(block8::<Self, EDGES>(proof, keys, ids, b))
+            }
+
+            #[inline(always)]
+            fn wide_small(
+                proof: Avx2,
+                keys: &mut [Self],
+                ids: &mut [u32],
+                s: &SmallBox<'_>,
+            ) -> Option<(u32, u32)> {
+                Some(small_box::<Self>(proof, keys, ids, s))
             }
         }
     )*};

@@ -218,6 +218,7 @@ impl<K: DepthKey> TileBuf<K> {
     /// window depth the reference z-buffer would have written if `DEPTH`;
     /// background where nothing was drawn. Only what the caller asked for
     /// is written (a frame request of ids alone halves the traffic).
+    #[inline(always)]
     pub(crate) fn resolve<const IDS: bool, const DEPTH: bool>(
         &self,
         ids: &mut [u32],
@@ -298,7 +299,7 @@ impl<K: WideBlock> TileBuf<K> {
             None
         };
         if small {
-            self.small(tri, x0, y0, x1, y1);
+            self.small(isa, tri, (x0, y0, x1, y1));
             return;
         }
         self.large(isa, tri, (x0, y0, x1, y1), bounds.as_ref());
