@@ -106,6 +106,10 @@ pub struct TriCoverage {
     pattern: SamplePattern,
     full: u32,
     /// The instruction-set token of the AVX2 mask, when the CPU has it.
+    #[cfg_attr(
+        not(target_arch = "x86_64"),
+        expect(dead_code, reason = "only the x86_64 build has the AVX2 path")
+    )]
     avx2: Option<Avx2>,
 }
 

@@ -145,6 +145,10 @@ pub(crate) struct SampleBuffer {
     /// the block hides nothing and its bound is not computed.
     open: [u8; BLOCKS],
     /// The AVX2 depth test, when the CPU has it.
+    #[cfg_attr(
+        not(target_arch = "x86_64"),
+        expect(dead_code, reason = "only the x86_64 build has the AVX2 path")
+    )]
     avx2: Option<Avx2>,
     /// The pass's pixels: top-left `(x0, y0)`, bottom-right `(x1, y1)`.
     rect: (u32, u32, u32, u32),

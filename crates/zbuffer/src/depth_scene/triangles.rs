@@ -20,7 +20,9 @@
 //! sphere at 1024 x 1024 that is 201k of the 218k triangles kept.
 
 use hider_geom::clip::{OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
-use hider_geom::isa::{Avx2, Isa, Portable};
+#[cfg(target_arch = "x86_64")]
+use hider_geom::isa::Avx2;
+use hider_geom::isa::{Isa, Portable};
 use hider_geom::{Centres, FixedPt, PlaneEq, orient2d};
 use hider_scene::prepare::{FrontEnd, WindowVertex, setup_depth};
 use hider_scene::{Mesh, PrepareStats, Scene};

@@ -12,7 +12,9 @@ use super::bins::{self, ChunkBins, FragmentBins, Grid};
 use super::raster_tri::RasterTri;
 use super::scratch::TileKey;
 use super::tile::TileBuf;
-use super::wide::{Avx2, Isa, Portable};
+#[cfg(target_arch = "x86_64")]
+use super::wide::Avx2;
+use super::wide::{Isa, Portable};
 #[cfg(target_arch = "x86_64")]
 use crate::simd::{self, Kernel};
 
@@ -23,6 +25,10 @@ type FrameBand<'a> = ((&'a mut [u32], &'a mut [f32]), &'a mut [[u8; 4]]);
 /// Everything drawing a run of tiles (a band, or one tile) needs.
 pub(super) struct Jobs<'a, T> {
     /// Whether the AVX2 kernel may be used.
+    #[cfg_attr(
+        not(target_arch = "x86_64"),
+        expect(dead_code, reason = "only the x86_64 build has an AVX2 kernel")
+    )]
     pub(super) wide: bool,
     pub(super) grid: Grid,
     pub(super) vp: Viewport,

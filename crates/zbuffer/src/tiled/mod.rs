@@ -42,6 +42,13 @@ mod raster_tri;
 mod scratch;
 mod stats;
 mod tile;
+#[cfg_attr(
+    not(target_arch = "x86_64"),
+    expect(
+        dead_code,
+        reason = "the AVX2 kernels' inputs: only the x86_64 build has the kernels"
+    )
+)]
 pub(crate) mod wide;
 
 #[cfg(test)]

@@ -15,6 +15,7 @@
 use glam::{DVec3, DVec4};
 use hider_geom::FixedPt;
 use hider_geom::clip::OUTSIDE_PLANES;
+#[cfg(target_arch = "x86_64")]
 use hider_geom::isa::Avx2;
 
 use crate::prepare::{FrontEnd, TransformPrecision};
