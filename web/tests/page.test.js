@@ -8,47 +8,26 @@
 // target/debug/hider, built with `cargo build -p hider-cli`).
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { spawn, execFileSync } from "node:child_process";
-import { mkdirSync, readFileSync, writeFileSync, mkdtempSync } from "node:fs";
+import { execFileSync } from "node:child_process";
+import { readFileSync, writeFileSync, mkdtempSync } from "node:fs";
 import { tmpdir } from "node:os";
-import { join, dirname } from "node:path";
-import { fileURLToPath } from "node:url";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { openPage, pick as pickScene, web, out } from "./support.js";
 
-const web = join(dirname(fileURLToPath(import.meta.url)), "..");
 const root = join(web, "..");
-const out = join(web, "test-output");
 const scratch = mkdtempSync(join(tmpdir(), "hider-web-"));
 const hiderBin = process.env.HIDER_BIN || join(root, "target/debug/hider");
 const SIZE = 48;
 
-let server, browser, page, base;
-const problems = [];
+let page, base, close;
+let problems = [];
 
 before(async () => {
-  mkdirSync(out, { recursive: true });
-  // The README's serve command, on a free port.
-  const port = 8700 + Math.floor(Math.random() * 200);
-  server = spawn("python3", ["-m", "http.server", "-b", "127.0.0.1", "-d", join(web, "dist"), String(port)], { stdio: "ignore" });
-  base = `http://127.0.0.1:${port}/`;
-  for (let i = 0; i < 50; i++) {
-    try { if ((await fetch(base)).ok) break; } catch { /* not up yet */ }
-    await new Promise((r) => setTimeout(r, 100));
-  }
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-    args: ["--no-sandbox"],
-  });
-  page = await browser.newPage({ viewport: { width: 1400, height: 1100 } });
-  page.on("console", (m) => { if (m.type() === "error") problems.push(`console: ${m.text()}`); });
-  page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
-  await page.goto(base);
-  await page.waitForSelector("body[data-ready='1']", { timeout: 120000 });
+  ({ page, base, problems, close } = await openPage({ viewport: { width: 1400, height: 1100 } }));
 });
 
 after(async () => {
-  await browser?.close();
-  server?.kill();
+  await close?.();
 });
 
 test("the wasm module is served as application/wasm", async () => {
@@ -56,13 +35,7 @@ test("the wasm module is served as application/wasm", async () => {
   assert.equal(response.headers.get("content-type"), "application/wasm");
 });
 
-// Selects `choice` in the scene picker and waits for the grid to finish.
-async function pick(choice) {
-  const before = await page.evaluate(() => document.body.dataset.gridDone || "");
-  await page.selectOption("#scene", choice);
-  await page.waitForFunction((b) => (document.body.dataset.gridDone || "") !== b
-    && !document.querySelector(".cell.pending"), before, { timeout: 300000 });
-}
+const pick = (choice) => pickScene(page, choice);
 
 // Every hider's ids from the page at SIZE x SIZE with a turned camera,
 // and the camera's command-line flags.

@@ -5,37 +5,16 @@
 // Screenshots go to web/test-output (look at them).
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
-import { mkdirSync } from "node:fs";
-import { join, dirname } from "node:path";
-import { fileURLToPath } from "node:url";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { openPage, out } from "./support.js";
 
-const web = join(dirname(fileURLToPath(import.meta.url)), "..");
-const out = join(web, "test-output");
 const EDGE = 11, ACTIVE = 3, SPAN = 9, CLASS = 5;
 
-let server, browser, page;
-const problems = [];
+let page, close;
+let problems = [];
 
 before(async () => {
-  mkdirSync(out, { recursive: true });
-  const port = 8900 + Math.floor(Math.random() * 90);
-  server = spawn("python3", ["-m", "http.server", "-b", "127.0.0.1", "-d", join(web, "dist"), String(port)], { stdio: "ignore" });
-  const base = `http://127.0.0.1:${port}/`;
-  for (let i = 0; i < 50; i++) {
-    try { if ((await fetch(base)).ok) break; } catch { /* not up yet */ }
-    await new Promise((r) => setTimeout(r, 100));
-  }
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-    args: ["--no-sandbox"],
-  });
-  page = await browser.newPage({ viewport: { width: 1500, height: 1100 } });
-  page.on("console", (m) => { if (m.type() === "error") problems.push(`console: ${m.text()}`); });
-  page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
-  await page.goto(base);
-  await page.waitForSelector("body[data-ready='1']", { timeout: 120000 });
+  ({ page, problems, close } = await openPage({ viewport: { width: 1500, height: 1100 } }));
   await page.selectOption("#scene", "spec|gen:cyclic");
   await page.waitForFunction(() => !document.querySelector(".cell.pending"), null, { timeout: 300000 });
   await page.click('.tab[data-view="steps"]');
@@ -43,8 +22,7 @@ before(async () => {
 });
 
 after(async () => {
-  await browser?.close();
-  server?.kill();
+  await close?.();
 });
 
 test("the scanline view shows the trace's active edge list, runs and edge table", async () => {

@@ -6,51 +6,22 @@
 // Environment: CHROMIUM (default /usr/bin/chromium).
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { spawn } from "node:child_process";
-import { mkdirSync } from "node:fs";
-import { join, dirname } from "node:path";
-import { fileURLToPath } from "node:url";
-import { chromium } from "playwright-core";
+import { join } from "node:path";
+import { openPage, pick as pickScene, out } from "./support.js";
 
-const web = join(dirname(fileURLToPath(import.meta.url)), "..");
-const out = join(web, "test-output");
 
-let server, browser, page, base;
-const problems = [];
+let page, close;
+let problems = [];
 
 before(async () => {
-  mkdirSync(out, { recursive: true });
-  const port = 8900 + Math.floor(Math.random() * 200);
-  server = spawn("python3", ["-m", "http.server", "-b", "127.0.0.1", "-d", join(web, "dist"), String(port)], { stdio: "ignore" });
-  base = `http://127.0.0.1:${port}/`;
-  for (let i = 0; i < 50; i++) {
-    try { if ((await fetch(base)).ok) break; } catch { /* not up yet */ }
-    await new Promise((r) => setTimeout(r, 100));
-  }
-  browser = await chromium.launch({
-    executablePath: process.env.CHROMIUM || "/usr/bin/chromium",
-    args: ["--no-sandbox"],
-  });
-  // A touch screen: the gesture test sends touch events.
-  const context = await browser.newContext({ viewport: { width: 1400, height: 1100 }, hasTouch: true });
-  page = await context.newPage();
-  page.on("console", (m) => { if (m.type() === "error") problems.push(`console: ${m.text()}`); });
-  page.on("pageerror", (e) => problems.push(`page error: ${e.message}`));
-  await page.goto(base);
-  await page.waitForSelector("body[data-ready='1']", { timeout: 120000 });
+  ({ page, problems, close } = await openPage({ hasTouch: true }));
 });
 
 after(async () => {
-  await browser?.close();
-  server?.kill();
+  await close?.();
 });
 
-async function pick(choice) {
-  const before = await page.evaluate(() => document.body.dataset.gridDone || "");
-  await page.selectOption("#scene", choice);
-  await page.waitForFunction((b) => (document.body.dataset.gridDone || "") !== b
-    && !document.querySelector(".cell.pending"), before, { timeout: 300000 });
-}
+const pick = (choice) => pickScene(page, choice);
 
 test("hovering a pixel of the A-buffer inspector lists its fragments and the frame's colour", async () => {
   await pick("spec|gen:intersecting");
