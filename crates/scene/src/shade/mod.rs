@@ -27,6 +27,7 @@ pub mod cutout;
 pub mod mip;
 pub mod prims;
 mod render;
+pub mod setup;
 pub mod stages;
 pub mod surface;
 pub mod texture;
@@ -39,6 +40,7 @@ pub use render::render_frame;
 pub use stages::{
     Shader, ShaderOptions, StageTrace, Stages, texture_failures, transparency_warning,
 };
+pub use setup::SurfaceSetup;
 pub use surface::{Mapping, TextureOptions, TextureSampler};
 pub use texture::{AlphaClass, Filter, MAX_TEXTURE_SIDE, Texture, TextureRef, TextureTransform};
 

@@ -1,0 +1,329 @@
+//! Per-primitive shading setup: what [`TextureSampler::color_at`] needs of
+//! a primitive that does not change across it, computed once, so that a
+//! hider shading many fragments of one primitive pays per fragment only
+//! for the point itself.
+//!
+//! **Barycentrics as ratios of planes.** Under a perspective camera every
+//! camera ray starts at the eye and its direction `d` is affine in the
+//! window point `(x, y)` (the inverse projection of `(ndc_x, ndc_y, -1,
+//! 1)`, whose scale does not move the hit point). The point of the
+//! primitive's plane (normal `n`, through corner `c0`) seen at `(x, y)` is
+//! `p = d (n.c0) / (n.d)`, and its barycentrics `b_i = (n x e_i).(p - c_j)
+//! / |n|^2` (the same formula as the per-point solve) are then ratios
+//! `N_i(x, y) / D(x, y)` of two planes in window coordinates: the
+//! screen-space planes of `u/w`, `v/w` and `1/w` of hardware rasterisers
+//! (Heckbert and Moreton, "Interpolation for polygon texture mapping and
+//! shading", 1991). One division per point gives the barycentrics; the
+//! texture coordinates one pixel right and one pixel down (the mip level's
+//! footprint, [`super::mip`]) cost two more divisions, not two ray solves.
+//!
+//! The arithmetic differs from a ray solve per point by rounding only: the
+//! texture coordinates agree to about 1e-12 of their range, so a sample
+//! differs from the solve's by at most one sRGB step, and reads another
+//! mip level only where the footprint is within rounding of a level
+//! boundary (tests below). Orthographic cameras and
+//! [`Mapping::Affine`] keep the solve per point.
+//!
+//! The face normal, the texture's header (size, scale, levels) and the
+//! decoded texture are also found once per primitive.
+
+use std::sync::Arc;
+
+use glam::{DVec2, DVec3};
+
+use super::mip;
+use super::surface::{Mapping, TextureSampler};
+use super::texture::{Texture, TextureRef};
+use crate::model::{Illumination, Light, Material};
+use crate::prepare::PrimInfo;
+
+/// `c + x X + y Y`: a function affine in the window point.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Plane {
+    c: f64,
+    x: f64,
+    y: f64,
+}
+
+impl Plane {
+    /// The plane whose value at `(x, y)` is `f(D0 + x Dx + y Dy)` for a
+    /// linear `f`, from `f` of the three ray terms.
+    fn of(ray: &[DVec3; 3], f: impl Fn(DVec3) -> f64) -> Self {
+        Self {
+            c: f(ray[0]),
+            x: f(ray[1]),
+            y: f(ray[2]),
+        }
+    }
+
+    #[inline]
+    fn at(&self, x: f64, y: f64) -> f64 {
+        self.c + x * self.x + y * self.y
+    }
+}
+
+/// The barycentric planes of a primitive under a perspective camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Planes {
+    /// Ray direction at the window origin, and its change per pixel
+    /// right and down.
+    ray: [DVec3; 3],
+    /// `n.c0`: the primitive's plane is `n.p = k`.
+    k: f64,
+    /// `n.d`.
+    nd: Plane,
+    /// `|n|^2`.
+    nn: f64,
+    /// Numerators of the first two barycentrics, over `|n|^2 (n.d)`.
+    b0: Plane,
+    b1: Plane,
+}
+
+impl Planes {
+    fn new(ray: [DVec3; 3], c: [DVec3; 3], n: DVec3) -> Self {
+        let k = n.dot(c[0]);
+        let nd = Plane::of(&ray, |d| n.dot(d));
+        // b0 = m0.(p - c1) with p = d k / (n.d): over |n|^2 (n.d), the
+        // numerator k m0.d - (m0.c1) n.d is linear in d.
+        let numerator = |m: DVec3, corner: DVec3| {
+            let mc = m.dot(corner);
+            Plane::of(&ray, |d| k * m.dot(d) - mc * n.dot(d))
+        };
+        Self {
+            ray,
+            k,
+            nd,
+            nn: n.length_squared(),
+            b0: numerator(n.cross(c[2] - c[1]), c[1]),
+            b1: numerator(n.cross(c[0] - c[2]), c[2]),
+        }
+    }
+
+    /// Barycentrics at `(x, y)`; `None` where the ray runs parallel to the
+    /// plane.
+    #[inline]
+    fn barycentrics(&self, x: f64, y: f64) -> Option<([f64; 3], f64)> {
+        let nd = self.nd.at(x, y);
+        if nd == 0.0 {
+            return None;
+        }
+        let inv = 1.0 / (self.nn * nd);
+        let (b0, b1) = (self.b0.at(x, y) * inv, self.b1.at(x, y) * inv);
+        Some(([b0, b1, 1.0 - b0 - b1], nd))
+    }
+
+    /// The camera-space point at `(x, y)` given `n.d` there.
+    #[inline]
+    fn position(&self, x: f64, y: f64, nd: f64) -> DVec3 {
+        let d = self.ray[0] + self.ray[1] * x + self.ray[2] * y;
+        d * (self.k / nd)
+    }
+}
+
+/// A texture's sampling setup for one primitive: its footprint scale and
+/// chain length (from the header), and the decoded texture once sampled.
+#[derive(Clone, Debug)]
+struct TexSetup {
+    /// Level-0 texels per unit of texture coordinate, `-s` included.
+    scale: DVec2,
+    levels: u32,
+    held: Option<Arc<Texture>>,
+}
+
+impl TexSetup {
+    fn new(texture: &TextureRef) -> Option<Self> {
+        let (size, levels) = texture.footprint_scale()?;
+        Some(Self {
+            scale: DVec2::from(size) * DVec2::from(texture.transform.scale),
+            levels,
+            held: None,
+        })
+    }
+
+    /// [`TextureRef::sample_footprint`] with this setup.
+    #[inline]
+    fn sample(
+        &mut self,
+        texture: &TextureRef,
+        f: &Footprint,
+        filter: super::Filter,
+    ) -> Option<([f32; 3], f32)> {
+        let rho2 = (f.dx * self.scale)
+            .length_squared()
+            .max((f.dy * self.scale).length_squared());
+        let level = mip::level_for_squared(rho2, self.levels);
+        let t = match &self.held {
+            Some(t) if t.base_level() <= level => t,
+            _ => self.held.insert(texture.get_level(level)?),
+        };
+        let (u, v) = texture.transform.apply(f.uv.x, f.uv.y);
+        Some(t.sample_level(u, v, filter, texture.transform.clamp, level))
+    }
+}
+
+/// Texture coordinates at a point and their change one pixel right (`dx`)
+/// and down (`dy`).
+struct Footprint {
+    uv: DVec2,
+    dx: DVec2,
+    dy: DVec2,
+}
+
+/// What shading a primitive per point reads that does not change across
+/// it (see the module documentation): build one per primitive (and
+/// frame), then [`Self::color_at`] for each of its points. The colours
+/// are the same, bit for bit, as [`TextureSampler::color_at`]'s, which
+/// builds one per call.
+#[derive(Clone, Debug)]
+pub struct SurfaceSetup {
+    info: PrimInfo,
+    planes: Option<Planes>,
+    /// Unit face normal (zero for a degenerate primitive).
+    face: DVec3,
+    /// The diffuse and specular textures' setups, made on first sample
+    /// (`Some(None)`: no texture, or its header does not read).
+    diffuse: Option<Option<TexSetup>>,
+    specular: Option<Option<TexSetup>>,
+}
+
+impl SurfaceSetup {
+    /// The setup of the primitive with data `info` for `sampler`'s frame.
+    pub fn new(sampler: &TextureSampler, info: &PrimInfo) -> Self {
+        let c = info.camera;
+        let n = (c[1] - c[0]).cross(c[2] - c[0]);
+        let planes = match (sampler.options().mapping, sampler.rays().affine_ray()) {
+            (Mapping::PerspectiveCorrect, Some(ray)) if n != DVec3::ZERO => {
+                Some(Planes::new(ray, c, n))
+            }
+            _ => None,
+        };
+        Self {
+            info: *info,
+            planes,
+            face: n.normalize_or_zero(),
+            diffuse: None,
+            specular: None,
+        }
+    }
+
+    /// The primitive's data.
+    pub fn info(&self) -> &PrimInfo {
+        &self.info
+    }
+
+    /// Barycentrics of the point seen at `(x, y)` and that point in camera
+    /// space.
+    #[inline]
+    fn point(&self, sampler: &TextureSampler, x: f64, y: f64) -> Option<([f64; 3], DVec3)> {
+        match &self.planes {
+            Some(p) => {
+                let (b, nd) = p.barycentrics(x, y)?;
+                Some((b, p.position(x, y, nd)))
+            }
+            None => sampler.barycentrics(&self.info, x, y),
+        }
+    }
+
+    /// The texture coordinates at the point with barycentrics `b` seen at
+    /// `(x, y)`, and their change one pixel right and down (zero where it
+    /// cannot be found).
+    #[inline]
+    fn footprint(&self, sampler: &TextureSampler, b: [f64; 3], x: f64, y: f64) -> Option<Footprint> {
+        let t = self.info.uvs?.map(|t| t.as_dvec2());
+        let at = |b: [f64; 3]| t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
+        let uv = at(b);
+        let (right, down) = match &self.planes {
+            Some(p) => (
+                p.barycentrics(x + 1.0, y).map(|(b, _)| b),
+                p.barycentrics(x, y + 1.0).map(|(b, _)| b),
+            ),
+            None => (
+                sampler.barycentrics(&self.info, x + 1.0, y).map(|(b, _)| b),
+                sampler.barycentrics(&self.info, x, y + 1.0).map(|(b, _)| b),
+            ),
+        };
+        let step = |b: Option<[f64; 3]>| b.map_or(DVec2::ZERO, |b| at(b) - uv);
+        Some(Footprint {
+            uv,
+            dx: step(right),
+            dy: step(down),
+        })
+    }
+
+    /// [`TextureSampler::color_at`] of this primitive (of `material`, the
+    /// one `info` names, under camera-space `lights`) at window point
+    /// `(x, y)`.
+    pub fn color_at(
+        &mut self,
+        sampler: &TextureSampler,
+        material: &Material,
+        lights: &[Light],
+        x: f64,
+        y: f64,
+    ) -> Option<[f32; 3]> {
+        if !sampler.varies(&self.info, material) {
+            return None;
+        }
+        let (b, position) = self.point(sampler, x, y)?;
+        let textures = sampler.textures_on();
+        let filter = sampler.options().filter;
+        let (mut diffuse_slot, mut specular_slot) = (self.diffuse.take(), self.specular.take());
+        // The footprint is the same for both textures: found once.
+        let mut footprint = None;
+        let mut sample = |slot: &mut Option<Option<TexSetup>>, texture: &Option<TextureRef>| {
+            let texture = texture.as_ref().filter(|_| textures)?;
+            let setup = slot.get_or_insert_with(|| TexSetup::new(texture)).as_mut()?;
+            if footprint.is_none() {
+                footprint = Some(self.footprint(sampler, b, x, y)?);
+            }
+            Some(setup.sample(texture, footprint.as_ref()?, filter)?.0)
+        };
+        let times = |c: [f32; 3], t: Option<[f32; 3]>| match t {
+            Some(t) => [c[0] * t[0], c[1] * t[1], c[2] * t[2]],
+            None => c,
+        };
+        let texel = sample(&mut diffuse_slot, &material.diffuse_texture);
+        let specular_texel = if sampler.lighting_on() && material.has_highlights() {
+            Some(sample(&mut specular_slot, &material.specular_texture))
+        } else {
+            None
+        };
+        (self.diffuse, self.specular) = (diffuse_slot, specular_slot);
+        let info = &self.info;
+        let base = match info.colors {
+            Some(c) => std::array::from_fn(|k| {
+                (f64::from(c[0][k]) * b[0] + f64::from(c[1][k]) * b[1] + f64::from(c[2][k]) * b[2])
+                    as f32
+            }),
+            None => material.diffuse,
+        };
+        let diffuse = times(base, texel);
+        if !sampler.lighting_on() {
+            return Some(diffuse);
+        }
+        let face = self.face;
+        let normal = match info.normals {
+            Some(n) if material.illumination != Illumination::Color => {
+                let n = n.map(|n| n.as_dvec3());
+                let smooth = (n[0] * b[0] + n[1] * b[1] + n[2] * b[2]).normalize_or_zero();
+                // A zero normal (opposite normals at the corners) falls back
+                // to the face's.
+                if smooth == DVec3::ZERO { face } else { smooth }
+            }
+            _ => face,
+        };
+        let specular = match specular_texel {
+            Some(t) => times(material.specular, t),
+            None => [0.0; 3],
+        };
+        let point = super::SurfacePoint {
+            position,
+            normal,
+            diffuse,
+            ambient: material.ambient.map(|a| times(a, texel)),
+            specular,
+            perspective: sampler.rays().perspective,
+        };
+        Some(super::shade_point(material, lights, &point))
+    }
+}
