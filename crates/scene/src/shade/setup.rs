@@ -72,51 +72,94 @@ struct Planes {
     k: f64,
     /// `n.d`.
     nd: Plane,
-    /// `|n|^2`.
-    nn: f64,
-    /// Numerators of the first two barycentrics, over `|n|^2 (n.d)`.
+    /// `|n|^2 (n.d)`: the barycentrics' denominator.
+    den: Plane,
+    /// Numerators of the first two barycentrics, over [`Self::den`].
     b0: Plane,
     b1: Plane,
+    /// Numerators of the texture coordinates `u` and `v` over
+    /// [`Self::den`] (the `u/w`, `v/w` planes), with uvs.
+    uv: Option<[Plane; 2]>,
 }
 
 impl Planes {
-    fn new(ray: [DVec3; 3], c: [DVec3; 3], n: DVec3) -> Self {
+    fn new(ray: [DVec3; 3], c: [DVec3; 3], n: DVec3, uvs: Option<[DVec2; 3]>) -> Self {
         let k = n.dot(c[0]);
         let nd = Plane::of(&ray, |d| n.dot(d));
+        let nn = n.length_squared();
         // b0 = m0.(p - c1) with p = d k / (n.d): over |n|^2 (n.d), the
         // numerator k m0.d - (m0.c1) n.d is linear in d.
         let numerator = |m: DVec3, corner: DVec3| {
             let mc = m.dot(corner);
             Plane::of(&ray, |d| k * m.dot(d) - mc * n.dot(d))
         };
+        let den = Plane::of(&ray, |d| nn * n.dot(d));
+        let (b0, b1) = (
+            numerator(n.cross(c[2] - c[1]), c[1]),
+            numerator(n.cross(c[0] - c[2]), c[2]),
+        );
+        // u = sum t_i b_i with b2 = 1 - b0 - b1: over `den`, the plane
+        // t2 den + (t0 - t2) N0 + (t1 - t2) N1.
+        let uv = uvs.map(|t| {
+            let (a, b) = (t[0] - t[2], t[1] - t[2]);
+            let plane = |k: usize| Plane {
+                c: t[2][k] * den.c + a[k] * b0.c + b[k] * b1.c,
+                x: t[2][k] * den.x + a[k] * b0.x + b[k] * b1.x,
+                y: t[2][k] * den.y + a[k] * b0.y + b[k] * b1.y,
+            };
+            [plane(0), plane(1)]
+        });
         Self {
             ray,
             k,
             nd,
-            nn: n.length_squared(),
-            b0: numerator(n.cross(c[2] - c[1]), c[1]),
-            b1: numerator(n.cross(c[0] - c[2]), c[2]),
+            den,
+            b0,
+            b1,
+            uv,
         }
     }
 
-    /// Barycentrics at `(x, y)`; `None` where the ray runs parallel to the
-    /// plane.
+    /// Barycentrics at `(x, y)` and the denominator there; `None` where
+    /// the ray runs parallel to the plane.
     #[inline]
     fn barycentrics(&self, x: f64, y: f64) -> Option<([f64; 3], f64)> {
-        let nd = self.nd.at(x, y);
-        if nd == 0.0 {
+        let den = self.den.at(x, y);
+        if den == 0.0 {
             return None;
         }
-        let inv = 1.0 / (self.nn * nd);
+        let inv = 1.0 / den;
         let (b0, b1) = (self.b0.at(x, y) * inv, self.b1.at(x, y) * inv);
-        Some(([b0, b1, 1.0 - b0 - b1], nd))
+        Some(([b0, b1, 1.0 - b0 - b1], den))
     }
 
-    /// The camera-space point at `(x, y)` given `n.d` there.
+    /// The camera-space point at `(x, y)`.
     #[inline]
-    fn position(&self, x: f64, y: f64, nd: f64) -> DVec3 {
+    fn position(&self, x: f64, y: f64) -> DVec3 {
         let d = self.ray[0] + self.ray[1] * x + self.ray[2] * y;
-        d * (self.k / nd)
+        d * (self.k / self.nd.at(x, y))
+    }
+
+    /// The texture coordinates at `(x, y)`, where the denominator is
+    /// `den`, and one pixel right and down (from the planes' steps: one
+    /// division each, no barycentrics); `None` without uvs.
+    #[inline]
+    fn footprint(&self, x: f64, y: f64, den: f64) -> Option<Footprint> {
+        let [pu, pv] = self.uv.as_ref()?;
+        let top = DVec2::new(pu.at(x, y), pv.at(x, y));
+        let uv = top / den;
+        let step = |top: DVec2, den: f64| {
+            if den == 0.0 {
+                DVec2::ZERO
+            } else {
+                top / den - uv
+            }
+        };
+        Some(Footprint {
+            uv,
+            dx: step(top + DVec2::new(pu.x, pv.x), den + self.den.x),
+            dy: step(top + DVec2::new(pu.y, pv.y), den + self.den.y),
+        })
     }
 }
 
@@ -193,7 +236,7 @@ impl SurfaceSetup {
         let n = (c[1] - c[0]).cross(c[2] - c[0]);
         let planes = match (sampler.options().mapping, sampler.rays().affine_ray()) {
             (Mapping::PerspectiveCorrect, Some(ray)) if n != DVec3::ZERO => {
-                Some(Planes::new(ray, c, n))
+                Some(Planes::new(ray, c, n, info.uvs.map(|t| t.map(|t| t.as_dvec2()))))
             }
             _ => None,
         };
@@ -211,42 +254,45 @@ impl SurfaceSetup {
         &self.info
     }
 
-    /// Barycentrics of the point seen at `(x, y)` and that point in camera
-    /// space.
+    /// Barycentrics of the point seen at `(x, y)`, that point in camera
+    /// space, and the planes' denominator there (with planes).
     #[inline]
-    fn point(&self, sampler: &TextureSampler, x: f64, y: f64) -> Option<([f64; 3], DVec3)> {
+    fn point(&self, sampler: &TextureSampler, x: f64, y: f64) -> Option<([f64; 3], DVec3, f64)> {
         match &self.planes {
             Some(p) => {
-                let (b, nd) = p.barycentrics(x, y)?;
-                Some((b, p.position(x, y, nd)))
+                let (b, den) = p.barycentrics(x, y)?;
+                Some((b, p.position(x, y), den))
             }
-            None => sampler.barycentrics(&self.info, x, y),
+            None => {
+                let (b, position) = sampler.barycentrics(&self.info, x, y)?;
+                Some((b, position, 0.0))
+            }
         }
     }
 
     /// The texture coordinates at the point with barycentrics `b` seen at
-    /// `(x, y)`, and their change one pixel right and down (zero where it
-    /// cannot be found).
+    /// `(x, y)` (where the planes' denominator is `den`), and their change
+    /// one pixel right and down (zero where it cannot be found).
     #[inline]
-    fn footprint(&self, sampler: &TextureSampler, b: [f64; 3], x: f64, y: f64) -> Option<Footprint> {
+    fn footprint(
+        &self,
+        sampler: &TextureSampler,
+        b: [f64; 3],
+        den: f64,
+        x: f64,
+        y: f64,
+    ) -> Option<Footprint> {
+        if let Some(p) = &self.planes {
+            return p.footprint(x, y, den);
+        }
         let t = self.info.uvs?.map(|t| t.as_dvec2());
         let at = |b: [f64; 3]| t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
         let uv = at(b);
-        let (right, down) = match &self.planes {
-            Some(p) => (
-                p.barycentrics(x + 1.0, y).map(|(b, _)| b),
-                p.barycentrics(x, y + 1.0).map(|(b, _)| b),
-            ),
-            None => (
-                sampler.barycentrics(&self.info, x + 1.0, y).map(|(b, _)| b),
-                sampler.barycentrics(&self.info, x, y + 1.0).map(|(b, _)| b),
-            ),
-        };
-        let step = |b: Option<[f64; 3]>| b.map_or(DVec2::ZERO, |b| at(b) - uv);
+        let step = |bx: Option<([f64; 3], DVec3)>| bx.map_or(DVec2::ZERO, |(b, _)| at(b) - uv);
         Some(Footprint {
             uv,
-            dx: step(right),
-            dy: step(down),
+            dx: step(sampler.barycentrics(&self.info, x + 1.0, y)),
+            dy: step(sampler.barycentrics(&self.info, x, y + 1.0)),
         })
     }
 
@@ -264,7 +310,7 @@ impl SurfaceSetup {
         if !sampler.varies(&self.info, material) {
             return None;
         }
-        let (b, position) = self.point(sampler, x, y)?;
+        let (b, position, den) = self.point(sampler, x, y)?;
         let textures = sampler.textures_on();
         let filter = sampler.options().filter;
         let (mut diffuse_slot, mut specular_slot) = (self.diffuse.take(), self.specular.take());
@@ -274,7 +320,7 @@ impl SurfaceSetup {
             let texture = texture.as_ref().filter(|_| textures)?;
             let setup = slot.get_or_insert_with(|| TexSetup::new(texture)).as_mut()?;
             if footprint.is_none() {
-                footprint = Some(self.footprint(sampler, b, x, y)?);
+                footprint = Some(self.footprint(sampler, b, den, x, y)?);
             }
             Some(setup.sample(texture, footprint.as_ref()?, filter)?.0)
         };
