@@ -322,7 +322,7 @@ impl Texture {
         let (u, v) = if clamp {
             (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))
         } else {
-            (u - floor(u), v - floor(v))
+            (u - floor(u).0, v - floor(v).0)
         };
         let x = u * f64::from(l.width);
         let y = (1.0 - v) * f64::from(l.height);
@@ -335,12 +335,12 @@ impl Texture {
             }
             Filter::Bilinear => {
                 let (fx, fy) = (x - 0.5, y - 0.5);
-                let (x0, y0) = (floor(fx), floor(fy));
+                let ((x0, i), (y0, j)) = (floor(fx), floor(fy));
                 let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
                 // The two columns and rows, wrapped once each (not per
                 // corner: a remainder is a division).
-                let (xa, xb) = neighbours(x0 as i64, l.width, clamp);
-                let (ya, yb) = neighbours(y0 as i64, l.height, clamp);
+                let (xa, xb) = neighbours(i, l.width, clamp);
+                let (ya, yb) = neighbours(j, l.height, clamp);
                 let w = l.width as usize;
                 let corners = [ya * w + xa, ya * w + xb, yb * w + xa, yb * w + xb];
                 let lerp = |q: [f32; 4]| {
@@ -364,15 +364,18 @@ impl Texture {
     }
 }
 
-/// `x.floor()` of a finite `x`, by truncation to an integer where it fits
-/// (`f64::floor` is a library call without SSE 4.1).
+/// `x.floor()` of a finite `x`, and as an integer (saturating as `as`
+/// does), by truncation where it fits (`f64::floor` is a library call
+/// without SSE 4.1).
 #[inline]
-fn floor(x: f64) -> f64 {
+fn floor(x: f64) -> (f64, i64) {
     if x.abs() < 4.5e15 {
-        let t = (x as i64) as f64;
-        if t > x { t - 1.0 } else { t }
+        let i = x as i64;
+        let t = i as f64;
+        if t > x { (t - 1.0, i - 1) } else { (t, i) }
     } else {
-        x.floor()
+        let f = x.floor();
+        (f, f as i64)
     }
 }
 
