@@ -428,7 +428,7 @@ impl CameraRays {
     }
 
     /// A camera-space point's window position (pixels, y down).
-    fn window_of(&self, p: DVec3) -> DVec2 {
+    pub(super) fn window_of(&self, p: DVec3) -> DVec2 {
         let clip = self.projection * p.extend(1.0);
         let ndc = clip.truncate() / clip.w;
         DVec2::new(
