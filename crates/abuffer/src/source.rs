@@ -8,10 +8,8 @@
 
 use hider_geom::Viewport;
 use hider_scene::prepare::lean::{LeanScene, LeanTri};
-use hider_scene::{
-    Material, Scene, ScreenScene, ShadeMode, TextureOptions, TextureSampler, View,
-};
 use hider_scene::shade::SurfaceSetup;
+use hider_scene::{Material, Scene, ScreenScene, ShadeMode, TextureOptions, TextureSampler, View};
 
 use crate::bins::BinItem;
 

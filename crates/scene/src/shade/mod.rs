@@ -37,10 +37,10 @@ pub use budget::{
 };
 pub use prims::{Prims, ScenePrims};
 pub use render::render_frame;
+pub use setup::SurfaceSetup;
 pub use stages::{
     Shader, ShaderOptions, StageTrace, Stages, texture_failures, transparency_warning,
 };
-pub use setup::SurfaceSetup;
 pub use surface::{Mapping, TextureOptions, TextureSampler};
 pub use texture::{AlphaClass, Filter, MAX_TEXTURE_SIDE, Texture, TextureRef, TextureTransform};
 

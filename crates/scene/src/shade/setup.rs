@@ -235,9 +235,12 @@ impl SurfaceSetup {
         let c = info.camera;
         let n = (c[1] - c[0]).cross(c[2] - c[0]);
         let planes = match (sampler.options().mapping, sampler.rays().affine_ray()) {
-            (Mapping::PerspectiveCorrect, Some(ray)) if n != DVec3::ZERO => {
-                Some(Planes::new(ray, c, n, info.uvs.map(|t| t.map(|t| t.as_dvec2()))))
-            }
+            (Mapping::PerspectiveCorrect, Some(ray)) if n != DVec3::ZERO => Some(Planes::new(
+                ray,
+                c,
+                n,
+                info.uvs.map(|t| t.map(|t| t.as_dvec2())),
+            )),
             _ => None,
         };
         Self {
@@ -318,7 +321,9 @@ impl SurfaceSetup {
         let mut footprint = None;
         let mut sample = |slot: &mut Option<Option<TexSetup>>, texture: &Option<TextureRef>| {
             let texture = texture.as_ref().filter(|_| textures)?;
-            let setup = slot.get_or_insert_with(|| TexSetup::new(texture)).as_mut()?;
+            let setup = slot
+                .get_or_insert_with(|| TexSetup::new(texture))
+                .as_mut()?;
             if footprint.is_none() {
                 footprint = Some(self.footprint(sampler, b, den, x, y)?);
             }

@@ -162,7 +162,12 @@ impl TextureSampler {
     /// Barycentrics of the point of primitive `info` seen at window point
     /// `(x, y)`, and that point in camera space; `None` when the ray runs
     /// parallel to the primitive's plane or the primitive is degenerate.
-    pub(super) fn barycentrics(&self, info: &PrimInfo, x: f64, y: f64) -> Option<([f64; 3], DVec3)> {
+    pub(super) fn barycentrics(
+        &self,
+        info: &PrimInfo,
+        x: f64,
+        y: f64,
+    ) -> Option<([f64; 3], DVec3)> {
         let c = info.camera;
         match self.options.mapping {
             Mapping::PerspectiveCorrect => {

@@ -231,7 +231,10 @@ impl TextureRef {
     /// the header (read once, never decodes); `None` when it does not
     /// read: what [`Self::sample_footprint`] scales a footprint by.
     pub(crate) fn footprint_scale(&self) -> Option<([f64; 2], u32)> {
-        let h = self.slot.header.get_or_init(|| header(&self.path).map_err(|e| e.to_string()));
+        let h = self
+            .slot
+            .header
+            .get_or_init(|| header(&self.path).map_err(|e| e.to_string()));
         let h = h.as_ref().ok()?;
         Some((
             [f64::from(h.width), f64::from(h.height)],
