@@ -68,10 +68,9 @@ struct Planes {
     /// Ray direction at the window origin, and its change per pixel
     /// right and down.
     ray: [DVec3; 3],
-    /// `n.c0`: the primitive's plane is `n.p = k`.
-    k: f64,
-    /// `n.d`.
-    nd: Plane,
+    /// `(n.c0) |n|^2`: the point seen is `d (n.c0) / (n.d)`, the ray
+    /// direction times this over the denominator.
+    knn: f64,
     /// `|n|^2 (n.d)`: the barycentrics' denominator.
     den: Plane,
     /// Numerators of the first two barycentrics, over [`Self::den`].
@@ -85,7 +84,6 @@ struct Planes {
 impl Planes {
     fn new(ray: [DVec3; 3], c: [DVec3; 3], n: DVec3, uvs: Option<[DVec2; 3]>) -> Self {
         let k = n.dot(c[0]);
-        let nd = Plane::of(&ray, |d| n.dot(d));
         let nn = n.length_squared();
         // b0 = m0.(p - c1) with p = d k / (n.d): over |n|^2 (n.d), the
         // numerator k m0.d - (m0.c1) n.d is linear in d.
@@ -111,8 +109,7 @@ impl Planes {
         });
         Self {
             ray,
-            k,
-            nd,
+            knn: k * nn,
             den,
             b0,
             b1,
@@ -120,34 +117,35 @@ impl Planes {
         }
     }
 
-    /// Barycentrics at `(x, y)` and the denominator there; `None` where
-    /// the ray runs parallel to the plane.
+    /// Barycentrics at `(x, y)`, the denominator there and its inverse;
+    /// `None` where the ray runs parallel to the plane.
     #[inline]
-    fn barycentrics(&self, x: f64, y: f64) -> Option<([f64; 3], f64)> {
+    fn barycentrics(&self, x: f64, y: f64) -> Option<([f64; 3], Den)> {
         let den = self.den.at(x, y);
         if den == 0.0 {
             return None;
         }
         let inv = 1.0 / den;
         let (b0, b1) = (self.b0.at(x, y) * inv, self.b1.at(x, y) * inv);
-        Some(([b0, b1, 1.0 - b0 - b1], den))
+        Some(([b0, b1, 1.0 - b0 - b1], Den { den, inv }))
     }
 
-    /// The camera-space point at `(x, y)`.
+    /// The camera-space point at `(x, y)`, where the denominator's
+    /// inverse is `inv`.
     #[inline]
-    fn position(&self, x: f64, y: f64) -> DVec3 {
+    fn position(&self, x: f64, y: f64, inv: f64) -> DVec3 {
         let d = self.ray[0] + self.ray[1] * x + self.ray[2] * y;
-        d * (self.k / self.nd.at(x, y))
+        d * (self.knn * inv)
     }
 
     /// The texture coordinates at `(x, y)`, where the denominator is
     /// `den`, and one pixel right and down (from the planes' steps: one
     /// division each, no barycentrics); `None` without uvs.
     #[inline]
-    fn footprint(&self, x: f64, y: f64, den: f64) -> Option<Footprint> {
+    fn footprint(&self, x: f64, y: f64, Den { den, inv }: Den) -> Option<Footprint> {
         let [pu, pv] = self.uv.as_ref()?;
         let top = DVec2::new(pu.at(x, y), pv.at(x, y));
-        let uv = top / den;
+        let uv = top * inv;
         let step = |top: DVec2, den: f64| {
             if den == 0.0 {
                 DVec2::ZERO
@@ -161,6 +159,13 @@ impl Planes {
             dy: step(top + DVec2::new(pu.y, pv.y), den + self.den.y),
         })
     }
+}
+
+/// The barycentrics' denominator at a point and its inverse.
+#[derive(Clone, Copy, Debug, Default)]
+struct Den {
+    den: f64,
+    inv: f64,
 }
 
 /// A texture's sampling setup for one primitive: its footprint scale and
@@ -258,17 +263,17 @@ impl SurfaceSetup {
     }
 
     /// Barycentrics of the point seen at `(x, y)`, that point in camera
-    /// space, and the planes' denominator there (with planes).
+    /// space, and the planes' denominator there (zero without planes).
     #[inline]
-    fn point(&self, sampler: &TextureSampler, x: f64, y: f64) -> Option<([f64; 3], DVec3, f64)> {
+    fn point(&self, sampler: &TextureSampler, x: f64, y: f64) -> Option<([f64; 3], DVec3, Den)> {
         match &self.planes {
             Some(p) => {
                 let (b, den) = p.barycentrics(x, y)?;
-                Some((b, p.position(x, y), den))
+                Some((b, p.position(x, y, den.inv), den))
             }
             None => {
                 let (b, position) = sampler.barycentrics(&self.info, x, y)?;
-                Some((b, position, 0.0))
+                Some((b, position, Den::default()))
             }
         }
     }
@@ -281,7 +286,7 @@ impl SurfaceSetup {
         &self,
         sampler: &TextureSampler,
         b: [f64; 3],
-        den: f64,
+        den: Den,
         x: f64,
         y: f64,
     ) -> Option<Footprint> {
@@ -454,7 +459,7 @@ mod tests {
                     a.points += 1;
                     let (bf, _, den) = fast.point(&sampler, x, y).unwrap();
                     let ff = fast.footprint(&sampler, bf, den, x, y).unwrap();
-                    let fs = slow.footprint(&sampler, b, 0.0, x, y).unwrap();
+                    let fs = slow.footprint(&sampler, b, Den::default(), x, y).unwrap();
                     a.max_uv = a.max_uv.max((ff.uv - fs.uv).abs().max_element());
                     let rho = |f: &Footprint| (f.dx * scale).length().max((f.dy * scale).length());
                     let rho2 = |f: &Footprint| {
