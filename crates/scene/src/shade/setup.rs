@@ -211,10 +211,10 @@ impl TexSetup {
 
 /// Texture coordinates at a point and their change one pixel right (`dx`)
 /// and down (`dy`).
-struct Footprint {
-    uv: DVec2,
-    dx: DVec2,
-    dy: DVec2,
+pub(super) struct Footprint {
+    pub(super) uv: DVec2,
+    pub(super) dx: DVec2,
+    pub(super) dy: DVec2,
 }
 
 /// What shading a primitive per point reads that does not change across
@@ -293,15 +293,7 @@ impl SurfaceSetup {
         if let Some(p) = &self.planes {
             return p.footprint(x, y, den);
         }
-        let t = self.info.uvs?.map(|t| t.as_dvec2());
-        let at = |b: [f64; 3]| t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
-        let uv = at(b);
-        let step = |bx: Option<([f64; 3], DVec3)>| bx.map_or(DVec2::ZERO, |(b, _)| at(b) - uv);
-        Some(Footprint {
-            uv,
-            dx: step(sampler.barycentrics(&self.info, x + 1.0, y)),
-            dy: step(sampler.barycentrics(&self.info, x, y + 1.0)),
-        })
+        sampler.uv_footprint(&self.info, b, x, y)
     }
 
     /// [`TextureSampler::color_at`] of this primitive (of `material`, the

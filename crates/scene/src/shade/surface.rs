@@ -25,7 +25,7 @@
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use hider_geom::{Projection, Viewport};
 
-use super::setup::SurfaceSetup;
+use super::setup::{Footprint, SurfaceSetup};
 use super::texture::{Filter, TextureRef};
 use crate::model::{Illumination, Light, Material};
 use crate::prepare::{PrimInfo, ScreenScene};
@@ -201,14 +201,20 @@ impl TextureSampler {
     /// change one pixel right and one pixel down (the footprint the mip
     /// level is chosen from, [`super::mip`]), from barycentrics `b` at the
     /// point; the derivatives are zero where they cannot be found.
-    fn uv_footprint(&self, info: &PrimInfo, b: [f64; 3], x: f64, y: f64) -> Option<UvFootprint> {
+    pub(super) fn uv_footprint(
+        &self,
+        info: &PrimInfo,
+        b: [f64; 3],
+        x: f64,
+        y: f64,
+    ) -> Option<Footprint> {
         let t = info.uvs?.map(|t| t.as_dvec2());
         let at = |b: [f64; 3]| t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
         let uv = at(b);
         let step = |bx: Option<([f64; 3], DVec3)>| bx.map_or(DVec2::ZERO, |(b, _)| at(b) - uv);
         let dx = step(self.barycentrics(info, x + 1.0, y));
         let dy = step(self.barycentrics(info, x, y + 1.0));
-        Some(UvFootprint { uv, dx, dy })
+        Some(Footprint { uv, dx, dy })
     }
 
     /// The colour and alpha of `texture` at the point of `info` with
@@ -347,14 +353,6 @@ impl ScreenScene {
             .iter()
             .any(|p| sampler.varies(p, &self.materials[p.material as usize]))
     }
-}
-
-/// Texture coordinates at a point and their change one pixel right (`dx`)
-/// and down (`dy`).
-struct UvFootprint {
-    uv: DVec2,
-    dx: DVec2,
-    dy: DVec2,
 }
 
 /// Barycentrics of `p` (on the plane of `c` with normal `n`).
