@@ -8,9 +8,8 @@
 
 use hider_geom::Viewport;
 use hider_scene::prepare::lean::{LeanScene, LeanTri};
-use hider_scene::{
-    Material, PrimInfo, Scene, ScreenScene, ShadeMode, TextureOptions, TextureSampler, View,
-};
+use hider_scene::shade::SurfaceSetup;
+use hider_scene::{Material, Scene, ScreenScene, ShadeMode, TextureOptions, TextureSampler, View};
 
 use crate::bins::BinItem;
 
@@ -152,25 +151,26 @@ impl<'a> Source<'a> {
             Kind::Screen(s, sampler) => palette::at_pixel(s, *sampler, prim, rgba, ij),
             Kind::Lean(_, _, None) => rgba,
             Kind::Lean(lean, scene, Some(sampler)) => {
-                lean_at_pixel(lean, scene, sampler, &lean.prim_info(scene, prim), rgba, ij)
+                let mut setup = SurfaceSetup::new(sampler, &lean.prim_info(scene, prim));
+                lean_at_pixel(lean, scene, sampler, &mut setup, rgba, ij)
             }
         }
     }
 }
 
-/// [`Source::at_pixel`] of the lean front end's primitive with data
-/// `info`, shaded per point through `sampler`.
+/// [`Source::at_pixel`] of the lean front end's primitive with shading
+/// setup `setup`, shaded per point through `sampler`.
 #[inline]
 fn lean_at_pixel(
     lean: &LeanScene,
     scene: &Scene,
     sampler: &TextureSampler,
-    info: &PrimInfo,
+    setup: &mut SurfaceSetup,
     rgba: [f32; 4],
     (i, j): (u32, u32),
 ) -> [f32; 4] {
     let centre = (f64::from(i) + 0.5, f64::from(j) + 0.5);
-    let [r, g, b] = lean.surface_rgb(scene, sampler, info, [rgba[0], rgba[1], rgba[2]], centre);
+    let [r, g, b] = lean.surface_rgb(scene, sampler, setup, [rgba[0], rgba[1], rgba[2]], centre);
     [r, g, b, rgba[3]]
 }
 
@@ -198,13 +198,14 @@ pub(crate) struct ColorCache {
     stamps: Vec<u32>,
     /// The current frame's stamp (never 0, the stamp of a new entry).
     frame: u32,
-    /// The data of primitives shaded per point from the lean front end's
-    /// vertices this frame, direct-mapped by primitive id
-    /// ([`INFO_SLOTS`] entries once used): assembling the data for every
-    /// pixel cost 11 % of the smooth-shaded spider's frame at 1024, and a
-    /// single last entry still missed on 4 of 10 pixels (a pixel's
-    /// fragments alternate between primitives).
-    infos: Vec<Option<(u32, PrimInfo)>>,
+    /// The shading setups ([`SurfaceSetup`]: the data, barycentric
+    /// planes, face normal and textures) of primitives shaded per point
+    /// from the lean front end's vertices this frame, direct-mapped by
+    /// primitive id ([`INFO_SLOTS`] entries once used): assembling the
+    /// data for every pixel cost 11 % of the smooth-shaded spider's frame
+    /// at 1024, and a single last entry still missed on 4 of 10 pixels (a
+    /// pixel's fragments alternate between primitives).
+    infos: Vec<Option<(u32, SurfaceSetup)>>,
 }
 
 /// Entries of [`ColorCache::infos`].
@@ -258,11 +259,14 @@ impl ColorCache {
         if self.infos.is_empty() {
             self.infos.resize(INFO_SLOTS, None);
         }
-        let info = match &mut self.infos[prim as usize % INFO_SLOTS] {
-            Some((p, info)) if *p == prim => info,
-            slot => &mut slot.insert((prim, lean.prim_info(world, prim))).1,
+        let setup = match &mut self.infos[prim as usize % INFO_SLOTS] {
+            Some((p, setup)) if *p == prim => setup,
+            slot => {
+                let setup = SurfaceSetup::new(sampler, &lean.prim_info(world, prim));
+                &mut slot.insert((prim, setup)).1
+            }
         };
-        lean_at_pixel(lean, world, sampler, info, flat, ij)
+        lean_at_pixel(lean, world, sampler, setup, flat, ij)
     }
 }
 

@@ -96,6 +96,25 @@ pub(crate) fn level_for(rho: f64, levels: u32) -> u32 {
     }
 }
 
+/// [`level_for`] of the footprint whose square is `rho2`, without the
+/// square root and the logarithm: `round(log2 rho)` is
+/// `floor(log2(2 rho^2) / 2)`, and `floor(log2 x)` of a finite positive
+/// `x` is its binary exponent. The same level as [`level_for`] except
+/// where `rho` is within rounding of a boundary `2^(k + 1/2)`.
+#[inline]
+pub(crate) fn level_for_squared(rho2: f64, levels: u32) -> u32 {
+    if rho2.is_nan() || rho2 <= 1.0 {
+        return 0;
+    }
+    let x = 2.0 * rho2;
+    if !x.is_finite() {
+        return levels - 1;
+    }
+    // x > 2: a normal number, whose biased exponent is at least 1024.
+    let exponent = ((x.to_bits() >> 52) & 0x7ff) as u32 - 1023;
+    (exponent / 2).min(levels - 1)
+}
+
 /// Encodes a linear value as its nearest sRGB byte (nearest in linear light): the
 /// first code whose midpoint with the next code is at or above the value.
 /// A table of 4096 buckets gives the first candidate, a short walk (sRGB is

@@ -27,6 +27,7 @@ pub mod cutout;
 pub mod mip;
 pub mod prims;
 mod render;
+pub mod setup;
 pub mod stages;
 pub mod surface;
 pub mod texture;
@@ -36,6 +37,7 @@ pub use budget::{
 };
 pub use prims::{Prims, ScenePrims};
 pub use render::render_frame;
+pub use setup::SurfaceSetup;
 pub use stages::{
     Shader, ShaderOptions, StageTrace, Stages, texture_failures, transparency_warning,
 };

@@ -28,6 +28,7 @@
 //! colour per primitive.
 
 use super::prims::Prims;
+use super::setup::SurfaceSetup;
 use super::surface::TextureOptions;
 use super::texture::TextureRef;
 use super::{flat_color, to_srgb8};
@@ -164,6 +165,9 @@ impl Shader {
         self.prims.resize(prims.len(), None);
         let (w, h) = (frame.width(), frame.height());
         let mut info = None;
+        // The shading setup of the last primitive shaded per point (its
+        // barycentric planes and texture state, built once per run).
+        let mut setup: Option<(u32, SurfaceSetup)> = None;
         for y in 0..h {
             for x in 0..w {
                 let i = frame.index(x, y);
@@ -194,7 +198,11 @@ impl Shader {
                 let mut c = flat;
                 if sampler.varies(&prim, material) {
                     let (cx, cy) = (f64::from(x) + 0.5, f64::from(y) + 0.5);
-                    if let Some(at) = sampler.color_at(&prim, material, prims.lights(), cx, cy) {
+                    let setup = match &mut setup {
+                        Some((last, s)) if *last == id => s,
+                        slot => &mut slot.insert((id, SurfaceSetup::new(&sampler, &prim))).1,
+                    };
+                    if let Some(at) = setup.color_at(&sampler, material, prims.lights(), cx, cy) {
                         c = at;
                         trace.points += 1;
                     }

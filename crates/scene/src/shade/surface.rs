@@ -25,6 +25,7 @@
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use hider_geom::{Projection, Viewport};
 
+use super::setup::{Footprint, SurfaceSetup};
 use super::texture::{Filter, TextureRef};
 use crate::model::{Illumination, Light, Material};
 use crate::prepare::{PrimInfo, ScreenScene};
@@ -161,7 +162,12 @@ impl TextureSampler {
     /// Barycentrics of the point of primitive `info` seen at window point
     /// `(x, y)`, and that point in camera space; `None` when the ray runs
     /// parallel to the primitive's plane or the primitive is degenerate.
-    fn barycentrics(&self, info: &PrimInfo, x: f64, y: f64) -> Option<([f64; 3], DVec3)> {
+    pub(super) fn barycentrics(
+        &self,
+        info: &PrimInfo,
+        x: f64,
+        y: f64,
+    ) -> Option<([f64; 3], DVec3)> {
         let c = info.camera;
         match self.options.mapping {
             Mapping::PerspectiveCorrect => {
@@ -195,14 +201,20 @@ impl TextureSampler {
     /// change one pixel right and one pixel down (the footprint the mip
     /// level is chosen from, [`super::mip`]), from barycentrics `b` at the
     /// point; the derivatives are zero where they cannot be found.
-    fn uv_footprint(&self, info: &PrimInfo, b: [f64; 3], x: f64, y: f64) -> Option<UvFootprint> {
+    pub(super) fn uv_footprint(
+        &self,
+        info: &PrimInfo,
+        b: [f64; 3],
+        x: f64,
+        y: f64,
+    ) -> Option<Footprint> {
         let t = info.uvs?.map(|t| t.as_dvec2());
         let at = |b: [f64; 3]| t[0] * b[0] + t[1] * b[1] + t[2] * b[2];
         let uv = at(b);
         let step = |bx: Option<([f64; 3], DVec3)>| bx.map_or(DVec2::ZERO, |(b, _)| at(b) - uv);
         let dx = step(self.barycentrics(info, x + 1.0, y));
         let dy = step(self.barycentrics(info, x, y + 1.0));
-        Some(UvFootprint { uv, dx, dy })
+        Some(Footprint { uv, dx, dy })
     }
 
     /// The colour and alpha of `texture` at the point of `info` with
@@ -255,6 +267,8 @@ impl TextureSampler {
     /// `lights`) at window point `(x, y)`, shaded at that point; `None`
     /// when its colour does not vary across it ([`Self::varies`]: the
     /// caller's flat colour is the answer) or the point cannot be found.
+    /// A caller shading several points of one primitive builds its
+    /// [`SurfaceSetup`] once instead (the same colours).
     pub fn color_at(
         &self,
         info: &PrimInfo,
@@ -266,56 +280,22 @@ impl TextureSampler {
         if !self.varies(info, material) {
             return None;
         }
-        let (b, position) = self.barycentrics(info, x, y)?;
-        let sample = |texture: &Option<TextureRef>| {
-            if !self.textures {
-                return None;
-            }
-            Some(self.texel(texture.as_ref()?, info, b, x, y)?.0)
-        };
-        let times = |c: [f32; 3], t: Option<[f32; 3]>| match t {
-            Some(t) => [c[0] * t[0], c[1] * t[1], c[2] * t[2]],
-            None => c,
-        };
-        let texel = sample(&material.diffuse_texture);
-        let base = match info.colors {
-            Some(c) => std::array::from_fn(|k| {
-                (f64::from(c[0][k]) * b[0] + f64::from(c[1][k]) * b[1] + f64::from(c[2][k]) * b[2])
-                    as f32
-            }),
-            None => material.diffuse,
-        };
-        let diffuse = times(base, texel);
-        if !self.lighting {
-            return Some(diffuse);
-        }
-        let face = (info.camera[1] - info.camera[0])
-            .cross(info.camera[2] - info.camera[0])
-            .normalize_or_zero();
-        let normal = match info.normals {
-            Some(n) if material.illumination != Illumination::Color => {
-                let n = n.map(|n| n.as_dvec3());
-                let smooth = (n[0] * b[0] + n[1] * b[1] + n[2] * b[2]).normalize_or_zero();
-                // A zero normal (opposite normals at the corners) falls back
-                // to the face's.
-                if smooth == DVec3::ZERO { face } else { smooth }
-            }
-            _ => face,
-        };
-        let specular = if material.has_highlights() {
-            times(material.specular, sample(&material.specular_texture))
-        } else {
-            [0.0; 3]
-        };
-        let point = super::SurfacePoint {
-            position,
-            normal,
-            diffuse,
-            ambient: material.ambient.map(|a| times(a, texel)),
-            specular,
-            perspective: self.rays.perspective,
-        };
-        Some(super::shade_point(material, lights, &point))
+        SurfaceSetup::new(self, info).color_at(self, material, lights, x, y)
+    }
+
+    /// The camera rays of the frame.
+    pub(super) fn rays(&self) -> &CameraRays {
+        &self.rays
+    }
+
+    /// Whether the texture stage is on.
+    pub(super) fn textures_on(&self) -> bool {
+        self.textures
+    }
+
+    /// Whether the lighting stage is on.
+    pub(super) fn lighting_on(&self) -> bool {
+        self.lighting
     }
 }
 
@@ -375,14 +355,6 @@ impl ScreenScene {
     }
 }
 
-/// Texture coordinates at a point and their change one pixel right (`dx`)
-/// and down (`dy`).
-struct UvFootprint {
-    uv: DVec2,
-    dx: DVec2,
-    dy: DVec2,
-}
-
 /// Barycentrics of `p` (on the plane of `c` with normal `n`).
 fn barycentric3(c: [DVec3; 3], n: DVec3, p: DVec3) -> [f64; 3] {
     let nn = n.length_squared();
@@ -405,12 +377,12 @@ fn barycentric2(w: [DVec2; 3], p: DVec2) -> Option<[f64; 3]> {
 /// Camera-space rays through window points, with the projection inverted
 /// once per frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct CameraRays {
+pub(super) struct CameraRays {
     inverse: DMat4,
     projection: DMat4,
     width: f64,
     height: f64,
-    perspective: bool,
+    pub(super) perspective: bool,
 }
 
 impl CameraRays {
@@ -438,8 +410,28 @@ impl CameraRays {
         }
     }
 
+    /// Under a perspective camera, the direction of the ray through the
+    /// window origin and its change one pixel right and one pixel down:
+    /// the ray through `(x, y)` runs from the eye along `d0 + x dx + y dy`
+    /// ([`Self::ray`]'s direction up to a positive or negative scale,
+    /// which does not move the point it meets a plane at). `None` for an
+    /// orthographic camera, whose rays do not share an origin.
+    pub(super) fn affine_ray(&self) -> Option<[DVec3; 3]> {
+        if !self.perspective {
+            return None;
+        }
+        // The homogeneous inverse image of (ndc_x, ndc_y, -1, 1) is
+        // affine in the window point; its division by w only scales it.
+        let at = |v: DVec4| (self.inverse * v).truncate();
+        Some([
+            at(DVec4::new(-1.0, 1.0, -1.0, 1.0)),
+            at(DVec4::new(2.0 / self.width, 0.0, 0.0, 0.0)),
+            at(DVec4::new(0.0, -2.0 / self.height, 0.0, 0.0)),
+        ])
+    }
+
     /// A camera-space point's window position (pixels, y down).
-    fn window_of(&self, p: DVec3) -> DVec2 {
+    pub(super) fn window_of(&self, p: DVec3) -> DVec2 {
         let clip = self.projection * p.extend(1.0);
         let ndc = clip.truncate() / clip.w;
         DVec2::new(

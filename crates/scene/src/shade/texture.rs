@@ -317,10 +317,12 @@ impl Texture {
             return (fetch(l, 0, 0, true), fetch_alpha(l, 0, 0, true));
         }
         // Texel space: x right, y down from the top row; centres at +0.5.
+        // `u - floor(u)` is `rem_euclid(u, 1)` bit for bit (both round the
+        // exact fraction once), without a call to `fmod`.
         let (u, v) = if clamp {
             (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))
         } else {
-            (u.rem_euclid(1.0), v.rem_euclid(1.0))
+            (u - floor(u).0, v - floor(v).0)
         };
         let x = u * f64::from(l.width);
         let y = (1.0 - v) * f64::from(l.height);
@@ -333,24 +335,60 @@ impl Texture {
             }
             Filter::Bilinear => {
                 let (fx, fy) = (x - 0.5, y - 0.5);
-                let (x0, y0) = (fx.floor(), fy.floor());
+                let ((x0, i), (y0, j)) = (floor(fx), floor(fy));
                 let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
-                let (x0, y0) = (x0 as i64, y0 as i64);
-                let corners = [(x0, y0), (x0 + 1, y0), (x0, y0 + 1), (x0 + 1, y0 + 1)];
+                // The two columns and rows, wrapped once each (not per
+                // corner: a remainder is a division).
+                let (xa, xb) = neighbours(i, l.width, clamp);
+                let (ya, yb) = neighbours(j, l.height, clamp);
+                let w = l.width as usize;
+                let corners = [ya * w + xa, ya * w + xb, yb * w + xa, yb * w + xb];
                 let lerp = |q: [f32; 4]| {
                     let top = q[0] + (q[1] - q[0]) * tx;
                     let bottom = q[2] + (q[3] - q[2]) * tx;
                     top + (bottom - top) * ty
                 };
-                let rgb = corners.map(|(x, y)| fetch(l, x, y, clamp));
-                let alpha = if l.alpha.is_some() {
-                    lerp(corners.map(|(x, y)| fetch_alpha(l, x, y, clamp)))
-                } else {
-                    1.0
+                let table = linear_table();
+                let rgb = corners.map(|k| {
+                    let k = 3 * k;
+                    let t = |c: u8| table[usize::from(c)];
+                    [t(l.rgb[k]), t(l.rgb[k + 1]), t(l.rgb[k + 2])]
+                });
+                let alpha = match &l.alpha {
+                    Some(a) => lerp(corners.map(|k| f32::from(a[k]) / 255.0)),
+                    None => 1.0,
                 };
                 (std::array::from_fn(|k| lerp(rgb.map(|c| c[k]))), alpha)
             }
         }
+    }
+}
+
+/// `x.floor()` of a finite `x`, and as an integer (saturating as `as`
+/// does), by truncation where it fits (`f64::floor` is a library call
+/// without SSE 4.1).
+#[inline]
+fn floor(x: f64) -> (f64, i64) {
+    if x.abs() < 4.5e15 {
+        let i = x as i64;
+        let t = i as f64;
+        if t > x { (t - 1.0, i - 1) } else { (t, i) }
+    } else {
+        let f = x.floor();
+        (f, f as i64)
+    }
+}
+
+/// Texel column (or row) `i` and `i + 1` of a side of `n` texels, clamped
+/// to its edge or repeated, as [`index`] finds them.
+#[inline]
+fn neighbours(i: i64, n: u32, clamp: bool) -> (usize, usize) {
+    let n = i64::from(n);
+    if clamp {
+        (i.clamp(0, n - 1) as usize, (i + 1).clamp(0, n - 1) as usize)
+    } else {
+        let a = i.rem_euclid(n);
+        (a as usize, if a + 1 == n { 0 } else { a as usize + 1 })
     }
 }
 

@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use crate::error::Result;
 use crate::model::{Light, Material, Scene};
 use crate::prepare::{FrontEnd, PrepareOptions, PrepareStats, PrimInfo};
-use crate::shade::{ShadeMode, TextureSampler, flat_color, id_color};
+use crate::shade::{ShadeMode, SurfaceSetup, TextureSampler, flat_color, id_color};
 use crate::view::View;
 
 use super::attributes::PointAttributes;
@@ -140,9 +140,10 @@ impl LeanScene {
 
     /// The colour at window point `(x, y)` under `sampler` (built for the
     /// frame's view, [`TextureSampler::for_view`]) of the primitive of
-    /// `scene` whose data is `info` ([`Self::prim_info`], which a caller
-    /// shading a run of pixels of one primitive looks up once), or `base`,
-    /// its flat colour, when its colour does not vary: bit for bit
+    /// `scene` whose setup is `setup` (a [`SurfaceSetup`] of
+    /// [`Self::prim_info`], which a caller shading several pixels of one
+    /// primitive builds once), or `base`, its flat colour, when its colour
+    /// does not vary: bit for bit
     /// [`ScreenScene::surface_rgb`](crate::ScreenScene::surface_rgb) on
     /// `prepare`'s output.
     #[inline]
@@ -150,16 +151,16 @@ impl LeanScene {
         &self,
         scene: &Scene,
         sampler: &TextureSampler,
-        info: &PrimInfo,
+        setup: &mut SurfaceSetup,
         base: [f32; 3],
         (x, y): (f64, f64),
     ) -> [f32; 3] {
         let material = scene
             .materials
-            .get(info.material as usize)
+            .get(setup.info().material as usize)
             .unwrap_or(&self.default_material);
-        sampler
-            .color_at(info, material, &self.lights, x, y)
+        setup
+            .color_at(sampler, material, &self.lights, x, y)
             .unwrap_or(base)
     }
 

@@ -227,6 +227,21 @@ impl TextureRef {
         Some(texture.sample_level(u, v, filter, self.transform.clamp, level))
     }
 
+    /// Level 0's size in texels and the chain's number of levels, from
+    /// the header (read once, never decodes); `None` when it does not
+    /// read: what [`Self::sample_footprint`] scales a footprint by.
+    pub(crate) fn footprint_scale(&self) -> Option<([f64; 2], u32)> {
+        let h = self
+            .slot
+            .header
+            .get_or_init(|| header(&self.path).map_err(|e| e.to_string()));
+        let h = h.as_ref().ok()?;
+        Some((
+            [f64::from(h.width), f64::from(h.height)],
+            mip::level_count(h.width, h.height),
+        ))
+    }
+
     /// Whether a decode was attempted (successful or not).
     pub fn is_decoded(&self) -> bool {
         read(&self.slot.decoded).is_some()
