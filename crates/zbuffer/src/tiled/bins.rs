@@ -217,6 +217,12 @@ impl ChunkBins {
                 continue;
             }
             self.entries += u64::from(count);
+            // Most triangles of a dense mesh meet one tile (56k entries
+            // for 52k triangles on the sphere 200 at 1024): no loops.
+            if count == 1 {
+                self.tiles[(ty0 * grid.cols + tx0) as usize].push(entry);
+                continue;
+            }
             for ty in ty0..ty1 + 1 {
                 let row = (ty * grid.cols) as usize;
                 for tx in tx0..tx1 + 1 {
