@@ -98,10 +98,12 @@ mod avx2 {
             for bc in bc0..bc1 + 1 {
                 let xs = (bc * 8) as i32;
                 let xl = _mm256_add_epi32(_mm256_set1_epi32(xs), iota);
-                // Lanes of the box's columns: first <= x <= last.
-                let in_x = _mm256_and_si256(
-                    _mm256_cmpgt_epi32(xl, _mm256_set1_epi32(first - 1)),
-                    _mm256_cmpgt_epi32(_mm256_set1_epi32(last + 1), xl),
+                // All ones in the lanes outside the box's columns (x <
+                // first or x > last): OR-ed into the edges' sign below, one
+                // instruction a row instead of a mask to AND in.
+                let off_x = _mm256_or_si256(
+                    _mm256_cmpgt_epi32(_mm256_set1_epi32(first), xl),
+                    _mm256_cmpgt_epi32(xl, _mm256_set1_epi32(last)),
                 );
                 // The column terms `value + dx * ((x + 0.5) - x0)`, as
                 // `PlaneEq::eval` computes them (x exact in f64).
@@ -116,12 +118,23 @@ mod avx2 {
                     let base = s.e[k].wrapping_add(s.sx[k].wrapping_mul(step));
                     e[k] = _mm256_add_epi32(_mm256_set1_epi32(base), lanes[k]);
                 }
+                // The row's storage index, stepped: eight on, and to the
+                // next block row (less the block's 64) after a block's
+                // last row, without a branch.
+                let mut at = ((s.ly0 / 8) as usize * s.per_row + bc as usize) * 64
+                    + (s.ly0 % 8) as usize * 8;
+                let wrap = s.per_row * 64 - 64;
+                // The row's centre `y + 0.5` is exact in f64, so stepping it
+                // by one gives `PlaneEq::eval`'s bits.
+                let mut yc = f64::from(s.tile_y0 + s.ly0) + 0.5;
                 for y in s.ly0..s.ly1 + 1 {
-                    let ty = p.dy * ((f64::from(s.tile_y0 + y) + 0.5) - p.y0);
+                    let ty = p.dy * (yc - p.y0);
                     let new = encode::<K>(col, _mm256_set1_pd(ty));
-                    let at =
-                        ((y / 8) as usize * s.per_row + bc as usize) * 64 + (y % 8) as usize * 8;
-                    debug_assert!(at + 8 <= end);
+                    debug_assert!(
+                        at == ((y / 8) as usize * s.per_row + bc as usize) * 64
+                            + (y % 8) as usize * 8
+                            && at + 8 <= end
+                    );
                     // SAFETY: `at + 8 <= end`, checked against both slices
                     // above; `[K; 8]` has the alignment of `K`.
                     let row_keys = &mut *keys.as_mut_ptr().add(at).cast::<[K; 8]>();
@@ -129,9 +142,10 @@ mod avx2 {
                     let old_keys: [u32; 8] = std::array::from_fn(|c| row_keys[c].to_lane());
                     let old_keys: __m256i = bytemuck::cast(old_keys);
                     let old_ids: __m256i = bytemuck::cast(*row_ids);
-                    // All ones where the OR of the biased edges is >= 0.
+                    // All ones where the OR of the biased edges is >= 0, in
+                    // the box's columns.
                     let out = _mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]);
-                    let ok = _mm256_and_si256(_mm256_cmpgt_epi32(out, minus_one), in_x);
+                    let ok = _mm256_cmpgt_epi32(_mm256_or_si256(out, off_x), minus_one);
                     let pass = _mm256_and_si256(less::<K>(new, old_keys), ok);
                     inside = _mm256_sub_epi32(inside, ok);
                     passes = _mm256_sub_epi32(passes, pass);
@@ -143,6 +157,8 @@ mod avx2 {
                     for (e, d) in e.iter_mut().zip(down) {
                         *e = _mm256_add_epi32(*e, d);
                     }
+                    at += 8 + usize::from(y % 8 == 7) * wrap;
+                    yc += 1.0;
                 }
             }
             (sum(inside), sum(passes))
