@@ -12,12 +12,14 @@
 //! Two more families hold one big face group each, whose union is one
 //! boolean over all its regions: a flat sheet of `N` triangles (a square
 //! grid of cells) under a directional light, and a cube whose six faces
-//! are each such a grid, one material (three faces seen, each a group).
+//! are each such a grid, one material (three faces seen, each a group);
+//! and the sheet pierced by a random soup of `N / 8` triangles, so that
+//! its group's union is over many cut pieces with holes.
 //! The peak resident memory of each drawing is the process's (`VmHWM`,
 //! reset before it; the scene is resident already, so it counts).
 //!
-//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh]`
-//! (defaults: 20 s, 1,024,000 triangles, all four families).
+//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced]`
+//! (defaults: 20 s, 1,024,000 triangles, all five families).
 
 use std::time::Instant;
 
@@ -119,6 +121,19 @@ fn sheet(n: u32) -> Scene {
     lit(vec![grid(cells, |p| p)])
 }
 
+/// The sheet of `n` triangles pierced by the random soup of `n / 8`
+/// (`gen:soup`): the sheet's group is cut into many pieces with holes.
+fn pierced(n: u32) -> Scene {
+    let mut scene = sheet(n);
+    let soup = procedural::random_soup(n / 8, 1);
+    let material = soup.materials.into_iter().next();
+    for mut mesh in soup.meshes {
+        mesh.material = None;
+        scene.push_mesh(mesh, material.clone());
+    }
+    scene
+}
+
 /// A cube of about `n` triangles, each face a grid, turned so that three
 /// faces are seen.
 fn mesh(n: u32) -> Scene {
@@ -161,7 +176,7 @@ fn main() -> Result<(), hider_scene::Error> {
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     type Family = (&'static str, &'static str, u32, fn(u32) -> Scene);
-    let families: [Family; 4] = [
+    let families: [Family; 5] = [
         ("`gen:soup:N`", "soup", 2_000, |n| {
             procedural::random_soup(n, 1)
         }),
@@ -170,6 +185,7 @@ fn main() -> Result<(), hider_scene::Error> {
         }),
         ("flat sheet", "sheet", 2_000, sheet),
         ("cube of grids", "mesh", 2_000, mesh),
+        ("sheet pierced by `gen:soup:N/8`", "pierced", 2_000, pierced),
     ];
     for (name, key, start, make) in families {
         if only.as_deref().is_some_and(|o| o != key) {
