@@ -16,18 +16,19 @@
 //! and the sheet pierced by a random soup of `N / 8` triangles, so that
 //! its group's union is over many cut pieces with holes.
 //! The peak resident memory of each drawing is the process's (`VmHWM`,
-//! reset before it; the scene is resident already, so it counts).
+//! reset before it; the scene is resident already, so it counts, and so
+//! does heap the allocator kept from the family's smaller sizes); each
+//! family runs in a process of its own.
 //!
 //! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced]`
 //! (defaults: 20 s, 1,024,000 triangles, all five families).
 
 use std::time::Instant;
 
-use hider_bench::programs::thread_cpu_seconds;
 use glam::DVec3;
+use hider_bench::programs::thread_cpu_seconds;
 use hider_scene::{
-    Light, Material, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare,
-    procedural,
+    Light, Material, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural,
 };
 use hider_testkit::hard_cases::heavy_overdraw;
 use hider_vector::{
@@ -174,7 +175,9 @@ fn main() -> Result<(), hider_scene::Error> {
     println!(
         "| scene | N | culled | overlapping pairs | differences | outline triangles | region points | largest group | regions s | exponent | regions MB | line features | culled features | occluder tests | lines s | exponent | lines MB |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!(
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
     type Family = (&'static str, &'static str, u32, fn(u32) -> Scene);
     let families: [Family; 5] = [
         ("`gen:soup:N`", "soup", 2_000, |n| {
@@ -188,7 +191,22 @@ fn main() -> Result<(), hider_scene::Error> {
         ("sheet pierced by `gen:soup:N/8`", "pierced", 2_000, pierced),
     ];
     for (name, key, start, make) in families {
-        if only.as_deref().is_some_and(|o| o != key) {
+        let Some(only) = only.as_deref() else {
+            // Each family in a process of its own, so that no heap kept
+            // from an earlier family counts in a later one's peak.
+            let exe = std::env::current_exe().expect("this program's path");
+            let out = std::process::Command::new(exe)
+                .args([cap.to_string(), largest.to_string(), key.to_string()])
+                .output()
+                .expect("run one family");
+            let text = String::from_utf8_lossy(&out.stdout);
+            text.lines().skip(2).for_each(|l| println!("{l}"));
+            if !out.status.success() {
+                println!("| {name} | stopped: {} |", out.status);
+            }
+            continue;
+        };
+        if only != key {
             continue;
         }
         let mut n = start;
