@@ -28,9 +28,9 @@ use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::cull::{Culled, cull};
 use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
-use crate::splitter::list_overlay;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
+use crate::splitter::list_overlay;
 use crate::subtract::{BATCH, is_sliver, subtract};
 
 hider_scene::hider_stats! {
