@@ -344,6 +344,20 @@ impl RenderArgs {
         if self.svg_mode == SvgMode::Painter && self.svg.is_none() {
             bail!("--svg-mode painter needs --svg FILE to write the ordered polygons to");
         }
+        // Only the regions send polygon vertices into map-wide passes:
+        // the lines and the painter's list build no regions, so the
+        // budget would do nothing without a word.
+        let other_mode = match self.svg_mode {
+            SvgMode::Regions => None,
+            SvgMode::Lines => Some("lines"),
+            SvgMode::Painter => Some("painter"),
+        };
+        if let (Some(mode), Some(_)) = (other_mode, self.max_region_points) {
+            bail!(
+                "--max-region-points applies to --svg-mode regions only; --svg-mode {mode} \
+                 builds no regions"
+            );
+        }
         // The vector flags shape the regions and lines drawings; the
         // painter's polygons are written as the painter orders them, so a
         // flag set for them would do nothing without a word.
@@ -359,7 +373,6 @@ impl RenderArgs {
                 ("--background", self.background != "none"),
                 ("--seams", self.seams != SeamsArg::On),
                 ("--max-pairs", self.max_pairs.is_some()),
-                ("--max-region-points", self.max_region_points.is_some()),
             ];
             if let Some((flag, _)) = set.iter().find(|(_, given)| *given) {
                 bail!(

@@ -129,6 +129,28 @@ fn a_budget_flag_goes_to_the_hiders_that_have_that_budget() {
             ],
             &["--max-pairs", "regions or lines"],
         ),
+        (
+            &[
+                "--max-region-points",
+                "5",
+                "--svg",
+                "x.svg",
+                "--svg-mode",
+                "lines",
+            ],
+            &["--max-region-points", "--svg-mode lines", "regions only"],
+        ),
+        (
+            &[
+                "--max-region-points",
+                "5",
+                "--svg",
+                "x.svg",
+                "--svg-mode",
+                "painter",
+            ],
+            &["--max-region-points", "--svg-mode painter", "regions only"],
+        ),
     ] {
         let line = error_line(&run(&[&base[..], flags].concat()));
         for needle in needles {

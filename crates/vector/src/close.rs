@@ -14,13 +14,13 @@
 use std::collections::{HashMap, HashSet};
 
 use i_overlay::core::fill_rule::FillRule;
-use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
-use i_overlay::core::solver::Solver;
 use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::grid::bounds;
+use crate::splitter::list_overlay;
 
 /// The covered set's outline: the union of `polys` (the triangles on the
 /// grid) that are not `hidden`, before snap rounding.
@@ -45,7 +45,7 @@ pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
     let mut parts: Vec<IntShapes> = order
         .chunks(FAN_IN)
         .map(|chunk| {
-            let mut overlay = Overlay::new(4 * chunk.len());
+            let mut overlay = list_overlay(4 * chunk.len());
             for &(_, k) in chunk {
                 overlay.add_contour(&polys[k], ShapeType::Subject);
             }
@@ -56,7 +56,7 @@ pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
         parts = parts
             .chunks(FAN_IN)
             .map(|chunk| {
-                let mut overlay = closing_overlay();
+                let mut overlay = list_overlay(64);
                 for shapes in chunk {
                     overlay.add_shapes(shapes, ShapeType::Subject);
                 }
@@ -90,7 +90,7 @@ fn morton(lo: IntPoint, hi: IntPoint) -> u64 {
 /// Makes the union of `regions` equal `covered`, the outline snap rounded
 /// in one arrangement with the regions (so every boolean here is exact).
 pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
-    let mut overlay = closing_overlay();
+    let mut overlay = list_overlay(64);
     for region in regions.iter() {
         overlay.add_shapes(region, ShapeType::Subject);
     }
@@ -108,7 +108,7 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
             }
         }
     }
-    let mut overlay = closing_overlay();
+    let mut overlay = list_overlay(64);
     overlay.add_shapes(covered, ShapeType::Subject);
     for region in regions.iter() {
         overlay.add_shapes(region, ShapeType::Clip);
@@ -144,22 +144,6 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
             regions[k] = boolean(&regions[k], &vec![piece], OverlayRule::Union);
         }
     }
-}
-
-/// An overlay with `i_overlay`'s sweep-list splitter. Past 4,000 segments
-/// its default (`Solver::AUTO`) switches to the tree or fragment splitter,
-/// and on the snapped regions of `gen:soup:64000` at 256 px (17,717
-/// contours, 173,694 points, crossing-free) those build a graph whose
-/// contour walk never returns to its start: 4.5.2 then grows one contour
-/// until memory runs out (7.6 GB asked for). The list splitter gives the
-/// answer on the same input at once. In the closing pass everything is
-/// already snap rounded, so the splitter only has to merge coincident
-/// edges and split at T-junctions, one sweep over the x-sorted segments.
-/// The outline's merges (past the first level) use it too, to keep away
-/// from the tree splitter: on the scaling table's scenes they take the
-/// same time either way.
-fn closing_overlay() -> Overlay {
-    Overlay::new_custom(64, Default::default(), Solver::LIST)
 }
 
 /// The bounding box of a polygon set.
@@ -205,7 +189,7 @@ fn nearest(regions: &[IntShapes], piece: &[Vec<IntPoint>]) -> Option<usize> {
 
 /// One boolean of two polygon sets.
 fn boolean(a: &IntShapes, b: &IntShapes, rule: OverlayRule) -> IntShapes {
-    let mut overlay = closing_overlay();
+    let mut overlay = list_overlay(64);
     overlay.add_shapes(a, ShapeType::Subject);
     overlay.add_shapes(b, ShapeType::Clip);
     overlay.overlay(rule, FillRule::NonZero)

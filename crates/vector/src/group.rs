@@ -6,14 +6,22 @@ use std::collections::HashMap;
 use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{ScreenScene, ShadeMode};
 use i_overlay::core::fill_rule::FillRule;
-use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 
 use crate::regions::{FaceGroup, PrimRegion};
+use crate::splitter::list_overlay;
 
 /// The key that puts coplanar primitives of one colour together: the fill
-/// colour and opacity as written, and the camera-space plane quantised.
-fn group_key(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> (String, u32, [i64; 4]) {
+/// colour and opacity as written, and the camera-space plane quantised,
+/// its offset relative to `scale` (one length for the whole scene: a
+/// per-triangle scale would give each triangle of one plane its own key).
+fn group_key(
+    scene: &ScreenScene,
+    prim: u32,
+    mode: ShadeMode,
+    scale: f64,
+) -> (String, u32, [i64; 4]) {
     let (rgb, a) = prim_color(scene, prim, mode);
     let fill = format!(
         "#{:02x}{:02x}{:02x}",
@@ -23,10 +31,6 @@ fn group_key(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> (String, u32, [
     );
     let c = scene.prims[prim as usize].camera;
     let n = (c[1] - c[0]).cross(c[2] - c[0]).normalize_or_zero();
-    let scale = c
-        .iter()
-        .map(|p| p.abs().max_element())
-        .fold(1e-300, f64::max);
     // About six significant digits: triangles of one flat face agree far
     // closer than that, distinct faces differ far more.
     let q = |v: f64| (v * 1e6).round() as i64;
@@ -43,9 +47,14 @@ pub(crate) fn group_regions(
 ) -> Vec<FaceGroup> {
     let mut index: HashMap<(String, u32, [i64; 4]), u32> = HashMap::new();
     let mut groups: Vec<FaceGroup> = Vec::new();
+    let scale = prims
+        .iter()
+        .flat_map(|r| scene.prims[r.prim as usize].camera)
+        .map(|p| p.abs().max_element())
+        .fold(1e-300, f64::max);
     for (k, region) in prims.iter_mut().enumerate() {
         let key = if merge {
-            group_key(scene, region.prim, mode)
+            group_key(scene, region.prim, mode, scale)
         } else {
             (String::new(), k as u32, [0; 4])
         };
@@ -75,7 +84,7 @@ pub(crate) fn group_regions(
     for group in &mut groups {
         if group.prims.len() > 1 || group.shapes.len() > 1 {
             let points = group.shapes.iter().flatten().map(Vec::len).sum();
-            let mut overlay = Overlay::new(points);
+            let mut overlay = list_overlay(points);
             for shape in &group.shapes {
                 overlay.add_contours(shape, ShapeType::Subject);
             }

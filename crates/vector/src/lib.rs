@@ -51,6 +51,7 @@ mod options;
 mod pairs;
 mod regions;
 mod snap;
+mod splitter;
 mod subtract;
 mod svg;
 

@@ -30,6 +30,7 @@ use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
+use crate::splitter::list_overlay;
 use crate::subtract::{BATCH, is_sliver, subtract};
 
 hider_scene::hider_stats! {
@@ -197,7 +198,7 @@ fn build(
     // add nothing to the covered set's outline (see below).
     let mut inside = vec![false; scene.tris.len()];
     // One overlay for all differences: its buffers are kept between uses.
-    let mut overlay = Overlay::new(64);
+    let mut overlay = list_overlay(64);
     for (ti, t) in scene.tris.iter().enumerate() {
         // A triangle's pairs (a bin query, booleans) cost far more than
         // the poll.
@@ -485,7 +486,7 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         }
         runs += 1;
         let points = shapes[k].iter().flatten().map(Vec::len).sum::<usize>();
-        let mut overlay = Overlay::new(points + 16 * earlier.len());
+        let mut overlay = list_overlay(points + 16 * earlier.len());
         overlay.add_shapes(&shapes[k], ShapeType::Subject);
         for &j in &earlier {
             overlay.add_shapes(&shapes[j], ShapeType::Clip);

@@ -8,13 +8,28 @@
 //! `hidden_lines_in` + `lines_svg` (what `hider render --svg` runs), and
 //! the growth exponent of each time between successive sizes.
 //!
-//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile]`
-//! (defaults: 20 s, 1,024,000 triangles, both families).
+//!
+//! Two more families hold one big face group each, whose union is one
+//! boolean over all its regions: a flat sheet of `N` triangles (a square
+//! grid of cells) under a directional light, and a cube whose six faces
+//! are each such a grid, one material (three faces seen, each a group);
+//! and the sheet pierced by a random soup of `N / 8` triangles, so that
+//! its group's union is over many cut pieces with holes.
+//! The peak resident memory of each drawing is the process's (`VmHWM`,
+//! reset before it; the scene is resident already, so it counts, and so
+//! does heap the allocator kept from the family's smaller sizes); each
+//! family runs in a process of its own.
+//!
+//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced]`
+//! (defaults: 20 s, 1,024,000 triangles, all five families).
 
 use std::time::Instant;
 
+use glam::DVec3;
 use hider_bench::programs::thread_cpu_seconds;
-use hider_scene::{PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural};
+use hider_scene::{
+    Light, Material, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural,
+};
 use hider_testkit::hard_cases::heavy_overdraw;
 use hider_vector::{
     ObjectGroups, VectorOptions, hidden_lines_in, line_pairs, lines_svg, regions_svg,
@@ -35,6 +50,113 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
     (out, seconds)
 }
 
+/// Starts a new peak of resident memory (Linux: `5` written to
+/// `/proc/self/clear_refs` sets `VmHWM` to the current resident size).
+fn reset_peak() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
+/// The peak resident memory since [`reset_peak`], in MB (`-` where the
+/// platform gives none).
+fn peak_mb() -> String {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find(|l| l.starts_with("VmHWM:"))
+        .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
+        .map_or("-".into(), |kb| format!("{:.0}", kb / 1024.0))
+}
+
+/// A `cells x cells` grid of squares (two triangles each) over
+/// `[-1, 1]^2` in the plane `z = 0.4 x + 0.3 y`, mapped by `place`.
+fn grid(cells: u32, place: impl Fn(DVec3) -> DVec3) -> Mesh {
+    let n = cells + 1;
+    let mut positions = Vec::with_capacity((n * n) as usize);
+    for j in 0..n {
+        for i in 0..n {
+            let x = -1.0 + 2.0 * f64::from(i) / f64::from(cells);
+            let y = -1.0 + 2.0 * f64::from(j) / f64::from(cells);
+            positions.push(place(DVec3::new(x, y, 0.4 * x + 0.3 * y)));
+        }
+    }
+    let mut indices = Vec::with_capacity(2 * (cells * cells) as usize);
+    for j in 0..cells {
+        for i in 0..cells {
+            let k = j * n + i;
+            indices.push([k, k + 1, k + n + 1]);
+            indices.push([k, k + n + 1, k + n]);
+        }
+    }
+    Mesh {
+        name: "grid".into(),
+        positions,
+        indices,
+        ..Mesh::default()
+    }
+}
+
+/// One material under one directional light: coplanar triangles of a
+/// mesh share a colour, so each flat face is one group.
+fn lit(meshes: Vec<Mesh>) -> Scene {
+    let mut scene = Scene::default();
+    for mesh in meshes {
+        scene.push_mesh(
+            mesh,
+            Some(Material {
+                name: "flat".into(),
+                diffuse: [0.7, 0.6, 0.5],
+                ..Material::default()
+            }),
+        );
+    }
+    scene.lights.push(Light::Directional {
+        direction: DVec3::new(-0.3, -0.5, -1.0),
+        color: [1.0; 3],
+    });
+    scene
+}
+
+/// A flat sheet of about `n` triangles.
+fn sheet(n: u32) -> Scene {
+    let cells = (f64::from(n) / 2.0).sqrt().round().max(1.0) as u32;
+    lit(vec![grid(cells, |p| p)])
+}
+
+/// The sheet of `n` triangles pierced by the random soup of `n / 8`
+/// (`gen:soup`): the sheet's group is cut into many pieces with holes.
+fn pierced(n: u32) -> Scene {
+    let mut scene = sheet(n);
+    let soup = procedural::random_soup(n / 8, 1);
+    let material = soup.materials.into_iter().next();
+    for mut mesh in soup.meshes {
+        mesh.material = None;
+        scene.push_mesh(mesh, material.clone());
+    }
+    scene
+}
+
+/// A cube of about `n` triangles, each face a grid, turned so that three
+/// faces are seen.
+fn mesh(n: u32) -> Scene {
+    let cells = (f64::from(n) / 12.0).sqrt().round().max(1.0) as u32;
+    let turn = glam::DMat3::from_rotation_y(0.6) * glam::DMat3::from_rotation_x(0.5);
+    // The grid's plane flattened to z = 0, then moved onto a face: the
+    // axes of each face chosen so that it faces outward.
+    let faces: [(DVec3, DVec3, DVec3); 6] = [
+        (DVec3::X, DVec3::Y, DVec3::Z),
+        (DVec3::Y, DVec3::X, -DVec3::Z),
+        (DVec3::Y, DVec3::Z, DVec3::X),
+        (DVec3::Z, DVec3::Y, -DVec3::X),
+        (DVec3::Z, DVec3::X, DVec3::Y),
+        (DVec3::X, DVec3::Z, -DVec3::Y),
+    ];
+    let meshes = faces
+        .iter()
+        .map(|&(u, v, w)| grid(cells, move |p| turn * (p.x * u + p.y * v + w)))
+        .collect();
+    lit(meshes)
+}
+
 fn exponent(last: Option<(f64, f64)>, n: f64, t: f64) -> String {
     last.map_or("-".into(), |(n0, t0)| {
         format!("{:.2}", (t / t0.max(1e-4)).ln() / (n / n0).ln())
@@ -51,21 +173,40 @@ fn main() -> Result<(), hider_scene::Error> {
     let only = std::env::args().nth(3);
     let options = VectorOptions::default();
     println!(
-        "| scene | N | culled | overlapping pairs | differences | outline triangles | region points | regions s | exponent | line features | culled features | occluder tests | lines s | exponent |"
+        "| scene | N | culled | overlapping pairs | differences | outline triangles | region points | largest group | regions s | exponent | regions MB | line features | culled features | occluder tests | lines s | exponent | lines MB |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    type Family = (&'static str, u32, fn(u32) -> Scene);
-    let families: [Family; 2] = [
-        ("`gen:soup:N`", 2_000, |n| procedural::random_soup(n, 1)),
-        ("`heavy_overdraw(N, 1)`", 250, |n| heavy_overdraw(n, 1)),
+    println!(
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    );
+    type Family = (&'static str, &'static str, u32, fn(u32) -> Scene);
+    let families: [Family; 5] = [
+        ("`gen:soup:N`", "soup", 2_000, |n| {
+            procedural::random_soup(n, 1)
+        }),
+        ("`heavy_overdraw(N, 1)`", "pile", 250, |n| {
+            heavy_overdraw(n, 1)
+        }),
+        ("flat sheet", "sheet", 2_000, sheet),
+        ("cube of grids", "mesh", 2_000, mesh),
+        ("sheet pierced by `gen:soup:N/8`", "pierced", 2_000, pierced),
     ];
-    for (name, start, make) in families {
-        let key = if name.contains("soup") {
-            "soup"
-        } else {
-            "pile"
+    for (name, key, start, make) in families {
+        let Some(only) = only.as_deref() else {
+            // Each family in a process of its own, so that no heap kept
+            // from an earlier family counts in a later one's peak.
+            let exe = std::env::current_exe().expect("this program's path");
+            let out = std::process::Command::new(exe)
+                .args([cap.to_string(), largest.to_string(), key.to_string()])
+                .output()
+                .expect("run one family");
+            let text = String::from_utf8_lossy(&out.stdout);
+            text.lines().skip(2).for_each(|l| println!("{l}"));
+            if !out.status.success() {
+                println!("| {name} | stopped: {} |", out.status);
+            }
+            continue;
         };
-        if only.as_deref().is_some_and(|o| o != key) {
+        if only != key {
             continue;
         }
         let mut n = start;
@@ -74,12 +215,16 @@ fn main() -> Result<(), hider_scene::Error> {
             let scene = make(n);
             let view = View::for_scene(&scene, SIZE, SIZE)?;
             let s: ScreenScene = prepare(&scene, &view, &PrepareOptions::default())?;
+            reset_peak();
             let (map, tr) = timed(|| {
                 let map = visible_regions(&s, &options, ShadeMode::Lambert)?;
                 let svg = regions_svg(&s, &map, &options);
                 Ok::<_, hider_scene::Error>((map, svg.len()))
             });
             let (map, _) = map?;
+            let mr = peak_mb();
+            let largest_group = map.groups.iter().map(|g| g.prims.len()).max().unwrap_or(0);
+            reset_peak();
             let (lines, tl) = timed(|| {
                 let pairs = line_pairs(&s, &options)?;
                 let lines = hidden_lines_in(&s, &pairs, &options, &ObjectGroups::default())?;
@@ -87,10 +232,11 @@ fn main() -> Result<(), hider_scene::Error> {
                 Ok::<_, hider_scene::Error>((lines, svg.len()))
             });
             let (lines, _) = lines?;
+            let ml = peak_mb();
             let (r, l) = (map.stats, lines.stats);
             let x = f64::from(n);
             println!(
-                "| {name} | {n} | {} | {} | {} | {} | {} | {tr:.2} | {} | {} | {} | {} | {tl:.2} | {} |",
+                "| {name} | {n} | {} | {} | {} | {} | {} | {largest_group} | {tr:.2} | {} | {mr} | {} | {} | {} | {tl:.2} | {} | {ml} |",
                 r.culled,
                 r.overlapping_pairs,
                 r.differences,

@@ -1,0 +1,113 @@
+//! Big face groups: a flat sheet of thousands of coplanar triangles of
+//! one colour is one group, and its path is one boolean over all of their
+//! regions, past the size (4,000 segments) at which `i_overlay`'s default
+//! leaves its list splitter for the tree splitter, whose contour walk can
+//! fail to close (see `splitter.rs`). The union must keep every region's
+//! area and drop the seams between them.
+
+mod common;
+
+use common::area2;
+use glam::DVec3;
+use hider_scene::{Light, Material, Mesh, Scene, ShadeMode, procedural};
+use hider_testkit::screen;
+use hider_vector::{RegionMap, VectorOptions, visible_regions};
+
+/// A `cells x cells` grid of squares (two triangles each) over
+/// `[-1, 1]^2` in the plane `z = 0.4 x + 0.3 y`, seen at a slant by the
+/// fit camera, one material under one directional light.
+fn sheet(cells: u32) -> Scene {
+    let n = cells + 1;
+    let mut positions = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let x = -1.0 + 2.0 * f64::from(i) / f64::from(cells);
+            let y = -1.0 + 2.0 * f64::from(j) / f64::from(cells);
+            positions.push(DVec3::new(x, y, 0.4 * x + 0.3 * y));
+        }
+    }
+    let mut indices = Vec::new();
+    for j in 0..cells {
+        for i in 0..cells {
+            let k = j * n + i;
+            indices.push([k, k + 1, k + n + 1]);
+            indices.push([k, k + n + 1, k + n]);
+        }
+    }
+    let mut scene = Scene::default();
+    scene.push_mesh(
+        Mesh {
+            name: "sheet".into(),
+            positions,
+            indices,
+            ..Mesh::default()
+        },
+        Some(Material {
+            name: "flat".into(),
+            diffuse: [0.7, 0.6, 0.5],
+            ..Material::default()
+        }),
+    );
+    scene.lights.push(Light::Directional {
+        direction: DVec3::new(-0.3, -0.5, -1.0),
+        color: [1.0; 3],
+    });
+    scene
+}
+
+fn regions(scene: &Scene) -> RegionMap {
+    let s = screen(scene, 128, 128);
+    visible_regions(&s, &VectorOptions::default(), ShadeMode::Lambert).unwrap()
+}
+
+/// Asserts that the groups' paths hold exactly the regions' area and
+/// the covered set's: the unions lost and added nothing.
+fn unions_keep_the_area(map: &RegionMap) {
+    let regions: i128 = map.prims.iter().map(|r| area2(&r.shapes)).sum();
+    let groups: i128 = map.groups.iter().map(|g| area2(&g.shapes)).sum();
+    assert_eq!(groups, regions);
+    assert_eq!(groups, area2(&map.covered));
+}
+
+#[test]
+fn a_flat_sheet_is_one_group_with_one_outline() {
+    // 20,000 triangles: the union gets 60,000 segments, past the
+    // default's switch to the fragment splitter (16,000) too.
+    let map = regions(&sheet(100));
+    assert_eq!(map.prims.len(), 20_000);
+    assert_eq!(map.groups.len(), 1, "{:?}", map.stats);
+    let shapes = &map.groups[0].shapes;
+    assert_eq!(shapes.len(), 1, "one piece");
+    assert_eq!(shapes[0].len(), 1, "no hole");
+    unions_keep_the_area(&map);
+}
+
+#[test]
+fn a_pierced_sheet_is_one_group_with_holes() {
+    let mut scene = sheet(100);
+    let soup = procedural::random_soup(300, 1);
+    let material = soup.materials.into_iter().next();
+    for mut mesh in soup.meshes {
+        mesh.material = None;
+        scene.push_mesh(mesh, material.clone());
+    }
+    let map = regions(&scene);
+    // The soup's triangles lie in 300 distinct planes: at most one group
+    // each, and the sheet's visible triangles one more.
+    assert!(map.groups.len() <= 301, "{} groups", map.groups.len());
+    let sheet_group = map
+        .groups
+        .iter()
+        .max_by_key(|g| g.prims.len())
+        .expect("a group");
+    assert!(
+        sheet_group.prims.len() > 15_000,
+        "{}",
+        sheet_group.prims.len()
+    );
+    assert!(
+        sheet_group.shapes.iter().any(|s| s.len() > 1),
+        "the soup cuts holes in the sheet's path"
+    );
+    unions_keep_the_area(&map);
+}
