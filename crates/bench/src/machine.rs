@@ -63,6 +63,25 @@ impl Machine {
     }
 }
 
+/// This process's peak resident memory in bytes (Linux's `VmHWM` in
+/// `/proc/self/status`), `None` where the platform reports none. The bench
+/// programs that measure memory run each case in a child process, or
+/// start a new peak with [`reset_peak_resident`], so that the figure is
+/// that case's.
+pub fn peak_resident_bytes() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
+}
+
+/// Starts a new peak of resident memory for [`peak_resident_bytes`]
+/// (Linux: `5` written to `/proc/self/clear_refs` sets `VmHWM` to the
+/// current resident size; elsewhere nothing happens).
+pub fn reset_peak_resident() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -69,7 +69,7 @@ fn one(path: &Path, parser: Option<&str>) -> Result<(), Box<dyn std::error::Erro
     println!(
         "{seconds} {} {} {} {}",
         cpu_seconds().unwrap_or(f64::NAN),
-        peak_bytes().unwrap_or(0),
+        hider_bench::machine::peak_resident_bytes().unwrap_or(0),
         scene.triangle_count(),
         stats.fast
     );
@@ -84,14 +84,6 @@ fn cpu_seconds() -> Option<f64> {
     let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
     let ticks: u64 = fields.get(11)?.parse::<u64>().ok()? + fields.get(12)?.parse::<u64>().ok()?;
     Some(ticks as f64 / 100.0)
-}
-
-/// The process's peak resident memory (Linux's VmHWM), in bytes.
-fn peak_bytes() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
 }
 
 /// A measured load: wall seconds, CPU seconds and peak bytes.

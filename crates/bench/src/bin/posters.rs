@@ -35,13 +35,10 @@ fn scene(name: &str) -> Result<Scene, String> {
     }
 }
 
-/// The peak resident memory of this process in MB (`VmHWM`), where Linux
-/// reports it.
+/// The peak resident memory of this process in MB, where Linux reports
+/// it.
 fn peak_mb() -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb / 1024.0)
+    hider_bench::machine::peak_resident_bytes().map(|b| b as f64 / 1048576.0)
 }
 
 /// The child: one frame of `hider` on `scene` at `size`; prints

@@ -26,6 +26,7 @@
 use std::time::Instant;
 
 use glam::DVec3;
+use hider_bench::machine;
 use hider_bench::programs::thread_cpu_seconds;
 use hider_scene::{
     Light, Material, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural,
@@ -50,21 +51,11 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
     (out, seconds)
 }
 
-/// Starts a new peak of resident memory (Linux: `5` written to
-/// `/proc/self/clear_refs` sets `VmHWM` to the current resident size).
-fn reset_peak() {
-    let _ = std::fs::write("/proc/self/clear_refs", "5");
-}
-
-/// The peak resident memory since [`reset_peak`], in MB (`-` where the
-/// platform gives none).
+/// The peak resident memory since the last
+/// [`machine::reset_peak_resident`], in MB (`-` where the platform gives
+/// none).
 fn peak_mb() -> String {
-    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    status
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))
-        .and_then(|l| l.split_whitespace().nth(1)?.parse::<f64>().ok())
-        .map_or("-".into(), |kb| format!("{:.0}", kb / 1024.0))
+    machine::peak_resident_bytes().map_or("-".into(), |b| format!("{:.0}", b as f64 / 1048576.0))
 }
 
 /// A `cells x cells` grid of squares (two triangles each) over
@@ -215,7 +206,7 @@ fn main() -> Result<(), hider_scene::Error> {
             let scene = make(n);
             let view = View::for_scene(&scene, SIZE, SIZE)?;
             let s: ScreenScene = prepare(&scene, &view, &PrepareOptions::default())?;
-            reset_peak();
+            machine::reset_peak_resident();
             let (map, tr) = timed(|| {
                 let map = visible_regions(&s, &options, ShadeMode::Lambert)?;
                 let svg = regions_svg(&s, &map, &options);
@@ -224,7 +215,7 @@ fn main() -> Result<(), hider_scene::Error> {
             let (map, _) = map?;
             let mr = peak_mb();
             let largest_group = map.groups.iter().map(|g| g.prims.len()).max().unwrap_or(0);
-            reset_peak();
+            machine::reset_peak_resident();
             let (lines, tl) = timed(|| {
                 let pairs = line_pairs(&s, &options)?;
                 let lines = hidden_lines_in(&s, &pairs, &options, &ObjectGroups::default())?;
