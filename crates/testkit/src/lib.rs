@@ -10,6 +10,8 @@
 //!   brute-force window-depth z-buffer and the ray cast);
 //! - [`score`]: counting wrong pixels and ties against a reference, and
 //!   tallies for property tests;
+//! - [`sheets`]: big flat faces, grids of many coplanar triangles of one
+//!   colour;
 //! - [`timer`]: warm-up, repeated runs, median and minimum, for examples;
 //! - `lean_reference` (feature `lean`): the brute-force definition of the
 //!   z-buffer's lean depth-only front end;
@@ -53,6 +55,7 @@ pub mod lean_reference;
 pub mod reference;
 pub mod score;
 pub mod screen;
+pub mod sheets;
 pub mod timer;
 
 #[cfg(feature = "lean")]

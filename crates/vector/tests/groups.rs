@@ -8,51 +8,14 @@
 mod common;
 
 use common::area2;
-use glam::DVec3;
-use hider_scene::{Light, Material, Mesh, Scene, ShadeMode, procedural};
-use hider_testkit::screen;
+use hider_scene::{Scene, ShadeMode, procedural};
+use hider_testkit::{screen, sheets};
 use hider_vector::{RegionMap, VectorOptions, visible_regions};
 
-/// A `cells x cells` grid of squares (two triangles each) over
-/// `[-1, 1]^2` in the plane `z = 0.4 x + 0.3 y`, seen at a slant by the
-/// fit camera, one material under one directional light.
+/// A `cells x cells` grid sheet seen at a slant by the fit camera, one
+/// material under one directional light.
 fn sheet(cells: u32) -> Scene {
-    let n = cells + 1;
-    let mut positions = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let x = -1.0 + 2.0 * f64::from(i) / f64::from(cells);
-            let y = -1.0 + 2.0 * f64::from(j) / f64::from(cells);
-            positions.push(DVec3::new(x, y, 0.4 * x + 0.3 * y));
-        }
-    }
-    let mut indices = Vec::new();
-    for j in 0..cells {
-        for i in 0..cells {
-            let k = j * n + i;
-            indices.push([k, k + 1, k + n + 1]);
-            indices.push([k, k + n + 1, k + n]);
-        }
-    }
-    let mut scene = Scene::default();
-    scene.push_mesh(
-        Mesh {
-            name: "sheet".into(),
-            positions,
-            indices,
-            ..Mesh::default()
-        },
-        Some(Material {
-            name: "flat".into(),
-            diffuse: [0.7, 0.6, 0.5],
-            ..Material::default()
-        }),
-    );
-    scene.lights.push(Light::Directional {
-        direction: DVec3::new(-0.3, -0.5, -1.0),
-        color: [1.0; 3],
-    });
-    scene
+    sheets::lit(vec![sheets::grid(cells, |p| p)])
 }
 
 fn regions(scene: &Scene) -> RegionMap {

@@ -28,10 +28,9 @@ use std::time::Instant;
 use glam::DVec3;
 use hider_bench::machine;
 use hider_bench::programs::thread_cpu_seconds;
-use hider_scene::{
-    Light, Material, Mesh, PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural,
-};
+use hider_scene::{PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural};
 use hider_testkit::hard_cases::heavy_overdraw;
+use hider_testkit::sheets::{grid, lit};
 use hider_vector::{
     ObjectGroups, VectorOptions, hidden_lines_in, line_pairs, lines_svg, regions_svg,
     visible_regions,
@@ -56,55 +55,6 @@ fn timed<T>(f: impl FnOnce() -> T) -> (T, f64) {
 /// none).
 fn peak_mb() -> String {
     machine::peak_resident_bytes().map_or("-".into(), |b| format!("{:.0}", b as f64 / 1048576.0))
-}
-
-/// A `cells x cells` grid of squares (two triangles each) over
-/// `[-1, 1]^2` in the plane `z = 0.4 x + 0.3 y`, mapped by `place`.
-fn grid(cells: u32, place: impl Fn(DVec3) -> DVec3) -> Mesh {
-    let n = cells + 1;
-    let mut positions = Vec::with_capacity((n * n) as usize);
-    for j in 0..n {
-        for i in 0..n {
-            let x = -1.0 + 2.0 * f64::from(i) / f64::from(cells);
-            let y = -1.0 + 2.0 * f64::from(j) / f64::from(cells);
-            positions.push(place(DVec3::new(x, y, 0.4 * x + 0.3 * y)));
-        }
-    }
-    let mut indices = Vec::with_capacity(2 * (cells * cells) as usize);
-    for j in 0..cells {
-        for i in 0..cells {
-            let k = j * n + i;
-            indices.push([k, k + 1, k + n + 1]);
-            indices.push([k, k + n + 1, k + n]);
-        }
-    }
-    Mesh {
-        name: "grid".into(),
-        positions,
-        indices,
-        ..Mesh::default()
-    }
-}
-
-/// One material under one directional light: coplanar triangles of a
-/// mesh share a colour, so each flat face is one group.
-fn lit(meshes: Vec<Mesh>) -> Scene {
-    let mut scene = Scene::default();
-    for mesh in meshes {
-        scene.push_mesh(
-            mesh,
-            Some(Material {
-                name: "flat".into(),
-                diffuse: [0.7, 0.6, 0.5],
-                ..Material::default()
-            }),
-        );
-    }
-    scene.lights.push(Light::Directional {
-        direction: DVec3::new(-0.3, -0.5, -1.0),
-        color: [1.0; 3],
-    });
-    scene
 }
 
 /// A flat sheet of about `n` triangles.
