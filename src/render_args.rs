@@ -424,9 +424,11 @@ impl RenderArgs {
 
     /// The front end's options: `--precision` (`f32` is the GL-compatible
     /// front end, which also clips at the viewport's sides as llvmpipe
-    /// does), and parallel above one thread.
+    /// does), parallel above one thread, and stopped by `--timeout`.
     pub fn prepare_options(&self) -> PrepareOptions {
-        self.precision.prepare_options(self.threads)
+        self.precision
+            .prepare_options(self.threads)
+            .with_cancel(self.cancel())
     }
 
     /// How to colour the image (`--shade`).

@@ -103,7 +103,9 @@ fn render_with_workspace(
         if ws.frame.width() != width || ws.frame.height() != height {
             ws.frame.resize(width, height)?;
         }
-        let options = PrepareOptions::default().with_parallel(threads > 1);
+        let options = PrepareOptions::default()
+            .with_parallel(threads > 1)
+            .with_cancel(cancel);
         // The hider's whole pipeline, as `hider render --repeat` times it:
         // the tiled z-buffer runs its lean depth-only front end, which
         // keeps the shared front end's numbers bit for bit.
@@ -161,7 +163,11 @@ pub fn plan_scene(
         .with_camera(Some(view.camera))
         .with_shading(false)
         .with_pair_searches(false)
-        .with_prepare(PrepareOptions::default().with_parallel(threads > 1));
+        .with_prepare(
+            PrepareOptions::default()
+                .with_parallel(threads > 1)
+                .with_cancel(cancel),
+        );
     auto(scene, &options)
 }
 

@@ -61,7 +61,7 @@ pub fn prepare_into(
         ..PrepareStats::default()
     };
     if let Some(parts) = parallel_parts(scene, &front, options) {
-        for part in parts {
+        for part in parts? {
             prims.extend_from_slice(&part.prims);
             tris.extend_from_slice(&part.tris);
             stats.add(&part.stats);
@@ -69,7 +69,8 @@ pub fn prepare_into(
     } else {
         let mut scratch = ClipScratch::default();
         let mut part = Part { prims, tris, stats };
-        for (prim, m, t) in scene.triangles() {
+        for (k, (prim, m, t)) in scene.triangles().enumerate() {
+            options.cancel.poll_every(k)?;
             front.triangle(scene, (m, t, prim), &mut part, &mut scratch);
         }
         (prims, tris, stats) = (part.prims, part.tris, part.stats);
@@ -98,7 +99,11 @@ pub fn prepare_into(
 /// scene is prepared on this thread (not asked for by `options`, one
 /// thread, or too small a scene to pay for the fork-join).
 #[cfg(feature = "parallel")]
-fn parallel_parts(scene: &Scene, front: &FrontEnd, options: &PrepareOptions) -> Option<Vec<Part>> {
+fn parallel_parts(
+    scene: &Scene,
+    front: &FrontEnd,
+    options: &PrepareOptions,
+) -> Option<Result<Vec<Part>>> {
     // Below this many triangles the fork-join overhead is not worth it.
     const PARALLEL_CHUNK: usize = 16 * 1024;
     if !(options.parallel
@@ -116,15 +121,16 @@ fn parallel_parts(scene: &Scene, front: &FrontEnd, options: &PrepareOptions) -> 
             first_prim += (end - start) as u32;
         }
     }
-    let parts: Vec<Part> = segments
+    let parts: Result<Vec<Part>> = segments
         .into_par_iter()
         .map(|(m, range, first)| {
             let mut part = Part::default();
             let mut scratch = ClipScratch::default();
             for (k, t) in range.enumerate() {
+                options.cancel.poll_every(k)?;
                 front.triangle(scene, (m, t, first + k as u32), &mut part, &mut scratch);
             }
-            part
+            Ok(part)
         })
         .collect();
     Some(parts)
@@ -132,6 +138,6 @@ fn parallel_parts(scene: &Scene, front: &FrontEnd, options: &PrepareOptions) -> 
 
 /// Without the `parallel` feature the front end runs on this thread.
 #[cfg(not(feature = "parallel"))]
-fn parallel_parts(_: &Scene, _: &FrontEnd, _: &PrepareOptions) -> Option<Vec<Part>> {
+fn parallel_parts(_: &Scene, _: &FrontEnd, _: &PrepareOptions) -> Option<Result<Vec<Part>>> {
     None
 }

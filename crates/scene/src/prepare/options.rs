@@ -2,6 +2,8 @@
 
 use hider_geom::fixed::GUARD_BAND_PIXELS;
 
+use crate::Cancel;
+
 /// Arithmetic used for the model-view-projection transform.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum TransformPrecision {
@@ -32,6 +34,11 @@ pub struct PrepareOptions {
     /// depends on free cores, so it is off by default and the CLI turns it
     /// on with `--threads` above 1.
     pub parallel: bool,
+    /// Stops the front end between triangles when cancelled (polled every
+    /// [`POLL_EVERY`](crate::cancel::POLL_EVERY) triangles): a hider's own
+    /// token polls only its own loops, and the front end of a large scene
+    /// takes tens of milliseconds. The default token never stops it.
+    pub cancel: Cancel,
 }
 
 impl Default for PrepareOptions {
@@ -41,6 +48,7 @@ impl Default for PrepareOptions {
             guard_band_pixels: GUARD_BAND_PIXELS,
             cull_back_faces: false,
             parallel: false,
+            cancel: Cancel::default(),
         }
     }
 }
@@ -74,6 +82,12 @@ impl PrepareOptions {
     /// Sets [`Self::parallel`].
     pub fn with_parallel(mut self, parallel: bool) -> Self {
         self.parallel = parallel;
+        self
+    }
+
+    /// Sets [`Self::cancel`].
+    pub fn with_cancel(mut self, cancel: Cancel) -> Self {
+        self.cancel = cancel;
         self
     }
 

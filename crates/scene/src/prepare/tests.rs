@@ -215,3 +215,24 @@ fn coordinates_near_1e200_render_as_the_unit_scene() {
     assert!(a.tris.len() > 500);
     assert_eq!(snapped(&a), snapped(&b));
 }
+
+#[test]
+fn a_cancelled_token_stops_both_front_ends() {
+    // A large scene's front end takes tens of milliseconds: a hider's own
+    // polls start only after it, so the front ends poll the token too.
+    let view = View::new(camera(), 64, 64).unwrap();
+    let scene = one(FACING);
+    let token = crate::Cancel::new();
+    let options = PrepareOptions::default().with_cancel(token);
+    assert!(prepare(&scene, &view, &options).is_ok());
+    let mut lean = lean::LeanScene::new();
+    assert!(lean::prepare_lean_into(&scene, &view, &options, &mut lean).is_ok());
+    token.cancel();
+    let cancelled = |e: crate::Error| matches!(e, crate::Error::Cancelled(_));
+    assert!(cancelled(prepare(&scene, &view, &options).unwrap_err()));
+    assert!(cancelled(
+        lean::prepare_lean_into(&scene, &view, &options, &mut lean).unwrap_err()
+    ));
+    // The default token never stops it.
+    assert!(prepare(&scene, &view, &PrepareOptions::default()).is_ok());
+}

@@ -136,6 +136,9 @@ pub fn lean_passes<R: Default + Send>(
     if !fill_vertices(scene, &front, split.0, vertices) {
         return Err(invalid_scene(scene));
     }
+    // The vertex pass is the front end's larger share on big meshes; its
+    // runs poll on their own.
+    options.cancel.poll()?;
     let cache = &vertices[..];
     let stats = in_runs(count, split, runs, |range, run| {
         pass(&front, cache, range, run)
