@@ -26,28 +26,54 @@ pub fn frame_buffers(depth_out: bool, resolves_color: bool) -> FrameBuffers {
 }
 
 /// What a path names, for comparing two paths: the file it resolves to
-/// when it exists, else its folder resolved and its name. `None` for a
-/// device or a pipe, which several outputs may share (`/dev/null`).
-fn identity(path: &Path) -> Option<PathBuf> {
+/// when it exists (with its device and inode on Unix, so that a hard link
+/// is the file it links), else its folder resolved and its name. `None`
+/// for a device or a pipe, which several outputs may share (`/dev/null`).
+#[derive(Debug)]
+struct Identity {
+    path: PathBuf,
+    inode: Option<(u64, u64)>,
+}
+
+impl PartialEq for Identity {
+    fn eq(&self, other: &Self) -> bool {
+        self.path == other.path || (self.inode.is_some() && self.inode == other.inode)
+    }
+}
+
+fn identity(path: &Path) -> Option<Identity> {
     if let Ok(meta) = std::fs::metadata(path) {
         if !meta.is_file() {
             return None;
         }
-        return std::fs::canonicalize(path).ok();
+        #[cfg(unix)]
+        let inode = {
+            use std::os::unix::fs::MetadataExt;
+            Some((meta.dev(), meta.ino()))
+        };
+        #[cfg(not(unix))]
+        let inode = None;
+        return Some(Identity {
+            path: std::fs::canonicalize(path).ok()?,
+            inode,
+        });
     }
     let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
     let folder = std::fs::canonicalize(parent).ok()?;
-    Some(folder.join(path.file_name()?))
+    Some(Identity {
+        path: folder.join(path.file_name()?),
+        inode: None,
+    })
 }
 
 /// Checks `outputs` (flag, path) against each other and against `inputs`:
 /// each output's folder exists and is a folder, no output is a folder, no
 /// two outputs are one file, and no output is an input.
 pub fn check(outputs: &[(&str, &Path)], inputs: &[PathBuf]) -> Result<()> {
-    let mut seen: Vec<(&str, PathBuf)> = Vec::new();
+    let mut seen: Vec<(&str, Identity)> = Vec::new();
     for &(flag, path) in outputs {
         if path.is_dir() {
             bail!("{flag} {}: is a folder, not a file", path.display());

@@ -188,12 +188,15 @@ pub fn run(args: &RenderArgs) -> Result<()> {
     }
     let progress = Progress::start("loading the model");
     let scene = crate::model::load(&args.model, &progress)?;
+    // Every file the scene was read from: the OBJ, its MTL files and
+    // every texture a material names.
     let mut inputs = model_path;
+    inputs.extend(scene.source_files.iter().cloned());
     inputs.extend(
         scene
             .materials
             .iter()
-            .flat_map(|m| [&m.diffuse_texture, &m.specular_texture])
+            .flat_map(|m| [&m.diffuse_texture, &m.specular_texture, &m.alpha_texture])
             .flatten()
             .map(|t| t.path().to_path_buf()),
     );

@@ -80,6 +80,73 @@ fn an_output_that_is_an_input_or_another_output_is_refused() {
 }
 
 #[test]
+fn every_file_the_scene_was_read_from_is_an_input() {
+    // The MTL file, each texture (`map_Kd`, `map_d`), and any other name
+    // for them (a symbolic or a hard link) are inputs as much as the OBJ.
+    let dir = folder("sources");
+    let png = |w: u32| {
+        let mut bytes = Vec::new();
+        image::RgbaImage::from_pixel(w, w, image::Rgba([200, 100, 50, 255]))
+            .write_to(
+                &mut std::io::Cursor::new(&mut bytes),
+                image::ImageFormat::Png,
+            )
+            .unwrap();
+        bytes
+    };
+    std::fs::write(dir.join("colour.png"), png(4)).unwrap();
+    std::fs::write(dir.join("mask.png"), png(2)).unwrap();
+    let mtl = "newmtl m\nKd 1 1 1\nmap_Kd colour.png\nmap_d mask.png\n";
+    std::fs::write(dir.join("m.mtl"), mtl).unwrap();
+    let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n";
+    let model = dir.join("model.obj");
+    std::fs::write(&model, obj).unwrap();
+    std::os::unix::fs::symlink(dir.join("colour.png"), dir.join("soft.png")).unwrap();
+    std::fs::hard_link(dir.join("m.mtl"), dir.join("hard.mtl")).unwrap();
+    let before: Vec<Vec<u8>> = ["m.mtl", "colour.png", "mask.png"]
+        .iter()
+        .map(|f| std::fs::read(dir.join(f)).unwrap())
+        .collect();
+    for (flag, target) in [
+        ("-o", "m.mtl"),
+        ("-o", "colour.png"),
+        ("--ids-out", "mask.png"),
+        ("-o", "soft.png"),
+        ("--depth-out", "hard.mtl"),
+    ] {
+        let (path, png) = (dir.join(target), dir.join("x.png"));
+        let mut args = vec!["render", model.to_str().unwrap(), "--size", "16"];
+        if flag != "-o" {
+            args.extend(["-o", png.to_str().unwrap()]);
+        }
+        args.extend([flag, path.to_str().unwrap()]);
+        let out = hider(&args);
+        assert_eq!(out.status.code(), Some(2), "{target}: {}", stderr(&out));
+        assert!(
+            stderr(&out).contains("is an input"),
+            "{target}: {}",
+            stderr(&out)
+        );
+    }
+    let after: Vec<Vec<u8>> = ["m.mtl", "colour.png", "mask.png"]
+        .iter()
+        .map(|f| std::fs::read(dir.join(f)).unwrap())
+        .collect();
+    assert_eq!(before, after, "an input was replaced");
+    // A new file beside them is fine.
+    let fine = dir.join("out.png");
+    let out = hider(&[
+        "render",
+        model.to_str().unwrap(),
+        "--size",
+        "16",
+        "-o",
+        fine.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+}
+
+#[test]
 fn an_unwritable_output_stops_the_run_before_any_output() {
     let dir = folder("nodir");
     let png = dir.join("a.png");

@@ -171,6 +171,11 @@ pub struct Scene {
     /// Non-fatal problems found while loading (a missing MTL, dropped
     /// degenerate faces, ...), for the user to see.
     pub warnings: Vec<String>,
+    /// The files the scene was read from besides its textures (which its
+    /// materials name): the OBJ and each MTL file it loaded, for a caller
+    /// that must not overwrite an input (`hider render` refuses such
+    /// outputs). Empty for generated scenes and scenes built in memory.
+    pub source_files: Vec<std::path::PathBuf>,
 }
 
 impl Scene {

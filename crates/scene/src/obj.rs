@@ -26,7 +26,7 @@ mod text;
 mod validate;
 
 use std::cell::RefCell;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use glam::{DVec3, Vec2, Vec3};
 
@@ -185,7 +185,7 @@ fn load_fast(
     let scene = finish(
         materials,
         loaded.meshes,
-        warnings,
+        (warnings, loaded.mtl_files),
         &loaded.smoothing,
         loaded.triangles,
         name,
@@ -212,7 +212,10 @@ fn load_with_tobj(
             limit: options.max_triangles,
         });
     }
-    let warnings = RefCell::new(checked.warnings(name));
+    let log = mtl::MtlLog {
+        warnings: RefCell::new(checked.warnings(name)),
+        ..mtl::MtlLog::default()
+    };
     let text = checked.text_for_tobj(&text);
     let load_options = tobj::LoadOptions {
         single_index: true,
@@ -223,21 +226,27 @@ fn load_with_tobj(
     // tobj splits lines itself; CR of CRLF files is whitespace to it.
     let mut reader = std::io::Cursor::new(text.as_bytes());
     let (models, materials) = tobj::load_obj_buf(&mut reader, &load_options, |mtl| {
-        mtl::load_mtl(base_dir, mtl, &warnings)
+        mtl::load_mtl(base_dir, mtl, &log)
     })
     .map_err(|e| Error::Parse {
         path: name.to_path_buf(),
         line: 0,
         message: format!("OBJ parser: {e}"),
     })?;
-    let mut warnings = warnings.into_inner();
+    let mut warnings = log.warnings.into_inner();
     let materials = materials_or_default(materials, &mut warnings);
     let meshes = models
         .into_iter()
         .map(|model| mesh_from_tobj(model, materials.len(), &mut warnings))
         .collect();
     finish(
-        materials, meshes, warnings, &smoothing, triangles, name, base_dir,
+        materials,
+        meshes,
+        (warnings, log.files.into_inner()),
+        &smoothing,
+        triangles,
+        name,
+        base_dir,
     )
 }
 
@@ -259,7 +268,7 @@ fn materials_or_default(
 fn finish(
     materials: Vec<tobj::Material>,
     meshes: Vec<Mesh>,
-    mut warnings: Vec<String>,
+    (mut warnings, mtl_files): (Vec<String>, Vec<PathBuf>),
     smoothing: &Smoothing,
     triangles: u64,
     name: &Path,
@@ -269,6 +278,9 @@ fn finish(
         materials: materials
             .iter()
             .map(|m| mtl::convert_material(m, base_dir))
+            .collect(),
+        source_files: std::iter::once(name.to_path_buf())
+            .chain(mtl_files)
             .collect(),
         ..Scene::default()
     };

@@ -23,7 +23,6 @@
 
 mod scan;
 
-use std::cell::RefCell;
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::path::Path;
@@ -49,6 +48,8 @@ pub(super) struct Loaded {
     pub materials: Result<Vec<tobj::Material>, tobj::LoadError>,
     /// The warnings of the MTL files.
     pub warnings: Vec<String>,
+    /// The MTL files read.
+    pub mtl_files: Vec<std::path::PathBuf>,
     /// The `s` statements.
     pub smoothing: Smoothing,
     /// Triangles after fan-splitting.
@@ -128,7 +129,7 @@ pub(super) fn load(
     for (k, p) in parsed.into_iter().enumerate() {
         chunks_parsed.push(p.map_err(|r| at(&lines, k, r))?);
     }
-    let warnings = RefCell::new(Vec::new());
+    let log = super::mtl::MtlLog::default();
     let mut groups = std::collections::HashSet::new();
     for p in &mut chunks_parsed {
         groups.extend(std::mem::take(&mut p.groups));
@@ -141,12 +142,13 @@ pub(super) fn load(
             normals: &normals,
         },
         base_dir,
-        &warnings,
+        &log,
     );
     Ok(Loaded {
         meshes,
         materials,
-        warnings: warnings.into_inner(),
+        warnings: log.warnings.into_inner(),
+        mtl_files: log.files.into_inner(),
         smoothing: Smoothing {
             on: !groups.is_empty(),
             groups: groups.len(),
@@ -212,7 +214,7 @@ fn build(
     chunks: Vec<Parsed>,
     arrays: Arrays<'_>,
     base_dir: &Path,
-    warnings: &RefCell<Vec<String>>,
+    log: &super::mtl::MtlLog,
 ) -> (Vec<Mesh>, Result<Vec<tobj::Material>, tobj::LoadError>) {
     let mut meshes = Vec::new();
     let mut builder = Builder::new(arrays.positions, arrays.uvs, arrays.normals);
@@ -243,7 +245,7 @@ fn build(
                     material = new;
                 }
                 Event::Library(file) => {
-                    materials.merge(super::mtl::load_mtl(base_dir, Path::new(file), warnings));
+                    materials.merge(super::mtl::load_mtl(base_dir, Path::new(file), log));
                 }
                 &Event::Layout(vt, vn) => {
                     // The validation pass starts an object of the same

@@ -17,22 +17,31 @@ use crate::model::{Illumination, Material};
 /// whole file is given up.
 const MAX_BROKEN_MATERIALS: usize = 64;
 
+/// What the MTL loader reports besides materials: warnings, and the MTL
+/// files it read (so that a caller can refuse to overwrite them).
+#[derive(Default)]
+pub(super) struct MtlLog {
+    /// Non-fatal problems, in the order found.
+    pub warnings: RefCell<Vec<String>>,
+    /// Every MTL file read, as resolved against the OBJ's folder.
+    pub files: RefCell<Vec<PathBuf>>,
+}
+
 /// The MTL loader handed to `tobj`: never an error, a warning instead (the
 /// default material is used for what could not be loaded).
-pub(super) fn load_mtl(
-    base: &Path,
-    mtl: &Path,
-    warnings: &RefCell<Vec<String>>,
-) -> tobj::MTLLoadResult {
+pub(super) fn load_mtl(base: &Path, mtl: &Path, log: &MtlLog) -> tobj::MTLLoadResult {
     let path = base.join(normalize_separators(&mtl.to_string_lossy()));
-    let warn = |message: String| warnings.borrow_mut().push(message);
+    let warn = |message: String| log.warnings.borrow_mut().push(message);
     let none = || Ok((Vec::new(), HashMap::new()));
     let bytes = match crate::input::read_regular(
         &path,
         "MTL file size in bytes",
         crate::input::MAX_MTL_BYTES,
     ) {
-        Ok(bytes) => bytes,
+        Ok(bytes) => {
+            log.files.borrow_mut().push(path.clone());
+            bytes
+        }
         Err(e) => {
             warn(format!("cannot read MTL ({e}); using the default material"));
             return none();
