@@ -133,7 +133,8 @@ fn report(
 /// those whose decode failed during the frame, and those never decoded
 /// whose header does not read (a texture is decoded only when a pixel
 /// samples it, so one off screen, or one the analysis found unreadable,
-/// was never tried).
+/// was never tried). A missing file is left out: the loader's warnings
+/// name it already.
 fn texture_warnings(scene: &Scene) -> Vec<String> {
     let mut seen = Vec::new();
     let mut warnings = Vec::new();
@@ -142,14 +143,22 @@ fn texture_warnings(scene: &Scene) -> Vec<String> {
         .iter()
         .filter(|m| !m.uvs.is_empty())
         .flat_map(|mesh| scene.mesh_materials(mesh))
-        .filter_map(|m| m?.diffuse_texture.as_ref());
-    for texture in textures {
-        if seen.contains(&texture.path()) {
+        .flatten()
+        .flat_map(|m| {
+            [
+                (&m.diffuse_texture, "colour"),
+                (&m.specular_texture, "specular colour"),
+                (&m.alpha_texture, "opacity"),
+            ]
+        })
+        .filter_map(|(t, fallback)| Some((t.as_ref()?, fallback)));
+    for (texture, fallback) in textures {
+        if seen.contains(&texture.path()) || !texture.path().exists() {
             continue;
         }
         seen.push(texture.path());
         if let Some(why) = texture.problem() {
-            warnings.push(format!("{why}; the material's colour is used"));
+            warnings.push(format!("{why}; the material's {fallback} is used"));
         }
     }
     warnings

@@ -401,6 +401,44 @@ fn an_undecodable_texture_is_named() {
     }
 }
 
+/// A missing texture is named once, whatever statement names it (`map_d`
+/// was silent), with what is drawn instead; one that does not decode is
+/// named with the material value used for its statement.
+#[test]
+fn every_missing_or_broken_texture_is_named_once() {
+    let dir = folder("missingtex");
+    std::fs::write(dir.join("fake.png"), "not an image at all").unwrap();
+    let model = dir.join("quad.obj");
+    std::fs::write(
+        &model,
+        "mtllib model.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
+         f 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    for (statement, used) in [
+        ("map_Kd", "diffuse colour (Kd) is used"),
+        ("map_Ks", "specular colour (Ks) is used"),
+        ("map_d", "opacity (d) is used"),
+    ] {
+        let mtl = format!("newmtl m\nKd 0 1 0\nKs 0.5 0.5 0.5\nNs 20\n{statement} gone.png\n");
+        std::fs::write(dir.join("model.mtl"), mtl).unwrap();
+        let (_, e) = render(&model, "auto", &[]);
+        let named = e.lines().filter(|l| l.contains("gone.png")).count();
+        assert_eq!(named, 1, "{statement}: {e}");
+        assert!(
+            e.contains(&format!("({statement}) not found")) && e.contains(used),
+            "{e}"
+        );
+    }
+    let mtl = "newmtl m\nKd 0 1 0\nmap_d fake.png\n";
+    std::fs::write(dir.join("model.mtl"), mtl).unwrap();
+    let (_, e) = render(&model, "auto", &[]);
+    assert!(
+        e.contains("fake.png") && e.contains("the material's opacity is used"),
+        "{e}"
+    );
+}
+
 /// An RGBA texture with transparent texels (a leaf card's cut-out) is not
 /// drawn with its alpha yet: the render says so instead of showing a
 /// white square without a word.

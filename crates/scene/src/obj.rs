@@ -472,15 +472,23 @@ fn smooth_normals(mesh: &Mesh) -> Vec<Vec3> {
 /// missing textures and degenerate triangles.
 fn content_warnings(scene: &Scene, warnings: &mut Vec<String>) {
     for m in &scene.materials {
-        if let Some(t) = &m.diffuse_texture
-            && !t.path().is_file()
-            && !crate::memory_files::holds(t.path())
-        {
-            warnings.push(format!(
-                "material '{}': texture {} not found; the material's diffuse colour is used",
-                m.name,
-                t.path().display()
-            ));
+        let maps = [
+            (&m.diffuse_texture, "map_Kd", "diffuse colour (Kd)"),
+            (&m.specular_texture, "map_Ks", "specular colour (Ks)"),
+            (&m.alpha_texture, "map_d", "opacity (d)"),
+        ];
+        for (texture, statement, fallback) in maps {
+            if let Some(t) = texture
+                && !t.path().is_file()
+                && !crate::memory_files::holds(t.path())
+            {
+                warnings.push(format!(
+                    "material '{}': texture {} ({statement}) not found; the material's \
+                     {fallback} is used",
+                    m.name,
+                    t.path().display()
+                ));
+            }
         }
     }
     let degenerate = scene
