@@ -54,6 +54,7 @@ mod snap;
 mod splitter;
 mod subtract;
 mod svg;
+mod sweep;
 
 pub use document::{ObjectGroups, SvgInfo};
 pub use grid::Grid;

@@ -58,6 +58,18 @@ hider_scene::hider_stats! {
         /// Primitives whose region the snap rounding rerouted (see
         /// [`visible_regions`]).
         pub snapped: u64 => "snapped regions",
+        /// Distinct region edges the map-wide snap rounding rounds.
+        pub snap_segments: u64 => "snap segments",
+        /// Event points of the snap rounding's crossing sweep (segment
+        /// ends and crossings; see `docs/vector.md`).
+        pub sweep_events: u64 => "sweep events",
+        /// Neighbouring edges the sweep tested for a crossing.
+        pub sweep_tests: u64 => "sweep tests",
+        /// Pairs of region edges crossing properly (hot pixels they make).
+        pub snap_crossings: u64 => "snap crossings",
+        /// Grid cells the region edges walked through to find the hot
+        /// pixels they pass.
+        pub snap_cells: u64 => "snap cells walked",
         /// Boolean differences of the ownership pass.
         pub ownership_differences: u64 => "ownership differences",
         /// On-screen triangles sent into the union that outlines the
@@ -431,7 +443,12 @@ fn settle(
     // The covered set's outline is rounded in the same arrangement, so
     // that the regions can be closed onto it exactly.
     shapes.push(outline);
-    let mut touched = snap_round(&mut shapes);
+    let (mut touched, snap) = snap_round(&mut shapes);
+    stats.snap_segments = snap.segments;
+    stats.sweep_events = snap.events;
+    stats.sweep_tests = snap.tests;
+    stats.snap_crossings = snap.crossings;
+    stats.snap_cells = snap.cells;
     let covered = shapes.pop().unwrap_or_default();
     let _ = touched.pop();
     stats.snapped = touched.iter().filter(|&&t| t).count() as u64;

@@ -20,14 +20,41 @@ use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::grid::div_round;
+use crate::sweep::{Segment, orient, proper_crossings};
+
+/// The work of one snap rounding.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SnapStats {
+    /// Distinct edges of the regions.
+    pub segments: u64,
+    /// Event points of the crossing sweep.
+    pub events: u64,
+    /// Neighbouring edges the sweep tested for a crossing.
+    pub tests: u64,
+    /// Pairs of edges crossing properly.
+    pub crossings: u64,
+    /// Grid cells the edges walked through to find their hot pixels.
+    pub cells: u64,
+}
 
 /// Snaps the contours of every region in place. Returns, per region,
-/// whether any of its edges was rerouted.
-pub fn snap_round(regions: &mut [IntShapes]) -> Vec<bool> {
+/// whether any of its edges was rerouted, and the work done.
+pub fn snap_round(regions: &mut [IntShapes]) -> (Vec<bool>, SnapStats) {
     let (segments, index) = unique_segments(regions);
     let mut hot: Vec<IntPoint> = index.keys().flat_map(|&(a, b)| [a, b]).collect();
-    let seg_bins = SegmentBins::new(&segments);
-    seg_bins.crossings(&segments, &mut hot);
+    let mut stats = SnapStats {
+        segments: segments.len() as u64,
+        ..SnapStats::default()
+    };
+    // The crossings by a sweep, whose cost follows the crossings found:
+    // binning pairs of edges by area tests every pair of a dense fan of
+    // edges meeting at one vertex (a disc's triangulation).
+    let sweep = proper_crossings(&segments, |i, j| {
+        stats.crossings += 1;
+        hot.push(crossing(segments[i as usize], segments[j as usize]));
+    });
+    stats.events = sweep.events;
+    stats.tests = sweep.tests;
     hot.sort_unstable_by_key(|p| (p.x, p.y));
     hot.dedup();
     let hot_bins = PointBins::new(&hot);
@@ -35,9 +62,9 @@ pub fn snap_round(regions: &mut [IntShapes]) -> Vec<bool> {
     // `None` when the segment is not rerouted.
     let chains: Vec<Option<Vec<IntPoint>>> = segments
         .iter()
-        .map(|&(a, b)| hot_bins.chain(a, b))
+        .map(|&(a, b)| hot_bins.chain(a, b, &mut stats.cells))
         .collect();
-    regions
+    let touched = regions
         .iter_mut()
         .map(|shapes| {
             let mut touched = false;
@@ -68,7 +95,8 @@ pub fn snap_round(regions: &mut [IntShapes]) -> Vec<bool> {
             }
             touched
         })
-        .collect()
+        .collect();
+    (touched, stats)
 }
 
 /// An undirected segment's key: its ends in lexicographic order.
@@ -79,8 +107,6 @@ fn key(a: IntPoint, b: IntPoint) -> (IntPoint, IntPoint) {
         (b, a)
     }
 }
-
-type Segment = (IntPoint, IntPoint);
 
 /// Every distinct non-degenerate edge of the regions, and the index from
 /// an edge's key to its position.
@@ -100,19 +126,6 @@ fn unique_segments(regions: &[IntShapes]) -> (Vec<Segment>, HashMap<Segment, u32
         }
     }
     (segments, index)
-}
-
-/// The sign of the turn `a -> b -> c`, exact.
-fn orient(a: IntPoint, b: IntPoint, c: IntPoint) -> i64 {
-    let (abx, aby) = (
-        i64::from(b.x) - i64::from(a.x),
-        i64::from(b.y) - i64::from(a.y),
-    );
-    let (acx, acy) = (
-        i64::from(c.x) - i64::from(a.x),
-        i64::from(c.y) - i64::from(a.y),
-    );
-    (i128::from(abx) * i128::from(acy) - i128::from(aby) * i128::from(acx)).signum() as i64
 }
 
 /// The crossing point of two properly crossing segments, rounded to the
@@ -204,63 +217,6 @@ fn span<'a>(points: impl Iterator<Item = &'a IntPoint>) -> (IntPoint, IntPoint) 
     )
 }
 
-/// Segments binned by their boxes, to find the crossing pairs.
-struct SegmentBins {
-    cells: Cells,
-    lists: Vec<Vec<u32>>,
-}
-
-impl SegmentBins {
-    fn new(segments: &[Segment]) -> Self {
-        let (lo, hi) = span(segments.iter().flat_map(|s| [&s.0, &s.1]));
-        let cells = Cells::new(lo, hi, segments.len());
-        let mut lists = vec![Vec::new(); cells.len()];
-        for (k, &s) in segments.iter().enumerate() {
-            let (a, b) = seg_box(s);
-            let (c0, r0, c1, r1) = cells.range(a, b);
-            for r in r0..=r1 {
-                for c in c0..=c1 {
-                    lists[cells.at(c, r)].push(k as u32);
-                }
-            }
-        }
-        Self { cells, lists }
-    }
-
-    /// Pushes the rounded point of every proper crossing to `hot`. A pair
-    /// is tested only in the cell holding the low corner of the overlap of
-    /// its boxes, so once.
-    fn crossings(&self, segments: &[Segment], hot: &mut Vec<IntPoint>) {
-        for r in 0..self.cells.rows {
-            for c in 0..self.cells.cols {
-                let list = &self.lists[self.cells.at(c, r)];
-                for (i, &si) in list.iter().enumerate() {
-                    let p = segments[si as usize];
-                    let (plo, phi) = seg_box(p);
-                    for &sj in &list[i + 1..] {
-                        let q = segments[sj as usize];
-                        let (qlo, qhi) = seg_box(q);
-                        let lo = IntPoint::new(plo.x.max(qlo.x), plo.y.max(qlo.y));
-                        let hi = IntPoint::new(phi.x.min(qhi.x), phi.y.min(qhi.y));
-                        if lo.x > hi.x || lo.y > hi.y {
-                            continue;
-                        }
-                        let (c0, r0, _, _) = self.cells.range(lo, lo);
-                        if (c0, r0) != (c, r) {
-                            continue;
-                        }
-                        let (o1, o2) = (orient(p.0, p.1, q.0), orient(p.0, p.1, q.1));
-                        let (o3, o4) = (orient(q.0, q.1, p.0), orient(q.0, q.1, p.1));
-                        if o1 * o2 < 0 && o3 * o4 < 0 {
-                            hot.push(crossing(p, q));
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
-
 /// Hot pixel centres, binned.
 struct PointBins {
     cells: Cells,
@@ -281,39 +237,95 @@ impl PointBins {
 
     /// The hot pixel centres strictly between `a` and `b` that the segment
     /// passes through (closed unit square around each centre), in order
-    /// from `a`; `None` when there are none.
-    fn chain(&self, a: IntPoint, b: IntPoint) -> Option<Vec<IntPoint>> {
+    /// from `a`; `None` when there are none. Adds the cells walked to
+    /// `cells`.
+    fn chain(&self, a: IntPoint, b: IntPoint, cells: &mut u64) -> Option<Vec<IntPoint>> {
         let (lo, hi) = seg_box((a, b));
-        let (c0, r0, c1, r1) = self.cells.range(lo, hi);
         // Doubled coordinates put the squares' corners on integers.
         let (a2, b2) = (double(a), double(b));
         let mut found: Vec<(i128, IntPoint)> = Vec::new();
-        for r in r0..=r1 {
-            for c in c0..=c1 {
-                for &h in &self.lists[self.cells.at(c, r)] {
-                    // A square meets the segment's box only if its centre
-                    // lies in the box: the ends are grid points.
-                    if h == a || h == b || h.x < lo.x || h.x > hi.x || h.y < lo.y || h.y > hi.y {
-                        continue;
-                    }
-                    let h2 = double(h);
-                    let sides = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
-                        .map(|(dx, dy)| orient(a2, b2, IntPoint::new(h2.x + dx, h2.y + dy)));
-                    let all_left = sides.iter().all(|&s| s > 0);
-                    let all_right = sides.iter().all(|&s| s < 0);
-                    if !all_left && !all_right {
-                        let t = i128::from(h.x - a.x) * i128::from(b.x - a.x)
-                            + i128::from(h.y - a.y) * i128::from(b.y - a.y);
-                        found.push((t, h));
-                    }
+        self.walk(a2, b2, |cell| {
+            *cells += 1;
+            for &h in &self.lists[cell] {
+                // A square meets the segment's box only if its centre
+                // lies in the box: the ends are grid points.
+                if h == a || h == b || h.x < lo.x || h.x > hi.x || h.y < lo.y || h.y > hi.y {
+                    continue;
+                }
+                let h2 = double(h);
+                let sides = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
+                    .map(|(dx, dy)| orient(a2, b2, IntPoint::new(h2.x + dx, h2.y + dy)));
+                let all_left = sides.iter().all(|&s| s > 0);
+                let all_right = sides.iter().all(|&s| s < 0);
+                if !all_left && !all_right {
+                    let t = i128::from(h.x - a.x) * i128::from(b.x - a.x)
+                        + i128::from(h.y - a.y) * i128::from(b.y - a.y);
+                    found.push((t, h));
                 }
             }
-        }
+        });
         if found.is_empty() {
             return None;
         }
         found.sort_unstable_by_key(|&(t, h)| (t, h.x, h.y));
         Some(found.into_iter().map(|(_, h)| h).collect())
+    }
+
+    /// Calls `visit` once for every cell whose hot pixels the segment
+    /// `a2 -> b2` (doubled coordinates, ends in the grid's span) can
+    /// meet, walking only the cells it passes through (Amanatides and
+    /// Woo, "A fast voxel traversal algorithm", 1987), exactly. A hot
+    /// pixel's square lies inside its cell widened by half a unit on each
+    /// side, so the walk is over those widened cells: their sides lie on
+    /// odd doubled coordinates, where no end of a segment can be, so the
+    /// segment crosses every side it meets, and where it passes exactly
+    /// through a corner all four cells around it are visited.
+    fn walk(&self, a2: IntPoint, b2: IntPoint, mut visit: impl FnMut(usize)) {
+        let cell_of =
+            |v: i32, o: i64, n: i64| ((i64::from(v / 2) - o) / self.cells.size).clamp(0, n - 1);
+        let (cols, rows) = (self.cells.cols, self.cells.rows);
+        let (mut c, mut r) = (
+            cell_of(a2.x, self.cells.x0, cols),
+            cell_of(a2.y, self.cells.y0, rows),
+        );
+        let (cb, rb) = (
+            cell_of(b2.x, self.cells.x0, cols),
+            cell_of(b2.y, self.cells.y0, rows),
+        );
+        let (dx, dy) = (
+            i128::from(b2.x) - i128::from(a2.x),
+            i128::from(b2.y) - i128::from(a2.y),
+        );
+        let (sx, sy) = (dx.signum() as i64, dy.signum() as i64);
+        // The side between cell `k - 1` and cell `k`, doubled.
+        let side = |k: i64, o: i64| i128::from(2 * (o + k * self.cells.size) - 1);
+        visit(self.cells.at(c, r));
+        for _ in 0..(cb - c).abs() + (rb - r).abs() {
+            if (c, r) == (cb, rb) {
+                break;
+            }
+            // The distances along each axis to the next side crossed,
+            // compared as parameters `nx / |dx|` and `ny / |dy|`.
+            let nx = (side(c + i64::from(sx > 0), self.cells.x0) - i128::from(a2.x)).abs();
+            let ny = (side(r + i64::from(sy > 0), self.cells.y0) - i128::from(a2.y)).abs();
+            let order = match (sx, sy) {
+                (0, _) => std::cmp::Ordering::Greater,
+                (_, 0) => std::cmp::Ordering::Less,
+                _ => (nx * dy.abs()).cmp(&(ny * dx.abs())),
+            };
+            match order {
+                std::cmp::Ordering::Less => c += sx,
+                std::cmp::Ordering::Greater => r += sy,
+                std::cmp::Ordering::Equal => {
+                    visit(self.cells.at(c + sx, r));
+                    visit(self.cells.at(c, r + sy));
+                    c += sx;
+                    r += sy;
+                }
+            }
+            visit(self.cells.at(c, r));
+        }
+        debug_assert_eq!((c, r), (cb, rb), "the walk reaches the end's cell");
     }
 }
 
