@@ -334,3 +334,69 @@ impl PointBins {
 fn double(p: IntPoint) -> IntPoint {
     IntPoint::new(2 * p.x, 2 * p.y)
 }
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    /// The hot pixels `a -> b` passes, by testing every hot pixel.
+    fn every_pixel(hot: &[IntPoint], a: IntPoint, b: IntPoint) -> Option<Vec<IntPoint>> {
+        let bins = PointBins {
+            cells: Cells {
+                x0: 0,
+                y0: 0,
+                size: i64::from(u32::MAX),
+                cols: 1,
+                rows: 1,
+            },
+            lists: vec![hot.to_vec()],
+        };
+        let mut cells = 0;
+        bins.chain(a, b, &mut cells)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// The cell walk finds the hot pixels testing them all finds,
+        /// squares touched at a side or a corner included: the points on
+        /// a fine lattice put many squares' sides on cell sides.
+        #[test]
+        fn the_cell_walk_finds_every_hot_pixel(
+            points in prop::collection::vec((0i32..40, 0i32..40), 2..120),
+            ends in prop::collection::vec((0usize..1000, 0usize..1000), 1..30),
+            scale in prop_oneof![Just(1), Just(2), Just(7)],
+        ) {
+            let mut hot: Vec<IntPoint> =
+                points.iter().map(|&(x, y)| IntPoint::new(x * scale, y * scale)).collect();
+            hot.sort_unstable_by_key(|p| (p.x, p.y));
+            hot.dedup();
+            let bins = PointBins::new(&hot);
+            for (i, j) in ends {
+                let (a, b) = (hot[i % hot.len()], hot[j % hot.len()]);
+                if a == b {
+                    continue;
+                }
+                let mut cells = 0;
+                prop_assert_eq!(bins.chain(a, b, &mut cells), every_pixel(&hot, a, b));
+            }
+        }
+    }
+
+    #[test]
+    fn a_long_diagonal_walks_a_line_of_cells_not_its_box() {
+        // A diagonal of hot points with the whole span binned: the box of
+        // the long diagonal covers every cell, the walk about `2 * side`.
+        let side = 300;
+        let hot: Vec<IntPoint> = (0..side)
+            .flat_map(|k| [IntPoint::new(k * 10, 0), IntPoint::new(0, k * 10)])
+            .collect();
+        let bins = PointBins::new(&hot);
+        let mut cells = 0;
+        bins.chain(hot[0], IntPoint::new(10 * (side - 1), 10 * (side - 1)), &mut cells);
+        let total = bins.cells.len() as u64;
+        assert!(cells * 5 < total, "{cells} of {total} cells walked");
+    }
+}
