@@ -46,6 +46,7 @@ mod cull;
 mod document;
 mod grid;
 mod group;
+mod hot;
 mod lines;
 mod options;
 mod pairs;

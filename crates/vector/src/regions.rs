@@ -67,9 +67,9 @@ hider_scene::hider_stats! {
         pub sweep_tests: u64 => "sweep tests",
         /// Pairs of region edges crossing properly (hot pixels they make).
         pub snap_crossings: u64 => "snap crossings",
-        /// Grid cells the region edges walked through to find the hot
-        /// pixels they pass.
-        pub snap_cells: u64 => "snap cells walked",
+        /// Hot pixel quadtree nodes the region edges visited to find the
+        /// hot pixels they pass.
+        pub snap_nodes: u64 => "snap nodes visited",
         /// Boolean differences of the ownership pass.
         pub ownership_differences: u64 => "ownership differences",
         /// On-screen triangles sent into the union that outlines the
@@ -200,7 +200,18 @@ fn build(
         .zip(&culled.hidden)
         .map(|(b, &c)| if c { None } else { *b })
         .collect();
-    let bins = Bins::new(&grid, &live);
+    let items: Vec<Vec<&[IntPoint]>> = live
+        .iter()
+        .zip(&polys)
+        .map(|(b, p)| {
+            if b.is_some() {
+                vec![p.as_slice()]
+            } else {
+                Vec::new()
+            }
+        })
+        .collect();
+    let bins = Bins::covering(&grid, &items);
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
     let mut region_points = 0u64;
     let mut cut_pairs = Vec::new();
@@ -237,7 +248,7 @@ fn build(
         // Whether some occluder is only the part of a triangle beyond a
         // cut line, whose ends are rounded to the grid.
         let mut cut = false;
-        bins.query(lo, hi, |ui| {
+        bins.query_covering(&[&polys[ti]], |ui| {
             let u_idx = ui as usize;
             // A skipped back face hides nothing its solid's nearer front
             // faces do not hide already.
@@ -448,7 +459,7 @@ fn settle(
     stats.sweep_events = snap.events;
     stats.sweep_tests = snap.tests;
     stats.snap_crossings = snap.crossings;
-    stats.snap_cells = snap.cells;
+    stats.snap_nodes = snap.nodes;
     let covered = shapes.pop().unwrap_or_default();
     let _ = touched.pop();
     stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
@@ -479,13 +490,13 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         .iter()
         .map(|s| bounds(&s.iter().flatten().flatten().copied().collect::<Vec<_>>()))
         .collect();
-    let bins = Bins::new(grid, &boxes);
+    let bins = Bins::covering(grid, &shapes.iter().map(contours).collect::<Vec<_>>());
     let mut seen = vec![usize::MAX; shapes.len()];
     let mut runs = 0;
     for k in 0..shapes.len() {
         let Some((lo, hi)) = boxes[k] else { continue };
         let mut earlier = Vec::new();
-        bins.query(lo, hi, |j| {
+        bins.query_covering(&contours(&shapes[k]), |j| {
             let j = j as usize;
             if j >= k || seen[j] == k {
                 return;
@@ -511,6 +522,11 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         shapes[k] = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
     }
     runs
+}
+
+/// The contours of a polygon set, as slices.
+fn contours(shapes: &IntShapes) -> Vec<&[IntPoint]> {
+    shapes.iter().flatten().map(Vec::as_slice).collect()
 }
 
 /// Whether triangle `outer` covers all of triangle `inner` (closed, exact
