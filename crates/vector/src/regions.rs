@@ -491,10 +491,30 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         .map(|s| bounds(&s.iter().flatten().flatten().copied().collect::<Vec<_>>()))
         .collect();
     let bins = Bins::covering(grid, &shapes.iter().map(contours).collect::<Vec<_>>());
+    let apart = |a: (IntPoint, IntPoint), b: (IntPoint, IntPoint)| {
+        b.1.x <= a.0.x || b.0.x >= a.1.x || b.1.y <= a.0.y || b.0.y >= a.1.y
+    };
+    // The regions that may need a difference: the rerouted ones and the
+    // later ones overlapping one of them, found from the rerouted side,
+    // so that a map the snapping barely touched (a fan, whose every
+    // region meets all the others at its centre) queries few regions.
+    let mut needed = touched.to_vec();
+    for (j, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
+        let Some(jbox) = boxes[j] else { continue };
+        bins.query_covering(&contours(&shapes[j]), |k| {
+            let k = k as usize;
+            if k > j && boxes[k].is_some_and(|kbox| !apart(kbox, jbox)) {
+                needed[k] = true;
+            }
+        });
+    }
     let mut seen = vec![usize::MAX; shapes.len()];
     let mut runs = 0;
     for k in 0..shapes.len() {
         let Some((lo, hi)) = boxes[k] else { continue };
+        if !needed[k] {
+            continue;
+        }
         let mut earlier = Vec::new();
         bins.query_covering(&contours(&shapes[k]), |j| {
             let j = j as usize;
@@ -502,9 +522,8 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
                 return;
             }
             seen[j] = k;
-            if let Some((jlo, jhi)) = boxes[j] {
-                let apart = jhi.x <= lo.x || jlo.x >= hi.x || jhi.y <= lo.y || jlo.y >= hi.y;
-                if !apart && !shapes[j].is_empty() {
+            if let Some(jbox) = boxes[j] {
+                if !apart((lo, hi), jbox) && !shapes[j].is_empty() {
                     earlier.push(j);
                 }
             }
