@@ -39,6 +39,11 @@ hider_scene::hider_stats! {
     pub struct RegionStats {
         /// Screen triangles with some area inside the image.
         pub triangles: u64 => "triangles",
+        /// Pairs of triangles sharing a bin (each counted from both
+        /// sides): what the pair phase looks at. It grows with the square
+        /// of the triangles meeting at one vertex (the centre of a fan),
+        /// which no bin separates (see `docs/vector.md`).
+        pub candidate_pairs: u64 => "candidate pairs",
         /// Candidate pairs whose interiors overlap.
         pub overlapping_pairs: u64 => "overlapping pairs",
         /// Pairs whose depth planes cross inside their common area.
@@ -256,6 +261,7 @@ fn build(
                 return;
             }
             seen[u_idx] = ti as u32;
+            stats.candidate_pairs += 1;
             let u = &scene.tris[u_idx];
             let Some((ulo, uhi)) = boxes[u_idx] else {
                 return;

@@ -138,10 +138,10 @@ fn main() -> Result<(), hider_scene::Error> {
     let only = std::env::args().nth(3);
     let options = VectorOptions::default();
     println!(
-        "| scene | N | culled | overlapping pairs | differences | outline triangles | region points | snap segments | sweep tests | snap nodes | largest group | regions s | exponent | regions MB | line features | culled features | occluder tests | lines s | exponent | lines MB |"
+        "| scene | N | culled | candidate pairs | overlapping pairs | differences | outline triangles | region points | snap segments | sweep tests | snap nodes | largest group | regions s | exponent | regions MB | line features | culled features | occluder tests | lines s | exponent | lines MB |"
     );
     println!(
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     type Family = (&'static str, &'static str, u32, fn(u32) -> Scene);
     let families: [Family; 7] = [
@@ -203,8 +203,9 @@ fn main() -> Result<(), hider_scene::Error> {
             let (r, l) = (map.stats, lines.stats);
             let x = f64::from(n);
             println!(
-                "| {name} | {n} | {} | {} | {} | {} | {} | {} | {} | {} | {largest_group} | {tr:.2} | {} | {mr} | {} | {} | {} | {tl:.2} | {} | {ml} |",
+                "| {name} | {n} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {largest_group} | {tr:.2} | {} | {mr} | {} | {} | {} | {tl:.2} | {} | {ml} |",
                 r.culled,
+                r.candidate_pairs,
                 r.overlapping_pairs,
                 r.differences,
                 r.outline_triangles,
