@@ -320,3 +320,56 @@ pub fn bounds(poly: &[IntPoint]) -> Option<(IntPoint, IntPoint)> {
         )
     }))
 }
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// Every point of a closed triangle lies in a bin the triangle
+        /// is binned in, so two triangles whose interiors overlap share
+        /// a bin: long thin ones, ones along bin sides, points on them.
+        #[test]
+        fn a_triangle_is_binned_wherever_it_reaches(
+            tris in prop::collection::vec(
+                prop::array::uniform3((0i32..6_000, 0i32..6_000)), 1..12),
+        ) {
+            let grid = Grid { shift: 0, width: 6_000, height: 6_000 };
+            let polys: Vec<Vec<IntPoint>> = tris
+                .iter()
+                .map(|t| t.iter().map(|&(x, y)| IntPoint::new(x, y)).collect())
+                .collect();
+            let items: Vec<Vec<&[IntPoint]>> = polys.iter().map(|p| vec![p.as_slice()]).collect();
+            let bins = Bins::covering(&grid, &items);
+            for (k, p) in polys.iter().enumerate() {
+                let (lo, hi) = bounds(p).expect("three points");
+                let inside = |q: IntPoint| {
+                    let o = |a: IntPoint, b: IntPoint| {
+                        i64::from(b.x - a.x) * i64::from(q.y - a.y)
+                            - i64::from(b.y - a.y) * i64::from(q.x - a.x)
+                    };
+                    let s = [o(p[0], p[1]), o(p[1], p[2]), o(p[2], p[0])];
+                    s.iter().all(|&v| v >= 0) || s.iter().all(|&v| v <= 0)
+                };
+                let step = ((hi.x - lo.x).max(hi.y - lo.y) / 60).max(1);
+                let mut points: Vec<IntPoint> = p.clone();
+                for x in (lo.x..=hi.x).step_by(step as usize) {
+                    for y in (lo.y..=hi.y).step_by(step as usize) {
+                        points.push(IntPoint::new(x, y));
+                    }
+                }
+                for q in points.into_iter().filter(|&q| inside(q)) {
+                    let (c, r, _, _) = Bins::range(bins.size, bins.cols, bins.rows, q, q);
+                    prop_assert!(
+                        bins.cells[(r * bins.cols + c) as usize].contains(&(k as u32)),
+                        "triangle {k} {p:?} not binned at {q:?}"
+                    );
+                }
+            }
+        }
+    }
+}
