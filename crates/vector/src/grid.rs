@@ -186,6 +186,8 @@ pub struct Bins {
     cols: i64,
     rows: i64,
     cells: Vec<Vec<u32>>,
+    /// Each item's group ([`crate::hubs::NONE`] for none), when set.
+    groups: Vec<u32>,
 }
 
 impl Bins {
@@ -217,6 +219,7 @@ impl Bins {
             cols,
             rows,
             cells: vec![Vec::new(); (cols * rows) as usize],
+            groups: Vec::new(),
         };
         let mut cells = Vec::new();
         for (k, contours) in items.iter().enumerate() {
@@ -283,6 +286,47 @@ impl Bins {
                 visit((r * self.cols + c) as usize);
             }
         }
+    }
+
+    /// Gives the items groups (one per item, [`crate::hubs::NONE`] for
+    /// none), each bin's items of one group kept together (grouped items
+    /// first, the rest after in their order), so that a query can skip a
+    /// group it needs none of without looking at its items.
+    pub fn with_groups(mut self, groups: Vec<u32>) -> Self {
+        for cell in &mut self.cells {
+            cell.sort_by_key(|&k| (groups[k as usize], k));
+        }
+        self.groups = groups;
+        self
+    }
+
+    /// [`Bins::query_covering`], leaving out every item whose group (see
+    /// [`Bins::with_groups`]) is in `skip`.
+    pub fn query_covering_skipping(
+        &self,
+        contours: &[&[IntPoint]],
+        skip: &[u32],
+        mut visit: impl FnMut(u32),
+    ) {
+        let group = |k: u32| {
+            self.groups
+                .get(k as usize)
+                .copied()
+                .unwrap_or(crate::hubs::NONE)
+        };
+        self.cover(contours, |cell| {
+            let list = &self.cells[cell];
+            let mut i = 0;
+            while i < list.len() {
+                let g = group(list[i]);
+                if g != crate::hubs::NONE && skip.contains(&g) {
+                    i += list[i..].partition_point(|&k| group(k) == g);
+                    continue;
+                }
+                visit(list[i]);
+                i += 1;
+            }
+        });
     }
 
     /// Calls `visit` with every item of a [`Bins::covering`] that shares a

@@ -47,6 +47,7 @@ mod document;
 mod grid;
 mod group;
 mod hot;
+mod hubs;
 mod lines;
 mod options;
 mod pairs;

@@ -28,6 +28,7 @@ use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::cull::{Culled, cull};
 use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
+use crate::hubs::hubs;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
 use crate::splitter::list_overlay;
@@ -216,7 +217,12 @@ fn build(
             }
         })
         .collect();
-    let bins = Bins::covering(&grid, &items);
+    // Triangles meeting at a hub (a fan's centre) never overlap each
+    // other: their pairs are skipped unseen (see `hubs.rs`).
+    let on: Vec<bool> = live.iter().map(Option::is_some).collect();
+    let corners: Vec<_> = scene.tris.iter().map(|t| t.v).collect();
+    let hub = hubs(&corners, &on);
+    let bins = Bins::covering(&grid, &items).with_groups(hub.iter().map(|h| h[0]).collect());
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
     let mut region_points = 0u64;
     let mut cut_pairs = Vec::new();
@@ -253,7 +259,7 @@ fn build(
         // Whether some occluder is only the part of a triangle beyond a
         // cut line, whose ends are rounded to the grid.
         let mut cut = false;
-        bins.query_covering(&[&polys[ti]], |ui| {
+        bins.query_covering_skipping(&[&polys[ti]], &hub[ti], |ui| {
             let u_idx = ui as usize;
             // A skipped back face hides nothing its solid's nearer front
             // faces do not hide already.
