@@ -32,9 +32,9 @@
 use std::time::Instant;
 
 use glam::DVec3;
-use hider_scene::Mesh;
 use hider_bench::machine;
 use hider_bench::programs::thread_cpu_seconds;
+use hider_scene::Mesh;
 use hider_scene::{PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural};
 use hider_testkit::hard_cases::heavy_overdraw;
 use hider_testkit::sheets::{grid, lit};
