@@ -109,7 +109,10 @@ fn ccw_order(s: (i64, i64), a: (i64, i64), b: (i64, i64)) -> Ordering {
 
 #[cfg(test)]
 mod tests {
+    use proptest::prelude::*;
+
     use super::*;
+    use crate::pairs::corners_overlap;
 
     fn tri(p: [(i32, i32); 3]) -> [FixedPt; 3] {
         p.map(|(x, y)| FixedPt { x, y })
@@ -125,6 +128,68 @@ mod tests {
         (0..n)
             .map(|k| tri([(0, 0), at(k), at(k + 1 + overlap)]))
             .collect()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// Triangles around one centre, between random directions (a
+        /// fan with gaps), some of them spanning several steps (so that
+        /// corners may overlap), and others elsewhere: no two triangles
+        /// of one hub overlap, and a plain fan is a hub.
+        #[test]
+        fn no_two_triangles_of_a_hub_overlap(
+            centre in (-1000i32..1000, -1000i32..1000),
+            rays in prop::collection::vec((-50i32..50, -50i32..50, 1i32..20), 16..40),
+            spans in prop::collection::vec((0usize..40, 1usize..4), 0..3),
+            skip in 0usize..3,
+            others in prop::collection::vec(prop::array::uniform3((-1500i32..1500, -1500i32..1500)), 0..6),
+        ) {
+            let mut dirs: Vec<(i64, i64)> = rays
+                .iter()
+                .filter(|&&(x, y, _)| (x, y) != (0, 0))
+                .map(|&(x, y, r)| (i64::from(x * r), i64::from(y * r)))
+                .collect();
+            dirs.sort_by(|&a, &b| ccw_order((1, 0), a, b));
+            dirs.dedup_by(|a, b| same_ray(*a, *b));
+            let n = dirs.len();
+            prop_assume!(n >= 3);
+            let at = |d: (i64, i64)| FixedPt { x: centre.0 + d.0 as i32, y: centre.1 + d.1 as i32 };
+            let c = FixedPt { x: centre.0, y: centre.1 };
+            let mut tris: Vec<[FixedPt; 3]> = Vec::new();
+            let mut add = |a: (i64, i64), b: (i64, i64)| {
+                if cross(a, b) > 0 {
+                    tris.push([c, at(a), at(b)]);
+                }
+            };
+            for k in (0..n).filter(|k| k % 7 != skip) {
+                add(dirs[k], dirs[(k + 1) % n]);
+            }
+            for &(k, len) in &spans {
+                add(dirs[k % n], dirs[(k + len) % n]);
+            }
+            for o in &others {
+                let t = o.map(|(x, y)| FixedPt { x, y });
+                if orient2d_sign(&t) > 0 {
+                    tris.push(t);
+                }
+            }
+            let h = hubs(&tris, &vec![true; tris.len()]);
+            for i in 0..tris.len() {
+                for j in i + 1..tris.len() {
+                    let shared = h[i].iter().any(|&a| a != NONE && h[j].contains(&a));
+                    prop_assert!(!(shared && corners_overlap(&tris[i], &tris[j])), "{:?} {:?}", tris[i], tris[j]);
+                }
+            }
+            let plain = tris.iter().filter(|t| t[0] == c).count();
+            if spans.is_empty() && plain >= LEAST {
+                prop_assert!(h.iter().take(plain).all(|ids| ids[0] != NONE));
+            }
+        }
+    }
+
+    fn orient2d_sign(t: &[FixedPt; 3]) -> i64 {
+        hider_geom::edge::orient2d(t[0], t[1], t[2]).signum()
     }
 
     #[test]
