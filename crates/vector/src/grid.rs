@@ -179,45 +179,18 @@ pub fn clip_all(scene: &ScreenScene, grid: &Grid) -> Clipped {
     (polys, boxes)
 }
 
-/// A uniform grid of bins over the image, each listing the triangles whose
-/// clipped box meets it: the candidates for overlap with a given box.
+/// A uniform grid of bins over the image, each listing the items whose
+/// polygons meet it: the candidates for overlap with a given polygon or box.
 pub struct Bins {
     size: i64,
     cols: i64,
     rows: i64,
     cells: Vec<Vec<u32>>,
+    /// Each item's group ([`crate::hubs::NONE`] for none), when set.
+    groups: Vec<u32>,
 }
 
 impl Bins {
-    /// Bins of about `target` items each over `grid`, holding `boxes`
-    /// (inclusive `(min, max)` in grid units).
-    pub fn new(grid: &Grid, boxes: &[Option<(IntPoint, IntPoint)>]) -> Self {
-        let count = boxes.iter().flatten().count().max(1) as f64;
-        // About one triangle per bin on average keeps candidate lists short
-        // without flooding memory with the large triangles' many bins.
-        let area = (grid.width as f64) * (grid.height as f64);
-        let size = ((area / count).sqrt() as i64).max(grid.units_per_pixel() as i64);
-        let cols = grid.width / size + 1;
-        let rows = grid.height / size + 1;
-        let mut cells = vec![Vec::new(); (cols * rows) as usize];
-        for (k, b) in boxes.iter().enumerate() {
-            if let Some((lo, hi)) = b {
-                let (c0, r0, c1, r1) = Self::range(size, cols, rows, *lo, *hi);
-                for r in r0..=r1 {
-                    for c in c0..=c1 {
-                        cells[(r * cols + c) as usize].push(k as u32);
-                    }
-                }
-            }
-        }
-        Self {
-            size,
-            cols,
-            rows,
-            cells,
-        }
-    }
-
     fn range(size: i64, cols: i64, rows: i64, lo: IntPoint, hi: IntPoint) -> (i64, i64, i64, i64) {
         let cell = |v: i32, n: i64| (i64::from(v) / size).clamp(0, n - 1);
         (
@@ -226,6 +199,145 @@ impl Bins {
             cell(hi.x, cols),
             cell(hi.y, rows),
         )
+    }
+
+    /// Bins of about one item each over `grid`, holding each item in the
+    /// bins its closed polygons meet (each polygon's bins row by row,
+    /// between its leftmost and rightmost bin in the row: exact for a
+    /// convex polygon, more for others), not in every bin of its box: the
+    /// box of a long thin triangle (a spoke of a fan, a sliver seen
+    /// edge-on) covers bins in proportion to its area, so that binning
+    /// by boxes costs the square of the input on a fan.
+    pub fn covering(grid: &Grid, items: &[Vec<&[IntPoint]>]) -> Self {
+        let count = items.iter().filter(|i| !i.is_empty()).count().max(1) as f64;
+        let area = (grid.width as f64) * (grid.height as f64);
+        let size = ((area / count).sqrt() as i64).max(grid.units_per_pixel() as i64);
+        let cols = grid.width / size + 1;
+        let rows = grid.height / size + 1;
+        let mut bins = Self {
+            size,
+            cols,
+            rows,
+            cells: vec![Vec::new(); (cols * rows) as usize],
+            groups: Vec::new(),
+        };
+        let mut cells = Vec::new();
+        for (k, contours) in items.iter().enumerate() {
+            cells.clear();
+            bins.cover(contours, |cell| cells.push(cell));
+            cells.sort_unstable();
+            cells.dedup();
+            for &cell in &cells {
+                bins.cells[cell].push(k as u32);
+            }
+        }
+        bins
+    }
+
+    /// Calls `visit` with every bin the closed polygons `contours` meet
+    /// (a bin may come more than once).
+    fn cover(&self, contours: &[&[IntPoint]], mut visit: impl FnMut(usize)) {
+        let Some((lo, hi)) = bounds(
+            &contours
+                .iter()
+                .flat_map(|c| c.iter().copied())
+                .collect::<Vec<_>>(),
+        ) else {
+            return;
+        };
+        let (_, r0, _, r1) = Self::range(self.size, self.cols, self.rows, lo, hi);
+        // Per row of bins, the least and greatest column the edges reach.
+        let mut span = vec![(i64::MAX, i64::MIN); (r1 - r0 + 1) as usize];
+        let col = |x: i128| ((x.div_euclid(i128::from(self.size))) as i64).clamp(0, self.cols - 1);
+        for contour in contours {
+            let n = contour.len();
+            for k in 0..n {
+                let (p, q) = (contour[k], contour[(k + 1) % n]);
+                let (p, q) = if p.y <= q.y { (p, q) } else { (q, p) };
+                let (_, er0, _, er1) = Self::range(self.size, self.cols, self.rows, p, q);
+                let (dx, dy) = (
+                    i128::from(q.x) - i128::from(p.x),
+                    i128::from(q.y) - i128::from(p.y),
+                );
+                for r in er0..=er1 {
+                    // The edge's part within the row's closed band, by
+                    // its ends' x (floor and ceiling of the exact values).
+                    let y0 = i128::from(p.y).max(i128::from(r * self.size));
+                    let y1 = i128::from(q.y).min(i128::from((r + 1) * self.size));
+                    let (xa, xb) = if dy == 0 {
+                        (i128::from(p.x.min(q.x)), i128::from(p.x.max(q.x)))
+                    } else {
+                        let at = |y: i128| {
+                            let num = i128::from(p.x) * dy + (y - i128::from(p.y)) * dx;
+                            (num.div_euclid(dy), -(-num).div_euclid(dy))
+                        };
+                        let ((f0, c0), (f1, c1)) = (at(y0.min(y1)), at(y1.max(y0)));
+                        (f0.min(f1), c0.max(c1))
+                    };
+                    let slot = &mut span[(r.clamp(r0, r1) - r0) as usize];
+                    slot.0 = slot.0.min(col(xa));
+                    slot.1 = slot.1.max(col(xb));
+                }
+            }
+        }
+        for (i, &(c0, c1)) in span.iter().enumerate() {
+            let r = r0 + i as i64;
+            for c in c0..=c1 {
+                visit((r * self.cols + c) as usize);
+            }
+        }
+    }
+
+    /// Gives the items groups (one per item, [`crate::hubs::NONE`] for
+    /// none), each bin's items of one group kept together (grouped items
+    /// first, the rest after in their order), so that a query can skip a
+    /// group it needs none of without looking at its items.
+    pub fn with_groups(mut self, groups: Vec<u32>) -> Self {
+        for cell in &mut self.cells {
+            cell.sort_by_key(|&k| (groups[k as usize], k));
+        }
+        self.groups = groups;
+        self
+    }
+
+    /// [`Bins::query_covering`], leaving out every item whose group (see
+    /// [`Bins::with_groups`]) is in `skip`.
+    pub fn query_covering_skipping(
+        &self,
+        contours: &[&[IntPoint]],
+        skip: &[u32],
+        mut visit: impl FnMut(u32),
+    ) {
+        let group = |k: u32| {
+            self.groups
+                .get(k as usize)
+                .copied()
+                .unwrap_or(crate::hubs::NONE)
+        };
+        self.cover(contours, |cell| {
+            let list = &self.cells[cell];
+            let mut i = 0;
+            while i < list.len() {
+                let g = group(list[i]);
+                if g != crate::hubs::NONE && skip.contains(&g) {
+                    i += list[i..].partition_point(|&k| group(k) == g);
+                    continue;
+                }
+                visit(list[i]);
+                i += 1;
+            }
+        });
+    }
+
+    /// Calls `visit` with every item of a [`Bins::covering`] that shares a
+    /// bin with the closed polygons `contours` (an item may come more than
+    /// once).
+    pub fn query_covering(&self, contours: &[&[IntPoint]], mut visit: impl FnMut(u32)) {
+        self.cover(contours, |cell| {
+            for &k in &self.cells[cell] {
+                visit(k);
+            }
+        });
     }
 
     /// Calls `visit` with every item whose bins meet the box (an item may
@@ -251,4 +363,57 @@ pub fn bounds(poly: &[IntPoint]) -> Option<(IntPoint, IntPoint)> {
             IntPoint::new(hi.x.max(p.x), hi.y.max(p.y)),
         )
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// Every point of a closed triangle lies in a bin the triangle
+        /// is binned in, so two triangles whose interiors overlap share
+        /// a bin: long thin ones, ones along bin sides, points on them.
+        #[test]
+        fn a_triangle_is_binned_wherever_it_reaches(
+            tris in prop::collection::vec(
+                prop::array::uniform3((0i32..6_000, 0i32..6_000)), 1..12),
+        ) {
+            let grid = Grid { shift: 0, width: 6_000, height: 6_000 };
+            let polys: Vec<Vec<IntPoint>> = tris
+                .iter()
+                .map(|t| t.iter().map(|&(x, y)| IntPoint::new(x, y)).collect())
+                .collect();
+            let items: Vec<Vec<&[IntPoint]>> = polys.iter().map(|p| vec![p.as_slice()]).collect();
+            let bins = Bins::covering(&grid, &items);
+            for (k, p) in polys.iter().enumerate() {
+                let (lo, hi) = bounds(p).expect("three points");
+                let inside = |q: IntPoint| {
+                    let o = |a: IntPoint, b: IntPoint| {
+                        i64::from(b.x - a.x) * i64::from(q.y - a.y)
+                            - i64::from(b.y - a.y) * i64::from(q.x - a.x)
+                    };
+                    let s = [o(p[0], p[1]), o(p[1], p[2]), o(p[2], p[0])];
+                    s.iter().all(|&v| v >= 0) || s.iter().all(|&v| v <= 0)
+                };
+                let step = ((hi.x - lo.x).max(hi.y - lo.y) / 60).max(1);
+                let mut points: Vec<IntPoint> = p.clone();
+                for x in (lo.x..=hi.x).step_by(step as usize) {
+                    for y in (lo.y..=hi.y).step_by(step as usize) {
+                        points.push(IntPoint::new(x, y));
+                    }
+                }
+                for q in points.into_iter().filter(|&q| inside(q)) {
+                    let (c, r, _, _) = Bins::range(bins.size, bins.cols, bins.rows, q, q);
+                    prop_assert!(
+                        bins.cells[(r * bins.cols + c) as usize].contains(&(k as u32)),
+                        "triangle {k} {p:?} not binned at {q:?}"
+                    );
+                }
+            }
+        }
+    }
 }

@@ -38,6 +38,61 @@ fn group_key(
     (fill, a.to_bits(), key)
 }
 
+/// A group key with its fill interned: `(fill, opacity bits, plane)`.
+type Key = (u32, u32, [i64; 4]);
+
+/// The face group of each key, numbered by first appearance: keys equal,
+/// or neighbours (the same fill and opacity, each plane component within
+/// one quantum), are one group, transitively. Quantising alone puts two
+/// faces of one plane whose components fall on either side of a rounding
+/// boundary in two groups, and a seam between them.
+fn merge_neighbours(keys: &[Key]) -> Vec<u32> {
+    let mut first: HashMap<Key, usize> = HashMap::new();
+    let distinct: Vec<Key> = keys
+        .iter()
+        .filter(|&&k| {
+            let next = first.len();
+            *first.entry(k).or_insert(next) == next
+        })
+        .copied()
+        .collect();
+    // Union-find over the distinct keys, the lower index the root.
+    let mut parent: Vec<usize> = (0..distinct.len()).collect();
+    fn root(parent: &mut [usize], mut k: usize) -> usize {
+        while parent[k] != k {
+            parent[k] = parent[parent[k]];
+            k = parent[k];
+        }
+        k
+    }
+    for (k, &(fill, alpha, plane)) in distinct.iter().enumerate() {
+        for step in 0..81 {
+            let mut near = plane;
+            let mut code = step;
+            for component in &mut near {
+                *component += code % 3 - 1;
+                code /= 3;
+            }
+            if let Some(&j) = first.get(&(fill, alpha, near)) {
+                let (a, b) = (root(&mut parent, k), root(&mut parent, j));
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let mut number = vec![u32::MAX; distinct.len()];
+    let mut groups = 0;
+    keys.iter()
+        .map(|k| {
+            let r = root(&mut parent, first[k]);
+            if number[r] == u32::MAX {
+                number[r] = groups;
+                groups += 1;
+            }
+            number[r]
+        })
+        .collect()
+}
+
 /// Assigns every region a face group and builds the groups' paths.
 pub(crate) fn group_regions(
     scene: &ScreenScene,
@@ -45,22 +100,33 @@ pub(crate) fn group_regions(
     mode: ShadeMode,
     merge: bool,
 ) -> Vec<FaceGroup> {
-    let mut index: HashMap<(String, u32, [i64; 4]), u32> = HashMap::new();
+    let mut fills: HashMap<String, u32> = HashMap::new();
     let mut groups: Vec<FaceGroup> = Vec::new();
     let scale = prims
         .iter()
         .flat_map(|r| scene.prims[r.prim as usize].camera)
         .map(|p| p.abs().max_element())
         .fold(1e-300, f64::max);
-    for (k, region) in prims.iter_mut().enumerate() {
-        let key = if merge {
-            group_key(scene, region.prim, mode, scale)
-        } else {
-            (String::new(), k as u32, [0; 4])
-        };
-        let next = groups.len() as u32;
-        let g = *index.entry(key).or_insert(next);
-        if g == next {
+    let keys: Vec<Key> = prims
+        .iter()
+        .enumerate()
+        .map(|(k, region)| {
+            if merge {
+                let (fill, alpha, plane) = group_key(scene, region.prim, mode, scale);
+                let next = fills.len() as u32;
+                (*fills.entry(fill).or_insert(next), alpha, plane)
+            } else {
+                (0, k as u32, [0; 4])
+            }
+        })
+        .collect();
+    let numbers = if merge {
+        merge_neighbours(&keys)
+    } else {
+        (0..prims.len() as u32).collect()
+    };
+    for (region, g) in prims.iter_mut().zip(numbers) {
+        if g as usize == groups.len() {
             let (rgb, a) = prim_color(scene, region.prim, mode);
             let fill = format!(
                 "#{:02x}{:02x}{:02x}",
@@ -92,4 +158,26 @@ pub(crate) fn group_regions(
         }
     }
     groups
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn keys_one_quantum_apart_are_one_group() {
+        let plane = |d: i64| [0, 0, 1_000_000, d];
+        let keys = [
+            (0, 0, plane(499_999)),
+            (0, 0, plane(500_000)),
+            // Two quanta from the first, one from the second: chained.
+            (0, 0, plane(500_001)),
+            // Three from the last: another plane.
+            (0, 0, plane(500_004)),
+            // Another colour, one quantum off: another group.
+            (1, 0, plane(500_000)),
+            (0, 0, [1, -1, 999_999, 500_000]),
+        ];
+        assert_eq!(merge_neighbours(&keys), vec![0, 0, 0, 1, 2, 0]);
+    }
 }

@@ -46,6 +46,8 @@ mod cull;
 mod document;
 mod grid;
 mod group;
+mod hot;
+mod hubs;
 mod lines;
 mod options;
 mod pairs;
@@ -54,6 +56,7 @@ mod snap;
 mod splitter;
 mod subtract;
 mod svg;
+mod sweep;
 
 pub use document::{ObjectGroups, SvgInfo};
 pub use grid::Grid;

@@ -10,6 +10,7 @@
 //! cut points to the grid.
 
 use hider_geom::edge::orient2d;
+use hider_geom::fixed::FixedPt;
 use hider_scene::ScreenTri;
 use i_overlay::i_float::int::point::IntPoint;
 
@@ -20,10 +21,15 @@ use crate::grid::Grid;
 /// two convex polygons have disjoint interiors exactly when one of their
 /// edges has the other polygon entirely on its closed outer side.
 pub fn interiors_overlap(a: &ScreenTri, b: &ScreenTri) -> bool {
-    let separated = |p: &ScreenTri, q: &ScreenTri| {
+    corners_overlap(&a.v, &b.v)
+}
+
+/// [`interiors_overlap`] on the vertices alone.
+pub fn corners_overlap(a: &[FixedPt; 3], b: &[FixedPt; 3]) -> bool {
+    let separated = |p: &[FixedPt; 3], q: &[FixedPt; 3]| {
         (0..3).any(|k| {
-            let (e0, e1) = (p.v[k], p.v[(k + 1) % 3]);
-            q.v.iter().all(|&c| orient2d(e0, e1, c) <= 0)
+            let (e0, e1) = (p[k], p[(k + 1) % 3]);
+            q.iter().all(|&c| orient2d(e0, e1, c) <= 0)
         })
     };
     !separated(a, b) && !separated(b, a)

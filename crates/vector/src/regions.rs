@@ -28,6 +28,7 @@ use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::cull::{Culled, cull};
 use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
+use crate::hubs::hubs;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
 use crate::splitter::list_overlay;
@@ -39,6 +40,11 @@ hider_scene::hider_stats! {
     pub struct RegionStats {
         /// Screen triangles with some area inside the image.
         pub triangles: u64 => "triangles",
+        /// Pairs of triangles sharing a bin (each counted from both
+        /// sides): what the pair phase looks at. It grows with the square
+        /// of the triangles meeting at one vertex (the centre of a fan),
+        /// which no bin separates (see `docs/vector.md`).
+        pub candidate_pairs: u64 => "candidate pairs",
         /// Candidate pairs whose interiors overlap.
         pub overlapping_pairs: u64 => "overlapping pairs",
         /// Pairs whose depth planes cross inside their common area.
@@ -58,6 +64,18 @@ hider_scene::hider_stats! {
         /// Primitives whose region the snap rounding rerouted (see
         /// [`visible_regions`]).
         pub snapped: u64 => "snapped regions",
+        /// Distinct region edges the map-wide snap rounding rounds.
+        pub snap_segments: u64 => "snap segments",
+        /// Event points of the snap rounding's crossing sweep (segment
+        /// ends and crossings; see `docs/vector.md`).
+        pub sweep_events: u64 => "sweep events",
+        /// Neighbouring edges the sweep tested for a crossing.
+        pub sweep_tests: u64 => "sweep tests",
+        /// Pairs of region edges crossing properly (hot pixels they make).
+        pub snap_crossings: u64 => "snap crossings",
+        /// Hot pixel quadtree nodes the region edges visited to find the
+        /// hot pixels they pass.
+        pub snap_nodes: u64 => "snap nodes visited",
         /// Boolean differences of the ownership pass.
         pub ownership_differences: u64 => "ownership differences",
         /// On-screen triangles sent into the union that outlines the
@@ -188,7 +206,23 @@ fn build(
         .zip(&culled.hidden)
         .map(|(b, &c)| if c { None } else { *b })
         .collect();
-    let bins = Bins::new(&grid, &live);
+    let items: Vec<Vec<&[IntPoint]>> = live
+        .iter()
+        .zip(&polys)
+        .map(|(b, p)| {
+            if b.is_some() {
+                vec![p.as_slice()]
+            } else {
+                Vec::new()
+            }
+        })
+        .collect();
+    // Triangles meeting at a hub (a fan's centre) never overlap each
+    // other: their pairs are skipped unseen (see `hubs.rs`).
+    let on: Vec<bool> = live.iter().map(Option::is_some).collect();
+    let corners: Vec<_> = scene.tris.iter().map(|t| t.v).collect();
+    let hub = hubs(&corners, &on);
+    let bins = Bins::covering(&grid, &items).with_groups(hub.iter().map(|h| h[0]).collect());
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
     let mut region_points = 0u64;
     let mut cut_pairs = Vec::new();
@@ -225,7 +259,7 @@ fn build(
         // Whether some occluder is only the part of a triangle beyond a
         // cut line, whose ends are rounded to the grid.
         let mut cut = false;
-        bins.query(lo, hi, |ui| {
+        bins.query_covering_skipping(&[&polys[ti]], &hub[ti], |ui| {
             let u_idx = ui as usize;
             // A skipped back face hides nothing its solid's nearer front
             // faces do not hide already.
@@ -233,6 +267,7 @@ fn build(
                 return;
             }
             seen[u_idx] = ti as u32;
+            stats.candidate_pairs += 1;
             let u = &scene.tris[u_idx];
             let Some((ulo, uhi)) = boxes[u_idx] else {
                 return;
@@ -431,7 +466,12 @@ fn settle(
     // The covered set's outline is rounded in the same arrangement, so
     // that the regions can be closed onto it exactly.
     shapes.push(outline);
-    let mut touched = snap_round(&mut shapes);
+    let (mut touched, snap) = snap_round(&mut shapes);
+    stats.snap_segments = snap.segments;
+    stats.sweep_events = snap.events;
+    stats.sweep_tests = snap.tests;
+    stats.snap_crossings = snap.crossings;
+    stats.snap_nodes = snap.nodes;
     let covered = shapes.pop().unwrap_or_default();
     let _ = touched.pop();
     stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
@@ -462,21 +502,40 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         .iter()
         .map(|s| bounds(&s.iter().flatten().flatten().copied().collect::<Vec<_>>()))
         .collect();
-    let bins = Bins::new(grid, &boxes);
+    let bins = Bins::covering(grid, &shapes.iter().map(contours).collect::<Vec<_>>());
+    let apart = |a: (IntPoint, IntPoint), b: (IntPoint, IntPoint)| {
+        b.1.x <= a.0.x || b.0.x >= a.1.x || b.1.y <= a.0.y || b.0.y >= a.1.y
+    };
+    // The regions that may need a difference: the rerouted ones and the
+    // later ones overlapping one of them, found from the rerouted side,
+    // so that a map the snapping barely touched (a fan, whose every
+    // region meets all the others at its centre) queries few regions.
+    let mut needed = touched.to_vec();
+    for (j, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
+        let Some(jbox) = boxes[j] else { continue };
+        bins.query_covering(&contours(&shapes[j]), |k| {
+            let k = k as usize;
+            if k > j && boxes[k].is_some_and(|kbox| !apart(kbox, jbox)) {
+                needed[k] = true;
+            }
+        });
+    }
     let mut seen = vec![usize::MAX; shapes.len()];
     let mut runs = 0;
     for k in 0..shapes.len() {
         let Some((lo, hi)) = boxes[k] else { continue };
+        if !needed[k] {
+            continue;
+        }
         let mut earlier = Vec::new();
-        bins.query(lo, hi, |j| {
+        bins.query_covering(&contours(&shapes[k]), |j| {
             let j = j as usize;
             if j >= k || seen[j] == k {
                 return;
             }
             seen[j] = k;
-            if let Some((jlo, jhi)) = boxes[j] {
-                let apart = jhi.x <= lo.x || jlo.x >= hi.x || jhi.y <= lo.y || jlo.y >= hi.y;
-                if !apart && !shapes[j].is_empty() {
+            if let Some(jbox) = boxes[j] {
+                if !apart((lo, hi), jbox) && !shapes[j].is_empty() {
                     earlier.push(j);
                 }
             }
@@ -494,6 +553,11 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         shapes[k] = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
     }
     runs
+}
+
+/// The contours of a polygon set, as slices.
+fn contours(shapes: &IntShapes) -> Vec<&[IntPoint]> {
+    shapes.iter().flatten().map(Vec::as_slice).collect()
 }
 
 /// Whether triangle `outer` covers all of triangle `inner` (closed, exact

@@ -15,19 +15,26 @@
 //! are each such a grid, one material (three faces seen, each a group);
 //! and the sheet pierced by a random soup of `N / 8` triangles, so that
 //! its group's union is over many cut pieces with holes.
+//! Two more are the triangulations CAD files make of a disc or a
+//! cylinder's cap and of a sphere's pole: a flat fan of `N` triangles
+//! around one centre vertex, and the same fan with its centre raised
+//! towards the camera (a cone seen from its apex). Every spoke meets the
+//! centre, so anything that pairs edges or triangles by shared bins (or
+//! boxes) costs the square of `N` there while nothing crosses.
 //! The peak resident memory of each drawing is the process's (`VmHWM`,
 //! reset before it; the scene is resident already, so it counts, and so
 //! does heap the allocator kept from the family's smaller sizes); each
 //! family runs in a process of its own.
 //!
-//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced]`
-//! (defaults: 20 s, 1,024,000 triangles, all five families).
+//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced|fan|cone]`
+//! (defaults: 20 s, 1,024,000 triangles, all seven families).
 
 use std::time::Instant;
 
 use glam::DVec3;
 use hider_bench::machine;
 use hider_bench::programs::thread_cpu_seconds;
+use hider_scene::Mesh;
 use hider_scene::{PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural};
 use hider_testkit::hard_cases::heavy_overdraw;
 use hider_testkit::sheets::{grid, lit};
@@ -98,6 +105,23 @@ fn mesh(n: u32) -> Scene {
     lit(meshes)
 }
 
+/// A fan of `n` triangles around the origin in the plane `z = 0`, its
+/// centre raised to `z = apex` (0: flat).
+fn fan(n: u32, apex: f64) -> Scene {
+    let mut positions = vec![DVec3::new(0.0, 0.0, apex)];
+    positions.extend((0..n).map(|k| {
+        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+        DVec3::new(a.cos(), a.sin(), 0.0)
+    }));
+    let indices = (0..n).map(|k| [0, k + 1, (k + 1) % n + 1]).collect();
+    lit(vec![Mesh {
+        name: "fan".into(),
+        positions,
+        indices,
+        ..Mesh::default()
+    }])
+}
+
 fn exponent(last: Option<(f64, f64)>, n: f64, t: f64) -> String {
     last.map_or("-".into(), |(n0, t0)| {
         format!("{:.2}", (t / t0.max(1e-4)).ln() / (n / n0).ln())
@@ -114,13 +138,13 @@ fn main() -> Result<(), hider_scene::Error> {
     let only = std::env::args().nth(3);
     let options = VectorOptions::default();
     println!(
-        "| scene | N | culled | overlapping pairs | differences | outline triangles | region points | largest group | regions s | exponent | regions MB | line features | culled features | occluder tests | lines s | exponent | lines MB |"
+        "| scene | N | culled | candidate pairs | overlapping pairs | differences | outline triangles | region points | snap segments | sweep tests | snap nodes | largest group | regions s | exponent | regions MB | line features | culled features | occluder tests | lines s | exponent | lines MB |"
     );
     println!(
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     type Family = (&'static str, &'static str, u32, fn(u32) -> Scene);
-    let families: [Family; 5] = [
+    let families: [Family; 7] = [
         ("`gen:soup:N`", "soup", 2_000, |n| {
             procedural::random_soup(n, 1)
         }),
@@ -130,6 +154,8 @@ fn main() -> Result<(), hider_scene::Error> {
         ("flat sheet", "sheet", 2_000, sheet),
         ("cube of grids", "mesh", 2_000, mesh),
         ("sheet pierced by `gen:soup:N/8`", "pierced", 2_000, pierced),
+        ("flat fan", "fan", 2_000, |n| fan(n, 0.0)),
+        ("cone from its apex", "cone", 2_000, |n| fan(n, 0.5)),
     ];
     for (name, key, start, make) in families {
         let Some(only) = only.as_deref() else {
@@ -177,12 +203,16 @@ fn main() -> Result<(), hider_scene::Error> {
             let (r, l) = (map.stats, lines.stats);
             let x = f64::from(n);
             println!(
-                "| {name} | {n} | {} | {} | {} | {} | {} | {largest_group} | {tr:.2} | {} | {mr} | {} | {} | {} | {tl:.2} | {} | {ml} |",
+                "| {name} | {n} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {largest_group} | {tr:.2} | {} | {mr} | {} | {} | {} | {tl:.2} | {} | {ml} |",
                 r.culled,
+                r.candidate_pairs,
                 r.overlapping_pairs,
                 r.differences,
                 r.outline_triangles,
                 r.region_points,
+                r.snap_segments,
+                r.sweep_tests,
+                r.snap_nodes,
                 exponent(last_r, x, tr),
                 l.feature_edges,
                 l.culled_features,

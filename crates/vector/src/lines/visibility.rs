@@ -28,7 +28,7 @@ impl Occlusion {
     /// The occlusion of `scene` on `grid`; nothing culled when hidden
     /// lines are drawn.
     pub fn new(scene: &ScreenScene, grid: &Grid, options: &VectorOptions) -> Self {
-        let (_, boxes) = clip_all(scene, grid);
+        let (polys, boxes) = clip_all(scene, grid);
         let n = scene.tris.len();
         let culled = if options.dashed_hidden {
             Culled::none(n)
@@ -60,8 +60,19 @@ impl Occlusion {
         for (c, &l) in prim_culled.iter_mut().zip(&prim_live) {
             *c &= !l;
         }
+        let items: Vec<Vec<&[IntPoint]>> = live
+            .iter()
+            .zip(&polys)
+            .map(|(b, p)| {
+                if b.is_some() {
+                    vec![p.as_slice()]
+                } else {
+                    Vec::new()
+                }
+            })
+            .collect();
         Self {
-            bins: Bins::new(grid, &live),
+            bins: Bins::covering(grid, &items),
             occluders: scene
                 .prims
                 .iter()

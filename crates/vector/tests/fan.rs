@@ -1,0 +1,61 @@
+//! Work counters, not times: a flat fan of `N` triangles around one
+//! vertex (a disc or cylinder cap as CAD files triangulate it) and a cone
+//! seen from its apex (a sphere's pole). Every spoke meets the centre, so
+//! binning pairs of edges or triangles by area makes the snap rounding
+//! and the pair phase test about `N^2 / 2` pairs while nothing crosses;
+//! the crossing sweep, the hot pixel quadtree and the pair phase (which
+//! skips the pairs meeting at a hub) must grow with `N`.
+
+use glam::DVec3;
+use hider_scene::{Mesh, Scene, ShadeMode};
+use hider_testkit::screen;
+use hider_testkit::sheets::lit;
+use hider_vector::{RegionStats, VectorOptions, visible_regions};
+
+/// A fan of `n` triangles around the origin, its centre raised by
+/// `apex` (0: flat).
+fn fan(n: u32, apex: f64) -> Scene {
+    let mut positions = vec![DVec3::new(0.0, 0.0, apex)];
+    positions.extend((0..n).map(|k| {
+        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+        DVec3::new(a.cos(), a.sin(), 0.0)
+    }));
+    let indices = (0..n).map(|k| [0, k + 1, (k + 1) % n + 1]).collect();
+    lit(vec![Mesh {
+        name: "fan".into(),
+        positions,
+        indices,
+        ..Mesh::default()
+    }])
+}
+
+fn stats(scene: &Scene) -> RegionStats {
+    let s = screen(scene, 256, 256);
+    visible_regions(&s, &VectorOptions::default(), ShadeMode::Lambert)
+        .unwrap()
+        .stats
+}
+
+#[test]
+fn doubling_a_fan_or_a_cone_less_than_triples_the_work() {
+    for (name, apex) in [("fan", 0.0), ("cone", 0.5)] {
+        let (a, b) = (stats(&fan(2_000, apex)), stats(&fan(4_000, apex)));
+        // The map is non-trivial: every spoke is an edge of the map.
+        assert!(a.snap_segments > 2_000, "{name}: {a:?}");
+        for (what, x, y) in [
+            ("snap segments", a.snap_segments, b.snap_segments),
+            ("sweep events", a.sweep_events, b.sweep_events),
+            ("sweep tests", a.sweep_tests, b.sweep_tests),
+            ("snap nodes visited", a.snap_nodes, b.snap_nodes),
+            ("candidate pairs", a.candidate_pairs, b.candidate_pairs),
+        ] {
+            assert!(
+                y < 3 * x.max(1),
+                "{name}: {what} {x} at 2,000 triangles, {y} at 4,000\n{b:?}"
+            );
+        }
+        // Neighbouring triangles meet along their spokes: nothing
+        // overlaps, nothing is cut.
+        assert_eq!(b.overlapping_pairs, 0, "{name}: {b:?}");
+    }
+}
