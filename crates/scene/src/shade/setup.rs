@@ -209,6 +209,19 @@ impl TexSetup {
     }
 }
 
+/// The textures whose alpha make up `material`'s texture alpha, where
+/// their headers declare one: `map_Kd` (its alpha channel) and `map_d` (a
+/// mask).
+pub(super) fn alpha_textures(material: &Material) -> (Option<&TextureRef>, Option<&TextureRef>) {
+    fn with_alpha(t: &Option<TextureRef>) -> Option<&TextureRef> {
+        t.as_ref().filter(|t| t.may_have_alpha())
+    }
+    (
+        with_alpha(&material.diffuse_texture),
+        with_alpha(&material.alpha_texture),
+    )
+}
+
 /// Texture coordinates at a point and their change one pixel right (`dx`)
 /// and down (`dy`).
 pub(super) struct Footprint {
@@ -228,10 +241,12 @@ pub struct SurfaceSetup {
     planes: Option<Planes>,
     /// Unit face normal (zero for a degenerate primitive).
     face: DVec3,
-    /// The diffuse and specular textures' setups, made on first sample
-    /// (`Some(None)`: no texture, or its header does not read).
+    /// The diffuse, specular and dissolve (`map_d`) textures' setups,
+    /// made on first sample (`Some(None)`: no texture, or its header does
+    /// not read).
     diffuse: Option<Option<TexSetup>>,
     specular: Option<Option<TexSetup>>,
+    dissolve: Option<Option<TexSetup>>,
 }
 
 impl SurfaceSetup {
@@ -254,6 +269,7 @@ impl SurfaceSetup {
             face: n.normalize_or_zero(),
             diffuse: None,
             specular: None,
+            dissolve: None,
         }
     }
 
@@ -294,6 +310,42 @@ impl SurfaceSetup {
             return p.footprint(x, y, den);
         }
         sampler.uv_footprint(&self.info, b, x, y)
+    }
+
+    /// [`TextureSampler::alpha_at`] of this primitive (of `material`, the
+    /// one `info` names) at window point `(x, y)`: its diffuse texture's
+    /// alpha times its dissolve texture's value, sampled as the colour is
+    /// (same point, footprint, level and filter).
+    pub fn alpha_at(
+        &mut self,
+        sampler: &TextureSampler,
+        material: &Material,
+        x: f64,
+        y: f64,
+    ) -> f32 {
+        if !sampler.textures_on() || self.info.uvs.is_none() {
+            return 1.0;
+        }
+        let (kd, d) = alpha_textures(material);
+        if kd.is_none() && d.is_none() {
+            return 1.0;
+        }
+        let Some(f) = self
+            .point(sampler, x, y)
+            .and_then(|(b, _, den)| self.footprint(sampler, b, den, x, y))
+        else {
+            return 1.0;
+        };
+        let filter = sampler.options().filter;
+        let alpha = |slot: &mut Option<Option<TexSetup>>, texture: Option<&TextureRef>| {
+            texture
+                .and_then(|t| {
+                    let setup = slot.get_or_insert_with(|| TexSetup::new(t)).as_mut()?;
+                    setup.sample(t, &f, filter)
+                })
+                .map_or(1.0, |(_, a)| a)
+        };
+        alpha(&mut self.diffuse, kd) * alpha(&mut self.dissolve, d)
     }
 
     /// [`TextureSampler::color_at`] of this primitive (of `material`, the

@@ -297,7 +297,7 @@ impl Texture {
     /// The linear colour and the alpha (in [0, 1], 1 without an alpha
     /// channel) at `(u, v)` in mip level `level` (or the nearest level
     /// held), filtered with `filter`, repeating or clamped.
-    #[inline]
+    #[inline(always)]
     pub fn sample_level(
         &self,
         u: f64,

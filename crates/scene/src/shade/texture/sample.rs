@@ -19,7 +19,7 @@ impl Level {
     /// channel) at texture coordinates `(u, v)` (OBJ convention), filtered
     /// with `filter`, repeating or clamped (`clamp`, MTL's `-clamp on`).
     /// Non-finite coordinates give the first texel.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn sample(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> ([f32; 3], f32) {
         if !(u.is_finite() && v.is_finite()) {
             return self.texel(index(self, 0, 0, true));
