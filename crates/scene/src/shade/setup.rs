@@ -196,16 +196,36 @@ impl TexSetup {
         f: &Footprint,
         filter: super::Filter,
     ) -> Option<([f32; 3], f32)> {
+        let (t, level, u, v) = self.at(texture, f)?;
+        Some(t.sample_level(u, v, filter, texture.transform.clamp, level))
+    }
+
+    /// [`Self::sample`]'s alpha alone.
+    #[inline]
+    fn sample_alpha(
+        &mut self,
+        texture: &TextureRef,
+        f: &Footprint,
+        filter: super::Filter,
+    ) -> Option<f32> {
+        let (t, level, u, v) = self.at(texture, f)?;
+        Some(t.sample_level_alpha(u, v, filter, texture.transform.clamp, level))
+    }
+
+    /// The texture holding the level footprint `f` reads (decoded now if
+    /// it is not held), that level and the point's coordinates through the
+    /// texture's transform.
+    #[inline(always)]
+    fn at(&mut self, texture: &TextureRef, f: &Footprint) -> Option<(&Texture, u32, f64, f64)> {
         let rho2 = (f.dx * self.scale)
             .length_squared()
             .max((f.dy * self.scale).length_squared());
         let level = mip::level_for_squared(rho2, self.levels);
-        let t = match &self.held {
-            Some(t) if t.base_level() <= level => t,
-            _ => self.held.insert(texture.get_level(level)?),
-        };
+        if !self.held.as_ref().is_some_and(|t| t.base_level() <= level) {
+            self.held = Some(texture.get_level(level)?);
+        }
         let (u, v) = texture.transform.apply(f.uv.x, f.uv.y);
-        Some(t.sample_level(u, v, filter, texture.transform.clamp, level))
+        Some((self.held.as_deref()?, level, u, v))
     }
 }
 
@@ -280,7 +300,7 @@ impl SurfaceSetup {
 
     /// Barycentrics of the point seen at `(x, y)`, that point in camera
     /// space, and the planes' denominator there (zero without planes).
-    #[inline]
+    #[inline(always)]
     fn point(&self, sampler: &TextureSampler, x: f64, y: f64) -> Option<([f64; 3], DVec3, Den)> {
         match &self.planes {
             Some(p) => {
@@ -341,9 +361,9 @@ impl SurfaceSetup {
             texture
                 .and_then(|t| {
                     let setup = slot.get_or_insert_with(|| TexSetup::new(t)).as_mut()?;
-                    setup.sample(t, &f, filter)
+                    setup.sample_alpha(t, &f, filter)
                 })
-                .map_or(1.0, |(_, a)| a)
+                .unwrap_or(1.0)
         };
         alpha(&mut self.diffuse, kd) * alpha(&mut self.dissolve, d)
     }

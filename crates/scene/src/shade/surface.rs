@@ -354,17 +354,22 @@ pub(super) struct CameraRays {
     width: f64,
     height: f64,
     pub(super) perspective: bool,
+    /// [`Self::affine_ray`], found once (every primitive's setup reads it).
+    affine: Option<[DVec3; 3]>,
 }
 
 impl CameraRays {
     fn new(projection: DMat4, viewport: Viewport, perspective: bool) -> Self {
-        Self {
+        let mut rays = Self {
             inverse: projection.inverse(),
             projection,
             width: f64::from(viewport.width),
             height: f64::from(viewport.height),
             perspective,
-        }
+            affine: None,
+        };
+        rays.affine = rays.solve_affine_ray();
+        rays
     }
 
     /// `(origin, direction)` as [`ScreenScene::camera_ray`] gives them.
@@ -387,7 +392,13 @@ impl CameraRays {
     /// ([`Self::ray`]'s direction up to a positive or negative scale,
     /// which does not move the point it meets a plane at). `None` for an
     /// orthographic camera, whose rays do not share an origin.
+    #[inline]
     pub(super) fn affine_ray(&self) -> Option<[DVec3; 3]> {
+        self.affine
+    }
+
+    /// [`Self::affine_ray`] from the inverse projection.
+    fn solve_affine_ray(&self) -> Option<[DVec3; 3]> {
         if !self.perspective {
             return None;
         }

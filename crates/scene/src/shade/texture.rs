@@ -308,6 +308,20 @@ impl Texture {
     ) -> ([f32; 3], f32) {
         self.level(level).sample(u, v, filter, clamp)
     }
+
+    /// [`Self::sample_level`]'s alpha alone (the same number), without
+    /// reading the colour.
+    #[inline(always)]
+    pub fn sample_level_alpha(
+        &self,
+        u: f64,
+        v: f64,
+        filter: Filter,
+        clamp: bool,
+        level: u32,
+    ) -> f32 {
+        self.level(level).sample_alpha(u, v, filter, clamp)
+    }
 }
 
 /// A checkerboard image: `squares x squares` squares of `square` texels,

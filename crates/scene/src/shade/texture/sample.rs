@@ -21,8 +21,61 @@ impl Level {
     /// Non-finite coordinates give the first texel.
     #[inline(always)]
     pub(crate) fn sample(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> ([f32; 3], f32) {
+        let (texels, _) = self.rgb.as_chunks::<3>();
+        let rgb = linear_table();
+        let colour = |k: usize| {
+            let [r, g, b] = texels[k];
+            [
+                rgb[usize::from(r)],
+                rgb[usize::from(g)],
+                rgb[usize::from(b)],
+            ]
+        };
+        // The alpha channel is looked for once, not per texel; without
+        // one, the alpha lane is 1 at every corner (its lerp is exactly 1).
+        let c = match self.alpha.as_deref() {
+            None => self.filtered(u, v, filter, clamp, |k| {
+                let [r, g, b] = colour(k);
+                [r, g, b, 1.0]
+            }),
+            Some(a) => {
+                let alphas = alpha_table();
+                self.filtered(u, v, filter, clamp, |k| {
+                    let [r, g, b] = colour(k);
+                    [r, g, b, alphas[usize::from(a[k])]]
+                })
+            }
+        };
+        ([c[0], c[1], c[2]], c[3])
+    }
+
+    /// [`Self::sample`]'s alpha alone (the same number), without reading
+    /// the colour: what the alpha test needs.
+    #[inline(always)]
+    pub(crate) fn sample_alpha(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> f32 {
+        match self.alpha.as_deref() {
+            None => 1.0,
+            Some(a) => {
+                let alphas = alpha_table();
+                self.filtered(u, v, filter, clamp, |k| [alphas[usize::from(a[k])]])[0]
+            }
+        }
+    }
+
+    /// The lanes `texel` reads (texel `k`'s values) at `(u, v)`, filtered
+    /// with `filter`, repeating or clamped; the first texel's where a
+    /// coordinate is not finite.
+    #[inline(always)]
+    fn filtered<const N: usize>(
+        &self,
+        u: f64,
+        v: f64,
+        filter: Filter,
+        clamp: bool,
+        texel: impl Fn(usize) -> [f32; N],
+    ) -> [f32; N] {
         if !(u.is_finite() && v.is_finite()) {
-            return self.texel(index(self, 0, 0, true));
+            return texel(index(self, 0, 0, true));
         }
         // Texel space: x right, y down from the top row; centres at +0.5.
         // `u - floor(u)` is `rem_euclid(u, 1)` bit for bit (both round the
@@ -39,72 +92,30 @@ impl Level {
             // clamps it); repeating, it is the next repeat's start.
             Filter::Nearest => {
                 let (x, y) = (x.floor() as i64, y.floor() as i64);
-                self.texel(index(self, x, y, clamp))
+                texel(index(self, x, y, clamp))
             }
-            Filter::Bilinear => match self.alpha.as_deref() {
-                None => self.bilinear(x, y, clamp, |_| 1.0),
-                Some(a) => {
-                    let alphas = alpha_table();
-                    self.bilinear(x, y, clamp, |k| alphas[usize::from(a[k])])
-                }
-            },
+            Filter::Bilinear => {
+                let (fx, fy) = (x - 0.5, y - 0.5);
+                let ((x0, i), (y0, j)) = (floor(fx), floor(fy));
+                let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
+                // The two columns and rows, wrapped once each.
+                let (xa, xb) = neighbours(i, self.width, clamp);
+                let (ya, yb) = neighbours(j, self.height, clamp);
+                let w = self.width as usize;
+                let (top, bottom) = (ya * w, yb * w);
+                let q = [
+                    texel(top + xa),
+                    texel(top + xb),
+                    texel(bottom + xa),
+                    texel(bottom + xb),
+                ];
+                std::array::from_fn(|k| {
+                    let top = q[0][k] + (q[1][k] - q[0][k]) * tx;
+                    let bottom = q[2][k] + (q[3][k] - q[2][k]) * tx;
+                    top + (bottom - top) * ty
+                })
+            }
         }
-    }
-
-    /// Texel `k`'s linear colour and alpha.
-    fn texel(&self, k: usize) -> ([f32; 3], f32) {
-        let rgb = linear_table();
-        let alpha = self
-            .alpha
-            .as_ref()
-            .map_or(1.0, |a| alpha_table()[usize::from(a[k])]);
-        let c = &self.rgb[3 * k..3 * k + 3];
-        (std::array::from_fn(|i| rgb[usize::from(c[i])]), alpha)
-    }
-
-    /// Bilinear at texel-space `(x, y)` (finite), texel `k`'s alpha read
-    /// by `alpha`.
-    #[inline(always)]
-    fn bilinear(
-        &self,
-        x: f64,
-        y: f64,
-        clamp: bool,
-        alpha: impl Fn(usize) -> f32,
-    ) -> ([f32; 3], f32) {
-        let (fx, fy) = (x - 0.5, y - 0.5);
-        let ((x0, i), (y0, j)) = (floor(fx), floor(fy));
-        let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
-        let (xa, xb) = neighbours(i, self.width, clamp);
-        let (ya, yb) = neighbours(j, self.height, clamp);
-        let w = self.width as usize;
-        let (top, bottom) = (ya * w, yb * w);
-        let (texels, _) = self.rgb.as_chunks::<3>();
-        let rgb = linear_table();
-        let texel = |k: usize| {
-            let [r, g, b] = texels[k];
-            [
-                rgb[usize::from(r)],
-                rgb[usize::from(g)],
-                rgb[usize::from(b)],
-                alpha(k),
-            ]
-        };
-        let q = [
-            texel(top + xa),
-            texel(top + xb),
-            texel(bottom + xa),
-            texel(bottom + xb),
-        ];
-        // Colour and alpha in four lanes, lerped alike (the alpha lane of
-        // an image without alpha is 1 at every corner: its lerp is exactly
-        // 1).
-        let c: [f32; 4] = std::array::from_fn(|k| {
-            let top = q[0][k] + (q[1][k] - q[0][k]) * tx;
-            let bottom = q[2][k] + (q[3][k] - q[2][k]) * tx;
-            top + (bottom - top) * ty
-        });
-        ([c[0], c[1], c[2]], c[3])
     }
 }
 
@@ -250,6 +261,8 @@ mod tests {
                         let want = reference(&l, u, v, clamp);
                         let bits = |(c, a): ([f32; 3], f32)| (c.map(f32::to_bits), a.to_bits());
                         assert_eq!(bits(got), bits(want), "{w}x{h} ({u}, {v}) {clamp}");
+                        let alpha = l.sample_alpha(u, v, Filter::Bilinear, clamp);
+                        assert_eq!(alpha.to_bits(), want.1.to_bits(), "{w}x{h} ({u}, {v})");
                         checked += 1;
                     }
                 }
