@@ -80,10 +80,13 @@ impl Level {
         // Texel space: x right, y down from the top row; centres at +0.5.
         // `u - floor(u)` is `rem_euclid(u, 1)` bit for bit (both round the
         // exact fraction once), without a call to `fmod`.
+        // A coordinate in [0, 1) is its own (the usual case, skipping a
+        // floor on the way to the texel).
+        let wrap = |t: f64| if (0.0..1.0).contains(&t) { t } else { t - floor(t).0 };
         let (u, v) = if clamp {
             (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))
         } else {
-            (u - floor(u).0, v - floor(v).0)
+            (wrap(u), wrap(v))
         };
         let x = u * f64::from(self.width);
         let y = (1.0 - v) * f64::from(self.height);
