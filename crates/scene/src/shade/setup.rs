@@ -229,6 +229,23 @@ impl TexSetup {
     }
 }
 
+/// The colour of `texture` (with its setup in `slot`, made on first use)
+/// at footprint `f`; `None` without a texture, a footprint, or when the
+/// texture does not load.
+#[inline(always)]
+fn map_texel(
+    slot: &mut Option<Option<TexSetup>>,
+    texture: Option<&TextureRef>,
+    f: Option<&Footprint>,
+    filter: super::Filter,
+) -> Option<[f32; 3]> {
+    let texture = texture?;
+    let setup = slot
+        .get_or_insert_with(|| TexSetup::new(texture))
+        .as_mut()?;
+    Some(setup.sample(texture, f?, filter)?.0)
+}
+
 /// The textures whose alpha make up `material`'s texture alpha, where
 /// their headers declare one: `map_Kd` (its alpha channel) and `map_d` (a
 /// mask).
@@ -385,30 +402,25 @@ impl SurfaceSetup {
         let (b, position, den) = self.point(sampler, x, y)?;
         let textures = sampler.textures_on();
         let filter = sampler.options().filter;
-        let (mut diffuse_slot, mut specular_slot) = (self.diffuse.take(), self.specular.take());
-        // The footprint is the same for both textures: found once.
-        let mut footprint = None;
-        let mut sample = |slot: &mut Option<Option<TexSetup>>, texture: &Option<TextureRef>| {
-            let texture = texture.as_ref().filter(|_| textures)?;
-            let setup = slot
-                .get_or_insert_with(|| TexSetup::new(texture))
-                .as_mut()?;
-            if footprint.is_none() {
-                footprint = Some(self.footprint(sampler, b, den, x, y)?);
-            }
-            Some(setup.sample(texture, footprint.as_ref()?, filter)?.0)
+        let highlights = sampler.lighting_on() && material.has_highlights();
+        let diffuse_map = material.diffuse_texture.as_ref().filter(|_| textures);
+        let specular_map = (material.specular_texture.as_ref()).filter(|_| textures && highlights);
+        // The footprint is the same for both textures: found once, into a
+        // local (not built on first use inside a closure: that cost three
+        // trips through memory on the way to the mip level).
+        let footprint = if diffuse_map.is_some() || specular_map.is_some() {
+            self.footprint(sampler, b, den, x, y)
+        } else {
+            None
         };
+        let f = footprint.as_ref();
         let times = |c: [f32; 3], t: Option<[f32; 3]>| match t {
             Some(t) => [c[0] * t[0], c[1] * t[1], c[2] * t[2]],
             None => c,
         };
-        let texel = sample(&mut diffuse_slot, &material.diffuse_texture);
-        let specular_texel = if sampler.lighting_on() && material.has_highlights() {
-            Some(sample(&mut specular_slot, &material.specular_texture))
-        } else {
-            None
-        };
-        (self.diffuse, self.specular) = (diffuse_slot, specular_slot);
+        let texel = map_texel(&mut self.diffuse, diffuse_map, f, filter);
+        let specular_texel =
+            highlights.then(|| map_texel(&mut self.specular, specular_map, f, filter));
         let info = &self.info;
         let base = match info.colors {
             Some(c) => std::array::from_fn(|k| {

@@ -82,7 +82,13 @@ impl Level {
         // exact fraction once), without a call to `fmod`.
         // A coordinate in [0, 1) is its own (the usual case, skipping a
         // floor on the way to the texel).
-        let wrap = |t: f64| if (0.0..1.0).contains(&t) { t } else { t - floor(t).0 };
+        let wrap = |t: f64| {
+            if (0.0..1.0).contains(&t) {
+                t
+            } else {
+                t - floor(t).0
+            }
+        };
         let (u, v) = if clamp {
             (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))
         } else {
