@@ -221,7 +221,7 @@ impl TexSetup {
             .length_squared()
             .max((f.dy * self.scale).length_squared());
         let level = mip::level_for_squared(rho2, self.levels);
-        if !self.held.as_ref().is_some_and(|t| t.base_level() <= level) {
+        if self.held.as_ref().is_none_or(|t| t.base_level() > level) {
             self.held = Some(texture.get_level(level)?);
         }
         let (u, v) = texture.transform.apply(f.uv.x, f.uv.y);

@@ -6,7 +6,7 @@
 //! short: each coordinate is wrapped once (not each corner, and without a
 //! remainder, which is a division), `floor` is two additions of a
 //! constant (not a library call, nor a conversion to an integer and back),
-//! the four texels are read from one bounds-checked array of texels, the
+//! the four texels are read with one bounds check each, the
 //! alpha channel is looked for once per sample, and colour and alpha are
 //! lerped in four lanes. The numbers are the plain formula's, bit for bit
 //! (tested against it below).
@@ -21,14 +21,13 @@ impl Level {
     /// Non-finite coordinates give the first texel.
     #[inline(always)]
     pub(crate) fn sample(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> ([f32; 3], f32) {
-        let (texels, _) = self.rgb.as_chunks::<3>();
         let rgb = linear_table();
         let colour = |k: usize| {
-            let [r, g, b] = texels[k];
+            let c = &self.rgb[3 * k..3 * k + 3];
             [
-                rgb[usize::from(r)],
-                rgb[usize::from(g)],
-                rgb[usize::from(b)],
+                rgb[usize::from(c[0])],
+                rgb[usize::from(c[1])],
+                rgb[usize::from(c[2])],
             ]
         };
         // The alpha channel is looked for once, not per texel; without
@@ -303,7 +302,10 @@ mod tests {
             f64::MAX,
         ];
         for x in xs {
-            for x in [x, x.next_up(), x.next_down()] {
+            // x and its neighbouring doubles (by their bits).
+            let bits = x.to_bits();
+            let near = [bits, bits.wrapping_add(1), bits.wrapping_sub(1)].map(f64::from_bits);
+            for x in near.into_iter().filter(|x| x.is_finite()) {
                 // Equal as numbers: the sign of a zero may differ.
                 let (f, i) = floor(x);
                 assert_eq!(f, x.floor(), "{x}");
