@@ -73,25 +73,20 @@ impl Level {
         clamp: bool,
         texel: impl Fn(usize) -> [f32; N],
     ) -> [f32; N] {
-        if !(u.is_finite() && v.is_finite()) {
-            return texel(index(self, 0, 0, true));
-        }
         // Texel space: x right, y down from the top row; centres at +0.5.
+        // Repeating, a coordinate in [0, 1) is its own (the usual case: no
+        // floor and no test of finiteness on the way to the texel);
         // `u - floor(u)` is `rem_euclid(u, 1)` bit for bit (both round the
         // exact fraction once), without a call to `fmod`.
-        // A coordinate in [0, 1) is its own (the usual case, skipping a
-        // floor on the way to the texel).
-        let wrap = |t: f64| {
-            if (0.0..1.0).contains(&t) {
-                t
-            } else {
-                t - floor(t).0
-            }
-        };
-        let (u, v) = if clamp {
+        let unit = |t: f64| (0.0..1.0).contains(&t);
+        let (u, v) = if !clamp && unit(u) && unit(v) {
+            (u, v)
+        } else if !(u.is_finite() && v.is_finite()) {
+            return texel(index(self, 0, 0, true));
+        } else if clamp {
             (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))
         } else {
-            (wrap(u), wrap(v))
+            (u - floor(u).0, v - floor(v).0)
         };
         let x = u * f64::from(self.width);
         let y = (1.0 - v) * f64::from(self.height);
