@@ -57,16 +57,14 @@ impl<'a> Cutouts<'a> {
     /// compositing hider asks [`Self::opacity`] first.
     pub(crate) fn coverage(&self, prim: u32, ij: (u32, u32), c: Coverage) -> Coverage {
         let mut out = c;
+        // The primitive's shading setup, once for the pixel's samples.
+        let mut test = self.test.prim(prim);
         for (k, &pos) in self.pattern.positions().iter().enumerate() {
-            if c.mask >> k & 1 == 1
-                && !self
-                    .test
-                    .passes_at(prim, window(ij.0, pos.0), window(ij.1, pos.1))
-            {
+            if c.mask >> k & 1 == 1 && !test.passes_at(window(ij.0, pos.0), window(ij.1, pos.1)) {
                 out.mask &= !(1 << k);
             }
         }
-        if c.centre && !self.test.passes(prim, ij.0, ij.1) {
+        if c.centre && !test.passes(ij.0, ij.1) {
             out.centre = false;
         }
         out.full = out.full && out.mask == c.mask && out.centre;

@@ -6,7 +6,8 @@
 //! SCENE: `soup1k`, `soup10k`, `soup100k`, `sphere` (uv_sphere(200)),
 //! `sphere500`, `sphere500-smooth` (with vertex normals), `spider` (the bundled
 //! `assets/spider`, the GL reference's model, textured), `spider-flat`
-//! (the spider without its textures), `cube` (12 large
+//! (the spider without its textures), `spider-cutout` (the spider with
+//! a cut-out checker texture: the alpha test per sample), `cube` (12 large
 //! triangles: whole pixels), `one`
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
@@ -63,6 +64,29 @@ fn main() {
             for m in &mut s.materials {
                 m.diffuse_texture = None;
                 m.specular_texture = None;
+            }
+            s
+        }
+        "spider-cutout" => {
+            // The spider with a cut-out `map_Kd` (a checker of opaque and
+            // fully transparent squares of 16 texels, 256 x 256) on every
+            // material: the alpha test at every sample.
+            let mut s = hider_bench::programs::spider().expect("the bundled spider");
+            let side = 256;
+            let texels: Vec<u8> = (0..side * side)
+                .flat_map(|k| {
+                    let (x, y) = (k % side / 16, k / side / 16);
+                    let a = if (x + y) % 2 == 0 { 255 } else { 0 };
+                    [(x * 16) as u8, (y * 16) as u8, 128, a]
+                })
+                .collect();
+            let texture = hider_scene::shade::Texture::from_srgba8(side, side, &texels)
+                .expect("a checker texture");
+            for m in &mut s.materials {
+                m.diffuse_texture = Some(hider_scene::TextureRef::from_texture(
+                    "cutout-checker.png",
+                    texture.clone(),
+                ));
             }
             s
         }

@@ -39,6 +39,7 @@ use std::sync::OnceLock;
 
 use hider_geom::fixed::{SUBPIXEL_BITS, SUBPIXEL_SCALE};
 
+use super::setup::SurfaceSetup;
 use super::surface::{TextureOptions, TextureSampler};
 use super::texture::{AlphaClass, TextureRef};
 use crate::error::Result;
@@ -157,6 +158,20 @@ impl<'a> AlphaTest<'a> {
         self.sampler.alpha_at(info, material, x, y)
     }
 
+    /// The test of primitive `prim` at many points (a hider's samples in
+    /// a pixel): its shading setup ([`SurfaceSetup`]) built once, the same
+    /// answers as [`Self::passes_at`] and [`Self::alpha`].
+    pub fn prim(&self, prim: u32) -> PrimAlphaTest<'_, 'a> {
+        let setup = self
+            .may_cut(prim)
+            .then(|| SurfaceSetup::new(&self.sampler, &self.scene.prims[prim as usize]));
+        PrimAlphaTest {
+            test: self,
+            prim,
+            setup,
+        }
+    }
+
     /// The alpha class of primitive `prim`'s material
     /// ([`material_alpha_class`], found once per material, decoding its
     /// textures at their coarsest level if needed);
@@ -187,6 +202,39 @@ impl<'a> AlphaTest<'a> {
     /// as a cut-out at one half).
     pub fn partial_alpha(&self) -> Vec<String> {
         partial_alpha_files(&self.scene.materials)
+    }
+}
+
+/// The alpha test of one primitive ([`AlphaTest::prim`]).
+#[derive(Clone, Debug)]
+pub struct PrimAlphaTest<'t, 'a> {
+    test: &'t AlphaTest<'a>,
+    prim: u32,
+    /// `None` where the primitive may not cut.
+    setup: Option<SurfaceSetup>,
+}
+
+impl PrimAlphaTest<'_, '_> {
+    /// [`AlphaTest::alpha`] of this primitive at window point `(x, y)`.
+    pub fn alpha(&mut self, x: f64, y: f64) -> f32 {
+        match &mut self.setup {
+            Some(setup) => {
+                let material = self.test.scene.material(self.prim);
+                setup.alpha_at(&self.test.sampler, material, x, y)
+            }
+            None => 1.0,
+        }
+    }
+
+    /// [`AlphaTest::passes_at`] of this primitive at window point `(x, y)`.
+    pub fn passes_at(&mut self, x: f64, y: f64) -> bool {
+        self.setup.is_none() || self.alpha(x, y) >= 0.5
+    }
+
+    /// [`AlphaTest::passes`] of this primitive at the centre of pixel
+    /// `(i, j)`.
+    pub fn passes(&mut self, i: u32, j: u32) -> bool {
+        self.passes_at(f64::from(i) + 0.5, f64::from(j) + 0.5)
     }
 }
 

@@ -196,17 +196,67 @@ impl TexSetup {
         f: &Footprint,
         filter: super::Filter,
     ) -> Option<([f32; 3], f32)> {
+        let (t, level, u, v) = self.at(texture, f)?;
+        Some(t.sample_level(u, v, filter, texture.transform.clamp, level))
+    }
+
+    /// [`Self::sample`]'s alpha alone.
+    #[inline]
+    fn sample_alpha(
+        &mut self,
+        texture: &TextureRef,
+        f: &Footprint,
+        filter: super::Filter,
+    ) -> Option<f32> {
+        let (t, level, u, v) = self.at(texture, f)?;
+        Some(t.sample_level_alpha(u, v, filter, texture.transform.clamp, level))
+    }
+
+    /// The texture holding the level footprint `f` reads (decoded now if
+    /// it is not held), that level and the point's coordinates through the
+    /// texture's transform.
+    #[inline(always)]
+    fn at(&mut self, texture: &TextureRef, f: &Footprint) -> Option<(&Texture, u32, f64, f64)> {
         let rho2 = (f.dx * self.scale)
             .length_squared()
             .max((f.dy * self.scale).length_squared());
         let level = mip::level_for_squared(rho2, self.levels);
-        let t = match &self.held {
-            Some(t) if t.base_level() <= level => t,
-            _ => self.held.insert(texture.get_level(level)?),
-        };
+        if self.held.as_ref().is_none_or(|t| t.base_level() > level) {
+            self.held = Some(texture.get_level(level)?);
+        }
         let (u, v) = texture.transform.apply(f.uv.x, f.uv.y);
-        Some(t.sample_level(u, v, filter, texture.transform.clamp, level))
+        Some((self.held.as_deref()?, level, u, v))
     }
+}
+
+/// The colour of `texture` (with its setup in `slot`, made on first use)
+/// at footprint `f`; `None` without a texture, a footprint, or when the
+/// texture does not load.
+#[inline(always)]
+fn map_texel(
+    slot: &mut Option<Option<TexSetup>>,
+    texture: Option<&TextureRef>,
+    f: Option<&Footprint>,
+    filter: super::Filter,
+) -> Option<[f32; 3]> {
+    let texture = texture?;
+    let setup = slot
+        .get_or_insert_with(|| TexSetup::new(texture))
+        .as_mut()?;
+    Some(setup.sample(texture, f?, filter)?.0)
+}
+
+/// The textures whose alpha make up `material`'s texture alpha, where
+/// their headers declare one: `map_Kd` (its alpha channel) and `map_d` (a
+/// mask).
+pub(super) fn alpha_textures(material: &Material) -> (Option<&TextureRef>, Option<&TextureRef>) {
+    fn with_alpha(t: &Option<TextureRef>) -> Option<&TextureRef> {
+        t.as_ref().filter(|t| t.may_have_alpha())
+    }
+    (
+        with_alpha(&material.diffuse_texture),
+        with_alpha(&material.alpha_texture),
+    )
 }
 
 /// Texture coordinates at a point and their change one pixel right (`dx`)
@@ -228,10 +278,12 @@ pub struct SurfaceSetup {
     planes: Option<Planes>,
     /// Unit face normal (zero for a degenerate primitive).
     face: DVec3,
-    /// The diffuse and specular textures' setups, made on first sample
-    /// (`Some(None)`: no texture, or its header does not read).
+    /// The diffuse, specular and dissolve (`map_d`) textures' setups,
+    /// made on first sample (`Some(None)`: no texture, or its header does
+    /// not read).
     diffuse: Option<Option<TexSetup>>,
     specular: Option<Option<TexSetup>>,
+    dissolve: Option<Option<TexSetup>>,
 }
 
 impl SurfaceSetup {
@@ -254,6 +306,7 @@ impl SurfaceSetup {
             face: n.normalize_or_zero(),
             diffuse: None,
             specular: None,
+            dissolve: None,
         }
     }
 
@@ -264,7 +317,7 @@ impl SurfaceSetup {
 
     /// Barycentrics of the point seen at `(x, y)`, that point in camera
     /// space, and the planes' denominator there (zero without planes).
-    #[inline]
+    #[inline(always)]
     fn point(&self, sampler: &TextureSampler, x: f64, y: f64) -> Option<([f64; 3], DVec3, Den)> {
         match &self.planes {
             Some(p) => {
@@ -296,6 +349,42 @@ impl SurfaceSetup {
         sampler.uv_footprint(&self.info, b, x, y)
     }
 
+    /// [`TextureSampler::alpha_at`] of this primitive (of `material`, the
+    /// one `info` names) at window point `(x, y)`: its diffuse texture's
+    /// alpha times its dissolve texture's value, sampled as the colour is
+    /// (same point, footprint, level and filter).
+    pub fn alpha_at(
+        &mut self,
+        sampler: &TextureSampler,
+        material: &Material,
+        x: f64,
+        y: f64,
+    ) -> f32 {
+        if !sampler.textures_on() || self.info.uvs.is_none() {
+            return 1.0;
+        }
+        let (kd, d) = alpha_textures(material);
+        if kd.is_none() && d.is_none() {
+            return 1.0;
+        }
+        let Some(f) = self
+            .point(sampler, x, y)
+            .and_then(|(b, _, den)| self.footprint(sampler, b, den, x, y))
+        else {
+            return 1.0;
+        };
+        let filter = sampler.options().filter;
+        let alpha = |slot: &mut Option<Option<TexSetup>>, texture: Option<&TextureRef>| {
+            texture
+                .and_then(|t| {
+                    let setup = slot.get_or_insert_with(|| TexSetup::new(t)).as_mut()?;
+                    setup.sample_alpha(t, &f, filter)
+                })
+                .unwrap_or(1.0)
+        };
+        alpha(&mut self.diffuse, kd) * alpha(&mut self.dissolve, d)
+    }
+
     /// [`TextureSampler::color_at`] of this primitive (of `material`, the
     /// one `info` names, under camera-space `lights`) at window point
     /// `(x, y)`.
@@ -313,30 +402,25 @@ impl SurfaceSetup {
         let (b, position, den) = self.point(sampler, x, y)?;
         let textures = sampler.textures_on();
         let filter = sampler.options().filter;
-        let (mut diffuse_slot, mut specular_slot) = (self.diffuse.take(), self.specular.take());
-        // The footprint is the same for both textures: found once.
-        let mut footprint = None;
-        let mut sample = |slot: &mut Option<Option<TexSetup>>, texture: &Option<TextureRef>| {
-            let texture = texture.as_ref().filter(|_| textures)?;
-            let setup = slot
-                .get_or_insert_with(|| TexSetup::new(texture))
-                .as_mut()?;
-            if footprint.is_none() {
-                footprint = Some(self.footprint(sampler, b, den, x, y)?);
-            }
-            Some(setup.sample(texture, footprint.as_ref()?, filter)?.0)
+        let highlights = sampler.lighting_on() && material.has_highlights();
+        let diffuse_map = material.diffuse_texture.as_ref().filter(|_| textures);
+        let specular_map = (material.specular_texture.as_ref()).filter(|_| textures && highlights);
+        // The footprint is the same for both textures: found once, into a
+        // local (not built on first use inside a closure: that cost three
+        // trips through memory on the way to the mip level).
+        let footprint = if diffuse_map.is_some() || specular_map.is_some() {
+            self.footprint(sampler, b, den, x, y)
+        } else {
+            None
         };
+        let f = footprint.as_ref();
         let times = |c: [f32; 3], t: Option<[f32; 3]>| match t {
             Some(t) => [c[0] * t[0], c[1] * t[1], c[2] * t[2]],
             None => c,
         };
-        let texel = sample(&mut diffuse_slot, &material.diffuse_texture);
-        let specular_texel = if sampler.lighting_on() && material.has_highlights() {
-            Some(sample(&mut specular_slot, &material.specular_texture))
-        } else {
-            None
-        };
-        (self.diffuse, self.specular) = (diffuse_slot, specular_slot);
+        let texel = map_texel(&mut self.diffuse, diffuse_map, f, filter);
+        let specular_texel =
+            highlights.then(|| map_texel(&mut self.specular, specular_map, f, filter));
         let info = &self.info;
         let base = match info.colors {
             Some(c) => std::array::from_fn(|k| {
@@ -377,150 +461,4 @@ impl SurfaceSetup {
 }
 
 #[cfg(all(test, feature = "obj", feature = "image"))]
-mod tests {
-    use super::*;
-    use crate::shade::{TextureOptions, to_srgb8};
-    use crate::{PrepareOptions, View, load_obj, prepare};
-
-    impl SurfaceSetup {
-        /// The setup solving a ray per point (the arithmetic before the
-        /// planes, kept for orthographic cameras): the reference.
-        fn solved(sampler: &TextureSampler, info: &PrimInfo) -> Self {
-            Self {
-                planes: None,
-                ..Self::new(sampler, info)
-            }
-        }
-    }
-
-    /// What the planes change against the per-point solve on a scene.
-    #[derive(Debug, Default)]
-    struct Agreement {
-        points: u64,
-        /// Points whose colour differs in some sRGB byte.
-        differ: u64,
-        /// Largest sRGB difference.
-        max_step: u8,
-        /// Points that read another mip level.
-        other_level: u64,
-        /// Largest difference of the texture coordinates.
-        max_uv: f64,
-    }
-
-    /// Every pixel centre inside every textured primitive of the bundled
-    /// asset `obj` at `size`, shaded through the planes and through the
-    /// per-point solve.
-    fn agreement(obj: &str, size: u32) -> Agreement {
-        let path = format!("{}/../../assets/{obj}", env!("CARGO_MANIFEST_DIR"));
-        let scene = load_obj(&path).unwrap();
-        let view = View::for_scene(&scene, size, size).unwrap();
-        let screen = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
-        let sampler = TextureSampler::new(&screen, TextureOptions::default());
-        let mut a = Agreement::default();
-        for info in &screen.prims {
-            let material = &screen.materials[info.material as usize];
-            let Some(texture) = sampler.texture(info, material) else {
-                continue;
-            };
-            // Primitives crossing the eye's plane have no window box.
-            if info.camera.iter().any(|c| c.z >= 0.0) {
-                continue;
-            }
-            let (mut fast, mut slow) = (
-                SurfaceSetup::new(&sampler, info),
-                SurfaceSetup::solved(&sampler, info),
-            );
-            if fast.planes.is_none() {
-                // Degenerate: no point of it is seen, either way.
-                continue;
-            }
-            let w = info.camera.map(|c| sampler.rays().window_of(c));
-            let lo = w[0].min(w[1]).min(w[2]).max(DVec2::ZERO).floor();
-            let hi = w[0].max(w[1]).max(w[2]).min(DVec2::splat(f64::from(size)));
-            let (texels, levels) = texture.footprint_scale().unwrap();
-            let scale = DVec2::from(texels) * DVec2::from(texture.transform.scale);
-            for j in lo.y as u32..hi.y.ceil() as u32 {
-                for i in lo.x as u32..hi.x.ceil() as u32 {
-                    let (x, y) = (f64::from(i) + 0.5, f64::from(j) + 0.5);
-                    let Some((b, _, _)) = slow.point(&sampler, x, y) else {
-                        continue;
-                    };
-                    if b.iter().any(|&b| b < 0.0) {
-                        continue;
-                    }
-                    a.points += 1;
-                    let (bf, _, den) = fast.point(&sampler, x, y).unwrap();
-                    let ff = fast.footprint(&sampler, bf, den, x, y).unwrap();
-                    let fs = slow.footprint(&sampler, b, Den::default(), x, y).unwrap();
-                    a.max_uv = a.max_uv.max((ff.uv - fs.uv).abs().max_element());
-                    let rho = |f: &Footprint| (f.dx * scale).length().max((f.dy * scale).length());
-                    let rho2 = |f: &Footprint| {
-                        (f.dx * scale)
-                            .length_squared()
-                            .max((f.dy * scale).length_squared())
-                    };
-                    let (old, new) = (
-                        mip::level_for(rho(&fs), levels),
-                        mip::level_for_squared(rho2(&ff), levels),
-                    );
-                    if old != new {
-                        a.other_level += 1;
-                        // Only within rounding of a level boundary.
-                        let lod = rho(&fs).log2();
-                        assert!((lod - lod.floor() - 0.5).abs() < 1e-6, "{lod} {old} {new}");
-                    }
-                    let shade = |s: &mut SurfaceSetup| {
-                        s.color_at(&sampler, material, &screen.lights, x, y)
-                            .unwrap()
-                            .map(to_srgb8)
-                    };
-                    let (cf, cs) = (shade(&mut fast), shade(&mut slow));
-                    let step = (0..3).map(|k| cf[k].abs_diff(cs[k])).max().unwrap();
-                    a.max_step = a.max_step.max(step);
-                    a.differ += u64::from(step > 0);
-                }
-            }
-        }
-        a
-    }
-
-    /// The planes' texture coordinates are the per-point solve's up to
-    /// rounding (1e-9 of the texture; about 1e-13 measured), so a colour
-    /// may differ by one sRGB step only where a channel lies within
-    /// rounding of a step's boundary (allowed on 0.5 % of the points;
-    /// none measured) and the mip level is the same except within rounding
-    /// of a level boundary (asserted point by point; allowed on 0.1 % of
-    /// the points, none measured). Fails with a wrong plane (a corner's
-    /// coordinates swapped): the colours then differ by whole texels.
-    #[test]
-    fn planes_shade_as_the_per_point_solve() {
-        for (obj, size) in [("checker_plane.obj", 320), ("spider/spider.obj", 256)] {
-            let a = agreement(obj, size);
-            assert!(a.points > 5_000, "{obj}: {a:?}");
-            assert!(a.max_uv < 1e-9, "{obj}: {a:?}");
-            assert!(a.max_step <= 1, "{obj}: {a:?}");
-            assert!(a.differ * 200 <= a.points, "{obj}: {a:?}");
-            assert!(a.other_level * 1000 <= a.points, "{obj}: {a:?}");
-        }
-    }
-
-    /// The level from the squared footprint is `round(log2 rho)`.
-    #[test]
-    fn level_from_the_squared_footprint() {
-        for k in 0..100_000 {
-            let rho = 0.5 + f64::from(k) * 0.013;
-            let lod = rho.log2();
-            if (lod - lod.floor() - 0.5).abs() < 1e-9 {
-                continue;
-            }
-            assert_eq!(
-                mip::level_for_squared(rho * rho, 14),
-                mip::level_for(rho, 14),
-                "{rho}"
-            );
-        }
-        assert_eq!(mip::level_for_squared(f64::NAN, 5), 0);
-        assert_eq!(mip::level_for_squared(f64::INFINITY, 5), 4);
-        assert_eq!(mip::level_for_squared(1e300 * 1e300, 5), 4);
-    }
-}
+mod tests;

@@ -25,7 +25,7 @@
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use hider_geom::{Projection, Viewport};
 
-use super::setup::{Footprint, SurfaceSetup};
+use super::setup::{Footprint, SurfaceSetup, alpha_textures};
 use super::texture::{Filter, TextureRef};
 use crate::model::{Illumination, Light, Material};
 use crate::prepare::{PrimInfo, ScreenScene};
@@ -217,50 +217,21 @@ impl TextureSampler {
         Some(Footprint { uv, dx, dy })
     }
 
-    /// The colour and alpha of `texture` at the point of `info` with
-    /// barycentrics `b` seen at `(x, y)`: sampled from the mip level that
-    /// fits the pixel. `None` without uvs or when the texture does not
-    /// load.
-    fn texel(
-        &self,
-        texture: &TextureRef,
-        info: &PrimInfo,
-        b: [f64; 3],
-        x: f64,
-        y: f64,
-    ) -> Option<([f32; 3], f32)> {
-        let f = self.uv_footprint(info, b, x, y)?;
-        texture.sample_footprint(f.uv.into(), f.dx.into(), f.dy.into(), self.options.filter)
-    }
-
     /// The texture alpha of primitive `info` at window point `(x, y)`: its
     /// diffuse texture's alpha times its dissolve texture's value (`map_d`,
     /// a mask); 1 for a texture that is missing, has no alpha channel or
     /// does not load, and without uvs: the value the alpha test compares
     /// with one half, sampled exactly as the colour is (same point, level
     /// and filter).
+    ///
+    /// A caller testing several points of one primitive builds its
+    /// [`SurfaceSetup`] once instead ([`SurfaceSetup::alpha_at`]: the same
+    /// values).
     pub fn alpha_at(&self, info: &PrimInfo, material: &Material, x: f64, y: f64) -> f32 {
-        if !self.textures || info.uvs.is_none() {
+        if !self.textures || info.uvs.is_none() || alpha_textures(material) == (None, None) {
             return 1.0;
         }
-        fn with_alpha(t: &Option<TextureRef>) -> Option<&TextureRef> {
-            t.as_ref().filter(|t| t.may_have_alpha())
-        }
-        let (kd, d) = (
-            with_alpha(&material.diffuse_texture),
-            with_alpha(&material.alpha_texture),
-        );
-        if kd.is_none() && d.is_none() {
-            return 1.0;
-        }
-        let Some((b, _)) = self.barycentrics(info, x, y) else {
-            return 1.0;
-        };
-        let alpha = |t: Option<&TextureRef>| {
-            t.and_then(|t| self.texel(t, info, b, x, y))
-                .map_or(1.0, |(_, a)| a)
-        };
-        alpha(kd) * alpha(d)
+        SurfaceSetup::new(self, info).alpha_at(self, material, x, y)
     }
 
     /// The colour of primitive `info` (of `material`, under camera-space
@@ -383,17 +354,22 @@ pub(super) struct CameraRays {
     width: f64,
     height: f64,
     pub(super) perspective: bool,
+    /// [`Self::affine_ray`], found once (every primitive's setup reads it).
+    affine: Option<[DVec3; 3]>,
 }
 
 impl CameraRays {
     fn new(projection: DMat4, viewport: Viewport, perspective: bool) -> Self {
-        Self {
+        let mut rays = Self {
             inverse: projection.inverse(),
             projection,
             width: f64::from(viewport.width),
             height: f64::from(viewport.height),
             perspective,
-        }
+            affine: None,
+        };
+        rays.affine = rays.solve_affine_ray();
+        rays
     }
 
     /// `(origin, direction)` as [`ScreenScene::camera_ray`] gives them.
@@ -416,7 +392,13 @@ impl CameraRays {
     /// ([`Self::ray`]'s direction up to a positive or negative scale,
     /// which does not move the point it meets a plane at). `None` for an
     /// orthographic camera, whose rays do not share an origin.
+    #[inline]
     pub(super) fn affine_ray(&self) -> Option<[DVec3; 3]> {
+        self.affine
+    }
+
+    /// [`Self::affine_ray`] from the inverse projection.
+    fn solve_affine_ray(&self) -> Option<[DVec3; 3]> {
         if !self.perspective {
             return None;
         }

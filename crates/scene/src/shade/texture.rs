@@ -32,6 +32,7 @@
 
 mod decode;
 mod reference;
+mod sample;
 
 pub use decode::probe;
 pub use reference::{TextureRef, TextureTransform};
@@ -85,15 +86,6 @@ pub struct Texture {
     /// Level-0 texels whose alpha is strictly between 0 and 1.
     partial: u64,
     reservation: Reservation,
-}
-
-/// An sRGB texel in linear light, through a table of
-/// [`srgb_to_linear`]'s 256 values (the same numbers, without a `powf`
-/// per channel).
-#[inline]
-pub(crate) fn linear(texel: [u8; 3]) -> [f32; 3] {
-    let table = linear_table();
-    texel.map(|c| table[usize::from(c)])
 }
 
 /// [`srgb_to_linear`] of every byte.
@@ -282,6 +274,7 @@ impl Texture {
 
     /// The level held that is nearest to `level` (the base when it asks
     /// for a finer one).
+    #[inline]
     fn level(&self, level: u32) -> &Level {
         let k = level.saturating_sub(self.base) as usize;
         &self.levels[k.min(self.levels.len() - 1)]
@@ -304,6 +297,7 @@ impl Texture {
     /// The linear colour and the alpha (in [0, 1], 1 without an alpha
     /// channel) at `(u, v)` in mip level `level` (or the nearest level
     /// held), filtered with `filter`, repeating or clamped.
+    #[inline(always)]
     pub fn sample_level(
         &self,
         u: f64,
@@ -312,109 +306,21 @@ impl Texture {
         clamp: bool,
         level: u32,
     ) -> ([f32; 3], f32) {
-        let l = self.level(level);
-        if !(u.is_finite() && v.is_finite()) {
-            return (fetch(l, 0, 0, true), fetch_alpha(l, 0, 0, true));
-        }
-        // Texel space: x right, y down from the top row; centres at +0.5.
-        // `u - floor(u)` is `rem_euclid(u, 1)` bit for bit (both round the
-        // exact fraction once), without a call to `fmod`.
-        let (u, v) = if clamp {
-            (u.clamp(0.0, 1.0), v.clamp(0.0, 1.0))
-        } else {
-            (u - floor(u).0, v - floor(v).0)
-        };
-        let x = u * f64::from(l.width);
-        let y = (1.0 - v) * f64::from(l.height);
-        match filter {
-            // Clamped, u = 1 is the last texel's far edge (the texel look-up
-            // clamps it); repeating, it is the next repeat's start.
-            Filter::Nearest => {
-                let (x, y) = (x.floor() as i64, y.floor() as i64);
-                (fetch(l, x, y, clamp), fetch_alpha(l, x, y, clamp))
-            }
-            Filter::Bilinear => {
-                let (fx, fy) = (x - 0.5, y - 0.5);
-                let ((x0, i), (y0, j)) = (floor(fx), floor(fy));
-                let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
-                // The two columns and rows, wrapped once each (not per
-                // corner: a remainder is a division).
-                let (xa, xb) = neighbours(i, l.width, clamp);
-                let (ya, yb) = neighbours(j, l.height, clamp);
-                let w = l.width as usize;
-                let corners = [ya * w + xa, ya * w + xb, yb * w + xa, yb * w + xb];
-                let lerp = |q: [f32; 4]| {
-                    let top = q[0] + (q[1] - q[0]) * tx;
-                    let bottom = q[2] + (q[3] - q[2]) * tx;
-                    top + (bottom - top) * ty
-                };
-                let table = linear_table();
-                let rgb = corners.map(|k| {
-                    let k = 3 * k;
-                    let t = |c: u8| table[usize::from(c)];
-                    [t(l.rgb[k]), t(l.rgb[k + 1]), t(l.rgb[k + 2])]
-                });
-                let alpha = match &l.alpha {
-                    Some(a) => lerp(corners.map(|k| f32::from(a[k]) / 255.0)),
-                    None => 1.0,
-                };
-                (std::array::from_fn(|k| lerp(rgb.map(|c| c[k]))), alpha)
-            }
-        }
+        self.level(level).sample(u, v, filter, clamp)
     }
-}
 
-/// `x.floor()` of a finite `x`, and as an integer (saturating as `as`
-/// does), by truncation where it fits (`f64::floor` is a library call
-/// without SSE 4.1).
-#[inline]
-fn floor(x: f64) -> (f64, i64) {
-    if x.abs() < 4.5e15 {
-        let i = x as i64;
-        let t = i as f64;
-        if t > x { (t - 1.0, i - 1) } else { (t, i) }
-    } else {
-        let f = x.floor();
-        (f, f as i64)
-    }
-}
-
-/// Texel column (or row) `i` and `i + 1` of a side of `n` texels, clamped
-/// to its edge or repeated, as [`index`] finds them.
-#[inline]
-fn neighbours(i: i64, n: u32, clamp: bool) -> (usize, usize) {
-    let n = i64::from(n);
-    if clamp {
-        (i.clamp(0, n - 1) as usize, (i + 1).clamp(0, n - 1) as usize)
-    } else {
-        let a = i.rem_euclid(n);
-        (a as usize, if a + 1 == n { 0 } else { a as usize + 1 })
-    }
-}
-
-/// The texel index of `(x, y)` in `l`, clamped to its edge or repeated.
-#[inline]
-fn index(l: &Level, x: i64, y: i64, clamp: bool) -> usize {
-    let (w, h) = (i64::from(l.width), i64::from(l.height));
-    let (x, y) = if clamp {
-        (x.clamp(0, w - 1) as usize, y.clamp(0, h - 1) as usize)
-    } else {
-        (x.rem_euclid(w) as usize, y.rem_euclid(h) as usize)
-    };
-    y * l.width as usize + x
-}
-
-#[inline]
-fn fetch(l: &Level, x: i64, y: i64, clamp: bool) -> [f32; 3] {
-    let k = 3 * index(l, x, y, clamp);
-    linear([l.rgb[k], l.rgb[k + 1], l.rgb[k + 2]])
-}
-
-#[inline]
-fn fetch_alpha(l: &Level, x: i64, y: i64, clamp: bool) -> f32 {
-    match &l.alpha {
-        Some(a) => f32::from(a[index(l, x, y, clamp)]) / 255.0,
-        None => 1.0,
+    /// [`Self::sample_level`]'s alpha alone (the same number), without
+    /// reading the colour.
+    #[inline(always)]
+    pub fn sample_level_alpha(
+        &self,
+        u: f64,
+        v: f64,
+        filter: Filter,
+        clamp: bool,
+        level: u32,
+    ) -> f32 {
+        self.level(level).sample_alpha(u, v, filter, clamp)
     }
 }
 
