@@ -9,9 +9,11 @@
 //! [`Viewport::pixel_bounds`](hider_geom::Viewport::pixel_bounds) and the
 //! edge functions of [`hider_geom::edge`] stand for.
 
-use hider_geom::FEW_CENTRES;
 use hider_geom::edge::top_left_bias;
 use hider_geom::fixed::{SUBPIXEL_SCALE, first_center_from, last_center_upto, pixel_center};
+use hider_geom::{FEW_CENTRES, FixedPt, Viewport};
+
+use super::depth_tri::SmallSetup;
 
 // The centre tests are written out for the first four centres.
 const _: () = assert!(FEW_CENTRES == 4);
@@ -40,6 +42,10 @@ pub(crate) struct Lanes {
     pub(crate) covered: [u8; LANES],
     /// The box's first pixel and its width.
     pub(crate) corner: [(u32, u32, u32); LANES],
+    /// Per lane kept as a triangle (kept, not [`Self::few`]), its
+    /// [`SmallSetup::new`] with the corners in positive order;
+    /// [`SmallSetup::NONE`] for the other lanes.
+    pub(crate) setup: [SmallSetup; LANES],
 }
 
 impl Lanes {
@@ -100,8 +106,22 @@ impl Lanes {
             few: mask(&few),
             covered,
             corner,
+            setup: [SmallSetup::NONE; LANES],
         };
         lanes.drop_reasons(mask(&zero), mask(&back), mask(&empty));
+        let viewport = Viewport::new(width, height);
+        let mut triangles = lanes.keep & !lanes.few;
+        while triangles != 0 {
+            let i = triangles.trailing_zeros() as usize;
+            triangles &= triangles - 1;
+            let (b, c) = if lanes.swap >> i & 1 != 0 {
+                (2, 1)
+            } else {
+                (1, 2)
+            };
+            let v = [0, b, c].map(|k| FixedPt::new(x[k][i], y[k][i]));
+            lanes.setup[i] = SmallSetup::new(&v, viewport);
+        }
         lanes
     }
 }

@@ -1,12 +1,21 @@
 //! The lean front end's output types: a triangle as a depth-only hider
 //! needs it, and one pixel of a triangle too small to rasterise.
 
+use hider_geom::fixed::{SUBPIXEL_SCALE, pixel_center};
 use hider_geom::{EdgeFunction, FixedPt, PlaneEq, Viewport};
 use hider_scene::ScreenTri;
 
+use crate::tiled::SMALL_AREA;
+
 /// A triangle as a depth-only hider needs it: [`ScreenTri`] without the
 /// per-vertex depths, `w` and the `1/w` plane.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+///
+/// The lean front end also stores what the tiled z-buffer's small-triangle
+/// kernel would set up per tile (the pixel box and the edge functions at
+/// its first block column), computed eight triangles at a time where the
+/// triangles are classified. It is a cache derived from the corners and
+/// the viewport, so equality compares the three fields above only.
+#[derive(Clone, Copy, Debug, Default)]
 pub struct DepthTri {
     /// Snapped vertices, ordered so that the edge functions are positive
     /// inside (as [`ScreenTri::v`]).
@@ -15,6 +24,14 @@ pub struct DepthTri {
     pub depth: PlaneEq,
     /// Primitive id: index of the source triangle in the scene.
     pub prim: u32,
+    /// The small-box set-up, when the triangle has one.
+    pub(crate) setup: SmallSetup,
+}
+
+impl PartialEq for DepthTri {
+    fn eq(&self, other: &Self) -> bool {
+        (self.v, self.depth, self.prim) == (other.v, other.depth, other.prim)
+    }
 }
 
 impl DepthTri {
@@ -62,6 +79,87 @@ impl From<&ScreenTri> for DepthTri {
             v: t.v,
             depth: t.depth,
             prim: t.prim,
+            setup: SmallSetup::NONE,
         }
+    }
+}
+
+/// What the tiled z-buffer's small-triangle kernel sets up for a triangle
+/// whose pixel box lies in one tile, computed once in the front end: the
+/// box, and the three edge functions (fill rule applied) at the centre of
+/// the box's first row and its first *block* column (the column rounded
+/// down to a multiple of 8, where the kernel's 8-lane rows start), biased
+/// by -1 so that a centre is inside iff all three are non-negative.
+///
+/// Tiles are multiples of 8 pixels wide, so the block columns of the
+/// image are those of every tile, and when the box lies in one tile these
+/// are exactly the values the kernel would compute there. A triangle has
+/// a set-up only when its box holds at most [`SMALL_AREA`] pixels and
+/// every value the edge functions take over the box's block rows fits
+/// `i32` (the kernel's lanes); otherwise [`Self::NONE`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct SmallSetup {
+    /// The pixel box (`Viewport::pixel_bounds`): first column, first row,
+    /// last column, last row; empty (first after last) for none.
+    pub(crate) bbox: [u16; 4],
+    /// The biased edge values at the box's first block column and row.
+    pub(crate) e: [i32; 3],
+}
+
+impl Default for SmallSetup {
+    fn default() -> Self {
+        Self::NONE
+    }
+}
+
+impl SmallSetup {
+    /// No set-up: the kernel computes its own.
+    pub(crate) const NONE: Self = Self {
+        bbox: [1, 0, 0, 0],
+        e: [0; 3],
+    };
+
+    /// The set-up of the positively ordered triangle `v` in `viewport`:
+    /// the definition the front end's lanes compute.
+    pub(crate) fn new(v: &[FixedPt; 3], viewport: Viewport) -> Self {
+        let Some((x0, y0, x1, y1)) = viewport.pixel_bounds(v) else {
+            return Self::NONE;
+        };
+        if (x1 - x0 + 1) * (y1 - y0 + 1) > SMALL_AREA {
+            return Self::NONE;
+        }
+        let edges = hider_geom::edge::triangle_edges(v);
+        let xs = x0 & !7;
+        let (px, py) = (
+            i64::from(pixel_center(xs as i32)),
+            i64::from(pixel_center(y0 as i32)),
+        );
+        let e = edges.map(|e| e.eval(px, py) - 1);
+        let (w, h) = (i64::from((x1 | 7) - xs), i64::from(y1 - y0));
+        let unit = i64::from(SUBPIXEL_SCALE);
+        // An edge function is affine: it fits i32 over the box's block
+        // rows when it does at their four corners.
+        let fits = edges.iter().zip(e).all(|(edge, e)| {
+            [0, w].iter().all(|&dx| {
+                [0, h].iter().all(|&dy| {
+                    i32::try_from(e + edge.a * unit * dx + edge.b * unit * dy).is_ok()
+                })
+            })
+        });
+        if !fits {
+            return Self::NONE;
+        }
+        Self {
+            // Images are at most 16384 pixels wide and high.
+            bbox: [x0, y0, x1, y1].map(|c| c as u16),
+            e: e.map(|v| v as i32),
+        }
+    }
+
+    /// The box, when the triangle has a set-up.
+    #[inline(always)]
+    pub(crate) fn ready(&self) -> Option<(u32, u32, u32, u32)> {
+        let [x0, y0, x1, y1] = self.bbox.map(u32::from);
+        (x0 <= x1).then_some((x0, y0, x1, y1))
     }
 }

@@ -28,7 +28,7 @@ use hider_scene::prepare::{FrontEnd, WindowVertex, setup_depth};
 use hider_scene::{Mesh, PrepareStats, Scene};
 
 use super::classify::{LANES, Lanes};
-use super::depth_tri::{DepthFragment, DepthTri};
+use super::depth_tri::{DepthFragment, DepthTri, SmallSetup};
 use crate::simd;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Kernel;
@@ -228,10 +228,16 @@ impl<I: Isa> Pass<'_, I> {
             self.stats.degenerate += 1;
             return;
         };
+        let v = c.map(|k| k.p);
+        let setup = match centres {
+            Centres::Many => SmallSetup::new(&v, self.front.viewport),
+            Centres::Few { .. } => SmallSetup::NONE,
+        };
         let tri = DepthTri {
-            v: c.map(|k| k.p),
+            v,
             depth,
             prim,
+            setup,
         };
         emit(self.run, &mut self.stats, tri, centres);
     }
@@ -293,7 +299,12 @@ impl<I: Isa> Pass<'_, I> {
                 FixedPt::new(x[c][i], y[c][i]),
             ];
             let depth = PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default();
-            let tri = DepthTri { v, depth, prim };
+            let tri = DepthTri {
+                v,
+                depth,
+                prim,
+                setup: lanes.setup[i],
+            };
             if lanes.few >> i & 1 == 0 {
                 self.run.tris.push(tri);
                 continue;
@@ -317,7 +328,13 @@ impl<I: Isa> Pass<'_, I> {
             // Pieces are positively oriented already.
             match self.front.viewport.covered_centres(&t.v, 1) {
                 Centres::Few { count: 0, .. } => stats.empty += 1,
-                centres => emit(self.run, stats, DepthTri::from(t), centres),
+                centres => {
+                    let mut tri = DepthTri::from(t);
+                    if centres == Centres::Many {
+                        tri.setup = SmallSetup::new(&tri.v, self.front.viewport);
+                    }
+                    emit(self.run, stats, tri, centres);
+                }
             }
         }
     }

@@ -258,15 +258,16 @@ impl<K: DepthKey> TileBuf<K> {
 
 impl<K: WideBlock> TileBuf<K> {
     /// Draws one triangle into the tile; `low` is a lower bound of its
-    /// computed depths (from its bin entry).
+    /// computed depths (from its bin entry). With `setups`, a triangle's
+    /// [`SmallSetup`](crate::depth_scene::SmallSetup) is used when it has
+    /// one and its box lies in the tile.
     #[inline(always)]
     pub(crate) fn draw<T: RasterTri, I: Isa>(
         &mut self,
         isa: I,
         tri: &T,
         low: f32,
-        viewport: Viewport,
-        hiz: bool,
+        (viewport, hiz, setups): (Viewport, bool, bool),
     ) {
         // Hierarchical depth, triangle level, before the triangle itself is
         // read: nothing it could write is nearer than what the whole tile
@@ -278,7 +279,9 @@ impl<K: WideBlock> TileBuf<K> {
                 return;
             }
         }
-        let Some((bx0, by0, bx1, by1)) = viewport.pixel_bounds(tri.v()) else {
+        let setup = tri.setup();
+        let ready = if setups { setup.ready() } else { None };
+        let Some((bx0, by0, bx1, by1)) = ready.or_else(|| viewport.pixel_bounds(tri.v())) else {
             return;
         };
         let (x0, y0) = (bx0.max(self.x0), by0.max(self.y0));
@@ -291,17 +294,19 @@ impl<K: WideBlock> TileBuf<K> {
         }
         self.stats.triangle_tiles += 1;
         let small = (x1 - x0 + 1) * (y1 - y0 + 1) <= SMALL_AREA;
+        if small {
+            // The front end's set-up holds when the box is whole here.
+            let whole = ready == Some((x0, y0, x1, y1));
+            self.small(isa, tri, (x0, y0, x1, y1), whole.then_some(setup.e));
+            return;
+        }
         // Block bounds cost a few plane evaluations: only for triangles
         // that have blocks.
-        let bounds = if hiz && !small {
+        let bounds = if hiz {
             DepthBounds::new(tri.v(), tri.depth())
         } else {
             None
         };
-        if small {
-            self.small(isa, tri, (x0, y0, x1, y1));
-            return;
-        }
         self.large(isa, tri, (x0, y0, x1, y1), bounds.as_ref());
     }
 }
