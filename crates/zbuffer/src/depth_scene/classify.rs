@@ -42,13 +42,32 @@ pub(crate) struct Lanes {
     pub(crate) covered: [u8; LANES],
     /// The box's first pixel and its width.
     pub(crate) corner: [(u32, u32, u32); LANES],
-    /// Per lane kept as a triangle (kept, not [`Self::few`]), its
-    /// [`SmallSetup::new`] with the corners in positive order;
-    /// [`SmallSetup::NONE`] for the other lanes.
-    pub(crate) setup: [SmallSetup; LANES],
+    /// The small-box set-ups ([`SmallSetup::new`], corners in positive
+    /// order) of the lanes kept as triangles (kept, not [`Self::few`]),
+    /// structure of arrays: bit `i` of `ready` says lane `i` has one
+    /// (see [`Self::setup`]); then `end[0][i]`, `end[1][i]` are its box's
+    /// last column and row and `e[k][i]` its edge values. Zero in the
+    /// other lanes.
+    pub(crate) ready: u8,
+    pub(crate) end: [[i32; LANES]; 2],
+    pub(crate) e: [[i32; LANES]; 3],
 }
 
 impl Lanes {
+    /// Lane `i`'s small-box set-up.
+    #[inline(always)]
+    pub(crate) fn setup(&self, i: usize) -> SmallSetup {
+        if self.ready >> i & 1 == 0 {
+            return SmallSetup::NONE;
+        }
+        let (x0, y0, _) = self.corner[i];
+        SmallSetup {
+            // Images are at most 16384 pixels wide and high.
+            bbox: [x0, y0, self.end[0][i] as u32, self.end[1][i] as u32].map(|c| c as u16),
+            e: self.e.map(|e| e[i]),
+        }
+    }
+
     /// The counts and the kept lanes from the per-lane reasons to drop,
     /// in the order of the one-by-one path's tests: a zero area first,
     /// then the facing, then the centres.
@@ -106,7 +125,9 @@ impl Lanes {
             few: mask(&few),
             covered,
             corner,
-            setup: [SmallSetup::NONE; LANES],
+            ready: 0,
+            end: [[0; LANES]; 2],
+            e: [[0; LANES]; 3],
         };
         lanes.drop_reasons(mask(&zero), mask(&back), mask(&empty));
         let viewport = Viewport::new(width, height);
@@ -120,7 +141,14 @@ impl Lanes {
                 (1, 2)
             };
             let v = [0, b, c].map(|k| FixedPt::new(x[k][i], y[k][i]));
-            lanes.setup[i] = SmallSetup::new(&v, viewport);
+            let setup = SmallSetup::new(&v, viewport);
+            if setup.ready().is_some() {
+                lanes.ready |= 1 << i;
+                (lanes.end[0][i], lanes.end[1][i]) = (setup.bbox[2].into(), setup.bbox[3].into());
+                for k in 0..3 {
+                    lanes.e[k][i] = setup.e[k];
+                }
+            }
         }
         lanes
     }

@@ -94,9 +94,16 @@ impl From<&ScreenTri> for DepthTri {
 /// Tiles are multiples of 8 pixels wide, so the block columns of the
 /// image are those of every tile, and when the box lies in one tile these
 /// are exactly the values the kernel would compute there. A triangle has
-/// a set-up only when its box holds at most [`SMALL_AREA`] pixels and
-/// every value the edge functions take over the box's block rows fits
-/// `i32` (the kernel's lanes); otherwise [`Self::NONE`].
+/// a set-up when its box holds at most [`SMALL_AREA`] pixels and its
+/// corners lie in the image, `[0, width) x [0, height)` (otherwise
+/// [`Self::NONE`]). Then its box is not clamped to the image, so each
+/// corner is less than a pixel outside the box, whose sides are at most
+/// 32 pixels: every edge's extent, and every distance from a corner to a
+/// centre of the box's block rows (at most 7 pixels beyond the box on
+/// either side), is below 48 pixels, 12,288 in fixed point, and every
+/// edge value there is below `2 * 12288^2 + 1 < 2^29` in magnitude. So
+/// the values fit the kernel's `i32` lanes without a check, and the front
+/// end computes them in eight `i32` lanes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct SmallSetup {
     /// The pixel box (`Viewport::pixel_bounds`): first column, first row,
@@ -122,36 +129,31 @@ impl SmallSetup {
     /// The set-up of the positively ordered triangle `v` in `viewport`:
     /// the definition the front end's lanes compute.
     pub(crate) fn new(v: &[FixedPt; 3], viewport: Viewport) -> Self {
+        let (w, h) = (
+            i64::from(viewport.width) * i64::from(SUBPIXEL_SCALE),
+            i64::from(viewport.height) * i64::from(SUBPIXEL_SCALE),
+        );
+        let inside = v
+            .iter()
+            .all(|p| (0..w).contains(&i64::from(p.x)) && (0..h).contains(&i64::from(p.y)));
+        if !inside {
+            return Self::NONE;
+        }
         let Some((x0, y0, x1, y1)) = viewport.pixel_bounds(v) else {
             return Self::NONE;
         };
         if (x1 - x0 + 1) * (y1 - y0 + 1) > SMALL_AREA {
             return Self::NONE;
         }
-        let edges = hider_geom::edge::triangle_edges(v);
-        let xs = x0 & !7;
         let (px, py) = (
-            i64::from(pixel_center(xs as i32)),
+            i64::from(pixel_center((x0 & !7) as i32)),
             i64::from(pixel_center(y0 as i32)),
         );
-        let e = edges.map(|e| e.eval(px, py) - 1);
-        let (w, h) = (i64::from((x1 | 7) - xs), i64::from(y1 - y0));
-        let unit = i64::from(SUBPIXEL_SCALE);
-        // An edge function is affine: it fits i32 over the box's block
-        // rows when it does at their four corners.
-        let fits = edges.iter().zip(e).all(|(edge, e)| {
-            [0, w].iter().all(|&dx| {
-                [0, h].iter().all(|&dy| {
-                    i32::try_from(e + edge.a * unit * dx + edge.b * unit * dy).is_ok()
-                })
-            })
-        });
-        if !fits {
-            return Self::NONE;
-        }
+        let e = hider_geom::edge::triangle_edges(v).map(|e| e.eval(px, py) - 1);
         Self {
             // Images are at most 16384 pixels wide and high.
             bbox: [x0, y0, x1, y1].map(|c| c as u16),
+            // Below 2^29 in magnitude (see above).
             e: e.map(|v| v as i32),
         }
     }

@@ -40,8 +40,8 @@ pub(crate) mod classify;
 mod depth_tri;
 mod triangles;
 
-pub use depth_tri::{DepthFragment, DepthTri};
 pub(crate) use depth_tri::SmallSetup;
+pub use depth_tri::{DepthFragment, DepthTri};
 
 use hider_geom::Viewport;
 use hider_scene::prepare::lean::{CachedVertex, lean_passes};

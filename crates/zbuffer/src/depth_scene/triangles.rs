@@ -303,7 +303,7 @@ impl<I: Isa> Pass<'_, I> {
                 v,
                 depth,
                 prim,
-                setup: lanes.setup[i],
+                setup: lanes.setup(i),
             };
             if lanes.few >> i & 1 == 0 {
                 self.run.tris.push(tri);

@@ -66,7 +66,6 @@ mod avx2 {
     use hider_geom::fixed::{SUBPIXEL_SCALE, first_centers_from, last_centers_upto, pixel_centers};
 
     use super::{FEW_CENTRES, LANES, Lanes};
-    use crate::depth_scene::SmallSetup;
     use crate::tiled::SMALL_AREA;
 
     /// An `i64` quantity of the eight lanes: lanes 0, 2, 4, 6 and lanes 1,
@@ -279,85 +278,72 @@ mod avx2 {
         }
     }
 
-    /// The low 32 bits of each lane of an `i64` quantity, as eight `i32`
-    /// lanes in triangle order.
-    #[inline(always)]
-    fn narrow(v: Wide) -> __m256i {
-        unsafe { _mm256_blend_epi32::<0b1010_1010>(v.even, _mm256_slli_epi64::<32>(v.odd)) }
-    }
-
     /// The small-box set-ups ([`SmallSetup::new`]) of the lanes in `want`,
-    /// for the positively ordered corners `c` and their boxes; the other
-    /// lanes get [`SmallSetup::NONE`]. Every edge value is exact in `i64`
-    /// (as in `covered`), and the four corners of the box's block rows
-    /// are tested against the `i32` range.
+    /// for the positively ordered corners `c` and their boxes, into
+    /// `lanes` (`ready`, `end`, `e`; zero in the other lanes). A set-up
+    /// needs the corners inside the image, and then every product fits
+    /// `i32` (see [`SmallSetup::new`]): eight lanes of `i32`, no widening.
     #[inline(always)]
     fn setups(
         c: &Corners,
         [x0, y0, cols, rows, count]: [__m256i; 5],
+        (width, height): (u32, u32),
         want: u8,
-    ) -> [SmallSetup; LANES] {
+        lanes: &mut Lanes,
+    ) {
         unsafe {
             let one32 = _mm256_set1_epi32(1);
-            let unit = _mm256_set1_epi32(SUBPIXEL_SCALE);
             let x1 = _mm256_sub_epi32(_mm256_add_epi32(x0, cols), one32);
             let y1 = _mm256_sub_epi32(_mm256_add_epi32(y0, rows), one32);
-            let seven = _mm256_set1_epi32(7);
-            // The first block column, and the block rows' last column.
-            let xs = _mm256_andnot_si256(seven, x0);
-            let xe = _mm256_or_si256(x1, seven);
+            // The first block column.
+            let xs = _mm256_andnot_si256(_mm256_set1_epi32(7), x0);
             let px: __m256i = bytemuck::cast(pixel_centers(array(xs)));
             let py: __m256i = bytemuck::cast(pixel_centers(array(y0)));
-            // The box's extent in fixed point, negated for the x step
-            // (`a = -dy`).
-            let w = _mm256_mullo_epi32(_mm256_sub_epi32(xs, xe), unit);
-            let h = _mm256_mullo_epi32(_mm256_sub_epi32(y1, y0), unit);
-            let (max, min) = (
-                _mm256_set1_epi64x(i64::from(i32::MAX)),
-                _mm256_set1_epi64x(i64::from(i32::MIN)),
+            let want_lanes = _mm256_cmpgt_epi32(
+                _mm256_and_si256(
+                    _mm256_set1_epi32(i32::from(want)),
+                    _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128),
+                ),
+                _mm256_setzero_si256(),
             );
-            let max = Wide { even: max, odd: max };
-            let min = Wide { even: min, odd: min };
             let small = _mm256_cmpgt_epi32(_mm256_set1_epi32(SMALL_AREA as i32 + 1), count);
-            let mut outside = _mm256_setzero_si256();
-            let mut e = [[0i32; LANES]; 3];
+            // Corners in [0, width) x [0, height), fixed point.
+            let zero = _mm256_setzero_si256();
+            let (xmax, ymax) = (
+                _mm256_set1_epi32(width as i32 * SUBPIXEL_SCALE - 1),
+                _mm256_set1_epi32(height as i32 * SUBPIXEL_SCALE - 1),
+            );
+            let mut out = _mm256_setzero_si256();
+            for (x, y) in [(c.ax, c.ay), (c.bx, c.by), (c.cx, c.cy)] {
+                out = _mm256_or_si256(out, _mm256_cmpgt_epi32(zero, x));
+                out = _mm256_or_si256(out, _mm256_cmpgt_epi32(zero, y));
+                out = _mm256_or_si256(out, _mm256_cmpgt_epi32(x, xmax));
+                out = _mm256_or_si256(out, _mm256_cmpgt_epi32(y, ymax));
+            }
+            let ok = _mm256_andnot_si256(out, _mm256_and_si256(small, want_lanes));
             let edges = [
                 (c.ax, c.ay, c.bx, c.by),
                 (c.bx, c.by, c.cx, c.cy),
                 (c.cx, c.cy, c.ax, c.ay),
             ];
+            let mut e = [[0i32; LANES]; 3];
             for (k, (fx, fy, tx, ty)) in edges.into_iter().enumerate() {
                 let (dx, dy) = (_mm256_sub_epi32(tx, fx), _mm256_sub_epi32(ty, fy));
-                // The fill rule's bias less one, widened to 64 bits.
+                // The fill rule's bias less one.
                 let bias: __m256i = bytemuck::cast(top_left_biases(array(dx), array(dy)));
-                let bias = mul(_mm256_sub_epi32(bias, one32), one32);
-                let at = add(
-                    sub(
-                        mul(dx, _mm256_sub_epi32(py, fy)),
-                        mul(dy, _mm256_sub_epi32(px, fx)),
-                    ),
-                    bias,
+                let at = _mm256_sub_epi32(
+                    _mm256_mullo_epi32(dx, _mm256_sub_epi32(py, fy)),
+                    _mm256_mullo_epi32(dy, _mm256_sub_epi32(px, fx)),
                 );
-                let (across, down) = (mul(dy, w), mul(dx, h));
-                let across_down = add(across, down);
-                for v in [at, add(at, across), add(at, down), add(at, across_down)] {
-                    outside = _mm256_or_si256(outside, greater(v, max));
-                    outside = _mm256_or_si256(outside, greater(min, v));
-                }
-                e[k] = bytemuck::cast(narrow(at));
+                let at = _mm256_add_epi32(at, _mm256_sub_epi32(bias, one32));
+                e[k] = bytemuck::cast(_mm256_and_si256(at, ok));
             }
-            let ready = bits(_mm256_andnot_si256(outside, small)) & want;
-            let corners: [[i32; LANES]; 4] = [x0, y0, x1, y1].map(|v| bytemuck::cast(v));
-            std::array::from_fn(|i| {
-                if ready >> i & 1 == 0 {
-                    return SmallSetup::NONE;
-                }
-                SmallSetup {
-                    // Images are at most 16384 pixels wide and high.
-                    bbox: corners.map(|v| v[i] as u16),
-                    e: e.map(|v| v[i]),
-                }
-            })
+            lanes.ready = bits(ok);
+            lanes.end = [
+                bytemuck::cast(_mm256_and_si256(x1, ok)),
+                bytemuck::cast(_mm256_and_si256(y1, ok)),
+            ];
+            lanes.e = e;
         }
     }
 
@@ -407,7 +393,8 @@ mod avx2 {
                 _mm256_and_si256(few, _mm256_cmpeq_epi32(covered, zero32)),
             );
             let covered: [i32; LANES] = bytemuck::cast(covered);
-            let corner: [[i32; LANES]; 3] = [x0, y0, cols].map(|v| bytemuck::cast(v));
+            let (x0s, y0s, colss): ([i32; LANES], [i32; LANES], [i32; LANES]) =
+                (bytemuck::cast(x0), bytemuck::cast(y0), bytemuck::cast(cols));
             let back = if cull { bits(greater(area, zero)) } else { 0 };
             let mut lanes = Lanes {
                 degenerate: 0,
@@ -417,10 +404,10 @@ mod avx2 {
                 swap: bits(neg),
                 few: bits(few),
                 covered: covered.map(|c| c as u8),
-                corner: std::array::from_fn(|i| {
-                    (corner[0][i] as u32, corner[1][i] as u32, corner[2][i] as u32)
-                }),
-                setup: [SmallSetup::NONE; LANES],
+                corner: std::array::from_fn(|i| (x0s[i] as u32, y0s[i] as u32, colss[i] as u32)),
+                ready: 0,
+                end: [[0; LANES]; 2],
+                e: [[0; LANES]; 3],
             };
             lanes.drop_reasons(bits(equal(area, zero)), back, bits(empty));
             // Only batches with a lane kept as a triangle pay for the
@@ -428,7 +415,7 @@ mod avx2 {
             // fragments).
             let triangles = lanes.keep & !lanes.few;
             if triangles != 0 {
-                lanes.setup = setups(&c, [x0, y0, cols, rows, count], triangles);
+                setups(&c, [x0, y0, cols, rows, count], size, triangles, &mut lanes);
             }
             lanes
         }

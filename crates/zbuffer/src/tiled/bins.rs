@@ -68,7 +68,8 @@ impl Bins {
             .collect();
         self.chunks.resize_with(tris.len(), ChunkBins::default);
         self.chunks.truncate(tris.len());
-        let bin = |(bins, chunk): (&mut ChunkBins, &&[T])| bins.fill(chunk, vp, grid, (hiz, setups));
+        let bin =
+            |(bins, chunk): (&mut ChunkBins, &&[T])| bins.fill(chunk, vp, grid, (hiz, setups));
         self.fragments
             .resize_with(fragments.len(), FragmentBins::default);
         self.fragments.truncate(fragments.len());

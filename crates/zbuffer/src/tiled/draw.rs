@@ -31,9 +31,15 @@ impl TiledZBuffer {
         let stats = match self.options.depth_format {
             DepthFormat::F32 => self.draw_with::<T, f32>(input, (vp, setups), frame, threads),
             DepthFormat::F64 => self.draw_with::<T, f64>(input, (vp, setups), frame, threads),
-            DepthFormat::Fixed24 => self.draw_with::<T, Fixed24>(input, (vp, setups), frame, threads),
-            DepthFormat::Fixed16 => self.draw_with::<T, Fixed16>(input, (vp, setups), frame, threads),
-            DepthFormat::ReversedF32 => self.draw_with::<T, Reversed>(input, (vp, setups), frame, threads),
+            DepthFormat::Fixed24 => {
+                self.draw_with::<T, Fixed24>(input, (vp, setups), frame, threads)
+            }
+            DepthFormat::Fixed16 => {
+                self.draw_with::<T, Fixed16>(input, (vp, setups), frame, threads)
+            }
+            DepthFormat::ReversedF32 => {
+                self.draw_with::<T, Reversed>(input, (vp, setups), frame, threads)
+            }
         };
         // The tiles skip their triangles once the token stops them.
         self.options.cancel.poll()?;

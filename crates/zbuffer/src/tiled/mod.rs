@@ -54,6 +54,8 @@ pub(crate) mod wide;
 #[cfg(test)]
 mod readback_tests;
 #[cfg(test)]
+mod setup_tests;
+#[cfg(test)]
 mod tests;
 
 use hider_geom::Viewport;
@@ -217,7 +219,11 @@ impl Hider for TiledZBuffer {
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<TiledZBufferStats> {
         check_frame(&self.name, scene, frame)?;
-        self.run((&[&scene.tris[..]], &[]), (scene.viewport, false), Some(frame))
+        self.run(
+            (&[&scene.tris[..]], &[]),
+            (scene.viewport, false),
+            Some(frame),
+        )
     }
 
     /// The hider's own pipeline: the lean front end

@@ -34,7 +34,9 @@ impl<K: WideBlock> TileBuf<K> {
                     Some(e) => {
                         let v = tri.v();
                         let step = |k: usize, d: fn(FixedPt) -> i32| {
-                            d(v[(k + 1) % 3]).wrapping_sub(d(v[k])).wrapping_mul(SUBPIXEL_SCALE)
+                            d(v[(k + 1) % 3])
+                                .wrapping_sub(d(v[k]))
+                                .wrapping_mul(SUBPIXEL_SCALE)
                         };
                         Some((
                             e,
@@ -44,23 +46,28 @@ impl<K: WideBlock> TileBuf<K> {
                     }
                     None => self.small_setup(tri, (x0, y0, x1, y1)),
                 };
-                setup.and_then(|(e, sx, sy)| {
-                    let s = SmallBox {
-                        per_row: (self.size / BLOCK) as usize,
-                        tile_x0: self.x0,
-                        tile_y0: self.y0,
-                        lx0: x0 - self.x0,
-                        ly0: y0 - self.y0,
-                        lx1: x1 - self.x0,
-                        ly1: y1 - self.y0,
-                        plane: p,
-                        e,
-                        sx,
-                        sy,
-                        prim: tri.prim(),
-                    };
-                    K::wide_small(avx2, &mut self.keys, &mut self.ids, &s)
-                })
+                // A `match`, not a closure: a closure would be compiled
+                // without the kernel's target features.
+                match setup {
+                    Some((e, sx, sy)) => {
+                        let s = SmallBox {
+                            per_row: (self.size / BLOCK) as usize,
+                            tile_x0: self.x0,
+                            tile_y0: self.y0,
+                            lx0: x0 - self.x0,
+                            ly0: y0 - self.y0,
+                            lx1: x1 - self.x0,
+                            ly1: y1 - self.y0,
+                            plane: p,
+                            e,
+                            sx,
+                            sy,
+                            prim: tri.prim(),
+                        };
+                        K::wide_small(avx2, &mut self.keys, &mut self.ids, &s)
+                    }
+                    None => None,
+                }
             }
             None => None,
         }
