@@ -9,9 +9,9 @@
 //! [`Viewport::pixel_bounds`](hider_geom::Viewport::pixel_bounds) and the
 //! edge functions of [`hider_geom::edge`] stand for.
 
+use hider_geom::FEW_CENTRES;
 use hider_geom::edge::top_left_bias;
 use hider_geom::fixed::{SUBPIXEL_SCALE, first_center_from, last_center_upto, pixel_center};
-use hider_geom::{FEW_CENTRES, FixedPt, Viewport};
 
 use super::depth_tri::SmallSetup;
 
@@ -42,32 +42,9 @@ pub(crate) struct Lanes {
     pub(crate) covered: [u8; LANES],
     /// The box's first pixel and its width.
     pub(crate) corner: [(u32, u32, u32); LANES],
-    /// The small-box set-ups ([`SmallSetup::new`], corners in positive
-    /// order) of the lanes kept as triangles (kept, not [`Self::few`]),
-    /// structure of arrays: bit `i` of `ready` says lane `i` has one
-    /// (see [`Self::setup`]); then `end[0][i]`, `end[1][i]` are its box's
-    /// last column and row and `e[k][i]` its edge values. Zero in the
-    /// other lanes.
-    pub(crate) ready: u8,
-    pub(crate) end: [[i32; LANES]; 2],
-    pub(crate) e: [[i32; LANES]; 3],
 }
 
 impl Lanes {
-    /// Lane `i`'s small-box set-up.
-    #[inline(always)]
-    pub(crate) fn setup(&self, i: usize) -> SmallSetup {
-        if self.ready >> i & 1 == 0 {
-            return SmallSetup::NONE;
-        }
-        let (x0, y0, _) = self.corner[i];
-        SmallSetup {
-            // Images are at most 16384 pixels wide and high.
-            bbox: [x0, y0, self.end[0][i] as u32, self.end[1][i] as u32].map(|c| c as u16),
-            e: self.e.map(|e| e[i]),
-        }
-    }
-
     /// The counts and the kept lanes from the per-lane reasons to drop,
     /// in the order of the one-by-one path's tests: a zero area first,
     /// then the facing, then the centres.
@@ -125,32 +102,38 @@ impl Lanes {
             few: mask(&few),
             covered,
             corner,
-            ready: 0,
-            end: [[0; LANES]; 2],
-            e: [[0; LANES]; 3],
         };
         lanes.drop_reasons(mask(&zero), mask(&back), mask(&empty));
-        let viewport = Viewport::new(width, height);
-        let mut triangles = lanes.keep & !lanes.few;
-        while triangles != 0 {
-            let i = triangles.trailing_zeros() as usize;
-            triangles &= triangles - 1;
-            let (b, c) = if lanes.swap >> i & 1 != 0 {
-                (2, 1)
-            } else {
-                (1, 2)
-            };
-            let v = [0, b, c].map(|k| FixedPt::new(x[k][i], y[k][i]));
-            let setup = SmallSetup::new(&v, viewport);
-            if setup.ready().is_some() {
-                lanes.ready |= 1 << i;
-                (lanes.end[0][i], lanes.end[1][i]) = (setup.bbox[2].into(), setup.bbox[3].into());
-                for k in 0..3 {
-                    lanes.e[k][i] = setup.e[k];
-                }
-            }
-        }
         lanes
+    }
+}
+
+/// The small-box set-ups ([`SmallSetup`]) of a batch's triangles,
+/// structure of arrays, as the AVX2 classification computes them
+/// (`simd::classify::setups`): bit `i` of `ready` says lane `i` has one,
+/// whose box ends at column `end[0][i]` and row `end[1][i]` and whose
+/// edge values are `e[k][i]`; zero in the other lanes.
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) struct Setups {
+    pub(crate) ready: u8,
+    pub(crate) end: [[i32; LANES]; 2],
+    pub(crate) e: [[i32; LANES]; 3],
+}
+
+impl Setups {
+    /// Lane `i`'s set-up, its box starting at `(x0, y0)` (the lane's
+    /// [`Lanes::corner`]).
+    #[inline(always)]
+    pub(crate) fn get(&self, i: usize, (x0, y0): (u32, u32)) -> SmallSetup {
+        if self.ready >> i & 1 == 0 {
+            return SmallSetup::NONE;
+        }
+        let (x1, y1) = (self.end[0][i] as u32, self.end[1][i] as u32);
+        SmallSetup {
+            // Images are at most 16384 pixels wide and high.
+            bbox: [x0 as u16, y0 as u16, x1 as u16, y1 as u16],
+            e: [self.e[0][i], self.e[1][i], self.e[2][i]],
+        }
     }
 }
 
