@@ -40,6 +40,7 @@ pub(crate) mod classify;
 mod depth_tri;
 mod triangles;
 
+pub(crate) use depth_tri::SmallSetup;
 pub use depth_tri::{DepthFragment, DepthTri};
 
 use hider_geom::Viewport;
@@ -63,6 +64,9 @@ pub struct DepthScene {
     /// Per vertex of every mesh (meshes one after the other): the cached
     /// snapped position, window depth and classification.
     vertices: Vec<CachedVertex>,
+    /// The viewport the triangles' small-box set-ups were made for (see
+    /// [`Self::setups_valid`]).
+    setups_for: Viewport,
 }
 
 impl DepthScene {
@@ -100,6 +104,14 @@ impl DepthScene {
     /// Every triangle kept as a triangle, in primitive-id order.
     pub fn tris(&self) -> impl Iterator<Item = &DepthTri> + '_ {
         self.parts().flatten()
+    }
+
+    /// Whether the triangles' [`SmallSetup`]s hold for [`Self::viewport`]:
+    /// false only if a caller changed the viewport by hand after
+    /// [`prepare_depth_into`] (a larger one would make the stored boxes
+    /// too small).
+    pub(crate) fn setups_valid(&self) -> bool {
+        self.setups_for == self.viewport
     }
 
     /// Bytes of memory held.
@@ -161,5 +173,6 @@ pub fn prepare_depth_into(
     stats.output = out.len() as u64;
     out.stats = stats;
     out.viewport = front.viewport;
+    out.setups_for = front.viewport;
     Ok(())
 }

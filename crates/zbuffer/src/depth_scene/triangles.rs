@@ -28,7 +28,7 @@ use hider_scene::prepare::{FrontEnd, WindowVertex, setup_depth};
 use hider_scene::{Mesh, PrepareStats, Scene};
 
 use super::classify::{LANES, Lanes};
-use super::depth_tri::{DepthFragment, DepthTri};
+use super::depth_tri::{DepthFragment, DepthTri, SmallSetup};
 use crate::simd;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Kernel;
@@ -50,6 +50,13 @@ const OUT_OF_RANGE: CachedVertex = CachedVertex {
     z: 0.0,
     code: NOT_FINITE,
 };
+
+/// Lanes kept as triangles from which a batch's small-box set-ups are
+/// computed in lanes: eight lanes cost about as much as the tile kernel
+/// saves on two or three triangles (on the 499k-triangle sphere, where
+/// most kept lanes become fragments, computing them for every batch made
+/// the frame 3 % slower).
+const DENSE_BATCH: u32 = 3;
 
 /// Codes that send a triangle off the common path.
 const SPECIAL: u32 = NOT_FINITE | OUTSIDE_PLANES | NO_WINDOW;
@@ -228,10 +235,13 @@ impl<I: Isa> Pass<'_, I> {
             self.stats.degenerate += 1;
             return;
         };
+        // One by one, a set-up costs the front end what it saves the
+        // tile kernel: none.
         let tri = DepthTri {
             v: c.map(|k| k.p),
             depth,
             prim,
+            setup: SmallSetup::NONE,
         };
         emit(self.run, &mut self.stats, tri, centres);
     }
@@ -274,6 +284,18 @@ impl<I: Isa> Pass<'_, I> {
         self.stats.degenerate += lanes.degenerate;
         self.stats.back_faces += lanes.back_faces;
         self.stats.empty += lanes.empty;
+        // The small-box set-ups of the lanes kept as triangles, in lanes,
+        // where the batch has enough of them to pay for it; the others go
+        // without (the tile kernel then sets them up itself, to the same
+        // values).
+        let triangles = lanes.keep & !lanes.few;
+        let setups =
+            match self.isa.avx2() {
+                Some(avx2) if triangles.count_ones() >= DENSE_BATCH => Some(
+                    simd::classify::setups(avx2, &x, &y, size, (lanes.swap, triangles)),
+                ),
+                _ => None,
+            };
         // Only the kept lanes, by their bits: no branch per dropped lane.
         let mut keep = lanes.keep;
         while keep != 0 {
@@ -293,13 +315,27 @@ impl<I: Isa> Pass<'_, I> {
                 FixedPt::new(x[c][i], y[c][i]),
             ];
             let depth = PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default();
-            let tri = DepthTri { v, depth, prim };
+            let (x0, y0, w) = lanes.corner[i];
             if lanes.few >> i & 1 == 0 {
-                self.run.tris.push(tri);
+                let setup = match &setups {
+                    Some(s) => s.get(i, (x0, y0)),
+                    None => SmallSetup::NONE,
+                };
+                self.run.tris.push(DepthTri {
+                    v,
+                    depth,
+                    prim,
+                    setup,
+                });
                 continue;
             }
+            let tri = DepthTri {
+                v,
+                depth,
+                prim,
+                setup: SmallSetup::NONE,
+            };
             self.stats.fragmented += 1;
-            let (x0, y0, w) = lanes.corner[i];
             let mut covered = lanes.covered[i];
             while covered != 0 {
                 let j = covered.trailing_zeros();

@@ -19,7 +19,7 @@
 use hider_geom::FEW_CENTRES;
 use hider_geom::isa::Avx2;
 
-use crate::depth_scene::classify::{LANES, Lanes};
+use crate::depth_scene::classify::{LANES, Lanes, Setups};
 
 // The centre tests below are written out for the first four centres.
 const _: () = assert!(FEW_CENTRES == 4);
@@ -39,6 +39,35 @@ pub(crate) fn classify(
     cull: bool,
 ) -> Lanes {
     avx2::classify(x, y, (width, height), cull)
+}
+
+/// The small-box set-ups ([`SmallSetup`](crate::depth_scene::SmallSetup))
+/// of the lanes in `want` (kept as triangles), the corners put in
+/// positive order by `swap` ([`Lanes::swap`]): for each, `SmallSetup::new`
+/// or none (zero lanes of [`Setups`]).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+pub(crate) fn setups(
+    _proof: Avx2,
+    x: &[[i32; LANES]; 3],
+    y: &[[i32; LANES]; 3],
+    size: (u32, u32),
+    (swap, want): (u8, u8),
+) -> Setups {
+    avx2::setups(x, y, size, (swap, want))
+}
+
+/// Without x86-64 there is no [`Avx2`] value, so this is never called.
+#[cfg(not(target_arch = "x86_64"))]
+#[inline(always)]
+pub(crate) fn setups(
+    proof: Avx2,
+    _: &[[i32; LANES]; 3],
+    _: &[[i32; LANES]; 3],
+    _: (u32, u32),
+    _: (u8, u8),
+) -> Setups {
+    unreachable!("{proof:?} exists only on x86-64")
 }
 
 /// Without x86-64 there is no [`Avx2`] value, so this is never called.
@@ -65,7 +94,8 @@ mod avx2 {
     use hider_geom::edge::top_left_biases;
     use hider_geom::fixed::{SUBPIXEL_SCALE, first_centers_from, last_centers_upto, pixel_centers};
 
-    use super::{FEW_CENTRES, LANES, Lanes};
+    use super::{FEW_CENTRES, LANES, Lanes, Setups};
+    use crate::tiled::SMALL_AREA;
 
     /// An `i64` quantity of the eight lanes: lanes 0, 2, 4, 6 and lanes 1,
     /// 3, 5, 7.
@@ -277,6 +307,100 @@ mod avx2 {
         }
     }
 
+    /// A lane mask from the bits of `m`.
+    #[inline(always)]
+    fn lanes_of(m: u8) -> __m256i {
+        unsafe {
+            _mm256_cmpgt_epi32(
+                _mm256_and_si256(
+                    _mm256_set1_epi32(i32::from(m)),
+                    _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128),
+                ),
+                _mm256_setzero_si256(),
+            )
+        }
+    }
+
+    /// See [`super::setups`]. A set-up needs the corners inside the image,
+    /// and then every product fits `i32` (see
+    /// [`SmallSetup`](crate::depth_scene::SmallSetup)): eight lanes of
+    /// `i32`, no widening.
+    #[inline(always)]
+    pub(super) fn setups(
+        x: &[[i32; LANES]; 3],
+        y: &[[i32; LANES]; 3],
+        (width, height): (u32, u32),
+        (swap, want): (u8, u8),
+    ) -> Setups {
+        unsafe {
+            let mut c = Corners {
+                ax: load(&x[0]),
+                ay: load(&y[0]),
+                bx: load(&x[1]),
+                by: load(&y[1]),
+                cx: load(&x[2]),
+                cy: load(&y[2]),
+            };
+            let neg = lanes_of(swap);
+            (c.bx, c.by, c.cx, c.cy) = (
+                _mm256_blendv_epi8(c.bx, c.cx, neg),
+                _mm256_blendv_epi8(c.by, c.cy, neg),
+                _mm256_blendv_epi8(c.cx, c.bx, neg),
+                _mm256_blendv_epi8(c.cy, c.by, neg),
+            );
+            let [x0, y0, cols, rows] = pixel_box(&c, (width, height));
+            let count = _mm256_mullo_epi32(cols, rows);
+            let one32 = _mm256_set1_epi32(1);
+            let x1 = _mm256_sub_epi32(_mm256_add_epi32(x0, cols), one32);
+            let y1 = _mm256_sub_epi32(_mm256_add_epi32(y0, rows), one32);
+            // The first block column.
+            let xs = _mm256_andnot_si256(_mm256_set1_epi32(7), x0);
+            let px: __m256i = bytemuck::cast(pixel_centers(array(xs)));
+            let py: __m256i = bytemuck::cast(pixel_centers(array(y0)));
+            let want_lanes = lanes_of(want);
+            let small = _mm256_cmpgt_epi32(_mm256_set1_epi32(SMALL_AREA as i32 + 1), count);
+            // Corners in [0, width) x [0, height), fixed point.
+            let zero = _mm256_setzero_si256();
+            let (xmax, ymax) = (
+                _mm256_set1_epi32(width as i32 * SUBPIXEL_SCALE - 1),
+                _mm256_set1_epi32(height as i32 * SUBPIXEL_SCALE - 1),
+            );
+            let mut out = _mm256_setzero_si256();
+            for (x, y) in [(c.ax, c.ay), (c.bx, c.by), (c.cx, c.cy)] {
+                out = _mm256_or_si256(out, _mm256_cmpgt_epi32(zero, x));
+                out = _mm256_or_si256(out, _mm256_cmpgt_epi32(zero, y));
+                out = _mm256_or_si256(out, _mm256_cmpgt_epi32(x, xmax));
+                out = _mm256_or_si256(out, _mm256_cmpgt_epi32(y, ymax));
+            }
+            let ok = _mm256_andnot_si256(out, _mm256_and_si256(small, want_lanes));
+            let edges = [
+                (c.ax, c.ay, c.bx, c.by),
+                (c.bx, c.by, c.cx, c.cy),
+                (c.cx, c.cy, c.ax, c.ay),
+            ];
+            let mut e = [[0i32; LANES]; 3];
+            for (k, (fx, fy, tx, ty)) in edges.into_iter().enumerate() {
+                let (dx, dy) = (_mm256_sub_epi32(tx, fx), _mm256_sub_epi32(ty, fy));
+                // The fill rule's bias less one.
+                let bias: __m256i = bytemuck::cast(top_left_biases(array(dx), array(dy)));
+                let at = _mm256_sub_epi32(
+                    _mm256_mullo_epi32(dx, _mm256_sub_epi32(py, fy)),
+                    _mm256_mullo_epi32(dy, _mm256_sub_epi32(px, fx)),
+                );
+                let at = _mm256_add_epi32(at, _mm256_sub_epi32(bias, one32));
+                e[k] = bytemuck::cast(_mm256_and_si256(at, ok));
+            }
+            Setups {
+                ready: bits(ok),
+                end: [
+                    bytemuck::cast(_mm256_and_si256(x1, ok)),
+                    bytemuck::cast(_mm256_and_si256(y1, ok)),
+                ],
+                e,
+            }
+        }
+    }
+
     #[inline(always)]
     pub(super) fn classify(
         x: &[[i32; LANES]; 3],
@@ -345,8 +469,10 @@ mod avx2 {
 #[cfg(test)]
 mod tests {
     use hider_geom::isa::Avx2;
+    use hider_geom::{FixedPt, Viewport};
     use proptest::prelude::*;
 
+    use crate::depth_scene::SmallSetup;
     use crate::depth_scene::classify::{LANES, Lanes};
 
     /// A batch's corners: small triangles around random points (boxes of a
@@ -377,7 +503,24 @@ mod tests {
             let y = std::array::from_fn(|k| std::array::from_fn(|i| tris[i][k].1));
             let portable = Lanes::classify(&x, &y, size, cull);
             let wide = super::classify(avx2, &x, &y, size, cull);
-            prop_assert_eq!(wide, portable);
+            prop_assert_eq!(&wide, &portable);
+            // The set-ups of the lanes kept as triangles are the scalar
+            // definition's.
+            let want = wide.keep & !wide.few;
+            let setups = super::setups(avx2, &x, &y, size, (wide.swap, want));
+            let viewport = Viewport::new(size.0, size.1);
+            for i in 0..LANES {
+                let (x0, y0, _) = wide.corner[i];
+                let got = setups.get(i, (x0, y0));
+                let expected = if want >> i & 1 == 0 {
+                    SmallSetup::NONE
+                } else {
+                    let (b, c) = if wide.swap >> i & 1 != 0 { (2, 1) } else { (1, 2) };
+                    let v = [0, b, c].map(|k| FixedPt::new(x[k][i], y[k][i]));
+                    SmallSetup::new(&v, viewport)
+                };
+                prop_assert_eq!(got, expected, "lane {}", i);
+            }
         }
     }
 }

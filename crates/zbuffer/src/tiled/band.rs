@@ -37,6 +37,9 @@ pub(super) struct Jobs<'a, T> {
     /// Each run's fragments by tile, applied after the tile's triangles.
     pub(super) fragments: &'a [FragmentBins],
     pub(super) hiz: bool,
+    /// Whether the triangles' small-box set-ups hold (see
+    /// [`DepthScene::setups_valid`](crate::DepthScene)).
+    pub(super) setups: bool,
     /// Polled per tile: a stopped render draws no more triangles.
     pub(super) cancel: hider_scene::Cancel,
 }
@@ -196,6 +199,7 @@ impl<T: RasterTri> Jobs<'_, T> {
                     buf: &mut *buf,
                     vp,
                     hiz: self.hiz,
+                    setups: self.setups,
                 };
                 bins::for_each_in_tile(self.tris, self.chunks, t, &mut draw);
                 for run in self.fragments {
@@ -217,12 +221,14 @@ struct Drawer<'a, K, I> {
     buf: &'a mut TileBuf<K>,
     vp: Viewport,
     hiz: bool,
+    setups: bool,
 }
 
 impl<T: RasterTri, K: TileKey, I: Isa> bins::DrawTri<T> for Drawer<'_, K, I> {
     #[inline(always)]
     fn draw(&mut self, tri: &T, low: f32) {
-        self.buf.draw(self.isa, tri, low, self.vp, self.hiz);
+        self.buf
+            .draw(self.isa, tri, low, (self.vp, self.hiz, self.setups));
     }
 }
 

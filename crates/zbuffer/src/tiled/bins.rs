@@ -51,7 +51,7 @@ impl Bins {
     pub(crate) fn fill<'a, T: RasterTri>(
         &mut self,
         (parts, fragments): Input<'a, T>,
-        (vp, grid, hiz): (Viewport, Grid, bool),
+        (vp, grid, hiz, setups): (Viewport, Grid, bool, bool),
         (pool, threads): (Workers<'_>, usize),
     ) -> Vec<&'a [T]> {
         let total: usize = parts.iter().map(|p| p.len()).sum();
@@ -68,7 +68,8 @@ impl Bins {
             .collect();
         self.chunks.resize_with(tris.len(), ChunkBins::default);
         self.chunks.truncate(tris.len());
-        let bin = |(bins, chunk): (&mut ChunkBins, &&[T])| bins.fill(chunk, vp, grid, hiz);
+        let bin =
+            |(bins, chunk): (&mut ChunkBins, &&[T])| bins.fill(chunk, vp, grid, (hiz, setups));
         self.fragments
             .resize_with(fragments.len(), FragmentBins::default);
         self.fragments.truncate(fragments.len());
@@ -169,13 +170,14 @@ pub(crate) struct ChunkBins {
 impl ChunkBins {
     /// Bins the triangles of `chunk` on `grid`, reusing the memory; bins
     /// hold indices into `chunk`, and depth bounds when `hiz` (minus
-    /// infinity otherwise).
+    /// infinity otherwise). With `setups`, the boxes of the triangles'
+    /// small-box set-ups are used where they have one.
     pub(crate) fn fill<T: RasterTri>(
         &mut self,
         chunk: &[T],
         viewport: Viewport,
         grid: Grid,
-        hiz: bool,
+        (hiz, setups): (bool, bool),
     ) {
         self.tiles.resize_with(grid.tiles(), Vec::new);
         self.tiles.truncate(grid.tiles());
@@ -189,7 +191,8 @@ impl ChunkBins {
         let pow2 = grid.tile.is_power_of_two();
         let tile_of = |p: u32| if pow2 { p >> shift } else { p / grid.tile };
         for (i, tri) in chunk.iter().enumerate() {
-            let Some((x0, y0, x1, y1)) = viewport.pixel_bounds(tri.v()) else {
+            let ready = if setups { tri.setup().ready() } else { None };
+            let Some((x0, y0, x1, y1)) = ready.or_else(|| viewport.pixel_bounds(tri.v())) else {
                 continue;
             };
             // Triangles that cover no pixel centre write nothing; drop them

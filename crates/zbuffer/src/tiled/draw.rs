@@ -20,7 +20,7 @@ impl TiledZBuffer {
     pub(super) fn run<T: RasterTri>(
         &mut self,
         input: Input<'_, T>,
-        vp: Viewport,
+        (vp, setups): (Viewport, bool),
         frame: Option<&mut Frame>,
     ) -> Result<TiledZBufferStats> {
         self.options.validate()?;
@@ -29,11 +29,17 @@ impl TiledZBuffer {
         self.pool.start(threads, &self.name)?;
         self.drawn = None;
         let stats = match self.options.depth_format {
-            DepthFormat::F32 => self.draw_with::<T, f32>(input, vp, frame, threads),
-            DepthFormat::F64 => self.draw_with::<T, f64>(input, vp, frame, threads),
-            DepthFormat::Fixed24 => self.draw_with::<T, Fixed24>(input, vp, frame, threads),
-            DepthFormat::Fixed16 => self.draw_with::<T, Fixed16>(input, vp, frame, threads),
-            DepthFormat::ReversedF32 => self.draw_with::<T, Reversed>(input, vp, frame, threads),
+            DepthFormat::F32 => self.draw_with::<T, f32>(input, (vp, setups), frame, threads),
+            DepthFormat::F64 => self.draw_with::<T, f64>(input, (vp, setups), frame, threads),
+            DepthFormat::Fixed24 => {
+                self.draw_with::<T, Fixed24>(input, (vp, setups), frame, threads)
+            }
+            DepthFormat::Fixed16 => {
+                self.draw_with::<T, Fixed16>(input, (vp, setups), frame, threads)
+            }
+            DepthFormat::ReversedF32 => {
+                self.draw_with::<T, Reversed>(input, (vp, setups), frame, threads)
+            }
         };
         // The tiles skip their triangles once the token stops them.
         self.options.cancel.poll()?;
@@ -47,7 +53,7 @@ impl TiledZBuffer {
     fn draw_with<T: RasterTri, K: TileKey>(
         &mut self,
         (parts, fragments): Input<'_, T>,
-        vp: Viewport,
+        (vp, setups): (Viewport, bool),
         frame: Option<&mut Frame>,
         threads: usize,
     ) -> TiledZBufferStats {
@@ -57,7 +63,7 @@ impl TiledZBuffer {
         let hiz = self.options.hierarchical_z;
         let tris = self
             .bins
-            .fill((parts, fragments), (vp, grid, hiz), (pool, threads));
+            .fill((parts, fragments), (vp, grid, hiz, setups), (pool, threads));
         let bufs = tile_bufs::<K>(&mut self.scratch, grid, self.options.depth_test);
         let jobs = Jobs {
             wide: self.wide_kernel,
@@ -67,6 +73,7 @@ impl TiledZBuffer {
             chunks: &self.bins.chunks,
             fragments: &self.bins.fragments,
             hiz,
+            setups,
             cancel: self.options.cancel,
         };
         match frame {

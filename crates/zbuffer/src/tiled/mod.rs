@@ -54,6 +54,8 @@ pub(crate) mod wide;
 #[cfg(test)]
 mod readback_tests;
 #[cfg(test)]
+mod setup_tests;
+#[cfg(test)]
 mod tests;
 
 use hider_geom::Viewport;
@@ -69,6 +71,8 @@ use crate::options::{DepthFormat, DepthTest};
 use bins::Grid;
 use key::{Fixed16, Fixed24, Reversed};
 use scratch::Scratch;
+
+pub(crate) use tile::SMALL_AREA;
 
 pub use options::TiledZBufferOptions;
 pub use stats::TiledZBufferStats;
@@ -114,7 +118,11 @@ impl TiledZBuffer {
     pub fn draw_depth_scene(&mut self, scene: &DepthScene) -> Result<TiledZBufferStats> {
         let parts: Vec<&[DepthTri]> = scene.parts().collect();
         let fragments: Vec<&[DepthFragment]> = scene.fragments().collect();
-        self.run((&parts, &fragments), scene.viewport, None)
+        self.run(
+            (&parts, &fragments),
+            (scene.viewport, scene.setups_valid()),
+            None,
+        )
     }
 
     /// Copies the image last drawn into `frame` (ids, window depth,
@@ -211,7 +219,11 @@ impl Hider for TiledZBuffer {
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<TiledZBufferStats> {
         check_frame(&self.name, scene, frame)?;
-        self.run((&[&scene.tris[..]], &[]), scene.viewport, Some(frame))
+        self.run(
+            (&[&scene.tris[..]], &[]),
+            (scene.viewport, false),
+            Some(frame),
+        )
     }
 
     /// The hider's own pipeline: the lean front end
@@ -232,7 +244,11 @@ impl Hider for TiledZBuffer {
             check_frame_size(&self.name, lean.viewport, frame)?;
             let parts: Vec<&[DepthTri]> = lean.parts().collect();
             let fragments: Vec<&[DepthFragment]> = lean.fragments().collect();
-            self.run((&parts, &fragments), lean.viewport, Some(frame))
+            self.run(
+                (&parts, &fragments),
+                (lean.viewport, lean.setups_valid()),
+                Some(frame),
+            )
         });
         self.lean = lean;
         stats

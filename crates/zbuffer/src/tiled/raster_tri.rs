@@ -4,7 +4,7 @@
 use hider_geom::{FixedPt, PlaneEq};
 use hider_scene::ScreenTri;
 
-use crate::depth_scene::DepthTri;
+use crate::depth_scene::{DepthTri, SmallSetup};
 
 /// What the tile kernel reads of a triangle; implemented by both
 /// [`ScreenTri`] and the lean [`DepthTri`].
@@ -19,11 +19,14 @@ pub(crate) trait RasterTri: Sync {
     fn depth(&self) -> &PlaneEq;
     /// The primitive id.
     fn prim(&self) -> u32;
+    /// The small-box set-up the front end made ([`SmallSetup::NONE`] for
+    /// a screen scene's triangles).
+    fn setup(&self) -> &SmallSetup;
 }
 
 /// Both triangle types keep the same three fields under the same names.
 macro_rules! raster_tri {
-    ($($t:ty: $miss:expr),*) => {$(
+    ($($t:ty: $miss:expr, $self_:ident => $setup:expr),*) => {$(
         impl RasterTri for $t {
             const MAY_MISS_CENTRES: bool = $miss;
             #[inline]
@@ -38,7 +41,14 @@ macro_rules! raster_tri {
             fn prim(&self) -> u32 {
                 self.prim
             }
+            #[inline]
+            fn setup(&$self_) -> &SmallSetup {
+                $setup
+            }
         }
     )*};
 }
-raster_tri!(ScreenTri: true, DepthTri: false);
+raster_tri!(
+    ScreenTri: true, self => &SmallSetup::NONE,
+    DepthTri: false, self => &self.setup
+);

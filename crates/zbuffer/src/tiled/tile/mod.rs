@@ -228,28 +228,49 @@ impl<K: DepthKey> TileBuf<K> {
     ) {
         debug_assert!(self.active);
         let w = self.w as usize;
+        let clear = self.clear;
+        // See `activate`: the clear key is background, at depth 1
+        // whichever key the test clears to.
+        let id_of = |k: K, i: u32| if k == clear { NO_ID } else { i };
+        let depth_of = |k: K| if k == clear { 1.0 } else { k.decode() };
         for r in 0..self.h as usize {
             let at = (self.y0 - band_y0) as usize * width + r * width + self.x0 as usize;
             // Blocks are stored one after the other (64 pixels each): a
             // tile row is a run of 8 pixels from each block of the row.
-            let y = self.y0 + r as u32;
-            for c in (0..w).step_by(BLOCK as usize) {
-                let n = (w - c).min(BLOCK as usize);
-                let from = self.at(self.x0 + c as u32, y);
-                let keys = &self.keys[from..from + n];
-                // See `activate`: the clear key is background, at depth 1
-                // whichever key the test clears to.
+            let from = self.at(self.x0, self.y0 + r as u32);
+            let (keys, src_ids) = (&self.keys[from..], &self.ids[from..]);
+            let (ids, depth) = (&mut ids[at..at + w], &mut depth[at..at + w]);
+            // Whole runs of eight as fixed-size arrays, which the compiler
+            // turns into a few vector instructions each (a run of
+            // run-time length was about six instructions a pixel).
+            let runs = w / BLOCK as usize;
+            for b in 0..runs {
+                let (o, s) = (b * BLOCK as usize, b * 64);
+                let k: &[K; 8] = keys[s..s + 8].try_into().expect("a block row");
                 if IDS {
-                    let out = &mut ids[at + c..at + c + n];
-                    for ((o, &i), k) in out.iter_mut().zip(&self.ids[from..from + n]).zip(keys) {
-                        *o = if *k == self.clear { NO_ID } else { i };
+                    let i: &[u32; 8] = src_ids[s..s + 8].try_into().expect("a block row");
+                    let out: &mut [u32; 8] = (&mut ids[o..o + 8]).try_into().expect("8 pixels");
+                    for c in 0..8 {
+                        out[c] = id_of(k[c], i[c]);
                     }
                 }
                 if DEPTH {
-                    let out = &mut depth[at + c..at + c + n];
-                    for (o, k) in out.iter_mut().zip(keys) {
-                        *o = if *k == self.clear { 1.0 } else { k.decode() };
+                    let out: &mut [f32; 8] = (&mut depth[o..o + 8]).try_into().expect("8 pixels");
+                    for c in 0..8 {
+                        out[c] = depth_of(k[c]);
                     }
+                }
+            }
+            let (o, s) = (runs * BLOCK as usize, runs * 64);
+            let n = w - o;
+            if IDS {
+                for c in 0..n {
+                    ids[o + c] = id_of(keys[s + c], src_ids[s + c]);
+                }
+            }
+            if DEPTH {
+                for c in 0..n {
+                    depth[o + c] = depth_of(keys[s + c]);
                 }
             }
         }
@@ -258,15 +279,16 @@ impl<K: DepthKey> TileBuf<K> {
 
 impl<K: WideBlock> TileBuf<K> {
     /// Draws one triangle into the tile; `low` is a lower bound of its
-    /// computed depths (from its bin entry).
+    /// computed depths (from its bin entry). With `setups`, a triangle's
+    /// [`SmallSetup`](crate::depth_scene::SmallSetup) is used when it has
+    /// one and its box lies in the tile.
     #[inline(always)]
     pub(crate) fn draw<T: RasterTri, I: Isa>(
         &mut self,
         isa: I,
         tri: &T,
         low: f32,
-        viewport: Viewport,
-        hiz: bool,
+        (viewport, hiz, setups): (Viewport, bool, bool),
     ) {
         // Hierarchical depth, triangle level, before the triangle itself is
         // read: nothing it could write is nearer than what the whole tile
@@ -278,7 +300,9 @@ impl<K: WideBlock> TileBuf<K> {
                 return;
             }
         }
-        let Some((bx0, by0, bx1, by1)) = viewport.pixel_bounds(tri.v()) else {
+        let setup = tri.setup();
+        let ready = if setups { setup.ready() } else { None };
+        let Some((bx0, by0, bx1, by1)) = ready.or_else(|| viewport.pixel_bounds(tri.v())) else {
             return;
         };
         let (x0, y0) = (bx0.max(self.x0), by0.max(self.y0));
@@ -291,17 +315,19 @@ impl<K: WideBlock> TileBuf<K> {
         }
         self.stats.triangle_tiles += 1;
         let small = (x1 - x0 + 1) * (y1 - y0 + 1) <= SMALL_AREA;
+        if small {
+            // The front end's set-up holds when the box is whole here.
+            let whole = ready == Some((x0, y0, x1, y1));
+            self.small(isa, tri, (x0, y0, x1, y1), whole.then_some(setup.e));
+            return;
+        }
         // Block bounds cost a few plane evaluations: only for triangles
         // that have blocks.
-        let bounds = if hiz && !small {
+        let bounds = if hiz {
             DepthBounds::new(tri.v(), tri.depth())
         } else {
             None
         };
-        if small {
-            self.small(isa, tri, (x0, y0, x1, y1));
-            return;
-        }
         self.large(isa, tri, (x0, y0, x1, y1), bounds.as_ref());
     }
 }

@@ -1,6 +1,7 @@
 //! Triangles whose box in the tile is a few pixels: a plain scan of the
 //! box, for which block set-up would cost more than it saves.
 
+use hider_geom::FixedPt;
 use hider_geom::fixed::{SUBPIXEL_SCALE, pixel_center};
 
 use super::super::raster_tri::RasterTri;
@@ -20,61 +21,110 @@ impl<K: WideBlock> TileBuf<K> {
         isa: I,
         tri: &T,
         (x0, y0, x1, y1): (u32, u32, u32, u32),
+        ready: Option<[i32; 3]>,
     ) {
-        let edges = hider_geom::edge::triangle_edges(tri.v());
         let unit = i64::from(SUBPIXEL_SCALE);
-        let sx = edges.map(|e| e.a * unit);
         let p = tri.depth();
         let (inside, passes) = match isa.avx2() {
             Some(avx2) => {
-                // The lanes span whole block rows: from the box's first
-                // block column to its last one's eighth pixel.
-                let xs = self.x0 + (x0 - self.x0) / BLOCK * BLOCK;
-                let xe = self.x0 + (x1 - self.x0) / BLOCK * BLOCK + BLOCK - 1;
-                let (px, py) = (
-                    i64::from(pixel_center(xs as i32)),
-                    i64::from(pixel_center(y0 as i32)),
-                );
-                let sy = edges.map(|e| e.b * unit);
-                let e = edges.map(|e| e.eval(px, py) - 1);
-                let (w, h) = (i64::from(xe - xs), i64::from(y1 - y0));
-                // An edge function is affine: it fits i32 over the box
-                // when it does at the four corners.
-                let fits = (0..3).all(|k| {
-                    [0, w].iter().all(|&dx| {
-                        [0, h]
-                            .iter()
-                            .all(|&dy| i32::try_from(e[k] + sx[k] * dx + sy[k] * dy).is_ok())
-                    })
-                });
-                let s = SmallBox {
-                    per_row: (self.size / BLOCK) as usize,
-                    tile_x0: self.x0,
-                    tile_y0: self.y0,
-                    lx0: x0 - self.x0,
-                    ly0: y0 - self.y0,
-                    lx1: x1 - self.x0,
-                    ly1: y1 - self.y0,
-                    plane: p,
-                    e: e.map(|v| v as i32),
-                    sx: sx.map(|v| v as i32),
-                    sy: sy.map(|v| v as i32),
-                    prim: tri.prim(),
+                let setup = match ready {
+                    // Set up in the front end, eight triangles at a time
+                    // (`SmallSetup`): the steps are the corners'
+                    // differences, wrapping as the casts below wrap.
+                    Some(e) => {
+                        let v = tri.v();
+                        let step = |k: usize, d: fn(FixedPt) -> i32| {
+                            d(v[(k + 1) % 3])
+                                .wrapping_sub(d(v[k]))
+                                .wrapping_mul(SUBPIXEL_SCALE)
+                        };
+                        Some((
+                            e,
+                            std::array::from_fn(|k| step(k, |p| -p.y)),
+                            std::array::from_fn(|k| step(k, |p| p.x)),
+                        ))
+                    }
+                    None => self.small_setup(tri, (x0, y0, x1, y1)),
                 };
-                match fits {
-                    true => K::wide_small(avx2, &mut self.keys, &mut self.ids, &s),
-                    false => None,
+                // A `match`, not a closure: a closure would be compiled
+                // without the kernel's target features.
+                match setup {
+                    Some((e, sx, sy)) => {
+                        let s = SmallBox {
+                            per_row: (self.size / BLOCK) as usize,
+                            tile_x0: self.x0,
+                            tile_y0: self.y0,
+                            lx0: x0 - self.x0,
+                            ly0: y0 - self.y0,
+                            lx1: x1 - self.x0,
+                            ly1: y1 - self.y0,
+                            plane: p,
+                            e,
+                            sx,
+                            sy,
+                            prim: tri.prim(),
+                        };
+                        K::wide_small(avx2, &mut self.keys, &mut self.ids, &s)
+                    }
+                    None => None,
                 }
             }
             None => None,
         }
-        .unwrap_or_else(|| self.small_scalar(tri, (x0, y0, x1, y1), &edges, sx));
+        .unwrap_or_else(|| {
+            let edges = hider_geom::edge::triangle_edges(tri.v());
+            let sx = edges.map(|e| e.a * unit);
+            self.small_scalar(tri, (x0, y0, x1, y1), &edges, sx)
+        });
         self.stats.pixels_tested += u64::from((x1 - x0 + 1) * (y1 - y0 + 1));
         self.stats.depth_tests += u64::from(inside);
         self.stats.depth_passes += u64::from(passes);
         if passes > 0 {
             self.note_passes_in_rect(x0, y0, x1, y1, passes);
         }
+    }
+
+    /// The AVX2 kernel's set-up of a small triangle in this tile (what the
+    /// front end's `SmallSetup` holds when the box lies in one tile): the
+    /// biased edge values at the box's first block column and row, and
+    /// their steps, as wrapping `i32`; `None` when a value over the box's
+    /// block rows does not fit `i32`.
+    #[inline(always)]
+    fn small_setup<T: RasterTri>(
+        &self,
+        tri: &T,
+        (x0, y0, x1, y1): (u32, u32, u32, u32),
+    ) -> Option<([i32; 3], [i32; 3], [i32; 3])> {
+        let edges = hider_geom::edge::triangle_edges(tri.v());
+        let unit = i64::from(SUBPIXEL_SCALE);
+        let sx = edges.map(|e| e.a * unit);
+        // The lanes span whole block rows: from the box's first block
+        // column to its last one's eighth pixel.
+        let xs = self.x0 + (x0 - self.x0) / BLOCK * BLOCK;
+        let xe = self.x0 + (x1 - self.x0) / BLOCK * BLOCK + BLOCK - 1;
+        let (px, py) = (
+            i64::from(pixel_center(xs as i32)),
+            i64::from(pixel_center(y0 as i32)),
+        );
+        let sy = edges.map(|e| e.b * unit);
+        let e = edges.map(|e| e.eval(px, py) - 1);
+        let (w, h) = (i64::from(xe - xs), i64::from(y1 - y0));
+        // An edge function is affine: it fits i32 over the box when it
+        // does at the four corners.
+        let fits = (0..3).all(|k| {
+            [0, w].iter().all(|&dx| {
+                [0, h]
+                    .iter()
+                    .all(|&dy| i32::try_from(e[k] + sx[k] * dx + sy[k] * dy).is_ok())
+            })
+        });
+        fits.then(|| {
+            (
+                e.map(|v| v as i32),
+                sx.map(|v| v as i32),
+                sy.map(|v| v as i32),
+            )
+        })
     }
 
     /// The scalar scan of a small triangle's box: returns (inside, passes).
