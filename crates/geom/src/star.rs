@@ -1,0 +1,239 @@
+//! Pairs of triangles around a shared vertex whose angular sectors meet.
+//!
+//! Two triangles sharing a vertex `v` are convex sets containing `v`, so
+//! their intersection is a convex set containing `v`: if they meet
+//! anywhere other than at `v`, they meet arbitrarily close to it, inside
+//! both of their *sectors* (the angle each spans at `v`). In the plane,
+//! two triangles sharing a vertex therefore overlap (interiors) exactly
+//! when their sectors at it overlap by a positive angle. A flat fan, a cone
+//! seen along its axis, or the pole of a UV sphere is a *star* of `n`
+//! triangles around one vertex whose bounding boxes all meet there, so a
+//! bin grid lists all `n^2 / 2` pairs; their sectors tile the circle, and
+//! only neighbours meet. [`sector_pairs`] finds every pair of sectors
+//! whose closures meet in `O(n log n + k)` for `k` such pairs: sorted by
+//! starting direction, the sectors that start inside another form one
+//! circular run of that order, and two closed arcs of a circle meet
+//! exactly when one of them contains the other's start.
+//!
+//! Directions are compared exactly: by half-plane (coordinate
+//! comparisons) and then by the sign of an orientation predicate, so the
+//! caller's exact `orient2d` decides every tie.
+
+use std::cmp::Ordering;
+
+use crate::FixedPt;
+
+/// A point type whose directions around an apex can be ordered exactly.
+pub trait AngularPoint: Copy + PartialEq {
+    /// The sign of the orientation of `a, b, c` (positive when `c` is
+    /// counter-clockwise of `b` seen from `a`, in the frame where the `x`
+    /// axis turns to the `y` axis counter-clockwise), computed exactly.
+    fn orient(a: Self, b: Self, c: Self) -> i8;
+    /// Whether `self` lies at an angle in `[0, pi)` around `apex`: above it,
+    /// or at its height and to its right.
+    fn upper_of(self, apex: Self) -> bool;
+}
+
+impl AngularPoint for FixedPt {
+    fn orient(a: Self, b: Self, c: Self) -> i8 {
+        crate::edge::orient2d(a, b, c).signum() as i8
+    }
+
+    fn upper_of(self, apex: Self) -> bool {
+        self.y > apex.y || (self.y == apex.y && self.x > apex.x)
+    }
+}
+
+/// The directions a triangle spans at its vertex `apex`: from the
+/// direction of `start` counter-clockwise to that of `end`, at most a half
+/// turn (a whole half turn when the triangle is flat with `apex` between
+/// its other corners, which covers both of their directions).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sector<P> {
+    /// A point in the first direction.
+    pub start: P,
+    /// A point in the last direction.
+    pub end: P,
+}
+
+impl<P: AngularPoint> Sector<P> {
+    /// The sector of the triangle `apex, p, q` at `apex`; `None` when both
+    /// other corners coincide with `apex` (no direction at all).
+    pub fn around(apex: P, p: P, q: P) -> Option<Self> {
+        let one = |d: P| Some(Self { start: d, end: d });
+        match (p == apex, q == apex) {
+            (true, true) => return None,
+            (true, false) => return one(q),
+            (false, true) => return one(p),
+            _ => {}
+        }
+        match P::orient(apex, p, q) {
+            1.. => Some(Self { start: p, end: q }),
+            ..0 => Some(Self { start: q, end: p }),
+            0 if compare(apex, p, q) == Ordering::Equal => one(p),
+            // Opposite directions: the half turn from p to q holds both.
+            0 => Some(Self { start: p, end: q }),
+        }
+    }
+}
+
+/// The order of the directions of `a` and `b` around `apex` by angle in
+/// `[0, 2 pi)` from the `x` axis; `Equal` for the same direction.
+pub fn compare<P: AngularPoint>(apex: P, a: P, b: P) -> Ordering {
+    match (a.upper_of(apex), b.upper_of(apex)) {
+        (true, false) => Ordering::Less,
+        (false, true) => Ordering::Greater,
+        _ => match P::orient(apex, a, b) {
+            1.. => Ordering::Less,
+            ..0 => Ordering::Greater,
+            0 => Ordering::Equal,
+        },
+    }
+}
+
+/// Every pair `(i, j)`, `i < j`, of `sectors` around `apex` whose closed
+/// sectors share a direction, with at least one of the two in `query`
+/// (`query(i)`); sorted, each once. `O(n log n + k)` for `n` sectors and
+/// `k` pairs whose closures meet (see the module documentation).
+pub fn sector_pairs<P: AngularPoint>(
+    apex: P,
+    sectors: &[Sector<P>],
+    query: impl Fn(usize) -> bool,
+) -> Vec<(u32, u32)> {
+    let by_start = |ids: &mut Vec<u32>| {
+        ids.sort_by(|&a, &b| compare(apex, sectors[a as usize].start, sectors[b as usize].start));
+    };
+    let mut all: Vec<u32> = (0..sectors.len() as u32).collect();
+    by_start(&mut all);
+    let mut asked: Vec<u32> = all.iter().copied().filter(|&i| query(i as usize)).collect();
+    by_start(&mut asked);
+    let mut out = Vec::new();
+    // Pairs where the asked sector holds the other's start, then pairs
+    // where any sector holds an asked one's start.
+    for (holders, starts) in [(&asked, &all), (&all, &asked)] {
+        for &h in holders {
+            let s = sectors[h as usize];
+            for_starts_within(apex, sectors, starts, s, |k| {
+                if k != h {
+                    out.push((h.min(k), h.max(k)));
+                }
+            });
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Calls `f` on each of `ids` (sorted by start) whose start lies in the
+/// closed sector `s`: one circular run of the order.
+fn for_starts_within<P: AngularPoint>(
+    apex: P,
+    sectors: &[Sector<P>],
+    ids: &[u32],
+    s: Sector<P>,
+    mut f: impl FnMut(u32),
+) {
+    let start_of = |k: &u32| sectors[*k as usize].start;
+    let lo = ids.partition_point(|k| compare(apex, start_of(k), s.start) == Ordering::Less);
+    let hi = ids.partition_point(|k| compare(apex, start_of(k), s.end) != Ordering::Greater);
+    if compare(apex, s.start, s.end) != Ordering::Greater {
+        ids[lo..hi.max(lo)].iter().copied().for_each(&mut f);
+    } else {
+        // The sector crosses the x axis: the end of the order, then its
+        // beginning.
+        ids[lo..].iter().copied().for_each(&mut f);
+        ids[..hi].iter().copied().for_each(&mut f);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn p(x: i32, y: i32) -> FixedPt {
+        FixedPt::new(x, y)
+    }
+
+    /// Whether two closed sectors share a direction, by sampling each
+    /// sector's directions finely (the brute-force reference).
+    fn meet(apex: FixedPt, a: Sector<FixedPt>, b: Sector<FixedPt>) -> bool {
+        let within = |s: Sector<FixedPt>, d: FixedPt| {
+            // Angle from start to d (ccw) at most angle from start to end.
+            let ang = |q: FixedPt| {
+                let (x, y) = (f64::from(q.x - apex.x), f64::from(q.y - apex.y));
+                y.atan2(x).rem_euclid(std::f64::consts::TAU)
+            };
+            let t = |q: FixedPt| (ang(q) - ang(s.start)).rem_euclid(std::f64::consts::TAU);
+            let (td, te) = (t(d), t(s.end));
+            td <= te + 1e-12 || td >= std::f64::consts::TAU - 1e-12
+        };
+        within(a, b.start) || within(b, a.start)
+    }
+
+    #[test]
+    fn fan_sectors_meet_only_their_neighbours() {
+        let apex = p(0, 0);
+        let n = 64;
+        let rim: Vec<FixedPt> = (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+                p((1000.0 * a.cos()).round() as i32, (1000.0 * a.sin()).round() as i32)
+            })
+            .collect();
+        let sectors: Vec<_> = (0..n as usize)
+            .map(|k| Sector::around(apex, rim[k], rim[(k + 1) % n as usize]).unwrap())
+            .collect();
+        let pairs = sector_pairs(apex, &sectors, |_| true);
+        // Each triangle meets its two neighbours along the shared edge.
+        assert_eq!(pairs.len(), n as usize);
+        for (i, j) in pairs {
+            let d = j - i;
+            assert!(d == 1 || d == n as u32 - 1, "({i}, {j})");
+        }
+    }
+
+    #[test]
+    fn pairs_match_brute_force_on_random_sectors() {
+        let mut seed = 12345u64;
+        let mut rnd = |m: i32| {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 33) as i64 % i64::from(2 * m + 1)) as i32 - m
+        };
+        for round in 0..200 {
+            let apex = p(rnd(3), rnd(3));
+            let n = 2 + (round % 12) as usize;
+            // Small coordinates: many equal and opposite directions.
+            let sectors: Vec<_> = (0..n)
+                .filter_map(|_| Sector::around(apex, p(rnd(4), rnd(4)), p(rnd(4), rnd(4))))
+                .collect();
+            let query = |i: usize| (i + round) % 3 != 0;
+            let got = sector_pairs(apex, &sectors, query);
+            let mut want = Vec::new();
+            for i in 0..sectors.len() {
+                for j in i + 1..sectors.len() {
+                    if (query(i) || query(j)) && meet(apex, sectors[i], sectors[j]) {
+                        want.push((i as u32, j as u32));
+                    }
+                }
+            }
+            assert_eq!(got, want, "round {round}: {sectors:?}");
+        }
+    }
+
+    #[test]
+    fn degenerate_sectors() {
+        let o = p(0, 0);
+        assert_eq!(Sector::around(o, o, o), None);
+        let ray = Sector::around(o, p(2, 0), p(5, 0)).unwrap();
+        assert_eq!(ray.start, p(2, 0));
+        assert_eq!(compare(o, ray.start, ray.end), Ordering::Equal);
+        let half = Sector::around(o, p(2, 0), p(-5, 0)).unwrap();
+        // The half turn from +x to -x goes through +y: it meets a sector
+        // pointing up, not one pointing down.
+        let down = Sector::around(o, p(0, -3), p(1, -3)).unwrap();
+        let up = Sector::around(o, p(0, 3), p(1, 3)).unwrap();
+        let pairs = sector_pairs(o, &[half, down, up], |_| true);
+        assert_eq!(pairs, vec![(0, 2)]);
+    }
+}
