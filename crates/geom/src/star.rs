@@ -20,6 +20,8 @@
 //! caller's exact `orient2d` decides every tie.
 
 use std::cmp::Ordering;
+use std::collections::HashMap;
+use std::hash::Hash;
 
 use crate::FixedPt;
 
@@ -147,6 +149,116 @@ fn for_starts_within<P: AngularPoint>(
     }
 }
 
+/// No star: the padding of [`Stars::of`] and the group of a triangle in
+/// no star.
+pub const NO_STAR: u32 = u32::MAX;
+
+/// The stars of a set of triangles: the vertices shared by at least a
+/// given number of them (*hubs*), each with its triangles (*members*).
+/// Pairs of members of one star are left to [`sector_pairs`]; everything
+/// else to the caller's bins, which skip pairs sharing a hub.
+#[derive(Clone, Debug, Default)]
+pub struct Stars {
+    /// Per triangle, the stars it belongs to, ascending, padded with
+    /// [`NO_STAR`].
+    of: Vec<[u32; 3]>,
+    /// Where each star's members start in `members` (one more than the
+    /// stars).
+    start: Vec<usize>,
+    /// Every star's members as (triangle, corner at the hub), star after
+    /// star, triangles ascending.
+    members: Vec<(u32, u8)>,
+}
+
+impl Stars {
+    /// The stars of `n` triangles whose corners have the keys `corners(k)`
+    /// (equal keys, equal points), with at least `min_members` triangles
+    /// each. A triangle for which `corners` gives `None`, or with two equal
+    /// corner keys, belongs to no star.
+    pub fn new<K: Hash + Eq + Copy>(
+        n: usize,
+        corners: impl Fn(usize) -> Option<[K; 3]>,
+        min_members: usize,
+    ) -> Self {
+        let keys: Vec<Option<[K; 3]>> = (0..n)
+            .map(|k| corners(k).filter(|c| c[0] != c[1] && c[1] != c[2] && c[0] != c[2]))
+            .collect();
+        let mut valence: HashMap<K, u32> = HashMap::new();
+        for c in keys.iter().flatten() {
+            for key in c {
+                *valence.entry(*key).or_default() += 1;
+            }
+        }
+        // Hub ids in order of first appearance, so that they do not depend
+        // on the hash order.
+        let mut hub: HashMap<K, u32> = HashMap::new();
+        let mut start = vec![0usize];
+        let mut of = vec![[NO_STAR; 3]; n];
+        for (t, c) in keys.iter().enumerate() {
+            let Some(c) = c else { continue };
+            for (i, key) in c.iter().enumerate() {
+                if (valence[key] as usize) < min_members.max(2) {
+                    continue;
+                }
+                let next = hub.len() as u32;
+                let h = *hub.entry(*key).or_insert_with(|| {
+                    start.push(0);
+                    next
+                });
+                start[h as usize + 1] += 1;
+                of[t][i] = h;
+            }
+        }
+        let stars = hub.len();
+        for h in 0..stars {
+            start[h + 1] += start[h];
+        }
+        let mut fill = start.clone();
+        let mut members = vec![(0u32, 0u8); start[stars]];
+        for (t, hubs) in of.iter_mut().enumerate() {
+            for (i, &h) in hubs.iter().enumerate() {
+                if h != NO_STAR {
+                    members[fill[h as usize]] = (t as u32, i as u8);
+                    fill[h as usize] += 1;
+                }
+            }
+            hubs.sort_unstable();
+        }
+        Self { of, start, members }
+    }
+
+    /// The number of stars.
+    pub fn len(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// Whether there is no star.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The members of star `h`: (triangle, corner at the hub), triangles
+    /// ascending.
+    pub fn members(&self, h: usize) -> &[(u32, u8)] {
+        &self.members[self.start[h]..self.start[h + 1]]
+    }
+
+    /// The star a triangle's pairs are grouped under in bins: the first of
+    /// its stars, or [`NO_STAR`].
+    pub fn group(&self, t: usize) -> u32 {
+        self.of.get(t).map_or(NO_STAR, |s| s[0])
+    }
+
+    /// Whether triangles `a` and `b` belong to a common star (their pair
+    /// is then one of [`sector_pairs`]' of that star, not of the bins').
+    pub fn share(&self, a: usize, b: usize) -> bool {
+        let (Some(x), Some(y)) = (self.of.get(a), self.of.get(b)) else {
+            return false;
+        };
+        x.iter().any(|&h| h != NO_STAR && y.contains(&h))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -178,7 +290,10 @@ mod tests {
         let rim: Vec<FixedPt> = (0..n)
             .map(|k| {
                 let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
-                p((1000.0 * a.cos()).round() as i32, (1000.0 * a.sin()).round() as i32)
+                p(
+                    (1000.0 * a.cos()).round() as i32,
+                    (1000.0 * a.sin()).round() as i32,
+                )
             })
             .collect();
         let sectors: Vec<_> = (0..n as usize)
@@ -197,7 +312,9 @@ mod tests {
     fn pairs_match_brute_force_on_random_sectors() {
         let mut seed = 12345u64;
         let mut rnd = |m: i32| {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((seed >> 33) as i64 % i64::from(2 * m + 1)) as i32 - m
         };
         for round in 0..200 {
@@ -219,6 +336,28 @@ mod tests {
             }
             assert_eq!(got, want, "round {round}: {sectors:?}");
         }
+    }
+
+    #[test]
+    fn stars_group_the_triangles_around_a_hub() {
+        // A fan of five around corner key 0, plus a lone triangle and a
+        // degenerate one at the hub.
+        let tris = [
+            [0, 1, 2],
+            [0, 2, 3],
+            [3, 0, 4],
+            [0, 4, 5],
+            [5, 6, 0],
+            [7, 8, 9],
+            [0, 0, 1],
+        ];
+        let stars = Stars::new(tris.len(), |k| Some(tris[k]), 5);
+        assert_eq!(stars.len(), 1);
+        assert_eq!(stars.members(0), &[(0, 0), (1, 0), (2, 1), (3, 0), (4, 2)]);
+        assert_eq!(stars.group(5), NO_STAR);
+        assert_eq!(stars.group(6), NO_STAR);
+        assert!(stars.share(0, 4) && !stars.share(0, 5) && !stars.share(0, 6));
+        assert!(Stars::new(tris.len(), |k| Some(tris[k]), 6).is_empty());
     }
 
     #[test]
