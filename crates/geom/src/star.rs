@@ -229,7 +229,7 @@ impl Stars {
 
     /// The number of stars.
     pub fn len(&self) -> usize {
-        self.start.len() - 1
+        self.start.len().saturating_sub(1)
     }
 
     /// Whether there is no star.

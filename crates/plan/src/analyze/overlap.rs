@@ -25,7 +25,10 @@ use hider_geom::{FixedPt, Viewport, orient2d};
 
 use hider_scene::{Cancel, ScreenTri};
 
+use hider_geom::star::{NO_STAR, Stars};
+
 use super::intersect::MAX_CELLS_PER_TRIANGLE;
+use super::stars;
 
 /// Window depths closer than this at the test point are a tie, not an
 /// order.
@@ -76,6 +79,29 @@ pub fn overlap_graph(
     max_examples: usize,
     cancel: Cancel,
 ) -> OverlapGraph {
+    let stars = stars::screen_stars(tris);
+    graph(
+        tris,
+        vp,
+        &stars,
+        interpenetrate,
+        budget,
+        max_examples,
+        cancel,
+    )
+}
+
+/// [`overlap_graph`] with the pairs sharing a hub of `stars` taken from
+/// the stars (none: every pair from the tiles).
+pub(super) fn graph(
+    tris: &[ScreenTri],
+    vp: Viewport,
+    stars: &Stars,
+    interpenetrate: impl Fn(u32, u32) -> bool,
+    budget: u64,
+    max_examples: usize,
+    cancel: Cancel,
+) -> OverlapGraph {
     let mut out = OverlapGraph {
         complete: true,
         ..OverlapGraph::default()
@@ -89,58 +115,107 @@ pub fn overlap_graph(
         bounds,
         start,
         items,
-    } = TileBins::new(tris, vp);
-    let mut edges: Vec<(u32, u32)> = Vec::new();
+    } = TileBins::new(tris, vp, |k| stars.group(k));
+    // (first shared tile, lower index, higher index, behind, in front) of
+    // each ordered pair, sorted at the end into the tiles' order.
+    let mut ordered: Vec<(usize, u32, u32, u32, u32)> = Vec::new();
     let mut examined = 0u64;
-    'tiles: for c in 0..tiles {
-        // Stopped like an exhausted budget; the analysis returns the error.
-        if cancel.check().is_err() {
+    // The first tile both boxes meet, if they meet and are two primitives.
+    let first_tile = |ka: u32, kb: u32| -> Option<usize> {
+        let (a, b) = (&tris[ka as usize], &tris[kb as usize]);
+        let (ba, bb) = (bounds[ka as usize]?, bounds[kb as usize]?);
+        let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
+        (a.prim != b.prim && first[0] <= ba[2].min(bb[2]) && first[1] <= ba[3].min(bb[3]))
+            .then_some(first[1] * tiles_x + first[0])
+    };
+    // Examines one pair (indices in either order); false when the budget
+    // is used up.
+    let mut examine = |ka: u32, kb: u32, c: usize, out: &mut OverlapGraph| -> bool {
+        let (ka, kb) = (ka.min(kb), ka.max(kb));
+        if examined >= budget {
             out.complete = false;
-            break 'tiles;
+            return false;
         }
-        let list = &items[start[c]..start[c + 1]];
-        for (i, &ka) in list.iter().enumerate() {
-            let (a, ba) = (&tris[ka as usize], bounds[ka as usize].unwrap_or_default());
-            for &kb in &list[i + 1..] {
-                let (b, bb) = (&tris[kb as usize], bounds[kb as usize].unwrap_or_default());
-                out.candidates += 1;
-                let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
-                if a.prim == b.prim
-                    || first[0] > ba[2].min(bb[2])
-                    || first[1] > ba[3].min(bb[3])
-                    || first[1] * tiles_x + first[0] != c
-                {
-                    continue;
-                }
-                if examined >= budget {
-                    out.complete = false;
-                    break 'tiles;
-                }
-                examined += 1;
-                if !interiors_overlap(&a.v, &b.v) || interpenetrate(a.prim, b.prim) {
-                    continue;
-                }
-                out.overlapping_pairs += 1;
-                let Some((x, y)) = overlap_point(&a.v, &b.v) else {
-                    continue;
+        examined += 1;
+        let (a, b) = (&tris[ka as usize], &tris[kb as usize]);
+        if !interiors_overlap(&a.v, &b.v) || interpenetrate(a.prim, b.prim) {
+            return true;
+        }
+        out.overlapping_pairs += 1;
+        let Some((x, y)) = overlap_point(&a.v, &b.v) else {
+            return true;
+        };
+        let (da, db) = (a.depth.eval(x, y), b.depth.eval(x, y));
+        if (da - db).abs() <= DEPTH_TIE {
+            out.ties += 1;
+            return true;
+        }
+        // (behind, in front) as screen-triangle indices.
+        let (behind, front) = if da > db { (ka, kb) } else { (kb, ka) };
+        ordered.push((c, ka, kb, behind, front));
+        true
+    };
+    'search: {
+        for (k, &(ka, kb)) in stars::screen_star_pairs(tris, stars).iter().enumerate() {
+            if cancel.poll_every(k).is_err() {
+                out.complete = false;
+                break 'search;
+            }
+            out.candidates += 1;
+            if let Some(c) = first_tile(ka, kb)
+                && !examine(ka, kb, c, &mut out)
+            {
+                break 'search;
+            }
+        }
+        for c in 0..tiles {
+            // Stopped like an exhausted budget; the analysis returns the error.
+            if cancel.check().is_err() {
+                out.complete = false;
+                break 'search;
+            }
+            let list = &items[start[c]..start[c + 1]];
+            let mut block_end = 0;
+            for (i, &ka) in list.iter().enumerate() {
+                let group = stars.group(ka as usize);
+                // The rest of this star's block shares its hub: those pairs
+                // are the star's.
+                let rest = if group == NO_STAR {
+                    i + 1
+                } else {
+                    if block_end <= i {
+                        block_end = i + 1;
+                        while block_end < list.len()
+                            && stars.group(list[block_end] as usize) == group
+                        {
+                            block_end += 1;
+                        }
+                    }
+                    block_end
                 };
-                let (da, db) = (a.depth.eval(x, y), b.depth.eval(x, y));
-                if (da - db).abs() <= DEPTH_TIE {
-                    out.ties += 1;
-                    continue;
-                }
-                // (behind, in front) as screen-triangle indices.
-                let (behind, front) = if da > db { (ka, kb) } else { (kb, ka) };
-                edges.push((behind, front));
-                let key = |k: u32| tris[k as usize].z.iter().copied().fold(f64::MIN, f64::max);
-                let (kb_, kf) = (key(behind), key(front));
-                let naive_ok = kb_ > kf || (kb_ == kf && behind < front);
-                if !naive_ok {
-                    out.naive_violations += 1;
-                    out.naive_example
-                        .get_or_insert((tris[behind as usize].prim, tris[front as usize].prim));
+                for &kb in &list[rest..] {
+                    out.candidates += 1;
+                    if first_tile(ka, kb) != Some(c) || stars.share(ka as usize, kb as usize) {
+                        continue;
+                    }
+                    if !examine(ka, kb, c, &mut out) {
+                        break 'search;
+                    }
                 }
             }
+        }
+    }
+    ordered.sort_unstable_by_key(|&(c, ka, kb, _, _)| (c, ka, kb));
+    let key = |k: u32| tris[k as usize].z.iter().copied().fold(f64::MIN, f64::max);
+    let mut edges: Vec<(u32, u32)> = Vec::with_capacity(ordered.len());
+    for &(_, _, _, behind, front) in &ordered {
+        edges.push((behind, front));
+        let (kb_, kf) = (key(behind), key(front));
+        let naive_ok = kb_ > kf || (kb_ == kf && behind < front);
+        if !naive_ok {
+            out.naive_violations += 1;
+            out.naive_example
+                .get_or_insert((tris[behind as usize].prim, tris[front as usize].prim));
         }
     }
     out.examined = examined;
@@ -176,7 +251,8 @@ struct TileBins {
 }
 
 impl TileBins {
-    fn new(tris: &[ScreenTri], vp: Viewport) -> Self {
+    /// The bins of `tris`, each tile's list sorted by `(group(k), k)`.
+    fn new(tris: &[ScreenTri], vp: Viewport, group: impl Fn(usize) -> u32) -> Self {
         let n = tris.len();
         // Tiles of about one triangle each, 4 to 256 pixels wide, then
         // wider while the triangles cover too many: a window full of large
@@ -227,10 +303,12 @@ impl TileBins {
         }
         let mut fill = start.clone();
         let mut items = vec![0u32; start[tiles]];
-        for (k, b) in bounds.iter().enumerate() {
-            if let Some(b) = b {
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        order.sort_by_key(|&k| (group(k as usize), k));
+        for k in order {
+            if let Some(b) = &bounds[k as usize] {
                 for_tiles(b, &mut |c| {
-                    items[fill[c]] = k as u32;
+                    items[fill[c]] = k;
                     fill[c] += 1;
                 });
             }

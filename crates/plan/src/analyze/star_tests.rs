@@ -2,9 +2,12 @@
 //! fans, folded fans, books and clutter, in space and on the screen.
 
 use glam::DVec3;
-use hider_scene::Cancel;
+use hider_geom::star::Stars;
+use hider_geom::{FixedPt, PlaneEq, Viewport};
+use hider_scene::{Cancel, ScreenTri};
 
 use super::intersect::{Contact, Grid, PairSearch, contact, find_pairs};
+use super::overlap::{OverlapGraph, graph, overlap_graph};
 
 /// A small deterministic generator (tests only).
 pub(super) struct Lcg(pub(super) u64);
@@ -232,6 +235,88 @@ fn fan_pairs_grow_linearly() {
         assert!(
             large.1 < 3 * small.1,
             "lift {lift}: tested {small:?} {large:?}"
+        );
+    }
+}
+
+/// World triangles seen from above on a 64 x 64 window (x, y in `[-2,
+/// 2]`), depth from z: shared corners stay shared after snapping.
+pub(super) fn screen(tris: &[[DVec3; 3]]) -> Vec<ScreenTri> {
+    let fixed = |p: DVec3| {
+        let f = |c: f64| ((c + 2.0) * 16.0 * 256.0).round() as i32;
+        FixedPt::new(f(p.x), f(p.y))
+    };
+    tris.iter()
+        .enumerate()
+        .filter_map(|(k, t)| {
+            let mut v = t.map(fixed);
+            let mut z = t.map(|p| 0.5 + p.z / 8.0);
+            if hider_geom::orient2d(v[0], v[1], v[2]) < 0 {
+                v.swap(1, 2);
+                z.swap(1, 2);
+            }
+            Some(ScreenTri {
+                v,
+                z,
+                w: [1.0; 3],
+                depth: PlaneEq::from_points(&v, z)?,
+                inv_w: PlaneEq::constant(1.0),
+                prim: k as u32,
+                front_facing: true,
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn screen_star_candidates_find_what_the_tiles_find() {
+    let mut r = Lcg(1972);
+    let (mut edges, mut ties) = (0, 0);
+    for round in 0..300 {
+        let tris = screen(&scene(&mut r));
+        let crossing = |a: u32, b: u32| (a + b) % 11 == 0;
+        let vp = Viewport::new(64, 64);
+        let cancel = Cancel::default();
+        let want = graph(&tris, vp, &Stars::default(), crossing, u64::MAX, 4, cancel);
+        let got = overlap_graph(&tris, vp, crossing, u64::MAX, 4, cancel);
+        let findings = |g: &OverlapGraph| OverlapGraph {
+            candidates: 0,
+            examined: 0,
+            ..g.clone()
+        };
+        assert_eq!(findings(&got), findings(&want), "round {round}");
+        edges += want.edges;
+        ties += want.ties;
+    }
+    assert!(edges > 1000 && ties > 1000, "{edges} {ties}");
+}
+
+/// Doubling a fan or a cone on the screen less than triples the pairs
+/// the overlap graph lists and examines.
+#[test]
+fn screen_fan_pairs_grow_linearly() {
+    for lift in [0.0, 0.5] {
+        let work = |n| {
+            let world: Vec<[DVec3; 3]> = fan(n, lift).into_iter().map(|(_, t)| t).collect();
+            let g = overlap_graph(
+                &screen(&world),
+                Viewport::new(64, 64),
+                |_, _| false,
+                u64::MAX,
+                4,
+                Cancel::default(),
+            );
+            assert!(g.complete && g.overlapping_pairs == 0, "{g:?}");
+            (g.candidates, g.examined)
+        };
+        let (small, large) = (work(1000), work(2000));
+        assert!(
+            large.0 < 3 * small.0,
+            "lift {lift}: listed {small:?} {large:?}"
+        );
+        assert!(
+            large.1 < 3 * small.1,
+            "lift {lift}: examined {small:?} {large:?}"
         );
     }
 }
