@@ -149,6 +149,57 @@ fn for_starts_within<P: AngularPoint>(
     }
 }
 
+/// Fewest triangles sharing a vertex for the callers here to handle it as
+/// a star rather than by their bins: below that, the bins' pairs at the
+/// vertex are few anyway (a regular mesh has six triangles at a vertex).
+pub const MIN_STAR: usize = 12;
+
+/// The stars of snapped screen triangles (corners the same vertex when
+/// their fixed-point positions are equal), of at least [`MIN_STAR`]
+/// triangles. `corners(k)` is `None` for a triangle to leave out; one
+/// without area belongs to none (its "interior" is a segment, which the
+/// sector argument does not cover).
+pub fn fixed_stars(n: usize, corners: impl Fn(usize) -> Option<[FixedPt; 3]>) -> Stars {
+    Stars::new(
+        n,
+        |k| {
+            let v = corners(k)?;
+            (crate::edge::orient2d(v[0], v[1], v[2]) != 0).then(|| v.map(|p| (p.x, p.y)))
+        },
+        MIN_STAR,
+    )
+}
+
+/// Every pair `(i, j)`, `i < j`, of snapped triangles (corners
+/// `corners(t)`) sharing a star of `stars` whose closed sectors meet
+/// there: a superset of the pairs sharing a star whose interiors overlap.
+/// Sorted, each once.
+pub fn fixed_star_pairs(stars: &Stars, corners: impl Fn(u32) -> [FixedPt; 3]) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    for h in 0..stars.len() {
+        let members = stars.members(h);
+        let (t, i) = members[0];
+        let apex = corners(t)[usize::from(i)];
+        let sectors: Vec<Sector<FixedPt>> = members
+            .iter()
+            .filter_map(|&(t, i)| {
+                let (v, i) = (corners(t), usize::from(i));
+                Sector::around(v[i], v[(i + 1) % 3], v[(i + 2) % 3])
+            })
+            .collect();
+        // Members have area, so none was left out and `sectors` lines up
+        // with `members`.
+        debug_assert_eq!(sectors.len(), members.len());
+        for (x, y) in sector_pairs(apex, &sectors, |_| true) {
+            let (a, b) = (members[x as usize].0, members[y as usize].0);
+            out.push((a.min(b), a.max(b)));
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
 /// No star: the padding of [`Stars::of`] and the group of a triangle in
 /// no star.
 pub const NO_STAR: u32 = u32::MAX;
@@ -247,6 +298,12 @@ impl Stars {
     /// its stars, or [`NO_STAR`].
     pub fn group(&self, t: usize) -> u32 {
         self.of.get(t).map_or(NO_STAR, |s| s[0])
+    }
+
+    /// The stars triangle `t` belongs to, ascending, padded with
+    /// [`NO_STAR`].
+    pub fn stars_of(&self, t: usize) -> [u32; 3] {
+        self.of.get(t).copied().unwrap_or([NO_STAR; 3])
     }
 
     /// Whether triangles `a` and `b` belong to a common star (their pair

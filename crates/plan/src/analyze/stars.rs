@@ -33,17 +33,13 @@
 //! are compared directly.
 
 use glam::DVec3;
-use hider_geom::FixedPt;
 use hider_geom::star::{AngularPoint, Sector, Stars, sector_pairs};
 use hider_scene::ScreenTri;
 
 use super::intersect::{drop_axis, project};
 use super::predicates::orient2d;
 
-/// Fewest triangles sharing a vertex for it to be handled as a star
-/// rather than by the bins: below that, the bins' pairs at the vertex are
-/// few anyway (a regular mesh has six triangles at a vertex).
-pub const MIN_STAR: usize = 12;
+pub use hider_geom::star::MIN_STAR;
 
 /// A point of a plane of projection, ordered exactly by [`orient2d`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -120,46 +116,14 @@ pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &Stars) -> Vec
     out
 }
 
-/// The stars of snapped screen triangles: corners are the same vertex when
-/// their fixed-point positions are equal. Triangles without area on the
-/// screen belong to none (their "interiors" are segments, which the
-/// sector argument does not cover).
+/// The stars of snapped screen triangles ([`hider_geom::star::fixed_stars`]).
 pub(crate) fn screen_stars(tris: &[ScreenTri]) -> Stars {
-    Stars::new(
-        tris.len(),
-        |k| {
-            let v = tris[k].v;
-            (hider_geom::orient2d(v[0], v[1], v[2]) != 0).then(|| v.map(|p| (p.x, p.y)))
-        },
-        MIN_STAR,
-    )
+    hider_geom::star::fixed_stars(tris.len(), |k| Some(tris[k].v))
 }
 
 /// Candidate pairs `(i, j)`, `i < j`, of screen triangles sharing a hub of
 /// `stars` whose closed sectors meet there: a superset of the pairs whose
 /// interiors overlap. Sorted, each once.
 pub(crate) fn screen_star_pairs(tris: &[ScreenTri], stars: &Stars) -> Vec<(u32, u32)> {
-    let mut out = Vec::new();
-    for h in 0..stars.len() {
-        let members = stars.members(h);
-        let apex: FixedPt = {
-            let (t, i) = members[0];
-            tris[t as usize].v[usize::from(i)]
-        };
-        let sectors: Vec<Sector<FixedPt>> = members
-            .iter()
-            .map(|&(t, i)| {
-                let (v, i) = (tris[t as usize].v, usize::from(i));
-                Sector::around(v[i], v[(i + 1) % 3], v[(i + 2) % 3])
-                    .expect("a star member has area")
-            })
-            .collect();
-        for (x, y) in sector_pairs(apex, &sectors, |_| true) {
-            let (a, b) = (members[x as usize].0, members[y as usize].0);
-            out.push((a.min(b), a.max(b)));
-        }
-    }
-    out.sort_unstable();
-    out.dedup();
-    out
+    hider_geom::star::fixed_star_pairs(stars, |t| tris[t as usize].v)
 }
