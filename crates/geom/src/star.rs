@@ -200,7 +200,7 @@ pub fn fixed_star_pairs(stars: &Stars, corners: impl Fn(u32) -> [FixedPt; 3]) ->
     out
 }
 
-/// No star: the padding of [`Stars::of`] and the group of a triangle in
+/// No star: the padding of [`Stars::stars_of`] and the group of a triangle in
 /// no star.
 pub const NO_STAR: u32 = u32::MAX;
 
@@ -376,7 +376,7 @@ mod tests {
         };
         for round in 0..200 {
             let apex = p(rnd(3), rnd(3));
-            let n = 2 + (round % 12) as usize;
+            let n = 2 + round % 12;
             // Small coordinates: many equal and opposite directions.
             let sectors: Vec<_> = (0..n)
                 .filter_map(|_| Sector::around(apex, p(rnd(4), rnd(4)), p(rnd(4), rnd(4))))

@@ -225,10 +225,10 @@ pub struct PairSearch {
 
 /// Finds interpenetrating and coplanar-overlapping pairs among `tris`
 /// (primitive id and world-space corners), testing at most `budget` pairs
-/// exactly. Pairs sharing a vertex of a star come from the star
-/// ([`super::stars`]), the others from the grid; the pairs found are
-/// listed in the grid's order (first shared cell, then the two indices),
-/// whichever found them.
+/// exactly. Pairs sharing a vertex of a star come from the star (sectors
+/// around the shared vertex, `stars.rs`), the others from the grid; the
+/// pairs found are listed in the grid's order (first shared cell, then the
+/// two indices), whichever found them.
 pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> PairSearch {
     let mut out = PairSearch {
         complete: true,

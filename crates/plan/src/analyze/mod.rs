@@ -38,7 +38,7 @@ mod search;
 pub mod splits;
 #[cfg(test)]
 mod star_tests;
-pub mod stars;
+mod stars;
 
 use std::time::Instant;
 

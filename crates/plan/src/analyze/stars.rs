@@ -10,7 +10,7 @@
 //! holds `v`), so only pairs whose angular sectors at `v` meet can meet;
 //! [`hider_geom::star::sector_pairs`] lists those in `O(n log n + k)`.
 //! The bins then skip every pair sharing such a vertex (a *hub*: at
-//! least [`MIN_STAR`] triangles), and the candidates here are tested with
+//! least [`hider_geom::star::MIN_STAR`] triangles), and the candidates here are tested with
 //! the same exact tests, so the pairs found are those of the bins alone.
 //!
 //! In space ([`world_star_pairs`]) the sectors are compared in a plane of
@@ -39,8 +39,6 @@ use hider_scene::ScreenTri;
 use super::intersect::{drop_axis, project};
 use super::predicates::orient2d;
 
-pub use hider_geom::star::MIN_STAR;
-
 /// A point of a plane of projection, ordered exactly by [`orient2d`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Flat([f64; 2]);
@@ -60,7 +58,11 @@ impl AngularPoint for Flat {
 pub(crate) fn world_stars(tris: &[(u32, [DVec3; 3])]) -> Stars {
     // `+ 0.0` makes -0 and 0 one key.
     let key = |p: DVec3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
-    Stars::new(tris.len(), |k| Some(tris[k].1.map(key)), MIN_STAR)
+    Stars::new(
+        tris.len(),
+        |k| Some(tris[k].1.map(key)),
+        hider_geom::star::MIN_STAR,
+    )
 }
 
 /// Candidate pairs `(i, j)`, `i < j` (indices into `tris`), of triangles
