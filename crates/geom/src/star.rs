@@ -224,21 +224,53 @@ pub struct Stars {
 impl Stars {
     /// The stars of `n` triangles whose corners have the keys `corners(k)`
     /// (equal keys, equal points), with at least `min_members` triangles
-    /// each. A triangle for which `corners` gives `None`, or with two equal
-    /// corner keys, belongs to no star.
+    /// each. A triangle for which `corners` gives `None`, with two equal
+    /// corner keys, or with an edge that `min_members` triangles share (a
+    /// book's page), belongs to no star.
     pub fn new<K: Hash + Eq + Copy>(
         n: usize,
         corners: impl Fn(usize) -> Option<[K; 3]>,
         min_members: usize,
     ) -> Self {
-        let keys: Vec<Option<[K; 3]>> = (0..n)
+        let mut keys: Vec<Option<[K; 3]>> = (0..n)
             .map(|k| corners(k).filter(|c| c[0] != c[1] && c[1] != c[2] && c[0] != c[2]))
             .collect();
-        let mut valence: HashMap<K, u32> = HashMap::new();
-        for c in keys.iter().flatten() {
-            for key in c {
-                *valence.entry(*key).or_default() += 1;
+        let valences = |keys: &[Option<[K; 3]>]| {
+            let mut valence: HashMap<K, u32> = HashMap::new();
+            for c in keys.iter().flatten() {
+                for key in c {
+                    *valence.entry(*key).or_default() += 1;
+                }
             }
+            valence
+        };
+        let min = min_members.max(2);
+        let mut valence = valences(&keys);
+        // A book (many triangles around one edge) is a star at both ends of
+        // the edge in which every pair shares the edge, and every pair's
+        // sectors meet along it: the sectors would list them all. Its pages
+        // are left to the caller's bins, as if there were no star.
+        let spines = {
+            let mut edges: HashMap<(K, K), u32> = HashMap::new();
+            for c in keys.iter().flatten() {
+                for i in 0..3 {
+                    let (a, b) = (c[i], c[(i + 1) % 3]);
+                    if valence[&a] as usize >= min && valence[&b] as usize >= min {
+                        *edges.entry((a, b)).or_default() += 1;
+                        *edges.entry((b, a)).or_default() += 1;
+                    }
+                }
+            }
+            edges.retain(|_, count| *count as usize >= min);
+            edges
+        };
+        if !spines.is_empty() {
+            for c in &mut keys {
+                if c.is_some_and(|c| (0..3).any(|i| spines.contains_key(&(c[i], c[(i + 1) % 3])))) {
+                    *c = None;
+                }
+            }
+            valence = valences(&keys);
         }
         // Hub ids in order of first appearance, so that they do not depend
         // on the hash order.
@@ -248,7 +280,7 @@ impl Stars {
         for (t, c) in keys.iter().enumerate() {
             let Some(c) = c else { continue };
             for (i, key) in c.iter().enumerate() {
-                if (valence[key] as usize) < min_members.max(2) {
+                if (valence[key] as usize) < min {
                     continue;
                 }
                 let next = hub.len() as u32;
@@ -415,6 +447,10 @@ mod tests {
         assert_eq!(stars.group(6), NO_STAR);
         assert!(stars.share(0, 4) && !stars.share(0, 5) && !stars.share(0, 6));
         assert!(Stars::new(tris.len(), |k| Some(tris[k]), 6).is_empty());
+        assert!(Stars::default().is_empty());
+        // A book of five pages around the edge (0, 1): no star.
+        let book = [[0, 1, 2], [1, 0, 3], [0, 1, 4], [0, 5, 1], [6, 0, 1]];
+        assert!(Stars::new(book.len(), |k| Some(book[k]), 5).is_empty());
     }
 
     #[test]
