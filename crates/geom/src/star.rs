@@ -102,50 +102,61 @@ pub fn sector_pairs<P: AngularPoint>(
     sectors: &[Sector<P>],
     query: impl Fn(usize) -> bool,
 ) -> Vec<(u32, u32)> {
-    let by_start = |ids: &mut Vec<u32>| {
-        ids.sort_by(|&a, &b| compare(apex, sectors[a as usize].start, sectors[b as usize].start));
-    };
+    sector_pairs_within(apex, sectors, query, usize::MAX).unwrap_or_default()
+}
+
+/// [`sector_pairs`], or `None` as soon as more than `most` pairs (counted
+/// before removing the pairs found twice) are in sight: a *dense* star,
+/// whose sectors overlap so much that they do not save the caller any
+/// work, found without listing its pairs.
+pub fn sector_pairs_within<P: AngularPoint>(
+    apex: P,
+    sectors: &[Sector<P>],
+    query: impl Fn(usize) -> bool,
+    most: usize,
+) -> Option<Vec<(u32, u32)>> {
     let mut all: Vec<u32> = (0..sectors.len() as u32).collect();
-    by_start(&mut all);
-    let mut asked: Vec<u32> = all.iter().copied().filter(|&i| query(i as usize)).collect();
-    by_start(&mut asked);
+    all.sort_by(|&a, &b| compare(apex, sectors[a as usize].start, sectors[b as usize].start));
+    // Sorted too: `all` is.
+    let asked: Vec<u32> = all.iter().copied().filter(|&i| query(i as usize)).collect();
     let mut out = Vec::new();
     // Pairs where the asked sector holds the other's start, then pairs
     // where any sector holds an asked one's start.
     for (holders, starts) in [(&asked, &all), (&all, &asked)] {
         for &h in holders {
-            let s = sectors[h as usize];
-            for_starts_within(apex, sectors, starts, s, |k| {
+            let (first, second) = starts_within(apex, sectors, starts, sectors[h as usize]);
+            if out.len() + first.len() + second.len() > most {
+                return None;
+            }
+            for &k in first.iter().chain(second) {
                 if k != h {
                     out.push((h.min(k), h.max(k)));
                 }
-            });
+            }
         }
     }
     out.sort_unstable();
     out.dedup();
-    out
+    Some(out)
 }
 
-/// Calls `f` on each of `ids` (sorted by start) whose start lies in the
-/// closed sector `s`: one circular run of the order.
-fn for_starts_within<P: AngularPoint>(
+/// The entries of `ids` (sorted by start) whose start lies in the closed
+/// sector `s`: one circular run of the order, as at most two slices.
+fn starts_within<'a, P: AngularPoint>(
     apex: P,
     sectors: &[Sector<P>],
-    ids: &[u32],
+    ids: &'a [u32],
     s: Sector<P>,
-    mut f: impl FnMut(u32),
-) {
+) -> (&'a [u32], &'a [u32]) {
     let start_of = |k: &u32| sectors[*k as usize].start;
     let lo = ids.partition_point(|k| compare(apex, start_of(k), s.start) == Ordering::Less);
     let hi = ids.partition_point(|k| compare(apex, start_of(k), s.end) != Ordering::Greater);
     if compare(apex, s.start, s.end) != Ordering::Greater {
-        ids[lo..hi.max(lo)].iter().copied().for_each(&mut f);
+        (&ids[lo..hi.max(lo)], &[])
     } else {
         // The sector crosses the x axis: the end of the order, then its
         // beginning.
-        ids[lo..].iter().copied().for_each(&mut f);
-        ids[..hi].iter().copied().for_each(&mut f);
+        (&ids[lo..], &ids[..hi])
     }
 }
 
@@ -170,12 +181,30 @@ pub fn fixed_stars(n: usize, corners: impl Fn(usize) -> Option<[FixedPt; 3]>) ->
     )
 }
 
+/// Most candidate pairs per member a star may yield before it counts as
+/// dense and is dissolved ([`Stars::retain`]): sectors that overlap that
+/// much (a pleated fan seen edge-on, random triangles around one vertex)
+/// save nothing over the caller's bins, which then take the star's pairs
+/// as they did without stars.
+pub const DENSE_PAIRS_PER_MEMBER: usize = 8;
+
+/// The pair budget of a star of `members` triangles (see
+/// [`DENSE_PAIRS_PER_MEMBER`]).
+pub fn dense_limit(members: usize) -> usize {
+    DENSE_PAIRS_PER_MEMBER * members + 64
+}
+
 /// Every pair `(i, j)`, `i < j`, of snapped triangles (corners
 /// `corners(t)`) sharing a star of `stars` whose closed sectors meet
 /// there: a superset of the pairs sharing a star whose interiors overlap.
-/// Sorted, each once.
-pub fn fixed_star_pairs(stars: &Stars, corners: impl Fn(u32) -> [FixedPt; 3]) -> Vec<(u32, u32)> {
+/// Sorted, each once. Dense stars are dissolved first (their triangles
+/// leave `stars`, see [`DENSE_PAIRS_PER_MEMBER`]).
+pub fn fixed_star_pairs(
+    stars: &mut Stars,
+    corners: impl Fn(u32) -> [FixedPt; 3],
+) -> Vec<(u32, u32)> {
     let mut out = Vec::new();
+    let mut dense = Vec::new();
     for h in 0..stars.len() {
         let members = stars.members(h);
         let (t, i) = members[0];
@@ -190,10 +219,18 @@ pub fn fixed_star_pairs(stars: &Stars, corners: impl Fn(u32) -> [FixedPt; 3]) ->
         // Members have area, so none was left out and `sectors` lines up
         // with `members`.
         debug_assert_eq!(sectors.len(), members.len());
-        for (x, y) in sector_pairs(apex, &sectors, |_| true) {
-            let (a, b) = (members[x as usize].0, members[y as usize].0);
-            out.push((a.min(b), a.max(b)));
+        match sector_pairs_within(apex, &sectors, |_| true, dense_limit(members.len())) {
+            Some(pairs) => out.extend(pairs.into_iter().map(|(x, y)| {
+                let (a, b) = (members[x as usize].0, members[y as usize].0);
+                (a.min(b), a.max(b))
+            })),
+            None => dense.push(h),
         }
+    }
+    if !dense.is_empty() {
+        stars.retain(|h| dense.binary_search(&h).is_err());
+        // A pair of a dissolved star that also shares a kept one stays.
+        out.retain(|&(a, b)| stars.share(a as usize, b as usize));
     }
     out.sort_unstable();
     out.dedup();
@@ -338,6 +375,29 @@ impl Stars {
         self.of.get(t).copied().unwrap_or([NO_STAR; 3])
     }
 
+    /// Keeps the stars for which `keep(h)` holds, in order (renumbered);
+    /// the triangles of the others belong to them no more.
+    pub fn retain(&mut self, keep: impl Fn(usize) -> bool) {
+        let mut renumber = vec![NO_STAR; self.len()];
+        let mut start = vec![0usize];
+        let mut members = Vec::new();
+        for (h, id) in renumber.iter_mut().enumerate() {
+            if keep(h) {
+                *id = start.len() as u32 - 1;
+                members.extend_from_slice(self.members(h));
+                start.push(members.len());
+            }
+        }
+        for of in &mut self.of {
+            for h in of.iter_mut().filter(|h| **h != NO_STAR) {
+                *h = renumber[*h as usize];
+            }
+            of.sort_unstable();
+        }
+        self.start = start;
+        self.members = members;
+    }
+
     /// Whether triangles `a` and `b` belong to a common star (their pair
     /// is then one of [`sector_pairs`]' of that star, not of the bins').
     pub fn share(&self, a: usize, b: usize) -> bool {
@@ -448,6 +508,9 @@ mod tests {
         assert!(stars.share(0, 4) && !stars.share(0, 5) && !stars.share(0, 6));
         assert!(Stars::new(tris.len(), |k| Some(tris[k]), 6).is_empty());
         assert!(Stars::default().is_empty());
+        let mut kept = stars.clone();
+        kept.retain(|_| false);
+        assert!(kept.is_empty() && kept.group(0) == NO_STAR && !kept.share(0, 4));
         // A book of five pages around the edge (0, 1): no star.
         let book = [[0, 1, 2], [1, 0, 3], [0, 1, 4], [0, 5, 1], [6, 0, 1]];
         assert!(Stars::new(book.len(), |k| Some(book[k]), 5).is_empty());

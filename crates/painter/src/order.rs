@@ -370,14 +370,15 @@ impl Orderer {
             return;
         }
         let n = scene.tris.len();
-        let stars = fixed_stars(n, |k| {
+        let mut stars = fixed_stars(n, |k| {
             (self.centres[k] == Centres::Many).then_some(scene.tris[k].v)
         });
+        // Dense stars are dissolved first.
+        let pairs = fixed_star_pairs(&mut stars, |t| scene.tris[t as usize].v);
         if stars.is_empty() {
             return;
         }
         self.stars_of.extend((0..n).map(|k| stars.stars_of(k)));
-        let pairs = fixed_star_pairs(&stars, |t| scene.tris[t as usize].v);
         self.partners_start.resize(n + 1, 0);
         for &(a, b) in &pairs {
             self.partners_start[a as usize + 1] += 1;

@@ -244,7 +244,9 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
     let lo = boxes.iter().fold(DVec3::INFINITY, |m, b| m.min(b.0));
     let hi = boxes.iter().fold(DVec3::NEG_INFINITY, |m, b| m.max(b.1));
     let grid = Grid::new(lo, hi, &boxes);
-    let stars = stars::world_stars(tris);
+    let mut stars = stars::world_stars(tris);
+    // Before the cells: dense stars are dissolved into them.
+    let star_pairs = stars::world_star_pairs(tris, &mut stars);
     // (first shared cell, lower index, higher index, contact) of each pair
     // found, sorted at the end.
     let mut found: Vec<(usize, u32, u32, Contact)> = Vec::new();
@@ -263,7 +265,7 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
         true
     };
     'search: {
-        for (k, &(ka, kb)) in stars::world_star_pairs(tris, &stars).iter().enumerate() {
+        for (k, &(ka, kb)) in star_pairs.iter().enumerate() {
             if cancel.poll_every(k).is_err() {
                 out.complete = false;
                 break 'search;

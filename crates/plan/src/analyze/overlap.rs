@@ -83,7 +83,7 @@ pub fn overlap_graph(
     graph(
         tris,
         vp,
-        &stars,
+        stars,
         interpenetrate,
         budget,
         max_examples,
@@ -92,11 +92,12 @@ pub fn overlap_graph(
 }
 
 /// [`overlap_graph`] with the pairs sharing a hub of `stars` taken from
-/// the stars (none: every pair from the tiles).
+/// the stars (none: every pair from the tiles; a dense star is dissolved
+/// into the tiles).
 pub(super) fn graph(
     tris: &[ScreenTri],
     vp: Viewport,
-    stars: &Stars,
+    mut stars: Stars,
     interpenetrate: impl Fn(u32, u32) -> bool,
     budget: u64,
     max_examples: usize,
@@ -109,6 +110,8 @@ pub(super) fn graph(
     if tris.len() < 2 {
         return out;
     }
+    // Before the tiles: dense stars are dissolved into them.
+    let star_pairs = stars::screen_star_pairs(tris, &mut stars);
     let TileBins {
         tiles,
         tiles_x,
@@ -156,7 +159,7 @@ pub(super) fn graph(
         true
     };
     'search: {
-        for (k, &(ka, kb)) in stars::screen_star_pairs(tris, stars).iter().enumerate() {
+        for (k, &(ka, kb)) in star_pairs.iter().enumerate() {
             if cancel.poll_every(k).is_err() {
                 out.complete = false;
                 break 'search;

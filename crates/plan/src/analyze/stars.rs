@@ -33,7 +33,7 @@
 //! are compared directly.
 
 use glam::DVec3;
-use hider_geom::star::{AngularPoint, Sector, Stars, sector_pairs};
+use hider_geom::star::{AngularPoint, Sector, Stars, dense_limit, sector_pairs_within};
 use hider_scene::ScreenTri;
 
 use super::intersect::{drop_axis, project};
@@ -69,10 +69,14 @@ pub(crate) fn world_stars(tris: &[(u32, [DVec3; 3])]) -> Stars {
 /// sharing a hub of `stars` whose sectors meet there in a projection
 /// that [`super::intersect::contact`] may use (see the module
 /// documentation): every pair sharing a hub that `contact` can report is
-/// among them. Sorted, each once.
-pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &Stars) -> Vec<(u32, u32)> {
+/// among them. Sorted, each once. Dense stars are dissolved first (their
+/// pairs go back to the bins, see
+/// [`hider_geom::star::DENSE_PAIRS_PER_MEMBER`]).
+pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &mut Stars) -> Vec<(u32, u32)> {
     let mut out = Vec::new();
-    for h in 0..stars.len() {
+    let mut dense = Vec::new();
+    'stars: for h in 0..stars.len() {
+        let before = out.len();
         let members = stars.members(h);
         // The axes along which each member asks: its drop axis, or all
         // three when its projection along that one is flat.
@@ -107,11 +111,23 @@ pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &Stars) -> Vec
                     sectors.push(s);
                 }
             }
-            for (x, y) in sector_pairs(apex, &sectors, |k| asks[who[k]] & (1 << d) != 0) {
+            let asked = |k: usize| asks[who[k]] & (1 << d) != 0;
+            let Some(pairs) = sector_pairs_within(apex, &sectors, asked, dense_limit(who.len()))
+            else {
+                out.truncate(before);
+                dense.push(h);
+                continue 'stars;
+            };
+            for (x, y) in pairs {
                 let (a, b) = (members[who[x as usize]].0, members[who[y as usize]].0);
                 out.push((a.min(b), a.max(b)));
             }
         }
+    }
+    if !dense.is_empty() {
+        stars.retain(|h| dense.binary_search(&h).is_err());
+        // A pair of a dissolved star that also shares a kept one stays.
+        out.retain(|&(a, b)| stars.share(a as usize, b as usize));
     }
     out.sort_unstable();
     out.dedup();
@@ -126,6 +142,6 @@ pub(crate) fn screen_stars(tris: &[ScreenTri]) -> Stars {
 /// Candidate pairs `(i, j)`, `i < j`, of screen triangles sharing a hub of
 /// `stars` whose closed sectors meet there: a superset of the pairs whose
 /// interiors overlap. Sorted, each once.
-pub(crate) fn screen_star_pairs(tris: &[ScreenTri], stars: &Stars) -> Vec<(u32, u32)> {
+pub(crate) fn screen_star_pairs(tris: &[ScreenTri], stars: &mut Stars) -> Vec<(u32, u32)> {
     hider_geom::star::fixed_star_pairs(stars, |t| tris[t as usize].v)
 }
