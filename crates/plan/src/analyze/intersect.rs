@@ -247,6 +247,7 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
     let mut stars = stars::world_stars(tris);
     // Before the cells: dense stars are dissolved into them.
     let star_pairs = stars::world_star_pairs(tris, &mut stars);
+    let starred = !stars.is_empty();
     // (first shared cell, lower index, higher index, contact) of each pair
     // found, sorted at the end.
     let mut found: Vec<(usize, u32, u32, Contact)> = Vec::new();
@@ -285,7 +286,11 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
             let list = &items[start[c]..start[c + 1]];
             let mut block_end = 0;
             for (i, &ka) in list.iter().enumerate() {
-                let group = stars.group(ka as usize);
+                let group = if starred {
+                    stars.group(ka as usize)
+                } else {
+                    NO_STAR
+                };
                 // The rest of this star's block shares its hub: those pairs
                 // are the star's.
                 let rest = if group == NO_STAR {
@@ -308,7 +313,7 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
                     let both = (ba.0.max(bb.0), ba.1.min(bb.1));
                     if both.0.cmpgt(both.1).any()
                         || grid.cell_of(both.0) != c
-                        || stars.share(ka as usize, kb as usize)
+                        || (starred && stars.share(ka as usize, kb as usize))
                     {
                         continue;
                     }
@@ -319,7 +324,10 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
             }
         }
     }
-    found.sort_unstable_by_key(|&(c, ka, kb, _)| (c, ka, kb));
+    // Without stars the cells listed the pairs in this order already.
+    if starred {
+        found.sort_unstable_by_key(|&(c, ka, kb, _)| (c, ka, kb));
+    }
     for (_, ka, kb, contact) in found {
         let (a, b) = (tris[ka as usize].0, tris[kb as usize].0);
         let pair = (a.min(b), a.max(b));

@@ -112,6 +112,7 @@ pub(super) fn graph(
     }
     // Before the tiles: dense stars are dissolved into them.
     let star_pairs = stars::screen_star_pairs(tris, &mut stars);
+    let starred = !stars.is_empty();
     let TileBins {
         tiles,
         tiles_x,
@@ -180,7 +181,11 @@ pub(super) fn graph(
             let list = &items[start[c]..start[c + 1]];
             let mut block_end = 0;
             for (i, &ka) in list.iter().enumerate() {
-                let group = stars.group(ka as usize);
+                let group = if starred {
+                    stars.group(ka as usize)
+                } else {
+                    NO_STAR
+                };
                 // The rest of this star's block shares its hub: those pairs
                 // are the star's.
                 let rest = if group == NO_STAR {
@@ -198,7 +203,9 @@ pub(super) fn graph(
                 };
                 for &kb in &list[rest..] {
                     out.candidates += 1;
-                    if first_tile(ka, kb) != Some(c) || stars.share(ka as usize, kb as usize) {
+                    if first_tile(ka, kb) != Some(c)
+                        || (starred && stars.share(ka as usize, kb as usize))
+                    {
                         continue;
                     }
                     if !examine(ka, kb, c, &mut out) {
@@ -208,7 +215,10 @@ pub(super) fn graph(
             }
         }
     }
-    ordered.sort_unstable_by_key(|&(c, ka, kb, _, _)| (c, ka, kb));
+    // Without stars the cells listed the pairs in this order already.
+    if starred {
+        ordered.sort_unstable_by_key(|&(c, ka, kb, _, _)| (c, ka, kb));
+    }
     let key = |k: u32| tris[k as usize].z.iter().copied().fold(f64::MIN, f64::max);
     let mut edges: Vec<(u32, u32)> = Vec::with_capacity(ordered.len());
     for &(_, _, _, behind, front) in &ordered {
