@@ -159,6 +159,8 @@ pub(super) fn graph(
         ordered.push((c, ka, kb, behind, front));
         true
     };
+    // Counted in a local: the loop below is the analysis's hottest.
+    let mut candidates = 0u64;
     'search: {
         for (k, &(ka, kb)) in star_pairs.iter().enumerate() {
             if cancel.poll_every(k).is_err() {
@@ -201,9 +203,16 @@ pub(super) fn graph(
                     }
                     block_end
                 };
+                // The old inner loop, tight: a listed triangle has bounds.
+                let (a, ba) = (&tris[ka as usize], bounds[ka as usize].unwrap_or_default());
                 for &kb in &list[rest..] {
-                    out.candidates += 1;
-                    if first_tile(ka, kb) != Some(c)
+                    let (b, bb) = (&tris[kb as usize], bounds[kb as usize].unwrap_or_default());
+                    candidates += 1;
+                    let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
+                    if a.prim == b.prim
+                        || first[0] > ba[2].min(bb[2])
+                        || first[1] > ba[3].min(bb[3])
+                        || first[1] * tiles_x + first[0] != c
                         || (starred && stars.share(ka as usize, kb as usize))
                     {
                         continue;
@@ -215,6 +224,7 @@ pub(super) fn graph(
             }
         }
     }
+    out.candidates += candidates;
     // Without stars the cells listed the pairs in this order already.
     if starred {
         ordered.sort_unstable_by_key(|&(c, ka, kb, _, _)| (c, ka, kb));
