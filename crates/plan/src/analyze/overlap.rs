@@ -120,8 +120,11 @@ pub(super) fn graph(
         start,
         items,
     } = TileBins::new(tris, vp, |k| stars.group(k));
-    // (first shared tile, lower index, higher index, behind, in front) of
-    // each ordered pair, sorted at the end into the tiles' order.
+    // The "in front of" edges `(behind, in front)`, in the tiles' order:
+    // pushed as found without stars; with stars, kept with their places
+    // (first shared tile, lower index, higher index) and sorted at the
+    // end.
+    let mut edges: Vec<(u32, u32)> = Vec::new();
     let mut ordered: Vec<(usize, u32, u32, u32, u32)> = Vec::new();
     let mut examined = 0u64;
     // The first tile both boxes meet, if they meet and are two primitives.
@@ -132,33 +135,6 @@ pub(super) fn graph(
         (a.prim != b.prim && first[0] <= ba[2].min(bb[2]) && first[1] <= ba[3].min(bb[3]))
             .then_some(first[1] * tiles_x + first[0])
     };
-    // Examines one pair (indices in either order); false when the budget
-    // is used up.
-    let mut examine = |ka: u32, kb: u32, c: usize, out: &mut OverlapGraph| -> bool {
-        let (ka, kb) = (ka.min(kb), ka.max(kb));
-        if examined >= budget {
-            out.complete = false;
-            return false;
-        }
-        examined += 1;
-        let (a, b) = (&tris[ka as usize], &tris[kb as usize]);
-        if !interiors_overlap(&a.v, &b.v) || interpenetrate(a.prim, b.prim) {
-            return true;
-        }
-        out.overlapping_pairs += 1;
-        let Some((x, y)) = overlap_point(&a.v, &b.v) else {
-            return true;
-        };
-        let (da, db) = (a.depth.eval(x, y), b.depth.eval(x, y));
-        if (da - db).abs() <= DEPTH_TIE {
-            out.ties += 1;
-            return true;
-        }
-        // (behind, in front) as screen-triangle indices.
-        let (behind, front) = if da > db { (ka, kb) } else { (kb, ka) };
-        ordered.push((c, ka, kb, behind, front));
-        true
-    };
     // Counted in a local: the loop below is the analysis's hottest.
     let mut candidates = 0u64;
     'search: {
@@ -168,10 +144,15 @@ pub(super) fn graph(
                 break 'search;
             }
             out.candidates += 1;
-            if let Some(c) = first_tile(ka, kb)
-                && !examine(ka, kb, c, &mut out)
-            {
-                break 'search;
+            if let Some(c) = first_tile(ka, kb) {
+                if examined >= budget {
+                    out.complete = false;
+                    break 'search;
+                }
+                examined += 1;
+                if let Some(edge) = examine(tris, (ka, kb), &interpenetrate, &mut out) {
+                    ordered.push((c, ka.min(kb), ka.max(kb), edge.0, edge.1));
+                }
             }
         }
         for c in 0..tiles {
@@ -217,22 +198,29 @@ pub(super) fn graph(
                     {
                         continue;
                     }
-                    if !examine(ka, kb, c, &mut out) {
+                    if examined >= budget {
+                        out.complete = false;
                         break 'search;
+                    }
+                    examined += 1;
+                    if let Some(edge) = examine(tris, (ka, kb), &interpenetrate, &mut out) {
+                        if starred {
+                            ordered.push((c, ka.min(kb), ka.max(kb), edge.0, edge.1));
+                        } else {
+                            edges.push(edge);
+                        }
                     }
                 }
             }
         }
     }
     out.candidates += candidates;
-    // Without stars the cells listed the pairs in this order already.
     if starred {
         ordered.sort_unstable_by_key(|&(c, ka, kb, _, _)| (c, ka, kb));
+        edges = ordered.iter().map(|&(_, _, _, b, f)| (b, f)).collect();
     }
     let key = |k: u32| tris[k as usize].z.iter().copied().fold(f64::MIN, f64::max);
-    let mut edges: Vec<(u32, u32)> = Vec::with_capacity(ordered.len());
-    for &(_, _, _, behind, front) in &ordered {
-        edges.push((behind, front));
+    for &(behind, front) in &edges {
         let (kb_, kf) = (key(behind), key(front));
         let naive_ok = kb_ > kf || (kb_ == kf && behind < front);
         if !naive_ok {
@@ -252,6 +240,32 @@ pub(super) fn graph(
     out.prims_on_cycles = on_cycles;
     out.examples = examples;
     out
+}
+
+/// Examines one pair of screen triangles (indices in either order),
+/// counting overlapping pairs and ties in `out`: `(behind, in front)` when
+/// their projections overlap and one is in front. Inlined into both loops
+/// (the tiles' loop is the analysis's hottest).
+#[inline(always)]
+fn examine(
+    tris: &[ScreenTri],
+    (ka, kb): (u32, u32),
+    interpenetrate: &impl Fn(u32, u32) -> bool,
+    out: &mut OverlapGraph,
+) -> Option<(u32, u32)> {
+    let (ka, kb) = (ka.min(kb), ka.max(kb));
+    let (a, b) = (&tris[ka as usize], &tris[kb as usize]);
+    if !interiors_overlap(&a.v, &b.v) || interpenetrate(a.prim, b.prim) {
+        return None;
+    }
+    out.overlapping_pairs += 1;
+    let (x, y) = overlap_point(&a.v, &b.v)?;
+    let (da, db) = (a.depth.eval(x, y), b.depth.eval(x, y));
+    if (da - db).abs() <= DEPTH_TIE {
+        out.ties += 1;
+        return None;
+    }
+    Some(if da > db { (ka, kb) } else { (kb, ka) })
 }
 
 /// The screen triangles binned into square tiles of about one triangle
