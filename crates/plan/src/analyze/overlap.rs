@@ -127,16 +127,104 @@ pub(super) fn graph(
     let mut edges: Vec<(u32, u32)> = Vec::new();
     let mut ordered: Vec<(usize, u32, u32, u32, u32)> = Vec::new();
     let mut examined = 0u64;
-    // The first tile both boxes meet, if they meet and are two primitives.
-    let first_tile = |ka: u32, kb: u32| -> Option<usize> {
-        let (a, b) = (&tris[ka as usize], &tris[kb as usize]);
-        let (ba, bb) = (bounds[ka as usize]?, bounds[kb as usize]?);
-        let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
-        (a.prim != b.prim && first[0] <= ba[2].min(bb[2]) && first[1] <= ba[3].min(bb[3]))
-            .then_some(first[1] * tiles_x + first[0])
+    let key = |k: u32| tris[k as usize].z.iter().copied().fold(f64::MIN, f64::max);
+    // Whether a farthest-vertex sort paints `behind` first.
+    let naive_ok = |behind: u32, front: u32| {
+        let (kb, kf) = (key(behind), key(front));
+        kb > kf || (kb == kf && behind < front)
     };
-    // Counted in a local: the loop below is the analysis's hottest.
-    let mut candidates = 0u64;
+    // Examines the pair of screen triangles `a`, `b` (indices `ka < kb`)
+    // in the tiles' loop or the stars' (`continue` goes to its next pair).
+    // A macro rather than a function: the tiles' loop is the analysis's
+    // hottest, and a function here, even inlined, made the whole graph
+    // 25% slower on `gen:soup:30000`.
+    macro_rules! examine {
+        ($a:expr, $b:expr, $ka:expr, $kb:expr, $c:expr, $starred:literal, $search:lifetime) => {{
+            if examined >= budget {
+                out.complete = false;
+                break $search;
+            }
+            examined += 1;
+            let (a, b, ka, kb): (&ScreenTri, &ScreenTri, u32, u32) = ($a, $b, $ka, $kb);
+            if !interiors_overlap(&a.v, &b.v) || interpenetrate(a.prim, b.prim) {
+                continue;
+            }
+            out.overlapping_pairs += 1;
+            let Some((x, y)) = overlap_point(&a.v, &b.v) else {
+                continue;
+            };
+            let (da, db) = (a.depth.eval(x, y), b.depth.eval(x, y));
+            if (da - db).abs() <= DEPTH_TIE {
+                out.ties += 1;
+                continue;
+            }
+            let (behind, front) = if da > db { (ka, kb) } else { (kb, ka) };
+            if $starred {
+                ordered.push(($c, ka, kb, behind, front));
+            } else {
+                edges.push((behind, front));
+                if !naive_ok(behind, front) {
+                    out.naive_violations += 1;
+                    out.naive_example
+                        .get_or_insert((tris[behind as usize].prim, tris[front as usize].prim));
+                }
+            }
+        }};
+    }
+    // The pairs sharing a tile, compiled once without the stars' checks
+    // and once with them.
+    macro_rules! tile_pairs {
+        ($starred:literal, $search:lifetime) => {
+            for c in 0..tiles {
+                // Stopped like an exhausted budget; the analysis returns the error.
+                if cancel.check().is_err() {
+                    out.complete = false;
+                    break $search;
+                }
+                let list = &items[start[c]..start[c + 1]];
+                let mut block_end = 0;
+                for (i, &ka) in list.iter().enumerate() {
+                    // The rest of a star's block shares its hub: those pairs
+                    // are the star's.
+                    let group = if $starred {
+                        stars.group(ka as usize)
+                    } else {
+                        NO_STAR
+                    };
+                    let rest = if group == NO_STAR {
+                        i + 1
+                    } else {
+                        if block_end <= i {
+                            block_end = i + 1;
+                            while block_end < list.len()
+                                && stars.group(list[block_end] as usize) == group
+                            {
+                                block_end += 1;
+                            }
+                        }
+                        block_end
+                    };
+                    let (a, ba) = (&tris[ka as usize], bounds[ka as usize].unwrap_or_default());
+                    for &kb in &list[rest..] {
+                        let (b, bb) = (&tris[kb as usize], bounds[kb as usize].unwrap_or_default());
+                        out.candidates += 1;
+                        let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
+                        if a.prim == b.prim
+                            || first[0] > ba[2].min(bb[2])
+                            || first[1] > ba[3].min(bb[3])
+                            || first[1] * tiles_x + first[0] != c
+                            || ($starred && stars.share(ka as usize, kb as usize))
+                        {
+                            continue;
+                        }
+                        // Star blocks make the lists' order (star, index).
+                        let (x, y) = if ka < kb { (a, b) } else { (b, a) };
+                        examine!(x, y, ka.min(kb), ka.max(kb), c, $starred, $search);
+                    }
+                }
+            }
+        };
+    }
     'search: {
         for (k, &(ka, kb)) in star_pairs.iter().enumerate() {
             if cancel.poll_every(k).is_err() {
@@ -144,82 +232,17 @@ pub(super) fn graph(
                 break 'search;
             }
             out.candidates += 1;
-            if let Some(c) = first_tile(ka, kb) {
-                if examined >= budget {
-                    out.complete = false;
-                    break 'search;
-                }
-                examined += 1;
-                if let Some(edge) = examine(tris, (ka, kb), &interpenetrate, &mut out) {
-                    ordered.push((c, ka.min(kb), ka.max(kb), edge.0, edge.1));
-                }
-            }
-        }
-        // The tiles' loop, compiled once without the stars' checks (the
-        // analysis's hottest loop: a run-time flag there cost a quarter of
-        // `hider analyze gen:soup:30000`) and once with them.
-        macro_rules! tile_pairs {
-            ($starred:literal, $search:lifetime) => {
-                for c in 0..tiles {
-                    // Stopped like an exhausted budget; the analysis returns the error.
-                    if cancel.check().is_err() {
-                        out.complete = false;
-                        break $search;
-                    }
-                    let list = &items[start[c]..start[c + 1]];
-                    let mut block_end = 0;
-                    for (i, &ka) in list.iter().enumerate() {
-                        let group = if $starred {
-                            stars.group(ka as usize)
-                        } else {
-                            NO_STAR
-                        };
-                        // The rest of this star's block shares its hub: those pairs
-                        // are the star's.
-                        let rest = if group == NO_STAR {
-                            i + 1
-                        } else {
-                            if block_end <= i {
-                                block_end = i + 1;
-                                while block_end < list.len()
-                                    && stars.group(list[block_end] as usize) == group
-                                {
-                                    block_end += 1;
-                                }
-                            }
-                            block_end
-                        };
-                        // The old inner loop, tight: a listed triangle has bounds.
-                        let (a, ba) = (&tris[ka as usize], bounds[ka as usize].unwrap_or_default());
-                        for &kb in &list[rest..] {
-                            let (b, bb) =
-                                (&tris[kb as usize], bounds[kb as usize].unwrap_or_default());
-                            candidates += 1;
-                            let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
-                            if a.prim == b.prim
-                                || first[0] > ba[2].min(bb[2])
-                                || first[1] > ba[3].min(bb[3])
-                                || first[1] * tiles_x + first[0] != c
-                                || ($starred && stars.share(ka as usize, kb as usize))
-                            {
-                                continue;
-                            }
-                            if examined >= budget {
-                                out.complete = false;
-                                break $search;
-                            }
-                            examined += 1;
-                            if let Some(edge) = examine(tris, (ka, kb), &interpenetrate, &mut out) {
-                                if $starred {
-                                    ordered.push((c, ka.min(kb), ka.max(kb), edge.0, edge.1));
-                                } else {
-                                    edges.push(edge);
-                                }
-                            }
-                        }
-                    }
-                }
+            // The first tile both boxes meet, if they meet and are two
+            // primitives.
+            let (a, b) = (&tris[ka as usize], &tris[kb as usize]);
+            let (Some(ba), Some(bb)) = (bounds[ka as usize], bounds[kb as usize]) else {
+                continue;
             };
+            let first = [ba[0].max(bb[0]), ba[1].max(bb[1])];
+            if a.prim == b.prim || first[0] > ba[2].min(bb[2]) || first[1] > ba[3].min(bb[3]) {
+                continue;
+            }
+            examine!(a, b, ka, kb, first[1] * tiles_x + first[0], true, 'search);
         }
         if starred {
             tile_pairs!(true, 'search);
@@ -227,19 +250,15 @@ pub(super) fn graph(
             tile_pairs!(false, 'search);
         }
     }
-    out.candidates += candidates;
     if starred {
         ordered.sort_unstable_by_key(|&(c, ka, kb, _, _)| (c, ka, kb));
-        edges = ordered.iter().map(|&(_, _, _, b, f)| (b, f)).collect();
-    }
-    let key = |k: u32| tris[k as usize].z.iter().copied().fold(f64::MIN, f64::max);
-    for &(behind, front) in &edges {
-        let (kb_, kf) = (key(behind), key(front));
-        let naive_ok = kb_ > kf || (kb_ == kf && behind < front);
-        if !naive_ok {
-            out.naive_violations += 1;
-            out.naive_example
-                .get_or_insert((tris[behind as usize].prim, tris[front as usize].prim));
+        for &(_, _, _, behind, front) in &ordered {
+            edges.push((behind, front));
+            if !naive_ok(behind, front) {
+                out.naive_violations += 1;
+                out.naive_example
+                    .get_or_insert((tris[behind as usize].prim, tris[front as usize].prim));
+            }
         }
     }
     out.examined = examined;
@@ -253,32 +272,6 @@ pub(super) fn graph(
     out.prims_on_cycles = on_cycles;
     out.examples = examples;
     out
-}
-
-/// Examines one pair of screen triangles (indices in either order),
-/// counting overlapping pairs and ties in `out`: `(behind, in front)` when
-/// their projections overlap and one is in front. Inlined into both loops
-/// (the tiles' loop is the analysis's hottest).
-#[inline(always)]
-fn examine(
-    tris: &[ScreenTri],
-    (ka, kb): (u32, u32),
-    interpenetrate: &impl Fn(u32, u32) -> bool,
-    out: &mut OverlapGraph,
-) -> Option<(u32, u32)> {
-    let (ka, kb) = (ka.min(kb), ka.max(kb));
-    let (a, b) = (&tris[ka as usize], &tris[kb as usize]);
-    if !interiors_overlap(&a.v, &b.v) || interpenetrate(a.prim, b.prim) {
-        return None;
-    }
-    out.overlapping_pairs += 1;
-    let (x, y) = overlap_point(&a.v, &b.v)?;
-    let (da, db) = (a.depth.eval(x, y), b.depth.eval(x, y));
-    if (da - db).abs() <= DEPTH_TIE {
-        out.ties += 1;
-        return None;
-    }
-    Some(if da > db { (ka, kb) } else { (kb, ka) })
 }
 
 /// The screen triangles binned into square tiles of about one triangle
