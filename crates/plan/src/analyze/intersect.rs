@@ -313,7 +313,7 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
                     let both = (ba.0.max(bb.0), ba.1.min(bb.1));
                     if both.0.cmpgt(both.1).any()
                         || grid.cell_of(both.0) != c
-                        || (starred && stars.share(ka as usize, kb as usize))
+                        || (group != NO_STAR && stars.share(ka as usize, kb as usize))
                     {
                         continue;
                     }

@@ -213,7 +213,9 @@ pub(super) fn graph(
                             || first[0] > ba[2].min(bb[2])
                             || first[1] > ba[3].min(bb[3])
                             || first[1] * tiles_x + first[0] != c
-                            || ($starred && stars.share(ka as usize, kb as usize))
+                            || ($starred
+                                && group != NO_STAR
+                                && stars.share(ka as usize, kb as usize))
                         {
                             continue;
                         }
