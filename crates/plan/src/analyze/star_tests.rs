@@ -326,3 +326,22 @@ fn screen_fan_pairs_grow_linearly() {
         );
     }
 }
+
+/// The pair budget still bounds the work on a star, and the evidence
+/// names the flag that raises it.
+#[test]
+fn budget_stops_the_star_search_and_names_the_flag() {
+    let positions: Vec<DVec3> = fan(2000, 0.5).into_iter().flat_map(|(_, t)| t).collect();
+    let scene = hider_scene::Scene::from_triangles(positions);
+    let options = super::RenderOptions {
+        pair_searches: true,
+        ..super::RenderOptions::default()
+    }
+    .with_pair_budget(100);
+    let fx = super::analyze(&scene, &options).unwrap();
+    assert!(fx.work.intersection_tests <= 100 && fx.work.overlap_tests <= 100);
+    for e in [&fx.intersections, &fx.cyclic_overlap] {
+        assert!(e.present && !e.certain, "{e:?}");
+        assert!(e.detail.contains("--pair-budget"), "{}", e.detail);
+    }
+}
