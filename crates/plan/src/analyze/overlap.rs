@@ -79,7 +79,10 @@ pub fn overlap_graph(
     max_examples: usize,
     cancel: Cancel,
 ) -> OverlapGraph {
-    let stars = stars::screen_stars(tris);
+    let mut stars = stars::screen_stars(tris);
+    if !stars.pay_for(tris.len()) {
+        stars = Stars::default();
+    }
     graph(
         tris,
         vp,
