@@ -302,48 +302,58 @@ impl Stars {
         corners: impl Fn(usize) -> Option<[K; 3]>,
         min_members: usize,
     ) -> Self {
-        let mut keys: Vec<Option<[K; 3]>> = (0..n)
-            .map(|k| corners(k).filter(|c| c[0] != c[1] && c[1] != c[2] && c[0] != c[2]))
-            .collect();
+        // Keys are recomputed in each pass rather than stored: a stored
+        // copy of every corner key cost 640 MB and a third of `hider
+        // analyze gen:sphere:2000` (8 million triangles).
+        let key_of = |k: usize| corners(k).filter(|c| c[0] != c[1] && c[1] != c[2] && c[0] != c[2]);
         let min = min_members.max(2);
         // Most vertices of most meshes have a handful of triangles: count
         // corners per bucket of a cheap hash first (a bucket holds at least
         // its keys' count), and count exactly only the keys of full
         // buckets, so that a mesh without stars costs no map of its
         // vertices (10% of `hider analyze gen:sphere:200` otherwise).
-        let bits = (3 * n).max(2).next_power_of_two().trailing_zeros() + 1;
+        let bits = n.max(2).next_power_of_two().trailing_zeros();
         let bucket = |key: &K| {
             let mut h = Mix::default();
             key.hash(&mut h);
             (h.0 >> (64 - bits)) as usize
         };
         let mut full = vec![0u8; 1 << bits];
-        for c in keys.iter().flatten() {
-            for key in c {
+        for c in (0..n).filter_map(key_of) {
+            for key in &c {
                 let b = &mut full[bucket(key)];
                 *b = b.saturating_add(1);
             }
         }
-        let valences = |keys: &[Option<[K; 3]>]| {
+        if !full.iter().any(|&c| usize::from(c) >= min) {
+            return Self::default();
+        }
+        // Book pages, once found.
+        let mut excluded: Vec<bool> = Vec::new();
+        let valences = |excluded: &[bool]| {
             let mut valence: HashMap<K, u32> = HashMap::new();
-            for c in keys.iter().flatten() {
+            for k in (0..n).filter(|&k| !excluded.get(k).copied().unwrap_or(false)) {
+                let Some(c) = key_of(k) else { continue };
                 for key in c.iter().filter(|k| usize::from(full[bucket(k)]) >= min) {
                     *valence.entry(*key).or_default() += 1;
                 }
             }
             valence
         };
-        let mut valence = valences(&keys);
+        let mut valence = valences(&excluded);
         let hub_key = |valence: &HashMap<K, u32>, key: &K| {
             valence.get(key).is_some_and(|&v| v as usize >= min)
         };
+        if !valence.values().any(|&v| v as usize >= min) {
+            return Self::default();
+        }
         // A book (many triangles around one edge) is a star at both ends of
         // the edge in which every pair shares the edge, and every pair's
         // sectors meet along it: the sectors would list them all. Its pages
         // are left to the caller's bins, as if there were no star.
         let spines = {
             let mut edges: HashMap<(K, K), u32> = HashMap::new();
-            for c in keys.iter().flatten() {
+            for c in (0..n).filter_map(key_of) {
                 for i in 0..3 {
                     let (a, b) = (c[i], c[(i + 1) % 3]);
                     if hub_key(&valence, &a) && hub_key(&valence, &b) {
@@ -356,20 +366,25 @@ impl Stars {
             edges
         };
         if !spines.is_empty() {
-            for c in &mut keys {
-                if c.is_some_and(|c| (0..3).any(|i| spines.contains_key(&(c[i], c[(i + 1) % 3])))) {
-                    *c = None;
-                }
-            }
-            valence = valences(&keys);
+            excluded = (0..n)
+                .map(|k| {
+                    key_of(k).is_some_and(|c| {
+                        (0..3).any(|i| spines.contains_key(&(c[i], c[(i + 1) % 3])))
+                    })
+                })
+                .collect();
+            valence = valences(&excluded);
         }
         // Hub ids in order of first appearance, so that they do not depend
         // on the hash order.
         let mut hub: HashMap<K, u32> = HashMap::new();
         let mut start = vec![0usize];
         let mut of = vec![[NO_STAR; 3]; n];
-        for (t, c) in keys.iter().enumerate() {
-            let Some(c) = c else { continue };
+        for t in 0..n {
+            if excluded.get(t).copied().unwrap_or(false) {
+                continue;
+            }
+            let Some(c) = key_of(t) else { continue };
             for (i, key) in c.iter().enumerate() {
                 if !hub_key(&valence, key) {
                     continue;
