@@ -380,7 +380,7 @@ impl Stars {
         let mut hub: HashMap<K, u32> = HashMap::new();
         let mut start = vec![0usize];
         let mut of = vec![[NO_STAR; 3]; n];
-        for t in 0..n {
+        for (t, hubs) in of.iter_mut().enumerate() {
             if excluded.get(t).copied().unwrap_or(false) {
                 continue;
             }
@@ -395,7 +395,7 @@ impl Stars {
                     next
                 });
                 start[h as usize + 1] += 1;
-                of[t][i] = h;
+                hubs[i] = h;
             }
         }
         let stars = hub.len();

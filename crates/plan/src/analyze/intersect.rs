@@ -285,7 +285,15 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
                 break 'search;
             }
             out.candidates += 1;
-            test_pair!(ka, kb, 'search);
+            // Out of line, so that the cells' loop below keeps the one
+            // inlined copy of the test it had before the stars.
+            let Some(contact) = star_test(tris, (ka, kb), budget, &mut out) else {
+                break 'search;
+            };
+            if contact != Contact::None {
+                let (ba, bb) = (boxes[ka as usize], boxes[kb as usize]);
+                found.push((grid.cell_of(ba.0.max(bb.0)), ka, kb, contact));
+            }
         }
         let (start, items, groups) = grid.cell_lists(&boxes, starred.then_some(&stars));
         for c in 0..grid.cell_count() {
@@ -335,6 +343,23 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
         }
     }
     out
+}
+
+/// Tests the star pair `(ka, kb)` (`ka < kb`) within `budget`: `None`
+/// when the budget is used up.
+#[inline(never)]
+fn star_test(
+    tris: &[(u32, [DVec3; 3])],
+    (ka, kb): (u32, u32),
+    budget: u64,
+    out: &mut PairSearch,
+) -> Option<Contact> {
+    if out.tests >= budget {
+        out.complete = false;
+        return None;
+    }
+    out.tests += 1;
+    Some(contact(&tris[ka as usize].1, &tris[kb as usize].1))
 }
 
 /// Lists the pair of primitives `a`, `b` under `contact`.
