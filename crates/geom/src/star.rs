@@ -248,7 +248,12 @@ impl Hasher for Mix {
     }
 
     fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
+        // Arrays of integers hash as one byte slice: eight bytes a step.
+        let mut chunks = bytes.chunks_exact(8);
+        for c in &mut chunks {
+            self.write_u64(u64::from_le_bytes(c.try_into().unwrap_or_default()));
+        }
+        for &b in chunks.remainder() {
             self.write_u64(u64::from(b));
         }
     }
@@ -312,7 +317,9 @@ impl Stars {
         // its keys' count), and count exactly only the keys of full
         // buckets, so that a mesh without stars costs no map of its
         // vertices (10% of `hider analyze gen:sphere:200` otherwise).
-        let bits = n.max(2).next_power_of_two().trailing_zeros();
+        // Four buckets a triangle: a mesh has about half a vertex a triangle,
+        // so few buckets hold two of them.
+        let bits = n.max(2).next_power_of_two().trailing_zeros() + 2;
         let bucket = |key: &K| {
             let mut h = Mix::default();
             key.hash(&mut h);
