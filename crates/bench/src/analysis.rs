@@ -43,6 +43,31 @@ pub fn overlapping_triangles(count: u32, reach: f64, seed: u64) -> Scene {
     scene
 }
 
+/// A star of `count` triangles around one vertex: the unit disk's fan
+/// around the origin in the plane z = 0 (`lift = 0`, a cylinder cap), or a
+/// cone with its apex at z = `lift` (the pole of a UV sphere). Every
+/// triangle contains the centre, so bins at the centre list them all (the
+/// family of docs/notes/2026-11-28-fan-pairs.md).
+pub fn star_fan(count: u32, lift: f64) -> Scene {
+    let n = count.max(3);
+    let mut positions = vec![DVec3::new(0.0, 0.0, lift)];
+    positions.extend((0..n).map(|k| {
+        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+        DVec3::new(a.cos(), a.sin(), 0.0)
+    }));
+    let mut scene = Scene::default();
+    scene.push_mesh(
+        Mesh {
+            name: format!("star_fan_{n}_{lift}"),
+            positions,
+            indices: (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect(),
+            ..Mesh::default()
+        },
+        None,
+    );
+    scene
+}
+
 /// The size of the visibility problem a [`ScreenScene`] poses.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SceneAnalysis {

@@ -47,6 +47,7 @@ pub mod isa;
 pub mod lens;
 pub mod plane;
 pub mod polygon;
+pub mod star;
 pub mod viewport;
 
 pub use camera::{Camera, Projection};

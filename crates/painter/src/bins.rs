@@ -5,6 +5,15 @@
 //! extent overlaps its own, and past the first few of those only with the
 //! ones whose bounding box can meet its own: the [`Grid`] lists, per
 //! screen bin and in key order, the pieces whose box meets that bin.
+//!
+//! The triangles of a star (a fan, a cone, the pole of a UV sphere: many
+//! triangles around one vertex) all meet the bins of that vertex, so a
+//! candidate of the star would list all of its mates; they are kept in
+//! per-star lists in each bin ([`Grid::star_bins`]), which a candidate of
+//! the same star skips (its mates that can overlap it come from the
+//! star's sector pairs instead, see `order.rs`).
+
+use hider_geom::star::NO_STAR;
 
 use crate::newell::{Extent, TOUCH};
 
@@ -36,8 +45,12 @@ pub(crate) struct Grid {
     rows: usize,
     /// Bins per pixel.
     scale: f64,
-    /// The bins, row-major.
+    /// The bins, row-major: the pieces of no star.
     pub bins: Vec<Vec<BinEntry>>,
+    /// The bins, row-major: the pieces of stars, one list per star (the
+    /// piece's first star), each sorted by [`Key`]. Empty when the frame
+    /// has no star.
+    pub star_bins: Vec<Vec<(u32, Vec<BinEntry>)>>,
 }
 
 /// A piece in a bin, with what the query needs kept inline so that bins
@@ -84,6 +97,27 @@ impl Grid {
             b.clear();
         }
         self.bins.resize_with(self.cols * self.rows, Vec::new);
+        self.star_bins.clear();
+    }
+
+    /// The list of bin `b` that holds the pieces of star `group`
+    /// ([`NO_STAR`]: the pieces of no star).
+    fn list(&mut self, b: usize, group: u32) -> &mut Vec<BinEntry> {
+        if group == NO_STAR {
+            return &mut self.bins[b];
+        }
+        if self.star_bins.is_empty() {
+            self.star_bins.resize_with(self.bins.len(), Vec::new);
+        }
+        let lists = &mut self.star_bins[b];
+        let at = match lists.iter().position(|(g, _)| *g == group) {
+            Some(at) => at,
+            None => {
+                lists.push((group, Vec::new()));
+                lists.len() - 1
+            }
+        };
+        &mut lists[at].1
     }
 
     /// The bins a box widened by [`TOUCH`] meets: columns and rows,
@@ -101,41 +135,52 @@ impl Grid {
         )
     }
 
-    /// Calls `f` on each bin of `span`.
-    fn for_each_bin(&mut self, (x0, x1, y0, y1): Span, mut f: impl FnMut(&mut Vec<BinEntry>)) {
+    /// Calls `f` on the list of star `group` in each bin of `span`.
+    fn for_each_bin(
+        &mut self,
+        (x0, x1, y0, y1): Span,
+        group: u32,
+        mut f: impl FnMut(&mut Vec<BinEntry>),
+    ) {
         for y in y0..=y1 {
             for x in x0..=x1 {
-                f(&mut self.bins[y * self.cols + x]);
+                let b = y * self.cols + x;
+                f(self.list(b, group));
             }
         }
     }
 
-    /// Lists piece `id` under `key` in every bin its box `e` meets.
-    pub fn insert(&mut self, key: Key, id: u32, e: &Extent) {
+    /// Lists piece `id` of star `group` ([`NO_STAR`]: of none) under `key`
+    /// in every bin its box `e` meets.
+    pub fn insert(&mut self, key: Key, id: u32, e: &Extent, group: u32) {
         let span = self.span(e);
         let entry = BinEntry::new(key, id, e, span);
-        self.for_each_bin(span, |bin| {
+        self.for_each_bin(span, group, |bin| {
             let at = bin.partition_point(|b| b.key < key);
             bin.insert(at, entry);
         });
     }
 
-    /// Lists many pieces at once, `(key, id, box)` in any order: each bin
-    /// is sorted once at the end instead of searched per entry.
-    pub fn insert_all<'a>(&mut self, entries: impl Iterator<Item = (Key, u32, &'a Extent)>) {
-        for (key, id, e) in entries {
+    /// Lists many pieces at once, `(key, id, box, star)` in any order
+    /// (star [`NO_STAR`] for a piece of none): each bin is sorted once at
+    /// the end instead of searched per entry.
+    pub fn insert_all<'a>(&mut self, entries: impl Iterator<Item = (Key, u32, &'a Extent, u32)>) {
+        for (key, id, e, group) in entries {
             let span = self.span(e);
             let entry = BinEntry::new(key, id, e, span);
-            self.for_each_bin(span, |bin| bin.push(entry));
+            self.for_each_bin(span, group, |bin| bin.push(entry));
         }
         for bin in &mut self.bins {
             bin.sort_unstable_by_key(|b| b.key);
         }
+        for (_, bin) in self.star_bins.iter_mut().flatten() {
+            bin.sort_unstable_by_key(|b| b.key);
+        }
     }
 
-    /// Removes the piece listed under `key` with box `e`.
-    pub fn remove(&mut self, key: Key, e: &Extent) {
-        self.for_each_bin(self.span(e), |bin| {
+    /// Removes the piece of star `group` listed under `key` with box `e`.
+    pub fn remove(&mut self, key: Key, e: &Extent, group: u32) {
+        self.for_each_bin(self.span(e), group, |bin| {
             // The piece painted next is the farthest left, the last entry of
             // each of its bins: no search, no shift.
             if bin.last().is_some_and(|b| b.key == key) {
@@ -153,6 +198,16 @@ impl Grid {
                 .bins
                 .iter()
                 .map(|b| b.capacity() * std::mem::size_of::<BinEntry>())
+                .sum::<usize>()
+            + self
+                .star_bins
+                .iter()
+                .map(|b| {
+                    b.capacity() * std::mem::size_of::<(u32, Vec<BinEntry>)>()
+                        + b.iter()
+                            .map(|(_, l)| l.capacity() * std::mem::size_of::<BinEntry>())
+                            .sum::<usize>()
+                })
                 .sum::<usize>()
     }
 }

@@ -8,9 +8,10 @@
 //! bin grid yields only the entries whose bounding boxes can meet P's, in
 //! the same order, so the blocker found is the same as with a full scan.
 
+use hider_geom::star::NO_STAR;
 use hider_scene::ScreenScene;
 
-use crate::bins::Key;
+use crate::bins::{BinEntry, Key};
 use crate::centres::{Centres, centre_test};
 use crate::newell::{Blocked, Decided, Extent, Outcome, extents_decide, may_precede_by_planes};
 use crate::order::{At, Orderer, Slot};
@@ -147,47 +148,54 @@ impl Orderer {
         let mut near = std::mem::take(&mut self.near);
         near.clear();
         let (x0, x1, y0, y1) = self.grid.span(&pe);
+        // P's stars: their lists in the bins hold P's mates, which can block
+        // P only if they are its partners (listed below).
+        let own = self
+            .stars_of
+            .get(p as usize)
+            .copied()
+            .unwrap_or([NO_STAR; 3]);
+        let mut visit = |bin: &[BinEntry], x: usize, y: usize| {
+            // Only the entries above the linear prefix (at most its
+            // length) sort after `upper`: look from the end rather
+            // than bisect, which touches one cache line, not several.
+            let end = bin
+                .iter()
+                .rposition(|b| b.key <= upper)
+                .map_or(0, |k| k + 1);
+            for b in bin[..end].iter().rev() {
+                let qe = &b.extent;
+                if qe.zmax <= limit {
+                    break;
+                }
+                // Each entry once: from the first bin both boxes meet.
+                if x != x0.max(usize::from(b.first.0)) || y != y0.max(usize::from(b.first.1)) {
+                    continue;
+                }
+                self.extents_first(p, &pe, (b.key, b.id), qe, stats, &mut near);
+            }
+        };
         for y in y0..=y1 {
             for x in x0..=x1 {
-                let bin = &self.grid.bins[y * self.grid.cols + x];
-                // Only the entries above the linear prefix (at most its
-                // length) sort after `upper`: look from the end rather
-                // than bisect, which touches one cache line, not several.
-                let end = bin
-                    .iter()
-                    .rposition(|b| b.key <= upper)
-                    .map_or(0, |k| k + 1);
-                for b in bin[..end].iter().rev() {
-                    let qe = &b.extent;
-                    if qe.zmax <= limit {
-                        break;
-                    }
-                    // Each entry once: from the first bin both boxes meet.
-                    if x != x0.max(usize::from(b.first.0)) || y != y0.max(usize::from(b.first.1)) {
-                        continue;
-                    }
-                    // Tests 1-3 never block, so only the rest need the
-                    // ordered pass below.
-                    match extents_decide(&pe, qe) {
-                        Some(d) => {
-                            stats.comparisons += 1;
-                            self.note(|| TraceEvent::Test {
-                                p,
-                                q: b.id,
-                                test: d.into(),
-                            });
-                            match d {
-                                Decided::Depth => stats.decided_depth += 1,
-                                Decided::X => stats.decided_x += 1,
-                                _ => stats.decided_y += 1,
-                            }
-                        }
-                        None => near.push((b.key, b.id)),
+                let at = y * self.grid.cols + x;
+                visit(&self.grid.bins[at], x, y);
+                for (group, bin) in self.grid.star_bins.get(at).into_iter().flatten() {
+                    if !own.contains(group) {
+                        visit(bin, x, y);
                     }
                 }
             }
         }
+        for &q in self.partners_of(p) {
+            let (key, qe) = (self.keys[q as usize], &self.extents[q as usize]);
+            // Still unpainted and unmoved, in the depth-overlapping run.
+            if key <= upper && qe.zmax > limit && self.sorted.get(&key) == Some(&q) {
+                self.extents_first(p, &pe, (key, q), qe, stats, &mut near);
+            }
+        }
         near.sort_unstable_by_key(|e| std::cmp::Reverse(e.0));
+        // A partner sharing a second star with P is also in the bins.
+        near.dedup_by_key(|e| e.0);
         let mut found = None;
         for &(key, q) in &near {
             if Slot::Sorted(key) == cslot {
@@ -208,6 +216,36 @@ impl Orderer {
 }
 
 impl Orderer {
+    /// Tests 1 to 3 on the pair (P, Q) of the bin scan, counted when they
+    /// settle it; otherwise Q (`(key, id)`) goes to `near`, for the
+    /// ordered pass. Tests 1-3 never block.
+    fn extents_first(
+        &self,
+        p: u32,
+        pe: &Extent,
+        (key, q): (Key, u32),
+        qe: &Extent,
+        stats: &mut PainterStats,
+        near: &mut Vec<(Key, u32)>,
+    ) {
+        match extents_decide(pe, qe) {
+            Some(d) => {
+                stats.comparisons += 1;
+                self.note(|| TraceEvent::Test {
+                    p,
+                    q,
+                    test: d.into(),
+                });
+                match d {
+                    Decided::Depth => stats.decided_depth += 1,
+                    Decided::X => stats.decided_x += 1,
+                    _ => stats.decided_y += 1,
+                }
+            }
+            None => near.push((key, q)),
+        }
+    }
+
     /// Tests 1 to 6 on the pair (P, Q), or the centre test when one of
     /// them covers at most one pixel centre, counting the comparison and
     /// the test that settled it; the blocked outcome when none did.

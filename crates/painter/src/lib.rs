@@ -86,6 +86,8 @@ mod raster;
 mod resolve;
 mod sides;
 mod split;
+#[cfg(test)]
+mod star_tests;
 mod stats;
 mod svg;
 mod trace;

@@ -38,6 +38,7 @@
 use std::cell::RefCell;
 use std::collections::BTreeMap;
 
+use hider_geom::star::{NO_STAR, fixed_star_pairs, fixed_stars};
 use hider_scene::{Error, Result, ScreenScene};
 
 use crate::bins::{Grid, Key, depth_bits};
@@ -100,6 +101,19 @@ pub(crate) struct Orderer {
     /// Entries compared one by one before the grid takes over (tests
     /// only; `None` is the default prefix of the blocker search).
     pub linear_scan: Option<usize>,
+    /// Per triangle (the first pieces), the stars it belongs to
+    /// ([`hider_geom::star`]): its mates are kept apart in the bins.
+    pub stars_of: Vec<[u32; 3]>,
+    /// Where each triangle's star partners start in `partners` (one more
+    /// than the triangles of stars; empty without stars).
+    pub partners_start: Vec<usize>,
+    /// The star partners of every triangle, triangle after triangle: the
+    /// mates whose sectors meet its own at a shared star vertex, the only
+    /// mates that can overlap it on the screen.
+    pub partners: Vec<u32>,
+    /// Star mates from the bins like any other piece, no partners (tests
+    /// set it to compare with the bins alone).
+    pub no_stars: bool,
 }
 
 /// Width of a grid bin in mean piece bounding boxes. Each bin a candidate
@@ -257,6 +271,7 @@ impl Orderer {
             self.note(|| TraceEvent::Culled { piece: k as u32 });
         }
         self.index_all(scene);
+        self.find_stars(scene);
         stats.triangles = scene.tris.len() as u64;
         let bytes: u64 = self.pieces.iter().map(|p| p.bytes() as u64).sum();
         // Bins a few mean bounding boxes wide ([`BIN_BOXES`]), so that a
@@ -283,7 +298,10 @@ impl Orderer {
                 .zip(&self.keys)
                 .zip(0..)
                 .filter(|&(_, k)| self.centres[k as usize] == Centres::Many)
-                .map(|((e, &key), k)| (key, k, e)),
+                .map(|((e, &key), k)| {
+                    let group = self.stars_of.get(k as usize).map_or(NO_STAR, |s| s[0]);
+                    (key, k, e, group)
+                }),
         );
         // Bulk-loaded from the keys (sorted first): no search per entry.
         self.sorted = self
@@ -317,8 +335,64 @@ impl Orderer {
                 if let Some(id) = removed
                     && self.centres[id as usize] == Centres::Many
                 {
-                    self.grid.remove(key, &self.extents[id as usize]);
+                    let group = self.group(id);
+                    self.grid.remove(key, &self.extents[id as usize], group);
                 }
+            }
+        }
+    }
+
+    /// The star whose list in the bins holds piece `id`, or [`NO_STAR`].
+    pub(crate) fn group(&self, id: u32) -> u32 {
+        self.stars_of.get(id as usize).map_or(NO_STAR, |s| s[0])
+    }
+
+    /// The star partners of piece `id` (none for a cut piece).
+    pub(crate) fn partners_of(&self, id: u32) -> &[u32] {
+        let k = id as usize;
+        if k + 1 < self.partners_start.len() {
+            &self.partners[self.partners_start[k]..self.partners_start[k + 1]]
+        } else {
+            &[]
+        }
+    }
+
+    /// The stars of the triangles that cover several centres, and each
+    /// one's partners ([`hider_geom::star::fixed_star_pairs`]). Only
+    /// uncut triangles are members: two of them sharing a vertex whose
+    /// sectors do not meet have disjoint interiors, which test 6 settles
+    /// exactly, so such a mate never blocks and the bins may skip it.
+    fn find_stars(&mut self, scene: &ScreenScene) {
+        self.stars_of.clear();
+        self.partners_start.clear();
+        self.partners.clear();
+        if self.no_stars {
+            return;
+        }
+        let n = scene.tris.len();
+        let mut stars = fixed_stars(n, |k| {
+            (self.centres[k] == Centres::Many).then_some(scene.tris[k].v)
+        });
+        // Dense stars are dissolved first.
+        let pairs = fixed_star_pairs(&mut stars, |t| scene.tris[t as usize].v);
+        if stars.is_empty() {
+            return;
+        }
+        self.stars_of.extend((0..n).map(|k| stars.stars_of(k)));
+        self.partners_start.resize(n + 1, 0);
+        for &(a, b) in &pairs {
+            self.partners_start[a as usize + 1] += 1;
+            self.partners_start[b as usize + 1] += 1;
+        }
+        for k in 0..n {
+            self.partners_start[k + 1] += self.partners_start[k];
+        }
+        let mut fill = self.partners_start.clone();
+        self.partners.resize(self.partners_start[n], 0);
+        for &(a, b) in &pairs {
+            for (x, y) in [(a, b), (b, a)] {
+                self.partners[fill[x as usize]] = y;
+                fill[x as usize] += 1;
             }
         }
     }
@@ -335,7 +409,9 @@ impl Orderer {
         }
         self.keys[id as usize] = key;
         if self.centres[id as usize] == Centres::Many {
-            self.grid.insert(key, id, &extent);
+            // A moved triangle put back keeps its star's list.
+            let group = self.group(id);
+            self.grid.insert(key, id, &extent, group);
         }
     }
 }

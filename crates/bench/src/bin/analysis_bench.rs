@@ -21,11 +21,14 @@
 //! 5. The checkerboard plane at a grazing angle, perspective-correct
 //!    beside affine, written to `OUT.png` (default
 //!    `docs/images/analysis-checker.png`).
+//! 6. The scaling of the pair searches on stars (a flat fan and a cone of
+//!    N triangles around one vertex), N doubling. `analysis_bench stars`
+//!    runs this section alone.
 
 use std::path::PathBuf;
 
 use glam::DVec3;
-use hider_bench::analysis::overlapping_triangles;
+use hider_bench::analysis::{overlapping_triangles, star_fan};
 use hider_bench::programs::thread_cpu_seconds;
 use hider_plan::analyze::backface;
 use hider_plan::{HiderConfig, RenderOptions, analyze_prepared, auto};
@@ -208,6 +211,34 @@ fn analysis_scaling() {
     }
 }
 
+/// Section 6: the pair searches on a fan and a cone of N triangles around
+/// one vertex, N doubling.
+fn star_scaling() {
+    println!("\n## analysis scaling: stars of N triangles around one vertex (512 x 512)");
+    println!(
+        "| family | N | pairs listed | pairs tested | intersections ms | overlaps ms | analysis ms (thread CPU) |"
+    );
+    println!("|---|---|---|---|---|---|---|");
+    for (family, lift) in [("flat fan", 0.0), ("cone", 0.5)] {
+        for n in [1000, 2000, 4000, 8000, 16000, 32000] {
+            let scene = star_fan(n, lift);
+            let mut fx = None;
+            let ms = cpu_ms(1, || {
+                fx = Some(hider_plan::analyze(&scene, &RenderOptions::default()).unwrap())
+            });
+            let fx = fx.unwrap();
+            let w = fx.work;
+            println!(
+                "| {family} | {n} | {} | {} | {:.1} | {:.1} | {ms:.1} |",
+                w.intersection_candidates + w.overlap_candidates,
+                w.intersection_tests + w.overlap_tests,
+                fx.times.intersections_ms,
+                fx.times.overlaps_ms,
+            );
+        }
+    }
+}
+
 /// Section 2: the colour pass with the stages needed against all of them.
 fn colour_pass() {
     println!("\n## colour pass: needed stages only vs unused stages forced on (512 x 512)");
@@ -292,6 +323,10 @@ fn checker_plane(out: &PathBuf) {
 }
 
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("stars") {
+        star_scaling();
+        return;
+    }
     let out = std::env::args()
         .nth(1)
         .map(PathBuf::from)
@@ -303,4 +338,5 @@ fn main() {
     planner_cost();
     analysis_scaling();
     checker_plane(&out);
+    star_scaling();
 }

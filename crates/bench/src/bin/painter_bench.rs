@@ -3,10 +3,13 @@
 //! on the same window-depth planes).
 //!
 //! `cargo run --release -p hider-bench --bin painter_bench -- [sizes...]`
-//! (default sizes: 1000 10000 100000; image 512 x 512). A `soup` or
-//! `sphere` argument runs only that scene. `PAINTER_MAX_MIB` raises the
+//! (default sizes: 1000 10000 100000; image 512 x 512). A `soup`,
+//! `sphere`, `fan` or `cone` argument runs only that scene (`fan`: the
+//! unit disk's fan of N triangles around its centre; `cone`: the same
+//! with the centre lifted towards the camera, a UV sphere's pole). `PAINTER_MAX_MIB` raises the
 //! painter's piece-memory budget (default 1 GiB).
 
+use hider_bench::analysis::star_fan;
 use hider_painter::{NaivePainter, Painter, PainterOptions, PainterStats};
 use hider_scene::{Frame, Hider, PrepareOptions, Scene, ScreenScene, View, prepare, procedural};
 use hider_testkit::reference::{self, Reference};
@@ -32,6 +35,8 @@ fn main() -> Result<(), hider_scene::Error> {
         for (name, scene) in [
             ("soup", procedural::random_soup(n, 1)),
             ("sphere", procedural::uv_sphere(k)),
+            ("fan", star_fan(n, 0.0)),
+            ("cone", star_fan(n, 0.5)),
         ] {
             if only.as_deref().is_some_and(|o| o != name) {
                 continue;

@@ -36,6 +36,9 @@ mod quick;
 mod report;
 mod search;
 pub mod splits;
+#[cfg(test)]
+mod star_tests;
+mod stars;
 
 use std::time::Instant;
 

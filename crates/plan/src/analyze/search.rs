@@ -86,9 +86,17 @@ fn pair_examples(pairs: &[(u32, u32)], ex: usize) -> Vec<Vec<u32>> {
     pairs.iter().take(ex).map(|&(a, b)| vec![a, b]).collect()
 }
 
-/// `""`, or the note that a search stopped at its budget.
-fn budget_note(complete: bool) -> &'static str {
-    if complete { "" } else { ", budget exhausted" }
+/// `""`, or the note that a search stopped at its budget, naming the
+/// flag that raises it.
+fn budget_note(complete: bool, budget: u64) -> String {
+    if complete {
+        String::new()
+    } else {
+        format!(
+            ", stopped at the pair budget of {budget} exact tests: raise it with --pair-budget \
+             (RenderOptions::pair_budget)"
+        )
+    }
 }
 
 /// Searches the triangles of `scene` whose primitives are `in_view` for
@@ -116,7 +124,7 @@ pub(crate) fn intersections(
             pairs.interpenetrating.len(),
             world.len(),
             pairs.tests,
-            budget_note(pairs.complete)
+            budget_note(pairs.complete, budget)
         ),
     };
     let coplanar = Evidence {
@@ -185,7 +193,7 @@ pub(crate) fn order(
             graph.overlapping_pairs,
             graph.edges,
             graph.ties,
-            budget_note(graph.complete)
+            budget_note(graph.complete, budget)
         ),
     };
     let naive_violations = Evidence {

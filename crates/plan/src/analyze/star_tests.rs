@@ -1,0 +1,347 @@
+//! The star candidates against all pairs: fans, cones, stars of several
+//! fans, folded fans, books and clutter, in space and on the screen.
+
+use glam::DVec3;
+use hider_geom::star::Stars;
+use hider_geom::{FixedPt, PlaneEq, Viewport};
+use hider_scene::{Cancel, ScreenTri};
+
+use super::intersect::{Contact, Grid, PairSearch, contact, find_pairs};
+use super::overlap::{OverlapGraph, graph, overlap_graph};
+
+/// A small deterministic generator (tests only).
+pub(super) struct Lcg(pub(super) u64);
+
+impl Lcg {
+    pub(super) fn unit(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    pub(super) fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+
+    pub(super) fn below(&mut self, n: usize) -> usize {
+        ((self.unit() * n as f64) as usize).min(n - 1)
+    }
+}
+
+/// Every pair whose boxes meet, tested, listed in the grid's order (first
+/// shared cell, then the indices): what the grid alone found.
+fn all_pairs(tris: &[(u32, [DVec3; 3])]) -> PairSearch {
+    let boxes: Vec<(DVec3, DVec3)> = tris
+        .iter()
+        .map(|(_, t)| (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2])))
+        .collect();
+    let lo = boxes.iter().fold(DVec3::INFINITY, |m, b| m.min(b.0));
+    let hi = boxes.iter().fold(DVec3::NEG_INFINITY, |m, b| m.max(b.1));
+    let grid = Grid::new(lo, hi, &boxes);
+    let mut found = Vec::new();
+    let mut tests = 0;
+    for i in 0..tris.len() {
+        for j in i + 1..tris.len() {
+            let (ba, bb) = (boxes[i], boxes[j]);
+            let both = (ba.0.max(bb.0), ba.1.min(bb.1));
+            if both.0.cmpgt(both.1).any() {
+                continue;
+            }
+            tests += 1;
+            let c = contact(&tris[i].1, &tris[j].1);
+            if c != Contact::None {
+                found.push((grid.cell_of(both.0), i, j, c));
+            }
+        }
+    }
+    found.sort_by_key(|&(c, i, j, _)| (c, i, j));
+    let mut out = PairSearch {
+        complete: true,
+        tests,
+        ..PairSearch::default()
+    };
+    for (_, i, j, c) in found {
+        let pair = (tris[i].0.min(tris[j].0), tris[i].0.max(tris[j].0));
+        match c {
+            Contact::Interpenetrate => out.interpenetrating.push(pair),
+            _ => out.coplanar.push(pair),
+        }
+    }
+    out
+}
+
+/// A unit vector.
+fn direction(r: &mut Lcg) -> DVec3 {
+    loop {
+        let v = DVec3::new(r.range(-1.0, 1.0), r.range(-1.0, 1.0), r.range(-1.0, 1.0));
+        if v.length() > 0.2 {
+            return v.normalize();
+        }
+    }
+}
+
+/// Coordinates rounded to a lattice of `step`, or left alone (`step` 0).
+fn snap(p: DVec3, step: f64) -> DVec3 {
+    if step > 0.0 {
+        (p / step).round() * step
+    } else {
+        p
+    }
+}
+
+/// A family of triangles sharing a vertex or an edge (see the module
+/// documentation), appended to `tris`.
+pub(super) fn family(r: &mut Lcg, kind: usize, tris: &mut Vec<[DVec3; 3]>) {
+    let centre = snap(
+        DVec3::new(r.range(-1.0, 1.0), r.range(-1.0, 1.0), r.range(-1.0, 1.0)),
+        0.25,
+    );
+    let step = [0.0, 1.0 / 64.0, 1.0 / 8.0][r.below(3)];
+    let n = 12 + r.below(40);
+    let (u, v) = {
+        let a = if r.below(3) == 0 {
+            DVec3::Z
+        } else {
+            direction(r)
+        };
+        let u = a.any_orthonormal_vector();
+        (u, a.cross(u))
+    };
+    let axis = u.cross(v);
+    // Angles: in order around (a fan that tiles), or random (overlapping
+    // sectors, coplanar overlaps).
+    let ordered = r.below(2) == 0;
+    let mut angles: Vec<f64> = (0..n)
+        .map(|k| {
+            if ordered {
+                std::f64::consts::TAU * k as f64 / n as f64
+            } else {
+                r.range(0.0, std::f64::consts::TAU)
+            }
+        })
+        .collect();
+    if ordered {
+        angles.push(angles[0]);
+    }
+    let rim = |a: f64, lift: f64| centre + u * a.cos() + v * a.sin() + axis * lift;
+    match kind {
+        // Flat fan, cone, folded fan.
+        0..=2 => {
+            for w in angles.windows(2) {
+                let (l0, l1) = match kind {
+                    0 => (0.0, 0.0),
+                    1 => (-0.5, -0.5),
+                    _ => (r.range(-0.3, 0.3), r.range(-0.3, 0.3)),
+                };
+                tris.push([centre, snap(rim(w[0], l0), step), snap(rim(w[1], l1), step)]);
+            }
+        }
+        // A book: pages around the spine from the centre along `axis`,
+        // some in the same plane.
+        3 => {
+            let tip = centre + axis;
+            for k in 0..n {
+                let a = angles[k.min(angles.len() - 1)];
+                let a = if k % 3 == 0 { 0.0 } else { a };
+                let page = centre + axis * r.range(0.0, 1.0) + u * a.cos() + v * a.sin();
+                tris.push([centre, tip, snap(page, step)]);
+            }
+        }
+        // A star of random triangles sharing the centre.
+        _ => {
+            for _ in 0..n {
+                let (p, q) = (direction(r), direction(r));
+                tris.push([centre, snap(centre + p, step), snap(centre + q, step)]);
+            }
+        }
+    }
+}
+
+/// A scene of one to three families, some sharing a centre, and clutter.
+pub(super) fn scene(r: &mut Lcg) -> Vec<[DVec3; 3]> {
+    let mut tris = Vec::new();
+    for _ in 0..1 + r.below(3) {
+        let kind = r.below(5);
+        family(r, kind, &mut tris);
+    }
+    // A second fan around the first one's centre, in another plane.
+    if r.below(2) == 0 {
+        let c = tris[0][0];
+        let mut more = Vec::new();
+        let kind = r.below(3);
+        family(r, kind, &mut more);
+        let shift = c - more[0][0];
+        tris.extend(more.iter().map(|t| t.map(|p| p + shift)));
+    }
+    for _ in 0..r.below(12) {
+        let p = DVec3::new(r.range(-1.5, 1.5), r.range(-1.5, 1.5), r.range(-1.5, 1.5));
+        tris.push([p, p + direction(r), p + direction(r)]);
+    }
+    // Shuffle, so that star members are not consecutive.
+    for k in (1..tris.len()).rev() {
+        tris.swap(k, r.below(k + 1));
+    }
+    tris
+}
+
+#[test]
+fn star_candidates_find_what_all_pairs_find() {
+    let mut r = Lcg(2026);
+    let (mut crossings, mut ties, mut tested, mut all) = (0, 0, 0, 0);
+    for round in 0..300 {
+        let tris: Vec<(u32, [DVec3; 3])> = scene(&mut r)
+            .into_iter()
+            .enumerate()
+            .map(|(k, t)| (k as u32 * 3 + 1, t))
+            .collect();
+        let want = all_pairs(&tris);
+        let got = find_pairs(&tris, u64::MAX, Cancel::default());
+        assert!(got.complete);
+        assert_eq!(got.interpenetrating, want.interpenetrating, "round {round}");
+        assert_eq!(got.coplanar, want.coplanar, "round {round}");
+        crossings += want.interpenetrating.len();
+        ties += want.coplanar.len();
+        (tested, all) = (tested + got.tests, all + want.tests);
+    }
+    // The families do produce both kinds of contact at shared vertices,
+    // and the stars (those not dense) spare tests.
+    assert!(crossings > 1000 && ties > 1000, "{crossings} {ties}");
+    assert!(tested * 10 < all * 9, "{tested} of {all}");
+}
+
+/// A flat fan of `n` triangles around the origin, or a cone (the centre
+/// lifted).
+pub(super) fn fan(n: usize, lift: f64) -> Vec<(u32, [DVec3; 3])> {
+    let rim = |k: usize| {
+        let a = std::f64::consts::TAU * (k % n) as f64 / n as f64;
+        DVec3::new(a.cos(), a.sin(), 0.0)
+    };
+    (0..n)
+        .map(|k| (k as u32, [DVec3::new(0.0, 0.0, lift), rim(k), rim(k + 1)]))
+        .collect()
+}
+
+/// Doubling a fan or a cone less than triples the pairs listed and
+/// tested (all pairs sharing the centre were, before the stars: 4x).
+#[test]
+fn fan_pairs_grow_linearly() {
+    for lift in [0.0, 0.5] {
+        let work = |n| {
+            let s = find_pairs(&fan(n, lift), u64::MAX, Cancel::default());
+            assert!(s.complete && s.interpenetrating.is_empty() && s.coplanar.is_empty());
+            (s.candidates, s.tests)
+        };
+        let (small, large) = (work(1000), work(2000));
+        assert!(
+            large.0 < 3 * small.0,
+            "lift {lift}: listed {small:?} {large:?}"
+        );
+        assert!(
+            large.1 < 3 * small.1,
+            "lift {lift}: tested {small:?} {large:?}"
+        );
+    }
+}
+
+/// World triangles seen from above on a 64 x 64 window (x, y in `[-2,
+/// 2]`), depth from z: shared corners stay shared after snapping.
+pub(super) fn screen(tris: &[[DVec3; 3]]) -> Vec<ScreenTri> {
+    let fixed = |p: DVec3| {
+        let f = |c: f64| ((c + 2.0) * 16.0 * 256.0).round() as i32;
+        FixedPt::new(f(p.x), f(p.y))
+    };
+    tris.iter()
+        .enumerate()
+        .filter_map(|(k, t)| {
+            let mut v = t.map(fixed);
+            let mut z = t.map(|p| 0.5 + p.z / 8.0);
+            if hider_geom::orient2d(v[0], v[1], v[2]) < 0 {
+                v.swap(1, 2);
+                z.swap(1, 2);
+            }
+            Some(ScreenTri {
+                v,
+                z,
+                w: [1.0; 3],
+                depth: PlaneEq::from_points(&v, z)?,
+                inv_w: PlaneEq::constant(1.0),
+                prim: k as u32,
+                front_facing: true,
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn screen_star_candidates_find_what_the_tiles_find() {
+    let mut r = Lcg(1972);
+    let (mut edges, mut ties) = (0, 0);
+    for round in 0..300 {
+        let tris = screen(&scene(&mut r));
+        let crossing = |a: u32, b: u32| (a + b) % 11 == 0;
+        let vp = Viewport::new(64, 64);
+        let cancel = Cancel::default();
+        let want = graph(&tris, vp, Stars::default(), crossing, u64::MAX, 4, cancel);
+        let got = overlap_graph(&tris, vp, crossing, u64::MAX, 4, cancel);
+        let findings = |g: &OverlapGraph| OverlapGraph {
+            candidates: 0,
+            examined: 0,
+            ..g.clone()
+        };
+        assert_eq!(findings(&got), findings(&want), "round {round}");
+        edges += want.edges;
+        ties += want.ties;
+    }
+    assert!(edges > 1000 && ties > 1000, "{edges} {ties}");
+}
+
+/// Doubling a fan or a cone on the screen less than triples the pairs
+/// the overlap graph lists and examines.
+#[test]
+fn screen_fan_pairs_grow_linearly() {
+    for lift in [0.0, 0.5] {
+        let work = |n| {
+            let world: Vec<[DVec3; 3]> = fan(n, lift).into_iter().map(|(_, t)| t).collect();
+            let g = overlap_graph(
+                &screen(&world),
+                Viewport::new(64, 64),
+                |_, _| false,
+                u64::MAX,
+                4,
+                Cancel::default(),
+            );
+            assert!(g.complete && g.overlapping_pairs == 0, "{g:?}");
+            (g.candidates, g.examined)
+        };
+        let (small, large) = (work(1000), work(2000));
+        assert!(
+            large.0 < 3 * small.0,
+            "lift {lift}: listed {small:?} {large:?}"
+        );
+        assert!(
+            large.1 < 3 * small.1,
+            "lift {lift}: examined {small:?} {large:?}"
+        );
+    }
+}
+
+/// The pair budget still bounds the work on a star, and the evidence
+/// names the flag that raises it.
+#[test]
+fn budget_stops_the_star_search_and_names_the_flag() {
+    let positions: Vec<DVec3> = fan(2000, 0.5).into_iter().flat_map(|(_, t)| t).collect();
+    let scene = hider_scene::Scene::from_triangles(positions);
+    let options = super::RenderOptions {
+        pair_searches: true,
+        ..super::RenderOptions::default()
+    }
+    .with_pair_budget(100);
+    let fx = super::analyze(&scene, &options).unwrap();
+    assert!(fx.work.intersection_tests <= 100 && fx.work.overlap_tests <= 100);
+    for e in [&fx.intersections, &fx.cyclic_overlap] {
+        assert!(e.present && !e.certain, "{e:?}");
+        assert!(e.detail.contains("--pair-budget"), "{}", e.detail);
+    }
+}

@@ -1,0 +1,147 @@
+//! Stars: the pairs of triangles around a vertex many of them share,
+//! found by angle instead of by bins.
+//!
+//! Every triangle of a fan (a disk or a cylinder cap), of a cone, or of
+//! the pole of a UV sphere contains the shared vertex, so every bin that
+//! vertex falls in lists all of them, and a bin grid enumerates all
+//! `n^2 / 2` pairs (`hider analyze` on a flat fan of 2,000 triangles: 2
+//! million exact tests, 5.6 s). Two triangles sharing a vertex `v` meet,
+//! if at all, arbitrarily close to `v` (their intersection is convex and
+//! holds `v`), so only pairs whose angular sectors at `v` meet can meet;
+//! [`hider_geom::star::sector_pairs`] lists those in `O(n log n + k)`.
+//! The bins then skip every pair sharing such a vertex (a *hub*: at
+//! least [`hider_geom::star::MIN_STAR`] triangles), and the candidates here are tested with
+//! the same exact tests, so the pairs found are those of the bins alone.
+//!
+//! In space ([`world_star_pairs`]) the sectors are compared in a plane of
+//! projection. [`super::intersect::contact`] decides a pair sharing `v`
+//! in one of two ways, and each needs the pair's sectors to meet in
+//! projection along the axis `d` that the first triangle `a`'s plane
+//! crosses most steeply ([`drop_axis`]):
+//! - near-coplanar pairs by their interiors overlapping in exactly that
+//!   projection, which needs the projected sectors to overlap at `v`;
+//! - crossing pairs by the segment of `L`, the planes' common line, that
+//!   both contain. It starts at `v`, so a ray of `L` from `v` lies in both
+//!   sectors; it lies in `a`'s plane, which is not parallel to axis `d`,
+//!   so its projection along `d` is a ray too, in both projected sectors.
+//!
+//! So for each axis `d` the pairs with one triangle of drop axis `d` whose
+//! closed sectors meet in projection along `d` are a superset of the pairs
+//! `contact` can report (a triangle whose projection along its own drop
+//! axis is flat, which rounding of its normal can cause, is asked along
+//! all three). On the screen ([`screen_star_pairs`]) the snapped triangles
+//! are compared directly.
+
+use glam::DVec3;
+use hider_geom::star::{AngularPoint, Sector, Stars, dense_limit, sector_pairs_within};
+use hider_scene::ScreenTri;
+
+use super::intersect::{drop_axis, project};
+use super::predicates::orient2d;
+
+/// A point of a plane of projection, ordered exactly by [`orient2d`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Flat([f64; 2]);
+
+impl AngularPoint for Flat {
+    fn orient(a: Self, b: Self, c: Self) -> i8 {
+        orient2d(a.0, b.0, c.0)
+    }
+
+    fn upper_of(self, apex: Self) -> bool {
+        self.0[1] > apex.0[1] || (self.0[1] == apex.0[1] && self.0[0] > apex.0[0])
+    }
+}
+
+/// The stars of world-space triangles: corners are the same vertex when
+/// their coordinates are equal.
+pub(crate) fn world_stars(tris: &[(u32, [DVec3; 3])]) -> Stars {
+    // `+ 0.0` makes -0 and 0 one key.
+    let key = |p: DVec3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
+    Stars::new(
+        tris.len(),
+        |k| Some(tris[k].1.map(key)),
+        hider_geom::star::MIN_STAR,
+    )
+}
+
+/// Candidate pairs `(i, j)`, `i < j` (indices into `tris`), of triangles
+/// sharing a hub of `stars` whose sectors meet there in a projection
+/// that [`super::intersect::contact`] may use (see the module
+/// documentation): every pair sharing a hub that `contact` can report is
+/// among them. Sorted, each once. Dense stars are dissolved first (their
+/// pairs go back to the bins, see
+/// [`hider_geom::star::DENSE_PAIRS_PER_MEMBER`]).
+pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &mut Stars) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    let mut dense = Vec::new();
+    'stars: for h in 0..stars.len() {
+        let before = out.len();
+        let members = stars.members(h);
+        // The axes along which each member asks: its drop axis, or all
+        // three when its projection along that one is flat.
+        let asks: Vec<u8> = members
+            .iter()
+            .map(|&(t, _)| {
+                let c = &tris[t as usize].1;
+                let d = drop_axis(c);
+                let p = c.map(|q| project(q, d));
+                if orient2d(p[0], p[1], p[2]) == 0 {
+                    0b111
+                } else {
+                    1 << d
+                }
+            })
+            .collect();
+        for d in 0..3 {
+            if !asks.iter().any(|&a| a & (1 << d) != 0) {
+                continue;
+            }
+            let mut who = Vec::with_capacity(members.len());
+            let mut sectors = Vec::with_capacity(members.len());
+            let mut apex = Flat([0.0; 2]);
+            for (m, &(t, corner)) in members.iter().enumerate() {
+                let c = tris[t as usize].1.map(|q| Flat(project(q, d)));
+                let i = usize::from(corner);
+                apex = c[i];
+                // A member projecting to a point is collinear in space:
+                // `contact` reports nothing for it.
+                if let Some(s) = Sector::around(c[i], c[(i + 1) % 3], c[(i + 2) % 3]) {
+                    who.push(m);
+                    sectors.push(s);
+                }
+            }
+            let asked = |k: usize| asks[who[k]] & (1 << d) != 0;
+            let Some(pairs) = sector_pairs_within(apex, &sectors, asked, dense_limit(who.len()))
+            else {
+                out.truncate(before);
+                dense.push(h);
+                continue 'stars;
+            };
+            for (x, y) in pairs {
+                let (a, b) = (members[who[x as usize]].0, members[who[y as usize]].0);
+                out.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    if !dense.is_empty() {
+        stars.retain(|h| dense.binary_search(&h).is_err());
+        // A pair of a dissolved star that also shares a kept one stays.
+        out.retain(|&(a, b)| stars.share(a as usize, b as usize));
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The stars of snapped screen triangles ([`hider_geom::star::fixed_stars`]).
+pub(crate) fn screen_stars(tris: &[ScreenTri]) -> Stars {
+    hider_geom::star::fixed_stars(tris.len(), |k| Some(tris[k].v))
+}
+
+/// Candidate pairs `(i, j)`, `i < j`, of screen triangles sharing a hub of
+/// `stars` whose closed sectors meet there: a superset of the pairs whose
+/// interiors overlap. Sorted, each once.
+pub(crate) fn screen_star_pairs(tris: &[ScreenTri], stars: &mut Stars) -> Vec<(u32, u32)> {
+    hider_geom::star::fixed_star_pairs(stars, |t| tris[t as usize].v)
+}
