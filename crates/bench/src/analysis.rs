@@ -49,22 +49,8 @@ pub fn overlapping_triangles(count: u32, reach: f64, seed: u64) -> Scene {
 /// triangle contains the centre, so bins at the centre list them all (the
 /// family of docs/notes/2026-11-28-fan-pairs.md).
 pub fn star_fan(count: u32, lift: f64) -> Scene {
-    let n = count.max(3);
-    let mut positions = vec![DVec3::new(0.0, 0.0, lift)];
-    positions.extend((0..n).map(|k| {
-        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
-        DVec3::new(a.cos(), a.sin(), 0.0)
-    }));
     let mut scene = Scene::default();
-    scene.push_mesh(
-        Mesh {
-            name: format!("star_fan_{n}_{lift}"),
-            positions,
-            indices: (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect(),
-            ..Mesh::default()
-        },
-        None,
-    );
+    scene.push_mesh(hider_testkit::sheets::fan(count, lift), None);
     scene
 }
 

@@ -54,3 +54,24 @@ pub fn lit(meshes: Vec<Mesh>) -> Scene {
     });
     scene
 }
+
+/// A fan of `count` triangles (at least 3) around one centre vertex, the
+/// triangulation CAD files make of a disc or a cylinder's cap: the rim
+/// on the unit circle at `z = 0`, counter-clockwise seen from `+z`, the
+/// centre at `(0, 0, lift)` (0: a flat disc; above: a cone seen from its
+/// apex, a sphere's pole). Every triangle meets every other at the
+/// centre, the case where binning by area lists all pairs.
+pub fn fan(count: u32, lift: f64) -> Mesh {
+    let n = count.max(3);
+    let mut positions = vec![DVec3::new(0.0, 0.0, lift)];
+    positions.extend((0..n).map(|k| {
+        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
+        DVec3::new(a.cos(), a.sin(), 0.0)
+    }));
+    Mesh {
+        name: "fan".into(),
+        positions,
+        indices: (0..n).map(|k| [0, 1 + k, 1 + (k + 1) % n]).collect(),
+        ..Mesh::default()
+    }
+}

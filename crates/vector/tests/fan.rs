@@ -6,27 +6,15 @@
 //! the crossing sweep, the hot pixel quadtree and the pair phase (which
 //! skips the pairs meeting at a hub) must grow with `N`.
 
-use glam::DVec3;
-use hider_scene::{Mesh, Scene, ShadeMode};
+use hider_scene::{Scene, ShadeMode};
 use hider_testkit::screen;
-use hider_testkit::sheets::lit;
+use hider_testkit::sheets::{self, lit};
 use hider_vector::{RegionStats, VectorOptions, visible_regions};
 
 /// A fan of `n` triangles around the origin, its centre raised by
 /// `apex` (0: flat).
 fn fan(n: u32, apex: f64) -> Scene {
-    let mut positions = vec![DVec3::new(0.0, 0.0, apex)];
-    positions.extend((0..n).map(|k| {
-        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
-        DVec3::new(a.cos(), a.sin(), 0.0)
-    }));
-    let indices = (0..n).map(|k| [0, k + 1, (k + 1) % n + 1]).collect();
-    lit(vec![Mesh {
-        name: "fan".into(),
-        positions,
-        indices,
-        ..Mesh::default()
-    }])
+    lit(vec![sheets::fan(n, apex)])
 }
 
 fn stats(scene: &Scene) -> RegionStats {

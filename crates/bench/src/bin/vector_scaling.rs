@@ -34,10 +34,9 @@ use std::time::Instant;
 use glam::DVec3;
 use hider_bench::machine;
 use hider_bench::programs::thread_cpu_seconds;
-use hider_scene::Mesh;
 use hider_scene::{PrepareOptions, Scene, ScreenScene, ShadeMode, View, prepare, procedural};
 use hider_testkit::hard_cases::heavy_overdraw;
-use hider_testkit::sheets::{grid, lit};
+use hider_testkit::sheets::{self, grid, lit};
 use hider_vector::{
     ObjectGroups, VectorOptions, hidden_lines_in, line_pairs, lines_svg, regions_svg,
     visible_regions,
@@ -108,18 +107,7 @@ fn mesh(n: u32) -> Scene {
 /// A fan of `n` triangles around the origin in the plane `z = 0`, its
 /// centre raised to `z = apex` (0: flat).
 fn fan(n: u32, apex: f64) -> Scene {
-    let mut positions = vec![DVec3::new(0.0, 0.0, apex)];
-    positions.extend((0..n).map(|k| {
-        let a = std::f64::consts::TAU * f64::from(k) / f64::from(n);
-        DVec3::new(a.cos(), a.sin(), 0.0)
-    }));
-    let indices = (0..n).map(|k| [0, k + 1, (k + 1) % n + 1]).collect();
-    lit(vec![Mesh {
-        name: "fan".into(),
-        positions,
-        indices,
-        ..Mesh::default()
-    }])
+    lit(vec![sheets::fan(n, apex)])
 }
 
 fn exponent(last: Option<(f64, f64)>, n: f64, t: f64) -> String {
