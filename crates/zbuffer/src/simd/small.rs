@@ -129,8 +129,8 @@ mod avx2 {
                     e[k] = _mm256_add_epi32(_mm256_set1_epi32(base), lanes[k]);
                 }
                 // The row's storage index, stepped: eight on, and to the
-                // next block row (less the block's 64) after a block's
-                // last row, without a branch.
+                // next block row (less the block's 64) when that lands on
+                // a block's start (after its last row), with a select.
                 let mut at = ((s.ly0 / 8) as usize * s.per_row + bc as usize) * 64
                     + (s.ly0 % 8) as usize * 8;
                 let wrap = s.per_row * 64 - 64;
@@ -167,10 +167,11 @@ mod avx2 {
                     for c in 0..8 {
                         row_keys[c] = K::from_lane(k[c]);
                     }
-                    for (e, d) in e.iter_mut().zip(down) {
-                        *e = _mm256_add_epi32(*e, d);
+                    for k in 0..3 {
+                        e[k] = _mm256_add_epi32(e[k], down[k]);
                     }
-                    at += 8 + usize::from(y % 8 == 7) * wrap;
+                    let next = at + 8;
+                    at = if next % 64 == 0 { next + wrap } else { next };
                     yc += 1.0;
                 }
             }
