@@ -317,7 +317,7 @@ impl<K: WideBlock> TileBuf<K> {
                     self.activate();
                 }
                 self.stats.triangle_tiles += 1;
-                self.small(isa, tri, (bx0, by0, bx1, by1), Some((setup.e, 0, 0)));
+                self.small(isa, tri, (bx0, by0, bx1, by1), Some(setup.e));
                 return;
             }
         }
@@ -336,12 +336,8 @@ impl<K: WideBlock> TileBuf<K> {
         let small = (x1 - x0 + 1) * (y1 - y0 + 1) <= SMALL_AREA;
         if small {
             // Here the box is cut by the tile (a whole one took the path
-            // above): the front end's set-up is stepped to the cut box's
-            // first block column and row (tiles are whole block columns,
-            // and every value of the cut box is one of the whole box's,
-            // so it still fits `i32`).
-            let moved = ready.map(|(bx0, by0, _, _)| (setup.e, (x0 & !7) - (bx0 & !7), y0 - by0));
-            self.small(isa, tri, (x0, y0, x1, y1), moved);
+            // above): the front end's set-up does not hold.
+            self.small(isa, tri, (x0, y0, x1, y1), None);
             return;
         }
         // Block bounds cost a few plane evaluations: only for triangles

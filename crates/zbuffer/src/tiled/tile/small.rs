@@ -21,7 +21,7 @@ impl<K: WideBlock> TileBuf<K> {
         isa: I,
         tri: &T,
         (x0, y0, x1, y1): (u32, u32, u32, u32),
-        ready: Option<([i32; 3], u32, u32)>,
+        ready: Option<[i32; 3]>,
     ) {
         let unit = i64::from(SUBPIXEL_SCALE);
         let p = tri.depth();
@@ -31,22 +31,18 @@ impl<K: WideBlock> TileBuf<K> {
                     // Set up in the front end, eight triangles at a time
                     // (`SmallSetup`): the steps are the corners'
                     // differences, wrapping as the casts below wrap.
-                    // `(dx, dy)` pixels from the set-up's origin (zero when
-                    // the box is whole in the tile).
-                    Some((e, dx, dy)) => {
+                    Some(e) => {
                         let v = tri.v();
                         let step = |k: usize, d: fn(FixedPt) -> i32| {
                             d(v[(k + 1) % 3])
                                 .wrapping_sub(d(v[k]))
                                 .wrapping_mul(SUBPIXEL_SCALE)
                         };
-                        let sx: [i32; 3] = std::array::from_fn(|k| step(k, |p| -p.y));
-                        let sy: [i32; 3] = std::array::from_fn(|k| step(k, |p| p.x));
-                        let e = std::array::from_fn(|k| {
-                            e[k].wrapping_add(sx[k].wrapping_mul(dx as i32))
-                                .wrapping_add(sy[k].wrapping_mul(dy as i32))
-                        });
-                        Some((e, sx, sy))
+                        Some((
+                            e,
+                            std::array::from_fn(|k| step(k, |p| -p.y)),
+                            std::array::from_fn(|k| step(k, |p| p.x)),
+                        ))
                     }
                     None => self.small_setup(tri, (x0, y0, x1, y1)),
                 };
