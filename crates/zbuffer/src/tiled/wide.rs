@@ -68,6 +68,12 @@ pub(crate) struct SmallBox<'a> {
     pub(crate) sx: [i32; 3],
     pub(crate) sy: [i32; 3],
     pub(crate) prim: u32,
+    /// Whether the lanes outside the box's columns must be masked: only
+    /// where a block column runs past the tile's last column (a tile cut
+    /// by the viewport's right edge). Elsewhere a lane outside the box is
+    /// outside the triangle's bounding box, hence outside the triangle
+    /// (its edge test fails exactly), and the row needs no column mask.
+    pub(crate) mask_x: bool,
 }
 
 /// How a 32-bit key is encoded from a depth and compared.

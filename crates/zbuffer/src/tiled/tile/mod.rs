@@ -302,6 +302,25 @@ impl<K: WideBlock> TileBuf<K> {
         }
         let setup = tri.setup();
         let ready = if setups { setup.ready() } else { None };
+        // Most triangle-tiles of a dense mesh: a front-end set-up whose
+        // box (at most `SMALL_AREA` pixels) lies in this tile, which then
+        // needs no clipping (wrapping differences: a box left of or above
+        // the tile wraps to a large value).
+        if let Some((bx0, by0, bx1, by1)) = ready {
+            let (x0, y0, w, h) = (self.x0, self.y0, self.w, self.h);
+            if bx0.wrapping_sub(x0) < w
+                && bx1.wrapping_sub(x0) < w
+                && by0.wrapping_sub(y0) < h
+                && by1.wrapping_sub(y0) < h
+            {
+                if !self.active {
+                    self.activate();
+                }
+                self.stats.triangle_tiles += 1;
+                self.small(isa, tri, (bx0, by0, bx1, by1), Some(setup.e));
+                return;
+            }
+        }
         let Some((bx0, by0, bx1, by1)) = ready.or_else(|| viewport.pixel_bounds(tri.v())) else {
             return;
         };
@@ -316,9 +335,9 @@ impl<K: WideBlock> TileBuf<K> {
         self.stats.triangle_tiles += 1;
         let small = (x1 - x0 + 1) * (y1 - y0 + 1) <= SMALL_AREA;
         if small {
-            // The front end's set-up holds when the box is whole here.
-            let whole = ready == Some((x0, y0, x1, y1));
-            self.small(isa, tri, (x0, y0, x1, y1), whole.then_some(setup.e));
+            // Here the box is cut by the tile (a whole one took the path
+            // above): the front end's set-up does not hold.
+            self.small(isa, tri, (x0, y0, x1, y1), None);
             return;
         }
         // Block bounds cost a few plane evaluations: only for triangles
