@@ -201,13 +201,29 @@ impl Bins {
         )
     }
 
-    /// Bins of about one item each over `grid`, holding each item in the
+    /// Bins over `grid` of one polygon per triangle, `polys[k]` where
+    /// `live[k]` is some (culled and clipped-away triangles hold none):
+    /// [`Bins::covering`] of those, each in the
     /// bins its closed polygons meet (each polygon's bins row by row,
     /// between its leftmost and rightmost bin in the row: exact for a
     /// convex polygon, more for others), not in every bin of its box: the
     /// box of a long thin triangle (a spoke of a fan, a sliver seen
     /// edge-on) covers bins in proportion to its area, so that binning
     /// by boxes costs the square of the input on a fan.
+    pub fn covering_live<T>(grid: &Grid, live: &[Option<T>], polys: &[Vec<IntPoint>]) -> Self {
+        let items: Vec<Vec<&[IntPoint]>> = live
+            .iter()
+            .zip(polys)
+            .map(|(b, p)| match b {
+                Some(_) => vec![p.as_slice()],
+                None => Vec::new(),
+            })
+            .collect();
+        Self::covering(grid, &items)
+    }
+
+    /// Bins of about one item each over `grid`, holding each item in the
+    /// bins its closed polygons meet (see [`Bins::covering_live`]).
     pub fn covering(grid: &Grid, items: &[Vec<&[IntPoint]>]) -> Self {
         let count = items.iter().filter(|i| !i.is_empty()).count().max(1) as f64;
         let area = (grid.width as f64) * (grid.height as f64);

@@ -206,23 +206,13 @@ fn build(
         .zip(&culled.hidden)
         .map(|(b, &c)| if c { None } else { *b })
         .collect();
-    let items: Vec<Vec<&[IntPoint]>> = live
-        .iter()
-        .zip(&polys)
-        .map(|(b, p)| {
-            if b.is_some() {
-                vec![p.as_slice()]
-            } else {
-                Vec::new()
-            }
-        })
-        .collect();
     // Triangles meeting at a hub (a fan's centre) never overlap each
     // other: their pairs are skipped unseen (see `hubs.rs`).
     let on: Vec<bool> = live.iter().map(Option::is_some).collect();
     let corners: Vec<_> = scene.tris.iter().map(|t| t.v).collect();
     let hub = hubs(&corners, &on);
-    let bins = Bins::covering(&grid, &items).with_groups(hub.iter().map(|h| h[0]).collect());
+    let bins =
+        Bins::covering_live(&grid, &live, &polys).with_groups(hub.iter().map(|h| h[0]).collect());
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
     let mut region_points = 0u64;
     let mut cut_pairs = Vec::new();

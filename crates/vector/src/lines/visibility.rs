@@ -60,19 +60,8 @@ impl Occlusion {
         for (c, &l) in prim_culled.iter_mut().zip(&prim_live) {
             *c &= !l;
         }
-        let items: Vec<Vec<&[IntPoint]>> = live
-            .iter()
-            .zip(&polys)
-            .map(|(b, p)| {
-                if b.is_some() {
-                    vec![p.as_slice()]
-                } else {
-                    Vec::new()
-                }
-            })
-            .collect();
         Self {
-            bins: Bins::covering(grid, &items),
+            bins: Bins::covering_live(grid, &live, &polys),
             occluders: scene
                 .prims
                 .iter()
