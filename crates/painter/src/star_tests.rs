@@ -3,6 +3,7 @@
 //! clutter; and the comparisons of a growing cone.
 
 use glam::DVec3;
+use hider_scene::procedural::SplitMix64;
 use hider_scene::{PrepareOptions, Scene, ScreenScene, View, prepare};
 
 use crate::options::PainterOptions;
@@ -27,44 +28,10 @@ fn ordered(scene: &ScreenScene, linear: usize, no_stars: bool) -> (Vec<Piece>, P
     (pieces, stats)
 }
 
-/// A small deterministic generator.
-struct Lcg(u64);
-
-impl Lcg {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        ((self.unit() * n as f64) as usize).min(n - 1)
-    }
-
-    fn direction(&mut self) -> DVec3 {
-        loop {
-            let v = DVec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            if v.length() > 0.2 {
-                return v.normalize();
-            }
-        }
-    }
-}
-
 /// Triangles around `centre`: a fan (kind 0), a cone (1), a folded fan
 /// (2), a book of pages around one edge (3), random triangles sharing the
 /// centre (4); in order around (tiling) or at random angles (overlapping).
-fn family(r: &mut Lcg, centre: DVec3, kind: usize, out: &mut Vec<DVec3>) {
+fn family(r: &mut SplitMix64, centre: DVec3, kind: usize, out: &mut Vec<DVec3>) {
     let n = 12 + r.below(40);
     let axis = if r.below(3) == 0 {
         DVec3::Z
@@ -103,7 +70,7 @@ fn family(r: &mut Lcg, centre: DVec3, kind: usize, out: &mut Vec<DVec3>) {
     }
 }
 
-fn scene(r: &mut Lcg) -> Scene {
+fn scene(r: &mut SplitMix64) -> Scene {
     let mut positions = Vec::new();
     let centre = DVec3::new(r.range(-0.5, 0.5), r.range(-0.5, 0.5), r.range(-0.5, 0.5));
     for _ in 0..1 + r.below(3) {
@@ -131,7 +98,7 @@ fn scene(r: &mut Lcg) -> Scene {
 /// see docs/notes/2026-11-28-fan-pairs.md.)
 #[test]
 fn star_partners_give_the_same_order_as_the_bins_alone() {
-    let mut r = Lcg(1974);
+    let mut r = SplitMix64::new(1974);
     let mut skipped = 0;
     for round in 0..80 {
         let scene = scene(&mut r);

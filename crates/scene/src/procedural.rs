@@ -34,6 +34,27 @@ impl SplitMix64 {
         let unit = (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64;
         lo + (hi - lo) * unit
     }
+
+    /// A uniform index in `0..n` (`n` at least 1).
+    pub fn below(&mut self, n: usize) -> usize {
+        ((self.range(0.0, 1.0) * n as f64) as usize).min(n.max(1) - 1)
+    }
+
+    /// A random unit vector: a point of the cube `[-1, 1]^3` farther than
+    /// 0.2 from the centre, normalised (not uniform on the sphere; enough
+    /// for test scenes, and never near zero length).
+    pub fn direction(&mut self) -> DVec3 {
+        loop {
+            let v = DVec3::new(
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            );
+            if v.length() > 0.2 {
+                return v.normalize();
+            }
+        }
+    }
 }
 
 fn mesh(name: &str, positions: Vec<DVec3>, indices: Vec<[u32; 3]>) -> Mesh {

@@ -4,31 +4,11 @@
 use glam::DVec3;
 use hider_geom::star::Stars;
 use hider_geom::{FixedPt, PlaneEq, Viewport};
+use hider_scene::procedural::SplitMix64;
 use hider_scene::{Cancel, ScreenTri};
 
 use super::intersect::{Contact, Grid, PairSearch, contact, find_pairs};
 use super::overlap::{OverlapGraph, graph, overlap_graph};
-
-/// A small deterministic generator (tests only).
-pub(super) struct Lcg(pub(super) u64);
-
-impl Lcg {
-    pub(super) fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    pub(super) fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    pub(super) fn below(&mut self, n: usize) -> usize {
-        ((self.unit() * n as f64) as usize).min(n - 1)
-    }
-}
 
 /// Every pair whose boxes meet, tested, listed in the grid's order (first
 /// shared cell, then the indices): what the grid alone found.
@@ -72,16 +52,6 @@ fn all_pairs(tris: &[(u32, [DVec3; 3])]) -> PairSearch {
     out
 }
 
-/// A unit vector.
-fn direction(r: &mut Lcg) -> DVec3 {
-    loop {
-        let v = DVec3::new(r.range(-1.0, 1.0), r.range(-1.0, 1.0), r.range(-1.0, 1.0));
-        if v.length() > 0.2 {
-            return v.normalize();
-        }
-    }
-}
-
 /// Coordinates rounded to a lattice of `step`, or left alone (`step` 0).
 fn snap(p: DVec3, step: f64) -> DVec3 {
     if step > 0.0 {
@@ -93,7 +63,7 @@ fn snap(p: DVec3, step: f64) -> DVec3 {
 
 /// A family of triangles sharing a vertex or an edge (see the module
 /// documentation), appended to `tris`.
-pub(super) fn family(r: &mut Lcg, kind: usize, tris: &mut Vec<[DVec3; 3]>) {
+pub(super) fn family(r: &mut SplitMix64, kind: usize, tris: &mut Vec<[DVec3; 3]>) {
     let centre = snap(
         DVec3::new(r.range(-1.0, 1.0), r.range(-1.0, 1.0), r.range(-1.0, 1.0)),
         0.25,
@@ -104,7 +74,7 @@ pub(super) fn family(r: &mut Lcg, kind: usize, tris: &mut Vec<[DVec3; 3]>) {
         let a = if r.below(3) == 0 {
             DVec3::Z
         } else {
-            direction(r)
+            r.direction()
         };
         let u = a.any_orthonormal_vector();
         (u, a.cross(u))
@@ -152,7 +122,7 @@ pub(super) fn family(r: &mut Lcg, kind: usize, tris: &mut Vec<[DVec3; 3]>) {
         // A star of random triangles sharing the centre.
         _ => {
             for _ in 0..n {
-                let (p, q) = (direction(r), direction(r));
+                let (p, q) = (r.direction(), r.direction());
                 tris.push([centre, snap(centre + p, step), snap(centre + q, step)]);
             }
         }
@@ -160,7 +130,7 @@ pub(super) fn family(r: &mut Lcg, kind: usize, tris: &mut Vec<[DVec3; 3]>) {
 }
 
 /// A scene of one to three families, some sharing a centre, and clutter.
-pub(super) fn scene(r: &mut Lcg) -> Vec<[DVec3; 3]> {
+pub(super) fn scene(r: &mut SplitMix64) -> Vec<[DVec3; 3]> {
     let mut tris = Vec::new();
     for _ in 0..1 + r.below(3) {
         let kind = r.below(5);
@@ -177,7 +147,7 @@ pub(super) fn scene(r: &mut Lcg) -> Vec<[DVec3; 3]> {
     }
     for _ in 0..r.below(12) {
         let p = DVec3::new(r.range(-1.5, 1.5), r.range(-1.5, 1.5), r.range(-1.5, 1.5));
-        tris.push([p, p + direction(r), p + direction(r)]);
+        tris.push([p, p + r.direction(), p + r.direction()]);
     }
     // Shuffle, so that star members are not consecutive.
     for k in (1..tris.len()).rev() {
@@ -188,7 +158,7 @@ pub(super) fn scene(r: &mut Lcg) -> Vec<[DVec3; 3]> {
 
 #[test]
 fn star_candidates_find_what_all_pairs_find() {
-    let mut r = Lcg(2026);
+    let mut r = SplitMix64::new(2026);
     let (mut crossings, mut ties, mut tested, mut all) = (0, 0, 0, 0);
     for round in 0..300 {
         let tris: Vec<(u32, [DVec3; 3])> = scene(&mut r)
@@ -276,7 +246,7 @@ pub(super) fn screen(tris: &[[DVec3; 3]]) -> Vec<ScreenTri> {
 
 #[test]
 fn screen_star_candidates_find_what_the_tiles_find() {
-    let mut r = Lcg(1972);
+    let mut r = SplitMix64::new(1972);
     let (mut edges, mut ties) = (0, 0);
     for round in 0..300 {
         let tris = screen(&scene(&mut r));
