@@ -417,13 +417,21 @@ impl Orderer {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use hider_scene::{PrepareOptions, View, prepare, procedural};
 
-    fn ordered(scene: &ScreenScene, linear_scan: usize) -> (Vec<Piece>, PainterStats) {
+    /// Orders `scene` with the blocker search's linear prefix
+    /// `linear_scan`, and star partners unless `no_stars`: the pieces in
+    /// painting order and the counters.
+    pub(crate) fn ordered(
+        scene: &ScreenScene,
+        linear_scan: usize,
+        no_stars: bool,
+    ) -> (Vec<Piece>, PainterStats) {
         let mut o = Orderer {
             linear_scan: Some(linear_scan),
+            no_stars,
             ..Orderer::default()
         };
         let mut stats = PainterStats::default();
@@ -451,9 +459,9 @@ mod tests {
         ] {
             let view = View::for_scene(&scene, size, size).unwrap();
             let s = prepare(&scene, &view, &PrepareOptions::default()).unwrap();
-            let (full, full_stats) = ordered(&s, usize::MAX);
+            let (full, full_stats) = ordered(&s, usize::MAX, false);
             for linear in [0, 1, crate::blocker::LINEAR_SCAN] {
-                let (binned, stats) = ordered(&s, linear);
+                let (binned, stats) = ordered(&s, linear, false);
                 assert_eq!(binned.len(), full.len());
                 assert!(binned == full, "linear prefix {linear}: order differs");
                 assert_eq!(stats.splits, full_stats.splits);

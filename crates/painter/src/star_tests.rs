@@ -6,27 +6,7 @@ use glam::DVec3;
 use hider_scene::procedural::SplitMix64;
 use hider_scene::{PrepareOptions, Scene, ScreenScene, View, prepare};
 
-use crate::options::PainterOptions;
-use crate::order::Orderer;
-use crate::piece::Piece;
-use crate::stats::PainterStats;
-
-/// Orders `scene` with the blocker search's linear prefix `linear` and
-/// star partners unless `no_stars`.
-fn ordered(scene: &ScreenScene, linear: usize, no_stars: bool) -> (Vec<Piece>, PainterStats) {
-    let mut o = Orderer::default();
-    o.linear_scan = Some(linear);
-    o.no_stars = no_stars;
-    let mut stats = PainterStats::default();
-    o.run(scene, &PainterOptions::default(), &mut stats)
-        .unwrap();
-    let pieces = o
-        .order
-        .iter()
-        .map(|&k| o.pieces[k as usize].clone())
-        .collect();
-    (pieces, stats)
-}
+use crate::order::tests::ordered;
 
 /// Triangles around `centre`: a fan (kind 0), a cone (1), a folded fan
 /// (2), a book of pages around one edge (3), random triangles sharing the
