@@ -8,6 +8,15 @@
 //! it sound: an [`Avx2`] value exists only where the CPU was found to have
 //! AVX2 and FMA, so code holding one may call the intrinsics.
 //!
+//! Keep intrinsics in the body of the `#[target_feature]` function or in
+//! `#[inline(always)]` functions it calls directly, never in a closure
+//! handed to a generic combinator (`Option::and_then`, an iterator
+//! adaptor): the combinator is compiled without the feature, so the
+//! closure cannot be inlined into the AVX2 copy and each intrinsic in it
+//! becomes a function call. A z-buffer helper written that way measured
+//! 2.5x slower. `valgrind --tool=callgrind` shows it: the intrinsics
+//! appear as functions of their own.
+//!
 //! ```
 //! use hider_geom::isa::{Avx2, Isa, Portable};
 //!
