@@ -72,7 +72,7 @@ impl<T: RasterTri, K: TileKey> Kernel for DrawBand<'_, '_, T, K> {
     fn run<I: Isa>(self, isa: I) {
         self.jobs.draw(self.first, self.band, isa);
         if let Some(r) = self.resolve {
-            resolve_band(self.band, r.out, r.width, r.band_y0, r.wanted);
+            resolve_band(isa, self.band, r.out, r.width, r.band_y0, r.wanted);
         }
     }
 }
@@ -171,7 +171,7 @@ impl<T: RasterTri> Jobs<'_, T> {
         }
         self.draw(first, band, Portable);
         if let Some(r) = resolve {
-            resolve_band(band, r.out, r.width, r.band_y0, r.wanted);
+            resolve_band(Portable, band, r.out, r.width, r.band_y0, r.wanted);
         }
     }
 
@@ -243,7 +243,7 @@ pub(super) fn resolve<K: TileKey>(
     let width = frame.width() as usize;
     let wanted = frame.buffers();
     for_each_band(frame, bufs, grid, pool, |b, out, band| {
-        resolve_band(band, out, width, b as u32 * grid.tile, wanted);
+        resolve_band(Portable, band, out, width, b as u32 * grid.tile, wanted);
     });
 }
 
@@ -291,7 +291,8 @@ fn for_each_band<K: TileKey>(
 /// as long as the frame allows. Inlined into the drawing kernel's copies
 /// (the AVX2 one resolves 8 lanes at a time).
 #[inline(always)]
-fn resolve_band<K: TileKey>(
+fn resolve_band<K: TileKey, I: Isa>(
+    isa: I,
     band: &[TileBuf<K>],
     ((ids, depth), color): FrameBand<'_>,
     width: usize,
@@ -300,9 +301,9 @@ fn resolve_band<K: TileKey>(
 ) {
     for buf in band.iter().filter(|b| b.is_active()) {
         match (wanted.ids, wanted.depth) {
-            (true, true) => buf.resolve::<true, true>(ids, depth, width, band_y0),
-            (true, false) => buf.resolve::<true, false>(ids, depth, width, band_y0),
-            (false, true) => buf.resolve::<false, true>(ids, depth, width, band_y0),
+            (true, true) => buf.resolve::<I, true, true>(isa, ids, depth, width, band_y0),
+            (true, false) => buf.resolve::<I, true, false>(isa, ids, depth, width, band_y0),
+            (false, true) => buf.resolve::<I, false, true>(isa, ids, depth, width, band_y0),
             (false, false) => {}
         }
     }
