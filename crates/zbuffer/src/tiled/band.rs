@@ -243,8 +243,38 @@ pub(super) fn resolve<K: TileKey>(
     let width = frame.width() as usize;
     let wanted = frame.buffers();
     for_each_band(frame, bufs, grid, pool, |b, out, band| {
-        resolve_band(Portable, band, out, width, b as u32 * grid.tile, wanted);
+        let band_y0 = b as u32 * grid.tile;
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = Avx2::detect() {
+            let r = Resolve {
+                out,
+                width,
+                band_y0,
+                wanted,
+            };
+            simd::with_avx2(ResolveBand { band, r }, avx2);
+            return;
+        }
+        resolve_band(Portable, band, out, width, band_y0, wanted);
     });
+}
+
+/// [`resolve_band`] as a [`Kernel`], for [`simd::with_avx2`].
+#[cfg(target_arch = "x86_64")]
+struct ResolveBand<'a, K> {
+    band: &'a [TileBuf<K>],
+    r: Resolve<'a>,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl<K: TileKey> Kernel for ResolveBand<'_, K> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<I: Isa>(self, isa: I) {
+        let r = self.r;
+        resolve_band(isa, self.band, r.out, r.width, r.band_y0, r.wanted);
+    }
 }
 
 /// Calls `work` with each band's index, its rows of the frame and its
