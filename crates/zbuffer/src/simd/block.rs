@@ -123,13 +123,6 @@ pub(super) mod avx2 {
         }
     }
 
-    /// Sum of the eight i32 lanes.
-    #[inline(always)]
-    pub(in crate::simd) fn sum(v: __m256i) -> u32 {
-        let a: [i32; 8] = bytemuck::cast(v);
-        a.iter().sum::<i32>() as u32
-    }
-
     #[inline(always)]
     pub(super) fn block8<K: WideKey, const EDGES: bool>(
         keys: &mut [K; 64],
@@ -150,21 +143,34 @@ pub(super) mod avx2 {
                 down[k] = _mm256_set1_epi32(b.down[k]);
             }
             let prim = _mm256_set1_epi32(b.prim as i32);
+            let minus_one = _mm256_set1_epi32(-1);
             let (mut inside, mut passes) = (_mm256_setzero_si256(), _mm256_setzero_si256());
-            let mut merged = [[_mm256_setzero_si256(); 2]; 8];
-            for (r, merged) in merged.iter_mut().enumerate() {
-                let ty = b.dy * ((f64::from(b.by + r as u32) + 0.5) - b.y0);
+            let mut greatest = _mm256_setzero_si256();
+            // The row's centre `y + 0.5` is exact in f64, so stepping it by
+            // one gives `PlaneEq::eval`'s bits.
+            let mut yc = f64::from(b.by) + 0.5;
+            // A block is 8 rows of 8: same layout, alignment of `K`.
+            let keys = &mut *(keys as *mut [K; 64]).cast::<[[K; 8]; 8]>();
+            let ids = &mut *(ids as *mut [u32; 64]).cast::<[[u32; 8]; 8]>();
+            for r in 0..8 {
+                let ty = b.dy * (yc - b.y0);
+                yc += 1.0;
                 let new = encode::<K>(col, _mm256_set1_pd(ty));
-                let at = r * 8;
-                let old_keys: [u32; 8] = std::array::from_fn(|c| keys[at + c].to_lane());
+                // Each row is merged and written back before the next is
+                // read: a whole block held in registers until the end
+                // spilled about half of them to the stack. The ids are
+                // written before the keys, as in `small`: a store right
+                // after its own row's load and blend is what LLVM folds
+                // into a masked store (see `block8` in `crate::tiled::tile`).
+                let (row_keys, row_ids) = (&mut keys[r], &mut ids[r]);
+                let old_keys: [u32; 8] = std::array::from_fn(|c| row_keys[c].to_lane());
                 let old_keys: __m256i = bytemuck::cast(old_keys);
-                let old_ids: [u32; 8] = std::array::from_fn(|c| ids[at + c]);
-                let old_ids: __m256i = bytemuck::cast(old_ids);
+                let old_ids: __m256i = bytemuck::cast(*row_ids);
                 let mut pass = less::<K>(new, old_keys);
                 if EDGES {
                     // All ones where the OR of the biased edges is >= 0.
                     let out = _mm256_or_si256(_mm256_or_si256(e[0], e[1]), e[2]);
-                    let ok = _mm256_cmpgt_epi32(out, _mm256_set1_epi32(-1));
+                    let ok = _mm256_cmpgt_epi32(out, minus_one);
                     pass = _mm256_and_si256(pass, ok);
                     inside = _mm256_sub_epi32(inside, ok);
                     for (e, d) in e.iter_mut().zip(down) {
@@ -172,30 +178,41 @@ pub(super) mod avx2 {
                     }
                 }
                 passes = _mm256_sub_epi32(passes, pass);
-                *merged = [
-                    _mm256_blendv_epi8(old_keys, new, pass),
-                    _mm256_blendv_epi8(old_ids, prim, pass),
-                ];
-            }
-            // Stored only now, after every row was read: a store right
-            // after its row's load and blend is what LLVM folds into a
-            // masked store (see `block8` in `crate::tiled::tile`).
-            for (r, [k, i]) in merged.iter().enumerate() {
-                let (k, i): ([u32; 8], [u32; 8]) = (bytemuck::cast(*k), bytemuck::cast(*i));
+                let merged = _mm256_blendv_epi8(old_keys, new, pass);
+                greatest = if r == 0 {
+                    merged
+                } else {
+                    max::<K>(greatest, merged)
+                };
+                *row_ids = bytemuck::cast(_mm256_blendv_epi8(old_ids, prim, pass));
+                let k: [u32; 8] = bytemuck::cast(merged);
                 for c in 0..8 {
-                    keys[r * 8 + c] = K::from_lane(k[c]);
-                    ids[r * 8 + c] = i[c];
+                    row_keys[c] = K::from_lane(k[c]);
                 }
             }
-            let inside = if EDGES { sum(inside) } else { 64 };
-            let greatest = merged[1..]
-                .iter()
-                .fold(merged[0][0], |m, [k, _]| max::<K>(m, *k));
+            let (inside, passes) = sums(inside, passes);
+            let inside = if EDGES { inside } else { 64 };
             let greatest: [u32; 8] = bytemuck::cast(greatest);
             let greatest = greatest.iter().fold(K::from_lane(greatest[0]), |m, &k| {
                 m.max_key(K::from_lane(k))
             });
-            (inside, sum(passes), greatest)
+            (inside, passes, greatest)
+        }
+    }
+
+    /// The lane sums of `a` and of `b` (wrapping, as `i32` sums), with
+    /// two horizontal adds for both (the same reduction as `small`'s).
+    #[inline(always)]
+    pub(in crate::simd) fn sums(a: __m256i, b: __m256i) -> (u32, u32) {
+        // SAFETY: see `super::block8`.
+        unsafe {
+            let h = _mm256_hadd_epi32(a, b);
+            let q = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256::<1>(h));
+            let s = _mm_hadd_epi32(q, q);
+            (
+                _mm_cvtsi128_si32(s) as u32,
+                _mm_extract_epi32::<1>(s) as u32,
+            )
         }
     }
 }

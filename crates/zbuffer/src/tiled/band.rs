@@ -72,7 +72,7 @@ impl<T: RasterTri, K: TileKey> Kernel for DrawBand<'_, '_, T, K> {
     fn run<I: Isa>(self, isa: I) {
         self.jobs.draw(self.first, self.band, isa);
         if let Some(r) = self.resolve {
-            resolve_band(self.band, r.out, r.width, r.band_y0, r.wanted);
+            resolve_band(isa, self.band, r.out, r.width, r.band_y0, r.wanted);
         }
     }
 }
@@ -171,7 +171,7 @@ impl<T: RasterTri> Jobs<'_, T> {
         }
         self.draw(first, band, Portable);
         if let Some(r) = resolve {
-            resolve_band(band, r.out, r.width, r.band_y0, r.wanted);
+            resolve_band(Portable, band, r.out, r.width, r.band_y0, r.wanted);
         }
     }
 
@@ -243,8 +243,38 @@ pub(super) fn resolve<K: TileKey>(
     let width = frame.width() as usize;
     let wanted = frame.buffers();
     for_each_band(frame, bufs, grid, pool, |b, out, band| {
-        resolve_band(band, out, width, b as u32 * grid.tile, wanted);
+        let band_y0 = b as u32 * grid.tile;
+        #[cfg(target_arch = "x86_64")]
+        if let Some(avx2) = Avx2::detect() {
+            let r = Resolve {
+                out,
+                width,
+                band_y0,
+                wanted,
+            };
+            simd::with_avx2(ResolveBand { band, r }, avx2);
+            return;
+        }
+        resolve_band(Portable, band, out, width, band_y0, wanted);
     });
+}
+
+/// [`resolve_band`] as a [`Kernel`], for [`simd::with_avx2`].
+#[cfg(target_arch = "x86_64")]
+struct ResolveBand<'a, K> {
+    band: &'a [TileBuf<K>],
+    r: Resolve<'a>,
+}
+
+#[cfg(target_arch = "x86_64")]
+impl<K: TileKey> Kernel for ResolveBand<'_, K> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<I: Isa>(self, isa: I) {
+        let r = self.r;
+        resolve_band(isa, self.band, r.out, r.width, r.band_y0, r.wanted);
+    }
 }
 
 /// Calls `work` with each band's index, its rows of the frame and its
@@ -291,7 +321,8 @@ fn for_each_band<K: TileKey>(
 /// as long as the frame allows. Inlined into the drawing kernel's copies
 /// (the AVX2 one resolves 8 lanes at a time).
 #[inline(always)]
-fn resolve_band<K: TileKey>(
+fn resolve_band<K: TileKey, I: Isa>(
+    isa: I,
     band: &[TileBuf<K>],
     ((ids, depth), color): FrameBand<'_>,
     width: usize,
@@ -300,9 +331,9 @@ fn resolve_band<K: TileKey>(
 ) {
     for buf in band.iter().filter(|b| b.is_active()) {
         match (wanted.ids, wanted.depth) {
-            (true, true) => buf.resolve::<true, true>(ids, depth, width, band_y0),
-            (true, false) => buf.resolve::<true, false>(ids, depth, width, band_y0),
-            (false, true) => buf.resolve::<false, true>(ids, depth, width, band_y0),
+            (true, true) => buf.resolve::<I, true, true>(isa, ids, depth, width, band_y0),
+            (true, false) => buf.resolve::<I, true, false>(isa, ids, depth, width, band_y0),
+            (false, true) => buf.resolve::<I, false, true>(isa, ids, depth, width, band_y0),
             (false, false) => {}
         }
     }

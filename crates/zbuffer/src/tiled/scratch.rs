@@ -3,7 +3,7 @@
 
 use super::key::{Fixed16, Fixed24, Reversed};
 use super::tile::TileBuf;
-use super::wide::WideBlock;
+use super::wide::{Avx2, WideBlock};
 
 /// The tile buffers (one per tile), one vector per depth format so each
 /// holds its format's own key type.
@@ -20,11 +20,37 @@ pub(crate) struct Scratch {
 pub(crate) trait TileKey: WideBlock {
     /// The tile buffers of this format.
     fn bufs(s: &mut Scratch) -> &mut Vec<TileBuf<Self>>;
+
+    /// Resolves eight pixels of a tile row (see [`TileBuf::resolve`])
+    /// with AVX2 when the format has a wide resolve: whether it did.
+    #[inline(always)]
+    fn wide_resolve8<const IDS: bool, const DEPTH: bool>(
+        proof: Avx2,
+        keys: &[Self; 8],
+        ids: &[u32; 8],
+        clear: Self,
+        out: (&mut [u32; 8], &mut [f32; 8]),
+    ) -> bool {
+        let _ = (proof, keys, ids, clear, out);
+        false
+    }
 }
 
 impl TileKey for f32 {
     fn bufs(s: &mut Scratch) -> &mut Vec<TileBuf<Self>> {
         &mut s.f32
+    }
+
+    #[inline(always)]
+    fn wide_resolve8<const IDS: bool, const DEPTH: bool>(
+        proof: Avx2,
+        keys: &[Self; 8],
+        ids: &[u32; 8],
+        clear: Self,
+        (out_ids, out_depth): (&mut [u32; 8], &mut [f32; 8]),
+    ) -> bool {
+        crate::simd::resolve::resolve8::<IDS, DEPTH>(proof, keys, ids, clear, out_ids, out_depth);
+        true
     }
 }
 

@@ -28,6 +28,7 @@ use hider_scene::NO_ID;
 use super::bounds::DepthBounds;
 use super::key::DepthKey;
 use super::raster_tri::RasterTri;
+use super::scratch::TileKey;
 use super::stats::TiledZBufferStats;
 use super::wide::{Isa, WideBlock};
 use crate::depth_scene::DepthFragment;
@@ -212,15 +213,18 @@ impl<K: DepthKey> TileBuf<K> {
     pub(crate) fn columns(&self) -> (usize, usize) {
         (self.x0 as usize, self.w as usize)
     }
+}
 
+impl<K: TileKey> TileBuf<K> {
     /// Writes an active tile into the band's rows of the frame
     /// (`band_y0` is the band's first image row): the ids if `IDS`, the
     /// window depth the reference z-buffer would have written if `DEPTH`;
     /// background where nothing was drawn. Only what the caller asked for
     /// is written (a frame request of ids alone halves the traffic).
     #[inline(always)]
-    pub(crate) fn resolve<const IDS: bool, const DEPTH: bool>(
+    pub(crate) fn resolve<I: Isa, const IDS: bool, const DEPTH: bool>(
         &self,
+        isa: I,
         ids: &mut [u32],
         depth: &mut [f32],
         width: usize,
@@ -247,6 +251,16 @@ impl<K: DepthKey> TileBuf<K> {
             for b in 0..runs {
                 let (o, s) = (b * BLOCK as usize, b * 64);
                 let k: &[K; 8] = keys[s..s + 8].try_into().expect("a block row");
+                if let Some(avx2) = isa.avx2() {
+                    let i: &[u32; 8] = src_ids[s..s + 8].try_into().expect("a block row");
+                    let out = (
+                        (&mut ids[o..o + 8]).try_into().expect("8 pixels"),
+                        (&mut depth[o..o + 8]).try_into().expect("8 pixels"),
+                    );
+                    if K::wide_resolve8::<IDS, DEPTH>(avx2, k, i, clear, out) {
+                        continue;
+                    }
+                }
                 if IDS {
                     let i: &[u32; 8] = src_ids[s..s + 8].try_into().expect("a block row");
                     let out: &mut [u32; 8] = (&mut ids[o..o + 8]).try_into().expect("8 pixels");
