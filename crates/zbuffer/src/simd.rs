@@ -23,6 +23,7 @@
 
 pub(crate) mod block;
 pub(crate) mod classify;
+pub(crate) mod gather;
 pub(crate) mod small;
 
 #[cfg(target_arch = "x86_64")]
