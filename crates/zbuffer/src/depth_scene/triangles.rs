@@ -360,8 +360,8 @@ impl<I: Isa> Pass<'_, I> {
         for i in 0..LANES {
             let (v, bad) = mesh.corners(t + i);
             self.bad_index |= bad;
-            for k in 0..3 {
-                (c.x[k][i], c.y[k][i], c.z[k][i]) = (v[k].p.x, v[k].p.y, v[k].z);
+            for (k, v) in v.iter().enumerate() {
+                (c.x[k][i], c.y[k][i], c.z[k][i]) = (v.p.x, v.p.y, v.z);
             }
             // Any vertex's special code, and any triangle whose three
             // vertices are beyond one side of the viewport (culled, not

@@ -195,9 +195,9 @@ mod tests {
             let (mut any, mut beyond) = (0, 0);
             for (i, tri) in raw.iter().enumerate() {
                 let v = tri.map(|j| cache[j as usize]);
-                for k in 0..3 {
-                    prop_assert_eq!((got.x[k][i], got.y[k][i]), (v[k].p.x, v[k].p.y));
-                    prop_assert_eq!(got.z[k][i].to_bits(), v[k].z.to_bits());
+                for (k, v) in v.iter().enumerate() {
+                    prop_assert_eq!((got.x[k][i], got.y[k][i]), (v.p.x, v.p.y));
+                    prop_assert_eq!(got.z[k][i].to_bits(), v.z.to_bits());
                 }
                 any |= v[0].code | v[1].code | v[2].code;
                 beyond |= v[0].code & v[1].code & v[2].code;
