@@ -23,6 +23,7 @@
 
 pub(crate) mod block;
 pub(crate) mod classify;
+pub(crate) mod gather;
 pub(crate) mod resolve;
 pub(crate) mod small;
 

@@ -176,3 +176,45 @@ pub fn prepare_depth_into(
     out.setups_for = front.viewport;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use hider_scene::{PrepareOptions, View, procedural};
+
+    use super::{DepthScene, prepare_depth_into};
+
+    /// An index out of range is an error wherever it sits: in a batch of
+    /// eight triangles gathered together (at the cache's length, or so
+    /// large that a signed comparison would take it for a small one) or
+    /// in the last few, set up one by one.
+    #[test]
+    fn an_index_out_of_range_is_an_error_in_every_batch() {
+        let scene = procedural::uv_sphere(11);
+        let view = View::for_scene(&scene, 64, 64).unwrap();
+        let options = PrepareOptions::default();
+        let mut lean = DepthScene::new();
+        prepare_depth_into(&scene, &view, &options, &mut lean).unwrap();
+        let kept = lean.clone();
+        let (n, len) = (
+            scene.meshes[0].indices.len(),
+            scene.meshes[0].positions.len(),
+        );
+        assert!(
+            n > 16 && n % 8 != 0,
+            "{n} triangles: full batches and a rest"
+        );
+        for (t, index) in [(3, len as u32), (11, u32::MAX), (n - 1, len as u32)] {
+            let mut bad = scene.clone();
+            bad.meshes[0].indices[t][1] = index;
+            assert!(
+                prepare_depth_into(&bad, &view, &options, &mut lean).is_err(),
+                "triangle {t}, index {index}"
+            );
+        }
+        prepare_depth_into(&scene, &view, &options, &mut lean).unwrap();
+        assert_eq!(
+            lean.tris().collect::<Vec<_>>(),
+            kept.tris().collect::<Vec<_>>()
+        );
+    }
+}

@@ -32,6 +32,7 @@ use super::depth_tri::{DepthFragment, DepthTri, SmallSetup};
 use crate::simd;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Kernel;
+use crate::simd::gather::Corners;
 use hider_scene::prepare::lean::{
     CachedVertex, ClipFallback, NO_WINDOW, NOT_FINITE, RunOutcome, mesh_parts,
 };
@@ -155,6 +156,12 @@ struct MeshRef<'a> {
 }
 
 impl MeshRef<'_> {
+    /// The indices of triangles `t..t + LANES`, when the mesh has them.
+    #[inline(always)]
+    fn indices8(&self, t: usize) -> Option<&[[u32; 3]; LANES]> {
+        self.mesh.indices.get(t..t + LANES)?.try_into().ok()
+    }
+
     /// The cached corners of triangle `t`, and whether an index is out of
     /// range.
     #[inline(always)]
@@ -251,22 +258,23 @@ impl<I: Isa> Pass<'_, I> {
     /// each.
     #[inline(always)]
     fn batch(&mut self, mesh: &MeshRef<'_>, t: usize) {
-        // Gather the corners, structure of arrays.
-        let mut x = [[0i32; LANES]; 3];
-        let mut y = [[0i32; LANES]; 3];
-        let mut z = [[0f64; LANES]; 3];
-        // Any vertex's special code, and any triangle whose three vertices
-        // are beyond one side of the viewport (culled, not classified).
-        let (mut any, mut beyond) = (0u32, 0u32);
-        for i in 0..LANES {
-            let (c, bad) = mesh.corners(t + i);
-            self.bad_index |= bad;
-            for k in 0..3 {
-                (x[k][i], y[k][i], z[k][i]) = (c[k].p.x, c[k].p.y, c[k].z);
-            }
-            any |= c[0].code | c[1].code | c[2].code;
-            beyond |= c[0].code & c[1].code & c[2].code;
+        // Gather the corners, structure of arrays: eight at a time with
+        // AVX2 when every index is in range, else one by one.
+        let mut corners = Corners::default();
+        let gathered = match (self.isa.avx2(), mesh.indices8(t)) {
+            (Some(avx2), Some(i)) => simd::gather::corners(avx2, i, mesh.cache, &mut corners),
+            _ => false,
+        };
+        if !gathered {
+            self.gather(mesh, t, &mut corners);
         }
+        let Corners {
+            ref x,
+            ref y,
+            ref z,
+            any,
+            beyond,
+        } = corners;
         if any & SPECIAL != 0 || beyond & OUTSIDE_VIEWPORT != 0 {
             // Some triangle needs clipping or is culled: rare, or true of
             // a whole region of the mesh at once.
@@ -278,8 +286,8 @@ impl<I: Isa> Pass<'_, I> {
         let size = (self.front.viewport.width, self.front.viewport.height);
         let cull = self.front.options.cull_back_faces;
         let lanes = match self.isa.avx2() {
-            Some(avx2) => simd::classify::classify(avx2, &x, &y, size, cull),
-            None => Lanes::classify(&x, &y, size, cull),
+            Some(avx2) => simd::classify::classify(avx2, x, y, size, cull),
+            None => Lanes::classify(x, y, size, cull),
         };
         self.stats.degenerate += lanes.degenerate;
         self.stats.back_faces += lanes.back_faces;
@@ -292,7 +300,7 @@ impl<I: Isa> Pass<'_, I> {
         let setups =
             match self.isa.avx2() {
                 Some(avx2) if triangles.count_ones() >= DENSE_BATCH => Some(
-                    simd::classify::setups(avx2, &x, &y, size, (lanes.swap, triangles)),
+                    simd::classify::setups(avx2, x, y, size, (lanes.swap, triangles)),
                 ),
                 _ => None,
             };
@@ -342,6 +350,24 @@ impl<I: Isa> Pass<'_, I> {
                 covered &= covered - 1;
                 push_fragment(self.run, &tri, (x0 + j % w, y0 + j / w));
             }
+        }
+    }
+
+    /// The corners of triangles `t..t + LANES`, one by one; an index out
+    /// of range reads a culling vertex and sets [`Self::bad_index`].
+    #[inline(always)]
+    fn gather(&mut self, mesh: &MeshRef<'_>, t: usize, c: &mut Corners) {
+        for i in 0..LANES {
+            let (v, bad) = mesh.corners(t + i);
+            self.bad_index |= bad;
+            for (k, v) in v.iter().enumerate() {
+                (c.x[k][i], c.y[k][i], c.z[k][i]) = (v.p.x, v.p.y, v.z);
+            }
+            // Any vertex's special code, and any triangle whose three
+            // vertices are beyond one side of the viewport (culled, not
+            // classified).
+            c.any |= v[0].code | v[1].code | v[2].code;
+            c.beyond |= v[0].code & v[1].code & v[2].code;
         }
     }
 
