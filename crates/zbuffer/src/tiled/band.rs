@@ -203,9 +203,7 @@ impl<T: RasterTri> Jobs<'_, T> {
                 };
                 bins::for_each_in_tile(self.tris, self.chunks, t, &mut draw);
                 for run in self.fragments {
-                    for f in &run.tiles[t] {
-                        buf.fragment(f);
-                    }
+                    buf.fragments(&run.tiles[t]);
                 }
             }
             if !buf.is_active() {

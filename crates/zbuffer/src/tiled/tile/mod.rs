@@ -192,21 +192,38 @@ impl<K: DepthKey> TileBuf<K> {
     /// after the tile's triangles. Out of primitive order, so the test is
     /// LESS on `(key, prim)` (see [`DepthFragment`]): it wins over an
     /// equal key written by a later primitive, never over the background.
-    #[inline(always)]
+    #[cfg(test)]
     pub(crate) fn fragment(&mut self, f: &DepthFragment) {
+        self.fragments(std::slice::from_ref(f));
+    }
+
+    /// [`Self::fragment`] for each of a run of fragments. The counters are
+    /// kept in locals and added once: the stores into the key and id
+    /// buffers could alias `self.stats` for all the compiler knows, so a
+    /// field increment per fragment was a load and a store each (about a
+    /// sixth of the tile kernel's samples on the UV sphere 500).
+    #[inline(always)]
+    pub(crate) fn fragments(&mut self, run: &[DepthFragment]) {
+        if run.is_empty() {
+            return;
+        }
         if !self.active {
             self.activate();
         }
-        let i = self.at(u32::from(f.x), u32::from(f.y));
-        let key = K::encode(f.depth);
-        let (old, id) = (self.keys[i], self.id(i));
-        let wins = key < old || (key == old && f.prim < id && id != NO_ID);
-        if wins {
-            self.keys[i] = key;
-            self.ids[i] = f.prim;
+        let mut passes = 0u64;
+        for f in run {
+            let i = self.at(u32::from(f.x), u32::from(f.y));
+            let key = K::encode(f.depth);
+            let (old, id) = (self.keys[i], self.id(i));
+            let wins = key < old || (key == old && f.prim < id && id != NO_ID);
+            if wins {
+                self.keys[i] = key;
+                self.ids[i] = f.prim;
+            }
+            passes += u64::from(wins);
         }
-        self.stats.fragments += 1;
-        self.stats.depth_passes += u64::from(wins);
+        self.stats.fragments += run.len() as u64;
+        self.stats.depth_passes += passes;
     }
 
     /// The tile's first column and width in pixels.
