@@ -21,7 +21,7 @@
 
 use std::cmp::Ordering;
 use std::collections::HashMap;
-use std::hash::{Hash, Hasher};
+use std::hash::{BuildHasherDefault, Hash, Hasher};
 
 use crate::FixedPt;
 
@@ -171,14 +171,23 @@ pub const MIN_STAR: usize = 12;
 /// without area belongs to none (its "interior" is a segment, which the
 /// sector argument does not cover).
 pub fn fixed_stars(n: usize, corners: impl Fn(usize) -> Option<[FixedPt; 3]>) -> Stars {
-    Stars::new(
-        n,
-        |k| {
-            let v = corners(k)?;
-            (crate::edge::orient2d(v[0], v[1], v[2]) != 0).then(|| v.map(|p| (p.x, p.y)))
-        },
-        MIN_STAR,
-    )
+    Stars::new(n, fixed_keys(corners), MIN_STAR)
+}
+
+/// [`fixed_stars`] when they pay for a search over the pairs of the `n`
+/// triangles ([`Stars::paying`]), else none.
+pub fn fixed_stars_paying(n: usize, corners: impl Fn(usize) -> Option<[FixedPt; 3]>) -> Stars {
+    Stars::paying(n, fixed_keys(corners), MIN_STAR)
+}
+
+/// The corner keys of [`fixed_stars`]: none for a triangle without area.
+fn fixed_keys(
+    corners: impl Fn(usize) -> Option<[FixedPt; 3]>,
+) -> impl Fn(usize) -> Option<[(i32, i32); 3]> {
+    move |k| {
+        let v = corners(k)?;
+        (crate::edge::orient2d(v[0], v[1], v[2]) != 0).then(|| v.map(|p| (p.x, p.y)))
+    }
 }
 
 /// Most candidate pairs per member a star may yield before it counts as
@@ -275,6 +284,10 @@ impl Hasher for Mix {
     }
 }
 
+/// The maps of [`Stars::new`], on [`Mix`]: their keys are the few in full
+/// buckets, but every corner is looked up.
+type Map<K, V> = HashMap<K, V, BuildHasherDefault<Mix>>;
+
 /// No star: the padding of [`Stars::stars_of`] and the group of a triangle in
 /// no star.
 pub const NO_STAR: u32 = u32::MAX;
@@ -307,6 +320,34 @@ impl Stars {
         corners: impl Fn(usize) -> Option<[K; 3]>,
         min_members: usize,
     ) -> Self {
+        Self::build(n, corners, min_members, false)
+    }
+
+    /// [`Stars::new`] when the stars pay for a search over the pairs of
+    /// the `n` triangles ([`Stars::pay_for`]), else none, decided as early
+    /// as the counts allow: a mesh whose only stars are the two poles of a
+    /// UV sphere (`2 x 300` triangles among 180,000) costs one counting
+    /// pass over its corners and no map of its vertices (`hider analyze
+    /// gen:sphere:300` paid 9% for building stars it then dropped).
+    pub fn paying<K: Hash + Eq + Copy>(
+        n: usize,
+        corners: impl Fn(usize) -> Option<[K; 3]>,
+        min_members: usize,
+    ) -> Self {
+        let stars = Self::build(n, corners, min_members, true);
+        if stars.pay_for(n) {
+            stars
+        } else {
+            Self::default()
+        }
+    }
+
+    fn build<K: Hash + Eq + Copy>(
+        n: usize,
+        corners: impl Fn(usize) -> Option<[K; 3]>,
+        min_members: usize,
+        paying: bool,
+    ) -> Self {
         // Keys are recomputed in each pass rather than stored: a stored
         // copy of every corner key cost 640 MB and a third of `hider
         // analyze gen:sphere:2000` (8 million triangles).
@@ -325,33 +366,49 @@ impl Stars {
             key.hash(&mut h);
             (h.0 >> (64 - bits)) as usize
         };
-        let mut full = vec![0u8; 1 << bits];
+        // 16 bits: a UV sphere's pole of 2,000 triangles is counted, not
+        // saturated, so the bound below can settle it.
+        let mut full = vec![0u16; 1 << bits];
         for c in (0..n).filter_map(key_of) {
             for key in &c {
                 let b = &mut full[bucket(key)];
                 *b = b.saturating_add(1);
             }
         }
-        if !full.iter().any(|&c| usize::from(c) >= min) {
+        let is_full = |key: &K| usize::from(full[bucket(key)]) >= min;
+        // The pairs inside stars are at most those of the full buckets
+        // (`m^2 / 2` summed over a bucket's keys is at most that of their
+        // sum); a saturated count bounds nothing.
+        let within = |counts: &mut dyn Iterator<Item = usize>| {
+            counts
+                .filter(|&c| c >= min)
+                .try_fold(0usize, |sum, c| {
+                    (c < usize::from(u16::MAX)).then(|| sum.saturating_add(c * c / 2))
+                })
+                .unwrap_or(usize::MAX)
+        };
+        if within(&mut full.iter().map(|&c| usize::from(c))) <= if paying { n } else { 0 } {
             return Self::default();
         }
         // Book pages, once found.
         let mut excluded: Vec<bool> = Vec::new();
         let valences = |excluded: &[bool]| {
-            let mut valence: HashMap<K, u32> = HashMap::new();
+            let mut valence: Map<K, u32> = Map::default();
             for k in (0..n).filter(|&k| !excluded.get(k).copied().unwrap_or(false)) {
                 let Some(c) = key_of(k) else { continue };
-                for key in c.iter().filter(|k| usize::from(full[bucket(k)]) >= min) {
+                for key in c.iter().filter(|k| is_full(k)) {
                     *valence.entry(*key).or_default() += 1;
                 }
             }
             valence
         };
         let mut valence = valences(&excluded);
-        let hub_key = |valence: &HashMap<K, u32>, key: &K| {
-            valence.get(key).is_some_and(|&v| v as usize >= min)
+        // The bucket test first: most corners are in no full bucket, and
+        // the map's look-up of every corner cost more than the bucket pass.
+        let hub_key = |valence: &Map<K, u32>, key: &K| {
+            is_full(key) && valence.get(key).is_some_and(|&v| v as usize >= min)
         };
-        if !valence.values().any(|&v| v as usize >= min) {
+        if within(&mut valence.values().map(|&v| v as usize)) <= if paying { n } else { 0 } {
             return Self::default();
         }
         // A book (many triangles around one edge) is a star at both ends of
@@ -359,7 +416,7 @@ impl Stars {
         // sectors meet along it: the sectors would list them all. Its pages
         // are left to the caller's bins, as if there were no star.
         let spines = {
-            let mut edges: HashMap<(K, K), u32> = HashMap::new();
+            let mut edges: Map<(K, K), u32> = Map::default();
             for c in (0..n).filter_map(key_of) {
                 for i in 0..3 {
                     let (a, b) = (c[i], c[(i + 1) % 3]);
@@ -384,7 +441,7 @@ impl Stars {
         }
         // Hub ids in order of first appearance, so that they do not depend
         // on the hash order.
-        let mut hub: HashMap<K, u32> = HashMap::new();
+        let mut hub: Map<K, u32> = Map::default();
         let mut start = vec![0usize];
         let mut of = vec![[NO_STAR; 3]; n];
         for (t, hubs) in of.iter_mut().enumerate() {

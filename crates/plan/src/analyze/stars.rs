@@ -53,12 +53,13 @@ impl AngularPoint for Flat {
     }
 }
 
-/// The stars of world-space triangles: corners are the same vertex when
-/// their coordinates are equal.
+/// The stars of world-space triangles (corners are the same vertex when
+/// their coordinates are equal), if they pay for a search over their pairs
+/// ([`Stars::paying`]).
 pub(crate) fn world_stars(tris: &[(u32, [DVec3; 3])]) -> Stars {
     // `+ 0.0` makes -0 and 0 one key.
     let key = |p: DVec3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
-    Stars::new(
+    Stars::paying(
         tris.len(),
         |k| Some(tris[k].1.map(key)),
         hider_geom::star::MIN_STAR,
@@ -134,9 +135,10 @@ pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &mut Stars) ->
     out
 }
 
-/// The stars of snapped screen triangles ([`hider_geom::star::fixed_stars`]).
+/// The stars of snapped screen triangles ([`hider_geom::star::fixed_stars`]),
+/// if they pay for a search over their pairs ([`Stars::paying`]).
 pub(crate) fn screen_stars(tris: &[ScreenTri]) -> Stars {
-    hider_geom::star::fixed_stars(tris.len(), |k| Some(tris[k].v))
+    hider_geom::star::fixed_stars_paying(tris.len(), |k| Some(tris[k].v))
 }
 
 /// Candidate pairs `(i, j)`, `i < j`, of screen triangles sharing a hub of
