@@ -284,6 +284,15 @@ impl Hasher for Mix {
     }
 }
 
+/// What [`Stars::build`] is asked for.
+#[derive(Clone, Copy, Default)]
+struct Build {
+    /// Only stars that pay for a search over pairs ([`Stars::paying`]).
+    paying: bool,
+    /// Books as stars of their own ([`Stars::paying_with_books`]).
+    books: bool,
+}
+
 /// The maps of [`Stars::new`], on [`Mix`]: their keys are the few in full
 /// buckets, but every corner is looked up.
 type Map<K, V> = HashMap<K, V, BuildHasherDefault<Mix>>;
@@ -307,6 +316,8 @@ pub struct Stars {
     /// Every star's members as (triangle, corner at the hub), star after
     /// star, triangles ascending.
     members: Vec<(u32, u8)>,
+    /// Per star, whether it is a book ([`Stars::paying_with_books`]).
+    book: Vec<bool>,
 }
 
 impl Stars {
@@ -320,7 +331,7 @@ impl Stars {
         corners: impl Fn(usize) -> Option<[K; 3]>,
         min_members: usize,
     ) -> Self {
-        Self::build(n, corners, min_members, false)
+        Self::build(n, corners, min_members, Build::default())
     }
 
     /// [`Stars::new`] when the stars pay for a search over the pairs of
@@ -334,19 +345,37 @@ impl Stars {
         corners: impl Fn(usize) -> Option<[K; 3]>,
         min_members: usize,
     ) -> Self {
-        let stars = Self::build(n, corners, min_members, true);
-        if stars.pay_for(n) {
-            stars
-        } else {
-            Self::default()
-        }
+        let build = Build {
+            paying: true,
+            books: false,
+        };
+        Self::build(n, corners, min_members, build)
+    }
+
+    /// [`Stars::paying`], with every book a star of its own: an edge (the
+    /// *spine*) that `min_members` triangles (its *pages*) share, whose
+    /// members are the pages, each with the corner where the spine starts
+    /// in it (the spine is that corner and the next). Two pages meet, if
+    /// at all, along the spine, so a caller that can tell which pages may
+    /// meet (by their angles around the spine) spares the bins' pairs;
+    /// [`Stars::is_book`] tells books from stars around a vertex.
+    pub fn paying_with_books<K: Hash + Eq + Copy>(
+        n: usize,
+        corners: impl Fn(usize) -> Option<[K; 3]>,
+        min_members: usize,
+    ) -> Self {
+        let build = Build {
+            paying: true,
+            books: true,
+        };
+        Self::build(n, corners, min_members, build)
     }
 
     fn build<K: Hash + Eq + Copy>(
         n: usize,
         corners: impl Fn(usize) -> Option<[K; 3]>,
         min_members: usize,
-        paying: bool,
+        Build { paying, books }: Build,
     ) -> Self {
         // Keys are recomputed in each pass rather than stored: a stored
         // copy of every corner key cost 640 MB and a third of `hider
@@ -442,27 +471,40 @@ impl Stars {
         // Hub ids in order of first appearance, so that they do not depend
         // on the hash order.
         let mut hub: Map<K, u32> = Map::default();
+        let mut spine_hub: Map<(K, K), u32> = Map::default();
         let mut start = vec![0usize];
+        let mut book = Vec::new();
         let mut of = vec![[NO_STAR; 3]; n];
         for (t, hubs) in of.iter_mut().enumerate() {
-            if excluded.get(t).copied().unwrap_or(false) {
-                continue;
-            }
             let Some(c) = key_of(t) else { continue };
-            for (i, key) in c.iter().enumerate() {
-                if !hub_key(&valence, key) {
-                    continue;
-                }
-                let next = hub.len() as u32;
-                let h = *hub.entry(*key).or_insert_with(|| {
+            let page = excluded.get(t).copied().unwrap_or(false);
+            for i in 0..3 {
+                let next = start.len() as u32 - 1;
+                let h = if !page {
+                    if !hub_key(&valence, &c[i]) {
+                        continue;
+                    }
+                    *hub.entry(c[i]).or_insert(next)
+                } else {
+                    // A page: a member of each book whose spine it holds.
+                    let (a, b) = (c[i], c[(i + 1) % 3]);
+                    if !books || !spines.contains_key(&(a, b)) {
+                        continue;
+                    }
+                    match spine_hub.get(&(b, a)) {
+                        Some(&h) => h,
+                        None => *spine_hub.entry((a, b)).or_insert(next),
+                    }
+                };
+                if h == next {
                     start.push(0);
-                    next
-                });
+                    book.push(page);
+                }
                 start[h as usize + 1] += 1;
                 hubs[i] = h;
             }
         }
-        let stars = hub.len();
+        let stars = start.len() - 1;
         for h in 0..stars {
             start[h + 1] += start[h];
         }
@@ -477,7 +519,22 @@ impl Stars {
             }
             hubs.sort_unstable();
         }
-        Self { of, start, members }
+        let stars = Self {
+            of,
+            start,
+            members,
+            book,
+        };
+        if paying && !stars.pay_for(n) {
+            return Self::default();
+        }
+        stars
+    }
+
+    /// Whether star `h` is a book ([`Stars::paying_with_books`]): its
+    /// members share an edge, not only a vertex.
+    pub fn is_book(&self, h: usize) -> bool {
+        self.book.get(h).copied().unwrap_or(false)
     }
 
     /// The number of stars.
@@ -531,11 +588,13 @@ impl Stars {
         let mut renumber = vec![NO_STAR; self.len()];
         let mut start = vec![0usize];
         let mut members = Vec::new();
+        let mut book = Vec::new();
         for (h, id) in renumber.iter_mut().enumerate() {
             if keep(h) {
                 *id = start.len() as u32 - 1;
                 members.extend_from_slice(self.members(h));
                 start.push(members.len());
+                book.push(self.is_book(h));
             }
         }
         for of in &mut self.of {
@@ -546,6 +605,7 @@ impl Stars {
         }
         self.start = start;
         self.members = members;
+        self.book = book;
     }
 
     /// Whether triangles `a` and `b` belong to a common star (their pair
