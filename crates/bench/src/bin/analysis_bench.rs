@@ -162,6 +162,9 @@ fn planner_cost() {
 /// and the counts measured.
 type Family = (&'static str, fn(u32) -> f64, &'static [u32]);
 
+/// A family of section 6: name, scene of N, the Ns.
+type StarFamily = (&'static str, fn(u32) -> Scene, &'static [u32]);
+
 /// Section 4: the pair searches on overlapping random triangles, N
 /// doubling.
 fn analysis_scaling() {
@@ -227,7 +230,7 @@ fn star_scaling() {
         "| family | N | pairs listed | pairs tested | overlapping pairs on screen | intersections ms | overlaps ms | analysis ms (thread CPU) |"
     );
     println!("|---|---|---|---|---|---|---|---|");
-    let families: [(&str, fn(u32) -> Scene, &[u32]); 4] = [
+    let families: [StarFamily; 4] = [
         (
             "flat fan",
             |n| star_fan(n, 0.0),
