@@ -57,6 +57,14 @@ pub fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i8 {
     if det.abs() > O2D_ERRBOUND * (l.abs() + r.abs()) {
         return sign(det);
     }
+    orient2d_exact(a, b, c)
+}
+
+/// The exact sign of [`orient2d`]'s determinant through expansions (out
+/// of line: the filter above settles nearly every call).
+#[cold]
+#[inline(never)]
+fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i8 {
     let ax = two_diff(a[0], c[0]);
     let ay = two_diff(a[1], c[1]);
     let bx = two_diff(b[0], c[0]);
@@ -77,7 +85,10 @@ fn sign(x: f64) -> i8 {
     }
 }
 
-/// The exact determinant's sign through expansions.
+/// The exact determinant's sign through expansions (out of line: the
+/// filter settles nearly every call).
+#[cold]
+#[inline(never)]
 fn orient3d_exact(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
     let diff = |p: DVec3| [two_diff(p.x, d.x), two_diff(p.y, d.y), two_diff(p.z, d.z)];
     let (ad, bd, cd) = (diff(a), diff(b), diff(c));
