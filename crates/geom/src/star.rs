@@ -246,7 +246,7 @@ pub fn fixed_star_pairs(
 
 mod hubs;
 
-pub use hubs::{NO_STAR, Stars};
+pub use hubs::{Mix, NO_STAR, Stars};
 
 #[cfg(test)]
 mod tests;

@@ -5,10 +5,12 @@
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hash, Hasher};
 
-/// A cheap multiplicative hash (as rustc's `FxHasher`) for the bucket
-/// counts of [`Stars::new`], which only bound the exact counts.
-#[derive(Default)]
-struct Mix(u64);
+/// A cheap multiplicative hash (as rustc's `FxHasher`): the bucket counts
+/// of [`Stars::new`], which only bound the exact counts, and maps of keys
+/// hashed per pair, where SipHash cost more than the work it indexed
+/// (`BuildHasherDefault<Mix>`). Not meant for keys chosen to collide.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Mix(u64);
 
 impl Hasher for Mix {
     fn finish(&self) -> u64 {
