@@ -54,6 +54,42 @@ pub fn star_fan(count: u32, lift: f64) -> Scene {
     scene
 }
 
+/// A fan of `count` triangles around the origin whose rim alternates
+/// between `z = pleat` and `z = -pleat`: steep pleats, whose triangles'
+/// sectors overlap in every projection but the axis's.
+pub fn pleated_fan(count: u32, pleat: f64) -> Scene {
+    let mut mesh = hider_testkit::sheets::fan(count, 0.0);
+    for (k, p) in mesh.positions.iter_mut().enumerate().skip(1) {
+        p.z = if k % 2 == 0 { pleat } else { -pleat };
+    }
+    let mut scene = Scene::default();
+    scene.push_mesh(mesh, None);
+    scene
+}
+
+/// A book: `count` pages (triangles) sharing the spine from `(0, -1, 0)`
+/// to `(0, 1, 0)`, their third corners at unit distance spread over a half
+/// turn around it.
+pub fn book(count: u32) -> Scene {
+    let n = count.max(1);
+    let mut positions = vec![DVec3::new(0.0, -1.0, 0.0), DVec3::new(0.0, 1.0, 0.0)];
+    positions.extend((0..n).map(|k| {
+        let a = std::f64::consts::PI * (f64::from(k) + 0.5) / f64::from(n);
+        DVec3::new(a.cos(), 0.0, a.sin())
+    }));
+    let mut scene = Scene::default();
+    scene.push_mesh(
+        Mesh {
+            name: "book".into(),
+            positions,
+            indices: (0..n).map(|k| [0, 1, 2 + k]).collect(),
+            ..Mesh::default()
+        },
+        None,
+    );
+    scene
+}
+
 /// The size of the visibility problem a [`ScreenScene`] poses.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SceneAnalysis {

@@ -21,14 +21,17 @@
 //! 5. The checkerboard plane at a grazing angle, perspective-correct
 //!    beside affine, written to `OUT.png` (default
 //!    `docs/images/analysis-checker.png`).
-//! 6. The scaling of the pair searches on stars (a flat fan and a cone of
-//!    N triangles around one vertex), N doubling. `analysis_bench stars`
+//! 6. The scaling of the pair searches on stars (a flat fan, a cone and a
+//!    steeply pleated fan of N triangles around one vertex) and on a book
+//!    (N triangles around one edge), N doubling. `analysis_bench stars`
 //!    runs this section alone.
+//!
+//! `analysis_bench scaling` runs section 4 alone.
 
 use std::path::PathBuf;
 
 use glam::DVec3;
-use hider_bench::analysis::{overlapping_triangles, star_fan};
+use hider_bench::analysis::{book, overlapping_triangles, pleated_fan, star_fan};
 use hider_bench::programs::thread_cpu_seconds;
 use hider_plan::analyze::backface;
 use hider_plan::{HiderConfig, RenderOptions, analyze_prepared, auto};
@@ -159,6 +162,9 @@ fn planner_cost() {
 /// and the counts measured.
 type Family = (&'static str, fn(u32) -> f64, &'static [u32]);
 
+/// A family of section 6: name, scene of N, the Ns.
+type StarFamily = (&'static str, fn(u32) -> Scene, &'static [u32]);
+
 /// Section 4: the pair searches on overlapping random triangles, N
 /// doubling.
 fn analysis_scaling() {
@@ -188,14 +194,7 @@ fn analysis_scaling() {
             });
             let fx = fx.unwrap();
             let w = fx.work;
-            let overlapping = fx
-                .cyclic_overlap
-                .detail
-                .split(" among ")
-                .nth(1)
-                .and_then(|s| s.split(' ').next())
-                .unwrap_or("?")
-                .to_owned();
+            let overlapping = overlapping_pairs(&fx);
             println!(
                 "| {family} | {n} | {} | {} | {}{} | {overlapping} | {ms:.0} |",
                 w.intersection_candidates + w.overlap_candidates,
@@ -211,17 +210,47 @@ fn analysis_scaling() {
     }
 }
 
-/// Section 6: the pair searches on a fan and a cone of N triangles around
-/// one vertex, N doubling.
+/// The overlapping pairs on screen that the overlap graph's report names.
+fn overlapping_pairs(fx: &hider_plan::Effects) -> String {
+    fx.cyclic_overlap
+        .detail
+        .split(" among ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .unwrap_or("?")
+        .to_owned()
+}
+
+/// Section 6: the pair searches on a fan, a cone and a steeply pleated
+/// fan of N triangles around one vertex, and on a book of N pages around
+/// one edge, N doubling.
 fn star_scaling() {
     println!("\n## analysis scaling: stars of N triangles around one vertex (512 x 512)");
     println!(
-        "| family | N | pairs listed | pairs tested | intersections ms | overlaps ms | analysis ms (thread CPU) |"
+        "| family | N | pairs listed | pairs tested | overlapping pairs on screen | intersections ms | overlaps ms | analysis ms (thread CPU) |"
     );
-    println!("|---|---|---|---|---|---|---|");
-    for (family, lift) in [("flat fan", 0.0), ("cone", 0.5)] {
-        for n in [1000, 2000, 4000, 8000, 16000, 32000] {
-            let scene = star_fan(n, lift);
+    println!("|---|---|---|---|---|---|---|---|");
+    let families: [StarFamily; 4] = [
+        (
+            "flat fan",
+            |n| star_fan(n, 0.0),
+            &[1000, 2000, 4000, 8000, 16000, 32000],
+        ),
+        (
+            "cone",
+            |n| star_fan(n, 0.5),
+            &[1000, 2000, 4000, 8000, 16000, 32000],
+        ),
+        (
+            "steeply pleated fan",
+            |n| pleated_fan(n, 0.2),
+            &[1000, 2000, 4000],
+        ),
+        ("book", book, &[1000, 2000, 4000]),
+    ];
+    for (family, make, counts) in families {
+        for &n in counts {
+            let scene = make(n);
             let mut fx = None;
             let ms = cpu_ms(1, || {
                 fx = Some(hider_plan::analyze(&scene, &RenderOptions::default()).unwrap())
@@ -229,9 +258,12 @@ fn star_scaling() {
             let fx = fx.unwrap();
             let w = fx.work;
             println!(
-                "| {family} | {n} | {} | {} | {:.1} | {:.1} | {ms:.1} |",
-                w.intersection_candidates + w.overlap_candidates,
-                w.intersection_tests + w.overlap_tests,
+                "| {family} | {n} | {} + {} | {} + {} | {} | {:.1} | {:.1} | {ms:.1} |",
+                w.intersection_candidates,
+                w.overlap_candidates,
+                w.intersection_tests,
+                w.overlap_tests,
+                overlapping_pairs(&fx),
                 fx.times.intersections_ms,
                 fx.times.overlaps_ms,
             );
@@ -323,9 +355,10 @@ fn checker_plane(out: &PathBuf) {
 }
 
 fn main() {
-    if std::env::args().nth(1).as_deref() == Some("stars") {
-        star_scaling();
-        return;
+    match std::env::args().nth(1).as_deref() {
+        Some("stars") => return star_scaling(),
+        Some("scaling") => return analysis_scaling(),
+        _ => {}
     }
     let out = std::env::args()
         .nth(1)

@@ -121,3 +121,23 @@ fn degenerate_sectors() {
     let pairs = sector_pairs(o, &[half, down, up], |_| true);
     assert_eq!(pairs, vec![(0, 2)]);
 }
+
+#[test]
+fn paying_stars_are_new_stars_or_none() {
+    // A fan of five around key 0 (12 pairs inside) and `lone` triangles
+    // of their own: the star pays for 5 + `lone` triangles while 12 pairs
+    // outnumber them.
+    for lone in 0..10u32 {
+        let mut tris: Vec<[u32; 3]> = (0..5).map(|k| [0, 1 + k, 2 + k]).collect();
+        tris.extend((0..lone).map(|k| [100 + 3 * k, 101 + 3 * k, 102 + 3 * k]));
+        let all = Stars::new(tris.len(), |k| Some(tris[k]), 5);
+        let paying = Stars::paying(tris.len(), |k| Some(tris[k]), 5);
+        assert_eq!(all.len(), 1);
+        if 12 > tris.len() {
+            assert_eq!(paying.members(0), all.members(0), "lone {lone}");
+            assert!((0..tris.len()).all(|t| paying.stars_of(t) == all.stars_of(t)));
+        } else {
+            assert!(paying.is_empty(), "lone {lone}");
+        }
+    }
+}

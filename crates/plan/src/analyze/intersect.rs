@@ -245,9 +245,6 @@ pub fn find_pairs(tris: &[(u32, [DVec3; 3])], budget: u64, cancel: Cancel) -> Pa
     let hi = boxes.iter().fold(DVec3::NEG_INFINITY, |m, b| m.max(b.1));
     let grid = Grid::new(lo, hi, &boxes);
     let mut stars = stars::world_stars(tris);
-    if !stars.pay_for(tris.len()) {
-        stars = Stars::default();
-    }
     // Before the cells: dense stars are dissolved into them.
     let star_pairs = stars::world_star_pairs(tris, &mut stars);
     let starred = !stars.is_empty();

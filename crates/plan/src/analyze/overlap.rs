@@ -79,10 +79,7 @@ pub fn overlap_graph(
     max_examples: usize,
     cancel: Cancel,
 ) -> OverlapGraph {
-    let mut stars = stars::screen_stars(tris);
-    if !stars.pay_for(tris.len()) {
-        stars = Stars::default();
-    }
+    let stars = stars::screen_stars(tris);
     graph(
         tris,
         vp,

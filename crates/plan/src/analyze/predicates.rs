@@ -57,13 +57,22 @@ pub fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i8 {
     if det.abs() > O2D_ERRBOUND * (l.abs() + r.abs()) {
         return sign(det);
     }
+    orient2d_exact(a, b, c)
+}
+
+/// The exact sign of [`orient2d`]'s determinant through expansions (out
+/// of line: the filter above settles nearly every call).
+#[cold]
+#[inline(never)]
+fn orient2d_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i8 {
     let ax = two_diff(a[0], c[0]);
     let ay = two_diff(a[1], c[1]);
     let bx = two_diff(b[0], c[0]);
     let by = two_diff(b[1], c[1]);
-    let left = mul(&ax, &by);
-    let right = negate(&mul(&ay, &bx));
-    expansion_sign(&add(&left, &right))
+    let left: Expansion<8> = mul(&ax, &by);
+    let mut right: Expansion<8> = mul(&ay, &bx);
+    right.negate();
+    expansion_sign(&add::<16>(&left, &right))
 }
 
 fn sign(x: f64) -> i8 {
@@ -76,28 +85,81 @@ fn sign(x: f64) -> i8 {
     }
 }
 
-/// The exact determinant's sign through expansions.
+/// The exact determinant's sign through expansions (out of line: the
+/// filter settles nearly every call).
+#[cold]
+#[inline(never)]
 fn orient3d_exact(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
     let diff = |p: DVec3| [two_diff(p.x, d.x), two_diff(p.y, d.y), two_diff(p.z, d.z)];
     let (ad, bd, cd) = (diff(a), diff(b), diff(c));
-    let minor = |p: &[Vec<f64>; 3], q: &[Vec<f64>; 3]| {
+    let minor = |p: &[[f64; 2]; 3], q: &[[f64; 2]; 3]| -> Expansion<16> {
         // p.y * q.z - p.z * q.y
-        add(&mul(&p[1], &q[2]), &negate(&mul(&p[2], &q[1])))
+        let mut right: Expansion<8> = mul(&p[2], &q[1]);
+        right.negate();
+        add(&mul::<8>(&p[1], &q[2]), &right)
     };
     let bc = minor(&bd, &cd);
     let ca = minor(&cd, &ad);
     let ab = minor(&ad, &bd);
-    let det = add(
-        &add(&mul(&ad[0], &bc), &mul(&bd[0], &ca)),
-        &mul(&cd[0], &ab),
-    );
+    let left: Expansion<128> = add(&mul::<64>(&ad[0], &bc), &mul::<64>(&bd[0], &ca));
+    let det: Expansion<192> = add(&left, &mul::<64>(&cd[0], &ab));
     expansion_sign(&det)
 }
 
+/// A floating-point expansion of at most `N` components, on the stack:
+/// the exact paths run for every pair of mesh neighbours that are nearly
+/// coplanar (the two halves of a UV sphere's quads), and with a heap
+/// vector per intermediate result `malloc` and `free` were 43% of `hider
+/// analyze gen:sphere:300`. The longest, the 3x3 determinant, has 192.
+struct Expansion<const N: usize> {
+    len: usize,
+    c: [f64; N],
+}
+
+impl<const N: usize> Expansion<N> {
+    fn new() -> Self {
+        Self {
+            len: 0,
+            c: [0.0; N],
+        }
+    }
+
+    /// Shewchuk's `grow_expansion` in place: `self + b` exactly.
+    fn grow(&mut self, b: f64) {
+        let mut q = b;
+        let mut w = 0;
+        // `w <= i`: each component is read before its slot is written.
+        for i in 0..self.len {
+            let (s, h) = two_sum(q, self.c[i]);
+            if h != 0.0 {
+                self.c[w] = h;
+                w += 1;
+            }
+            q = s;
+        }
+        self.c[w] = q;
+        self.len = w + 1;
+    }
+
+    fn negate(&mut self) {
+        for x in &mut self.c[..self.len] {
+            *x = -*x;
+        }
+    }
+}
+
+impl<const N: usize> std::ops::Deref for Expansion<N> {
+    type Target = [f64];
+
+    fn deref(&self) -> &[f64] {
+        &self.c[..self.len]
+    }
+}
+
 /// `a - b` exactly, as a two-term expansion (small component first).
-fn two_diff(a: f64, b: f64) -> Vec<f64> {
+fn two_diff(a: f64, b: f64) -> [f64; 2] {
     let (s, e) = two_sum(a, -b);
-    vec![e, s]
+    [e, s]
 }
 
 /// Knuth's error-free sum: `s + e == a + b` exactly, `s = fl(a + b)`.
@@ -114,41 +176,34 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
     (p, a.mul_add(b, -p))
 }
 
-/// Shewchuk's `grow_expansion`: `e + b` exactly.
-fn grow(e: &[f64], b: f64) -> Vec<f64> {
-    let mut out = Vec::with_capacity(e.len() + 1);
-    let mut q = b;
-    for &x in e {
-        let (s, h) = two_sum(q, x);
-        if h != 0.0 {
-            out.push(h);
-        }
-        q = s;
+/// `e + f` exactly (at most `N` components: `e.len() + f.len() <= N`).
+fn add<const N: usize>(e: &[f64], f: &[f64]) -> Expansion<N> {
+    let mut out = Expansion::new();
+    out.c[..e.len()].copy_from_slice(e);
+    out.len = e.len();
+    for &x in f {
+        out.grow(x);
     }
-    out.push(q);
     out
 }
 
-/// `e + f` exactly.
-fn add(e: &[f64], f: &[f64]) -> Vec<f64> {
-    f.iter().fold(e.to_vec(), |acc, &x| grow(&acc, x))
-}
-
-/// `e * b` exactly.
-fn scale(e: &[f64], b: f64) -> Vec<f64> {
-    e.iter().fold(Vec::new(), |acc, &x| {
-        let (p, err) = two_product(x, b);
-        add(&acc, &[err, p])
-    })
-}
-
-/// `e * f` exactly.
-fn mul(e: &[f64], f: &[f64]) -> Vec<f64> {
-    f.iter().fold(Vec::new(), |acc, &x| add(&acc, &scale(e, x)))
-}
-
-fn negate(e: &[f64]) -> Vec<f64> {
-    e.iter().map(|x| -x).collect()
+/// `e * f` exactly (`2 e.len() f.len() <= N`; `e` of at most 8
+/// components).
+fn mul<const N: usize>(e: &[f64], f: &[f64]) -> Expansion<N> {
+    let mut out = Expansion::new();
+    for &x in f {
+        // `e * x`, each product's two terms grown in, then added to `out`.
+        let mut scaled = Expansion::<16>::new();
+        for &y in e {
+            let (p, err) = two_product(y, x);
+            scaled.grow(err);
+            scaled.grow(p);
+        }
+        for &y in scaled.iter() {
+            out.grow(y);
+        }
+    }
+    out
 }
 
 /// The sign of an expansion: the sign of its most significant non-zero

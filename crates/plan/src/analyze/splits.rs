@@ -24,8 +24,10 @@
 //! of planes, where the bound may overcount).
 
 use std::collections::HashSet;
+use std::hash::BuildHasherDefault;
 
 use glam::DVec3;
+use hider_geom::star::Mix;
 
 /// A plane, rounded: the axis of the normal's largest component and the
 /// other two components and the offset, scaled so that component is 1, as
@@ -68,7 +70,10 @@ pub fn painter_splits_at_least(tris: &[(u32, [DVec3; 3])], pairs: &[(u32, u32)])
         planes[*id as usize] = plane_key(t);
     }
     let plane = |id: u32| planes.get(id as usize).copied().flatten();
-    let mut used: HashSet<(u32, PlaneKey)> = HashSet::with_capacity(pairs.len());
+    // Two cuts a matched pair. A cheap hash: SipHash here was a fifth of
+    // `hider analyze` on 2,000 random triangles in a cube.
+    let mut used: HashSet<(u32, PlaneKey), BuildHasherDefault<Mix>> =
+        HashSet::with_capacity_and_hasher(2 * pairs.len(), BuildHasherDefault::default());
     let mut matched = 0u64;
     for &(a, b) in pairs {
         let (Some(pa), Some(pb)) = (plane(a), plane(b)) else {

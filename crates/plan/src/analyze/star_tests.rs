@@ -114,7 +114,13 @@ pub(super) fn family(r: &mut SplitMix64, kind: usize, tris: &mut Vec<[DVec3; 3]>
             let tip = centre + axis;
             for k in 0..n {
                 let a = angles[k.min(angles.len() - 1)];
-                let a = if k % 3 == 0 { 0.0 } else { a };
+                // Some in one plane (on one side, on the other, or off
+                // it by less and by more than the coplanar tolerance).
+                let a = match k % 6 {
+                    0 => 0.0,
+                    3 => [std::f64::consts::PI, 1e-7, 1e-3][r.below(3)],
+                    _ => a,
+                };
                 let page = centre + axis * r.range(0.0, 1.0) + u * a.cos() + v * a.sin();
                 tris.push([centre, tip, snap(page, step)]);
             }
@@ -212,6 +218,46 @@ fn fan_pairs_grow_linearly() {
             large.1 < 3 * small.1,
             "lift {lift}: tested {small:?} {large:?}"
         );
+    }
+}
+
+/// A book of `n` pages around the spine from the origin along z, fanned
+/// over a half turn (`ties`: every tenth page doubled, a coplanar tie).
+fn book(n: usize, ties: bool) -> Vec<(u32, [DVec3; 3])> {
+    let page = |k: usize| {
+        let a = std::f64::consts::PI * (k as f64 + 0.5) / n as f64;
+        DVec3::new(a.cos(), a.sin(), 0.5)
+    };
+    (0..n)
+        .map(|k| if ties && k % 10 == 1 { k - 1 } else { k })
+        .enumerate()
+        .map(|(id, k)| (id as u32, [DVec3::ZERO, DVec3::Z, page(k)]))
+        .collect()
+}
+
+/// A book's pairs listed and tested grow linearly (every pair of pages
+/// was listed and tested before its pages were sorted by angle), and its
+/// coplanar pages are found.
+#[test]
+fn book_pairs_grow_linearly() {
+    for ties in [false, true] {
+        let work = |n| {
+            let tris = book(n, ties);
+            let s = find_pairs(&tris, u64::MAX, Cancel::default());
+            assert!(s.complete && s.interpenetrating.is_empty());
+            let want = if ties { n / 10 } else { 0 };
+            assert_eq!(s.coplanar.len(), want, "{n} pages");
+            (s.candidates, s.tests)
+        };
+        // At most a pair per page: apart, the pages' windows hold no
+        // other page; with ties, only the tied page.
+        for n in [1000, 2000] {
+            let (listed, tested) = work(n);
+            assert!(
+                listed <= n as u64 && tested <= n as u64,
+                "{n}: {listed} {tested}"
+            );
+        }
     }
 }
 

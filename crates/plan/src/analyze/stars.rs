@@ -36,7 +36,7 @@ use glam::DVec3;
 use hider_geom::star::{AngularPoint, Sector, Stars, dense_limit, sector_pairs_within};
 use hider_scene::ScreenTri;
 
-use super::intersect::{drop_axis, project};
+use super::intersect::{COPLANAR_TOLERANCE, drop_axis, project};
 use super::predicates::orient2d;
 
 /// A point of a plane of projection, ordered exactly by [`orient2d`].
@@ -53,12 +53,13 @@ impl AngularPoint for Flat {
     }
 }
 
-/// The stars of world-space triangles: corners are the same vertex when
-/// their coordinates are equal.
+/// The stars of world-space triangles (corners are the same vertex when
+/// their coordinates are equal), books included, if they pay for a search
+/// over their pairs ([`Stars::paying_with_books`]).
 pub(crate) fn world_stars(tris: &[(u32, [DVec3; 3])]) -> Stars {
     // `+ 0.0` makes -0 and 0 one key.
     let key = |p: DVec3| [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
-    Stars::new(
+    Stars::paying_with_books(
         tris.len(),
         |k| Some(tris[k].1.map(key)),
         hider_geom::star::MIN_STAR,
@@ -78,6 +79,13 @@ pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &mut Stars) ->
     'stars: for h in 0..stars.len() {
         let before = out.len();
         let members = stars.members(h);
+        if stars.is_book(h) {
+            match book_pairs(tris, members) {
+                Some(pairs) => out.extend(pairs),
+                None => dense.push(h),
+            }
+            continue;
+        }
         // The axes along which each member asks: its drop axis, or all
         // three when its projection along that one is flat.
         let asks: Vec<u8> = members
@@ -134,9 +142,94 @@ pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &mut Stars) ->
     out
 }
 
-/// The stars of snapped screen triangles ([`hider_geom::star::fixed_stars`]).
+/// The candidate pairs of a book's pages (`members`: triangle, corner
+/// where the spine starts) that [`super::intersect::contact`] may report,
+/// as pairs of triangles, or `None` for a dense book (see
+/// [`hider_geom::star::DENSE_PAIRS_PER_MEMBER`]).
+///
+/// Two pages share two corners, each exactly on the other's plane, so
+/// neither has corners strictly on both sides of the other: `contact`
+/// reports a pair only through its coplanar test, which needs the third
+/// corner `c_b` of each within `t L` of the other's plane (`t` the
+/// [`super::intersect::COPLANAR_TOLERANCE`], `L` the pair's longest edge).
+/// That distance is `r_b |sin(phi_a - phi_b)|`, where `r` is a page's
+/// reach from the spine's line and `phi` its angle around it, so a pair
+/// can be reported only if `|sin(phi_a - phi_b)| <= t L / max(r_a, r_b)
+/// <= t max(s_a, s_b)`, `s = L / r` a page's own slenderness (its longest
+/// edge over its reach). Sorted by angle modulo a half turn (opposite
+/// pages are coplanar too), each page lists the pages within its own
+/// window, twice as wide as that bound, plus `1e-9` for the rounding of
+/// the angles: pages fanned around a spine then meet few others, and
+/// the test runs on the near-coplanar pairs only.
+fn book_pairs(tris: &[(u32, [DVec3; 3])], members: &[(u32, u8)]) -> Option<Vec<(u32, u32)>> {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    let (t0, i0) = members[0];
+    let c0 = &tris[t0 as usize].1;
+    let (p, q) = (c0[usize::from(i0)], c0[(usize::from(i0) + 1) % 3]);
+    let axis = (q - p).normalize();
+    let e1 = axis.any_orthonormal_vector();
+    let e2 = axis.cross(e1);
+    // (angle modulo a half turn, half-width of the window, triangle).
+    let mut pages: Vec<(f64, f64, u32)> = members
+        .iter()
+        .map(|&(t, i)| {
+            let c = &tris[t as usize].1;
+            let w = c[(usize::from(i) + 2) % 3] - p;
+            let off = w - axis * w.dot(axis);
+            let reach = off.length();
+            let longest = (0..3)
+                .map(|k| (c[(k + 1) % 3] - c[k]).length())
+                .fold(0.0, f64::max);
+            let slender = longest / reach;
+            let sine = 2.0 * COPLANAR_TOLERANCE * slender + 1e-9;
+            let half = if sine.is_finite() && sine < 1.0 {
+                sine.asin() + 1e-9
+            } else {
+                FRAC_PI_2
+            };
+            let phi = off.dot(e2).atan2(off.dot(e1)).rem_euclid(PI);
+            (if phi.is_finite() { phi } else { 0.0 }, half, t)
+        })
+        .collect();
+    pages.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    let most = dense_limit(pages.len());
+    let mut out = Vec::new();
+    let n = pages.len();
+    for (k, &(phi, half, t)) in pages.iter().enumerate() {
+        let mut take = |j: usize| {
+            let u = pages[j].2;
+            out.push((t.min(u), t.max(u)));
+        };
+        if half >= FRAC_PI_2 {
+            (0..n).filter(|&j| j != k).for_each(&mut take);
+        } else {
+            // Forward then backward around the circle of angles modulo
+            // a half turn, while within the window (the distances grow
+            // monotonically along each walk).
+            let ahead = |j: usize| (pages[j].0 - phi).rem_euclid(PI);
+            let behind = |j: usize| (phi - pages[j].0).rem_euclid(PI);
+            let mut j = (k + 1) % n;
+            while j != k && ahead(j) <= half {
+                take(j);
+                j = (j + 1) % n;
+            }
+            let mut j = (k + n - 1) % n;
+            while j != k && behind(j) <= half {
+                take(j);
+                j = (j + n - 1) % n;
+            }
+        }
+        if out.len() > most {
+            return None;
+        }
+    }
+    Some(out)
+}
+
+/// The stars of snapped screen triangles ([`hider_geom::star::fixed_stars`]),
+/// if they pay for a search over their pairs ([`Stars::paying`]).
 pub(crate) fn screen_stars(tris: &[ScreenTri]) -> Stars {
-    hider_geom::star::fixed_stars(tris.len(), |k| Some(tris[k].v))
+    hider_geom::star::fixed_stars_paying(tris.len(), |k| Some(tris[k].v))
 }
 
 /// Candidate pairs `(i, j)`, `i < j`, of screen triangles sharing a hub of
