@@ -42,17 +42,17 @@ impl Occlusion {
         };
         let mut prim_culled = vec![false; scene.prims.len()];
         let mut prim_live = vec![false; scene.prims.len()];
-        let live: Vec<bool> = boxes
+        let live: Vec<_> = boxes
             .iter()
             .enumerate()
             .map(|(k, b)| {
                 let prim = scene.tris[k].prim as usize;
                 if culled.hidden[k] {
                     prim_culled[prim] = true;
-                    false
+                    None
                 } else {
                     prim_live[prim] = true;
-                    b.is_some()
+                    *b
                 }
             })
             .collect();
@@ -283,8 +283,15 @@ fn split_visibility(
     stats: &mut LineStats,
 ) -> Visibility {
     let [p, q] = f.ends;
+    let mut out = Visibility::default();
+    // Only the part inside the image is drawn: outside it the occluders
+    // are not binned (the regions clip them), and a plotter's page ends
+    // there.
+    let Some((from, to)) = inside_image(c.scene, p, q) else {
+        return out;
+    };
     let mut cover: Vec<(f64, f64)> = Vec::new();
-    c.index.query(p, q, |k| {
+    c.index.query(p.lerp(q, from), p.lerp(q, to), |k| {
         stats.occluder_candidates += 1;
         if std::mem::replace(&mut seen.tris[k as usize], seen.stamp) == seen.stamp {
             return;
@@ -321,13 +328,6 @@ fn split_visibility(
     // the segment at a shared corner.
     let length = (q.x - p.x).hypot(q.y - p.y);
     let min_piece = (MIN_LENGTH / length).max(MIN_PIECE);
-    let mut out = Visibility::default();
-    // Only the part inside the image is drawn: outside it the occluders
-    // are not binned (the regions clip them), and a plotter's page ends
-    // there.
-    let Some((from, to)) = inside_image(c.scene, p, q) else {
-        return out;
-    };
     let mut at = from;
     for (a, b) in cover {
         let (a, b) = (a.max(from), b.min(to));
