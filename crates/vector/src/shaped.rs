@@ -11,7 +11,7 @@
 //! [`ShapedBins`] are [`Bins`] in a frame shrunk along the triangles'
 //! long axis (by their summed box widths over their summed box heights,
 //! rounded down to an integer): a grid point `(x, y)` goes to
-//! `(floor(x / a), floor(y / b)` with one of `a`, `b` equal to 1. A
+//! `(floor(x / a), floor(y / b))` with one of `a`, `b` equal to 1. A
 //! shrunk polygon's corners are each within one unit of the exact image,
 //! so every point of the exact image of a convex polygon lies within one
 //! unit (along each axis) of the shrunk polygon; two polygons that meet
