@@ -75,3 +75,51 @@ pub fn fan(count: u32, lift: f64) -> Mesh {
         ..Mesh::default()
     }
 }
+
+/// `count` long thin parallel triangles across `[-1, 1]^2`, each
+/// `1.5 / count` tall at one end and spaced `2 / count` apart, in seven
+/// planes `z = 0, 0.01, .., 0.06` taken in turn (no two overlap on
+/// screen): where a segment along one sliver has every other sliver of
+/// its row of square bins as a candidate occluder.
+pub fn slivers(count: u32) -> Mesh {
+    let n = f64::from(count.max(1));
+    let mut positions = Vec::with_capacity(3 * count as usize);
+    for i in 0..count {
+        let y = -1.0 + 2.0 * f64::from(i) / n;
+        let z = f64::from(i % 7) * 0.01;
+        positions.extend([
+            DVec3::new(-1.0, y, z),
+            DVec3::new(1.0, y, z),
+            DVec3::new(1.0, y + 1.5 / n, z),
+        ]);
+    }
+    Mesh {
+        name: "slivers".into(),
+        positions,
+        indices: (0..count).map(|k| [3 * k, 3 * k + 1, 3 * k + 2]).collect(),
+        ..Mesh::default()
+    }
+}
+
+/// Two fans of `count` triangles each on one centre vertex at the
+/// origin: one flat on the unit circle, the other's rim half a step
+/// round and tilted (`z = tilt x`), so that their triangles overlap
+/// near the centre while no two triangles of one fan do (the shared
+/// vertex is no hub: corners there overlap across the fans).
+pub fn two_fans(count: u32, tilt: f64) -> Mesh {
+    let n = count.max(3);
+    let mut positions = vec![DVec3::ZERO];
+    for (turn, lift) in [(0.0, 0.0), (0.5, tilt)] {
+        positions.extend((0..n).map(|k| {
+            let a = std::f64::consts::TAU * (f64::from(k) + turn) / f64::from(n);
+            DVec3::new(a.cos(), a.sin(), lift * a.cos())
+        }));
+    }
+    let fan = |first: u32| (0..n).map(move |k| [0, first + k, first + (k + 1) % n]);
+    Mesh {
+        name: "two fans".into(),
+        positions,
+        indices: fan(1).chain(fan(1 + n)).collect(),
+        ..Mesh::default()
+    }
+}

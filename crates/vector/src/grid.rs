@@ -355,19 +355,6 @@ impl Bins {
             }
         });
     }
-
-    /// Calls `visit` with every item whose bins meet the box (an item may
-    /// come more than once).
-    pub fn query(&self, lo: IntPoint, hi: IntPoint, mut visit: impl FnMut(u32)) {
-        let (c0, r0, c1, r1) = Self::range(self.size, self.cols, self.rows, lo, hi);
-        for r in r0..=r1 {
-            for c in c0..=c1 {
-                for &k in &self.cells[(r * self.cols + c) as usize] {
-                    visit(k);
-                }
-            }
-        }
-    }
 }
 
 /// The inclusive bounding box of a polygon.

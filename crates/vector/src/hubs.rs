@@ -10,14 +10,24 @@
 //! of its centre at any bin size, and looking at every pair costs `N^2`.
 //! When all the corners at a vertex are pairwise disjoint (checked exactly
 //! by sorting them by angle), every pair of its triangles is disjoint.
+//!
+//! [`star_pairs`] generalises the rule to vertices whose corners do
+//! overlap (two fans on one centre, a cone seen from the side through its
+//! apex): `hider_geom::star`'s stars, whose pairs are those whose closed
+//! sectors meet there, listed in `O(m log m + k)` for `m` triangles and
+//! `k` such pairs, while the bins skip every pair sharing a star.
 
 use std::cmp::Ordering;
 use std::collections::HashMap;
 
 use hider_geom::fixed::FixedPt;
+use hider_geom::star::{Stars, fixed_star_pairs, fixed_stars};
 
 /// No hub.
 pub const NONE: u32 = u32::MAX;
+
+// A star's "none" is the bins' "no group".
+const _: () = assert!(NONE == hider_geom::star::NO_STAR);
 
 /// Triangles a vertex must have to be a hub: below it the pairs are few.
 const LEAST: usize = 16;
@@ -53,6 +63,100 @@ pub fn hubs(tris: &[[FixedPt; 3]], on: &[bool]) -> Vec<[u32; 3]> {
         ids.sort_by_key(|&h| std::cmp::Reverse(sizes.get(h as usize).copied().unwrap_or(0)));
     }
     out
+}
+
+/// The pairs of triangles sharing a vertex, found from their sectors
+/// there: the bins skip every pair sharing a star ([`StarPairs::stars_of`],
+/// grouped by [`StarPairs::group`]), and the pair phase visits
+/// [`StarPairs::partners`] instead, a superset of the pairs sharing a
+/// star whose interiors overlap.
+#[allow(
+    dead_code,
+    reason = "the pair phase in regions.rs takes it in place of `hubs` (a hook its owner makes)"
+)]
+#[derive(Clone, Debug, Default)]
+pub struct StarPairs {
+    stars: Stars,
+    /// Where each triangle's partners start in `partners` (one more than
+    /// the triangles).
+    start: Vec<usize>,
+    partners: Vec<u32>,
+}
+
+#[allow(
+    dead_code,
+    reason = "the pair phase in regions.rs takes it in place of `hubs` (a hook its owner makes)"
+)]
+impl StarPairs {
+    /// The group a triangle is kept under in the bins (its first star),
+    /// [`NONE`] for none.
+    pub fn group(&self, t: usize) -> u32 {
+        self.stars.group(t)
+    }
+
+    /// The stars of triangle `t` (padded with [`NONE`]): the groups its
+    /// bin query skips.
+    pub fn stars_of(&self, t: usize) -> [u32; 3] {
+        self.stars.stars_of(t)
+    }
+
+    /// The triangles sharing a star with `t` whose sectors meet there,
+    /// ascending.
+    pub fn partners(&self, t: usize) -> &[u32] {
+        self.start
+            .get(t..t + 2)
+            .map_or(&[], |r| &self.partners[r[0]..r[1]])
+    }
+
+    /// All partner pairs, each once.
+    pub fn pairs(&self) -> usize {
+        self.partners.len() / 2
+    }
+}
+
+/// The stars of the triangles (screen vertices, positively oriented) that
+/// `on` marks, and their sector pairs (see [`StarPairs`]). Stars whose
+/// sectors overlap so much that they would save nothing are dissolved
+/// (`hider_geom::star::DENSE_PAIRS_PER_MEMBER`); so are all of them when
+/// they pair fewer triangles than grouping the bins costs
+/// (`Stars::pay_for`).
+#[allow(
+    dead_code,
+    reason = "the pair phase in regions.rs takes it in place of `hubs` (a hook its owner makes)"
+)]
+pub fn star_pairs(tris: &[[FixedPt; 3]], on: &[bool]) -> StarPairs {
+    let mut stars = fixed_stars(tris.len(), |k| on[k].then_some(tris[k]));
+    if !stars.pay_for(tris.len()) {
+        return StarPairs::default();
+    }
+    let pairs = fixed_star_pairs(&mut stars, |t| tris[t as usize]);
+    let mut start = vec![0usize; tris.len() + 1];
+    for &(a, b) in &pairs {
+        start[a as usize + 1] += 1;
+        start[b as usize + 1] += 1;
+    }
+    for k in 0..tris.len() {
+        start[k + 1] += start[k];
+    }
+    let mut fill = start.clone();
+    let mut partners = vec![0u32; 2 * pairs.len()];
+    // Pairs are sorted, so each triangle's partners come out ascending.
+    for &(a, b) in &pairs {
+        partners[fill[a as usize]] = b;
+        fill[a as usize] += 1;
+    }
+    for &(a, b) in &pairs {
+        partners[fill[b as usize]] = a;
+        fill[b as usize] += 1;
+    }
+    for k in 0..tris.len() {
+        partners[start[k]..start[k + 1]].sort_unstable();
+    }
+    StarPairs {
+        stars,
+        start,
+        partners,
+    }
 }
 
 /// Whether the corners `(triangle, vertex)` at one point are pairwise
@@ -190,6 +294,57 @@ mod tests {
 
     fn orient2d_sign(t: &[FixedPt; 3]) -> i64 {
         hider_geom::edge::orient2d(t[0], t[1], t[2]).signum()
+    }
+
+    /// Two fans of `n` triangles on one centre, the second turned half a
+    /// step and squeezed along `x` (as a tilted fan projects), so that
+    /// each of its triangles overlaps two of the first's.
+    fn two_fans(n: u32) -> Vec<[FixedPt; 3]> {
+        let at = |k: f64, squeeze: f64| {
+            let a = std::f64::consts::TAU * k / f64::from(n);
+            ((1e5 * squeeze * a.cos()) as i32, (1e5 * a.sin()) as i32)
+        };
+        let fan = |turn: f64, squeeze: f64| {
+            (0..n).map(move |k| {
+                let k = f64::from(k) + turn;
+                tri([(0, 0), at(k, squeeze), at(k + 1.0, squeeze)])
+            })
+        };
+        fan(0.0, 1.0).chain(fan(0.5, 0.8)).collect()
+    }
+
+    #[test]
+    fn two_fans_pair_only_their_neighbours_and_every_overlap() {
+        // Every overlapping pair is a partner pair (they all share the
+        // centre), and no partner shares nothing.
+        let tris = two_fans(60);
+        let s = star_pairs(&tris, &vec![true; tris.len()]);
+        for i in 0..tris.len() {
+            for j in i + 1..tris.len() {
+                let partner = s.partners(i).contains(&(j as u32));
+                assert_eq!(partner, s.partners(j).contains(&(i as u32)));
+                if corners_overlap(&tris[i], &tris[j]) {
+                    assert!(partner, "{i} {j} overlap but are no partners");
+                }
+            }
+        }
+        // Work counter: the old hubs leave the centre alone (corners
+        // overlap across the fans), so the bins pair all `2n` triangles
+        // there; the star pairs grow with `n`.
+        assert!(
+            hubs(&tris, &vec![true; tris.len()])
+                .iter()
+                .all(|h| h[0] == NONE)
+        );
+        let count = |n: u32| {
+            let tris = two_fans(n);
+            star_pairs(&tris, &vec![true; tris.len()]).pairs()
+        };
+        let (a, b) = (count(1_000), count(2_000));
+        assert!(
+            a >= 2_000 && b < 3 * a,
+            "{a} pairs at 1,000 per fan, {b} at 2,000"
+        );
     }
 
     #[test]

@@ -52,6 +52,7 @@ mod lines;
 mod options;
 mod pairs;
 mod regions;
+mod shaped;
 mod snap;
 mod splitter;
 mod subtract;

@@ -21,13 +21,17 @@
 //! towards the camera (a cone seen from its apex). Every spoke meets the
 //! centre, so anything that pairs edges or triangles by shared bins (or
 //! boxes) costs the square of `N` there while nothing crosses.
+//! Two more are where a segment's or a triangle's neighbours in square
+//! bins are not the ones it can meet: `N` long thin parallel slivers
+//! (`sheets::slivers`), and two fans of `N / 2` triangles on one centre,
+//! one tilted so that their triangles overlap there (`sheets::two_fans`).
 //! The peak resident memory of each drawing is the process's (`VmHWM`,
 //! reset before it; the scene is resident already, so it counts, and so
 //! does heap the allocator kept from the family's smaller sizes); each
 //! family runs in a process of its own.
 //!
-//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced|fan|cone]`
-//! (defaults: 20 s, 1,024,000 triangles, all seven families).
+//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced|fan|cone|slivers|twofans]`
+//! (defaults: 20 s, 1,024,000 triangles, all nine families).
 
 use std::time::Instant;
 
@@ -110,6 +114,16 @@ fn fan(n: u32, apex: f64) -> Scene {
     lit(vec![sheets::fan(n, apex)])
 }
 
+/// `n` long thin parallel slivers in seven planes.
+fn slivers(n: u32) -> Scene {
+    lit(vec![sheets::slivers(n)])
+}
+
+/// Two fans of `n / 2` triangles on one centre, one tilted.
+fn two_fans(n: u32) -> Scene {
+    lit(vec![sheets::two_fans(n / 2, 0.3)])
+}
+
 fn exponent(last: Option<(f64, f64)>, n: f64, t: f64) -> String {
     last.map_or("-".into(), |(n0, t0)| {
         format!("{:.2}", (t / t0.max(1e-4)).ln() / (n / n0).ln())
@@ -132,7 +146,7 @@ fn main() -> Result<(), hider_scene::Error> {
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     type Family = (&'static str, &'static str, u32, fn(u32) -> Scene);
-    let families: [Family; 7] = [
+    let families: [Family; 9] = [
         ("`gen:soup:N`", "soup", 2_000, |n| {
             procedural::random_soup(n, 1)
         }),
@@ -144,6 +158,8 @@ fn main() -> Result<(), hider_scene::Error> {
         ("sheet pierced by `gen:soup:N/8`", "pierced", 2_000, pierced),
         ("flat fan", "fan", 2_000, |n| fan(n, 0.0)),
         ("cone from its apex", "cone", 2_000, |n| fan(n, 0.5)),
+        ("parallel slivers", "slivers", 2_000, slivers),
+        ("two fans on one centre", "twofans", 2_000, two_fans),
     ];
     for (name, key, start, make) in families {
         let Some(only) = only.as_deref() else {

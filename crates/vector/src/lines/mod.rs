@@ -12,6 +12,7 @@
 //! occluder instead of propagated.
 
 mod edges;
+mod index;
 mod order;
 mod visibility;
 
@@ -66,6 +67,10 @@ hider_scene::hider_stats! {
         /// triangles only, or the cull's tiles hide them all along (see
         /// the method in `docs/vector.md`).
         pub culled_features: u64 => "culled feature edges",
+        /// Bin entries the feature segments looked at to find their
+        /// occluders (an occluder counted once per bin it shares with
+        /// the segment's neighbourhood).
+        pub occluder_candidates: u64 => "occluder candidates",
         /// Occluder intervals tested.
         pub occluder_tests: u64 => "occluder tests",
         /// Visible pieces before joining.
@@ -189,7 +194,7 @@ pub fn feature_visibility(
     options.validate()?;
     let mut stats = LineStats::default();
     let occlusion = Occlusion::new(scene, &map.grid, options);
-    split_all(scene, map, &occlusion, features, options, &mut stats)
+    split_all(scene, &occlusion, features, options, &mut stats)
 }
 
 /// The line drawing of `scene`; `map` supplies the intersection pairs
@@ -225,7 +230,7 @@ pub fn hidden_lines_in(
     // along, is hidden (see `crate::cull`): nothing of it would be drawn.
     features.retain(|f| !occlusion.buries(&map.grid, f));
     stats.culled_features = stats.feature_edges - features.len() as u64;
-    let split = split_all(scene, map, &occlusion, &features, options, &mut stats)?;
+    let split = split_all(scene, &occlusion, &features, options, &mut stats)?;
     let mut visible = Vec::new();
     let mut hidden = Vec::new();
     for (f, parts) in features.iter().zip(&split) {

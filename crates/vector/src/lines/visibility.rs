@@ -4,18 +4,17 @@
 
 use glam::{DVec3, DVec4};
 use hider_scene::{ScreenScene, ScreenTri};
-use i_overlay::i_float::int::point::IntPoint;
 
+use super::index::OccluderIndex;
 use super::{Feature, LineStats, Visibility};
 use crate::VectorOptions;
 use crate::cull::{Culled, cull};
-use crate::grid::{Bins, Grid, clip_all};
-use crate::regions::RegionMap;
+use crate::grid::{Grid, clip_all};
 
 /// What hides line points: the occluders of every primitive, binned by
 /// their screen triangles, the culled ones left out.
 pub(super) struct Occlusion {
-    bins: Bins,
+    index: OccluderIndex,
     occluders: Vec<Occluder>,
     /// Per primitive: all its screen triangles culled (see
     /// [`crate::cull`]), so every line on it alone is hidden.
@@ -60,13 +59,18 @@ impl Occlusion {
         for (c, &l) in prim_culled.iter_mut().zip(&prim_live) {
             *c &= !l;
         }
+        let occluders: Vec<Occluder> = scene
+            .prims
+            .iter()
+            .map(|p| Occluder::new(scene, p.camera))
+            .collect();
+        let unsnapped: Vec<bool> = occluders
+            .iter()
+            .map(|o| matches!(o, Occluder::Camera(_)))
+            .collect();
         Self {
-            bins: Bins::covering_live(grid, &live, &polys),
-            occluders: scene
-                .prims
-                .iter()
-                .map(|p| Occluder::new(scene, p.camera))
-                .collect(),
+            index: OccluderIndex::new(scene, grid, &live, &polys, &unsnapped),
+            occluders,
             prim_culled,
             culled,
         }
@@ -84,7 +88,6 @@ impl Occlusion {
 /// [`super::feature_visibility`]).
 pub(super) fn split_all(
     scene: &ScreenScene,
-    map: &RegionMap,
     occlusion: &Occlusion,
     features: &[Feature],
     options: &VectorOptions,
@@ -92,18 +95,32 @@ pub(super) fn split_all(
 ) -> hider_scene::Result<Vec<Visibility>> {
     let context = Context {
         scene,
-        grid: &map.grid,
-        bins: &occlusion.bins,
+        index: &occlusion.index,
         occluders: &occlusion.occluders,
         tolerance: options.depth_tolerance,
+    };
+    // Per triangle and per primitive, the last feature (plus one) that
+    // looked at it: a long occluder comes from many bins.
+    let mut seen = Seen {
+        tris: vec![0; scene.tris.len()],
+        prims: vec![0; scene.prims.len()],
+        stamp: 0,
     };
     features
         .iter()
         .map(|f| {
             options.cancel.poll()?;
-            Ok(split_visibility(&context, f, stats))
+            seen.stamp += 1;
+            Ok(split_visibility(&context, f, &mut seen, stats))
         })
         .collect()
+}
+
+/// Which triangles and primitives the current feature has looked at.
+struct Seen {
+    tris: Vec<u32>,
+    prims: Vec<u32>,
+    stamp: u32,
 }
 
 /// Visible or hidden pieces shorter than this (pixels) are dropped.
@@ -200,8 +217,7 @@ impl Occluder {
 /// What [`split_visibility`] reads.
 struct Context<'a> {
     scene: &'a ScreenScene,
-    grid: &'a Grid,
-    bins: &'a Bins,
+    index: &'a OccluderIndex,
     occluders: &'a [Occluder],
     tolerance: f64,
 }
@@ -260,20 +276,24 @@ fn camera_hidden(
 }
 
 /// The visible and hidden parameter intervals of one feature segment.
-fn split_visibility(c: &Context, f: &Feature, stats: &mut LineStats) -> Visibility {
+fn split_visibility(
+    c: &Context,
+    f: &Feature,
+    seen: &mut Seen,
+    stats: &mut LineStats,
+) -> Visibility {
     let [p, q] = f.ends;
-    // A pixel of margin: candidates come from the snapped triangles'
-    // bins, the test from the unsnapped ones.
-    let (gx0, gy0) = c.grid.from_pixels(p.x.min(q.x) - 1.0, p.y.min(q.y) - 1.0);
-    let (gx1, gy1) = c.grid.from_pixels(p.x.max(q.x) + 1.0, p.y.max(q.y) + 1.0);
-    let clamp = |v: f64| v.clamp(-1.0, f64::from(i32::MAX)) as i32;
-    let lo = IntPoint::new(clamp(gx0.floor()), clamp(gy0.floor()));
-    let hi = IntPoint::new(clamp(gx1.ceil()), clamp(gy1.ceil()));
+    let mut out = Visibility::default();
+    // Only the part inside the image is drawn: outside it the occluders
+    // are not binned (the regions clip them), and a plotter's page ends
+    // there.
+    let Some((from, to)) = inside_image(c.scene, p, q) else {
+        return out;
+    };
     let mut cover: Vec<(f64, f64)> = Vec::new();
-    let mut seen_tris = std::collections::HashSet::new();
-    let mut seen_prims = std::collections::HashSet::new();
-    c.bins.query(lo, hi, |k| {
-        if !seen_tris.insert(k) {
+    c.index.query(p.lerp(q, from), p.lerp(q, to), |k| {
+        stats.occluder_candidates += 1;
+        if std::mem::replace(&mut seen.tris[k as usize], seen.stamp) == seen.stamp {
             return;
         }
         let t = &c.scene.tris[k as usize];
@@ -283,7 +303,7 @@ fn split_visibility(c: &Context, f: &Feature, stats: &mut LineStats) -> Visibili
         match &c.occluders[t.prim as usize] {
             Occluder::Nothing => {}
             Occluder::Camera(forms) => {
-                if !seen_prims.insert(t.prim) {
+                if std::mem::replace(&mut seen.prims[t.prim as usize], seen.stamp) == seen.stamp {
                     return;
                 }
                 stats.occluder_tests += 1;
@@ -308,13 +328,6 @@ fn split_visibility(c: &Context, f: &Feature, stats: &mut LineStats) -> Visibili
     // the segment at a shared corner.
     let length = (q.x - p.x).hypot(q.y - p.y);
     let min_piece = (MIN_LENGTH / length).max(MIN_PIECE);
-    let mut out = Visibility::default();
-    // Only the part inside the image is drawn: outside it the occluders
-    // are not binned (the regions clip them), and a plotter's page ends
-    // there.
-    let Some((from, to)) = inside_image(c.scene, p, q) else {
-        return out;
-    };
     let mut at = from;
     for (a, b) in cover {
         let (a, b) = (a.max(from), b.min(to));
