@@ -23,7 +23,7 @@ impl Level {
     pub(crate) fn sample(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> ([f32; 3], f32) {
         let rgb = linear_table();
         let colour = |k: usize| {
-            let c = &self.rgb[3 * k..3 * k + 3];
+            let c = self.rgb[k];
             [
                 rgb[usize::from(c[0])],
                 rgb[usize::from(c[1])],
@@ -244,7 +244,7 @@ mod tests {
             let bottom = q[2] + (q[3] - q[2]) * tx;
             top + (bottom - top) * ty
         };
-        let rgb = std::array::from_fn(|c| lerp(k.map(|k| srgb_to_linear(l.rgb[3 * k + c]))));
+        let rgb = std::array::from_fn(|c| lerp(k.map(|k| srgb_to_linear(l.rgb[k][c]))));
         let alpha = match &l.alpha {
             Some(a) => lerp(k.map(|k| f32::from(a[k]) / 255.0)),
             None => 1.0,
@@ -275,7 +275,7 @@ mod tests {
                 let l = Level {
                     width: w,
                     height: h,
-                    rgb: rgb.clone(),
+                    rgb: rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
                     alpha,
                 };
                 let mut coords: Vec<(f64, f64)> = (0..4000)
