@@ -21,7 +21,7 @@
 //! [`Cutouts`] at all, so it pays nothing.
 
 use hider_scene::shade::AlphaClass;
-use hider_scene::shade::cutout::AlphaTest;
+use hider_scene::shade::cutout::{AlphaTest, PrimAlphaTest};
 use hider_scene::{ScreenScene, TextureOptions};
 
 use crate::coverage::Coverage;
@@ -50,37 +50,67 @@ impl<'a> Cutouts<'a> {
         self.test.may_cut(prim)
     }
 
+    /// The test of primitive `prim` at many pixels (a triangle's
+    /// fragments): its shading setup built once ([`PrimCutout`]).
+    #[inline]
+    pub(crate) fn prim(&self, prim: u32) -> PrimCutout<'_, 'a> {
+        PrimCutout {
+            test: self.test.prim(prim),
+            pattern: self.pattern,
+        }
+    }
+
     /// `c` without the samples (and the centre) of pixel `(i, j)` where
-    /// `prim` fails the alpha test (texture alpha below one half): the
-    /// covered samples are tested, one texture sample each. Not full any
-    /// more when a sample was cleared. Partial alpha is tested too: a
-    /// compositing hider asks [`Self::opacity`] first.
+    /// `prim` fails the alpha test: [`PrimCutout::coverage`].
     pub(crate) fn coverage(&self, prim: u32, ij: (u32, u32), c: Coverage) -> Coverage {
+        self.prim(prim).coverage(ij, c)
+    }
+
+    /// Whether `prim`'s material has partial alpha (translucency).
+    pub(crate) fn is_partial(&self, prim: u32) -> bool {
+        self.may_cut(prim) && self.test.class(prim) == AlphaClass::Partial
+    }
+}
+
+/// The alpha test of one primitive at the samples of a pattern, its
+/// shading setup (barycentric planes, texture headers) built once: a
+/// triangle's for all its fragments in a tile (a setup per fragment was
+/// about 6 % of the cut-out spider's frame).
+#[derive(Clone, Debug)]
+pub(crate) struct PrimCutout<'t, 'a> {
+    test: PrimAlphaTest<'t, 'a>,
+    pattern: SamplePattern,
+}
+
+impl PrimCutout<'_, '_> {
+    /// `c` without the samples (and the centre) of pixel `(i, j)` where
+    /// the primitive fails the alpha test (texture alpha below one half):
+    /// the covered samples are tested, one texture sample each. Not full
+    /// any more when a sample was cleared. Partial alpha is tested too: a
+    /// compositing hider asks [`Self::opacity`] first.
+    pub(crate) fn coverage(&mut self, ij: (u32, u32), c: Coverage) -> Coverage {
         let mut out = c;
-        // The primitive's shading setup, once for the pixel's samples.
-        let mut test = self.test.prim(prim);
         for (k, &pos) in self.pattern.positions().iter().enumerate() {
-            if c.mask >> k & 1 == 1 && !test.passes_at(window(ij.0, pos.0), window(ij.1, pos.1)) {
+            if c.mask >> k & 1 == 1
+                && !self
+                    .test
+                    .passes_at(window(ij.0, pos.0), window(ij.1, pos.1))
+            {
                 out.mask &= !(1 << k);
             }
         }
-        if c.centre && !test.passes(ij.0, ij.1) {
+        if c.centre && !self.test.passes(ij.0, ij.1) {
             out.centre = false;
         }
         out.full = out.full && out.mask == c.mask && out.centre;
         out
     }
 
-    /// `d` times `prim`'s texture alpha at the centre of pixel `ij` when its
-    /// material has partial alpha ([`AlphaTest::opacity`]).
+    /// `d` times the primitive's texture alpha at the centre of pixel `ij`
+    /// when its material has partial alpha ([`Cutouts::opacity`]).
     #[inline]
-    pub(crate) fn opacity(&self, prim: u32, ij: (u32, u32)) -> Option<f32> {
-        self.test.opacity(prim, ij)
-    }
-
-    /// Whether `prim`'s material has partial alpha (translucency).
-    pub(crate) fn is_partial(&self, prim: u32) -> bool {
-        self.may_cut(prim) && self.test.class(prim) == AlphaClass::Partial
+    pub(crate) fn opacity(&mut self, ij: (u32, u32)) -> Option<f32> {
+        self.test.opacity(ij)
     }
 }
 

@@ -3,7 +3,7 @@
 
 use std::sync::OnceLock;
 
-use hider_scene::shade::{prim_color, to_srgb8};
+use hider_scene::shade::{SetupCache, prim_color, to_srgb8};
 use hider_scene::{ScreenScene, ShadeMode, TextureOptions, TextureSampler};
 
 /// Fills `out` with `[r, g, b, opacity]` (linear) for every primitive of
@@ -36,11 +36,13 @@ pub(crate) fn sampler(scene: &ScreenScene, mode: ShadeMode) -> Option<TextureSam
 /// varies and the frame is shaded per point (`sampler`, see [`sampler`]);
 /// `rgba`, its flat colour, otherwise. The opacity is the flat one (`d`),
 /// times the texture alpha at the point for a material with partial alpha
-/// ([`ScreenScene::partial_alpha_at`]).
+/// ([`ScreenScene::partial_alpha_at`]). The primitive's shading setup
+/// comes from `setups` (built there on first use).
 #[inline]
 pub(crate) fn at_point(
     scene: &ScreenScene,
     sampler: Option<&TextureSampler>,
+    setups: &mut SetupCache,
     prim: u32,
     rgba: [f32; 4],
     x: f64,
@@ -49,9 +51,10 @@ pub(crate) fn at_point(
     let Some(sampler) = sampler else {
         return rgba;
     };
-    let [r, g, b] = scene.surface_rgb(sampler, prim, [rgba[0], rgba[1], rgba[2]], x, y);
+    let base = [rgba[0], rgba[1], rgba[2]];
+    let [r, g, b] = scene.surface_rgb_cached(sampler, setups, prim, base, x, y);
     let a = scene
-        .partial_alpha_at(sampler, prim, x, y)
+        .partial_alpha_at_cached(sampler, setups, prim, x, y)
         .map_or(rgba[3], |a| rgba[3] * a);
     [r, g, b, a]
 }
@@ -64,6 +67,7 @@ pub(crate) fn at_point(
 pub(crate) fn at_pixel(
     scene: &ScreenScene,
     sampler: Option<&TextureSampler>,
+    setups: &mut SetupCache,
     prim: u32,
     rgba: [f32; 4],
     (i, j): (u32, u32),
@@ -71,6 +75,7 @@ pub(crate) fn at_pixel(
     at_point(
         scene,
         sampler,
+        setups,
         prim,
         rgba,
         f64::from(i) + 0.5,
@@ -84,6 +89,7 @@ pub(crate) fn at_pixel(
 pub(crate) fn at_sample(
     scene: &ScreenScene,
     sampler: Option<&TextureSampler>,
+    setups: &mut SetupCache,
     prim: u32,
     rgba: [f32; 4],
     (i, j): (u32, u32),
@@ -92,6 +98,7 @@ pub(crate) fn at_sample(
     at_point(
         scene,
         sampler,
+        setups,
         prim,
         rgba,
         f64::from(i) + f64::from(pos.0) / 256.0,

@@ -14,7 +14,7 @@ use hider_scene::{NO_ID, Result};
 use crate::bins::{BinItem, TILE};
 use crate::coverage::{Class, Coverage, TriCoverage};
 use crate::culling::{BLOCK, BLOCKS, block_part};
-use crate::cutout::Cutouts;
+use crate::cutout::{Cutouts, PrimCutout};
 use crate::depth::{DepthBounds, near_corner, nearest_over, plane_depth};
 use crate::fragment::{Fragment, NIL};
 use crate::lists::{Ctx, Lists};
@@ -38,8 +38,9 @@ struct TriRaster<'a> {
     near_corner: (i32, i32),
     /// Top-left pixel of the tile.
     tile: (u32, u32),
-    /// The alpha test, when the primitive may cut out.
-    cutouts: Option<&'a Cutouts<'a>>,
+    /// The alpha test, when the primitive may cut out, set up once for
+    /// the triangle's fragments.
+    cutout: Option<PrimCutout<'a, 'a>>,
 }
 
 /// Turns triangles into fragments of the lists of a frame.
@@ -99,7 +100,7 @@ impl Rasterizer {
             .unwrap_or_else(|| Box::new(TriCoverage::from_vertices(&item.v, pattern)));
         setup.reset_vertices(&item.v, pattern);
         let plane = item.plane;
-        let tri = TriRaster {
+        let mut tri = TriRaster {
             scene,
             tri: index,
             prim: item.prim,
@@ -109,9 +110,9 @@ impl Rasterizer {
             full_mask: pattern.full_mask(),
             near_corner: near_corner(&plane, pattern.hull()),
             tile,
-            cutouts,
+            cutout: cutouts.map(|c| c.prim(item.prim)),
         };
-        let result = self.live_pixels(&tri, &setup, live, rect, stats);
+        let result = self.live_pixels(&mut tri, &setup, live, rect, stats);
         self.setup = Some(setup);
         result
     }
@@ -178,7 +179,7 @@ impl Rasterizer {
     /// pixels the row's span may cover.
     fn live_pixels(
         &mut self,
-        tri: &TriRaster<'_>,
+        tri: &mut TriRaster<'_>,
         setup: &TriCoverage,
         live: u64,
         (x0, y0, x1, y1): (u32, u32, u32, u32),
@@ -223,7 +224,7 @@ impl Rasterizer {
     #[inline]
     fn pixel(
         &mut self,
-        tri: &TriRaster<'_>,
+        tri: &mut TriRaster<'_>,
         setup: &TriCoverage,
         (i, j): (u32, u32),
         (here, class): ([i64; 3], Class),
@@ -258,9 +259,9 @@ impl Rasterizer {
             c
         };
         let mut alpha = tri.alpha;
-        let c = match tri.cutouts {
+        let c = match &mut tri.cutout {
             None => c,
-            Some(cut) => match cut.opacity(tri.prim, (i, j)) {
+            Some(cut) => match cut.opacity((i, j)) {
                 // Partial alpha: composited, with the fragment's own
                 // opacity (the colour's, at the same centre).
                 Some(a) => {
@@ -268,7 +269,7 @@ impl Rasterizer {
                     c
                 }
                 None => {
-                    let c = cut.coverage(tri.prim, (i, j), c);
+                    let c = cut.coverage((i, j), c);
                     if c.is_empty() {
                         return Ok(());
                     }

@@ -33,6 +33,7 @@ use crate::options::SsaaOptions;
 use crate::palette::{at_sample, prim_colors, to_pixel};
 use crate::pattern::CENTRE;
 use crate::stats::SsaaStats;
+use hider_scene::shade::SetupCache;
 
 /// A supersampled z-buffer with opaque-first, sorted back-to-front
 /// transparency.
@@ -54,7 +55,7 @@ impl SortedTransparencyZBuffer {
     fn draw(
         &mut self,
         scene: &ScreenScene,
-        sampler: Option<&TextureSampler>,
+        (sampler, setups): (Option<&TextureSampler>, &mut SetupCache),
         tri: &ScreenTri,
         (translucent, cutouts): (bool, Option<&Cutouts<'_>>),
         stats: &mut SsaaStats,
@@ -92,7 +93,8 @@ impl SortedTransparencyZBuffer {
                     }
                     stats.depth_writes += 1;
                     self.hit[s] = true;
-                    let [r, g, b, alpha] = at_sample(scene, sampler, tri.prim, flat, (i, j), pos);
+                    let [r, g, b, alpha] =
+                        at_sample(scene, sampler, setups, tri.prim, flat, (i, j), pos);
                     if translucent {
                         let dst = self.color[s];
                         self.color[s] =
@@ -172,6 +174,7 @@ impl Hider for SortedTransparencyZBuffer {
         prim_colors(scene, self.options.shade, &mut self.colors);
         let sampler = crate::palette::sampler(scene, self.options.shade);
         let sampler = sampler.as_ref();
+        let mut setups = SetupCache::default();
         let cutouts = Cutouts::new(Some(scene), self.options.pattern);
         let cutouts = cutouts.as_ref();
         let partial = |prim: u32| cutouts.is_some_and(|c| c.is_partial(prim));
@@ -180,7 +183,13 @@ impl Hider for SortedTransparencyZBuffer {
         for (t, tri) in scene.tris.iter().enumerate() {
             self.options.cancel.poll_every(t)?;
             if self.colors[tri.prim as usize][3] >= 1.0 && !partial(tri.prim) {
-                self.draw(scene, sampler, tri, (false, cutouts), &mut stats);
+                self.draw(
+                    scene,
+                    (sampler, &mut setups),
+                    tri,
+                    (false, cutouts),
+                    &mut stats,
+                );
             } else {
                 let mean = (tri.z[0] + tri.z[1] + tri.z[2]) / 3.0;
                 self.order.push((mean, t as u32));
@@ -193,7 +202,13 @@ impl Hider for SortedTransparencyZBuffer {
         for (k, &(_, t)) in order.iter().enumerate() {
             self.options.cancel.poll_every(k)?;
             let tri = &scene.tris[t as usize];
-            self.draw(scene, sampler, tri, (true, cutouts), &mut stats);
+            self.draw(
+                scene,
+                (sampler, &mut setups),
+                tri,
+                (true, cutouts),
+                &mut stats,
+            );
         }
         self.order = order;
         self.resolve(frame);

@@ -8,7 +8,7 @@
 
 use hider_geom::Viewport;
 use hider_scene::prepare::lean::{LeanScene, LeanTri};
-use hider_scene::shade::SurfaceSetup;
+use hider_scene::shade::{SetupCache, SurfaceSetup};
 use hider_scene::{Material, Scene, ScreenScene, ShadeMode, TextureOptions, TextureSampler, View};
 
 use crate::bins::BinItem;
@@ -139,26 +139,9 @@ impl<'a> Source<'a> {
             Kind::Screen(_, sampler) | Kind::Lean(_, _, sampler) => sampler.is_none(),
         }
     }
-
-    /// [`palette::at_pixel`]: `rgba` shaded at the centre of pixel `ij`
-    /// when the frame is shaded per point (textures, vertex normals or
-    /// colours), from `prepare`'s per-primitive data or, for the lean
-    /// front end, the same data assembled from its vertices
-    /// ([`LeanScene::surface_rgb`]): the same colour, bit for bit.
-    #[inline]
-    pub(crate) fn at_pixel(&self, prim: u32, rgba: [f32; 4], ij: (u32, u32)) -> [f32; 4] {
-        match &self.kind {
-            Kind::Screen(s, sampler) => palette::at_pixel(s, *sampler, prim, rgba, ij),
-            Kind::Lean(_, _, None) => rgba,
-            Kind::Lean(lean, scene, Some(sampler)) => {
-                let mut setup = SurfaceSetup::new(sampler, &lean.prim_info(scene, prim));
-                lean_at_pixel(lean, scene, sampler, &mut setup, rgba, ij)
-            }
-        }
-    }
 }
 
-/// [`Source::at_pixel`] of the lean front end's primitive with shading
+/// [`ColorCache::at_pixel`] of the lean front end's primitive with shading
 /// setup `setup`, shaded per point through `sampler`.
 #[inline]
 fn lean_at_pixel(
@@ -200,21 +183,14 @@ pub(crate) struct ColorCache {
     frame: u32,
     /// The shading setups ([`SurfaceSetup`]: the data, barycentric
     /// planes, face normal and textures) of primitives shaded per point
-    /// from the lean front end's vertices this frame, direct-mapped by
-    /// primitive id ([`INFO_SLOTS`] entries once used): assembling the
-    /// data for every pixel cost 11 % of the smooth-shaded spider's frame
-    /// at 1024, and a single last entry still missed on 4 of 10 pixels (a
-    /// pixel's fragments alternate between primitives).
-    infos: Vec<Option<(u32, SurfaceSetup)>>,
+    /// this frame, from `prepare`'s data or the lean front end's vertices.
+    setups: SetupCache,
 }
-
-/// Entries of [`ColorCache::infos`].
-const INFO_SLOTS: usize = 64;
 
 impl ColorCache {
     /// Starts a frame of `prims` primitives: every entry stale.
     pub(crate) fn begin(&mut self, prims: usize) {
-        self.infos.fill(None);
+        self.setups.clear();
         self.frame = self.frame.wrapping_add(1);
         if self.frame == 0 {
             // After 2^32 - 1 frames, stamps repeat: forget them all.
@@ -240,10 +216,14 @@ impl ColorCache {
     }
 
     /// The colour and opacity of `prim` in `scene` under `mode` at pixel
-    /// `ij`: [`Self::get`], then [`Source::at_pixel`] (the lean front
-    /// end's primitive data looked up once per run of pixels). Inlined
-    /// into the resolve loops, as `prepare`'s path is (a call cost 2 % of
-    /// the smooth-shaded spider's frame).
+    /// `ij`: [`Self::get`], then, when the frame is shaded per point
+    /// (textures, vertex normals or colours), shaded at the pixel centre
+    /// ([`palette::at_pixel`]) from `prepare`'s per-primitive data or, for
+    /// the lean front end, the same data assembled from its vertices
+    /// ([`LeanScene::surface_rgb`]): the same colour, bit for bit. The
+    /// primitive's shading setup is built once per run of pixels. Inlined
+    /// into the resolve loops (a call cost 2 % of the smooth-shaded
+    /// spider's frame).
     #[inline(always)]
     pub(crate) fn at_pixel(
         &mut self,
@@ -253,20 +233,18 @@ impl ColorCache {
         ij: (u32, u32),
     ) -> [f32; 4] {
         let flat = self.get(scene, mode, prim);
-        let Kind::Lean(lean, world, Some(sampler)) = scene.kind else {
-            return scene.at_pixel(prim, flat, ij);
-        };
-        if self.infos.is_empty() {
-            self.infos.resize(INFO_SLOTS, None);
-        }
-        let setup = match &mut self.infos[prim as usize % INFO_SLOTS] {
-            Some((p, setup)) if *p == prim => setup,
-            slot => {
-                let setup = SurfaceSetup::new(sampler, &lean.prim_info(world, prim));
-                &mut slot.insert((prim, setup)).1
+        match scene.kind {
+            Kind::Screen(_, None) | Kind::Lean(_, _, None) => flat,
+            Kind::Screen(s, sampler) => {
+                palette::at_pixel(s, sampler, &mut self.setups, prim, flat, ij)
             }
-        };
-        lean_at_pixel(lean, world, sampler, setup, flat, ij)
+            Kind::Lean(lean, world, Some(sampler)) => {
+                let setup = self.setups.get_or_insert_with(prim, || {
+                    SurfaceSetup::new(sampler, &lean.prim_info(world, prim))
+                });
+                lean_at_pixel(lean, world, sampler, setup, flat, ij)
+            }
+        }
     }
 }
 

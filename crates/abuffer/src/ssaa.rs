@@ -27,6 +27,7 @@ use crate::options::SsaaOptions;
 use crate::palette::{at_sample, prim_colors, to_pixel};
 use crate::pattern::{CENTRE, SamplePattern};
 use crate::stats::SsaaStats;
+use hider_scene::shade::SetupCache;
 
 /// An N-sample supersampled z-buffer (N = 1, 4, 8, 16, 32).
 #[derive(Clone, Debug, Default)]
@@ -52,6 +53,7 @@ impl SupersampledZBuffer {
         let n = self.options.pattern.count();
         let positions = self.options.pattern.positions();
         let sampler = crate::palette::sampler(scene, self.options.shade);
+        let mut setups = SetupCache::default();
         let w = frame.width() as usize;
         self.centre.write(frame);
         frame.coverage.clear();
@@ -67,6 +69,7 @@ impl SupersampledZBuffer {
                     let c = at_sample(
                         scene,
                         sampler.as_ref(),
+                        &mut setups,
                         id,
                         self.colors[id as usize],
                         ij,

@@ -27,7 +27,7 @@
 //! position). Scenes without cut-outs never build the search.
 
 use hider_scene::shade::cutout::{AlphaTest, CutoutSearch};
-use hider_scene::shade::{prim_color, to_srgb8};
+use hider_scene::shade::{SetupCache, prim_color, to_srgb8};
 use hider_scene::{Frame, NO_ID, ScreenScene, ShadeMode, TextureOptions, TextureSampler};
 
 use crate::classify::{Setups, Tri};
@@ -44,6 +44,8 @@ pub(crate) struct ColorCache {
     /// The frame's sampler, when some primitive's colour varies across it
     /// (a texture, vertex normals, highlights).
     sampler: Option<TextureSampler>,
+    /// The shading setups of the primitives shaded per point this frame.
+    setups: SetupCache,
 }
 
 impl ColorCache {
@@ -53,6 +55,7 @@ impl ColorCache {
         self.colors.resize(scene.prims.len(), None);
         let sampler = TextureSampler::new(scene, TextureOptions::default());
         self.sampler = scene.varies(&sampler).then_some(sampler);
+        self.setups.clear();
     }
 
     fn get(&mut self, scene: &ScreenScene, shade: ShadeMode, prim: u32) -> [f32; 3] {
@@ -70,7 +73,8 @@ impl ColorCache {
         let flat = self.get(scene, shade, prim);
         match &self.sampler {
             Some(sampler) if shade == ShadeMode::Lambert => {
-                scene.surface_rgb(sampler, prim, flat, f64::from(u) + 0.5, f64::from(v) + 0.5)
+                let (x, y) = (f64::from(u) + 0.5, f64::from(v) + 0.5);
+                scene.surface_rgb_cached(sampler, &mut self.setups, prim, flat, x, y)
             }
             _ => flat,
         }

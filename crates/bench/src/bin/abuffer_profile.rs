@@ -20,7 +20,9 @@
 //! colours, no Lambert shading; `ps2-scene` on 2 threads), `lean` (the lean front end
 //! alone) or `prepare` (`prepare` alone). Prints the median and
 //! fastest of the renders (the workspace's shared timer, no warm-up: a
-//! profile sees the first frame too) and the work counters.
+//! profile sees the first frame too), the work counters and a digest of
+//! the last frame (colour, coverage, ids and depth: two builds draw the
+//! same frame bit for bit when their digests agree).
 
 use hider_abuffer::{
     ABuffer, ABufferOptions, DepthMode, SamplePattern, SsaaOptions, SupersampledZBuffer,
@@ -188,9 +190,21 @@ fn main() {
                     .expect("render")
             }
         });
-        println!("{summary}  {stats}");
+        println!("{summary}  {stats}  frame {:016x}", digest(&frame));
         return;
     }
     let summary = timer.time(|| stats = hider.render(&s, &mut frame).expect("render"));
-    println!("{summary}  {stats}");
+    println!("{summary}  {stats}  frame {:016x}", digest(&frame));
+}
+
+/// A hash of everything `frame` holds, the floats by their bits.
+fn digest(frame: &Frame) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    frame.color.hash(&mut h);
+    frame.ids.hash(&mut h);
+    for v in frame.depth.iter().chain(&frame.coverage) {
+        v.to_bits().hash(&mut h);
+    }
+    h.finish()
 }

@@ -236,6 +236,16 @@ impl PrimAlphaTest<'_, '_> {
     pub fn passes(&mut self, i: u32, j: u32) -> bool {
         self.passes_at(f64::from(i) + 0.5, f64::from(j) + 0.5)
     }
+
+    /// [`AlphaTest::opacity`] of this primitive at the centre of pixel
+    /// `(i, j)` (the same value).
+    pub fn opacity(&mut self, (i, j): (u32, u32)) -> Option<f32> {
+        if self.test.class(self.prim) != AlphaClass::Partial {
+            return None;
+        }
+        let d = self.test.scene.material(self.prim).opacity.clamp(0.0, 1.0);
+        Some(d * self.alpha(f64::from(i) + 0.5, f64::from(j) + 0.5))
+    }
 }
 
 /// The cut-out stage as [`super::render_frame`] runs it after `hider`'s

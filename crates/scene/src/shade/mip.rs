@@ -27,13 +27,14 @@
 
 use super::texture::{linear_table, srgb_to_linear};
 
-/// One level of a texture: sRGB bytes (3 per texel, top row first) and,
-/// when the image has an alpha channel, one alpha byte per texel.
+/// One level of a texture: sRGB bytes (a texel's 3 together, top row
+/// first: one bounds check a texel in the fetch) and, when the image has
+/// an alpha channel, one alpha byte per texel.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Level {
     pub(crate) width: u32,
     pub(crate) height: u32,
-    pub(crate) rgb: Vec<u8>,
+    pub(crate) rgb: Vec<[u8; 3]>,
     pub(crate) alpha: Option<Vec<u8>>,
 }
 
@@ -43,14 +44,14 @@ impl Level {
         Self {
             width,
             height,
-            rgb: Vec::with_capacity(3 * n),
+            rgb: Vec::with_capacity(n),
             alpha: alpha.then(|| Vec::with_capacity(n)),
         }
     }
 
     /// Bytes held.
     pub(crate) fn bytes(&self) -> usize {
-        self.rgb.len() + self.alpha.as_ref().map_or(0, Vec::len)
+        3 * self.rgb.len() + self.alpha.as_ref().map_or(0, Vec::len)
     }
 }
 
@@ -158,7 +159,7 @@ fn encoder() -> &'static Encoder {
 
 /// A level-k row being halved: the pending row of each level.
 struct Pending {
-    rgb: Vec<u8>,
+    rgb: Vec<[u8; 3]>,
     alpha: Option<Vec<u8>>,
 }
 
@@ -201,10 +202,11 @@ impl Cascade {
     /// Offers the next level-0 row: sRGB bytes, 3 per texel, and the alpha
     /// bytes when the image has alpha.
     pub(crate) fn push(&mut self, rgb: &[u8], alpha: Option<&[u8]>) {
-        self.push_at(0, rgb.to_vec(), alpha.map(<[u8]>::to_vec));
+        let texels = rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+        self.push_at(0, texels, alpha.map(<[u8]>::to_vec));
     }
 
-    fn push_at(&mut self, k: usize, rgb: Vec<u8>, alpha: Option<Vec<u8>>) {
+    fn push_at(&mut self, k: usize, rgb: Vec<[u8; 3]>, alpha: Option<Vec<u8>>) {
         if k >= self.base as usize {
             let level = &mut self.levels[k - self.base as usize];
             level.rgb.extend_from_slice(&rgb);
@@ -225,18 +227,23 @@ impl Cascade {
     }
 
     /// One row of level `k + 1` from two rows of level `k`.
-    fn halve_rows(&self, k: usize, top: &Pending, bottom: &Pending) -> (Vec<u8>, Option<Vec<u8>>) {
+    fn halve_rows(
+        &self,
+        k: usize,
+        top: &Pending,
+        bottom: &Pending,
+    ) -> (Vec<[u8; 3]>, Option<Vec<u8>>) {
         let w = self.widths[k] as usize;
         let half = self.widths[k + 1] as usize;
         let (lut, enc) = (linear_table(), encoder());
-        let mut rgb = Vec::with_capacity(3 * half);
+        let mut rgb = Vec::with_capacity(half);
         for x in 0..half {
-            let (x0, x1) = (3 * (2 * x), 3 * (2 * x + 1).min(w - 1));
-            for c in 0..3 {
-                let at = |row: &[u8], k: usize| lut[usize::from(row[k + c])];
+            let (x0, x1) = (2 * x, (2 * x + 1).min(w - 1));
+            rgb.push(std::array::from_fn(|c| {
+                let at = |row: &[[u8; 3]], k: usize| lut[usize::from(row[k][c])];
                 let sum = at(&top.rgb, x0) + at(&top.rgb, x1) + at(&bottom.rgb, x0);
-                rgb.push(enc.encode(0.25 * (sum + at(&bottom.rgb, x1))));
-            }
+                enc.encode(0.25 * (sum + at(&bottom.rgb, x1)))
+            }));
         }
         let alpha = match (&top.alpha, &bottom.alpha) {
             (Some(a), Some(b)) => Some(
@@ -263,8 +270,8 @@ impl Cascade {
             }
         }
         debug_assert!(self.levels.iter().all(|l| {
-            l.rgb.len() == 3 * l.width as usize * l.height as usize
-                && l.alpha.as_ref().is_none_or(|a| a.len() * 3 == l.rgb.len())
+            l.rgb.len() == l.width as usize * l.height as usize
+                && l.alpha.as_ref().is_none_or(|a| a.len() == l.rgb.len())
         }));
         debug_assert!(self.alpha || self.levels.iter().all(|l| l.alpha.is_none()));
         self.levels
@@ -341,7 +348,7 @@ mod tests {
         let full = chain(w, h, &rgb, Some(&alpha), 0);
         assert_eq!(full.len(), 4);
         assert_eq!((full[1].width, full[1].height), (4, 3));
-        assert_eq!(full[0].rgb, rgb);
+        assert_eq!(full[0].rgb.concat(), rgb);
         for base in 1..4 {
             let part = chain(w, h, &rgb, Some(&alpha), base);
             assert_eq!(part[..], full[base as usize..], "base {base}");
@@ -353,7 +360,7 @@ mod tests {
                 encoder().encode(0.25 * (at(0, 0) + at(1, 0) + at(0, 1) + at(1, 1)))
             })
             .collect::<Vec<_>>();
-        assert_eq!(full[1].rgb[..3], mean[..]);
+        assert_eq!(full[1].rgb[0][..], mean[..]);
         // Level 1's last column pairs column 6 with itself.
         let a = |x: usize, y: usize| u32::from(alpha[y * 7 + x]);
         let last = (2 * a(6, 0) + 2 * a(6, 1) + 2) / 4;

@@ -37,7 +37,7 @@ pub use budget::{
 };
 pub use prims::{Prims, ScenePrims};
 pub use render::render_frame;
-pub use setup::SurfaceSetup;
+pub use setup::{SetupCache, SurfaceSetup};
 pub use stages::{
     Shader, ShaderOptions, StageTrace, Stages, texture_failures, transparency_warning,
 };

@@ -460,5 +460,8 @@ impl SurfaceSetup {
     }
 }
 
+mod cache;
+pub use cache::SetupCache;
+
 #[cfg(all(test, feature = "obj", feature = "image"))]
 mod tests;

@@ -25,7 +25,7 @@
 use glam::{DMat4, DVec2, DVec3, DVec4};
 use hider_geom::{Projection, Viewport};
 
-use super::setup::{Footprint, SurfaceSetup, alpha_textures};
+use super::setup::{Footprint, SetupCache, SurfaceSetup, alpha_textures};
 use super::texture::{Filter, TextureRef};
 use crate::model::{Illumination, Light, Material};
 use crate::prepare::{PrimInfo, ScreenScene};
@@ -287,13 +287,66 @@ impl ScreenScene {
         let info = &self.prims[prim as usize];
         let material = &self.materials[info.material as usize];
         info.uvs?;
-        let partial = [&material.diffuse_texture, &material.alpha_texture]
+        self.partial_alpha(material)
+            .then(|| sampler.alpha_at(info, material, x, y))
+    }
+
+    /// [`Self::partial_alpha_at`] with the primitive's shading setup from
+    /// `cache` (built there on first use): the same value, for a hider
+    /// that tests many points of a primitive.
+    pub fn partial_alpha_at_cached(
+        &self,
+        sampler: &TextureSampler,
+        cache: &mut SetupCache,
+        prim: u32,
+        x: f64,
+        y: f64,
+    ) -> Option<f32> {
+        let info = &self.prims[prim as usize];
+        let material = &self.materials[info.material as usize];
+        info.uvs?;
+        self.partial_alpha(material).then(|| {
+            if !sampler.textures_on() || alpha_textures(material) == (None, None) {
+                return 1.0;
+            }
+            let setup = cache.get_or_insert_with(prim, || SurfaceSetup::new(sampler, info));
+            setup.alpha_at(sampler, material, x, y)
+        })
+    }
+
+    /// Whether `material`'s alpha textures were decoded and hold partial
+    /// alpha.
+    fn partial_alpha(&self, material: &Material) -> bool {
+        [&material.diffuse_texture, &material.alpha_texture]
             .into_iter()
             .flatten()
             .any(|t| {
                 t.may_have_alpha() && t.decoded_alpha_class() == Some(super::AlphaClass::Partial)
-            });
-        partial.then(|| sampler.alpha_at(info, material, x, y))
+            })
+    }
+
+    /// [`Self::surface_rgb`] with the primitive's shading setup from
+    /// `cache` (built there on first use): the same colour, for a hider
+    /// that shades many points of a primitive.
+    #[inline]
+    pub fn surface_rgb_cached(
+        &self,
+        sampler: &TextureSampler,
+        cache: &mut SetupCache,
+        prim: u32,
+        base: [f32; 3],
+        x: f64,
+        y: f64,
+    ) -> [f32; 3] {
+        let info = &self.prims[prim as usize];
+        let material = &self.materials[info.material as usize];
+        if !sampler.varies(info, material) {
+            return base;
+        }
+        cache
+            .get_or_insert_with(prim, || SurfaceSetup::new(sampler, info))
+            .color_at(sampler, material, &self.lights, x, y)
+            .unwrap_or(base)
     }
 
     /// The colour of primitive `prim` at window point `(x, y)`

@@ -367,7 +367,7 @@ mod tests {
             .save(&grey)
             .unwrap();
         let t = load_level(&grey, 0, false).unwrap();
-        assert_eq!(t.levels[0].rgb[3..6], [60, 60, 60]);
+        assert_eq!(t.levels[0].rgb[1], [60, 60, 60]);
         assert_eq!(t.alpha_class(), AlphaClass::Opaque);
         assert!(t.levels[0].alpha.is_none());
         // As a mask (map_d), the grey is the alpha plane, as plain numbers.

@@ -23,7 +23,7 @@ impl Level {
     pub(crate) fn sample(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> ([f32; 3], f32) {
         let rgb = linear_table();
         let colour = |k: usize| {
-            let c = &self.rgb[3 * k..3 * k + 3];
+            let c = self.rgb[k];
             [
                 rgb[usize::from(c[0])],
                 rgb[usize::from(c[1])],
@@ -80,6 +80,14 @@ impl Level {
         // exact fraction once), without a call to `fmod`.
         let unit = |t: f64| (0.0..1.0).contains(&t);
         let (u, v) = if !clamp && unit(u) && unit(v) {
+            if let Filter::Bilinear = filter {
+                // The corners' texel coordinates (less one half) are then
+                // in [-0.5, width) and (-0.5, height): their floor is a
+                // truncation, one less below zero.
+                let x = u * f64::from(self.width);
+                let y = (1.0 - v) * f64::from(self.height);
+                return self.bilinear(floor_small(x - 0.5), floor_small(y - 0.5), false, texel);
+            }
             (u, v)
         } else if !(u.is_finite() && v.is_finite()) {
             return texel(index(self, 0, 0, true));
@@ -100,25 +108,40 @@ impl Level {
             Filter::Bilinear => {
                 let (fx, fy) = (x - 0.5, y - 0.5);
                 let ((x0, i), (y0, j)) = (floor(fx), floor(fy));
-                let (tx, ty) = ((fx - x0) as f32, (fy - y0) as f32);
-                // The two columns and rows, wrapped once each.
-                let (xa, xb) = neighbours(i, self.width, clamp);
-                let (ya, yb) = neighbours(j, self.height, clamp);
-                let w = self.width as usize;
-                let (top, bottom) = (ya * w, yb * w);
-                let q = [
-                    texel(top + xa),
-                    texel(top + xb),
-                    texel(bottom + xa),
-                    texel(bottom + xb),
-                ];
-                std::array::from_fn(|k| {
-                    let top = q[0][k] + (q[1][k] - q[0][k]) * tx;
-                    let bottom = q[2][k] + (q[3][k] - q[2][k]) * tx;
-                    top + (bottom - top) * ty
-                })
+                self.bilinear((fx - x0, i), (fy - y0, j), clamp, texel)
             }
         }
+    }
+
+    /// The bilinear mean of the texels around a point whose texel-space
+    /// coordinates (less one half) are `i + tx` and `j + ty` (`i`, `j`
+    /// integers, `tx`, `ty` in [0, 1)), the columns and rows wrapped or
+    /// clamped.
+    #[inline(always)]
+    fn bilinear<const N: usize>(
+        &self,
+        (tx, i): (f64, i64),
+        (ty, j): (f64, i64),
+        clamp: bool,
+        texel: impl Fn(usize) -> [f32; N],
+    ) -> [f32; N] {
+        let (tx, ty) = (tx as f32, ty as f32);
+        // The two columns and rows, wrapped once each.
+        let (xa, xb) = neighbours(i, self.width, clamp);
+        let (ya, yb) = neighbours(j, self.height, clamp);
+        let w = self.width as usize;
+        let (top, bottom) = (ya * w, yb * w);
+        let q = [
+            texel(top + xa),
+            texel(top + xb),
+            texel(bottom + xa),
+            texel(bottom + xb),
+        ];
+        std::array::from_fn(|k| {
+            let top = q[0][k] + (q[1][k] - q[0][k]) * tx;
+            let bottom = q[2][k] + (q[3][k] - q[2][k]) * tx;
+            top + (bottom - top) * ty
+        })
     }
 }
 
@@ -151,6 +174,16 @@ pub(super) fn floor(x: f64) -> (f64, i64) {
         let f = x.floor();
         (f, f as i64)
     }
+}
+
+/// The fraction of `x` (`x - floor(x)`) and its floor as an integer, for
+/// `x` in (-1, 2^31): truncation is the floor at and above zero, one more
+/// than it below (the same numbers as [`floor`], without its magic
+/// constant's three extra additions and the sign-bit games).
+#[inline(always)]
+fn floor_small(x: f64) -> (f64, i64) {
+    let i = x as i64 - i64::from(x < 0.0);
+    (x - i as f64, i)
 }
 
 /// Texel column (or row) `i` and `i + 1` of a side of `n` texels, clamped
@@ -211,7 +244,7 @@ mod tests {
             let bottom = q[2] + (q[3] - q[2]) * tx;
             top + (bottom - top) * ty
         };
-        let rgb = std::array::from_fn(|c| lerp(k.map(|k| srgb_to_linear(l.rgb[3 * k + c]))));
+        let rgb = std::array::from_fn(|c| lerp(k.map(|k| srgb_to_linear(l.rgb[k][c]))));
         let alpha = match &l.alpha {
             Some(a) => lerp(k.map(|k| f32::from(a[k]) / 255.0)),
             None => 1.0,
@@ -242,7 +275,7 @@ mod tests {
                 let l = Level {
                     width: w,
                     height: h,
-                    rgb: rgb.clone(),
+                    rgb: rgb.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
                     alpha,
                 };
                 let mut coords: Vec<(f64, f64)> = (0..4000)
@@ -308,5 +341,38 @@ mod tests {
             }
         }
         assert_eq!(floor(f64::NAN).1, 0);
+    }
+
+    /// `floor_small` is the library floor over its range, near zero and
+    /// the integers above it included. Fails with truncation alone (the
+    /// negatives) or the correction applied at -0.
+    #[test]
+    fn floor_small_is_the_library_floor() {
+        let mut xs = vec![
+            -0.999_999,
+            -0.5,
+            -1e-300,
+            -0.0,
+            0.0,
+            1e-300,
+            0.5,
+            2_147_483_647.5,
+        ];
+        xs.extend((0..2000).map(|k| f64::from(k) * 0.37 - 0.99));
+        for k in 0..=64 {
+            let x = f64::from(k);
+            // x, the next double up and (above zero) down, by their bits.
+            xs.extend([x, f64::from_bits(x.to_bits() + 1), x + 0.5]);
+            if k > 0 {
+                xs.push(f64::from_bits(x.to_bits() - 1));
+            }
+        }
+        for x in xs.into_iter().filter(|&x| x > -1.0 && x < 2_147_483_648.0) {
+            let (t, i) = floor_small(x);
+            assert_eq!(i as f64, x.floor(), "{x}");
+            // Equal as numbers: the fraction of -0 is -0 here, +0 by the
+            // library (no texel coordinate is -0: it is `x - 0.5`, x >= 0).
+            assert_eq!(t, x - x.floor(), "{x}");
+        }
     }
 }
