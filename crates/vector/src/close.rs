@@ -13,11 +13,11 @@
 
 use std::collections::{HashMap, HashSet};
 
+use crate::splitter::IntShapes;
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::grid::bounds;
 use crate::splitter::list_overlay;
@@ -58,7 +58,7 @@ pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
             .map(|chunk| {
                 let mut overlay = list_overlay(64);
                 for shapes in chunk {
-                    overlay.add_shapes(shapes, ShapeType::Subject);
+                    overlay.add_source(shapes, ShapeType::Subject);
                 }
                 overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
             })
@@ -92,9 +92,9 @@ fn morton(lo: IntPoint, hi: IntPoint) -> u64 {
 pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
     let mut overlay = list_overlay(64);
     for region in regions.iter() {
-        overlay.add_shapes(region, ShapeType::Subject);
+        overlay.add_source(region, ShapeType::Subject);
     }
-    overlay.add_shapes(covered, ShapeType::Clip);
+    overlay.add_source(covered, ShapeType::Clip);
     let excess = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
     let boxes: Vec<_> = regions.iter().map(|r| shapes_box(r)).collect();
     for piece in excess {
@@ -109,9 +109,9 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
         }
     }
     let mut overlay = list_overlay(64);
-    overlay.add_shapes(covered, ShapeType::Subject);
+    overlay.add_source(covered, ShapeType::Subject);
     for region in regions.iter() {
-        overlay.add_shapes(region, ShapeType::Clip);
+        overlay.add_source(region, ShapeType::Clip);
     }
     let gap = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
     if gap.is_empty() {
@@ -190,7 +190,7 @@ fn nearest(regions: &[IntShapes], piece: &[Vec<IntPoint>]) -> Option<usize> {
 /// One boolean of two polygon sets.
 fn boolean(a: &IntShapes, b: &IntShapes, rule: OverlayRule) -> IntShapes {
     let mut overlay = list_overlay(64);
-    overlay.add_shapes(a, ShapeType::Subject);
-    overlay.add_shapes(b, ShapeType::Clip);
+    overlay.add_source(a, ShapeType::Subject);
+    overlay.add_source(b, ShapeType::Clip);
     overlay.overlay(rule, FillRule::NonZero)
 }

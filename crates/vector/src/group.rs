@@ -152,7 +152,7 @@ pub(crate) fn group_regions(
             let points = group.shapes.iter().flatten().map(Vec::len).sum();
             let mut overlay = list_overlay(points);
             for shape in &group.shapes {
-                overlay.add_contours(shape, ShapeType::Subject);
+                overlay.add_source(shape, ShapeType::Subject);
             }
             group.shapes = overlay.overlay(OverlayRule::Subject, FillRule::NonZero);
         }

@@ -13,13 +13,14 @@
 
 use std::collections::HashMap;
 
+use crate::splitter::IntShapes;
+use crate::splitter::Overlay;
 use hider_geom::edge::orient2d;
 use hider_scene::{Result, ScreenScene, ScreenTri, ShadeMode};
 use i_overlay::core::fill_rule::FillRule;
-use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::VectorOptions;
 use crate::close::{close_to_cover, outline};
@@ -425,9 +426,9 @@ fn visible_part(
             }
             overlay.clear();
             let (subject, clips) = parts.split_last().expect("the polygon was pushed");
-            overlay.add_shapes(subject, ShapeType::Subject);
+            overlay.add_source(subject, ShapeType::Subject);
             for o in clips {
-                overlay.add_shapes(o, ShapeType::Clip);
+                overlay.add_source(o, ShapeType::Clip);
             }
             overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
         }
@@ -536,9 +537,9 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         runs += 1;
         let points = shapes[k].iter().flatten().map(Vec::len).sum::<usize>();
         let mut overlay = list_overlay(points + 16 * earlier.len());
-        overlay.add_shapes(&shapes[k], ShapeType::Subject);
+        overlay.add_source(&shapes[k], ShapeType::Subject);
         for &j in &earlier {
-            overlay.add_shapes(&shapes[j], ShapeType::Clip);
+            overlay.add_source(&shapes[j], ShapeType::Clip);
         }
         shapes[k] = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
     }

@@ -16,8 +16,8 @@
 
 use std::collections::HashMap;
 
+use crate::splitter::IntShapes;
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::grid::div_round;
 use crate::hot::HotPixels;

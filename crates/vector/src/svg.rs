@@ -13,10 +13,10 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
 
+use crate::splitter::IntShapes;
 use hider_scene::atomic::write_atomic;
 use hider_scene::{Error, Result, ScreenScene};
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::VectorOptions;
 use crate::document::{SvgInfo, escape};

@@ -130,7 +130,7 @@ fn culling_changes_no_region() {
         let prims =
             |map: &hider_vector::RegionMap| map.prims.iter().map(|r| r.prim).collect::<Vec<_>>();
         assert_eq!(prims(&culled), prims(&full), "{name}");
-        let within_a_unit = |what: String, a: &IntShapes, b: &IntShapes| {
+        let within_a_unit = |what: String, a: &IntShapes<i32>, b: &IntShapes<i32>| {
             let perimeter: f64 = b
                 .iter()
                 .flatten()
