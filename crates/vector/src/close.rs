@@ -13,13 +13,13 @@
 
 use std::collections::{HashMap, HashSet};
 
-use crate::splitter::IntShapes;
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
 use crate::grid::bounds;
+use crate::splitter::IntShapes;
 use crate::splitter::list_overlay;
 
 /// The covered set's outline: the union of `polys` (the triangles on the

@@ -13,8 +13,6 @@
 
 use std::collections::HashMap;
 
-use crate::splitter::IntShapes;
-use crate::splitter::Overlay;
 use hider_geom::edge::orient2d;
 use hider_scene::{Result, ScreenScene, ScreenTri, ShadeMode};
 use i_overlay::core::fill_rule::FillRule;
@@ -32,6 +30,8 @@ use crate::group::group_regions;
 use crate::hubs::hubs;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::snap::snap_round;
+use crate::splitter::IntShapes;
+use crate::splitter::Overlay;
 use crate::splitter::list_overlay;
 use crate::subtract::{BATCH, is_sliver, subtract};
 

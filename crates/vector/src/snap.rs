@@ -16,11 +16,11 @@
 
 use std::collections::HashMap;
 
-use crate::splitter::IntShapes;
 use i_overlay::i_float::int::point::IntPoint;
 
 use crate::grid::div_round;
 use crate::hot::HotPixels;
+use crate::splitter::IntShapes;
 use crate::sweep::{Segment, proper_crossings};
 
 /// The work of one snap rounding.

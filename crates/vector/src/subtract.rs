@@ -6,14 +6,14 @@
 //! largest occluders first, a batch at a time, stops as soon as nothing is
 //! left.
 
-use crate::splitter::IntShapes;
-use crate::splitter::Overlay;
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
 use crate::snap::snap_round;
+use crate::splitter::IntShapes;
+use crate::splitter::Overlay;
 
 /// Occluders subtracted in one boolean: past this, a triangle under a
 /// deep pile of occluders (depth complexity `N` at one spot) is cut down

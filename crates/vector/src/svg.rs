@@ -13,7 +13,6 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 use std::path::Path;
 
-use crate::splitter::IntShapes;
 use hider_scene::atomic::write_atomic;
 use hider_scene::{Error, Result, ScreenScene};
 use i_overlay::i_float::int::point::IntPoint;
@@ -22,6 +21,7 @@ use crate::VectorOptions;
 use crate::document::{SvgInfo, escape};
 use crate::lines::{LineDrawing, LineKind, Polyline};
 use crate::regions::RegionMap;
+use crate::splitter::IntShapes;
 
 /// `v` with at most `decimals` decimals, trailing zeros trimmed.
 fn number(s: &mut String, v: f64, decimals: u32) {
