@@ -19,52 +19,65 @@ use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
 use crate::grid::bounds;
+use crate::parts::{BooleanWork, overlay_by_parts, parts};
 use crate::splitter::IntShapes;
-use crate::splitter::list_overlay;
+use crate::splitter::new_overlay;
 
 /// The covered set's outline: the union of `polys` (the triangles on the
 /// grid) that are not `hidden`, before snap rounding.
 ///
-/// One boolean over all triangles would split every edge at every
-/// crossing, and on a pile of large triangles nearly every pair crosses:
-/// the arrangement is quadratic while the outline is small. So the union
-/// is built up a tree instead, the triangles in Morton order of their
-/// boxes' centres, `FAN_IN` sets at a time: each merge sees only the
-/// outlines of its inputs, whose inner crossings earlier merges removed.
-/// The crossings still on an outline are rounded to the grid as the
-/// one-shot boolean rounds them.
-pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
-    let mut order: Vec<(u64, usize)> = polys
+/// Triangles whose boxes chain together are one part (`parts.rs`), and
+/// the parts' unions are independent. Within a part, one boolean over all
+/// triangles would split every edge at every crossing, and on a pile of
+/// large triangles nearly every pair crosses: the arrangement is
+/// quadratic while the outline is small. So a part's union is built up a
+/// tree instead, the triangles in Morton order of their boxes' centres,
+/// `FAN_IN` sets at a time: each merge sees only the outlines of its
+/// inputs, whose inner crossings earlier merges removed. The crossings
+/// still on an outline are rounded to the grid as the one-shot boolean
+/// rounds them.
+pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool], work: &mut BooleanWork) -> IntShapes {
+    let boxes: Vec<_> = polys
         .iter()
         .zip(hidden)
-        .enumerate()
-        .filter(|(_, (p, h))| p.len() >= 3 && !**h)
-        .filter_map(|(k, (p, _))| bounds(p).map(|(lo, hi)| (morton(lo, hi), k)))
+        .map(|(p, h)| if p.len() >= 3 && !*h { bounds(p) } else { None })
         .collect();
-    order.sort_unstable();
-    let mut parts: Vec<IntShapes> = order
-        .chunks(FAN_IN)
-        .map(|chunk| {
-            let mut overlay = list_overlay(4 * chunk.len());
-            for &(_, k) in chunk {
-                overlay.add_contour(&polys[k], ShapeType::Subject);
-            }
-            overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
-        })
-        .collect();
-    while parts.len() > 1 {
-        parts = parts
+    let mut covered = IntShapes::new();
+    for part in parts(&boxes) {
+        let mut order: Vec<(u64, usize)> = part
+            .into_iter()
+            .filter_map(|k| boxes[k].map(|(lo, hi)| (morton(lo, hi), k)))
+            .collect();
+        order.sort_unstable();
+        let mut sets: Vec<IntShapes> = order
             .chunks(FAN_IN)
             .map(|chunk| {
-                let mut overlay = list_overlay(64);
-                for shapes in chunk {
-                    overlay.add_source(shapes, ShapeType::Subject);
+                let segments = chunk.iter().map(|&(_, k)| polys[k].len()).sum();
+                work.add(segments);
+                let mut overlay = new_overlay(segments);
+                for &(_, k) in chunk {
+                    overlay.add_contour(&polys[k], ShapeType::Subject);
                 }
                 overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
             })
             .collect();
+        while sets.len() > 1 {
+            sets = sets
+                .chunks(FAN_IN)
+                .map(|chunk| {
+                    let segments = chunk.iter().flatten().flatten().map(Vec::len).sum();
+                    work.add(segments);
+                    let mut overlay = new_overlay(segments);
+                    for shapes in chunk {
+                        overlay.add_source(shapes, ShapeType::Subject);
+                    }
+                    overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+                })
+                .collect();
+        }
+        covered.extend(sets.pop().unwrap_or_default());
     }
-    parts.pop().unwrap_or_default()
+    covered
 }
 
 /// Sets merged by one boolean of [`outline`].
@@ -89,13 +102,17 @@ fn morton(lo: IntPoint, hi: IntPoint) -> u64 {
 
 /// Makes the union of `regions` equal `covered`, the outline snap rounded
 /// in one arrangement with the regions (so every boolean here is exact).
-pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
-    let mut overlay = list_overlay(64);
-    for region in regions.iter() {
-        overlay.add_source(region, ShapeType::Subject);
-    }
-    overlay.add_source(covered, ShapeType::Clip);
-    let excess = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
+///
+/// The two map-wide booleans (what the regions hold outside the covered
+/// set, and the covered set's gaps) run one per part (`parts.rs`).
+pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes], work: &mut BooleanWork) {
+    let mut shapes: Vec<(&[Vec<IntPoint>], ShapeType)> = regions
+        .iter()
+        .flatten()
+        .map(|s| (s.as_slice(), ShapeType::Subject))
+        .collect();
+    shapes.extend(covered.iter().map(|s| (s.as_slice(), ShapeType::Clip)));
+    let excess = overlay_by_parts(&shapes, OverlayRule::Difference, work);
     let boxes: Vec<_> = regions.iter().map(|r| shapes_box(r)).collect();
     for piece in excess {
         let piece = vec![piece];
@@ -108,12 +125,17 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
             }
         }
     }
-    let mut overlay = list_overlay(64);
-    overlay.add_source(covered, ShapeType::Subject);
-    for region in regions.iter() {
-        overlay.add_source(region, ShapeType::Clip);
-    }
-    let gap = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
+    let mut shapes: Vec<(&[Vec<IntPoint>], ShapeType)> = covered
+        .iter()
+        .map(|s| (s.as_slice(), ShapeType::Subject))
+        .collect();
+    shapes.extend(
+        regions
+            .iter()
+            .flatten()
+            .map(|s| (s.as_slice(), ShapeType::Clip)),
+    );
+    let gap = overlay_by_parts(&shapes, OverlayRule::Difference, work);
     if gap.is_empty() {
         return;
     }
@@ -189,7 +211,7 @@ fn nearest(regions: &[IntShapes], piece: &[Vec<IntPoint>]) -> Option<usize> {
 
 /// One boolean of two polygon sets.
 fn boolean(a: &IntShapes, b: &IntShapes, rule: OverlayRule) -> IntShapes {
-    let mut overlay = list_overlay(64);
+    let mut overlay = new_overlay(64);
     overlay.add_source(a, ShapeType::Subject);
     overlay.add_source(b, ShapeType::Clip);
     overlay.overlay(rule, FillRule::NonZero)

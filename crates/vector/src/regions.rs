@@ -29,10 +29,11 @@ use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
 use crate::hubs::hubs;
 use crate::pairs::{Relation, interiors_overlap, relation};
+use crate::parts::BooleanWork;
 use crate::snap::snap_round;
 use crate::splitter::IntShapes;
 use crate::splitter::Overlay;
-use crate::splitter::list_overlay;
+use crate::splitter::new_overlay;
 use crate::subtract::{BATCH, is_sliver, subtract};
 
 hider_scene::hider_stats! {
@@ -89,6 +90,14 @@ hider_scene::hider_stats! {
         /// ownership, closing); compared with
         /// [`VectorOptions::max_region_points`](crate::VectorOptions::max_region_points).
         pub region_points: u64 => "region points",
+        /// Map-wide booleans run (the covered set's outline, ownership,
+        /// closing and face-group unions), each over one part of shapes
+        /// whose boxes chain together (see `docs/vector.md`, step 6).
+        pub map_booleans: u64 => "map booleans",
+        /// Segments sent into the map-wide booleans, summed.
+        pub map_boolean_segments: u64 => "map boolean segments",
+        /// The most segments sent into one map-wide boolean.
+        pub largest_boolean: u64 => "largest boolean",
         /// Primitives with a visible region.
         pub visible_prims: u64 => "visible prims",
         /// Face groups (paths of the regions SVG).
@@ -223,7 +232,7 @@ fn build(
     // add nothing to the covered set's outline (see below).
     let mut inside = vec![false; scene.tris.len()];
     // One overlay for all differences: its buffers are kept between uses.
-    let mut overlay = list_overlay(64);
+    let mut overlay = new_overlay(64);
     for (ti, t) in scene.tris.iter().enumerate() {
         // A triangle's pairs (a bin query, booleans) cost far more than
         // the poll.
@@ -354,10 +363,14 @@ fn build(
     if stats.region_points > options.max_region_points {
         return Err(region_points_error(stats.region_points, options));
     }
-    let outline = outline(&polys, &skip);
-    let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats);
+    let mut work = BooleanWork::default();
+    let outline = outline(&polys, &skip, &mut work);
+    let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats, &mut work);
 
-    let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
+    let groups = group_regions(scene, &mut prims, mode, options.merge_groups, &mut work);
+    stats.map_booleans = work.booleans;
+    stats.map_boolean_segments = work.segments;
+    stats.largest_boolean = work.largest;
     stats.visible_prims = prims.len() as u64;
     stats.groups = groups.len() as u64;
     stats.path_points = groups
@@ -447,6 +460,7 @@ fn settle(
     per_prim: HashMap<u32, IntShapes>,
     outline: IntShapes,
     stats: &mut RegionStats,
+    work: &mut BooleanWork,
 ) -> (Vec<PrimRegion>, IntShapes) {
     let mut per_prim: Vec<(u32, IntShapes)> = per_prim.into_iter().collect();
     per_prim.sort_unstable_by_key(|r| r.0);
@@ -466,8 +480,8 @@ fn settle(
     let covered = shapes.pop().unwrap_or_default();
     let _ = touched.pop();
     stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
-    stats.ownership_differences = settle_ownership(grid, &mut shapes, &touched);
-    close_to_cover(&covered, &mut shapes);
+    stats.ownership_differences = settle_ownership(grid, &mut shapes, &touched, work);
+    close_to_cover(&covered, &mut shapes, work);
     let prims = per_prim
         .iter()
         .zip(shapes)
@@ -488,7 +502,12 @@ fn settle(
 /// regions the snapping rerouted, or that overlap one it rerouted, can
 /// overlap another (two untouched regions meet only along common edges),
 /// so only those are differenced. Returns how many differences ran.
-fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> u64 {
+fn settle_ownership(
+    grid: &Grid,
+    shapes: &mut [IntShapes],
+    touched: &[bool],
+    work: &mut BooleanWork,
+) -> u64 {
     let boxes: Vec<_> = shapes
         .iter()
         .map(|s| bounds(&s.iter().flatten().flatten().copied().collect::<Vec<_>>()))
@@ -536,7 +555,14 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         }
         runs += 1;
         let points = shapes[k].iter().flatten().map(Vec::len).sum::<usize>();
-        let mut overlay = list_overlay(points + 16 * earlier.len());
+        let segments = points
+            + earlier
+                .iter()
+                .flat_map(|&j| shapes[j].iter().flatten())
+                .map(Vec::len)
+                .sum::<usize>();
+        work.add(segments);
+        let mut overlay = new_overlay(segments);
         overlay.add_source(&shapes[k], ShapeType::Subject);
         for &j in &earlier {
             overlay.add_source(&shapes[j], ShapeType::Clip);
