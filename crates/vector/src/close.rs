@@ -19,65 +19,59 @@ use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
 use crate::grid::bounds;
-use crate::parts::{BooleanWork, overlay_by_parts, parts};
+use crate::parts::{BooleanWork, overlay_by_parts};
 use crate::splitter::IntShapes;
 use crate::splitter::new_overlay;
 
 /// The covered set's outline: the union of `polys` (the triangles on the
 /// grid) that are not `hidden`, before snap rounding.
 ///
-/// Triangles whose boxes chain together are one part (`parts.rs`), and
-/// the parts' unions are independent. Within a part, one boolean over all
-/// triangles would split every edge at every crossing, and on a pile of
-/// large triangles nearly every pair crosses: the arrangement is
-/// quadratic while the outline is small. So a part's union is built up a
-/// tree instead, the triangles in Morton order of their boxes' centres,
-/// `FAN_IN` sets at a time: each merge sees only the outlines of its
-/// inputs, whose inner crossings earlier merges removed. The crossings
-/// still on an outline are rounded to the grid as the one-shot boolean
-/// rounds them.
+/// One boolean over all triangles would split every edge at every
+/// crossing, and on a pile of large triangles nearly every pair crosses:
+/// the arrangement is quadratic while the outline is small. So the union
+/// is built up a tree instead, the triangles in Morton order of their
+/// boxes' centres, `FAN_IN` sets at a time: each merge sees only the
+/// outlines of its inputs, whose inner crossings earlier merges removed.
+/// The crossings still on an outline are rounded to the grid as the
+/// one-shot boolean rounds them. Each merge runs one boolean per part of
+/// its shapes whose boxes chain together (`parts.rs`): near the root the
+/// sets are the whole map, and `N` separate long slivers in one boolean
+/// cost `N^1.5` in `i_overlay`'s fragment splitter.
 pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool], work: &mut BooleanWork) -> IntShapes {
-    let boxes: Vec<_> = polys
+    let mut order: Vec<(u64, usize)> = polys
         .iter()
         .zip(hidden)
-        .map(|(p, h)| if p.len() >= 3 && !*h { bounds(p) } else { None })
+        .enumerate()
+        .filter(|(_, (p, h))| p.len() >= 3 && !**h)
+        .filter_map(|(k, (p, _))| bounds(p).map(|(lo, hi)| (morton(lo, hi), k)))
         .collect();
-    let mut covered = IntShapes::new();
-    for part in parts(&boxes) {
-        let mut order: Vec<(u64, usize)> = part
-            .into_iter()
-            .filter_map(|k| boxes[k].map(|(lo, hi)| (morton(lo, hi), k)))
-            .collect();
-        order.sort_unstable();
-        let mut sets: Vec<IntShapes> = order
+    order.sort_unstable();
+    let mut sets: Vec<IntShapes> = order
+        .chunks(FAN_IN)
+        .map(|chunk| {
+            let segments = chunk.iter().map(|&(_, k)| polys[k].len()).sum();
+            work.add(segments);
+            let mut overlay = new_overlay(segments);
+            for &(_, k) in chunk {
+                overlay.add_contour(&polys[k], ShapeType::Subject);
+            }
+            overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+        })
+        .collect();
+    while sets.len() > 1 {
+        sets = sets
             .chunks(FAN_IN)
             .map(|chunk| {
-                let segments = chunk.iter().map(|&(_, k)| polys[k].len()).sum();
-                work.add(segments);
-                let mut overlay = new_overlay(segments);
-                for &(_, k) in chunk {
-                    overlay.add_contour(&polys[k], ShapeType::Subject);
-                }
-                overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+                let shapes: Vec<_> = chunk
+                    .iter()
+                    .flatten()
+                    .map(|s| (s.as_slice(), ShapeType::Subject))
+                    .collect();
+                overlay_by_parts(&shapes, OverlayRule::Subject, work)
             })
             .collect();
-        while sets.len() > 1 {
-            sets = sets
-                .chunks(FAN_IN)
-                .map(|chunk| {
-                    let segments = chunk.iter().flatten().flatten().map(Vec::len).sum();
-                    work.add(segments);
-                    let mut overlay = new_overlay(segments);
-                    for shapes in chunk {
-                        overlay.add_source(shapes, ShapeType::Subject);
-                    }
-                    overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
-                })
-                .collect();
-        }
-        covered.extend(sets.pop().unwrap_or_default());
     }
-    covered
+    sets.pop().unwrap_or_default()
 }
 
 /// Sets merged by one boolean of [`outline`].
