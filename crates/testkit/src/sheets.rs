@@ -75,3 +75,26 @@ pub fn fan(count: u32, lift: f64) -> Mesh {
         ..Mesh::default()
     }
 }
+
+/// `count` long thin parallel triangles crossing the square `[-1, 1]^2`
+/// (each from a point at `x = -1` to an edge at `x = 1`, 3/4 of its
+/// spacing wide there), in seven planes `z = 0.01 k` taken in turn: seen
+/// head-on, neighbours in depth overlap near the image's edges, and each
+/// plane's slivers are one face group of separate pieces.
+pub fn slivers(count: u32) -> Mesh {
+    let n = f64::from(count.max(1));
+    let mut positions = Vec::with_capacity(3 * count as usize);
+    for i in 0..count {
+        let y = -1.0 + 2.0 * f64::from(i) / n;
+        let z = f64::from(i % 7) * 0.01;
+        positions.push(DVec3::new(-1.0, y, z));
+        positions.push(DVec3::new(1.0, y, z));
+        positions.push(DVec3::new(1.0, y + 1.5 / n, z));
+    }
+    Mesh {
+        name: "slivers".into(),
+        positions,
+        indices: (0..count).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect(),
+        ..Mesh::default()
+    }
+}

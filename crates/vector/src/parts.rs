@@ -136,8 +136,8 @@ pub fn shape_box(contours: &[Vec<IntPoint>]) -> Option<Box2> {
 /// `rule` (by non-zero fill) over `shapes`, each a shape (outer contour
 /// and holes) that is a subject or a clip, one boolean per part of
 /// [`parts`]; a part without a subject is skipped (every rule this crate
-/// uses gives nothing there). The result is the one-boolean result's
-/// shapes, ordered by part.
+/// uses gives nothing there). The result is the one boolean's, in its
+/// order.
 pub fn overlay_by_parts(
     shapes: &[(&[Vec<IntPoint>], ShapeType)],
     rule: OverlayRule,
@@ -157,6 +157,14 @@ pub fn overlay_by_parts(
         }
         out.extend(overlay.overlay(rule, FillRule::NonZero));
     }
+    // In the order one boolean gives them: by the least point (x, then
+    // y) of the outer contour, so that a drawing's bytes do not depend on
+    // how the map fell into parts.
+    out.sort_by_cached_key(|shape| {
+        shape
+            .first()
+            .and_then(|outer| outer.iter().min_by_key(|p| (p.x, p.y)).map(|p| (p.x, p.y)))
+    });
     out
 }
 

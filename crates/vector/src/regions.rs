@@ -47,6 +47,11 @@ hider_scene::hider_stats! {
         /// of the triangles meeting at one vertex (the centre of a fan),
         /// which no bin separates (see `docs/vector.md`).
         pub candidate_pairs: u64 => "candidate pairs",
+        /// Bin entries the pair phase looked at: each candidate once per
+        /// bin the two share. Bins square while the triangles are long
+        /// and thin (parallel slivers) make this grow with the square of
+        /// the input while the candidate pairs stay few.
+        pub bin_visits: u64 => "bin visits",
         /// Candidate pairs whose interiors overlap.
         pub overlapping_pairs: u64 => "overlapping pairs",
         /// Pairs whose depth planes cross inside their common area.
@@ -260,6 +265,7 @@ fn build(
         // cut line, whose ends are rounded to the grid.
         let mut cut = false;
         bins.query_covering_skipping(&[&polys[ti]], &hub[ti], |ui| {
+            stats.bin_visits += 1;
             let u_idx = ui as usize;
             // A skipped back face hides nothing its solid's nearer front
             // faces do not hide already.
