@@ -21,13 +21,16 @@
 //! towards the camera (a cone seen from its apex). Every spoke meets the
 //! centre, so anything that pairs edges or triangles by shared bins (or
 //! boxes) costs the square of `N` there while nothing crosses.
+//! The last is `N` long thin parallel triangles in seven planes
+//! (`sheets::slivers`), seen head-on: each plane's slivers are one face
+//! group of separate pieces, and square bins hold a row of them each.
 //! The peak resident memory of each drawing is the process's (`VmHWM`,
 //! reset before it; the scene is resident already, so it counts, and so
 //! does heap the allocator kept from the family's smaller sizes); each
 //! family runs in a process of its own.
 //!
-//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced|fan|cone]`
-//! (defaults: 20 s, 1,024,000 triangles, all seven families).
+//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced|fan|cone|slivers]`
+//! (defaults: 20 s, 1,024,000 triangles, all eight families).
 
 use std::time::Instant;
 
@@ -132,7 +135,7 @@ fn main() -> Result<(), hider_scene::Error> {
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     type Family = (&'static str, &'static str, u32, fn(u32) -> Scene);
-    let families: [Family; 7] = [
+    let families: [Family; 8] = [
         ("`gen:soup:N`", "soup", 2_000, |n| {
             procedural::random_soup(n, 1)
         }),
@@ -144,6 +147,9 @@ fn main() -> Result<(), hider_scene::Error> {
         ("sheet pierced by `gen:soup:N/8`", "pierced", 2_000, pierced),
         ("flat fan", "fan", 2_000, |n| fan(n, 0.0)),
         ("cone from its apex", "cone", 2_000, |n| fan(n, 0.5)),
+        ("parallel slivers", "slivers", 2_000, |n| {
+            lit(vec![sheets::slivers(n)])
+        }),
     ];
     for (name, key, start, make) in families {
         let Some(only) = only.as_deref() else {
