@@ -102,8 +102,8 @@ pub fn parts(boxes: &[Option<Box2>]) -> Vec<Vec<usize>> {
     }
     let mut index_of_root = vec![usize::MAX; boxes.len()];
     let mut out: Vec<Vec<usize>> = Vec::new();
-    for k in 0..boxes.len() {
-        if boxes[k].is_none() {
+    for (k, b) in boxes.iter().enumerate() {
+        if b.is_none() {
             continue;
         }
         // With path halving: the merges of a fan chain every spoke.
