@@ -76,11 +76,14 @@ pub fn fan(count: u32, lift: f64) -> Mesh {
     }
 }
 
-/// `count` long thin parallel triangles across `[-1, 1]^2`, each
-/// `1.5 / count` tall at one end and spaced `2 / count` apart, in seven
-/// planes `z = 0, 0.01, .., 0.06` taken in turn (no two overlap on
-/// screen): where a segment along one sliver has every other sliver of
-/// its row of square bins as a candidate occluder.
+/// `count` long thin parallel triangles across `[-1, 1]^2`, each from a
+/// point at `x = -1` to an edge at `x = 1` `1.5 / count` tall, spaced
+/// `2 / count` apart, in seven planes `z = 0, 0.01, .., 0.06` taken in
+/// turn: seen head-on, neighbours in depth overlap only near the image's
+/// edges, and each plane's slivers are one face group of separate
+/// pieces. With square bins, a segment along one sliver has every other
+/// sliver of its row of bins as a candidate occluder, and a group's union
+/// meets every sliver in each bin.
 pub fn slivers(count: u32) -> Mesh {
     let n = f64::from(count.max(1));
     let mut positions = Vec::with_capacity(3 * count as usize);

@@ -17,10 +17,11 @@ use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::grid::bounds;
-use crate::splitter::list_overlay;
+use crate::parts::{BooleanWork, overlay_by_parts};
+use crate::splitter::IntShapes;
+use crate::splitter::new_overlay;
 
 /// The covered set's outline: the union of `polys` (the triangles on the
 /// grid) that are not `hidden`, before snap rounding.
@@ -32,8 +33,11 @@ use crate::splitter::list_overlay;
 /// boxes' centres, `FAN_IN` sets at a time: each merge sees only the
 /// outlines of its inputs, whose inner crossings earlier merges removed.
 /// The crossings still on an outline are rounded to the grid as the
-/// one-shot boolean rounds them.
-pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
+/// one-shot boolean rounds them. Each merge runs one boolean per part of
+/// its shapes whose boxes chain together (`parts.rs`): near the root the
+/// sets are the whole map, and `N` separate long slivers in one boolean
+/// cost `N^1.5` in `i_overlay`'s fragment splitter.
+pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool], work: &mut BooleanWork) -> IntShapes {
     let mut order: Vec<(u64, usize)> = polys
         .iter()
         .zip(hidden)
@@ -42,29 +46,32 @@ pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool]) -> IntShapes {
         .filter_map(|(k, (p, _))| bounds(p).map(|(lo, hi)| (morton(lo, hi), k)))
         .collect();
     order.sort_unstable();
-    let mut parts: Vec<IntShapes> = order
+    let mut sets: Vec<IntShapes> = order
         .chunks(FAN_IN)
         .map(|chunk| {
-            let mut overlay = list_overlay(4 * chunk.len());
+            let segments = chunk.iter().map(|&(_, k)| polys[k].len()).sum();
+            work.add(segments);
+            let mut overlay = new_overlay(segments);
             for &(_, k) in chunk {
                 overlay.add_contour(&polys[k], ShapeType::Subject);
             }
             overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
         })
         .collect();
-    while parts.len() > 1 {
-        parts = parts
+    while sets.len() > 1 {
+        sets = sets
             .chunks(FAN_IN)
             .map(|chunk| {
-                let mut overlay = list_overlay(64);
-                for shapes in chunk {
-                    overlay.add_shapes(shapes, ShapeType::Subject);
-                }
-                overlay.overlay(OverlayRule::Subject, FillRule::NonZero)
+                let shapes: Vec<_> = chunk
+                    .iter()
+                    .flatten()
+                    .map(|s| (s.as_slice(), ShapeType::Subject))
+                    .collect();
+                overlay_by_parts(&shapes, OverlayRule::Subject, work)
             })
             .collect();
     }
-    parts.pop().unwrap_or_default()
+    sets.pop().unwrap_or_default()
 }
 
 /// Sets merged by one boolean of [`outline`].
@@ -89,13 +96,17 @@ fn morton(lo: IntPoint, hi: IntPoint) -> u64 {
 
 /// Makes the union of `regions` equal `covered`, the outline snap rounded
 /// in one arrangement with the regions (so every boolean here is exact).
-pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
-    let mut overlay = list_overlay(64);
-    for region in regions.iter() {
-        overlay.add_shapes(region, ShapeType::Subject);
-    }
-    overlay.add_shapes(covered, ShapeType::Clip);
-    let excess = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
+///
+/// The two map-wide booleans (what the regions hold outside the covered
+/// set, and the covered set's gaps) run one per part (`parts.rs`).
+pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes], work: &mut BooleanWork) {
+    let mut shapes: Vec<(&[Vec<IntPoint>], ShapeType)> = regions
+        .iter()
+        .flatten()
+        .map(|s| (s.as_slice(), ShapeType::Subject))
+        .collect();
+    shapes.extend(covered.iter().map(|s| (s.as_slice(), ShapeType::Clip)));
+    let excess = overlay_by_parts(&shapes, OverlayRule::Difference, work);
     let boxes: Vec<_> = regions.iter().map(|r| shapes_box(r)).collect();
     for piece in excess {
         let piece = vec![piece];
@@ -108,12 +119,17 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes]) {
             }
         }
     }
-    let mut overlay = list_overlay(64);
-    overlay.add_shapes(covered, ShapeType::Subject);
-    for region in regions.iter() {
-        overlay.add_shapes(region, ShapeType::Clip);
-    }
-    let gap = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
+    let mut shapes: Vec<(&[Vec<IntPoint>], ShapeType)> = covered
+        .iter()
+        .map(|s| (s.as_slice(), ShapeType::Subject))
+        .collect();
+    shapes.extend(
+        regions
+            .iter()
+            .flatten()
+            .map(|s| (s.as_slice(), ShapeType::Clip)),
+    );
+    let gap = overlay_by_parts(&shapes, OverlayRule::Difference, work);
     if gap.is_empty() {
         return;
     }
@@ -189,8 +205,8 @@ fn nearest(regions: &[IntShapes], piece: &[Vec<IntPoint>]) -> Option<usize> {
 
 /// One boolean of two polygon sets.
 fn boolean(a: &IntShapes, b: &IntShapes, rule: OverlayRule) -> IntShapes {
-    let mut overlay = list_overlay(64);
-    overlay.add_shapes(a, ShapeType::Subject);
-    overlay.add_shapes(b, ShapeType::Clip);
+    let mut overlay = new_overlay(64);
+    overlay.add_source(a, ShapeType::Subject);
+    overlay.add_source(b, ShapeType::Clip);
     overlay.overlay(rule, FillRule::NonZero)
 }

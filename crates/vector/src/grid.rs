@@ -182,7 +182,8 @@ pub fn clip_all(scene: &ScreenScene, grid: &Grid) -> Clipped {
 /// A uniform grid of bins over the image, each listing the items whose
 /// polygons meet it: the candidates for overlap with a given polygon or box.
 pub struct Bins {
-    size: i64,
+    /// A bin's width and height, grid units.
+    size: (i64, i64),
     cols: i64,
     rows: i64,
     cells: Vec<Vec<u32>>,
@@ -191,13 +192,19 @@ pub struct Bins {
 }
 
 impl Bins {
-    fn range(size: i64, cols: i64, rows: i64, lo: IntPoint, hi: IntPoint) -> (i64, i64, i64, i64) {
-        let cell = |v: i32, n: i64| (i64::from(v) / size).clamp(0, n - 1);
+    fn range(
+        size: (i64, i64),
+        cols: i64,
+        rows: i64,
+        lo: IntPoint,
+        hi: IntPoint,
+    ) -> (i64, i64, i64, i64) {
+        let cell = |v: i32, s: i64, n: i64| (i64::from(v) / s).clamp(0, n - 1);
         (
-            cell(lo.x, cols),
-            cell(lo.y, rows),
-            cell(hi.x, cols),
-            cell(hi.y, rows),
+            cell(lo.x, size.0, cols),
+            cell(lo.y, size.1, rows),
+            cell(hi.x, size.0, cols),
+            cell(hi.y, size.1, rows),
         )
     }
 
@@ -224,12 +231,35 @@ impl Bins {
 
     /// Bins of about one item each over `grid`, holding each item in the
     /// bins its closed polygons meet (see [`Bins::covering_live`]).
+    ///
+    /// The bins are shaped like the items' boxes (their geometric-mean
+    /// width over height): with square bins, `N` long parallel slivers
+    /// lie `sqrt(N)` to a row of bins and each meets the `sqrt(N)` bins
+    /// of its row, so every sliver met every other of its row in every
+    /// bin (`N^2` visits); bins as long as the slivers hold one or two.
     pub fn covering(grid: &Grid, items: &[Vec<&[IntPoint]>]) -> Self {
-        let count = items.iter().filter(|i| !i.is_empty()).count().max(1) as f64;
+        let mut count = 0usize;
+        let mut log_aspect = 0.0;
+        for contours in items {
+            let points: Vec<IntPoint> = contours.iter().flat_map(|c| c.iter().copied()).collect();
+            if let Some((lo, hi)) = bounds(&points) {
+                count += 1;
+                let extent = |a: i32, b: i32| (f64::from(b) - f64::from(a)).max(1.0);
+                log_aspect += extent(lo.x, hi.x).ln() - extent(lo.y, hi.y).ln();
+            }
+        }
         let area = (grid.width as f64) * (grid.height as f64);
-        let size = ((area / count).sqrt() as i64).max(grid.units_per_pixel() as i64);
-        let cols = grid.width / size + 1;
-        let rows = grid.height / size + 1;
+        let side = (area / count.max(1) as f64)
+            .sqrt()
+            .max(grid.units_per_pixel());
+        let stretch = (log_aspect / count.max(1) as f64 / 2.0).exp();
+        // A bin keeps the area `side^2` (about one item each) and fits in
+        // the image both ways.
+        let (w, h) = (grid.width.max(1) as f64, grid.height.max(1) as f64);
+        let sx = (side * stretch).min(w).max(side * side / h);
+        let size = ((sx as i64).max(1), ((side * side / sx) as i64).max(1));
+        let cols = grid.width / size.0 + 1;
+        let rows = grid.height / size.1 + 1;
         let mut bins = Self {
             size,
             cols,
@@ -264,7 +294,8 @@ impl Bins {
         let (_, r0, _, r1) = Self::range(self.size, self.cols, self.rows, lo, hi);
         // Per row of bins, the least and greatest column the edges reach.
         let mut span = vec![(i64::MAX, i64::MIN); (r1 - r0 + 1) as usize];
-        let col = |x: i128| ((x.div_euclid(i128::from(self.size))) as i64).clamp(0, self.cols - 1);
+        let col =
+            |x: i128| ((x.div_euclid(i128::from(self.size.0))) as i64).clamp(0, self.cols - 1);
         for contour in contours {
             let n = contour.len();
             for k in 0..n {
@@ -278,8 +309,8 @@ impl Bins {
                 for r in er0..=er1 {
                     // The edge's part within the row's closed band, by
                     // its ends' x (floor and ceiling of the exact values).
-                    let y0 = i128::from(p.y).max(i128::from(r * self.size));
-                    let y1 = i128::from(q.y).min(i128::from((r + 1) * self.size));
+                    let y0 = i128::from(p.y).max(i128::from(r * self.size.1));
+                    let y1 = i128::from(q.y).min(i128::from((r + 1) * self.size.1));
                     let (xa, xb) = if dy == 0 {
                         (i128::from(p.x.min(q.x)), i128::from(p.x.max(q.x)))
                     } else {

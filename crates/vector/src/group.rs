@@ -5,12 +5,11 @@ use std::collections::HashMap;
 
 use hider_scene::shade::{prim_color, to_srgb8};
 use hider_scene::{ScreenScene, ShadeMode};
-use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 
+use crate::parts::{BooleanWork, overlay_by_parts};
 use crate::regions::{FaceGroup, PrimRegion};
-use crate::splitter::list_overlay;
 
 /// The key that puts coplanar primitives of one colour together: the fill
 /// colour and opacity as written, and the camera-space plane quantised,
@@ -93,12 +92,14 @@ fn merge_neighbours(keys: &[Key]) -> Vec<u32> {
         .collect()
 }
 
-/// Assigns every region a face group and builds the groups' paths.
+/// Assigns every region a face group and builds the groups' paths (a
+/// group's union one boolean per part of its regions, see `parts.rs`).
 pub(crate) fn group_regions(
     scene: &ScreenScene,
     prims: &mut [PrimRegion],
     mode: ShadeMode,
     merge: bool,
+    work: &mut BooleanWork,
 ) -> Vec<FaceGroup> {
     let mut fills: HashMap<String, u32> = HashMap::new();
     let mut groups: Vec<FaceGroup> = Vec::new();
@@ -149,12 +150,12 @@ pub(crate) fn group_regions(
     }
     for group in &mut groups {
         if group.prims.len() > 1 || group.shapes.len() > 1 {
-            let points = group.shapes.iter().flatten().map(Vec::len).sum();
-            let mut overlay = list_overlay(points);
-            for shape in &group.shapes {
-                overlay.add_contours(shape, ShapeType::Subject);
-            }
-            group.shapes = overlay.overlay(OverlayRule::Subject, FillRule::NonZero);
+            let shapes: Vec<_> = group
+                .shapes
+                .iter()
+                .map(|s| (s.as_slice(), ShapeType::Subject))
+                .collect();
+            group.shapes = overlay_by_parts(&shapes, OverlayRule::Subject, work);
         }
     }
     groups

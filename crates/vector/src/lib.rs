@@ -51,6 +51,7 @@ mod hubs;
 mod lines;
 mod options;
 mod pairs;
+mod parts;
 mod regions;
 mod shaped;
 mod snap;

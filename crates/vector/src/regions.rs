@@ -16,10 +16,9 @@ use std::collections::HashMap;
 use hider_geom::edge::orient2d;
 use hider_scene::{Result, ScreenScene, ScreenTri, ShadeMode};
 use i_overlay::core::fill_rule::FillRule;
-use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::VectorOptions;
 use crate::close::{close_to_cover, outline};
@@ -30,8 +29,11 @@ use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
 use crate::hubs::hubs;
 use crate::pairs::{Relation, interiors_overlap, relation};
+use crate::parts::BooleanWork;
 use crate::snap::snap_round;
-use crate::splitter::list_overlay;
+use crate::splitter::IntShapes;
+use crate::splitter::Overlay;
+use crate::splitter::new_overlay;
 use crate::subtract::{BATCH, is_sliver, subtract};
 
 hider_scene::hider_stats! {
@@ -45,6 +47,11 @@ hider_scene::hider_stats! {
         /// of the triangles meeting at one vertex (the centre of a fan),
         /// which no bin separates (see `docs/vector.md`).
         pub candidate_pairs: u64 => "candidate pairs",
+        /// Bin entries the pair phase looked at: each candidate once per
+        /// bin the two share. Bins square while the triangles are long
+        /// and thin (parallel slivers) make this grow with the square of
+        /// the input while the candidate pairs stay few.
+        pub bin_visits: u64 => "bin visits",
         /// Candidate pairs whose interiors overlap.
         pub overlapping_pairs: u64 => "overlapping pairs",
         /// Pairs whose depth planes cross inside their common area.
@@ -88,6 +95,14 @@ hider_scene::hider_stats! {
         /// ownership, closing); compared with
         /// [`VectorOptions::max_region_points`](crate::VectorOptions::max_region_points).
         pub region_points: u64 => "region points",
+        /// Map-wide booleans run (the covered set's outline, ownership,
+        /// closing and face-group unions), each over one part of shapes
+        /// whose boxes chain together (see `docs/vector.md`, step 6).
+        pub map_booleans: u64 => "map booleans",
+        /// Segments sent into the map-wide booleans, summed.
+        pub map_boolean_segments: u64 => "map boolean segments",
+        /// The most segments sent into one map-wide boolean.
+        pub largest_boolean: u64 => "largest boolean",
         /// Primitives with a visible region.
         pub visible_prims: u64 => "visible prims",
         /// Face groups (paths of the regions SVG).
@@ -222,7 +237,7 @@ fn build(
     // add nothing to the covered set's outline (see below).
     let mut inside = vec![false; scene.tris.len()];
     // One overlay for all differences: its buffers are kept between uses.
-    let mut overlay = list_overlay(64);
+    let mut overlay = new_overlay(64);
     for (ti, t) in scene.tris.iter().enumerate() {
         // A triangle's pairs (a bin query, booleans) cost far more than
         // the poll.
@@ -250,6 +265,7 @@ fn build(
         // cut line, whose ends are rounded to the grid.
         let mut cut = false;
         bins.query_covering_skipping(&[&polys[ti]], &hub[ti], |ui| {
+            stats.bin_visits += 1;
             let u_idx = ui as usize;
             // A skipped back face hides nothing its solid's nearer front
             // faces do not hide already.
@@ -353,10 +369,14 @@ fn build(
     if stats.region_points > options.max_region_points {
         return Err(region_points_error(stats.region_points, options));
     }
-    let outline = outline(&polys, &skip);
-    let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats);
+    let mut work = BooleanWork::default();
+    let outline = outline(&polys, &skip, &mut work);
+    let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats, &mut work);
 
-    let groups = group_regions(scene, &mut prims, mode, options.merge_groups);
+    let groups = group_regions(scene, &mut prims, mode, options.merge_groups, &mut work);
+    stats.map_booleans = work.booleans;
+    stats.map_boolean_segments = work.segments;
+    stats.largest_boolean = work.largest;
     stats.visible_prims = prims.len() as u64;
     stats.groups = groups.len() as u64;
     stats.path_points = groups
@@ -425,9 +445,9 @@ fn visible_part(
             }
             overlay.clear();
             let (subject, clips) = parts.split_last().expect("the polygon was pushed");
-            overlay.add_shapes(subject, ShapeType::Subject);
+            overlay.add_source(subject, ShapeType::Subject);
             for o in clips {
-                overlay.add_shapes(o, ShapeType::Clip);
+                overlay.add_source(o, ShapeType::Clip);
             }
             overlay.overlay(OverlayRule::Difference, FillRule::NonZero)
         }
@@ -446,6 +466,7 @@ fn settle(
     per_prim: HashMap<u32, IntShapes>,
     outline: IntShapes,
     stats: &mut RegionStats,
+    work: &mut BooleanWork,
 ) -> (Vec<PrimRegion>, IntShapes) {
     let mut per_prim: Vec<(u32, IntShapes)> = per_prim.into_iter().collect();
     per_prim.sort_unstable_by_key(|r| r.0);
@@ -465,8 +486,8 @@ fn settle(
     let covered = shapes.pop().unwrap_or_default();
     let _ = touched.pop();
     stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
-    stats.ownership_differences = settle_ownership(grid, &mut shapes, &touched);
-    close_to_cover(&covered, &mut shapes);
+    stats.ownership_differences = settle_ownership(grid, &mut shapes, &touched, work);
+    close_to_cover(&covered, &mut shapes, work);
     let prims = per_prim
         .iter()
         .zip(shapes)
@@ -487,7 +508,12 @@ fn settle(
 /// regions the snapping rerouted, or that overlap one it rerouted, can
 /// overlap another (two untouched regions meet only along common edges),
 /// so only those are differenced. Returns how many differences ran.
-fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> u64 {
+fn settle_ownership(
+    grid: &Grid,
+    shapes: &mut [IntShapes],
+    touched: &[bool],
+    work: &mut BooleanWork,
+) -> u64 {
     let boxes: Vec<_> = shapes
         .iter()
         .map(|s| bounds(&s.iter().flatten().flatten().copied().collect::<Vec<_>>()))
@@ -535,10 +561,17 @@ fn settle_ownership(grid: &Grid, shapes: &mut [IntShapes], touched: &[bool]) -> 
         }
         runs += 1;
         let points = shapes[k].iter().flatten().map(Vec::len).sum::<usize>();
-        let mut overlay = list_overlay(points + 16 * earlier.len());
-        overlay.add_shapes(&shapes[k], ShapeType::Subject);
+        let segments = points
+            + earlier
+                .iter()
+                .flat_map(|&j| shapes[j].iter().flatten())
+                .map(Vec::len)
+                .sum::<usize>();
+        work.add(segments);
+        let mut overlay = new_overlay(segments);
+        overlay.add_source(&shapes[k], ShapeType::Subject);
         for &j in &earlier {
-            overlay.add_shapes(&shapes[j], ShapeType::Clip);
+            overlay.add_source(&shapes[j], ShapeType::Clip);
         }
         shapes[k] = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
     }

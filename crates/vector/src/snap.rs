@@ -17,10 +17,10 @@
 use std::collections::HashMap;
 
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::grid::div_round;
 use crate::hot::HotPixels;
+use crate::splitter::IntShapes;
 use crate::sweep::{Segment, proper_crossings};
 
 /// The work of one snap rounding.

@@ -7,12 +7,13 @@
 //! left.
 
 use i_overlay::core::fill_rule::FillRule;
-use i_overlay::core::overlay::{Overlay, ShapeType};
+use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::snap::snap_round;
+use crate::splitter::IntShapes;
+use crate::splitter::Overlay;
 
 /// Occluders subtracted in one boolean: past this, a triangle under a
 /// deep pile of occluders (depth complexity `N` at one spot) is cut down
@@ -57,9 +58,9 @@ pub fn subtract(
         }
         overlay.clear();
         let (subject, clips) = batch.split_last().expect("the rest was pushed");
-        overlay.add_shapes(subject, ShapeType::Subject);
+        overlay.add_source(subject, ShapeType::Subject);
         for o in clips {
-            overlay.add_shapes(o, ShapeType::Clip);
+            overlay.add_source(o, ShapeType::Clip);
         }
         rest = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
         if rest.is_empty() {

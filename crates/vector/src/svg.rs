@@ -16,12 +16,12 @@ use std::path::Path;
 use hider_scene::atomic::write_atomic;
 use hider_scene::{Error, Result, ScreenScene};
 use i_overlay::i_float::int::point::IntPoint;
-use i_overlay::i_shape::int::shape::IntShapes;
 
 use crate::VectorOptions;
 use crate::document::{SvgInfo, escape};
 use crate::lines::{LineDrawing, LineKind, Polyline};
 use crate::regions::RegionMap;
+use crate::splitter::IntShapes;
 
 /// `v` with at most `decimals` decimals, trailing zeros trimmed.
 fn number(s: &mut String, v: f64, decimals: u32) {

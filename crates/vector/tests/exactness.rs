@@ -77,20 +77,20 @@ fn overlap_and_cover(s: &ScreenScene, map: &RegionMap) -> (i128, i128) {
     let mut overlap = 0;
     for (a, ra) in map.prims.iter().enumerate() {
         for rb in &map.prims[a + 1..] {
-            let mut o = Overlay::new(16);
+            let mut o = Overlay::<i32>::new(16);
             for shape in &ra.shapes {
-                o.add_contours(shape, ShapeType::Subject);
+                o.add_source(shape, ShapeType::Subject);
             }
             for shape in &rb.shapes {
-                o.add_contours(shape, ShapeType::Clip);
+                o.add_source(shape, ShapeType::Clip);
             }
             overlap += area2(&o.overlay(OverlayRule::Intersect, FillRule::NonZero)).abs();
         }
     }
-    let mut o = Overlay::new(16);
+    let mut o = Overlay::<i32>::new(16);
     for region in &map.prims {
         for shape in &region.shapes {
-            o.add_contours(shape, ShapeType::Subject);
+            o.add_source(shape, ShapeType::Subject);
         }
     }
     for t in &s.tris {

@@ -1,9 +1,10 @@
 //! Big face groups: a flat sheet of thousands of coplanar triangles of
 //! one colour is one group, and its path is one boolean over all of their
-//! regions, past the size (4,000 segments) at which `i_overlay`'s default
-//! leaves its list splitter for the tree splitter, whose contour walk can
-//! fail to close (see `splitter.rs`). The union must keep every region's
-//! area and drop the seams between them.
+//! regions, past the sizes at which `i_overlay` leaves its list splitter
+//! for its tree (2,000 segments) and fragment (32,000) splitters, whose
+//! contour walk failed to close in `i_overlay` 4.5.2 (see `splitter.rs`).
+//! The union must keep every region's area and drop the seams between
+//! them.
 
 mod common;
 
@@ -35,7 +36,7 @@ fn unions_keep_the_area(map: &RegionMap) {
 #[test]
 fn a_flat_sheet_is_one_group_with_one_outline() {
     // 20,000 triangles: the union gets 60,000 segments, past the
-    // default's switch to the fragment splitter (16,000) too.
+    // switch to the fragment splitter (32,000) too.
     let map = regions(&sheet(100));
     assert_eq!(map.prims.len(), 20_000);
     assert_eq!(map.groups.len(), 1, "{:?}", map.stats);

@@ -17,7 +17,7 @@ use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 use i_overlay::i_shape::int::shape::IntShapes;
 
-fn bounds(shapes: &IntShapes) -> (IntPoint, IntPoint) {
+fn bounds(shapes: &IntShapes<i32>) -> (IntPoint, IntPoint) {
     let mut lo = IntPoint::new(i32::MAX, i32::MAX);
     let mut hi = IntPoint::new(i32::MIN, i32::MIN);
     for p in shapes.iter().flatten().flatten() {
@@ -38,9 +38,9 @@ fn overlap(map: &RegionMap) -> (i128, usize) {
             if ahi.x <= blo.x || bhi.x <= alo.x || ahi.y <= blo.y || bhi.y <= alo.y {
                 continue;
             }
-            let mut o = Overlay::new(64);
-            o.add_shapes(&ra.shapes, ShapeType::Subject);
-            o.add_shapes(&rb.shapes, ShapeType::Clip);
+            let mut o = Overlay::<i32>::new(64);
+            o.add_source(&ra.shapes, ShapeType::Subject);
+            o.add_source(&rb.shapes, ShapeType::Clip);
             let area = area2(&o.overlay(OverlayRule::Intersect, FillRule::NonZero));
             if area != 0 {
                 total += area;
@@ -94,19 +94,19 @@ fn assert_partition(name: &str, scene: &hider_scene::Scene, size: u32) -> Region
 /// here), and that set must be the triangles' union moved by at most one
 /// grid unit along its outline (checked by [`covered_is_the_triangles`]).
 fn xor_with_footprint(map: &RegionMap) -> (i128, i128) {
-    let mut regions = Overlay::new(64);
+    let mut regions = Overlay::<i32>::new(64);
     for r in &map.prims {
-        regions.add_shapes(&r.shapes, ShapeType::Subject);
+        regions.add_source(&r.shapes, ShapeType::Subject);
     }
     let union = regions.overlay(OverlayRule::Subject, FillRule::NonZero);
     (xor_area2(&union, &map.covered), area2(&map.covered))
 }
 
 /// Twice the area of `a` XOR `b`.
-fn xor_area2(a: &IntShapes, b: &IntShapes) -> i128 {
-    let mut o = Overlay::new(64);
-    o.add_shapes(a, ShapeType::Subject);
-    o.add_shapes(b, ShapeType::Clip);
+fn xor_area2(a: &IntShapes<i32>, b: &IntShapes<i32>) -> i128 {
+    let mut o = Overlay::<i32>::new(64);
+    o.add_source(a, ShapeType::Subject);
+    o.add_source(b, ShapeType::Clip);
     area2(&o.overlay(OverlayRule::Xor, FillRule::NonZero))
 }
 
@@ -114,7 +114,7 @@ fn xor_area2(a: &IntShapes, b: &IntShapes) -> i128 {
 /// the grid by at most a band one grid unit wide along that union's
 /// outline (snap rounding moves an edge by less than one unit).
 fn covered_is_the_triangles(name: &str, s: &hider_scene::ScreenScene, map: &RegionMap) {
-    let mut o = Overlay::new(64);
+    let mut o = Overlay::<i32>::new(64);
     for t in &s.tris {
         let poly = map.grid.clip_to_image(&map.grid.tri_points(t));
         if poly.len() >= 3 {

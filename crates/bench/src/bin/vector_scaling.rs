@@ -22,9 +22,11 @@
 //! centre, so anything that pairs edges or triangles by shared bins (or
 //! boxes) costs the square of `N` there while nothing crosses.
 //! Two more are where a segment's or a triangle's neighbours in square
-//! bins are not the ones it can meet: `N` long thin parallel slivers
-//! (`sheets::slivers`), and two fans of `N / 2` triangles on one centre,
-//! one tilted so that their triangles overlap there (`sheets::two_fans`).
+//! bins are not the ones it can meet: `N` long thin parallel slivers in
+//! seven planes (`sheets::slivers`, seen head-on: each plane's slivers
+//! are one face group of separate pieces, and square bins hold a row of
+//! them each), and two fans of `N / 2` triangles on one centre, one
+//! tilted so that their triangles overlap there (`sheets::two_fans`).
 //! The peak resident memory of each drawing is the process's (`VmHWM`,
 //! reset before it; the scene is resident already, so it counts, and so
 //! does heap the allocator kept from the family's smaller sizes); each
