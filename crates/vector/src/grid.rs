@@ -404,6 +404,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::sweep::orient;
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(200))]
@@ -449,5 +450,50 @@ mod tests {
                 }
             }
         }
+
+        /// Two triangles that share a point share a bin, whatever the
+        /// shape of the bins: long thin ones side by side or crossing,
+        /// which stretch the bins (`Bins::covering`).
+        #[test]
+        fn slivers_that_meet_share_a_bin(
+            tris in prop::collection::vec(
+                (0i32..60_000, 0i32..60_000, 1i32..30_000, 1i32..400, 0i32..3, 0u8..8), 2..200),
+        ) {
+            let grid = Grid { shift: 0, width: 100_000, height: 100_000 };
+            // A corner, a long side, a short one; most along x, some
+            // along y.
+            let polys: Vec<Vec<IntPoint>> = tris
+                .iter()
+                .map(|&(x, y, len, thick, lean, turn)| {
+                    let pts = [(x, y), (x + len, y + lean), (x + len, y + thick)];
+                    pts.iter()
+                        .map(|&(a, b)| if turn == 0 { IntPoint::new(b, a) } else { IntPoint::new(a, b) })
+                        .collect()
+                })
+                .filter(|p: &Vec<IntPoint>| orient(p[0], p[1], p[2]) != 0)
+                .collect();
+            let live: Vec<Option<()>> = polys.iter().map(|_| Some(())).collect();
+            let bins = Bins::covering_live(&grid, &live, &polys);
+            for (i, p) in polys.iter().enumerate() {
+                let mut found = vec![false; polys.len()];
+                bins.query_covering(&[p.as_slice()], |k| found[k as usize] = true);
+                for (j, q) in polys.iter().enumerate() {
+                    prop_assert!(!meet(p, q) || found[j], "{i} {p:?} misses {j} {q:?}");
+                }
+            }
+        }
+    }
+
+    /// Whether two convex polygons (either orientation) share a point: no
+    /// edge of either separates them.
+    fn meet(a: &[IntPoint], b: &[IntPoint]) -> bool {
+        let separates = |p: &[IntPoint], q: &[IntPoint]| {
+            let s = orient(p[0], p[1], p[2]).signum();
+            (0..p.len()).any(|k| {
+                let (e0, e1) = (p[k], p[(k + 1) % p.len()]);
+                q.iter().all(|&x| orient(e0, e1, x) * s < 0)
+            })
+        };
+        !separates(a, b) && !separates(b, a)
     }
 }

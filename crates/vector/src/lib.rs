@@ -53,7 +53,6 @@ mod options;
 mod pairs;
 mod parts;
 mod regions;
-mod shaped;
 mod snap;
 mod splitter;
 mod subtract;

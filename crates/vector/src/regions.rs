@@ -27,7 +27,7 @@ use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::cull::{Culled, cull};
 use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
-use crate::hubs::hubs;
+use crate::hubs::star_pairs;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::parts::BooleanWork;
 use crate::snap::snap_round;
@@ -221,13 +221,14 @@ fn build(
         .zip(&culled.hidden)
         .map(|(b, &c)| if c { None } else { *b })
         .collect();
-    // Triangles meeting at a hub (a fan's centre) never overlap each
-    // other: their pairs are skipped unseen (see `hubs.rs`).
+    // Triangles sharing a star (a fan's centre, two fans on one centre)
+    // are paired by their sectors there, not by the bins, which would
+    // pair all of them (see `hubs.rs`).
     let on: Vec<bool> = live.iter().map(Option::is_some).collect();
     let corners: Vec<_> = scene.tris.iter().map(|t| t.v).collect();
-    let hub = hubs(&corners, &on);
-    let bins =
-        Bins::covering_live(&grid, &live, &polys).with_groups(hub.iter().map(|h| h[0]).collect());
+    let stars = star_pairs(&corners, &on);
+    let bins = Bins::covering_live(&grid, &live, &polys)
+        .with_groups((0..scene.tris.len()).map(|t| stars.group(t)).collect());
     let mut per_prim: HashMap<u32, IntShapes> = HashMap::new();
     let mut region_points = 0u64;
     let mut cut_pairs = Vec::new();
@@ -264,7 +265,7 @@ fn build(
         // Whether some occluder is only the part of a triangle beyond a
         // cut line, whose ends are rounded to the grid.
         let mut cut = false;
-        bins.query_covering_skipping(&[&polys[ti]], &hub[ti], |ui| {
+        let mut visit = |ui: u32| {
             stats.bin_visits += 1;
             let u_idx = ui as usize;
             // A skipped back face hides nothing its solid's nearer front
@@ -303,7 +304,11 @@ fn build(
                     cut_pairs.push((ti.min(u_idx) as u32, ti.max(u_idx) as u32));
                 }
             }
-        });
+        };
+        bins.query_covering_skipping(&[&polys[ti]], &stars.stars_of(ti), &mut visit);
+        for &ui in stars.partners(ti) {
+            visit(ui);
+        }
         if !regions {
             continue;
         }

@@ -4,7 +4,9 @@
 //! binning pairs of edges or triangles by area makes the snap rounding
 //! and the pair phase test about `N^2 / 2` pairs while nothing crosses;
 //! the crossing sweep, the hot pixel quadtree and the pair phase (which
-//! skips the pairs meeting at a hub) must grow with `N`.
+//! pairs the triangles at a shared vertex by their sectors there) must
+//! grow with `N`. The same holds for two fans on one centre, whose
+//! triangles overlap across the fans there.
 
 use hider_scene::{Scene, ShadeMode};
 use hider_testkit::screen;
@@ -45,5 +47,22 @@ fn doubling_a_fan_or_a_cone_less_than_triples_the_work() {
         // Neighbouring triangles meet along their spokes: nothing
         // overlaps, nothing is cut.
         assert_eq!(b.overlapping_pairs, 0, "{name}: {b:?}");
+    }
+}
+
+#[test]
+fn two_fans_on_one_centre_pair_by_their_sectors() {
+    let two = |n: u32| stats(&lit(vec![sheets::two_fans(n, 0.5)]));
+    let (a, b) = (two(1_000), two(2_000));
+    // The fans overlap: each tilted triangle meets its flat neighbours.
+    assert!(a.overlapping_pairs >= 1_000, "{a:?}");
+    for (what, x, y) in [
+        ("candidate pairs", a.candidate_pairs, b.candidate_pairs),
+        ("bin visits", a.bin_visits, b.bin_visits),
+    ] {
+        assert!(
+            y < 3 * x.max(1),
+            "{what} {x} at 1,000 per fan, {y} at 2,000\n{b:?}"
+        );
     }
 }

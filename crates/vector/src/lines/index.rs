@@ -1,18 +1,18 @@
 //! The occluder candidates of a line segment: the live triangles whose
 //! snapped polygons come within a margin of it, from bins shaped like
-//! the triangles ([`ShapedBins`]: on long parallel slivers square bins
-//! give a segment every sliver of its bin row).
+//! the triangles ([`Bins`], whose bins are shaped like their items: on
+//! long parallel slivers square bins give a segment every sliver of its
+//! bin row).
 
 use glam::DVec3;
 use hider_scene::ScreenScene;
 use i_overlay::i_float::int::point::IntPoint;
 
-use crate::grid::Grid;
-use crate::shaped::ShapedBins;
+use crate::grid::{Bins, Grid};
 
 /// The bins of the occluders and the margin a segment's query reaches.
 pub(super) struct OccluderIndex {
-    bins: ShapedBins,
+    bins: Bins,
     /// Grid units per pixel of the region grid.
     unit: f64,
     /// How far (pixels) a snapped occluder may lie from the segment it
@@ -46,7 +46,7 @@ impl OccluderIndex {
         let unit = grid.units_per_pixel();
         let snap = corner_deviation(scene, unsnapped).max(1.0 / 512.0);
         Self {
-            bins: ShapedBins::covering_live(grid, live, polys),
+            bins: Bins::covering_live(grid, live, polys),
             unit,
             margin: 1.5 * (snap + 1.0 / 512.0 + 1.0 / unit),
             most: (grid.width + grid.height) as f64,
