@@ -357,16 +357,17 @@ impl Repo {
                 i = end + run;
                 continue;
             }
-            if chars[i] == ']' && chars.get(i + 1) == Some(&'(') {
-                if let Some(len) = chars[i + 2..].iter().position(|c| *c == ')') {
-                    let target: String = chars[i + 2..i + 2 + len].iter().collect();
-                    let target = target.split_whitespace().next().unwrap_or("");
-                    if let Some(p) = self.check_path(page, target, true) {
-                        report(origin[i], p);
-                    }
-                    i += 2 + len;
-                    continue;
+            if chars[i] == ']'
+                && chars.get(i + 1) == Some(&'(')
+                && let Some(len) = chars[i + 2..].iter().position(|c| *c == ')')
+            {
+                let target: String = chars[i + 2..i + 2 + len].iter().collect();
+                let target = target.split_whitespace().next().unwrap_or("");
+                if let Some(p) = self.check_path(page, target, true) {
+                    report(origin[i], p);
                 }
+                i += 2 + len;
+                continue;
             }
             i += 1;
         }

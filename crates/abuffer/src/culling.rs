@@ -28,7 +28,7 @@ pub(crate) const BLOCK: u32 = 8;
 /// Blocks per tile side.
 pub(crate) const BLOCKS: usize = (TILE / BLOCK) as usize;
 // A tile's blocks are the bits of a `u64`.
-const _: () = assert!(BLOCKS * BLOCKS <= 64 && TILE % BLOCK == 0);
+const _: () = assert!(BLOCKS * BLOCKS <= 64 && TILE.is_multiple_of(BLOCK));
 
 /// The pixels of block `(bx, by)`, of the blocks laid from pixel `origin`,
 /// that lie inside the pixels `(x0, y0)` to `(x1, y1)`: its part of the
@@ -429,9 +429,9 @@ mod tests {
                         0 => u32::MAX,
                         _ => next() as u32,
                     };
-                    let alpha = if next() % 4 == 0 { 0.5 } else { 1.0 };
+                    let alpha = if next().is_multiple_of(4) { 0.5 } else { 1.0 };
                     let mut s = frag(mask, zmin, zmax, alpha);
-                    if next() % 2 == 0 {
+                    if next().is_multiple_of(2) {
                         s.frag.centre_z = f64::from(zmin);
                     }
                     s

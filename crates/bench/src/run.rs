@@ -214,11 +214,11 @@ fn first_job(
     row_index: usize,
     frame: &mut Frame,
 ) -> Option<Contender> {
-    if entry.kind == Kind::Reference {
-        if let Err(reason) = &p.oracle {
-            row.status = reason.clone();
-            return None;
-        }
+    if entry.kind == Kind::Reference
+        && let Err(reason) = &p.oracle
+    {
+        row.status = reason.clone();
+        return None;
     }
     let mut hider = match options.threads {
         None => entry.make(),

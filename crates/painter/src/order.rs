@@ -154,7 +154,7 @@ impl Orderer {
             // Every 16 steps (blocker searches, moves, splits): a poll with
             // a deadline reads the clock, 1% of the steps' instructions on
             // small scenes when made at every step.
-            if steps % 16 == 0 {
+            if steps.is_multiple_of(16) {
                 options.cancel.poll()?;
             }
             steps = steps.wrapping_add(1);

@@ -209,7 +209,7 @@ impl Cancel {
     /// without looking when `iteration` is not a multiple of it.
     #[inline]
     pub fn poll_every(&self, iteration: usize) -> crate::Result<()> {
-        if iteration % POLL_EVERY == 0 {
+        if iteration.is_multiple_of(POLL_EVERY) {
             self.poll()
         } else {
             Ok(())

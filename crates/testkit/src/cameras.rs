@@ -45,7 +45,7 @@ pub fn random_camera(scene: &Scene, rng: &mut SplitMix64) -> Camera {
     }
     let dist = r * rng.range(2.5, 6.0);
     let target = centre + unit(rng) * (r * rng.range(0.0, 0.05));
-    let projection = if rng.next_u64() % 4 == 0 {
+    let projection = if rng.next_u64().is_multiple_of(4) {
         Projection::Orthographic {
             half_height: r * rng.range(0.8, 1.5),
             near: 0.1 * r,

@@ -82,10 +82,10 @@ pub fn parts(boxes: &[Option<Box2>]) -> Vec<Vec<usize>> {
         // starting at or before lo.x (if it reaches it), then all
         // starting within.
         let mut run: Vec<usize> = Vec::new();
-        if let Some((_, &r)) = live.range(..=lo.x).next_back() {
-            if part_box[r].is_some_and(|(_, rhi)| rhi.x >= lo.x) {
-                run.push(r);
-            }
+        if let Some((_, &r)) = live.range(..=lo.x).next_back()
+            && part_box[r].is_some_and(|(_, rhi)| rhi.x >= lo.x)
+        {
+            run.push(r);
         }
         run.extend(live.range(lo.x..=hi.x).map(|(_, &r)| r));
         run.dedup();

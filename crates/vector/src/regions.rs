@@ -555,10 +555,11 @@ fn settle_ownership(
                 return;
             }
             seen[j] = k;
-            if let Some(jbox) = boxes[j] {
-                if !apart((lo, hi), jbox) && !shapes[j].is_empty() {
-                    earlier.push(j);
-                }
+            if let Some(jbox) = boxes[j]
+                && !apart((lo, hi), jbox)
+                && !shapes[j].is_empty()
+            {
+                earlier.push(j);
             }
         });
         if !touched[k] && !earlier.iter().any(|&j| touched[j]) {

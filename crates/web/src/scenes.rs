@@ -67,10 +67,10 @@ pub fn from_files(files: Vec<(String, Vec<u8>)>, obj_name: &str) -> Result<Scene
             &mut material.diffuse_texture,
             &mut material.specular_texture,
         ] {
-            if let Some(texture) = slot.as_mut() {
-                if let Some(decoded) = decode_held(texture, &files, &mut warnings) {
-                    *texture = decoded;
-                }
+            if let Some(texture) = slot.as_mut()
+                && let Some(decoded) = decode_held(texture, &files, &mut warnings)
+            {
+                *texture = decoded;
             }
         }
     }

@@ -30,7 +30,7 @@ const NEAR: f64 = 0.5;
 /// is mesh `k`, a quad from `(x, -1, -y)` to `(x, 1, -y)` along it, two
 /// triangles, primitives `2k` and `2k + 1`.
 pub fn scene(segments: &[f64], width: u32) -> Result<(Scene, Camera), String> {
-    if segments.len() % 4 != 0 || segments.len() / 4 > COLOURS.len() {
+    if !segments.len().is_multiple_of(4) || segments.len() / 4 > COLOURS.len() {
         return Err(format!(
             "{} numbers: the Y-buffer takes up to {} segments of 4 (x0 y0 x1 y1)",
             segments.len(),

@@ -99,10 +99,10 @@ fn header(s: &mut String, results: &Results, options: &ReportOptions) {
 fn contact_sheets(s: &mut String, cases: &[(String, u32)], options: &ReportOptions) {
     let mut sheets: Vec<(String, String)> = Vec::new();
     for (scene, _) in cases {
-        if let Some(p) = options.image_link(&format!("bench-contact-{scene}"), "png") {
-            if !sheets.iter().any(|(s, _)| s == scene) {
-                sheets.push((scene.clone(), p));
-            }
+        if let Some(p) = options.image_link(&format!("bench-contact-{scene}"), "png")
+            && !sheets.iter().any(|(s, _)| s == scene)
+        {
+            sheets.push((scene.clone(), p));
         }
     }
     if sheets.is_empty() {

@@ -61,7 +61,7 @@ fn pairs_match_brute_force_on_random_sectors() {
         let sectors: Vec<_> = (0..n)
             .filter_map(|_| Sector::around(apex, p(rnd(4), rnd(4)), p(rnd(4), rnd(4))))
             .collect();
-        let query = |i: usize| (i + round) % 3 != 0;
+        let query = |i: usize| !(i + round).is_multiple_of(3);
         let got = sector_pairs(apex, &sectors, query);
         let mut want = Vec::new();
         for i in 0..sectors.len() {

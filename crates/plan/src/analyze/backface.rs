@@ -161,7 +161,7 @@ pub fn maybe_closed(positions: &[DVec3], indices: &[[u32; 3]]) -> bool {
                 .wrapping_sub(directed(b, a));
         }
     }
-    with_area > 0 && with_area % 2 == 0 && sum == 0
+    with_area > 0 && with_area.is_multiple_of(2) && sum == 0
 }
 
 /// A hash of the directed edge `a -> b` (not symmetric in its arguments).

@@ -296,7 +296,7 @@ fn screen_star_candidates_find_what_the_tiles_find() {
     let (mut edges, mut ties) = (0, 0);
     for round in 0..300 {
         let tris = screen(&scene(&mut r));
-        let crossing = |a: u32, b: u32| (a + b) % 11 == 0;
+        let crossing = |a: u32, b: u32| (a + b).is_multiple_of(11);
         let vp = Viewport::new(64, 64);
         let cancel = Cancel::default();
         let want = graph(&tris, vp, Stars::default(), crossing, u64::MAX, 4, cancel);

@@ -47,7 +47,7 @@ fn decode_units<'a>(bytes: &'a [u8], name: &Path) -> Result<Cow<'a, str>> {
         _ => return Ok(String::from_utf8_lossy(bytes)),
     };
     let body = &bytes[2..];
-    if body.len() % 2 != 0 {
+    if !body.len().is_multiple_of(2) {
         return Err(Error::Parse {
             path: name.to_path_buf(),
             line: 0,

@@ -45,7 +45,13 @@ const X: usize = std::mem::offset_of!(CachedVertex, p) + std::mem::offset_of!(Fi
 const Y: usize = std::mem::offset_of!(CachedVertex, p) + std::mem::offset_of!(FixedPt, y);
 const Z: usize = std::mem::offset_of!(CachedVertex, z);
 const CODE: usize = std::mem::offset_of!(CachedVertex, code);
-const _: () = assert!(SIZE % 8 == 0 && X % 4 == 0 && Y % 4 == 0 && CODE % 4 == 0 && Z % 8 == 0);
+const _: () = assert!(
+    SIZE.is_multiple_of(8)
+        && X.is_multiple_of(4)
+        && Y.is_multiple_of(4)
+        && CODE.is_multiple_of(4)
+        && Z.is_multiple_of(8)
+);
 
 /// Writes the corners of the eight triangles `indices` from `cache` into
 /// `out` and returns true, or returns false (`out` untouched) when an

@@ -171,7 +171,11 @@ mod avx2 {
                         e[k] = _mm256_add_epi32(e[k], down[k]);
                     }
                     let next = at + 8;
-                    at = if next % 64 == 0 { next + wrap } else { next };
+                    at = if next.is_multiple_of(64) {
+                        next + wrap
+                    } else {
+                        next
+                    };
                     yc += 1.0;
                 }
             }

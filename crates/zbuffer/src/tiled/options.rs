@@ -109,7 +109,7 @@ impl TiledZBufferOptions {
     /// [`Self::MAX_THREADS`] threads.
     pub fn validate(&self) -> hider_scene::Result<()> {
         let t = self.tile_size;
-        if !(Self::MIN_TILE..=Self::MAX_TILE).contains(&t) || t % 8 != 0 {
+        if !(Self::MIN_TILE..=Self::MAX_TILE).contains(&t) || !t.is_multiple_of(8) {
             return Err(hider_scene::Error::OutOfRange {
                 what: "tile size",
                 expected: "a multiple of 8 from 8 to 256",

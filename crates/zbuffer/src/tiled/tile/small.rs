@@ -63,7 +63,7 @@ impl<K: WideBlock> TileBuf<K> {
                             sx,
                             sy,
                             prim: tri.prim(),
-                            mask_x: self.w % BLOCK != 0,
+                            mask_x: !self.w.is_multiple_of(BLOCK),
                         };
                         K::wide_small(avx2, &mut self.keys, &mut self.ids, &s)
                     }
