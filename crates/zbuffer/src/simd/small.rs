@@ -48,7 +48,7 @@ mod avx2 {
 
     use hider_geom::PlaneEq;
 
-    use super::super::block::avx2::{encode, less};
+    use super::super::block::avx2::{encode, less, sums};
     use super::{SmallBox, WideKey};
 
     /// The depth plane's column terms at four columns `x`,
@@ -180,24 +180,6 @@ mod avx2 {
                 }
             }
             sums(inside, passes)
-        }
-    }
-
-    /// The lane sums of `a` and of `b` (wrapping, as `i32` sums), with
-    /// two horizontal adds for both: a scalar sum of each was about 30
-    /// instructions per triangle-tile.
-    #[inline(always)]
-    fn sums(a: __m256i, b: __m256i) -> (u32, u32) {
-        // SAFETY: see `super::small_box`.
-        unsafe {
-            // Per half: a0+a1, a2+a3, b0+b1, b2+b3.
-            let h = _mm256_hadd_epi32(a, b);
-            let q = _mm_add_epi32(_mm256_castsi256_si128(h), _mm256_extracti128_si256::<1>(h));
-            let s = _mm_hadd_epi32(q, q);
-            (
-                _mm_cvtsi128_si32(s) as u32,
-                _mm_extract_epi32::<1>(s) as u32,
-            )
         }
     }
 }
