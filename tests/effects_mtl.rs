@@ -16,6 +16,19 @@ fn folder(name: &str) -> PathBuf {
     dir
 }
 
+/// `quad.obj` in `dir`: one triangle with texture coordinates across the
+/// unit square, of material `m` of `model.mtl`.
+fn textured_triangle(dir: &Path) -> PathBuf {
+    let model = dir.join("quad.obj");
+    std::fs::write(
+        &model,
+        "mtllib model.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
+         f 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    model
+}
+
 /// A UV sphere of `n` x `n / 2` segments as OBJ text using material
 /// `material` of `model.mtl`, with vertex normals (the positions, outward)
 /// when `normals`.
@@ -381,13 +394,7 @@ fn an_undecodable_texture_is_named() {
         "newmtl m\nKd 0 1 0\nmap_Kd fake.png\n",
     )
     .unwrap();
-    let model = dir.join("quad.obj");
-    std::fs::write(
-        &model,
-        "mtllib model.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
-         f 1/1 2/2 3/3\n",
-    )
-    .unwrap();
+    let model = textured_triangle(&dir);
     for algo in ["auto", "zbuffer", "abuffer"] {
         let (p, e) = render(&model, algo, &[]);
         assert!(
@@ -408,13 +415,7 @@ fn an_undecodable_texture_is_named() {
 fn every_missing_or_broken_texture_is_named_once() {
     let dir = folder("missingtex");
     std::fs::write(dir.join("fake.png"), "not an image at all").unwrap();
-    let model = dir.join("quad.obj");
-    std::fs::write(
-        &model,
-        "mtllib model.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
-         f 1/1 2/2 3/3\n",
-    )
-    .unwrap();
+    let model = textured_triangle(&dir);
     for (statement, used) in [
         ("map_Kd", "diffuse colour (Kd) is used"),
         ("map_Ks", "specular colour (Ks) is used"),
@@ -456,13 +457,7 @@ fn a_cut_out_texture_shows_what_is_behind_it() {
         "newmtl m\nKd 1 1 1\nmap_Kd leaf.png\n",
     )
     .unwrap();
-    let model = dir.join("quad.obj");
-    std::fs::write(
-        &model,
-        "mtllib model.mtl\nusemtl m\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n\
-         f 1/1 2/2 3/3\n",
-    )
-    .unwrap();
+    let model = textured_triangle(&dir);
     let (cut, e) = render(&model, "auto", &[]);
     // No more "drawn opaque": the texels outside the disc (alpha 0, the
     // same green) are cut out and show the background; the triangle holds
