@@ -69,7 +69,7 @@ pub fn material_may_cut_out(material: &Material) -> bool {
 }
 
 /// The textures whose alpha make up `material`'s: `map_Kd` and `map_d`.
-fn alpha_textures(material: &Material) -> impl Iterator<Item = &TextureRef> {
+pub(super) fn alpha_textures(material: &Material) -> impl Iterator<Item = &TextureRef> {
     [&material.diffuse_texture, &material.alpha_texture]
         .into_iter()
         .flatten()

@@ -305,10 +305,9 @@ impl ScreenScene {
         let info = &self.prims[prim as usize];
         let material = &self.materials[info.material as usize];
         info.uvs?;
+        // A material with partial alpha has an alpha texture, and the
+        // setup answers 1 itself with textures off.
         self.partial_alpha(material).then(|| {
-            if !sampler.textures_on() || alpha_textures(material) == (None, None) {
-                return 1.0;
-            }
             let setup = cache.get_or_insert_with(prim, || SurfaceSetup::new(sampler, info));
             setup.alpha_at(sampler, material, x, y)
         })
@@ -317,12 +316,9 @@ impl ScreenScene {
     /// Whether `material`'s alpha textures were decoded and hold partial
     /// alpha.
     fn partial_alpha(&self, material: &Material) -> bool {
-        [&material.diffuse_texture, &material.alpha_texture]
-            .into_iter()
-            .flatten()
-            .any(|t| {
-                t.may_have_alpha() && t.decoded_alpha_class() == Some(super::AlphaClass::Partial)
-            })
+        super::cutout::alpha_textures(material).any(|t| {
+            t.may_have_alpha() && t.decoded_alpha_class() == Some(super::AlphaClass::Partial)
+        })
     }
 
     /// [`Self::surface_rgb`] with the primitive's shading setup from
