@@ -2,8 +2,7 @@
 //! none or the scalar definition, and a frame drawn with them is the frame
 //! drawn without them, bit for bit and counter for counter.
 
-use glam::DVec3;
-use hider_geom::{Camera, Projection, Viewport};
+use hider_geom::Viewport;
 use hider_scene::{Frame, Hider, PrepareOptions, Scene, View, procedural};
 use proptest::prelude::*;
 
@@ -16,17 +15,9 @@ fn view(scene: &Scene, size: (u32, u32), inside: bool) -> View {
     if !inside {
         return View::for_scene(scene, size.0, size.1).unwrap();
     }
-    let camera = Camera {
-        eye: DVec3::new(0.1, -0.05, 0.2),
-        target: DVec3::new(0.4, 0.2, -0.9),
-        up: DVec3::Y,
-        projection: Projection::Perspective {
-            fovy_degrees: 70.0,
-            near: 0.01,
-            far: 10.0,
-        },
-        lens: hider_geom::Lens::CENTRED,
-    };
+    // Looking along (0.41, 0.27, -0.91), the copy it replaces looked along
+    // (0.4, 0.2, -0.9).
+    let camera = super::tests::inside_camera(0.42);
     View::new(camera, size.0, size.1).unwrap()
 }
 

@@ -24,7 +24,8 @@ fn inside(scene: &Scene, w: u32, h: u32, yaw: f64) -> ScreenScene {
     hider_testkit::screen_with(scene, inside_camera(yaw), w, h)
 }
 
-fn inside_camera(yaw: f64) -> Camera {
+/// The camera inside the soup's cube, turned by `yaw` (radians).
+pub(super) fn inside_camera(yaw: f64) -> Camera {
     Camera {
         eye: DVec3::new(0.1, -0.05, 0.2),
         target: DVec3::new(yaw.sin(), 0.3 * yaw.cos(), -yaw.cos()),
