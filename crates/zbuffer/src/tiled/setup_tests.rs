@@ -15,8 +15,7 @@ fn view(scene: &Scene, size: (u32, u32), inside: bool) -> View {
     if !inside {
         return View::for_scene(scene, size.0, size.1).unwrap();
     }
-    // Looking along (0.41, 0.27, -0.91), the copy it replaces looked along
-    // (0.4, 0.2, -0.9).
+    // Inside the soup's cube, looking along (0.41, 0.27, -0.91).
     let camera = super::tests::inside_camera(0.42);
     View::new(camera, size.0, size.1).unwrap()
 }
