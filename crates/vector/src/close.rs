@@ -164,8 +164,7 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes], work: &mut
 
 /// The bounding box of a polygon set.
 fn shapes_box(shapes: &[Vec<Vec<IntPoint>>]) -> Option<(IntPoint, IntPoint)> {
-    let points: Vec<IntPoint> = shapes.iter().flatten().flatten().copied().collect();
-    bounds(&points)
+    bounds(shapes.iter().flatten().flatten())
 }
 
 /// Whether two boxes share area or boundary.

@@ -175,7 +175,7 @@ pub fn clip_all(scene: &ScreenScene, grid: &Grid) -> Clipped {
         .iter()
         .map(|t| grid.clip_to_image(&grid.tri_points(t)))
         .collect();
-    let boxes = polys.iter().map(|p| bounds(p)).collect();
+    let boxes = polys.iter().map(bounds).collect();
     (polys, boxes)
 }
 
@@ -241,8 +241,7 @@ impl Bins {
         let mut count = 0usize;
         let mut log_aspect = 0.0;
         for contours in items {
-            let points: Vec<IntPoint> = contours.iter().flat_map(|c| c.iter().copied()).collect();
-            if let Some((lo, hi)) = bounds(&points) {
+            if let Some((lo, hi)) = bounds(contours.iter().copied().flatten()) {
                 count += 1;
                 let extent = |a: i32, b: i32| (f64::from(b) - f64::from(a)).max(1.0);
                 log_aspect += extent(lo.x, hi.x).ln() - extent(lo.y, hi.y).ln();
@@ -283,12 +282,7 @@ impl Bins {
     /// Calls `visit` with every bin the closed polygons `contours` meet
     /// (a bin may come more than once).
     fn cover(&self, contours: &[&[IntPoint]], mut visit: impl FnMut(usize)) {
-        let Some((lo, hi)) = bounds(
-            &contours
-                .iter()
-                .flat_map(|c| c.iter().copied())
-                .collect::<Vec<_>>(),
-        ) else {
+        let Some((lo, hi)) = bounds(contours.iter().copied().flatten()) else {
             return;
         };
         let (_, r0, _, r1) = Self::range(self.size, self.cols, self.rows, lo, hi);
@@ -388,10 +382,12 @@ impl Bins {
     }
 }
 
-/// The inclusive bounding box of a polygon.
-pub fn bounds(poly: &[IntPoint]) -> Option<(IntPoint, IntPoint)> {
-    let first = *poly.first()?;
-    Some(poly.iter().fold((first, first), |(lo, hi), p| {
+/// The inclusive bounding box of a polygon, or of any points (a shape's
+/// contours flattened, without collecting them).
+pub fn bounds<'a>(points: impl IntoIterator<Item = &'a IntPoint>) -> Option<(IntPoint, IntPoint)> {
+    let mut points = points.into_iter();
+    let first = *points.next()?;
+    Some(points.fold((first, first), |(lo, hi), p| {
         (
             IntPoint::new(lo.x.min(p.x), lo.y.min(p.y)),
             IntPoint::new(hi.x.max(p.x), hi.y.max(p.y)),

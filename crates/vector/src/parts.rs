@@ -123,14 +123,7 @@ pub fn parts(boxes: &[Option<Box2>]) -> Vec<Vec<usize>> {
 
 /// The box of a shape (all its contours' points).
 pub fn shape_box(contours: &[Vec<IntPoint>]) -> Option<Box2> {
-    let mut it = contours.iter().filter_map(|c| bounds(c));
-    let first = it.next()?;
-    Some(it.fold(first, |(lo, hi), (clo, chi)| {
-        (
-            IntPoint::new(lo.x.min(clo.x), lo.y.min(clo.y)),
-            IntPoint::new(hi.x.max(chi.x), hi.y.max(chi.y)),
-        )
-    }))
+    bounds(contours.iter().flatten())
 }
 
 /// `rule` (by non-zero fill) over `shapes`, each a shape (outer contour

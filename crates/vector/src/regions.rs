@@ -521,7 +521,7 @@ fn settle_ownership(
 ) -> u64 {
     let boxes: Vec<_> = shapes
         .iter()
-        .map(|s| bounds(&s.iter().flatten().flatten().copied().collect::<Vec<_>>()))
+        .map(|s| bounds(s.iter().flatten().flatten()))
         .collect();
     let bins = Bins::covering(grid, &shapes.iter().map(contours).collect::<Vec<_>>());
     let apart = |a: (IntPoint, IntPoint), b: (IntPoint, IntPoint)| {
