@@ -187,7 +187,7 @@ pub struct Bins {
     cols: i64,
     rows: i64,
     cells: Vec<Vec<u32>>,
-    /// Each item's group ([`crate::hubs::NONE`] for none), when set.
+    /// Each item's group ([`crate::stars::NONE`] for none), when set.
     groups: Vec<u32>,
 }
 
@@ -329,7 +329,7 @@ impl Bins {
         }
     }
 
-    /// Gives the items groups (one per item, [`crate::hubs::NONE`] for
+    /// Gives the items groups (one per item, [`crate::stars::NONE`] for
     /// none), each bin's items of one group kept together (grouped items
     /// first, the rest after in their order), so that a query can skip a
     /// group it needs none of without looking at its items.
@@ -353,14 +353,14 @@ impl Bins {
             self.groups
                 .get(k as usize)
                 .copied()
-                .unwrap_or(crate::hubs::NONE)
+                .unwrap_or(crate::stars::NONE)
         };
         self.cover(contours, |cell| {
             let list = &self.cells[cell];
             let mut i = 0;
             while i < list.len() {
                 let g = group(list[i]);
-                if g != crate::hubs::NONE && skip.contains(&g) {
+                if g != crate::stars::NONE && skip.contains(&g) {
                     i += list[i..].partition_point(|&k| group(k) == g);
                     continue;
                 }

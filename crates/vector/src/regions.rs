@@ -27,13 +27,13 @@ use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::cull::{Culled, cull};
 use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
-use crate::hubs::star_pairs;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::parts::BooleanWork;
 use crate::snap::snap_round;
 use crate::splitter::IntShapes;
 use crate::splitter::Overlay;
 use crate::splitter::new_overlay;
+use crate::stars::star_pairs;
 use crate::subtract::{BATCH, is_sliver, subtract};
 
 hider_scene::hider_stats! {
@@ -223,7 +223,7 @@ fn build(
         .collect();
     // Triangles sharing a star (a fan's centre, two fans on one centre)
     // are paired by their sectors there, not by the bins, which would
-    // pair all of them (see `hubs.rs`).
+    // pair all of them (see `stars.rs`).
     let on: Vec<bool> = live.iter().map(Option::is_some).collect();
     let corners: Vec<_> = scene.tris.iter().map(|t| t.v).collect();
     let stars = star_pairs(&corners, &on);

@@ -17,11 +17,8 @@
 use hider_geom::fixed::FixedPt;
 use hider_geom::star::{Stars, fixed_star_pairs, fixed_stars};
 
-/// No hub.
-pub const NONE: u32 = u32::MAX;
-
-// A star's "none" is the bins' "no group".
-const _: () = assert!(NONE == hider_geom::star::NO_STAR);
+/// No group in the bins: a triangle at no star.
+pub const NONE: u32 = hider_geom::star::NO_STAR;
 
 /// The pairs of triangles sharing a vertex, found from their sectors
 /// there: the bins skip every pair sharing a star ([`StarPairs::stars_of`],
