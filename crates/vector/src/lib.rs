@@ -49,6 +49,7 @@ mod group;
 mod hot;
 mod lines;
 mod options;
+mod ownership;
 mod pairs;
 mod parts;
 mod regions;

@@ -136,6 +136,16 @@ pub fn overlay_by_parts(
     rule: OverlayRule,
     work: &mut BooleanWork,
 ) -> IntShapes {
+    overlay_by_parts_filled(shapes, rule, FillRule::NonZero, work)
+}
+
+/// [`overlay_by_parts`] under the fill rule `fill`.
+pub fn overlay_by_parts_filled(
+    shapes: &[(&[Vec<IntPoint>], ShapeType)],
+    rule: OverlayRule,
+    fill: FillRule,
+    work: &mut BooleanWork,
+) -> IntShapes {
     let boxes: Vec<Option<Box2>> = shapes.iter().map(|(s, _)| shape_box(s)).collect();
     let mut out = IntShapes::new();
     for part in parts(&boxes) {
@@ -148,7 +158,7 @@ pub fn overlay_by_parts(
         for &k in &part {
             overlay.add_source(shapes[k].0, shapes[k].1);
         }
-        out.extend(overlay.overlay(rule, FillRule::NonZero));
+        out.extend(overlay.overlay(rule, fill));
     }
     // In the order one boolean gives them: by the least point (x, then
     // y) of the outer contour, so that a drawing's bytes do not depend on

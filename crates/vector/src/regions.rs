@@ -27,6 +27,7 @@ use crate::cover::{Cover, decide, loops, unmatched_edges};
 use crate::cull::{Culled, cull};
 use crate::grid::{Bins, Grid, bounds, clip_all};
 use crate::group::group_regions;
+use crate::ownership::settle_ownership;
 use crate::pairs::{Relation, interiors_overlap, relation};
 use crate::parts::BooleanWork;
 use crate::snap::snap_round;
@@ -85,6 +86,10 @@ hider_scene::hider_stats! {
         pub snap_nodes: u64 => "snap nodes visited",
         /// Boolean differences of the ownership pass.
         pub ownership_differences: u64 => "ownership differences",
+        /// Segments sent into the ownership pass's differences, summed:
+        /// each takes as clips only the earlier regions that overlap some
+        /// region (see `docs/vector.md`, step 6).
+        pub ownership_segments: u64 => "ownership segments",
         /// On-screen triangles sent into the union that outlines the
         /// covered set: those neither culled, skipped as back faces, nor
         /// proven inside one nearer triangle or inside the union of whole
@@ -491,7 +496,9 @@ fn settle(
     let covered = shapes.pop().unwrap_or_default();
     let _ = touched.pop();
     stats.snapped = touched.iter().filter(|&&t| t).count() as u64;
-    stats.ownership_differences = settle_ownership(grid, &mut shapes, &touched, work);
+    let ownership = settle_ownership(grid, &mut shapes, &touched, work);
+    stats.ownership_differences = ownership.differences;
+    stats.ownership_segments = ownership.segments;
     close_to_cover(&covered, &mut shapes, work);
     let prims = per_prim
         .iter()
@@ -504,89 +511,6 @@ fn settle(
         })
         .collect();
     (prims, covered)
-}
-
-/// Makes the snapped regions disjoint: each region in ascending primitive
-/// order loses what the regions before it already own. After snap
-/// rounding no two region edges cross except at grid points, so these
-/// differences have nothing to round and the result is exact. Only
-/// regions the snapping rerouted, or that overlap one it rerouted, can
-/// overlap another (two untouched regions meet only along common edges),
-/// so only those are differenced. Returns how many differences ran.
-fn settle_ownership(
-    grid: &Grid,
-    shapes: &mut [IntShapes],
-    touched: &[bool],
-    work: &mut BooleanWork,
-) -> u64 {
-    let boxes: Vec<_> = shapes
-        .iter()
-        .map(|s| bounds(s.iter().flatten().flatten()))
-        .collect();
-    let bins = Bins::covering(grid, &shapes.iter().map(contours).collect::<Vec<_>>());
-    let apart = |a: (IntPoint, IntPoint), b: (IntPoint, IntPoint)| {
-        b.1.x <= a.0.x || b.0.x >= a.1.x || b.1.y <= a.0.y || b.0.y >= a.1.y
-    };
-    // The regions that may need a difference: the rerouted ones and the
-    // later ones overlapping one of them, found from the rerouted side,
-    // so that a map the snapping barely touched (a fan, whose every
-    // region meets all the others at its centre) queries few regions.
-    let mut needed = touched.to_vec();
-    for (j, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
-        let Some(jbox) = boxes[j] else { continue };
-        bins.query_covering(&contours(&shapes[j]), |k| {
-            let k = k as usize;
-            if k > j && boxes[k].is_some_and(|kbox| !apart(kbox, jbox)) {
-                needed[k] = true;
-            }
-        });
-    }
-    let mut seen = vec![usize::MAX; shapes.len()];
-    let mut runs = 0;
-    for k in 0..shapes.len() {
-        let Some((lo, hi)) = boxes[k] else { continue };
-        if !needed[k] {
-            continue;
-        }
-        let mut earlier = Vec::new();
-        bins.query_covering(&contours(&shapes[k]), |j| {
-            let j = j as usize;
-            if j >= k || seen[j] == k {
-                return;
-            }
-            seen[j] = k;
-            if let Some(jbox) = boxes[j]
-                && !apart((lo, hi), jbox)
-                && !shapes[j].is_empty()
-            {
-                earlier.push(j);
-            }
-        });
-        if !touched[k] && !earlier.iter().any(|&j| touched[j]) {
-            continue;
-        }
-        runs += 1;
-        let points = shapes[k].iter().flatten().map(Vec::len).sum::<usize>();
-        let segments = points
-            + earlier
-                .iter()
-                .flat_map(|&j| shapes[j].iter().flatten())
-                .map(Vec::len)
-                .sum::<usize>();
-        work.add(segments);
-        let mut overlay = new_overlay(segments);
-        overlay.add_source(&shapes[k], ShapeType::Subject);
-        for &j in &earlier {
-            overlay.add_source(&shapes[j], ShapeType::Clip);
-        }
-        shapes[k] = overlay.overlay(OverlayRule::Difference, FillRule::NonZero);
-    }
-    runs
-}
-
-/// The contours of a polygon set, as slices.
-fn contours(shapes: &IntShapes) -> Vec<&[IntPoint]> {
-    shapes.iter().flatten().map(Vec::as_slice).collect()
 }
 
 /// Whether triangle `outer` covers all of triangle `inner` (closed, exact
