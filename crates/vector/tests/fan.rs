@@ -66,3 +66,37 @@ fn two_fans_on_one_centre_pair_by_their_sectors() {
         );
     }
 }
+
+/// The snapped regions of two fans on one centre (tilted by 0.3, as in
+/// `vector_scaling`): the snapping reroutes a few regions at the centre,
+/// whose boxes meet every other region's there. The ownership pass
+/// differenced each region after them against every earlier one (`N^2`
+/// segments; 3.5 billion on the 128,000-triangle cone, whose spokes crowd
+/// within a grid unit of the apex only at that size); only regions
+/// overlapping some other region are clips now.
+#[test]
+fn doubling_two_snapped_fans_less_than_triples_the_ownership_work() {
+    let two = |n: u32| stats(&lit(vec![sheets::two_fans(n / 2, 0.3)]));
+    let (a, b) = (two(3_000), two(6_000));
+    // The snapping rerouted regions at the centre, and the regions after
+    // them were differenced.
+    assert!(a.snapped > 0 && b.snapped > 0, "{a:?}\n{b:?}");
+    assert!(a.ownership_differences > 100, "{a:?}");
+    for (what, x, y) in [
+        (
+            "ownership segments",
+            a.ownership_segments,
+            b.ownership_segments,
+        ),
+        (
+            "map boolean segments",
+            a.map_boolean_segments,
+            b.map_boolean_segments,
+        ),
+    ] {
+        assert!(
+            y < 3 * x.max(1),
+            "{what} {x} at 3,000 triangles, {y} at 6,000\n{a:?}\n{b:?}"
+        );
+    }
+}
