@@ -9,7 +9,10 @@
 //!   read-back done band by band;
 //! - `read`: [`TiledZBuffer::read_into`] alone (every buffer, after a draw);
 //! - the floor: a plain `memset` and a `memcpy` of the frame's bytes
-//!   (ids, depth and colour, 12 bytes a pixel), on 1 thread and on 2.
+//!   (ids, depth and colour, 12 bytes a pixel), on 1 thread and on 2;
+//! - `draw + memset`: the draw followed by that `memset`, the floor of
+//!   delivering the frame after this draw (`all` over it is how far the
+//!   read-back is from memory speed).
 //!
 //! Rounds interleave the rows so that the machine's noise hits all alike;
 //! each measurement renders untimed for 40 ms (an idle vCPU takes tens of
@@ -80,7 +83,7 @@ struct Row<'a> {
     lean: DepthScene,
     screen: ScreenScene,
     frame: Frame,
-    times: [Vec<f64>; 7],
+    times: [Vec<f64>; 8],
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
@@ -105,7 +108,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     );
     println!(
-        "| scene | size | threads | draw | all | ids+depth | ids | read (all) | memset | memcpy | read / memset |{}",
+        "| scene | size | threads | draw | all | ids+depth | ids | read (all) | memset | memcpy | read / memset | draw + memset | all / (draw + memset) |{}",
         if peers_bin.is_some() {
             " vs llvmpipe render only | vs llvmpipe + read-back |"
         } else {
@@ -113,7 +116,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     );
     println!(
-        "|---|---|---|---|---|---|---|---|---|---|---|{}",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|{}",
         if peers_bin.is_some() { "---|---|" } else { "" }
     );
     for &size in &sizes {
@@ -194,6 +197,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                             .for_each(|(d, s)| d.copy_from_slice(s));
                     });
                 });
+                // The floor of delivering this draw's frame: the draw,
+                // then a plain `memset` of the frame's bytes, which meets
+                // the caches as the draw left them (the `memset` alone,
+                // repeated, finds its buffer in the last-level cache).
+                time(&mut t[7], cpu, || {
+                    on(&mut || {
+                        prepare_depth_into(row.scene, &row.view, options, &mut row.lean)
+                            .and_then(|()| row.hider.draw_depth_scene(&row.lean))
+                            .expect("draw");
+                        dst.par_chunks_mut(chunk).for_each(|c| c.fill(0xff));
+                    });
+                });
                 std::hint::black_box(&dst);
                 row.times = t;
             }
@@ -203,7 +218,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 .into_iter()
                 .map(median)
                 .collect();
-            let cells: Vec<String> = m.iter().map(|v| format!("{v:.2}")).collect();
+            let cells: Vec<String> = m[..7].iter().map(|v| format!("{v:.2}")).collect();
             // The median over this run's measurements of a peer.
             let peer = |name: &str| {
                 let v: Vec<f64> = peers
@@ -227,11 +242,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 String::new()
             };
             println!(
-                "| {} | {size} | {} | {} | {:.2}x |{vs}",
+                "| {} | {size} | {} | {} | {:.2}x | {:.2} | {:.2}x |{vs}",
                 row.name,
                 row.threads,
                 cells.join(" | "),
                 m[4] / m[5],
+                m[7],
+                m[1] / m[7],
             );
         }
     }
