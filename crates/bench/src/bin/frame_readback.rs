@@ -22,9 +22,11 @@
 //! With `--peers-bin PATH` (the `peers` package's binary) every round
 //! first runs llvmpipe on the same scenes, and the table adds the
 //! same-run ratios of its medians to hider's: render only (its clear +
-//! draw + `glFinish` over `draw`) and the frame in client memory (its
+//! draw + `glFinish` over `draw`), the frame in client memory (its
 //! clear + draw + `glReadPixels` of colour and depth over `all`, which
-//! delivers ids besides). All times are then wall time, as the peers'.
+//! delivers ids besides), and the same over `ids+depth`: 8 bytes a pixel
+//! like llvmpipe's colour and depth, and what `hider.render` in Python
+//! returns. All times are then wall time, as the peers'.
 //!
 //! `cargo run --release -p hider-bench --bin frame_readback -- [K] [SIZES...] [--peers-bin PATH]`
 //! (default K = 5 rounds, size 1024).
@@ -110,14 +112,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "| scene | size | threads | draw | all | ids+depth | ids | read (all) | memset | memcpy | read / memset | draw + memset | all / (draw + memset) |{}",
         if peers_bin.is_some() {
-            " vs llvmpipe render only | vs llvmpipe + read-back |"
+            " vs llvmpipe render only | vs llvmpipe + read-back | ids+depth vs llvmpipe + read-back |"
         } else {
             ""
         }
     );
     println!(
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|{}",
-        if peers_bin.is_some() { "---|---|" } else { "" }
+        if peers_bin.is_some() { "---|---|---|" } else { "" }
     );
     for &size in &sizes {
         let mut rows = Vec::new();
@@ -234,9 +236,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             };
             let vs = if peers_bin.is_some() {
                 format!(
-                    " {} | {} |",
+                    " {} | {} | {} |",
                     ratio(peer("llvmpipe"), m[0]),
-                    ratio(peer("llvmpipe+read"), m[1])
+                    ratio(peer("llvmpipe+read"), m[1]),
+                    ratio(peer("llvmpipe+read"), m[2])
                 )
             } else {
                 String::new()
