@@ -33,7 +33,10 @@
 //!   so their azimuths around `n`, modulo a half turn, differ by at most
 //!   `asin(window / |horizontal part|)`: each member lists the members
 //!   within that of its azimuth ([`super::window_pairs`], as a book's
-//!   pages are listed by their angle around the spine). A pleat's normals
+//!   pages are listed by their angle around the spine), and keeps those
+//!   whose whole unit normals are that close (the azimuth forgets their
+//!   height: a pleat and the one opposite have parallel horizontal
+//!   parts). A pleat's normals
 //!   are nearly horizontal and turn with the fan, so it lists none; a
 //!   flat fan's are all vertical and would list every pair (its members'
 //!   own projections serve it instead, and are tried first).
@@ -237,7 +240,8 @@ fn around(
         (e1, n.cross(e1))
     };
     let eps = f64::EPSILON;
-    let azimuths: Vec<(f64, f64, u32)> = members
+    // Per member: unit normal and window (a chord between unit normals).
+    let normals: Vec<(DVec3, f64)> = members
         .iter()
         .map(|member| {
             let (p, q) = edges(member);
@@ -247,24 +251,45 @@ fn around(
             let longest = a.length().max(b.length()).max((q - p).length());
             let tilt = COPLANAR_TOLERANCE * (1.0 + 1e-6) * longest * (a.length() + b.length());
             let rounding = 16.0 * eps * a.length() * b.length();
-            let window = (3.0 * tilt + 2.0 * rounding) / area + 4.0 * eps;
-            let unit = normal / area;
+            // NaN without area: no normal to go by, every pair is listed.
+            (
+                normal / area,
+                (3.0 * tilt + 2.0 * rounding) / area + 4.0 * eps,
+            )
+        })
+        .collect();
+    let azimuths: Vec<(f64, f64, u32)> = normals
+        .iter()
+        .enumerate()
+        .map(|(m, &(unit, window))| {
             let across = unit - n * unit.dot(n);
             let reach = across.length();
             let half = if window < reach {
                 (window / reach).asin() + 1e-9
             } else {
-                // Also NaN: no area, no normal to go by.
                 std::f64::consts::FRAC_PI_2
             };
             let phi = across
                 .dot(e2)
                 .atan2(across.dot(e1))
                 .rem_euclid(std::f64::consts::PI);
-            (if phi.is_finite() { phi } else { 0.0 }, half, member.0)
+            (if phi.is_finite() { phi } else { 0.0 }, half, m as u32)
         })
         .collect();
-    let ties = window_pairs(azimuths, most.checked_sub(out.len())?)?;
+    // The azimuths forget the normals' height along the axis (a pleat
+    // and the one opposite have parallel horizontal parts): the pairs
+    // listed keep only those whose whole normals are within the window.
+    let ties = window_pairs(azimuths, most.checked_sub(out.len())?)?
+        .into_iter()
+        .filter(|&(x, y)| {
+            let ((a, wa), (b, wb)) = (normals[x as usize], normals[y as usize]);
+            let chord = (a - b).length().min((a + b).length());
+            chord.is_nan() || chord <= wa.max(wb)
+        })
+        .map(|(x, y)| {
+            let (a, b) = (members[x as usize].0, members[y as usize].0);
+            (a.min(b), a.max(b))
+        });
     out.extend(ties);
     (out.len() <= most).then_some(out)
 }
