@@ -326,6 +326,42 @@ fn ties_apart_around_the_axis_are_found() {
     );
 }
 
+/// Members edge-on to a pleated fan's axis (their planes hold it: their
+/// sectors around it are a direction or a half turn), some in one plane
+/// (ties), two crossing along the axis itself: what all pairs find.
+#[test]
+fn edge_on_members_around_the_axis() {
+    let mut r = SplitMix64::new(5);
+    let mut ties = 0;
+    for round in 0..100 {
+        let mut tris = pleated_fan(100, r.range(0.05, 1.0));
+        for j in 0..3 + r.below(6) {
+            // Three half-planes around the axis, two of them one plane.
+            let a = [1.0, 4.0, 5.0][r.below(3)] * std::f64::consts::FRAC_PI_3;
+            let (h1, h2) = (r.range(-1.0, 1.0), r.range(-1.0, 1.0));
+            let p = DVec3::new(a.cos(), a.sin(), h1);
+            let q = DVec3::new(2.0 * a.cos(), 2.0 * a.sin(), h2);
+            tris.push((1000 + j as u32, [DVec3::ZERO, p, q]));
+        }
+        let up = |x: f64, y: f64| DVec3::new(x, y, 1.0);
+        tris.push((2000, [DVec3::ZERO, up(1.0, 0.0), up(-1.0, 0.0)]));
+        tris.push((2001, [DVec3::ZERO, up(0.0, 1.0), up(0.0, -1.0)]));
+        let want = all_pairs(&tris);
+        let got = find_pairs(&tris, u64::MAX, Cancel::default());
+        assert!(want.interpenetrating.contains(&(2000, 2001)));
+        ties += want.coplanar.len();
+        assert_eq!(got.interpenetrating, want.interpenetrating, "round {round}");
+        assert_eq!(got.coplanar, want.coplanar, "round {round}");
+        assert!(
+            got.tests * 4 < want.tests,
+            "round {round}: {} of {}",
+            got.tests,
+            want.tests
+        );
+    }
+    assert!(ties > 100, "{ties}");
+}
+
 /// A book of `n` pages around the spine from the origin along z, fanned
 /// over a half turn (`ties`: every tenth page doubled, a coplanar tie).
 fn book(n: usize, ties: bool) -> Vec<(u32, [DVec3; 3])> {

@@ -15,7 +15,10 @@
 //!   closed triangles and in both planes. Projected along any axis `n`
 //!   not parallel to it, it is a ray in both projected closed sectors, so
 //!   those meet. It is parallel to `n` only if both planes contain `n`
-//!   (both members *edge-on*): such pairs are all listed. The projection
+//!   (both members *edge-on*, flat seen along `n`); `contact` then asks
+//!   each to have corners strictly on both sides of the other's plane (an
+//!   exact test), so both are seen as opposite directions from `v`, half
+//!   turns, and two closed half turns always meet. The projection
 //!   is along the exact vector `w - v` for a point `w` near `v + n`, and
 //!   every angular comparison is the exact sign of `orient3d(v, w, p,
 //!   q)`, so the sectors' order is exact (as [`super::Flat`]'s is).
@@ -205,24 +208,17 @@ fn around(
     // Crossing pairs: sectors around the axis.
     let mut who = Vec::with_capacity(members.len());
     let mut sectors = Vec::with_capacity(members.len());
-    let mut edge_on = Vec::new();
     for (m, member) in members.iter().enumerate() {
         let (p, q) = edges(member);
         let (p, q) = (frame.point(p), frame.point(q));
         // A member with both corners on the axis's line is collinear in
         // space: `contact` reports nothing for it.
         if let Some(s) = Sector::around(apex, p, q) {
-            if frame.turn(p.p, q.p) == 0 {
-                edge_on.push(member.0);
-            }
             who.push(m);
             sectors.push(s);
         }
     }
     let crossing = sector_pairs_within(apex, &sectors, |_| true, most)?;
-    if crossing.len() + edge_on.len() * edge_on.len() / 2 > most {
-        return None;
-    }
     let mut out: Vec<(u32, u32)> = crossing
         .into_iter()
         .map(|(x, y)| {
@@ -230,9 +226,6 @@ fn around(
             (a.min(b), a.max(b))
         })
         .collect();
-    for (k, &a) in edge_on.iter().enumerate() {
-        out.extend(edge_on[k + 1..].iter().map(|&b| (a.min(b), a.max(b))));
-    }
 
     // Near-coplanar pairs: normals' azimuths around the axis.
     let (e1, e2) = {
