@@ -29,7 +29,10 @@
 //! closed sectors meet in projection along `d` are a superset of the pairs
 //! `contact` can report (a triangle whose projection along its own drop
 //! axis is flat, which rounding of its normal can cause, is asked along
-//! all three). On the screen ([`screen_star_pairs`]) the snapped triangles
+//! all three). A star dense in those projections (a steeply pleated fan,
+//! whose nearly vertical members each span most of a half turn seen along
+//! `x` or `y`) is searched around one axis for the whole star instead
+//! ([`axis`]). On the screen ([`screen_star_pairs`]) the snapped triangles
 //! are compared directly.
 
 use glam::DVec3;
@@ -72,8 +75,9 @@ pub(crate) fn world_stars(tris: &[(u32, [DVec3; 3])]) -> Stars {
 /// sharing a hub of `stars` whose sectors meet there in a projection
 /// that [`super::intersect::contact`] may use (see the module
 /// documentation): every pair sharing a hub that `contact` can report is
-/// among them. Sorted, each once. Dense stars are dissolved first (their
-/// pairs go back to the bins, see
+/// among them. Sorted, each once. A star dense in its members' own
+/// projections is searched around one axis ([`axis`]); dense around
+/// that too, it is dissolved first (its pairs go back to the bins, see
 /// [`hider_geom::star::DENSE_PAIRS_PER_MEMBER`]).
 pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &mut Stars) -> Vec<(u32, u32)> {
     let mut out = Vec::new();
