@@ -125,6 +125,34 @@ pub(super) fn family(r: &mut SplitMix64, kind: usize, tris: &mut Vec<[DVec3; 3]>
                 tris.push([centre, tip, snap(page, step)]);
             }
         }
+        // A pleated fan (rim alternately above and below the centre,
+        // steep: its sectors overlap in every member's own projection),
+        // with copies of some members turned by a little (ties within
+        // the coplanar tolerance, crossings) or not at all; or a star
+        // whose rim vertices have random heights.
+        4 | 5 => {
+            let pleat = r.range(0.05, 1.0);
+            let lifts: Vec<f64> = (0..angles.len())
+                .map(|k| match kind {
+                    4 => [pleat, -pleat][k % 2],
+                    _ => r.range(-1.0, 1.0),
+                })
+                .collect();
+            for (k, w) in angles.windows(2).enumerate() {
+                let (a, b) = (rim(w[0], lifts[k]), rim(w[1], lifts[k + 1]));
+                tris.push([centre, snap(a, step), snap(b, step)]);
+                if r.below(6) == 0 {
+                    let turn: f64 = [0.0, 1e-9, 1e-6, 1e-3][r.below(4)];
+                    let turned = |p: DVec3| {
+                        let d = p - centre;
+                        let (x, y) = (d.dot(u), d.dot(v));
+                        let (s, c) = turn.sin_cos();
+                        centre + u * (x * c - y * s) + v * (x * s + y * c) + axis * d.dot(axis)
+                    };
+                    tris.push([centre, turned(a), turned(b)]);
+                }
+            }
+        }
         // A star of random triangles sharing the centre.
         _ => {
             for _ in 0..n {
@@ -139,14 +167,14 @@ pub(super) fn family(r: &mut SplitMix64, kind: usize, tris: &mut Vec<[DVec3; 3]>
 pub(super) fn scene(r: &mut SplitMix64) -> Vec<[DVec3; 3]> {
     let mut tris = Vec::new();
     for _ in 0..1 + r.below(3) {
-        let kind = r.below(5);
+        let kind = r.below(7);
         family(r, kind, &mut tris);
     }
     // A second fan around the first one's centre, in another plane.
     if r.below(2) == 0 {
         let c = tris[0][0];
         let mut more = Vec::new();
-        let kind = r.below(3);
+        let kind = [0, 1, 2, 4, 5][r.below(5)];
         family(r, kind, &mut more);
         let shift = c - more[0][0];
         tris.extend(more.iter().map(|t| t.map(|p| p + shift)));
@@ -219,6 +247,119 @@ fn fan_pairs_grow_linearly() {
             "lift {lift}: tested {small:?} {large:?}"
         );
     }
+}
+
+/// A fan of `n` triangles around the origin whose rim alternates between
+/// `z = pleat` and `z = -pleat` (`n` even, so that the rim closes).
+pub(super) fn pleated_fan(n: usize, pleat: f64) -> Vec<(u32, [DVec3; 3])> {
+    let rim = |k: usize| {
+        let a = std::f64::consts::TAU * (k % n) as f64 / n as f64;
+        let z = if k.is_multiple_of(2) { pleat } else { -pleat };
+        DVec3::new(a.cos(), a.sin(), z)
+    };
+    (0..n)
+        .map(|k| (k as u32, [DVec3::ZERO, rim(k), rim(k + 1)]))
+        .collect()
+}
+
+/// Doubling a steeply pleated fan less than triples the pairs listed and
+/// tested: its members' sectors overlap in their own (x or y) drop-axis
+/// projections, so the star was dense and every pair went to the grid
+/// (499,500 and 1,999,000 tests at 1,000 and 2,000); around the fan's
+/// axis only neighbours' sectors meet.
+#[test]
+fn pleated_fan_pairs_grow_linearly() {
+    for pleat in [0.2, 0.05, 1.0] {
+        let work = |n| {
+            let s = find_pairs(&pleated_fan(n, pleat), u64::MAX, Cancel::default());
+            assert!(s.complete && s.interpenetrating.is_empty() && s.coplanar.is_empty());
+            (s.candidates, s.tests)
+        };
+        let (small, large) = (work(1000), work(2000));
+        assert!(
+            large.0 < 3 * small.0,
+            "pleat {pleat}: listed {small:?} {large:?}"
+        );
+        assert!(
+            large.1 < 3 * small.1,
+            "pleat {pleat}: tested {small:?} {large:?}"
+        );
+        // Neighbours, whose closed sectors share an edge's direction.
+        assert!(small.1 <= 2 * 1000, "pleat {pleat}: tested {small:?}");
+    }
+}
+
+/// Two members nearly edge-on to a pleated fan's axis and within the
+/// coplanar tolerance of each other, whose sectors seen along the axis are
+/// apart (angles 0 to 1e-7 and 1.5e-7 to 2e-7) while their interiors
+/// overlap seen along their drop axis: the tie is found by the normals'
+/// azimuths, not by the sectors.
+#[test]
+fn ties_apart_around_the_axis_are_found() {
+    let a = [
+        DVec3::ZERO,
+        DVec3::new(1.0, 0.0, 1.0),
+        DVec3::new(1.0, 1e-7, -1.0),
+    ];
+    let b = [
+        DVec3::ZERO,
+        DVec3::new(1.0, 2e-7, 1.0),
+        DVec3::new(2.0, 3e-7, -1.0),
+    ];
+    assert_eq!(contact(&a, &b), Contact::CoplanarOverlap);
+    let mut tris = pleated_fan(200, 0.2);
+    // With their copies turned by a half turn, so that the members'
+    // normals still sum along z.
+    let turned = |t: [DVec3; 3]| t.map(|p| DVec3::new(-p.x, -p.y, p.z));
+    tris.extend([(1000, a), (1001, b), (1002, turned(a)), (1003, turned(b))]);
+    let got = find_pairs(&tris, u64::MAX, Cancel::default());
+    let want = all_pairs(&tris);
+    assert!(want.coplanar.contains(&(1000, 1001)), "{:?}", want.coplanar);
+    assert_eq!(got.coplanar, want.coplanar);
+    assert_eq!(got.interpenetrating, want.interpenetrating);
+    // The star was searched around its axis, not left to the grid.
+    assert!(
+        got.tests < want.tests / 10,
+        "{} of {}",
+        got.tests,
+        want.tests
+    );
+}
+
+/// Members edge-on to a pleated fan's axis (their planes hold it: their
+/// sectors around it are a direction or a half turn), some in one plane
+/// (ties), two crossing along the axis itself: what all pairs find.
+#[test]
+fn edge_on_members_around_the_axis() {
+    let mut r = SplitMix64::new(5);
+    let mut ties = 0;
+    for round in 0..100 {
+        let mut tris = pleated_fan(100, r.range(0.05, 1.0));
+        for j in 0..3 + r.below(6) {
+            // Three half-planes around the axis, two of them one plane.
+            let a = [1.0, 4.0, 5.0][r.below(3)] * std::f64::consts::FRAC_PI_3;
+            let (h1, h2) = (r.range(-1.0, 1.0), r.range(-1.0, 1.0));
+            let p = DVec3::new(a.cos(), a.sin(), h1);
+            let q = DVec3::new(2.0 * a.cos(), 2.0 * a.sin(), h2);
+            tris.push((1000 + j as u32, [DVec3::ZERO, p, q]));
+        }
+        let up = |x: f64, y: f64| DVec3::new(x, y, 1.0);
+        tris.push((2000, [DVec3::ZERO, up(1.0, 0.0), up(-1.0, 0.0)]));
+        tris.push((2001, [DVec3::ZERO, up(0.0, 1.0), up(0.0, -1.0)]));
+        let want = all_pairs(&tris);
+        let got = find_pairs(&tris, u64::MAX, Cancel::default());
+        assert!(want.interpenetrating.contains(&(2000, 2001)));
+        ties += want.coplanar.len();
+        assert_eq!(got.interpenetrating, want.interpenetrating, "round {round}");
+        assert_eq!(got.coplanar, want.coplanar, "round {round}");
+        assert!(
+            got.tests * 4 < want.tests,
+            "round {round}: {} of {}",
+            got.tests,
+            want.tests
+        );
+    }
+    assert!(ties > 100, "{ties}");
 }
 
 /// A book of `n` pages around the spine from the origin along z, fanned

@@ -29,7 +29,10 @@
 //! closed sectors meet in projection along `d` are a superset of the pairs
 //! `contact` can report (a triangle whose projection along its own drop
 //! axis is flat, which rounding of its normal can cause, is asked along
-//! all three). On the screen ([`screen_star_pairs`]) the snapped triangles
+//! all three). A star dense in those projections (a steeply pleated fan,
+//! whose nearly vertical members each span most of a half turn seen along
+//! `x` or `y`) is searched around one axis for the whole star instead
+//! ([`axis`]). On the screen ([`screen_star_pairs`]) the snapped triangles
 //! are compared directly.
 
 use glam::DVec3;
@@ -38,6 +41,8 @@ use hider_scene::ScreenTri;
 
 use super::intersect::{COPLANAR_TOLERANCE, drop_axis, project};
 use super::predicates::orient2d;
+
+mod axis;
 
 /// A point of a plane of projection, ordered exactly by [`orient2d`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,8 +75,9 @@ pub(crate) fn world_stars(tris: &[(u32, [DVec3; 3])]) -> Stars {
 /// sharing a hub of `stars` whose sectors meet there in a projection
 /// that [`super::intersect::contact`] may use (see the module
 /// documentation): every pair sharing a hub that `contact` can report is
-/// among them. Sorted, each once. Dense stars are dissolved first (their
-/// pairs go back to the bins, see
+/// among them. Sorted, each once. A star dense in its members' own
+/// projections is searched around one axis ([`axis`]); dense around
+/// that too, it is dissolved first (its pairs go back to the bins, see
 /// [`hider_geom::star::DENSE_PAIRS_PER_MEMBER`]).
 pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &mut Stars) -> Vec<(u32, u32)> {
     let mut out = Vec::new();
@@ -123,7 +129,12 @@ pub(crate) fn world_star_pairs(tris: &[(u32, [DVec3; 3])], stars: &mut Stars) ->
             let Some(pairs) = sector_pairs_within(apex, &sectors, asked, dense_limit(who.len()))
             else {
                 out.truncate(before);
-                dense.push(h);
+                // Sectors that overlap in the members' own projections
+                // may still be apart around one axis for the whole star.
+                match axis::axis_pairs(tris, members, dense_limit(members.len())) {
+                    Some(pairs) => out.extend(pairs),
+                    None => dense.push(h),
+                }
                 continue 'stars;
             };
             for (x, y) in pairs {
@@ -170,7 +181,7 @@ fn book_pairs(tris: &[(u32, [DVec3; 3])], members: &[(u32, u8)]) -> Option<Vec<(
     let e1 = axis.any_orthonormal_vector();
     let e2 = axis.cross(e1);
     // (angle modulo a half turn, half-width of the window, triangle).
-    let mut pages: Vec<(f64, f64, u32)> = members
+    let pages: Vec<(f64, f64, u32)> = members
         .iter()
         .map(|&(t, i)| {
             let c = &tris[t as usize].1;
@@ -191,13 +202,23 @@ fn book_pairs(tris: &[(u32, [DVec3; 3])], members: &[(u32, u8)]) -> Option<Vec<(
             (if phi.is_finite() { phi } else { 0.0 }, half, t)
         })
         .collect();
-    pages.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-    let most = dense_limit(pages.len());
+    window_pairs(pages, dense_limit(members.len()))
+}
+
+/// The pairs `(lower, higher)` of `items` (angle modulo a half turn,
+/// half-width of the item's window, triangle) in which one item's angle
+/// lies within the other's window, each item listing those within its own
+/// (a pair whose angles are within the wider of its two windows is
+/// found); `None` once more than `most` are listed. Not deduplicated.
+/// `O(n log n + k)` for `k` pairs listed.
+fn window_pairs(mut items: Vec<(f64, f64, u32)>, most: usize) -> Option<Vec<(u32, u32)>> {
+    use std::f64::consts::{FRAC_PI_2, PI};
+    items.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
     let mut out = Vec::new();
-    let n = pages.len();
-    for (k, &(phi, half, t)) in pages.iter().enumerate() {
+    let n = items.len();
+    for (k, &(phi, half, t)) in items.iter().enumerate() {
         let mut take = |j: usize| {
-            let u = pages[j].2;
+            let u = items[j].2;
             out.push((t.min(u), t.max(u)));
         };
         if half >= FRAC_PI_2 {
@@ -206,8 +227,8 @@ fn book_pairs(tris: &[(u32, [DVec3; 3])], members: &[(u32, u8)]) -> Option<Vec<(
             // Forward then backward around the circle of angles modulo
             // a half turn, while within the window (the distances grow
             // monotonically along each walk).
-            let ahead = |j: usize| (pages[j].0 - phi).rem_euclid(PI);
-            let behind = |j: usize| (phi - pages[j].0).rem_euclid(PI);
+            let ahead = |j: usize| (items[j].0 - phi).rem_euclid(PI);
+            let behind = |j: usize| (phi - items[j].0).rem_euclid(PI);
             let mut j = (k + 1) % n;
             while j != k && ahead(j) <= half {
                 take(j);
