@@ -105,6 +105,7 @@ pub(super) fn split_all(
         tris: vec![0; scene.tris.len()],
         prims: vec![0; scene.prims.len()],
         stamp: 0,
+        stars: Vec::new(),
     };
     features
         .iter()
@@ -121,6 +122,8 @@ struct Seen {
     tris: Vec<u32>,
     prims: Vec<u32>,
     stamp: u32,
+    /// Scratch for the stars a query meets.
+    stars: Vec<u32>,
 }
 
 /// Visible or hidden pieces shorter than this (pixels) are dropped.
@@ -291,7 +294,8 @@ fn split_visibility(
         return out;
     };
     let mut cover: Vec<(f64, f64)> = Vec::new();
-    c.index.query(p.lerp(q, from), p.lerp(q, to), |k| {
+    let mut stars = std::mem::take(&mut seen.stars);
+    c.index.query(p.lerp(q, from), p.lerp(q, to), &mut stars, |k| {
         stats.occluder_candidates += 1;
         if std::mem::replace(&mut seen.tris[k as usize], seen.stamp) == seen.stamp {
             return;
@@ -323,7 +327,10 @@ fn split_visibility(
             }
         }
     });
-    cover.sort_by(|a, b| a.0.total_cmp(&b.0));
+    seen.stars = stars;
+    // Longest first among equal starts, so that the hidden pieces do not
+    // depend on the order the index finds the occluders in.
+    cover.sort_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1)));
     // Pieces under a thousandth of a pixel are where faces merely touch
     // the segment at a shared corner.
     let length = (q.x - p.x).hypot(q.y - p.y);
