@@ -66,7 +66,12 @@ impl StarOccluders {
     /// corner (a group of one or two triangles of a star whose other
     /// triangles belong to earlier stars): its members are then binned
     /// one by one.
-    pub fn new(grid: &Grid, corners: &[[hider_geom::FixedPt; 3]], group: u32, members: &[u32]) -> Option<Self> {
+    pub fn new(
+        grid: &Grid,
+        corners: &[[hider_geom::FixedPt; 3]],
+        group: u32,
+        members: &[u32],
+    ) -> Option<Self> {
         let points = |t: u32| {
             corners[t as usize]
                 .map(|p| GridPt::new(i64::from(p.x) << grid.shift, i64::from(p.y) << grid.shift))
@@ -119,9 +124,7 @@ impl StarOccluders {
             return;
         };
         let n = self.members.len();
-        let before = |d: GridPt| {
-            move |k: &Sector<GridPt>| compare(a, k.start, d) == Ordering::Less
-        };
+        let before = |d: GridPt| move |k: &Sector<GridPt>| compare(a, k.start, d) == Ordering::Less;
         let lo = self.sectors.partition_point(before(arc.start));
         let hi = self
             .sectors
@@ -208,10 +211,15 @@ pub(super) fn convex_hull(mut points: Vec<IntPoint>) -> Vec<IntPoint> {
         i64::from(a.x - o.x) * i64::from(b.y - o.y) - i64::from(a.y - o.y) * i64::from(b.x - o.x)
     };
     let mut hull: Vec<IntPoint> = Vec::with_capacity(points.len() + 1);
-    for pass in [&points[..], &points.iter().rev().copied().collect::<Vec<_>>()[..]] {
+    for pass in [
+        &points[..],
+        &points.iter().rev().copied().collect::<Vec<_>>()[..],
+    ] {
         let floor = hull.len();
         for &p in pass {
-            while hull.len() >= floor + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0 {
+            while hull.len() >= floor + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0
+            {
                 hull.pop();
             }
             hull.push(p);

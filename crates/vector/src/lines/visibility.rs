@@ -295,38 +295,41 @@ fn split_visibility(
     };
     let mut cover: Vec<(f64, f64)> = Vec::new();
     let mut stars = std::mem::take(&mut seen.stars);
-    c.index.query(p.lerp(q, from), p.lerp(q, to), &mut stars, |k| {
-        stats.occluder_candidates += 1;
-        if std::mem::replace(&mut seen.tris[k as usize], seen.stamp) == seen.stamp {
-            return;
-        }
-        let t = &c.scene.tris[k as usize];
-        if f.own.contains(&t.prim) {
-            return;
-        }
-        match &c.occluders[t.prim as usize] {
-            Occluder::Nothing => {}
-            Occluder::Camera(forms) => {
-                if std::mem::replace(&mut seen.prims[t.prim as usize], seen.stamp) == seen.stamp {
-                    return;
+    c.index
+        .query(p.lerp(q, from), p.lerp(q, to), &mut stars, |k| {
+            stats.occluder_candidates += 1;
+            if std::mem::replace(&mut seen.tris[k as usize], seen.stamp) == seen.stamp {
+                return;
+            }
+            let t = &c.scene.tris[k as usize];
+            if f.own.contains(&t.prim) {
+                return;
+            }
+            match &c.occluders[t.prim as usize] {
+                Occluder::Nothing => {}
+                Occluder::Camera(forms) => {
+                    if std::mem::replace(&mut seen.prims[t.prim as usize], seen.stamp) == seen.stamp
+                    {
+                        return;
+                    }
+                    stats.occluder_tests += 1;
+                    if let Some((a, b)) =
+                        camera_hidden(forms, f, c.tolerance, c.scene.is_perspective())
+                    {
+                        cover.push((
+                            window_parameter(c.scene, f, a),
+                            window_parameter(c.scene, f, b),
+                        ));
+                    }
                 }
-                stats.occluder_tests += 1;
-                if let Some((a, b)) = camera_hidden(forms, f, c.tolerance, c.scene.is_perspective())
-                {
-                    cover.push((
-                        window_parameter(c.scene, f, a),
-                        window_parameter(c.scene, f, b),
-                    ));
+                Occluder::Screen => {
+                    stats.occluder_tests += 1;
+                    if let Some(iv) = hidden_interval(t, p, q, c.tolerance) {
+                        cover.push(iv);
+                    }
                 }
             }
-            Occluder::Screen => {
-                stats.occluder_tests += 1;
-                if let Some(iv) = hidden_interval(t, p, q, c.tolerance) {
-                    cover.push(iv);
-                }
-            }
-        }
-    });
+        });
     seen.stars = stars;
     // Longest first among equal starts, so that the hidden pieces do not
     // depend on the order the index finds the occluders in.
