@@ -169,7 +169,7 @@ fn directions(apex: GridPt, pts: &[GridPt]) -> Option<Sector<GridPt>> {
         .map(|k| GridPt::orient(pts[k], pts[(k + 1) % n], apex))
         .collect();
     let holds = if sides.iter().all(|&s| s == 0) {
-        pts.iter().any(|&p| p == apex) || on_hull_segment(apex, pts)
+        on_hull_segment(apex, pts)
     } else {
         sides.iter().all(|&s| s >= 0) || sides.iter().all(|&s| s <= 0)
     };
