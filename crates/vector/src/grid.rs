@@ -516,7 +516,7 @@ pub fn bounds<'a>(points: impl IntoIterator<Item = &'a IntPoint>) -> Option<(Int
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use proptest::prelude::*;
 
     use super::*;
@@ -606,7 +606,7 @@ mod tests {
 
     /// Whether two convex polygons (either orientation) share a point: no
     /// edge of either separates them.
-    fn meet(a: &[IntPoint], b: &[IntPoint]) -> bool {
+    pub(crate) fn meet(a: &[IntPoint], b: &[IntPoint]) -> bool {
         let separates = |p: &[IntPoint], q: &[IntPoint]| {
             let s = orient(p[0], p[1], p[2]).signum();
             (0..p.len()).any(|k| {

@@ -231,7 +231,69 @@ pub(super) fn convex_hull(mut points: Vec<IntPoint>) -> Vec<IntPoint> {
 
 #[cfg(test)]
 mod tests {
+    use hider_geom::FixedPt;
+    use proptest::prelude::*;
+
     use super::*;
+    use crate::grid::tests::meet;
+    use crate::stars::star_pairs;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// Every triangle of a star that meets a convex query polygon
+        /// comes from the star's query: fans of random spokes around a
+        /// centre, with triangles overlapping them, and margin-sized or
+        /// large query polygons anywhere (holding the centre or not).
+        #[test]
+        fn a_star_finds_every_member_meeting_the_query(
+            centre in (20_000i32..80_000, 20_000i32..80_000),
+            spokes in prop::collection::vec((0.0f64..std::f64::consts::TAU, 100.0f64..20_000.0), 12..60),
+            extra in prop::collection::vec((0usize..60, 0usize..60), 0..6),
+            queries in prop::collection::vec(
+                (0i32..100_000, 0i32..100_000, -3_000i32..3_000, -3_000i32..3_000, 1i32..40), 1..20),
+        ) {
+            let grid = Grid { shift: 0, width: 100_000, height: 100_000 };
+            let c = FixedPt { x: centre.0, y: centre.1 };
+            let mut spokes = spokes;
+            spokes.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let tip = |k: usize| {
+                let (a, r) = spokes[k % spokes.len()];
+                FixedPt { x: c.x + (r * a.cos()) as i32, y: c.y + (r * a.sin()) as i32 }
+            };
+            let mut tris: Vec<[FixedPt; 3]> = (0..spokes.len()).map(|k| [c, tip(k), tip(k + 1)]).collect();
+            tris.extend(extra.iter().map(|&(i, j)| [c, tip(i), tip(j + 1)]));
+            let on = vec![true; tris.len()];
+            let pairs = star_pairs(&tris, &on);
+            let polys: Vec<Vec<IntPoint>> = tris
+                .iter()
+                .map(|t| t.iter().map(|p| IntPoint::new(p.x, p.y)).collect())
+                .collect();
+            let groups: Vec<u32> = (0..tris.len()).map(|t| pairs.group(t)).collect();
+            let star = StarOccluders::new(&grid, &tris, 0, &(0..tris.len() as u32).filter(|&t| groups[t as usize] == 0).collect::<Vec<_>>());
+            let Some(star) = star else { return Ok(()) };
+            for &(x, y, dx, dy, m) in &queries {
+                // The margin hexagon of a segment, as the index builds it.
+                let (p, q) = ((x, y), (x + dx, y + dy));
+                let (p, q) = if p.0 <= q.0 { (p, q) } else { (q, p) };
+                let s = if q.1 >= p.1 { 1 } else { -1 };
+                let poly: Vec<IntPoint> = [
+                    (p.0 - m, p.1 - s * m), (p.0 + m, p.1 - s * m), (q.0 + m, q.1 - s * m),
+                    (q.0 + m, q.1 + s * m), (q.0 - m, q.1 + s * m), (p.0 - m, p.1 + s * m),
+                ]
+                .iter()
+                .map(|&(a, b)| IntPoint::new(a, b))
+                .collect();
+                let mut found = vec![false; tris.len()];
+                star.query(&poly, &pairs, |t| groups[t as usize], |t| found[t as usize] = true);
+                for (t, tri) in polys.iter().enumerate() {
+                    if groups[t] == 0 && crate::sweep::orient(tri[0], tri[1], tri[2]) != 0 {
+                        prop_assert!(!meet(tri, &poly) || found[t], "member {t} {tri:?} meets {poly:?}");
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn the_hull_holds_every_point_and_only_turns_one_way() {
