@@ -235,7 +235,7 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
-    use crate::grid::tests::meet;
+    use crate::grid::bins::tests::meet;
     use crate::stars::star_pairs;
 
     proptest! {
