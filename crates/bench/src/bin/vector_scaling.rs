@@ -26,14 +26,16 @@
 //! seven planes (`sheets::slivers`, seen head-on: each plane's slivers
 //! are one face group of separate pieces, and square bins hold a row of
 //! them each), and two fans of `N / 2` triangles on one centre, one
-//! tilted so that their triangles overlap there (`sheets::two_fans`).
+//! tilted so that their triangles overlap there (`sheets::two_fans`),
+//! and the slivers turned 45 degrees (square boxes, long diagonal
+//! triangles).
 //! The peak resident memory of each drawing is the process's (`VmHWM`,
 //! reset before it; the scene is resident already, so it counts, and so
 //! does heap the allocator kept from the family's smaller sizes); each
 //! family runs in a process of its own.
 //!
-//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced|fan|cone|slivers|twofans]`
-//! (defaults: 20 s, 1,024,000 triangles, all nine families).
+//! `cargo run --release -p hider-bench --bin vector_scaling -- [cap seconds] [largest N] [soup|pile|sheet|mesh|pierced|fan|cone|slivers|twofans|diagonal]`
+//! (defaults: 20 s, 1,024,000 triangles, all ten families).
 
 use std::time::Instant;
 
@@ -121,6 +123,17 @@ fn slivers(n: u32) -> Scene {
     lit(vec![sheets::slivers(n)])
 }
 
+/// The slivers turned 45 degrees in their planes: their boxes are
+/// square, so bins shaped like the boxes stay square.
+fn diagonal_slivers(n: u32) -> Scene {
+    let mut mesh = sheets::slivers(n);
+    let turn = glam::DMat3::from_rotation_z(std::f64::consts::FRAC_PI_4);
+    for p in &mut mesh.positions {
+        *p = turn * *p;
+    }
+    lit(vec![mesh])
+}
+
 /// Two fans of `n / 2` triangles on one centre, one tilted.
 fn two_fans(n: u32) -> Scene {
     lit(vec![sheets::two_fans(n / 2, 0.3)])
@@ -148,7 +161,7 @@ fn main() -> Result<(), hider_scene::Error> {
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     type Family = (&'static str, &'static str, u32, fn(u32) -> Scene);
-    let families: [Family; 9] = [
+    let families: [Family; 10] = [
         ("`gen:soup:N`", "soup", 2_000, |n| {
             procedural::random_soup(n, 1)
         }),
@@ -162,6 +175,7 @@ fn main() -> Result<(), hider_scene::Error> {
         ("cone from its apex", "cone", 2_000, |n| fan(n, 0.5)),
         ("parallel slivers", "slivers", 2_000, slivers),
         ("two fans on one centre", "twofans", 2_000, two_fans),
+        ("diagonal slivers", "diagonal", 2_000, diagonal_slivers),
     ];
     for (name, key, start, make) in families {
         let Some(only) = only.as_deref() else {

@@ -2,17 +2,29 @@
 //! snapped polygons come within a margin of it, from bins shaped like
 //! the triangles ([`Bins`], whose bins are shaped like their items: on
 //! long parallel slivers square bins give a segment every sliver of its
-//! bin row).
+//! bin row), and from the stars' sectors for the triangles around a
+//! shared vertex ([`super::sectors`]).
 
 use glam::DVec3;
 use hider_scene::ScreenScene;
 use i_overlay::i_float::int::point::IntPoint;
 
+use super::sectors::{StarOccluders, convex_hull};
 use crate::grid::{Bins, Grid};
+use crate::stars::{NONE, StarPairs, star_pairs};
 
 /// The bins of the occluders and the margin a segment's query reaches.
 pub(super) struct OccluderIndex {
+    /// The triangles in no star, then one item per star (its members'
+    /// convex hull), numbered from `tris`.
     bins: Bins,
+    /// The number of triangles.
+    tris: usize,
+    /// The stars whose members are found by their sectors.
+    stars: Vec<StarOccluders>,
+    /// The stars' pairs (each triangle's group, and the partners the
+    /// sectors' search needs).
+    pairs: StarPairs,
     /// Grid units per pixel of the region grid.
     unit: f64,
     /// How far (pixels) a snapped occluder may lie from the segment it
@@ -45,8 +57,58 @@ impl OccluderIndex {
     ) -> Self {
         let unit = grid.units_per_pixel();
         let snap = corner_deviation(scene, unsnapped).max(1.0 / 512.0);
+        let n = scene.tris.len();
+        let on: Vec<bool> = live.iter().map(Option::is_some).collect();
+        let corners: Vec<_> = scene.tris.iter().map(|t| t.v).collect();
+        let pairs = star_pairs(&corners, &on);
+        let mut by_group: Vec<Vec<u32>> = Vec::new();
+        for t in (0..n).filter(|&t| on[t]) {
+            let g = pairs.group(t);
+            if g != NONE {
+                let g = g as usize;
+                if by_group.len() <= g {
+                    by_group.resize_with(g + 1, Vec::new);
+                }
+                by_group[g].push(t as u32);
+            }
+        }
+        let mut star_of = vec![NONE; n];
+        let mut stars = Vec::new();
+        for (g, members) in by_group.iter().enumerate() {
+            if let Some(star) = StarOccluders::new(grid, &corners, g as u32, members) {
+                for &t in members {
+                    star_of[t as usize] = stars.len() as u32;
+                }
+                stars.push(star);
+            }
+        }
+        let hulls: Vec<Vec<IntPoint>> = by_group
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.first().is_some_and(|&t| star_of[t as usize] != NONE))
+            .map(|(_, m)| {
+                convex_hull(
+                    m.iter()
+                        .flat_map(|&t| polys[t as usize].iter().copied())
+                        .collect(),
+                )
+            })
+            .collect();
+        let items: Vec<Vec<&[IntPoint]>> = (0..n)
+            .map(|t| {
+                if on[t] && star_of[t] == NONE {
+                    vec![polys[t].as_slice()]
+                } else {
+                    Vec::new()
+                }
+            })
+            .chain(hulls.iter().map(|h| vec![h.as_slice()]))
+            .collect();
         Self {
-            bins: Bins::covering_live(grid, live, polys),
+            bins: Bins::covering(grid, &items),
+            tris: n,
+            stars,
+            pairs,
             unit,
             margin: 1.5 * (snap + 1.0 / 512.0 + 1.0 / unit),
             most: (grid.width + grid.height) as f64,
@@ -55,8 +117,10 @@ impl OccluderIndex {
 
     /// Calls `visit` with every occluder binned within the margin of the
     /// window segment `p -> q` (pixels, within the image; an occluder may
-    /// come more than once).
-    pub fn query(&self, p: DVec3, q: DVec3, visit: impl FnMut(u32)) {
+    /// come more than once), and with every member of a star sharing a
+    /// bin with it whose sector there meets the margin's directions;
+    /// `found` is scratch for the stars.
+    pub fn query(&self, p: DVec3, q: DVec3, found: &mut Vec<u32>, mut visit: impl FnMut(u32)) {
         let (p, q) = if p.x <= q.x { (p, q) } else { (q, p) };
         // In grid units, one more for the rounding of the corners.
         let m = (self.margin * self.unit + 1.0).min(self.most);
@@ -81,7 +145,24 @@ impl OccluderIndex {
             .iter()
             .map(|&(x, y)| IntPoint::new(x.round() as i32, y.round() as i32))
             .collect();
-        self.bins.query_covering(&[contour.as_slice()], visit);
+        found.clear();
+        self.bins.query_covering(&[contour.as_slice()], |k| {
+            if (k as usize) < self.tris {
+                visit(k);
+            } else {
+                found.push(k - self.tris as u32);
+            }
+        });
+        found.sort_unstable();
+        found.dedup();
+        for &h in found.iter() {
+            self.stars[h as usize].query(
+                &contour,
+                &self.pairs,
+                |t| self.pairs.group(t as usize),
+                &mut visit,
+            );
+        }
     }
 }
 

@@ -14,6 +14,7 @@
 mod edges;
 mod index;
 mod order;
+mod sectors;
 mod visibility;
 
 use glam::DVec3;

@@ -105,6 +105,7 @@ pub(super) fn split_all(
         tris: vec![0; scene.tris.len()],
         prims: vec![0; scene.prims.len()],
         stamp: 0,
+        stars: Vec::new(),
     };
     features
         .iter()
@@ -121,6 +122,8 @@ struct Seen {
     tris: Vec<u32>,
     prims: Vec<u32>,
     stamp: u32,
+    /// Scratch for the stars a query meets.
+    stars: Vec<u32>,
 }
 
 /// Visible or hidden pieces shorter than this (pixels) are dropped.
@@ -291,39 +294,46 @@ fn split_visibility(
         return out;
     };
     let mut cover: Vec<(f64, f64)> = Vec::new();
-    c.index.query(p.lerp(q, from), p.lerp(q, to), |k| {
-        stats.occluder_candidates += 1;
-        if std::mem::replace(&mut seen.tris[k as usize], seen.stamp) == seen.stamp {
-            return;
-        }
-        let t = &c.scene.tris[k as usize];
-        if f.own.contains(&t.prim) {
-            return;
-        }
-        match &c.occluders[t.prim as usize] {
-            Occluder::Nothing => {}
-            Occluder::Camera(forms) => {
-                if std::mem::replace(&mut seen.prims[t.prim as usize], seen.stamp) == seen.stamp {
-                    return;
+    let mut stars = std::mem::take(&mut seen.stars);
+    c.index
+        .query(p.lerp(q, from), p.lerp(q, to), &mut stars, |k| {
+            stats.occluder_candidates += 1;
+            if std::mem::replace(&mut seen.tris[k as usize], seen.stamp) == seen.stamp {
+                return;
+            }
+            let t = &c.scene.tris[k as usize];
+            if f.own.contains(&t.prim) {
+                return;
+            }
+            match &c.occluders[t.prim as usize] {
+                Occluder::Nothing => {}
+                Occluder::Camera(forms) => {
+                    if std::mem::replace(&mut seen.prims[t.prim as usize], seen.stamp) == seen.stamp
+                    {
+                        return;
+                    }
+                    stats.occluder_tests += 1;
+                    if let Some((a, b)) =
+                        camera_hidden(forms, f, c.tolerance, c.scene.is_perspective())
+                    {
+                        cover.push((
+                            window_parameter(c.scene, f, a),
+                            window_parameter(c.scene, f, b),
+                        ));
+                    }
                 }
-                stats.occluder_tests += 1;
-                if let Some((a, b)) = camera_hidden(forms, f, c.tolerance, c.scene.is_perspective())
-                {
-                    cover.push((
-                        window_parameter(c.scene, f, a),
-                        window_parameter(c.scene, f, b),
-                    ));
+                Occluder::Screen => {
+                    stats.occluder_tests += 1;
+                    if let Some(iv) = hidden_interval(t, p, q, c.tolerance) {
+                        cover.push(iv);
+                    }
                 }
             }
-            Occluder::Screen => {
-                stats.occluder_tests += 1;
-                if let Some(iv) = hidden_interval(t, p, q, c.tolerance) {
-                    cover.push(iv);
-                }
-            }
-        }
-    });
-    cover.sort_by(|a, b| a.0.total_cmp(&b.0));
+        });
+    seen.stars = stars;
+    // Longest first among equal starts, so that the hidden pieces do not
+    // depend on the order the index finds the occluders in.
+    cover.sort_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1)));
     // Pieces under a thousandth of a pixel are where faces merely touch
     // the segment at a shared corner.
     let length = (q.x - p.x).hypot(q.y - p.y);
