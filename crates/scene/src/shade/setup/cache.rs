@@ -23,7 +23,7 @@ pub struct SetupCache {
 
 impl SetupCache {
     /// Entries of the table.
-    pub const SLOTS: usize = 64;
+    pub const SLOTS: usize = 256;
 
     /// Forgets every setup (a new frame).
     pub fn clear(&mut self) {
