@@ -165,12 +165,7 @@ impl SortedTransparencyZBuffer {
         for (t, tri) in scene.tris.iter().enumerate() {
             self.options.cancel.poll_every(t)?;
             if self.colors[tri.prim as usize][3] >= 1.0 && !partial(tri.prim) {
-                self.draw_tri(
-                    (scene, &mut setups),
-                    tri,
-                    (false, cutouts),
-                    &mut stats,
-                );
+                self.draw_tri((scene, &mut setups), tri, (false, cutouts), &mut stats);
             } else {
                 let mean = (tri.z[0] + tri.z[1] + tri.z[2]) / 3.0;
                 self.order.push((mean, t as u32));
@@ -183,12 +178,7 @@ impl SortedTransparencyZBuffer {
         for (k, &(_, t)) in order.iter().enumerate() {
             self.options.cancel.poll_every(k)?;
             let tri = &scene.tris[t as usize];
-            self.draw_tri(
-                (scene, &mut setups),
-                tri,
-                (true, cutouts),
-                &mut stats,
-            );
+            self.draw_tri((scene, &mut setups), tri, (true, cutouts), &mut stats);
         }
         self.order = order;
         self.resolve(frame);
@@ -241,8 +231,7 @@ impl Hider for SortedTransparencyZBuffer {
             screen,
             (self.options.shade, frame),
             |s, frame| self.draw(s, frame),
-        )
-        ;
+        );
         self.front = front;
         result
     }

@@ -174,7 +174,6 @@ impl Hider for SupersampledZBuffer {
         }
     }
 
-
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<SsaaStats> {
         hider_scene::check_frame("ssaa", scene, frame)?;
         let mut front = std::mem::take(&mut self.front);

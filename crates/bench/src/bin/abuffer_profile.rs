@@ -10,7 +10,10 @@
 //! a cut-out checker texture: the alpha test per sample), `cube` (12 large
 //! triangles: whole pixels), `one`
 //! (a single triangle: the fixed cost of a frame);
-//! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
+//! HIDER: `ssaa1`, `ssaa32`, `sorted` (the sorted-transparency z-buffer,
+//! 32 samples), `ssaa1-scene` / `ssaa32-scene` / `sorted-scene` (the
+//! same from the world-space scene, through the lean front end), `ps`
+//! (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
 //! `carpenter`, `ps2` (per-sample on 2 threads; the others take 1),
 //! `cov` (mask generation alone), `ps-scene` / `carpenter-scene` /
@@ -25,8 +28,8 @@
 //! same frame bit for bit when their digests agree).
 
 use hider_abuffer::{
-    ABuffer, ABufferOptions, DepthMode, SamplePattern, SsaaOptions, SupersampledZBuffer,
-    TriCoverage, pixel_range,
+    ABuffer, ABufferOptions, DepthMode, SamplePattern, SortedTransparencyZBuffer, SsaaOptions,
+    SupersampledZBuffer, TriCoverage, pixel_range,
 };
 use hider_scene::prepare::lean::{LeanScene, prepare_lean_into};
 use hider_scene::{
@@ -98,7 +101,13 @@ fn main() {
         "ssaa1" => Box::new(SupersampledZBuffer::new(
             SsaaOptions::default().with_pattern(SamplePattern::Centre),
         )),
-        "ssaa32" => Box::new(SupersampledZBuffer::new(SsaaOptions::default())),
+        "ssaa1-scene" => Box::new(SupersampledZBuffer::new(
+            SsaaOptions::default().with_pattern(SamplePattern::Centre),
+        )),
+        "ssaa32" | "ssaa32-scene" => Box::new(SupersampledZBuffer::new(SsaaOptions::default())),
+        "sorted" | "sorted-scene" => {
+            Box::new(SortedTransparencyZBuffer::new(SsaaOptions::default()))
+        }
         "ps" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(1))),
         "ps2" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(2))),
         "ps-nomerge" => Box::new(ABuffer::new(
@@ -161,6 +170,9 @@ fn main() {
     if matches!(
         which,
         "ps-scene"
+            | "ssaa1-scene"
+            | "ssaa32-scene"
+            | "sorted-scene"
             | "ps2-scene"
             | "ids-scene"
             | "lists-scene"

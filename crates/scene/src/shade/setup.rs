@@ -459,7 +459,9 @@ impl SurfaceSetup {
         let alpha = |slot: &mut Option<Option<TexSetup>>, texture: Option<&TextureRef>| {
             texture
                 .and_then(|t| {
-                    let setup = slot.get_or_insert_with(|| TexSetup::new(t, None)).as_mut()?;
+                    let setup = slot
+                        .get_or_insert_with(|| TexSetup::new(t, None))
+                        .as_mut()?;
                     setup.sample_alpha(t, &f, filter)
                 })
                 .unwrap_or(1.0)

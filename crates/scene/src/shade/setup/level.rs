@@ -82,8 +82,13 @@ impl LevelBounds {
             return None;
         }
         // The steps read D at the point and one pixel right or down.
-        let ds = [(x0, y0), (x1 + 1.0, y0), (x0, y1 + 1.0), (x1 + 1.0, y1 + 1.0)]
-            .map(|(x, y)| den.at(x, y));
+        let ds = [
+            (x0, y0),
+            (x1 + 1.0, y0),
+            (x0, y1 + 1.0),
+            (x1 + 1.0, y1 + 1.0),
+        ]
+        .map(|(x, y)| den.at(x, y));
         let (dmin, dmax) = ds
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &d| {

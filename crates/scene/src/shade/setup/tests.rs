@@ -74,7 +74,9 @@ fn agreement(obj: &str, size: u32) -> Agreement {
                 a.points += 1;
                 let (bf, _, den) = fast.point(&sampler, x, y).unwrap();
                 let ff = fast.footprint(&sampler, bf, den, x, y, false).unwrap();
-                let fs = slow.footprint(&sampler, b, Den::default(), x, y, false).unwrap();
+                let fs = slow
+                    .footprint(&sampler, b, Den::default(), x, y, false)
+                    .unwrap();
                 a.max_uv = a.max_uv.max((ff.uv - fs.uv).abs().max_element());
                 let rho = |f: &Footprint| (f.dx * scale).length().max((f.dy * scale).length());
                 let rho2 = |f: &Footprint| {
