@@ -204,11 +204,11 @@ impl TexSetup {
         })
     }
 
-    /// [`TextureRef::sample_footprint`] with this setup. Not inlined
-    /// into its callers: forced, the fetch's own helpers (wrapping,
-    /// floor, the texel closures) were then left as calls, 8 M
-    /// instructions more on the textured spider's frame.
-    #[inline]
+    /// [`TextureRef::sample_footprint`] with this setup, inlined with
+    /// the whole fetch (its helpers and closures are forced inline too:
+    /// with this alone they were left as calls, 8 M instructions more on
+    /// the textured spider's frame).
+    #[inline(always)]
     fn sample(
         &mut self,
         texture: &TextureRef,
