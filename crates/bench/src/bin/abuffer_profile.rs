@@ -12,7 +12,9 @@
 //! (a single triangle: the fixed cost of a frame);
 //! HIDER: `ssaa1`, `ssaa32`, `sorted` (the sorted-transparency z-buffer,
 //! 32 samples), `ssaa1-scene` / `ssaa32-scene` / `sorted-scene` (the
-//! same from the world-space scene, through the lean front end), `ps`
+//! same from the world-space scene, through the lean front end; with
+//! `-prep` after `-scene`, through `prepare` and `render` instead: what
+//! `render_scene` ran before the baselines took the lean front end), `ps`
 //! (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
 //! `carpenter`, `ps2` (per-sample on 2 threads; the others take 1),
@@ -97,7 +99,12 @@ fn main() {
         }
         other => panic!("unknown scene {other}"),
     };
-    let mut hider: Box<dyn DynHider> = match args.get(1).map_or("ps", String::as_str) {
+    // `NAME-prep`: NAME's hider, the scene prepared and rendered.
+    let (name, prep) = match args.get(1).map(String::as_str) {
+        Some(n) => n.strip_suffix("-prep").map_or((n, false), |n| (n, true)),
+        None => ("ps", false),
+    };
+    let mut hider: Box<dyn DynHider> = match name {
         "ssaa1" => Box::new(SupersampledZBuffer::new(
             SsaaOptions::default().with_pattern(SamplePattern::Centre),
         )),
@@ -166,7 +173,7 @@ fn main() {
     }
     let mut frame = Frame::new(size, size).expect("frame");
     let mut stats = StatsTable::default();
-    let which = args.get(1).map_or("ps", String::as_str);
+    let which = name;
     if matches!(
         which,
         "ps-scene"
@@ -196,6 +203,10 @@ fn main() {
         let summary = timer.time(|| match which {
             "lean" => prepare_lean_into(&scene, &view, &options, &mut lean).expect("lean"),
             "prepare" => prepare_into(&scene, &view, &options, &mut screen).expect("prepare"),
+            _ if prep => {
+                prepare_into(&scene, &view, &options, &mut screen).expect("prepare");
+                stats = hider.render(&screen, &mut frame).expect("render");
+            }
             _ => {
                 stats = hider
                     .render_scene(&scene, &view, &options, &mut screen, &mut frame)
