@@ -182,9 +182,9 @@ impl Hider for SupersampledZBuffer {
         result
     }
 
-    /// The A-buffer's lean front end instead of `prepare`
-    /// ([`FrontEnds::scene`]); `screen` is left as it was unless the scene
-    /// has cut-outs.
+    /// The A-buffer's lean front end instead of `prepare` (the same
+    /// frame, bit for bit); `screen` is left as it was unless the scene
+    /// has cut-outs (alpha-tested per sample from `prepare`'s primitives).
     fn render_scene(
         &mut self,
         scene: &Scene,
