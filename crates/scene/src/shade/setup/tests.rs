@@ -137,9 +137,8 @@ fn planes_shade_as_the_per_point_solve() {
 /// thirds of the primitives get a fixed level (4500 against 2064
 /// measured); the others straddle a boundary, by the bounds.
 /// Fails with a bound that misses a term (the step down's numerator
-/// taken as the step right's, the denominator's fourth power as its
-/// square), or without the margin on a scene whose footprint sits on a
-/// boundary.
+/// taken as the step right's, or the denominator's fourth power as its
+/// square: both tried).
 #[test]
 fn fixed_levels_are_the_per_point_levels() {
     let (mut fixed, mut open, mut points) = (0u64, 0u64, 0u64);
