@@ -7,24 +7,16 @@
 
 use hider_geom::PlaneEq;
 use hider_geom::fixed::SUBPIXEL_SCALE;
-use hider_scene::ScreenTri;
 
 use crate::coverage::Coverage;
 use crate::pattern::SamplePattern;
 use crate::select::pick_f64;
 
-/// The window depth of `tri` at sample `(sx, sy)` (1/256 pixel) of pixel
-/// `(i, j)`: the affine depth plane evaluated in `f64`. Every hider of this
-/// crate computes sample depths with this one function (or
-/// [`plane_depth`], the same expression) so that their depth comparisons
-/// agree bit for bit; at the centre it is exactly
-/// `tri.depth.at_pixel(i, j)`.
-#[inline]
-pub(crate) fn sample_depth(tri: &ScreenTri, i: u32, j: u32, pos: (i32, i32)) -> f64 {
-    plane_depth(&tri.depth, i, j, pos)
-}
-
-/// [`sample_depth`] for a depth plane alone.
+/// The window depth of a triangle whose depth plane is `plane` at sample
+/// `(sx, sy)` (1/256 pixel) of pixel `(i, j)`: the plane evaluated in
+/// `f64`. Every hider of this crate computes sample depths with this one
+/// expression so that their depth comparisons agree bit for bit; at the
+/// centre it is exactly `plane.at_pixel(i, j)`.
 #[inline]
 pub(crate) fn plane_depth(plane: &PlaneEq, i: u32, j: u32, (sx, sy): (i32, i32)) -> f64 {
     let scale = f64::from(SUBPIXEL_SCALE);
@@ -266,6 +258,7 @@ const GRID_Y: [f64; 4] = {
 #[cfg(test)]
 mod tests {
     use hider_geom::{FixedPt, PlaneEq};
+    use hider_scene::ScreenTri;
     use proptest::prelude::*;
 
     use super::*;
@@ -352,6 +345,6 @@ mod tests {
             prim: 0,
             front_facing: true,
         };
-        assert_eq!(sample_depth(&t, 3, 4, CENTRE), t.depth.at_pixel(3, 4));
+        assert_eq!(plane_depth(&t.depth, 3, 4, CENTRE), t.depth.at_pixel(3, 4));
     }
 }

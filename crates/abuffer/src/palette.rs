@@ -6,13 +6,6 @@ use std::sync::OnceLock;
 use hider_scene::shade::{SetupCache, prim_color, to_srgb8};
 use hider_scene::{ScreenScene, ShadeMode, TextureOptions, TextureSampler};
 
-/// Fills `out` with `[r, g, b, opacity]` (linear) for every primitive of
-/// `scene`, reusing its memory.
-pub(crate) fn prim_colors(scene: &ScreenScene, mode: ShadeMode, out: &mut Vec<[f32; 4]>) {
-    out.clear();
-    out.extend((0..scene.prims.len() as u32).map(|prim| prim_rgba(scene, prim, mode)));
-}
-
 /// `[r, g, b, opacity]` (linear, opacity clamped to [0, 1]) of `prim`.
 #[inline]
 pub(crate) fn prim_rgba(scene: &ScreenScene, prim: u32, mode: ShadeMode) -> [f32; 4] {
@@ -59,48 +52,21 @@ pub(crate) fn at_point(
     [r, g, b, a]
 }
 
-/// [`at_point`] at the centre of pixel `(i, j)`: the A-buffer shades a
-/// fragment once, at the pixel centre, whatever its coverage, as
-/// multisample rasterisers shade (supersampling shades every sample, see
-/// [`at_sample`]).
+/// The centre of pixel `(i, j)` in window coordinates: the A-buffer
+/// shades a fragment once, there, whatever its coverage, as multisample
+/// rasterisers shade (supersampling shades every sample, see
+/// [`sample_point`]).
 #[inline]
-pub(crate) fn at_pixel(
-    scene: &ScreenScene,
-    sampler: Option<&TextureSampler>,
-    setups: &mut SetupCache,
-    prim: u32,
-    rgba: [f32; 4],
-    (i, j): (u32, u32),
-) -> [f32; 4] {
-    at_point(
-        scene,
-        sampler,
-        setups,
-        prim,
-        rgba,
-        f64::from(i) + 0.5,
-        f64::from(j) + 0.5,
-    )
+pub(crate) fn pixel_centre((i, j): (u32, u32)) -> (f64, f64) {
+    (f64::from(i) + 0.5, f64::from(j) + 0.5)
 }
 
-/// [`at_point`] at the sample of pixel `(i, j)` at `pos` (1/256 pixel
-/// inside the pixel, as [`crate::SamplePattern::positions`] gives them).
+/// The window coordinates of the sample of pixel `(i, j)` at `pos` (1/256
+/// pixel inside the pixel, as [`crate::SamplePattern::positions`] gives
+/// them).
 #[inline]
-pub(crate) fn at_sample(
-    scene: &ScreenScene,
-    sampler: Option<&TextureSampler>,
-    setups: &mut SetupCache,
-    prim: u32,
-    rgba: [f32; 4],
-    (i, j): (u32, u32),
-    pos: (i32, i32),
-) -> [f32; 4] {
-    at_point(
-        scene,
-        sampler,
-        setups,
-        prim,
-        rgba,
+pub(crate) fn sample_point((i, j): (u32, u32), pos: (i32, i32)) -> (f64, f64) {
+    (
         f64::from(i) + f64::from(pos.0) / 256.0,
         f64::from(j) + f64::from(pos.1) / 256.0,
     )

@@ -21,17 +21,20 @@
 //!
 //! Same samples, masks and depths as [`crate::SupersampledZBuffer`]; ids
 //! and depth from the pixel-centre test of [`crate::centre`], over all
-//! triangles whatever their opacity, as the A-buffer reports them.
+//! triangles whatever their opacity, as the A-buffer reports them; from a
+//! world-space scene, the same front end (the A-buffer's lean one).
 
-use hider_scene::{Frame, Hider, Result, ScreenScene, ScreenTri, TextureSampler, check_frame};
+use hider_scene::prepare::lean::LeanTri;
+use hider_scene::{Frame, Hider, PrepareOptions, Result, Scene, ScreenScene, View};
 
 use crate::centre::{CentreBuffer, in_front};
-use crate::coverage::{TriCoverage, pixel_range};
+use crate::coverage::{TriCoverage, pixel_range_of};
 use crate::cutout::Cutouts;
-use crate::depth::sample_depth;
+use crate::depth::plane_depth;
 use crate::options::SsaaOptions;
-use crate::palette::{at_sample, prim_colors, to_pixel};
+use crate::palette::{sample_point, to_pixel};
 use crate::pattern::CENTRE;
+use crate::source::{FrontEnds, Source};
 use crate::stats::SsaaStats;
 use hider_scene::shade::SetupCache;
 
@@ -47,27 +50,27 @@ pub struct SortedTransparencyZBuffer {
     centre: CentreBuffer,
     colors: Vec<[f32; 4]>,
     order: Vec<(f64, u32)>,
+    front: FrontEnds,
 }
 
 impl SortedTransparencyZBuffer {
     /// Draws `tri` into the sample buffers: written when opaque, blended
     /// over what is there (depth tested, not written) when `translucent`.
-    fn draw(
+    fn draw_tri(
         &mut self,
-        scene: &ScreenScene,
-        (sampler, setups): (Option<&TextureSampler>, &mut SetupCache),
-        tri: &ScreenTri,
+        (scene, setups): (&Source<'_>, &mut SetupCache),
+        tri: &LeanTri,
         (translucent, cutouts): (bool, Option<&Cutouts<'_>>),
         stats: &mut SsaaStats,
     ) {
         let (w, h) = (scene.viewport.width, scene.viewport.height);
         let pattern = self.options.pattern;
         let n = pattern.count();
-        let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, w, h) else {
+        let Some((x0, y0, x1, y1)) = pixel_range_of(&tri.v, pattern, w, h) else {
             return;
         };
         let flat = self.colors[tri.prim as usize];
-        let setup = TriCoverage::new(tri, pattern);
+        let setup = TriCoverage::from_vertices(&tri.v, pattern);
         // Partial alpha is blended (its opacity comes with the sample's
         // colour), cut-outs are tested.
         let cut = cutouts.filter(|c| c.may_cut(tri.prim) && !c.is_partial(tri.prim));
@@ -79,7 +82,7 @@ impl SortedTransparencyZBuffer {
                 let p = j as usize * w as usize + i as usize;
                 if c.centre {
                     self.centre
-                        .test(p, sample_depth(tri, i, j, CENTRE), tri.prim);
+                        .test(p, plane_depth(&tri.depth, i, j, CENTRE), tri.prim);
                 }
                 for (k, &pos) in pattern.positions().iter().enumerate() {
                     if c.mask >> k & 1 == 0 {
@@ -87,14 +90,14 @@ impl SortedTransparencyZBuffer {
                     }
                     stats.depth_tests += 1;
                     let s = p * n + k;
-                    let z = sample_depth(tri, i, j, pos) as f32;
+                    let z = plane_depth(&tri.depth, i, j, pos) as f32;
                     if !in_front(z, tri.prim, self.depth[s], self.prims[s]) {
                         continue;
                     }
                     stats.depth_writes += 1;
                     self.hit[s] = true;
                     let [r, g, b, alpha] =
-                        at_sample(scene, sampler, setups, tri.prim, flat, (i, j), pos);
+                        scene.at_point(setups, tri.prim, flat, sample_point((i, j), pos));
                     if translucent {
                         let dst = self.color[s];
                         self.color[s] =
@@ -128,6 +131,59 @@ impl SortedTransparencyZBuffer {
             frame.coverage[p] = covered as f32 * inv_n;
         }
     }
+
+    /// Draws `scene`'s triangles into `frame` (of the scene's size):
+    /// opaque ones first, then translucent ones back to front.
+    fn draw(&mut self, scene: &Source<'_>, frame: &mut Frame) -> Result<SsaaStats> {
+        let pixels = frame.len();
+        let n = self.options.pattern.count();
+        let mut stats = SsaaStats {
+            bytes: self.options.check_budget(
+                "sorted-transparency z-buffer memory (bytes)",
+                pixels,
+                21,
+            )?,
+            ..SsaaStats::default()
+        };
+        frame.clear();
+        self.depth.clear();
+        self.depth.resize(pixels * n, f32::INFINITY);
+        self.prims.clear();
+        self.prims.resize(pixels * n, hider_scene::NO_ID);
+        self.color.clear();
+        self.color.resize(pixels * n, [0.0; 3]);
+        self.hit.clear();
+        self.hit.resize(pixels * n, false);
+        self.centre.reset(pixels);
+        scene.prim_colors(self.options.shade, &mut self.colors);
+        let mut setups = SetupCache::default();
+        let cutouts = Cutouts::new(scene.screen_scene(), self.options.pattern);
+        let cutouts = cutouts.as_ref();
+        let partial = |prim: u32| cutouts.is_some_and(|c| c.is_partial(prim));
+
+        self.order.clear();
+        for (t, tri) in scene.tris.iter().enumerate() {
+            self.options.cancel.poll_every(t)?;
+            if self.colors[tri.prim as usize][3] >= 1.0 && !partial(tri.prim) {
+                self.draw_tri((scene, &mut setups), tri, (false, cutouts), &mut stats);
+            } else {
+                let mean = (tri.z[0] + tri.z[1] + tri.z[2]) / 3.0;
+                self.order.push((mean, t as u32));
+            }
+        }
+        // Back to front: farthest mean depth first.
+        self.order
+            .sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        let order = std::mem::take(&mut self.order);
+        for (k, &(_, t)) in order.iter().enumerate() {
+            self.options.cancel.poll_every(k)?;
+            let tri = &scene.tris[t as usize];
+            self.draw_tri((scene, &mut setups), tri, (true, cutouts), &mut stats);
+        }
+        self.order = order;
+        self.resolve(frame);
+        Ok(stats)
+    }
 }
 
 impl Hider for SortedTransparencyZBuffer {
@@ -150,69 +206,34 @@ impl Hider for SortedTransparencyZBuffer {
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<SsaaStats> {
-        check_frame("ssaa-sorted", scene, frame)?;
-        let pixels = frame.len();
-        let n = self.options.pattern.count();
-        let mut stats = SsaaStats {
-            bytes: self.options.check_budget(
-                "sorted-transparency z-buffer memory (bytes)",
-                pixels,
-                21,
-            )?,
-            ..SsaaStats::default()
-        };
-        frame.clear();
-        self.depth.clear();
-        self.depth.resize(pixels * n, f32::INFINITY);
-        self.prims.clear();
-        self.prims.resize(pixels * n, hider_scene::NO_ID);
-        self.color.clear();
-        self.color.resize(pixels * n, [0.0; 3]);
-        self.hit.clear();
-        self.hit.resize(pixels * n, false);
-        self.centre.reset(pixels);
-        prim_colors(scene, self.options.shade, &mut self.colors);
-        let sampler = crate::palette::sampler(scene, self.options.shade);
-        let sampler = sampler.as_ref();
-        let mut setups = SetupCache::default();
-        let cutouts = Cutouts::new(Some(scene), self.options.pattern);
-        let cutouts = cutouts.as_ref();
-        let partial = |prim: u32| cutouts.is_some_and(|c| c.is_partial(prim));
+        hider_scene::check_frame("ssaa-sorted", scene, frame)?;
+        let mut front = std::mem::take(&mut self.front);
+        let result = front.screen(scene, self.options.shade, |s| self.draw(s, frame));
+        self.front = front;
+        result
+    }
 
-        self.order.clear();
-        for (t, tri) in scene.tris.iter().enumerate() {
-            self.options.cancel.poll_every(t)?;
-            if self.colors[tri.prim as usize][3] >= 1.0 && !partial(tri.prim) {
-                self.draw(
-                    scene,
-                    (sampler, &mut setups),
-                    tri,
-                    (false, cutouts),
-                    &mut stats,
-                );
-            } else {
-                let mean = (tri.z[0] + tri.z[1] + tri.z[2]) / 3.0;
-                self.order.push((mean, t as u32));
-            }
-        }
-        // Back to front: farthest mean depth first.
-        self.order
-            .sort_unstable_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
-        let order = std::mem::take(&mut self.order);
-        for (k, &(_, t)) in order.iter().enumerate() {
-            self.options.cancel.poll_every(k)?;
-            let tri = &scene.tris[t as usize];
-            self.draw(
-                scene,
-                (sampler, &mut setups),
-                tri,
-                (true, cutouts),
-                &mut stats,
-            );
-        }
-        self.order = order;
-        self.resolve(frame);
-        Ok(stats)
+    /// The A-buffer's lean front end instead of `prepare` (the same
+    /// frame, bit for bit); `screen` is left as it was unless the scene
+    /// has cut-outs (alpha-tested per sample from `prepare`'s primitives).
+    fn render_scene(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+        options: &PrepareOptions,
+        screen: &mut ScreenScene,
+        frame: &mut Frame,
+    ) -> Result<SsaaStats> {
+        let mut front = std::mem::take(&mut self.front);
+        let result = front.scene(
+            "ssaa-sorted",
+            (scene, view, options),
+            screen,
+            (self.options.shade, frame),
+            |s, frame| self.draw(s, frame),
+        );
+        self.front = front;
+        result
     }
 
     fn resolves_color(&self) -> bool {

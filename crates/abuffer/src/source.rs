@@ -7,9 +7,12 @@
 //! so the frame does not depend on which one was used.
 
 use hider_geom::Viewport;
-use hider_scene::prepare::lean::{LeanScene, LeanTri};
+use hider_scene::prepare::lean::{LeanScene, LeanTri, prepare_lean_into};
 use hider_scene::shade::{SetupCache, SurfaceSetup};
-use hider_scene::{Material, Scene, ScreenScene, ShadeMode, TextureOptions, TextureSampler, View};
+use hider_scene::{
+    Frame, Material, PrepareOptions, Result, Scene, ScreenScene, ShadeMode, TextureOptions,
+    TextureSampler, View, check_frame, check_frame_size, prepare_into,
+};
 
 use crate::bins::BinItem;
 
@@ -105,6 +108,13 @@ impl<'a> Source<'a> {
         }
     }
 
+    /// Fills `out` with [`Self::prim_rgba`] of every primitive, reusing
+    /// its memory.
+    pub(crate) fn prim_colors(&self, mode: ShadeMode, out: &mut Vec<[f32; 4]>) {
+        out.clear();
+        out.extend((0..self.prims() as u32).map(|prim| self.prim_rgba(prim, mode)));
+    }
+
     /// The opacity of every primitive, clamped to [0, 1] (the last
     /// channel of [`Self::prim_rgba`]), as runs: `out[k] = (end, alpha)`
     /// gives `alpha` to the primitives from the previous run's end up to
@@ -132,8 +142,38 @@ impl<'a> Source<'a> {
         }
     }
 
+    /// The colour and opacity of `prim` at window point `(x, y)` when the
+    /// frame is shaded per point (textures, vertex normals or colours),
+    /// from `prepare`'s per-primitive data ([`palette::at_point`]) or, for
+    /// the lean front end, the same data assembled from its vertices
+    /// ([`LeanScene::surface_rgb`]): the same colour, bit for bit; `rgba`
+    /// (the primitive's flat colour, [`Self::prim_rgba`]) otherwise. The
+    /// primitive's shading setup comes from `setups` (built there on first
+    /// use).
+    #[inline(always)]
+    pub(crate) fn at_point(
+        &self,
+        setups: &mut SetupCache,
+        prim: u32,
+        rgba: [f32; 4],
+        (x, y): (f64, f64),
+    ) -> [f32; 4] {
+        match self.kind {
+            Kind::Screen(_, None) | Kind::Lean(_, _, None) => rgba,
+            Kind::Screen(s, sampler) => palette::at_point(s, sampler, setups, prim, rgba, x, y),
+            Kind::Lean(lean, world, Some(sampler)) => {
+                let setup = setups.get_or_insert_with(prim, || {
+                    SurfaceSetup::new(sampler, &lean.prim_info(world, prim))
+                });
+                let base = [rgba[0], rgba[1], rgba[2]];
+                let [r, g, b] = lean.surface_rgb(world, sampler, setup, base, (x, y));
+                [r, g, b, rgba[3]]
+            }
+        }
+    }
+
     /// Whether a primitive's colour is the same at every pixel (the frame
-    /// is not textured): [`Self::at_pixel`] gives back its `rgba`.
+    /// is not textured): [`Self::at_point`] gives back its `rgba`.
     pub(crate) fn flat_colors(&self) -> bool {
         match self.kind {
             Kind::Screen(_, sampler) | Kind::Lean(_, _, sampler) => sampler.is_none(),
@@ -141,20 +181,59 @@ impl<'a> Source<'a> {
     }
 }
 
-/// [`ColorCache::at_pixel`] of the lean front end's primitive with shading
-/// setup `setup`, shaded per point through `sampler`.
-#[inline]
-fn lean_at_pixel(
-    lean: &LeanScene,
-    scene: &Scene,
-    sampler: &TextureSampler,
-    setup: &mut SurfaceSetup,
-    rgba: [f32; 4],
-    (i, j): (u32, u32),
-) -> [f32; 4] {
-    let centre = (f64::from(i) + 0.5, f64::from(j) + 0.5);
-    let [r, g, b] = lean.surface_rgb(scene, sampler, setup, [rgba[0], rgba[1], rgba[2]], centre);
-    [r, g, b, rgba[3]]
+/// The front ends of a hider that draws a frame's triangles from a
+/// [`Source`] and keeps nothing of them between frames (the supersampled
+/// baselines): `prepare`'s output converted, or the lean front end's,
+/// with their memory kept from frame to frame.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FrontEnds {
+    lean: LeanScene,
+    tris: Vec<LeanTri>,
+}
+
+impl FrontEnds {
+    /// `draw` of `scene`'s triangles, coloured under `mode`
+    /// ([`Hider::render`](hider_scene::Hider::render)).
+    pub(crate) fn screen<T>(
+        &mut self,
+        scene: &ScreenScene,
+        mode: ShadeMode,
+        draw: impl FnOnce(&Source<'_>) -> T,
+    ) -> T {
+        self.tris.clear();
+        self.tris.extend(scene.tris.iter().map(LeanTri::from));
+        let sampler = palette::sampler(scene, mode);
+        draw(&Source::screen(scene, &self.tris, sampler.as_ref()))
+    }
+
+    /// `draw` of world-space `scene`'s triangles for `view`, coloured
+    /// under `mode`, through the lean front end (`prepare`'s triangles,
+    /// in its order, with the same colours, bit for bit), shaded per point
+    /// from its vertices when the scene varies per point; a scene with
+    /// cut-outs (alpha-tested per sample from `prepare`'s primitives) is
+    /// prepared into `screen` instead
+    /// ([`Hider::render_scene`](hider_scene::Hider::render_scene)).
+    /// `name` names the hider when `frame` is not `view`'s size (checked
+    /// before any front end runs).
+    pub(crate) fn scene<T>(
+        &mut self,
+        name: &str,
+        (scene, view, options): (&Scene, &View, &PrepareOptions),
+        screen: &mut ScreenScene,
+        (mode, frame): (ShadeMode, &mut Frame),
+        draw: impl FnOnce(&Source<'_>, &mut Frame) -> Result<T>,
+    ) -> Result<T> {
+        if hider_scene::shade::cutout::scene_has_cutouts(scene) {
+            prepare_into(scene, view, options, screen)?;
+            check_frame(name, screen, frame)?;
+            return self.screen(screen, mode, |s| draw(s, frame));
+        }
+        check_frame_size(name, view.viewport, frame)?;
+        self.lean.set_point_shading(mode == ShadeMode::Lambert);
+        prepare_lean_into(scene, view, options, &mut self.lean)?;
+        let sampler = lean_sampler(&self.lean, view);
+        draw(&Source::lean(&self.lean, scene, sampler.as_ref()), frame)
+    }
 }
 
 /// The sampler of a frame the lean front end prepared into `lean` for
@@ -216,11 +295,8 @@ impl ColorCache {
     }
 
     /// The colour and opacity of `prim` in `scene` under `mode` at pixel
-    /// `ij`: [`Self::get`], then, when the frame is shaded per point
-    /// (textures, vertex normals or colours), shaded at the pixel centre
-    /// ([`palette::at_pixel`]) from `prepare`'s per-primitive data or, for
-    /// the lean front end, the same data assembled from its vertices
-    /// ([`LeanScene::surface_rgb`]): the same colour, bit for bit. The
+    /// `ij`: [`Self::get`], then, when the frame is shaded per point,
+    /// shaded at the pixel centre ([`Source::at_point`]). The
     /// primitive's shading setup is built once per run of pixels. Inlined
     /// into the resolve loops (a call cost 2 % of the smooth-shaded
     /// spider's frame).
@@ -233,18 +309,7 @@ impl ColorCache {
         ij: (u32, u32),
     ) -> [f32; 4] {
         let flat = self.get(scene, mode, prim);
-        match scene.kind {
-            Kind::Screen(_, None) | Kind::Lean(_, _, None) => flat,
-            Kind::Screen(s, sampler) => {
-                palette::at_pixel(s, sampler, &mut self.setups, prim, flat, ij)
-            }
-            Kind::Lean(lean, world, Some(sampler)) => {
-                let setup = self.setups.get_or_insert_with(prim, || {
-                    SurfaceSetup::new(sampler, &lean.prim_info(world, prim))
-                });
-                lean_at_pixel(lean, world, sampler, setup, flat, ij)
-            }
-        }
+        scene.at_point(&mut self.setups, prim, flat, palette::pixel_centre(ij))
     }
 }
 

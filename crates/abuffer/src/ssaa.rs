@@ -2,7 +2,7 @@
 //!
 //! What the A-buffer is measured against: the same sample positions
 //! ([`SamplePattern`]), the same coverage masks ([`TriCoverage`], fast path
-//! included), the same sample depths ([`sample_depth`] rounded to `f32`)
+//! included), the same sample depths ([`plane_depth`] rounded to `f32`)
 //! and the same depth order ([`in_front`]); the difference is that every
 //! covered sample is depth-tested and written individually, and the buffer
 //! holds `samples` depths and ids for every pixel of the image whether it
@@ -16,16 +16,22 @@
 //! colours (background black), its coverage the fraction of covered
 //! samples; ids and depth come from the pixel-centre test of
 //! [`crate::centre`].
+//!
+//! From a world-space scene ([`Hider::render_scene`]) the triangles and
+//! colours come from the A-buffer's lean front end ([`FrontEnds`]), as
+//! the A-buffer's do, textured and smooth-shaded scenes included: the same
+//! frame as through `prepare`, bit for bit.
 
-use hider_scene::{Frame, Hider, NO_ID, Result, ScreenScene, check_frame};
+use hider_scene::{Frame, Hider, NO_ID, PrepareOptions, Result, Scene, ScreenScene, View};
 
 use crate::centre::{CentreBuffer, in_front};
-use crate::coverage::{TriCoverage, pixel_range};
+use crate::coverage::{TriCoverage, pixel_range_of};
 use crate::cutout::Cutouts;
-use crate::depth::sample_depth;
+use crate::depth::plane_depth;
 use crate::options::SsaaOptions;
-use crate::palette::{at_sample, prim_colors, to_pixel};
+use crate::palette::{sample_point, to_pixel};
 use crate::pattern::{CENTRE, SamplePattern};
+use crate::source::{FrontEnds, Source};
 use crate::stats::SsaaStats;
 use hider_scene::shade::SetupCache;
 
@@ -37,6 +43,7 @@ pub struct SupersampledZBuffer {
     ids: Vec<u32>,
     centre: CentreBuffer,
     colors: Vec<[f32; 4]>,
+    front: FrontEnds,
 }
 
 impl SupersampledZBuffer {
@@ -48,11 +55,10 @@ impl SupersampledZBuffer {
 
     /// Writes ids and depth from the centre buffer, and colour and coverage
     /// as the mean over each pixel's samples.
-    fn resolve(&self, scene: &ScreenScene, frame: &mut Frame) {
+    fn resolve(&self, scene: &Source<'_>, frame: &mut Frame) {
         let pixels = frame.len();
         let n = self.options.pattern.count();
         let positions = self.options.pattern.positions();
-        let sampler = crate::palette::sampler(scene, self.options.shade);
         let mut setups = SetupCache::default();
         let w = frame.width() as usize;
         self.centre.write(frame);
@@ -66,15 +72,8 @@ impl SupersampledZBuffer {
             for (&id, &pos) in self.ids[p * n..(p + 1) * n].iter().zip(positions) {
                 if id != NO_ID {
                     covered += 1;
-                    let c = at_sample(
-                        scene,
-                        sampler.as_ref(),
-                        &mut setups,
-                        id,
-                        self.colors[id as usize],
-                        ij,
-                        pos,
-                    );
+                    let rgba = self.colors[id as usize];
+                    let c = scene.at_point(&mut setups, id, rgba, sample_point(ij, pos));
                     for (s, v) in sum.iter_mut().zip(c) {
                         *s += v;
                     }
@@ -83,6 +82,68 @@ impl SupersampledZBuffer {
             frame.coverage[p] = covered as f32 * inv_n;
             frame.color[p] = to_pixel(sum.map(|c| c * inv_n));
         }
+    }
+
+    /// Draws `scene`'s triangles into `frame` (of the scene's size).
+    fn draw(&mut self, scene: &Source<'_>, frame: &mut Frame) -> Result<SsaaStats> {
+        let (w, h) = (scene.viewport.width, scene.viewport.height);
+        let pixels = w as usize * h as usize;
+        let pattern = self.options.pattern;
+        let n = pattern.count();
+        let mut stats = SsaaStats {
+            bytes: self
+                .options
+                .check_budget("supersampled z-buffer memory (bytes)", pixels, 8)?,
+            ..SsaaStats::default()
+        };
+        frame.clear();
+        self.depth.clear();
+        self.depth.resize(pixels * n, f32::INFINITY);
+        self.ids.clear();
+        self.ids.resize(pixels * n, NO_ID);
+        self.centre.reset(pixels);
+        scene.prim_colors(self.options.shade, &mut self.colors);
+        let positions = pattern.positions();
+        // Partial alpha is tested at one half too: this z-buffer draws
+        // every surface opaque.
+        let cutouts = Cutouts::new(scene.screen_scene(), pattern);
+
+        for (k, tri) in scene.tris.iter().enumerate() {
+            self.options.cancel.poll_every(k)?;
+            let cut = cutouts.as_ref().filter(|c| c.may_cut(tri.prim));
+            let Some((x0, y0, x1, y1)) = pixel_range_of(&tri.v, pattern, w, h) else {
+                continue;
+            };
+            let setup = TriCoverage::from_vertices(&tri.v, pattern);
+            for j in y0..=y1 {
+                for (i, c) in setup.row(x0, x1, j) {
+                    let c = cut.map_or(c, |cut| cut.coverage(tri.prim, (i, j), c));
+                    stats.pixel_hits += 1;
+                    stats.full_coverage += u64::from(c.full);
+                    let p = j as usize * w as usize + i as usize;
+                    if c.centre {
+                        self.centre
+                            .test(p, plane_depth(&tri.depth, i, j, CENTRE), tri.prim);
+                    }
+                    for (k, &pos) in positions.iter().enumerate() {
+                        if c.mask >> k & 1 == 0 {
+                            continue;
+                        }
+                        stats.depth_tests += 1;
+                        let s = p * n + k;
+                        let z = plane_depth(&tri.depth, i, j, pos) as f32;
+                        if in_front(z, tri.prim, self.depth[s], self.ids[s]) {
+                            self.depth[s] = z;
+                            self.ids[s] = tri.prim;
+                            stats.depth_writes += 1;
+                        }
+                    }
+                }
+            }
+        }
+
+        self.resolve(scene, frame);
+        Ok(stats)
     }
 }
 
@@ -114,65 +175,34 @@ impl Hider for SupersampledZBuffer {
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<SsaaStats> {
-        check_frame("ssaa", scene, frame)?;
-        let (w, h) = (scene.viewport.width, scene.viewport.height);
-        let pixels = w as usize * h as usize;
-        let pattern = self.options.pattern;
-        let n = pattern.count();
-        let mut stats = SsaaStats {
-            bytes: self
-                .options
-                .check_budget("supersampled z-buffer memory (bytes)", pixels, 8)?,
-            ..SsaaStats::default()
-        };
-        frame.clear();
-        self.depth.clear();
-        self.depth.resize(pixels * n, f32::INFINITY);
-        self.ids.clear();
-        self.ids.resize(pixels * n, NO_ID);
-        self.centre.reset(pixels);
-        prim_colors(scene, self.options.shade, &mut self.colors);
-        let positions = pattern.positions();
-        // Partial alpha is tested at one half too: this z-buffer draws
-        // every surface opaque.
-        let cutouts = Cutouts::new(Some(scene), pattern);
+        hider_scene::check_frame("ssaa", scene, frame)?;
+        let mut front = std::mem::take(&mut self.front);
+        let result = front.screen(scene, self.options.shade, |s| self.draw(s, frame));
+        self.front = front;
+        result
+    }
 
-        for (k, tri) in scene.tris.iter().enumerate() {
-            self.options.cancel.poll_every(k)?;
-            let cut = cutouts.as_ref().filter(|c| c.may_cut(tri.prim));
-            let Some((x0, y0, x1, y1)) = pixel_range(tri, pattern, w, h) else {
-                continue;
-            };
-            let setup = TriCoverage::new(tri, pattern);
-            for j in y0..=y1 {
-                for (i, c) in setup.row(x0, x1, j) {
-                    let c = cut.map_or(c, |cut| cut.coverage(tri.prim, (i, j), c));
-                    stats.pixel_hits += 1;
-                    stats.full_coverage += u64::from(c.full);
-                    let p = j as usize * w as usize + i as usize;
-                    if c.centre {
-                        self.centre
-                            .test(p, sample_depth(tri, i, j, CENTRE), tri.prim);
-                    }
-                    for (k, &pos) in positions.iter().enumerate() {
-                        if c.mask >> k & 1 == 0 {
-                            continue;
-                        }
-                        stats.depth_tests += 1;
-                        let s = p * n + k;
-                        let z = sample_depth(tri, i, j, pos) as f32;
-                        if in_front(z, tri.prim, self.depth[s], self.ids[s]) {
-                            self.depth[s] = z;
-                            self.ids[s] = tri.prim;
-                            stats.depth_writes += 1;
-                        }
-                    }
-                }
-            }
-        }
-
-        self.resolve(scene, frame);
-        Ok(stats)
+    /// The A-buffer's lean front end instead of `prepare` (the same
+    /// frame, bit for bit); `screen` is left as it was unless the scene
+    /// has cut-outs (alpha-tested per sample from `prepare`'s primitives).
+    fn render_scene(
+        &mut self,
+        scene: &Scene,
+        view: &View,
+        options: &PrepareOptions,
+        screen: &mut ScreenScene,
+        frame: &mut Frame,
+    ) -> Result<SsaaStats> {
+        let mut front = std::mem::take(&mut self.front);
+        let result = front.scene(
+            "ssaa",
+            (scene, view, options),
+            screen,
+            (self.options.shade, frame),
+            |s, frame| self.draw(s, frame),
+        );
+        self.front = front;
+        result
     }
 
     fn resolves_color(&self) -> bool {

@@ -2,6 +2,7 @@
 //! z-buffer and the oracle, coverage convergence, order-independent
 //! transparency, depth modes, merging and the memory bound.
 
+mod baselines_lean;
 mod coincident;
 mod common;
 mod convergence;

@@ -10,7 +10,12 @@
 //! a cut-out checker texture: the alpha test per sample), `cube` (12 large
 //! triangles: whole pixels), `one`
 //! (a single triangle: the fixed cost of a frame);
-//! HIDER: `ssaa1`, `ssaa32`, `ps` (A-buffer, per-sample), `ps-nomerge`
+//! HIDER: `ssaa1`, `ssaa32`, `sorted` (the sorted-transparency z-buffer,
+//! 32 samples), `ssaa1-scene` / `ssaa32-scene` / `sorted-scene` (the
+//! same from the world-space scene, through the lean front end; with
+//! `-prep` after `-scene`, through `prepare` and `render` instead: what
+//! `render_scene` ran before the baselines took the lean front end), `ps`
+//! (A-buffer, per-sample), `ps-nomerge`
 //! (merging off), `mm` (min/max),
 //! `carpenter`, `ps2` (per-sample on 2 threads; the others take 1),
 //! `cov` (mask generation alone), `ps-scene` / `carpenter-scene` /
@@ -25,8 +30,8 @@
 //! same frame bit for bit when their digests agree).
 
 use hider_abuffer::{
-    ABuffer, ABufferOptions, DepthMode, SamplePattern, SsaaOptions, SupersampledZBuffer,
-    TriCoverage, pixel_range,
+    ABuffer, ABufferOptions, DepthMode, SamplePattern, SortedTransparencyZBuffer, SsaaOptions,
+    SupersampledZBuffer, TriCoverage, pixel_range,
 };
 use hider_scene::prepare::lean::{LeanScene, prepare_lean_into};
 use hider_scene::{
@@ -94,11 +99,22 @@ fn main() {
         }
         other => panic!("unknown scene {other}"),
     };
-    let mut hider: Box<dyn DynHider> = match args.get(1).map_or("ps", String::as_str) {
+    // `NAME-prep`: NAME's hider, the scene prepared and rendered.
+    let (name, prep) = match args.get(1).map(String::as_str) {
+        Some(n) => n.strip_suffix("-prep").map_or((n, false), |n| (n, true)),
+        None => ("ps", false),
+    };
+    let mut hider: Box<dyn DynHider> = match name {
         "ssaa1" => Box::new(SupersampledZBuffer::new(
             SsaaOptions::default().with_pattern(SamplePattern::Centre),
         )),
-        "ssaa32" => Box::new(SupersampledZBuffer::new(SsaaOptions::default())),
+        "ssaa1-scene" => Box::new(SupersampledZBuffer::new(
+            SsaaOptions::default().with_pattern(SamplePattern::Centre),
+        )),
+        "ssaa32" | "ssaa32-scene" => Box::new(SupersampledZBuffer::new(SsaaOptions::default())),
+        "sorted" | "sorted-scene" => {
+            Box::new(SortedTransparencyZBuffer::new(SsaaOptions::default()))
+        }
         "ps" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(1))),
         "ps2" => Box::new(ABuffer::new(ABufferOptions::default().with_threads(2))),
         "ps-nomerge" => Box::new(ABuffer::new(
@@ -157,10 +173,13 @@ fn main() {
     }
     let mut frame = Frame::new(size, size).expect("frame");
     let mut stats = StatsTable::default();
-    let which = args.get(1).map_or("ps", String::as_str);
+    let which = name;
     if matches!(
         which,
         "ps-scene"
+            | "ssaa1-scene"
+            | "ssaa32-scene"
+            | "sorted-scene"
             | "ps2-scene"
             | "ids-scene"
             | "lists-scene"
@@ -184,6 +203,10 @@ fn main() {
         let summary = timer.time(|| match which {
             "lean" => prepare_lean_into(&scene, &view, &options, &mut lean).expect("lean"),
             "prepare" => prepare_into(&scene, &view, &options, &mut screen).expect("prepare"),
+            _ if prep => {
+                prepare_into(&scene, &view, &options, &mut screen).expect("prepare");
+                stats = hider.render(&screen, &mut frame).expect("render");
+            }
             _ => {
                 stats = hider
                     .render_scene(&scene, &view, &options, &mut screen, &mut frame)

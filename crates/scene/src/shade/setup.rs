@@ -140,12 +140,22 @@ impl Planes {
 
     /// The texture coordinates at `(x, y)`, where the denominator is
     /// `den`, and one pixel right and down (from the planes' steps: one
-    /// division each, no barycentrics); `None` without uvs.
+    /// division each, no barycentrics) unless the point's levels are
+    /// `fixed` (then the steps are left zero: nothing reads them); `None`
+    /// without uvs.
     #[inline]
-    fn footprint(&self, x: f64, y: f64, Den { den, inv }: Den) -> Option<Footprint> {
+    fn footprint(&self, x: f64, y: f64, Den { den, inv }: Den, fixed: bool) -> Option<Footprint> {
         let [pu, pv] = self.uv.as_ref()?;
         let top = DVec2::new(pu.at(x, y), pv.at(x, y));
         let uv = top * inv;
+        if fixed {
+            return Some(Footprint {
+                uv,
+                dx: DVec2::ZERO,
+                dy: DVec2::ZERO,
+                fixed,
+            });
+        }
         let step = |top: DVec2, den: f64| {
             if den == 0.0 {
                 DVec2::ZERO
@@ -157,6 +167,7 @@ impl Planes {
             uv,
             dx: step(top + DVec2::new(pu.x, pv.x), den + self.den.x),
             dy: step(top + DVec2::new(pu.y, pv.y), den + self.den.y),
+            fixed,
         })
     }
 }
@@ -169,27 +180,35 @@ struct Den {
 }
 
 /// A texture's sampling setup for one primitive: its footprint scale and
-/// chain length (from the header), and the decoded texture once sampled.
+/// chain length (from the header), the level every point of the
+/// primitive reads when its footprint cannot change it
+/// ([`level::LevelBounds`]), and the decoded texture once sampled.
 #[derive(Clone, Debug)]
 struct TexSetup {
     /// Level-0 texels per unit of texture coordinate, `-s` included.
     scale: DVec2,
     levels: u32,
+    fixed: Option<u32>,
     held: Option<Arc<Texture>>,
 }
 
 impl TexSetup {
-    fn new(texture: &TextureRef) -> Option<Self> {
+    fn new(texture: &TextureRef, bounds: Option<&LevelBounds>) -> Option<Self> {
         let (size, levels) = texture.footprint_scale()?;
+        let scale = DVec2::from(size) * DVec2::from(texture.transform.scale);
         Some(Self {
-            scale: DVec2::from(size) * DVec2::from(texture.transform.scale),
+            scale,
             levels,
+            fixed: bounds.and_then(|b| b.fixed_level(scale, levels)),
             held: None,
         })
     }
 
-    /// [`TextureRef::sample_footprint`] with this setup.
-    #[inline]
+    /// [`TextureRef::sample_footprint`] with this setup, inlined with
+    /// the whole fetch (its helpers and closures are forced inline too:
+    /// with this alone they were left as calls, 8 M instructions more on
+    /// the textured spider's frame).
+    #[inline(always)]
     fn sample(
         &mut self,
         texture: &TextureRef,
@@ -217,10 +236,16 @@ impl TexSetup {
     /// texture's transform.
     #[inline(always)]
     fn at(&mut self, texture: &TextureRef, f: &Footprint) -> Option<(&Texture, u32, f64, f64)> {
-        let rho2 = (f.dx * self.scale)
-            .length_squared()
-            .max((f.dy * self.scale).length_squared());
-        let level = mip::level_for_squared(rho2, self.levels);
+        let level = match self.fixed {
+            Some(level) if f.fixed => level,
+            _ => {
+                debug_assert!(!f.fixed, "a footprint without steps for a level not fixed");
+                let rho2 = (f.dx * self.scale)
+                    .length_squared()
+                    .max((f.dy * self.scale).length_squared());
+                mip::level_for_squared(rho2, self.levels)
+            }
+        };
         if self.held.as_ref().is_none_or(|t| t.base_level() > level) {
             self.held = Some(texture.get_level(level)?);
         }
@@ -229,9 +254,9 @@ impl TexSetup {
     }
 }
 
-/// The colour of `texture` (with its setup in `slot`, made on first use)
-/// at footprint `f`; `None` without a texture, a footprint, or when the
-/// texture does not load.
+/// The colour of `texture` (with its setup in `slot`, made by
+/// [`SurfaceSetup::levels_fixed`]) at footprint `f`; `None` without a
+/// texture, a footprint, or when the texture does not load.
 #[inline(always)]
 fn map_texel(
     slot: &mut Option<Option<TexSetup>>,
@@ -240,9 +265,7 @@ fn map_texel(
     filter: super::Filter,
 ) -> Option<[f32; 3]> {
     let texture = texture?;
-    let setup = slot
-        .get_or_insert_with(|| TexSetup::new(texture))
-        .as_mut()?;
+    let setup = slot.as_mut()?.as_mut()?;
     Some(setup.sample(texture, f?, filter)?.0)
 }
 
@@ -260,11 +283,13 @@ pub(super) fn alpha_textures(material: &Material) -> (Option<&TextureRef>, Optio
 }
 
 /// Texture coordinates at a point and their change one pixel right (`dx`)
-/// and down (`dy`).
+/// and down (`dy`); `fixed` when the point is one where every texture
+/// sampled has its level fixed (then the steps were not computed).
 pub(super) struct Footprint {
     pub(super) uv: DVec2,
     pub(super) dx: DVec2,
     pub(super) dy: DVec2,
+    pub(super) fixed: bool,
 }
 
 /// What shading a primitive per point reads that does not change across
@@ -276,6 +301,10 @@ pub(super) struct Footprint {
 pub struct SurfaceSetup {
     info: PrimInfo,
     planes: Option<Planes>,
+    /// The footprint's bounds when every texture the colour reads has a
+    /// fixed level where they hold, found with the textures' setups on
+    /// the first textured point (`Some(None)`: nowhere).
+    fixed: Option<Option<LevelBounds>>,
     /// Unit face normal (zero for a degenerate primitive).
     face: DVec3,
     /// The diffuse, specular and dissolve (`map_d`) textures' setups,
@@ -303,6 +332,7 @@ impl SurfaceSetup {
         Self {
             info: *info,
             planes,
+            fixed: None,
             face: n.normalize_or_zero(),
             diffuse: None,
             specular: None,
@@ -342,11 +372,63 @@ impl SurfaceSetup {
         den: Den,
         x: f64,
         y: f64,
+        fixed: bool,
     ) -> Option<Footprint> {
         if let Some(p) = &self.planes {
-            return p.footprint(x, y, den);
+            return p.footprint(x, y, den, fixed);
         }
         sampler.uv_footprint(&self.info, b, x, y)
+    }
+
+    /// Whether each of the textures `diffuse` and `specular` reads a
+    /// fixed level at `(x, y)` ([`level::LevelBounds`]): then the point's
+    /// footprint needs no steps. The first call makes their setups and
+    /// the bounds (the textures a primitive's colour reads are the same
+    /// at every point: its material's, under the frame's sampler); the
+    /// others cost four comparisons.
+    #[inline]
+    fn levels_fixed(
+        &mut self,
+        sampler: &TextureSampler,
+        diffuse: Option<&TextureRef>,
+        specular: Option<&TextureRef>,
+        x: f64,
+        y: f64,
+    ) -> bool {
+        let bounds = match &self.fixed {
+            Some(bounds) => bounds,
+            None => {
+                let bounds = self.make_texture_setups(sampler, diffuse, specular);
+                self.fixed.insert(bounds)
+            }
+        };
+        bounds.as_ref().is_some_and(|b| b.holds_at(x, y))
+    }
+
+    /// Makes the setups of `diffuse` and `specular` with the footprint's
+    /// bounds, and gives the bounds when both read a fixed level where
+    /// they hold.
+    #[cold]
+    fn make_texture_setups(
+        &mut self,
+        sampler: &TextureSampler,
+        diffuse: Option<&TextureRef>,
+        specular: Option<&TextureRef>,
+    ) -> Option<LevelBounds> {
+        let (planes, info) = (&self.planes, &self.info);
+        let bounds = planes.as_ref().and_then(|p| {
+            let corners =
+                level::window_corners(info.camera, |c| sampler.rays().window_in_front(c))?;
+            LevelBounds::new(p.uv.as_ref()?, &p.den, corners, sampler.rays().size())
+        });
+        let mut fixed = bounds.is_some();
+        for (slot, texture) in [(&mut self.diffuse, diffuse), (&mut self.specular, specular)] {
+            if let Some(t) = texture {
+                let setup = slot.get_or_insert_with(|| TexSetup::new(t, bounds.as_ref()));
+                fixed &= setup.as_ref().is_none_or(|s| s.fixed.is_some());
+            }
+        }
+        bounds.filter(|_| fixed)
     }
 
     /// [`TextureSampler::alpha_at`] of this primitive (of `material`, the
@@ -369,7 +451,7 @@ impl SurfaceSetup {
         }
         let Some(f) = self
             .point(sampler, x, y)
-            .and_then(|(b, _, den)| self.footprint(sampler, b, den, x, y))
+            .and_then(|(b, _, den)| self.footprint(sampler, b, den, x, y, false))
         else {
             return 1.0;
         };
@@ -377,7 +459,9 @@ impl SurfaceSetup {
         let alpha = |slot: &mut Option<Option<TexSetup>>, texture: Option<&TextureRef>| {
             texture
                 .and_then(|t| {
-                    let setup = slot.get_or_insert_with(|| TexSetup::new(t)).as_mut()?;
+                    let setup = slot
+                        .get_or_insert_with(|| TexSetup::new(t, None))
+                        .as_mut()?;
                     setup.sample_alpha(t, &f, filter)
                 })
                 .unwrap_or(1.0)
@@ -409,7 +493,8 @@ impl SurfaceSetup {
         // local (not built on first use inside a closure: that cost three
         // trips through memory on the way to the mip level).
         let footprint = if diffuse_map.is_some() || specular_map.is_some() {
-            self.footprint(sampler, b, den, x, y)
+            let fixed = self.levels_fixed(sampler, diffuse_map, specular_map, x, y);
+            self.footprint(sampler, b, den, x, y, fixed)
         } else {
             None
         };
@@ -461,7 +546,9 @@ impl SurfaceSetup {
 }
 
 mod cache;
+mod level;
 pub use cache::SetupCache;
+use level::LevelBounds;
 
 #[cfg(all(test, feature = "obj", feature = "image"))]
 mod tests;

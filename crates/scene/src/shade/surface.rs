@@ -214,7 +214,12 @@ impl TextureSampler {
         let step = |bx: Option<([f64; 3], DVec3)>| bx.map_or(DVec2::ZERO, |(b, _)| at(b) - uv);
         let dx = step(self.barycentrics(info, x + 1.0, y));
         let dy = step(self.barycentrics(info, x, y + 1.0));
-        Some(Footprint { uv, dx, dy })
+        Some(Footprint {
+            uv,
+            dx,
+            dy,
+            fixed: false,
+        })
     }
 
     /// The texture alpha of primitive `info` at window point `(x, y)`: its
@@ -461,9 +466,26 @@ impl CameraRays {
         ])
     }
 
+    /// A camera-space point's window position (pixels, y down), when it
+    /// is in front of the eye (clip `w` positive) under a perspective
+    /// camera.
+    pub(super) fn window_in_front(&self, p: DVec3) -> Option<DVec2> {
+        let clip = self.projection * p.extend(1.0);
+        (self.perspective && clip.w > 0.0).then(|| self.window_of_clip(clip))
+    }
+
+    /// The window's width and height in pixels.
+    pub(super) fn size(&self) -> (f64, f64) {
+        (self.width, self.height)
+    }
+
     /// A camera-space point's window position (pixels, y down).
     pub(super) fn window_of(&self, p: DVec3) -> DVec2 {
-        let clip = self.projection * p.extend(1.0);
+        self.window_of_clip(self.projection * p.extend(1.0))
+    }
+
+    /// The window position of clip-space point `clip`.
+    fn window_of_clip(&self, clip: DVec4) -> DVec2 {
         let ndc = clip.truncate() / clip.w;
         DVec2::new(
             (ndc.x + 1.0) * 0.5 * self.width,

@@ -23,7 +23,7 @@ pub struct SetupCache {
 
 impl SetupCache {
     /// Entries of the table.
-    pub const SLOTS: usize = 64;
+    pub const SLOTS: usize = 256;
 
     /// Forgets every setup (a new frame).
     pub fn clear(&mut self) {
@@ -91,9 +91,10 @@ mod tests {
         let (mut points, mut alphas) = (0u64, 0u64);
         for k in 0..3 * n {
             // Each primitive twice in a row (the second time a hit),
-            // then the one 63 further: the table's slots fill, and a
-            // primitive that comes back finds its slot taken.
-            let prim = (k / 2 * 63) % n;
+            // then the one a table's size less one further: the table's
+            // slots fill, and a primitive that comes back finds its slot
+            // taken.
+            let prim = (k / 2 * (SetupCache::SLOTS as u32 - 1)) % n;
             let info = &screen.prims[prim as usize];
             let w = info.camera.map(|c| sampler.rays().window_of(c));
             let c = (w[0] + w[1] + w[2]) / 3.0;

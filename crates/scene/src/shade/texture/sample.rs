@@ -22,27 +22,46 @@ impl Level {
     #[inline(always)]
     pub(crate) fn sample(&self, u: f64, v: f64, filter: Filter, clamp: bool) -> ([f32; 3], f32) {
         let rgb = linear_table();
-        let colour = |k: usize| {
-            let c = self.rgb[k];
+        // The texel closures are forced inline (as is this function):
+        // inlined into a caller with the rest of the fetch, they were
+        // left as calls otherwise.
+        #[inline(always)]
+        fn linear(texels: &[[u8; 3]], rgb: &[f32; 256], k: usize) -> [f32; 3] {
+            let c = texels[k];
             [
                 rgb[usize::from(c[0])],
                 rgb[usize::from(c[1])],
                 rgb[usize::from(c[2])],
             ]
-        };
+        }
+        let texels = &self.rgb[..];
         // The alpha channel is looked for once, not per texel; without
         // one, the alpha lane is 1 at every corner (its lerp is exactly 1).
         let c = match self.alpha.as_deref() {
-            None => self.filtered(u, v, filter, clamp, |k| {
-                let [r, g, b] = colour(k);
-                [r, g, b, 1.0]
-            }),
+            None => self.filtered(
+                u,
+                v,
+                filter,
+                clamp,
+                #[inline(always)]
+                |k| {
+                    let [r, g, b] = linear(texels, rgb, k);
+                    [r, g, b, 1.0]
+                },
+            ),
             Some(a) => {
                 let alphas = alpha_table();
-                self.filtered(u, v, filter, clamp, |k| {
-                    let [r, g, b] = colour(k);
-                    [r, g, b, alphas[usize::from(a[k])]]
-                })
+                self.filtered(
+                    u,
+                    v,
+                    filter,
+                    clamp,
+                    #[inline(always)]
+                    |k| {
+                        let [r, g, b] = linear(texels, rgb, k);
+                        [r, g, b, alphas[usize::from(a[k])]]
+                    },
+                )
             }
         };
         ([c[0], c[1], c[2]], c[3])
@@ -137,11 +156,15 @@ impl Level {
             texel(bottom + xa),
             texel(bottom + xb),
         ];
-        std::array::from_fn(|k| {
+        // A plain loop, not `array::from_fn`: inlined into a caller that
+        // inlines the whole fetch, `from_fn` was left as a call.
+        let mut out = [0.0; N];
+        for (k, out) in out.iter_mut().enumerate() {
             let top = q[0][k] + (q[1][k] - q[0][k]) * tx;
             let bottom = q[2][k] + (q[3][k] - q[2][k]) * tx;
-            top + (bottom - top) * ty
-        })
+            *out = top + (bottom - top) * ty;
+        }
+        out
     }
 }
 
@@ -188,7 +211,7 @@ fn floor_small(x: f64) -> (f64, i64) {
 
 /// Texel column (or row) `i` and `i + 1` of a side of `n` texels, clamped
 /// to its edge or repeated, as [`index`] finds them.
-#[inline]
+#[inline(always)]
 fn neighbours(i: i64, n: u32, clamp: bool) -> (usize, usize) {
     let n = i64::from(n);
     if clamp {
