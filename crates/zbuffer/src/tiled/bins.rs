@@ -194,9 +194,28 @@ impl ChunkBins {
             bin.clear();
         }
         self.large.clear();
-        let shift = grid.tile.trailing_zeros();
-        let pow2 = grid.tile.is_power_of_two();
-        let tile_of = |p: u32| if pow2 { p >> shift } else { p / grid.tile };
+        // One loop per way to find a tile (a shift for the default
+        // sizes): the choice out of the per-triangle loop.
+        if grid.tile.is_power_of_two() {
+            let shift = grid.tile.trailing_zeros();
+            self.bin(chunk, (viewport, grid.cols), (hiz, setups), |p| p >> shift);
+        } else {
+            self.bin(chunk, (viewport, grid.cols), (hiz, setups), |p| {
+                p / grid.tile
+            });
+        }
+    }
+
+    /// The loop of [`Self::fill`], `tile_of` giving a pixel coordinate's
+    /// tile coordinate.
+    #[inline(always)]
+    fn bin<T: RasterTri>(
+        &mut self,
+        chunk: &[T],
+        (viewport, cols): (Viewport, u32),
+        (hiz, setups): (bool, bool),
+        tile_of: impl Fn(u32) -> u32,
+    ) {
         // Counters in locals: the pushes below store through pointers the
         // compiler cannot tell from `self`'s fields, so a field increment
         // per triangle was a load and a store.
@@ -234,7 +253,7 @@ impl ChunkBins {
             // for 52k triangles on the sphere 200 at 1024): no loops.
             if (tx0, ty0) == (tx1, ty1) {
                 entries += 1;
-                self.tiles[(ty0 * grid.cols + tx0) as usize].push(entry);
+                self.tiles[(ty0 * cols + tx0) as usize].push(entry);
                 continue;
             }
             let count = (tx1 - tx0 + 1) * (ty1 - ty0 + 1);
@@ -244,7 +263,7 @@ impl ChunkBins {
             }
             entries += u64::from(count);
             for ty in ty0..ty1 + 1 {
-                let row = (ty * grid.cols) as usize;
+                let row = (ty * cols) as usize;
                 for tx in tx0..tx1 + 1 {
                     self.tiles[row + tx as usize].push(entry);
                 }
