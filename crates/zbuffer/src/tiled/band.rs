@@ -15,6 +15,7 @@ use super::tile::TileBuf;
 #[cfg(target_arch = "x86_64")]
 use super::wide::Avx2;
 use super::wide::{Isa, Portable};
+use crate::depth_scene::DepthFragment;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::{self, Kernel};
 
@@ -36,6 +37,8 @@ pub(super) struct Jobs<'a, T> {
     pub(super) chunks: &'a [ChunkBins],
     /// Each run's fragments by tile, applied after the tile's triangles.
     pub(super) fragments: &'a [FragmentBins],
+    /// The runs of fragments those bins index, in the same order.
+    pub(super) fragment_runs: &'a [&'a [DepthFragment]],
     pub(super) hiz: bool,
     /// Whether the triangles' small-box set-ups hold (see
     /// [`DepthScene::setups_valid`](crate::DepthScene)).
@@ -202,8 +205,10 @@ impl<T: RasterTri> Jobs<'_, T> {
                     setups: self.setups,
                 };
                 bins::for_each_in_tile(self.tris, self.chunks, t, &mut draw);
-                for run in self.fragments {
-                    buf.fragments(&run.tiles[t]);
+                for (bins, run) in self.fragments.iter().zip(self.fragment_runs) {
+                    for stretch in bins.tile(run, t) {
+                        buf.fragments(stretch);
+                    }
                 }
             }
             if !buf.is_active() {

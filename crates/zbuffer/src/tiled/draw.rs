@@ -72,6 +72,7 @@ impl TiledZBuffer {
             tris: &tris,
             chunks: &self.bins.chunks,
             fragments: &self.bins.fragments,
+            fragment_runs: fragments,
             hiz,
             setups,
             cancel: self.options.cancel,
