@@ -119,7 +119,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     );
     println!(
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|{}",
-        if peers_bin.is_some() { "---|---|---|" } else { "" }
+        if peers_bin.is_some() {
+            "---|---|---|"
+        } else {
+            ""
+        }
     );
     for &size in &sizes {
         let mut rows = Vec::new();
