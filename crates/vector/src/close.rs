@@ -18,7 +18,7 @@ use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
-use crate::grid::bounds;
+use crate::grid::{Grid, bounds};
 use crate::parts::{BooleanWork, overlay_by_parts};
 use crate::splitter::IntShapes;
 use crate::splitter::new_overlay;
@@ -37,7 +37,12 @@ use crate::splitter::new_overlay;
 /// its shapes whose boxes chain together (`parts.rs`): near the root the
 /// sets are the whole map, and `N` separate long slivers in one boolean
 /// cost `N^1.5` in `i_overlay`'s fragment splitter.
-pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool], work: &mut BooleanWork) -> IntShapes {
+pub fn outline(
+    grid: &Grid,
+    polys: &[Vec<IntPoint>],
+    hidden: &[bool],
+    work: &mut BooleanWork,
+) -> IntShapes {
     let mut order: Vec<(u64, usize)> = polys
         .iter()
         .zip(hidden)
@@ -67,7 +72,7 @@ pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool], work: &mut BooleanWork)
                     .flatten()
                     .map(|s| (s.as_slice(), ShapeType::Subject))
                     .collect();
-                overlay_by_parts(&shapes, OverlayRule::Subject, work)
+                overlay_by_parts(grid, &shapes, OverlayRule::Subject, work)
             })
             .collect();
     }
@@ -99,14 +104,19 @@ fn morton(lo: IntPoint, hi: IntPoint) -> u64 {
 ///
 /// The two map-wide booleans (what the regions hold outside the covered
 /// set, and the covered set's gaps) run one per part (`parts.rs`).
-pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes], work: &mut BooleanWork) {
+pub fn close_to_cover(
+    grid: &Grid,
+    covered: &IntShapes,
+    regions: &mut [IntShapes],
+    work: &mut BooleanWork,
+) {
     let mut shapes: Vec<(&[Vec<IntPoint>], ShapeType)> = regions
         .iter()
         .flatten()
         .map(|s| (s.as_slice(), ShapeType::Subject))
         .collect();
     shapes.extend(covered.iter().map(|s| (s.as_slice(), ShapeType::Clip)));
-    let excess = overlay_by_parts(&shapes, OverlayRule::Difference, work);
+    let excess = overlay_by_parts(grid, &shapes, OverlayRule::Difference, work);
     let boxes: Vec<_> = regions.iter().map(|r| shapes_box(r)).collect();
     for piece in excess {
         let piece = vec![piece];
@@ -129,7 +139,7 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes], work: &mut
             .flatten()
             .map(|s| (s.as_slice(), ShapeType::Clip)),
     );
-    let gap = overlay_by_parts(&shapes, OverlayRule::Difference, work);
+    let gap = overlay_by_parts(grid, &shapes, OverlayRule::Difference, work);
     if gap.is_empty() {
         return;
     }

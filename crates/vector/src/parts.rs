@@ -18,7 +18,8 @@ use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
-use crate::grid::bounds;
+use crate::contact::contact_sets;
+use crate::grid::{Grid, bounds};
 use crate::splitter::{IntShapes, new_overlay};
 
 /// The work of the map-wide booleans.
@@ -40,6 +41,11 @@ impl BooleanWork {
         self.largest = self.largest.max(segments as u64);
     }
 }
+
+/// Segments above which a part of chained boxes is split further by
+/// contact ([`contact_sets`]): below, `i_overlay`'s sweep list handles
+/// it at once.
+const REFINE_ABOVE: usize = 2_000;
 
 /// A box: lowest and highest corner, closed.
 type Box2 = (IntPoint, IntPoint);
@@ -132,15 +138,17 @@ pub fn shape_box(contours: &[Vec<IntPoint>]) -> Option<Box2> {
 /// uses gives nothing there). The result is the one boolean's, in its
 /// order.
 pub fn overlay_by_parts(
+    grid: &Grid,
     shapes: &[(&[Vec<IntPoint>], ShapeType)],
     rule: OverlayRule,
     work: &mut BooleanWork,
 ) -> IntShapes {
-    overlay_by_parts_filled(shapes, rule, FillRule::NonZero, work)
+    overlay_by_parts_filled(grid, shapes, rule, FillRule::NonZero, work)
 }
 
 /// [`overlay_by_parts`] under the fill rule `fill`.
 pub fn overlay_by_parts_filled(
+    grid: &Grid,
     shapes: &[(&[Vec<IntPoint>], ShapeType)],
     rule: OverlayRule,
     fill: FillRule,
@@ -148,7 +156,23 @@ pub fn overlay_by_parts_filled(
 ) -> IntShapes {
     let boxes: Vec<Option<Box2>> = shapes.iter().map(|(s, _)| shape_box(s)).collect();
     let mut out = IntShapes::new();
+    let mut finer: Vec<Vec<usize>> = Vec::new();
     for part in parts(&boxes) {
+        let segments: usize = part.iter().flat_map(|&k| shapes[k].0).map(Vec::len).sum();
+        if segments <= REFINE_ABOVE {
+            finer.push(part);
+            continue;
+        }
+        let members: Vec<&[Vec<IntPoint>]> = part.iter().map(|&k| shapes[k].0).collect();
+        match contact_sets(grid, &members) {
+            Some(sets) => finer.extend(
+                sets.into_iter()
+                    .map(|set| set.into_iter().map(|i| part[i]).collect()),
+            ),
+            None => finer.push(part),
+        }
+    }
+    for part in finer {
         if !part.iter().any(|&k| shapes[k].1 == ShapeType::Subject) {
             continue;
         }

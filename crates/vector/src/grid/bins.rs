@@ -85,6 +85,17 @@ impl Bins {
     /// are then stretched by the items' boxes in that frame (their
     /// geometric-mean width over height), keeping their area.
     pub fn covering(grid: &Grid, items: &[Vec<&[IntPoint]>]) -> Self {
+        Self::covering_within(grid, items, usize::MAX).expect("no limit on the entries")
+    }
+
+    /// [`Bins::covering`], or `None` as soon as the bins would hold more
+    /// than `max_entries` entries (items counted once per bin): big
+    /// overlapping shapes each fill the bins of their area.
+    pub fn covering_within(
+        grid: &Grid,
+        items: &[Vec<&[IntPoint]>],
+        max_entries: usize,
+    ) -> Option<Self> {
         let frame = common_direction(items);
         let (a, b) = frame;
         let corners = [
@@ -135,16 +146,21 @@ impl Bins {
         bins.rows = extent.1 / bins.size.1 + 1;
         bins.cells = vec![Vec::new(); (bins.cols * bins.rows) as usize];
         let mut cells = Vec::new();
+        let mut entries = 0usize;
         for (k, contours) in items.iter().enumerate() {
             cells.clear();
             bins.cover(contours, |cell| cells.push(cell));
             cells.sort_unstable();
             cells.dedup();
+            entries += cells.len();
+            if entries > max_entries {
+                return None;
+            }
             for &cell in &cells {
                 bins.cells[cell].push(k as u32);
             }
         }
-        bins
+        Some(bins)
     }
 
     /// The inclusive box of closed polygons in the frame.

@@ -1,0 +1,232 @@
+//! Shapes split into the sets that share points, exactly.
+//!
+//! `parts.rs` splits a map-wide boolean by chained boxes, which is cheap
+//! but coarse: slivers laid along a diagonal have square boxes, every one
+//! meeting its neighbours', so `N` separate slivers chained into one part
+//! and one boolean whose splitter (an axis-aligned tree, then a grid of
+//! fragments) costs more than linearly in long diagonal segments. Here a
+//! box part is refined by actual contact: two shapes are in one set when
+//! an edge of one meets (closed) an edge of the other, or when either's
+//! rightmost vertex lies inside the other (non-zero winding). The
+//! candidates are the shapes sharing a bin ([`Bins`], turned and stretched
+//! like the shapes), so a sliver meets only its few neighbours.
+//!
+//! Why the rightmost vertex is enough: let `A` and `B` share a point while
+//! their boundaries do not meet, and let `A` have the lesser greatest `x`
+//! (with equal ones neither can lie inside the other, so they would
+//! touch). Each contour of `A` lies wholly inside or outside `B`. If `A`'s
+//! outer contour were outside `B`, then `B`, sharing a point with `A` and
+//! not crossing its boundary, would lie within `A`'s outer contour, and
+//! its greatest `x` would be less than `A`'s. So `A`'s outer contour, and
+//! its rightmost vertex with it, lies inside `B`.
+
+use i_overlay::i_float::int::point::IntPoint;
+
+use crate::grid::{Bins, Grid, bounds};
+
+/// Bin entries, candidate pairs and edge pairs tested, per shape and
+/// segment, before a refinement gives up (the caller keeps the coarse
+/// part): the bins of a fan's centre hold every spoke, and those spokes
+/// touch anyway.
+const WORK_PER_ITEM: usize = 64;
+
+/// The shapes `shapes` (each an outer contour and its holes) in sets that
+/// share no point with each other: every two shapes sharing a point are in
+/// one set (sets may be coarser). Sets ordered by their first shape,
+/// shapes ascending. `None` when the bins or the tests would cost more
+/// than [`WORK_PER_ITEM`] per shape and segment.
+pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<usize>>> {
+    let segments: usize = shapes.iter().flat_map(|s| s.iter()).map(Vec::len).sum();
+    let budget = WORK_PER_ITEM * (shapes.len() + segments);
+    let items: Vec<Vec<&[IntPoint]>> = shapes
+        .iter()
+        .map(|s| s.iter().map(Vec::as_slice).collect())
+        .collect();
+    let bins = Bins::covering_within(grid, &items, budget)?;
+    let boxes: Vec<_> = shapes.iter().map(|s| bounds(s.iter().flatten())).collect();
+    let mut parent: Vec<usize> = (0..shapes.len()).collect();
+    fn root(parent: &mut [usize], mut k: usize) -> usize {
+        while parent[k] != k {
+            parent[k] = parent[parent[k]];
+            k = parent[k];
+        }
+        k
+    }
+    let mut work = 0usize;
+    let mut seen = vec![usize::MAX; shapes.len()];
+    for (a, contours) in items.iter().enumerate() {
+        let Some(abox) = boxes[a] else { continue };
+        let mut candidates = Vec::new();
+        bins.query_covering(contours, |b| {
+            let b = b as usize;
+            if b > a && seen[b] != a {
+                seen[b] = a;
+                candidates.push(b);
+            }
+        });
+        work += candidates.len();
+        for b in candidates {
+            if work > budget {
+                return None;
+            }
+            let Some(bbox) = boxes[b] else { continue };
+            if !boxes_meet(abox, bbox) || root(&mut parent, a) == root(&mut parent, b) {
+                continue;
+            }
+            if touch(shapes[a], shapes[b], (abox, bbox), &mut work) {
+                let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+                parent[ra.max(rb)] = ra.min(rb);
+            }
+        }
+    }
+    let mut index_of_root = vec![usize::MAX; shapes.len()];
+    let mut out: Vec<Vec<usize>> = Vec::new();
+    for k in 0..shapes.len() {
+        let r = root(&mut parent, k);
+        if index_of_root[r] == usize::MAX {
+            index_of_root[r] = out.len();
+            out.push(Vec::new());
+        }
+        out[index_of_root[r]].push(k);
+    }
+    Some(out)
+}
+
+/// A box: lowest and highest corner, closed.
+type Box2 = (IntPoint, IntPoint);
+
+/// Whether two closed boxes share a point.
+fn boxes_meet(a: Box2, b: Box2) -> bool {
+    a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y
+}
+
+/// Whether the closed shapes `a` and `b` share a point (see the module
+/// documentation), adding the edge pairs tested to `work`.
+fn touch(a: &[Vec<IntPoint>], b: &[Vec<IntPoint>], boxes: (Box2, Box2), work: &mut usize) -> bool {
+    let edges_within = |s: &[Vec<IntPoint>], within: Box2| -> Vec<(IntPoint, IntPoint)> {
+        s.iter()
+            .flat_map(|c| (0..c.len()).map(move |k| (c[k], c[(k + 1) % c.len()])))
+            .filter(|&(p, q)| {
+                boxes_meet(
+                    (
+                        IntPoint::new(p.x.min(q.x), p.y.min(q.y)),
+                        IntPoint::new(p.x.max(q.x), p.y.max(q.y)),
+                    ),
+                    within,
+                )
+            })
+            .collect()
+    };
+    let (ea, eb) = (edges_within(a, boxes.1), edges_within(b, boxes.0));
+    *work += ea.len() * eb.len();
+    if ea
+        .iter()
+        .any(|&(p, q)| eb.iter().any(|&(r, s)| segments_meet(p, q, r, s)))
+    {
+        return true;
+    }
+    let rightmost = |s: &[Vec<IntPoint>]| s.iter().flatten().max_by_key(|p| (p.x, p.y)).copied();
+    rightmost(a).is_some_and(|p| winding(b, p) != 0)
+        || rightmost(b).is_some_and(|p| winding(a, p) != 0)
+}
+
+/// Twice the signed area of the triangle `a b c` (exact).
+fn orient(a: IntPoint, b: IntPoint, c: IntPoint) -> i128 {
+    (i128::from(b.x) - i128::from(a.x)) * (i128::from(c.y) - i128::from(a.y))
+        - (i128::from(b.y) - i128::from(a.y)) * (i128::from(c.x) - i128::from(a.x))
+}
+
+/// Whether the closed segments `p q` and `r s` share a point (exact).
+fn segments_meet(p: IntPoint, q: IntPoint, r: IntPoint, s: IntPoint) -> bool {
+    let (d1, d2) = (orient(p, q, r).signum(), orient(p, q, s).signum());
+    let (d3, d4) = (orient(r, s, p).signum(), orient(r, s, q).signum());
+    if d1 * d2 < 0 && d3 * d4 < 0 {
+        return true;
+    }
+    let on = |a: IntPoint, b: IntPoint, c: IntPoint| {
+        a.x.min(b.x) <= c.x && c.x <= a.x.max(b.x) && a.y.min(b.y) <= c.y && c.y <= a.y.max(b.y)
+    };
+    (d1 == 0 && on(p, q, r))
+        || (d2 == 0 && on(p, q, s))
+        || (d3 == 0 && on(r, s, p))
+        || (d4 == 0 && on(r, s, q))
+}
+
+/// The winding number of the contours `shape` around `p` (not on them).
+fn winding(shape: &[Vec<IntPoint>], p: IntPoint) -> i64 {
+    let mut w = 0;
+    for c in shape {
+        for k in 0..c.len() {
+            let (a, b) = (c[k], c[(k + 1) % c.len()]);
+            if a.y <= p.y {
+                if b.y > p.y && orient(a, b, p) > 0 {
+                    w += 1;
+                }
+            } else if b.y <= p.y && orient(a, b, p) < 0 {
+                w -= 1;
+            }
+        }
+    }
+    w
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(x: i32, y: i32, s: i32) -> Vec<Vec<IntPoint>> {
+        vec![vec![
+            IntPoint::new(x, y),
+            IntPoint::new(x + s, y),
+            IntPoint::new(x + s, y + s),
+            IntPoint::new(x, y + s),
+        ]]
+    }
+
+    #[test]
+    fn touching_nested_and_apart_shapes() {
+        let grid = Grid {
+            shift: 0,
+            width: 100,
+            height: 100,
+        };
+        // A ring (square with a square hole) and shapes around it.
+        let mut ring = square(10, 10, 40);
+        let mut hole = square(20, 20, 20).remove(0);
+        hole.reverse();
+        ring.push(hole);
+        let shapes = [
+            ring,
+            // In the hole, apart from the ring.
+            square(25, 25, 5),
+            // Inside the ring's body.
+            square(12, 12, 3),
+            // Touching the ring's outside at a corner.
+            square(50, 50, 5),
+            // Apart from all.
+            square(60, 0, 5),
+            // Covering the hole: its rightmost vertex lies in the ring.
+            square(15, 15, 30),
+        ];
+        let refs: Vec<&[Vec<IntPoint>]> = shapes.iter().map(Vec::as_slice).collect();
+        assert_eq!(
+            contact_sets(&grid, &refs),
+            Some(vec![vec![0, 1, 2, 3, 5], vec![4]])
+        );
+        // Without the covering square the hole's square is apart.
+        assert_eq!(
+            contact_sets(&grid, &refs[..5]),
+            Some(vec![vec![0, 2, 3], vec![1], vec![4]])
+        );
+    }
+
+    #[test]
+    fn segments_meet_at_ends_and_along_lines_only() {
+        let p = IntPoint::new;
+        assert!(segments_meet(p(0, 0), p(4, 4), p(4, 4), p(9, 0)));
+        assert!(segments_meet(p(0, 0), p(4, 4), p(2, 2), p(9, 9)));
+        assert!(segments_meet(p(0, 0), p(4, 4), p(0, 4), p(4, 0)));
+        assert!(!segments_meet(p(0, 0), p(4, 4), p(5, 5), p(9, 9)));
+        assert!(!segments_meet(p(0, 0), p(4, 4), p(1, 0), p(5, 4)));
+    }
+}
