@@ -24,17 +24,29 @@ use i_overlay::i_float::int::point::IntPoint;
 
 use crate::grid::{Bins, Grid, bounds};
 
-/// Bin entries, candidate pairs and edge pairs tested, per shape and
-/// segment, before a refinement gives up (the caller keeps the coarse
-/// part): the bins of a fan's centre hold every spoke, and those spokes
-/// touch anyway.
+/// Candidate pairs and edge pairs tested, per shape and segment, before
+/// a refinement gives up (the caller keeps the coarse part): the bins of
+/// a fan's centre hold every spoke, and those spokes touch anyway.
 const WORK_PER_ITEM: usize = 64;
+
+/// Segments of a shape above which it joins every shape it shares a bin
+/// and a box with, untested (coarser sets are still right): testing it
+/// is a pass over its edges per candidate, and the covered set around a
+/// pile's regions is one such shape touching most of them.
+const BIG_SHAPE: usize = 256;
+
+/// Bin entries per shape before a refinement gives up: a fan's spokes
+/// cross about `sqrt(N)` bins each (40 each at 16,000 spokes), slivers
+/// along the bins' rows one or two.
+const BINS_PER_SHAPE: usize = 8;
 
 /// The shapes `shapes` (each an outer contour and its holes) in sets that
 /// share no point with each other: every two shapes sharing a point are in
 /// one set (sets may be coarser). Sets ordered by their first shape,
 /// shapes ascending. `None` when the bins or the tests would cost more
-/// than [`WORK_PER_ITEM`] per shape and segment.
+/// than [`BINS_PER_SHAPE`] and [`WORK_PER_ITEM`] allow, or as soon as one
+/// set holds more than half the segments: splitting would then at best
+/// halve the largest boolean (a pile's regions all touch).
 pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<usize>>> {
     let segments: usize = shapes.iter().flat_map(|s| s.iter()).map(Vec::len).sum();
     let budget = WORK_PER_ITEM * (shapes.len() + segments);
@@ -42,9 +54,19 @@ pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<
         .iter()
         .map(|s| s.iter().map(Vec::as_slice).collect())
         .collect();
-    let bins = Bins::covering_within(grid, &items, budget)?;
+    let bins = Bins::covering_within(grid, &items, BINS_PER_SHAPE * shapes.len())?;
     let boxes: Vec<_> = shapes.iter().map(|s| bounds(s.iter().flatten())).collect();
+    let sizes: Vec<usize> = shapes
+        .iter()
+        .map(|s| s.iter().map(Vec::len).sum())
+        .collect();
+    let rightmost: Vec<Option<IntPoint>> = shapes
+        .iter()
+        .map(|s| s.iter().flatten().max_by_key(|p| (p.x, p.y)).copied())
+        .collect();
     let mut parent: Vec<usize> = (0..shapes.len()).collect();
+    // Segments per set (at its root).
+    let mut held = sizes.clone();
     fn root(parent: &mut [usize], mut k: usize) -> usize {
         while parent[k] != k {
             parent[k] = parent[parent[k]];
@@ -65,6 +87,10 @@ pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<
             }
         });
         work += candidates.len();
+        // Small shapes first: once those join `a`'s set, a big one (the
+        // covered set around many regions) is often in it already and
+        // needs no pass over its edges.
+        candidates.sort_unstable_by_key(|&b| (sizes[b], b));
         for b in candidates {
             if work > budget {
                 return None;
@@ -73,9 +99,22 @@ pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<
             if !boxes_meet(abox, bbox) || root(&mut parent, a) == root(&mut parent, b) {
                 continue;
             }
-            if touch(shapes[a], shapes[b], (abox, bbox), &mut work) {
+            let big = sizes[a].max(sizes[b]) > BIG_SHAPE;
+            if big
+                || touch(
+                    (shapes[a], shapes[b]),
+                    (abox, bbox),
+                    (rightmost[a], rightmost[b]),
+                    &mut work,
+                )
+            {
                 let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-                parent[ra.max(rb)] = ra.min(rb);
+                let (keep, gone) = (ra.min(rb), ra.max(rb));
+                parent[gone] = keep;
+                held[keep] += held[gone];
+                if 2 * held[keep] > segments {
+                    return None;
+                }
             }
         }
     }
@@ -102,7 +141,12 @@ fn boxes_meet(a: Box2, b: Box2) -> bool {
 
 /// Whether the closed shapes `a` and `b` share a point (see the module
 /// documentation), adding the edge pairs tested to `work`.
-fn touch(a: &[Vec<IntPoint>], b: &[Vec<IntPoint>], boxes: (Box2, Box2), work: &mut usize) -> bool {
+fn touch(
+    (a, b): (&[Vec<IntPoint>], &[Vec<IntPoint>]),
+    boxes: (Box2, Box2),
+    rightmost: (Option<IntPoint>, Option<IntPoint>),
+    work: &mut usize,
+) -> bool {
     let edges_within = |s: &[Vec<IntPoint>], within: Box2| -> Vec<(IntPoint, IntPoint)> {
         s.iter()
             .flat_map(|c| (0..c.len()).map(move |k| (c[k], c[(k + 1) % c.len()])))
@@ -125,9 +169,8 @@ fn touch(a: &[Vec<IntPoint>], b: &[Vec<IntPoint>], boxes: (Box2, Box2), work: &m
     {
         return true;
     }
-    let rightmost = |s: &[Vec<IntPoint>]| s.iter().flatten().max_by_key(|p| (p.x, p.y)).copied();
-    rightmost(a).is_some_and(|p| winding(b, p) != 0)
-        || rightmost(b).is_some_and(|p| winding(a, p) != 0)
+    rightmost.0.is_some_and(|p| winding(b, p) != 0)
+        || rightmost.1.is_some_and(|p| winding(a, p) != 0)
 }
 
 /// Twice the signed area of the triangle `a b c` (exact).

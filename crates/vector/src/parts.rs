@@ -47,6 +47,11 @@ impl BooleanWork {
 /// it at once.
 const REFINE_ABOVE: usize = 2_000;
 
+/// Mean segments per shape above which a part is not refined: few big
+/// shapes (the outline's merges near the root on a pile) overlap as a
+/// rule, and testing their contact costs the product of their edges.
+const MEAN_SEGMENTS: usize = 16;
+
 /// A box: lowest and highest corner, closed.
 type Box2 = (IntPoint, IntPoint);
 
@@ -159,12 +164,21 @@ pub fn overlay_by_parts_filled(
     let mut finer: Vec<Vec<usize>> = Vec::new();
     for part in parts(&boxes) {
         let segments: usize = part.iter().flat_map(|&k| shapes[k].0).map(Vec::len).sum();
-        if segments <= REFINE_ABOVE {
+        if segments <= REFINE_ABOVE || segments > MEAN_SEGMENTS * part.len() {
             finer.push(part);
             continue;
         }
         let members: Vec<&[Vec<IntPoint>]> = part.iter().map(|&k| shapes[k].0).collect();
-        match contact_sets(grid, &members) {
+        let t0 = std::time::Instant::now();
+        let r = contact_sets(grid, &members);
+        eprintln!(
+            "PROBE {} shapes {} segs -> {:?} sets {:.3}s",
+            part.len(),
+            segments,
+            r.as_ref().map(|s| s.len()),
+            t0.elapsed().as_secs_f64()
+        );
+        match r {
             Some(sets) => finer.extend(
                 sets.into_iter()
                     .map(|set| set.into_iter().map(|i| part[i]).collect()),
