@@ -169,16 +169,7 @@ pub fn overlay_by_parts_filled(
             continue;
         }
         let members: Vec<&[Vec<IntPoint>]> = part.iter().map(|&k| shapes[k].0).collect();
-        let t0 = std::time::Instant::now();
-        let r = contact_sets(grid, &members);
-        eprintln!(
-            "PROBE {} shapes {} segs -> {:?} sets {:.3}s",
-            part.len(),
-            segments,
-            r.as_ref().map(|s| s.len()),
-            t0.elapsed().as_secs_f64()
-        );
-        match r {
+        match contact_sets(grid, &members) {
             Some(sets) => finer.extend(
                 sets.into_iter()
                     .map(|set| set.into_iter().map(|i| part[i]).collect()),
