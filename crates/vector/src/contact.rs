@@ -173,6 +173,16 @@ fn touch(
         || rightmost.1.is_some_and(|p| winding(a, p) != 0)
 }
 
+/// Whether the closed shapes `a` and `b` (each an outer contour and its
+/// holes) share a point, exactly (see the module documentation).
+pub fn shapes_touch(a: &[Vec<IntPoint>], b: &[Vec<IntPoint>]) -> bool {
+    let (Some(abox), Some(bbox)) = (bounds(a.iter().flatten()), bounds(b.iter().flatten())) else {
+        return false;
+    };
+    let rightmost = |s: &[Vec<IntPoint>]| s.iter().flatten().max_by_key(|p| (p.x, p.y)).copied();
+    boxes_meet(abox, bbox) && touch((a, b), (abox, bbox), (rightmost(a), rightmost(b)), &mut 0)
+}
+
 /// Twice the signed area of the triangle `a b c` (exact).
 fn orient(a: IntPoint, b: IntPoint, c: IntPoint) -> i128 {
     (i128::from(b.x) - i128::from(a.x)) * (i128::from(c.y) - i128::from(a.y))
