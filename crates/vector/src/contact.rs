@@ -20,6 +20,8 @@
 //! its greatest `x` would be less than `A`'s. So `A`'s outer contour, and
 //! its rightmost vertex with it, lies inside `B`.
 
+use std::collections::HashMap;
+
 use i_overlay::i_float::int::point::IntPoint;
 
 use crate::grid::{Bins, Grid, bounds};
@@ -54,7 +56,6 @@ pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<
         .iter()
         .map(|s| s.iter().map(Vec::as_slice).collect())
         .collect();
-    let bins = Bins::covering_within(grid, &items, BINS_PER_SHAPE * shapes.len())?;
     let boxes: Vec<_> = shapes.iter().map(|s| bounds(s.iter().flatten())).collect();
     let sizes: Vec<usize> = shapes
         .iter()
@@ -74,6 +75,24 @@ pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<
         }
         k
     }
+    // Shapes sharing a vertex touch: found by hashing before any bin is
+    // built, so that a mesh's regions (all touching) give up at once.
+    let mut first_at: HashMap<IntPoint, usize> = HashMap::with_capacity(segments);
+    for (a, shape) in shapes.iter().enumerate() {
+        for &p in shape.iter().flatten() {
+            let b = *first_at.entry(p).or_insert(a);
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            if ra != rb {
+                let (keep, gone) = (ra.min(rb), ra.max(rb));
+                parent[gone] = keep;
+                held[keep] += held[gone];
+                if 2 * held[keep] > segments {
+                    return None;
+                }
+            }
+        }
+    }
+    let bins = Bins::covering_within(grid, &items, BINS_PER_SHAPE * shapes.len())?;
     let mut work = 0usize;
     let mut seen = vec![usize::MAX; shapes.len()];
     for (a, contours) in items.iter().enumerate() {
