@@ -47,9 +47,12 @@ const BINS_PER_SHAPE: usize = 8;
 /// one set (sets may be coarser). Sets ordered by their first shape,
 /// shapes ascending. `None` when the bins or the tests would cost more
 /// than [`BINS_PER_SHAPE`] and [`WORK_PER_ITEM`] allow, or as soon as one
-/// set holds more than half the segments: splitting would then at best
-/// halve the largest boolean (a pile's regions all touch).
-pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<usize>>> {
+/// set holds more than `max_set` segments.
+pub fn contact_sets(
+    grid: &Grid,
+    shapes: &[&[Vec<IntPoint>]],
+    max_set: usize,
+) -> Option<Vec<Vec<usize>>> {
     let segments: usize = shapes.iter().flat_map(|s| s.iter()).map(Vec::len).sum();
     let budget = WORK_PER_ITEM * (shapes.len() + segments);
     let items: Vec<Vec<&[IntPoint]>> = shapes
@@ -86,7 +89,7 @@ pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<
                 let (keep, gone) = (ra.min(rb), ra.max(rb));
                 parent[gone] = keep;
                 held[keep] += held[gone];
-                if 2 * held[keep] > segments {
+                if held[keep] > max_set {
                     return None;
                 }
             }
@@ -131,7 +134,7 @@ pub fn contact_sets(grid: &Grid, shapes: &[&[Vec<IntPoint>]]) -> Option<Vec<Vec<
                 let (keep, gone) = (ra.min(rb), ra.max(rb));
                 parent[gone] = keep;
                 held[keep] += held[gone];
-                if 2 * held[keep] > segments {
+                if held[keep] > max_set {
                     return None;
                 }
             }
@@ -282,12 +285,14 @@ mod tests {
         ];
         let refs: Vec<&[Vec<IntPoint>]> = shapes.iter().map(Vec::as_slice).collect();
         assert_eq!(
-            contact_sets(&grid, &refs),
+            contact_sets(&grid, &refs, usize::MAX),
             Some(vec![vec![0, 1, 2, 3, 5], vec![4]])
         );
+        // One set would hold more than 20 segments (it holds 24).
+        assert_eq!(contact_sets(&grid, &refs, 20), None);
         // Without the covering square the hole's square is apart.
         assert_eq!(
-            contact_sets(&grid, &refs[..5]),
+            contact_sets(&grid, &refs[..5], usize::MAX),
             Some(vec![vec![0, 2, 3], vec![1], vec![4]])
         );
     }

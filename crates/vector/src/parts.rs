@@ -169,7 +169,9 @@ pub fn overlay_by_parts_filled(
             continue;
         }
         let members: Vec<&[Vec<IntPoint>]> = part.iter().map(|&k| shapes[k].0).collect();
-        match contact_sets(grid, &members) {
+        // A set holding half the segments would at best halve the
+        // largest boolean (the regions of a mesh or a pile all touch).
+        match contact_sets(grid, &members, segments / 2) {
             Some(sets) => finer.extend(
                 sets.into_iter()
                     .map(|set| set.into_iter().map(|i| part[i]).collect()),
