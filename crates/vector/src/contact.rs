@@ -101,7 +101,7 @@ pub fn contact_sets(
     for (a, contours) in items.iter().enumerate() {
         let Some(abox) = boxes[a] else { continue };
         let mut candidates = Vec::new();
-        bins.query_covering(contours, |b| {
+        bins.query_near(contours, NEAR as i64, |b| {
             let b = b as usize;
             if b > a && seen[b] != a {
                 seen[b] = a;
@@ -156,9 +156,22 @@ pub fn contact_sets(
 /// A box: lowest and highest corner, closed.
 type Box2 = (IntPoint, IntPoint);
 
-/// Whether two closed boxes share a point.
+/// Whether two closed boxes come within [`NEAR`] of each other.
 fn boxes_meet(a: Box2, b: Box2) -> bool {
-    a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y
+    let n = NEAR as i64;
+    let (a0x, a0y, a1x, a1y) = (
+        i64::from(a.0.x),
+        i64::from(a.0.y),
+        i64::from(a.1.x),
+        i64::from(a.1.y),
+    );
+    let (b0x, b0y, b1x, b1y) = (
+        i64::from(b.0.x),
+        i64::from(b.0.y),
+        i64::from(b.1.x),
+        i64::from(b.1.y),
+    );
+    a0x <= b1x + n && b0x <= a1x + n && a0y <= b1y + n && b0y <= a1y + n
 }
 
 /// Whether the closed shapes `a` and `b` share a point (see the module
@@ -187,7 +200,7 @@ fn touch(
     *work += ea.len() * eb.len();
     if ea
         .iter()
-        .any(|&(p, q)| eb.iter().any(|&(r, s)| segments_meet(p, q, r, s)))
+        .any(|&(p, q)| eb.iter().any(|&(r, s)| segments_near(p, q, r, s)))
     {
         return true;
     }
@@ -209,6 +222,44 @@ pub fn shapes_touch(a: &[Vec<IntPoint>], b: &[Vec<IntPoint>]) -> bool {
 fn orient(a: IntPoint, b: IntPoint, c: IntPoint) -> i128 {
     (i128::from(b.x) - i128::from(a.x)) * (i128::from(c.y) - i128::from(a.y))
         - (i128::from(b.y) - i128::from(a.y)) * (i128::from(c.x) - i128::from(a.x))
+}
+
+/// Grid units within which two segments count as touching: where the
+/// inputs cross off the grid (the outline's merges), `i_overlay` rounds
+/// the crossings, moving a segment by up to `sqrt(2) / 2` units, so two
+/// shapes closer than that could come to touch in one boolean and not in
+/// two.
+const NEAR: i128 = 2;
+
+/// Whether the closed segments `p q` and `r s` come within [`NEAR`]
+/// (exact): they meet, or an end of one is that near the other.
+fn segments_near(p: IntPoint, q: IntPoint, r: IntPoint, s: IntPoint) -> bool {
+    segments_meet(p, q, r, s)
+        || point_near(p, r, s)
+        || point_near(q, r, s)
+        || point_near(r, p, q)
+        || point_near(s, p, q)
+}
+
+/// Whether `p` lies within [`NEAR`] of the closed segment `a b` (exact).
+fn point_near(p: IntPoint, a: IntPoint, b: IntPoint) -> bool {
+    let d = |u: IntPoint, v: IntPoint| {
+        (
+            i128::from(v.x) - i128::from(u.x),
+            i128::from(v.y) - i128::from(u.y),
+        )
+    };
+    let ((abx, aby), (apx, apy), (bpx, bpy)) = (d(a, b), d(a, p), d(b, p));
+    let (t, len2) = (apx * abx + apy * aby, abx * abx + aby * aby);
+    let near2 = NEAR * NEAR;
+    if t <= 0 || len2 == 0 {
+        apx * apx + apy * apy <= near2
+    } else if t >= len2 {
+        bpx * bpx + bpy * bpy <= near2
+    } else {
+        let cross = abx * apy - aby * apx;
+        cross * cross <= near2 * len2
+    }
 }
 
 /// Whether the closed segments `p q` and `r s` share a point (exact).

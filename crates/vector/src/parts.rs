@@ -205,6 +205,52 @@ pub fn overlay_by_parts_filled(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(12))]
+
+        /// Split by contact, a union of 700 thin diagonal triangles on a
+        /// coarse lattice, whose boxes chain into one part while most
+        /// are apart (some touching at corners or along edges, some
+        /// overlapping), is the one boolean's, shape for shape.
+        #[test]
+        fn parts_split_by_contact_give_the_one_boolean(
+            tris in prop::collection::vec(
+                ((0i32..160, 0i32..160), 4i32..24, 1i32..3, any::<bool>()),
+                700..701),
+        ) {
+            let grid = Grid { shift: 0, width: 1_100, height: 1_100 };
+            let shapes: Vec<Vec<Vec<IntPoint>>> = tris
+                .iter()
+                .map(|&((x, y), long, wide, up)| {
+                    let far = if up { (x + long + wide, y + long) } else { (x + long, y + long + wide) };
+                    vec![[(x, y), (x + long, y + long), far]
+                        .iter()
+                        .map(|&(px, py)| IntPoint::new(5 * px, 5 * py))
+                        .collect()]
+                })
+                .collect();
+            let input: Vec<_> = shapes
+                .iter()
+                .map(|s| (s.as_slice(), ShapeType::Subject))
+                .collect();
+            let mut work = BooleanWork::default();
+            let split = overlay_by_parts(&grid, &input, OverlayRule::Subject, &mut work);
+            let mut overlay = new_overlay(2_100);
+            for s in &shapes {
+                overlay.add_source(s, ShapeType::Subject);
+            }
+            let mut one = overlay.overlay(OverlayRule::Subject, FillRule::NonZero);
+            one.sort_by_cached_key(|shape| {
+                shape[0].iter().min_by_key(|p| (p.x, p.y)).map(|p| (p.x, p.y))
+            });
+            // Contact split the chained boxes further.
+            let boxes: Vec<_> = shapes.iter().map(|s| shape_box(s)).collect();
+            prop_assert!(work.booleans > parts(&boxes).len() as u64, "{work:?}");
+            prop_assert_eq!(split, one);
+        }
+    }
 
     fn b(x0: i32, y0: i32, x1: i32, y1: i32) -> Option<Box2> {
         Some((IntPoint::new(x0, y0), IntPoint::new(x1, y1)))
