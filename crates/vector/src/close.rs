@@ -18,7 +18,9 @@ use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
-use crate::grid::bounds;
+use crate::contact::shapes_touch;
+use crate::grid::{Bins, Grid, bounds};
+use crate::ownership::contours;
 use crate::parts::{BooleanWork, overlay_by_parts};
 use crate::splitter::IntShapes;
 use crate::splitter::new_overlay;
@@ -37,7 +39,12 @@ use crate::splitter::new_overlay;
 /// its shapes whose boxes chain together (`parts.rs`): near the root the
 /// sets are the whole map, and `N` separate long slivers in one boolean
 /// cost `N^1.5` in `i_overlay`'s fragment splitter.
-pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool], work: &mut BooleanWork) -> IntShapes {
+pub fn outline(
+    grid: &Grid,
+    polys: &[Vec<IntPoint>],
+    hidden: &[bool],
+    work: &mut BooleanWork,
+) -> IntShapes {
     let mut order: Vec<(u64, usize)> = polys
         .iter()
         .zip(hidden)
@@ -67,7 +74,7 @@ pub fn outline(polys: &[Vec<IntPoint>], hidden: &[bool], work: &mut BooleanWork)
                     .flatten()
                     .map(|s| (s.as_slice(), ShapeType::Subject))
                     .collect();
-                overlay_by_parts(&shapes, OverlayRule::Subject, work)
+                overlay_by_parts(grid, &shapes, OverlayRule::Subject, work)
             })
             .collect();
     }
@@ -99,26 +106,20 @@ fn morton(lo: IntPoint, hi: IntPoint) -> u64 {
 ///
 /// The two map-wide booleans (what the regions hold outside the covered
 /// set, and the covered set's gaps) run one per part (`parts.rs`).
-pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes], work: &mut BooleanWork) {
+pub fn close_to_cover(
+    grid: &Grid,
+    covered: &IntShapes,
+    regions: &mut [IntShapes],
+    work: &mut BooleanWork,
+) {
     let mut shapes: Vec<(&[Vec<IntPoint>], ShapeType)> = regions
         .iter()
         .flatten()
         .map(|s| (s.as_slice(), ShapeType::Subject))
         .collect();
     shapes.extend(covered.iter().map(|s| (s.as_slice(), ShapeType::Clip)));
-    let excess = overlay_by_parts(&shapes, OverlayRule::Difference, work);
-    let boxes: Vec<_> = regions.iter().map(|r| shapes_box(r)).collect();
-    for piece in excess {
-        let piece = vec![piece];
-        let Some(pb) = shapes_box(&piece) else {
-            continue;
-        };
-        for (region, rb) in regions.iter_mut().zip(&boxes) {
-            if rb.is_some_and(|rb| meets(rb, pb)) {
-                *region = boolean(region, &piece, OverlayRule::Difference);
-            }
-        }
-    }
+    let excess = overlay_by_parts(grid, &shapes, OverlayRule::Difference, work);
+    remove_excess(grid, regions, excess);
     let mut shapes: Vec<(&[Vec<IntPoint>], ShapeType)> = covered
         .iter()
         .map(|s| (s.as_slice(), ShapeType::Subject))
@@ -129,7 +130,7 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes], work: &mut
             .flatten()
             .map(|s| (s.as_slice(), ShapeType::Clip)),
     );
-    let gap = overlay_by_parts(&shapes, OverlayRule::Difference, work);
+    let gap = overlay_by_parts(grid, &shapes, OverlayRule::Difference, work);
     if gap.is_empty() {
         return;
     }
@@ -158,6 +159,54 @@ pub fn close_to_cover(covered: &IntShapes, regions: &mut [IntShapes], work: &mut
         // vanished) goes to the region with the nearest vertex.
         if let Some(k) = owner.or_else(|| nearest(regions, &piece)) {
             regions[k] = boolean(&regions[k], &vec![piece], OverlayRule::Union);
+        }
+    }
+}
+
+/// Takes the pieces `excess` out of the regions. Every region whose box
+/// meets a piece's box passes through a difference with it (which also
+/// writes the region as `i_overlay` does: collinear points dropped), but
+/// a piece sharing no point with a region changes nothing of that
+/// difference, so only the pieces touching it run (found through the
+/// bins, tested exactly), or one piece when none touches: diagonal
+/// slivers' boxes all meet, and every piece against every region was
+/// `pieces x regions` booleans.
+fn remove_excess(grid: &Grid, regions: &mut [IntShapes], excess: IntShapes) {
+    if excess.is_empty() {
+        return;
+    }
+    let pieces: Vec<IntShapes> = excess.into_iter().map(|p| vec![p]).collect();
+    let piece_boxes: Vec<_> = pieces.iter().map(|p| shapes_box(p)).collect();
+    let bins = Bins::covering(grid, &pieces.iter().map(contours).collect::<Vec<_>>());
+    let mut seen = vec![usize::MAX; pieces.len()];
+    for (k, region) in regions.iter_mut().enumerate() {
+        let Some(rb) = shapes_box(region) else {
+            continue;
+        };
+        let Some(first) = piece_boxes
+            .iter()
+            .position(|pb| pb.is_some_and(|pb| meets(rb, pb)))
+        else {
+            continue;
+        };
+        let mut touching: Vec<usize> = Vec::new();
+        bins.query_covering(&contours(region), |j| {
+            let j = j as usize;
+            if seen[j] != k {
+                seen[j] = k;
+                touching.push(j);
+            }
+        });
+        touching.retain(|&j| {
+            piece_boxes[j].is_some_and(|pb| meets(rb, pb))
+                && region.iter().any(|s| shapes_touch(s, &pieces[j][0]))
+        });
+        touching.sort_unstable();
+        if touching.is_empty() {
+            touching.push(first);
+        }
+        for j in touching {
+            *region = boolean(region, &pieces[j], OverlayRule::Difference);
         }
     }
 }

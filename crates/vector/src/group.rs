@@ -8,6 +8,7 @@ use hider_scene::{ScreenScene, ShadeMode};
 use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 
+use crate::grid::Grid;
 use crate::parts::{BooleanWork, overlay_by_parts};
 use crate::regions::{FaceGroup, PrimRegion};
 
@@ -96,6 +97,7 @@ fn merge_neighbours(keys: &[Key]) -> Vec<u32> {
 /// group's union one boolean per part of its regions, see `parts.rs`).
 pub(crate) fn group_regions(
     scene: &ScreenScene,
+    grid: &Grid,
     prims: &mut [PrimRegion],
     mode: ShadeMode,
     merge: bool,
@@ -155,7 +157,7 @@ pub(crate) fn group_regions(
                 .iter()
                 .map(|s| (s.as_slice(), ShapeType::Subject))
                 .collect();
-            group.shapes = overlay_by_parts(&shapes, OverlayRule::Subject, work);
+            group.shapes = overlay_by_parts(grid, &shapes, OverlayRule::Subject, work);
         }
     }
     groups

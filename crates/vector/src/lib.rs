@@ -41,6 +41,7 @@
 mod chain;
 mod close;
 mod closed;
+mod contact;
 mod cover;
 mod cull;
 mod document;

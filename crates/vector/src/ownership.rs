@@ -80,7 +80,7 @@ pub fn settle_ownership(
             }
         });
     }
-    let overlapping = overlapping_regions(shapes, touched, &boxes, &bins, work);
+    let overlapping = overlapping_regions(grid, shapes, touched, &boxes, &bins, work);
     done.overlapping = overlapping.iter().filter(|&&o| o).count() as u64;
     let clips = Bins::covering(
         grid,
@@ -150,6 +150,7 @@ fn points(shapes: &IntShapes) -> usize {
 /// region whose own shapes overlap each other shows up too: it only
 /// gains clips that change nothing.
 fn overlapping_regions(
+    grid: &Grid,
     shapes: &[IntShapes],
     touched: &[bool],
     boxes: &[Option<Box2>],
@@ -176,7 +177,7 @@ fn overlapping_regions(
         .flatten()
         .map(|s| (s.as_slice(), ShapeType::Subject))
         .collect();
-    let union = overlay_by_parts(&all, OverlayRule::Subject, work);
+    let union = overlay_by_parts(grid, &all, OverlayRule::Subject, work);
     let reversed: IntShapes = union
         .into_iter()
         .map(|s| {
@@ -189,7 +190,7 @@ fn overlapping_regions(
         })
         .collect();
     all.extend(reversed.iter().map(|s| (s.as_slice(), ShapeType::Subject)));
-    let twice = overlay_by_parts_filled(&all, OverlayRule::Subject, FillRule::Positive, work);
+    let twice = overlay_by_parts_filled(grid, &all, OverlayRule::Subject, FillRule::Positive, work);
     let mut overlapping = vec![false; shapes.len()];
     for piece in &twice {
         let Some(pbox) = bounds(piece.iter().flatten()) else {

@@ -18,7 +18,8 @@ use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
-use crate::grid::bounds;
+use crate::contact::contact_sets;
+use crate::grid::{Grid, bounds};
 use crate::splitter::{IntShapes, new_overlay};
 
 /// The work of the map-wide booleans.
@@ -40,6 +41,16 @@ impl BooleanWork {
         self.largest = self.largest.max(segments as u64);
     }
 }
+
+/// Segments above which a part of chained boxes is split further by
+/// contact ([`contact_sets`]): below, `i_overlay`'s sweep list handles
+/// it at once.
+const REFINE_ABOVE: usize = 2_000;
+
+/// Mean segments per shape above which a part is not refined: few big
+/// shapes (the outline's merges near the root on a pile) overlap as a
+/// rule, and testing their contact costs the product of their edges.
+const MEAN_SEGMENTS: usize = 16;
 
 /// A box: lowest and highest corner, closed.
 type Box2 = (IntPoint, IntPoint);
@@ -132,15 +143,17 @@ pub fn shape_box(contours: &[Vec<IntPoint>]) -> Option<Box2> {
 /// uses gives nothing there). The result is the one boolean's, in its
 /// order.
 pub fn overlay_by_parts(
+    grid: &Grid,
     shapes: &[(&[Vec<IntPoint>], ShapeType)],
     rule: OverlayRule,
     work: &mut BooleanWork,
 ) -> IntShapes {
-    overlay_by_parts_filled(shapes, rule, FillRule::NonZero, work)
+    overlay_by_parts_filled(grid, shapes, rule, FillRule::NonZero, work)
 }
 
 /// [`overlay_by_parts`] under the fill rule `fill`.
 pub fn overlay_by_parts_filled(
+    grid: &Grid,
     shapes: &[(&[Vec<IntPoint>], ShapeType)],
     rule: OverlayRule,
     fill: FillRule,
@@ -148,7 +161,25 @@ pub fn overlay_by_parts_filled(
 ) -> IntShapes {
     let boxes: Vec<Option<Box2>> = shapes.iter().map(|(s, _)| shape_box(s)).collect();
     let mut out = IntShapes::new();
+    let mut finer: Vec<Vec<usize>> = Vec::new();
     for part in parts(&boxes) {
+        let segments: usize = part.iter().flat_map(|&k| shapes[k].0).map(Vec::len).sum();
+        if segments <= REFINE_ABOVE || segments > MEAN_SEGMENTS * part.len() {
+            finer.push(part);
+            continue;
+        }
+        let members: Vec<&[Vec<IntPoint>]> = part.iter().map(|&k| shapes[k].0).collect();
+        // A set holding half the segments would at best halve the
+        // largest boolean (the regions of a mesh or a pile all touch).
+        match contact_sets(grid, &members, segments / 2) {
+            Some(sets) => finer.extend(
+                sets.into_iter()
+                    .map(|set| set.into_iter().map(|i| part[i]).collect()),
+            ),
+            None => finer.push(part),
+        }
+    }
+    for part in finer {
         if !part.iter().any(|&k| shapes[k].1 == ShapeType::Subject) {
             continue;
         }
@@ -174,6 +205,52 @@ pub fn overlay_by_parts_filled(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(12))]
+
+        /// Split by contact, a union of 700 thin diagonal triangles on a
+        /// coarse lattice, whose boxes chain into one part while most
+        /// are apart (some touching at corners or along edges, some
+        /// overlapping), is the one boolean's, shape for shape.
+        #[test]
+        fn parts_split_by_contact_give_the_one_boolean(
+            tris in prop::collection::vec(
+                ((0i32..160, 0i32..160), 4i32..24, 1i32..3, any::<bool>()),
+                700..701),
+        ) {
+            let grid = Grid { shift: 0, width: 1_100, height: 1_100 };
+            let shapes: Vec<Vec<Vec<IntPoint>>> = tris
+                .iter()
+                .map(|&((x, y), long, wide, up)| {
+                    let far = if up { (x + long + wide, y + long) } else { (x + long, y + long + wide) };
+                    vec![[(x, y), (x + long, y + long), far]
+                        .iter()
+                        .map(|&(px, py)| IntPoint::new(5 * px, 5 * py))
+                        .collect()]
+                })
+                .collect();
+            let input: Vec<_> = shapes
+                .iter()
+                .map(|s| (s.as_slice(), ShapeType::Subject))
+                .collect();
+            let mut work = BooleanWork::default();
+            let split = overlay_by_parts(&grid, &input, OverlayRule::Subject, &mut work);
+            let mut overlay = new_overlay(2_100);
+            for s in &shapes {
+                overlay.add_source(s, ShapeType::Subject);
+            }
+            let mut one = overlay.overlay(OverlayRule::Subject, FillRule::NonZero);
+            one.sort_by_cached_key(|shape| {
+                shape[0].iter().min_by_key(|p| (p.x, p.y)).map(|p| (p.x, p.y))
+            });
+            // Contact split the chained boxes further.
+            let boxes: Vec<_> = shapes.iter().map(|s| shape_box(s)).collect();
+            prop_assert!(work.booleans > parts(&boxes).len() as u64, "{work:?}");
+            prop_assert_eq!(split, one);
+        }
+    }
 
     fn b(x0: i32, y0: i32, x1: i32, y1: i32) -> Option<Box2> {
         Some((IntPoint::new(x0, y0), IntPoint::new(x1, y1)))

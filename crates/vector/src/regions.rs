@@ -380,10 +380,17 @@ fn build(
         return Err(region_points_error(stats.region_points, options));
     }
     let mut work = BooleanWork::default();
-    let outline = outline(&polys, &skip, &mut work);
+    let outline = outline(&grid, &polys, &skip, &mut work);
     let (mut prims, covered) = settle(&grid, per_prim, outline, &mut stats, &mut work);
 
-    let groups = group_regions(scene, &mut prims, mode, options.merge_groups, &mut work);
+    let groups = group_regions(
+        scene,
+        &grid,
+        &mut prims,
+        mode,
+        options.merge_groups,
+        &mut work,
+    );
     stats.map_booleans = work.booleans;
     stats.map_boolean_segments = work.segments;
     stats.largest_boolean = work.largest;
@@ -499,7 +506,7 @@ fn settle(
     let ownership = settle_ownership(grid, &mut shapes, &touched, work);
     stats.ownership_differences = ownership.differences;
     stats.ownership_segments = ownership.segments;
-    close_to_cover(&covered, &mut shapes, work);
+    close_to_cover(grid, &covered, &mut shapes, work);
     let prims = per_prim
         .iter()
         .zip(shapes)

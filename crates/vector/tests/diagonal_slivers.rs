@@ -58,3 +58,36 @@ fn doubling_diagonal_slivers_doubles_the_candidates() {
     assert!(rb.candidate_pairs < 8 * 4_000, "{rb:?}");
     assert!(lb.occluder_candidates < 16 * lb.feature_edges, "{lb:?}");
 }
+
+/// The map-wide booleans' counters of the regions of `n` diagonal slivers.
+fn booleans(n: u32) -> RegionStats {
+    let s = screen(&diagonal(n), 256, 256);
+    visible_regions(&s, &VectorOptions::default(), ShadeMode::Lambert)
+        .unwrap()
+        .stats
+}
+
+/// Shapes whose boxes chain together were one boolean: every diagonal
+/// sliver's box meets its neighbours', so the closing pass and the face
+/// groups' unions were each one boolean over the whole map (14,830
+/// segments at 2,000 slivers, 32,924 at 4,000), whose splitter costs
+/// more than linearly in long diagonal segments (6.5 s at 8,000). Split
+/// by actual contact, each boolean holds a few slivers that touch.
+#[test]
+fn diagonal_slivers_booleans_stay_local() {
+    let (a, b) = (booleans(1_000), booleans(2_000));
+    assert!(b.visible_prims > 1_500, "{b:?}");
+    // The largest boolean does not grow with the slivers.
+    assert!(
+        2 * b.largest_boolean < 3 * a.largest_boolean,
+        "largest boolean {} at 1,000 slivers, {} at 2,000\n{b:?}",
+        a.largest_boolean,
+        b.largest_boolean
+    );
+    assert!(b.largest_boolean < 4_000, "{b:?}");
+    // All booleans together grow with them.
+    assert!(
+        b.map_boolean_segments < 3 * a.map_boolean_segments,
+        "{a:?}\n{b:?}"
+    );
+}

@@ -85,6 +85,17 @@ impl Bins {
     /// are then stretched by the items' boxes in that frame (their
     /// geometric-mean width over height), keeping their area.
     pub fn covering(grid: &Grid, items: &[Vec<&[IntPoint]>]) -> Self {
+        Self::covering_within(grid, items, usize::MAX).expect("no limit on the entries")
+    }
+
+    /// [`Bins::covering`], or `None` as soon as the bins would hold more
+    /// than `max_entries` entries (items counted once per bin): big
+    /// overlapping shapes each fill the bins of their area.
+    pub fn covering_within(
+        grid: &Grid,
+        items: &[Vec<&[IntPoint]>],
+        max_entries: usize,
+    ) -> Option<Self> {
         let frame = common_direction(items);
         let (a, b) = frame;
         let corners = [
@@ -135,16 +146,21 @@ impl Bins {
         bins.rows = extent.1 / bins.size.1 + 1;
         bins.cells = vec![Vec::new(); (bins.cols * bins.rows) as usize];
         let mut cells = Vec::new();
+        let mut entries = 0usize;
         for (k, contours) in items.iter().enumerate() {
             cells.clear();
             bins.cover(contours, |cell| cells.push(cell));
             cells.sort_unstable();
             cells.dedup();
+            entries += cells.len();
+            if entries > max_entries {
+                return None;
+            }
             for &cell in &cells {
                 bins.cells[cell].push(k as u32);
             }
         }
-        bins
+        Some(bins)
     }
 
     /// The inclusive box of closed polygons in the frame.
@@ -165,7 +181,15 @@ impl Bins {
 
     /// Calls `visit` with every bin the closed polygons `contours` meet
     /// (a bin may come more than once).
-    fn cover(&self, contours: &[&[IntPoint]], mut visit: impl FnMut(usize)) {
+    fn cover(&self, contours: &[&[IntPoint]], visit: impl FnMut(usize)) {
+        self.cover_near(contours, 0, visit);
+    }
+
+    /// [`Bins::cover`] of the points within `near` grid units of the
+    /// closed polygons (with the bins around them: every covered row's
+    /// span widened, and taken over by the rows next to it, by as many
+    /// bins as `near` reaches in the frame).
+    fn cover_near(&self, contours: &[&[IntPoint]], near: i64, mut visit: impl FnMut(usize)) {
         let Some((lo, hi)) = self.frame_bounds(contours) else {
             return;
         };
@@ -208,12 +232,46 @@ impl Bins {
                 }
             }
         }
-        for (i, &(c0, c1)) in span.iter().enumerate() {
-            let r = r0 + i as i64;
-            for c in c0..=c1 {
+        if near == 0 {
+            for (i, &(c0, c1)) in span.iter().enumerate() {
+                let r = r0 + i as i64;
+                for c in c0..=c1 {
+                    visit((r * self.cols + c) as usize);
+                }
+            }
+            return;
+        }
+        // A displacement of `near` grid units is at most `near |frame|`
+        // frame units along either frame axis.
+        let reach = near.saturating_mul(self.frame.0.abs() + self.frame.1.abs());
+        let (dc, dr) = (
+            (reach + self.size.0 - 1) / self.size.0,
+            (reach + self.size.1 - 1) / self.size.1,
+        );
+        for r in (r0 - dr).max(0)..=(r1 + dr).min(self.rows - 1) {
+            let (c0, c1) = span
+                [((r - dr).max(r0) - r0) as usize..=((r + dr).min(r1) - r0) as usize]
+                .iter()
+                .fold((i64::MAX, i64::MIN), |(a, b), &(c0, c1)| {
+                    (a.min(c0), b.max(c1))
+                });
+            if c0 > c1 {
+                continue;
+            }
+            for c in (c0 - dc).max(0)..=(c1 + dc).min(self.cols - 1) {
                 visit((r * self.cols + c) as usize);
             }
         }
+    }
+
+    /// [`Bins::query_covering`] of the points within `near` grid units of
+    /// the closed polygons `contours`.
+    pub fn query_near(&self, contours: &[&[IntPoint]], near: i64, mut visit: impl FnMut(u32)) {
+        self.cover_near(contours, near, |cell| {
+            for &k in &self.cells[cell] {
+                visit(k);
+            }
+        });
     }
 
     /// Gives the items groups (one per item, [`crate::stars::NONE`] for
