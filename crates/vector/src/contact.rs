@@ -25,6 +25,7 @@ use std::collections::HashMap;
 use i_overlay::i_float::int::point::IntPoint;
 
 use crate::grid::{Bins, Grid, bounds};
+use crate::sweep::orient;
 
 /// Candidate pairs and edge pairs tested, per shape and segment, before
 /// a refinement gives up (the caller keeps the coarse part): the bins of
@@ -218,12 +219,6 @@ pub fn shapes_touch(a: &[Vec<IntPoint>], b: &[Vec<IntPoint>]) -> bool {
     boxes_meet(abox, bbox) && touch((a, b), (abox, bbox), (rightmost(a), rightmost(b)), &mut 0)
 }
 
-/// Twice the signed area of the triangle `a b c` (exact).
-fn orient(a: IntPoint, b: IntPoint, c: IntPoint) -> i128 {
-    (i128::from(b.x) - i128::from(a.x)) * (i128::from(c.y) - i128::from(a.y))
-        - (i128::from(b.y) - i128::from(a.y)) * (i128::from(c.x) - i128::from(a.x))
-}
-
 /// Grid units within which two segments count as touching: where the
 /// inputs cross off the grid (the outline's merges), `i_overlay` rounds
 /// the crossings, moving a segment by up to `sqrt(2) / 2` units, so two
@@ -264,8 +259,8 @@ fn point_near(p: IntPoint, a: IntPoint, b: IntPoint) -> bool {
 
 /// Whether the closed segments `p q` and `r s` share a point (exact).
 fn segments_meet(p: IntPoint, q: IntPoint, r: IntPoint, s: IntPoint) -> bool {
-    let (d1, d2) = (orient(p, q, r).signum(), orient(p, q, s).signum());
-    let (d3, d4) = (orient(r, s, p).signum(), orient(r, s, q).signum());
+    let (d1, d2) = (orient(p, q, r), orient(p, q, s));
+    let (d3, d4) = (orient(r, s, p), orient(r, s, q));
     if d1 * d2 < 0 && d3 * d4 < 0 {
         return true;
     }

@@ -36,8 +36,9 @@ fn orient(a: P, b: P, c: P) -> i32 {
     d.signum() as i32
 }
 
-/// Twice the signed area.
-fn signed_area2(poly: &[IntPoint]) -> i128 {
+/// Twice the signed area (positive counter-clockwise, the way `i_overlay`
+/// writes outer contours), exact.
+pub(crate) fn signed_area2(poly: &[IntPoint]) -> i128 {
     let n = poly.len();
     (0..n)
         .map(|k| {

@@ -24,6 +24,7 @@ use i_overlay::core::overlay::ShapeType;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::i_float::int::point::IntPoint;
 
+use crate::cover::signed_area2;
 use crate::grid::{Bins, Grid, bounds};
 use crate::parts::{BooleanWork, overlay_by_parts, overlay_by_parts_filled};
 use crate::splitter::{IntShapes, new_overlay};
@@ -215,24 +216,12 @@ fn counter_clockwise(shapes: &IntShapes) -> IntShapes {
         .iter()
         .map(|shape| {
             let mut shape = shape.clone();
-            if shape.first().is_some_and(|outer| area2(outer) < 0) {
+            if shape.first().is_some_and(|outer| signed_area2(outer) < 0) {
                 shape.iter_mut().for_each(|c| c.reverse());
             }
             shape
         })
         .collect()
-}
-
-/// Twice the signed area of a contour (positive counter-clockwise, the
-/// way `i_overlay` writes outer contours).
-fn area2(contour: &[IntPoint]) -> i128 {
-    let n = contour.len();
-    (0..n)
-        .map(|k| {
-            let (p, q) = (contour[k], contour[(k + 1) % n]);
-            i128::from(p.x) * i128::from(q.y) - i128::from(q.x) * i128::from(p.y)
-        })
-        .sum()
 }
 
 /// Whether `region` and the shape `piece` share interior (exact): a
@@ -268,7 +257,7 @@ fn shares_interior(region: &IntShapes, piece: &[Vec<IntPoint>]) -> bool {
 /// A contour that is not convex separates nothing.
 fn separated<'a>(outer: &[IntPoint], others: impl Iterator<Item = &'a IntPoint> + Clone) -> bool {
     let n = outer.len();
-    let sign = area2(outer).signum();
+    let sign = signed_area2(outer).signum();
     if n < 3 || sign == 0 {
         return false;
     }
@@ -305,7 +294,7 @@ mod tests {
         clockwise.reverse();
         overlay.add_contour(&clockwise, ShapeType::Subject);
         let out = overlay.overlay(OverlayRule::Subject, FillRule::NonZero);
-        assert!(area2(&out[0][0]) > 0);
+        assert!(signed_area2(&out[0][0]) > 0);
     }
 
     #[test]
