@@ -6,16 +6,19 @@ use super::super::key::DepthKey;
 use super::{BLOCK, TileBuf};
 
 impl<K: DepthKey> TileBuf<K> {
-    /// Credits `passes` to every block of a rectangle (an over-count for
-    /// blocks it only partly covers: that only refreshes them sooner).
+    /// Credits a small box's `passes` to the block of its first pixel and
+    /// to the tile. The counts only decide when a maximum is recomputed (a
+    /// stale maximum is still an upper bound), so the other blocks a box
+    /// meets may go uncredited; on a dense mesh every block holds the first
+    /// pixel of boxes of its own. A loop over the box's blocks cost the
+    /// sphere 200 at 1024 2.2 % of its frame's instructions, and crediting
+    /// the last pixel's block as well 0.6 %, and neither changed a
+    /// rejection on the spider.
     #[inline(always)]
-    pub(super) fn note_passes_in_rect(&mut self, x0: u32, y0: u32, x1: u32, y1: u32, passes: u32) {
+    pub(super) fn note_small_passes(&mut self, x0: u32, y0: u32, passes: u32) {
         let per_row = (self.size / BLOCK) as usize;
-        for br in (y0 - self.y0) / BLOCK..(y1 - self.y0) / BLOCK + 1 {
-            for bc in (x0 - self.x0) / BLOCK..(x1 - self.x0) / BLOCK + 1 {
-                self.block_passes[br as usize * per_row + bc as usize] += passes;
-            }
-        }
+        let block = ((y0 - self.y0) / BLOCK) as usize * per_row + ((x0 - self.x0) / BLOCK) as usize;
+        self.block_passes[block] += passes;
         self.tile_passes += passes;
     }
 

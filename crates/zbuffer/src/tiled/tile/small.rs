@@ -80,9 +80,7 @@ impl<K: WideBlock> TileBuf<K> {
         self.stats.pixels_tested += u64::from((x1 - x0 + 1) * (y1 - y0 + 1));
         self.stats.depth_tests += u64::from(inside);
         self.stats.depth_passes += u64::from(passes);
-        if passes > 0 {
-            self.note_passes_in_rect(x0, y0, x1, y1, passes);
-        }
+        self.note_small_passes(x0, y0, passes);
     }
 
     /// The AVX2 kernel's set-up of a small triangle in this tile (what the
