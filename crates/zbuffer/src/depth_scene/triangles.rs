@@ -6,8 +6,9 @@
 //! the exact test of the (at most four) pixel centres of a small box are
 //! integer work done in lanes (the compiler vectorises it; on a CPU with
 //! AVX2 the pass runs in a copy compiled for it, where a 32 x 32 -> 64-bit
-//! product is one instruction for four lanes). Only then does each kept
-//! triangle, one by one, pay for its depth plane (two divisions). A batch
+//! product is one instruction for four lanes). Only then are the depth
+//! planes of the kept triangles computed (two divisions each; with AVX2
+//! four lanes to a register, `simd::plane`, else one by one). A batch
 //! with a vertex that needs clipping, or is outside the window, goes
 //! through the same steps one triangle at a time ([`Pass::one`]), which is
 //! the definition the batch must match.
@@ -304,6 +305,11 @@ impl<I: Isa> Pass<'_, I> {
                 ),
                 _ => None,
             };
+        // The kept lanes' depth planes, four lanes to a register.
+        let planes = self
+            .isa
+            .avx2()
+            .map(|avx2| simd::plane::planes(avx2, x, y, z, (lanes.swap, lanes.keep)));
         // Only the kept lanes, by their bits: no branch per dropped lane.
         let mut keep = lanes.keep;
         while keep != 0 {
@@ -322,7 +328,10 @@ impl<I: Isa> Pass<'_, I> {
                 FixedPt::new(x[b][i], y[b][i]),
                 FixedPt::new(x[c][i], y[c][i]),
             ];
-            let depth = PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default();
+            let depth = match &planes {
+                Some(p) => p.get(i, z[0][i]),
+                None => PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default(),
+            };
             let (x0, y0, w) = lanes.corner[i];
             if lanes.few >> i & 1 == 0 {
                 let setup = match &setups {
