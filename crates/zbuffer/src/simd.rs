@@ -8,7 +8,8 @@
 //! into a `target_feature` function. The intrinsics ([`block`]: a full 8x8
 //! block of the tile kernel; [`small`]: a small triangle's box, row by
 //! row; [`classify`]: the classification of eight
-//! triangles; [`plane`]: their depth planes; [`resolve`]: the read-back of eight pixels) are `#[inline(always)]` into that copy (a `target_feature`
+//! triangles; [`plane`]: their depth planes; [`emit`]: the
+//! triangles they keep, written into the run; [`resolve`]: the read-back of eight pixels) are `#[inline(always)]` into that copy (a `target_feature`
 //! function of their own would be a call per block, and the call spills
 //! the kernel's registers), so their soundness is carried by a type: an
 //! [`Avx2`] value, which only [`Avx2::detect`] makes, is passed down the
@@ -23,6 +24,7 @@
 
 pub(crate) mod block;
 pub(crate) mod classify;
+pub(crate) mod emit;
 pub(crate) mod gather;
 pub(crate) mod plane;
 pub(crate) mod resolve;

@@ -13,6 +13,7 @@ use hider_geom::FEW_CENTRES;
 use hider_geom::edge::top_left_bias;
 use hider_geom::fixed::{SUBPIXEL_SCALE, first_center_from, last_center_upto, pixel_center};
 
+#[cfg(test)]
 use super::depth_tri::SmallSetup;
 
 // The centre tests are written out for the first four centres.
@@ -110,28 +111,28 @@ impl Lanes {
 
 /// The small-box set-ups ([`SmallSetup`]) of a batch's triangles,
 /// structure of arrays, as the AVX2 classification computes them
-/// (`simd::classify::setups`): bit `i` of `ready` says lane `i` has one,
-/// whose box ends at column `end[0][i]` and row `end[1][i]` and whose
-/// edge values are `e[k][i]`; zero in the other lanes.
+/// (`simd::classify::setups`): lane `i`'s box as two words (`bbox[0][i]`
+/// its first column in the low 16 bits and first row in the high ones,
+/// `bbox[1][i]` its last column and row: the bytes of
+/// [`SmallSetup::bbox`]) and its edge values `e[k][i]`; the words of
+/// [`SmallSetup::NONE`] in the lanes without one.
 #[derive(Debug, PartialEq, Eq)]
 pub(crate) struct Setups {
-    pub(crate) ready: u8,
-    pub(crate) end: [[i32; LANES]; 2],
+    pub(crate) bbox: [[i32; LANES]; 2],
     pub(crate) e: [[i32; LANES]; 3],
 }
 
 impl Setups {
-    /// Lane `i`'s set-up, its box starting at `(x0, y0)` (the lane's
-    /// [`Lanes::corner`]).
-    #[inline(always)]
-    pub(crate) fn get(&self, i: usize, (x0, y0): (u32, u32)) -> SmallSetup {
-        if self.ready >> i & 1 == 0 {
-            return SmallSetup::NONE;
-        }
-        let (x1, y1) = (self.end[0][i] as u32, self.end[1][i] as u32);
+    /// The words of [`SmallSetup::NONE`]'s box.
+    pub(crate) const NONE_BBOX: [i32; 2] = [1, 0];
+
+    /// Lane `i`'s set-up (the triangle pass moves the words into its
+    /// records as they are, `simd::emit`).
+    #[cfg(test)]
+    pub(crate) fn get(&self, i: usize) -> SmallSetup {
+        let [lo, hi] = [self.bbox[0][i], self.bbox[1][i]];
         SmallSetup {
-            // Images are at most 16384 pixels wide and high.
-            bbox: [x0 as u16, y0 as u16, x1 as u16, y1 as u16],
+            bbox: [lo as u16, (lo >> 16) as u16, hi as u16, (hi >> 16) as u16],
             e: [self.e[0][i], self.e[1][i], self.e[2][i]],
         }
     }

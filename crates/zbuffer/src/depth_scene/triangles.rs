@@ -33,6 +33,7 @@ use super::depth_tri::{DepthFragment, DepthTri, SmallSetup};
 use crate::simd;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Kernel;
+use crate::simd::emit::Batch;
 use crate::simd::gather::Corners;
 use hider_scene::prepare::lean::{
     CachedVertex, ClipFallback, NO_WINDOW, NOT_FINITE, RunOutcome, mesh_parts,
@@ -305,11 +306,29 @@ impl<I: Isa> Pass<'_, I> {
                 ),
                 _ => None,
             };
-        // The kept lanes' depth planes, four lanes to a register.
-        let planes = self
-            .isa
-            .avx2()
-            .map(|avx2| simd::plane::planes(avx2, x, y, z, (lanes.swap, lanes.keep)));
+        if let Some(avx2) = self.isa.avx2() {
+            // The kept lanes' depth planes four lanes to a register, the
+            // triangles' records eight lanes at a time.
+            let planes = simd::plane::planes(avx2, x, y, z, (lanes.swap, lanes.keep));
+            let batch = Batch {
+                x,
+                y,
+                z0: &z[0],
+                swap: lanes.swap,
+                planes: &planes,
+                setups: setups.as_ref(),
+                first_prim: (mesh.first_prim + t) as u32,
+            };
+            simd::emit::push(avx2, &batch, triangles, &mut self.run.tris);
+            let mut few = lanes.keep & lanes.few;
+            while few != 0 {
+                let i = few.trailing_zeros() as usize;
+                few &= few - 1;
+                let prim = (mesh.first_prim + t + i) as u32;
+                self.fragments(&lanes, i, &planes.get(i, z[0][i]), prim);
+            }
+            return;
+        }
         // Only the kept lanes, by their bits: no branch per dropped lane.
         let mut keep = lanes.keep;
         while keep != 0 {
@@ -328,37 +347,32 @@ impl<I: Isa> Pass<'_, I> {
                 FixedPt::new(x[b][i], y[b][i]),
                 FixedPt::new(x[c][i], y[c][i]),
             ];
-            let depth = match &planes {
-                Some(p) => p.get(i, z[0][i]),
-                None => PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default(),
-            };
-            let (x0, y0, w) = lanes.corner[i];
+            let depth = PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default();
             if lanes.few >> i & 1 == 0 {
-                let setup = match &setups {
-                    Some(s) => s.get(i, (x0, y0)),
-                    None => SmallSetup::NONE,
-                };
+                // Set-ups exist only with AVX2.
                 self.run.tris.push(DepthTri {
                     v,
                     depth,
                     prim,
-                    setup,
+                    setup: SmallSetup::NONE,
                 });
                 continue;
             }
-            let tri = DepthTri {
-                v,
-                depth,
-                prim,
-                setup: SmallSetup::NONE,
-            };
-            self.stats.fragmented += 1;
-            let mut covered = lanes.covered[i];
-            while covered != 0 {
-                let j = covered.trailing_zeros();
-                covered &= covered - 1;
-                push_fragment(self.run, &tri, (x0 + j % w, y0 + j / w));
-            }
+            self.fragments(&lanes, i, &depth, prim);
+        }
+    }
+
+    /// Lane `i`'s covered centres as fragments, the lane's plane `depth`
+    /// and primitive id `prim`.
+    #[inline(always)]
+    fn fragments(&mut self, lanes: &Lanes, i: usize, depth: &PlaneEq, prim: u32) {
+        let (x0, y0, w) = lanes.corner[i];
+        self.stats.fragmented += 1;
+        let mut covered = lanes.covered[i];
+        while covered != 0 {
+            let j = covered.trailing_zeros();
+            covered &= covered - 1;
+            push_fragment(self.run, depth, prim, (x0 + j % w, y0 + j / w));
         }
     }
 
@@ -404,19 +418,20 @@ fn emit(run: &mut Run, stats: &mut PrepareStats, tri: DepthTri, centres: Centres
     }
     stats.fragmented += 1;
     for &pixel in centres.pixels() {
-        push_fragment(run, &tri, pixel);
+        push_fragment(run, &tri.depth, tri.prim, pixel);
     }
 }
 
-/// Appends the fragment of `tri` at pixel `(x, y)`.
+/// Appends the fragment at pixel `(x, y)` of the triangle of plane
+/// `depth` and primitive id `prim`.
 #[inline(always)]
-fn push_fragment(run: &mut Run, tri: &DepthTri, (x, y): (u32, u32)) {
+fn push_fragment(run: &mut Run, depth: &PlaneEq, prim: u32, (x, y): (u32, u32)) {
     run.fragments.push(DepthFragment {
         // The hiders' own expression for a pixel's depth.
-        depth: tri.depth.at_pixel(x, y),
+        depth: depth.at_pixel(x, y),
         // Images are at most 16384 pixels wide and high.
         x: x as u16,
         y: y as u16,
-        prim: tri.prim,
+        prim,
     });
 }

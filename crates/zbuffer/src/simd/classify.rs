@@ -390,11 +390,14 @@ mod avx2 {
                 let at = _mm256_add_epi32(at, _mm256_sub_epi32(bias, one32));
                 e[k] = bytemuck::cast(_mm256_and_si256(at, ok));
             }
+            // The box's words (see `Setups`), those of no set-up where
+            // there is none.
+            let word = |x: __m256i, y: __m256i| _mm256_or_si256(x, _mm256_slli_epi32::<16>(y));
+            let [none_lo, none_hi] = Setups::NONE_BBOX.map(|w| _mm256_set1_epi32(w));
             Setups {
-                ready: bits(ok),
-                end: [
-                    bytemuck::cast(_mm256_and_si256(x1, ok)),
-                    bytemuck::cast(_mm256_and_si256(y1, ok)),
+                bbox: [
+                    bytemuck::cast(_mm256_blendv_epi8(none_lo, word(x0, y0), ok)),
+                    bytemuck::cast(_mm256_blendv_epi8(none_hi, word(x1, y1), ok)),
                 ],
                 e,
             }
@@ -510,8 +513,7 @@ mod tests {
             let setups = super::setups(avx2, &x, &y, size, (wide.swap, want));
             let viewport = Viewport::new(size.0, size.1);
             for i in 0..LANES {
-                let (x0, y0, _) = wide.corner[i];
-                let got = setups.get(i, (x0, y0));
+                let got = setups.get(i);
                 let expected = if want >> i & 1 == 0 {
                     SmallSetup::NONE
                 } else {

@@ -20,10 +20,10 @@ use crate::depth_scene::classify::LANES;
 /// for holds whatever its corners gave (possibly not finite).
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Planes {
-    x0: [f64; LANES],
-    y0: [f64; LANES],
-    dx: [f64; LANES],
-    dy: [f64; LANES],
+    pub(crate) x0: [f64; LANES],
+    pub(crate) y0: [f64; LANES],
+    pub(crate) dx: [f64; LANES],
+    pub(crate) dy: [f64; LANES],
 }
 
 impl Planes {
