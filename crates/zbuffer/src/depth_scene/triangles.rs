@@ -319,7 +319,9 @@ impl<I: Isa> Pass<'_, I> {
                 setups: setups.as_ref(),
                 first_prim: (mesh.first_prim + t) as u32,
             };
-            simd::emit::push(avx2, &batch, triangles, &mut self.run.tris);
+            if triangles != 0 {
+                simd::emit::push(avx2, &batch, triangles, &mut self.run.tris);
+            }
             let mut few = lanes.keep & lanes.few;
             while few != 0 {
                 let i = few.trailing_zeros() as usize;

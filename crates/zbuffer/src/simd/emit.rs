@@ -101,46 +101,41 @@ mod avx2 {
         bytemuck::cast(*v)
     }
 
-    /// Four rows of eight lanes as each lane's four words: lane `i`'s at
-    /// [`quad`]`(i)`.
+    /// Four rows of eight lanes as each lane's four words.
     #[inline(always)]
     fn quads([r0, r1, r2, r3]: [__m256i; 4]) -> [[i32; 4]; LANES] {
         unsafe {
             // Lanes 0, 1 | 4, 5 and 2, 3 | 6, 7 of rows 0, 1 and 2, 3 ...
             let (t0, t1) = (_mm256_unpacklo_epi32(r0, r1), _mm256_unpackhi_epi32(r0, r1));
             let (t2, t3) = (_mm256_unpacklo_epi32(r2, r3), _mm256_unpackhi_epi32(r2, r3));
-            // ... then lanes 0 | 4, 1 | 5, 2 | 6, 3 | 7 of all four.
+            // ... then lanes 0 | 4, 1 | 5, 2 | 6, 3 | 7 of all four ...
+            let (u0, u1) = (_mm256_unpacklo_epi64(t0, t2), _mm256_unpackhi_epi64(t0, t2));
+            let (u2, u3) = (_mm256_unpacklo_epi64(t1, t3), _mm256_unpackhi_epi64(t1, t3));
+            // ... then in lane order, so that a lane's index is its place
+            // (no index arithmetic per kept lane).
             bytemuck::cast([
-                _mm256_unpacklo_epi64(t0, t2),
-                _mm256_unpackhi_epi64(t0, t2),
-                _mm256_unpacklo_epi64(t1, t3),
-                _mm256_unpackhi_epi64(t1, t3),
+                _mm256_permute2x128_si256::<0x20>(u0, u1),
+                _mm256_permute2x128_si256::<0x20>(u2, u3),
+                _mm256_permute2x128_si256::<0x31>(u0, u1),
+                _mm256_permute2x128_si256::<0x31>(u2, u3),
             ])
         }
     }
 
-    /// Where [`quads`] puts lane `i`.
-    #[inline(always)]
-    fn quad(i: usize) -> usize {
-        2 * (i & 3) + (i >> 2)
-    }
-
-    /// Two rows of eight lanes as each lane's two words: lane `i`'s at
-    /// [`pair`]`(i)`.
+    /// Two rows of eight lanes as each lane's two words.
     #[inline(always)]
     fn pairs(r0: __m256i, r1: __m256i) -> [[i32; 2]; LANES] {
-        // Lanes 0, 1 | 4, 5 and 2, 3 | 6, 7.
-        unsafe { bytemuck::cast([_mm256_unpacklo_epi32(r0, r1), _mm256_unpackhi_epi32(r0, r1)]) }
+        unsafe {
+            // Lanes 0, 1 | 4, 5 and 2, 3 | 6, 7, then in lane order.
+            let (t0, t1) = (_mm256_unpacklo_epi32(r0, r1), _mm256_unpackhi_epi32(r0, r1));
+            bytemuck::cast([
+                _mm256_permute2x128_si256::<0x20>(t0, t1),
+                _mm256_permute2x128_si256::<0x31>(t0, t1),
+            ])
+        }
     }
 
-    /// Where [`pairs`] puts lane `i`.
-    #[inline(always)]
-    fn pair(i: usize) -> usize {
-        (i & 1) | (i >> 2) << 1 | (i >> 1 & 1) << 2
-    }
-
-    /// Two rows of `f64` lanes as each lane's two values: lane `i`'s at
-    /// [`double`]`(i)`.
+    /// Two rows of `f64` lanes as each lane's two values.
     #[inline(always)]
     fn doubles(r0: &[f64; LANES], r1: &[f64; LANES]) -> [[f64; 2]; LANES] {
         unsafe {
@@ -149,18 +144,16 @@ mod avx2 {
                     _mm256_loadu_pd(r0[4 * h..].as_ptr()),
                     _mm256_loadu_pd(r1[4 * h..].as_ptr()),
                 );
-                // Lanes 0 | 2 and 1 | 3 of the half.
-                [_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b)]
+                // Lanes 0 | 2 and 1 | 3 of the half, then in lane order.
+                let (lo, hi) = (_mm256_unpacklo_pd(a, b), _mm256_unpackhi_pd(a, b));
+                [
+                    _mm256_permute2f128_pd::<0x20>(lo, hi),
+                    _mm256_permute2f128_pd::<0x31>(lo, hi),
+                ]
             };
             let ([a, b], [c, d]) = (half(0), half(1));
             bytemuck::cast([a, b, c, d])
         }
-    }
-
-    /// Where [`doubles`] puts lane `i`.
-    #[inline(always)]
-    fn double(i: usize) -> usize {
-        (i & 4) | (i & 1) << 1 | (i >> 1 & 1)
     }
 
     /// See [`super::push`].
@@ -213,25 +206,17 @@ mod avx2 {
                 // reserved above, and each write stays within it (the
                 // offsets are the fields', checked at compile time).
                 // Unaligned writes: no alignment is assumed.
-                at.add(V)
-                    .cast::<[i32; 4]>()
-                    .write_unaligned(corners[quad(i)]);
-                at.add(V + 16)
-                    .cast::<[i32; 2]>()
-                    .write_unaligned(last[pair(i)]);
-                at.add(DEPTH)
-                    .cast::<[f64; 2]>()
-                    .write_unaligned(origin[double(i)]);
+                at.add(V).cast::<[i32; 4]>().write_unaligned(corners[i]);
+                at.add(V + 16).cast::<[i32; 2]>().write_unaligned(last[i]);
+                at.add(DEPTH).cast::<[f64; 2]>().write_unaligned(origin[i]);
                 at.add(DEPTH + 16)
                     .cast::<[f64; 2]>()
-                    .write_unaligned(slope[double(i)]);
+                    .write_unaligned(slope[i]);
                 at.add(DEPTH + 32).cast::<f64>().write_unaligned(p.dy[i]);
-                at.add(PRIM)
-                    .cast::<[i32; 4]>()
-                    .write_unaligned(ids[quad(i)]);
+                at.add(PRIM).cast::<[i32; 4]>().write_unaligned(ids[i]);
                 at.add(SETUP + 12)
                     .cast::<[i32; 2]>()
-                    .write_unaligned(edges[pair(i)]);
+                    .write_unaligned(edges[i]);
                 at = at.add(std::mem::size_of::<DepthTri>());
             }
             // SAFETY: the `n` records after the old length are written.
