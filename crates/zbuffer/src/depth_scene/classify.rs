@@ -36,9 +36,9 @@ pub(crate) struct Lanes {
     /// Bit `i`: lane `i`'s last two corners must be swapped for positive
     /// order.
     pub(crate) swap: u8,
-    /// Bit `i`: lane `i`'s box holds at most [`FEW_CENTRES`] centres; then
-    /// bit `j` of `covered[i]` says whether its `j`-th centre (row-major)
-    /// is covered.
+    /// Bit `i`: lane `i`'s box holds at most [`FEW_CENTRES`] centres; then,
+    /// when the box is not empty, bit `j` of `covered[i]` says whether its
+    /// `j`-th centre (row-major) is covered (zero in the other lanes).
     pub(crate) few: u8,
     pub(crate) covered: [u8; LANES],
     /// The box's first pixel and its width.
@@ -90,7 +90,8 @@ impl Lanes {
             back[i] = cull & (l.area > 0);
             swap[i] = l.area < 0;
             few[i] = l.count <= FEW_CENTRES as i32;
-            covered[i] = l.covered;
+            let tested = few[i] & (l.cols > 0) & (l.rows > 0);
+            covered[i] = if tested { l.covered } else { 0 };
             empty[i] = (l.cols <= 0) | (l.rows <= 0) | (few[i] & (l.covered == 0));
             corner[i] = (l.x0 as u32, l.y0 as u32, l.cols as u32);
         }
