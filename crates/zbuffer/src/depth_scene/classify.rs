@@ -22,6 +22,25 @@ const _: () = assert!(FEW_CENTRES == 4);
 /// Triangles per batch.
 pub(crate) const LANES: usize = 8;
 
+/// `CENTRE_AT[w]`: the columns and the rows, from the box's first pixel,
+/// of the first [`FEW_CENTRES`] centres (row-major) of a box `w` centres
+/// wide: `j % w` and `j / w`, without the division (its latency showed
+/// per fragment).
+pub(crate) const CENTRE_AT: [[[i32; FEW_CENTRES]; 2]; FEW_CENTRES + 1] = {
+    let mut at = [[[0; FEW_CENTRES]; 2]; FEW_CENTRES + 1];
+    let mut w = 1;
+    while w <= FEW_CENTRES {
+        let mut j = 0;
+        while j < FEW_CENTRES {
+            at[w][0][j] = (j % w) as i32;
+            at[w][1][j] = (j / w) as i32;
+            j += 1;
+        }
+        w += 1;
+    }
+    at
+};
+
 /// The integer classification of a batch, lane by lane.
 #[derive(Debug, PartialEq, Eq)]
 pub(crate) struct Lanes {

@@ -65,7 +65,10 @@ impl DepthTri {
 /// if it compares `(depth, prim)` lexicographically: the LESS depth test
 /// in primitive order keeps the smallest depth and, among equal depths,
 /// the first primitive.
+// `repr(C)`: the triangle pass writes it by its fields' offsets
+// (`simd::fragments`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
 pub struct DepthFragment {
     /// Window depth at the pixel centre: the triangle's
     /// [`PlaneEq::at_pixel`], the expression every pixel-centre hider

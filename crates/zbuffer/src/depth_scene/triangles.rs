@@ -28,7 +28,7 @@ use hider_geom::{Centres, FEW_CENTRES, FixedPt, PlaneEq, orient2d};
 use hider_scene::prepare::{FrontEnd, WindowVertex, setup_depth};
 use hider_scene::{Mesh, PrepareStats, Scene};
 
-use super::classify::{LANES, Lanes};
+use super::classify::{CENTRE_AT, LANES, Lanes};
 use super::depth_tri::{DepthFragment, DepthTri, SmallSetup};
 use crate::simd;
 #[cfg(target_arch = "x86_64")]
@@ -60,23 +60,6 @@ const OUT_OF_RANGE: CachedVertex = CachedVertex {
 /// most kept lanes become fragments, computing them for every batch made
 /// the frame 3 % slower).
 const DENSE_BATCH: u32 = 3;
-
-/// `CENTRE_AT[w][j]`: the column and row of centre `j` (row-major) of a
-/// box `w` centres wide, `(j % w, j / w)`, without the division (its
-/// latency showed per fragment).
-const CENTRE_AT: [[(u32, u32); FEW_CENTRES]; FEW_CENTRES + 1] = {
-    let mut at = [[(0, 0); FEW_CENTRES]; FEW_CENTRES + 1];
-    let mut w = 1;
-    while w <= FEW_CENTRES {
-        let mut j = 0;
-        while j < FEW_CENTRES {
-            at[w][j] = ((j % w) as u32, (j / w) as u32);
-            j += 1;
-        }
-        w += 1;
-    }
-    at
-};
 
 /// Codes that send a triangle off the common path.
 const SPECIAL: u32 = NOT_FINITE | OUTSIDE_PLANES | NO_WINDOW;
@@ -339,12 +322,11 @@ impl<I: Isa> Pass<'_, I> {
             if triangles != 0 {
                 simd::emit::push(avx2, &batch, triangles, &mut self.run.tris);
             }
-            let mut few = lanes.keep & lanes.few;
-            while few != 0 {
-                let i = few.trailing_zeros() as usize;
-                few &= few - 1;
-                let prim = (mesh.first_prim + t + i) as u32;
-                self.fragments(&lanes, i, &planes.get(i, z[0][i]), prim);
+            let few = lanes.keep & lanes.few;
+            if few != 0 {
+                self.stats.fragmented += u64::from(few.count_ones());
+                let small = (few, &lanes.corner, &lanes.covered);
+                simd::fragments::push(avx2, &batch, small, &mut self.run.fragments);
             }
             return;
         }
@@ -388,12 +370,13 @@ impl<I: Isa> Pass<'_, I> {
         let (x0, y0, w) = lanes.corner[i];
         self.stats.fragmented += 1;
         // A box of a few centres is at most FEW_CENTRES wide.
-        let at = &CENTRE_AT[(w as usize).min(FEW_CENTRES)];
+        let [cols, rows] = &CENTRE_AT[(w as usize).min(FEW_CENTRES)];
         let mut covered = lanes.covered[i];
         while covered != 0 {
-            let (dx, dy) = at[covered.trailing_zeros() as usize];
+            let j = covered.trailing_zeros() as usize;
             covered &= covered - 1;
-            push_fragment(self.run, depth, prim, (x0 + dx, y0 + dy));
+            let (x, y) = (x0 + cols[j] as u32, y0 + rows[j] as u32);
+            push_fragment(self.run, depth, prim, (x, y));
         }
     }
 
