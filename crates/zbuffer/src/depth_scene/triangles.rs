@@ -34,6 +34,7 @@ use crate::simd;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Kernel;
 use crate::simd::emit::Batch;
+use crate::simd::fragments::Small;
 use crate::simd::gather::Corners;
 use hider_scene::prepare::lean::{
     CachedVertex, ClipFallback, NO_WINDOW, NOT_FINITE, RunOutcome, mesh_parts,
@@ -325,8 +326,12 @@ impl<I: Isa> Pass<'_, I> {
             let few = lanes.keep & lanes.few;
             if few != 0 {
                 self.stats.fragmented += u64::from(few.count_ones());
-                let small = (few, &lanes.corner, &lanes.covered);
-                simd::fragments::push(avx2, &batch, small, &mut self.run.fragments);
+                let small = Small {
+                    lanes: few,
+                    corner: &lanes.corner,
+                    covered: &lanes.covered,
+                };
+                simd::fragments::push(avx2, &batch, &small, &mut self.run.fragments);
             }
             return;
         }

@@ -28,7 +28,17 @@ const _: () = assert!(
         && FEW_CENTRES == 4
 );
 
-/// Appends, for each lane of `lanes` in order, the fragments of its
+/// The lanes of a batch whose box holds a few centres (bits of `lanes`):
+/// each box's first pixel and width, and its covered centres
+/// ([`Lanes::corner`](crate::depth_scene::classify::Lanes::corner),
+/// [`Lanes::covered`](crate::depth_scene::classify::Lanes::covered)).
+pub(crate) struct Small<'a> {
+    pub(crate) lanes: u8,
+    pub(crate) corner: &'a [(u32, u32, u32); LANES],
+    pub(crate) covered: &'a [u8; LANES],
+}
+
+/// Appends, for each lane of `small.lanes` in order, the fragments of its
 /// covered centres in order: lane `i`'s box starts at pixel
 /// `(corner[i].0, corner[i].1)` and is `corner[i].2` centres wide (at most
 /// [`FEW_CENTRES`]), bit `j` of `covered[i]` says centre `j` (row-major)
@@ -41,21 +51,16 @@ const _: () = assert!(
 pub(crate) fn push(
     _proof: Avx2,
     batch: &Batch<'_>,
-    (lanes, corner, covered): (u8, &[(u32, u32, u32); LANES], &[u8; LANES]),
+    small: &Small<'_>,
     out: &mut Vec<DepthFragment>,
 ) {
-    avx2::push(batch, (lanes, corner, covered), out);
+    avx2::push(batch, small, out);
 }
 
 /// Without x86-64 there is no [`Avx2`] value, so this is never called.
 #[cfg(not(target_arch = "x86_64"))]
 #[inline(always)]
-pub(crate) fn push(
-    proof: Avx2,
-    _: &Batch<'_>,
-    _: (u8, &[(u32, u32, u32); LANES], &[u8; LANES]),
-    _: &mut Vec<DepthFragment>,
-) {
+pub(crate) fn push(proof: Avx2, _: &Batch<'_>, _: &Small<'_>, _: &mut Vec<DepthFragment>) {
     unreachable!("{proof:?} exists only on x86-64")
 }
 
@@ -67,7 +72,7 @@ pub(crate) fn push(
 mod avx2 {
     use std::arch::x86_64::*;
 
-    use super::{Batch, DepthFragment, FEW_CENTRES, LANES};
+    use super::{Batch, DepthFragment, FEW_CENTRES, Small};
     use crate::depth_scene::classify::CENTRE_AT;
 
     // SAFETY (every `unsafe` block of this module, but for the writes,
@@ -76,11 +81,12 @@ mod avx2 {
 
     /// See [`super::push`].
     #[inline(always)]
-    pub(super) fn push(
-        b: &Batch<'_>,
-        (lanes, corner, covered): (u8, &[(u32, u32, u32); LANES], &[u8; LANES]),
-        out: &mut Vec<DepthFragment>,
-    ) {
+    pub(super) fn push(b: &Batch<'_>, small: &Small<'_>, out: &mut Vec<DepthFragment>) {
+        let Small {
+            lanes,
+            corner,
+            covered,
+        } = *small;
         unsafe {
             let n = FEW_CENTRES * lanes.count_ones() as usize;
             out.reserve(n);
@@ -208,7 +214,8 @@ mod tests {
             };
             let old = DepthFragment { prim: 7, ..DepthFragment::default() };
             let mut got = vec![old];
-            super::push(avx2, &batch, (lanes, &corner, &covered), &mut got);
+            let small = super::Small { lanes, corner: &corner, covered: &covered };
+            super::push(avx2, &batch, &small, &mut got);
             let mut want = vec![old];
             for i in (0..LANES).filter(|i| lanes >> i & 1 != 0) {
                 let (x0, y0, w) = corner[i];
