@@ -444,3 +444,87 @@ fn push_fragment(run: &mut Run, depth: &PlaneEq, prim: u32, (x, y): (u32, u32)) 
         prim,
     });
 }
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+    use hider_geom::Camera;
+    use hider_geom::isa::Avx2;
+    use hider_scene::prepare::lean::lean_passes;
+    use hider_scene::{PrepareOptions, Scene, TransformPrecision, View, procedural};
+
+    use super::{Input, Portable, Run, pass, triangles};
+
+    /// The pass with AVX2 (intrinsics, records written in lanes) gives
+    /// the portable pass's triangles, fragments and counters, on meshes of
+    /// small triangles, a soup, and a sphere the far plane cuts, in both
+    /// precisions, with and without back-face culling.
+    #[test]
+    fn the_avx2_pass_is_the_portable_pass() {
+        if Avx2::detect().is_none() {
+            return;
+        }
+        // The far plane through the sphere's centre.
+        let cut = View {
+            viewport: hider_geom::Viewport::new(300, 200),
+            camera: Camera::perspective(DVec3::new(0.0, 0.0, 3.0), DVec3::ZERO, 0.5, 3.0),
+        };
+        let scenes: Vec<(Scene, Option<View>)> = vec![
+            (procedural::uv_sphere(60), None),
+            (procedural::random_soup(4000, 3), None),
+            (procedural::uv_sphere(40), Some(cut)),
+        ];
+        let (mut tris, mut fragments) = (0, 0);
+        let mut clipped = 0;
+        for (scene, view) in &scenes {
+            for size in [97, 512] {
+                let view = view
+                    .clone()
+                    .unwrap_or_else(|| View::for_scene(scene, size, size).unwrap());
+                for (precision, cull) in [
+                    (TransformPrecision::F32, false),
+                    (TransformPrecision::F64, true),
+                ] {
+                    let options = PrepareOptions {
+                        precision,
+                        cull_back_faces: cull,
+                        ..PrepareOptions::default()
+                    };
+                    let (mut vertices, mut runs) = (Vec::new(), Vec::<Run>::new());
+                    lean_passes(
+                        scene,
+                        &view,
+                        &options,
+                        &mut vertices,
+                        &mut runs,
+                        |front, cache, range, run| {
+                            let input = Input {
+                                scene,
+                                front,
+                                vertices: cache,
+                                range,
+                            };
+                            let mut portable = Run::default();
+                            let want = pass(&input, &mut portable, Portable);
+                            let got = triangles(&input, run);
+                            assert_eq!(run.tris, portable.tris, "{size} {precision:?}");
+                            assert_eq!(run.fragments, portable.fragments, "{size} {precision:?}");
+                            assert_eq!(got.stats, want.stats);
+                            got
+                        },
+                    )
+                    .map(|(_, stats)| clipped += stats.clipped)
+                    .unwrap();
+                    for r in &runs {
+                        (tris, fragments) = (tris + r.tris.len(), fragments + r.fragments.len());
+                    }
+                }
+            }
+        }
+        // Both kinds of output were compared, and clipped triangles.
+        assert!(
+            tris > 1000 && fragments > 1000 && clipped > 0,
+            "{tris} triangles, {fragments} fragments, {clipped} clipped"
+        );
+    }
+}
