@@ -478,9 +478,7 @@ mod tests {
         let mut clipped = 0;
         for (scene, view) in &scenes {
             for size in [97, 512] {
-                let view = view
-                    .clone()
-                    .unwrap_or_else(|| View::for_scene(scene, size, size).unwrap());
+                let view = (*view).unwrap_or_else(|| View::for_scene(scene, size, size).unwrap());
                 for (precision, cull) in [
                     (TransformPrecision::F32, false),
                     (TransformPrecision::F64, true),
