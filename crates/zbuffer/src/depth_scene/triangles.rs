@@ -295,22 +295,17 @@ impl<I: Isa> Pass<'_, I> {
         self.stats.degenerate += lanes.degenerate;
         self.stats.back_faces += lanes.back_faces;
         self.stats.empty += lanes.empty;
-        // The small-box set-ups of the lanes kept as triangles, in lanes,
-        // where the batch has enough of them to pay for it; the others go
-        // without (the tile kernel then sets them up itself, to the same
-        // values).
         let triangles = lanes.keep & !lanes.few;
-        let setups =
-            match self.isa.avx2() {
-                Some(avx2) if triangles.count_ones() >= DENSE_BATCH => Some(
-                    simd::classify::setups(avx2, x, y, size, (lanes.swap, triangles)),
-                ),
-                _ => None,
-            };
         if let Some(avx2) = self.isa.avx2() {
-            // The kept lanes' depth planes four lanes to a register, the
-            // triangles' records eight lanes at a time.
+            // The kept lanes' depth planes four lanes to a register (first:
+            // the divisions' latency overlaps the set-ups' integer work),
+            // the small-box set-ups of the lanes kept as triangles where
+            // the batch has enough of them to pay for it (the others go
+            // without: the tile kernel then sets them up itself, to the
+            // same values), then the records eight lanes at a time.
             let planes = simd::plane::planes(avx2, x, y, z, (lanes.swap, lanes.keep));
+            let setups = (triangles.count_ones() >= DENSE_BATCH)
+                .then(|| simd::classify::setups(avx2, x, y, size, (lanes.swap, triangles)));
             let batch = Batch {
                 x,
                 y,
