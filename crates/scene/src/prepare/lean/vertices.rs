@@ -132,9 +132,10 @@ fn lanes(front: &FrontEnd, p: &[DVec3; LANES], out: &mut [CachedVertex; LANES]) 
             }
             // `to_window` in f32: the reciprocal, the divide, then
             // `snap_ndc_f32` (GL's frame, ties to even, the flip), the
-            // snap in a loop of its own: with the divide in the same loop
-            // the compiler kept the snap's conversions scalar, a compare
-            // and a branch per lane.
+            // snap in a loop of its own (4 % fewer instructions in this
+            // pass than with the divide in the same loop; the snap's
+            // saturating `as i32` stays a compare and a branch per lane
+            // either way, the larger part of the snap's cost).
             let mut ndc = [[0.0f32; LANES]; 2];
             for i in 0..LANES {
                 let r = 1.0 / c[3][i];
