@@ -8,7 +8,9 @@
 //! into a `target_feature` function. The intrinsics ([`block`]: a full 8x8
 //! block of the tile kernel; [`small`]: a small triangle's box, row by
 //! row; [`classify`]: the classification of eight
-//! triangles; [`resolve`]: the read-back of eight pixels) are `#[inline(always)]` into that copy (a `target_feature`
+//! triangles; [`plane`]: their depth planes; [`emit`]: the
+//! triangles they keep, written into the run; [`fragments`]: the pixels
+//! of the small ones; [`resolve`]: the read-back of eight pixels) are `#[inline(always)]` into that copy (a `target_feature`
 //! function of their own would be a call per block, and the call spills
 //! the kernel's registers), so their soundness is carried by a type: an
 //! [`Avx2`] value, which only [`Avx2::detect`] makes, is passed down the
@@ -23,7 +25,10 @@
 
 pub(crate) mod block;
 pub(crate) mod classify;
+pub(crate) mod emit;
+pub(crate) mod fragments;
 pub(crate) mod gather;
+pub(crate) mod plane;
 pub(crate) mod resolve;
 pub(crate) mod small;
 

@@ -13,6 +13,7 @@ use hider_geom::FEW_CENTRES;
 use hider_geom::edge::top_left_bias;
 use hider_geom::fixed::{SUBPIXEL_SCALE, first_center_from, last_center_upto, pixel_center};
 
+#[cfg(test)]
 use super::depth_tri::SmallSetup;
 
 // The centre tests are written out for the first four centres.
@@ -20,6 +21,25 @@ const _: () = assert!(FEW_CENTRES == 4);
 
 /// Triangles per batch.
 pub(crate) const LANES: usize = 8;
+
+/// `CENTRE_AT[w]`: the columns and the rows, from the box's first pixel,
+/// of the first [`FEW_CENTRES`] centres (row-major) of a box `w` centres
+/// wide: `j % w` and `j / w`, without the division (its latency showed
+/// per fragment).
+pub(crate) const CENTRE_AT: [[[i32; FEW_CENTRES]; 2]; FEW_CENTRES + 1] = {
+    let mut at = [[[0; FEW_CENTRES]; 2]; FEW_CENTRES + 1];
+    let mut w = 1;
+    while w <= FEW_CENTRES {
+        let mut j = 0;
+        while j < FEW_CENTRES {
+            at[w][0][j] = (j % w) as i32;
+            at[w][1][j] = (j / w) as i32;
+            j += 1;
+        }
+        w += 1;
+    }
+    at
+};
 
 /// The integer classification of a batch, lane by lane.
 #[derive(Debug, PartialEq, Eq)]
@@ -35,9 +55,9 @@ pub(crate) struct Lanes {
     /// Bit `i`: lane `i`'s last two corners must be swapped for positive
     /// order.
     pub(crate) swap: u8,
-    /// Bit `i`: lane `i`'s box holds at most [`FEW_CENTRES`] centres; then
-    /// bit `j` of `covered[i]` says whether its `j`-th centre (row-major)
-    /// is covered.
+    /// Bit `i`: lane `i`'s box holds at most [`FEW_CENTRES`] centres; then,
+    /// when the box is not empty, bit `j` of `covered[i]` says whether its
+    /// `j`-th centre (row-major) is covered (zero in the other lanes).
     pub(crate) few: u8,
     pub(crate) covered: [u8; LANES],
     /// The box's first pixel and its width.
@@ -89,7 +109,8 @@ impl Lanes {
             back[i] = cull & (l.area > 0);
             swap[i] = l.area < 0;
             few[i] = l.count <= FEW_CENTRES as i32;
-            covered[i] = l.covered;
+            let tested = few[i] & (l.cols > 0) & (l.rows > 0);
+            covered[i] = if tested { l.covered } else { 0 };
             empty[i] = (l.cols <= 0) | (l.rows <= 0) | (few[i] & (l.covered == 0));
             corner[i] = (l.x0 as u32, l.y0 as u32, l.cols as u32);
         }
@@ -110,28 +131,28 @@ impl Lanes {
 
 /// The small-box set-ups ([`SmallSetup`]) of a batch's triangles,
 /// structure of arrays, as the AVX2 classification computes them
-/// (`simd::classify::setups`): bit `i` of `ready` says lane `i` has one,
-/// whose box ends at column `end[0][i]` and row `end[1][i]` and whose
-/// edge values are `e[k][i]`; zero in the other lanes.
+/// (`simd::classify::setups`): lane `i`'s box as two words (`bbox[0][i]`
+/// its first column in the low 16 bits and first row in the high ones,
+/// `bbox[1][i]` its last column and row: the bytes of
+/// [`SmallSetup::bbox`]) and its edge values `e[k][i]`; the words of
+/// [`SmallSetup::NONE`] in the lanes without one.
 #[derive(Debug, PartialEq, Eq)]
 pub(crate) struct Setups {
-    pub(crate) ready: u8,
-    pub(crate) end: [[i32; LANES]; 2],
+    pub(crate) bbox: [[i32; LANES]; 2],
     pub(crate) e: [[i32; LANES]; 3],
 }
 
 impl Setups {
-    /// Lane `i`'s set-up, its box starting at `(x0, y0)` (the lane's
-    /// [`Lanes::corner`]).
-    #[inline(always)]
-    pub(crate) fn get(&self, i: usize, (x0, y0): (u32, u32)) -> SmallSetup {
-        if self.ready >> i & 1 == 0 {
-            return SmallSetup::NONE;
-        }
-        let (x1, y1) = (self.end[0][i] as u32, self.end[1][i] as u32);
+    /// The words of [`SmallSetup::NONE`]'s box.
+    pub(crate) const NONE_BBOX: [i32; 2] = [1, 0];
+
+    /// Lane `i`'s set-up (the triangle pass moves the words into its
+    /// records as they are, `simd::emit`).
+    #[cfg(test)]
+    pub(crate) fn get(&self, i: usize) -> SmallSetup {
+        let [lo, hi] = [self.bbox[0][i], self.bbox[1][i]];
         SmallSetup {
-            // Images are at most 16384 pixels wide and high.
-            bbox: [x0 as u16, y0 as u16, x1 as u16, y1 as u16],
+            bbox: [lo as u16, (lo >> 16) as u16, hi as u16, (hi >> 16) as u16],
             e: [self.e[0][i], self.e[1][i], self.e[2][i]],
         }
     }

@@ -18,7 +18,10 @@ use crate::tiled::SMALL_AREA;
 /// its first block column), computed eight triangles at a time where the
 /// triangles are classified. It is a cache derived from the corners and
 /// the viewport, so equality compares the three fields above only.
+// `repr(C)`: the triangle pass writes it by its fields' offsets
+// (`simd::emit`).
 #[derive(Clone, Copy, Debug, Default)]
+#[repr(C)]
 pub struct DepthTri {
     /// Snapped vertices, ordered so that the edge functions are positive
     /// inside (as [`ScreenTri::v`]).
@@ -62,7 +65,10 @@ impl DepthTri {
 /// if it compares `(depth, prim)` lexicographically: the LESS depth test
 /// in primitive order keeps the smallest depth and, among equal depths,
 /// the first primitive.
+// `repr(C)`: the triangle pass writes it by its fields' offsets
+// (`simd::fragments`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C)]
 pub struct DepthFragment {
     /// Window depth at the pixel centre: the triangle's
     /// [`PlaneEq::at_pixel`], the expression every pixel-centre hider
@@ -109,6 +115,7 @@ impl From<&ScreenTri> for DepthTri {
 /// and the set-up itself is `i32` arithmetic (`edge_values_match_i64`
 /// checks it against the `i64` edge functions).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
 pub(crate) struct SmallSetup {
     /// The pixel box (`Viewport::pixel_bounds`): first column, first row,
     /// last column, last row; empty (first after last) for none.

@@ -8,13 +8,16 @@
 //! that is 150 MB of writes, most of what a z-buffer frame costs. A
 //! z-buffer reads only the snapped corners, the depth plane and the
 //! primitive id. [`prepare_depth_into`] produces just those ([`DepthTri`],
-//! 72 bytes), and works per *vertex* where `prepare` works per triangle
-//! corner: each vertex is transformed, classified by its outcode, divided
+//! 88 bytes with the tile kernel's small-box set-up), and works per
+//! *vertex* where `prepare` works per triangle corner: each vertex is transformed, classified by its outcode, divided
 //! and snapped once, eight at a time (the vertex pass shared with the
 //! A-buffer, [`hider_scene::prepare::lean`]), and triangles are
 //! classified eight at a time from the cached results (`classify`,
-//! `triangles`). A triangle that must be clipped goes through `prepare`'s
-//! own per-triangle path ([`FrontEnd::triangle`]).
+//! `triangles`; with AVX2 the corners are gathered, the planes computed
+//! and the records written in registers too, `simd::gather`,
+//! `simd::plane`, `simd::emit`, `simd::fragments`). A triangle that must
+//! be clipped goes through `prepare`'s own per-triangle path
+//! ([`FrontEnd::triangle`]).
 //!
 //! Two kinds of triangles never reach the hider as triangles. Those that
 //! certainly cover no pixel centre (their box holds none, or up to four

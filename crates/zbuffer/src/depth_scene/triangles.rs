@@ -6,8 +6,9 @@
 //! the exact test of the (at most four) pixel centres of a small box are
 //! integer work done in lanes (the compiler vectorises it; on a CPU with
 //! AVX2 the pass runs in a copy compiled for it, where a 32 x 32 -> 64-bit
-//! product is one instruction for four lanes). Only then does each kept
-//! triangle, one by one, pay for its depth plane (two divisions). A batch
+//! product is one instruction for four lanes). Only then are the depth
+//! planes of the kept triangles computed (two divisions each; with AVX2
+//! four lanes to a register, `simd::plane`, else one by one). A batch
 //! with a vertex that needs clipping, or is outside the window, goes
 //! through the same steps one triangle at a time ([`Pass::one`]), which is
 //! the definition the batch must match.
@@ -23,15 +24,17 @@ use hider_geom::clip::{OUTSIDE_PLANES, OUTSIDE_VIEWPORT};
 #[cfg(target_arch = "x86_64")]
 use hider_geom::isa::Avx2;
 use hider_geom::isa::{Isa, Portable};
-use hider_geom::{Centres, FixedPt, PlaneEq, orient2d};
+use hider_geom::{Centres, FEW_CENTRES, FixedPt, PlaneEq, orient2d};
 use hider_scene::prepare::{FrontEnd, WindowVertex, setup_depth};
 use hider_scene::{Mesh, PrepareStats, Scene};
 
-use super::classify::{LANES, Lanes};
+use super::classify::{CENTRE_AT, LANES, Lanes};
 use super::depth_tri::{DepthFragment, DepthTri, SmallSetup};
 use crate::simd;
 #[cfg(target_arch = "x86_64")]
 use crate::simd::Kernel;
+use crate::simd::emit::Batch;
+use crate::simd::fragments::Small;
 use crate::simd::gather::Corners;
 use hider_scene::prepare::lean::{
     CachedVertex, ClipFallback, NO_WINDOW, NOT_FINITE, RunOutcome, mesh_parts,
@@ -292,18 +295,41 @@ impl<I: Isa> Pass<'_, I> {
         self.stats.degenerate += lanes.degenerate;
         self.stats.back_faces += lanes.back_faces;
         self.stats.empty += lanes.empty;
-        // The small-box set-ups of the lanes kept as triangles, in lanes,
-        // where the batch has enough of them to pay for it; the others go
-        // without (the tile kernel then sets them up itself, to the same
-        // values).
         let triangles = lanes.keep & !lanes.few;
-        let setups =
-            match self.isa.avx2() {
-                Some(avx2) if triangles.count_ones() >= DENSE_BATCH => Some(
-                    simd::classify::setups(avx2, x, y, size, (lanes.swap, triangles)),
-                ),
-                _ => None,
+        if let Some(avx2) = self.isa.avx2() {
+            // The kept lanes' depth planes four lanes to a register (first:
+            // the divisions' latency overlaps the set-ups' integer work),
+            // the small-box set-ups of the lanes kept as triangles where
+            // the batch has enough of them to pay for it (the others go
+            // without: the tile kernel then sets them up itself, to the
+            // same values), then the records eight lanes at a time.
+            let planes = simd::plane::planes(avx2, x, y, z, (lanes.swap, lanes.keep));
+            let setups = (triangles.count_ones() >= DENSE_BATCH)
+                .then(|| simd::classify::setups(avx2, x, y, size, (lanes.swap, triangles)));
+            let batch = Batch {
+                x,
+                y,
+                z0: &z[0],
+                swap: lanes.swap,
+                planes: &planes,
+                setups: setups.as_ref(),
+                first_prim: (mesh.first_prim + t) as u32,
             };
+            if triangles != 0 {
+                simd::emit::push(avx2, &batch, triangles, &mut self.run.tris);
+            }
+            let few = lanes.keep & lanes.few;
+            if few != 0 {
+                self.stats.fragmented += u64::from(few.count_ones());
+                let small = Small {
+                    lanes: few,
+                    corner: &lanes.corner,
+                    covered: &lanes.covered,
+                };
+                simd::fragments::push(avx2, &batch, &small, &mut self.run.fragments);
+            }
+            return;
+        }
         // Only the kept lanes, by their bits: no branch per dropped lane.
         let mut keep = lanes.keep;
         while keep != 0 {
@@ -323,33 +349,34 @@ impl<I: Isa> Pass<'_, I> {
                 FixedPt::new(x[c][i], y[c][i]),
             ];
             let depth = PlaneEq::from_points(&v, [z[0][i], z[b][i], z[c][i]]).unwrap_or_default();
-            let (x0, y0, w) = lanes.corner[i];
             if lanes.few >> i & 1 == 0 {
-                let setup = match &setups {
-                    Some(s) => s.get(i, (x0, y0)),
-                    None => SmallSetup::NONE,
-                };
+                // Set-ups exist only with AVX2.
                 self.run.tris.push(DepthTri {
                     v,
                     depth,
                     prim,
-                    setup,
+                    setup: SmallSetup::NONE,
                 });
                 continue;
             }
-            let tri = DepthTri {
-                v,
-                depth,
-                prim,
-                setup: SmallSetup::NONE,
-            };
-            self.stats.fragmented += 1;
-            let mut covered = lanes.covered[i];
-            while covered != 0 {
-                let j = covered.trailing_zeros();
-                covered &= covered - 1;
-                push_fragment(self.run, &tri, (x0 + j % w, y0 + j / w));
-            }
+            self.fragments(&lanes, i, &depth, prim);
+        }
+    }
+
+    /// Lane `i`'s covered centres as fragments, the lane's plane `depth`
+    /// and primitive id `prim`.
+    #[inline(always)]
+    fn fragments(&mut self, lanes: &Lanes, i: usize, depth: &PlaneEq, prim: u32) {
+        let (x0, y0, w) = lanes.corner[i];
+        self.stats.fragmented += 1;
+        // A box of a few centres is at most FEW_CENTRES wide.
+        let [cols, rows] = &CENTRE_AT[(w as usize).min(FEW_CENTRES)];
+        let mut covered = lanes.covered[i];
+        while covered != 0 {
+            let j = covered.trailing_zeros() as usize;
+            covered &= covered - 1;
+            let (x, y) = (x0 + cols[j] as u32, y0 + rows[j] as u32);
+            push_fragment(self.run, depth, prim, (x, y));
         }
     }
 
@@ -395,19 +422,102 @@ fn emit(run: &mut Run, stats: &mut PrepareStats, tri: DepthTri, centres: Centres
     }
     stats.fragmented += 1;
     for &pixel in centres.pixels() {
-        push_fragment(run, &tri, pixel);
+        push_fragment(run, &tri.depth, tri.prim, pixel);
     }
 }
 
-/// Appends the fragment of `tri` at pixel `(x, y)`.
+/// Appends the fragment at pixel `(x, y)` of the triangle of plane
+/// `depth` and primitive id `prim`.
 #[inline(always)]
-fn push_fragment(run: &mut Run, tri: &DepthTri, (x, y): (u32, u32)) {
+fn push_fragment(run: &mut Run, depth: &PlaneEq, prim: u32, (x, y): (u32, u32)) {
     run.fragments.push(DepthFragment {
         // The hiders' own expression for a pixel's depth.
-        depth: tri.depth.at_pixel(x, y),
+        depth: depth.at_pixel(x, y),
         // Images are at most 16384 pixels wide and high.
         x: x as u16,
         y: y as u16,
-        prim: tri.prim,
+        prim,
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+    use hider_geom::Camera;
+    use hider_geom::isa::Avx2;
+    use hider_scene::prepare::lean::lean_passes;
+    use hider_scene::{PrepareOptions, Scene, TransformPrecision, View, procedural};
+
+    use super::{Input, Portable, Run, pass, triangles};
+
+    /// The pass with AVX2 (intrinsics, records written in lanes) gives
+    /// the portable pass's triangles, fragments and counters, on meshes of
+    /// small triangles, a soup, and a sphere the far plane cuts, in both
+    /// precisions, with and without back-face culling.
+    #[test]
+    fn the_avx2_pass_is_the_portable_pass() {
+        if Avx2::detect().is_none() {
+            return;
+        }
+        // The far plane through the sphere's centre.
+        let cut = View {
+            viewport: hider_geom::Viewport::new(300, 200),
+            camera: Camera::perspective(DVec3::new(0.0, 0.0, 3.0), DVec3::ZERO, 0.5, 3.0),
+        };
+        let scenes: Vec<(Scene, Option<View>)> = vec![
+            (procedural::uv_sphere(60), None),
+            (procedural::random_soup(4000, 3), None),
+            (procedural::uv_sphere(40), Some(cut)),
+        ];
+        let (mut tris, mut fragments) = (0, 0);
+        let mut clipped = 0;
+        for (scene, view) in &scenes {
+            for size in [97, 512] {
+                let view = (*view).unwrap_or_else(|| View::for_scene(scene, size, size).unwrap());
+                for (precision, cull) in [
+                    (TransformPrecision::F32, false),
+                    (TransformPrecision::F64, true),
+                ] {
+                    let options = PrepareOptions {
+                        precision,
+                        cull_back_faces: cull,
+                        ..PrepareOptions::default()
+                    };
+                    let (mut vertices, mut runs) = (Vec::new(), Vec::<Run>::new());
+                    lean_passes(
+                        scene,
+                        &view,
+                        &options,
+                        &mut vertices,
+                        &mut runs,
+                        |front, cache, range, run| {
+                            let input = Input {
+                                scene,
+                                front,
+                                vertices: cache,
+                                range,
+                            };
+                            let mut portable = Run::default();
+                            let want = pass(&input, &mut portable, Portable);
+                            let got = triangles(&input, run);
+                            assert_eq!(run.tris, portable.tris, "{size} {precision:?}");
+                            assert_eq!(run.fragments, portable.fragments, "{size} {precision:?}");
+                            assert_eq!(got.stats, want.stats);
+                            got
+                        },
+                    )
+                    .map(|(_, stats)| clipped += stats.clipped)
+                    .unwrap();
+                    for r in &runs {
+                        (tris, fragments) = (tris + r.tris.len(), fragments + r.fragments.len());
+                    }
+                }
+            }
+        }
+        // Both kinds of output were compared, and clipped triangles.
+        assert!(
+            tris > 1000 && fragments > 1000 && clipped > 0,
+            "{tris} triangles, {fragments} fragments, {clipped} clipped"
+        );
+    }
 }

@@ -250,10 +250,11 @@ mod avx2 {
 
     /// Per lane, bit `j` set where the box's `j`-th centre (row-major, of
     /// the first [`FEW_CENTRES`]) exists and is inside all three edges of
-    /// the positively ordered corners `c`; `x0`, `y0` the box's first
-    /// pixel, `cols` its width, `count` its number of centres.
+    /// the positively ordered corners `c`; `px`, `py` the box's first
+    /// centre (fixed point), `cols` its width, `count` its number of
+    /// centres.
     #[inline(always)]
-    fn covered(c: &Corners, [x0, y0, cols, count]: [__m256i; 4]) -> __m256i {
+    fn covered(c: &Corners, [px, py, cols, count]: [__m256i; 4]) -> __m256i {
         unsafe {
             let zero32 = _mm256_setzero_si256();
             let zero = Wide {
@@ -261,8 +262,6 @@ mod avx2 {
                 odd: zero32,
             };
             let one32 = _mm256_set1_epi32(1);
-            let px: __m256i = bytemuck::cast(pixel_centers(array(x0)));
-            let py: __m256i = bytemuck::cast(pixel_centers(array(y0)));
             // The box's first centres, row-major, as sums of steps picked
             // by the box's width (see the portable `centre_hits`).
             let one = widen_mask(_mm256_cmpeq_epi32(cols, one32));
@@ -297,7 +296,93 @@ mod avx2 {
                     *h = _mm256_and_si256(*h, greater(add(at, o), zero));
                 }
             }
-            let mut covered = zero32;
+            centre_bits(&hit, count)
+        }
+    }
+
+    /// [`covered`] in `i32` lanes, or `None` when a lane of `tested` has a
+    /// corner 2^14 or more fixed-point units (64 pixels) from its box's
+    /// first centre in x or y. Otherwise every quantity of those lanes fits
+    /// `i32` exactly: each edge's extent is below 2^15, each distance from
+    /// a corner to the first centre below 2^14, so each product is below
+    /// 2^29 and an edge value below 2^30 + 1; the steps to the next three
+    /// centres add less than 3 * 2^23. A box of at most [`FEW_CENTRES`]
+    /// centres lies within 5 pixels of its corners unless it is clamped to
+    /// the image, so only triangles across the image's border take the
+    /// `i64` path. The other lanes' bits are meaningless.
+    #[inline(always)]
+    fn covered_narrow(
+        c: &Corners,
+        [px, py, cols, count]: [__m256i; 4],
+        tested: __m256i,
+    ) -> Option<__m256i> {
+        unsafe {
+            let limit = _mm256_set1_epi32((1 << 14) - 1);
+            let mut far = _mm256_setzero_si256();
+            for (v, p) in [
+                (c.ax, px),
+                (c.bx, px),
+                (c.cx, px),
+                (c.ay, py),
+                (c.by, py),
+                (c.cy, py),
+            ] {
+                let d = _mm256_abs_epi32(_mm256_sub_epi32(v, p));
+                far = _mm256_or_si256(far, _mm256_cmpgt_epi32(d, limit));
+            }
+            if _mm256_testz_si256(far, tested) == 0 {
+                return None;
+            }
+            let zero = _mm256_setzero_si256();
+            let one32 = _mm256_set1_epi32(1);
+            let one = _mm256_cmpeq_epi32(cols, one32);
+            let two = _mm256_cmpeq_epi32(cols, _mm256_set1_epi32(2));
+            let select = |m: __m256i, a: __m256i, b: __m256i| _mm256_blendv_epi8(b, a, m);
+            let mut hit = [_mm256_set1_epi32(-1); FEW_CENTRES];
+            let edges = [
+                (c.ax, c.ay, c.bx, c.by),
+                (c.bx, c.by, c.cx, c.cy),
+                (c.cx, c.cy, c.ax, c.ay),
+            ];
+            for (fx, fy, tx, ty) in edges {
+                let (dx, dy) = (_mm256_sub_epi32(tx, fx), _mm256_sub_epi32(ty, fy));
+                let bias: __m256i = bytemuck::cast(top_left_biases(array(dx), array(dy)));
+                let at = _mm256_add_epi32(
+                    _mm256_sub_epi32(
+                        _mm256_mullo_epi32(dx, _mm256_sub_epi32(py, fy)),
+                        _mm256_mullo_epi32(dy, _mm256_sub_epi32(px, fx)),
+                    ),
+                    bias,
+                );
+                // The steps, as in `covered`: -dy and dx times 256.
+                let sx = _mm256_sub_epi32(zero, _mm256_slli_epi32::<8>(dy));
+                let sy = _mm256_slli_epi32::<8>(dx);
+                let (sx2, sy2) = (_mm256_add_epi32(sx, sx), _mm256_add_epi32(sy, sy));
+                let offsets = [
+                    select(one, sy, sx),
+                    select(one, sy2, select(two, sy, sx2)),
+                    select(
+                        one,
+                        _mm256_add_epi32(sy2, sy),
+                        select(two, _mm256_add_epi32(sx, sy), _mm256_add_epi32(sx2, sx)),
+                    ),
+                ];
+                hit[0] = _mm256_and_si256(hit[0], _mm256_cmpgt_epi32(at, zero));
+                for (h, o) in hit[1..].iter_mut().zip(offsets) {
+                    let v = _mm256_add_epi32(at, o);
+                    *h = _mm256_and_si256(*h, _mm256_cmpgt_epi32(v, zero));
+                }
+            }
+            Some(centre_bits(&hit, count))
+        }
+    }
+
+    /// The covered bits from the hits of the first centres: bit `j` where
+    /// centre `j` exists (`count > j`) and is hit.
+    #[inline(always)]
+    fn centre_bits(hit: &[__m256i; FEW_CENTRES], count: __m256i) -> __m256i {
+        unsafe {
+            let mut covered = _mm256_setzero_si256();
             for (j, h) in hit.iter().enumerate() {
                 let within = _mm256_cmpgt_epi32(count, _mm256_set1_epi32(j as i32));
                 let bit = _mm256_and_si256(_mm256_and_si256(*h, within), _mm256_set1_epi32(1 << j));
@@ -390,11 +475,14 @@ mod avx2 {
                 let at = _mm256_add_epi32(at, _mm256_sub_epi32(bias, one32));
                 e[k] = bytemuck::cast(_mm256_and_si256(at, ok));
             }
+            // The box's words (see `Setups`), those of no set-up where
+            // there is none.
+            let word = |x: __m256i, y: __m256i| _mm256_or_si256(x, _mm256_slli_epi32::<16>(y));
+            let [none_lo, none_hi] = Setups::NONE_BBOX.map(|w| _mm256_set1_epi32(w));
             Setups {
-                ready: bits(ok),
-                end: [
-                    bytemuck::cast(_mm256_and_si256(x1, ok)),
-                    bytemuck::cast(_mm256_and_si256(y1, ok)),
+                bbox: [
+                    bytemuck::cast(_mm256_blendv_epi8(none_lo, word(x0, y0), ok)),
+                    bytemuck::cast(_mm256_blendv_epi8(none_hi, word(x1, y1), ok)),
                 ],
                 e,
             }
@@ -436,9 +524,25 @@ mod avx2 {
                 _mm256_blendv_epi8(c.cx, c.bx, neg),
                 _mm256_blendv_epi8(c.cy, c.by, neg),
             );
-            let covered = covered(&c, [x0, y0, cols, count]);
             let one32 = _mm256_set1_epi32(1);
             let few = _mm256_cmpgt_epi32(_mm256_set1_epi32(FEW_CENTRES as i32 + 1), count);
+            // The centres matter in the lanes of few of them and a box that
+            // is not empty: in `i32` when every such lane allows it.
+            let tested = _mm256_andnot_si256(
+                _mm256_or_si256(
+                    _mm256_cmpgt_epi32(one32, cols),
+                    _mm256_cmpgt_epi32(one32, rows),
+                ),
+                few,
+            );
+            let px: __m256i = bytemuck::cast(pixel_centers(array(x0)));
+            let py: __m256i = bytemuck::cast(pixel_centers(array(y0)));
+            let centres = [px, py, cols, count];
+            let covered = match covered_narrow(&c, centres, tested) {
+                Some(covered) => covered,
+                None => covered(&c, centres),
+            };
+            let covered = _mm256_and_si256(covered, tested);
             let empty = _mm256_or_si256(
                 _mm256_or_si256(
                     _mm256_cmpgt_epi32(one32, cols),
@@ -467,60 +571,4 @@ mod avx2 {
 }
 
 #[cfg(test)]
-mod tests {
-    use hider_geom::isa::Avx2;
-    use hider_geom::{FixedPt, Viewport};
-    use proptest::prelude::*;
-
-    use crate::depth_scene::SmallSetup;
-    use crate::depth_scene::classify::{LANES, Lanes};
-
-    /// A batch's corners: small triangles around random points (boxes of a
-    /// few centres, on or off the viewport) mixed with large ones, in
-    /// subpixel units.
-    fn batch() -> impl Strategy<Value = [[(i32, i32); 3]; LANES]> {
-        let corner = |r: i32| (-r..r, -r..r);
-        let small = (
-            (-600i32..5000, -600i32..5000),
-            proptest::array::uniform3(corner(600)),
-        )
-            .prop_map(|((x, y), d)| d.map(|(dx, dy)| (x + dx, y + dy)));
-        let large = proptest::array::uniform3((-(1 << 22)..1 << 22, -(1 << 22)..1 << 22));
-        proptest::array::uniform8(prop_oneof![4 => small, 1 => large])
-    }
-
-    proptest! {
-        #![proptest_config(ProptestConfig::with_cases(2000))]
-        /// The AVX2 classification is the portable one, field for field.
-        #[test]
-        fn avx2_classifies_as_the_portable_code(
-            tris in batch(),
-            size in (1u32..40, 1u32..40),
-            cull: bool,
-        ) {
-            let Some(avx2) = Avx2::detect() else { return Ok(()) };
-            let x = std::array::from_fn(|k| std::array::from_fn(|i| tris[i][k].0));
-            let y = std::array::from_fn(|k| std::array::from_fn(|i| tris[i][k].1));
-            let portable = Lanes::classify(&x, &y, size, cull);
-            let wide = super::classify(avx2, &x, &y, size, cull);
-            prop_assert_eq!(&wide, &portable);
-            // The set-ups of the lanes kept as triangles are the scalar
-            // definition's.
-            let want = wide.keep & !wide.few;
-            let setups = super::setups(avx2, &x, &y, size, (wide.swap, want));
-            let viewport = Viewport::new(size.0, size.1);
-            for i in 0..LANES {
-                let (x0, y0, _) = wide.corner[i];
-                let got = setups.get(i, (x0, y0));
-                let expected = if want >> i & 1 == 0 {
-                    SmallSetup::NONE
-                } else {
-                    let (b, c) = if wide.swap >> i & 1 != 0 { (2, 1) } else { (1, 2) };
-                    let v = [0, b, c].map(|k| FixedPt::new(x[k][i], y[k][i]));
-                    SmallSetup::new(&v, viewport)
-                };
-                prop_assert_eq!(got, expected, "lane {}", i);
-            }
-        }
-    }
-}
+mod tests;
