@@ -24,9 +24,10 @@
 //! same-run ratios of its medians to hider's: render only (its clear +
 //! draw + `glFinish` over `draw`), the frame in client memory (its
 //! clear + draw + `glReadPixels` of colour and depth over `all`, which
-//! delivers ids besides), and the same over `ids+depth`: 8 bytes a pixel
+//! delivers ids besides), the same over `ids+depth` (8 bytes a pixel
 //! like llvmpipe's colour and depth, and what `hider.render` in Python
-//! returns. All times are then wall time, as the peers'.
+//! returns) and over `ids` (what `hider render --repeat` times without
+//! `--depth-out`). All times are then wall time, as the peers'.
 //!
 //! `cargo run --release -p hider-bench --bin frame_readback -- [K] [SIZES...] [--peers-bin PATH]`
 //! (default K = 5 rounds, size 1024).
@@ -112,7 +113,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "| scene | size | threads | draw | all | ids+depth | ids | read (all) | memset | memcpy | read / memset | draw + memset | all / (draw + memset) |{}",
         if peers_bin.is_some() {
-            " vs llvmpipe render only | vs llvmpipe + read-back | ids+depth vs llvmpipe + read-back |"
+            " vs llvmpipe render only | vs llvmpipe + read-back | ids+depth vs llvmpipe + read-back | ids vs llvmpipe + read-back |"
         } else {
             ""
         }
@@ -120,7 +121,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "|---|---|---|---|---|---|---|---|---|---|---|---|---|{}",
         if peers_bin.is_some() {
-            "---|---|---|"
+            "---|---|---|---|"
         } else {
             ""
         }
@@ -240,10 +241,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             };
             let vs = if peers_bin.is_some() {
                 format!(
-                    " {} | {} | {} |",
+                    " {} | {} | {} | {} |",
                     ratio(peer("llvmpipe"), m[0]),
                     ratio(peer("llvmpipe+read"), m[1]),
-                    ratio(peer("llvmpipe+read"), m[2])
+                    ratio(peer("llvmpipe+read"), m[2]),
+                    ratio(peer("llvmpipe+read"), m[3])
                 )
             } else {
                 String::new()
