@@ -32,11 +32,7 @@ fn corners(scene: &Scene) -> Vec<[DVec3; 3]> {
     scene
         .meshes
         .iter()
-        .flat_map(|m| {
-            m.indices
-                .iter()
-                .map(|t| t.map(|i| m.positions[i as usize]))
-        })
+        .flat_map(|m| m.indices.iter().map(|t| t.map(|i| m.positions[i as usize])))
         .collect()
 }
 
