@@ -25,13 +25,15 @@ for triangle. They are read here with numpy (``v`` and ``f`` lines only);
 the ``f`` lines are in primitive-id order, so the ids are the Rust ones.
 
 The camera is the fit camera on both sides (``View::for_scene`` in Rust,
-the fit camera of ``hider.render`` without camera keywords; neither
-scene has a camera of its own). Checked with ``--check-cli``: for every
+the fit camera of ``hider.render`` without camera keywords; none of the
+scenes has a camera of its own, and export_scenes refuses one that has). Checked with ``--check-cli``: for every
 scene, ``hider render MODEL --size 1024 --algo zbuffer-tiled --ids-out
 FILE --depth-out FILE`` is run once and its dumps compared with
 ``hider.render``'s arrays, which must be equal (ids exactly, depth
-exactly), so that Python, the command line and the Rust benchmark (whose
-scenes load through the same loader) draw the same frame.
+exactly), so that Python and the command line draw the same frame; the
+command line's file reproduces the Rust benchmark's scene triangle for
+triangle (export_scenes checks it), so the fit camera is the same there
+too. Results and the check's outcome: docs/notes/2026-11-28-python-frames.md.
 
 Run from the repository root with the package installed (a release build:
 ``maturin develop --release --manifest-path crates/python/Cargo.toml``)::
