@@ -27,8 +27,9 @@ the ``f`` lines are in primitive-id order, so the ids are the Rust ones.
 The camera is the fit camera on both sides (``View::for_scene`` in Rust,
 the fit camera of ``hider.render`` without camera keywords; none of the
 scenes has a camera of its own, and export_scenes refuses one that
-has). Checked with ``--check-cli``: for every scene, ``hider render MODEL --size 1024 --algo zbuffer-tiled --ids-out
-FILE --depth-out FILE`` is run once and its dumps compared with
+has). Checked with ``--check-cli``: for every scene, ``hider render
+MODEL --size 1024 --algo zbuffer-tiled --ids-out FILE --depth-out
+FILE`` is run once and its dumps compared with
 ``hider.render``'s arrays, which must be equal (ids exactly, depth
 exactly), so that Python and the command line draw the same frame; the
 command line's file reproduces the Rust benchmark's scene triangle for
