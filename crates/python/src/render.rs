@@ -6,10 +6,10 @@ use std::sync::Arc;
 
 use hider_plan::{HiderConfig, Planned, RenderOptions, auto, registry};
 use hider_scene::{
-    Cancel, DynHider, Frame, PixelSurface, PrepareOptions, Scene, ScreenScene, SurfaceOutputs,
-    View, surface_at_pixels,
+    Cancel, DynHider, Frame, FrameBuffers, PixelSurface, PrepareOptions, Scene, ScreenScene,
+    SurfaceOutputs, View, surface_at_pixels,
 };
-use numpy::{PyArray1, PyArray2, PyArrayMethods};
+use numpy::PyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::ThreadPool;
@@ -34,21 +34,76 @@ fn check_threads(threads: usize) -> PyResult<()> {
     Ok(())
 }
 
-/// What a render leaves for [`buffers`].
-pub enum Rendered {
-    /// The frame stays in the calling thread's workspace, to be copied out
-    /// with the GIL held.
-    InWorkspace,
-    /// A copy of the frame made on a pool thread, whose workspace the
-    /// calling thread cannot see: the ids and depths, row by row.
-    Copied {
-        /// Ids as the frame holds them ([`hider_scene::NO_ID`] for none).
-        ids: Vec<u32>,
-        /// Window depths.
-        depth: Vec<f32>,
-        /// The frame's `[height, width]`.
-        shape: [usize; 2],
-    },
+/// What a render leaves for [`buffers`]: the frame's ids and depths,
+/// taken out of the workspace's frame (which gets recycled memory in their
+/// place, see [`take_frame`]), and the frame's `[height, width]`.
+pub struct Rendered {
+    /// Ids as the frame holds them ([`hider_scene::NO_ID`] for none).
+    ids: Vec<u32>,
+    /// Window depths.
+    depth: Vec<f32>,
+    /// The frame's `[height, width]`.
+    shape: [usize; 2],
+}
+
+/// The memory of the arrays `hider.render` returns: the frame's own id
+/// and depth buffers, handed to numpy without a copy. When numpy frees
+/// both arrays the buffers go back to [`RECYCLED`] for a later frame of
+/// the same size.
+///
+/// Why: a frame loop (`ids, depth = hider.render(...)` in a loop) used to
+/// get fresh arrays every call, 8 MB at 1024 x 1024, copied from the
+/// workspace's frame into memory the kernel had to fault in and zero
+/// first: on the spider that was half of the call (1.1 ms against the
+/// frame's 0.56). Now a frame is read back straight into memory that is
+/// already mapped, and nothing is copied.
+#[pyclass(frozen)]
+struct FrameMemory {
+    ids: Vec<u32>,
+    depth: Vec<f32>,
+}
+
+impl Drop for FrameMemory {
+    fn drop(&mut self) {
+        let ids = std::mem::take(&mut self.ids);
+        let depth = std::mem::take(&mut self.depth);
+        let mut recycled = RECYCLED.lock().unwrap_or_else(|e| e.into_inner());
+        // Two sets cover a loop that rebinds its arrays (the previous
+        // frame's are freed after the next call returns); more would only
+        // hold memory.
+        if recycled.len() < 2 {
+            recycled.push((ids, depth));
+        }
+    }
+}
+
+/// Id and depth buffers of frames whose arrays numpy has freed, for the
+/// next frames' read-back ([`take_frame`]).
+static RECYCLED: std::sync::Mutex<Vec<(Vec<u32>, Vec<f32>)>> = std::sync::Mutex::new(Vec::new());
+
+/// Takes `frame`'s ids and depths out, leaving recycled buffers of the
+/// same length in their place (or new ones): every render writes all of
+/// the ids and depths it is asked for, so what they held does not matter.
+fn take_frame(frame: &mut Frame) -> Rendered {
+    let n = frame.ids.len();
+    let spare = {
+        let mut recycled = RECYCLED.lock().unwrap_or_else(|e| e.into_inner());
+        recycled
+            .iter()
+            .position(|(i, d)| i.len() == n && d.len() == n)
+            .map(|k| recycled.swap_remove(k))
+    };
+    let (ids, depth) = spare.unwrap_or_else(|| {
+        (
+            vec![hider_scene::NO_ID; n],
+            vec![hider_scene::frame::BACKGROUND_DEPTH; n],
+        )
+    });
+    Rendered {
+        ids: std::mem::replace(&mut frame.ids, ids),
+        depth: std::mem::replace(&mut frame.depth, depth),
+        shape: [frame.height() as usize, frame.width() as usize],
+    }
 }
 
 /// A hider with its frame and screen scene, kept from one call to the next
@@ -96,7 +151,9 @@ fn render_with_workspace(
                 threads,
                 cancel,
                 hider: entry.build(&config)?,
-                frame: Frame::new(width, height)?,
+                // Python returns the ids and depths: the colour is not read
+                // back (a hider that resolves it anyway still may).
+                frame: Frame::new(width, height)?.with_buffers(FrameBuffers::IDS_DEPTH),
             });
         }
         let ws = slot.as_mut().expect("the workspace was just made");
@@ -118,7 +175,7 @@ fn render_with_workspace(
             *slot = None;
             return Err(e.into());
         }
-        Ok(Rendered::InWorkspace)
+        Ok(take_frame(&mut ws.frame))
     })
 }
 
@@ -193,15 +250,7 @@ pub fn render_scene(
     };
     let entry = registry::find(algo).map_err(plan_error)?;
     let result = if threads > 1 {
-        pool(threads)?.install(|| {
-            render_with_workspace(scene, view, &entry, (threads, cancel))?;
-            copy_workspace_frame().ok_or_else(|| {
-                hider_plan::PlanError::Scene(hider_scene::Error::Render {
-                    hider: entry.name.to_owned(),
-                    message: "internal error: the pool thread kept no frame".into(),
-                })
-            })
-        })
+        pool(threads)?.install(|| render_with_workspace(scene, view, &entry, (threads, cancel)))
     } else {
         render_with_workspace(scene, view, &entry, (threads, cancel))
     };
@@ -216,42 +265,40 @@ fn empty_screen(view: &View) -> ScreenScene {
 }
 
 /// The ids (as stored in dumps, `-1` for background) and window depths of
-/// the frame this thread rendered last, as new numpy arrays of shape
-/// `(height, width)`.
-///
-/// The arrays are allocated by numpy and the frame copied into them: an
-/// allocation of this size by numpy is backed by huge pages where the
-/// system offers them (numpy asks for them on Linux), and page faults on
-/// fresh memory cost more at 1024 x 1024 than the copy itself.
+/// a rendered frame, as numpy arrays of shape `(height, width)` over the
+/// frame's own memory (see [`FrameMemory`]).
 pub fn buffers(py: Python<'_>, rendered: Rendered) -> PyResult<Buffers<'_>> {
     // The dumps' int32 id (`hider_scene::frame::id_to_i32`) is the id's
-    // bit pattern, NO_ID (u32::MAX) being -1: the ids are copied as they
-    // are and viewed as int32.
+    // bit pattern, NO_ID (u32::MAX) being -1: the ids are viewed as int32.
     const { assert!(hider_scene::NO_ID == u32::MAX) };
-    let (ids, depth, shape) = match rendered {
-        Rendered::Copied { ids, depth, shape } => (
-            PyArray1::from_vec(py, ids),
-            PyArray1::from_vec(py, depth),
-            shape,
-        ),
-        Rendered::InWorkspace => WORKSPACE.with_borrow(|slot| {
-            let frame = &slot
-                .as_ref()
-                .ok_or_else(|| PyValueError::new_err("internal error: no frame was rendered"))?
-                .frame;
-            let shape = [frame.height() as usize, frame.width() as usize];
-            PyResult::Ok((
-                PyArray1::from_slice(py, &frame.ids),
-                PyArray1::from_slice(py, &frame.depth),
-                shape,
-            ))
-        })?,
+    let Rendered { ids, depth, shape } = rendered;
+    let memory = Bound::new(py, FrameMemory { ids, depth })?;
+    let owner = memory.get();
+    let as_array = |e: numpy::ndarray::ShapeError| PyValueError::new_err(e.to_string());
+    let ids_view =
+        numpy::ndarray::ArrayView2::from_shape(shape, &owner.ids[..]).map_err(as_array)?;
+    let depth_view =
+        numpy::ndarray::ArrayView2::from_shape(shape, &owner.depth[..]).map_err(as_array)?;
+    #[allow(
+        unsafe_code,
+        reason = "numpy arrays over the frame's buffers, owned by their base object"
+    )]
+    // SAFETY: both views borrow `FrameMemory`'s vectors, which `memory`
+    // owns and never reallocates (the class is frozen, its fields
+    // private), and `memory` becomes the arrays' base object, kept alive
+    // by numpy as long as either array (or a view of one) is. The arrays
+    // stay writeable, as the copies they replace were: Rust touches the
+    // vectors again only in `Drop`, after numpy has let go of both.
+    let (ids, depth) = unsafe {
+        (
+            PyArray2::borrow_from_array(&ids_view, memory.clone().into_any()),
+            PyArray2::borrow_from_array(&depth_view, memory.clone().into_any()),
+        )
     };
     let ids = ids
-        .reshape(shape)?
         .call_method1("view", ("int32",))?
         .cast_into::<PyArray2<i32>>()?;
-    Ok((ids, depth.reshape(shape)?))
+    Ok((ids, depth))
 }
 
 /// Renders `scene` as [`render_scene`] does, with the GIL released so
@@ -300,30 +347,12 @@ pub fn render_surface<'py>(
     Ok((buffers(py, rendered)?, surface_arrays(py, surface, shape)?))
 }
 
-/// `f` of the ids of a rendered frame, wherever the frame is.
+/// `f` of the ids of a rendered frame.
 fn with_ids<T>(
     rendered: &Rendered,
     f: impl FnOnce(&[u32]) -> hider_scene::Result<T>,
 ) -> hider_scene::Result<T> {
-    match rendered {
-        Rendered::Copied { ids, .. } => f(ids),
-        Rendered::InWorkspace => WORKSPACE.with_borrow(|slot| match slot {
-            Some(ws) => f(&ws.frame.ids),
-            None => f(&[]),
-        }),
-    }
-}
-
-/// A copy of the frame this thread's workspace rendered last, if any.
-fn copy_workspace_frame() -> Option<Rendered> {
-    WORKSPACE.with_borrow(|slot| {
-        let frame = &slot.as_ref()?.frame;
-        Some(Rendered::Copied {
-            ids: frame.ids.clone(),
-            depth: frame.depth.clone(),
-            shape: [frame.height() as usize, frame.width() as usize],
-        })
-    })
+    f(&rendered.ids)
 }
 
 /// The one-mesh scene of the arrays and the view of `size` pixels through

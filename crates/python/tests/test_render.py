@@ -214,10 +214,35 @@ def test_kept_memory_does_not_leak_between_calls():
     again = hider.render(sphere, sphere_faces, width=50, height=40)
     np.testing.assert_array_equal(first[0], again[0])
     np.testing.assert_array_equal(first[1], again[1])
-    # The arrays returned are the caller's own, not views of kept memory.
+    # The arrays returned are the caller's own: writing into them changes
+    # no later frame.
     again[0][:] = 7
     np.testing.assert_array_equal(hider.render(sphere, sphere_faces, width=50, height=40)[0],
                                   first[0])
+
+
+def test_returned_arrays_are_never_reused_while_alive():
+    # The arrays are the frame's own buffers, handed over without a copy,
+    # and go back to a pool for later frames once numpy frees them: never
+    # while an array, or a view of one, is alive.
+    sphere, faces = uv_sphere(16, 8)
+    size = dict(width=67, height=43, eye=(0, 0, 4), target=(0, 0, 0))
+    first_ids, first_depth = hider.render(sphere, faces, **size)
+    want_ids, want_depth = first_ids.copy(), first_depth.copy()
+    assert first_ids.base is not None and first_depth.base is not None
+    corner = first_ids[10:30, 20:50]
+    del first_ids
+    for k in range(6):
+        ids, depth = hider.render(sphere + [0.1 * (k + 1), 0, 0], faces, **size)
+        assert not np.array_equal(ids, want_ids)
+        del ids, depth
+    # The view kept the first frame's ids alive; its depths were kept too.
+    np.testing.assert_array_equal(corner, want_ids[10:30, 20:50])
+    np.testing.assert_array_equal(first_depth, want_depth)
+    for threads in (1, 2):
+        again = hider.render(sphere, faces, threads=threads, **size)
+        np.testing.assert_array_equal(again[0], want_ids)
+        np.testing.assert_array_equal(again[1], want_depth)
 
 
 def test_ctrl_c_stops_a_long_render_within_a_second(tmp_path):
