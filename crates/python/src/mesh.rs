@@ -28,11 +28,6 @@ pub enum Faces<'py> {
 }
 
 impl Vertices<'_> {
-    /// The positions, one `DVec3` per row.
-    fn positions(&self) -> PyResult<Vec<DVec3>> {
-        self.rows_as("vertices")
-    }
-
     /// One `DVec3` per row, the array named `what` in messages.
     pub(crate) fn rows_as(&self, what: &str) -> PyResult<Vec<DVec3>> {
         match self {
@@ -65,8 +60,20 @@ pub const MESH_NAME: &str = "array";
 fn rows<T: numpy::Element + Copy, U>(
     what: &str,
     a: &PyReadonlyArray2<'_, T>,
-    mut f: impl FnMut([T; 3]) -> U,
+    f: impl FnMut([T; 3]) -> U,
 ) -> PyResult<Vec<U>> {
+    let mut out = Vec::new();
+    rows_into(what, a, f, &mut out)?;
+    Ok(out)
+}
+
+/// [`rows`] into `out` (cleared first), reusing its memory.
+fn rows_into<T: numpy::Element + Copy, U>(
+    what: &str,
+    a: &PyReadonlyArray2<'_, T>,
+    mut f: impl FnMut([T; 3]) -> U,
+    out: &mut Vec<U>,
+) -> PyResult<()> {
     let shape = a.shape();
     if shape[1] != 3 {
         return Err(PyValueError::new_err(format!(
@@ -74,18 +81,32 @@ fn rows<T: numpy::Element + Copy, U>(
             shape[0], shape[1]
         )));
     }
+    out.clear();
     if let Ok(flat) = a.as_slice() {
-        return Ok(flat
-            .chunks_exact(3)
-            .map(|r| f([r[0], r[1], r[2]]))
-            .collect());
+        out.extend(flat.chunks_exact(3).map(|r| f([r[0], r[1], r[2]])));
+        return Ok(());
     }
     let view = a.as_array();
-    Ok(view
-        .rows()
-        .into_iter()
-        .map(|r| f([r[0], r[1], r[2]]))
-        .collect())
+    out.extend(view.rows().into_iter().map(|r| f([r[0], r[1], r[2]])));
+    Ok(())
+}
+
+thread_local! {
+    /// The position and index vectors of the last scene [`recycle`]d on
+    /// this thread, for the next [`scene_from_arrays`]: a frame loop over
+    /// a large mesh otherwise allocates them anew every call, and the
+    /// kernel faults in and zeroes their pages (12 MB a call on the UV
+    /// sphere 500, about a tenth of `hider.render`'s time there).
+    static SPARE: std::cell::RefCell<(Vec<DVec3>, Vec<[u32; 3]>)> =
+        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+}
+
+/// Keeps the memory of a scene made by [`scene_from_arrays`] for the next
+/// one on this thread.
+pub fn recycle(scene: Scene) {
+    if let Some(mesh) = scene.meshes.into_iter().next() {
+        SPARE.with_borrow_mut(|spare| *spare = (mesh.positions, mesh.indices));
+    }
 }
 
 /// The one-mesh scene of `vertices` (`(N, 3)`, world space) and `faces`
@@ -93,27 +114,57 @@ fn rows<T: numpy::Element + Copy, U>(
 /// same messages as the front end's validation, naming the triangle or
 /// vertex at fault.
 pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult<Scene> {
-    let positions = vertices.positions()?;
+    let (mut positions, mut indices) = SPARE.with_borrow_mut(std::mem::take);
+    match vertices {
+        Vertices::F64(a) => rows_into("vertices", a, DVec3::from_array, &mut positions)?,
+        Vertices::F32(a) => rows_into(
+            "vertices",
+            a,
+            |r| DVec3::from_array(r.map(f64::from)),
+            &mut positions,
+        )?,
+    }
     let n = positions.len();
-    // The first index out of range, with its triangle.
-    let mut bad = None;
-    let mut t = 0;
-    let indices = faces.map(|tri| {
-        if bad.is_none()
-            && let Some(&i) = tri.iter().find(|&&i| i < 0 || i as u64 >= n as u64)
-        {
-            bad = Some((t, i));
-        }
-        t += 1;
+    // Every call converts and checks every index: one branch-free pass
+    // (a negative index is above any count as u64), and the search for
+    // the culprit only when it fails.
+    let limit = n as u64;
+    let mut in_range = true;
+    let mut convert = |tri: [i64; 3]| {
+        in_range &= tri.iter().fold(true, |ok, &i| ok & ((i as u64) < limit));
         // In range of a vertex count, so below u32::MAX only if n is; the
         // front end refuses meshes of more vertices than ids can name.
         tri.map(|i| u32::try_from(i).unwrap_or(u32::MAX))
-    })?;
-    if let Some((t, i)) = bad {
-        return Err(PyValueError::new_err(format!(
-            "invalid scene: mesh 0 ('{MESH_NAME}') triangle {t} uses vertex {i}, but the mesh has {n} vertices"
-        )));
+    };
+    match faces {
+        Faces::I64(a) => rows_into("faces", a, &mut convert, &mut indices)?,
+        Faces::I32(a) => rows_into("faces", a, |r| convert(r.map(i64::from)), &mut indices)?,
+        Faces::U32(a) => rows_into("faces", a, |r| convert(r.map(i64::from)), &mut indices)?,
     }
+    if !in_range {
+        let mut bad = None;
+        let mut t = 0;
+        faces.map(|tri| {
+            if bad.is_none()
+                && let Some(&i) = tri.iter().find(|&&i| i < 0 || i as u64 >= limit)
+            {
+                bad = Some((t, i));
+            }
+            t += 1;
+        })?;
+        if let Some((t, i)) = bad {
+            return Err(PyValueError::new_err(format!(
+                "invalid scene: mesh 0 ('{MESH_NAME}') triangle {t} uses vertex {i}, but the mesh has {n} vertices"
+            )));
+        }
+    }
+    // With the indices in range, the rest of `Scene::validate` for a mesh
+    // of positions and indices is that the positions are finite: one
+    // branch-free pass here, and `validate` itself only to name the
+    // culprit.
+    let finite = positions.iter().fold(true, |ok, p| {
+        ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
+    });
     let mut scene = Scene::default();
     scene.push_mesh(
         Mesh {
@@ -124,6 +175,8 @@ pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult
         },
         None,
     );
-    scene.validate().map_err(crate::errors::scene_error)?;
+    if !finite {
+        scene.validate().map_err(crate::errors::scene_error)?;
+    }
     Ok(scene)
 }

@@ -425,7 +425,9 @@ pub fn render<'py>(
         vertex_normals,
         parallel: threads > 1,
     };
-    render_surface(py, &scene, &view, algo, (threads, token(cancel)), wanted)
+    let result = render_surface(py, &scene, &view, algo, (threads, token(cancel)), wanted);
+    crate::mesh::recycle(scene);
+    result
 }
 
 /// Gives the one mesh of `scene` the per-vertex `normals` (`(N, 3)`, one

@@ -275,12 +275,29 @@ impl Scene {
         let mut hi = DVec3::splat(f64::NEG_INFINITY);
         let mut any = false;
         for mesh in &self.meshes {
+            any |= !mesh.indices.is_empty();
+            if mesh.positions.len() * 2 < mesh.indices.len() * 3 {
+                // Vertices shared by several triangles (a closed mesh has
+                // about half as many as triangles): mark the ones used,
+                // then take the extremes over the positions in order, a
+                // third of the lookups and the min-max once per vertex.
+                let mut used = vec![false; mesh.positions.len()];
+                for &i in mesh.indices.as_flattened() {
+                    used[i as usize] = true;
+                }
+                for (&p, &u) in mesh.positions.iter().zip(&used) {
+                    if u {
+                        lo = lo.min(p);
+                        hi = hi.max(p);
+                    }
+                }
+                continue;
+            }
             for tri in &mesh.indices {
                 for &i in tri {
                     let p = mesh.positions[i as usize];
                     lo = lo.min(p);
                     hi = hi.max(p);
-                    any = true;
                 }
             }
         }
