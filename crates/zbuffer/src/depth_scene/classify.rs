@@ -144,6 +144,10 @@ pub(crate) struct Setups {
 
 impl Setups {
     /// The words of [`SmallSetup::NONE`]'s box.
+    #[cfg_attr(
+        not(target_arch = "x86_64"),
+        expect(dead_code, reason = "read only by the x86-64 AVX2 code")
+    )]
     pub(crate) const NONE_BBOX: [i32; 2] = [1, 0];
 
     /// Lane `i`'s set-up (the triangle pass moves the words into its

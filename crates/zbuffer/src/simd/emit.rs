@@ -28,6 +28,10 @@ use crate::depth_scene::classify::{LANES, Setups};
 /// whose last two corners are swapped for positive order, the planes
 /// (their values the first corners' depths), the set-ups (none in every
 /// lane when absent) and the batch's first primitive id.
+#[cfg_attr(
+    not(target_arch = "x86_64"),
+    expect(dead_code, reason = "read only by the x86-64 AVX2 code")
+)]
 pub(crate) struct Batch<'a> {
     pub(crate) x: &'a [[i32; LANES]; 3],
     pub(crate) y: &'a [[i32; LANES]; 3],

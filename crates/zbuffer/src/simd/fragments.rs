@@ -32,6 +32,10 @@ const _: () = assert!(
 /// each box's first pixel and width, and its covered centres
 /// ([`Lanes::corner`](crate::depth_scene::classify::Lanes::corner),
 /// [`Lanes::covered`](crate::depth_scene::classify::Lanes::covered)).
+#[cfg_attr(
+    not(target_arch = "x86_64"),
+    expect(dead_code, reason = "read only by the x86-64 AVX2 code")
+)]
 pub(crate) struct Small<'a> {
     pub(crate) lanes: u8,
     pub(crate) corner: &'a [(u32, u32, u32); LANES],

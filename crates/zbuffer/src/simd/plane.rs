@@ -29,6 +29,10 @@ pub(crate) struct Planes {
 impl Planes {
     /// Lane `i`'s plane, its value at the reference point the lane's first
     /// depth `z0`.
+    #[cfg_attr(
+        not(target_arch = "x86_64"),
+        expect(dead_code, reason = "read only by the x86-64 AVX2 code")
+    )]
     #[inline(always)]
     pub(crate) fn get(&self, i: usize, z0: f64) -> PlaneEq {
         PlaneEq {
