@@ -259,12 +259,7 @@ mod tests {
             before in 0usize..3,
         ) {
             let Some(avx2) = Avx2::detect() else { return Ok(()) };
-            let (mut x, mut y, mut z) = ([[0; LANES]; 3], [[0; LANES]; 3], [[0.0; LANES]; 3]);
-            for (i, tri) in c.iter().enumerate() {
-                for (k, &((cx, cy), cz)) in tri.iter().enumerate() {
-                    (x[k][i], y[k][i], z[k][i]) = (cx, cy, cz);
-                }
-            }
+            let (x, y, z) = crate::simd::plane::tests::lanes_of(&c);
             let setups = Setups {
                 bbox: [
                     raw.map(|(a, b, _)| i32::from(a) | i32::from(b) << 16),

@@ -197,12 +197,7 @@ mod tests {
             first_prim in any::<u32>(),
         ) {
             let Some(avx2) = Avx2::detect() else { return Ok(()) };
-            let (mut x, mut y, mut z) = ([[0; LANES]; 3], [[0; LANES]; 3], [[0.0; LANES]; 3]);
-            for (i, tri) in c.iter().enumerate() {
-                for (k, &((cx, cy), cz)) in tri.iter().enumerate() {
-                    (x[k][i], y[k][i], z[k][i]) = (cx, cy, cz);
-                }
-            }
+            let (x, y, z) = crate::simd::plane::tests::lanes_of(&c);
             let corner = boxes.map(|(x0, y0, w, _)| (x0, y0, w));
             // Only the centres of a box of at most four.
             let covered = boxes.map(|(_, _, w, bits)| bits & ((1 << (FEW_CENTRES as u32 / w * w)) - 1));

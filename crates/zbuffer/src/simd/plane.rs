@@ -179,12 +179,30 @@ mod avx2 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use hider_geom::isa::Avx2;
     use hider_geom::{FixedPt, PlaneEq};
     use proptest::prelude::*;
 
     use super::LANES;
+
+    /// One value per corner (the outer array) and triangle (the lanes).
+    pub(crate) type PerCorner<T> = [[T; LANES]; 3];
+
+    /// A batch's corners (a fixed-point position and a depth each, three
+    /// per triangle) as the gather leaves them: structure of arrays, one
+    /// array per corner, one lane per triangle.
+    pub(crate) fn lanes_of(
+        c: &[[((i32, i32), f64); 3]; LANES],
+    ) -> (PerCorner<i32>, PerCorner<i32>, PerCorner<f64>) {
+        let (mut x, mut y, mut z) = ([[0; LANES]; 3], [[0; LANES]; 3], [[0.0; LANES]; 3]);
+        for (i, tri) in c.iter().enumerate() {
+            for (k, &((cx, cy), cz)) in tri.iter().enumerate() {
+                (x[k][i], y[k][i], z[k][i]) = (cx, cy, cz);
+            }
+        }
+        (x, y, z)
+    }
 
     /// Corners of a batch: near one another (small triangles, as most
     /// are), or anywhere in the snappable range.
@@ -208,12 +226,7 @@ mod tests {
             want in any::<u8>(),
         ) {
             let Some(avx2) = Avx2::detect() else { return Ok(()) };
-            let (mut x, mut y, mut z) = ([[0; LANES]; 3], [[0; LANES]; 3], [[0.0; LANES]; 3]);
-            for (i, tri) in c.iter().enumerate() {
-                for (k, &((cx, cy), cz)) in tri.iter().enumerate() {
-                    (x[k][i], y[k][i], z[k][i]) = (cx, cy, cz);
-                }
-            }
+            let (x, y, z) = lanes_of(&c);
             let got = super::planes(avx2, &x, &y, &z, (swap, want));
             for i in (0..LANES).filter(|i| want >> i & 1 != 0) {
                 let order = if swap >> i & 1 != 0 { [0, 2, 1] } else { [0, 1, 2] };
