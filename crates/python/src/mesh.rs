@@ -30,9 +30,16 @@ pub enum Faces<'py> {
 impl Vertices<'_> {
     /// One `DVec3` per row, the array named `what` in messages.
     pub(crate) fn rows_as(&self, what: &str) -> PyResult<Vec<DVec3>> {
+        let mut out = Vec::new();
+        self.rows_into(what, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Self::rows_as`] into `out` (cleared first), reusing its memory.
+    fn rows_into(&self, what: &str, out: &mut Vec<DVec3>) -> PyResult<()> {
         match self {
-            Vertices::F64(a) => rows(what, a, DVec3::from_array),
-            Vertices::F32(a) => rows(what, a, |r| DVec3::from_array(r.map(f64::from))),
+            Vertices::F64(a) => rows_into(what, a, DVec3::from_array, out),
+            Vertices::F32(a) => rows_into(what, a, |r| DVec3::from_array(r.map(f64::from)), out),
         }
     }
 }
@@ -40,11 +47,17 @@ impl Vertices<'_> {
 impl Faces<'_> {
     /// Each row as `i64` indices, through `f`.
     fn map<U>(&self, f: impl FnMut([i64; 3]) -> U) -> PyResult<Vec<U>> {
-        let mut f = f;
+        let mut out = Vec::new();
+        self.map_into(f, &mut out)?;
+        Ok(out)
+    }
+
+    /// [`Self::map`] into `out` (cleared first), reusing its memory.
+    fn map_into<U>(&self, mut f: impl FnMut([i64; 3]) -> U, out: &mut Vec<U>) -> PyResult<()> {
         match self {
-            Faces::I64(a) => rows("faces", a, f),
-            Faces::I32(a) => rows("faces", a, |r| f(r.map(i64::from))),
-            Faces::U32(a) => rows("faces", a, |r| f(r.map(i64::from))),
+            Faces::I64(a) => rows_into("faces", a, f, out),
+            Faces::I32(a) => rows_into("faces", a, |r| f(r.map(i64::from)), out),
+            Faces::U32(a) => rows_into("faces", a, |r| f(r.map(i64::from)), out),
         }
     }
 }
@@ -52,22 +65,12 @@ impl Faces<'_> {
 /// The mesh name that error messages about the arrays show.
 pub const MESH_NAME: &str = "array";
 
-/// Each row of an `(N, 3)` array mapped through `f` (the Python layer has
-/// made it contiguous and checked its shape; checked again here for
-/// direct callers), read straight from its memory when it is contiguous:
+/// Each row of an `(N, 3)` array mapped through `f` into `out` (cleared
+/// first, its memory reused; the Python layer has made the array
+/// contiguous and checked its shape, checked again here for direct
+/// callers), read straight from its memory when it is contiguous:
 /// no copy of the array is made on the way to the scene (at 10^5 rows a
 /// copy costs its page faults on every call).
-fn rows<T: numpy::Element + Copy, U>(
-    what: &str,
-    a: &PyReadonlyArray2<'_, T>,
-    f: impl FnMut([T; 3]) -> U,
-) -> PyResult<Vec<U>> {
-    let mut out = Vec::new();
-    rows_into(what, a, f, &mut out)?;
-    Ok(out)
-}
-
-/// [`rows`] into `out` (cleared first), reusing its memory.
 fn rows_into<T: numpy::Element + Copy, U>(
     what: &str,
     a: &PyReadonlyArray2<'_, T>,
@@ -115,32 +118,23 @@ pub fn recycle(scene: Scene) {
 /// vertex at fault.
 pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult<Scene> {
     let (mut positions, mut indices) = SPARE.with_borrow_mut(std::mem::take);
-    match vertices {
-        Vertices::F64(a) => rows_into("vertices", a, DVec3::from_array, &mut positions)?,
-        Vertices::F32(a) => rows_into(
-            "vertices",
-            a,
-            |r| DVec3::from_array(r.map(f64::from)),
-            &mut positions,
-        )?,
-    }
+    vertices.rows_into("vertices", &mut positions)?;
     let n = positions.len();
     // Every call converts and checks every index: one branch-free pass
     // (a negative index is above any count as u64), and the search for
     // the culprit only when it fails.
     let limit = n as u64;
     let mut in_range = true;
-    let mut convert = |tri: [i64; 3]| {
-        in_range &= tri.iter().fold(true, |ok, &i| ok & ((i as u64) < limit));
-        // In range of a vertex count, so below u32::MAX only if n is; the
-        // front end refuses meshes of more vertices than ids can name.
-        tri.map(|i| u32::try_from(i).unwrap_or(u32::MAX))
-    };
-    match faces {
-        Faces::I64(a) => rows_into("faces", a, &mut convert, &mut indices)?,
-        Faces::I32(a) => rows_into("faces", a, |r| convert(r.map(i64::from)), &mut indices)?,
-        Faces::U32(a) => rows_into("faces", a, |r| convert(r.map(i64::from)), &mut indices)?,
-    }
+    faces.map_into(
+        |tri| {
+            in_range &= tri.iter().fold(true, |ok, &i| ok & ((i as u64) < limit));
+            // In range of a vertex count, so below u32::MAX only if n is;
+            // the front end refuses meshes of more vertices than ids can
+            // name.
+            tri.map(|i| u32::try_from(i).unwrap_or(u32::MAX))
+        },
+        &mut indices,
+    )?;
     if !in_range {
         let mut bad = None;
         let mut t = 0;
@@ -158,13 +152,6 @@ pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult
             )));
         }
     }
-    // With the indices in range, the rest of `Scene::validate` for a mesh
-    // of positions and indices is that the positions are finite: one
-    // branch-free pass here, and `validate` itself only to name the
-    // culprit.
-    let finite = positions.iter().fold(true, |ok, p| {
-        ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
-    });
     let mut scene = Scene::default();
     scene.push_mesh(
         Mesh {
@@ -175,7 +162,10 @@ pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult
         },
         None,
     );
-    if !finite {
+    // With the indices in range, the rest of `Scene::validate` for a mesh
+    // of positions and indices is that the positions are finite: checked
+    // here in one pass, and `validate` itself only to name the culprit.
+    if !scene.meshes[0].positions_finite() {
         scene.validate().map_err(crate::errors::scene_error)?;
     }
     Ok(scene)

@@ -141,6 +141,15 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// Whether every position is finite: one branch-free pass (it
+    /// vectorises), which [`Scene::validate`] and the builders of scenes
+    /// from arrays run on every frame before looking for a culprit.
+    pub fn positions_finite(&self) -> bool {
+        self.positions.iter().fold(true, |ok, p| {
+            ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
+        })
+    }
+
     /// The material index of triangle `t`: its entry of
     /// [`Self::triangle_materials`] when there are any, else
     /// [`Self::material`] (`None` for the default material).
@@ -331,11 +340,9 @@ impl Scene {
     /// Finite positions and indices in range.
     fn check_geometry(&self, m: usize, mesh: &Mesh) -> Result<()> {
         let n = mesh.positions.len();
-        // Every frame's front end validates: a branch-free pass (which
-        // vectorises) first, the search for the culprit only on failure.
-        let finite = mesh.positions.iter().fold(true, |ok, p| {
-            ok & p.x.is_finite() & p.y.is_finite() & p.z.is_finite()
-        });
+        // Every frame's front end validates: branch-free passes (which
+        // vectorise) first, the search for the culprit only on failure.
+        let finite = mesh.positions_finite();
         let max_index = mesh.indices.as_flattened().iter().fold(0, |m, &i| m.max(i));
         if finite && ((max_index as usize) < n || mesh.indices.is_empty()) {
             return Ok(());
