@@ -331,7 +331,7 @@ pub fn render_surface<'py>(
         let surface = if !wanted.any() {
             PixelSurface::default()
         } else {
-            let solve = || with_ids(&rendered, |ids| surface_at_pixels(scene, view, ids, wanted));
+            let solve = || surface_at_pixels(scene, view, &rendered.ids, wanted);
             // Above one thread the bands of rows run in the caller's pool of
             // `threads` (`wanted.parallel`), never in rayon's global one.
             if threads > 1 {
@@ -345,14 +345,6 @@ pub fn render_surface<'py>(
     })?;
     let shape = [view.viewport.height as usize, view.viewport.width as usize];
     Ok((buffers(py, rendered)?, surface_arrays(py, surface, shape)?))
-}
-
-/// `f` of the ids of a rendered frame.
-fn with_ids<T>(
-    rendered: &Rendered,
-    f: impl FnOnce(&[u32]) -> hider_scene::Result<T>,
-) -> hider_scene::Result<T> {
-    f(&rendered.ids)
 }
 
 /// The one-mesh scene of the arrays and the view of `size` pixels through
