@@ -21,8 +21,9 @@ gives every scene's median over the rounds.
 The scenes come from ``export_scenes`` (crates/bench/src/bin), which writes
 them from the same ``llvmpipe_scenes()`` the Rust benchmark
 ``frame_readback`` renders, and checks that each file reads back triangle
-for triangle. They are read here with numpy (``v`` and ``f`` lines only);
-the ``f`` lines are in primitive-id order, so the ids are the Rust ones.
+for triangle. They are read here with the tests' ``read_obj``
+(``crates/python/tests/conftest.py``: ``v`` and ``f`` lines); the ``f``
+lines are in primitive-id order, so the ids are the Rust ones.
 
 The camera is the fit camera on both sides (``View::for_scene`` in Rust,
 the fit camera of ``hider.render`` without camera keywords; none of the
@@ -65,29 +66,15 @@ import numpy as np  # noqa: E402
 
 import hider  # noqa: E402
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "tests"))
+from conftest import read_obj  # noqa: E402
+
 SIZE = 1024
 ALGO = "zbuffer-tiled"
 THREADS = (1, 2)
 # The order and names of the peers package (and of llvmpipe_scenes()).
 SCENES = ("spider", "sphere 200", "sphere 500", "soup 100k")
 WARM_UP_S = 0.04
-
-
-def read_obj(path):
-    """The ``v`` and ``f`` lines of an OBJ file as float64 (N, 3) vertices
-    and int64 (M, 3) 0-based faces (triangles only, as export_scenes
-    writes them; ``f`` corners may carry ``/vt/vn``)."""
-    vertices, faces = [], []
-    with open(path) as f:
-        for n, line in enumerate(f, 1):
-            if line.startswith("v "):
-                vertices.append([float(x) for x in line.split()[1:4]])
-            elif line.startswith("f "):
-                corners = line.split()[1:]
-                if len(corners) != 3:
-                    sys.exit(f"{path}:{n}: a face of {len(corners)} corners, not a triangle")
-                faces.append([int(c.split("/")[0]) - 1 for c in corners])
-    return np.array(vertices, dtype=np.float64), np.array(faces, dtype=np.int64)
 
 
 def median_ms(f, frames):
