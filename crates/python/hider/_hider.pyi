@@ -7,7 +7,8 @@ import numpy as np
 import numpy.typing as npt
 
 __all__ = ["render", "algorithms", "algorithm_kinds", "__version__", "plan", "screen_render",
-           "screen_pieces", "svg", "Cancel"]
+           "screen_pieces", "svg", "Cancel",
+           "SigintCancels", "CATCHES_SIGINT"]
 __version__: str
 
 _Point = tuple[float, float, float] | None
@@ -26,6 +27,14 @@ class Cancel:
     def reset(self) -> None: ...
     def set_timeout(self, seconds: float | None) -> None: ...
     def cancelled(self) -> bool: ...
+
+CATCHES_SIGINT: bool
+
+class SigintCancels:
+    def __init__(self, timeout: float | None) -> None: ...
+    def __enter__(self) -> Cancel: ...
+    def __exit__(self, exc_type: type[BaseException] | None, exc: BaseException | None,
+                 traceback: object) -> bool: ...
 
 def render(
     vertices: _Vertices, faces: _Faces, width: int, height: int,

@@ -34,6 +34,19 @@ impl PyCancel {
     /// Gives the token a deadline `seconds` from now, or none (`None`).
     #[pyo3(signature = (seconds))]
     fn set_timeout(&self, seconds: Option<f64>) -> PyResult<()> {
+        self.arm(seconds)
+    }
+
+    /// Whether `cancel` was called since the last `reset`.
+    fn cancelled(&self) -> bool {
+        self.0.check() == Err(hider_scene::Cancelled::Requested)
+    }
+}
+
+impl PyCancel {
+    /// Gives the token a deadline `seconds` from now, or none: the
+    /// `timeout=` of a call, checked.
+    pub fn arm(&self, seconds: Option<f64>) -> PyResult<()> {
         let timeout = seconds
             .map(|s| {
                 Duration::try_from_secs_f64(s).map_err(|_| {
@@ -45,11 +58,6 @@ impl PyCancel {
             .transpose()?;
         self.0.set_timeout(timeout);
         Ok(())
-    }
-
-    /// Whether `cancel` was called since the last `reset`.
-    fn cancelled(&self) -> bool {
-        self.0.check() == Err(hider_scene::Cancelled::Requested)
     }
 }
 

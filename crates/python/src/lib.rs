@@ -20,6 +20,7 @@ mod errors;
 mod mesh;
 mod render;
 mod screen;
+mod sigint;
 mod surface;
 mod vector;
 
@@ -40,5 +41,7 @@ fn _hider(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(screen::screen_pieces, m)?)?;
     m.add_function(wrap_pyfunction!(vector::svg, m)?)?;
     m.add_class::<cancel::PyCancel>()?;
+    m.add_class::<sigint::SigintCancels>()?;
+    m.add("CATCHES_SIGINT", sigint::CATCHES_SIGINT)?;
     Ok(())
 }
