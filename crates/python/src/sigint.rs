@@ -128,14 +128,16 @@ impl SigintCancels {
         Ok(cancel)
     }
 
-    #[pyo3(signature = (exc_type, _exc, _traceback))]
+    #[pyo3(signature = (exc_type, exc, traceback))]
     fn __exit__(
         &mut self,
         py: Python<'_>,
         exc_type: Option<Bound<'_, PyType>>,
-        _exc: Option<Bound<'_, PyAny>>,
-        _traceback: Option<Bound<'_, PyAny>>,
+        exc: Option<Bound<'_, PyAny>>,
+        traceback: Option<Bound<'_, PyAny>>,
     ) -> PyResult<bool> {
+        // The type alone decides; Python passes all three.
+        drop((exc, traceback));
         let Some(action) = self.replaced.take() else {
             return Ok(false);
         };
