@@ -106,7 +106,7 @@ def run_peers(peers):
             for r in rows if r["size"] == SIZE}
 
 
-def cli_ms(cli, model, threads, repeat=20):
+def cli_ms(cli, model, threads, repeat=100):
     """``hider render --repeat``'s median ms."""
     with tempfile.TemporaryDirectory() as tmp:
         p = subprocess.run([str(cli), "render", str(model), "--size", str(SIZE), "--algo", ALGO,
