@@ -8,7 +8,8 @@ import numpy.typing as npt
 
 __all__ = ["render", "algorithms", "algorithm_kinds", "__version__", "plan", "screen_render",
            "screen_pieces", "svg", "Cancel",
-           "SigintCancels", "CATCHES_SIGINT"]
+           "SigintCancels", "CATCHES_SIGINT",
+           "forget_threads_after_fork"]
 __version__: str
 
 _Point = tuple[float, float, float] | None
@@ -46,6 +47,7 @@ def render(
     want: tuple[bool, bool, bool, bool, bool] = ..., cancel: Cancel | None = None,
 ) -> tuple[tuple[npt.NDArray[np.int32], _F32],
            tuple[_F32 | None, _F32 | None, _F32 | None, _F32 | None, _F32 | None]]: ...
+def forget_threads_after_fork() -> None: ...
 def algorithms() -> list[str]: ...
 def algorithm_kinds() -> list[tuple[str, str, str]]: ...
 def plan(

@@ -19,10 +19,13 @@ _tokens = threading.local()
 
 
 def _forget_worker():
-    """In a forked child, the parent's worker thread does not exist."""
+    """In a forked child, the parent's worker thread does not exist, nor
+    do the thread pools of the thread that forked (with ``threads`` above
+    1, a render on the main thread uses one)."""
     global _worker, _worker_lock
     _worker = None
     _worker_lock = threading.Lock()
+    _hider.forget_threads_after_fork()
 
 
 if hasattr(os, "register_at_fork"):

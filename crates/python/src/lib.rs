@@ -37,6 +37,7 @@ fn _hider(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render::algorithm_kinds, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_function(wrap_pyfunction!(render::plan, m)?)?;
+    m.add_function(wrap_pyfunction!(render::forget_threads_after_fork, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_render, m)?)?;
     m.add_function(wrap_pyfunction!(screen::screen_pieces, m)?)?;
     m.add_function(wrap_pyfunction!(vector::svg, m)?)?;

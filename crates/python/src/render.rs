@@ -179,6 +179,22 @@ fn render_with_workspace(
     })
 }
 
+/// In a forked child, on the thread that forked (the package calls it
+/// from `os.register_at_fork`): forgets this thread's pool and workspace,
+/// whose worker threads were not copied into the child (a render handed
+/// to them would wait forever), without dropping them (dropping a pool
+/// signals threads that are not there). The memory stays the parent's
+/// copy, unused.
+#[pyfunction]
+pub fn forget_threads_after_fork() {
+    if let Some(pool) = POOL.with_borrow_mut(Option::take) {
+        std::mem::forget(pool);
+    }
+    if let Some(workspace) = WORKSPACE.with_borrow_mut(Option::take) {
+        std::mem::forget(workspace);
+    }
+}
+
 /// This thread's pool of `threads` workers, made when the size differs.
 fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
     POOL.with_borrow_mut(|slot| {

@@ -228,11 +228,15 @@ def test_render_in_a_forked_child_after_one_in_the_parent():
     finally:
         signal.signal(signal.SIGINT, previous)
     assert (got == want).all()
+    # In place, the main thread keeps its pool of 2 and its workspace: the
+    # child, where the pool's threads do not exist, starts its own.
+    two, _ = hider.render(v, [[0, 1, 2]], width=16, height=16, threads=2)
     with ctx.Pool(1) as pool:
         got = pool.apply_async(_render_small).get(timeout=30)
-    assert (got == want).all()
+        got_two = pool.apply_async(_render_small, (2,)).get(timeout=30)
+    assert (got == want).all() and (got_two == two).all() and (two == want).all()
 
 
-def _render_small():
+def _render_small(threads=1):
     v = np.array([[-1, -1, 0], [1, -1, 0], [0, 1, 0]], dtype=float)
-    return hider.render(v, [[0, 1, 2]], width=16, height=16)[0]
+    return hider.render(v, [[0, 1, 2]], width=16, height=16, threads=threads)[0]
