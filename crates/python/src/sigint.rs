@@ -115,14 +115,12 @@ impl SigintCancels {
 
     fn __enter__(&mut self) -> PyResult<PyCancel> {
         let cancel = PyCancel(token());
-        let nested = installed();
-        if !nested {
-            // Inside an outer block a Ctrl-C already taken must not be
-            // forgotten.
+        // Inside an outer block (the package never nests them) the token
+        // is the outer call's: a Ctrl-C it already took must not be
+        // forgotten, nor its deadline moved.
+        if !installed() {
             cancel.0.reset();
-        }
-        cancel.arm(self.timeout)?;
-        if !nested {
+            cancel.arm(self.timeout)?;
             self.replaced = install();
         }
         Ok(cancel)

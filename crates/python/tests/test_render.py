@@ -1,6 +1,9 @@
 """hider.render and hider.visible_faces: the command line's dumps bit for
 bit, every dtype and memory order, and clear errors for bad input."""
 
+import pathlib
+import sys
+import textwrap
 import threading
 
 import numpy as np
@@ -243,3 +246,42 @@ def test_returned_arrays_are_never_reused_while_alive():
         again = hider.render(sphere, faces, threads=threads, **size)
         np.testing.assert_array_equal(again[0], want_ids)
         np.testing.assert_array_equal(again[1], want_depth)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="counts /proc/self/task")
+def test_the_main_thread_works_in_its_first_pool(tmp_path):
+    """The main thread's first pool (``threads=2``) takes the main thread
+    in as one of its workers, so it starts one thread, not two; other
+    sizes and other threads get pools of their own threads; every one
+    renders the buffers of one thread."""
+    import subprocess
+
+    script = tmp_path / "pools.py"
+    script.write_text(textwrap.dedent("""
+        import os, sys, threading
+        sys.path.insert(0, sys.argv[1])
+        import hider
+        from conftest import uv_sphere
+        v, f = uv_sphere(64, 32)
+        tasks = lambda: len(os.listdir("/proc/self/task"))
+        want, _ = hider.render(v, f, width=200, height=150)
+        before = tasks()
+        ids, _ = hider.render(v, f, width=200, height=150, threads=2)
+        print("two", tasks() - before, bool((ids == want).all()))
+        before = tasks()
+        same = [bool((hider.render(v, f, width=200, height=150, threads=t)[0] == want).all())
+                for t in (3, 2, 1, 3)]
+        print("three", tasks() - before, all(same))
+        seen = []
+        t = threading.Thread(target=lambda: seen.append(
+            bool((hider.render(v, f, width=200, height=150, threads=2)[0] == want).all())))
+        t.start()
+        t.join()
+        print("other", seen)
+    """))
+    tests = str(pathlib.Path(__file__).parent)
+    proc = subprocess.run([sys.executable, str(script), tests], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split("\n")[:3] == ["two 1 True", "three 3 True", "other [True]"], \
+        (proc.stdout, proc.stderr)
