@@ -14,7 +14,7 @@ Each round first runs ``peers --peers llvmpipe --threads 1,2 --runs 5
 --rounds 1 --sizes 1024``, then times ``hider.render`` on every scene and
 thread count (warm-up renders for 40 ms, then the median of ``--frames``
 timed calls, ``time.perf_counter``), then, when the ``hider`` command line
-is given, its ``render --repeat`` median on the same OBJ file. The table
+is given, its ``render --repeat 100`` median on the same OBJ file. The table
 of each round gives the ratio llvmpipe+read / hider.render; a second table
 gives every scene's median over the rounds.
 
