@@ -251,7 +251,7 @@ fn main_pool(threads: usize) -> PyResult<Option<Arc<ThreadPool>>> {
         .build()
         .map(Arc::new)
         .map_err(pool_error)?;
-    // The GIL is held: no other call can have set it meanwhile.
+    // Only the main thread gets here: no other call can have set it.
     let _ = MAIN_POOL.set((threads, Arc::clone(&pool)));
     Ok(Some(pool))
 }
@@ -263,12 +263,14 @@ static FORKED: AtomicBool = AtomicBool::new(false);
 /// the process id); false where that cannot be told.
 #[allow(
     unsafe_code,
-    reason = "getpid and gettid, libc calls without arguments"
+    reason = "getpid and the gettid system call, libc calls without arguments"
 )]
 fn on_main_thread() -> bool {
+    // The system call rather than glibc's `gettid`, which glibc only has
+    // from 2.30 (a manylinux wheel may not link against it).
     #[cfg(target_os = "linux")]
     // SAFETY: both calls only return an id.
-    return unsafe { libc::getpid() == libc::gettid() };
+    return unsafe { libc::c_long::from(libc::getpid()) == libc::syscall(libc::SYS_gettid) };
     #[cfg(not(target_os = "linux"))]
     return false;
 }
