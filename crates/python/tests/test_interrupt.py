@@ -154,22 +154,29 @@ def test_a_handler_of_the_programs_own_keeps_its_meaning(tmp_path):
     called and the render finished (the call runs on the worker thread and
     the handler interrupts only the wait); with SIGINT ignored the render
     finishes too and nothing is raised."""
+    # The painter on 12,000 random crossing triangles at 128 px takes
+    # about 0.65 s in a release build (longer in CI's dev build); the
+    # signal comes 0.1 s in.
     lines, code, err = run_child(tmp_path, """
-        v, f = soup(20000)
-        want, _ = hider.render(v, f, width=256, height=256, algo="painter")
+        v, f = soup(12000)
         calls = []
-        signal.signal(signal.SIGINT, lambda *_: calls.append(1))
-        threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT)).start()
-        ids, _ = hider.render(v, f, width=256, height=256, algo="painter")
-        print("own", len(calls), bool((ids == want).all()))
+        signal.signal(signal.SIGINT, lambda *_: calls.append(time.perf_counter()))
+        threading.Timer(0.1, os.kill, (os.getpid(), signal.SIGINT)).start()
+        start = time.perf_counter()
+        own, _ = hider.render(v, f, width=128, height=128, algo="painter")
+        end = time.perf_counter()
+        # The handler ran during the render (in the main thread's wait).
+        print("own", len(calls), start < calls[0] < end)
         print("worker", "hider-render" in [t.name for t in threading.enumerate()])
         signal.signal(signal.SIGINT, signal.SIG_IGN)
-        threading.Timer(0.2, os.kill, (os.getpid(), signal.SIGINT)).start()
-        ids, _ = hider.render(v, f, width=256, height=256, algo="painter")
-        print("ignored", bool((ids == want).all()))
+        threading.Timer(0.1, os.kill, (os.getpid(), signal.SIGINT)).start()
+        ignored, _ = hider.render(v, f, width=128, height=128, algo="painter")
+        print("ignored", bool((own == ignored).all()), int((own >= 0).sum()))
     """)
     assert code == 0, err
-    assert lines[:3] == ["own 1 True", "worker True", "ignored True"], (lines, err)
+    assert lines[:2] == ["own 1 True", "worker True"], (lines, err)
+    # Both renders ran to the end: the same, whole image.
+    assert lines[2].startswith("ignored True ") and int(lines[2].split()[2]) > 1000, lines
 
 
 def test_timeout_raises_timeout_error_naming_the_keyword():
