@@ -194,7 +194,11 @@ fn render_command(args: &RenderArgs, (width, height): (u32, u32)) -> Result<()> 
         None
     } else {
         let entry = registry::find(&args.algo).map_err(crate::args::flag_error)?;
-        Some(entry.build(&config).map_err(crate::args::flag_error)?)
+        let hider = entry.build(&config).map_err(crate::args::flag_error)?;
+        // A size over the hider's memory budget fails before the model is
+        // read and before any frame is allocated.
+        hider.check_size(width, height)?;
+        Some(hider)
     };
     // The outputs are checked before any work: against each other, the
     // model, and (once loaded) its textures.
@@ -241,6 +245,7 @@ fn render_command(args: &RenderArgs, (width, height): (u32, u32)) -> Result<()> 
         progress.suspend(|| eprint_line(&format!("hider: warning: {warning}")));
     }
     progress.stage(&format!("rendering with {}", chosen.hider.name()));
+    chosen.hider.check_size(width, height)?;
     let mut frame = Frame::new(width, height)?.with_buffers(crate::outputs::frame_buffers(
         args.depth_out.is_some(),
         chosen.hider.resolves_color(),

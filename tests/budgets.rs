@@ -231,3 +231,29 @@ fn a_timeout_stops_the_render_with_one_line_naming_the_flag() {
     }
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_size_over_a_hiders_memory_budget_fails_before_the_model_is_read() {
+    // The supersampled z-buffer at 16384 x 16384 would need 72 GB: the
+    // hider refuses the size when it is built, before the model is read
+    // (the missing file is never reported) and before a frame of gigabytes
+    // is allocated; nothing is written.
+    let dir = temp_dir("size_budget");
+    let png = dir.join("out.png");
+    let missing = dir.join("missing.obj");
+    for algo in ["ssaa-32", "ssaa-sorted", "abuffer", "oracle"] {
+        let out = run(&[
+            missing.to_str().unwrap(),
+            "--size",
+            "16384",
+            "--algo",
+            algo,
+            "-o",
+            png.to_str().unwrap(),
+        ]);
+        let line = error_line(&out);
+        assert!(line.contains("is over the limit of"), "{algo}: {line}");
+        assert!(!line.contains("missing.obj"), "{algo}: {line}");
+        assert!(!png.exists(), "{algo}");
+    }
+}

@@ -394,6 +394,10 @@ impl Hider for ABuffer {
         }
     }
 
+    fn check_size(&self, width: u32, height: u32) -> Result<()> {
+        crate::pool::check_table(width as usize * height as usize, self.options.max_bytes)
+    }
+
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<ABufferStats> {
         self.check(scene.viewport, frame)?;
         let mut tris = std::mem::take(&mut self.screen_tris);

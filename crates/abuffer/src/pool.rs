@@ -31,6 +31,20 @@ pub(crate) struct FragmentPool {
     peak: usize,
 }
 
+/// Errors when the pixel table of `pixels` pixels is over `max_bytes`:
+/// the first budget a frame meets, known from its size alone.
+pub(crate) fn check_table(pixels: usize, max_bytes: u64) -> Result<()> {
+    let table = pixels as u64 * PIXEL_BYTES;
+    if table > max_bytes {
+        return Err(Error::Budget {
+            what: "A-buffer pixel table (bytes)",
+            value: table,
+            limit: max_bytes,
+        });
+    }
+    Ok(())
+}
+
 impl FragmentPool {
     /// Empties the pool for a frame of `pixels` pixels, merged entries
     /// with sample depths when `keep_depths`, under `max_bytes`. The table
@@ -43,14 +57,7 @@ impl FragmentPool {
         keep_depths: bool,
         max_bytes: u64,
     ) -> Result<bool> {
-        let table = pixels as u64 * PIXEL_BYTES;
-        if table > max_bytes {
-            return Err(Error::Budget {
-                what: "A-buffer pixel table (bytes)",
-                value: table,
-                limit: max_bytes,
-            });
-        }
+        check_table(pixels, max_bytes)?;
         self.keep_depths = keep_depths;
         self.max_bytes = max_bytes;
         self.frags.clear();

@@ -138,11 +138,9 @@ impl SortedTransparencyZBuffer {
         let pixels = frame.len();
         let n = self.options.pattern.count();
         let mut stats = SsaaStats {
-            bytes: self.options.check_budget(
-                "sorted-transparency z-buffer memory (bytes)",
-                pixels,
-                21,
-            )?,
+            bytes: self
+                .options
+                .check_budget(SORTED_BUDGET, pixels, SORTED_SAMPLE_BYTES)?,
             ..SsaaStats::default()
         };
         frame.clear();
@@ -186,6 +184,12 @@ impl SortedTransparencyZBuffer {
     }
 }
 
+/// What the sorted-transparency z-buffer's budget counts, for its error.
+const SORTED_BUDGET: &str = "sorted-transparency z-buffer memory (bytes)";
+/// Bytes per sample: an f32 depth, a u32 id, an RGB f32 colour and a
+/// coverage flag.
+const SORTED_SAMPLE_BYTES: u64 = 21;
+
 impl Hider for SortedTransparencyZBuffer {
     type Options = SsaaOptions;
     type Stats = SsaaStats;
@@ -203,6 +207,13 @@ impl Hider for SortedTransparencyZBuffer {
 
     fn name(&self) -> &str {
         "ssaa-sorted"
+    }
+
+    fn check_size(&self, width: u32, height: u32) -> Result<()> {
+        let pixels = width as usize * height as usize;
+        self.options
+            .check_budget(SORTED_BUDGET, pixels, SORTED_SAMPLE_BYTES)
+            .map(drop)
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<SsaaStats> {

@@ -93,7 +93,7 @@ impl SupersampledZBuffer {
         let mut stats = SsaaStats {
             bytes: self
                 .options
-                .check_budget("supersampled z-buffer memory (bytes)", pixels, 8)?,
+                .check_budget(SSAA_BUDGET, pixels, SSAA_SAMPLE_BYTES)?,
             ..SsaaStats::default()
         };
         frame.clear();
@@ -147,6 +147,11 @@ impl SupersampledZBuffer {
     }
 }
 
+/// What the supersampled z-buffer's budget counts, for its error.
+const SSAA_BUDGET: &str = "supersampled z-buffer memory (bytes)";
+/// Bytes per sample: an f32 depth and a u32 id.
+const SSAA_SAMPLE_BYTES: u64 = 8;
+
 impl Hider for SupersampledZBuffer {
     type Options = SsaaOptions;
     type Stats = SsaaStats;
@@ -172,6 +177,13 @@ impl Hider for SupersampledZBuffer {
             SamplePattern::Grid16 => "ssaa-16",
             SamplePattern::Grid32 => "ssaa-32",
         }
+    }
+
+    fn check_size(&self, width: u32, height: u32) -> Result<()> {
+        let pixels = width as usize * height as usize;
+        self.options
+            .check_budget(SSAA_BUDGET, pixels, SSAA_SAMPLE_BYTES)
+            .map(drop)
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<SsaaStats> {

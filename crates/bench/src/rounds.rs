@@ -197,6 +197,9 @@ mod tests {
             self.calls.borrow_mut().push(self.name);
             Ok(StatsTable::default())
         }
+        fn check_size(&self, _: u32, _: u32) -> Result<()> {
+            Ok(())
+        }
         fn resolves_color(&self) -> bool {
             false
         }

@@ -148,12 +148,10 @@ impl RayCastOracle {
         self.run(scene).0
     }
 
-    /// Errors when `scene` needs more memory or costs more tests than the
-    /// budgets allow; the memory first, as it is known from the image size
-    /// alone.
-    fn check_budget(&self, scene: &ScreenScene) -> Result<()> {
-        let vp = scene.viewport;
-        let bytes = Self::bytes_needed(vp.width, vp.height);
+    /// Errors when a `width x height` image needs more working memory than
+    /// [`OracleOptions::max_bytes`].
+    fn check_bytes(&self, width: u32, height: u32) -> Result<()> {
+        let bytes = Self::bytes_needed(width, height);
         if bytes > self.options.max_bytes {
             return Err(Error::Budget {
                 what: "oracle working bytes",
@@ -161,6 +159,14 @@ impl RayCastOracle {
                 limit: self.options.max_bytes,
             });
         }
+        Ok(())
+    }
+
+    /// Errors when `scene` needs more memory or costs more tests than the
+    /// budgets allow; the memory first, as it is known from the image size
+    /// alone.
+    fn check_budget(&self, scene: &ScreenScene) -> Result<()> {
+        self.check_bytes(scene.viewport.width, scene.viewport.height)?;
         let tests = Self::pixel_tests(scene);
         if tests > self.options.max_pixel_tests {
             return Err(Error::Limit {
@@ -432,6 +438,11 @@ impl Hider for RayCastOracle {
 
     fn name(&self) -> &str {
         "oracle"
+    }
+
+    /// Errors when the image needs more than [`OracleOptions::max_bytes`].
+    fn check_size(&self, width: u32, height: u32) -> Result<()> {
+        self.check_bytes(width, height)
     }
 
     /// Writes the reference ids and window depths into `frame`. Errors,

@@ -40,3 +40,20 @@ fn render_refuses_over_budget_and_keeps_the_frame() {
     assert!(stats.hits > 0);
     assert!(stats.peak_bytes <= need, "{} > {need}", stats.peak_bytes);
 }
+
+#[test]
+fn check_size_refuses_the_16384_image_before_a_frame_exists() {
+    // The same refusal as `try_evaluate`, from the size alone: a caller
+    // asks before allocating its 16384 x 16384 frame.
+    let oracle = RayCastOracle::default();
+    let e = oracle.check_size(16384, 16384).unwrap_err();
+    assert!(
+        matches!(e, Error::Budget { value, .. } if value == RayCastOracle::bytes_needed(16384, 16384)),
+        "{e}"
+    );
+    oracle.check_size(1024, 1024).unwrap();
+    let need = RayCastOracle::bytes_needed(64, 64);
+    let tight = RayCastOracle::new(OracleOptions::default().with_max_bytes(need - 1));
+    assert!(tight.check_size(64, 64).is_err());
+    assert!(tight.check_size(63, 64).is_ok());
+}

@@ -147,11 +147,15 @@ fn render_with_workspace(
             let config = HiderConfig::default()
                 .with_threads(threads)
                 .with_cancel(cancel);
+            let hider = entry.build(&config)?;
+            // A size over the hider's memory budget is refused before the
+            // frame is allocated (at 16384 x 16384, gigabytes).
+            hider.check_size(width, height)?;
             *slot = Some(Workspace {
                 algo: entry.name.to_owned(),
                 threads,
                 cancel,
-                hider: entry.build(&config)?,
+                hider,
                 // Python returns the ids and depths: the colour is not read
                 // back (a hider that resolves it anyway still may).
                 frame: Frame::new(width, height)?.with_buffers(FrameBuffers::IDS_DEPTH),
@@ -159,6 +163,7 @@ fn render_with_workspace(
         }
         let ws = slot.as_mut().expect("the workspace was just made");
         if ws.frame.width() != width || ws.frame.height() != height {
+            ws.hider.check_size(width, height)?;
             ws.frame.resize(width, height)?;
         }
         let options = PrepareOptions::default()

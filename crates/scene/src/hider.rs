@@ -241,6 +241,18 @@ pub trait Hider {
         self.render(screen, frame)
     }
 
+    /// Refuses a `width x height` frame whose working memory is over a
+    /// budget of the hider's, before the caller allocates anything: the
+    /// error `render` would give at that size, from the size alone. The
+    /// default allows every size (a hider whose memory does not grow with
+    /// the frame's pixels, or whose budgets depend on the scene, checks in
+    /// `render`). A caller about to allocate a frame calls it first, so an
+    /// absurd size costs no frame of gigabytes.
+    fn check_size(&self, width: u32, height: u32) -> Result<()> {
+        let _ = (width, height);
+        Ok(())
+    }
+
     /// Whether `render` writes the frame's colour itself.
     fn resolves_color(&self) -> bool {
         false
@@ -286,6 +298,8 @@ pub trait DynHider {
         screen: &mut ScreenScene,
         frame: &mut Frame,
     ) -> Result<StatsTable>;
+    /// See [`Hider::check_size`].
+    fn check_size(&self, width: u32, height: u32) -> Result<()>;
     /// See [`Hider::resolves_color`].
     fn resolves_color(&self) -> bool;
     /// See [`Hider::composites_transparency`].
@@ -312,6 +326,10 @@ impl<H: Hider> DynHider for H {
         frame: &mut Frame,
     ) -> Result<StatsTable> {
         Hider::render_scene(self, scene, view, options, screen, frame).map(|s| s.table())
+    }
+
+    fn check_size(&self, width: u32, height: u32) -> Result<()> {
+        Hider::check_size(self, width, height)
     }
 
     fn resolves_color(&self) -> bool {

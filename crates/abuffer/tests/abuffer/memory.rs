@@ -1,7 +1,10 @@
 //! The memory bound, the overflow policy, culling, merging and reuse.
 
 use glam::DVec3;
-use hider_abuffer::{ABuffer, ABufferOptions, MergePolicy, OverflowPolicy};
+use hider_abuffer::{
+    ABuffer, ABufferOptions, MergePolicy, OverflowPolicy, SortedTransparencyZBuffer, SsaaOptions,
+    SupersampledZBuffer,
+};
 use hider_scene::{Error, Frame, Hider, HiderStats, Mesh, Scene, procedural};
 use hider_testkit::{render, screen};
 
@@ -163,4 +166,30 @@ fn stats_add_up() {
     assert!(st.merged + st.culled + st.pool_fragments <= st.fragments);
     assert!(st.mean_list_len >= 1.0 && st.max_list_len as f64 >= st.mean_list_len);
     assert_eq!(table.peak_bytes, st.bytes);
+}
+
+#[test]
+fn check_size_refuses_what_render_refuses_before_a_frame_exists() {
+    // `Hider::check_size` is the size's part of each budget: the same error
+    // as `render` at that size, from the size alone, so that a caller can
+    // refuse before allocating the frame; a size within budget passes.
+    let s = screen(&procedural::cube(), 64, 64);
+    let ssaa = SsaaOptions::default().with_max_bytes(20_000);
+    type Dyn = dyn hider_scene::DynHider;
+    let hiders: Vec<Box<Dyn>> = vec![
+        Box::new(ABuffer::new(lists().with_max_bytes(1000))),
+        Box::new(SupersampledZBuffer::new(ssaa)),
+        Box::new(SortedTransparencyZBuffer::new(ssaa)),
+    ];
+    for mut hider in hiders {
+        let name = Dyn::name(&*hider).to_owned();
+        let refused = Dyn::check_size(&*hider, 64, 64).unwrap_err();
+        assert!(matches!(refused, Error::Budget { .. }), "{refused}");
+        let mut frame = Frame::new(64, 64).unwrap();
+        let rendered = Dyn::render(&mut *hider, &s, &mut frame).unwrap_err();
+        assert_eq!(refused.to_string(), rendered.to_string(), "{name}");
+        Dyn::check_size(&*hider, 4, 4).unwrap();
+        let small = screen(&procedural::cube(), 4, 4);
+        Dyn::render(&mut *hider, &small, &mut Frame::new(4, 4).unwrap()).unwrap();
+    }
 }
