@@ -54,6 +54,15 @@ pub struct SortedTransparencyZBuffer {
 }
 
 impl SortedTransparencyZBuffer {
+    /// The sample buffers' bytes for `pixels` pixels (an f32 depth, a u32
+    /// id, an RGB f32 colour and a coverage flag a sample), or the
+    /// budget's error: what `draw` holds, and what `check_size` asks
+    /// before a frame exists.
+    fn bytes_for(&self, pixels: usize) -> Result<u64> {
+        self.options
+            .check_budget("sorted-transparency z-buffer memory (bytes)", pixels, 21)
+    }
+
     /// Draws `tri` into the sample buffers: written when opaque, blended
     /// over what is there (depth tested, not written) when `translucent`.
     fn draw_tri(
@@ -138,9 +147,7 @@ impl SortedTransparencyZBuffer {
         let pixels = frame.len();
         let n = self.options.pattern.count();
         let mut stats = SsaaStats {
-            bytes: self
-                .options
-                .check_budget(SORTED_BUDGET, pixels, SORTED_SAMPLE_BYTES)?,
+            bytes: self.bytes_for(pixels)?,
             ..SsaaStats::default()
         };
         frame.clear();
@@ -184,12 +191,6 @@ impl SortedTransparencyZBuffer {
     }
 }
 
-/// What the sorted-transparency z-buffer's budget counts, for its error.
-const SORTED_BUDGET: &str = "sorted-transparency z-buffer memory (bytes)";
-/// Bytes per sample: an f32 depth, a u32 id, an RGB f32 colour and a
-/// coverage flag.
-const SORTED_SAMPLE_BYTES: u64 = 21;
-
 impl Hider for SortedTransparencyZBuffer {
     type Options = SsaaOptions;
     type Stats = SsaaStats;
@@ -210,10 +211,7 @@ impl Hider for SortedTransparencyZBuffer {
     }
 
     fn check_size(&self, width: u32, height: u32) -> Result<()> {
-        let pixels = width as usize * height as usize;
-        self.options
-            .check_budget(SORTED_BUDGET, pixels, SORTED_SAMPLE_BYTES)
-            .map(drop)
+        self.bytes_for(width as usize * height as usize).map(drop)
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<SsaaStats> {

@@ -47,6 +47,14 @@ pub struct SupersampledZBuffer {
 }
 
 impl SupersampledZBuffer {
+    /// The sample buffers' bytes for `pixels` pixels (an f32 depth and a
+    /// u32 id a sample), or the budget's error: what `draw` holds, and
+    /// what `check_size` asks before a frame exists.
+    fn bytes_for(&self, pixels: usize) -> Result<u64> {
+        self.options
+            .check_budget("supersampled z-buffer memory (bytes)", pixels, 8)
+    }
+
     /// After a render: the primitive at every sample (`samples` per pixel,
     /// row-major), [`NO_ID`] for background.
     pub fn sample_ids(&self) -> &[u32] {
@@ -91,9 +99,7 @@ impl SupersampledZBuffer {
         let pattern = self.options.pattern;
         let n = pattern.count();
         let mut stats = SsaaStats {
-            bytes: self
-                .options
-                .check_budget(SSAA_BUDGET, pixels, SSAA_SAMPLE_BYTES)?,
+            bytes: self.bytes_for(pixels)?,
             ..SsaaStats::default()
         };
         frame.clear();
@@ -147,11 +153,6 @@ impl SupersampledZBuffer {
     }
 }
 
-/// What the supersampled z-buffer's budget counts, for its error.
-const SSAA_BUDGET: &str = "supersampled z-buffer memory (bytes)";
-/// Bytes per sample: an f32 depth and a u32 id.
-const SSAA_SAMPLE_BYTES: u64 = 8;
-
 impl Hider for SupersampledZBuffer {
     type Options = SsaaOptions;
     type Stats = SsaaStats;
@@ -180,10 +181,7 @@ impl Hider for SupersampledZBuffer {
     }
 
     fn check_size(&self, width: u32, height: u32) -> Result<()> {
-        let pixels = width as usize * height as usize;
-        self.options
-            .check_budget(SSAA_BUDGET, pixels, SSAA_SAMPLE_BYTES)
-            .map(drop)
+        self.bytes_for(width as usize * height as usize).map(drop)
     }
 
     fn render(&mut self, scene: &ScreenScene, frame: &mut Frame) -> Result<SsaaStats> {
