@@ -18,6 +18,7 @@ mod camera;
 mod cancel;
 mod errors;
 mod mesh;
+mod pools;
 mod render;
 mod screen;
 mod sigint;

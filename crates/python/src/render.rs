@@ -2,8 +2,6 @@
 //! as the `hider render` command line does it.
 
 use std::cell::RefCell;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, OnceLock};
 
 use hider_plan::{HiderConfig, Planned, RenderOptions, auto, registry};
 use hider_scene::{
@@ -13,12 +11,12 @@ use hider_scene::{
 use numpy::PyArray2;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use rayon::ThreadPool;
 
 use crate::camera::CameraArgs;
 use crate::cancel::{PyCancel, token};
 use crate::errors::{plan_error, scene_error};
 use crate::mesh::{Faces, Vertices, scene_from_arrays};
+use crate::pools::pool;
 use crate::surface::{Surface, surface_arrays};
 
 /// The ids (`-1` for background) and window depths (`1.0` for background)
@@ -124,8 +122,6 @@ struct Workspace {
 thread_local! {
     /// This thread's last hider and frame.
     static WORKSPACE: RefCell<Option<Workspace>> = const { RefCell::new(None) };
-    /// This thread's pool for `threads` above 1, with its size.
-    static POOL: RefCell<Option<(usize, Arc<ThreadPool>)>> = const { RefCell::new(None) };
 }
 
 /// Renders with this thread's workspace, made anew when the hider, the
@@ -193,96 +189,10 @@ fn render_with_workspace(
 /// copy, unused.
 #[pyfunction]
 pub fn forget_threads_after_fork() {
-    FORKED.store(true, Ordering::Relaxed);
-    if let Some(pool) = POOL.with_borrow_mut(Option::take) {
-        std::mem::forget(pool);
-    }
+    crate::pools::forget_after_fork();
     if let Some(workspace) = WORKSPACE.with_borrow_mut(Option::take) {
         std::mem::forget(workspace);
     }
-}
-
-/// This thread's pool of `threads` workers, made when the size differs.
-///
-/// The main thread's first pool takes the main thread in as its worker 0
-/// (rayon's `use_current_thread`), for the rest of the process: a call on
-/// the main thread then runs the frame right there, its parallel steps
-/// joins inside the pool, where a pool of other threads would take the
-/// frame over and put the main thread to sleep until it is done, two
-/// thread wake-ups a call that cost the spider at 1024 on 2 threads a
-/// third of its time here. Other sizes on the main thread, and every
-/// other thread, get pools of their own threads.
-fn pool(threads: usize) -> PyResult<Arc<ThreadPool>> {
-    if let Some(pool) = main_pool(threads)? {
-        return Ok(pool);
-    }
-    POOL.with_borrow_mut(|slot| {
-        if let Some((n, pool)) = slot.as_ref()
-            && *n == threads
-        {
-            return Ok(Arc::clone(pool));
-        }
-        // A pool of the caller's size: the command line sizes rayon's
-        // global pool, which a library must leave alone.
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .map(Arc::new)
-            .map_err(pool_error)?;
-        *slot = Some((threads, Arc::clone(&pool)));
-        Ok(pool)
-    })
-}
-
-/// The pool the main thread is worker 0 of, when this call is on the main
-/// thread and asks for its size (made on the first such call); none
-/// otherwise. Never dropped: rayon keeps the main thread registered with
-/// it, and a forked child, where its other threads do not exist, does not
-/// use it.
-fn main_pool(threads: usize) -> PyResult<Option<Arc<ThreadPool>>> {
-    static MAIN_POOL: OnceLock<(usize, Arc<ThreadPool>)> = OnceLock::new();
-    if !on_main_thread() || FORKED.load(Ordering::Relaxed) {
-        return Ok(None);
-    }
-    if let Some((n, pool)) = MAIN_POOL.get() {
-        return Ok((*n == threads).then(|| Arc::clone(pool)));
-    }
-    if rayon::current_thread_index().is_some() {
-        return Ok(None);
-    }
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .use_current_thread()
-        .build()
-        .map(Arc::new)
-        .map_err(pool_error)?;
-    // Only the main thread gets here: no other call can have set it.
-    let _ = MAIN_POOL.set((threads, Arc::clone(&pool)));
-    Ok(Some(pool))
-}
-
-/// Set in a forked child ([`forget_threads_after_fork`]).
-static FORKED: AtomicBool = AtomicBool::new(false);
-
-/// Whether this is the process's first thread (Linux: its thread id is
-/// the process id); false where that cannot be told.
-#[allow(
-    unsafe_code,
-    reason = "getpid and the gettid system call, libc calls without arguments"
-)]
-fn on_main_thread() -> bool {
-    // The system call rather than glibc's `gettid`, which glibc only has
-    // from 2.30 (a manylinux wheel may not link against it).
-    #[cfg(target_os = "linux")]
-    // SAFETY: both calls only return an id.
-    return unsafe { libc::c_long::from(libc::getpid()) == libc::syscall(libc::SYS_gettid) };
-    #[cfg(not(target_os = "linux"))]
-    return false;
-}
-
-/// A pool that could not be started, as a Python exception.
-fn pool_error(e: rayon::ThreadPoolBuildError) -> PyErr {
-    PyValueError::new_err(format!("cannot start the thread pool: {e}"))
 }
 
 /// The name `algo` asks the planner to choose ([`plan_scene`]), as the
@@ -344,7 +254,7 @@ pub fn render_scene(
 }
 
 /// An empty screen scene for `view`, for
-/// [`DynHider::render_scene`](hider_scene::DynHider::render_scene) to fill
+/// [`DynHider::render_scene`] to fill
 /// (or to leave as it is, for a hider with a front end of its own).
 fn empty_screen(view: &View) -> ScreenScene {
     ScreenScene::empty(view)
