@@ -69,40 +69,57 @@ impl Drop for FrameMemory {
         let mut recycled = RECYCLED.lock().unwrap_or_else(|e| e.into_inner());
         // Two sets cover a loop that rebinds its arrays (the previous
         // frame's are freed after the next call returns); more would only
-        // hold memory.
-        if recycled.len() < 2 {
-            recycled.push((ids, depth));
+        // hold memory. The newest is kept: it is the likeliest to be in
+        // cache still.
+        if recycled.len() >= 2 {
+            recycled.remove(0);
         }
+        recycled.push((ids, depth));
     }
 }
 
-/// Id and depth buffers of frames whose arrays numpy has freed, for the
-/// next frames' read-back ([`take_frame`]).
+/// Id and depth buffers of frames whose arrays numpy has freed, oldest
+/// first, for the next frames' read-back ([`refill_frame`]).
 static RECYCLED: std::sync::Mutex<Vec<(Vec<u32>, Vec<f32>)>> = std::sync::Mutex::new(Vec::new());
 
-/// Takes `frame`'s ids and depths out, leaving recycled buffers of the
-/// same length in their place (or new ones): every render writes all of
-/// the ids and depths it is asked for, so what they held does not matter.
+/// Takes `frame`'s ids and depths out for numpy, leaving the frame without
+/// them until [`refill_frame`] gives it buffers for its next render.
 fn take_frame(frame: &mut Frame) -> Rendered {
-    let n = frame.ids.len();
+    Rendered {
+        ids: std::mem::take(&mut frame.ids),
+        depth: std::mem::take(&mut frame.depth),
+        shape: [frame.height() as usize, frame.width() as usize],
+    }
+}
+
+/// Gives `frame` id and depth buffers of its size, right before a render,
+/// when [`take_frame`] took its own: the most recently freed set of that
+/// size (or new ones). Every render writes all of the ids and depths it
+/// is asked for, so what they held does not matter.
+///
+/// Why at the next render and the newest set: a caller that is done with
+/// a frame's arrays before the next call (`visible_faces`, a loop that
+/// reduces each frame to a few numbers) then renders into the same 8 MB
+/// every time (at 1024 x 1024), still in the last-level cache, where
+/// handing over a set at the end of each call cycled through two.
+fn refill_frame(frame: &mut Frame) {
+    let n = frame.width() as usize * frame.height() as usize;
+    if frame.ids.len() == n && frame.depth.len() == n {
+        return;
+    }
     let spare = {
         let mut recycled = RECYCLED.lock().unwrap_or_else(|e| e.into_inner());
         recycled
             .iter()
-            .position(|(i, d)| i.len() == n && d.len() == n)
-            .map(|k| recycled.swap_remove(k))
+            .rposition(|(i, d)| i.len() == n && d.len() == n)
+            .map(|k| recycled.remove(k))
     };
-    let (ids, depth) = spare.unwrap_or_else(|| {
+    (frame.ids, frame.depth) = spare.unwrap_or_else(|| {
         (
             vec![hider_scene::NO_ID; n],
             vec![hider_scene::frame::BACKGROUND_DEPTH; n],
         )
     });
-    Rendered {
-        ids: std::mem::replace(&mut frame.ids, ids),
-        depth: std::mem::replace(&mut frame.depth, depth),
-        shape: [frame.height() as usize, frame.width() as usize],
-    }
 }
 
 /// A hider with its frame and screen scene, kept from one call to the next
@@ -162,6 +179,7 @@ fn render_with_workspace(
             ws.hider.check_size(width, height)?;
             ws.frame.resize(width, height)?;
         }
+        refill_frame(&mut ws.frame);
         let options = PrepareOptions::default()
             .with_parallel(threads > 1)
             .with_cancel(cancel);

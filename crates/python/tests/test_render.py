@@ -282,6 +282,28 @@ def test_returned_arrays_are_never_reused_while_alive():
         np.testing.assert_array_equal(again[1], want_depth)
 
 
+def test_a_frame_freed_before_the_next_call_is_drawn_into_again():
+    # A caller done with a frame's arrays before the next call (as
+    # visible_faces is) gets the same memory back, still in cache, rather
+    # than a second set of buffers used in turn with the first.
+    sphere, faces = uv_sphere(12, 6)
+    size = dict(width=61, height=37)
+
+    def addresses(arrays):
+        return [a.__array_interface__["data"][0] for a in arrays]
+
+    first = hider.render(sphere, faces, **size)
+    where = addresses(first)
+    want = [a.copy() for a in first]
+    del first
+    for k in range(3):
+        again = hider.render(sphere, faces, **size)
+        assert addresses(again) == where
+        np.testing.assert_array_equal(again[0], want[0])
+        np.testing.assert_array_equal(again[1], want[1])
+        del again
+
+
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="counts /proc/self/task")
 def test_the_main_thread_works_in_its_first_pool(tmp_path):
     """The main thread's first pool (``threads=2``) takes the main thread
