@@ -28,11 +28,17 @@ pub struct CameraArgs {
 }
 
 impl CameraArgs {
-    /// The camera for a `width x height` image of `scene`: the fit camera
-    /// with the look-at overrides applied (the command line's rule for
-    /// `--eye`, `--fovy` and the rest), then the pose, the projection and
-    /// the intrinsics.
-    pub(crate) fn camera(&self, scene: &Scene, width: u32, height: u32) -> PyResult<Camera> {
+    /// The camera for a `width x height` image of `scene`, whose
+    /// [`Scene::bounds`] are `bounds`: the fit camera with the look-at
+    /// overrides applied (the command line's rule for `--eye`, `--fovy`
+    /// and the rest), then the pose, the projection and the intrinsics.
+    pub(crate) fn camera(
+        &self,
+        scene: &Scene,
+        bounds: Option<(DVec3, DVec3)>,
+        width: u32,
+        height: u32,
+    ) -> PyResult<Camera> {
         let mut c = CameraOverrides {
             eye: self.eye.map(DVec3::from_array),
             target: self.target.map(DVec3::from_array),
@@ -41,7 +47,7 @@ impl CameraArgs {
             near: self.near,
             far: self.far,
         }
-        .apply(scene);
+        .apply_to_bounds(scene.camera, bounds);
         if let Some(rows) = self.pose {
             // numpy's rows are glam's columns transposed.
             let pose = DMat4::from_cols_array_2d(&rows).transpose();
@@ -49,7 +55,7 @@ impl CameraArgs {
             c.eye = eye;
             c.target = eye - pose.z_axis.truncate();
             c.up = pose.y_axis.truncate();
-            let (near, far) = range_from(scene, eye, -pose.z_axis.truncate());
+            let (near, far) = range_from(bounds, eye, -pose.z_axis.truncate());
             set_range(&mut c, self.near.unwrap_or(near), self.far.unwrap_or(far));
         }
         if let Some(half_height) = self.orthographic {
@@ -100,8 +106,8 @@ fn set_range(c: &mut Camera, n: f64, f: f64) {
 /// view depths of the bounding box's corners (view depth is linear, so
 /// they bound the box's), widened by 1%, near at least a ten-thousandth
 /// of far (which clips only what is closer when the eye is in the box).
-fn range_from(scene: &Scene, eye: DVec3, forward: DVec3) -> (f64, f64) {
-    let (lo, hi) = scene.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
+fn range_from(bounds: Option<(DVec3, DVec3)>, eye: DVec3, forward: DVec3) -> (f64, f64) {
+    let (lo, hi) = bounds.unwrap_or((DVec3::ZERO, DVec3::ZERO));
     let forward = hider_geom::camera::rescaled(forward).normalize();
     let (mut nearest, mut farthest) = (f64::INFINITY, f64::NEG_INFINITY);
     for k in 0..8 {

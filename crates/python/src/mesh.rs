@@ -31,20 +31,52 @@ impl Vertices<'_> {
     /// One `DVec3` per row, the array named `what` in messages.
     pub(crate) fn rows_as(&self, what: &str) -> PyResult<Vec<DVec3>> {
         let mut out = Vec::new();
-        self.rows_into(what, &mut out)?;
+        self.rows_into(what, &mut out, |_, _| ())?;
         Ok(out)
     }
 
-    /// [`Self::rows_as`] into `out` (cleared first), reusing its memory.
-    fn rows_into(&self, what: &str, out: &mut Vec<DVec3>) -> PyResult<()> {
+    /// The number of rows.
+    fn rows(&self) -> PyResult<usize> {
         match self {
-            Vertices::F64(a) => rows_into(what, a, DVec3::from_array, out),
-            Vertices::F32(a) => rows_into(what, a, |r| DVec3::from_array(r.map(f64::from)), out),
+            Vertices::F64(a) => rows_of("vertices", a),
+            Vertices::F32(a) => rows_of("vertices", a),
+        }
+    }
+
+    /// [`Self::rows_as`] into `out` (cleared first), reusing its memory,
+    /// with `visit` called on each row's index and position as it is
+    /// copied.
+    fn rows_into(
+        &self,
+        what: &str,
+        out: &mut Vec<DVec3>,
+        mut visit: impl FnMut(usize, DVec3),
+    ) -> PyResult<()> {
+        let mut k = 0;
+        let mut seen = |p: DVec3| {
+            visit(k, p);
+            k += 1;
+            p
+        };
+        match self {
+            Vertices::F64(a) => rows_into(what, a, |r| seen(DVec3::from_array(r)), out),
+            Vertices::F32(a) => {
+                rows_into(what, a, |r| seen(DVec3::from_array(r.map(f64::from))), out)
+            }
         }
     }
 }
 
 impl Faces<'_> {
+    /// The number of rows (its shape checked when it is read).
+    fn rows(&self) -> usize {
+        match self {
+            Faces::I64(a) => a.shape()[0],
+            Faces::I32(a) => a.shape()[0],
+            Faces::U32(a) => a.shape()[0],
+        }
+    }
+
     /// Each row as `i64` indices, through `f`.
     fn map<U>(&self, f: impl FnMut([i64; 3]) -> U) -> PyResult<Vec<U>> {
         let mut out = Vec::new();
@@ -62,6 +94,18 @@ impl Faces<'_> {
     }
 }
 
+/// The number of rows of an `(N, 3)` array (its shape checked).
+fn rows_of<T: numpy::Element>(what: &str, a: &PyReadonlyArray2<'_, T>) -> PyResult<usize> {
+    let shape = a.shape();
+    if shape[1] != 3 {
+        return Err(PyValueError::new_err(format!(
+            "{what} must have shape (N, 3), got ({}, {})",
+            shape[0], shape[1]
+        )));
+    }
+    Ok(shape[0])
+}
+
 /// The mesh name that error messages about the arrays show.
 pub const MESH_NAME: &str = "array";
 
@@ -77,13 +121,7 @@ fn rows_into<T: numpy::Element + Copy, U>(
     mut f: impl FnMut([T; 3]) -> U,
     out: &mut Vec<U>,
 ) -> PyResult<()> {
-    let shape = a.shape();
-    if shape[1] != 3 {
-        return Err(PyValueError::new_err(format!(
-            "{what} must have shape (N, 3), got ({}, {})",
-            shape[0], shape[1]
-        )));
-    }
+    rows_of(what, a)?;
     out.clear();
     if let Ok(flat) = a.as_slice() {
         out.extend(flat.chunks_exact(3).map(|r| f([r[0], r[1], r[2]])));
@@ -95,31 +133,59 @@ fn rows_into<T: numpy::Element + Copy, U>(
 }
 
 thread_local! {
-    /// The position and index vectors of the last scene [`recycle`]d on
-    /// this thread, for the next [`scene_from_arrays`]: a frame loop over
-    /// a large mesh otherwise allocates them anew every call, and the
-    /// kernel faults in and zeroes their pages (12 MB a call on the UV
-    /// sphere 500, about a tenth of `hider.render`'s time there).
-    static SPARE: std::cell::RefCell<(Vec<DVec3>, Vec<[u32; 3]>)> =
-        const { std::cell::RefCell::new((Vec::new(), Vec::new())) };
+    /// The position, index and vertex-use vectors of the last scene
+    /// [`recycle`]d on this thread, for the next [`scene_from_arrays`]: a
+    /// frame loop over a large mesh otherwise allocates them anew every
+    /// call, and the kernel faults in and zeroes their pages (12 MB a call
+    /// on the UV sphere 500, about a tenth of `hider.render`'s time there).
+    static SPARE: std::cell::RefCell<Spare> =
+        const { std::cell::RefCell::new((Vec::new(), Vec::new(), Vec::new())) };
 }
+
+/// What [`SPARE`] keeps: positions, indices, which vertices are used.
+type Spare = (Vec<DVec3>, Vec<[u32; 3]>, Vec<bool>);
 
 /// Keeps the memory of a scene made by [`scene_from_arrays`] for the next
 /// one on this thread.
-pub fn recycle(scene: Scene) {
-    if let Some(mesh) = scene.meshes.into_iter().next() {
-        SPARE.with_borrow_mut(|spare| *spare = (mesh.positions, mesh.indices));
+pub fn recycle(scene: ArrayScene) {
+    if let Some(mesh) = scene.scene.meshes.into_iter().next() {
+        SPARE.with_borrow_mut(|spare| *spare = (mesh.positions, mesh.indices, scene.used));
     }
+}
+
+/// The one-mesh scene [`scene_from_arrays`] builds, with its bounds.
+pub struct ArrayScene {
+    /// The scene.
+    pub scene: Scene,
+    /// [`Scene::bounds`], computed while the scene was built.
+    pub bounds: Option<(DVec3, DVec3)>,
+    /// Which vertices a face uses (memory kept for the next scene).
+    used: Vec<bool>,
 }
 
 /// The one-mesh scene of `vertices` (`(N, 3)`, world space) and `faces`
 /// (`(M, 3)` vertex indices), with every position and index checked: the
 /// same messages as the front end's validation, naming the triangle or
-/// vertex at fault.
-pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult<Scene> {
-    let (mut positions, mut indices) = SPARE.with_borrow_mut(std::mem::take);
-    vertices.rows_into("vertices", &mut positions)?;
-    let n = positions.len();
+/// vertex at fault. Its bounds come with it.
+///
+/// Why the bounds here: the fit camera needs them, and [`Scene::bounds`]
+/// reads every index again (to mark the vertices used) and every position
+/// (0.6 ms a call on the UV sphere 500, against its frame's 8.5). Here the
+/// faces pass marks the vertices it checks, and the positions are copied,
+/// checked and bounded in one pass. That is [`Scene::bounds`]' own way for
+/// a mesh whose vertices are shared (fewer than 1.5 per triangle): the
+/// extremes over the used positions in order, so the same bits. Otherwise
+/// (a triangle soup) [`Scene::bounds`] is asked, which takes the extremes
+/// triangle by triangle (the same values, but the sign of a zero extreme
+/// can depend on the order).
+pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult<ArrayScene> {
+    let (mut positions, mut indices, mut used) = SPARE.with_borrow_mut(std::mem::take);
+    let n = vertices.rows()?;
+    let shared = n.saturating_mul(2) < faces.rows().saturating_mul(3);
+    used.clear();
+    if shared {
+        used.resize(n, false);
+    }
     // Every call converts and checks every index: one branch-free pass
     // (a negative index is above any count as u64), and the search for
     // the culprit only when it fails.
@@ -127,7 +193,13 @@ pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult
     let mut in_range = true;
     faces.map_into(
         |tri| {
-            in_range &= tri.iter().fold(true, |ok, &i| ok & ((i as u64) < limit));
+            let ok = tri.iter().fold(true, |ok, &i| ok & ((i as u64) < limit));
+            in_range &= ok;
+            if shared && ok {
+                for &i in &tri {
+                    used[i as usize] = true;
+                }
+            }
             // In range of a vertex count, so below u32::MAX only if n is;
             // the front end refuses meshes of more vertices than ids can
             // name.
@@ -152,6 +224,15 @@ pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult
             )));
         }
     }
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    let mut finite = true;
+    vertices.rows_into("vertices", &mut positions, |k, p| {
+        finite &= p.is_finite();
+        if shared && used[k] {
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+    })?;
     let mut scene = Scene::default();
     scene.push_mesh(
         Mesh {
@@ -164,9 +245,18 @@ pub fn scene_from_arrays(vertices: &Vertices<'_>, faces: &Faces<'_>) -> PyResult
     );
     // With the indices in range, the rest of `Scene::validate` for a mesh
     // of positions and indices is that the positions are finite: checked
-    // here in one pass, and `validate` itself only to name the culprit.
-    if !scene.meshes[0].positions_finite() {
+    // in the copy, and `validate` itself only to name the culprit.
+    if !finite {
         scene.validate().map_err(crate::errors::scene_error)?;
     }
-    Ok(scene)
+    let bounds = match (shared, scene.meshes[0].indices.is_empty()) {
+        (_, true) => None,
+        (true, false) => Some((lo, hi)),
+        (false, false) => scene.bounds(),
+    };
+    Ok(ArrayScene {
+        scene,
+        bounds,
+        used,
+    })
 }

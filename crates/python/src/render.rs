@@ -15,7 +15,7 @@ use pyo3::prelude::*;
 use crate::camera::CameraArgs;
 use crate::cancel::{PyCancel, token};
 use crate::errors::{plan_error, scene_error};
-use crate::mesh::{Faces, Vertices, scene_from_arrays};
+use crate::mesh::{ArrayScene, Faces, Vertices, scene_from_arrays};
 use crate::pools::pool;
 use crate::surface::{Surface, surface_arrays};
 
@@ -368,11 +368,11 @@ pub(crate) fn scene_and_view(
     faces: &Faces<'_>,
     (width, height): (u32, u32),
     camera: &CameraArgs,
-) -> PyResult<(Scene, View)> {
-    let scene = scene_from_arrays(vertices, faces)?;
-    let view =
-        View::new(camera.camera(&scene, width, height)?, width, height).map_err(scene_error)?;
-    Ok((scene, view))
+) -> PyResult<(ArrayScene, View)> {
+    let array = scene_from_arrays(vertices, faces)?;
+    let camera = camera.camera(&array.scene, array.bounds, width, height)?;
+    let view = View::new(camera, width, height).map_err(scene_error)?;
+    Ok((array, view))
 }
 
 /// Renders the mesh of `vertices` and `faces`; see the Python wrapper
@@ -418,9 +418,9 @@ pub fn render<'py>(
         intrinsics,
         orthographic,
     };
-    let (mut scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
+    let (mut array, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
     if let Some(normals) = normals {
-        set_vertex_normals(&mut scene, &normals)?;
+        set_vertex_normals(&mut array.scene, &normals)?;
     }
     let (distance, view_z, barycentrics, normals, vertex_normals) = want;
     let wanted = SurfaceOutputs {
@@ -431,8 +431,15 @@ pub fn render<'py>(
         vertex_normals,
         parallel: threads > 1,
     };
-    let result = render_surface(py, &scene, &view, algo, (threads, token(cancel)), wanted);
-    crate::mesh::recycle(scene);
+    let result = render_surface(
+        py,
+        &array.scene,
+        &view,
+        algo,
+        (threads, token(cancel)),
+        wanted,
+    );
+    crate::mesh::recycle(array);
     result
 }
 
@@ -526,7 +533,8 @@ pub fn plan<'py>(
         intrinsics,
         orthographic,
     };
-    let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
+    let (array, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
+    let scene = array.scene;
     let planned = py
         .detach(|| plan_scene(&scene, &view, threads, token(cancel)))
         .map_err(plan_error)?;

@@ -39,7 +39,8 @@ fn screen_view(
     width: u32,
     height: u32,
 ) -> PyResult<(Scene, View)> {
-    let mut scene = scene_from_arrays(&Vertices::F64(points.clone()), &Faces::I64(faces.clone()))?;
+    let mut scene =
+        scene_from_arrays(&Vertices::F64(points.clone()), &Faces::I64(faces.clone()))?.scene;
     let h = f64::from(height);
     for mesh in &mut scene.meshes {
         for p in &mut mesh.positions {

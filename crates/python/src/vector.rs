@@ -83,7 +83,8 @@ pub fn svg(
         intrinsics,
         orthographic,
     };
-    let (scene, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
+    let (array, view) = scene_and_view(&vertices, &faces, (width, height), &camera)?;
+    let scene = array.scene;
     let mut options = VectorOptions::default()
         .with_crease_degrees(crease_angle)
         .with_page_mm(page_mm)

@@ -52,6 +52,27 @@ def test_spider_equals_the_command_line_bit_for_bit(hider_cli, tmp_path):
     assert depth.tobytes() == want_depth.tobytes()
 
 
+def test_vertices_no_face_uses_do_not_move_the_camera():
+    # The bounds of the fit camera and of a moved eye's clip planes are
+    # those of the vertices the faces use, computed while the arrays are
+    # read: a stray vertex far away changes nothing, for a mesh of shared
+    # vertices and for a soup (three vertices a face), each with the fit
+    # camera, a moved eye and a pose.
+    vertices, faces = uv_sphere(12, 6)
+    soup = vertices[faces].reshape(-1, 3)
+    soup_faces = np.arange(len(soup)).reshape(-1, 3)
+    pose = np.eye(4)
+    pose[:3, 3] = [0.5, 0.2, 4.0]
+    for v, f in [(vertices, faces), (soup, soup_faces)]:
+        stray = np.vstack([[[50.0, -40.0, 30.0]], v, [[-60.0, 70.0, -80.0]]])
+        for camera in [{}, dict(eye=(3.0, 1.0, 2.0)), dict(pose=pose, convention="opengl")]:
+            want = hider.render(v, f, width=40, height=30, **camera)
+            got = hider.render(stray, f + 1, width=40, height=30, **camera)
+            assert (want[0] >= 0).sum() > 100
+            np.testing.assert_array_equal(got[0], want[0])
+            assert got[1].tobytes() == want[1].tobytes()
+
+
 def test_every_dtype_and_order_gives_the_same_buffers():
     vertices, faces = uv_sphere(12, 6)
     vertices = np.round(vertices * 8)  # exact in every dtype below

@@ -104,7 +104,7 @@ pub use shade::{
     Filter, Mapping, ShadeMode, Shader, Stages, Texture, TextureOptions, TextureRef,
     TextureSampler, shade_frame,
 };
-pub use view::{CameraOverrides, View, fit_camera};
+pub use view::{CameraOverrides, View, fit_camera, fit_camera_to_bounds};
 
 /// The vector maths the scene is written in (`glam::DVec3` for positions).
 pub use glam;
