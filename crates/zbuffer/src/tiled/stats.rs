@@ -20,6 +20,9 @@ hider_scene::hider_stats! {
         pub triangle_tiles: u64 => "triangle-tiles",
         /// (triangle, tile) pairs rejected whole by the tile's maximum depth.
         pub hiz_triangle_rejects: u64 => "hi-z triangle rejects",
+        /// (triangle, tile) pairs that passed the tile's test, rejected
+        /// whole by the maxima of the blocks their bounding box meets.
+        pub hiz_box_rejects: u64 => "hi-z box rejects",
         /// 8x8 blocks visited by large triangles.
         pub blocks_visited: u64 => "blocks visited",
         /// Blocks outside an edge of the triangle, found from their corners.
@@ -49,6 +52,7 @@ impl TiledZBufferStats {
         self.tiles_skipped += o.tiles_skipped;
         self.triangle_tiles += o.triangle_tiles;
         self.hiz_triangle_rejects += o.hiz_triangle_rejects;
+        self.hiz_box_rejects += o.hiz_box_rejects;
         self.blocks_visited += o.blocks_visited;
         self.blocks_outside += o.blocks_outside;
         self.blocks_inside += o.blocks_inside;

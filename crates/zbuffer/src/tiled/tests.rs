@@ -162,10 +162,60 @@ fn hierarchical_depth_rejects_work_on_an_overdrawn_soup() {
             .with_threads(1)
             .with_hierarchical_z(false),
     );
-    assert!(on.hiz_block_rejects > 0, "{on:?}");
+    assert!(on.hiz_block_rejects > 0 && on.hiz_box_rejects > 0, "{on:?}");
     assert!(on.depth_tests < off.depth_tests, "{on:?} vs {off:?}");
-    assert_eq!((off.hiz_block_rejects, off.hiz_triangle_rejects), (0, 0));
+    assert_eq!(
+        (
+            off.hiz_block_rejects,
+            off.hiz_triangle_rejects,
+            off.hiz_box_rejects
+        ),
+        (0, 0, 0)
+    );
     assert!(on.blocks_inside > 0 && on.blocks_outside > 0, "{on:?}");
+}
+
+#[test]
+fn a_triangle_behind_its_corner_of_the_tile_is_rejected_before_set_up() {
+    // One tile: a far wall on the left half, a near wall on the right half,
+    // then a triangle between the two depths inside the right half. The
+    // tile's farthest key (the far wall's) does not reject it; the maxima
+    // of the blocks its box meets (the near wall's) do, before any of its
+    // blocks is visited.
+    let wall = |x0: f64, x1: f64, z: f64| {
+        [
+            [x0, -10.0, z],
+            [x1, -10.0, z],
+            [x1, 10.0, z],
+            [x0, -10.0, z],
+            [x1, 10.0, z],
+            [x0, 10.0, z],
+        ]
+    };
+    let mut positions: Vec<[f64; 3]> = Vec::new();
+    positions.extend(wall(-10.0, 0.0, -5.0));
+    positions.extend(wall(0.0, 10.0, 0.5));
+    positions.extend([[2.0, -2.0, 0.0], [6.0, -2.0, 0.0], [4.0, 2.0, 0.0]]);
+    let mut scene = Scene::default();
+    scene.push_mesh(
+        hider_scene::Mesh {
+            name: "walls".to_owned(),
+            positions: positions.iter().map(|&p| DVec3::from_array(p)).collect(),
+            indices: vec![[0, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11], [12, 13, 14]],
+            ..hider_scene::Mesh::default()
+        },
+        None,
+    );
+    let s = fit(&scene, 64, 64);
+    let options = TiledZBufferOptions::default().with_threads(1);
+    let stats = assert_same(&s, options);
+    assert_eq!(
+        (stats.hiz_triangle_rejects, stats.hiz_box_rejects),
+        (0, 1),
+        "{stats:?}"
+    );
+    let off = assert_same(&s, options.with_hierarchical_z(false));
+    assert_eq!(off.triangle_tiles, stats.triangle_tiles + 1, "{off:?}");
 }
 
 #[test]

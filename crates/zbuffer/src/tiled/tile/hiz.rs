@@ -22,6 +22,26 @@ impl<K: DepthKey> TileBuf<K> {
         self.tile_passes += passes;
     }
 
+    /// An upper bound of the keys of the blocks that the box
+    /// `(x0, y0)..=(x1, y1)` (image pixels, inside the tile) meets: the
+    /// greatest of their maxima, as they stand (a stale one is still a
+    /// bound, and refreshing them here would cost more than it saves).
+    #[inline(always)]
+    pub(super) fn box_max(&self, (x0, y0, x1, y1): (u32, u32, u32, u32)) -> K {
+        let per_row = (self.size / BLOCK) as usize;
+        let (c0, c1) = (
+            ((x0 - self.x0) / BLOCK) as usize,
+            ((x1 - self.x0) / BLOCK) as usize,
+        );
+        let (r0, r1) = ((y0 - self.y0) / BLOCK, (y1 - self.y0) / BLOCK);
+        let mut m = self.block_max[r0 as usize * per_row + c0];
+        for r in r0..=r1 {
+            let row = &self.block_max[r as usize * per_row..][c0..=c1];
+            m = row.iter().fold(m, |m, &k| m.max_key(k));
+        }
+        m
+    }
+
     /// Recomputes a block's maximum key from its pixels.
     #[inline(always)]
     pub(super) fn refresh_block(&mut self, block: usize) {

@@ -14,7 +14,9 @@
 //! Z-Buffer Visibility", SIGGRAPH 1993) with two levels: the maximum key of
 //! each block and of the whole tile. A triangle or block whose depth lower
 //! bound (see [`super::bounds`]) encodes to a key not below that maximum
-//! cannot pass LESS anywhere there. Maxima only fall as depths are
+//! cannot pass LESS anywhere there. A triangle meets three tests: the
+//! tile's maximum, the greatest maximum of the blocks its box meets, and
+//! each block's. Maxima only fall as depths are
 //! written, so a stale maximum is still a valid bound: they are refreshed
 //! lazily, after enough passes to be worth it.
 
@@ -359,6 +361,21 @@ impl<K: WideBlock> TileBuf<K> {
         let (x1, y1) = (bx1.min(self.x0 + self.w - 1), by1.min(self.y0 + self.h - 1));
         if x0 > x1 || y0 > y1 {
             return;
+        }
+        // Hierarchical depth between the tile's level and the blocks': the
+        // maxima of the blocks the triangle's box meets here. A triangle in
+        // front of the tile's farthest key can still be behind everything
+        // in its own corner of the tile; rejecting it here saves its set-up
+        // and its walk over blocks that would each be rejected in turn.
+        // (On the soup of 100k triangles, 43 % of the triangle-tiles that
+        // pass the tile's test; the stale maxima of an inactive tile are
+        // not read.)
+        if hiz && self.active && low > f32::NEG_INFINITY {
+            let max = self.box_max((x0, y0, x1, y1));
+            if max < self.clear && K::encode(f64::from(low)) >= max {
+                self.stats.hiz_box_rejects += 1;
+                return;
+            }
         }
         if !self.active {
             self.activate();
