@@ -170,7 +170,7 @@ pub struct ArrayScene {
 ///
 /// Why the bounds here: the fit camera needs them, and [`Scene::bounds`]
 /// reads every index again (to mark the vertices used) and every position
-/// (0.6 ms a call on the UV sphere 500, against its frame's 8.5). Here the
+/// (0.47 ms on the UV sphere 500, against its frame's 8.5). Here the
 /// faces pass marks the vertices it checks, and the positions are copied,
 /// checked and bounded in one pass. That is [`Scene::bounds`]' own way for
 /// a mesh whose vertices are shared (fewer than 1.5 per triangle): the

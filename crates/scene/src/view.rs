@@ -78,7 +78,7 @@ impl CameraOverrides {
     /// [`Self::apply`] for a scene whose own camera is `own` and whose
     /// [`Scene::bounds`] are `bounds`, for a caller that has them already:
     /// computing them reads every index and position of the scene (about
-    /// 0.6 ms on a mesh of 500,000 triangles), and `hider.render` gets
+    /// 0.5 ms on a mesh of 500,000 triangles), and `hider.render` gets
     /// them while it builds the scene from its arrays.
     pub fn apply_to_bounds(&self, own: Option<Camera>, bounds: Option<(DVec3, DVec3)>) -> Camera {
         self.apply_with(own, || bounds)
