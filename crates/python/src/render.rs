@@ -141,6 +141,14 @@ thread_local! {
     static WORKSPACE: RefCell<Option<Workspace>> = const { RefCell::new(None) };
 }
 
+/// The frame of a workspace: Python returns the ids and depths, so the
+/// colour is not asked for, and is allocated without being written
+/// ([`Frame::new_for`]): the tiled z-buffer never touches it (1 GB at
+/// 16384 x 16384), a hider that resolves colour anyway still may.
+fn workspace_frame(width: u32, height: u32) -> hider_scene::Result<Frame> {
+    Frame::new_for(width, height, FrameBuffers::IDS_DEPTH)
+}
+
 /// Renders with this thread's workspace, made anew when the hider, the
 /// thread count or the cancel token differs from the last call's.
 fn render_with_workspace(
@@ -169,15 +177,16 @@ fn render_with_workspace(
                 threads,
                 cancel,
                 hider,
-                // Python returns the ids and depths: the colour is not read
-                // back (a hider that resolves it anyway still may).
-                frame: Frame::new(width, height)?.with_buffers(FrameBuffers::IDS_DEPTH),
+                frame: workspace_frame(width, height)?,
             });
         }
         let ws = slot.as_mut().expect("the workspace was just made");
         if ws.frame.width() != width || ws.frame.height() != height {
             ws.hider.check_size(width, height)?;
-            ws.frame.resize(width, height)?;
+            // A new frame, not `resize`, which would write the colour
+            // too; the old frame's memory is given back first.
+            ws.frame = workspace_frame(1, 1)?;
+            ws.frame = workspace_frame(width, height)?;
         }
         refill_frame(&mut ws.frame);
         let options = PrepareOptions::default()

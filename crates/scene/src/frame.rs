@@ -115,6 +115,52 @@ impl Frame {
         })
     }
 
+    /// A frame of `width x height` pixels that renders will be asked for
+    /// `wanted` only ([`Self::with_buffers`]): those buffers cleared as by
+    /// [`Self::new`], the others allocated zeroed and never written here.
+    /// The operating system maps zeroed memory only when it is first
+    /// written, so a buffer that no render writes costs no memory: a hider
+    /// that honours the request (the tiled z-buffer) leaves the colour of
+    /// an id and depth pass untouched, 1 GB at 16384 x 16384. What an
+    /// unwanted buffer holds is unspecified, as after any render that was
+    /// not asked for it.
+    ///
+    /// ```
+    /// use hider_scene::{Frame, FrameBuffers, NO_ID};
+    /// let frame = Frame::new_for(4, 3, FrameBuffers::IDS_DEPTH)?;
+    /// assert_eq!(frame.buffers(), FrameBuffers::IDS_DEPTH);
+    /// assert!(frame.ids.iter().all(|&id| id == NO_ID));
+    /// assert_eq!(frame.color.len(), 12);
+    /// # Ok::<(), hider_scene::Error>(())
+    /// ```
+    pub fn new_for(width: u32, height: u32, wanted: FrameBuffers) -> Result<Self> {
+        check_image_size(width, height)?;
+        let n = width as usize * height as usize;
+        // `vec![0; n]` of a zero value is one zeroed allocation (calloc),
+        // which large sizes get as fresh pages from the kernel.
+        Ok(Self {
+            width,
+            height,
+            wanted,
+            ids: if wanted.ids {
+                vec![NO_ID; n]
+            } else {
+                vec![0; n]
+            },
+            depth: if wanted.depth {
+                vec![BACKGROUND_DEPTH; n]
+            } else {
+                vec![0.0; n]
+            },
+            color: if wanted.color {
+                vec![BACKGROUND; n]
+            } else {
+                vec![[0; 4]; n]
+            },
+            coverage: Vec::new(),
+        })
+    }
+
     /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width
