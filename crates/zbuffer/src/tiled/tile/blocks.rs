@@ -158,16 +158,15 @@ impl<K: WideBlock> TileBuf<K> {
         } else if full && fits {
             // Biased by one so "inside" is ">= 0" (see `small`); edges the
             // whole block is inside of are replaced by the constant 0.
-            let mut e = [0i32; 3];
-            let mut lanes = [[0i32; 8]; 3];
-            let mut down = [0i32; 3];
-            for k in 0..3 {
-                if lo[k] <= 0 {
-                    e[k] = (corner[k] - 1) as i32;
-                    lanes[k] = s.lanes[k];
-                    down[k] = s.sy[k] as i32;
-                }
-            }
+            // Masks, not branches: which edges a sliver's block is inside
+            // of changes from block to block, and the branches were
+            // mispredicted (spider at 1024: 34.9k → 28.4k mispredicted
+            // conditional branches a frame in callgrind's simulation, draw
+            // 0.41-0.42 → 0.37-0.38 ms, for 1.5 % more instructions).
+            let keep = lo.map(|l| -i32::from(l <= 0));
+            let e = [0, 1, 2].map(|k| ((corner[k] - 1) as i32) & keep[k]);
+            let lanes = [0, 1, 2].map(|k| s.lanes[k].map(|l| l & keep[k]));
+            let down = [0, 1, 2].map(|k| (s.sy[k] as i32) & keep[k]);
             self.block8::<T, I, true>(isa, s, tri, bx, by, e, lanes, down)
         } else {
             // At the image's edge, or edges too long for i32 lanes.
