@@ -135,11 +135,12 @@ pub(super) mod avx2 {
             let col = (bytemuck::cast(col[0]), bytemuck::cast(col[1]));
             // No closures: a closure is a function of its own, without the
             // kernel's target features, and its intrinsics would be calls.
-            let lanes: [__m256i; 3] = bytemuck::cast(b.lanes);
+            let lanes: [__m256i; 3] = bytemuck::cast(*b.lanes);
             let mut e = lanes;
             let mut down = [_mm256_setzero_si256(); 3];
             for k in 0..3 {
-                e[k] = _mm256_add_epi32(_mm256_set1_epi32(b.e[k]), lanes[k]);
+                let kept = _mm256_and_si256(lanes[k], _mm256_set1_epi32(b.keep[k]));
+                e[k] = _mm256_add_epi32(_mm256_set1_epi32(b.e[k]), kept);
                 down[k] = _mm256_set1_epi32(b.down[k]);
             }
             let prim = _mm256_set1_epi32(b.prim as i32);
@@ -270,7 +271,8 @@ mod tests {
                 y0: 0.0,
                 by: 0,
                 e: [0; 3],
-                lanes: [[0; 8]; 3],
+                lanes: &[[0; 8]; 3],
+                keep: [0; 3],
                 down: [0; 3],
                 prim: 7,
             };

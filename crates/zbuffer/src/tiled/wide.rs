@@ -39,7 +39,10 @@ pub(crate) struct Block8<'a> {
     /// OR of the three is non-negative), their offsets along a row and
     /// their step per row; all zero for a block known to be inside.
     pub(crate) e: [i32; 3],
-    pub(crate) lanes: [[i32; 8]; 3],
+    pub(crate) lanes: &'a [[i32; 8]; 3],
+    /// Per edge, all ones to use its lanes, zero for an edge the block is
+    /// inside of (its lanes then count as 0).
+    pub(crate) keep: [i32; 3],
     pub(crate) down: [i32; 3],
     pub(crate) prim: u32,
 }

@@ -154,20 +154,24 @@ impl<K: WideBlock> TileBuf<K> {
         let fits = (0..3).all(|k| lo[k] > 0 || s.narrow[k]);
         let (passes, max) = if full && inside {
             self.stats.blocks_inside += 1;
-            self.block8::<T, I, false>(isa, s, tri, bx, by, [0; 3], [[0; 8]; 3], [0; 3])
+            self.block8::<T, I, false>(isa, s, tri, bx, by, [0; 3], [0; 3], [0; 3])
         } else if full && fits {
             // Biased by one so "inside" is ">= 0" (see `small`); edges the
-            // whole block is inside of are replaced by the constant 0.
-            // Masks, not branches: which edges a sliver's block is inside
-            // of changes from block to block, and the branches were
-            // mispredicted (spider at 1024: 34.9k → 28.4k mispredicted
-            // conditional branches a frame in callgrind's simulation, draw
-            // 0.41-0.42 → 0.37-0.38 ms, for 1.5 % more instructions).
+            // whole block is inside of are replaced by the constant 0, by
+            // masks (`keep`), not branches, and the triangle's lane offsets
+            // are passed by reference and masked in registers. A block's
+            // own copy of the lanes (96 bytes, copied edge by edge when
+            // the edge was kept) cost the spider's draw 0.41 ms against
+            // 0.32 now, the soup's 12.2 against 11.2, for 1.5 % more
+            // instructions: which edges a sliver's block is inside of
+            // changes from block to block (the branches were mispredicted,
+            // 34.9k → 32.4k a frame in callgrind's simulation), and, the
+            // likelier cost, three 256-bit loads of an array just written
+            // in narrower stores cannot be forwarded from them.
             let keep = lo.map(|l| -i32::from(l <= 0));
             let e = [0, 1, 2].map(|k| ((corner[k] - 1) as i32) & keep[k]);
-            let lanes = [0, 1, 2].map(|k| s.lanes[k].map(|l| l & keep[k]));
             let down = [0, 1, 2].map(|k| (s.sy[k] as i32) & keep[k]);
-            self.block8::<T, I, true>(isa, s, tri, bx, by, e, lanes, down)
+            self.block8::<T, I, true>(isa, s, tri, bx, by, e, keep, down)
         } else {
             // At the image's edge, or edges too long for i32 lanes.
             let xy = (bx.max(x0), by.max(y0), xb.min(x1), yb.min(y1));
@@ -203,7 +207,7 @@ impl<K: WideBlock> TileBuf<K> {
         bx: u32,
         by: u32,
         e: [i32; 3],
-        lanes: [[i32; 8]; 3],
+        keep: [i32; 3],
         down: [i32; 3],
     ) -> (u32, Option<K>) {
         let p = tri.depth();
@@ -225,7 +229,8 @@ impl<K: WideBlock> TileBuf<K> {
                 y0: p.y0,
                 by,
                 e,
-                lanes,
+                lanes: &s.lanes,
+                keep,
                 down,
                 prim: s.prim,
             };
@@ -251,8 +256,8 @@ impl<K: WideBlock> TileBuf<K> {
             for r in 0..8 {
                 let row = [0, 1, 2].map(|k| e[k] + r as i32 * down[k]);
                 for c in 0..8 {
-                    out[r * 8 + c] =
-                        (row[0] + lanes[0][c]) | (row[1] + lanes[1][c]) | (row[2] + lanes[2][c]);
+                    let lane = |k: usize| row[k] + (s.lanes[k][c] & keep[k]);
+                    out[r * 8 + c] = lane(0) | lane(1) | lane(2);
                 }
             }
         }
