@@ -102,17 +102,7 @@ impl Frame {
     /// A cleared frame of `width x height` pixels; the size is checked
     /// against the limits before anything is allocated.
     pub fn new(width: u32, height: u32) -> Result<Self> {
-        check_image_size(width, height)?;
-        let n = width as usize * height as usize;
-        Ok(Self {
-            width,
-            height,
-            wanted: FrameBuffers::ALL,
-            ids: vec![NO_ID; n],
-            depth: vec![BACKGROUND_DEPTH; n],
-            color: vec![BACKGROUND; n],
-            coverage: Vec::new(),
-        })
+        Self::new_for(width, height, FrameBuffers::ALL)
     }
 
     /// A frame of `width x height` pixels that renders will be asked for

@@ -36,8 +36,10 @@ pub(crate) struct Block8<'a> {
     pub(crate) y0: f64,
     pub(crate) by: u32,
     /// Edge functions at the first centre, biased by -1 (inside iff the
-    /// OR of the three is non-negative), their offsets along a row and
-    /// their step per row; all zero for a block known to be inside.
+    /// OR of the three is non-negative), the triangle's offsets along a
+    /// row (per edge, used through `keep`) and their step per row; the
+    /// value, step and `keep` are zero for an edge the block is inside of
+    /// (all three edges for a block known to be inside).
     pub(crate) e: [i32; 3],
     pub(crate) lanes: &'a [[i32; 8]; 3],
     /// Per edge, all ones to use its lanes, zero for an edge the block is
